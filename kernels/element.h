@@ -1,0 +1,253 @@
+/* element.h: per-triangle formulas shared verbatim by the C reference path and
+ * the OpenCL kernels (this file is compiled both as C11 and as OpenCL C, so it
+ * uses only plain double arithmetic and private arrays).
+ *
+ * Discretisation of E(z) = 1/2 int |grad z - i w z|^2,  w = (2 pi / h) W,
+ * with P1 hat functions phi_a on triangle T (area A, g_a = grad phi_a):
+ *   z = sum_a z_a phi_a  and  E = 1/2 z^H H z,  H Hermitian, H = S + i K:
+ *     |grad z - i w z|^2 = |grad z|^2 + |w|^2 |z|^2 - 2 Re( i z  w . grad conj(z) )
+ *   - stiffness      int g_a . g_b               = A g_a . g_b
+ *   - mass           int |w|^2 phi_a phi_b        = |w|^2 A (1 + delta_ab) / 12
+ *   - coupling       -2 Re(i sum_ab z_a conj(z_b) (w . g_b) int phi_a)
+ *                    = sum_ab conj(z_b) [ i (c_a - c_b) ] z_a,  c_a = A (w . g_a) / 3
+ *     so  S_ab = A g_a.g_b + |w|^2 A (1+delta_ab)/12,   K_ab = c_b - c_a   (row a, col b).
+ *   w_T is constant per triangle: (2 pi / h) * normalised mean of the three W_a.
+ *   Sign check: z = exp(+i w.x) has grad z = i w z, so E is ~0 for it and large
+ *   for exp(-i w.x) (tests/test_element.c checks both).
+ * Edge-transport discretisation (original PGP), per triangle edge (a,b) with
+ * opposite corner k and cotan weight c = cot(theta_k)/2 = (e_ka . e_kb) / (4A):
+ *   1/2 c |z_b - r_ab z_a|^2,  r_ab = exp(i (2 pi / h) W_ab . (x_b - x_a)),
+ *   W_ab = normalised (W_a + W_b)  (edge-based, so both triangles agree):
+ *   H_aa += c, H_bb += c, H_ba += -c r_ab, H_ab += -c conj(r_ab).
+ * Real unknowns X = [Re z_a, Im z_a] per vertex: the 2x2 block of a complex
+ * entry h = p + i q is [[p, -q], [q, p]] and E = 1/2 X^T A X, grad E = A X.
+ *
+ * GL penalty P = 1/(4 eps^2) int (|z|^2 - 1)^2 is a degree-4 polynomial in the
+ * barycentric coordinates on each triangle, integrated exactly by the 6-point
+ * degree-4 Dunavant rule (positive weights):
+ *   P_T      = A/(4 eps^2) sum_q w_q s_q^2,          s_q = |z_q|^2 - 1
+ *   dP/dX_a  = A/eps^2     sum_q w_q s_q z_q phi_a(q)               (2-vector)
+ *   d2P/dX_a dX_b = A/(4 eps^2) sum_q w_q phi_a phi_b M_q            (2x2)
+ *     exact:     M_q = 4 (s_q I + 2 z_q z_q^T)   (indefinite where |z|^2 < 1)
+ *     paper:     M_q = 4 [[3x^2, 2xy], [2xy, 3y^2]]   (eq. 8, PSD: det = 20 x^2 y^2)
+ *     projected: M_q = 4 ( max(3|z|^2-1, 0) zhat zhat^T + max(|z|^2-1, 0)(I - zhat zhat^T) )
+ *                (the exact M_q with its negative eigenvalues clamped to 0, per
+ *                 quadrature point; sum_q w_q (phi phi^T) (x) M_q is then PSD).
+ *     mixed:     exact where |z_q|^2 >= 1/2, projected where |z_q|^2 < 1/2 (vortex
+ *                cores); not PSD by itself (the exact part's -(1-|z|^2) across z),
+ *                but H_E + it is positive definite near a GL minimiser; the Newton
+ *                driver falls back to `projected` when CG meets negative curvature.
+ */
+#ifndef GLPGP_ELEMENT_H
+#define GLPGP_ELEMENT_H
+
+#ifdef __OPENCL_VERSION__
+#define GLPGP_FN inline
+#else
+#include <math.h>
+#define GLPGP_FN static inline
+#endif
+
+#define GLPGP_PI 3.14159265358979323846
+
+/* Element kinds of the quadratic form. */
+#define GLPGP_ELEM_P1 0        /* P1 finite elements of E */
+#define GLPGP_ELEM_TRANSPORT 1 /* edge-transport form (cotan weights) */
+#define GLPGP_ELEM_LAPLACE 2   /* plain cotan Laplacian (S only), for harmonic fields */
+
+/* Penalty Hessian variants. */
+#define GLPGP_HESS_PAPER 0
+#define GLPGP_HESS_PROJECTED 1
+#define GLPGP_HESS_EXACT 2
+#define GLPGP_HESS_MIXED 3 /* exact where |z|^2 >= 1/2, projected in vortex cores */
+
+/* Signed area of the triangle (positive when counter-clockwise). */
+GLPGP_FN double glpgp_tri_area(const double *x, const double *y)
+{
+    return 0.5 * ((x[1] - x[0]) * (y[2] - y[0]) - (x[2] - x[0]) * (y[1] - y[0]));
+}
+
+/* Twice the signed area and the P1 gradients g_a = (gx[a], gy[a]). */
+GLPGP_FN double glpgp_tri_grads(const double *x, const double *y, double *gx, double *gy)
+{
+    double a2 = (x[1] - x[0]) * (y[2] - y[0]) - (x[2] - x[0]) * (y[1] - y[0]);
+    for (int a = 0; a < 3; a++) {
+        int b = (a + 1) % 3, c = (a + 2) % 3;
+        gx[a] = (y[b] - y[c]) / a2;
+        gy[a] = (x[c] - x[b]) / a2;
+    }
+    return a2;
+}
+
+/* Entry (a,b) (row a, column b) of the complex element matrix of kind `kind`
+ * on the triangle with corners (x,y) and unit field (wx,wy) at its corners,
+ * target size h. Returns the real part in *re and the imaginary part in *im. */
+GLPGP_FN void glpgp_elem_entry(int kind, const double *x, const double *y,
+                               const double *wx, const double *wy, double h,
+                               int a, int b, double *re, double *im)
+{
+    double gx[3], gy[3];
+    double a2 = glpgp_tri_grads(x, y, gx, gy);
+    double area = 0.5 * a2;
+    if (kind == GLPGP_ELEM_P1 || kind == GLPGP_ELEM_LAPLACE) {
+        double s = area * (gx[a] * gx[b] + gy[a] * gy[b]);
+        double k = 0.0;
+        if (kind == GLPGP_ELEM_P1) {
+            /* w_T = (2 pi / h) * normalised mean field */
+            double mx = wx[0] + wx[1] + wx[2], my = wy[0] + wy[1] + wy[2];
+            double mn = sqrt(mx * mx + my * my);
+            double ox = 0.0, oy = 0.0;
+            if (mn > 0.0) {
+                ox = 2.0 * GLPGP_PI / h * mx / mn;
+                oy = 2.0 * GLPGP_PI / h * my / mn;
+            }
+            s += (ox * ox + oy * oy) * area * (a == b ? 2.0 : 1.0) / 12.0;
+            /* K_ab = c_b - c_a,  c_j = A (w . g_j) / 3 */
+            double ca = area * (ox * gx[a] + oy * gy[a]) / 3.0;
+            double cb = area * (ox * gx[b] + oy * gy[b]) / 3.0;
+            k = cb - ca;
+        }
+        *re = s;
+        *im = k;
+        return;
+    }
+    /* transport: sum over the triangle's edges touching a and b */
+    double sre = 0.0, sim = 0.0;
+    for (int e = 0; e < 3; e++) {
+        int p = e, q = (e + 1) % 3, o = (e + 2) % 3; /* edge (p,q), opposite o */
+        double ex1 = x[p] - x[o], ey1 = y[p] - y[o];
+        double ex2 = x[q] - x[o], ey2 = y[q] - y[o];
+        double c = (ex1 * ex2 + ey1 * ey2) / (2.0 * a2); /* cot(theta_o)/2 */
+        if (a == b) {
+            if (a == p || a == q) sre += c;
+            continue;
+        }
+        if (!((a == p && b == q) || (a == q && b == p))) continue;
+        /* r_pq = exp(i phase), phase = (2 pi / h) W_pq . (x_q - x_p) */
+        double mx = wx[p] + wx[q], my = wy[p] + wy[q];
+        double mn = sqrt(mx * mx + my * my);
+        double ph = 0.0;
+        if (mn > 0.0) ph = 2.0 * GLPGP_PI / h * (mx * (x[q] - x[p]) + my * (y[q] - y[p])) / mn;
+        /* H_qp = -c r_pq, H_pq = -c conj(r_pq) */
+        double cr = cos(ph), sr = sin(ph);
+        sre += -c * cr;
+        sim += (a == q) ? -c * sr : c * sr;
+    }
+    *re = sre;
+    *im = sim;
+}
+
+/* Degree-4 Dunavant rule: barycentric point q (0..5), weight (sums to 1). */
+GLPGP_FN double glpgp_quad4(int q, double *l0, double *l1, double *l2)
+{
+    const double a1 = 0.445948490915964886318, w1 = 0.223381589678011065396;
+    const double a2 = 0.091576213509770743460;
+    double a = q < 3 ? a1 : a2;
+    double b = 1.0 - 2.0 * a;
+    int r = q % 3;
+    *l0 = r == 0 ? b : a;
+    *l1 = r == 1 ? b : a;
+    *l2 = r == 2 ? b : a;
+    return q < 3 ? w1 : (1.0 / 3.0 - w1);
+}
+
+/* Penalty energy of one triangle: A/(4 eps^2) sum_q w_q (|z_q|^2 - 1)^2.
+ * area = triangle area, inv4e2 = 1/(4 eps^2), zr/zi the corner values. */
+GLPGP_FN double glpgp_pen_energy(double area, double inv4e2, const double *zr, const double *zi)
+{
+    double e = 0.0;
+    for (int q = 0; q < 6; q++) {
+        double l[3];
+        double w = glpgp_quad4(q, &l[0], &l[1], &l[2]);
+        double x = l[0] * zr[0] + l[1] * zr[1] + l[2] * zr[2];
+        double y = l[0] * zi[0] + l[1] * zi[1] + l[2] * zi[2];
+        double s = x * x + y * y - 1.0;
+        e += w * s * s;
+    }
+    return area * inv4e2 * e;
+}
+
+/* Penalty gradient at corner a: (*gr, *gi) = dP_T / d(Re z_a, Im z_a). */
+GLPGP_FN void glpgp_pen_grad(double area, double inv4e2, const double *zr, const double *zi,
+                             int a, double *gr, double *gi)
+{
+    double sr = 0.0, si = 0.0;
+    for (int q = 0; q < 6; q++) {
+        double l[3];
+        double w = glpgp_quad4(q, &l[0], &l[1], &l[2]);
+        double x = l[0] * zr[0] + l[1] * zr[1] + l[2] * zr[2];
+        double y = l[0] * zi[0] + l[1] * zi[1] + l[2] * zi[2];
+        double s = x * x + y * y - 1.0;
+        sr += w * s * x * l[a];
+        si += w * s * y * l[a];
+    }
+    *gr = 4.0 * area * inv4e2 * sr;
+    *gi = 4.0 * area * inv4e2 * si;
+}
+
+/* Penalty Hessian block (a,b) (2x2, row-major into m[4]) of variant `hess`. */
+GLPGP_FN void glpgp_pen_hess(int hess, double area, double inv4e2, const double *zr,
+                             const double *zi, int a, int b, double *m)
+{
+    double m0 = 0.0, m1 = 0.0, m2 = 0.0, m3 = 0.0;
+    for (int q = 0; q < 6; q++) {
+        double l[3];
+        double w = glpgp_quad4(q, &l[0], &l[1], &l[2]);
+        double x = l[0] * zr[0] + l[1] * zr[1] + l[2] * zr[2];
+        double y = l[0] * zi[0] + l[1] * zi[1] + l[2] * zi[2];
+        double r2 = x * x + y * y;
+        double f = w * l[a] * l[b];
+        double h00, h01, h11;
+        if (hess == GLPGP_HESS_PAPER) {
+            h00 = 3.0 * x * x;
+            h01 = 2.0 * x * y;
+            h11 = 3.0 * y * y;
+        } else if (hess == GLPGP_HESS_EXACT || (hess == GLPGP_HESS_MIXED && r2 >= 0.5)) {
+            h00 = r2 - 1.0 + 2.0 * x * x;
+            h01 = 2.0 * x * y;
+            h11 = r2 - 1.0 + 2.0 * y * y;
+        } else {
+            /* eigen-decomposition of s I + 2 z z^T: along zhat 3r2-1, across r2-1 */
+            double lp = 3.0 * r2 - 1.0, lt = r2 - 1.0;
+            lp = lp > 0.0 ? lp : 0.0;
+            lt = lt > 0.0 ? lt : 0.0;
+            if (r2 > 0.0) {
+                double ux = x * x / r2, uxy = x * y / r2, uy = y * y / r2;
+                h00 = lp * ux + lt * (1.0 - ux);
+                h01 = (lp - lt) * uxy;
+                h11 = lp * uy + lt * (1.0 - uy);
+            } else {
+                h00 = 0.0;
+                h01 = 0.0;
+                h11 = 0.0;
+            }
+        }
+        m0 += f * h00;
+        m1 += f * h01;
+        m3 += f * h11;
+    }
+    m2 = m1;
+    double c = 4.0 * area * inv4e2;
+    m[0] = c * m0;
+    m[1] = c * m1;
+    m[2] = c * m2;
+    m[3] = c * m3;
+}
+
+/* Winding number of z around the triangle (sum of principal args of z_b/z_a
+ * over its three edges, divided by 2 pi, rounded): -1, 0 or +1. */
+GLPGP_FN int glpgp_tri_winding(const double *zr, const double *zi)
+{
+    double s = 0.0;
+    for (int e = 0; e < 3; e++) {
+        int a = e, b = (e + 1) % 3;
+        /* arg(z_b conj(z_a)) */
+        double re = zr[b] * zr[a] + zi[b] * zi[a];
+        double im = zi[b] * zr[a] - zr[b] * zi[a];
+        s += atan2(im, re);
+    }
+    double w = s / (2.0 * GLPGP_PI);
+    return (int)(w > 0 ? w + 0.5 : w - 0.5);
+}
+
+#endif

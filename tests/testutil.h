@@ -1,0 +1,61 @@
+/* testutil.h: tiny check macros and helpers shared by the C tests. */
+#ifndef GLPGP_TESTUTIL_H
+#define GLPGP_TESTUTIL_H
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+
+static int tu_failures = 0;
+
+#define CHECK(cond)                                                            \
+    do {                                                                       \
+        if (!(cond)) {                                                         \
+            fprintf(stderr, "%s:%d: CHECK failed: %s\n", __FILE__, __LINE__, #cond); \
+            tu_failures++;                                                     \
+        }                                                                      \
+    } while (0)
+
+/* |a - b| <= atol + rtol |b| */
+#define CHECK_CLOSE(a, b, atol, rtol)                                          \
+    do {                                                                       \
+        double ca_ = (a), cb_ = (b);                                           \
+        if (!(fabs(ca_ - cb_) <= (atol) + (rtol)*fabs(cb_))) {                 \
+            fprintf(stderr, "%s:%d: CHECK_CLOSE failed: %s = %.17g vs %s = %.17g\n", \
+                    __FILE__, __LINE__, #a, ca_, #b, cb_);                     \
+            tu_failures++;                                                     \
+        }                                                                      \
+    } while (0)
+
+#define CHECK_OK(call)                                                         \
+    do {                                                                       \
+        glpgp_status st_ = (call);                                             \
+        if (st_ != GLPGP_OK) {                                                 \
+            fprintf(stderr, "%s:%d: %s failed: %s\n", __FILE__, __LINE__, #call,  \
+                    glpgp_error_message());                                    \
+            glpgp_error_clear();                                               \
+            tu_failures++;                                                     \
+        }                                                                      \
+    } while (0)
+
+#define TEST_DONE()                                                            \
+    do {                                                                       \
+        if (tu_failures) {                                                     \
+            fprintf(stderr, "%d check(s) failed\n", tu_failures);             \
+            return 1;                                                          \
+        }                                                                      \
+        printf("all checks passed\n");                                         \
+        return 0;                                                              \
+    } while (0)
+
+/* Deterministic uniform random in [0,1) (xorshift64*). */
+static unsigned long long tu_rng = 88172645463325252ULL;
+static double tu_rand(void)
+{
+    tu_rng ^= tu_rng >> 12;
+    tu_rng ^= tu_rng << 25;
+    tu_rng ^= tu_rng >> 27;
+    return (double)((tu_rng * 2685821657736338717ULL) >> 11) * (1.0 / 9007199254740992.0);
+}
+
+#endif
