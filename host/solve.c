@@ -41,8 +41,10 @@ void glpgp_options_default(glpgp_options *o)
 
 double glpgp_default_size(const glpgp_mesh *m)
 {
+    /* diameter / 20, raised to 10 mean edges when the mesh is too coarse for it
+     * (P1 needs about 10 vertices per period, see host/README.md) */
     double dx = m->bbox[2] - m->bbox[0], dy = m->bbox[3] - m->bbox[1];
-    return sqrt(dx * dx + dy * dy) / 20.0;
+    return fmax(sqrt(dx * dx + dy * dy) / 20.0, 10.0 * m->mean_edge);
 }
 
 /* ---- guiding field ------------------------------------------------------ */
@@ -473,6 +475,10 @@ glpgp_status glpgp_solve(const glpgp_mesh *m, glpgp_backend *b, const glpgp_opti
     if (o->verbose >= 1)
         fprintf(stderr, "glpgp: %d vertices, %d triangles, %ld blocks, h = %g (%.1f edges per period), backend %s\n",
                 nv, nt, sys->nnzb, h, h / m->mean_edge, b->ops->name);
+    if (o->verbose >= 1 && h < 6.0 * m->mean_edge)
+        fprintf(stderr, "glpgp: warning: h = %g is only %.1f mean edges: P1 needs about 10 vertices per "
+                        "period (refine the mesh, raise --size, or use --energy transport)\n",
+                h, h / m->mean_edge);
     GLPGP_CHECK_GOTO(st, b->ops->setup(b, sys), fail);
     w.b = b;
     w.o = o;

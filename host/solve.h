@@ -15,7 +15,7 @@ enum glpgp_init { GLPGP_INIT_NAIVE = 0, GLPGP_INIT_ONE = 1 };
 #define GLPGP_MAX_LEVELS 32
 
 typedef struct glpgp_options {
-    double size;          /* target quad size h; <= 0: default (diameter / 20) */
+    double size;          /* target quad size h; <= 0: glpgp_default_size() */
     int method;           /* GLPGP_METHOD_* (default GL) */
     int energy;           /* GLPGP_ELEM_P1 (default) or GLPGP_ELEM_TRANSPORT */
     int hess;             /* GLPGP_HESS_MIXED (default), _PROJECTED or _PAPER */
@@ -81,7 +81,8 @@ glpgp_status glpgp_solve(const glpgp_mesh *m, glpgp_backend *b, const glpgp_opti
                          glpgp_result **out);
 void glpgp_result_destroy(glpgp_result **r);
 
-/* Default h for a mesh: diameter of its bounding box / 20. */
+/* Default h for a mesh: diagonal of its bounding box / 20, raised to 10 mean
+ * edge lengths when the mesh is too coarse for that. */
 double glpgp_default_size(const glpgp_mesh *m);
 
 /* Lower-level pieces, exposed for tests and crosscheck. */

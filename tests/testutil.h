@@ -50,7 +50,7 @@ static int tu_failures = 0;
 
 /* Deterministic uniform random in [0,1) (xorshift64*). */
 static unsigned long long tu_rng = 88172645463325252ULL;
-static double tu_rand(void)
+static inline double tu_rand(void)
 {
     tu_rng ^= tu_rng >> 12;
     tu_rng ^= tu_rng << 25;
