@@ -504,7 +504,8 @@ glpgp_status glpgp_solve(const glpgp_mesh *m, glpgp_backend *b, const glpgp_opti
     int nlev = 0;
     double e = o->eps0 * h, emin = o->eps_min * m->mean_edge;
     eps[nlev++] = e;
-    while (e > emin * (1.0 + 1e-12) && nlev < GLPGP_MAX_LEVELS) {
+    /* the last level sits at emin; a level closer than 25% to its predecessor is dropped */
+    while (e > emin * 1.25 && nlev < GLPGP_MAX_LEVELS) {
         e = fmax(e * o->eps_ratio, emin);
         eps[nlev++] = e;
     }
