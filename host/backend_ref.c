@@ -62,6 +62,12 @@ static void ref_destroy(glpgp_backend *b)
 static glpgp_status ref_setup(glpgp_backend *b, const glpgp_system *sys)
 {
     ref_impl *r = IMPL(b);
+    /* a backend may be set up again for another system: drop the old buffers */
+    glpgp_free(&r->wbuf);
+    glpgp_free(&r->dir);
+    glpgp_free(&r->quad);
+    glpgp_free(&r->newton);
+    glpgp_free(&r->dinv);
     r->sys = sys;
     b->sys = sys;
     GLPGP_CHECK(glpgp_calloc((size_t)2 * sys->nv, sizeof(double), &r->wbuf));

@@ -1,0 +1,185 @@
+#!/usr/bin/env bash
+# cli_errors.sh: error handling of the glpgp CLI.
+# Usage: bash cli_errors.sh <path-to-glpgp> <data-dir>
+# Checks: help/version texts (every solve option documented), exit codes
+# (1 = failure with "glpgp: error: ..." naming the problem, 2 = usage error),
+# rejected inputs (missing, non-planar, degenerate, non-manifold, garbage),
+# rejected option values, and that a failed run never leaves (or clobbers) an
+# output file.
+set -u
+
+GLPGP=${1:?usage: cli_errors.sh <glpgp> <data-dir>}
+[ -x "$GLPGP" ] || { echo "glpgp binary '$GLPGP' not found"; exit 1; }
+GLPGP=$(cd "$(dirname "$GLPGP")" && pwd)/$(basename "$GLPGP")
+T=$(mktemp -d "${TMPDIR:-/tmp}/glpgp_cli_errors.XXXXXX")
+trap 'rm -rf "$T"' EXIT
+cd "$T" || exit 1
+
+fails=0
+fail() { echo "FAIL: $*"; fails=$((fails + 1)); }
+
+# run EXPECTED_RC DESCRIPTION -- ARGS...: runs glpgp, output in out.txt/err.txt
+run() {
+    local want=$1 what=$2
+    shift 3
+    "$GLPGP" "$@" >out.txt 2>err.txt </dev/null
+    local rc=$?
+    if [ "$want" = nonzero ]; then
+        [ "$rc" -ne 0 ] || fail "$what: expected failure, got exit 0"
+    elif [ "$rc" -ne "$want" ]; then
+        fail "$what: expected exit $want, got $rc (stderr: $(head -c 300 err.txt))"
+    fi
+    return 0
+}
+# expect_msg REGEX DESCRIPTION: stderr must match (case-insensitive ERE)
+expect_msg() {
+    grep -qiE -e "$1" err.txt || fail "$2: stderr does not match /$1/: $(head -c 300 err.txt)"
+}
+no_outputs() {
+    for f in o.vtk o.obj o.json; do
+        [ ! -e "$f" ] || { fail "$1: output $f left behind"; rm -f "$f"; }
+    done
+    if ls -A | grep -q '\.tmp'; then fail "$1: temporary file left: $(ls -A | grep '\.tmp')"; fi
+}
+
+# ---- help / version -----------------------------------------------------
+run 0 "--help" -- --help
+grep -q "solve" out.txt && grep -q "generate" out.txt && grep -q "devices" out.txt &&
+    grep -q "crosscheck" out.txt || fail "--help does not list every subcommand"
+run 0 "help" -- help
+run 0 "--version" -- --version
+grep -qE "glpgp [0-9]" out.txt || fail "--version prints no version"
+run 2 "no arguments" -- 
+grep -qi "usage" err.txt || fail "no arguments: no usage text"
+run 2 "unknown command" -- frobnicate
+expect_msg "frobnicate" "unknown command"
+
+run 0 "solve --help" -- solve --help
+for opt in --size --method --energy --newton --field --center --init --eps0 --eps-ratio \
+    --eps-min --newton-rtol --newton-max --cg-rtol --cg-max --cg-check --backend --device \
+    --out --stats --quiet --verbose shape: gl pgp p1 transport projected paper boundary radial \
+    reference opencl auto naive; do
+    grep -qe "$opt" out.txt || fail "solve --help does not mention $opt"
+done
+grep -qi "default" out.txt || fail "solve --help shows no defaults"
+run 0 "help solve" -- help solve
+run 0 "generate --help" -- generate --help
+grep -q -- "--vertices" out.txt || fail "generate --help does not mention --vertices"
+
+# ---- bad inputs: exit 1 with a meaningful message, no output ------------
+printf 'v 0 0 0\nv 1 0 0\nv 0 1 0.5\nv 1 1 0\nf 1 2 3\nf 2 4 3\n' >nonplanar.obj
+printf 'v 0 0 0\nv 1 0 0\nv 2 0 0\nv 0 1 0\nf 1 2 3\nf 1 2 4\n' >degenerate.obj
+printf 'v 0 0\nv 1 0\nv 0 1\nv 0 -1\nv 1 1\nf 1 2 3\nf 2 1 4\nf 1 2 5\n' >nonmanifold.obj
+printf 'hello world\nthis is not a mesh\n\001\002\003\n' >garbage.obj
+printf 'not a gmsh file\n' >garbage.msh
+printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n' >badindex.obj
+: >empty.obj
+
+for f in missing.obj nonplanar.obj degenerate.obj nonmanifold.obj garbage.obj garbage.msh \
+    badindex.obj empty.obj; do
+    run 1 "solve $f" -- solve "$f" --out o.vtk --stats o.json --quiet
+    expect_msg "^glpgp: error: " "solve $f"
+    no_outputs "solve $f"
+done
+run 1 "missing file" -- solve missing.obj --quiet
+expect_msg "missing\.obj" "missing file (names the path)"
+expect_msg "no such file|cannot open|not found|does not exist" "missing file"
+run 1 "non-planar" -- solve nonplanar.obj --quiet
+expect_msg "planar" "non-planar"
+run 1 "degenerate" -- solve degenerate.obj --quiet
+expect_msg "degenerate|zero.area|area" "degenerate"
+run 1 "non-manifold" -- solve nonmanifold.obj --quiet
+expect_msg "manifold" "non-manifold"
+run 1 "garbage" -- solve garbage.obj --quiet
+expect_msg "format|malformed|unknown|invalid|parse|unexpected|binary|not a" "garbage"
+run 1 "garbage msh" -- solve garbage.msh --quiet
+expect_msg "format|malformed|unknown|invalid|parse|unexpected|gmsh|msh" "garbage msh"
+run 1 "bad index" -- solve badindex.obj --quiet
+expect_msg "index|range|vertex|invalid" "bad index"
+
+# a pre-existing output survives a failed run untouched
+echo "old content" >o.vtk
+run 1 "failed run keeps old output" -- solve nonmanifold.obj --out o.vtk --quiet
+[ "$(cat o.vtk 2>/dev/null)" = "old content" ] || fail "failed run modified the existing o.vtk"
+rm -f o.vtk
+
+# output directory missing: fails before solving, creates nothing
+run 1 "output dir missing" -- solve shape:square:200 --out nodir/o.vtk --quiet
+expect_msg "nodir" "output dir missing"
+[ ! -e nodir ] || fail "output dir missing: nodir was created"
+run 1 "stats dir missing" -- solve shape:square:200 --out o.vtk --stats nodir/o.json --quiet
+no_outputs "stats dir missing"
+
+# field file missing: the solve fails, no output
+run nonzero "field file missing" -- solve shape:square:300 --field nofield.txt --out o.vtk \
+    --stats o.json --quiet
+expect_msg "nofield" "field file missing"
+no_outputs "field file missing"
+
+# ---- bad option values: exit 2, naming the option -------------------------
+bad_opt() { # DESCRIPTION ARGS...
+    local what=$1
+    shift
+    run 2 "$what" -- solve shape:square:200 --out o.vtk --stats o.json --quiet "$@"
+    expect_msg "usage" "$what"
+    no_outputs "$what"
+}
+bad_opt "--size -1" --size -1
+expect_msg "size" "--size -1"
+bad_opt "--size abc" --size abc
+expect_msg "abc" "--size abc"
+bad_opt "--size 0" --size 0
+bad_opt "--size nan" --size nan
+bad_opt "--size inf" --size inf
+bad_opt "--size 1e999" --size 1e999
+bad_opt "--size 1x" --size 1x
+bad_opt "--size=" --size=
+bad_opt "--size (no value)" --size
+bad_opt "--method foo" --method foo
+expect_msg "method" "--method foo"
+bad_opt "--energy foo" --energy foo
+bad_opt "--newton foo" --newton foo
+bad_opt "--init foo" --init foo
+bad_opt "--backend foo" --backend foo
+bad_opt "--eps0 -2" --eps0 -2
+bad_opt "--eps-ratio 1.5" --eps-ratio 1.5
+bad_opt "--eps-min 0" --eps-min 0
+bad_opt "--newton-rtol 2" --newton-rtol 2
+bad_opt "--newton-max 0" --newton-max 0
+bad_opt "--cg-rtol 0" --cg-rtol 0
+bad_opt "--cg-max 1.5" --cg-max 1.5
+bad_opt "--cg-max 99999999999999999999" --cg-max 99999999999999999999
+bad_opt "--cg-check x" --cg-check x
+bad_opt "--device -1" --device -1
+bad_opt "--center 1" --center 1
+bad_opt "--center a,b" --center a,b
+bad_opt "--out o.txt" --out o.txt
+bad_opt "--quiet=1" --quiet=1
+bad_opt "unknown option" --bogus-option
+expect_msg "--bogus-option" "unknown option (named in the message)"
+bad_opt "second input" extra.obj
+run 2 "solve without input" -- solve --quiet
+run 2 "shape:nosuch" -- solve shape:nosuch --quiet
+expect_msg "nosuch" "shape:nosuch"
+run 2 "shape:square:abc" -- solve shape:square:abc --quiet
+run 2 "--out == --stats" -- solve shape:square:200 --out o.vtk --stats o.vtk --quiet
+no_outputs "--out == --stats"
+
+# ---- generate -------------------------------------------------------------
+run nonzero "generate bad shape" -- generate nosuchshape --vertices 500 -o g.obj
+expect_msg "nosuchshape" "generate bad shape"
+[ ! -e g.obj ] || fail "generate bad shape left g.obj"
+run 2 "generate bad count" -- generate square --vertices abc -o g.obj
+run 2 "generate tiny count" -- generate square --vertices 3 -o g.obj
+run 2 "generate no output" -- generate square --vertices 500
+run 2 "generate bad extension" -- generate square --vertices 500 -o g.txt
+run 1 "generate into missing dir" -- generate square --vertices 500 -o nodir/g.obj
+[ ! -e g.obj ] && [ ! -e g.txt ] || fail "generate failures left a file"
+if ls -A | grep -q '\.tmp'; then fail "temporary files left: $(ls -A | grep '\.tmp')"; fi
+
+if [ "$fails" -ne 0 ]; then
+    echo "cli_errors: $fails failure(s)"
+    exit 1
+fi
+echo "cli_errors: all checks passed"
+exit 0

@@ -1,0 +1,127 @@
+#!/usr/bin/env bash
+# cli_solve.sh: end-to-end runs of the glpgp CLI on small generated domains.
+# Usage: bash cli_solve.sh <path-to-glpgp> <data-dir>
+# Checks: `generate` writes .obj/.msh and reports the counts; `solve` with the
+# reference backend writes a VTK (all arrays, right counts), a textured OBJ
+# (one vt per corner) and a statistics JSON that parses (python3, when
+# available) with consistent keys; overwriting existing outputs; built-in
+# shape: inputs; at most one warning line with --backend auto; no temporary
+# files left behind.
+set -u
+
+GLPGP=${1:?usage: cli_solve.sh <glpgp> <data-dir>}
+[ -x "$GLPGP" ] || { echo "glpgp binary '$GLPGP' not found"; exit 1; }
+GLPGP=$(cd "$(dirname "$GLPGP")" && pwd)/$(basename "$GLPGP")
+T=$(mktemp -d "${TMPDIR:-/tmp}/glpgp_cli_solve.XXXXXX")
+trap 'rm -rf "$T"' EXIT
+cd "$T" || exit 1
+
+fails=0
+fail() { echo "FAIL: $*"; fails=$((fails + 1)); }
+ok_run() { # DESCRIPTION ARGS...: must exit 0
+    local what=$1
+    shift
+    "$GLPGP" "$@" >out.txt 2>err.txt </dev/null
+    local rc=$?
+    [ "$rc" -eq 0 ] || fail "$what: exit $rc: $(head -c 600 err.txt)"
+    return 0
+}
+have_python=0
+if command -v python3 >/dev/null 2>&1; then have_python=1; fi
+json_ok() { # FILE NV: parses, has the documented keys, vertices == NV
+    [ "$have_python" -eq 1 ] || { echo "note: python3 not found, JSON parse check skipped"; return 0; }
+    python3 - "$1" "$2" <<'EOF' || fail "JSON $1 is invalid or incomplete"
+import json, sys
+d = json.load(open(sys.argv[1]))
+nv = int(sys.argv[2])
+need = ["vertices", "triangles", "size", "method", "energy", "newton", "backend", "field",
+        "singularities", "zabs", "newton_iterations", "cg_iterations", "eps_schedule",
+        "dirichlet", "seconds", "input", "mesh"]
+missing = [k for k in need if k not in d]
+assert not missing, "missing keys %s" % missing
+assert d["vertices"] == nv, (d["vertices"], nv)
+for o in ("u", "v"):
+    assert set(d["singularities"][o]) >= {"plus", "minus"}
+    assert set(d["zabs"][o]) >= {"min", "p10", "median"}
+    assert isinstance(d["eps_schedule"][o], list)
+assert set(d["seconds"]) >= {"setup", "field", "u", "v", "total"}
+assert set(d["mesh"]) >= {"area", "mean_edge", "boundary_loops"}
+assert d["newton_iterations"]["total"] == d["newton_iterations"]["u"] + d["newton_iterations"]["v"]
+EOF
+}
+no_tmp() {
+    if ls -A | grep -q '\.tmp'; then fail "$1: temporary file left: $(ls -A | grep '\.tmp')"; fi
+}
+
+# ---- generate -------------------------------------------------------------
+ok_run "generate sq.obj" generate square --vertices 2000 -o sq.obj
+[ -s sq.obj ] || fail "generate did not write sq.obj"
+grep -qE "[0-9]+ vertices, [0-9]+ triangles" out.txt || fail "generate prints no counts"
+NV=$(grep -c '^v ' sq.obj)
+NT=$(grep -c '^f ' sq.obj)
+[ "$NV" -ge 1500 ] && [ "$NV" -le 2600 ] || fail "sq.obj has $NV vertices, expected about 2000"
+
+# ---- solve -> VTK + JSON --------------------------------------------------
+ok_run "solve -> vtk" solve sq.obj --size 0.25 --backend reference --out r.vtk --stats r.json --quiet
+[ -s r.vtk ] || fail "r.vtk missing"
+[ -s r.json ] || fail "r.json missing"
+[ ! -s err.txt ] || fail "--quiet run wrote to stderr: $(head -c 300 err.txt)"
+grep -qi "singular" out.txt || fail "summary does not mention singularities"
+if [ -s r.vtk ]; then
+    head -1 r.vtk | grep -q "^# vtk DataFile" || fail "r.vtk: bad header"
+    grep -qx "POINTS $NV double" r.vtk || fail "r.vtk: POINTS $NV missing"
+    grep -qx "CELLS $NT $((4 * NT))" r.vtk || fail "r.vtk: CELLS $NT missing"
+    grep -qx "POINT_DATA $NV" r.vtk || fail "r.vtk: POINT_DATA missing"
+    grep -qx "CELL_DATA $NT" r.vtk || fail "r.vtk: CELL_DATA missing"
+    for a in "SCALARS z_u double 2" "SCALARS z_v double 2" "SCALARS theta_u double 1" \
+        "SCALARS theta_v double 1" "SCALARS zabs_u double 1" "SCALARS zabs_v double 1" \
+        "VECTORS field_u double" "SCALARS singular_u int 1" "SCALARS singular_v int 1"; do
+        grep -qx "$a" r.vtk || fail "r.vtk: array '$a' missing"
+    done
+    # theta values in [0, 1)
+    awk '/^SCALARS theta_/{on=1; getline; next} /^(SCALARS|VECTORS|CELL_DATA)/{on=0}
+         on && ($1 < 0 || $1 >= 1) {bad++} END {exit bad > 0}' r.vtk ||
+        fail "r.vtk: theta outside [0, 1)"
+fi
+json_ok r.json "$NV"
+no_tmp "solve -> vtk"
+
+# ---- solve -> OBJ, overwriting the existing JSON --------------------------
+ok_run "solve -> obj" solve sq.obj --size 0.25 --backend reference --out r.obj --stats r.json --quiet
+[ -s r.obj ] || fail "r.obj missing"
+if [ -s r.obj ]; then
+    nvo=$(grep -c '^v ' r.obj)
+    nvt=$(grep -c '^vt ' r.obj)
+    nf=$(grep -c '^f ' r.obj)
+    [ "$nvo" -eq "$NV" ] || fail "r.obj: $nvo vertices, expected $NV"
+    [ "$nf" -eq "$NT" ] || fail "r.obj: $nf faces, expected $NT"
+    [ "$nvt" -eq $((3 * NT)) ] || fail "r.obj: $nvt texture coordinates, expected $((3 * NT))"
+    grep -qE '^f [0-9]+/[0-9]+ [0-9]+/[0-9]+ [0-9]+/[0-9]+$' r.obj || fail "r.obj: bad face lines"
+fi
+json_ok r.json "$NV"
+grep -q '"output": "r.obj"' r.json || fail "r.json was not overwritten by the second run"
+no_tmp "solve -> obj"
+
+# ---- .msh round trip and a built-in shape with PGP -------------------------
+ok_run "generate disk.msh" generate disk --vertices 1500 -o disk.msh
+[ -s disk.msh ] || fail "generate did not write disk.msh"
+ok_run "solve disk.msh" solve disk.msh --size 0.4 --backend reference --method pgp --out d.vtk --quiet
+[ -s d.vtk ] || fail "d.vtk missing"
+ok_run "solve shape:annulus" solve shape:annulus:1500 --size 0.4 --backend reference \
+    --energy transport --stats a.json --quiet
+json_ok a.json "$(grep -o '"vertices": [0-9]*' a.json | grep -o '[0-9]*$')"
+grep -q '"energy": "transport"' a.json || fail "a.json does not record --energy transport"
+grep -q '"boundary_loops": 2' a.json || fail "a.json: annulus should have 2 boundary loops"
+
+# ---- backend auto: at most one warning line --------------------------------
+ok_run "solve --backend auto" solve shape:square:500 --size 0.3 --backend auto --quiet
+nw=$(grep -ci "warning" err.txt)
+[ "$nw" -le 1 ] || fail "--backend auto printed $nw warning lines"
+no_tmp "end"
+
+if [ "$fails" -ne 0 ]; then
+    echo "cli_solve: $fails failure(s)"
+    exit 1
+fi
+echo "cli_solve: all checks passed"
+exit 0
