@@ -1,0 +1,124 @@
+/* quads.h: quad meshes from a finished GL-PGP solve: extraction of the quad
+ * (dominant) mesh whose edges are the integer level lines of theta_u and
+ * theta_v, quality metrics (valences, scaled Jacobian, edge lengths,
+ * boundary distance), writers (OBJ, legacy VTK, Gmsh MSH 4.1 ASCII), a reader
+ * for quad/triangle MSH files (to measure other meshers' output the same way)
+ * and the JSON form of the quality report. The algorithm is described at the
+ * top of quads.c. */
+#ifndef GLPGP_QUADS_H
+#define GLPGP_QUADS_H
+
+#include <stdio.h>
+
+#include "mesh.h"
+#include "solve.h"
+
+/* A polygon mesh of a planar domain, mostly quads. Faces are counter-clockwise
+ * and stored back to back: face f has the vertices
+ * face_vert[face_start[f] .. face_start[f+1]). */
+typedef struct glpgp_quadmesh {
+    int nv;
+    double *xy;         /* 2*nv */
+    int nf;
+    int *face_start;    /* nf + 1 */
+    int *face_vert;     /* face_start[nf] */
+    /* Extraction diagnostics (0 for meshes read from a file). */
+    int singular_tris[2];     /* triangles skipped as singular for u / v (given by the result) */
+    int inconsistent_tris[2]; /* triangles skipped because their chart did not close (rounding) */
+    int collapsed_edges;      /* short edges contracted during the clean-up */
+    int promoted_corners;     /* boundary vertices made face corners (3-gon -> quad) */
+    int split_pentagons;      /* boundary pentagons split into two quads */
+} glpgp_quadmesh;
+
+/* Extract the quad mesh of a result on mesh m (r->osc[k].z, .dirichlet and
+ * .singular must match m; r->size is the target size h used by the clean-up
+ * thresholds, <= 0: glpgp_default_size(m)). Faces that are not quads (near
+ * unpaired singularities, or where the boundary cuts a cell) are kept as
+ * polygons so the mesh covers the domain without gaps. GLPGP_ERR_ARG on a
+ * size mismatch, GLPGP_ERR_FORMAT when r has no oscillators, GLPGP_ERR_NUMERIC
+ * when no face could be extracted. */
+glpgp_status glpgp_quads_extract(const glpgp_mesh *m, const glpgp_result *r,
+                                 glpgp_quadmesh **out);
+void glpgp_quadmesh_destroy(glpgp_quadmesh **q);
+
+#define GLPGP_QUAD_MAXVAL 8 /* valence histogram bins 0..MAXVAL (last: >= MAXVAL) */
+
+/* Quality report of a polygon mesh (see glpgp_quads_quality). */
+typedef struct glpgp_quad_quality {
+    int vertices, faces, quads, others; /* others = faces with != 4 corners */
+    int others_by_size[8];              /* 3, 4(unused), 5, ... 9+ corners: index n-3 capped at 7 (index 1 unused) */
+    int valence_interior[GLPGP_QUAD_MAXVAL + 1];
+    int valence_boundary[GLPGP_QUAD_MAXVAL + 1];
+    int irregular_interior;  /* interior vertices with valence != 4 */
+    int irregular_boundary;  /* boundary vertices with valence != ideal (from the boundary angle) */
+    int irregular;           /* sum of both */
+    double sj_min, sj_mean, sj_p01; /* scaled Jacobian of the quads (min over corners) */
+    int inverted;            /* faces with area <= 0 or a quad corner with scaled Jacobian < 0 */
+    int degenerate;          /* faces with a repeated vertex, a zero-length edge or ~zero area */
+    int edges, boundary_edges, nonmanifold_edges; /* nonmanifold: edges used by > 2 faces */
+    double len_mean, len_min, len_max; /* edge length / h */
+    double area, domain_area; /* total face area; domain area (0 when no domain given) */
+    double hausdorff;        /* max of the two one-sided distances below, in units of h
+                              * (-1 when no domain given) */
+    double dist_quad_to_domain, dist_domain_to_quad;
+    double gap_edges;        /* boundary edges of the quad mesh farther than h/4 from the
+                              * domain boundary (holes in the quad mesh); -1 without domain */
+    double h;
+    int singular[2];         /* singular triangles of the solve (u, v), -1 if unknown */
+} glpgp_quad_quality;
+
+/* Compute the quality report of q for target size h (> 0). domain (may be
+ * NULL) is the triangle mesh whose boundary the quads should reproduce: it
+ * gives the Hausdorff distances and domain_area. Ideal boundary valence: a
+ * boundary vertex whose quad-mesh interior angle is a is regular when its
+ * valence is round(a / 90 deg) + 1 (3 on a straight boundary, 2 at a convex
+ * right-angle corner). */
+glpgp_status glpgp_quads_quality(const glpgp_quadmesh *q, const glpgp_mesh *domain, double h,
+                                 glpgp_quad_quality *out);
+
+/* Print the report as a short human-readable block (each line prefixed). */
+void glpgp_quads_print(FILE *f, const glpgp_quad_quality *qq, const char *prefix);
+
+/* Write the report as one JSON object (no trailing newline) to f:
+ * {"vertices", "faces", "quads", "other_faces", "other_faces_by_corners": {"3":..,"5":..},
+ *  "valence": {"interior": {"2": n, ...}, "boundary": {...}},
+ *  "irregular_vertices": {"interior", "boundary", "total"},
+ *  "scaled_jacobian": {"min", "mean", "p01"}, "inverted", "degenerate",
+ *  "edges": {"count", "boundary", "nonmanifold"},
+ *  "edge_length_over_h": {"mean", "min", "max"}, "h", "area", "domain_area",
+ *  "boundary_distance_over_h": {"hausdorff", "quads_to_domain", "domain_to_quads"}
+ *  (null without a domain), "gap_edges", "singular_triangles": {"u", "v"}}.
+ * Non-finite numbers are written as null. */
+void glpgp_quads_write_json(FILE *f, const glpgp_quad_quality *qq);
+
+/* Write a standalone JSON file {"quads": REPORT} atomically. */
+glpgp_status glpgp_quads_write_json_file(const glpgp_quad_quality *qq, const char *path);
+
+/* Insert "quads": REPORT as the last member of the JSON object stored in
+ * path (e.g. the statistics written by glpgp_write_stats_json), atomically.
+ * GLPGP_ERR_FORMAT when the file does not end with a JSON object. */
+glpgp_status glpgp_quads_append_json(const char *path, const glpgp_quad_quality *qq);
+
+/* Write q by extension (case-insensitive), atomically:
+ *  .obj  `v x y 0` and one `f` line per face (quads: 4 indices, other faces
+ *        as n-gons);
+ *  .vtk  legacy ASCII UNSTRUCTURED_GRID, VTK_QUAD (9) for quads and
+ *        VTK_POLYGON (7) for every other face; CELL_DATA corners (int) and
+ *        scaled_jacobian (quads; min corner value for polygons); POINT_DATA
+ *        valence;
+ *  .msh  Gmsh MSH 4.1 ASCII, one surface entity; quads are element type 3;
+ *        a face with n != 4 corners is split into a fan of quads
+ *        (0,2i+1,2i+2,2i+3) plus, for odd n, one triangle (type 2), so the
+ *        file holds only quads and triangles and stays conforming.
+ * Other extensions -> GLPGP_ERR_ARG. */
+glpgp_status glpgp_quads_write(const glpgp_quadmesh *q, const char *path);
+
+/* Whether path ends in .obj, .vtk or .msh (case-insensitive). */
+int glpgp_quads_path_supported(const char *path);
+
+/* Read a 2D quad/triangle mesh from Gmsh MSH 4.1 or 2.2 ASCII (element types
+ * 2 = triangle and 3 = quadrangle; other element types are ignored; z
+ * ignored). Faces are made counter-clockwise. GLPGP_ERR_IO / _FORMAT. */
+glpgp_status glpgp_quads_read_msh(const char *path, glpgp_quadmesh **out);
+
+#endif

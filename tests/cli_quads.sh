@@ -1,0 +1,93 @@
+#!/usr/bin/env bash
+# cli_quads.sh: the quad-mesh commands of the glpgp CLI end to end.
+# Usage: bash cli_quads.sh <path-to-glpgp> <data-dir>
+# Checks: `solve --quads` on a square with L/h integer writes a quad mesh of
+# exactly 25 quads (OBJ faces with 4 indices) and adds the "quads" report to
+# the statistics JSON; `extract` writes OBJ / VTK (VTK_QUAD) / MSH 4.1 (type 3
+# elements) from the result file; `quality` reads the MSH back with the same
+# counts; a VTK without oscillators, a bad extension and a missing input fail
+# with a clear message, a non-zero exit and no output file.
+set -u
+
+GLPGP=${1:?usage: cli_quads.sh <glpgp> <data-dir>}
+[ -x "$GLPGP" ] || { echo "glpgp binary '$GLPGP' not found"; exit 1; }
+GLPGP=$(cd "$(dirname "$GLPGP")" && pwd)/$(basename "$GLPGP")
+T=$(mktemp -d "${TMPDIR:-/tmp}/glpgp_cli_quads.XXXXXX")
+trap 'rm -rf "$T"' EXIT
+cd "$T" || exit 1
+
+fails=0
+fail() { echo "FAIL: $*"; fails=$((fails + 1)); }
+run_ok() { # DESCRIPTION ARGS...
+    local what=$1
+    shift
+    "$GLPGP" "$@" >out.txt 2>err.txt </dev/null
+    local rc=$?
+    [ "$rc" -eq 0 ] || fail "$what: exit $rc: $(head -c 600 err.txt)"
+}
+run_fail() { # DESCRIPTION EXPECTED-RC PATTERN ARGS...
+    local what=$1 want=$2 pat=$3
+    shift 3
+    "$GLPGP" "$@" >out.txt 2>err.txt </dev/null
+    local rc=$?
+    [ "$rc" -eq "$want" ] || fail "$what: exit $rc, expected $want"
+    grep -qiE "$pat" err.txt || fail "$what: message does not match '$pat': $(head -c 300 err.txt)"
+}
+
+# ---- solve --quads --------------------------------------------------------
+run_ok "solve --quads" solve shape:square:4000 --size 0.2 --energy transport --backend reference \
+    --newton-max 20 --quiet -o r.vtk --stats s.json --quads q.obj
+[ -s q.obj ] || fail "solve --quads wrote no q.obj"
+nf=$(grep -c '^f ' q.obj)
+n4=$(grep -cE '^f [0-9]+ [0-9]+ [0-9]+ [0-9]+ *$' q.obj)
+[ "$nf" -eq 25 ] && [ "$n4" -eq 25 ] || fail "square 1/h = 5: $nf faces, $n4 quads (expected 25)"
+grep -qE "25 quads, 0 other faces" out.txt || fail "solve summary has no quad report: $(cat out.txt)"
+if command -v python3 >/dev/null 2>&1; then
+    python3 - s.json <<'PY' || fail "stats JSON has no valid quads report"
+import json, sys
+d = json.load(open(sys.argv[1]))
+q = d["quads"]
+assert "vertices" in d and "singularities" in d      # the solve statistics are kept
+assert q["quads"] == 25 and q["other_faces"] == 0, q
+assert q["valence"]["interior"] == {"4": 16}, q["valence"]
+assert q["scaled_jacobian"]["min"] > 0.99
+assert q["inverted"] == 0 and q["degenerate"] == 0
+assert q["boundary_distance_over_h"]["hausdorff"] < 0.01
+PY
+fi
+
+# ---- extract ---------------------------------------------------------------
+for ext in obj vtk msh; do
+    run_ok "extract --quads e.$ext" extract r.vtk --quads "e.$ext"
+    [ -s "e.$ext" ] || fail "extract wrote no e.$ext"
+done
+grep -qE "25 quads" out.txt || fail "extract prints no report"
+awk '/^CELL_TYPES/{on=1; next} /^CELL_DATA/{on=0} on && $1 == 9 {n++} END {exit !(n == 25)}' e.vtk ||
+    fail "e.vtk: expected 25 VTK_QUAD cells"
+grep -q '^4.1 0 8' e.msh || fail "e.msh is not MSH 4.1 ASCII"
+grep -qE '^2 1 3 25$' e.msh || fail "e.msh: expected one block of 25 quadrangles (type 3)"
+run_ok "extract --stats" extract r.vtk --stats e.json
+if command -v python3 >/dev/null 2>&1; then
+    python3 -c "import json,sys; assert json.load(open('e.json'))['quads']['quads'] == 25" ||
+        fail "e.json invalid"
+fi
+
+# ---- quality of a mesh read back -------------------------------------------
+run_ok "quality e.msh" quality e.msh --size 0.2
+grep -qE "25 quads, 0 other faces" out.txt || fail "quality e.msh: $(cat out.txt)"
+
+# ---- errors ------------------------------------------------------------------
+printf '# vtk DataFile Version 3.0\nmesh\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS 3 double\n0 0 0\n1 0 0\n0 1 0\nCELLS 1 4\n3 0 1 2\nCELL_TYPES 1\n5\n' >bad.vtk
+run_fail "extract of a VTK without oscillators" 1 "without oscillators" extract bad.vtk --quads b.obj
+[ -e b.obj ] && fail "b.obj written for a bad input"
+run_fail "extract of a missing file" 1 "cannot|no such" extract missing.vtk --quads b.obj
+run_fail "extract --quads .txt" 2 "obj, .vtk or .msh" extract r.vtk --quads b.txt
+run_fail "solve --quads .txt" 2 "obj, .vtk or .msh" solve shape:square:100 --quads b.txt
+run_fail "quality of a non-MSH file" 1 "MSH|MeshFormat" quality bad.vtk
+ls -A | grep -q '\.tmp' && fail "temporary file left: $(ls -A | grep '\.tmp')"
+
+if [ "$fails" -gt 0 ]; then
+    echo "$fails check(s) failed"
+    exit 1
+fi
+echo "all checks passed"
