@@ -18,8 +18,10 @@
 #include "backend.h"
 #include "commands.h"
 #include "element.h"
+#include "image_io.h"
 #include "mesh.h"
 #include "output.h"
+#include "quads.h"
 #include "solve.h"
 #include "status.h"
 
@@ -163,6 +165,12 @@ static void usage_main(FILE *f)
             "                             write a built-in domain as .obj or .msh\n"
             "  devices                    list OpenCL platforms and devices\n"
             "  crosscheck INPUT [options] compare the OpenCL and reference paths stage by stage\n"
+            "  extract RESULT.vtk --quads OUT.{obj,vtk,msh}\n"
+            "                             quad mesh and its quality report from a result\n"
+            "  quality MESH.msh [--size H] quality report of a quad mesh made elsewhere\n"
+            "  render RESULT.vtk -o OUT.png   picture of a result (grid texture, ...)\n"
+            "  mesh MASK.png -o DOMAIN.msh    triangle mesh of a mask image (Gmsh)\n"
+            "  figure INPUT -o OUT.png    naive PGP and GL-PGP side by side\n"
             "  help [COMMAND]             show this overview or a command's options\n"
             "\n"
             "Options: --help (this text), --version.\n"
@@ -223,6 +231,8 @@ static void usage_solve(FILE *f)
             "Output:\n"
             "  --out FILE, -o FILE result as .vtk (ParaView) or .obj (texture coordinates)\n"
             "  --stats FILE        statistics as JSON\n"
+            "  --quads FILE        extract the quad mesh (.obj/.vtk/.msh) and add its quality\n"
+            "                      report to the summary and the statistics (\"quads\")\n"
             "  --quiet             no progress on stderr\n"
             "  --verbose           more progress on stderr (debug level)\n"
             "  --help, -h          this text\n"
@@ -237,6 +247,8 @@ static void usage_solve(FILE *f)
                                            : "projected",
             d.init == GLPGP_INIT_ONE ? "one" : "naive", d.eps0, d.eps_ratio, d.eps_min,
             d.newton_rtol, d.newton_max, d.cg_rtol, d.cg_max, d.cg_check);
+    fputc('\n', f);
+    glpgp_solve_image_usage(f);
 }
 
 static void usage_generate(FILE *f)
@@ -290,8 +302,10 @@ typedef struct solve_cli {
     const char *input;
     const char *out;
     const char *stats;
+    const char *quads; /* --quads: quad mesh (cmd_quads.c) */
     const char *backend; /* auto, opencl, reference */
     int device;
+    glpgp_solve_image_cli img; /* --image ..., mask-image INPUT (cmd_image.c) */
 } solve_cli;
 
 /* Returns -1 when parsing succeeded, else the exit code (0 for --help). */
@@ -300,9 +314,10 @@ static int parse_solve(int argc, char **argv, solve_cli *c)
     const char *sub = "solve";
     glpgp_options_default(&c->o);
     c->o.verbose = 1;
-    c->input = c->out = c->stats = NULL;
+    c->input = c->out = c->stats = c->quads = NULL;
     c->backend = "auto";
     c->device = -1;
+    glpgp_solve_image_init(&c->img);
 
     for (int i = 1; i < argc; i++) {
         const char *arg = argv[i];
@@ -325,11 +340,20 @@ static int parse_solve(int argc, char **argv, solve_cli *c)
             c->o.verbose = !strcmp(nm, "--quiet") ? 0 : 2;
             continue;
         }
+        int img_opt = glpgp_solve_image_option(nm); /* 1 flag, 2 valued (cmd_image.c) */
+        if (img_opt) {
+            if (img_opt == 1 && oa.value) return usage_error(sub, "option %s takes no value", nm);
+            if (img_opt == 2 && !take_value(argc, argv, &i, &oa))
+                return usage_error(sub, "option %s needs a value", nm);
+            int irc = glpgp_solve_image_parse(&c->img, nm, oa.value);
+            if (irc >= 0) return irc;
+            continue;
+        }
         static const char *const valued[] = {
             "--size",       "--method",   "--energy",    "--newton",   "--field",
             "--center",     "--init",     "--eps0",      "--eps-ratio", "--eps-min",
             "--newton-rtol", "--newton-max", "--cg-rtol", "--cg-max",   "--cg-check",
-            "--backend",    "--device",   "--out",       "-o",         "--stats",
+            "--backend",    "--device",   "--out",       "-o",         "--stats",    "--quads",
             NULL};
         int known = 0;
         for (int k = 0; valued[k]; k++)
@@ -444,11 +468,17 @@ static int parse_solve(int argc, char **argv, solve_cli *c)
         } else if (!strcmp(nm, "--stats")) {
             if (!*v) return usage_error(sub, "--stats: empty path");
             c->stats = v;
+        } else if (!strcmp(nm, "--quads")) {
+            if (!glpgp_quads_path_supported(v))
+                return usage_error(sub, "--quads: '%s' must end in .obj, .vtk or .msh", v);
+            c->quads = v;
         }
     }
     if (!c->input) return usage_error(sub, "missing INPUT (a .obj/.msh file or shape:NAME[:N])");
     if (c->out && c->stats && !strcmp(c->out, c->stats))
         return usage_error(sub, "--out and --stats name the same file '%s'", c->out);
+    if (c->quads && ((c->out && !strcmp(c->out, c->quads)) || (c->stats && !strcmp(c->stats, c->quads))))
+        return usage_error(sub, "--quads names the same file as --out or --stats: '%s'", c->quads);
     return -1;
 }
 
@@ -527,11 +557,15 @@ static int cmd_solve(int argc, char **argv)
     double t0 = now_seconds();
     if (c.out && !output_dir_ok(c.out)) return fail_with_error();
     if (c.stats && !output_dir_ok(c.stats)) return fail_with_error();
+    if (c.img.image && !output_dir_ok(c.img.image)) return fail_with_error();
 
     glpgp_mesh *m = NULL;
     glpgp_backend *b = NULL;
     glpgp_result *r = NULL;
-    rc = load_input(c.input, &m);
+    if (glpgp_is_image_path(c.input)) /* mask image: meshed on the fly */
+        rc = glpgp_solve_image_load(&c.img, c.input, c.o.size, c.o.verbose > 0, &m);
+    else
+        rc = load_input(c.input, &m);
     if (rc >= 0) return rc;
     double t_read = now_seconds() - t0;
 
@@ -561,6 +595,20 @@ static int cmd_solve(int argc, char **argv)
         }
     }
 
+    glpgp_quad_quality qq;
+    if (c.quads && (rc = glpgp_solve_quads(m, r, c.quads, c.stats, &qq)) >= 0) {
+        if (c.out) remove(c.out);
+        if (c.stats) remove(c.stats);
+        goto done;
+    }
+
+    if (c.img.image && (rc = glpgp_solve_image_write(&c.img, m, r)) >= 0) {
+        if (c.quads) remove(c.quads);
+        if (c.out) remove(c.out);
+        if (c.stats) remove(c.stats);
+        goto done;
+    }
+
     double t_all = now_seconds() - t0;
     const glpgp_osc_result *u = &r->osc[0], *v = &r->osc[1];
     printf("glpgp: %s: %d vertices, %d triangles, h = %.6g, backend %s\n", c.input, m->nv, m->nt,
@@ -574,6 +622,11 @@ static int cmd_solve(int argc, char **argv)
            r->seconds_total);
     if (c.out) printf("  wrote          %s\n", c.out);
     if (c.stats) printf("  wrote          %s\n", c.stats);
+    if (c.quads) {
+        glpgp_quads_print(stdout, &qq, "  ");
+        printf("  wrote          %s\n", c.quads);
+    }
+    if (c.img.image) printf("  wrote          %s\n", c.img.image);
     rc = 0;
 
 done:
@@ -666,6 +719,17 @@ int main(int argc, char **argv)
             usage_generate(stdout);
             return 0;
         }
+        if (!strcmp(argv[2], "render") || !strcmp(argv[2], "mesh") || !strcmp(argv[2], "figure")) {
+            char *hargv[] = {argv[2], (char *)"--help", NULL};
+            return !strcmp(argv[2], "render") ? glpgp_cmd_render(2, hargv)
+                   : !strcmp(argv[2], "mesh") ? glpgp_cmd_mesh(2, hargv)
+                                              : glpgp_cmd_figure(2, hargv);
+        }
+        if (!strcmp(argv[2], "extract") || !strcmp(argv[2], "quality")) {
+            char *hargv[] = {argv[2], (char *)"--help", NULL};
+            return !strcmp(argv[2], "extract") ? glpgp_cmd_extract(2, hargv)
+                                               : glpgp_cmd_quality(2, hargv);
+        }
         if (!strcmp(argv[2], "devices") || !strcmp(argv[2], "crosscheck")) {
             char *hargv[] = {argv[2], (char *)"--help", NULL};
             return !strcmp(argv[2], "devices") ? glpgp_cmd_devices(2, hargv)
@@ -682,5 +746,10 @@ int main(int argc, char **argv)
     if (!strcmp(cmd, "generate")) return cmd_generate(argc - 1, argv + 1);
     if (!strcmp(cmd, "devices")) return glpgp_cmd_devices(argc - 1, argv + 1);
     if (!strcmp(cmd, "crosscheck")) return glpgp_cmd_crosscheck(argc - 1, argv + 1);
+    if (!strcmp(cmd, "render")) return glpgp_cmd_render(argc - 1, argv + 1);
+    if (!strcmp(cmd, "mesh")) return glpgp_cmd_mesh(argc - 1, argv + 1);
+    if (!strcmp(cmd, "figure")) return glpgp_cmd_figure(argc - 1, argv + 1);
+    if (!strcmp(cmd, "extract")) return glpgp_cmd_extract(argc - 1, argv + 1);
+    if (!strcmp(cmd, "quality")) return glpgp_cmd_quality(argc - 1, argv + 1);
     return usage_error(NULL, "unknown command '%s'", cmd);
 }

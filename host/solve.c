@@ -284,8 +284,8 @@ static glpgp_status newton_level(osc_work *w, int k, double eps, glpgp_level_sta
                 GLPGP_CHECK(op->dot(b, w->g, w->d, GLPGP_S_DOT));
                 GLPGP_CHECK(op->get_scalars(b, s, GLPGP_NSLOTS));
                 slope = s[GLPGP_S_DOT];
-                if (slope < 0.0 || hess != GLPGP_HESS_MIXED) break;
-            } else if (cst != GLPGP_ERR_NUMERIC || hess != GLPGP_HESS_MIXED) {
+                if (slope < 0.0 || hess == GLPGP_HESS_PROJECTED || hess == GLPGP_HESS_PAPER) break;
+            } else if (cst != GLPGP_ERR_NUMERIC || hess == GLPGP_HESS_PROJECTED || hess == GLPGP_HESS_PAPER) {
                 GLPGP_CHECK(cst);
             } else {
                 glpgp_error_clear();
