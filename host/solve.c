@@ -239,11 +239,21 @@ typedef struct osc_work {
     double *host, *scratch;
 } osc_work;
 
+/* |g| / |g_0| below which `mixed` tries the exact Hessian (see newton_level) */
+#ifndef GLPGP_EXACT_SWITCH
+#define GLPGP_EXACT_SWITCH 0.05
+#endif
+
+/* Newton tolerance of the levels before the last one */
+#ifndef GLPGP_INTERMEDIATE_RTOL
+#define GLPGP_INTERMEDIATE_RTOL 1e-3
+#endif
+
 static const char *osc_name(int k) { return k == 0 ? "u" : "v"; }
 
 /* One Newton level at eps: x <- argmin E + P_eps, modified Newton with
  * backtracking line search on E + P. */
-static glpgp_status newton_level(osc_work *w, int k, double eps, glpgp_level_stats *ls)
+static glpgp_status newton_level(osc_work *w, int k, double eps, double rtol, glpgp_level_stats *ls)
 {
     glpgp_backend *b = w->b;
     const glpgp_backend_ops *op = b->ops;
@@ -253,6 +263,8 @@ static glpgp_status newton_level(osc_work *w, int k, double eps, glpgp_level_sta
     ls->eps = eps;
     ls->newton = 0;
     ls->cg = 0;
+    int near = 0;     /* close enough to a minimiser to try the exact Hessian */
+    int cooldown = 0; /* steps left before the exact Hessian may be tried again */
     for (int it = 0;; it++) {
         /* g <- grad(E + P)(x) (zero on Dirichlet vertices); F = E + P */
         GLPGP_CHECK(op->gradient(b, w->x, inv4e2, w->g));
@@ -266,10 +278,16 @@ static glpgp_status newton_level(osc_work *w, int k, double eps, glpgp_level_sta
         if (it == 0) ls->grad0 = gn;
         ls->grad = gn;
         ls->energy = F;
-        if (gn <= o->newton_rtol * ls->grad0 || gn == 0.0 || it >= o->newton_max) break;
-        /* (H_E + H~_P) d = -g; the mixed Hessian may be indefinite in rare
-         * states: on CG breakdown or a non-descent d, redo with `projected`. */
+        if (gn <= rtol * ls->grad0 || gn == 0.0 || it >= o->newton_max) break;
+        /* (H_E + H~_P) d = -g.  With `mixed`, once the previous step was a full
+         * step without fallback and |g| <= GLPGP_EXACT_SWITCH |g_0|, the exact
+         * Hessian is tried first (quadratic convergence around localised
+         * vortices). On CG breakdown or a non-descent d the step is redone with
+         * the next safer Hessian: exact -> mixed -> projected. */
         int hess = o->hess, cgit = 0;
+        if (hess == GLPGP_HESS_MIXED && near) hess = GLPGP_HESS_EXACT;
+        const int tried_exact = hess != o->hess;
+        int fb = 0;
         double slope = 0.0;
         for (;;) {
             GLPGP_CHECK(op->assemble_newton(b, w->x, inv4e2, hess));
@@ -290,8 +308,10 @@ static glpgp_status newton_level(osc_work *w, int k, double eps, glpgp_level_sta
             } else {
                 glpgp_error_clear();
             }
-            hess = GLPGP_HESS_PROJECTED;
+            hess = (hess == GLPGP_HESS_EXACT && o->hess == GLPGP_HESS_MIXED) ? GLPGP_HESS_MIXED
+                                                                              : GLPGP_HESS_PROJECTED;
             ls->fallbacks++;
+            fb++;
         }
         ls->cg += cgit;
         /* backtracking: accept x + a d when F(x + a d) <= F + 1e-4 a g.d */
@@ -313,6 +333,10 @@ static glpgp_status newton_level(osc_work *w, int k, double eps, glpgp_level_sta
         if (o->verbose >= 1)
             fprintf(stderr, "glpgp:   %s eps=%.4g newton %3d  |g|=%.3e  E+P=%.10g  cg=%d  step=%g\n",
                     osc_name(k), eps, it + 1, gn, Ft, cgit, accepted ? a : 0.0);
+        /* after a failed exact attempt, wait a few steps before the next one */
+        if (fb > 0 && tried_exact) cooldown = 5;
+        else if (cooldown > 0) cooldown--;
+        near = accepted && a == 1.0 && fb == 0 && cooldown == 0 && gn <= GLPGP_EXACT_SWITCH * ls->grad0;
         if (!accepted) break; /* no descent possible at this precision: level done */
         GLPGP_CHECK(op->copy(b, w->x, w->xt));
     }
@@ -380,7 +404,9 @@ static glpgp_status solve_oscillator(const glpgp_mesh *m, osc_work *w, int k, co
             glpgp_level_stats *ls = &r->level[l];
             if (o->verbose >= 1)
                 fprintf(stderr, "glpgp: %s: level %d/%d, eps = %.4g\n", osc_name(k), l + 1, nlevels, eps[l]);
-            GLPGP_CHECK(newton_level(w, k, eps[l], ls));
+            /* intermediate levels only prepare the next one: looser tolerance */
+            const double rtol = l + 1 < nlevels ? fmax(o->newton_rtol, GLPGP_INTERMEDIATE_RTOL) : o->newton_rtol;
+            GLPGP_CHECK(newton_level(w, k, eps[l], rtol, ls));
             GLPGP_CHECK(op->vec_read(b, w->x, w->host));
             double mn, p10, med;
             zabs_stats(w->host, nv, w->scratch, &mn, &p10, &med);
@@ -397,7 +423,7 @@ static glpgp_status solve_oscillator(const glpgp_mesh *m, osc_work *w, int k, co
                 }
                 GLPGP_CHECK(op->vec_write(b, w->x, w->host));
                 glpgp_level_stats keep = *ls;
-                GLPGP_CHECK(newton_level(w, k, eps[l], ls));
+                GLPGP_CHECK(newton_level(w, k, eps[l], rtol, ls));
                 ls->newton += keep.newton;
                 ls->cg += keep.cg;
                 ls->restarted = 1;
