@@ -19,6 +19,7 @@
 #include "commands.h"
 #include "element.h"
 #include "image_io.h"
+#include "mask_mesh.h"
 #include "mesh.h"
 #include "output.h"
 #include "quads.h"
@@ -738,8 +739,9 @@ int main(int argc, char **argv)
         return usage_error(NULL, "no help for unknown command '%s'", argv[2]);
     }
     if (!strcmp(cmd, "--version") || !strcmp(cmd, "version")) {
-        printf("glpgp %s (OpenCL backend: %s)\n", GLPGP_VERSION,
-               glpgp_have_opencl() ? "built in" : "not built");
+        printf("glpgp %s (OpenCL backend: %s; OpenImageIO: %s; Gmsh: %s)\n", GLPGP_VERSION,
+               glpgp_have_opencl() ? "built in" : "not built", glpgp_have_oiio() ? "yes" : "no",
+               glpgp_have_gmsh() ? "yes" : "no");
         return 0;
     }
     if (!strcmp(cmd, "solve")) return cmd_solve(argc - 1, argv + 1);

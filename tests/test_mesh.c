@@ -437,7 +437,7 @@ static void test_data(void)
     } files[] = {
         {"square.obj", 1, 1, 0.999999, 1.000001, 1500, 3000},
         {"annulus.msh", 2, 2, 2.80, 2.86, 4000, 7000},
-        {"plate_holes.msh", 3, 10, 1.0, 1e9, 3000, 9000},
+        {"plate_holes.msh", 3, 10, 1.0, 1e9, 10000, 20000},
         {"lshape.msh", 1, 1, 0.749999, 0.750001, 500, 20000},
     };
     for (size_t i = 0; i < sizeof files / sizeof files[0]; i++) {

@@ -1,8 +1,9 @@
 /* test_opencl_solve.c: whole GL solves on the OpenCL backend against the
  * reference backend: the annulus with the radial field and a data mesh with
- * holes (data/plate_holes.msh). Per-vertex z must agree to 1e-6, singularity
- * counts exactly, Newton iteration counts exactly (the two paths differ only
- * in the summation order of reductions, ~1e-15 relative). Skipped (77) when
+ * holes (data/plate_holes.msh). Per-vertex z must agree to 1e-6 (1e-4 for an
+ * oscillator whose levels hit the Newton cap, see below), singularity counts
+ * and Newton iteration counts exactly (the two paths differ only in the
+ * summation order of reductions, ~1e-15 relative). Skipped (77) when
  * no OpenCL device is available. */
 #include "solve.h"
 #include "testutil.h"
@@ -30,7 +31,13 @@ static int compare(const char *what, const glpgp_mesh *m, glpgp_options *o)
                    what, "uv"[k], dmax, rc->osc[k].plus, rc->osc[k].minus, rr->osc[k].plus, rr->osc[k].minus,
                    rc->osc[k].newton_iterations, rr->osc[k].newton_iterations, rc->osc[k].cg_iterations,
                    rr->osc[k].cg_iterations);
-            CHECK(dmax <= 1e-6);
+            /* A level stopped by the Newton cap (slowly drifting vortices) is not a
+             * converged state: rounding differences of ~1e-15 in the reductions
+             * are then amplified along the drift, so such oscillators get 1e-4. */
+            int capped = 0;
+            for (int l = 0; l < rr->osc[k].nlevels; l++) capped |= rr->osc[k].level[l].newton >= o->newton_max;
+            printf("  %s\n", capped ? "(a level hit the Newton cap: tolerance 1e-4)" : "(converged: tolerance 1e-6)");
+            CHECK(dmax <= (capped ? 1e-4 : 1e-6));
             CHECK(rc->osc[k].plus == rr->osc[k].plus && rc->osc[k].minus == rr->osc[k].minus);
             CHECK(rc->osc[k].newton_iterations == rr->osc[k].newton_iterations);
         }
