@@ -322,8 +322,10 @@ typedef struct bres {
     int ran;
     char note[256];
     double create_s, setup_s;
-    tstat quad, newton, spmv, cg_iter, lin;
+    tstat quad, newton, spmv, cg_iter, lin, nstep;
     int lin_iters;
+    int nstep_cg;      /* CG iterations of the timed Newton step */
+    double nstep_alpha; /* its accepted step length */
     double lin_relres;
     int gl_ran;
     char gl_note[160];
@@ -375,12 +377,13 @@ static double backend_bytes(int opencl, const glpgp_system *s, int nvec)
 
 typedef struct bctx {
     glpgp_backend *b;
-    glpgp_vec *x, *g, *y, *rhs, *d, *r, *z, *p, *q;
+    glpgp_vec *x, *g, *y, *rhs, *d, *r, *z, *p, *q, *x0;
     double h, inv4e2;
     int hess;
     int lin_iters;
     double lin_rel;
     glpgp_options so;
+    glpgp_newton_step_info nsi;
 } bctx;
 
 typedef glpgp_status (*opfn)(bctx *c);
@@ -457,6 +460,22 @@ static glpgp_status op_linsolve(bctx *c)
     return glpgp_cg(c->b, c->rhs, c->d, c->so.cg_rtol, c->so.cg_max, c->so.cg_check, &c->lin_iters, &c->lin_rel);
 }
 
+/* One whole Newton step of the GL driver from x0, as glpgp_solve runs it at
+ * the first eps level: gradient, then glpgp_newton_step (assembly, inexact
+ * PCG, line search, update) with the default options (mixed Hessian). */
+static glpgp_status op_newton_step(bctx *c)
+{
+    const glpgp_backend_ops *o = c->b->ops;
+    double s[GLPGP_NSLOTS];
+    GLPGP_CHECK(o->copy(c->b, c->x, c->x0));
+    GLPGP_CHECK(o->gradient(c->b, c->x, c->inv4e2, c->g));
+    GLPGP_CHECK(o->dot(c->b, c->g, c->g, GLPGP_S_DOT));
+    GLPGP_CHECK(o->get_scalars(c->b, s, GLPGP_NSLOTS));
+    glpgp_newton_state ns = {c->x, c->g, c->d, c->y, c->r, sqrt(s[GLPGP_S_DOT]), 0, 0};
+    GLPGP_CHECK(glpgp_newton_step(c->b, &c->so, &ns, c->inv4e2, s[GLPGP_S_E] + s[GLPGP_S_P], ns.grad0, &c->nsi));
+    return o->copy(c->b, c->x, c->x0); /* leave x as it was */
+}
+
 static glpgp_status create_backend(int opencl, const bopts *o, glpgp_backend **b)
 {
     if (!opencl) return glpgp_backend_create_reference(b);
@@ -495,7 +514,7 @@ static glpgp_status bench_backend(int opencl, const bopts *o, sdata *sd, sres *s
     t0 = bench_now();
     GLPGP_CHECK_GOTO(st, op->setup(b, sd->sys), done);
     br->setup_s = bench_now() - t0;
-    glpgp_vec **vecs[] = {&c.x, &c.g, &c.y, &c.rhs, &c.d, &c.r, &c.z, &c.p, &c.q};
+    glpgp_vec **vecs[] = {&c.x, &c.g, &c.y, &c.rhs, &c.d, &c.r, &c.z, &c.p, &c.q, &c.x0};
     const int nvec = (int)(sizeof vecs / sizeof vecs[0]);
     for (int k = 0; k < nvec; k++) GLPGP_CHECK_GOTO(st, op->vec_create(b, n2, vecs[k]), done);
     c.h = sr->h;
@@ -504,6 +523,7 @@ static glpgp_status bench_backend(int opencl, const bopts *o, sdata *sd, sres *s
     glpgp_options_default(&c.so);
     GLPGP_CHECK_GOTO(st, op->set_field(b, sd->w, sd->dir), done);
     GLPGP_CHECK_GOTO(st, op->vec_write(b, c.x, sd->x0), done);
+    GLPGP_CHECK_GOTO(st, op->vec_write(b, c.x0, sd->x0), done);
 
     GLPGP_CHECK_GOTO(st, time_op(&c, NULL, op_quad, o->repeat, o->min_time, 1, &br->quad), done);
     GLPGP_CHECK_GOTO(st, time_op(&c, NULL, op_newton, o->repeat, o->min_time, 1, &br->newton), done);
@@ -516,6 +536,10 @@ static glpgp_status bench_backend(int opencl, const bopts *o, sdata *sd, sres *s
     GLPGP_CHECK_GOTO(st, time_op(&c, NULL, op_linsolve, o->repeat, 0.0, 1, &br->lin), done);
     br->lin_iters = c.lin_iters;
     br->lin_relres = c.lin_rel;
+    c.so.verbose = 0;
+    GLPGP_CHECK_GOTO(st, time_op(&c, NULL, op_newton_step, o->repeat, 0.0, 1, &br->nstep), done);
+    br->nstep_cg = c.nsi.cg;
+    br->nstep_alpha = c.nsi.alpha;
     br->spmv_gbs = sr->bytes_spmv / br->spmv.med * 1e-9;
     br->spmv_gbs_best = sr->bytes_spmv / br->spmv.min * 1e-9;
     br->cg_gbs = sr->bytes_cg / br->cg_iter.med * 1e-9;
@@ -891,6 +915,10 @@ static void json_bres(FILE *f, const bres *b, double triad)
         jstat(f, "linear_solve_s", &b->lin);
         fprintf(f, ", \"linear_solve_iterations\": %d, \"linear_solve_relres\": ", b->lin_iters);
         jnum(f, b->lin_relres);
+        fprintf(f, ",\n      ");
+        jstat(f, "newton_step_s", &b->nstep);
+        fprintf(f, ", \"newton_step_cg_iterations\": %d, \"newton_step_alpha\": ", b->nstep_cg);
+        jnum(f, b->nstep_alpha);
         fprintf(f, ",\n      \"backend_bytes\": ");
         jnum(f, b->backend_bytes);
         fprintf(f, ", \"rss_delta_bytes\": %ld", b->rss_delta);
@@ -979,6 +1007,8 @@ static void write_json(FILE *f, const bopts *o, const machine *mc, const bench_s
         jnum(f, (s->cl.ran && s->ref.ran) ? ratio(s->ref.spmv.med, s->cl.spmv.med) : NAN);
         fprintf(f, ", \"linear_solve_speedup_vs_reference\": ");
         jnum(f, (s->cl.ran && s->ref.ran) ? ratio(s->ref.lin.med, s->cl.lin.med) : NAN);
+        fprintf(f, ", \"newton_step_speedup_vs_reference\": ");
+        jnum(f, (s->cl.ran && s->ref.ran) ? ratio(s->ref.nstep.med, s->cl.nstep.med) : NAN);
         fprintf(f, ", \"gl_speedup_vs_reference\": ");
         jnum(f, (s->cl.gl_ran && s->ref.gl_ran) ? ratio(s->ref.gl.med, s->cl.gl.med) : NAN);
         fprintf(f, ",\n     \"peak_rss_bytes\": ");
@@ -1085,6 +1115,11 @@ static void write_markdown(FILE *f, const bopts *o, const machine *mc, const ben
         else
             snprintf(op, sizeof op, "linear solve (%d CG it)", s->ref.ran ? s->ref.lin_iters : s->cl.lin_iters);
         md_row(f, "", op, s, &s->ref.lin, &s->cl.lin, NAN, NAN, bs->triad_gbs);
+        if (s->ref.ran && s->cl.ran && s->ref.nstep_cg != s->cl.nstep_cg)
+            snprintf(op, sizeof op, "Newton step (%d / %d CG it)", s->ref.nstep_cg, s->cl.nstep_cg);
+        else
+            snprintf(op, sizeof op, "Newton step (%d CG it)", s->ref.ran ? s->ref.nstep_cg : s->cl.nstep_cg);
+        md_row(f, "", op, s, &s->ref.nstep, &s->cl.nstep, NAN, NAN, bs->triad_gbs);
         /* whole GL solve: its own row with counts */
         fprintf(f, "| | GL solve (Newton / CG it) |");
         for (int k = 0; k < 2; k++) {

@@ -251,8 +251,71 @@ typedef struct osc_work {
 
 static const char *osc_name(int k) { return k == 0 ? "u" : "v"; }
 
-/* One Newton level at eps: x <- argmin E + P_eps, modified Newton with
- * backtracking line search on E + P. */
+glpgp_status glpgp_newton_step(glpgp_backend *b, const glpgp_options *o, glpgp_newton_state *ns,
+                               double inv4e2, double F, double gn, glpgp_newton_step_info *info)
+{
+    const glpgp_backend_ops *op = b->ops;
+    double s[GLPGP_NSLOTS];
+    memset(info, 0, sizeof *info);
+    /* (H_E + H~_P) d = -g.  With `mixed`, once the previous step was a full
+     * step without fallback and |g| <= GLPGP_EXACT_SWITCH |g_0|, the exact
+     * Hessian is tried first (quadratic convergence around localised
+     * vortices). On CG breakdown or a non-descent d the step is redone with
+     * the next safer Hessian: exact -> mixed -> projected. */
+    int hess = o->hess;
+    if (hess == GLPGP_HESS_MIXED && ns->near) hess = GLPGP_HESS_EXACT;
+    const int tried_exact = hess != o->hess;
+    double slope = 0.0;
+    for (;;) {
+        GLPGP_CHECK(op->assemble_newton(b, ns->x, inv4e2, hess));
+        GLPGP_CHECK(op->axpby(b, -1.0, ns->g, 0.0, ns->xt)); /* xt <- -g (rhs) */
+        double rel = 0.0;
+        int it_cg = 0;
+        /* inexact Newton: CG tolerance eta = 0.1 |g|/|g_0|, within [cg_rtol, 1e-2] */
+        double eta = fmin(1e-2, fmax(o->cg_rtol, 0.1 * gn / ns->grad0));
+        glpgp_status cst = glpgp_cg(b, ns->xt, ns->d, eta, o->cg_max, o->cg_check, &it_cg, &rel);
+        info->cg += it_cg;
+        if (cst == GLPGP_OK) {
+            GLPGP_CHECK(op->dot(b, ns->g, ns->d, GLPGP_S_DOT));
+            GLPGP_CHECK(op->get_scalars(b, s, GLPGP_NSLOTS));
+            slope = s[GLPGP_S_DOT];
+            if (slope < 0.0 || hess == GLPGP_HESS_PROJECTED || hess == GLPGP_HESS_PAPER) break;
+        } else if (cst != GLPGP_ERR_NUMERIC || hess == GLPGP_HESS_PROJECTED || hess == GLPGP_HESS_PAPER) {
+            GLPGP_CHECK(cst);
+        } else {
+            glpgp_error_clear();
+        }
+        hess = (hess == GLPGP_HESS_EXACT && o->hess == GLPGP_HESS_MIXED) ? GLPGP_HESS_MIXED
+                                                                          : GLPGP_HESS_PROJECTED;
+        info->fallbacks++;
+    }
+    /* backtracking: accept x + a d when F(x + a d) <= F + 1e-4 a g.d */
+    double a = 1.0, Ft = F;
+    for (int ls_it = 0; ls_it < 40; ls_it++) {
+        GLPGP_CHECK(op->copy(b, ns->xt, ns->x));
+        GLPGP_CHECK(op->axpby(b, a, ns->d, 1.0, ns->xt)); /* xt <- x + a d */
+        GLPGP_CHECK(op->energy(b, ns->xt, inv4e2, ns->work));
+        GLPGP_CHECK(op->get_scalars(b, s, GLPGP_NSLOTS));
+        Ft = s[GLPGP_S_E] + s[GLPGP_S_P];
+        if (isfinite(Ft) && Ft <= F + 1e-4 * a * slope) {
+            info->accepted = 1;
+            break;
+        }
+        a *= 0.5;
+    }
+    info->alpha = info->accepted ? a : 0.0;
+    info->energy = Ft;
+    /* after a failed exact attempt, wait a few steps before the next one */
+    if (info->fallbacks > 0 && tried_exact) ns->cooldown = 5;
+    else if (ns->cooldown > 0) ns->cooldown--;
+    ns->near = info->accepted && a == 1.0 && info->fallbacks == 0 && ns->cooldown == 0 &&
+               gn <= GLPGP_EXACT_SWITCH * ns->grad0;
+    if (info->accepted) GLPGP_CHECK(op->copy(b, ns->x, ns->xt)); /* x <- x + a d */
+    return GLPGP_OK;
+}
+
+/* One Newton level at eps: x <- argmin E + P_eps (modified Newton steps until
+ * |g| <= rtol |g_0|, the cap, or no descent). */
 static glpgp_status newton_level(osc_work *w, int k, double eps, double rtol, glpgp_level_stats *ls)
 {
     glpgp_backend *b = w->b;
@@ -260,11 +323,10 @@ static glpgp_status newton_level(osc_work *w, int k, double eps, double rtol, gl
     const glpgp_options *o = w->o;
     const double inv4e2 = 1.0 / (4.0 * eps * eps);
     double s[GLPGP_NSLOTS];
+    glpgp_newton_state ns = {w->x, w->g, w->d, w->xt, w->work, 0.0, 0, 0};
     ls->eps = eps;
     ls->newton = 0;
     ls->cg = 0;
-    int near = 0;     /* close enough to a minimiser to try the exact Hessian */
-    int cooldown = 0; /* steps left before the exact Hessian may be tried again */
     for (int it = 0;; it++) {
         /* g <- grad(E + P)(x) (zero on Dirichlet vertices); F = E + P */
         GLPGP_CHECK(op->gradient(b, w->x, inv4e2, w->g));
@@ -275,70 +337,19 @@ static glpgp_status newton_level(osc_work *w, int k, double eps, double rtol, gl
         if (!isfinite(F) || !isfinite(gn))
             return GLPGP_FAIL(GLPGP_ERR_NUMERIC, "oscillator %s: energy became non-finite at eps=%g",
                               osc_name(k), eps);
-        if (it == 0) ls->grad0 = gn;
+        if (it == 0) ls->grad0 = ns.grad0 = gn;
         ls->grad = gn;
         ls->energy = F;
         if (gn <= rtol * ls->grad0 || gn == 0.0 || it >= o->newton_max) break;
-        /* (H_E + H~_P) d = -g.  With `mixed`, once the previous step was a full
-         * step without fallback and |g| <= GLPGP_EXACT_SWITCH |g_0|, the exact
-         * Hessian is tried first (quadratic convergence around localised
-         * vortices). On CG breakdown or a non-descent d the step is redone with
-         * the next safer Hessian: exact -> mixed -> projected. */
-        int hess = o->hess, cgit = 0;
-        if (hess == GLPGP_HESS_MIXED && near) hess = GLPGP_HESS_EXACT;
-        const int tried_exact = hess != o->hess;
-        int fb = 0;
-        double slope = 0.0;
-        for (;;) {
-            GLPGP_CHECK(op->assemble_newton(b, w->x, inv4e2, hess));
-            GLPGP_CHECK(op->axpby(b, -1.0, w->g, 0.0, w->xt)); /* xt <- -g (rhs) */
-            double rel = 0.0;
-            int it_cg = 0;
-            /* inexact Newton: CG tolerance eta = 0.1 |g|/|g_0|, within [cg_rtol, 1e-2] */
-            double eta = fmin(1e-2, fmax(o->cg_rtol, 0.1 * gn / ls->grad0));
-            glpgp_status cst = glpgp_cg(b, w->xt, w->d, eta, o->cg_max, o->cg_check, &it_cg, &rel);
-            cgit += it_cg;
-            if (cst == GLPGP_OK) {
-                GLPGP_CHECK(op->dot(b, w->g, w->d, GLPGP_S_DOT));
-                GLPGP_CHECK(op->get_scalars(b, s, GLPGP_NSLOTS));
-                slope = s[GLPGP_S_DOT];
-                if (slope < 0.0 || hess == GLPGP_HESS_PROJECTED || hess == GLPGP_HESS_PAPER) break;
-            } else if (cst != GLPGP_ERR_NUMERIC || hess == GLPGP_HESS_PROJECTED || hess == GLPGP_HESS_PAPER) {
-                GLPGP_CHECK(cst);
-            } else {
-                glpgp_error_clear();
-            }
-            hess = (hess == GLPGP_HESS_EXACT && o->hess == GLPGP_HESS_MIXED) ? GLPGP_HESS_MIXED
-                                                                              : GLPGP_HESS_PROJECTED;
-            ls->fallbacks++;
-            fb++;
-        }
-        ls->cg += cgit;
-        /* backtracking: accept x + a d when F(x + a d) <= F + 1e-4 a g.d */
-        double a = 1.0, Ft = F;
-        int accepted = 0;
-        for (int ls_it = 0; ls_it < 40; ls_it++) {
-            GLPGP_CHECK(op->copy(b, w->xt, w->x));
-            GLPGP_CHECK(op->axpby(b, a, w->d, 1.0, w->xt)); /* xt <- x + a d */
-            GLPGP_CHECK(op->energy(b, w->xt, inv4e2, w->work));
-            GLPGP_CHECK(op->get_scalars(b, s, GLPGP_NSLOTS));
-            Ft = s[GLPGP_S_E] + s[GLPGP_S_P];
-            if (isfinite(Ft) && Ft <= F + 1e-4 * a * slope) {
-                accepted = 1;
-                break;
-            }
-            a *= 0.5;
-        }
+        glpgp_newton_step_info info;
+        GLPGP_CHECK(glpgp_newton_step(b, o, &ns, inv4e2, F, gn, &info));
+        ls->cg += info.cg;
+        ls->fallbacks += info.fallbacks;
         ls->newton++;
         if (o->verbose >= 1)
             fprintf(stderr, "glpgp:   %s eps=%.4g newton %3d  |g|=%.3e  E+P=%.10g  cg=%d  step=%g\n",
-                    osc_name(k), eps, it + 1, gn, Ft, cgit, accepted ? a : 0.0);
-        /* after a failed exact attempt, wait a few steps before the next one */
-        if (fb > 0 && tried_exact) cooldown = 5;
-        else if (cooldown > 0) cooldown--;
-        near = accepted && a == 1.0 && fb == 0 && cooldown == 0 && gn <= GLPGP_EXACT_SWITCH * ls->grad0;
-        if (!accepted) break; /* no descent possible at this precision: level done */
-        GLPGP_CHECK(op->copy(b, w->x, w->xt));
+                    osc_name(k), eps, it + 1, gn, info.energy, info.cg, info.alpha);
+        if (!info.accepted) break; /* no descent possible at this precision: level done */
     }
     return GLPGP_OK;
 }

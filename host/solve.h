@@ -97,6 +97,31 @@ int glpgp_dirichlet_set(const glpgp_mesh *m, const double *w, unsigned char *dir
 void glpgp_singularities(const glpgp_mesh *m, const double *z, signed char *sing, int *plus,
                          int *minus);
 
+/* State of the Newton iteration at one eps level (vectors of 2*nv doubles). */
+typedef struct glpgp_newton_state {
+    glpgp_vec *x;    /* iterate (updated by a step) */
+    glpgp_vec *g;    /* gradient of E + P at x (input of a step) */
+    glpgp_vec *d, *xt, *work; /* scratch */
+    double grad0;    /* |g| at the start of the level */
+    int near;        /* exact-Hessian switch of `mixed` (start at 0) */
+    int cooldown;    /* steps left before `mixed` may try the exact Hessian again */
+} glpgp_newton_state;
+
+typedef struct glpgp_newton_step_info {
+    int cg;          /* CG iterations (all attempts) */
+    int fallbacks;   /* Hessians abandoned for a safer one */
+    int accepted;    /* the line search found a descent step */
+    double alpha;    /* accepted step length (0 when none) */
+    double energy;   /* E + P at the new x */
+} glpgp_newton_step_info;
+
+/* One modified Newton step at x (the driver of glpgp_solve, exposed for the
+ * benchmark): assemble (H_E + H~_P(x)), solve it by PCG to the inexact-Newton
+ * tolerance, backtrack on E + P, update x. Needs QUAD assembled and
+ * s->g = grad(E+P)(x) with F = (E+P)(x) and gn = |g|. */
+glpgp_status glpgp_newton_step(glpgp_backend *b, const glpgp_options *o, glpgp_newton_state *s,
+                               double inv4e2, double F, double gn, glpgp_newton_step_info *info);
+
 /* Jacobi-PCG on the backend's NEWTON matrix: solves NEWTON x = rhs from x = 0.
  * Returns the iteration count in *iters and the final relative residual in
  * *relres. Work vectors are created and destroyed inside. */
