@@ -43,7 +43,9 @@ static const char crosscheck_usage[] =
     "  --tol-scale F    multiply every tolerance by F (default 1)\n"
     "  --no-solve       skip the whole GL solve stage\n"
     "Tolerances (|a-b| <= atol + rtol |b|): assembly, gradient, spmv, dot rtol 1e-12;\n"
-    "CG, Newton step and GL solve rtol 1e-6 on z. The environment variable\n"
+    "CG, Newton step and GL solve rtol 1e-6 on z (1e-4 for an oscillator whose GL\n"
+    "levels stopped at the Newton cap: unconverged vortex drift amplifies rounding).\n"
+    "The environment variable\n"
     "GLPGP_CL_CORRUPT=1 corrupts the OpenCL QUAD assembly (the check must fail).\n";
 
 #ifndef GLPGP_HAVE_OPENCL
@@ -408,7 +410,11 @@ static glpgp_status cc_run(const cc_args *a, cc_table *t)
     cc_compare(t, "Newton step z + d", h0, h1, n2, 1e-6, 1e-6, 0.0);
     for (int s = 0; s < 2; s++) cc_side_free(&S[s]);
 
-    /* the whole GL solve on fresh backends (glpgp_solve does its own setup) */
+    /* the whole GL solve on fresh backends (glpgp_solve does its own setup),
+     * converged tightly so both paths reach the same minimiser (at the default
+     * 1e-6 they may stop one iteration apart, ~1e-6 apart in z) */
+    opt.newton_rtol = 1e-8;
+    opt.cg_rtol = 1e-10;
     if (a->solve) {
         double secs[2];
         GLPGP_CHECK_GOTO(st, glpgp_backend_create_opencl(&clo, &sb[0]), done);
@@ -419,9 +425,15 @@ static glpgp_status cc_run(const cc_args *a, cc_table *t)
             secs[s] = wall() - t0;
         }
         for (int k = 0; k < 2; k++) {
-            snprintf(name, sizeof name, "GL solve z_%s (newton %d vs %d)", k ? "v" : "u",
-                     res[0]->osc[k].newton_iterations, res[1]->osc[k].newton_iterations);
-            cc_compare(t, name, res[0]->osc[k].z, res[1]->osc[k].z, n2, 1e-6, 1e-6, 0.0);
+            /* a level stopped by the Newton cap (drifting vortices) is not converged:
+             * reduction-order rounding is amplified along the drift, so 1e-4 there */
+            int capped = 0;
+            for (int l = 0; l < res[1]->osc[k].nlevels; l++)
+                capped |= res[1]->osc[k].level[l].newton >= opt.newton_max;
+            const double gtol = capped ? 1e-4 : 1e-6;
+            snprintf(name, sizeof name, "GL solve z_%s (newton %d vs %d%s)", k ? "v" : "u",
+                     res[0]->osc[k].newton_iterations, res[1]->osc[k].newton_iterations, capped ? ", capped" : "");
+            cc_compare(t, name, res[0]->osc[k].z, res[1]->osc[k].z, n2, gtol, gtol, 0.0);
             snprintf(name, sizeof name, "GL singularities %s", k ? "v" : "u");
             cc_counts(t, name, res[0]->osc[k].plus, res[0]->osc[k].minus, res[1]->osc[k].plus,
                       res[1]->osc[k].minus);

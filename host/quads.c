@@ -818,11 +818,16 @@ static glpgp_status cleanup_round(graph *g, const pmap *p, double h, int *change
     glpgp_status st = GLPGP_OK;
     unsigned char *corner = NULL;
     int *parent = NULL;
+    unsigned char *fx = NULL; /* per union-find root: the set holds a domain corner */
     int nchg = 0;
     GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)g->nn + 1, 1, &corner), done);
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)g->nn + 1, 1, &fx), done);
     GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)g->nn + 1, sizeof(int), &parent), done);
     corners(g, p, corner);
-    for (int i = 0; i < g->nn; i++) parent[i] = i;
+    for (int i = 0; i < g->nn; i++) {
+        parent[i] = i;
+        fx[i] = g->node[i].fixed;
+    }
 
     /* 1. short sides: walk every side (corner to corner) once, from the
      *    half-edge leaving a corner; contract those shorter than 0.2 h unless
@@ -843,20 +848,33 @@ static glpgp_status cleanup_round(graph *g, const pmap *p, double h, int *change
             c = (p->rot[s] == (c ^ 1)) ? p->rot[s + 1] : p->rot[s];
         }
         int b = he_dest(g, c);
-        if (a >= b) continue; /* each side once (and no loops) */
+        /* each side once; a loop side (a == b: a closed level line through
+         * one corner, or a side whose two ends were merged) is seen twice,
+         * which is harmless since merging is idempotent */
+        if (a > b) continue;
         if (len >= 0.2 * h) continue;
-        if (g->node[a].fixed && g->node[b].fixed) continue;
         int ra = uf_find(parent, a), rb = uf_find(parent, b);
-        if (ra == rb) continue;
-        /* merge the whole chain */
+        if (ra != rb && fx[ra] && fx[rb]) continue; /* would merge two domain corners */
+        /* merge the whole chain, interior nodes included: when a and b are
+         * already in one set (merged through other short sides of the same
+         * small face), the chain must collapse too, or it would be left as a
+         * loop that crosses the edges re-pointed to the merged node */
+        int changed = 0;
         c = h0;
+        n = 0;
         for (;;) {
             int d = he_dest(g, c);
-            parent[uf_find(parent, d)] = uf_find(parent, a);
-            if (d == b) break;
+            int rd = uf_find(parent, d), r = uf_find(parent, a);
+            if (rd != r) {
+                parent[rd] = r;
+                fx[r] = (unsigned char)(fx[r] | fx[rd]);
+                changed = 1;
+            }
+            if (corner[d] || ++n > 10000) break;
             int s = p->rot_start[d];
             c = (p->rot[s] == (c ^ 1)) ? p->rot[s + 1] : p->rot[s];
         }
+        if (!changed) continue;
         nchg++;
         (*collapsed)++;
     }
@@ -947,6 +965,7 @@ static glpgp_status cleanup_round(graph *g, const pmap *p, double h, int *change
 done:
     free(corner);
     free(parent);
+    free(fx);
     return st;
 }
 
@@ -1026,16 +1045,35 @@ glpgp_status glpgp_quads_extract(const glpgp_mesh *m, const glpgp_result *r, glp
     }
     GLPGP_CHECK_GOTO(st, merge_nodes(g, parent), done);
     GLPGP_CHECK_GOTO(st, prune(g), done);
+    { /* DEBUGDUMP0 */
+        const char *dp = getenv("GLPGP_QDEBUG0");
+        if (dp) {
+            FILE *df = fopen(dp, "w");
+            for (int i = 0; i < g->nn; i++) fprintf(df, "n %d %.17g %.17g %d %d %d\n", i, g->node[i].x, g->node[i].y, g->node[i].vert, g->node[i].bnd, g->node[i].fixed);
+            for (int e = 0; e < g->ne; e++) fprintf(df, "e %d %d %d\n", g->edge[e].a, g->edge[e].b, g->edge[e].flags);
+            fclose(df);
+        }
+    }
 
     for (int round = 0; round < 8; round++) {
         GLPGP_CHECK_GOTO(st, pmap_build(g, &P), done);
         int changes = 0;
         GLPGP_CHECK_GOTO(st, cleanup_round(g, &P, h, &changes, &collapsed, &promoted), done);
+        if (getenv("GLPGP_QDEBUG")) fprintf(stderr, "round %d changes %d collapsed %d promoted %d\n", round, changes, collapsed, promoted);
         if (changes == 0) break;
         pmap_free(&P);
         GLPGP_CHECK_GOTO(st, prune(g), done);
     }
     if (!P.rot_start) GLPGP_CHECK_GOTO(st, pmap_build(g, &P), done);
+    { /* DEBUGDUMP */
+        const char *dp = getenv("GLPGP_QDEBUG");
+        if (dp) {
+            FILE *df = fopen(dp, "w");
+            for (int i = 0; i < g->nn; i++) fprintf(df, "n %d %.17g %.17g %d %d %d\n", i, g->node[i].x, g->node[i].y, g->node[i].vert, g->node[i].bnd, g->node[i].fixed);
+            for (int e = 0; e < g->ne; e++) fprintf(df, "e %d %d %d\n", g->edge[e].a, g->edge[e].b, g->edge[e].flags);
+            fclose(df);
+        }
+    }
 
     /* output: corner nodes of inner faces, renumbered */
     GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)g->nn + 1, 1, &corner), done);

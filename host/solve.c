@@ -6,6 +6,7 @@
 #include "element.h"
 
 #include <errno.h>
+#include <float.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -289,7 +290,9 @@ glpgp_status glpgp_newton_step(glpgp_backend *b, const glpgp_options *o, glpgp_n
                                                                           : GLPGP_HESS_PROJECTED;
         info->fallbacks++;
     }
-    /* backtracking: accept x + a d when F(x + a d) <= F + 1e-4 a g.d */
+    /* backtracking: accept x + a d when F(x + a d) <= F + 1e-4 a g.d, up to the
+     * rounding level of F (near convergence g.d is below what F can resolve) */
+    const double noise = 64.0 * DBL_EPSILON * fabs(F);
     double a = 1.0, Ft = F;
     for (int ls_it = 0; ls_it < 40; ls_it++) {
         GLPGP_CHECK(op->copy(b, ns->xt, ns->x));
@@ -297,7 +300,7 @@ glpgp_status glpgp_newton_step(glpgp_backend *b, const glpgp_options *o, glpgp_n
         GLPGP_CHECK(op->energy(b, ns->xt, inv4e2, ns->work));
         GLPGP_CHECK(op->get_scalars(b, s, GLPGP_NSLOTS));
         Ft = s[GLPGP_S_E] + s[GLPGP_S_P];
-        if (isfinite(Ft) && Ft <= F + 1e-4 * a * slope) {
+        if (isfinite(Ft) && Ft <= F + 1e-4 * a * slope + noise) {
             info->accepted = 1;
             break;
         }
