@@ -1,5 +1,6 @@
 /* cmd_quads.c: the quad-mesh subcommands of the CLI:
  *   glpgp extract RESULT.vtk --quads OUT.{obj,vtk,msh} [--stats OUT.json] [--size H]
+ *                 [--all-quads]
  *       quad mesh from a result written by `glpgp solve -o RESULT.vtk`;
  *   glpgp quality MESH.msh [--size H] [--domain DOMAIN] [--stats OUT.json]
  *       the same quality report for a quad/triangle mesh made elsewhere (Gmsh),
@@ -70,6 +71,9 @@ static void usage_extract(FILE *f)
             "                 quadrangles; other faces split into quads + one triangle)\n"
             "  --stats FILE   quality report as JSON {\"quads\": {...}}\n"
             "  --size H       target size h (default: the h recorded in RESULT.vtk)\n"
+            "  --all-quads    refine every face into quads around its centroid (each\n"
+            "                 edge split at its midpoint): no non-quad face left, but\n"
+            "                 the element size is halved (report uses h / 2)\n"
             "  --help, -h     this text\n");
 }
 
@@ -87,10 +91,26 @@ static void usage_quality(FILE *f)
             "  --help, -h      this text\n");
 }
 
+/* Extract the quad mesh of r, refined to all quads when asked (*h is then
+ * halved). */
+static glpgp_status extract_maybe_refined(const glpgp_mesh *m, const glpgp_result *r, int all_quads,
+                                          glpgp_quadmesh **q, double *h)
+{
+    glpgp_status st = glpgp_quads_extract(m, r, q);
+    if (st != GLPGP_OK || !all_quads) return st;
+    glpgp_quadmesh *fine = NULL;
+    st = glpgp_quadmesh_subdivide(*q, &fine);
+    glpgp_quadmesh_destroy(q);
+    *q = fine;
+    *h *= 0.5;
+    return st;
+}
+
 int glpgp_cmd_extract(int argc, char **argv)
 {
     const char *sub = "extract", *in = NULL, *quads = NULL, *stats = NULL;
     double size = 0.0;
+    int all_quads = 0;
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i], *v;
         if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
@@ -100,6 +120,8 @@ int glpgp_cmd_extract(int argc, char **argv)
         if (a[0] != '-' || a[1] == '\0') {
             if (in) return q_usage(sub, "unexpected argument", a);
             in = a;
+        } else if (!strcmp(a, "--all-quads")) {
+            all_quads = 1;
         } else if (q_is(a, "--quads")) {
             if (!(v = q_value(argc, argv, &i, "--quads"))) return q_usage(sub, "--quads needs a value", NULL);
             if (!glpgp_quads_path_supported(v))
@@ -131,12 +153,13 @@ int glpgp_cmd_extract(int argc, char **argv)
     }
     if (size > 0) r->size = size;
     if (!(r->size > 0)) r->size = glpgp_default_size(m);
-    if (glpgp_quads_extract(m, r, &q) != GLPGP_OK) {
+    double h = r->size;
+    if (extract_maybe_refined(m, r, all_quads, &q, &h) != GLPGP_OK) {
         rc = q_fail();
         goto done;
     }
     glpgp_quad_quality qq;
-    if (glpgp_quads_quality(q, m, r->size, &qq) != GLPGP_OK) {
+    if (glpgp_quads_quality(q, m, h, &qq) != GLPGP_OK) {
         rc = q_fail();
         goto done;
     }
@@ -151,8 +174,8 @@ int glpgp_cmd_extract(int argc, char **argv)
         rc = q_fail();
         goto done;
     }
-    printf("glpgp: %s: h = %.6g, singular triangles u %d, v %d\n", in, r->size, qq.singular[0],
-           qq.singular[1]);
+    printf("glpgp: %s: h = %.6g%s, singular triangles u %d, v %d\n", in, h,
+           all_quads ? " (--all-quads: half the solve's size)" : "", qq.singular[0], qq.singular[1]);
     glpgp_quads_print(stdout, &qq, "  ");
     if (quads) printf("  wrote          %s\n", quads);
     if (stats) printf("  wrote          %s\n", stats);
@@ -238,11 +261,11 @@ done:
 }
 
 int glpgp_solve_quads(const glpgp_mesh *m, const glpgp_result *r, const char *quads_path,
-                      const char *stats_path, glpgp_quad_quality *qq)
+                      const char *stats_path, int all_quads, glpgp_quad_quality *qq)
 {
     glpgp_quadmesh *q = NULL;
-    glpgp_status st = glpgp_quads_extract(m, r, &q);
     double h = r->size > 0 ? r->size : glpgp_default_size(m);
+    glpgp_status st = extract_maybe_refined(m, r, all_quads, &q, &h);
     if (st == GLPGP_OK) st = glpgp_quads_quality(q, m, h, qq);
     if (st == GLPGP_OK) {
         qq->singular[0] = r->osc[0].plus + r->osc[0].minus;

@@ -234,6 +234,8 @@ static void usage_solve(FILE *f)
             "  --stats FILE        statistics as JSON\n"
             "  --quads FILE        extract the quad mesh (.obj/.vtk/.msh) and add its quality\n"
             "                      report to the summary and the statistics (\"quads\")\n"
+            "  --all-quads         with --quads: refine every face into quads (centroid +\n"
+            "                      edge midpoints): no non-quad face, half the element size\n"
             "  --quiet             no progress on stderr\n"
             "  --verbose           more progress on stderr (debug level)\n"
             "  --help, -h          this text\n"
@@ -304,6 +306,7 @@ typedef struct solve_cli {
     const char *out;
     const char *stats;
     const char *quads; /* --quads: quad mesh (cmd_quads.c) */
+    int all_quads;     /* --all-quads: refine the quad mesh to quads only */
     const char *backend; /* auto, opencl, reference */
     int device;
     glpgp_solve_image_cli img; /* --image ..., mask-image INPUT (cmd_image.c) */
@@ -316,6 +319,7 @@ static int parse_solve(int argc, char **argv, solve_cli *c)
     glpgp_options_default(&c->o);
     c->o.verbose = 1;
     c->input = c->out = c->stats = c->quads = NULL;
+    c->all_quads = 0;
     c->backend = "auto";
     c->device = -1;
     glpgp_solve_image_init(&c->img);
@@ -331,9 +335,13 @@ static int parse_solve(int argc, char **argv, solve_cli *c)
         split_opt(arg, &oa);
         const char *nm = oa.name;
         int is_flag = !strcmp(nm, "--help") || !strcmp(nm, "-h") || !strcmp(nm, "--quiet") ||
-                      !strcmp(nm, "--verbose");
+                      !strcmp(nm, "--verbose") || !strcmp(nm, "--all-quads");
         if (is_flag) {
             if (oa.value) return usage_error(sub, "option %s takes no value", nm);
+            if (!strcmp(nm, "--all-quads")) {
+                c->all_quads = 1;
+                continue;
+            }
             if (!strcmp(nm, "--help") || !strcmp(nm, "-h")) {
                 usage_solve(stdout);
                 return 0;
@@ -478,6 +486,7 @@ static int parse_solve(int argc, char **argv, solve_cli *c)
     if (!c->input) return usage_error(sub, "missing INPUT (a .obj/.msh file or shape:NAME[:N])");
     if (c->out && c->stats && !strcmp(c->out, c->stats))
         return usage_error(sub, "--out and --stats name the same file '%s'", c->out);
+    if (c->all_quads && !c->quads) return usage_error(sub, "--all-quads needs --quads FILE");
     if (c->quads && ((c->out && !strcmp(c->out, c->quads)) || (c->stats && !strcmp(c->stats, c->quads))))
         return usage_error(sub, "--quads names the same file as --out or --stats: '%s'", c->quads);
     return -1;
@@ -597,7 +606,7 @@ static int cmd_solve(int argc, char **argv)
     }
 
     glpgp_quad_quality qq;
-    if (c.quads && (rc = glpgp_solve_quads(m, r, c.quads, c.stats, &qq)) >= 0) {
+    if (c.quads && (rc = glpgp_solve_quads(m, r, c.quads, c.stats, c.all_quads, &qq)) >= 0) {
         if (c.out) remove(c.out);
         if (c.stats) remove(c.stats);
         goto done;

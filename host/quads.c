@@ -62,7 +62,13 @@
  * Clean-up (repeated until nothing changes, at most 8 rounds):
  *  - corner-to-corner sides shorter than 0.2 h are contracted (boundary and
  *    corner positions win), which removes the slivers that appear where a
- *    level line meets the boundary at a grazing angle or near a corner;
+ *    level line meets the boundary at a grazing angle or near a corner; the
+ *    whole side collapses, its intermediate nodes too, even when its two end
+ *    corners were already merged through other short sides of the same small
+ *    face (otherwise the side survives as a loop through the merged node and
+ *    crosses the edges re-pointed to it: a zero-length edge and a face that
+ *    visits one vertex several times); two domain corners are never merged,
+ *    not even through a chain of short sides;
  *  - faces with <= 2 corners (thin slivers between two parallel sides) are
  *    merged into a neighbour by deleting one of their sides (never a
  *    boundary side);
@@ -72,11 +78,23 @@
  * Output: a 5-corner face with a side on the boundary (a dislocation or a
  * switch between u- and v-Dirichlet boundary next to the boundary) gets a
  * boundary vertex M of that side (not within 30% of the side's ends) as a
- * sixth corner and is split into two quads along one of the hexagon's three
- * diagonals; M, and the diagonal, are chosen to maximise the smaller of the
- * two quads' scaled Jacobians, and the split is made only if that is > 0.1.
- * Interior pentagons (a dislocation away from the boundary: odd parity, not
- * closable locally) are kept and reported by the quality metrics.
+ * sixth corner (free: M belongs to no other face, so the odd parity is
+ * absorbed by the boundary). The hexagon is split either into two quads
+ * along one of its three diagonals or, when no diagonal reaches a scaled
+ * Jacobian of 0.5 and the alternative is better, into three quads around a
+ * new interior vertex X joined to every other hexagon corner (X gets
+ * valence 3, one corner one more edge: the 3-5 pair of a dislocation). The
+ * centre split is what closes a pentagon whose boundary side is a concave
+ * arc (a hole), where every diagonal gives a reflex quad. M, the pattern and
+ * X are chosen to maximise the smallest scaled Jacobian of the new quads,
+ * and a split is made only if that is > 0.1.
+ * Interior pentagons (a dislocation away from the boundary: odd parity, so
+ * no quad split exists that leaves the neighbours unchanged) are kept and
+ * reported by the quality metrics. glpgp_quadmesh_subdivide (--all-quads) is
+ * the guaranteed route to an all-quad mesh: one Catmull-Clark step (centroid
+ * + shared edge midpoints) turns every n-gon into n quads at half the size.
+ * Pairing the pentagons instead (splitting the quad strip between two of
+ * them, or between one and the boundary) would keep the size; not done yet.
  */
 #include "quads.h"
 
@@ -984,6 +1002,63 @@ static double quad_sj(const graph *g, const int *v)
     return m;
 }
 
+/* Minimum corner scaled Jacobian of the quad with corner coordinates
+ * p[0..7] (x0 y0 x1 y1 ...), counter-clockwise. */
+static double quad_sj_xy(const double *p)
+{
+    double m = INFINITY;
+    for (int i = 0; i < 4; i++) {
+        const double *a = p + 2 * i, *b = p + 2 * ((i + 1) % 4), *c = p + 2 * ((i + 3) % 4);
+        double e1x = b[0] - a[0], e1y = b[1] - a[1], e2x = c[0] - a[0], e2y = c[1] - a[1];
+        double l = hypot(e1x, e1y) * hypot(e2x, e2y);
+        m = fmin(m, l > 0 ? (e1x * e2y - e1y * e2x) / l : -1.0);
+    }
+    return m;
+}
+
+/* Best split of the hexagon hx[0..5] (graph nodes, counter-clockwise) into
+ * three quads around a new centre vertex X joined to every other corner
+ * (hx[o], hx[o+2], hx[o+4], o = 0 or 1): the quads are
+ * (hx[o+2i], hx[o+2i+1], hx[o+2i+2], X). X is chosen among a few blends of
+ * the corner centroids. Returns the smallest corner scaled Jacobian of the
+ * three quads (-inf if none), the offset o and X. */
+static double hex_center_split(const graph *g, const int *hx, int *o_best, double *xb, double *yb)
+{
+    double best = -INFINITY;
+    for (int o = 0; o < 2; o++) {
+        double ax = 0, ay = 0, bx = 0, by = 0; /* centroids of the joined / the other corners */
+        for (int i = 0; i < 3; i++) {
+            ax += g->node[hx[(o + 2 * i) % 6]].x / 3;
+            ay += g->node[hx[(o + 2 * i) % 6]].y / 3;
+            bx += g->node[hx[(o + 2 * i + 1) % 6]].x / 3;
+            by += g->node[hx[(o + 2 * i + 1) % 6]].y / 3;
+        }
+        for (int t = 0; t <= 4; t++) {
+            double w = 0.25 * t;
+            double x = (1 - w) * ax + w * bx, y = (1 - w) * ay + w * by;
+            double sj = INFINITY;
+            for (int i = 0; i < 3; i++) {
+                double pq[8];
+                for (int k = 0; k < 3; k++) {
+                    const qnode *n = &g->node[hx[(o + 2 * i + k) % 6]];
+                    pq[2 * k] = n->x;
+                    pq[2 * k + 1] = n->y;
+                }
+                pq[6] = x;
+                pq[7] = y;
+                sj = fmin(sj, quad_sj_xy(pq));
+            }
+            if (sj > best) {
+                best = sj;
+                *o_best = o;
+                *xb = x;
+                *yb = y;
+            }
+        }
+    }
+    return best;
+}
+
 /* Output index of graph node v (appended on first use). */
 static int out_vertex(const graph *g, glpgp_quadmesh *q, int *newid, int v)
 {
@@ -1018,7 +1093,7 @@ glpgp_status glpgp_quads_extract(const glpgp_mesh *m, const glpgp_result *r, glp
     int *parent = NULL, *newid = NULL;
     unsigned char *corner = NULL;
     glpgp_quadmesh *q = NULL;
-    int collapsed = 0, promoted = 0, split_pentagons = 0;
+    int collapsed = 0, promoted = 0, split_pentagons = 0, center_splits = 0;
     int *cyc = NULL, *cych = NULL;
 
     GLPGP_CHECK_GOTO(st, build_edges(m, &B.E), done);
@@ -1045,47 +1120,30 @@ glpgp_status glpgp_quads_extract(const glpgp_mesh *m, const glpgp_result *r, glp
     }
     GLPGP_CHECK_GOTO(st, merge_nodes(g, parent), done);
     GLPGP_CHECK_GOTO(st, prune(g), done);
-    { /* DEBUGDUMP0 */
-        const char *dp = getenv("GLPGP_QDEBUG0");
-        if (dp) {
-            FILE *df = fopen(dp, "w");
-            for (int i = 0; i < g->nn; i++) fprintf(df, "n %d %.17g %.17g %d %d %d\n", i, g->node[i].x, g->node[i].y, g->node[i].vert, g->node[i].bnd, g->node[i].fixed);
-            for (int e = 0; e < g->ne; e++) fprintf(df, "e %d %d %d\n", g->edge[e].a, g->edge[e].b, g->edge[e].flags);
-            fclose(df);
-        }
-    }
 
     for (int round = 0; round < 8; round++) {
         GLPGP_CHECK_GOTO(st, pmap_build(g, &P), done);
         int changes = 0;
         GLPGP_CHECK_GOTO(st, cleanup_round(g, &P, h, &changes, &collapsed, &promoted), done);
-        if (getenv("GLPGP_QDEBUG")) fprintf(stderr, "round %d changes %d collapsed %d promoted %d\n", round, changes, collapsed, promoted);
         if (changes == 0) break;
         pmap_free(&P);
         GLPGP_CHECK_GOTO(st, prune(g), done);
     }
     if (!P.rot_start) GLPGP_CHECK_GOTO(st, pmap_build(g, &P), done);
-    { /* DEBUGDUMP */
-        const char *dp = getenv("GLPGP_QDEBUG");
-        if (dp) {
-            FILE *df = fopen(dp, "w");
-            for (int i = 0; i < g->nn; i++) fprintf(df, "n %d %.17g %.17g %d %d %d\n", i, g->node[i].x, g->node[i].y, g->node[i].vert, g->node[i].bnd, g->node[i].fixed);
-            for (int e = 0; e < g->ne; e++) fprintf(df, "e %d %d %d\n", g->edge[e].a, g->edge[e].b, g->edge[e].flags);
-            fclose(df);
-        }
-    }
 
     /* output: corner nodes of inner faces, renumbered */
     GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)g->nn + 1, 1, &corner), done);
-    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)g->nn + 1, sizeof(int), &newid), done);
+    /* room for one centre vertex per face (pentagons split around a centre) */
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)g->nn + P.nf + 1, sizeof(int), &newid), done);
     GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)P.nh + 1, sizeof(int), &cyc), done);
     GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)P.nh + 1, sizeof(int), &cych), done);
     corners(g, &P, corner);
-    for (int i = 0; i < g->nn; i++) newid[i] = -1;
+    for (int i = 0; i < g->nn + P.nf + 1; i++) newid[i] = -1;
     GLPGP_CHECK_GOTO(st, glpgp_calloc(1, sizeof *q, &q), done);
-    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)P.nf + 2, 2 * sizeof(int), &q->face_start), done);
-    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)P.nh + 1, sizeof(int), &q->face_vert), done);
-    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)P.nh + 1, 2 * sizeof(double), &q->xy), done);
+    /* a face becomes at most 3 quads (12 corners; it has >= 6 half-edges then) */
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)P.nf + 2, 3 * sizeof(int), &q->face_start), done);
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)P.nh + 1, 2 * sizeof(int), &q->face_vert), done);
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)P.nh + P.nf + 1, 2 * sizeof(double), &q->xy), done);
     q->face_start[0] = 0;
     int w = 0;
     for (int f = 0; f < P.nf; f++) {
@@ -1103,11 +1161,18 @@ glpgp_status glpgp_quads_extract(const glpgp_mesh *m, const glpgp_result *r, glp
         } while (c != h0 && ++guard < P.nh);
         if (nc < 3) continue;
         int cs[8], split = -1;
+        double best_diag = -INFINITY;
+        int chx[6], co = 0, csplit = -1; /* centre split: hexagon, offset */
+        double cx = 0.0, cy = 0.0, cbest = -INFINITY;
         if (nc == 5) {
             /* boundary pentagon: make the best intermediate boundary node of a
              * boundary side a sixth corner and split the hexagon by the
              * diagonal from it to an opposite corner (of the three diagonals, the one
-             * whose worse quad has the best scaled Jacobian, if that is > 0.1) */
+             * whose worse quad has the best scaled Jacobian, if that is > 0.1),
+             * or, when no diagonal gives a quad as good as 0.5, into three
+             * quads around a new centre vertex (hex_center_split) if that is
+             * better: the usual case when the new corner sits on a concave
+             * boundary arc, where every diagonal makes a reflex quad */
             double best = 0.1;
             int pos5[5], np5 = 0;
             for (int i = 0; i < len; i++)
@@ -1128,6 +1193,19 @@ glpgp_status glpgp_quads_extract(const glpgp_mesh *m, const glpgp_result *r, glp
                     double db = hypot(g->node[hx[0]].x - g->node[cb].x, g->node[hx[0]].y - g->node[cb].y);
                     if (da < 0.3 * Lab || db < 0.3 * Lab) continue;
                     for (int k = 1; k < 6; k++) hx[k] = cyc[pos5[(sd + k) % 5]];
+                    {
+                        int o = 0;
+                        double x = 0.0, y = 0.0;
+                        double sj = hex_center_split(g, hx, &o, &x, &y);
+                        if (sj > cbest) {
+                            cbest = sj;
+                            csplit = i;
+                            co = o;
+                            cx = x;
+                            cy = y;
+                            memcpy(chx, hx, sizeof chx);
+                        }
+                    }
                     /* the three diagonals (d, d + 3) of the hexagon */
                     for (int d = 0; d < 3; d++) {
                         int qa[4], qb[4];
@@ -1137,7 +1215,7 @@ glpgp_status glpgp_quads_extract(const glpgp_mesh *m, const glpgp_result *r, glp
                         }
                         double sj = fmin(quad_sj(g, qa), quad_sj(g, qb));
                         if (sj > best) {
-                            best = sj;
+                            best = best_diag = sj;
                             split = i;
                             for (int k = 0; k < 4; k++) {
                                 cs[k] = qa[k];
@@ -1147,6 +1225,20 @@ glpgp_status glpgp_quads_extract(const glpgp_mesh *m, const glpgp_result *r, glp
                     }
                 }
             }
+        }
+        if (csplit >= 0 && cbest > 0.1 && (split < 0 || (best_diag < 0.5 && cbest > best_diag))) {
+            int X;
+            GLPGP_CHECK_GOTO(st, add_node(g, cx, cy, -1, 0, &X), done);
+            newid[X] = -1;
+            for (int i = 0; i < 3; i++) {
+                for (int k = 0; k < 3; k++)
+                    q->face_vert[w++] = out_vertex(g, q, newid, chx[(co + 2 * i + k) % 6]);
+                q->face_vert[w++] = out_vertex(g, q, newid, X);
+                q->face_start[++q->nf] = w;
+            }
+            split_pentagons++;
+            center_splits++;
+            continue;
         }
         if (split >= 0) {
             for (int k = 0; k < 8; k++) {
@@ -1172,6 +1264,7 @@ glpgp_status glpgp_quads_extract(const glpgp_mesh *m, const glpgp_result *r, glp
     q->collapsed_edges = collapsed;
     q->promoted_corners = promoted;
     q->split_pentagons = split_pentagons;
+    q->center_splits = center_splits;
     *out = q;
     q = NULL;
 done:
@@ -1205,4 +1298,86 @@ void glpgp_quadmesh_destroy(glpgp_quadmesh **q)
     free((*q)->face_vert);
     free(*q);
     *q = NULL;
+}
+
+/* ---- refinement to an all-quad mesh ------------------------------------ */
+
+static int cmp_ll2(const void *pa, const void *pb)
+{
+    const long long *a = pa, *b = pb;
+    return (a[0] > b[0]) - (a[0] < b[0]);
+}
+
+glpgp_status glpgp_quadmesh_subdivide(const glpgp_quadmesh *q, glpgp_quadmesh **out)
+{
+    *out = NULL;
+    if (!q || q->nf < 1) return GLPGP_FAIL(GLPGP_ERR_ARG, "quad refinement: empty mesh");
+    const int nc = q->face_start[q->nf]; /* face sides = corners */
+    glpgp_status st = GLPGP_OK;
+    long long *key = NULL; /* (edge key, side index) pairs, sorted */
+    int *side_mid = NULL;  /* per side: index of its midpoint in the output */
+    glpgp_quadmesh *r = NULL;
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)nc, 2 * sizeof(long long), &key), done);
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)nc, sizeof(int), &side_mid), done);
+    for (int f = 0; f < q->nf; f++) {
+        int s = q->face_start[f], k = q->face_start[f + 1] - s;
+        for (int i = 0; i < k; i++) {
+            long long a = q->face_vert[s + i], b = q->face_vert[s + (i + 1) % k];
+            key[2 * (s + i)] = (a < b ? a : b) * (long long)q->nv + (a < b ? b : a);
+            key[2 * (s + i) + 1] = s + i;
+        }
+    }
+    qsort(key, (size_t)nc, 2 * sizeof(long long), cmp_ll2);
+    GLPGP_CHECK_GOTO(st, glpgp_calloc(1, sizeof *r, &r), done);
+    /* vertices: the old ones, one midpoint per edge, one centre per face */
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)q->nv + nc + q->nf, 2 * sizeof(double), &r->xy), done);
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)nc + 1, sizeof(int), &r->face_start), done);
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)nc, 4 * sizeof(int), &r->face_vert), done);
+    memcpy(r->xy, q->xy, (size_t)q->nv * 2 * sizeof(double));
+    r->nv = q->nv;
+    for (int i = 0; i < nc;) {
+        int j = i;
+        long long ab = key[2 * i];
+        int a = (int)(ab / q->nv), b = (int)(ab % q->nv);
+        r->xy[2 * r->nv] = 0.5 * (q->xy[2 * a] + q->xy[2 * b]);
+        r->xy[2 * r->nv + 1] = 0.5 * (q->xy[2 * a + 1] + q->xy[2 * b + 1]);
+        while (j < nc && key[2 * j] == ab) side_mid[key[2 * j++ + 1]] = r->nv;
+        r->nv++;
+        i = j;
+    }
+    int w = 0;
+    r->face_start[0] = 0;
+    for (int f = 0; f < q->nf; f++) {
+        int s = q->face_start[f], k = q->face_start[f + 1] - s;
+        double cx = 0.0, cy = 0.0;
+        for (int i = 0; i < k; i++) {
+            cx += q->xy[2 * q->face_vert[s + i]] / k;
+            cy += q->xy[2 * q->face_vert[s + i] + 1] / k;
+        }
+        int c = r->nv++;
+        r->xy[2 * c] = cx;
+        r->xy[2 * c + 1] = cy;
+        for (int i = 0; i < k; i++) { /* corner i, midpoint of side i, centre, midpoint of side i-1 */
+            r->face_vert[w++] = q->face_vert[s + i];
+            r->face_vert[w++] = side_mid[s + i];
+            r->face_vert[w++] = c;
+            r->face_vert[w++] = side_mid[s + (i + k - 1) % k];
+            r->face_start[++r->nf] = w;
+        }
+    }
+    for (int k = 0; k < 2; k++) {
+        r->singular_tris[k] = q->singular_tris[k];
+        r->inconsistent_tris[k] = q->inconsistent_tris[k];
+    }
+    r->collapsed_edges = q->collapsed_edges;
+    r->promoted_corners = q->promoted_corners;
+    r->split_pentagons = q->split_pentagons;
+    r->center_splits = q->center_splits;
+    *out = r;
+    r = NULL;
+done:
+    glpgp_quadmesh_destroy(&r);
+    free(key);
+    free(side_mid);
+    return st;
 }

@@ -27,7 +27,8 @@ typedef struct glpgp_quadmesh {
     int inconsistent_tris[2]; /* triangles skipped because their chart did not close (rounding) */
     int collapsed_edges;      /* short edges contracted during the clean-up */
     int promoted_corners;     /* boundary vertices made face corners (3-gon -> quad) */
-    int split_pentagons;      /* boundary pentagons split into two quads */
+    int split_pentagons;      /* boundary pentagons split into two or three quads */
+    int center_splits;        /* of those: three quads around a new centre vertex */
 } glpgp_quadmesh;
 
 /* Extract the quad mesh of a result on mesh m (r->osc[k].z, .dirichlet and
@@ -40,6 +41,16 @@ typedef struct glpgp_quadmesh {
 glpgp_status glpgp_quads_extract(const glpgp_mesh *m, const glpgp_result *r,
                                  glpgp_quadmesh **out);
 void glpgp_quadmesh_destroy(glpgp_quadmesh **q);
+
+/* All-quad refinement (one Catmull-Clark step without smoothing): every
+ * face with n corners becomes n quads joined at its vertex centroid, each
+ * edge is split at its midpoint (shared by both faces, so the result is
+ * conforming). Quads give 4 quads, an n-gon n quads around a new valence-n
+ * vertex, so the result has no non-quad face; the element size is halved
+ * (edges about h / 2). Midpoints of boundary edges lie on the chord, within
+ * the chord's sagitta of a curved domain boundary. The extraction
+ * diagnostics are copied. GLPGP_ERR_ARG on an empty mesh. */
+glpgp_status glpgp_quadmesh_subdivide(const glpgp_quadmesh *q, glpgp_quadmesh **out);
 
 #define GLPGP_QUAD_MAXVAL 8 /* valence histogram bins 0..MAXVAL (last: >= MAXVAL) */
 

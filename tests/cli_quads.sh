@@ -5,8 +5,10 @@
 # exactly 25 quads (OBJ faces with 4 indices) and adds the "quads" report to
 # the statistics JSON; `extract` writes OBJ / VTK (VTK_QUAD) / MSH 4.1 (type 3
 # elements) from the result file; `quality` reads the MSH back with the same
-# counts; a VTK without oscillators, a bad extension and a missing input fail
-# with a clear message, a non-zero exit and no output file.
+# counts; `extract --all-quads` refines the 25 quads into 100 and reports
+# h / 2; a VTK without oscillators, a bad extension, a missing input and
+# --all-quads without --quads fail with a clear message, a non-zero exit and
+# no output file.
 set -u
 
 GLPGP=${1:?usage: cli_quads.sh <glpgp> <data-dir>}
@@ -71,6 +73,14 @@ if command -v python3 >/dev/null 2>&1; then
     python3 -c "import json,sys; assert json.load(open('e.json'))['quads']['quads'] == 25" ||
         fail "e.json invalid"
 fi
+
+# ---- --all-quads: every face refined into quads (here 25 quads -> 100) ----
+run_ok "extract --all-quads" extract r.vtk --quads a.obj --all-quads
+nf=$(grep -c '^f ' a.obj)
+n4=$(grep -cE '^f [0-9]+ [0-9]+ [0-9]+ [0-9]+ *$' a.obj)
+[ "$nf" -eq 100 ] && [ "$n4" -eq 100 ] || fail "extract --all-quads: $nf faces, $n4 quads (expected 100)"
+grep -qE "h = 0.1 \(--all-quads" out.txt || fail "extract --all-quads does not report h / 2: $(head -1 out.txt)"
+run_fail "solve --all-quads without --quads" 2 "needs --quads" solve shape:square:100 --all-quads
 
 # ---- quality of a mesh read back -------------------------------------------
 run_ok "quality e.msh" quality e.msh --size 0.2

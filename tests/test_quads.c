@@ -8,6 +8,13 @@
  *    irregular vertices only where the solve reports singularities;
  *  - data/annulus.msh (a domain with a hole; GLPGP_DATA): conforming, no
  *    inverted face, boundary Hausdorff distance < 0.25 h;
+ *  - data/plate_holes.msh (the default domain: holes, a small ellipse, a
+ *    v dipole): no degenerate or inverted face (a level-line loop left by
+ *    the short-side contraction once gave a zero-length edge and a 10-gon),
+ *    every face a quad (boundary pentagons closed by a diagonal or a centre
+ *    vertex);
+ *  - glpgp_quadmesh_subdivide (--all-quads) on the radial annulus: only
+ *    quads, n quads per n-gon, conforming, same area, nothing inverted;
  *  - writers (OBJ / VTK / MSH, MSH read back), JSON report appended to an
  *    existing object;
  *  - a result without oscillators is rejected with GLPGP_ERR_FORMAT. */
@@ -219,6 +226,21 @@ static void test_annulus(int field, const char *name)
             /* the radial lines end at the v singularities: one valence-3
              * vertex per singular triangle, none on the boundary */
             CHECK(qq.irregular_interior >= ns / 2 && qq.irregular_boundary == 0);
+            /* --all-quads: every n-gon -> n quads, the interior pentagons too */
+            glpgp_quadmesh *fine = NULL;
+            CHECK_OK(glpgp_quadmesh_subdivide(q, &fine));
+            if (fine) {
+                glpgp_quad_quality fq;
+                CHECK_OK(glpgp_quads_quality(fine, m, 0.05, &fq));
+                print_q("  refined (--all-quads), h = 0.05", &fq);
+                CHECK(fq.others == 0 && fq.quads == q->face_start[q->nf]);
+                check_valid(&fq, m);
+                CHECK_CLOSE(fq.area, qq.area, 1e-9, 1e-9);
+                CHECK(fq.sj_min > 0.0);
+                CHECK(fq.hausdorff < 0.25);
+                CHECK_CLOSE(fq.len_mean, 1.0, 0, 0.3);
+                glpgp_quadmesh_destroy(&fine);
+            }
         }
     }
     glpgp_quadmesh_destroy(&q);
@@ -288,6 +310,54 @@ static void test_data_hole(void)
     glpgp_mesh_destroy(&m);
 }
 
+/* Whether some face of q lists a vertex twice (a loop side or a bridge). */
+static int repeated_corner(const glpgp_quadmesh *q)
+{
+    for (int f = 0; f < q->nf; f++) {
+        int s = q->face_start[f], k = q->face_start[f + 1] - s;
+        for (int i = 0; i < k; i++)
+            for (int j = i + 1; j < k; j++)
+                if (q->face_vert[s + i] == q->face_vert[s + j]) return 1;
+    }
+    return 0;
+}
+
+static void test_data_plate(void)
+{
+    const char *dd = getenv("GLPGP_DATA");
+    char p[1024];
+    snprintf(p, sizeof p, "%s/plate_holes.msh", dd ? dd : "data");
+    if (access(p, R_OK) != 0) {
+        printf("data/plate_holes.msh not found (GLPGP_DATA), skipped\n");
+        return;
+    }
+    glpgp_mesh *m = NULL;
+    CHECK_OK(glpgp_mesh_read(p, &m));
+    if (!m) return;
+    double h = glpgp_default_size(m);
+    glpgp_result *r = solve(m, h, GLPGP_FIELD_BOUNDARY);
+    glpgp_quadmesh *q = NULL;
+    if (r) CHECK_OK(glpgp_quads_extract(m, r, &q));
+    if (q) {
+        glpgp_quad_quality qq;
+        CHECK_OK(glpgp_quads_quality(q, m, h, &qq));
+        printf("data/plate_holes.msh, h = %g: singular u +%d -%d, v +%d -%d\n", h,
+               r->osc[0].plus, r->osc[0].minus, r->osc[1].plus, r->osc[1].minus);
+        print_q("", &qq);
+        CHECK(qq.degenerate == 0);
+        CHECK(qq.inverted == 0);
+        CHECK(!repeated_corner(q));
+        CHECK(qq.len_min > 0.05);
+        check_valid(&qq, m);
+        CHECK(qq.hausdorff < 0.25);
+        CHECK(qq.others == 0);
+        CHECK(qq.sj_min > 0.3);
+    }
+    glpgp_quadmesh_destroy(&q);
+    glpgp_result_destroy(&r);
+    glpgp_mesh_destroy(&m);
+}
+
 int main(void)
 {
     char dir[] = "/tmp/glpgp_quads_XXXXXX";
@@ -297,6 +367,7 @@ int main(void)
     test_annulus(GLPGP_FIELD_RADIAL, "radial");
     test_annulus(GLPGP_FIELD_BOUNDARY, "default");
     test_data_hole();
+    test_data_plate();
     char cmd[600];
     snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
     if (system(cmd) != 0) fprintf(stderr, "note: could not remove %s\n", dir);
