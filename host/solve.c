@@ -357,7 +357,7 @@ static glpgp_status newton_level(osc_work *w, int k, double eps, double rtol, gl
     return GLPGP_OK;
 }
 
-static glpgp_status solve_oscillator(const glpgp_mesh *m, osc_work *w, int k, const double *field,
+static glpgp_status solve_oscillator(const glpgp_mesh *m, osc_work *w, int k,
                                      const double *hostw, glpgp_osc_result *r, double h,
                                      const double *eps, int nlevels)
 {
@@ -366,7 +366,6 @@ static glpgp_status solve_oscillator(const glpgp_mesh *m, osc_work *w, int k, co
     const glpgp_options *o = w->o;
     const int nv = m->nv;
     double t0 = now();
-    (void)field;
     r->n_dirichlet = glpgp_dirichlet_set(m, hostw, r->dirichlet);
     GLPGP_CHECK(op->set_field(b, hostw, r->dirichlet));
     GLPGP_CHECK(op->assemble_quadratic(b, o->energy, h));
@@ -557,7 +556,7 @@ glpgp_status glpgp_solve(const glpgp_mesh *m, glpgp_backend *b, const glpgp_opti
             wv[2 * i] = k == 0 ? ux : -uy;
             wv[2 * i + 1] = k == 0 ? uy : ux;
         }
-        GLPGP_CHECK_GOTO(st, solve_oscillator(m, &w, k, r->field, wv, &r->osc[k], h, eps, nlev), fail);
+        GLPGP_CHECK_GOTO(st, solve_oscillator(m, &w, k, wv, &r->osc[k], h, eps, nlev), fail);
     }
     r->seconds_total = now() - t0;
     goto cleanup;
