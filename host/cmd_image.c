@@ -5,6 +5,7 @@
  * and the image hooks of `glpgp solve` (--image ..., INPUT = mask image).
  * Like main.c, this is CLI code: it prints errors ("glpgp: error: ...") and
  * returns exit codes 0 ok, 1 failure, 2 usage error. */
+#include "cli.h"
 #include "commands.h"
 
 #include "backend.h"
@@ -58,71 +59,6 @@ static int usage_err(const char *sub, const char *fmt, ...)
     va_end(ap);
     fprintf(stderr, "\nTry 'glpgp %s --help' for the options.\n", sub);
     return EXIT_USAGE;
-}
-
-static int parse_dbl(const char *s, double *out)
-{
-    if (!s || !*s) return 0;
-    char *end = NULL;
-    errno = 0;
-    double v = strtod(s, &end);
-    if (end == s || *end || errno == ERANGE || !isfinite(v)) return 0;
-    *out = v;
-    return 1;
-}
-
-static int parse_int(const char *s, long lo, long hi, long *out)
-{
-    if (!s || !*s) return 0;
-    char *end = NULL;
-    errno = 0;
-    long v = strtol(s, &end, 10);
-    if (end == s || *end || errno == ERANGE || v < lo || v > hi) return 0;
-    *out = v;
-    return 1;
-}
-
-static int has_ext(const char *s, const char *ext)
-{
-    size_t n = strlen(s), k = strlen(ext);
-    if (n < k) return 0;
-    for (size_t i = 0; i < k; i++) {
-        char c = s[n - k + i];
-        if (c >= 'A' && c <= 'Z') c = (char)(c - 'A' + 'a');
-        if (c != ext[i]) return 0;
-    }
-    return 1;
-}
-
-/* Directory of path exists and is writable, path is not a directory. */
-static int out_dir_ok(const char *path)
-{
-    char dir[4096];
-    const char *slash = strrchr(path, '/');
-    if (!slash)
-        strcpy(dir, ".");
-    else if (slash == path)
-        strcpy(dir, "/");
-    else {
-        size_t n = (size_t)(slash - path);
-        if (n >= sizeof dir) n = sizeof dir - 1;
-        memcpy(dir, path, n);
-        dir[n] = '\0';
-    }
-    struct stat sb;
-    if (stat(dir, &sb) != 0 || !S_ISDIR(sb.st_mode)) {
-        GLPGP_FAIL(GLPGP_ERR_IO, "cannot write '%s': directory '%s' does not exist", path, dir);
-        return 0;
-    }
-    if (access(dir, W_OK | X_OK) != 0) {
-        GLPGP_FAIL(GLPGP_ERR_IO, "cannot write '%s': directory '%s' is not writable", path, dir);
-        return 0;
-    }
-    if (stat(path, &sb) == 0 && S_ISDIR(sb.st_mode)) {
-        GLPGP_FAIL(GLPGP_ERR_IO, "cannot write '%s': it is a directory", path);
-        return 0;
-    }
-    return 1;
 }
 
 static int need_oiio(void)
@@ -186,7 +122,7 @@ static int apply_opt(img_cli *c, const char *sub, const char *nm, const char *v)
     double d;
     long l;
     if (!strcmp(nm, "--image-size")) {
-        if (!parse_int(v, 16, 32768, &l)) return usage_err(sub, "--image-size: '%s' is not an integer in [16, 32768]", v);
+        if (!glpgp_cli_long(v, 16, 32768, &l)) return usage_err(sub, "--image-size: '%s' is not an integer in [16, 32768]", v);
         c->ro.size = (int)l;
     } else if (!strcmp(nm, "--image-kind")) {
         int k = glpgp_image_kind_parse(v);
@@ -200,24 +136,24 @@ static int apply_opt(img_cli *c, const char *sub, const char *nm, const char *v)
         else
             return usage_err(sub, "--background: '%s' is not one of white, transparent", v);
     } else if (!strcmp(nm, "--line-width")) {
-        if (!parse_dbl(v, &d) || !(d > 0 && d <= 100)) return usage_err(sub, "--line-width: '%s' is not a number in (0, 100]", v);
+        if (!glpgp_cli_double(v, &d) || !(d > 0 && d <= 100)) return usage_err(sub, "--line-width: '%s' is not a number in (0, 100]", v);
         c->ro.line_width = d;
     } else if (!strcmp(nm, "--threshold")) {
-        if (!parse_dbl(v, &d)) return usage_err(sub, "--threshold: '%s' is not a number", v);
+        if (!glpgp_cli_double(v, &d)) return usage_err(sub, "--threshold: '%s' is not a number", v);
         c->mo.contour.threshold = d;
     } else if (!strcmp(nm, "--invert")) {
         c->mo.contour.invert = 1;
     } else if (!strcmp(nm, "--pixel-size")) {
-        if (!parse_dbl(v, &d) || !(d > 0)) return usage_err(sub, "--pixel-size: '%s' is not a positive number", v);
+        if (!glpgp_cli_double(v, &d) || !(d > 0)) return usage_err(sub, "--pixel-size: '%s' is not a positive number", v);
         c->mo.contour.pixel_size = d;
     } else if (!strcmp(nm, "--mesh-size")) {
-        if (!parse_dbl(v, &d) || !(d > 0)) return usage_err(sub, "--mesh-size: '%s' is not a positive number", v);
+        if (!glpgp_cli_double(v, &d) || !(d > 0)) return usage_err(sub, "--mesh-size: '%s' is not a positive number", v);
         c->mo.mesh_size = d;
     } else if (!strcmp(nm, "--min-area")) {
-        if (!parse_dbl(v, &d) || !(d >= 0)) return usage_err(sub, "--min-area: '%s' is not a number >= 0", v);
+        if (!glpgp_cli_double(v, &d) || !(d >= 0)) return usage_err(sub, "--min-area: '%s' is not a number >= 0", v);
         c->mo.contour.min_area = d;
     } else if (!strcmp(nm, "--simplify")) {
-        if (!parse_dbl(v, &d) || !(d >= 0)) return usage_err(sub, "--simplify: '%s' is not a number >= 0", v);
+        if (!glpgp_cli_double(v, &d) || !(d >= 0)) return usage_err(sub, "--simplify: '%s' is not a number >= 0", v);
         c->mo.contour.tolerance = d;
     } else if (!strcmp(nm, "--algorithm")) {
         if (!strcmp(v, "frontal"))
@@ -227,7 +163,7 @@ static int apply_opt(img_cli *c, const char *sub, const char *nm, const char *v)
         else
             return usage_err(sub, "--algorithm: '%s' is not one of frontal, delaunay", v);
     } else if (!strcmp(nm, "--size")) {
-        if (!parse_dbl(v, &d) || !(d > 0)) return usage_err(sub, "--size: '%s' is not a positive number", v);
+        if (!glpgp_cli_double(v, &d) || !(d > 0)) return usage_err(sub, "--size: '%s' is not a positive number", v);
         c->so.size = d;
     } else if (!strcmp(nm, "--field")) {
         if (!strcmp(v, "boundary"))
@@ -246,7 +182,7 @@ static int apply_opt(img_cli *c, const char *sub, const char *nm, const char *v)
         if (!comma || n >= sizeof xs) return usage_err(sub, "--center: '%s' is not X,Y", v);
         memcpy(xs, v, n);
         xs[n] = '\0';
-        if (!parse_dbl(xs, &c->so.center[0]) || !parse_dbl(comma + 1, &c->so.center[1]))
+        if (!glpgp_cli_double(xs, &c->so.center[0]) || !glpgp_cli_double(comma + 1, &c->so.center[1]))
             return usage_err(sub, "--center: '%s' is not X,Y (two numbers)", v);
         c->so.has_center = 1;
     } else if (!strcmp(nm, "--backend")) {
@@ -254,7 +190,7 @@ static int apply_opt(img_cli *c, const char *sub, const char *nm, const char *v)
             return usage_err(sub, "--backend: '%s' is not one of auto, opencl, reference", v);
         c->backend = v;
     } else if (!strcmp(nm, "--device")) {
-        if (!parse_int(v, 0, INT_MAX, &l)) return usage_err(sub, "--device: '%s' is not an integer >= 0", v);
+        if (!glpgp_cli_long(v, 0, INT_MAX, &l)) return usage_err(sub, "--device: '%s' is not an integer >= 0", v);
         c->device = (int)l;
     }
     return -1;
@@ -379,7 +315,7 @@ int glpgp_cmd_render(int argc, char **argv)
     if (!glpgp_image_path_writable(c.out))
         return usage_err("render", "-o: cannot write images of type '%s' (try .png, .exr, .tif, .jpg)", c.out);
     glpgp_error_clear();
-    if (!out_dir_ok(c.out)) return fail_err();
+    if (!glpgp_output_dir_ok(c.out)) return fail_err();
     glpgp_mesh *m = NULL;
     glpgp_result *r = NULL;
     glpgp_image *im = NULL;
@@ -419,11 +355,11 @@ int glpgp_cmd_mesh(int argc, char **argv)
     /* --size is accepted by `mesh` too (it only sets the default mesh size) */
     if (!c.input) return usage_err("mesh", "missing MASK image");
     if (!c.out) return usage_err("mesh", "missing -o DOMAIN.msh");
-    if (!has_ext(c.out, ".msh") && !has_ext(c.out, ".obj"))
+    if (!glpgp_has_ext(c.out, ".msh") && !glpgp_has_ext(c.out, ".obj"))
         return usage_err("mesh", "-o: '%s' must end in .msh or .obj", c.out);
     if (!need_oiio() || !need_gmsh()) return 1;
     glpgp_error_clear();
-    if (!out_dir_ok(c.out)) return fail_err();
+    if (!glpgp_output_dir_ok(c.out)) return fail_err();
     glpgp_mesh *m = NULL;
     glpgp_mask_info inf;
     c.mo.quad_size = c.so.size;
@@ -455,7 +391,7 @@ static glpgp_status load_any(const char *input, const glpgp_mask_options *mo, gl
         if (n == 0 || n >= sizeof name) return GLPGP_FAIL(GLPGP_ERR_ARG, "INPUT '%s': expected shape:NAME[:N]", input);
         memcpy(name, rest, n);
         name[n] = '\0';
-        if (colon && !parse_int(colon + 1, 16, 100000000L, &nv))
+        if (colon && !glpgp_cli_long(colon + 1, 16, 100000000L, &nv))
             return GLPGP_FAIL(GLPGP_ERR_ARG, "INPUT '%s': N must be an integer >= 16", input);
         return glpgp_mesh_generate(name, nv, m);
     }
@@ -495,7 +431,7 @@ int glpgp_cmd_figure(int argc, char **argv)
     if (!glpgp_image_path_writable(c.out))
         return usage_err("figure", "-o: cannot write images of type '%s' (try .png, .exr, .tif, .jpg)", c.out);
     glpgp_error_clear();
-    if (!out_dir_ok(c.out)) return fail_err();
+    if (!glpgp_output_dir_ok(c.out)) return fail_err();
     c.so.verbose = 0;
     c.mo.quad_size = c.so.size;
     glpgp_mesh *m = NULL;

@@ -1,6 +1,7 @@
 /* image.c: the plain-C half of image_io.h: image buffers (create/destroy),
  * the image-extension test, and, in builds without OpenImageIO, the stubs of
  * glpgp_image_read/write that fail with "built without OpenImageIO". */
+#include "cli.h"
 #include "image_io.h"
 
 #include <stdlib.h>
@@ -47,20 +48,8 @@ int glpgp_is_image_path(const char *path)
                                       ".pgm", ".ppm", ".pnm", ".tga", ".gif", ".webp", ".hdr",
                                       NULL};
     if (!path) return 0;
-    const char *dot = strrchr(path, '.');
-    const char *slash = strrchr(path, '/');
-    if (!dot || (slash && dot < slash)) return 0;
-    for (int k = 0; ext[k]; k++) {
-        size_t n = strlen(ext[k]);
-        if (strlen(dot) != n) continue;
-        int same = 1;
-        for (size_t i = 0; i < n && same; i++) {
-            char c = dot[i];
-            if (c >= 'A' && c <= 'Z') c = (char)(c - 'A' + 'a');
-            same = c == ext[k][i];
-        }
-        if (same) return 1;
-    }
+    for (int k = 0; ext[k]; k++)
+        if (glpgp_has_ext(path, ext[k])) return 1;
     return 0;
 }
 

@@ -16,6 +16,7 @@
 #include <unistd.h>
 
 #include "backend.h"
+#include "cli.h"
 #include "commands.h"
 #include "element.h"
 #include "image_io.h"
@@ -64,74 +65,6 @@ static int usage_error(const char *sub, const char *fmt, ...)
     else
         fputs("\nTry 'glpgp --help'.\n", stderr);
     return EXIT_USAGE;
-}
-
-/* Whole-string finite double. */
-static int parse_double(const char *s, double *out)
-{
-    if (!s || !*s) return 0;
-    char *end = NULL;
-    errno = 0;
-    double v = strtod(s, &end);
-    if (end == s || *end != '\0' || errno == ERANGE || !isfinite(v)) return 0;
-    *out = v;
-    return 1;
-}
-
-/* Whole-string decimal integer in [lo, hi]. */
-static int parse_long(const char *s, long lo, long hi, long *out)
-{
-    if (!s || !*s) return 0;
-    char *end = NULL;
-    errno = 0;
-    long v = strtol(s, &end, 10);
-    if (end == s || *end != '\0' || errno == ERANGE || v < lo || v > hi) return 0;
-    *out = v;
-    return 1;
-}
-
-static int ends_with(const char *s, const char *suffix)
-{
-    size_t n = strlen(s), k = strlen(suffix);
-    if (n < k) return 0;
-    for (size_t i = 0; i < k; i++) {
-        char c = s[n - k + i];
-        if (c >= 'A' && c <= 'Z') c = (char)(c - 'A' + 'a');
-        if (c != suffix[i]) return 0;
-    }
-    return 1;
-}
-
-/* Fail early (before a long solve) when the directory of an output path does
- * not exist or is not writable. Returns 1 when fine, else records an error. */
-static int output_dir_ok(const char *path)
-{
-    char dir[4096];
-    const char *slash = strrchr(path, '/');
-    if (!slash) {
-        strcpy(dir, ".");
-    } else if (slash == path) {
-        strcpy(dir, "/");
-    } else {
-        size_t n = (size_t)(slash - path);
-        if (n >= sizeof dir) n = sizeof dir - 1;
-        memcpy(dir, path, n);
-        dir[n] = '\0';
-    }
-    struct stat sb;
-    if (stat(dir, &sb) != 0 || !S_ISDIR(sb.st_mode)) {
-        GLPGP_FAIL(GLPGP_ERR_IO, "cannot write '%s': directory '%s' does not exist", path, dir);
-        return 0;
-    }
-    if (access(dir, W_OK | X_OK) != 0) {
-        GLPGP_FAIL(GLPGP_ERR_IO, "cannot write '%s': directory '%s' is not writable", path, dir);
-        return 0;
-    }
-    if (stat(path, &sb) == 0 && S_ISDIR(sb.st_mode)) {
-        GLPGP_FAIL(GLPGP_ERR_IO, "cannot write '%s': it is a directory", path);
-        return 0;
-    }
-    return 1;
 }
 
 static void print_shapes(FILE *f)
@@ -375,7 +308,7 @@ static int parse_solve(int argc, char **argv, solve_cli *c)
         long lv;
 
         if (!strcmp(nm, "--size")) {
-            if (!parse_double(v, &dv) || !(dv > 0))
+            if (!glpgp_cli_double(v, &dv) || !(dv > 0))
                 return usage_error(sub, "--size: '%s' is not a positive number", v);
             c->o.size = dv;
         } else if (!strcmp(nm, "--method")) {
@@ -422,7 +355,7 @@ static int parse_solve(int argc, char **argv, solve_cli *c)
                 return usage_error(sub, "--center: '%s' is not X,Y", v);
             memcpy(xs, v, n);
             xs[n] = '\0';
-            if (!parse_double(xs, &cx) || !parse_double(comma + 1, &cy))
+            if (!glpgp_cli_double(xs, &cx) || !glpgp_cli_double(comma + 1, &cy))
                 return usage_error(sub, "--center: '%s' is not X,Y (two numbers)", v);
             c->o.has_center = 1;
             c->o.center[0] = cx;
@@ -435,7 +368,7 @@ static int parse_solve(int argc, char **argv, solve_cli *c)
             else
                 return usage_error(sub, "--init: '%s' is not one of naive, one", v);
         } else if (!strcmp(nm, "--eps0") || !strcmp(nm, "--eps-min")) {
-            if (!parse_double(v, &dv) || !(dv > 0))
+            if (!glpgp_cli_double(v, &dv) || !(dv > 0))
                 return usage_error(sub, "%s: '%s' is not a positive number", nm, v);
             if (!strcmp(nm, "--eps0"))
                 c->o.eps0 = dv;
@@ -443,7 +376,7 @@ static int parse_solve(int argc, char **argv, solve_cli *c)
                 c->o.eps_min = dv;
         } else if (!strcmp(nm, "--eps-ratio") || !strcmp(nm, "--newton-rtol") ||
                    !strcmp(nm, "--cg-rtol")) {
-            if (!parse_double(v, &dv) || !(dv > 0 && dv < 1))
+            if (!glpgp_cli_double(v, &dv) || !(dv > 0 && dv < 1))
                 return usage_error(sub, "%s: '%s' is not a number in (0, 1)", nm, v);
             if (!strcmp(nm, "--eps-ratio"))
                 c->o.eps_ratio = dv;
@@ -453,7 +386,7 @@ static int parse_solve(int argc, char **argv, solve_cli *c)
                 c->o.cg_rtol = dv;
         } else if (!strcmp(nm, "--newton-max") || !strcmp(nm, "--cg-max") ||
                    !strcmp(nm, "--cg-check")) {
-            if (!parse_long(v, 1, INT_MAX, &lv))
+            if (!glpgp_cli_long(v, 1, INT_MAX, &lv))
                 return usage_error(sub, "%s: '%s' is not an integer >= 1", nm, v);
             if (!strcmp(nm, "--newton-max"))
                 c->o.newton_max = (int)lv;
@@ -467,7 +400,7 @@ static int parse_solve(int argc, char **argv, solve_cli *c)
                                    v);
             c->backend = v;
         } else if (!strcmp(nm, "--device")) {
-            if (!parse_long(v, 0, INT_MAX, &lv))
+            if (!glpgp_cli_long(v, 0, INT_MAX, &lv))
                 return usage_error(sub, "--device: '%s' is not an integer >= 0", v);
             c->device = (int)lv;
         } else if (!strcmp(nm, "--out") || !strcmp(nm, "-o")) {
@@ -511,7 +444,7 @@ static int load_input(const char *input, glpgp_mesh **m)
             fputs(")\n", stderr);
             return EXIT_USAGE;
         }
-        if (colon && !parse_long(colon + 1, 16, 100000000L, &nverts))
+        if (colon && !glpgp_cli_long(colon + 1, 16, 100000000L, &nverts))
             return usage_error("solve", "INPUT '%s': N must be an integer >= 16", input);
         if (glpgp_mesh_generate(name, nverts, m) != GLPGP_OK) return fail_with_error();
         return -1;
@@ -565,9 +498,9 @@ static int cmd_solve(int argc, char **argv)
     glpgp_error_clear();
 
     double t0 = now_seconds();
-    if (c.out && !output_dir_ok(c.out)) return fail_with_error();
-    if (c.stats && !output_dir_ok(c.stats)) return fail_with_error();
-    if (c.img.image && !output_dir_ok(c.img.image)) return fail_with_error();
+    if (c.out && !glpgp_output_dir_ok(c.out)) return fail_with_error();
+    if (c.stats && !glpgp_output_dir_ok(c.stats)) return fail_with_error();
+    if (c.img.image && !glpgp_output_dir_ok(c.img.image)) return fail_with_error();
 
     glpgp_mesh *m = NULL;
     glpgp_backend *b = NULL;
@@ -674,10 +607,10 @@ static int cmd_generate(int argc, char **argv)
         if (!take_value(argc, argv, &i, &oa))
             return usage_error(sub, "option %s needs a value", nm);
         if (!strcmp(nm, "--vertices") || !strcmp(nm, "-n")) {
-            if (!parse_long(oa.value, 16, 100000000L, &nverts))
+            if (!glpgp_cli_long(oa.value, 16, 100000000L, &nverts))
                 return usage_error(sub, "%s: '%s' is not an integer >= 16", nm, oa.value);
         } else {
-            if (!ends_with(oa.value, ".obj") && !ends_with(oa.value, ".msh"))
+            if (!glpgp_has_ext(oa.value, ".obj") && !glpgp_has_ext(oa.value, ".msh"))
                 return usage_error(sub, "%s: '%s' must end in .obj or .msh", nm, oa.value);
             out = oa.value;
         }

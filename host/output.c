@@ -1,5 +1,6 @@
 /* output.c: the atomic-file helper (temporary name + rename) and the result
  * writers: legacy VTK, textured OBJ, statistics JSON (see output.h). */
+#include "cli.h"
 #include "output.h"
 
 #include <errno.h>
@@ -128,19 +129,6 @@ static double phase_step(const double *za, const double *zb)
     double im = zb[1] * za[0] - zb[0] * za[1];
     if (re == 0.0 && im == 0.0) return 0.0;
     return atan2(im, re) / (2.0 * GLPGP_PI);
-}
-
-static int ends_with_ci(const char *s, const char *suffix)
-{
-    size_t n = strlen(s), k = strlen(suffix);
-    if (n < k) return 0;
-    s += n - k;
-    for (size_t i = 0; i < k; i++) {
-        char c = s[i];
-        if (c >= 'A' && c <= 'Z') c = (char)(c - 'A' + 'a');
-        if (c != suffix[i]) return 0;
-    }
-    return 1;
 }
 
 static glpgp_status check_result(const glpgp_mesh *m, const glpgp_result *r)
@@ -591,14 +579,14 @@ glpgp_status glpgp_write_stats_json(const glpgp_mesh *m, const glpgp_options *op
 
 int glpgp_result_path_supported(const char *path)
 {
-    return path && (ends_with_ci(path, ".vtk") || ends_with_ci(path, ".obj"));
+    return path && (glpgp_has_ext(path, ".vtk") || glpgp_has_ext(path, ".obj"));
 }
 
 glpgp_status glpgp_write_result(const glpgp_mesh *m, const glpgp_options *opts,
                                 const glpgp_result *r, const char *path)
 {
     if (!path) return GLPGP_FAIL(GLPGP_ERR_ARG, "no output path");
-    if (ends_with_ci(path, ".vtk")) {
+    if (glpgp_has_ext(path, ".vtk")) {
         GLPGP_CHECK(check_result(m, r));
         glpgp_atomic_file af;
         GLPGP_CHECK(glpgp_atomic_open(&af, path));
@@ -606,7 +594,7 @@ glpgp_status glpgp_write_result(const glpgp_mesh *m, const glpgp_options *opts,
         GLPGP_CHECK(glpgp_atomic_commit(&af));
         return GLPGP_OK;
     }
-    if (ends_with_ci(path, ".obj")) {
+    if (glpgp_has_ext(path, ".obj")) {
         GLPGP_CHECK(glpgp_write_obj_textured(m, r, path));
         return GLPGP_OK;
     }

@@ -2,6 +2,7 @@
  * quads.h): the quality report (valences, scaled Jacobian, edge lengths,
  * boundary Hausdorff distance), its printed and JSON forms, the OBJ / legacy
  * VTK / Gmsh MSH 4.1 writers and the MSH 4.1/2.2 quad/triangle reader. */
+#include "cli.h"
 #include "quads.h"
 #include "output.h"
 
@@ -536,18 +537,9 @@ glpgp_status glpgp_quads_append_json(const char *path, const glpgp_quad_quality 
 
 /* ---- writers ----------------------------------------------------------- */
 
-static int has_ext(const char *s, const char *ext)
-{
-    size_t n = strlen(s), k = strlen(ext);
-    if (n < k) return 0;
-    for (size_t i = 0; i < k; i++)
-        if (tolower((unsigned char)s[n - k + i]) != ext[i]) return 0;
-    return 1;
-}
-
 int glpgp_quads_path_supported(const char *path)
 {
-    return path && (has_ext(path, ".obj") || has_ext(path, ".vtk") || has_ext(path, ".msh"));
+    return path && (glpgp_has_ext(path, ".obj") || glpgp_has_ext(path, ".vtk") || glpgp_has_ext(path, ".msh"));
 }
 
 /* Minimum corner scaled Jacobian of face f. */
@@ -671,7 +663,7 @@ static void write_msh(FILE *f, const glpgp_quadmesh *q)
 glpgp_status glpgp_quads_write(const glpgp_quadmesh *q, const char *path)
 {
     if (!q || !path) return GLPGP_FAIL(GLPGP_ERR_ARG, "quad writer: no mesh or path");
-    int kind = has_ext(path, ".obj") ? 1 : has_ext(path, ".vtk") ? 2 : has_ext(path, ".msh") ? 3 : 0;
+    int kind = glpgp_has_ext(path, ".obj") ? 1 : glpgp_has_ext(path, ".vtk") ? 2 : glpgp_has_ext(path, ".msh") ? 3 : 0;
     if (!kind)
         return GLPGP_FAIL(GLPGP_ERR_ARG, "quad mesh output '%s': extension must be .obj, .vtk or .msh",
                           path);
