@@ -73,7 +73,6 @@ enum {
     K_ASM_QUAD,
     K_ASM_NEWTON,
     K_GRADIENT,
-    K_ENERGY_ROWS,
     K_PEN_ENERGY,
     K_AXPBY,
     K_DOT,
@@ -86,7 +85,7 @@ enum {
 };
 static const char *const kernel_names[K_COUNT] = {
     "glpgp_finalize",   "glpgp_asm_quad",   "glpgp_asm_newton",      "glpgp_gradient",
-    "glpgp_energy_rows", "glpgp_pen_energy_part", "glpgp_axpby",    "glpgp_dot_part",
+    "glpgp_pen_energy_part", "glpgp_axpby",    "glpgp_dot_part",
     "glpgp_spmv",       "glpgp_cg_precond", "glpgp_cg_spmv_dot",     "glpgp_cg_update",
     "glpgp_cg_direction",
 };
@@ -787,17 +786,17 @@ static glpgp_status cl_energy(glpgp_backend *b, const glpgp_vec *x, double inv4e
     size_t g0, g1;
     GLPGP_CHECK(groups_for(c, (size_t)sys->nv, &g0));
     GLPGP_CHECK(groups_for(c, (size_t)sys->nt, &g1));
-    /* work <- QUAD x; partials of x.work */
-    cl_kernel k = c->k[K_ENERGY_ROWS];
+    /* work <- QUAD x; partials of x.work (the CG kernel q <- A p, p.q, on QUAD) */
+    cl_kernel k = c->k[K_CG_SPMV_DOT];
     cl_int off = 0;
-    ARG(k, 2, x->m);
-    ARG(k, 3, c->rowptr);
-    ARG(k, 4, c->col);
-    ARG(k, 5, c->quad);
+    ARG(k, 2, c->rowptr);
+    ARG(k, 3, c->col);
+    ARG(k, 4, c->quad);
+    ARG(k, 5, x->m);
     ARG(k, 6, work->m);
     ARG(k, 7, c->part);
     ARG(k, 8, off);
-    GLPGP_CHECK(run(c, K_ENERGY_ROWS, (size_t)sys->nv, &g0));
+    GLPGP_CHECK(run(c, K_CG_SPMV_DOT, (size_t)sys->nv, &g0));
     GLPGP_CHECK(penalty_partials(c, x, inv4e2, &g1));
     /* s[E] <- 1/2 x.QUAD x;  s[P] <- P(x) */
     GLPGP_CHECK(finalize(c, g0, g1, 0.5, 1.0, GLPGP_S_E, GLPGP_S_P));

@@ -30,6 +30,23 @@
     const int lo = (int)get_global_id(0) * (chunk);      \
     const int hi = min(lo + (chunk), (n))
 
+/* (A x)_i for block row i of a 2x2-block CSR matrix: (*y0, *y1). */
+inline void glpgp_block_row(int i, __global const int *rowptr, __global const int *col,
+                            __global const double *A, __global const double *x, double *y0,
+                            double *y1)
+{
+    double s0 = 0.0, s1 = 0.0;
+    for (int k = rowptr[i]; k < rowptr[i + 1]; k++) {
+        __global const double *blk = A + 4 * (long)k;
+        const int j = col[k];
+        const double x0 = x[2 * j], x1 = x[2 * j + 1];
+        s0 += blk[0] * x0 + blk[1] * x1;
+        s1 += blk[2] * x0 + blk[3] * x1;
+    }
+    *y0 = s0;
+    *y1 = s1;
+}
+
 /* Work-group sum of v -> out[group] (buf: GLPGP_WG doubles of local memory).
  * Tree order is fixed, so the result is deterministic for a given shape. */
 void glpgp_group_sum(double v, __local double *buf, __global double *out)

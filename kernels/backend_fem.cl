@@ -134,14 +134,8 @@ GLPGP_KERNEL void glpgp_gradient(int n, int chunk, double inv4e2, __global const
     GLPGP_RANGE(lo, hi, n, chunk);
     double e = 0.0;
     for (int i = lo; i < hi; i++) {
-        double y0 = 0.0, y1 = 0.0;
-        for (int k = rowptr[i]; k < rowptr[i + 1]; k++) {
-            __global const double *blk = quad + 4 * (long)k;
-            const int j = col[k];
-            const double x0 = x[2 * j], x1 = x[2 * j + 1];
-            y0 += blk[0] * x0 + blk[1] * x1;
-            y1 += blk[2] * x0 + blk[3] * x1;
-        }
+        double y0, y1;
+        glpgp_block_row(i, rowptr, col, quad, x, &y0, &y1);
         e += x[2 * i] * y0;
         e += x[2 * i + 1] * y1;
         if (dir[i]) {
@@ -163,32 +157,6 @@ GLPGP_KERNEL void glpgp_gradient(int n, int chunk, double inv4e2, __global const
         }
         g[2 * i] = y0;
         g[2 * i + 1] = y1;
-    }
-    glpgp_group_sum(e, buf, part + off);
-}
-
-/* Energy rows [lo, hi):  work_i <- (QUAD x)_i;  part[off + group] <- partial x . (QUAD x). */
-GLPGP_KERNEL void glpgp_energy_rows(int n, int chunk, __global const double *x,
-                                    __global const int *rowptr, __global const int *col,
-                                    __global const double *quad, __global double *work,
-                                    __global double *part, int off)
-{
-    __local double buf[GLPGP_WG];
-    GLPGP_RANGE(lo, hi, n, chunk);
-    double e = 0.0;
-    for (int i = lo; i < hi; i++) {
-        double y0 = 0.0, y1 = 0.0;
-        for (int k = rowptr[i]; k < rowptr[i + 1]; k++) {
-            __global const double *blk = quad + 4 * (long)k;
-            const int j = col[k];
-            const double x0 = x[2 * j], x1 = x[2 * j + 1];
-            y0 += blk[0] * x0 + blk[1] * x1;
-            y1 += blk[2] * x0 + blk[3] * x1;
-        }
-        work[2 * i] = y0;
-        work[2 * i + 1] = y1;
-        e += x[2 * i] * y0;
-        e += x[2 * i + 1] * y1;
     }
     glpgp_group_sum(e, buf, part + off);
 }

@@ -34,14 +34,8 @@ GLPGP_KERNEL void glpgp_spmv(int n, int chunk, __global const int *rowptr,
 {
     GLPGP_RANGE(lo, hi, n, chunk);
     for (int i = lo; i < hi; i++) {
-        double y0 = 0.0, y1 = 0.0;
-        for (int k = rowptr[i]; k < rowptr[i + 1]; k++) {
-            __global const double *blk = A + 4 * (long)k;
-            const int j = col[k];
-            const double x0 = x[2 * j], x1 = x[2 * j + 1];
-            y0 += blk[0] * x0 + blk[1] * x1;
-            y1 += blk[2] * x0 + blk[3] * x1;
-        }
+        double y0, y1;
+        glpgp_block_row(i, rowptr, col, A, x, &y0, &y1);
         y[2 * i] = y0;
         y[2 * i + 1] = y1;
     }
@@ -78,14 +72,8 @@ GLPGP_KERNEL void glpgp_cg_spmv_dot(int n, int chunk, __global const int *rowptr
     GLPGP_RANGE(lo, hi, n, chunk);
     double s = 0.0;
     for (int i = lo; i < hi; i++) {
-        double y0 = 0.0, y1 = 0.0;
-        for (int k = rowptr[i]; k < rowptr[i + 1]; k++) {
-            __global const double *blk = A + 4 * (long)k;
-            const int j = col[k];
-            const double x0 = p[2 * j], x1 = p[2 * j + 1];
-            y0 += blk[0] * x0 + blk[1] * x1;
-            y1 += blk[2] * x0 + blk[3] * x1;
-        }
+        double y0, y1;
+        glpgp_block_row(i, rowptr, col, A, p, &y0, &y1);
         q[2 * i] = y0;
         q[2 * i + 1] = y1;
         s += p[2 * i] * y0;
