@@ -749,6 +749,22 @@ static glpgp_status penalty_partials(cl_impl *c, const glpgp_vec *x, double inv4
     return GLPGP_OK;
 }
 
+/* y <- A x for A = QUAD or NEWTON, with the partials of x.y in part[0..groups). */
+static glpgp_status spmv_dot_partials(cl_impl *c, cl_mem A, const glpgp_vec *x, glpgp_vec *y,
+                                      size_t *groups)
+{
+    cl_kernel k = c->k[K_CG_SPMV_DOT];
+    cl_int off = 0;
+    ARG(k, 2, c->rowptr);
+    ARG(k, 3, c->col);
+    ARG(k, 4, A);
+    ARG(k, 5, x->m);
+    ARG(k, 6, y->m);
+    ARG(k, 7, c->part);
+    ARG(k, 8, off);
+    return run(c, K_CG_SPMV_DOT, (size_t)c->sys->nv, groups);
+}
+
 static glpgp_status cl_gradient(glpgp_backend *b, const glpgp_vec *x, double inv4e2, glpgp_vec *g)
 {
     cl_impl *c = IMPL(b);
@@ -786,17 +802,8 @@ static glpgp_status cl_energy(glpgp_backend *b, const glpgp_vec *x, double inv4e
     size_t g0, g1;
     GLPGP_CHECK(groups_for(c, (size_t)sys->nv, &g0));
     GLPGP_CHECK(groups_for(c, (size_t)sys->nt, &g1));
-    /* work <- QUAD x; partials of x.work (the CG kernel q <- A p, p.q, on QUAD) */
-    cl_kernel k = c->k[K_CG_SPMV_DOT];
-    cl_int off = 0;
-    ARG(k, 2, c->rowptr);
-    ARG(k, 3, c->col);
-    ARG(k, 4, c->quad);
-    ARG(k, 5, x->m);
-    ARG(k, 6, work->m);
-    ARG(k, 7, c->part);
-    ARG(k, 8, off);
-    GLPGP_CHECK(run(c, K_CG_SPMV_DOT, (size_t)sys->nv, &g0));
+    /* work <- QUAD x; partials of x.work */
+    GLPGP_CHECK(spmv_dot_partials(c, c->quad, x, work, &g0));
     GLPGP_CHECK(penalty_partials(c, x, inv4e2, &g1));
     /* s[E] <- 1/2 x.QUAD x;  s[P] <- P(x) */
     GLPGP_CHECK(finalize(c, g0, g1, 0.5, 1.0, GLPGP_S_E, GLPGP_S_P));
@@ -842,18 +849,8 @@ static glpgp_status cl_cg_spmv_dot(glpgp_backend *b, const glpgp_vec *p, glpgp_v
 {
     cl_impl *c = IMPL(b);
     size_t g;
-    GLPGP_CHECK(groups_for(c, (size_t)c->sys->nv, &g));
     /* q <- NEWTON p;  s[PQ] <- p.q */
-    cl_kernel k = c->k[K_CG_SPMV_DOT];
-    cl_int off = 0;
-    ARG(k, 2, c->rowptr);
-    ARG(k, 3, c->col);
-    ARG(k, 4, c->newton);
-    ARG(k, 5, p->m);
-    ARG(k, 6, q->m);
-    ARG(k, 7, c->part);
-    ARG(k, 8, off);
-    GLPGP_CHECK(run(c, K_CG_SPMV_DOT, (size_t)c->sys->nv, NULL));
+    GLPGP_CHECK(spmv_dot_partials(c, c->newton, p, q, &g));
     GLPGP_CHECK(finalize(c, g, 0, 1.0, 0.0, GLPGP_S_PQ, -1));
     return GLPGP_OK;
 }
