@@ -160,7 +160,8 @@ static void usage_solve(FILE *f)
             "                      auto tries OpenCL and falls back to the reference C path\n"
             "                      with one warning (default: auto)\n"
             "  --device N          OpenCL device index as listed by 'glpgp devices'\n"
-            "                      (>= 0; default: $GLPGP_DEVICE or the first fp64 device)\n"
+            "                      (>= 0; default: $GLPGP_DEVICE or the first fp64 device;\n"
+            "                      with --device, a failing OpenCL backend is an error)\n"
             "\n"
             "Output:\n"
             "  --out FILE, -o FILE result as .vtk (ParaView) or .obj (texture coordinates)\n"
@@ -472,7 +473,8 @@ static int create_backend(const solve_cli *c, glpgp_backend **b)
         if (glpgp_backend_create_reference(b) != GLPGP_OK) return fail_with_error();
         return -1;
     }
-    if (!strcmp(c->backend, "opencl")) {
+    /* an explicit --device asks for OpenCL: its failure is an error, not a fallback */
+    if (!strcmp(c->backend, "opencl") || c->device >= 0) {
         if (glpgp_backend_create_opencl(&clo, b) != GLPGP_OK) return fail_with_error();
         return -1;
     }

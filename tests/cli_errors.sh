@@ -110,6 +110,11 @@ expect_msg "nodir" "output dir missing"
 run 1 "stats dir missing" -- solve shape:square:200 --out o.vtk --stats nodir/o.json --quiet
 no_outputs "stats dir missing"
 
+# an explicit --device that does not exist is an error (no silent fallback), no output
+run 1 "no such device" -- solve shape:square:200 --device 99 --out o.vtk --quiet
+expect_msg "OpenCL|device" "no such device"
+no_outputs "no such device"
+
 # field file missing: the solve fails, no output
 run nonzero "field file missing" -- solve shape:square:300 --field nofield.txt --out o.vtk \
     --stats o.json --quiet
