@@ -6,6 +6,7 @@
  *       the same quality report for a quad/triangle mesh made elsewhere (Gmsh),
  *       used by bench/gmsh_compare.sh.
  * Exit codes as in main.c: 0 ok, 1 failure, 2 usage error. */
+#include "cli.h"
 #include "commands.h"
 #include "mesh.h"
 #include "output.h"
@@ -33,14 +34,10 @@ static int q_fail(void)
     return 1;
 }
 
+/* --size value: a finite number > 0 */
 static int q_parse_size(const char *v, double *out)
 {
-    char *end = NULL;
-    errno = 0;
-    double d = strtod(v, &end);
-    if (end == v || *end || errno == ERANGE || !isfinite(d) || !(d > 0)) return 0;
-    *out = d;
-    return 1;
+    return glpgp_cli_double(v, out) && *out > 0.0;
 }
 
 /* "--name=value" or "--name value" */
