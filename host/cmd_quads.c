@@ -1,6 +1,6 @@
 /* cmd_quads.c: the quad-mesh subcommands of the CLI:
  *   glpgp extract RESULT.vtk --quads OUT.{obj,vtk,msh} [--stats OUT.json] [--size H]
- *                 [--all-quads]
+ *                 [--keep-polygons] [--smooth N] [--all-quads]
  *       quad mesh from a result written by `glpgp solve -o RESULT.vtk`;
  *   glpgp quality MESH.msh [--size H] [--domain DOMAIN] [--stats OUT.json]
  *       the same quality report for a quad/triangle mesh made elsewhere (Gmsh),
@@ -68,9 +68,14 @@ static void usage_extract(FILE *f)
             "                 quadrangles; other faces split into quads + one triangle)\n"
             "  --stats FILE   quality report as JSON {\"quads\": {...}}\n"
             "  --size H       target size h (default: the h recorded in RESULT.vtk)\n"
+            "  --keep-polygons  keep the faces left around dislocations as polygons\n"
+            "                 (default: join them pairwise or to the boundary through\n"
+            "                 strips of quads cut in two: all quads at the same size)\n"
+            "  --smooth N     smoothing sweeps around new vertices and faces with a\n"
+            "                 scaled Jacobian < 0.5 (default 20; 0: off)\n"
             "  --all-quads    refine every face into quads around its centroid (each\n"
-            "                 edge split at its midpoint): no non-quad face left, but\n"
-            "                 the element size is halved (report uses h / 2)\n"
+            "                 edge split at its midpoint): the element size is halved\n"
+            "                 (report uses h / 2)\n"
             "  --help, -h     this text\n");
 }
 
@@ -88,26 +93,12 @@ static void usage_quality(FILE *f)
             "  --help, -h      this text\n");
 }
 
-/* Extract the quad mesh of r, refined to all quads when asked (*h is then
- * halved). */
-static glpgp_status extract_maybe_refined(const glpgp_mesh *m, const glpgp_result *r, int all_quads,
-                                          glpgp_quadmesh **q, double *h)
-{
-    glpgp_status st = glpgp_quads_extract(m, r, q);
-    if (st != GLPGP_OK || !all_quads) return st;
-    glpgp_quadmesh *fine = NULL;
-    st = glpgp_quadmesh_subdivide(*q, &fine);
-    glpgp_quadmesh_destroy(q);
-    *q = fine;
-    *h *= 0.5;
-    return st;
-}
-
 int glpgp_cmd_extract(int argc, char **argv)
 {
     const char *sub = "extract", *in = NULL, *quads = NULL, *stats = NULL;
     double size = 0.0;
-    int all_quads = 0;
+    glpgp_quad_options qo;
+    glpgp_quad_options_default(&qo);
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i], *v;
         if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
@@ -118,7 +109,14 @@ int glpgp_cmd_extract(int argc, char **argv)
             if (in) return q_usage(sub, "unexpected argument", a);
             in = a;
         } else if (!strcmp(a, "--all-quads")) {
-            all_quads = 1;
+            qo.all_quads = 1;
+        } else if (!strcmp(a, "--keep-polygons")) {
+            qo.keep_polygons = 1;
+        } else if (q_is(a, "--smooth")) {
+            long lv;
+            if (!(v = q_value(argc, argv, &i, "--smooth"))) return q_usage(sub, "--smooth needs a value", NULL);
+            if (!glpgp_cli_long(v, 0, 100000, &lv)) return q_usage(sub, "--smooth: not an integer >= 0:", v);
+            qo.smooth = (int)lv;
         } else if (q_is(a, "--quads")) {
             if (!(v = q_value(argc, argv, &i, "--quads"))) return q_usage(sub, "--quads needs a value", NULL);
             if (!glpgp_quads_path_supported(v))
@@ -151,7 +149,7 @@ int glpgp_cmd_extract(int argc, char **argv)
     if (size > 0) r->size = size;
     if (!(r->size > 0)) r->size = glpgp_default_size(m);
     double h = r->size;
-    if (extract_maybe_refined(m, r, all_quads, &q, &h) != GLPGP_OK) {
+    if (glpgp_quads_build(m, r, &qo, &q, &h) != GLPGP_OK) {
         rc = q_fail();
         goto done;
     }
@@ -172,7 +170,7 @@ int glpgp_cmd_extract(int argc, char **argv)
         goto done;
     }
     printf("glpgp: %s: h = %.6g%s, singular triangles u %d, v %d\n", in, h,
-           all_quads ? " (--all-quads: half the solve's size)" : "", qq.singular[0], qq.singular[1]);
+           qo.all_quads ? " (--all-quads: half the solve's size)" : "", qq.singular[0], qq.singular[1]);
     glpgp_quads_print(stdout, &qq, "  ");
     if (quads) printf("  wrote          %s\n", quads);
     if (stats) printf("  wrote          %s\n", stats);
@@ -258,11 +256,11 @@ done:
 }
 
 int glpgp_solve_quads(const glpgp_mesh *m, const glpgp_result *r, const char *quads_path,
-                      const char *stats_path, int all_quads, glpgp_quad_quality *qq)
+                      const char *stats_path, const glpgp_quad_options *qo, glpgp_quad_quality *qq)
 {
     glpgp_quadmesh *q = NULL;
     double h = r->size > 0 ? r->size : glpgp_default_size(m);
-    glpgp_status st = extract_maybe_refined(m, r, all_quads, &q, &h);
+    glpgp_status st = glpgp_quads_build(m, r, qo, &q, &h);
     if (st == GLPGP_OK) st = glpgp_quads_quality(q, m, h, qq);
     if (st == GLPGP_OK) {
         qq->singular[0] = r->osc[0].plus + r->osc[0].minus;

@@ -20,16 +20,17 @@ int glpgp_cmd_quality(int argc, char **argv);
 /* For `glpgp solve --quads FILE`: extract the quad mesh of result r on m,
  * write it to quads_path (.obj/.vtk/.msh) and, when stats_path is given,
  * append the quality report as "quads" to that (already written) JSON file;
- * *qq receives the report (print it with glpgp_quads_print). all_quads != 0
- * (--all-quads): refine with glpgp_quadmesh_subdivide first (no non-quad
- * face, half the element size; the report then uses h / 2). Returns -1 on
- * success, else the exit code after printing the error (cmd_quads.c). */
+ * *qq receives the report (print it with glpgp_quads_print). qo: what is
+ * done after the extraction (glpgp_quads_build; NULL: the defaults; with
+ * all_quads the report uses h / 2). Returns -1 on success, else the exit
+ * code after printing the error (cmd_quads.c). */
 struct glpgp_mesh;
 struct glpgp_result;
 struct glpgp_quad_quality;
+struct glpgp_quad_options;
 int glpgp_solve_quads(const struct glpgp_mesh *m, const struct glpgp_result *r,
-                      const char *quads_path, const char *stats_path, int all_quads,
-                      struct glpgp_quad_quality *qq);
+                      const char *quads_path, const char *stats_path,
+                      const struct glpgp_quad_options *qo, struct glpgp_quad_quality *qq);
 
 /* ---- pictures and image domains (cmd_image.c) ---------------------------- */
 

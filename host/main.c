@@ -168,8 +168,14 @@ static void usage_solve(FILE *f)
             "  --stats FILE        statistics as JSON\n"
             "  --quads FILE        extract the quad mesh (.obj/.vtk/.msh) and add its quality\n"
             "                      report to the summary and the statistics (\"quads\")\n"
+            "  --keep-polygons     with --quads: keep the faces left around dislocations as\n"
+            "                      polygons (default: join them pairwise or to the boundary\n"
+            "                      by strips of quads cut in two: all quads, same size)\n"
+            "  --smooth N          with --quads: smoothing sweeps around the new vertices and\n"
+            "                      the faces with scaled Jacobian < 0.5 (default 20, 0: off;\n"
+            "                      a move is kept only if no nearby corner gets worse)\n"
             "  --all-quads         with --quads: refine every face into quads (centroid +\n"
-            "                      edge midpoints): no non-quad face, half the element size\n"
+            "                      edge midpoints): half the element size\n"
             "  --quiet             no progress on stderr\n"
             "  --verbose           more progress on stderr (debug level)\n"
             "  --help, -h          this text\n"
@@ -240,7 +246,8 @@ typedef struct solve_cli {
     const char *out;
     const char *stats;
     const char *quads; /* --quads: quad mesh (cmd_quads.c) */
-    int all_quads;     /* --all-quads: refine the quad mesh to quads only */
+    glpgp_quad_options qo; /* --keep-polygons, --smooth, --all-quads */
+    int quad_opts;         /* one of them was given */
     const char *backend; /* auto, opencl, reference */
     int device;
     glpgp_solve_image_cli img; /* --image ..., mask-image INPUT (cmd_image.c) */
@@ -253,7 +260,8 @@ static int parse_solve(int argc, char **argv, solve_cli *c)
     glpgp_options_default(&c->o);
     c->o.verbose = 1;
     c->input = c->out = c->stats = c->quads = NULL;
-    c->all_quads = 0;
+    glpgp_quad_options_default(&c->qo);
+    c->quad_opts = 0;
     c->backend = "auto";
     c->device = -1;
     glpgp_solve_image_init(&c->img);
@@ -269,11 +277,16 @@ static int parse_solve(int argc, char **argv, solve_cli *c)
         split_opt(arg, &oa);
         const char *nm = oa.name;
         int is_flag = !strcmp(nm, "--help") || !strcmp(nm, "-h") || !strcmp(nm, "--quiet") ||
-                      !strcmp(nm, "--verbose") || !strcmp(nm, "--all-quads");
+                      !strcmp(nm, "--verbose") || !strcmp(nm, "--all-quads") ||
+                      !strcmp(nm, "--keep-polygons");
         if (is_flag) {
             if (oa.value) return usage_error(sub, "option %s takes no value", nm);
-            if (!strcmp(nm, "--all-quads")) {
-                c->all_quads = 1;
+            if (!strcmp(nm, "--all-quads") || !strcmp(nm, "--keep-polygons")) {
+                if (!strcmp(nm, "--all-quads"))
+                    c->qo.all_quads = 1;
+                else
+                    c->qo.keep_polygons = 1;
+                c->quad_opts = 1;
                 continue;
             }
             if (!strcmp(nm, "--help") || !strcmp(nm, "-h")) {
@@ -297,7 +310,7 @@ static int parse_solve(int argc, char **argv, solve_cli *c)
             "--center",     "--init",     "--eps0",      "--eps-ratio", "--eps-min",
             "--newton-rtol", "--newton-max", "--cg-rtol", "--cg-max",   "--cg-check",
             "--backend",    "--device",   "--out",       "-o",         "--stats",    "--quads",
-            NULL};
+            "--smooth",     NULL};
         int known = 0;
         for (int k = 0; valued[k]; k++)
             if (!strcmp(nm, valued[k])) known = 1;
@@ -395,6 +408,11 @@ static int parse_solve(int argc, char **argv, solve_cli *c)
                 c->o.cg_max = (int)lv;
             else
                 c->o.cg_check = (int)lv;
+        } else if (!strcmp(nm, "--smooth")) {
+            if (!glpgp_cli_long(v, 0, 100000, &lv))
+                return usage_error(sub, "--smooth: '%s' is not an integer >= 0", v);
+            c->qo.smooth = (int)lv;
+            c->quad_opts = 1;
         } else if (!strcmp(nm, "--backend")) {
             if (strcmp(v, "auto") && strcmp(v, "opencl") && strcmp(v, "reference"))
                 return usage_error(sub, "--backend: '%s' is not one of auto, opencl, reference",
@@ -420,7 +438,8 @@ static int parse_solve(int argc, char **argv, solve_cli *c)
     if (!c->input) return usage_error(sub, "missing INPUT (a .obj/.msh file or shape:NAME[:N])");
     if (c->out && c->stats && !strcmp(c->out, c->stats))
         return usage_error(sub, "--out and --stats name the same file '%s'", c->out);
-    if (c->all_quads && !c->quads) return usage_error(sub, "--all-quads needs --quads FILE");
+    if (c->quad_opts && !c->quads)
+        return usage_error(sub, "--all-quads, --keep-polygons and --smooth need --quads FILE");
     if (c->quads && ((c->out && !strcmp(c->out, c->quads)) || (c->stats && !strcmp(c->stats, c->quads))))
         return usage_error(sub, "--quads names the same file as --out or --stats: '%s'", c->quads);
     return -1;
@@ -541,7 +560,7 @@ static int cmd_solve(int argc, char **argv)
     }
 
     glpgp_quad_quality qq;
-    if (c.quads && (rc = glpgp_solve_quads(m, r, c.quads, c.stats, c.all_quads, &qq)) >= 0) {
+    if (c.quads && (rc = glpgp_solve_quads(m, r, c.quads, c.stats, &c.qo, &qq)) >= 0) {
         if (c.out) remove(c.out);
         if (c.stats) remove(c.stats);
         goto done;

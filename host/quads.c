@@ -89,12 +89,13 @@
  * X are chosen to maximise the smallest scaled Jacobian of the new quads,
  * and a split is made only if that is > 0.1.
  * Interior pentagons (a dislocation away from the boundary: odd parity, so
- * no quad split exists that leaves the neighbours unchanged) are kept and
- * reported by the quality metrics. glpgp_quadmesh_subdivide (--all-quads) is
- * the guaranteed route to an all-quad mesh: one Catmull-Clark step (centroid
- * + shared edge midpoints) turns every n-gon into n quads at half the size.
- * Pairing the pentagons instead (splitting the quad strip between two of
- * them, or between one and the boundary) would keep the size; not done yet.
+ * no quad split exists that leaves the neighbours unchanged) are kept here;
+ * glpgp_quadmesh_close_polygons (quads_pair.c, run by glpgp_quads_build and
+ * the CLI unless --keep-polygons) closes them pairwise or against the
+ * boundary through strips of quads cut in two, at the same element size.
+ * glpgp_quadmesh_subdivide (--all-quads) is the other route to an all-quad
+ * mesh: one Catmull-Clark step (centroid + shared edge midpoints) turns
+ * every n-gon into n quads at half the size.
  */
 #include "quads.h"
 

@@ -29,6 +29,13 @@ typedef struct glpgp_quadmesh {
     int promoted_corners;     /* boundary vertices made face corners (3-gon -> quad) */
     int split_pentagons;      /* boundary pentagons split into two or three quads */
     int center_splits;        /* of those: three quads around a new centre vertex */
+    /* Set by glpgp_quadmesh_close_polygons / glpgp_quadmesh_smooth. */
+    int closed_polygons;      /* odd faces (dislocation pentagons, ...) made quads by a strip */
+    int strips_to_boundary;   /* of the strips: those that end on the boundary (else: on a second odd face) */
+    int strip_quads;          /* quads cut in two (or three, at a turn) along the strips */
+    int strip_turns;          /* strip turns (each adds a valence 3 and a valence 5 vertex) */
+    int split_even;           /* even polygons (hexagons, ...) split into quads */
+    int smoothed_vertices;    /* vertices moved by the smoothing */
 } glpgp_quadmesh;
 
 /* Extract the quad mesh of a result on mesh m (r->osc[k].z, .dirichlet and
@@ -51,6 +58,49 @@ void glpgp_quadmesh_destroy(glpgp_quadmesh **q);
  * the chord's sagitta of a curved domain boundary. The extraction
  * diagnostics are copied. GLPGP_ERR_ARG on an empty mesh. */
 glpgp_status glpgp_quadmesh_subdivide(const glpgp_quadmesh *q, glpgp_quadmesh **out);
+
+/* Make the faces that are not quads into quads, at the same element size.
+ * Odd faces (a dislocation leaves a pentagon) are joined pairwise, or to
+ * the boundary, through the shortest strip of quads between them: every
+ * edge crossed gets its midpoint, the quads of the strip are cut in two
+ * along it, and both ends become even polygons that are split into quads
+ * (for a pentagon, through its T-junction vertex when possible, which leaves
+ * no irregular vertex). Even polygons are split directly. A face whose
+ * strip would make a quad with a scaled Jacobian below 0.05 is kept (count:
+ * quality report). The strip statistics are set in *out, the extraction
+ * diagnostics copied. new_vertices (may be NULL): *new_vertices receives a
+ * calloc'ed flag per vertex of *out, 1 for the vertices added here (free()).
+ * The algorithm is described at the top of quads_pair.c. */
+glpgp_status glpgp_quadmesh_close_polygons(const glpgp_quadmesh *q, glpgp_quadmesh **out,
+                                           unsigned char **new_vertices);
+
+/* Quality-guarded smoothing: the interior vertices that are flagged in mark
+ * (may be NULL), or belong to a face whose smallest corner scaled Jacobian
+ * is below sj_below, and their edge neighbours, move 1/4, 1/2, 3/4 or all of
+ * the way to the mean of their edge neighbours: the step that most raises
+ * the worst corner of the faces around the vertex, and only if it raises it
+ * by 1e-3 (so good regions keep the positions given by the
+ * parametrization); at most `iterations` sweeps. Boundary vertices never
+ * move. *moved (may be NULL): vertices that moved. */
+glpgp_status glpgp_quadmesh_smooth(glpgp_quadmesh *q, const unsigned char *mark, int iterations,
+                                   double sj_below, int *moved);
+
+/* What glpgp_quads_build does after the extraction. */
+typedef struct glpgp_quad_options {
+    int keep_polygons;  /* 1: leave non-quad faces as they are (no strips) */
+    int smooth;         /* smoothing sweeps (0: none; default 20) */
+    double smooth_below;/* also smooth around faces with scaled Jacobian below this (default 0.5) */
+    int all_quads;      /* 1: one Catmull-Clark step at the end (h halves) */
+} glpgp_quad_options;
+
+/* The defaults: strips on, 20 smoothing sweeps, smooth_below 0.5, no refinement. */
+void glpgp_quad_options_default(glpgp_quad_options *o);
+
+/* Extraction + closing of the polygons + smoothing (+ refinement), as the
+ * CLI does it. *h: in: the target size, out: the size the mesh is made for
+ * (halved by all_quads). o = NULL: the defaults. */
+glpgp_status glpgp_quads_build(const glpgp_mesh *m, const glpgp_result *r, const glpgp_quad_options *o,
+                               glpgp_quadmesh **out, double *h);
 
 #define GLPGP_QUAD_MAXVAL 8 /* valence histogram bins 0..MAXVAL (last: >= MAXVAL) */
 

@@ -6,8 +6,9 @@
 # the statistics JSON; `extract` writes OBJ / VTK (VTK_QUAD) / MSH 4.1 (type 3
 # elements) from the result file; `quality` reads the MSH back with the same
 # counts; `extract --all-quads` refines the 25 quads into 100 and reports
-# h / 2; a VTK without oscillators, a bad extension, a missing input and
-# --all-quads without --quads fail with a clear message, a non-zero exit and
+# h / 2; on a radial annulus (dislocations) every face is a quad by default
+# and pentagons remain with --keep-polygons; a VTK without oscillators, a bad extension, a missing input and
+# --all-quads / --smooth without --quads fail with a clear message, a non-zero exit and
 # no output file.
 set -u
 
@@ -80,7 +81,23 @@ nf=$(grep -c '^f ' a.obj)
 n4=$(grep -cE '^f [0-9]+ [0-9]+ [0-9]+ [0-9]+ *$' a.obj)
 [ "$nf" -eq 100 ] && [ "$n4" -eq 100 ] || fail "extract --all-quads: $nf faces, $n4 quads (expected 100)"
 grep -qE "h = 0.1 \(--all-quads" out.txt || fail "extract --all-quads does not report h / 2: $(head -1 out.txt)"
-run_fail "solve --all-quads without --quads" 2 "needs --quads" solve shape:square:100 --all-quads
+run_fail "solve --all-quads without --quads" 2 "need --quads" solve shape:square:100 --all-quads
+run_fail "solve --smooth without --quads" 2 "need --quads" solve shape:square:100 --smooth 3
+run_fail "extract --smooth -1" 2 "integer >= 0" extract r.vtk --quads b.obj --smooth -1
+[ -e b.obj ] && fail "b.obj written after a usage error"
+
+# ---- dislocations: all quads by default, polygons with --keep-polygons ------
+# (radial field on an annulus: the radial lines end at v singularities)
+run_ok "solve radial annulus --quads" solve shape:annulus:6000 --field radial --size 0.15 \
+    --backend reference --quiet -o ra.vtk --quads ra.obj
+grep -qE " 0 other faces" out.txt || fail "radial annulus: not all quads: $(grep quads out.txt)"
+nf=$(grep -c '^f ' ra.obj)
+n4=$(grep -cE '^f [0-9]+ [0-9]+ [0-9]+ [0-9]+ *$' ra.obj)
+[ "$nf" -gt 100 ] && [ "$nf" -eq "$n4" ] || fail "ra.obj: $nf faces, $n4 quads"
+grep -qE "inverted 0, degenerate 0" out.txt || fail "radial annulus: inverted or degenerate faces"
+run_ok "extract --keep-polygons" extract ra.vtk --quads rk.obj --keep-polygons --smooth 0
+grep -qE "[1-9][0-9]* other faces \([0-9]+ x 5-gon" out.txt ||
+    fail "--keep-polygons: expected pentagons: $(grep quads out.txt)"
 
 # ---- quality of a mesh read back -------------------------------------------
 run_ok "quality e.msh" quality e.msh --size 0.2

@@ -15,6 +15,14 @@
  *    vertex);
  *  - glpgp_quadmesh_subdivide (--all-quads) on the radial annulus: only
  *    quads, n quads per n-gon, conforming, same area, nothing inverted;
+ *  - glpgp_quadmesh_close_polygons on meshes made by hand (a unit grid with
+ *    a dislocation, two facing dislocations, a hexagon): the exact unit
+ *    grid back, no irregular vertex; glpgp_quadmesh_smooth restores a
+ *    displaced vertex and leaves a regular grid and the boundary alone;
+ *  - the default pipeline glpgp_quads_build (strips + smoothing) on both
+ *    annuli: all faces quads at size h, conforming, nothing inverted,
+ *    scaled Jacobian > 0.3, irregular vertices bounded by the
+ *    singularities;
  *  - writers (OBJ / VTK / MSH, MSH read back), JSON report appended to an
  *    existing object;
  *  - a result without oscillators is rejected with GLPGP_ERR_FORMAT. */
@@ -195,6 +203,164 @@ static void test_square_solved(void)
     glpgp_mesh_destroy(&m);
 }
 
+
+/* ---- polygon meshes made by hand (glpgp_quadmesh_close_polygons) ------- */
+
+/* The 6 x 6 grid of unit cells [0,6]^2 whose vertical line x = 3 is absent
+ * in the rows r (y in [r, r+1]) with has3[r] = 0: a row without it has the
+ * cell [2,4] x [r,r+1], whose corners are every grid vertex on its bottom
+ * and top sides (a T-junction where the line is present in the row next
+ * door). */
+static glpgp_quadmesh *grid_with_line3(const int *has3)
+{
+    glpgp_quadmesh *q = calloc(1, sizeof *q);
+    q->xy = malloc(sizeof(double) * 2 * 49);
+    q->face_start = malloc(sizeof(int) * 40);
+    q->face_vert = malloc(sizeof(int) * 200);
+    int id[7][7]; /* vertex (x, y) */
+    for (int y = 0; y <= 6; y++)
+        for (int x = 0; x <= 6; x++) {
+            id[y][x] = -1;
+            if (x == 3 && !((y > 0 && has3[y - 1]) || (y < 6 && has3[y]))) continue;
+            id[y][x] = q->nv;
+            q->xy[2 * q->nv] = x;
+            q->xy[2 * q->nv + 1] = y;
+            q->nv++;
+        }
+    int w = 0;
+    q->face_start[0] = 0;
+    for (int r = 0; r < 6; r++)
+        for (int x0 = 0; x0 < 6;) {
+            int x1 = x0 + 1;
+            if (x1 == 3 && !has3[r]) x1 = 4;
+            for (int x = x0; x <= x1; x++) /* bottom, left to right */
+                if (id[r][x] >= 0) q->face_vert[w++] = id[r][x];
+            for (int x = x1; x >= x0; x--) /* top, right to left */
+                if (id[r + 1][x] >= 0) q->face_vert[w++] = id[r + 1][x];
+            q->face_start[++q->nf] = w;
+            x0 = x1;
+        }
+    return q;
+}
+
+static void check_unit_grid(const glpgp_quadmesh *q, const char *what)
+{
+    glpgp_quad_quality qq;
+    CHECK_OK(glpgp_quads_quality(q, NULL, 1.0, &qq));
+    print_q(what, &qq);
+    CHECK(qq.quads == 36 && qq.others == 0);
+    CHECK(qq.irregular_interior == 0 && qq.valence_interior[4] == 25);
+    CHECK(qq.sj_min > 0.999);
+    CHECK_CLOSE(qq.area, 36.0, 1e-12, 0);
+    CHECK(qq.inverted == 0 && qq.degenerate == 0 && qq.nonmanifold_edges == 0);
+}
+
+static void test_pairing_by_hand(void)
+{
+    /* one dislocation: x = 3 ends at (3, 2); the pentagon above it is closed
+     * through the strip of 2 x 1 cells up to the boundary, continuing the
+     * line: the full unit grid, no irregular vertex */
+    int one[6] = {1, 1, 0, 0, 0, 0};
+    glpgp_quadmesh *q = grid_with_line3(one), *c = NULL;
+    unsigned char *mark = NULL;
+    CHECK_OK(glpgp_quadmesh_close_polygons(q, &c, &mark));
+    if (c) {
+        check_unit_grid(c, "one dislocation, strip to the boundary");
+        CHECK(c->closed_polygons == 1 && c->strips_to_boundary == 1 && c->strip_quads == 3);
+        CHECK(c->strip_turns == 0);
+        int nmark = 0;
+        for (int i = 0; i < c->nv; i++) nmark += mark[i];
+        CHECK(nmark == 4); /* midpoints (3,3) (3,4) (3,5) (3,6) */
+    }
+    free(mark);
+    mark = NULL;
+    glpgp_quadmesh_destroy(&c);
+    glpgp_quadmesh_destroy(&q);
+
+    /* two dislocations facing each other (x = 3 missing for y in [2, 4]):
+     * their pentagons share the edge y = 3 and are closed together */
+    int two[6] = {1, 1, 0, 0, 1, 1};
+    q = grid_with_line3(two);
+    CHECK_OK(glpgp_quadmesh_close_polygons(q, &c, NULL));
+    if (c) {
+        check_unit_grid(c, "two facing dislocations, closed together");
+        CHECK(c->closed_polygons == 2 && c->strips_to_boundary == 0 && c->strip_quads == 0);
+    }
+    glpgp_quadmesh_destroy(&c);
+    glpgp_quadmesh_destroy(&q);
+
+    /* a hexagon (x = 3 missing in one row only): split, no strip */
+    int hex[6] = {1, 1, 0, 1, 1, 1};
+    q = grid_with_line3(hex);
+    CHECK_OK(glpgp_quadmesh_close_polygons(q, &c, NULL));
+    if (c) {
+        check_unit_grid(c, "hexagon split");
+        CHECK(c->split_even == 1 && c->closed_polygons == 0);
+    }
+    glpgp_quadmesh_destroy(&c);
+    glpgp_quadmesh_destroy(&q);
+
+    /* smoothing: a displaced interior vertex goes back towards the regular
+     * position; a regular grid is left alone; boundary vertices never move */
+    int all[6] = {1, 1, 1, 1, 1, 1};
+    q = grid_with_line3(all);
+    int moved = -1;
+    CHECK_OK(glpgp_quadmesh_smooth(q, NULL, 20, 0.5, &moved));
+    CHECK(moved == 0);
+    int v33 = 3 * 7 + 3; /* vertex (3, 3) */
+    CHECK(q->xy[2 * v33] == 3.0 && q->xy[2 * v33 + 1] == 3.0);
+    q->xy[2 * v33] = 3.45;
+    q->xy[2 * v33 + 1] = 3.4;
+    glpgp_quad_quality before, after;
+    CHECK_OK(glpgp_quads_quality(q, NULL, 1.0, &before));
+    CHECK_OK(glpgp_quadmesh_smooth(q, NULL, 20, 0.9, &moved));
+    CHECK_OK(glpgp_quads_quality(q, NULL, 1.0, &after));
+    printf("smoothing: min scaled Jacobian %.3f -> %.3f, %d vertices moved, (3,3) at (%.3f, %.3f)\n",
+           before.sj_min, after.sj_min, moved, q->xy[2 * v33], q->xy[2 * v33 + 1]);
+    CHECK(after.sj_min > before.sj_min + 0.2 && after.sj_min > 0.95);
+    CHECK(hypot(q->xy[2 * v33] - 3.0, q->xy[2 * v33 + 1] - 3.0) < 0.15);
+    for (int i = 0; i < q->nv; i++) {
+        double x = q->xy[2 * i], y = q->xy[2 * i + 1];
+        if (x == 0 || y == 0 || x == 6 || y == 6) CHECK(x == floor(x) && y == floor(y));
+    }
+    glpgp_quadmesh_destroy(&q);
+}
+
+/* Conforming: every edge in at most two faces, and the edges used by one
+ * face form closed loops (each boundary vertex on exactly two of them). */
+static void check_conforming(const glpgp_quadmesh *q)
+{
+    int *bdeg = calloc((size_t)q->nv, sizeof(int));
+    int n = q->face_start[q->nf];
+    int *pr = malloc(sizeof(int) * 2 * n);
+    for (int f = 0; f < q->nf; f++) {
+        int s = q->face_start[f], k = q->face_start[f + 1] - s;
+        for (int i = 0; i < k; i++) {
+            int a = q->face_vert[s + i], b = q->face_vert[s + (i + 1) % k];
+            pr[2 * (s + i)] = a < b ? a : b;
+            pr[2 * (s + i) + 1] = a < b ? b : a;
+        }
+    }
+    int bad = 0;
+    for (int i = 0; i < n; i++) {
+        int cnt = 0;
+        for (int j = 0; j < n; j++)
+            if (pr[2 * j] == pr[2 * i] && pr[2 * j + 1] == pr[2 * i + 1]) cnt++;
+        if (cnt > 2) bad++;
+        if (cnt == 1) {
+            bdeg[pr[2 * i]]++;
+            bdeg[pr[2 * i + 1]]++;
+        }
+    }
+    CHECK(bad == 0);
+    int oddb = 0;
+    for (int i = 0; i < q->nv; i++)
+        if (bdeg[i] != 0 && bdeg[i] != 2) oddb++;
+    CHECK(oddb == 0);
+    free(bdeg);
+    free(pr);
+}
+
 static void test_annulus(int field, const char *name)
 {
     glpgp_mesh *m = NULL;
@@ -242,6 +408,35 @@ static void test_annulus(int field, const char *name)
                 glpgp_quadmesh_destroy(&fine);
             }
         }
+        /* the default pipeline (strips + smoothing): all quads at size h */
+        glpgp_quadmesh *full = NULL;
+        double hf = 0.1;
+        CHECK_OK(glpgp_quads_build(m, r, NULL, &full, &hf));
+        if (full) {
+            glpgp_quad_quality fq;
+            CHECK_OK(glpgp_quads_quality(full, m, 0.1, &fq));
+            printf("  all quads (strips: %d polygons closed, %d to the boundary, %d quads cut, %d turns; "
+                   "%d smoothed):\n",
+                   full->closed_polygons, full->strips_to_boundary, full->strip_quads, full->strip_turns,
+                   full->smoothed_vertices);
+            print_q("", &fq);
+            CHECK(hf == 0.1);
+            CHECK(fq.others == 0);
+            check_valid(&fq, m);
+            check_conforming(full);
+            CHECK(fq.sj_min > 0.3);
+            CHECK(fq.hausdorff < 0.25);
+            CHECK(fq.len_min > 0.2 && fq.len_max < 2.0);
+            /* every polygon of the extraction was closed, and the
+             * irregular vertices still come from the singularities: a
+             * dislocation closed through its T vertex leaves none, one
+             * closed otherwise a 3-5 pair, a strip turn one more pair */
+            CHECK(full->closed_polygons + 2 * full->split_even >= qq.others);
+            CHECK(fq.irregular_interior <= 2 * ns + extra + 2 * full->strip_turns);
+            if (ns == 0) CHECK(fq.irregular_interior == 0);
+            CHECK(fq.irregular_boundary <= qq.irregular_boundary);
+        }
+        glpgp_quadmesh_destroy(&full);
     }
     glpgp_quadmesh_destroy(&q);
     glpgp_result_destroy(&r);
@@ -263,7 +458,8 @@ static void test_data_hole(void)
     double h = glpgp_default_size(m);
     glpgp_result *r = solve(m, h, GLPGP_FIELD_BOUNDARY);
     glpgp_quadmesh *q = NULL;
-    if (r) CHECK_OK(glpgp_quads_extract(m, r, &q));
+    double hq = h;
+    if (r) CHECK_OK(glpgp_quads_build(m, r, NULL, &q, &hq)); /* what the CLI does */
     if (q) {
         glpgp_quad_quality qq;
         CHECK_OK(glpgp_quads_quality(q, m, h, &qq));
@@ -272,38 +468,7 @@ static void test_data_hole(void)
         check_valid(&qq, m);
         CHECK(qq.hausdorff < 0.25);
         CHECK(qq.boundary_edges > 0);
-        /* conforming: every edge in at most two faces, and the edges used by
-         * one face form closed boundary loops (each boundary vertex on exactly
-         * two boundary edges) */
-        int *bdeg = calloc((size_t)q->nv, sizeof(int));
-        int n = q->face_start[q->nf];
-        int *pr = malloc(sizeof(int) * 2 * n);
-        for (int f = 0; f < q->nf; f++) {
-            int s = q->face_start[f], k = q->face_start[f + 1] - s;
-            for (int i = 0; i < k; i++) {
-                int a = q->face_vert[s + i], b = q->face_vert[s + (i + 1) % k];
-                pr[2 * (s + i)] = a < b ? a : b;
-                pr[2 * (s + i) + 1] = a < b ? b : a;
-            }
-        }
-        int bad = 0;
-        for (int i = 0; i < n; i++) {
-            int cnt = 0;
-            for (int j = 0; j < n; j++)
-                if (pr[2 * j] == pr[2 * i] && pr[2 * j + 1] == pr[2 * i + 1]) cnt++;
-            if (cnt > 2) bad++;
-            if (cnt == 1) {
-                bdeg[pr[2 * i]]++;
-                bdeg[pr[2 * i + 1]]++;
-            }
-        }
-        CHECK(bad == 0);
-        int oddb = 0;
-        for (int i = 0; i < q->nv; i++)
-            if (bdeg[i] != 0 && bdeg[i] != 2) oddb++;
-        CHECK(oddb == 0);
-        free(bdeg);
-        free(pr);
+        check_conforming(q);
     }
     glpgp_quadmesh_destroy(&q);
     glpgp_result_destroy(&r);
@@ -337,7 +502,8 @@ static void test_data_plate(void)
     double h = glpgp_default_size(m);
     glpgp_result *r = solve(m, h, GLPGP_FIELD_BOUNDARY);
     glpgp_quadmesh *q = NULL;
-    if (r) CHECK_OK(glpgp_quads_extract(m, r, &q));
+    double hq = h;
+    if (r) CHECK_OK(glpgp_quads_build(m, r, NULL, &q, &hq)); /* what the CLI does */
     if (q) {
         glpgp_quad_quality qq;
         CHECK_OK(glpgp_quads_quality(q, m, h, &qq));
@@ -364,6 +530,7 @@ int main(void)
     if (!mkdtemp(dir)) return 1;
     test_square_exact(dir);
     test_square_solved();
+    test_pairing_by_hand();
     test_annulus(GLPGP_FIELD_RADIAL, "radial");
     test_annulus(GLPGP_FIELD_BOUNDARY, "default");
     test_data_hole();
