@@ -579,6 +579,11 @@ static int cmd_solve(int argc, char **argv)
            r->size, r->backend ? r->backend : "?");
     printf("  singularities  u: +%d -%d   v: +%d -%d\n", u->plus, u->minus, v->plus, v->minus);
     printf("  median |z|     u: %.4f   v: %.4f\n", u->zabs_median, v->zabs_median);
+    if (u->zabs_median < 0.5 || v->zabs_median < 0.5) /* not silenced by --quiet: the result is poor */
+        fprintf(stderr,
+                "glpgp: warning: median |z| < 0.5: the oscillators collapsed towards z = 0 (h = %g is "
+                "%.1f mean edges; P1 needs about 10 per period): raise --size or refine the mesh\n",
+                r->size, r->size / m->mean_edge);
     printf("  iterations     newton %d (u %d, v %d), cg %ld\n",
            u->newton_iterations + v->newton_iterations, u->newton_iterations,
            v->newton_iterations, u->cg_iterations + v->cg_iterations + r->field_cg_iterations);

@@ -126,6 +126,8 @@ typedef struct glpgp_quad_quality {
                               * domain boundary (holes in the quad mesh); -1 without domain */
     double h;
     int singular[2];         /* singular triangles of the solve (u, v), -1 if unknown */
+    /* copied from the mesh (glpgp_quadmesh_close_polygons / _smooth; 0 otherwise) */
+    int closed_polygons, strips_to_boundary, strip_quads, strip_turns, split_even, smoothed_vertices;
 } glpgp_quad_quality;
 
 /* Compute the quality report of q for target size h (> 0). domain (may be
@@ -148,7 +150,9 @@ void glpgp_quads_print(FILE *f, const glpgp_quad_quality *qq, const char *prefix
  *  "edges": {"count", "boundary", "nonmanifold"},
  *  "edge_length_over_h": {"mean", "min", "max"}, "h", "area", "domain_area",
  *  "boundary_distance_over_h": {"hausdorff", "quads_to_domain", "domain_to_quads"}
- *  (null without a domain), "gap_edges", "singular_triangles": {"u", "v"}}.
+ *  (null without a domain), "gap_edges", "singular_triangles": {"u", "v"},
+ *  "closing": {"odd_faces_closed", "strips_to_boundary", "quads_cut", "turns",
+ *  "even_faces_split", "smoothed_vertices"}}.
  * Non-finite numbers are written as null. */
 void glpgp_quads_write_json(FILE *f, const glpgp_quad_quality *qq);
 

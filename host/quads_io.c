@@ -186,6 +186,12 @@ glpgp_status glpgp_quads_quality(const glpgp_quadmesh *q, const glpgp_mesh *doma
     o->vertices = q->nv;
     o->faces = q->nf;
     o->singular[0] = o->singular[1] = -1;
+    o->closed_polygons = q->closed_polygons;
+    o->strips_to_boundary = q->strips_to_boundary;
+    o->strip_quads = q->strip_quads;
+    o->strip_turns = q->strip_turns;
+    o->split_even = q->split_even;
+    o->smoothed_vertices = q->smoothed_vertices;
     glpgp_status st = GLPGP_OK;
     qe *E = NULL;
     int ne = 0;
@@ -382,6 +388,11 @@ void glpgp_quads_print(FILE *f, const glpgp_quad_quality *qq, const char *prefix
             qq->sj_min, qq->sj_mean, qq->sj_p01, qq->inverted, qq->degenerate);
     fprintf(f, "%s  edge / h     mean %.3f  min %.3f  max %.3f\n", p, qq->len_mean, qq->len_min,
             qq->len_max);
+    if (qq->closed_polygons || qq->split_even || qq->smoothed_vertices)
+        fprintf(f, "%s  closing      %d odd faces closed by strips (%d to the boundary), %d quads cut, "
+                   "%d turns, %d even faces split; %d vertices smoothed\n",
+                p, qq->closed_polygons, qq->strips_to_boundary, qq->strip_quads, qq->strip_turns,
+                qq->split_even, qq->smoothed_vertices);
     if (qq->hausdorff >= 0)
         fprintf(f, "%s  boundary     Hausdorff %.3f h (quads->domain %.3f h, domain->quads %.3f h), "
                    "area %.5g of %.5g\n",
@@ -468,6 +479,11 @@ void glpgp_quads_write_json(FILE *f, const glpgp_quad_quality *qq)
         fprintf(f, "{\"u\": %d, \"v\": %d}", qq->singular[0], qq->singular[1]);
     else
         fputs("null", f);
+    fprintf(f,
+            ", \"closing\": {\"odd_faces_closed\": %d, \"strips_to_boundary\": %d, \"quads_cut\": %d, "
+            "\"turns\": %d, \"even_faces_split\": %d, \"smoothed_vertices\": %d}",
+            qq->closed_polygons, qq->strips_to_boundary, qq->strip_quads, qq->strip_turns, qq->split_even,
+            qq->smoothed_vertices);
     fputs("}", f);
 }
 

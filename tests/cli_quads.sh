@@ -89,8 +89,19 @@ run_fail "extract --smooth -1" 2 "integer >= 0" extract r.vtk --quads b.obj --sm
 # ---- dislocations: all quads by default, polygons with --keep-polygons ------
 # (radial field on an annulus: the radial lines end at v singularities)
 run_ok "solve radial annulus --quads" solve shape:annulus:6000 --field radial --size 0.15 \
-    --backend reference --quiet -o ra.vtk --quads ra.obj
+    --backend reference --quiet -o ra.vtk --stats ra.json --quads ra.obj
 grep -qE " 0 other faces" out.txt || fail "radial annulus: not all quads: $(grep quads out.txt)"
+grep -qE "closing +[1-9][0-9]* odd faces closed" out.txt || fail "radial annulus: no closing line: $(cat out.txt)"
+if command -v python3 >/dev/null 2>&1; then
+    python3 - ra.json <<'PY' || fail "ra.json: bad closing report"
+import json, sys
+q = json.load(open(sys.argv[1]))["quads"]
+assert q["other_faces"] == 0 and q["inverted"] == 0, q
+c = q["closing"]
+assert c["odd_faces_closed"] > 0 and c["strips_to_boundary"] <= c["odd_faces_closed"], c
+assert q["singular_triangles"]["v"] > 0, q
+PY
+fi
 nf=$(grep -c '^f ' ra.obj)
 n4=$(grep -cE '^f [0-9]+ [0-9]+ [0-9]+ [0-9]+ *$' ra.obj)
 [ "$nf" -gt 100 ] && [ "$nf" -eq "$n4" ] || fail "ra.obj: $nf faces, $n4 quads"
