@@ -749,6 +749,71 @@ done:
     return st;
 }
 
+/* Triangles: a midpoint on one of their sides would make a quad with a
+ * flat corner, so a triangle t (sides t_i -> t_i+1 with the neighbour faces
+ * nb[i], side nbi[i] in them; -1: none) is merged with a neighbour g across
+ * a side a b (merged face: a, g's corners from a round to b, c): with an
+ * odd g the result is even and is split into quads at once (taken if its
+ * quads reach 0.3), with a quad it is a pentagon (taken if no corner is
+ * within 6 degrees of flat), which the strips then close like any other.
+ * f_old (the triangle's face) and g are deleted on success (*merged = 1). */
+static glpgp_status merge_triangle(psoup *s, unsigned char *used, const int *t_in, const int *nb,
+                                   const int *nbi, int f_old, int *merged, pair_stats *ps)
+{
+    *merged = 0;
+    int t[3] = {t_in[0], t_in[1], t_in[2]}; /* t_in may point into s->fv, which may move */
+    double best_even = 0.3, best_pent = 0.1;
+    int be[QMAXN], bp[5], nbe = 0, ge = -1, gp = -1;
+    glpgp_status st = GLPGP_OK;
+    for (int i = 0; i < 3; i++) {
+        int g = nb[i], gi = nbi[i], ng = g >= 0 ? s->fn[g] : 0;
+        if (g < 0 || g == f_old || used[g] || ng + 1 > QMAXN || ng < 3) continue;
+        int pm[QMAXN], n = 0;
+        pm[n++] = t[i];                                                    /* a */
+        for (int k = 2; k < ng; k++) pm[n++] = s->fv[s->fs[g] + (gi + k) % ng]; /* g from a to b */
+        pm[n++] = t[(i + 1) % 3];                                          /* b */
+        pm[n++] = t[(i + 2) % 3];                                          /* c */
+        if (ng % 2) {
+            int outq[4 * QMAXN], nq = 0, nv0 = s->nv;
+            double sj;
+            st = split_even(s, pm, n, -1, outq, &nq, &sj);
+            if (st != GLPGP_OK) return st;
+            s->nv = nv0; /* evaluation only */
+            if (nq > 0 && sj > best_even) {
+                best_even = sj;
+                ge = g;
+                nbe = n;
+                memcpy(be, pm, (size_t)n * sizeof(int));
+            }
+        } else if (ng == 4) {
+            double v = sjn(s->xy, pm, 5);
+            if (v > best_pent) {
+                best_pent = v;
+                gp = g;
+                memcpy(bp, pm, sizeof bp);
+            }
+        }
+    }
+    if (ge >= 0) {
+        int outq[4 * QMAXN], nq = 0;
+        double sj;
+        st = split_even(s, be, nbe, -1, outq, &nq, &sj);
+        for (int k = 0; k < nq && st == GLPGP_OK; k++) st = soup_face(s, outq + 4 * k, 4, NULL);
+        if (st != GLPGP_OK) return st;
+        ps->odd_closed += 1 + (s->fn[f_old] % 2);
+        s->fn[f_old] = s->fn[ge] = 0;
+        used[f_old] = used[ge] = 1;
+        *merged = 1;
+    } else if (gp >= 0) {
+        st = soup_face(s, bp, 5, NULL);
+        if (st != GLPGP_OK) return st;
+        s->fn[f_old] = s->fn[gp] = 0;
+        used[f_old] = used[gp] = 1;
+        *merged = 1;
+    }
+    return GLPGP_OK;
+}
+
 /* ---- driver ------------------------------------------------------------ */
 
 typedef struct odd_item {
@@ -871,62 +936,45 @@ glpgp_status glpgp_quadmesh_close_polygons(const glpgp_quadmesh *q, glpgp_quadme
         ps.even_split++;
     }
 
-    /* triangles: a midpoint on one of their sides would make a quad with a
-     * flat corner, so each one is first merged with a neighbour g across a
-     * side a b (triangle a b c; the merged face is a, g's corners from a
-     * round to b, c): with an odd neighbour the result is even and is split
-     * into quads at once (taken if its quads reach 0.3), with a quad it is a
-     * pentagon (taken if no corner is within 6 degrees of flat), which the
-     * strips then close like any other */
+    /* triangles (see merge_triangle); first the quads that are triangles
+     * with a boundary vertex promoted to a corner by the extraction: a
+     * boundary vertex of valence 2 with a corner angle above 150 degrees
+     * (on a gently curved boundary the promoted vertex is nearly flat) is
+     * dropped again if the triangle left can be merged */
     GLPGP_CHECK_GOTO(st, adj_build(&s, &A), done);
     {
         int nf0 = s.nf;
         GLPGP_CHECK_GOTO(st, glpgp_calloc((size_t)nf0 + 1, 1, &used), done);
         for (int f = 0; f < nf0; f++) {
+            if (s.fn[f] != 4 || used[f]) continue;
+            const int *c = s.fv + s.fs[f];
+            for (int k = 0; k < 4; k++) {
+                int v = c[k];
+                if (!A.bnd[v] || A.val[v] != 2) continue;
+                if (A.adj[s.fs[f] + k] != -1 || A.adj[s.fs[f] + (k + 3) % 4] != -1) continue;
+                const double *pv = s.xy + 2 * v, *pa = s.xy + 2 * c[(k + 1) % 4], *pb = s.xy + 2 * c[(k + 3) % 4];
+                double e1x = pa[0] - pv[0], e1y = pa[1] - pv[1], e2x = pb[0] - pv[0], e2y = pb[1] - pv[1];
+                double sine = (e1x * e2y - e1y * e2x) / (hypot(e1x, e1y) * hypot(e2x, e2y) + 1e-300);
+                /* only wide convex corners (150 to 180 deg): the chord b a then stays inside a convex arc */
+                if (!(sine < 0.5 && sine >= 0.0) || e1x * e2x + e1y * e2y > 0) continue;
+                /* triangle a -> c2 -> b (sides: f's two other sides, and the new boundary chord b -> a) */
+                int t[3] = {c[(k + 1) % 4], c[(k + 2) % 4], c[(k + 3) % 4]};
+                int nb[3] = {A.adj[s.fs[f] + (k + 1) % 4], A.adj[s.fs[f] + (k + 2) % 4], -1};
+                int nbi[3] = {A.adji[s.fs[f] + (k + 1) % 4], A.adji[s.fs[f] + (k + 2) % 4], -1};
+                int merged = 0;
+                GLPGP_CHECK_GOTO(st, merge_triangle(&s, used, t, nb, nbi, f, &merged, &ps), done);
+                if (merged) break;
+            }
+        }
+        for (int f = 0; f < nf0; f++) {
             if (s.fn[f] != 3 || used[f]) continue;
-            double best_even = 0.3, best_pent = 0.1;
-            int be[QMAXN], bp[5], nbe = 0, ge = -1, gp = -1;
+            int nb[3], nbi[3];
             for (int i = 0; i < 3; i++) {
-                int g = A.adj[s.fs[f] + i], gi = A.adji[s.fs[f] + i], ng = g >= 0 ? s.fn[g] : 0;
-                if (g < 0 || g == f || used[g] || ng + 1 > QMAXN) continue;
-                int pm[QMAXN], n = 0;
-                pm[n++] = s.fv[s.fs[f] + i];                                  /* a */
-                for (int k = 2; k < ng; k++) pm[n++] = s.fv[s.fs[g] + (gi + k) % ng]; /* g from a to b */
-                pm[n++] = s.fv[s.fs[f] + (i + 1) % 3];                        /* b */
-                pm[n++] = s.fv[s.fs[f] + (i + 2) % 3];                        /* c */
-                if (ng % 2) {
-                    int outq[4 * QMAXN], nq = 0, nv0 = s.nv;
-                    double sj;
-                    GLPGP_CHECK_GOTO(st, split_even(&s, pm, n, -1, outq, &nq, &sj), done);
-                    s.nv = nv0; /* evaluation only */
-                    if (nq > 0 && sj > best_even) {
-                        best_even = sj;
-                        ge = g;
-                        nbe = n;
-                        memcpy(be, pm, (size_t)n * sizeof(int));
-                    }
-                } else if (ng == 4) {
-                    double v = sjn(s.xy, pm, 5);
-                    if (v > best_pent) {
-                        best_pent = v;
-                        gp = g;
-                        memcpy(bp, pm, sizeof bp);
-                    }
-                }
+                nb[i] = A.adj[s.fs[f] + i];
+                nbi[i] = A.adji[s.fs[f] + i];
             }
-            if (ge >= 0) {
-                int outq[4 * QMAXN], nq = 0;
-                double sj;
-                GLPGP_CHECK_GOTO(st, split_even(&s, be, nbe, -1, outq, &nq, &sj), done);
-                for (int k = 0; k < nq; k++) GLPGP_CHECK_GOTO(st, soup_face(&s, outq + 4 * k, 4, NULL), done);
-                s.fn[f] = s.fn[ge] = 0;
-                used[f] = used[ge] = 1;
-                ps.odd_closed += 2;
-            } else if (gp >= 0) {
-                GLPGP_CHECK_GOTO(st, soup_face(&s, bp, 5, NULL), done);
-                s.fn[f] = s.fn[gp] = 0;
-                used[f] = used[gp] = 1;
-            }
+            int merged = 0;
+            GLPGP_CHECK_GOTO(st, merge_triangle(&s, used, s.fv + s.fs[f], nb, nbi, f, &merged, &ps), done);
         }
     }
 

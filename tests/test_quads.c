@@ -6,8 +6,9 @@
  *  - annulus with the radial and the default guiding field: no inverted or
  *    degenerate face, conforming, covers the domain, non-quad faces and
  *    irregular vertices only where the solve reports singularities;
- *  - data/annulus.msh (a domain with a hole; GLPGP_DATA): conforming, no
- *    inverted face, boundary Hausdorff distance < 0.25 h;
+ *  - data/annulus.msh (a domain with a hole; GLPGP_DATA): conforming, all
+ *    quads, no inverted face, scaled Jacobian > 0.5, boundary Hausdorff
+ *    distance < 0.25 h;
  *  - data/plate_holes.msh (the default domain: holes, a small ellipse, a
  *    v dipole): no degenerate or inverted face (a level-line loop left by
  *    the short-side contraction once gave a zero-length edge and a 10-gon),
@@ -468,6 +469,10 @@ static void test_data_hole(void)
         check_valid(&qq, m);
         CHECK(qq.hausdorff < 0.25);
         CHECK(qq.boundary_edges > 0);
+        CHECK(qq.others == 0);
+        /* the nearly flat boundary corners the extraction promotes at the
+         * u/v switch points (scaled Jacobian 0.20) are undone by the closing */
+        CHECK(qq.sj_min > 0.5);
         check_conforming(q);
     }
     glpgp_quadmesh_destroy(&q);
