@@ -39,6 +39,20 @@
  * adjacency is rebuilt between rounds. A path whose new quads would have a
  * scaled Jacobian below MIN_SJ is not applied and the odd face stays (it is
  * then reported as a polygon).
+ *
+ * Before the strips: even polygons (hexagons, ...) are split directly;
+ * triangles, which a midpoint cannot fix (the quad would have a flat corner
+ * at it), are merged with a neighbour (merge_triangle): with an odd one the
+ * union is even and split at once, with a quad it is a pentagon for the
+ * strips. The same is tried for the quads the extraction made from a
+ * boundary triangle by promoting a boundary vertex to a corner when that
+ * corner is nearly flat (150 to 180 degrees, a gently curved boundary): the
+ * vertex is dropped again if the triangle left can be merged.
+ *
+ * After the closing, glpgp_quadmesh_smooth (bottom of this file) moves the
+ * new vertices, their neighbours and the vertices of poor quads, each to the
+ * step towards its neighbours' mean that most raises the worst nearby
+ * corner.
  */
 #include "quads.h"
 #include "status.h"
