@@ -20,6 +20,10 @@
  *    a dislocation, two facing dislocations, a hexagon): the exact unit
  *    grid back, no irregular vertex; glpgp_quadmesh_smooth restores a
  *    displaced vertex and leaves a regular grid and the boundary alone;
+ *  - the same on 40 random grids with many dislocations (pentagons,
+ *    hexagons, heptagons): only quads, area kept, conforming, nothing
+ *    inverted, scaled Jacobian > 0.1 (half of them with interior vertices
+ *    jittered);
  *  - the default pipeline glpgp_quads_build (strips + smoothing) on both
  *    annuli: all faces quads at size h, conforming, nothing inverted,
  *    scaled Jacobian > 0.3, irregular vertices bounded by the
@@ -362,6 +366,96 @@ static void check_conforming(const glpgp_quadmesh *q)
     free(pr);
 }
 
+/* A G x G grid of unit cells whose interior vertical lines are present in
+ * row r (y in [r, r+1]) where has[r * (G + 1) + x] != 0 (x = 0 and x = G
+ * always): cells between consecutive present lines merge into one face
+ * whose corners are all the grid vertices on its bottom and top sides, so
+ * random removals make pentagons, hexagons, heptagons, ... */
+#define RG 12
+static glpgp_quadmesh *grid_random(const unsigned char *has)
+{
+    glpgp_quadmesh *q = calloc(1, sizeof *q);
+    q->xy = malloc(sizeof(double) * 2 * (RG + 1) * (RG + 1));
+    q->face_start = malloc(sizeof(int) * (RG * RG + 1));
+    q->face_vert = malloc(sizeof(int) * 4 * (RG + 1) * RG * 2);
+    int id[RG + 1][RG + 1];
+    for (int y = 0; y <= RG; y++)
+        for (int x = 0; x <= RG; x++) {
+            int on = (y > 0 && has[(y - 1) * (RG + 1) + x]) || (y < RG && has[y * (RG + 1) + x]);
+            id[y][x] = on ? q->nv : -1;
+            if (!on) continue;
+            q->xy[2 * q->nv] = x;
+            q->xy[2 * q->nv + 1] = y;
+            q->nv++;
+        }
+    int w = 0;
+    q->face_start[0] = 0;
+    for (int r = 0; r < RG; r++)
+        for (int x0 = 0; x0 < RG;) {
+            int x1 = x0 + 1;
+            while (!has[r * (RG + 1) + x1]) x1++;
+            for (int x = x0; x <= x1; x++)
+                if (id[r][x] >= 0) q->face_vert[w++] = id[r][x];
+            for (int x = x1; x >= x0; x--)
+                if (id[r + 1][x] >= 0) q->face_vert[w++] = id[r + 1][x];
+            q->face_start[++q->nf] = w;
+            x0 = x1;
+        }
+    return q;
+}
+
+static void check_conforming(const glpgp_quadmesh *q);
+
+/* Property test: random dislocations (vertical line segments removed, at
+ * most two neighbouring cells merged) are all closed: only quads, the
+ * area kept, conforming, nothing inverted, before and after smoothing. */
+static void test_pairing_random(void)
+{
+    int worst_others = 0, total_odd = 0;
+    double worst_sj = 1.0;
+    for (int seed = 0; seed < 40; seed++) {
+        unsigned char has[RG * (RG + 1)];
+        for (int r = 0; r < RG; r++)
+            for (int x = 0; x <= RG; x++) {
+                int keep = x == 0 || x == RG || tu_rand() > 0.2;
+                if (!keep && x > 1 && !has[r * (RG + 1) + x - 1]) keep = 1; /* no 3-wide faces */
+                has[r * (RG + 1) + x] = (unsigned char)keep;
+            }
+        glpgp_quadmesh *q = grid_random(has), *c = NULL;
+        if (seed % 2) /* odd seeds: interior vertices jittered by up to 0.15 */
+            for (int i = 0; i < q->nv; i++) {
+                double *v = q->xy + 2 * i;
+                if (v[0] > 0 && v[0] < RG && v[1] > 0 && v[1] < RG) {
+                    v[0] += 0.3 * (tu_rand() - 0.5);
+                    v[1] += 0.3 * (tu_rand() - 0.5);
+                }
+            }
+        for (int f = 0; f < q->nf; f++) total_odd += (q->face_start[f + 1] - q->face_start[f]) % 2;
+        unsigned char *mark = NULL;
+        CHECK_OK(glpgp_quadmesh_close_polygons(q, &c, &mark));
+        if (c) {
+            for (int pass = 0; pass < 2; pass++) {
+                if (pass == 1) CHECK_OK(glpgp_quadmesh_smooth(c, mark, 20, 0.5, NULL));
+                glpgp_quad_quality qq;
+                CHECK_OK(glpgp_quads_quality(c, NULL, 1.0, &qq));
+                if (qq.others > worst_others) worst_others = qq.others;
+                if (qq.sj_min < worst_sj) worst_sj = qq.sj_min;
+                CHECK(qq.others == 0);
+                CHECK(qq.inverted == 0 && qq.degenerate == 0 && qq.nonmanifold_edges == 0);
+                CHECK_CLOSE(qq.area, RG * RG, 1e-9, 0);
+                CHECK(qq.sj_min > 0.1);
+                check_conforming(c);
+            }
+        }
+        free(mark);
+        glpgp_quadmesh_destroy(&c);
+        glpgp_quadmesh_destroy(&q);
+    }
+    printf("random dislocations: 40 grids %dx%d, %d odd faces: most faces left %d, min scaled Jacobian %.3f\n",
+           RG, RG, total_odd, worst_others, worst_sj);
+    CHECK(total_odd > 100);
+}
+
 static void test_annulus(int field, const char *name)
 {
     glpgp_mesh *m = NULL;
@@ -536,6 +630,7 @@ int main(void)
     test_square_exact(dir);
     test_square_solved();
     test_pairing_by_hand();
+    test_pairing_random();
     test_annulus(GLPGP_FIELD_RADIAL, "radial");
     test_annulus(GLPGP_FIELD_BOUNDARY, "default");
     test_data_hole();
