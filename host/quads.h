@@ -42,7 +42,8 @@ typedef struct glpgp_quadmesh {
  * .singular must match m; r->size is the target size h used by the clean-up
  * thresholds, <= 0: glpgp_default_size(m)). Faces that are not quads (near
  * unpaired singularities, or where the boundary cuts a cell) are kept as
- * polygons so the mesh covers the domain without gaps. GLPGP_ERR_ARG on a
+ * polygons so the mesh covers the domain without gaps
+ * (glpgp_quadmesh_close_polygons, or glpgp_quads_build, closes them). GLPGP_ERR_ARG on a
  * size mismatch, GLPGP_ERR_FORMAT when r has no oscillators, GLPGP_ERR_NUMERIC
  * when no face could be extracted. */
 glpgp_status glpgp_quads_extract(const glpgp_mesh *m, const glpgp_result *r,
@@ -65,7 +66,9 @@ glpgp_status glpgp_quadmesh_subdivide(const glpgp_quadmesh *q, glpgp_quadmesh **
  * edge crossed gets its midpoint, the quads of the strip are cut in two
  * along it, and both ends become even polygons that are split into quads
  * (for a pentagon, through its T-junction vertex when possible, which leaves
- * no irregular vertex). Even polygons are split directly. A face whose
+ * no irregular vertex). Even polygons are split directly; triangles are
+ * first merged with a neighbour, and so are the boundary quads whose
+ * boundary corner is nearly flat (150-180 deg) once that corner is dropped. A face whose
  * strip would make a quad with a scaled Jacobian below 0.05 is kept (count:
  * quality report). The strip statistics are set in *out, the extraction
  * diagnostics copied. new_vertices (may be NULL): *new_vertices receives a
