@@ -98,6 +98,7 @@
  * every n-gon into n quads at half the size.
  */
 #include "quads.h"
+#include "quads_geom.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -993,71 +994,25 @@ done:
 /* Minimum corner scaled Jacobian of the quad (a, b, c, d) of graph nodes. */
 static double quad_sj(const graph *g, const int *v)
 {
-    double m = INFINITY;
+    double xy[8];
+    int id[4] = {0, 1, 2, 3};
     for (int i = 0; i < 4; i++) {
-        const qnode *a = &g->node[v[i]], *b = &g->node[v[(i + 1) % 4]], *c = &g->node[v[(i + 3) % 4]];
-        double e1x = b->x - a->x, e1y = b->y - a->y, e2x = c->x - a->x, e2y = c->y - a->y;
-        double l = hypot(e1x, e1y) * hypot(e2x, e2y);
-        m = fmin(m, l > 0 ? (e1x * e2y - e1y * e2x) / l : -1.0);
+        xy[2 * i] = g->node[v[i]].x;
+        xy[2 * i + 1] = g->node[v[i]].y;
     }
-    return m;
+    return glpgp_poly_min_sj(xy, id, 4);
 }
 
-/* Minimum corner scaled Jacobian of the quad with corner coordinates
- * p[0..7] (x0 y0 x1 y1 ...), counter-clockwise. */
-static double quad_sj_xy(const double *p)
-{
-    double m = INFINITY;
-    for (int i = 0; i < 4; i++) {
-        const double *a = p + 2 * i, *b = p + 2 * ((i + 1) % 4), *c = p + 2 * ((i + 3) % 4);
-        double e1x = b[0] - a[0], e1y = b[1] - a[1], e2x = c[0] - a[0], e2y = c[1] - a[1];
-        double l = hypot(e1x, e1y) * hypot(e2x, e2y);
-        m = fmin(m, l > 0 ? (e1x * e2y - e1y * e2x) / l : -1.0);
-    }
-    return m;
-}
-
-/* Best split of the hexagon hx[0..5] (graph nodes, counter-clockwise) into
- * three quads around a new centre vertex X joined to every other corner
- * (hx[o], hx[o+2], hx[o+4], o = 0 or 1): the quads are
- * (hx[o+2i], hx[o+2i+1], hx[o+2i+2], X). X is chosen among a few blends of
- * the corner centroids. Returns the smallest corner scaled Jacobian of the
- * three quads (-inf if none), the offset o and X. */
+/* glpgp_hex_centre_split for the hexagon hx[0..5] of graph nodes. */
 static double hex_center_split(const graph *g, const int *hx, int *o_best, double *xb, double *yb)
 {
-    double best = -INFINITY;
-    for (int o = 0; o < 2; o++) {
-        double ax = 0, ay = 0, bx = 0, by = 0; /* centroids of the joined / the other corners */
-        for (int i = 0; i < 3; i++) {
-            ax += g->node[hx[(o + 2 * i) % 6]].x / 3;
-            ay += g->node[hx[(o + 2 * i) % 6]].y / 3;
-            bx += g->node[hx[(o + 2 * i + 1) % 6]].x / 3;
-            by += g->node[hx[(o + 2 * i + 1) % 6]].y / 3;
-        }
-        for (int t = 0; t <= 4; t++) {
-            double w = 0.25 * t;
-            double x = (1 - w) * ax + w * bx, y = (1 - w) * ay + w * by;
-            double sj = INFINITY;
-            for (int i = 0; i < 3; i++) {
-                double pq[8];
-                for (int k = 0; k < 3; k++) {
-                    const qnode *n = &g->node[hx[(o + 2 * i + k) % 6]];
-                    pq[2 * k] = n->x;
-                    pq[2 * k + 1] = n->y;
-                }
-                pq[6] = x;
-                pq[7] = y;
-                sj = fmin(sj, quad_sj_xy(pq));
-            }
-            if (sj > best) {
-                best = sj;
-                *o_best = o;
-                *xb = x;
-                *yb = y;
-            }
-        }
+    double xy[12];
+    int id[6] = {0, 1, 2, 3, 4, 5};
+    for (int i = 0; i < 6; i++) {
+        xy[2 * i] = g->node[hx[i]].x;
+        xy[2 * i + 1] = g->node[hx[i]].y;
     }
-    return best;
+    return glpgp_hex_centre_split(xy, id, o_best, xb, yb);
 }
 
 /* Output index of graph node v (appended on first use). */

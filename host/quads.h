@@ -13,6 +13,16 @@
 #include "mesh.h"
 #include "solve.h"
 
+/* What glpgp_quadmesh_close_polygons and glpgp_quadmesh_smooth did. */
+typedef struct glpgp_quad_closing {
+    int closed_polygons;    /* odd faces (dislocation pentagons, ...) made quads */
+    int strips_to_boundary; /* of the strips: those that end on the boundary (else: on a second odd face) */
+    int strip_quads;        /* quads cut in two (or three, at a turn) along the strips */
+    int strip_turns;        /* strip turns (each adds a valence 3 and a valence 5 vertex) */
+    int split_even;         /* even polygons (hexagons, ...) split into quads */
+    int smoothed_vertices;  /* vertices moved by the smoothing */
+} glpgp_quad_closing;
+
 /* A polygon mesh of a planar domain, mostly quads. Faces are counter-clockwise
  * and stored back to back: face f has the vertices
  * face_vert[face_start[f] .. face_start[f+1]). */
@@ -29,13 +39,7 @@ typedef struct glpgp_quadmesh {
     int promoted_corners;     /* boundary vertices made face corners (3-gon -> quad) */
     int split_pentagons;      /* boundary pentagons split into two or three quads */
     int center_splits;        /* of those: three quads around a new centre vertex */
-    /* Set by glpgp_quadmesh_close_polygons / glpgp_quadmesh_smooth. */
-    int closed_polygons;      /* odd faces (dislocation pentagons, ...) made quads by a strip */
-    int strips_to_boundary;   /* of the strips: those that end on the boundary (else: on a second odd face) */
-    int strip_quads;          /* quads cut in two (or three, at a turn) along the strips */
-    int strip_turns;          /* strip turns (each adds a valence 3 and a valence 5 vertex) */
-    int split_even;           /* even polygons (hexagons, ...) split into quads */
-    int smoothed_vertices;    /* vertices moved by the smoothing */
+    glpgp_quad_closing closing; /* set by glpgp_quadmesh_close_polygons / _smooth */
 } glpgp_quadmesh;
 
 /* Extract the quad mesh of a result on mesh m (r->osc[k].z, .dirichlet and
@@ -129,8 +133,7 @@ typedef struct glpgp_quad_quality {
                               * domain boundary (holes in the quad mesh); -1 without domain */
     double h;
     int singular[2];         /* singular triangles of the solve (u, v), -1 if unknown */
-    /* copied from the mesh (glpgp_quadmesh_close_polygons / _smooth; 0 otherwise) */
-    int closed_polygons, strips_to_boundary, strip_quads, strip_turns, split_even, smoothed_vertices;
+    glpgp_quad_closing closing; /* copied from the mesh (0 when it was not closed) */
 } glpgp_quad_quality;
 
 /* Compute the quality report of q for target size h (> 0). domain (may be

@@ -4,6 +4,7 @@
  * VTK / Gmsh MSH 4.1 writers and the MSH 4.1/2.2 quad/triangle reader. */
 #include "cli.h"
 #include "quads.h"
+#include "quads_geom.h"
 #include "output.h"
 
 #include <ctype.h>
@@ -186,12 +187,7 @@ glpgp_status glpgp_quads_quality(const glpgp_quadmesh *q, const glpgp_mesh *doma
     o->vertices = q->nv;
     o->faces = q->nf;
     o->singular[0] = o->singular[1] = -1;
-    o->closed_polygons = q->closed_polygons;
-    o->strips_to_boundary = q->strips_to_boundary;
-    o->strip_quads = q->strip_quads;
-    o->strip_turns = q->strip_turns;
-    o->split_even = q->split_even;
-    o->smoothed_vertices = q->smoothed_vertices;
+    o->closing = q->closing;
     glpgp_status st = GLPGP_OK;
     qe *E = NULL;
     int ne = 0;
@@ -388,11 +384,11 @@ void glpgp_quads_print(FILE *f, const glpgp_quad_quality *qq, const char *prefix
             qq->sj_min, qq->sj_mean, qq->sj_p01, qq->inverted, qq->degenerate);
     fprintf(f, "%s  edge / h     mean %.3f  min %.3f  max %.3f\n", p, qq->len_mean, qq->len_min,
             qq->len_max);
-    if (qq->closed_polygons || qq->split_even || qq->smoothed_vertices)
+    if (qq->closing.closed_polygons || qq->closing.split_even || qq->closing.smoothed_vertices)
         fprintf(f, "%s  closing      %d odd faces closed by strips (%d to the boundary), %d quads cut, "
                    "%d turns, %d even faces split; %d vertices smoothed\n",
-                p, qq->closed_polygons, qq->strips_to_boundary, qq->strip_quads, qq->strip_turns,
-                qq->split_even, qq->smoothed_vertices);
+                p, qq->closing.closed_polygons, qq->closing.strips_to_boundary, qq->closing.strip_quads, qq->closing.strip_turns,
+                qq->closing.split_even, qq->closing.smoothed_vertices);
     if (qq->hausdorff >= 0)
         fprintf(f, "%s  boundary     Hausdorff %.3f h (quads->domain %.3f h, domain->quads %.3f h), "
                    "area %.5g of %.5g\n",
@@ -482,8 +478,8 @@ void glpgp_quads_write_json(FILE *f, const glpgp_quad_quality *qq)
     fprintf(f,
             ", \"closing\": {\"odd_faces_closed\": %d, \"strips_to_boundary\": %d, \"quads_cut\": %d, "
             "\"turns\": %d, \"even_faces_split\": %d, \"smoothed_vertices\": %d}",
-            qq->closed_polygons, qq->strips_to_boundary, qq->strip_quads, qq->strip_turns, qq->split_even,
-            qq->smoothed_vertices);
+            qq->closing.closed_polygons, qq->closing.strips_to_boundary, qq->closing.strip_quads, qq->closing.strip_turns, qq->closing.split_even,
+            qq->closing.smoothed_vertices);
     fputs("}", f);
 }
 
@@ -558,20 +554,60 @@ int glpgp_quads_path_supported(const char *path)
     return path && (glpgp_has_ext(path, ".obj") || glpgp_has_ext(path, ".vtk") || glpgp_has_ext(path, ".msh"));
 }
 
+double glpgp_poly_min_sj(const double *xy, const int *v, int n)
+{
+    double m = INFINITY;
+    for (int i = 0; i < n; i++) {
+        const double *a = xy + 2 * v[i], *b = xy + 2 * v[(i + 1) % n], *c = xy + 2 * v[(i + n - 1) % n];
+        double e1x = b[0] - a[0], e1y = b[1] - a[1], e2x = c[0] - a[0], e2y = c[1] - a[1];
+        double l = hypot(e1x, e1y) * hypot(e2x, e2y);
+        m = fmin(m, l > 0 ? (e1x * e2y - e1y * e2x) / l : -1.0);
+    }
+    return m;
+}
+
+double glpgp_hex_centre_split(const double *xy, const int *hx, int *o_best, double *xb, double *yb)
+{
+    double best = -INFINITY;
+    for (int o = 0; o < 2; o++) {
+        double ax = 0, ay = 0, bx = 0, by = 0; /* centroids of the joined / the other corners */
+        for (int i = 0; i < 3; i++) {
+            ax += xy[2 * hx[(o + 2 * i) % 6]] / 3;
+            ay += xy[2 * hx[(o + 2 * i) % 6] + 1] / 3;
+            bx += xy[2 * hx[(o + 2 * i + 1) % 6]] / 3;
+            by += xy[2 * hx[(o + 2 * i + 1) % 6] + 1] / 3;
+        }
+        for (int t = 0; t <= 4; t++) {
+            double w = 0.25 * t;
+            /* local copy: the three corners of each quad, then X */
+            double pq[8];
+            int id[4] = {0, 1, 2, 3};
+            pq[6] = (1 - w) * ax + w * bx;
+            pq[7] = (1 - w) * ay + w * by;
+            double sj = INFINITY;
+            for (int i = 0; i < 3; i++) {
+                for (int k = 0; k < 3; k++) {
+                    pq[2 * k] = xy[2 * hx[(o + 2 * i + k) % 6]];
+                    pq[2 * k + 1] = xy[2 * hx[(o + 2 * i + k) % 6] + 1];
+                }
+                sj = fmin(sj, glpgp_poly_min_sj(pq, id, 4));
+            }
+            if (sj > best) {
+                best = sj;
+                *o_best = o;
+                *xb = pq[6];
+                *yb = pq[7];
+            }
+        }
+    }
+    return best;
+}
+
 /* Minimum corner scaled Jacobian of face f. */
 static double face_sj(const glpgp_quadmesh *q, int f)
 {
-    int s = q->face_start[f], k = q->face_start[f + 1] - s;
-    double m = INFINITY;
-    for (int i = 0; i < k; i++) {
-        int a = q->face_vert[s + i], b = q->face_vert[s + (i + 1) % k],
-            c = q->face_vert[s + (i + k - 1) % k];
-        double e1x = q->xy[2 * b] - q->xy[2 * a], e1y = q->xy[2 * b + 1] - q->xy[2 * a + 1];
-        double e2x = q->xy[2 * c] - q->xy[2 * a], e2y = q->xy[2 * c + 1] - q->xy[2 * a + 1];
-        double l = hypot(e1x, e1y) * hypot(e2x, e2y);
-        m = fmin(m, l > 0 ? (e1x * e2y - e1y * e2x) / l : 0.0);
-    }
-    return m;
+    int s = q->face_start[f];
+    return glpgp_poly_min_sj(q->xy, q->face_vert + s, q->face_start[f + 1] - s);
 }
 
 static void write_obj(FILE *f, const glpgp_quadmesh *q)

@@ -32,8 +32,10 @@
  * and no irregular vertex is left at all.
  *
  * Paths are shortest paths (Dijkstra over (face, entry edge) states) with
- * costs: 1 per quad cut, TURN per turn, END_IRREGULAR per end whose split
- * cannot use the T vertex. The nearest target (odd face or boundary) wins.
+ * costs: 1 per quad cut (more when its halves get thinner than h/2),
+ * TURN_COST per turn, and per end 2 for each irregular vertex the end's
+ * split adds (-2 for each it removes) plus a penalty for a poor split
+ * (end_cost). The nearest target (odd face or boundary) wins.
  * Paths of one round use disjoint faces (a midpoint changes exactly the two
  * faces of its edge, both on the path), so they are applied together; the
  * adjacency is rebuilt between rounds. A path whose new quads would have a
@@ -55,6 +57,7 @@
  * corner.
  */
 #include "quads.h"
+#include "quads_geom.h"
 #include "status.h"
 
 #include <math.h>
@@ -62,7 +65,6 @@
 #include <string.h>
 
 #define TURN_COST 4.0      /* two irregular vertices */
-#define END_IRREGULAR 4.0  /* odd-face end that keeps its T vertex and adds a valence-5 one */
 #define MIN_SJ 0.05        /* smallest scaled Jacobian accepted for a new quad */
 #define MAX_ROUNDS 32
 
@@ -131,36 +133,6 @@ static void soup_free(psoup *s)
     memset(s, 0, sizeof *s);
 }
 
-/* ---- geometry --------------------------------------------------------- */
-
-/* Minimum corner scaled Jacobian of the quad of soup vertices v[0..3]
- * (counter-clockwise; -1 at a zero-length side). */
-static double sj4(const double *xy, const int *v)
-{
-    double m = INFINITY;
-    for (int i = 0; i < 4; i++) {
-        const double *a = xy + 2 * v[i], *b = xy + 2 * v[(i + 1) % 4], *c = xy + 2 * v[(i + 3) % 4];
-        double e1x = b[0] - a[0], e1y = b[1] - a[1], e2x = c[0] - a[0], e2y = c[1] - a[1];
-        double l = hypot(e1x, e1y) * hypot(e2x, e2y);
-        m = fmin(m, l > 0 ? (e1x * e2y - e1y * e2x) / l : -1.0);
-    }
-    return m;
-}
-
-/* Minimum corner "scaled Jacobian" of a polygon with n corners (for
- * non-quads: the sine of the corner angles; < 0 at a reflex corner). */
-static double sjn(const double *xy, const int *v, int n)
-{
-    double m = INFINITY;
-    for (int i = 0; i < n; i++) {
-        const double *a = xy + 2 * v[i], *b = xy + 2 * v[(i + 1) % n], *c = xy + 2 * v[(i + n - 1) % n];
-        double e1x = b[0] - a[0], e1y = b[1] - a[1], e2x = c[0] - a[0], e2y = c[1] - a[1];
-        double l = hypot(e1x, e1y) * hypot(e2x, e2y);
-        m = fmin(m, l > 0 ? (e1x * e2y - e1y * e2x) / l : -1.0);
-    }
-    return m;
-}
-
 /* ---- splitting an even polygon into quads ---------------------------- */
 
 #define QMAXN 16 /* largest polygon split by the dynamic programme */
@@ -184,7 +156,7 @@ static double qdp_solve(qdp *D, const double *xy, const int *p, int i, int j)
     for (int a = i + 1; a < j - 1; a += 2)
         for (int b = a + 1; b < j; b += 2) {
             int q[4] = {p[i], p[a], p[b], p[j]};
-            double s = sj4(xy, q);
+            double s = glpgp_poly_min_sj(xy, q, 4);
             if (s <= best) continue;
             s = fmin(s, qdp_solve(D, xy, p, i, a));
             if (s <= best) continue;
@@ -226,7 +198,7 @@ static glpgp_status split_even(psoup *s, const int *p, int n, int pref, int *out
     if (n == 4) {
         memcpy(out, p, 4 * sizeof(int));
         *nq = 1;
-        *sj = sj4(s->xy, p);
+        *sj = glpgp_poly_min_sj(s->xy, p, 4);
         return GLPGP_OK;
     }
     if (n < 4 || n > QMAXN || n % 2) return GLPGP_OK;
@@ -236,7 +208,7 @@ static glpgp_status split_even(psoup *s, const int *p, int n, int pref, int *out
             qa[k] = p[(pref + k) % 6];
             qb[k] = p[(pref + 3 + k) % 6];
         }
-        double v = fmin(sj4(s->xy, qa), sj4(s->xy, qb));
+        double v = fmin(glpgp_poly_min_sj(s->xy, qa, 4), glpgp_poly_min_sj(s->xy, qb, 4));
         if (v >= 0.3) {
             memcpy(out, qa, sizeof qa);
             memcpy(out + 4, qb, sizeof qb);
@@ -258,50 +230,20 @@ static glpgp_status split_even(psoup *s, const int *p, int n, int pref, int *out
     }
     free(D);
     if (n == 6 && best < 0.5) {
-        /* three quads around a centre X joined to every other corner */
-        double bx = 0.0, by = 0.0;
-        int bo = -1;
-        double bsj = best;
-        for (int o = 0; o < 2; o++) {
-            double ax = 0, ay = 0, cx = 0, cy = 0;
-            for (int i = 0; i < 3; i++) {
-                ax += s->xy[2 * p[(o + 2 * i) % 6]] / 3;
-                ay += s->xy[2 * p[(o + 2 * i) % 6] + 1] / 3;
-                cx += s->xy[2 * p[(o + 2 * i + 1) % 6]] / 3;
-                cy += s->xy[2 * p[(o + 2 * i + 1) % 6] + 1] / 3;
-            }
-            for (int t = 0; t <= 4; t++) {
-                double w = 0.25 * t, x = (1 - w) * ax + w * cx, y = (1 - w) * ay + w * cy;
-                double v = INFINITY;
-                for (int i = 0; i < 3; i++) {
-                    double pq[8];
-                    for (int k = 0; k < 3; k++) {
-                        pq[2 * k] = s->xy[2 * p[(o + 2 * i + k) % 6]];
-                        pq[2 * k + 1] = s->xy[2 * p[(o + 2 * i + k) % 6] + 1];
-                    }
-                    pq[6] = x;
-                    pq[7] = y;
-                    int id4[4] = {0, 1, 2, 3};
-                    v = fmin(v, sj4(pq, id4));
-                }
-                if (v > bsj + 0.05) {
-                    bsj = v;
-                    bo = o;
-                    bx = x;
-                    by = y;
-                }
-            }
-        }
-        if (bo >= 0) {
+        /* three quads around a centre X joined to every other corner, when
+         * clearly better */
+        int o = 0;
+        double x = 0.0, y = 0.0, c = glpgp_hex_centre_split(s->xy, p, &o, &x, &y);
+        if (c > best + 0.05) {
             int X;
-            glpgp_status st = soup_vertex(s, bx, by, &X);
+            glpgp_status st = soup_vertex(s, x, y, &X);
             if (st != GLPGP_OK) return st;
             for (int i = 0; i < 3; i++) {
-                for (int k = 0; k < 3; k++) out[4 * i + k] = p[(bo + 2 * i + k) % 6];
+                for (int k = 0; k < 3; k++) out[4 * i + k] = p[(o + 2 * i + k) % 6];
                 out[4 * i + 3] = X;
             }
             *nq = 3;
-            *sj = bsj;
+            *sj = c;
         }
     }
     return GLPGP_OK;
@@ -325,7 +267,7 @@ static int cmp_hedge(const void *pa, const void *pb)
 /* adj[fs[f] + i]: the face across edge i of f (-1 boundary, -2 an edge
  * used by more than two faces); adji: the edge's index in that face.
  * val[v]: vertex valence (number of distinct edges), bnd[v]: on a boundary
- * edge. */
+ * or non-manifold edge. */
 typedef struct adjacency {
     int *adj, *adji, *val;
     int *sf; /* face of each corner slot fs[f] + i */
@@ -378,8 +320,9 @@ static glpgp_status adj_build(const psoup *s, adjacency *A)
             A->adji[s->fs[H[k].f] + H[k].i] = H[k + 1].i;
             A->adj[s->fs[H[k + 1].f] + H[k + 1].i] = H[k].f;
             A->adji[s->fs[H[k + 1].f] + H[k + 1].i] = H[k].i;
-        } else {
+        } else { /* non-manifold: treated like the boundary */
             for (int j = k; j < e; j++) A->adj[s->fs[H[j].f] + H[j].i] = -2;
+            A->bnd[H[k].a] = A->bnd[H[k].b] = 1;
         }
         k = e;
     }
@@ -547,6 +490,29 @@ static glpgp_status relax(search *S, int slot, double c, int pred)
     return heap_push(&S->h, c, slot);
 }
 
+/* The strip search crosses edge k of face f (reached at cost c, from the
+ * state `from`: a slot, or -1 - k for the start face f0): the boundary or
+ * an odd face beyond it is a target (its end cost added; the best one is
+ * kept in *best, *best_slot, *best_exit), a free quad beyond it a new state
+ * (entered through its side gi, cost of cutting it straight through). */
+static glpgp_status cross(const psoup *s, const adjacency *A, const unsigned char *used, search *S, int f0,
+                          int f, int k, double c, int from, double *best, int *best_slot, int *best_exit)
+{
+    int g = A->adj[s->fs[f] + k], gi = A->adji[s->fs[f] + k];
+    if (g == -1 || (g >= 0 && g != f0 && !used[g] && s->fn[g] % 2)) {
+        c += g >= 0 ? S->ecost[s->fs[g] + gi] : END_BASE;
+        if (c < *best) {
+            *best = c;
+            *best_slot = from;
+            *best_exit = k;
+        }
+        return GLPGP_OK;
+    }
+    if (g >= 0 && !used[g] && s->fn[g] == 4)
+        return relax(S, s->fs[g] + gi, c + cut_cost(s, g, gi, (gi + 2) % 4, S->size), from);
+    return GLPGP_OK;
+}
+
 /* Shortest strip from the odd face f0 over faces not in used[]. On success
  * path[0 .. *len) holds the strip: path[0] = f0 (out = its crossed edge),
  * then the cut quads, then the odd end face (in set, out = -1) unless the
@@ -562,20 +528,9 @@ static glpgp_status find_strip(const psoup *s, const adjacency *A, const unsigne
     double best = INFINITY;
     int best_slot = -1, best_exit = -1; /* target reached from best_slot (or f0: -1 - edge) through best_exit */
     for (int i = 0; i < s->fn[f0]; i++) {
-        int g = A->adj[s->fs[f0] + i], gi = A->adji[s->fs[f0] + i];
         double c0 = S->ecost[s->fs[f0] + i];
-        if (c0 == INFINITY) continue;
-        if (g == -1 || (g >= 0 && g != f0 && !used[g] && s->fn[g] % 2)) {
-            /* boundary edge, or an odd face next door */
-            double c = c0 + (g == -1 ? END_BASE : S->ecost[s->fs[g] + gi]);
-            if (c < best) {
-                best = c;
-                best_slot = -1 - i;
-                best_exit = i;
-            }
-        } else if (g >= 0 && !used[g] && s->fn[g] == 4) {
-            GLPGP_CHECK_GOTO(st, relax(S, s->fs[g] + gi, c0 + cut_cost(s, g, gi, (gi + 2) % 4, S->size), -1 - i), done);
-        }
+        if (c0 < INFINITY)
+            GLPGP_CHECK_GOTO(st, cross(s, A, used, S, f0, f0, i, c0, -1 - i, &best, &best_slot, &best_exit), done);
     }
     while (S->h.n > 0) {
         heap_item it = heap_pop(&S->h);
@@ -583,22 +538,10 @@ static glpgp_status find_strip(const psoup *s, const adjacency *A, const unsigne
         int slot = it.state;
         if (it.d > S->dist[slot]) continue;
         int f = A->sf[slot], j = slot - s->fs[f];
-        for (int dk = 1; dk <= 3; dk++) {
-            int k = (j + dk) % 4;
-            /* straight through (opposite edge) or a turn */
-            double c = it.d + (dk == 2 ? 0.0 : TURN_COST);
-            int g = A->adj[s->fs[f] + k], gi = A->adji[s->fs[f] + k];
-            if (g == -1 || (g >= 0 && g != f0 && !used[g] && s->fn[g] % 2)) {
-                c += g >= 0 ? S->ecost[s->fs[g] + gi] : END_BASE;
-                if (c < best) {
-                    best = c;
-                    best_slot = slot;
-                    best_exit = k;
-                }
-            } else if (g >= 0 && !used[g] && s->fn[g] == 4) {
-                GLPGP_CHECK_GOTO(st, relax(S, s->fs[g] + gi, c + cut_cost(s, g, gi, (gi + 2) % 4, S->size), slot), done);
-            }
-        }
+        for (int dk = 1; dk <= 3; dk++) /* straight through (dk = 2, the opposite edge) or a turn */
+            GLPGP_CHECK_GOTO(st, cross(s, A, used, S, f0, f, (j + dk) % 4, it.d + (dk == 2 ? 0.0 : TURN_COST),
+                                       slot, &best, &best_slot, &best_exit),
+                             done);
     }
     if (best < INFINITY) {
         /* walk back from the target: count, then fill */
@@ -645,18 +588,12 @@ static int with_mids(const psoup *s, int f, int in, int mid_in, int out, int mid
     return n;
 }
 
-/* Statistics of the pairing. */
-typedef struct pair_stats {
-    int odd_closed, strips_boundary, quads_cut, turns, even_split, failed;
-} pair_stats;
+typedef glpgp_quad_closing pair_stats;
 
 /* Apply the strip P[0..len): new midpoints, the faces rewritten (old ones
  * deleted, new ones appended). Nothing is changed when a new quad would
- * have a scaled Jacobian below MIN_SJ (*ok = 0). touched[] (may be NULL,
- * sized for the new vertex count by the caller through *touch_list) lists
- * the new vertices. */
-static glpgp_status apply_strip(psoup *s, const adjacency *A, const pstep *P, int len, int *ok,
-                                pair_stats *ps, int **newv, int *cap_newv, int *n_newv)
+ * have a scaled Jacobian below MIN_SJ (*ok = 0; the caller restores *ps). */
+static glpgp_status apply_strip(psoup *s, const pstep *P, int len, int *ok, pair_stats *ps)
 {
     glpgp_status st = GLPGP_OK;
     *ok = 0;
@@ -691,7 +628,7 @@ static glpgp_status apply_strip(psoup *s, const adjacency *A, const pstep *P, in
             GLPGP_CHECK_GOTO(st, split_even(s, p, n, pref, out, &nq, &sj), done);
             if (nq == 0) goto done;
             worst = fmin(worst, sj);
-            if (s->fn[f] % 2) ps->odd_closed++;
+            if (s->fn[f] % 2) ps->closed_polygons++;
         } else {
             const int *c = s->fv + s->fs[f];
             int j = P[i].in, k = P[i].out, dk = (k - j + 4) % 4;
@@ -724,7 +661,7 @@ static glpgp_status apply_strip(psoup *s, const adjacency *A, const pstep *P, in
                                      s->xy[2 * C2], s->xy[2 * C2 + 1], pD[0], pD[1],
                                      s->xy[2 * C1], s->xy[2 * C1 + 1]};
                     int q1[4] = {0, 1, 2, 3}, q2[4] = {3, 2, 4, 5}, q3[4] = {6, 0, 3, 5};
-                    double v = fmin(sj4(xy, q1), fmin(sj4(xy, q2), sj4(xy, q3)));
+                    double v = fmin(glpgp_poly_min_sj(xy, q1, 4), fmin(glpgp_poly_min_sj(xy, q2, 4), glpgp_poly_min_sj(xy, q3, 4)));
                     if (v > bestsj) {
                         bestsj = v;
                         bx = x;
@@ -738,10 +675,10 @@ static glpgp_status apply_strip(psoup *s, const adjacency *A, const pstep *P, in
                 memcpy(out + 4, q2, sizeof q2);
                 memcpy(out + 8, q3, sizeof q3);
                 nq = 3;
-                ps->turns++;
+                ps->strip_turns++;
             }
-            for (int q = 0; q < nq; q++) worst = fmin(worst, sj4(s->xy, out + 4 * q));
-            ps->quads_cut++;
+            for (int q = 0; q < nq; q++) worst = fmin(worst, glpgp_poly_min_sj(s->xy, out + 4 * q, 4));
+            ps->strip_quads++;
         }
         for (int q = 0; q < nq; q++) GLPGP_CHECK_GOTO(st, soup_face(s, out + 4 * q, 4, NULL), done);
     }
@@ -753,12 +690,9 @@ static glpgp_status apply_strip(psoup *s, const adjacency *A, const pstep *P, in
         goto done;
     }
     for (int i = 0; i < len; i++) s->fn[P[i].f] = 0; /* the old faces are replaced */
-    if (ends_on_boundary) ps->strips_boundary++;
-    GLPGP_CHECK_GOTO(st, grow((void **)newv, cap_newv, *n_newv + (s->nv - nv0), sizeof(int)), done);
-    for (int v = nv0; v < s->nv; v++) (*newv)[(*n_newv)++] = v;
+    if (ends_on_boundary) ps->strips_to_boundary++;
     *ok = 1;
 done:
-    (void)A;
     free(mid);
     return st;
 }
@@ -800,7 +734,7 @@ static glpgp_status merge_triangle(psoup *s, unsigned char *used, const int *t_i
                 memcpy(be, pm, (size_t)n * sizeof(int));
             }
         } else if (ng == 4) {
-            double v = sjn(s->xy, pm, 5);
+            double v = glpgp_poly_min_sj(s->xy, pm, 5);
             if (v > best_pent) {
                 best_pent = v;
                 gp = g;
@@ -814,7 +748,7 @@ static glpgp_status merge_triangle(psoup *s, unsigned char *used, const int *t_i
         st = split_even(s, be, nbe, -1, outq, &nq, &sj);
         for (int k = 0; k < nq && st == GLPGP_OK; k++) st = soup_face(s, outq + 4 * k, 4, NULL);
         if (st != GLPGP_OK) return st;
-        ps->odd_closed += 1 + (s->fn[f_old] % 2);
+        ps->closed_polygons += 1 + (s->fn[f_old] % 2);
         s->fn[f_old] = s->fn[ge] = 0;
         used[f_old] = used[ge] = 1;
         *merged = 1;
@@ -919,7 +853,7 @@ glpgp_status glpgp_quadmesh_close_polygons(const glpgp_quadmesh *q, glpgp_quadme
     unsigned char *used = NULL, *failed = NULL;
     odd_item *odd = NULL;
     pstep *path = NULL;
-    int cap_path = 0, *newv = NULL, cap_newv = 0, n_newv = 0, cap_failed = 0;
+    int cap_path = 0, cap_failed = 0;
     glpgp_quadmesh *r = NULL;
     glpgp_status st = soup_from_mesh(q, &s);
     if (st != GLPGP_OK) goto done;
@@ -947,7 +881,7 @@ glpgp_status glpgp_quadmesh_close_polygons(const glpgp_quadmesh *q, glpgp_quadme
         }
         for (int k = 0; k < nq; k++) GLPGP_CHECK_GOTO(st, soup_face(&s, outq + 4 * k, 4, NULL), done);
         s.fn[f] = 0;
-        ps.even_split++;
+        ps.split_even++;
     }
 
     /* triangles (see merge_triangle); first the quads that are triangles
@@ -1049,7 +983,7 @@ glpgp_status glpgp_quadmesh_close_polygons(const glpgp_quadmesh *q, glpgp_quadme
             }
             pair_stats save = ps;
             int ok = 0;
-            GLPGP_CHECK_GOTO(st, apply_strip(&s, &A, path, len, &ok, &ps, &newv, &cap_newv, &n_newv), done);
+            GLPGP_CHECK_GOTO(st, apply_strip(&s, path, len, &ok, &ps), done);
             if (!ok) {
                 ps = save;
                 failed[f] = 1;
@@ -1059,17 +993,10 @@ glpgp_status glpgp_quadmesh_close_polygons(const glpgp_quadmesh *q, glpgp_quadme
         }
         if (!progress) break;
     }
-    for (int f = 0; f < s.nf; f++)
-        if (s.fn[f] && s.fn[f] != 4) ps.failed++;
     GLPGP_CHECK_GOTO(st, glpgp_calloc((size_t)s.nv + 1, 1, &mark), done);
-    for (int i = 0; i < n_newv; i++) mark[newv[i]] = 1;
-    for (int v = q->nv; v < s.nv; v++) mark[v] = 1; /* centres of split hexagons too */
+    for (int v = q->nv; v < s.nv; v++) mark[v] = 1; /* every vertex added here */
     GLPGP_CHECK_GOTO(st, soup_to_mesh(&s, q, mark, &omark, &r), done);
-    r->closed_polygons = ps.odd_closed;
-    r->strips_to_boundary = ps.strips_boundary;
-    r->strip_quads = ps.quads_cut;
-    r->strip_turns = ps.turns;
-    r->split_even = ps.even_split;
+    r->closing = ps;
     *out = r;
     r = NULL;
     if (new_vertices) {
@@ -1088,7 +1015,6 @@ done:
     free(failed);
     free(odd);
     free(path);
-    free(newv);
     free(mark);
     free(omark);
     glpgp_quadmesh_destroy(&r);
@@ -1097,101 +1023,87 @@ done:
 
 /* ---- smoothing ------------------------------------------------------- */
 
+/* Worst corner over the faces around vertex v (its corner slots vc[vs[v] ..
+ * vs[v+1]), A->sf giving each slot's face). */
+static double worst_around(const glpgp_quadmesh *q, const adjacency *A, const int *vs, const int *vc, int v)
+{
+    double m = INFINITY;
+    for (int j = vs[v]; j < vs[v + 1]; j++) {
+        int f = A->sf[vc[j]], b = q->face_start[f];
+        m = fmin(m, glpgp_poly_min_sj(q->xy, q->face_vert + b, q->face_start[f + 1] - b));
+    }
+    return m;
+}
+
 glpgp_status glpgp_quadmesh_smooth(glpgp_quadmesh *q, const unsigned char *mark, int iterations, double sj_below,
                                    int *moved)
 {
     if (moved) *moved = 0;
     if (!q || iterations <= 0 || q->nv <= 0) return GLPGP_OK;
     int nv = q->nv, nf = q->nf, nc = q->face_start[nf];
-    int *vf_start = NULL, *vf = NULL, *nb_start = NULL, *nb = NULL, *cnt = NULL;
-    unsigned char *act = NULL, *bnd = NULL;
-    hedge *H = NULL;
-    glpgp_status st = glpgp_calloc((size_t)nv + 1, sizeof(int), &vf_start);
-    if (st == GLPGP_OK) st = glpgp_malloc((size_t)nc + 1, sizeof(int), &vf);
-    if (st == GLPGP_OK) st = glpgp_calloc((size_t)nv + 1, sizeof(int), &nb_start);
-    if (st == GLPGP_OK) st = glpgp_malloc((size_t)2 * nc + 1, sizeof(int), &nb);
+    int *vs = NULL, *vc = NULL, *cnt = NULL;
+    unsigned char *act = NULL;
+    psoup s;
+    adjacency A;
+    memset(&A, 0, sizeof A);
+    /* the soup has the mesh's corner layout (slot c = face_vert index c):
+     * A gives the boundary (and non-manifold) vertices and each slot's face */
+    glpgp_status st = soup_from_mesh(q, &s);
+    if (st == GLPGP_OK) st = adj_build(&s, &A);
+    if (st == GLPGP_OK) st = glpgp_calloc((size_t)nv + 1, sizeof(int), &vs);
+    if (st == GLPGP_OK) st = glpgp_malloc((size_t)nc + 1, sizeof(int), &vc);
     if (st == GLPGP_OK) st = glpgp_calloc((size_t)nv + 1, sizeof(int), &cnt);
     if (st == GLPGP_OK) st = glpgp_calloc((size_t)nv + 1, 1, &act);
-    if (st == GLPGP_OK) st = glpgp_calloc((size_t)nv + 1, 1, &bnd);
-    if (st == GLPGP_OK) st = glpgp_malloc((size_t)nc + 1, sizeof *H, &H);
     if (st != GLPGP_OK) goto done;
-    /* vertex -> faces (CSR) */
-    for (int c = 0; c < nc; c++) vf_start[q->face_vert[c] + 1]++;
-    for (int v = 0; v < nv; v++) vf_start[v + 1] += vf_start[v];
-    for (int f = 0; f < nf; f++)
-        for (int c = q->face_start[f]; c < q->face_start[f + 1]; c++) {
-            int v = q->face_vert[c];
-            vf[vf_start[v] + cnt[v]++] = f;
-        }
-    /* edges: boundary = used by one face; neighbours through edges */
-    int nh = 0;
+    /* vertex -> its corner slots (CSR) */
+    for (int c = 0; c < nc; c++) vs[q->face_vert[c] + 1]++;
+    for (int v = 0; v < nv; v++) vs[v + 1] += vs[v];
+    for (int c = 0; c < nc; c++) vc[vs[q->face_vert[c]] + cnt[q->face_vert[c]]++] = c;
+    /* active: vertices of marked faces (a corner is marked) or of faces worse
+     * than sj_below, and their edge neighbours; never boundary vertices */
     for (int f = 0; f < nf; f++) {
         int b = q->face_start[f], n = q->face_start[f + 1] - b;
-        for (int i = 0; i < n; i++) {
-            int a = q->face_vert[b + i], c = q->face_vert[b + (i + 1) % n];
-            H[nh++] = (hedge){a < c ? a : c, a < c ? c : a, f, i};
-        }
-    }
-    qsort(H, (size_t)nh, sizeof *H, cmp_hedge);
-    memset(cnt, 0, (size_t)nv * sizeof(int));
-    for (int k = 0; k < nh;) {
-        int e = k + 1;
-        while (e < nh && H[e].a == H[k].a && H[e].b == H[k].b) e++;
-        if (e - k != 2) bnd[H[k].a] = bnd[H[k].b] = 1; /* boundary (or non-manifold: keep fixed) */
-        nb_start[H[k].a + 1]++;
-        nb_start[H[k].b + 1]++;
-        k = e;
-    }
-    for (int v = 0; v < nv; v++) nb_start[v + 1] += nb_start[v];
-    for (int k = 0; k < nh;) {
-        int e = k + 1;
-        while (e < nh && H[e].a == H[k].a && H[e].b == H[k].b) e++;
-        nb[nb_start[H[k].a] + cnt[H[k].a]++] = H[k].b;
-        nb[nb_start[H[k].b] + cnt[H[k].b]++] = H[k].a;
-        k = e;
-    }
-    /* active: marked vertices, vertices of faces worse than sj_below, and
-     * their neighbours; never boundary vertices */
-    for (int f = 0; f < nf; f++) {
-        int b = q->face_start[f], n = q->face_start[f + 1] - b;
-        int hit = sjn(q->xy, q->face_vert + b, n) < sj_below;
+        int hit = glpgp_poly_min_sj(q->xy, q->face_vert + b, n) < sj_below;
         for (int i = 0; i < n && !hit && mark; i++) hit = mark[q->face_vert[b + i]];
         if (!hit) continue;
         for (int i = 0; i < n; i++) {
             int v = q->face_vert[b + i];
             act[v] = 1;
-            for (int j = nb_start[v]; j < nb_start[v + 1]; j++) act[nb[j]] = 1;
+            for (int j = vs[v]; j < vs[v + 1]; j++) { /* edge neighbours: previous and next corners */
+                int c = vc[j], g = A.sf[c], gb = q->face_start[g], gn = q->face_start[g + 1] - gb;
+                act[q->face_vert[gb + (c - gb + 1) % gn]] = 1;
+                act[q->face_vert[gb + (c - gb + gn - 1) % gn]] = 1;
+            }
         }
     }
     for (int it = 0; it < iterations; it++) {
         int changed = 0;
         for (int v = 0; v < nv; v++) {
-            if (!act[v] || bnd[v]) continue;
-            /* x_v <- mean of the edge neighbours, if the worst incident corner
-             * does not get worse (else half the step, else stay) */
-            double before = INFINITY, tx = 0.0, ty = 0.0;
-            int k = nb_start[v + 1] - nb_start[v];
-            if (k < 2) continue;
-            for (int j = nb_start[v]; j < nb_start[v + 1]; j++) {
-                tx += q->xy[2 * nb[j]] / k;
-                ty += q->xy[2 * nb[j] + 1] / k;
+            if (!act[v] || A.bnd[v] || vs[v + 1] - vs[v] < 2) continue;
+            /* target: mean of the edge neighbours; for an interior vertex each
+             * neighbour is the previous corner of one face and the next corner
+             * of another, so the mean over the faces' previous and next
+             * corners is that mean */
+            double tx = 0.0, ty = 0.0;
+            int k = 0;
+            for (int j = vs[v]; j < vs[v + 1]; j++) {
+                int c = vc[j], f = A.sf[c], b = q->face_start[f], n = q->face_start[f + 1] - b, i = c - b;
+                int pv = q->face_vert[b + (i + n - 1) % n], nx = q->face_vert[b + (i + 1) % n];
+                tx += q->xy[2 * pv] + q->xy[2 * nx];
+                ty += q->xy[2 * pv + 1] + q->xy[2 * nx + 1];
+                k += 2;
             }
-            for (int j = vf_start[v]; j < vf_start[v + 1]; j++) {
-                int f = vf[j], b = q->face_start[f];
-                before = fmin(before, sjn(q->xy, q->face_vert + b, q->face_start[f + 1] - b));
-            }
-            /* the step (1/4 .. 1 of the way to the mean) that most improves the
-             * worst incident corner; none if no step improves it by 1e-3 */
-            double ox = q->xy[2 * v], oy = q->xy[2 * v + 1], bw = 0.0, bval = before + 1e-3;
+            tx /= k;
+            ty /= k;
+            /* the step (1/4 .. 1 of the way to the mean) that most raises the
+             * worst corner around v; none if no step raises it by 1e-3 */
+            double ox = q->xy[2 * v], oy = q->xy[2 * v + 1], bw = 0.0;
+            double bval = worst_around(q, &A, vs, vc, v) + 1e-3;
             for (int tr = 1; tr <= 4; tr++) {
                 double w = 0.25 * tr;
                 q->xy[2 * v] = ox + w * (tx - ox);
                 q->xy[2 * v + 1] = oy + w * (ty - oy);
-                double after = INFINITY;
-                for (int j = vf_start[v]; j < vf_start[v + 1]; j++) {
-                    int f = vf[j], b = q->face_start[f];
-                    after = fmin(after, sjn(q->xy, q->face_vert + b, q->face_start[f + 1] - b));
-                }
+                double after = worst_around(q, &A, vs, vc, v);
                 if (after > bval) {
                     bval = after;
                     bw = w;
@@ -1210,14 +1122,12 @@ glpgp_status glpgp_quadmesh_smooth(glpgp_quadmesh *q, const unsigned char *mark,
         if (!changed) break;
     }
 done:
-    free(vf_start);
-    free(vf);
-    free(nb_start);
-    free(nb);
+    soup_free(&s);
+    adj_free(&A);
+    free(vs);
+    free(vc);
     free(cnt);
     free(act);
-    free(bnd);
-    free(H);
     return st;
 }
 
@@ -1255,7 +1165,7 @@ glpgp_status glpgp_quads_build(const glpgp_mesh *m, const glpgp_result *r, const
         int moved = 0;
         st = glpgp_quadmesh_smooth(q, mark, o->smooth, o->smooth_below, &moved);
         if (st != GLPGP_OK) goto done;
-        q->smoothed_vertices = moved;
+        q->closing.smoothed_vertices = moved;
     }
     if (o->all_quads) {
         st = glpgp_quadmesh_subdivide(q, &c);

@@ -211,41 +211,52 @@ static void test_square_solved(void)
 
 /* ---- polygon meshes made by hand (glpgp_quadmesh_close_polygons) ------- */
 
-/* The 6 x 6 grid of unit cells [0,6]^2 whose vertical line x = 3 is absent
- * in the rows r (y in [r, r+1]) with has3[r] = 0: a row without it has the
- * cell [2,4] x [r,r+1], whose corners are every grid vertex on its bottom
- * and top sides (a T-junction where the line is present in the row next
- * door). */
-static glpgp_quadmesh *grid_with_line3(const int *has3)
+/* The G x G grid of unit cells whose interior vertical lines are present in
+ * row r (y in [r, r+1]) where has[r * (G + 1) + x] != 0 (x = 0 and x = G
+ * must be set): cells between consecutive present lines merge into one face
+ * whose corners are all the grid vertices on its bottom and top sides (a
+ * T-junction where the line is present in the row next door), so removals
+ * make pentagons, hexagons, heptagons, ... */
+static glpgp_quadmesh *grid_lines(int G, const unsigned char *has)
 {
     glpgp_quadmesh *q = calloc(1, sizeof *q);
-    q->xy = malloc(sizeof(double) * 2 * 49);
-    q->face_start = malloc(sizeof(int) * 40);
-    q->face_vert = malloc(sizeof(int) * 200);
-    int id[7][7]; /* vertex (x, y) */
-    for (int y = 0; y <= 6; y++)
-        for (int x = 0; x <= 6; x++) {
-            id[y][x] = -1;
-            if (x == 3 && !((y > 0 && has3[y - 1]) || (y < 6 && has3[y]))) continue;
-            id[y][x] = q->nv;
+    q->xy = malloc(sizeof(double) * 2 * (G + 1) * (G + 1));
+    q->face_start = malloc(sizeof(int) * (G * G + 1));
+    q->face_vert = malloc(sizeof(int) * 4 * (G + 1) * G * 2);
+    int *id = malloc(sizeof(int) * (G + 1) * (G + 1)); /* vertex (x, y) */
+    for (int y = 0; y <= G; y++)
+        for (int x = 0; x <= G; x++) {
+            int on = (y > 0 && has[(y - 1) * (G + 1) + x]) || (y < G && has[y * (G + 1) + x]);
+            id[y * (G + 1) + x] = on ? q->nv : -1;
+            if (!on) continue;
             q->xy[2 * q->nv] = x;
             q->xy[2 * q->nv + 1] = y;
             q->nv++;
         }
     int w = 0;
     q->face_start[0] = 0;
-    for (int r = 0; r < 6; r++)
-        for (int x0 = 0; x0 < 6;) {
+    for (int r = 0; r < G; r++)
+        for (int x0 = 0; x0 < G;) {
             int x1 = x0 + 1;
-            if (x1 == 3 && !has3[r]) x1 = 4;
+            while (!has[r * (G + 1) + x1]) x1++;
             for (int x = x0; x <= x1; x++) /* bottom, left to right */
-                if (id[r][x] >= 0) q->face_vert[w++] = id[r][x];
+                if (id[r * (G + 1) + x] >= 0) q->face_vert[w++] = id[r * (G + 1) + x];
             for (int x = x1; x >= x0; x--) /* top, right to left */
-                if (id[r + 1][x] >= 0) q->face_vert[w++] = id[r + 1][x];
+                if (id[(r + 1) * (G + 1) + x] >= 0) q->face_vert[w++] = id[(r + 1) * (G + 1) + x];
             q->face_start[++q->nf] = w;
             x0 = x1;
         }
+    free(id);
     return q;
+}
+
+/* The 6 x 6 unit grid whose line x = 3 is present in the rows with has3[r]. */
+static glpgp_quadmesh *grid_with_line3(const int *has3)
+{
+    unsigned char has[6 * 7];
+    for (int r = 0; r < 6; r++)
+        for (int x = 0; x <= 6; x++) has[r * 7 + x] = (unsigned char)(x != 3 || has3[r]);
+    return grid_lines(6, has);
 }
 
 static void check_unit_grid(const glpgp_quadmesh *q, const char *what)
@@ -271,8 +282,8 @@ static void test_pairing_by_hand(void)
     CHECK_OK(glpgp_quadmesh_close_polygons(q, &c, &mark));
     if (c) {
         check_unit_grid(c, "one dislocation, strip to the boundary");
-        CHECK(c->closed_polygons == 1 && c->strips_to_boundary == 1 && c->strip_quads == 3);
-        CHECK(c->strip_turns == 0);
+        CHECK(c->closing.closed_polygons == 1 && c->closing.strips_to_boundary == 1 && c->closing.strip_quads == 3);
+        CHECK(c->closing.strip_turns == 0);
         int nmark = 0;
         for (int i = 0; i < c->nv; i++) nmark += mark[i];
         CHECK(nmark == 4); /* midpoints (3,3) (3,4) (3,5) (3,6) */
@@ -289,7 +300,7 @@ static void test_pairing_by_hand(void)
     CHECK_OK(glpgp_quadmesh_close_polygons(q, &c, NULL));
     if (c) {
         check_unit_grid(c, "two facing dislocations, closed together");
-        CHECK(c->closed_polygons == 2 && c->strips_to_boundary == 0 && c->strip_quads == 0);
+        CHECK(c->closing.closed_polygons == 2 && c->closing.strips_to_boundary == 0 && c->closing.strip_quads == 0);
     }
     glpgp_quadmesh_destroy(&c);
     glpgp_quadmesh_destroy(&q);
@@ -300,7 +311,7 @@ static void test_pairing_by_hand(void)
     CHECK_OK(glpgp_quadmesh_close_polygons(q, &c, NULL));
     if (c) {
         check_unit_grid(c, "hexagon split");
-        CHECK(c->split_even == 1 && c->closed_polygons == 0);
+        CHECK(c->closing.split_even == 1 && c->closing.closed_polygons == 0);
     }
     glpgp_quadmesh_destroy(&c);
     glpgp_quadmesh_destroy(&q);
@@ -366,44 +377,7 @@ static void check_conforming(const glpgp_quadmesh *q)
     free(pr);
 }
 
-/* A G x G grid of unit cells whose interior vertical lines are present in
- * row r (y in [r, r+1]) where has[r * (G + 1) + x] != 0 (x = 0 and x = G
- * always): cells between consecutive present lines merge into one face
- * whose corners are all the grid vertices on its bottom and top sides, so
- * random removals make pentagons, hexagons, heptagons, ... */
 #define RG 12
-static glpgp_quadmesh *grid_random(const unsigned char *has)
-{
-    glpgp_quadmesh *q = calloc(1, sizeof *q);
-    q->xy = malloc(sizeof(double) * 2 * (RG + 1) * (RG + 1));
-    q->face_start = malloc(sizeof(int) * (RG * RG + 1));
-    q->face_vert = malloc(sizeof(int) * 4 * (RG + 1) * RG * 2);
-    int id[RG + 1][RG + 1];
-    for (int y = 0; y <= RG; y++)
-        for (int x = 0; x <= RG; x++) {
-            int on = (y > 0 && has[(y - 1) * (RG + 1) + x]) || (y < RG && has[y * (RG + 1) + x]);
-            id[y][x] = on ? q->nv : -1;
-            if (!on) continue;
-            q->xy[2 * q->nv] = x;
-            q->xy[2 * q->nv + 1] = y;
-            q->nv++;
-        }
-    int w = 0;
-    q->face_start[0] = 0;
-    for (int r = 0; r < RG; r++)
-        for (int x0 = 0; x0 < RG;) {
-            int x1 = x0 + 1;
-            while (!has[r * (RG + 1) + x1]) x1++;
-            for (int x = x0; x <= x1; x++)
-                if (id[r][x] >= 0) q->face_vert[w++] = id[r][x];
-            for (int x = x1; x >= x0; x--)
-                if (id[r + 1][x] >= 0) q->face_vert[w++] = id[r + 1][x];
-            q->face_start[++q->nf] = w;
-            x0 = x1;
-        }
-    return q;
-}
-
 static void check_conforming(const glpgp_quadmesh *q);
 
 /* Property test: random dislocations (vertical line segments removed, at
@@ -421,7 +395,7 @@ static void test_pairing_random(void)
                 if (!keep && x > 1 && !has[r * (RG + 1) + x - 1]) keep = 1; /* no 3-wide faces */
                 has[r * (RG + 1) + x] = (unsigned char)keep;
             }
-        glpgp_quadmesh *q = grid_random(has), *c = NULL;
+        glpgp_quadmesh *q = grid_lines(RG, has), *c = NULL;
         if (seed % 2) /* odd seeds: interior vertices jittered by up to 0.15 */
             for (int i = 0; i < q->nv; i++) {
                 double *v = q->xy + 2 * i;
@@ -512,8 +486,8 @@ static void test_annulus(int field, const char *name)
             CHECK_OK(glpgp_quads_quality(full, m, 0.1, &fq));
             printf("  all quads (strips: %d polygons closed, %d to the boundary, %d quads cut, %d turns; "
                    "%d smoothed):\n",
-                   full->closed_polygons, full->strips_to_boundary, full->strip_quads, full->strip_turns,
-                   full->smoothed_vertices);
+                   full->closing.closed_polygons, full->closing.strips_to_boundary, full->closing.strip_quads, full->closing.strip_turns,
+                   full->closing.smoothed_vertices);
             print_q("", &fq);
             CHECK(hf == 0.1);
             CHECK(fq.others == 0);
@@ -526,8 +500,8 @@ static void test_annulus(int field, const char *name)
              * irregular vertices still come from the singularities: a
              * dislocation closed through its T vertex leaves none, one
              * closed otherwise a 3-5 pair, a strip turn one more pair */
-            CHECK(full->closed_polygons + 2 * full->split_even >= qq.others);
-            CHECK(fq.irregular_interior <= 2 * ns + extra + 2 * full->strip_turns);
+            CHECK(full->closing.closed_polygons + 2 * full->closing.split_even >= qq.others);
+            CHECK(fq.irregular_interior <= 2 * ns + extra + 2 * full->closing.strip_turns);
             if (ns == 0) CHECK(fq.irregular_interior == 0);
             CHECK(fq.irregular_boundary <= qq.irregular_boundary);
         }
@@ -538,24 +512,39 @@ static void test_annulus(int field, const char *name)
     glpgp_mesh_destroy(&m);
 }
 
-static void test_data_hole(void)
+/* Solve data/NAME (GLPGP_DATA) at its default size and build its quad mesh
+ * as the CLI does. Returns 0 (nothing allocated) when the file is missing or
+ * something failed (the failure is counted). */
+static int data_case(const char *name, glpgp_mesh **m, glpgp_result **r, glpgp_quadmesh **q, double *h)
 {
     const char *dd = getenv("GLPGP_DATA");
     char p[1024];
-    snprintf(p, sizeof p, "%s/annulus.msh", dd ? dd : "data");
+    snprintf(p, sizeof p, "%s/%s", dd ? dd : "data", name);
     if (access(p, R_OK) != 0) {
-        printf("data/annulus.msh not found (GLPGP_DATA), skipped\n");
-        return;
+        printf("data/%s not found (GLPGP_DATA), skipped\n", name);
+        return 0;
     }
+    CHECK_OK(glpgp_mesh_read(p, m));
+    if (!*m) return 0;
+    *h = glpgp_default_size(*m);
+    *r = solve(*m, *h, GLPGP_FIELD_BOUNDARY);
+    double hq = *h;
+    if (*r) CHECK_OK(glpgp_quads_build(*m, *r, NULL, q, &hq));
+    if (!*q) {
+        glpgp_result_destroy(r);
+        glpgp_mesh_destroy(m);
+        return 0;
+    }
+    return 1;
+}
+
+static void test_data_hole(void)
+{
     glpgp_mesh *m = NULL;
-    CHECK_OK(glpgp_mesh_read(p, &m));
-    if (!m) return;
-    double h = glpgp_default_size(m);
-    glpgp_result *r = solve(m, h, GLPGP_FIELD_BOUNDARY);
+    glpgp_result *r = NULL;
     glpgp_quadmesh *q = NULL;
-    double hq = h;
-    if (r) CHECK_OK(glpgp_quads_build(m, r, NULL, &q, &hq)); /* what the CLI does */
-    if (q) {
+    double h = 0.0;
+    if (data_case("annulus.msh", &m, &r, &q, &h)) {
         glpgp_quad_quality qq;
         CHECK_OK(glpgp_quads_quality(q, m, h, &qq));
         printf("data/annulus.msh, h = %g:\n", h);
@@ -588,22 +577,11 @@ static int repeated_corner(const glpgp_quadmesh *q)
 
 static void test_data_plate(void)
 {
-    const char *dd = getenv("GLPGP_DATA");
-    char p[1024];
-    snprintf(p, sizeof p, "%s/plate_holes.msh", dd ? dd : "data");
-    if (access(p, R_OK) != 0) {
-        printf("data/plate_holes.msh not found (GLPGP_DATA), skipped\n");
-        return;
-    }
     glpgp_mesh *m = NULL;
-    CHECK_OK(glpgp_mesh_read(p, &m));
-    if (!m) return;
-    double h = glpgp_default_size(m);
-    glpgp_result *r = solve(m, h, GLPGP_FIELD_BOUNDARY);
+    glpgp_result *r = NULL;
     glpgp_quadmesh *q = NULL;
-    double hq = h;
-    if (r) CHECK_OK(glpgp_quads_build(m, r, NULL, &q, &hq)); /* what the CLI does */
-    if (q) {
+    double h = 0.0;
+    if (data_case("plate_holes.msh", &m, &r, &q, &h)) {
         glpgp_quad_quality qq;
         CHECK_OK(glpgp_quads_quality(q, m, h, &qq));
         printf("data/plate_holes.msh, h = %g: singular u +%d -%d, v +%d -%d\n", h,

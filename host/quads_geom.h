@@ -1,0 +1,21 @@
+/* quads_geom.h: small polygon-geometry helpers shared by the quad-mesh code
+ * (quads.c extraction, quads_pair.c closing and smoothing, quads_io.c
+ * quality report). Internal to the library; defined in quads_io.c. */
+#ifndef GLPGP_QUADS_GEOM_H
+#define GLPGP_QUADS_GEOM_H
+
+/* Smallest corner "scaled Jacobian" of the polygon xy[2 v[0]], ...,
+ * xy[2 v[n-1]] (counter-clockwise): the minimum over the corners of the sine
+ * of the angle between the two sides (1 for a rectangle; <= 0 at a flat or
+ * reflex corner; -1 at a zero-length side). */
+double glpgp_poly_min_sj(const double *xy, const int *v, int n);
+
+/* Best split of the hexagon with corners hx[0..5] (indices into xy,
+ * counter-clockwise) into three quads around a new centre X joined to every
+ * other corner (hx[o], hx[o+2], hx[o+4], o = 0 or 1): the quads are
+ * (hx[o+2i], hx[o+2i+1], hx[o+2i+2], X). X is taken among five blends of
+ * the centroids of the joined and of the other corners. Returns the
+ * smallest corner scaled Jacobian of the three quads and sets *o, *x, *y. */
+double glpgp_hex_centre_split(const double *xy, const int *hx, int *o, double *x, double *y);
+
+#endif
