@@ -10,12 +10,12 @@
 #define _XOPEN_SOURCE 700 /* nftw */
 
 #include "bench.h"
-#include "backend.h"
-#include "clcheck.h"
-#include "mesh.h"
-#include "solve.h"
-#include "status.h"
-#include "system.h"
+#include "glpgp/backends.h"
+#include "glpgp/backends.h"
+#include "glpgp/mesh.h"
+#include "glpgp/solve.h"
+#include "glpgp/status.h"
+#include "glpgp/system.h"
 
 #include <errno.h>
 #include <ftw.h>
@@ -457,7 +457,11 @@ static glpgp_status op_cg_block(bctx *c)
 
 static glpgp_status op_linsolve(bctx *c)
 {
-    return glpgp_cg(c->b, c->rhs, c->d, c->so.cg_rtol, c->so.cg_max, c->so.cg_check, &c->lin_iters, &c->lin_rel);
+    glpgp_cg_info ci;
+    glpgp_status st = glpgp_cg(c->b, c->rhs, c->d, c->so.cg_rtol, c->so.cg_max, c->so.cg_check, &ci);
+    c->lin_iters = ci.iterations;
+    c->lin_rel = ci.relres;
+    return st;
 }
 
 /* One whole Newton step of the GL driver from x0, as glpgp_solve runs it at
@@ -536,7 +540,6 @@ static glpgp_status bench_backend(int opencl, const bopts *o, sdata *sd, sres *s
     GLPGP_CHECK_GOTO(st, time_op(&c, NULL, op_linsolve, o->repeat, 0.0, 1, &br->lin), done);
     br->lin_iters = c.lin_iters;
     br->lin_relres = c.lin_rel;
-    c.so.verbose = 0;
     GLPGP_CHECK_GOTO(st, time_op(&c, NULL, op_newton_step, o->repeat, 0.0, 1, &br->nstep), done);
     br->nstep_cg = c.nsi.cg;
     br->nstep_alpha = c.nsi.alpha;
@@ -574,14 +577,13 @@ static glpgp_status bench_gl(int opencl, const bopts *o, const sdata *sd, const 
         glpgp_options so;
         glpgp_options_default(&so);
         so.size = sr->h;
-        so.verbose = 0;
         double t0 = bench_now();
         glpgp_status st = glpgp_solve(sd->mesh, b, &so, &res);
         double dt = bench_now() - t0;
         glpgp_backend_destroy(&b);
         if (st != GLPGP_OK) {
             glpgp_result_destroy(&res);
-            glpgp_error_trace(__FILE__, __LINE__);
+            glpgp_error_push_trace(__FILE__, __LINE__);
             return st;
         }
         t[n++] = dt;
@@ -1239,13 +1241,13 @@ static glpgp_status compare(const char *oldpath, const char *newtext, const char
     glpgp_status st = bench_json_flatten(oldtext, &fo);
     free(oldtext);
     if (st != GLPGP_OK) {
-        glpgp_error_trace(__FILE__, __LINE__);
+        glpgp_error_push_trace(__FILE__, __LINE__);
         return st;
     }
     st = bench_json_flatten(newtext, &fn);
     if (st != GLPGP_OK) {
         bench_flat_free(&fo);
-        glpgp_error_trace(__FILE__, __LINE__);
+        glpgp_error_push_trace(__FILE__, __LINE__);
         return st;
     }
     printf("\n## Comparison: %s / %s (new / old; < 1 is faster for times, > 1 better for GB/s)\n\n", newname, oldpath);

@@ -7,8 +7,13 @@
 
 #include <stddef.h>
 
-#include "status.h"
-#include "system.h"
+#include "glpgp/backends.h"
+#include "glpgp/io.h"
+#include "glpgp/shapes.h"
+#include "glpgp/solve.h"
+#include "glpgp/status.h"
+#include "glpgp/util.h"
+#include "glpgp/system.h"
 
 /* Monotonic wall clock in seconds. */
 double bench_now(void);

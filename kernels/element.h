@@ -43,23 +43,12 @@
 
 #ifdef __OPENCL_VERSION__
 #define GLPGP_FN inline
+/* glpgp/kinds.h precedes this file in the embedded program source */
 #else
 #include <math.h>
+#include "glpgp/kinds.h"
 #define GLPGP_FN static inline
 #endif
-
-#define GLPGP_PI 3.14159265358979323846
-
-/* Element kinds of the quadratic form. */
-#define GLPGP_ELEM_P1 0        /* P1 finite elements of E */
-#define GLPGP_ELEM_TRANSPORT 1 /* edge-transport form (cotan weights) */
-#define GLPGP_ELEM_LAPLACE 2   /* plain cotan Laplacian (S only), for harmonic fields */
-
-/* Penalty Hessian variants. */
-#define GLPGP_HESS_PAPER 0
-#define GLPGP_HESS_PROJECTED 1
-#define GLPGP_HESS_EXACT 2
-#define GLPGP_HESS_MIXED 3 /* exact where |z|^2 >= 1/2, projected in vortex cores */
 
 /* Signed area of the triangle (positive when counter-clockwise). */
 GLPGP_FN double glpgp_tri_area(const double *x, const double *y)
@@ -232,22 +221,6 @@ GLPGP_FN void glpgp_pen_hess(int hess, double area, double inv4e2, const double 
     m[1] = c * m1;
     m[2] = c * m2;
     m[3] = c * m3;
-}
-
-/* Winding number of z around the triangle (sum of principal args of z_b/z_a
- * over its three edges, divided by 2 pi, rounded): -1, 0 or +1. */
-GLPGP_FN int glpgp_tri_winding(const double *zr, const double *zi)
-{
-    double s = 0.0;
-    for (int e = 0; e < 3; e++) {
-        int a = e, b = (e + 1) % 3;
-        /* arg(z_b conj(z_a)) */
-        double re = zr[b] * zr[a] + zi[b] * zi[a];
-        double im = zi[b] * zr[a] - zr[b] * zi[a];
-        s += atan2(im, re);
-    }
-    double w = s / (2.0 * GLPGP_PI);
-    return (int)(w > 0 ? w + 0.5 : w - 0.5);
 }
 
 #endif

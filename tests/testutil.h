@@ -1,6 +1,22 @@
-/* testutil.h: tiny check macros and helpers shared by the C tests. */
+/* testutil.h: the one header of the C tests: every public glpgp header, the
+ * check macros (a failed check prints file:line and the expression, the test
+ * exits 1 at TEST_DONE) and a deterministic random generator. */
 #ifndef GLPGP_TESTUTIL_H
 #define GLPGP_TESTUTIL_H
+
+#include "glpgp/backends.h"
+#include "glpgp/image.h"
+#include "glpgp/io.h"
+#include "glpgp/mesh.h"
+#include "glpgp/phase.h"
+#include "glpgp/quads.h"
+#include "glpgp/result.h"
+#include "glpgp/shapes.h"
+#include "glpgp/solve.h"
+#include "glpgp/status.h"
+#include "glpgp/system.h"
+#include "glpgp/util.h"
+#include "glpgp/version.h"
 
 #include <math.h>
 #include <stdio.h>

@@ -1,0 +1,33 @@
+/* backends/select.c: the one backend selector (glpgp/backends.h): every
+ * command that solves creates its backend here, so `--backend` and
+ * `--device` behave the same everywhere. */
+#include "glpgp/backends.h"
+
+#include <string.h>
+
+int glpgp_backend_kind_parse(const char *name)
+{
+    if (!strcmp(name, "auto")) return GLPGP_BACKEND_AUTO;
+    if (!strcmp(name, "opencl")) return GLPGP_BACKEND_OPENCL;
+    if (!strcmp(name, "reference")) return GLPGP_BACKEND_REFERENCE;
+    return -1;
+}
+
+glpgp_status glpgp_backend_select(glpgp_backend_kind kind, int device, int verbose,
+                                  glpgp_backend **out)
+{
+    *out = NULL;
+    glpgp_cl_options clo;
+    clo.device = device;
+    clo.verbose = verbose;
+    if (kind == GLPGP_BACKEND_REFERENCE) return glpgp_backend_create_reference(out);
+    /* an explicit --device asks for OpenCL: its failure is an error, not a fallback */
+    if (kind == GLPGP_BACKEND_OPENCL || device >= 0) return glpgp_backend_create_opencl(&clo, out);
+    if (glpgp_have_opencl()) {
+        if (glpgp_backend_create_opencl(&clo, out) == GLPGP_OK) return GLPGP_OK;
+        glpgp_log(GLPGP_LOG_WARNING, "OpenCL backend unavailable (%s); using the reference backend",
+                  glpgp_error_message());
+        glpgp_error_clear();
+    }
+    return glpgp_backend_create_reference(out);
+}

@@ -1,0 +1,78 @@
+/* cli/cli.c: log callback, error and usage printers and number parsing
+ * shared by the CLI commands (cli.h). */
+#include "cli.h"
+
+#include "glpgp/status.h"
+
+#include <errno.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+static int g_verbosity = 1;
+
+static void log_to_stderr(glpgp_log_level level, const char *msg, void *user)
+{
+    (void)user;
+    if ((int)level > g_verbosity) return;
+    if (level == GLPGP_LOG_WARNING)
+        fprintf(stderr, "glpgp: warning: %s\n", msg);
+    else
+        fprintf(stderr, "glpgp: %s\n", msg);
+}
+
+void glpgp_cli_set_verbosity(int v)
+{
+    g_verbosity = v;
+    glpgp_log_set_callback(log_to_stderr, NULL);
+}
+
+int glpgp_cli_verbosity(void) { return g_verbosity; }
+
+int glpgp_cli_fail(void)
+{
+    const char *msg = glpgp_error_message();
+    fprintf(stderr, "glpgp: error: %s\n", *msg ? msg : "unknown failure");
+    if (*glpgp_error_detail()) fprintf(stderr, "%s\n", glpgp_error_detail());
+    if (g_verbosity >= 2 && *glpgp_error_trace()) fputs(glpgp_error_trace(), stderr);
+    glpgp_error_clear();
+    return GLPGP_EXIT_FAIL;
+}
+
+int glpgp_cli_usage_error(const char *sub, const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    fputs("glpgp: usage error: ", stderr);
+    vfprintf(stderr, fmt, ap);
+    va_end(ap);
+    if (sub)
+        fprintf(stderr, "\nTry 'glpgp %s --help' for the options.\n", sub);
+    else
+        fputs("\nTry 'glpgp --help'.\n", stderr);
+    return GLPGP_EXIT_USAGE;
+}
+
+int glpgp_cli_double(const char *s, double *out)
+{
+    if (!s || !*s) return 0;
+    char *end = NULL;
+    errno = 0;
+    double v = strtod(s, &end);
+    if (end == s || *end != '\0' || errno == ERANGE || !isfinite(v)) return 0;
+    *out = v;
+    return 1;
+}
+
+int glpgp_cli_long(const char *s, long lo, long hi, long *out)
+{
+    if (!s || !*s) return 0;
+    char *end = NULL;
+    errno = 0;
+    long v = strtol(s, &end, 10);
+    if (end == s || *end != '\0' || errno == ERANGE || v < lo || v > hi) return 0;
+    *out = v;
+    return 1;
+}

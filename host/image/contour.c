@@ -1,0 +1,468 @@
+/* image/contour.c: mask image -> boundary polygons (glpgp/image.h): mask channel
+ * choice, marching squares on the pixel-centre grid padded with one ring of
+ * outside samples (crossing points shared by neighbouring cells, linked into
+ * closed loops), speck removal, Douglas-Peucker simplification, orientation
+ * (domain on the left) and hole -> outer loop assignment. Memory: two rows
+ * of crossing ids plus the crossing points themselves, so a 4096 x 4096 mask
+ * needs little beyond its own values. */
+#include "glpgp/image.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+void glpgp_contour_options_default(glpgp_contour_options *o)
+{
+    o->threshold = 0.5;
+    o->invert = 0;
+    o->min_area = 16.0;
+    o->tolerance = 0.5;
+    o->pixel_size = 1.0;
+}
+
+glpgp_status glpgp_mask_values(const glpgp_image *im, float **out)
+{
+    if (!im || !im->px || !out) return GLPGP_FAIL(GLPGP_ERR_ARG, "glpgp_mask_values: NULL argument");
+    size_t n = (size_t)im->w * (size_t)im->h;
+    int nc = im->nc;
+    float *v = NULL;
+    GLPGP_CHECK(glpgp_malloc(n, sizeof *v, &v));
+    int use_alpha = 0;
+    if (im->alpha >= 0 && im->alpha < nc) {
+        float a0 = im->px[im->alpha];
+        for (size_t i = 1; i < n && !use_alpha; i++)
+            if (im->px[i * (size_t)nc + (size_t)im->alpha] != a0) use_alpha = 1;
+    }
+    for (size_t i = 0; i < n; i++) {
+        const float *p = im->px + i * (size_t)nc;
+        float x;
+        if (use_alpha)
+            x = p[im->alpha];
+        else if (nc >= 3 && im->alpha != 0 && im->alpha != 1 && im->alpha != 2)
+            x = 0.2126f * p[0] + 0.7152f * p[1] + 0.0722f * p[2];
+        else
+            x = p[0];
+        v[i] = x;
+    }
+    *out = v;
+    return GLPGP_OK;
+}
+
+void glpgp_polygons_destroy(glpgp_polygons **p)
+{
+    if (!p || !*p) return;
+    free((*p)->start);
+    free((*p)->xy);
+    free((*p)->area);
+    free((*p)->parent);
+    free(*p);
+    *p = NULL;
+}
+
+/* ---- growable arrays --------------------------------------------------- */
+
+typedef struct dbuf {
+    double *a;
+    size_t n, cap;
+} dbuf;
+typedef struct ibuf {
+    int *a;
+    size_t n, cap;
+} ibuf;
+
+static glpgp_status dbuf_push2(dbuf *b, double x, double y)
+{
+    if (b->n + 2 > b->cap) {
+        size_t c = b->cap ? 2 * b->cap : 1024;
+        double *na = realloc(b->a, c * sizeof *na);
+        if (!na) return GLPGP_FAIL(GLPGP_ERR_NOMEM, "out of memory (contour points)");
+        b->a = na;
+        b->cap = c;
+    }
+    b->a[b->n++] = x;
+    b->a[b->n++] = y;
+    return GLPGP_OK;
+}
+
+static glpgp_status ibuf_push(ibuf *b, int x)
+{
+    if (b->n + 1 > b->cap) {
+        size_t c = b->cap ? 2 * b->cap : 1024;
+        int *na = realloc(b->a, c * sizeof *na);
+        if (!na) return GLPGP_FAIL(GLPGP_ERR_NOMEM, "out of memory (contour links)");
+        b->a = na;
+        b->cap = c;
+    }
+    b->a[b->n++] = x;
+    return GLPGP_OK;
+}
+
+/* ---- Douglas-Peucker ----------------------------------------------------- */
+
+static double seg_dist2(const double *p, const double *a, const double *b)
+{
+    double dx = b[0] - a[0], dy = b[1] - a[1];
+    double L2 = dx * dx + dy * dy;
+    double t = L2 > 0 ? ((p[0] - a[0]) * dx + (p[1] - a[1]) * dy) / L2 : 0.0;
+    if (t < 0) t = 0;
+    if (t > 1) t = 1;
+    double ex = a[0] + t * dx - p[0], ey = a[1] + t * dy - p[1];
+    return ex * ex + ey * ey;
+}
+
+glpgp_status glpgp_simplify_closed(double *xy, int *np, double tol)
+{
+    int n = *np;
+    if (n <= 3 || !(tol > 0)) return GLPGP_OK;
+    /* anchors: point 0 and the point farthest from it */
+    int far = 0;
+    double best = -1;
+    for (int i = 1; i < n; i++) {
+        double dx = xy[2 * i] - xy[0], dy = xy[2 * i + 1] - xy[1];
+        if (dx * dx + dy * dy > best) best = dx * dx + dy * dy, far = i;
+    }
+    unsigned char *keep = NULL;
+    int *stack = NULL;
+    GLPGP_CHECK(glpgp_calloc((size_t)n + 1, 1, &keep));
+    glpgp_status st = glpgp_malloc(2 * ((size_t)n + 2), sizeof *stack, &stack);
+    if (st != GLPGP_OK) {
+        free(keep);
+        return st;
+    }
+    keep[0] = keep[far] = keep[n] = 1; /* index n is point 0 again */
+    int sp = 0;
+    stack[sp++] = 0, stack[sp++] = far;
+    stack[sp++] = far, stack[sp++] = n;
+    double tol2 = tol * tol;
+    while (sp > 0) {
+        int b = stack[--sp], a = stack[--sp];
+        if (b - a < 2) continue;
+        const double *pa = xy + 2 * (a % n), *pb = xy + 2 * (b % n);
+        int imax = -1;
+        double dmax = tol2;
+        for (int i = a + 1; i < b; i++) {
+            double d = seg_dist2(xy + 2 * i, pa, pb);
+            if (d > dmax) dmax = d, imax = i;
+        }
+        if (imax >= 0) {
+            keep[imax] = 1;
+            stack[sp++] = a, stack[sp++] = imax;
+            stack[sp++] = imax, stack[sp++] = b;
+        }
+    }
+    int m = 0;
+    for (int i = 0; i < n; i++)
+        if (keep[i]) {
+            xy[2 * m] = xy[2 * i];
+            xy[2 * m + 1] = xy[2 * i + 1];
+            m++;
+        }
+    free(keep);
+    free(stack);
+    *np = m;
+    return GLPGP_OK;
+}
+
+/* ---- marching squares ------------------------------------------------------ */
+
+static double loop_area(const double *xy, int n)
+{
+    double a = 0;
+    for (int i = 0; i < n; i++) {
+        int j = (i + 1) % n;
+        a += xy[2 * i] * xy[2 * j + 1] - xy[2 * j] * xy[2 * i + 1];
+    }
+    return 0.5 * a;
+}
+
+static int point_in_loop(const double *xy, int n, double px, double py)
+{
+    int in = 0;
+    for (int i = 0, j = n - 1; i < n; j = i++) {
+        double xi = xy[2 * i], yi = xy[2 * i + 1], xj = xy[2 * j], yj = xy[2 * j + 1];
+        if ((yi > py) != (yj > py) && px < (xj - xi) * (py - yi) / (yj - yi) + xi) in = !in;
+    }
+    return in;
+}
+
+typedef struct ms_ctx {
+    const float *v;
+    int w, h;
+    double thr;
+    int invert;
+    dbuf pts;  /* crossing points, sample-grid coordinates (I, J) */
+    ibuf next; /* next point along the contour, -1 until linked */
+} ms_ctx;
+
+/* Signed value of padded sample (I, J): >= 0 inside. pad: outside ring. */
+static double sample(const ms_ctx *c, int I, int J, int *pad)
+{
+    if (I < 1 || J < 1 || I > c->w || J > c->h) {
+        *pad = 1;
+        return -1.0;
+    }
+    *pad = 0;
+    double x = c->v[(size_t)(J - 1) * (size_t)c->w + (size_t)(I - 1)];
+    if (isnan(x)) return -1.0;
+    return c->invert ? c->thr - x - 1e-12 : x - c->thr;
+}
+
+/* Create the crossing point between samples A=(I0,J0) and B=(I1,J1). */
+static glpgp_status new_point(ms_ctx *c, int I0, int J0, double f0, int pad0, int I1, int J1,
+                              double f1, int pad1, int *id)
+{
+    double t = (pad0 || pad1) ? 0.5 : f0 / (f0 - f1);
+    if (!(t >= 0.01)) t = 0.01;
+    if (!(t <= 0.99)) t = 0.99;
+    *id = (int)(c->pts.n / 2);
+    GLPGP_CHECK(dbuf_push2(&c->pts, I0 + t * (I1 - I0), J0 + t * (J1 - J0)));
+    GLPGP_CHECK(ibuf_push(&c->next, -1));
+    return GLPGP_OK;
+}
+
+glpgp_status glpgp_contours(const float *v, int w, int h, const glpgp_contour_options *opt,
+                            glpgp_polygons **out)
+{
+    if (!v || !out || w <= 0 || h <= 0) return GLPGP_FAIL(GLPGP_ERR_ARG, "glpgp_contours: bad arguments");
+    *out = NULL;
+    glpgp_contour_options o;
+    if (opt)
+        o = *opt;
+    else
+        glpgp_contour_options_default(&o);
+    if (!isfinite(o.threshold))
+        return GLPGP_FAIL(GLPGP_ERR_ARG, "threshold %g is not a finite number", o.threshold);
+    if (!(o.pixel_size > 0)) return GLPGP_FAIL(GLPGP_ERR_ARG, "pixel size %g must be positive", o.pixel_size);
+
+    ms_ctx c;
+    memset(&c, 0, sizeof c);
+    c.v = v;
+    c.w = w;
+    c.h = h;
+    c.thr = o.threshold;
+    c.invert = o.invert;
+
+    /* empty / full masks */
+    size_t ninside = 0, npx = (size_t)w * (size_t)h;
+    for (int j = 1; j <= h; j++)
+        for (int i = 1; i <= w; i++) {
+            int pad;
+            if (sample(&c, i, j, &pad) >= 0) ninside++;
+        }
+    if (ninside == 0)
+        return GLPGP_FAIL(GLPGP_ERR_ARG,
+                          "empty mask: no pixel is inside the domain (inside = value %s %g); "
+                          "check --threshold or --invert",
+                          o.invert ? "<" : ">=", o.threshold);
+    if (ninside == npx)
+        return GLPGP_FAIL(GLPGP_ERR_ARG,
+                          "every pixel of the %d x %d mask is inside the domain (inside = value "
+                          "%s %g), so it has no boundary in the image; the domain must be "
+                          "surrounded by outside pixels (check --threshold or --invert)",
+                          w, h, o.invert ? "<" : ">=", o.threshold);
+
+    glpgp_status st = GLPGP_OK;
+    int *hid_a = NULL, *hid_b = NULL, *vid = NULL;
+    glpgp_polygons *P = NULL;
+    dbuf loops = {0};
+    ibuf lstart = {0};
+    unsigned char *seen = NULL;
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)w + 2, sizeof(int), &hid_a), done);
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)w + 2, sizeof(int), &hid_b), done);
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)w + 3, sizeof(int), &vid), done);
+    for (int i = 0; i < w + 2; i++) hid_a[i] = -1;
+
+    /* Cells (I, J), I in [0, w], J in [0, h]; corners c0 (I,J), c1 (I+1,J),
+     * c2 (I+1,J+1), c3 (I,J+1); edge k joins corner k and k+1 (mod 4). */
+    double *frow0 = NULL, *frow1 = NULL;
+    unsigned char *prow0 = NULL, *prow1 = NULL;
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)w + 2, sizeof(double), &frow0), done2);
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)w + 2, sizeof(double), &frow1), done2);
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)w + 2, 1, &prow0), done2);
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)w + 2, 1, &prow1), done2);
+    for (int I = 0; I <= w + 1; I++) {
+        int pad;
+        frow0[I] = sample(&c, I, 0, &pad);
+        prow0[I] = (unsigned char)pad;
+    }
+    for (int J = 0; J <= h; J++) {
+        for (int I = 0; I <= w + 1; I++) {
+            int pad;
+            frow1[I] = sample(&c, I, J + 1, &pad);
+            prow1[I] = (unsigned char)pad;
+            hid_b[I] = -1;
+            vid[I] = -1;
+        }
+        for (int I = 0; I <= w; I++) {
+            double f[4] = {frow0[I], frow0[I + 1], frow1[I + 1], frow1[I]};
+            int in[4];
+            int mask = 0;
+            for (int k = 0; k < 4; k++) {
+                in[k] = f[k] >= 0;
+                mask |= in[k] << k;
+            }
+            if (mask == 0 || mask == 15) continue;
+            int pad[4] = {prow0[I], prow0[I + 1], prow1[I + 1], prow1[I]};
+            static const int cI[4] = {0, 1, 1, 0}, cJ[4] = {0, 0, 1, 1};
+            int eid[4] = {-1, -1, -1, -1};
+            for (int k = 0; k < 4; k++) {
+                int k1 = (k + 1) & 3;
+                if (in[k] == in[k1]) continue;
+                int *slot = k == 0 ? &hid_a[I] : k == 1 ? &vid[I + 1] : k == 2 ? &hid_b[I] : &vid[I];
+                if (*slot < 0)
+                    GLPGP_CHECK_GOTO(st,
+                                     new_point(&c, I + cI[k], J + cJ[k], f[k], pad[k], I + cI[k1],
+                                               J + cJ[k1], f[k1], pad[k1], slot),
+                                     done2);
+                eid[k] = *slot;
+            }
+            /* in->out edges k (in[k] && !in[k+1]) link to an out->in edge */
+            int saddle = mask == 5 || mask == 10;
+            int centre_in = saddle && (f[0] + f[1] + f[2] + f[3]) >= 0;
+            for (int k = 0; k < 4; k++) {
+                int k1 = (k + 1) & 3;
+                if (!(in[k] && !in[k1])) continue;
+                int target = -1;
+                if (!saddle) {
+                    for (int q = 0; q < 4; q++)
+                        if (!in[q] && in[(q + 1) & 3]) target = q;
+                } else {
+                    target = centre_in ? (k + 1) & 3 : (k + 3) & 3;
+                }
+                if (target < 0 || eid[k] < 0 || eid[target] < 0) {
+                    st = GLPGP_FAIL(GLPGP_ERR_NUMERIC, "marching squares: inconsistent cell");
+                    goto done2;
+                }
+                c.next.a[eid[k]] = eid[target];
+            }
+        }
+        /* next cell row */
+        double *tf = frow0;
+        frow0 = frow1;
+        frow1 = tf;
+        unsigned char *tp = prow0;
+        prow0 = prow1;
+        prow1 = tp;
+        int *th = hid_a;
+        hid_a = hid_b;
+        hid_b = th;
+    }
+
+    /* link the crossings into loops (pixel coordinates, y up) */
+    int npts = (int)(c.pts.n / 2);
+    GLPGP_CHECK_GOTO(st, glpgp_calloc((size_t)npts + 1, 1, &seen), done2);
+    for (int p0 = 0; p0 < npts; p0++) {
+        if (seen[p0]) continue;
+        size_t first = loops.n / 2;
+        int p = p0;
+        while (!seen[p]) {
+            seen[p] = 1;
+            double I = c.pts.a[2 * p], J = c.pts.a[2 * p + 1];
+            GLPGP_CHECK_GOTO(st, dbuf_push2(&loops, I - 0.5, (double)h - J + 0.5), done2);
+            p = c.next.a[p];
+            if (p < 0) {
+                st = GLPGP_FAIL(GLPGP_ERR_NUMERIC, "marching squares: open contour");
+                goto done2;
+            }
+        }
+        int n = (int)(loops.n / 2 - first);
+        double *xy = loops.a + 2 * first;
+        double a = loop_area(xy, n);
+        if (fabs(a) < o.min_area || n < 3) { /* speck (or filled-in small hole) */
+            loops.n = 2 * first;
+            continue;
+        }
+        GLPGP_CHECK_GOTO(st, glpgp_simplify_closed(xy, &n, o.tolerance), done2);
+        if (n < 3) {
+            loops.n = 2 * first;
+            continue;
+        }
+        loops.n = 2 * (first + (size_t)n);
+        GLPGP_CHECK_GOTO(st, ibuf_push(&lstart, (int)first), done2);
+    }
+    GLPGP_CHECK_GOTO(st, ibuf_push(&lstart, (int)(loops.n / 2)), done2);
+
+    int nl = (int)lstart.n - 1;
+    GLPGP_CHECK_GOTO(st, glpgp_calloc(1, sizeof *P, &P), done2);
+    P->n = nl;
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)nl + 1, sizeof(int), &P->start), done2);
+    GLPGP_CHECK_GOTO(st, glpgp_malloc(loops.n + 1, sizeof(double), &P->xy), done2);
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)nl + 1, sizeof(double), &P->area), done2);
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)nl + 1, sizeof(int), &P->parent), done2);
+    memcpy(P->start, lstart.a, ((size_t)nl + 1) * sizeof(int));
+    if (loops.n) memcpy(P->xy, loops.a, loops.n * sizeof(double));
+    double total = 0;
+    for (int l = 0; l < nl; l++) {
+        P->area[l] = loop_area(P->xy + 2 * P->start[l], P->start[l + 1] - P->start[l]);
+        total += P->area[l];
+    }
+    if (total < 0) { /* make the domain lie on the left */
+        for (int l = 0; l < nl; l++) {
+            double *xy = P->xy + 2 * P->start[l];
+            int n = P->start[l + 1] - P->start[l];
+            for (int i = 0, k = n - 1; i < k; i++, k--) {
+                double tx = xy[2 * i], ty = xy[2 * i + 1];
+                xy[2 * i] = xy[2 * k], xy[2 * i + 1] = xy[2 * k + 1];
+                xy[2 * k] = tx, xy[2 * k + 1] = ty;
+            }
+            P->area[l] = -P->area[l];
+        }
+    }
+    /* holes -> smallest outer loop containing them */
+    P->nouter = P->nholes = 0;
+    for (int l = 0; l < nl; l++) {
+        P->parent[l] = -1;
+        if (P->area[l] > 0) {
+            P->nouter++;
+            continue;
+        }
+        P->nholes++;
+        const double *hp = P->xy + 2 * P->start[l];
+        double best = INFINITY;
+        for (int q = 0; q < nl; q++) {
+            if (!(P->area[q] > 0) || P->area[q] >= best) continue;
+            if (point_in_loop(P->xy + 2 * P->start[q], P->start[q + 1] - P->start[q], hp[0], hp[1])) {
+                best = P->area[q];
+                P->parent[l] = q;
+            }
+        }
+    }
+    /* physical units */
+    double s = o.pixel_size;
+    for (size_t i = 0; i < loops.n; i++) P->xy[i] *= s;
+    P->total_area = 0;
+    for (int l = 0; l < nl; l++) {
+        P->area[l] *= s * s;
+        P->total_area += P->area[l];
+    }
+    if (P->nouter == 0) {
+        st = GLPGP_FAIL(GLPGP_ERR_ARG,
+                        "the mask has no region of at least %g square pixels (only specks)",
+                        o.min_area);
+        goto done2;
+    }
+    for (int l = 0; l < nl; l++)
+        if (P->area[l] < 0 && P->parent[l] < 0) {
+            st = GLPGP_FAIL(GLPGP_ERR_NUMERIC, "contour: hole %d lies in no outer boundary", l);
+            goto done2;
+        }
+    *out = P;
+    P = NULL;
+
+done2:
+    free(frow0);
+    free(frow1);
+    free(prow0);
+    free(prow1);
+done:
+    glpgp_polygons_destroy(&P);
+    free(seen);
+    free(loops.a);
+    free(lstart.a);
+    free(c.pts.a);
+    free(c.next.a);
+    free(hid_a);
+    free(hid_b);
+    free(vid);
+    return st;
+}

@@ -1,0 +1,80 @@
+/* image/image.c: the plain-C half of the image I/O of glpgp/image.h: image buffers (create/destroy),
+ * the image-extension test, and, in builds without OpenImageIO, the stubs of
+ * glpgp_image_read/write that fail with "built without OpenImageIO". */
+#include "glpgp/util.h"
+#include "glpgp/image.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+glpgp_status glpgp_image_create(int w, int h, int nc, glpgp_image **out)
+{
+    if (!out) return GLPGP_FAIL(GLPGP_ERR_ARG, "glpgp_image_create: NULL output");
+    *out = NULL;
+    if (w <= 0 || h <= 0 || nc <= 0 || nc > 64)
+        return GLPGP_FAIL(GLPGP_ERR_ARG, "invalid image size %d x %d x %d", w, h, nc);
+    glpgp_image *im = NULL;
+    GLPGP_CHECK(glpgp_calloc(1, sizeof *im, &im));
+    size_t n = (size_t)w * (size_t)h;
+    if (n > ((size_t)-1) / sizeof(float) / (size_t)nc) {
+        free(im);
+        return GLPGP_FAIL(GLPGP_ERR_NOMEM, "image %d x %d x %d too large", w, h, nc);
+    }
+    glpgp_status st = glpgp_calloc(n * (size_t)nc, sizeof(float), &im->px);
+    if (st != GLPGP_OK) {
+        free(im);
+        glpgp_error_push_trace(__FILE__, __LINE__);
+        return st;
+    }
+    im->w = w;
+    im->h = h;
+    im->nc = nc;
+    im->alpha = nc == 4 || nc == 2 ? nc - 1 : -1;
+    *out = im;
+    return GLPGP_OK;
+}
+
+void glpgp_image_destroy(glpgp_image **im)
+{
+    if (!im || !*im) return;
+    free((*im)->px);
+    free(*im);
+    *im = NULL;
+}
+
+int glpgp_is_image_path(const char *path)
+{
+    static const char *const ext[] = {".png", ".tif", ".tiff", ".exr", ".jpg", ".jpeg", ".bmp",
+                                      ".pgm", ".ppm", ".pnm", ".tga", ".gif", ".webp", ".hdr",
+                                      NULL};
+    if (!path) return 0;
+    for (int k = 0; ext[k]; k++)
+        if (glpgp_has_ext(path, ext[k])) return 1;
+    return 0;
+}
+
+#ifndef GLPGP_HAVE_OIIO
+
+int glpgp_have_oiio(void) { return 0; }
+
+glpgp_status glpgp_image_read(const char *path, glpgp_image **out)
+{
+    if (out) *out = NULL;
+    return GLPGP_FAIL(GLPGP_ERR_UNSUPPORTED,
+                      "cannot read image '%s': glpgp was built without OpenImageIO", path);
+}
+
+glpgp_status glpgp_image_write(const char *path, const glpgp_image *im)
+{
+    (void)im;
+    return GLPGP_FAIL(GLPGP_ERR_UNSUPPORTED,
+                      "cannot write image '%s': glpgp was built without OpenImageIO", path);
+}
+
+int glpgp_image_path_writable(const char *path)
+{
+    (void)path;
+    return 0;
+}
+
+#endif

@@ -1,0 +1,450 @@
+/* image/render.c: the rasteriser of glpgp/image.h. One pass over the triangles fills
+ * every pixel whose centre lies in a triangle with the colour of the chosen
+ * kind (theta unwrapped per triangle, analytic anti-aliasing of the grid
+ * lines from the per-triangle gradient in pixels); then overlays: field
+ * arrows, the boundary (anti-aliased strokes through a coverage buffer, so
+ * joints are not drawn twice), captions with a 5x7 bitmap font. */
+#include "glpgp/image.h"
+#include "glpgp/phase.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+
+void glpgp_render_options_default(glpgp_render_options *o)
+{
+    o->size = 1024;
+    o->kind = GLPGP_IMAGE_GRID;
+    o->transparent = 0;
+    o->line_width = 0;
+    o->boundary = 1;
+    o->singular = 1;
+    o->margin = -1;
+}
+
+static const char *const kind_names[] = {"grid", "checker", "zabs", "field", "theta", NULL};
+
+int glpgp_image_kind_parse(const char *name)
+{
+    for (int k = 0; name && kind_names[k]; k++)
+        if (!strcmp(name, kind_names[k])) return k;
+    return -1;
+}
+
+const char *glpgp_image_kind_name(int kind)
+{
+    return kind >= 0 && kind <= GLPGP_IMAGE_THETA ? kind_names[kind] : "?";
+}
+
+/* ---- small helpers ------------------------------------------------------- */
+
+static double clamp01(double x) { return x < 0 ? 0 : x > 1 ? 1 : x; }
+
+/* composite colour c with coverage a over pixel p (straight RGBA) */
+static void over(float *p, const float c[3], double a)
+{
+    if (a <= 0) return;
+    if (a > 1) a = 1;
+    double pa = p[3];
+    double oa = a + pa * (1 - a);
+    if (oa <= 0) return;
+    for (int k = 0; k < 3; k++) p[k] = (float)((c[k] * a + p[k] * pa * (1 - a)) / oa);
+    p[3] = (float)oa;
+}
+
+/* Anti-aliased stroke of segment a-b (pixel coordinates) into a coverage
+ * buffer (max of coverages). */
+static void stroke(float *cov, int W, int H, double ax, double ay, double bx, double by, double width)
+{
+    double r = 0.5 * width + 1.0;
+    int x0 = (int)floor(fmin(ax, bx) - r), x1 = (int)ceil(fmax(ax, bx) + r);
+    int y0 = (int)floor(fmin(ay, by) - r), y1 = (int)ceil(fmax(ay, by) + r);
+    if (x0 < 0) x0 = 0;
+    if (y0 < 0) y0 = 0;
+    if (x1 > W - 1) x1 = W - 1;
+    if (y1 > H - 1) y1 = H - 1;
+    double dx = bx - ax, dy = by - ay, L2 = dx * dx + dy * dy;
+    for (int j = y0; j <= y1; j++)
+        for (int i = x0; i <= x1; i++) {
+            double px = i + 0.5, py = j + 0.5;
+            double t = L2 > 0 ? ((px - ax) * dx + (py - ay) * dy) / L2 : 0;
+            t = t < 0 ? 0 : t > 1 ? 1 : t;
+            double ex = ax + t * dx - px, ey = ay + t * dy - py;
+            double c = clamp01(0.5 * width + 0.5 - sqrt(ex * ex + ey * ey));
+            float *q = cov + (size_t)j * (size_t)W + (size_t)i;
+            if (c > *q) *q = (float)c;
+        }
+}
+
+static void apply_cov(glpgp_image *im, float *cov, const float c[3])
+{
+    size_t n = (size_t)im->w * (size_t)im->h;
+    for (size_t i = 0; i < n; i++)
+        if (cov[i] > 0) {
+            over(im->px + 4 * i, c, cov[i]);
+            cov[i] = 0;
+        }
+}
+
+/* Coverage of a grid line at theta t with gradient magnitude g (per pixel). */
+static double line_cov(double t, double g, double lw)
+{
+    if (!(g > 1e-12)) return 0;
+    double d = fabs(t - floor(t + 0.5)) / g;
+    double c = clamp01(0.5 * lw + 0.5 - d);
+    double mean = clamp01(lw * g); /* lines closer than a few pixels: average */
+    double blend = clamp01((g * (2 * lw + 2) - 0.5) * 2);
+    return c * (1 - blend) + mean * blend;
+}
+
+/* magma-like colour map on [0, 1] */
+static void heat(double x, float c[3])
+{
+    static const double st[6][3] = {{0.00, 0.00, 0.02}, {0.23, 0.06, 0.43}, {0.55, 0.16, 0.51},
+                                    {0.87, 0.30, 0.38}, {0.99, 0.64, 0.36}, {0.99, 0.99, 0.75}};
+    x = clamp01(x) * 5;
+    int k = (int)x;
+    if (k > 4) k = 4;
+    double f = x - k;
+    for (int q = 0; q < 3; q++) c[q] = (float)(st[k][q] * (1 - f) + st[k + 1][q] * f);
+}
+
+/* ---- main render ------------------------------------------------------------- */
+
+glpgp_status glpgp_render(const glpgp_mesh *m, const glpgp_result *r, const glpgp_render_options *opt,
+                          glpgp_image **out)
+{
+    if (!m || !r || !out) return GLPGP_FAIL(GLPGP_ERR_ARG, "glpgp_render: NULL argument");
+    *out = NULL;
+    if (r->nv != m->nv || r->nt != m->nt)
+        return GLPGP_FAIL(GLPGP_ERR_ARG, "render: result (%d vertices, %d triangles) does not match "
+                                         "the mesh (%d, %d)", r->nv, r->nt, m->nv, m->nt);
+    glpgp_render_options o;
+    if (opt)
+        o = *opt;
+    else
+        glpgp_render_options_default(&o);
+    if (o.size < 16 || o.size > 32768)
+        return GLPGP_FAIL(GLPGP_ERR_ARG, "image size %d out of range [16, 32768]", o.size);
+    if (o.kind < 0 || o.kind > GLPGP_IMAGE_THETA)
+        return GLPGP_FAIL(GLPGP_ERR_ARG, "unknown image kind %d", o.kind);
+    if (!r->osc[0].z || !r->osc[1].z) return GLPGP_FAIL(GLPGP_ERR_ARG, "render: result has no z");
+    double lw = o.line_width > 0 ? o.line_width : fmax(1.0, 1.5 * o.size / 1024.0);
+    int margin = o.margin >= 0 ? o.margin : o.size / 64;
+
+    double bw = m->bbox[2] - m->bbox[0], bh = m->bbox[3] - m->bbox[1];
+    double span = fmax(bw, bh);
+    if (!(span > 0)) return GLPGP_FAIL(GLPGP_ERR_ARG, "render: degenerate bounding box");
+    int inner = o.size - 2 * margin;
+    if (inner < 8) inner = 8;
+    double scale = inner / span;
+    int W = (int)ceil(bw * scale - 1e-9) + 2 * margin, H = (int)ceil(bh * scale - 1e-9) + 2 * margin;
+    if (W < 1) W = 1;
+    if (H < 1) H = 1;
+    double ox = m->bbox[0] - margin / scale, oy = m->bbox[3] + margin / scale; /* pixel (0,0) corner */
+
+    glpgp_image *im = NULL;
+    float *cov = NULL, *fld = NULL;
+    glpgp_status st = GLPGP_OK;
+    GLPGP_CHECK(glpgp_image_create(W, H, 4, &im));
+    GLPGP_CHECK_GOTO(st, glpgp_calloc((size_t)W * (size_t)H, sizeof(float), &cov), fail);
+    if (o.kind == GLPGP_IMAGE_FIELD) {
+        GLPGP_CHECK_GOTO(st, glpgp_malloc(2 * (size_t)W * (size_t)H, sizeof(float), &fld), fail);
+        for (size_t i = 0; i < 2 * (size_t)W * (size_t)H; i++) fld[i] = NAN;
+    }
+    if (!o.transparent)
+        for (size_t i = 0; i < (size_t)W * (size_t)H; i++)
+            im->px[4 * i] = im->px[4 * i + 1] = im->px[4 * i + 2] = im->px[4 * i + 3] = 1.0f;
+
+    static const float col_u[3] = {0.10f, 0.22f, 0.60f}, col_v[3] = {0.60f, 0.18f, 0.10f};
+    static const float col_red[3] = {0.90f, 0.05f, 0.05f};
+    const double *zu = r->osc[0].z, *zv = r->osc[1].z;
+
+    for (int t = 0; t < m->nt; t++) {
+        const int *tv = m->tri + 3 * t;
+        double P[3][2];
+        for (int k = 0; k < 3; k++) {
+            P[k][0] = (m->xy[2 * tv[k]] - ox) * scale;
+            P[k][1] = (oy - m->xy[2 * tv[k] + 1]) * scale;
+        }
+        double e1x = P[1][0] - P[0][0], e1y = P[1][1] - P[0][1];
+        double e2x = P[2][0] - P[0][0], e2y = P[2][1] - P[0][1];
+        double det = e1x * e2y - e2x * e1y;
+        if (fabs(det) < 1e-18) continue;
+        /* barycentric l1, l2 = inv * (p - P0); rows of inv = gradients */
+        double g1x = e2y / det, g1y = -e2x / det, g2x = -e1y / det, g2y = e1x / det;
+        /* unwrapped theta at the corners */
+        double th[2][3], za[2][3];
+        for (int q = 0; q < 2; q++) {
+            const double *z = q == 0 ? zu : zv;
+            double tc[3];
+            for (int k = 0; k < 3; k++) {
+                double br = z[2 * tv[k]], bi = z[2 * tv[k] + 1];
+                za[q][k] = hypot(br, bi);
+                tc[k] = glpgp_theta(br, bi);
+            }
+            glpgp_phase_chart(tc, th[q]); /* unwrapped around corner 0 */
+        }
+        double gu[2], gv[2], gnu, gnv;
+        gu[0] = (th[0][1] - th[0][0]) * g1x + (th[0][2] - th[0][0]) * g2x;
+        gu[1] = (th[0][1] - th[0][0]) * g1y + (th[0][2] - th[0][0]) * g2y;
+        gv[0] = (th[1][1] - th[1][0]) * g1x + (th[1][2] - th[1][0]) * g2x;
+        gv[1] = (th[1][1] - th[1][0]) * g1y + (th[1][2] - th[1][0]) * g2y;
+        gnu = hypot(gu[0], gu[1]);
+        gnv = hypot(gv[0], gv[1]);
+        int sing = (r->osc[0].singular && r->osc[0].singular[t]) ||
+                   (r->osc[1].singular && r->osc[1].singular[t]);
+
+        int x0 = (int)floor(fmin(P[0][0], fmin(P[1][0], P[2][0]))),
+            x1 = (int)ceil(fmax(P[0][0], fmax(P[1][0], P[2][0])));
+        int y0 = (int)floor(fmin(P[0][1], fmin(P[1][1], P[2][1]))),
+            y1 = (int)ceil(fmax(P[0][1], fmax(P[1][1], P[2][1])));
+        if (x0 < 0) x0 = 0;
+        if (y0 < 0) y0 = 0;
+        if (x1 > W - 1) x1 = W - 1;
+        if (y1 > H - 1) y1 = H - 1;
+        const double eps = -1e-9;
+        for (int j = y0; j <= y1; j++)
+            for (int i = x0; i <= x1; i++) {
+                double dx = i + 0.5 - P[0][0], dy = j + 0.5 - P[0][1];
+                double l1 = g1x * dx + g1y * dy, l2 = g2x * dx + g2y * dy, l0 = 1 - l1 - l2;
+                if (l0 < eps || l1 < eps || l2 < eps) continue;
+                float *p = im->px + 4 * ((size_t)j * (size_t)W + (size_t)i);
+                double tu = th[0][0] * l0 + th[0][1] * l1 + th[0][2] * l2;
+                double tvv = th[1][0] * l0 + th[1][1] * l1 + th[1][2] * l2;
+                float c[3];
+                switch (o.kind) {
+                case GLPGP_IMAGE_GRID: {
+                    /* theta is only known modulo 1, so cells cannot be told
+                     * apart: a light "pillow" shade, brightest at cell centres */
+                    double fu = tu - floor(tu) - 0.5, fv = tvv - floor(tvv) - 0.5;
+                    double sh = 1.0 - 0.12 * (fabs(fu) + fabs(fv));
+                    c[0] = (float)(1.00 * sh);
+                    c[1] = (float)(0.98 * sh);
+                    c[2] = (float)(0.93 * sh + 0.05 * (1 - sh));
+                    break;
+                }
+                case GLPGP_IMAGE_CHECKER: {
+                    /* 2 x 2 checker per unit cell (transitions at integer and
+                     * half-integer theta), anti-aliased over 0.75 px */
+                    double au = tu - floor(tu), av = tvv - floor(tvv);
+                    double su = au < 0.5 ? 1 : -1, sv = av < 0.5 ? 1 : -1;
+                    double du = gnu > 1e-12 ? fmin(fmin(au, 1 - au), fabs(au - 0.5)) / gnu : 1e9;
+                    double dv = gnv > 1e-12 ? fmin(fmin(av, 1 - av), fabs(av - 0.5)) / gnv : 1e9;
+                    double sg = su * sv * fmin(1.0, fmin(du, dv) / 0.75);
+                    double g = 0.5 + 0.5 * sg;
+                    c[0] = (float)(0.15 + 0.80 * g);
+                    c[1] = (float)(0.18 + 0.78 * g);
+                    c[2] = (float)(0.25 + 0.72 * g);
+                    break;
+                }
+                case GLPGP_IMAGE_ZABS: {
+                    double a = fmin(za[0][0] * l0 + za[0][1] * l1 + za[0][2] * l2,
+                                    za[1][0] * l0 + za[1][1] * l1 + za[1][2] * l2);
+                    heat(a, c);
+                    break;
+                }
+                case GLPGP_IMAGE_FIELD:
+                    c[0] = 0.97f, c[1] = 0.97f, c[2] = 0.95f;
+                    if (r->field) {
+                        size_t pi = (size_t)j * (size_t)W + (size_t)i;
+                        const double *U = r->field;
+                        fld[2 * pi] = (float)(U[2 * tv[0]] * l0 + U[2 * tv[1]] * l1 + U[2 * tv[2]] * l2);
+                        fld[2 * pi + 1] =
+                            (float)(U[2 * tv[0] + 1] * l0 + U[2 * tv[1] + 1] * l1 + U[2 * tv[2] + 1] * l2);
+                    }
+                    break;
+                default: /* THETA */
+                    c[0] = (float)(tu - floor(tu));
+                    c[1] = (float)(tvv - floor(tvv));
+                    c[2] = 0.5f;
+                    break;
+                }
+                p[0] = c[0], p[1] = c[1], p[2] = c[2], p[3] = 1.0f;
+                if (o.kind == GLPGP_IMAGE_GRID) {
+                    over(p, col_v, line_cov(tvv, gnv, lw));
+                    over(p, col_u, line_cov(tu, gnu, lw));
+                }
+                if (sing && o.singular && o.kind != GLPGP_IMAGE_ZABS) {
+                    p[0] = col_red[0], p[1] = col_red[1], p[2] = col_red[2];
+                }
+            }
+    }
+
+    /* singular triangles can be smaller than a pixel: mark each with a red dot */
+    if (o.singular && o.kind != GLPGP_IMAGE_ZABS) {
+        double rad = fmax(2.5, 1.5 * lw);
+        for (int t = 0; t < m->nt; t++) {
+            if (!((r->osc[0].singular && r->osc[0].singular[t]) ||
+                  (r->osc[1].singular && r->osc[1].singular[t])))
+                continue;
+            const int *tv = m->tri + 3 * t;
+            double cx = 0, cy = 0;
+            for (int k = 0; k < 3; k++) {
+                cx += (m->xy[2 * tv[k]] - ox) * scale / 3;
+                cy += (oy - m->xy[2 * tv[k] + 1]) * scale / 3;
+            }
+            stroke(cov, W, H, cx, cy, cx, cy, 2 * rad);
+        }
+        apply_cov(im, cov, col_red);
+    }
+
+    if (o.kind == GLPGP_IMAGE_FIELD && r->field) {
+        int step = o.size / 40 < 8 ? 8 : o.size / 40;
+        double len = 0.8 * step;
+        for (int j = step / 2; j < H; j += step)
+            for (int i = step / 2; i < W; i += step) {
+                size_t pi = (size_t)j * (size_t)W + (size_t)i;
+                double ux = fld[2 * pi], uy = fld[2 * pi + 1];
+                if (isnan(ux)) continue;
+                double n = hypot(ux, uy);
+                if (!(n > 1e-12)) continue;
+                ux /= n;
+                uy = -uy / n; /* pixel y points down */
+                double cx = i + 0.5, cy = j + 0.5;
+                double ax = cx - 0.5 * len * ux, ay = cy - 0.5 * len * uy;
+                double bx = cx + 0.5 * len * ux, by = cy + 0.5 * len * uy;
+                stroke(cov, W, H, ax, ay, bx, by, lw);
+                double hl = 0.3 * len;
+                for (int s = -1; s <= 1; s += 2) {
+                    double ca = cos(2.6), sa = s * sin(2.6);
+                    double hx = ux * ca - uy * sa, hy = ux * sa + uy * ca;
+                    stroke(cov, W, H, bx, by, bx + hl * hx, by + hl * hy, lw);
+                }
+            }
+        static const float col_arrow[3] = {0.08f, 0.18f, 0.50f};
+        apply_cov(im, cov, col_arrow);
+    }
+
+    if (o.boundary) {
+        for (int l = 0; l < m->nloops; l++) {
+            int s = m->loop_start[l], e = m->loop_start[l + 1];
+            for (int k = s; k < e; k++) {
+                int a = m->loop_vertices[k], b = m->loop_vertices[k + 1 < e ? k + 1 : s];
+                stroke(cov, W, H, (m->xy[2 * a] - ox) * scale, (oy - m->xy[2 * a + 1]) * scale,
+                       (m->xy[2 * b] - ox) * scale, (oy - m->xy[2 * b + 1]) * scale, fmax(1.5, lw * 1.3));
+            }
+        }
+        static const float col_b[3] = {0.12f, 0.12f, 0.12f};
+        apply_cov(im, cov, col_b);
+    }
+    free(cov);
+    free(fld);
+    *out = im;
+    return GLPGP_OK;
+fail:
+    free(cov);
+    free(fld);
+    glpgp_image_destroy(&im);
+    return st;
+}
+
+/* ---- font ------------------------------------------------------------------ */
+
+/* 5x7 glyphs, one byte per row (bit 4 = leftmost column). */
+static const char font_chars[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789+-:.,()/=_";
+static const unsigned char font_rows[][7] = {
+    {0x0E, 0x11, 0x11, 0x1F, 0x11, 0x11, 0x11}, {0x1E, 0x11, 0x11, 0x1E, 0x11, 0x11, 0x1E},
+    {0x0E, 0x11, 0x10, 0x10, 0x10, 0x11, 0x0E}, {0x1E, 0x11, 0x11, 0x11, 0x11, 0x11, 0x1E},
+    {0x1F, 0x10, 0x10, 0x1E, 0x10, 0x10, 0x1F}, {0x1F, 0x10, 0x10, 0x1E, 0x10, 0x10, 0x10},
+    {0x0E, 0x11, 0x10, 0x17, 0x11, 0x11, 0x0F}, {0x11, 0x11, 0x11, 0x1F, 0x11, 0x11, 0x11},
+    {0x0E, 0x04, 0x04, 0x04, 0x04, 0x04, 0x0E}, {0x07, 0x02, 0x02, 0x02, 0x02, 0x12, 0x0C},
+    {0x11, 0x12, 0x14, 0x18, 0x14, 0x12, 0x11}, {0x10, 0x10, 0x10, 0x10, 0x10, 0x10, 0x1F},
+    {0x11, 0x1B, 0x15, 0x15, 0x11, 0x11, 0x11}, {0x11, 0x11, 0x19, 0x15, 0x13, 0x11, 0x11},
+    {0x0E, 0x11, 0x11, 0x11, 0x11, 0x11, 0x0E}, {0x1E, 0x11, 0x11, 0x1E, 0x10, 0x10, 0x10},
+    {0x0E, 0x11, 0x11, 0x11, 0x15, 0x12, 0x0D}, {0x1E, 0x11, 0x11, 0x1E, 0x14, 0x12, 0x11},
+    {0x0F, 0x10, 0x10, 0x0E, 0x01, 0x01, 0x1E}, {0x1F, 0x04, 0x04, 0x04, 0x04, 0x04, 0x04},
+    {0x11, 0x11, 0x11, 0x11, 0x11, 0x11, 0x0E}, {0x11, 0x11, 0x11, 0x11, 0x11, 0x0A, 0x04},
+    {0x11, 0x11, 0x11, 0x15, 0x15, 0x15, 0x0A}, {0x11, 0x11, 0x0A, 0x04, 0x0A, 0x11, 0x11},
+    {0x11, 0x11, 0x0A, 0x04, 0x04, 0x04, 0x04}, {0x1F, 0x01, 0x02, 0x04, 0x08, 0x10, 0x1F},
+    {0x0E, 0x11, 0x13, 0x15, 0x19, 0x11, 0x0E}, {0x04, 0x0C, 0x04, 0x04, 0x04, 0x04, 0x0E},
+    {0x0E, 0x11, 0x01, 0x02, 0x04, 0x08, 0x1F}, {0x1F, 0x02, 0x04, 0x02, 0x01, 0x11, 0x0E},
+    {0x02, 0x06, 0x0A, 0x12, 0x1F, 0x02, 0x02}, {0x1F, 0x10, 0x1E, 0x01, 0x01, 0x11, 0x0E},
+    {0x06, 0x08, 0x10, 0x1E, 0x11, 0x11, 0x0E}, {0x1F, 0x01, 0x02, 0x04, 0x08, 0x08, 0x08},
+    {0x0E, 0x11, 0x11, 0x0E, 0x11, 0x11, 0x0E}, {0x0E, 0x11, 0x11, 0x0F, 0x01, 0x02, 0x0C},
+    {0x00, 0x04, 0x04, 0x1F, 0x04, 0x04, 0x00}, {0x00, 0x00, 0x00, 0x1F, 0x00, 0x00, 0x00},
+    {0x00, 0x0C, 0x0C, 0x00, 0x0C, 0x0C, 0x00}, {0x00, 0x00, 0x00, 0x00, 0x00, 0x0C, 0x0C},
+    {0x00, 0x00, 0x00, 0x00, 0x0C, 0x04, 0x08}, {0x02, 0x04, 0x08, 0x08, 0x08, 0x04, 0x02},
+    {0x08, 0x04, 0x02, 0x02, 0x02, 0x04, 0x08}, {0x00, 0x01, 0x02, 0x04, 0x08, 0x10, 0x00},
+    {0x00, 0x00, 0x1F, 0x00, 0x1F, 0x00, 0x00}, {0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x1F},
+};
+static const unsigned char font_box[7] = {0x1F, 0x11, 0x11, 0x11, 0x11, 0x11, 0x1F};
+
+int glpgp_draw_text(glpgp_image *im, int x, int y, int scale, const char *text, const float rgba[4])
+{
+    if (!im || !text || scale < 1 || (im->nc != 3 && im->nc != 4)) return 0;
+    int cx = x;
+    for (const char *s = text; *s; s++, cx += 6 * scale) {
+        char ch = *s;
+        if (ch >= 'a' && ch <= 'z') ch = (char)(ch - 'a' + 'A');
+        if (ch == ' ') continue;
+        const char *f = strchr(font_chars, ch);
+        const unsigned char *rows = f ? font_rows[f - font_chars] : font_box;
+        for (int ry = 0; ry < 7; ry++)
+            for (int rx = 0; rx < 5; rx++) {
+                if (!(rows[ry] & (0x10 >> rx))) continue;
+                for (int sy = 0; sy < scale; sy++)
+                    for (int sx = 0; sx < scale; sx++) {
+                        int px = cx + rx * scale + sx, py = y + ry * scale + sy;
+                        if (px < 0 || py < 0 || px >= im->w || py >= im->h) continue;
+                        float *p = im->px + (size_t)im->nc * ((size_t)py * (size_t)im->w + (size_t)px);
+                        if (im->nc == 4) {
+                            over(p, rgba, rgba[3]);
+                        } else {
+                            for (int k = 0; k < 3; k++) p[k] = p[k] * (1 - rgba[3]) + rgba[k] * rgba[3];
+                        }
+                    }
+            }
+    }
+    return cx - x;
+}
+
+/* ---- comparison figure -------------------------------------------------------- */
+
+glpgp_status glpgp_render_compare(const glpgp_mesh *m, const glpgp_result *const *r,
+                                  const char *const *labels, int n, const glpgp_render_options *opt,
+                                  glpgp_image **out)
+{
+    if (!m || !r || !out || n < 1 || n > 16)
+        return GLPGP_FAIL(GLPGP_ERR_ARG, "glpgp_render_compare: bad arguments");
+    *out = NULL;
+    glpgp_render_options o;
+    if (opt)
+        o = *opt;
+    else
+        glpgp_render_options_default(&o);
+    glpgp_image *panel[16] = {0};
+    glpgp_image *im = NULL;
+    glpgp_status st = GLPGP_OK;
+    for (int i = 0; i < n; i++) GLPGP_CHECK_GOTO(st, glpgp_render(m, r[i], &o, &panel[i]), fin);
+    int pw = panel[0]->w, ph = panel[0]->h;
+    int ts = o.size / 300 < 2 ? 2 : o.size / 300; /* font scale */
+    int cap = 2 * 9 * ts + 4 * ts + 8;
+    int gap = o.size / 64 < 2 ? 2 : o.size / 64;
+    int W = n * pw + (n - 1) * gap, H = ph + cap;
+    GLPGP_CHECK_GOTO(st, glpgp_image_create(W, H, 4, &im), fin);
+    if (!o.transparent)
+        for (size_t i = 0; i < 4 * (size_t)W * (size_t)H; i++) im->px[i] = 1.0f;
+    static const float ink[4] = {0.05f, 0.05f, 0.05f, 1.0f};
+    for (int k = 0; k < n; k++) {
+        int x0 = k * (pw + gap);
+        for (int j = 0; j < ph; j++)
+            memcpy(im->px + 4 * ((size_t)j * (size_t)W + (size_t)x0),
+                   panel[k]->px + 4 * (size_t)j * (size_t)pw, 4 * (size_t)pw * sizeof(float));
+        char line2[128];
+        snprintf(line2, sizeof line2, "U +%d -%d   V +%d -%d", r[k]->osc[0].plus, r[k]->osc[0].minus,
+                 r[k]->osc[1].plus, r[k]->osc[1].minus);
+        const char *l1 = labels && labels[k] ? labels[k] : "";
+        int w1 = 6 * ts * (int)strlen(l1), w2 = 6 * ts * (int)strlen(line2);
+        glpgp_draw_text(im, x0 + (pw - w1) / 2, ph + 4, ts, l1, ink);
+        glpgp_draw_text(im, x0 + (pw - w2) / 2, ph + 4 + 9 * ts + 2 * ts, ts, line2, ink);
+    }
+    *out = im;
+    im = NULL;
+fin:
+    for (int i = 0; i < n; i++) glpgp_image_destroy(&panel[i]);
+    glpgp_image_destroy(&im);
+    return st;
+}

@@ -1,0 +1,224 @@
+/* glpgp/image.h: pictures and image domains. Layer: image.
+ *  - image I/O: the C interface of the OpenImageIO shim (image/oiio_shim.cpp,
+ *    the only C++ file, which catches every exception); without OpenImageIO the
+ *    functions fail with GLPGP_ERR_UNSUPPORTED ("built without OpenImageIO").
+ *    Pixel buffers are float, row-major, the top row first, channels
+ *    interleaved;
+ *  - the software rasteriser of results (image/render.c): the paper's Fig. 4
+ *    grid texture and the other --image-kind views, side-by-side figures and a
+ *    built-in bitmap font;
+ *  - boundary polygons of a thresholded mask image (image/contour.c);
+ *  - triangle meshes of polygon domains through the Gmsh C API and the whole
+ *    mask image -> mesh pipeline (image/mask_mesh.c). */
+#ifndef GLPGP_IMAGE_H
+#define GLPGP_IMAGE_H
+
+#include "glpgp/mesh.h"
+#include "glpgp/result.h"
+#include "glpgp/status.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* An image in memory: w x h pixels, nc interleaved float channels. */
+typedef struct glpgp_image {
+    int w, h, nc;
+    int alpha;  /* index of the alpha channel, -1 when none */
+    float *px;  /* w * h * nc values; integer formats are scaled to [0, 1] */
+} glpgp_image;
+
+/* Whether this build has OpenImageIO (1) or not (0). */
+int glpgp_have_oiio(void);
+
+/* Read the first subimage of any format OpenImageIO reads (PNG, TIFF, EXR,
+ * JPEG, PNM, ...), any bit depth and channel count, converted to float.
+ * Unreadable or missing file -> GLPGP_ERR_IO; a zero-size image ->
+ * GLPGP_ERR_FORMAT; no OpenImageIO -> GLPGP_ERR_UNSUPPORTED. Free the result
+ * with glpgp_image_destroy. */
+glpgp_status glpgp_image_read(const char *path, glpgp_image **out);
+
+/* Write im to path; the format follows the extension (.png, .tif/.tiff,
+ * .exr, .jpg/.jpeg, .ppm, ... whatever OpenImageIO writes). im->px holds
+ * straight (not premultiplied) colour in [0, 1]; nc is 1 (grey), 3 (RGB) or
+ * 4 (RGBA, alpha last). 8-bit formats are written as UINT8 (PNG, JPEG,
+ * TIFF), EXR as HALF. A format without alpha (JPEG) gets the image composited
+ * over white. Atomic: written to "<stem>.tmp.<pid>.<ext>" in the same
+ * directory and renamed over path on success; on failure nothing is left and
+ * an existing path is untouched (GLPGP_ERR_IO; an unknown extension ->
+ * GLPGP_ERR_ARG). */
+glpgp_status glpgp_image_write(const char *path, const glpgp_image *im);
+
+/* Whether OpenImageIO can write files with the extension of path (0 without
+ * OpenImageIO). For validating command lines before a long computation. */
+int glpgp_image_path_writable(const char *path);
+
+/* Allocate a w x h x nc image filled with zeros (alpha = nc == 4 ? 3 : -1). */
+glpgp_status glpgp_image_create(int w, int h, int nc, glpgp_image **out);
+void glpgp_image_destroy(glpgp_image **im);
+
+/* Whether path ends in an image extension glpgp treats as a mask/picture
+ * (.png .tif .tiff .exr .jpg .jpeg .bmp .pgm .ppm .pnm .tga .gif .webp .hdr),
+ * case-insensitive. Independent of OpenImageIO being built in. */
+int glpgp_is_image_path(const char *path);
+
+
+/* ---- rasteriser (image/render.c) ------------------------------------------ */
+
+enum glpgp_image_kind {
+    GLPGP_IMAGE_GRID = 0, /* unit grid of (theta_u, theta_v): lines + light cell shading */
+    GLPGP_IMAGE_CHECKER,  /* checkerboard, 2 x 2 squares per unit cell (theta is known
+                             modulo 1 only, so whole cells cannot alternate) */
+    GLPGP_IMAGE_ZABS,     /* heat map of min(|z_u|, |z_v|) (0 black .. >= 1 yellow-white) */
+    GLPGP_IMAGE_FIELD,    /* arrows of the guiding field U on a light background */
+    GLPGP_IMAGE_THETA     /* raw colour map: red = theta_u, green = theta_v (mod 1) */
+};
+
+typedef struct glpgp_render_options {
+    int size;          /* pixels on the long side of the picture (default 1024) */
+    int kind;          /* GLPGP_IMAGE_* (default GRID) */
+    int transparent;   /* background: 0 white (default), 1 transparent */
+    double line_width; /* grid line width in pixels (<= 0: max(1, 1.5 size / 1024)) */
+    int boundary;      /* draw the domain boundary (default 1) */
+    int singular;      /* fill singular triangles (either oscillator) red and mark each
+                          with a red dot (they may be smaller than a pixel) (default 1;
+                          not used by the zabs kind, where they show as dark spots) */
+    int margin;        /* empty pixels around the domain (< 0: size / 64) */
+} glpgp_render_options;
+
+void glpgp_render_options_default(glpgp_render_options *o);
+
+/* Kind from its name ("grid", "checker", "zabs", "field", "theta"); -1 if unknown. */
+int glpgp_image_kind_parse(const char *name);
+const char *glpgp_image_kind_name(int kind);
+
+/* Render result r on mesh m: the domain's bounding box scaled to o->size
+ * pixels on the long side (plus margins), y up. Per pixel (centre sample),
+ * the containing triangle's theta_u, theta_v are interpolated linearly after
+ * unwrapping relative to its first corner (theta_k = theta_0 + arg(z_k /
+ * z_0) / 2 pi); grid lines where theta is an integer are anti-aliased with
+ * the screen-space distance |theta - round(theta)| / |grad theta| (pixels).
+ * Output: 4-channel straight RGBA image (alpha 0 outside the domain when
+ * transparent). */
+glpgp_status glpgp_render(const glpgp_mesh *m, const glpgp_result *r, const glpgp_render_options *o,
+                          glpgp_image **out);
+
+/* n results on the same mesh side by side (each panel rendered with o), with
+ * captions under each: labels[i] on the first line and the singularity
+ * counts "U +a -b  V +c -d" on the second. */
+glpgp_status glpgp_render_compare(const glpgp_mesh *m, const glpgp_result *const *r,
+                                  const char *const *labels, int n, const glpgp_render_options *o,
+                                  glpgp_image **out);
+
+/* Draw text with the built-in 5x7 font (A-Z, 0-9, + - : . , ( ) / = _ and
+ * space; lower case drawn as upper case, other characters as a box), each
+ * font pixel a scale x scale block, top-left corner at (x, y), composited
+ * over im (nc 3 or 4) with colour rgba. Returns the width drawn in pixels. */
+int glpgp_draw_text(glpgp_image *im, int x, int y, int scale, const char *text,
+                    const float rgba[4]);
+
+/* ---- mask contours (image/contour.c) --------------------------------------- */
+
+/* Closed polygons (the last point is not repeated). Loop l has the points
+ * xy[2*start[l] .. 2*start[l+1]). Outer loops run counter-clockwise (area > 0),
+ * holes clockwise (area < 0), i.e. the domain is on the left. */
+typedef struct glpgp_polygons {
+    int n;          /* number of loops */
+    int *start;     /* n + 1 offsets (in points) */
+    double *xy;     /* 2 * start[n] coordinates, physical units */
+    double *area;   /* n signed areas, physical units */
+    int *parent;    /* n: for a hole the outer loop containing it, -1 for outer loops */
+    int nouter, nholes;
+    double total_area; /* sum of the signed areas = area of the domain */
+} glpgp_polygons;
+
+typedef struct glpgp_contour_options {
+    double threshold;  /* a pixel is inside when value >= threshold (default 0.5) */
+    int invert;        /* inside when value < threshold instead (default 0) */
+    double min_area;   /* loops enclosing less than this many pixels^2 are dropped,
+                          holes filled (default 16) */
+    double tolerance;  /* Douglas-Peucker tolerance in pixels (default 0.5; 0: none) */
+    double pixel_size; /* physical size of one pixel (default 1) */
+} glpgp_contour_options;
+
+void glpgp_contour_options_default(glpgp_contour_options *o);
+
+/* Mask values of an image, one float per pixel: the alpha channel when the
+ * image has one that is not constant, else the luminance (Rec. 709 weights of
+ * R, G, B; the first channel for grey images). *out is malloc'ed (w*h). */
+glpgp_status glpgp_mask_values(const glpgp_image *im, float **out);
+
+/* Contours of the region {v >= threshold} (or {v < threshold} with invert)
+ * of the w x h mask v (row-major, top row first). Pixel (i, j) (column i, row
+ * j from the top) is the sample at x = (i + 1/2) s, y = (h - j - 1/2) s, with
+ * s = pixel_size; the image covers [0, w s] x [0, h s]. Outside the image
+ * counts as outside the domain, so a region touching the image border is
+ * closed half a pixel beyond the border pixels. Crossings are placed on the
+ * pixel-centre grid by linear interpolation of v (a binary mask gives
+ * midpoints; an anti-aliased one sub-pixel positions); ambiguous saddle cells
+ * are resolved by the mean of their four corners. Errors (GLPGP_ERR_ARG with a
+ * message for the user): no pixel inside ("empty mask"), every pixel inside,
+ * nothing left after dropping specks. */
+glpgp_status glpgp_contours(const float *v, int w, int h, const glpgp_contour_options *o,
+                            glpgp_polygons **out);
+
+void glpgp_polygons_destroy(glpgp_polygons **p);
+
+/* Douglas-Peucker simplification of one closed polygon in place: keeps the
+ * points needed so that every dropped point lies within tol of the kept
+ * polyline. *n is updated (it stays >= 3 when it was). Exposed for tests. */
+glpgp_status glpgp_simplify_closed(double *xy, int *n, double tol);
+
+/* ---- meshing polygons and masks (image/mask_mesh.c, Gmsh) ------------------ */
+
+typedef struct glpgp_mask_options {
+    glpgp_contour_options contour; /* threshold, invert, specks, tolerance, pixel size */
+    double mesh_size;  /* Gmsh's target size in physical units (<= 0: default); its
+                          meshes have a mean edge of about 0.7 mesh_size */
+    double quad_size;  /* the h the mesh is meant for (> 0 when known, e.g. solve --size);
+                          the default mesh size is h / 8, with h = quad_size or, when
+                          <= 0, the solver's default h = bounding-box diagonal / 20
+                          (so mesh size = diagonal / 160) */
+    int algorithm;     /* Gmsh Mesh.Algorithm: 6 frontal-Delaunay (default), 5 Delaunay,
+                          1 MeshAdapt, 8 frontal-Delaunay for quads is not allowed */
+} glpgp_mask_options;
+
+void glpgp_mask_options_default(glpgp_mask_options *o);
+
+/* What the pipeline found and did (for the CLI summary). */
+typedef struct glpgp_mask_info {
+    int width, height;    /* image size in pixels */
+    int nouter, nholes;   /* boundary loops kept */
+    int boundary_points;  /* polygon vertices handed to Gmsh */
+    double polygon_area;  /* area enclosed by the polygons (physical units) */
+    double mesh_size;     /* edge length used */
+    double seconds_read, seconds_contour, seconds_mesh;
+} glpgp_mask_info;
+
+/* Whether this build has the Gmsh C API (1) or not (0). */
+int glpgp_have_gmsh(void);
+
+/* The default mesh size for polygons p and a quad size h (<= 0: bounding-box
+ * diagonal / 20): h / 8. */
+double glpgp_mask_default_mesh_size(const glpgp_polygons *p, double quad_size);
+
+/* Mesh the polygons with Gmsh (geo kernel: points, lines, one curve loop per
+ * polygon, one plane surface per outer loop with its holes; uniform size
+ * mesh_size; Mesh.Algorithm algorithm, <= 0 for 6), then build the glpgp mesh
+ * with glpgp_mesh_create (validated). Gmsh prints nothing (General.Terminal
+ * = 0); every Gmsh error becomes GLPGP_ERR_MESH with Gmsh's last message. */
+glpgp_status glpgp_mesh_polygons(const glpgp_polygons *p, double mesh_size, int algorithm,
+                                 glpgp_mesh **out);
+
+/* Read the mask image at path, extract its contours and mesh them (see the
+ * option struct for the defaults). The Douglas-Peucker tolerance actually used
+ * is max(o->contour.tolerance, mesh_size / 20 in pixels): the boundary needs
+ * no detail finer than the mesh. info may be NULL. */
+glpgp_status glpgp_mask_mesh(const char *path, const glpgp_mask_options *o, glpgp_mesh **out,
+                             glpgp_mask_info *info);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif

@@ -1,0 +1,58 @@
+/* glpgp/mesh.h: planar triangle meshes: creation with validation (planarity
+ * is checked by the readers in glpgp/io.h, here: indices, degenerate
+ * triangles, non-manifold edges, orientation), boundary loops and outward
+ * boundary normals. Built-in shapes: glpgp/shapes.h. Layer: mesh. */
+#ifndef GLPGP_MESH_H
+#define GLPGP_MESH_H
+
+#include "glpgp/status.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct glpgp_mesh {
+    int nv;            /* vertices */
+    int nt;            /* triangles */
+    double *xy;        /* 2*nv coordinates */
+    int *tri;          /* 3*nt vertex indices, every triangle counter-clockwise */
+
+    /* Boundary (derived by glpgp_mesh_create). Loops are stored back to back in
+     * loop_vertices; loop l is loop_vertices[loop_start[l] .. loop_start[l+1]),
+     * ordered so the domain lies on the left (outer loop CCW, holes CW). Loop 0
+     * is the outer loop (largest |signed area|). */
+    int nloops;
+    int *loop_start;    /* nloops + 1 */
+    int *loop_vertices; /* loop_start[nloops] entries */
+    unsigned char *on_boundary; /* nv flags */
+    /* Per boundary vertex: outward unit normals of the boundary edge before
+     * (prev) and after (next) the vertex along its loop; zero for interior
+     * vertices. edge_normal_prev/next each hold 2*nv doubles. */
+    double *normal_prev;
+    double *normal_next;
+
+    double area;        /* total area */
+    double bbox[4];     /* xmin, ymin, xmax, ymax */
+    double mean_edge;   /* mean edge length */
+    int orientation_fixed; /* number of triangles flipped to make the mesh consistently CCW */
+} glpgp_mesh;
+
+/* Build a mesh from raw arrays (copied). Validates and normalises:
+ *  - nv >= 3, nt >= 1, indices in range, no repeated vertex in a triangle;
+ *  - no zero-area triangle (|area| <= 1e-14 * bbox diagonal^2) -> GLPGP_ERR_MESH;
+ *  - no edge shared by more than two triangles (non-manifold) -> GLPGP_ERR_MESH;
+ *  - orientation: each connected component is made consistent (triangles
+ *    flipped, counted in orientation_fixed) and then counter-clockwise;
+ *    a non-orientable configuration is rejected;
+ *  - vertices used by no triangle are rejected (they would have no equation);
+ *  - boundary vertices where the boundary is not a simple loop (pinched,
+ *    two boundary loops touching) -> GLPGP_ERR_MESH.
+ * Messages name the offending triangle/edge/vertex (0-based). */
+glpgp_status glpgp_mesh_create(int nv, const double *xy, int nt, const int *tri, glpgp_mesh **out);
+void glpgp_mesh_destroy(glpgp_mesh **m);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif

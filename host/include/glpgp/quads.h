@@ -1,0 +1,166 @@
+/* glpgp/quads.h: quad meshes from a finished GL-PGP solve: extraction of the
+ * quad mesh whose edges are the integer level lines of theta_u and theta_v
+ * (quads/extract.c), closing of the polygons left around dislocations and
+ * smoothing (quads/close.c), and the quality report (quads/quality.c:
+ * valences, scaled Jacobian, edge lengths, boundary distance). Reading and
+ * writing quad meshes and the report: glpgp/io.h. Layer: quads. */
+#ifndef GLPGP_QUADS_H
+#define GLPGP_QUADS_H
+
+#include <stdio.h>
+
+#include "glpgp/mesh.h"
+#include "glpgp/result.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* What glpgp_quadmesh_close_polygons and glpgp_quadmesh_smooth did. */
+typedef struct glpgp_quad_closing {
+    int closed_polygons;    /* odd faces (dislocation pentagons, ...) made quads */
+    int strips_to_boundary; /* of the strips: those that end on the boundary (else: on a second odd face) */
+    int strip_quads;        /* quads cut in two (or three, at a turn) along the strips */
+    int strip_turns;        /* strip turns (each adds a valence 3 and a valence 5 vertex) */
+    int split_even;         /* even polygons (hexagons, ...) split into quads */
+    int smoothed_vertices;  /* vertices moved by the smoothing */
+} glpgp_quad_closing;
+
+/* A polygon mesh of a planar domain, mostly quads. Faces are counter-clockwise
+ * and stored back to back: face f has the vertices
+ * face_vert[face_start[f] .. face_start[f+1]). */
+typedef struct glpgp_quadmesh {
+    int nv;
+    double *xy;         /* 2*nv */
+    int nf;
+    int *face_start;    /* nf + 1 */
+    int *face_vert;     /* face_start[nf] */
+    /* Extraction diagnostics (0 for meshes read from a file). */
+    int singular_tris[2];     /* triangles skipped as singular for u / v (given by the result) */
+    int inconsistent_tris[2]; /* triangles skipped because their chart did not close (rounding) */
+    int collapsed_edges;      /* short edges contracted during the clean-up */
+    int promoted_corners;     /* boundary vertices made face corners (3-gon -> quad) */
+    int split_pentagons;      /* boundary pentagons split into two or three quads */
+    int center_splits;        /* of those: three quads around a new centre vertex */
+    glpgp_quad_closing closing; /* set by glpgp_quadmesh_close_polygons / _smooth */
+} glpgp_quadmesh;
+
+/* Extract the quad mesh of a result on mesh m (r->osc[k].z, .dirichlet and
+ * .singular must match m; r->size is the target size h used by the clean-up
+ * thresholds, <= 0: glpgp_default_size(m)). Faces that are not quads (near
+ * unpaired singularities, or where the boundary cuts a cell) are kept as
+ * polygons so the mesh covers the domain without gaps
+ * (glpgp_quadmesh_close_polygons, or glpgp_quads_build, closes them). GLPGP_ERR_ARG on a
+ * size mismatch, GLPGP_ERR_FORMAT when r has no oscillators, GLPGP_ERR_NUMERIC
+ * when no face could be extracted. */
+glpgp_status glpgp_quads_extract(const glpgp_mesh *m, const glpgp_result *r,
+                                 glpgp_quadmesh **out);
+void glpgp_quadmesh_destroy(glpgp_quadmesh **q);
+
+/* All-quad refinement (one Catmull-Clark step without smoothing): every
+ * face with n corners becomes n quads joined at its vertex centroid, each
+ * edge is split at its midpoint (shared by both faces, so the result is
+ * conforming). Quads give 4 quads, an n-gon n quads around a new valence-n
+ * vertex, so the result has no non-quad face; the element size is halved
+ * (edges about h / 2). Midpoints of boundary edges lie on the chord, within
+ * the chord's sagitta of a curved domain boundary. The extraction
+ * diagnostics are copied. GLPGP_ERR_ARG on an empty mesh. */
+glpgp_status glpgp_quadmesh_subdivide(const glpgp_quadmesh *q, glpgp_quadmesh **out);
+
+/* Make the faces that are not quads into quads, at the same element size.
+ * Odd faces (a dislocation leaves a pentagon) are joined pairwise, or to
+ * the boundary, through the shortest strip of quads between them: every
+ * edge crossed gets its midpoint, the quads of the strip are cut in two
+ * along it, and both ends become even polygons that are split into quads
+ * (for a pentagon, through its T-junction vertex when possible, which leaves
+ * no irregular vertex). Even polygons are split directly; triangles are
+ * first merged with a neighbour, and so are the boundary quads whose
+ * boundary corner is nearly flat (150-180 deg) once that corner is dropped. A face whose
+ * strip would make a quad with a scaled Jacobian below 0.05 is kept (count:
+ * quality report). The strip statistics are set in *out, the extraction
+ * diagnostics copied. new_vertices (may be NULL): *new_vertices receives a
+ * calloc'ed flag per vertex of *out, 1 for the vertices added here (free()).
+ * The algorithm is described at the top of quads_pair.c. */
+glpgp_status glpgp_quadmesh_close_polygons(const glpgp_quadmesh *q, glpgp_quadmesh **out,
+                                           unsigned char **new_vertices);
+
+/* Quality-guarded smoothing: the interior vertices that are flagged in mark
+ * (may be NULL), or belong to a face whose smallest corner scaled Jacobian
+ * is below sj_below, and their edge neighbours, move 1/4, 1/2, 3/4 or all of
+ * the way to the mean of their edge neighbours: the step that most raises
+ * the worst corner of the faces around the vertex, and only if it raises it
+ * by 1e-3 (so good regions keep the positions given by the
+ * parametrization); at most `iterations` sweeps. Boundary vertices never
+ * move. *moved (may be NULL): vertices that moved. */
+glpgp_status glpgp_quadmesh_smooth(glpgp_quadmesh *q, const unsigned char *mark, int iterations,
+                                   double sj_below, int *moved);
+
+/* What glpgp_quads_build does after the extraction. */
+typedef struct glpgp_quad_options {
+    int keep_polygons;  /* 1: leave non-quad faces as they are (no strips) */
+    int smooth;         /* smoothing sweeps (0: none; default 20) */
+    double smooth_below;/* also smooth around faces with scaled Jacobian below this (default 0.5) */
+    int all_quads;      /* 1: one Catmull-Clark step at the end (h halves) */
+} glpgp_quad_options;
+
+/* The defaults: strips on, 20 smoothing sweeps, smooth_below 0.5, no refinement. */
+void glpgp_quad_options_default(glpgp_quad_options *o);
+
+/* Extraction + closing of the polygons + smoothing (+ refinement), as the
+ * CLI does it. *h: in: the target size, out: the size the mesh is made for
+ * (halved by all_quads). o = NULL: the defaults. */
+glpgp_status glpgp_quads_build(const glpgp_mesh *m, const glpgp_result *r, const glpgp_quad_options *o,
+                               glpgp_quadmesh **out, double *h);
+
+#define GLPGP_QUAD_MAXVAL 8 /* valence histogram bins 0..MAXVAL (last: >= MAXVAL) */
+
+/* Quality report of a polygon mesh (see glpgp_quads_quality). */
+typedef struct glpgp_quad_quality {
+    int vertices, faces, quads, others; /* others = faces with != 4 corners */
+    int others_by_size[8];              /* 3, 4(unused), 5, ... 9+ corners: index n-3 capped at 7 (index 1 unused) */
+    int valence_interior[GLPGP_QUAD_MAXVAL + 1];
+    int valence_boundary[GLPGP_QUAD_MAXVAL + 1];
+    int irregular_interior;  /* interior vertices with valence != 4 */
+    int irregular_boundary;  /* boundary vertices with valence != ideal (from the boundary angle) */
+    int irregular;           /* sum of both */
+    double sj_min, sj_mean, sj_p01; /* scaled Jacobian of the quads (min over corners) */
+    int inverted;            /* faces with area <= 0 or a quad corner with scaled Jacobian < 0 */
+    int degenerate;          /* faces with a repeated vertex, a zero-length edge or ~zero area */
+    int edges, boundary_edges, nonmanifold_edges; /* nonmanifold: edges used by > 2 faces */
+    double len_mean, len_min, len_max; /* edge length / h */
+    double area, domain_area; /* total face area; domain area (0 when no domain given) */
+    double hausdorff;        /* max of the two one-sided distances below, in units of h
+                              * (-1 when no domain given) */
+    double dist_quad_to_domain, dist_domain_to_quad;
+    double gap_edges;        /* boundary edges of the quad mesh farther than h/4 from the
+                              * domain boundary (holes in the quad mesh); -1 without domain */
+    double h;
+    int singular[2];         /* singular triangles of the solve (u, v), -1 if unknown */
+    glpgp_quad_closing closing; /* copied from the mesh (0 when it was not closed) */
+} glpgp_quad_quality;
+
+/* Compute the quality report of q for target size h (> 0). domain (may be
+ * NULL) is the triangle mesh whose boundary the quads should reproduce: it
+ * gives the Hausdorff distances and domain_area. Ideal boundary valence: a
+ * boundary vertex whose quad-mesh interior angle is a is regular when its
+ * valence is round(a / 90 deg) + 1 (3 on a straight boundary, 2 at a convex
+ * right-angle corner). */
+glpgp_status glpgp_quads_quality(const glpgp_quadmesh *q, const glpgp_mesh *domain, double h,
+                                 glpgp_quad_quality *out);
+
+/* Print the report as a short human-readable block (each line prefixed). */
+void glpgp_quads_print(FILE *f, const glpgp_quad_quality *qq, const char *prefix);
+
+/* Valence (number of distinct edges) of every vertex of q: *val is a
+ * calloc'ed array of q->nv + 1 ints (free()). */
+glpgp_status glpgp_quadmesh_valences(const glpgp_quadmesh *q, int **val);
+
+/* Smallest corner scaled Jacobian of face f (1 for a rectangle; <= 0 at a
+ * flat or reflex corner; -1 at a zero-length side). */
+double glpgp_quad_face_sj(const glpgp_quadmesh *q, int f);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif

@@ -1,0 +1,73 @@
+/* glpgp/result.h: the result of a solve: the guiding field, and per
+ * oscillator (u, v) its values z, Dirichlet set, singular triangles, |z|
+ * statistics, iteration counts and the per-eps-level statistics of the
+ * continuation. Produced by glpgp_solve (glpgp/solve.h) or read back from a
+ * result file (glpgp/io.h). Layer: solver. */
+#ifndef GLPGP_RESULT_H
+#define GLPGP_RESULT_H
+
+#include "glpgp/mesh.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#define GLPGP_MAX_LEVELS 32
+
+typedef struct glpgp_level_stats {
+    double eps;
+    int newton;          /* Newton iterations at this level */
+    long cg;             /* CG iterations at this level */
+    double grad0, grad;  /* gradient norm at start / end */
+    double energy;       /* E + P at the end */
+    double median_zabs;
+    int restarted;       /* the level collapsed (median |z| < collapse_zabs) and was restarted */
+    int fallbacks;       /* Newton steps redone with a safer Hessian */
+    int capped;          /* the level stopped at newton_max with |g| above its tolerance */
+    double rtol;         /* the level's tolerance |g| <= rtol |g0| */
+} glpgp_level_stats;
+
+typedef struct glpgp_osc_result {
+    double *z;                 /* 2*nv: Re, Im per vertex */
+    unsigned char *dirichlet;  /* nv flags */
+    int n_dirichlet;
+    signed char *singular;     /* nt: winding -1, 0, +1 */
+    int plus, minus;           /* singular triangle counts */
+    double zabs_min, zabs_p10, zabs_median;
+    double energy;             /* final E (quadratic part) */
+    int newton_iterations;     /* total over levels */
+    long cg_iterations;        /* total, including the naive/initial solve */
+    int nlevels;
+    glpgp_level_stats level[GLPGP_MAX_LEVELS];
+    int capped_levels;         /* levels that stopped at the Newton cap */
+    double seconds;
+} glpgp_osc_result;
+
+typedef struct glpgp_result {
+    int nv, nt;
+    double size;               /* h actually used */
+    double *field;             /* 2*nv: U (V = U rotated by +90 degrees) */
+    glpgp_osc_result osc[2];   /* 0: u, 1: v */
+    const char *backend;       /* backend name (static string) */
+    double seconds_setup, seconds_field, seconds_total;
+    long field_cg_iterations;
+} glpgp_result;
+
+/* A zeroed result for nv vertices and nt triangles with field, z,
+ * dirichlet and singular arrays allocated (zeros). */
+glpgp_status glpgp_result_create(int nv, int nt, glpgp_result **out);
+void glpgp_result_destroy(glpgp_result **r);
+
+/* Per-triangle windings of z (2*nv) into sing (nt, may be NULL); counts into
+ * *plus, *minus (glpgp/phase.h conventions). */
+void glpgp_singularities(const glpgp_mesh *m, const double *z, signed char *sing, int *plus,
+                         int *minus);
+
+/* Recompute o->singular, plus, minus and the |z| statistics from o->z. */
+glpgp_status glpgp_osc_summarize(const glpgp_mesh *m, glpgp_osc_result *o);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif

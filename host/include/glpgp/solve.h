@@ -1,0 +1,152 @@
+/* glpgp/solve.h: the GL-PGP pipeline on one mesh, backend-agnostic (it
+ * drives a glpgp_backend through glpgp/backend.h):
+ *   guiding field (solver/field.c), Dirichlet sets (solver/dirichlet.c),
+ *   naive PGP or the Ginzburg-Landau Newton continuation in eps for the two
+ *   oscillators z_u, z_v (solver/continuation.c, solver/newton.c, with the
+ *   one PCG of solver/cg.c), singularities and statistics (glpgp/result.h).
+ * Every number the drivers use is a member of glpgp_options, documented and
+ * defaulted by glpgp_options_default. Progress and warnings go through the
+ * log callback of glpgp/status.h. Layer: solver. */
+#ifndef GLPGP_SOLVE_H
+#define GLPGP_SOLVE_H
+
+#include "glpgp/backend.h"
+#include "glpgp/kinds.h" /* GLPGP_ELEM_* and GLPGP_HESS_* */
+#include "glpgp/result.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+enum glpgp_method { GLPGP_METHOD_GL = 0, GLPGP_METHOD_PGP = 1 };
+enum glpgp_field { GLPGP_FIELD_BOUNDARY = 0, GLPGP_FIELD_RADIAL = 1, GLPGP_FIELD_FILE = 2 };
+enum glpgp_init { GLPGP_INIT_NAIVE = 0, GLPGP_INIT_ONE = 1 };
+
+/* Every parameter of a solve (defaults in brackets). */
+typedef struct glpgp_options {
+    /* what is solved */
+    double size;          /* target quad size h; <= 0: glpgp_default_size() [0] */
+    int method;           /* GLPGP_METHOD_* [GL] */
+    int energy;           /* GLPGP_ELEM_P1 or GLPGP_ELEM_TRANSPORT [P1] */
+    int hess;             /* GLPGP_HESS_MIXED, _PROJECTED or _PAPER [MIXED] */
+    int field;            /* GLPGP_FIELD_* [BOUNDARY] */
+    const char *field_file; /* for GLPGP_FIELD_FILE: one "ux uy" line per vertex [NULL] */
+    int has_center;       /* radial field centre given (else: area centroid) [0] */
+    double center[2];
+    int init;             /* initial guess of GL: GLPGP_INIT_NAIVE or ONE [NAIVE] */
+
+    /* eps continuation */
+    double eps0;          /* first eps as a multiple of h [0.5] */
+    double eps_ratio;     /* eps_{k+1} = ratio * eps_k [0.5] */
+    double eps_min;       /* last eps as a multiple of the mean edge length [2.5] */
+    double eps_merge;     /* a last level within this factor of the previous one is
+                             dropped (the previous one is lowered to eps_min) [1.25] */
+    double collapse_zabs; /* a level ending with median |z| below this is restarted
+                             once from z = 1 [0.5] */
+
+    /* Newton */
+    double newton_rtol;   /* stop the last level when |g| <= rtol |g_0| [1e-6] */
+    double intermediate_rtol; /* levels before the last stop at max(newton_rtol, this) [1e-3] */
+    int newton_max;       /* Newton iterations cap per eps level [50] */
+    double exact_switch;  /* `mixed` tries the exact Hessian once |g| <= this |g_0| after a
+                             full step without fallback [0.05] */
+    int exact_cooldown;   /* steps `mixed` waits after a failed exact attempt [5] */
+    double armijo;        /* line search: accept F(x + a d) <= F + armijo a g.d [1e-4] */
+    int max_backtracks;   /* line search halvings before the step is given up [40] */
+    double forcing;       /* inexact Newton: CG tolerance eta = forcing |g| / |g_0| ... [0.1] */
+    double forcing_max;   /* ... clamped to [cg_rtol, forcing_max] [1e-2] */
+
+    /* CG */
+    double cg_rtol;       /* CG: |r| <= rtol |b| [1e-8] */
+    int cg_max;           /* CG iteration cap [20000] */
+    int cg_check;         /* read the residual back every k iterations [10] */
+
+    /* default h (glpgp_default_size) */
+    double size_diag_div; /* h = bounding-box diagonal / this ... [20] */
+    double size_min_edges;/* ... raised to this many mean edges [10] */
+} glpgp_options;
+
+/* Fill the documented defaults. */
+void glpgp_options_default(glpgp_options *o);
+
+/* Check the values (ranges as documented; GLPGP_ERR_ARG naming the member). */
+glpgp_status glpgp_options_check(const glpgp_options *o);
+
+/* Run the whole pipeline on mesh m with backend b (already created; setup is
+ * done here). On success *out holds the result (free with
+ * glpgp_result_destroy). Progress: glpgp_log at GLPGP_LOG_INFO; a level that
+ * stops at the Newton cap is flagged (level[].capped, capped_levels) and
+ * logged as a warning. */
+glpgp_status glpgp_solve(const glpgp_mesh *m, glpgp_backend *b, const glpgp_options *o,
+                         glpgp_result **out);
+
+/* Default h for a mesh: diagonal of its bounding box / size_diag_div, raised
+ * to size_min_edges mean edge lengths when the mesh is too coarse for that
+ * (o NULL: the defaults). */
+double glpgp_default_size(const glpgp_mesh *m, const glpgp_options *o);
+
+/* The eps schedule for mesh m and size h: eps0 h, times eps_ratio, down to
+ * eps_min mean edges (a last level within eps_merge of the previous one is
+ * merged). Returns the number of levels (<= GLPGP_MAX_LEVELS). */
+int glpgp_eps_schedule(const glpgp_mesh *m, const glpgp_options *o, double h,
+                       double eps[GLPGP_MAX_LEVELS]);
+
+/* ---- lower-level pieces, exposed for tests, crosscheck and the benchmark ---- */
+
+/* Guiding field U (2*nv) for option o (boundary/radial/file). */
+glpgp_status glpgp_field_compute(const glpgp_mesh *m, glpgp_backend *b, const glpgp_options *o,
+                                 double *u, long *cg_iterations);
+/* Dirichlet flags of oscillator field w (2*nv): boundary vertices where, for
+ * one of the two adjacent boundary edges, |w.n| >= |w.t|. Returns the count. */
+int glpgp_dirichlet_set(const glpgp_mesh *m, const double *w, unsigned char *dir);
+
+/* State of the Newton iteration at one eps level (vectors of 2*nv doubles). */
+typedef struct glpgp_newton_state {
+    glpgp_vec *x;    /* iterate (updated by a step) */
+    glpgp_vec *g;    /* gradient of E + P at x (input of a step) */
+    glpgp_vec *d, *xt, *work; /* scratch */
+    double grad0;    /* |g| at the start of the level */
+    int near;        /* exact-Hessian switch of `mixed` (start at 0) */
+    int cooldown;    /* steps left before `mixed` may try the exact Hessian again */
+} glpgp_newton_state;
+
+typedef struct glpgp_newton_step_info {
+    int cg;          /* CG iterations (all attempts) */
+    int fallbacks;   /* Hessians abandoned for a safer one */
+    int accepted;    /* the line search found a descent step */
+    double alpha;    /* accepted step length (0 when none) */
+    double energy;   /* E + P at the new x */
+} glpgp_newton_step_info;
+
+/* One modified Newton step at x: assemble (H_E + H~_P(x)), solve it by PCG to
+ * the inexact-Newton tolerance, backtrack on E + P, update x. Needs QUAD
+ * assembled and s->g = grad(E+P)(x) with F = (E+P)(x) and gn = |g|. */
+glpgp_status glpgp_newton_step(glpgp_backend *b, const glpgp_options *o, glpgp_newton_state *s,
+                               double inv4e2, double F, double gn, glpgp_newton_step_info *info);
+
+/* Why a CG run stopped. */
+typedef enum glpgp_cg_reason {
+    GLPGP_CG_CONVERGED = 0, /* |r| <= rtol |b| (or b = 0) */
+    GLPGP_CG_MAXIT,         /* the iteration cap was reached */
+    GLPGP_CG_BREAKDOWN      /* p.Ap <= 0 or a non-finite residual: not SPD */
+} glpgp_cg_reason;
+
+/* Outcome of one CG run. */
+typedef struct glpgp_cg_info {
+    int iterations;
+    double relres;          /* |r| / |b| at the last check */
+    glpgp_cg_reason reason;
+} glpgp_cg_info;
+
+/* Jacobi-PCG on the backend's NEWTON matrix: solves NEWTON x = rhs from x = 0.
+ * A breakdown or the cap is not an error: it is reported in info->reason
+ * (GLPGP_OK returned); errors are backend failures and a non-finite rhs.
+ * Work vectors are created and destroyed inside. */
+glpgp_status glpgp_cg(glpgp_backend *b, const glpgp_vec *rhs, glpgp_vec *x, double rtol,
+                      int maxit, int check, glpgp_cg_info *info);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif

@@ -1,0 +1,1185 @@
+/* quads_pair.c: turning the polygon faces left by the extraction into quads
+ * without changing the element size (glpgp_quadmesh_close_polygons), and a
+ * quality-guarded smoothing of chosen vertices (glpgp_quadmesh_smooth).
+ *
+ * Why pairing: a dislocation of one family (an integer line that ends
+ * inside the domain) leaves an odd face, usually a pentagon whose corners
+ * are regular except the T-junction vertex T (valence 3) where the line
+ * ends. Every face of an all-quad mesh has 4 corners, so sum(corners) over
+ * the faces is even; an odd face can therefore not be split into quads on
+ * its own. It can if one more vertex is put on one of its edges, which adds
+ * a corner to the face on the other side too; repeating this along a strip
+ * of quads moves the odd parity until it reaches another odd face or the
+ * domain boundary (a new vertex on a boundary edge belongs to one face
+ * only), where it disappears. That is a path in the dual graph:
+ *
+ *   f0 (odd) -e1- q1 -e2- q2 ... qk -e(k+1)- g (odd face, or the boundary)
+ *
+ * Every crossed edge e_i gets its midpoint m_i; then
+ *   - a quad entered and left through opposite edges is cut in two by the
+ *     segment m_in m_out (two quads, both new vertices regular);
+ *   - a quad entered and left through adjacent edges (a turn around the
+ *     corner B they share) becomes three quads around a new vertex X joined
+ *     to m_in, m_out and the corner D opposite B (X gets valence 3, D one
+ *     more edge: a 3-5 pair, so turns are avoided when possible);
+ *   - an odd face with one extra corner is even and is split into quads
+ *     (best minimum scaled Jacobian over all splits into quads by
+ *     diagonals, dynamic programming; a hexagon may also become three
+ *     quads around a centre vertex).
+ * For a pentagon the preferred crossing edge is the one opposite T: the
+ * hexagon's diagonal m - T then splits it into two quads and gives T its
+ * fourth edge, so the line that ended at T is continued through the strip
+ * and no irregular vertex is left at all.
+ *
+ * Paths are shortest paths (Dijkstra over (face, entry edge) states) with
+ * costs: 1 per quad cut (more when its halves get thinner than h/2),
+ * TURN_COST per turn, and per end 2 for each irregular vertex the end's
+ * split adds (-2 for each it removes) plus a penalty for a poor split
+ * (end_cost). The nearest target (odd face or boundary) wins.
+ * Paths of one round use disjoint faces (a midpoint changes exactly the two
+ * faces of its edge, both on the path), so they are applied together; the
+ * adjacency is rebuilt between rounds. A path whose new quads would have a
+ * scaled Jacobian below MIN_SJ is not applied and the odd face stays (it is
+ * then reported as a polygon).
+ *
+ * Before the strips: even polygons (hexagons, ...) are split directly;
+ * triangles, which a midpoint cannot fix (the quad would have a flat corner
+ * at it), are merged with a neighbour (merge_triangle): with an odd one the
+ * union is even and split at once, with a quad it is a pentagon for the
+ * strips. The same is tried for the quads the extraction made from a
+ * boundary triangle by promoting a boundary vertex to a corner when that
+ * corner is nearly flat (150 to 180 degrees, a gently curved boundary): the
+ * vertex is dropped again if the triangle left can be merged.
+ *
+ * After the closing, glpgp_quadmesh_smooth (bottom of this file) moves the
+ * new vertices, their neighbours and the vertices of poor quads, each to the
+ * step towards its neighbours' mean that most raises the worst nearby
+ * corner.
+ */
+#include "glpgp/quads.h"
+#include "geom.h"
+#include "glpgp/status.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define TURN_COST 4.0      /* two irregular vertices */
+#define MIN_SJ 0.05        /* smallest scaled Jacobian accepted for a new quad */
+#define MAX_ROUNDS 32
+
+/* ---- growable polygon soup ---------------------------------------------- */
+
+typedef struct psoup {
+    int nv, cap_v;
+    double *xy;
+    int nf, cap_f;
+    int *fs, *fn; /* face start in fv, corner count; fn = 0: deleted */
+    int nfv, cap_fv;
+    int *fv;
+} psoup;
+
+static glpgp_status grow(void **p, int *cap, int need, size_t elem)
+{
+    if (need <= *cap) return GLPGP_OK;
+    int c = *cap ? *cap : 64;
+    while (c < need) c *= 2;
+    void *n = realloc(*p, (size_t)c * elem);
+    if (!n) return GLPGP_FAIL(GLPGP_ERR_NOMEM, "quad pairing: out of memory");
+    *p = n;
+    *cap = c;
+    return GLPGP_OK;
+}
+
+static glpgp_status soup_vertex(psoup *s, double x, double y, int *id)
+{
+    glpgp_status st = grow((void **)&s->xy, &s->cap_v, 2 * (s->nv + 1), sizeof(double));
+    if (st != GLPGP_OK) return st;
+    s->xy[2 * s->nv] = x;
+    s->xy[2 * s->nv + 1] = y;
+    *id = s->nv++;
+    return GLPGP_OK;
+}
+
+/* Append a face (n corners v[]); *id (may be NULL) receives its index. */
+static glpgp_status soup_face(psoup *s, const int *v, int n, int *id)
+{
+    glpgp_status st = grow((void **)&s->fv, &s->cap_fv, s->nfv + n, sizeof(int));
+    if (st != GLPGP_OK) return st;
+    if (s->nf + 1 > s->cap_f) {
+        int c = s->cap_f ? 2 * s->cap_f : 64;
+        int *a = realloc(s->fs, (size_t)c * sizeof(int));
+        if (a) s->fs = a;
+        int *b = a ? realloc(s->fn, (size_t)c * sizeof(int)) : NULL;
+        if (!b) return GLPGP_FAIL(GLPGP_ERR_NOMEM, "quad pairing: out of memory");
+        s->fn = b;
+        s->cap_f = c;
+    }
+    memcpy(s->fv + s->nfv, v, (size_t)n * sizeof(int));
+    s->fs[s->nf] = s->nfv;
+    s->fn[s->nf] = n;
+    s->nfv += n;
+    if (id) *id = s->nf;
+    s->nf++;
+    return GLPGP_OK;
+}
+
+static void soup_free(psoup *s)
+{
+    free(s->xy);
+    free(s->fs);
+    free(s->fn);
+    free(s->fv);
+    memset(s, 0, sizeof *s);
+}
+
+/* ---- splitting an even polygon into quads ---------------------------- */
+
+#define QMAXN 16 /* largest polygon split by the dynamic programme */
+
+/* best[i][j]: best minimum scaled Jacobian of a split of the sub-polygon
+ * p[i], p[i+1], ..., p[j] (closed by the chord j -> i) into quads;
+ * choice[i][j] = a * QMAXN + b for its quad (p[i], p[a], p[b], p[j]). */
+typedef struct qdp {
+    double best[QMAXN][QMAXN];
+    int choice[QMAXN][QMAXN];
+} qdp;
+
+static double qdp_solve(qdp *D, const double *xy, const int *p, int i, int j)
+{
+    if (j - i < 3) return INFINITY; /* an edge (j = i + 1): nothing to split */
+    if (D->choice[i][j] != -2) return D->best[i][j];
+    double best = -INFINITY;
+    int ch = -1;
+    /* the quad on chord (i, j): (i, a, b, j), with i..a, a..b, b..j of
+     * even length (odd vertex count difference) */
+    for (int a = i + 1; a < j - 1; a += 2)
+        for (int b = a + 1; b < j; b += 2) {
+            int q[4] = {p[i], p[a], p[b], p[j]};
+            double s = glpgp_poly_min_sj(xy, q, 4);
+            if (s <= best) continue;
+            s = fmin(s, qdp_solve(D, xy, p, i, a));
+            if (s <= best) continue;
+            s = fmin(s, qdp_solve(D, xy, p, a, b));
+            if (s <= best) continue;
+            s = fmin(s, qdp_solve(D, xy, p, b, j));
+            if (s > best) {
+                best = s;
+                ch = a * QMAXN + b;
+            }
+        }
+    D->best[i][j] = best;
+    D->choice[i][j] = ch;
+    return best;
+}
+
+static int qdp_emit(const qdp *D, const int *p, int i, int j, int *out, int w)
+{
+    if (j - i < 3) return w;
+    int a = D->choice[i][j] / QMAXN, b = D->choice[i][j] % QMAXN;
+    out[w++] = p[i];
+    out[w++] = p[a];
+    out[w++] = p[b];
+    out[w++] = p[j];
+    w = qdp_emit(D, p, i, a, out, w);
+    w = qdp_emit(D, p, a, b, out, w);
+    return qdp_emit(D, p, b, j, out, w);
+}
+
+/* A split of the even polygon p[0..n) (n >= 4) into quads: *nq quads in
+ * out[0 .. 4 nq), new vertices (a hexagon's centre) added to s. pref >= 0:
+ * the hexagon diagonal (pref, pref + 3) is taken when its quads reach 0.3
+ * (it gives the T vertex of a pentagon its fourth edge). Returns the
+ * minimum scaled Jacobian of the result (-inf: no split). */
+static glpgp_status split_even(psoup *s, const int *p, int n, int pref, int *out, int *nq, double *sj)
+{
+    *nq = 0;
+    *sj = -INFINITY;
+    if (n == 4) {
+        memcpy(out, p, 4 * sizeof(int));
+        *nq = 1;
+        *sj = glpgp_poly_min_sj(s->xy, p, 4);
+        return GLPGP_OK;
+    }
+    if (n < 4 || n > QMAXN || n % 2) return GLPGP_OK;
+    if (n == 6 && pref >= 0) {
+        int qa[4], qb[4];
+        for (int k = 0; k < 4; k++) {
+            qa[k] = p[(pref + k) % 6];
+            qb[k] = p[(pref + 3 + k) % 6];
+        }
+        double v = fmin(glpgp_poly_min_sj(s->xy, qa, 4), glpgp_poly_min_sj(s->xy, qb, 4));
+        if (v >= 0.3) {
+            memcpy(out, qa, sizeof qa);
+            memcpy(out + 4, qb, sizeof qb);
+            *nq = 2;
+            *sj = v;
+            return GLPGP_OK;
+        }
+    }
+    qdp *D = malloc(sizeof *D);
+    if (!D) return GLPGP_FAIL(GLPGP_ERR_NOMEM, "quad pairing: out of memory");
+    /* try every rotation's chord (0, n-1) is the closing edge p[n-1] -> p[0],
+     * which must be a quad side: one DP covers all splits */
+    for (int i = 0; i < QMAXN; i++)
+        for (int j = 0; j < QMAXN; j++) D->choice[i][j] = -2;
+    double best = qdp_solve(D, s->xy, p, 0, n - 1);
+    if (best > -INFINITY) {
+        *nq = qdp_emit(D, p, 0, n - 1, out, 0) / 4;
+        *sj = best;
+    }
+    free(D);
+    if (n == 6 && best < 0.5) {
+        /* three quads around a centre X joined to every other corner, when
+         * clearly better */
+        int o = 0;
+        double x = 0.0, y = 0.0, c = glpgp_hex_centre_split(s->xy, p, &o, &x, &y);
+        if (c > best + 0.05) {
+            int X;
+            glpgp_status st = soup_vertex(s, x, y, &X);
+            if (st != GLPGP_OK) return st;
+            for (int i = 0; i < 3; i++) {
+                for (int k = 0; k < 3; k++) out[4 * i + k] = p[(o + 2 * i + k) % 6];
+                out[4 * i + 3] = X;
+            }
+            *nq = 3;
+            *sj = c;
+        }
+    }
+    return GLPGP_OK;
+}
+
+/* ---- adjacency ------------------------------------------------------- */
+
+typedef struct hedge {
+    int a, b, f, i; /* key (min, max), face, local edge index */
+} hedge;
+
+static int cmp_hedge(const void *pa, const void *pb)
+{
+    const hedge *x = pa, *y = pb;
+    if (x->a != y->a) return x->a < y->a ? -1 : 1;
+    if (x->b != y->b) return x->b < y->b ? -1 : 1;
+    if (x->f != y->f) return x->f < y->f ? -1 : 1;
+    return x->i - y->i;
+}
+
+/* adj[fs[f] + i]: the face across edge i of f (-1 boundary, -2 an edge
+ * used by more than two faces); adji: the edge's index in that face.
+ * val[v]: vertex valence (number of distinct edges), bnd[v]: on a boundary
+ * or non-manifold edge. */
+typedef struct adjacency {
+    int *adj, *adji, *val;
+    int *sf; /* face of each corner slot fs[f] + i */
+    unsigned char *bnd;
+} adjacency;
+
+static void adj_free(adjacency *A)
+{
+    free(A->adj);
+    free(A->adji);
+    free(A->val);
+    free(A->sf);
+    free(A->bnd);
+    memset(A, 0, sizeof *A);
+}
+
+static glpgp_status adj_build(const psoup *s, adjacency *A)
+{
+    adj_free(A);
+    hedge *H = NULL;
+    int nh = 0;
+    glpgp_status st = glpgp_malloc((size_t)s->nfv + 1, sizeof *H, &H);
+    if (st == GLPGP_OK) st = glpgp_malloc((size_t)s->nfv + 1, sizeof(int), &A->adj);
+    if (st == GLPGP_OK) st = glpgp_malloc((size_t)s->nfv + 1, sizeof(int), &A->adji);
+    if (st == GLPGP_OK) st = glpgp_malloc((size_t)s->nfv + 1, sizeof(int), &A->sf);
+    if (st == GLPGP_OK) st = glpgp_calloc((size_t)s->nv + 1, sizeof(int), &A->val);
+    if (st == GLPGP_OK) st = glpgp_calloc((size_t)s->nv + 1, 1, &A->bnd);
+    if (st != GLPGP_OK) {
+        free(H);
+        adj_free(A);
+        return st;
+    }
+    for (int f = 0; f < s->nf; f++)
+        for (int i = 0; i < s->fn[f]; i++) {
+            int a = s->fv[s->fs[f] + i], b = s->fv[s->fs[f] + (i + 1) % s->fn[f]];
+            H[nh++] = (hedge){a < b ? a : b, a < b ? b : a, f, i};
+            A->sf[s->fs[f] + i] = f;
+        }
+    qsort(H, (size_t)nh, sizeof *H, cmp_hedge);
+    for (int k = 0; k < nh;) {
+        int e = k + 1;
+        while (e < nh && H[e].a == H[k].a && H[e].b == H[k].b) e++;
+        A->val[H[k].a]++;
+        A->val[H[k].b]++;
+        if (e - k == 1) {
+            A->adj[s->fs[H[k].f] + H[k].i] = -1;
+            A->bnd[H[k].a] = A->bnd[H[k].b] = 1;
+        } else if (e - k == 2) {
+            A->adj[s->fs[H[k].f] + H[k].i] = H[k + 1].f;
+            A->adji[s->fs[H[k].f] + H[k].i] = H[k + 1].i;
+            A->adj[s->fs[H[k + 1].f] + H[k + 1].i] = H[k].f;
+            A->adji[s->fs[H[k + 1].f] + H[k + 1].i] = H[k].i;
+        } else { /* non-manifold: treated like the boundary */
+            for (int j = k; j < e; j++) A->adj[s->fs[H[j].f] + H[j].i] = -2;
+            A->bnd[H[k].a] = A->bnd[H[k].b] = 1;
+        }
+        k = e;
+    }
+    free(H);
+    return GLPGP_OK;
+}
+
+/* ---- shortest strip ----------------------------------------------------- */
+
+/* Cost of ending (or starting) a strip in the odd face f through its edge
+ * i: the face gets the edge's midpoint m and is split as apply_strip will
+ * split it (split_even); the cost counts the irregular interior vertices
+ * that this adds or removes (2 per vertex; a pentagon split through its
+ * T-junction vertex removes one), plus a penalty when the worst new quad is
+ * poor (< 0.3). INFINITY when the split is not acceptable (< MIN_SJ). The
+ * constant END_BASE keeps every cost >= 0 (one is charged at the boundary
+ * end too). */
+#define END_BASE 2.0
+#define POOR_SPLIT 20.0
+static glpgp_status end_cost(const psoup *s, const adjacency *A, int f, int i, double *cost)
+{
+    *cost = INFINITY;
+    int n = s->fn[f];
+    const int *v = s->fv + s->fs[f];
+    if (n + 1 > QMAXN) return GLPGP_OK;
+    psoup T;
+    memset(&T, 0, sizeof T);
+    glpgp_status st = grow((void **)&T.xy, &T.cap_v, 2 * (n + 2), sizeof(double));
+    if (st != GLPGP_OK) return st;
+    int p[QMAXN + 1], out[4 * QMAXN], nq = 0, gid[QMAXN + 2];
+    /* local polygon: corners 0..n with the midpoint after corner i */
+    for (int k = 0, w = 0; k < n; k++) {
+        T.xy[2 * w] = s->xy[2 * v[k]];
+        T.xy[2 * w + 1] = s->xy[2 * v[k] + 1];
+        gid[w] = v[k];
+        p[w] = w;
+        w++;
+        if (k == i) {
+            const double *pa = s->xy + 2 * v[i], *pb = s->xy + 2 * v[(i + 1) % n];
+            T.xy[2 * w] = 0.5 * (pa[0] + pb[0]);
+            T.xy[2 * w + 1] = 0.5 * (pa[1] + pb[1]);
+            gid[w] = -1; /* the midpoint */
+            p[w] = w;
+            w++;
+        }
+    }
+    T.nv = n + 1;
+    double sj;
+    st = split_even(&T, p, n + 1, n + 1 == 6 ? i + 1 : -1, out, &nq, &sj);
+    if (st == GLPGP_OK && nq > 0 && sj >= MIN_SJ) {
+        /* new edges per corner: quad sides that are not polygon sides (each
+         * is seen from its two quads) */
+        int add[QMAXN + 2] = {0};
+        for (int q = 0; q < nq; q++)
+            for (int k = 0; k < 4; k++) {
+                int a = out[4 * q + k], b = out[4 * q + (k + 1) % 4];
+                int side = a <= n && b <= n && ((a + 1) % (n + 1) == b || (b + 1) % (n + 1) == a);
+                if (!side) {
+                    add[a]++;
+                    add[b]++;
+                }
+            }
+        int dirr = 0;
+        for (int k = 0; k < T.nv; k++) {
+            int d = add[k] / 2;
+            if (k > n) { /* a centre vertex */
+                dirr += d != 4;
+                continue;
+            }
+            if (gid[k] < 0 || d == 0) continue; /* the midpoint ends regular */
+            if (A->bnd[gid[k]]) {
+                dirr += 1;
+                continue;
+            }
+            int val = A->val[gid[k]];
+            dirr += (val + d != 4) - (val != 4);
+        }
+        *cost = END_BASE + 2.0 * dirr + (sj < 0.3 ? POOR_SPLIT : 0.0);
+    }
+    free(T.xy);
+    return st;
+}
+
+typedef struct heap_item {
+    double d;
+    int state; /* corner slot fs[f] + entry edge i, or -1 - k for target k */
+} heap_item;
+
+typedef struct heap {
+    heap_item *a;
+    int n, cap;
+} heap;
+
+static glpgp_status heap_push(heap *h, double d, int state)
+{
+    glpgp_status st = grow((void **)&h->a, &h->cap, h->n + 1, sizeof(heap_item));
+    if (st != GLPGP_OK) return st;
+    int i = h->n++;
+    while (i > 0 && h->a[(i - 1) / 2].d > d) {
+        h->a[i] = h->a[(i - 1) / 2];
+        i = (i - 1) / 2;
+    }
+    h->a[i] = (heap_item){d, state};
+    return GLPGP_OK;
+}
+
+static heap_item heap_pop(heap *h)
+{
+    heap_item top = h->a[0], last = h->a[--h->n];
+    int i = 0;
+    for (;;) {
+        int c = 2 * i + 1;
+        if (c >= h->n) break;
+        if (c + 1 < h->n && h->a[c + 1].d < h->a[c].d) c++;
+        if (h->a[c].d >= last.d) break;
+        h->a[i] = h->a[c];
+        i = c;
+    }
+    if (h->n > 0) h->a[i] = last;
+    return top;
+}
+
+/* Search workspace: per corner slot (fs[f] + entry edge of quad f) the
+ * distance and the predecessor slot (-1 - i: entered from the start face
+ * through its edge i), reset through the touched list. */
+typedef struct search {
+    double *dist;
+    int *pred;
+    double *ecost; /* end_cost of each corner slot of the odd faces */
+    double size;   /* typical edge length (cost of cutting thin quads) */
+    int *touched, nt, cap_t;
+    heap h;
+} search;
+
+/* One face of a strip: face f entered through edge in and left through
+ * edge out (-1: none, for the two ends). */
+typedef struct pstep {
+    int f, in, out;
+} pstep;
+
+/* Cost of cutting quad f entered through edge j, straight to edge k: 1,
+ * more when the halves get thinner than h / 2 (a strip through quads that
+ * an earlier strip already halved): (h / 2 / w)^2 with w the half width. */
+static double cut_cost(const psoup *s, int f, int j, int k, double h)
+{
+    const int *c = s->fv + s->fs[f];
+    const double *a0 = s->xy + 2 * c[j], *a1 = s->xy + 2 * c[(j + 1) % 4];
+    const double *b0 = s->xy + 2 * c[k], *b1 = s->xy + 2 * c[(k + 1) % 4];
+    double w = 0.25 * (hypot(a1[0] - a0[0], a1[1] - a0[1]) + hypot(b1[0] - b0[0], b1[1] - b0[1]));
+    if (!(w > 0)) return 1e6;
+    double r = 0.5 * h / w;
+    return r > 1.0 ? r * r : 1.0;
+}
+
+static glpgp_status relax(search *S, int slot, double c, int pred)
+{
+    if (!(c < S->dist[slot])) return GLPGP_OK;
+    if (S->dist[slot] == INFINITY) {
+        glpgp_status st = grow((void **)&S->touched, &S->cap_t, S->nt + 1, sizeof(int));
+        if (st != GLPGP_OK) return st;
+        S->touched[S->nt++] = slot;
+    }
+    S->dist[slot] = c;
+    S->pred[slot] = pred;
+    return heap_push(&S->h, c, slot);
+}
+
+/* The strip search crosses edge k of face f (reached at cost c, from the
+ * state `from`: a slot, or -1 - k for the start face f0): the boundary or
+ * an odd face beyond it is a target (its end cost added; the best one is
+ * kept in *best, *best_slot, *best_exit), a free quad beyond it a new state
+ * (entered through its side gi, cost of cutting it straight through). */
+static glpgp_status cross(const psoup *s, const adjacency *A, const unsigned char *used, search *S, int f0,
+                          int f, int k, double c, int from, double *best, int *best_slot, int *best_exit)
+{
+    int g = A->adj[s->fs[f] + k], gi = A->adji[s->fs[f] + k];
+    if (g == -1 || (g >= 0 && g != f0 && !used[g] && s->fn[g] % 2)) {
+        c += g >= 0 ? S->ecost[s->fs[g] + gi] : END_BASE;
+        if (c < *best) {
+            *best = c;
+            *best_slot = from;
+            *best_exit = k;
+        }
+        return GLPGP_OK;
+    }
+    if (g >= 0 && !used[g] && s->fn[g] == 4)
+        return relax(S, s->fs[g] + gi, c + cut_cost(s, g, gi, (gi + 2) % 4, S->size), from);
+    return GLPGP_OK;
+}
+
+/* Shortest strip from the odd face f0 over faces not in used[]. On success
+ * path[0 .. *len) holds the strip: path[0] = f0 (out = its crossed edge),
+ * then the cut quads, then the odd end face (in set, out = -1) unless the
+ * strip ends on the boundary (the last step's out edge is a boundary edge).
+ * *len = 0: no target reachable. */
+static glpgp_status find_strip(const psoup *s, const adjacency *A, const unsigned char *used, search *S,
+                               int f0, pstep **path, int *cap_path, int *len, double *cost)
+{
+    glpgp_status st = GLPGP_OK;
+    *len = 0;
+    *cost = INFINITY;
+    S->h.n = 0;
+    double best = INFINITY;
+    int best_slot = -1, best_exit = -1; /* target reached from best_slot (or f0: -1 - edge) through best_exit */
+    for (int i = 0; i < s->fn[f0]; i++) {
+        double c0 = S->ecost[s->fs[f0] + i];
+        if (c0 < INFINITY)
+            GLPGP_CHECK_GOTO(st, cross(s, A, used, S, f0, f0, i, c0, -1 - i, &best, &best_slot, &best_exit), done);
+    }
+    while (S->h.n > 0) {
+        heap_item it = heap_pop(&S->h);
+        if (it.d >= best) break;
+        int slot = it.state;
+        if (it.d > S->dist[slot]) continue;
+        int f = A->sf[slot], j = slot - s->fs[f];
+        for (int dk = 1; dk <= 3; dk++) /* straight through (dk = 2, the opposite edge) or a turn */
+            GLPGP_CHECK_GOTO(st, cross(s, A, used, S, f0, f, (j + dk) % 4, it.d + (dk == 2 ? 0.0 : TURN_COST),
+                                       slot, &best, &best_slot, &best_exit),
+                             done);
+    }
+    if (best < INFINITY) {
+        /* walk back from the target: count, then fill */
+        int n = 1, sl = best_slot;
+        while (sl >= 0) {
+            n++;
+            sl = S->pred[sl];
+        }
+        int exit0 = -1 - sl; /* f0's crossed edge */
+        int fl = best_slot >= 0 ? A->sf[best_slot] : f0;
+        int g = A->adj[s->fs[fl] + best_exit];
+        int total = n + (g >= 0 ? 1 : 0);
+        GLPGP_CHECK_GOTO(st, grow((void **)path, cap_path, total, sizeof(pstep)), done);
+        pstep *P = *path;
+        int w = n - 1, out = best_exit;
+        sl = best_slot;
+        while (sl >= 0) {
+            int f = A->sf[sl], in = sl - s->fs[f];
+            P[w--] = (pstep){f, in, out};
+            out = A->adji[sl]; /* the crossed edge's index in the previous face */
+            sl = S->pred[sl];
+        }
+        P[0] = (pstep){f0, -1, exit0};
+        if (g >= 0) P[n] = (pstep){g, A->adji[s->fs[fl] + best_exit], -1};
+        *len = total;
+        *cost = best;
+    }
+done:
+    for (int i = 0; i < S->nt; i++) S->dist[S->touched[i]] = INFINITY;
+    S->nt = 0;
+    return st;
+}
+
+/* Polygon of face f with extra corners inserted: mid_in on edge in and
+ * mid_out on edge out (-1: none). Returns the corner count. */
+static int with_mids(const psoup *s, int f, int in, int mid_in, int out, int mid_out, int *p)
+{
+    int n = 0;
+    for (int i = 0; i < s->fn[f]; i++) {
+        p[n++] = s->fv[s->fs[f] + i];
+        if (i == in) p[n++] = mid_in;
+        if (i == out) p[n++] = mid_out;
+    }
+    return n;
+}
+
+typedef glpgp_quad_closing pair_stats;
+
+/* Apply the strip P[0..len): new midpoints, the faces rewritten (old ones
+ * deleted, new ones appended). Nothing is changed when a new quad would
+ * have a scaled Jacobian below MIN_SJ (*ok = 0; the caller restores *ps). */
+static glpgp_status apply_strip(psoup *s, const pstep *P, int len, int *ok, pair_stats *ps)
+{
+    glpgp_status st = GLPGP_OK;
+    *ok = 0;
+    int nv0 = s->nv, nf0 = s->nf, nfv0 = s->nfv;
+    int last = len - 1;
+    int ends_on_boundary = P[last].out >= 0;
+    /* midpoints: mid[i] on the edge between P[i] and P[i+1] (i < len - 1),
+     * plus the boundary midpoint mid[last] */
+    int *mid = NULL;
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)len + 1, sizeof(int), &mid), done);
+    for (int i = 0; i < len; i++) {
+        mid[i] = -1;
+        if (P[i].out < 0) continue;
+        int f = P[i].f, e = P[i].out, n = s->fn[f];
+        const double *a = s->xy + 2 * s->fv[s->fs[f] + e], *b = s->xy + 2 * s->fv[s->fs[f] + (e + 1) % n];
+        double ax = a[0], ay = a[1], bx = b[0], by = b[1]; /* s->xy may move */
+        GLPGP_CHECK_GOTO(st, soup_vertex(s, 0.5 * (ax + bx), 0.5 * (ay + by), &mid[i]), done);
+    }
+    double worst = INFINITY;
+    for (int i = 0; i < len; i++) {
+        int f = P[i].f;
+        int min_ = i > 0 ? mid[i - 1] : -1, mout = mid[i];
+        int p[QMAXN + 4], out[4 * (QMAXN + 4)], nq = 0;
+        if (s->fn[f] != 4 || i == 0 || (i == last && !ends_on_boundary)) {
+            /* an end face: one extra corner, then split the even polygon */
+            int n = with_mids(s, f, P[i].in, min_, P[i].out, mout, p);
+            int e = P[i].in >= 0 ? P[i].in : P[i].out; /* the crossed edge */
+            int pref = -1;
+            if (n == 6) pref = e + 1; /* the midpoint's position in p */
+            double sj;
+            if (n > QMAXN) goto done;
+            GLPGP_CHECK_GOTO(st, split_even(s, p, n, pref, out, &nq, &sj), done);
+            if (nq == 0) goto done;
+            worst = fmin(worst, sj);
+            if (s->fn[f] % 2) ps->closed_polygons++;
+        } else {
+            const int *c = s->fv + s->fs[f];
+            int j = P[i].in, k = P[i].out, dk = (k - j + 4) % 4;
+            if (dk == 2) {
+                /* straight: (c_j, m_j, m_k, c_k+1), (m_j, c_j+1, c_k, m_k) */
+                int qa[4] = {c[j], min_, mout, c[(k + 1) % 4]};
+                int qb[4] = {min_, c[(j + 1) % 4], c[k], mout};
+                memcpy(out, qa, sizeof qa);
+                memcpy(out + 4, qb, sizeof qb);
+                nq = 2;
+            } else {
+                /* turn around the shared corner B; X joined to m_j, m_k and
+                 * the opposite corner D */
+                int mA, mB, B, D, C1, C2; /* m on the edge before B, m after B (CCW) */
+                if (dk == 1) { /* B = c_j+1 */
+                    mA = min_; mB = mout; B = c[(j + 1) % 4];
+                    C2 = c[(j + 2) % 4]; D = c[(j + 3) % 4]; C1 = c[j];
+                } else { /* dk == 3: B = c_j, edge k = j - 1 comes before it */
+                    mA = mout; mB = min_; B = c[j];
+                    C2 = c[(j + 1) % 4]; D = c[(j + 2) % 4]; C1 = c[(j + 3) % 4];
+                }
+                /* quads (mA, B, mB, X), (X, mB, C2, D), (C1, mA, X, D) */
+                const double *pB = s->xy + 2 * B, *pD = s->xy + 2 * D;
+                double bestsj = -INFINITY, bx = 0, by = 0;
+                for (int t = 0; t <= 6; t++) {
+                    double w = 0.3 + 0.05 * t;
+                    double x = pD[0] + w * (pB[0] - pD[0]), y = pD[1] + w * (pB[1] - pD[1]);
+                    double xy[14] = {s->xy[2 * mA], s->xy[2 * mA + 1], pB[0], pB[1],
+                                     s->xy[2 * mB], s->xy[2 * mB + 1], x, y,
+                                     s->xy[2 * C2], s->xy[2 * C2 + 1], pD[0], pD[1],
+                                     s->xy[2 * C1], s->xy[2 * C1 + 1]};
+                    int q1[4] = {0, 1, 2, 3}, q2[4] = {3, 2, 4, 5}, q3[4] = {6, 0, 3, 5};
+                    double v = fmin(glpgp_poly_min_sj(xy, q1, 4), fmin(glpgp_poly_min_sj(xy, q2, 4), glpgp_poly_min_sj(xy, q3, 4)));
+                    if (v > bestsj) {
+                        bestsj = v;
+                        bx = x;
+                        by = y;
+                    }
+                }
+                int X;
+                GLPGP_CHECK_GOTO(st, soup_vertex(s, bx, by, &X), done);
+                int q1[4] = {mA, B, mB, X}, q2[4] = {X, mB, C2, D}, q3[4] = {C1, mA, X, D};
+                memcpy(out, q1, sizeof q1);
+                memcpy(out + 4, q2, sizeof q2);
+                memcpy(out + 8, q3, sizeof q3);
+                nq = 3;
+                ps->strip_turns++;
+            }
+            for (int q = 0; q < nq; q++) worst = fmin(worst, glpgp_poly_min_sj(s->xy, out + 4 * q, 4));
+            ps->strip_quads++;
+        }
+        for (int q = 0; q < nq; q++) GLPGP_CHECK_GOTO(st, soup_face(s, out + 4 * q, 4, NULL), done);
+    }
+    if (!(worst >= MIN_SJ)) {
+        /* undo: drop the new vertices and faces; statistics restored by the caller */
+        s->nv = nv0;
+        s->nf = nf0;
+        s->nfv = nfv0;
+        goto done;
+    }
+    for (int i = 0; i < len; i++) s->fn[P[i].f] = 0; /* the old faces are replaced */
+    if (ends_on_boundary) ps->strips_to_boundary++;
+    *ok = 1;
+done:
+    free(mid);
+    return st;
+}
+
+/* Triangles: a midpoint on one of their sides would make a quad with a
+ * flat corner, so a triangle t (sides t_i -> t_i+1 with the neighbour faces
+ * nb[i], side nbi[i] in them; -1: none) is merged with a neighbour g across
+ * a side a b (merged face: a, g's corners from a round to b, c): with an
+ * odd g the result is even and is split into quads at once (taken if its
+ * quads reach 0.3), with a quad it is a pentagon (taken if no corner is
+ * within 6 degrees of flat), which the strips then close like any other.
+ * f_old (the triangle's face) and g are deleted on success (*merged = 1). */
+static glpgp_status merge_triangle(psoup *s, unsigned char *used, const int *t_in, const int *nb,
+                                   const int *nbi, int f_old, int *merged, pair_stats *ps)
+{
+    *merged = 0;
+    int t[3] = {t_in[0], t_in[1], t_in[2]}; /* t_in may point into s->fv, which may move */
+    double best_even = 0.3, best_pent = 0.1;
+    int be[QMAXN], bp[5], nbe = 0, ge = -1, gp = -1;
+    glpgp_status st = GLPGP_OK;
+    for (int i = 0; i < 3; i++) {
+        int g = nb[i], gi = nbi[i], ng = g >= 0 ? s->fn[g] : 0;
+        if (g < 0 || g == f_old || used[g] || ng + 1 > QMAXN || ng < 3) continue;
+        int pm[QMAXN], n = 0;
+        pm[n++] = t[i];                                                    /* a */
+        for (int k = 2; k < ng; k++) pm[n++] = s->fv[s->fs[g] + (gi + k) % ng]; /* g from a to b */
+        pm[n++] = t[(i + 1) % 3];                                          /* b */
+        pm[n++] = t[(i + 2) % 3];                                          /* c */
+        if (ng % 2) {
+            int outq[4 * QMAXN], nq = 0, nv0 = s->nv;
+            double sj;
+            st = split_even(s, pm, n, -1, outq, &nq, &sj);
+            if (st != GLPGP_OK) return st;
+            s->nv = nv0; /* evaluation only */
+            if (nq > 0 && sj > best_even) {
+                best_even = sj;
+                ge = g;
+                nbe = n;
+                memcpy(be, pm, (size_t)n * sizeof(int));
+            }
+        } else if (ng == 4) {
+            double v = glpgp_poly_min_sj(s->xy, pm, 5);
+            if (v > best_pent) {
+                best_pent = v;
+                gp = g;
+                memcpy(bp, pm, sizeof bp);
+            }
+        }
+    }
+    if (ge >= 0) {
+        int outq[4 * QMAXN], nq = 0;
+        double sj;
+        st = split_even(s, be, nbe, -1, outq, &nq, &sj);
+        for (int k = 0; k < nq && st == GLPGP_OK; k++) st = soup_face(s, outq + 4 * k, 4, NULL);
+        if (st != GLPGP_OK) return st;
+        ps->closed_polygons += 1 + (s->fn[f_old] % 2);
+        s->fn[f_old] = s->fn[ge] = 0;
+        used[f_old] = used[ge] = 1;
+        *merged = 1;
+    } else if (gp >= 0) {
+        st = soup_face(s, bp, 5, NULL);
+        if (st != GLPGP_OK) return st;
+        s->fn[f_old] = s->fn[gp] = 0;
+        used[f_old] = used[gp] = 1;
+        *merged = 1;
+    }
+    return GLPGP_OK;
+}
+
+/* ---- driver ------------------------------------------------------------ */
+
+typedef struct odd_item {
+    double cost;
+    int f;
+} odd_item;
+
+static int cmp_odd(const void *pa, const void *pb)
+{
+    const odd_item *a = pa, *b = pb;
+    if (a->cost != b->cost) return a->cost < b->cost ? -1 : 1;
+    return a->f - b->f;
+}
+
+static glpgp_status soup_from_mesh(const glpgp_quadmesh *q, psoup *s)
+{
+    memset(s, 0, sizeof *s);
+    glpgp_status st = grow((void **)&s->xy, &s->cap_v, 2 * q->nv + 2, sizeof(double));
+    if (st != GLPGP_OK) return st;
+    memcpy(s->xy, q->xy, 2 * (size_t)q->nv * sizeof(double));
+    s->nv = q->nv;
+    for (int f = 0; f < q->nf && st == GLPGP_OK; f++)
+        st = soup_face(s, q->face_vert + q->face_start[f], q->face_start[f + 1] - q->face_start[f], NULL);
+    return st;
+}
+
+/* The live faces of s as a new quad mesh (unused vertices dropped); the
+ * extraction diagnostics are copied from ref. */
+static glpgp_status soup_to_mesh(const psoup *s, const glpgp_quadmesh *ref, const unsigned char *mark,
+                                 unsigned char **omark, glpgp_quadmesh **out)
+{
+    glpgp_quadmesh *q = NULL;
+    int *id = NULL;
+    glpgp_status st = glpgp_calloc(1, sizeof *q, &q);
+    if (st != GLPGP_OK) return st;
+    *q = *ref; /* diagnostics; the arrays are replaced below */
+    q->xy = NULL;
+    q->face_start = NULL;
+    q->face_vert = NULL;
+    st = glpgp_malloc((size_t)s->nv + 1, sizeof(int), &id);
+    if (st == GLPGP_OK) st = glpgp_malloc((size_t)s->nf + 1, sizeof(int), &q->face_start);
+    if (st == GLPGP_OK) st = glpgp_malloc((size_t)s->nfv + 1, sizeof(int), &q->face_vert);
+    if (st == GLPGP_OK) st = glpgp_malloc((size_t)s->nv + 1, 2 * sizeof(double), &q->xy);
+    if (st == GLPGP_OK) st = glpgp_calloc((size_t)s->nv + 1, 1, omark);
+    if (st != GLPGP_OK) {
+        glpgp_quadmesh_destroy(&q);
+        free(id);
+        return st;
+    }
+    for (int v = 0; v < s->nv; v++) id[v] = -1;
+    q->nv = 0;
+    q->nf = 0;
+    int w = 0;
+    q->face_start[0] = 0;
+    for (int f = 0; f < s->nf; f++) {
+        if (s->fn[f] == 0) continue;
+        for (int i = 0; i < s->fn[f]; i++) {
+            int v = s->fv[s->fs[f] + i];
+            if (id[v] < 0) {
+                id[v] = q->nv;
+                q->xy[2 * q->nv] = s->xy[2 * v];
+                q->xy[2 * q->nv + 1] = s->xy[2 * v + 1];
+                (*omark)[q->nv] = mark[v];
+                q->nv++;
+            }
+            q->face_vert[w++] = id[v];
+        }
+        q->face_start[++q->nf] = w;
+    }
+    free(id);
+    *out = q;
+    return GLPGP_OK;
+}
+
+glpgp_status glpgp_quadmesh_close_polygons(const glpgp_quadmesh *q, glpgp_quadmesh **out,
+                                           unsigned char **new_vertices)
+{
+    *out = NULL;
+    if (new_vertices) *new_vertices = NULL;
+    unsigned char *mark = NULL, *omark = NULL;
+    if (!q || q->nf <= 0) return GLPGP_FAIL(GLPGP_ERR_ARG, "quad pairing: empty mesh");
+    psoup s;
+    adjacency A;
+    search S;
+    memset(&A, 0, sizeof A);
+    memset(&S, 0, sizeof S);
+    pair_stats ps;
+    memset(&ps, 0, sizeof ps);
+    unsigned char *used = NULL, *failed = NULL;
+    odd_item *odd = NULL;
+    pstep *path = NULL;
+    int cap_path = 0, cap_failed = 0;
+    glpgp_quadmesh *r = NULL;
+    glpgp_status st = soup_from_mesh(q, &s);
+    if (st != GLPGP_OK) goto done;
+    { /* typical size: mean edge length */
+        double sum = 0.0;
+        for (int f = 0; f < s.nf; f++)
+            for (int i = 0; i < s.fn[f]; i++) {
+                const double *a = s.xy + 2 * s.fv[s.fs[f] + i], *b = s.xy + 2 * s.fv[s.fs[f] + (i + 1) % s.fn[f]];
+                sum += hypot(b[0] - a[0], b[1] - a[1]);
+            }
+        S.size = s.nfv ? sum / s.nfv : 1.0;
+    }
+
+    /* even polygons (hexagons, ...) need no partner: split them */
+    for (int f = 0, nf0 = s.nf; f < nf0; f++) {
+        int n = s.fn[f];
+        if (n < 6 || n % 2 || n > QMAXN) continue;
+        int p[QMAXN], outq[4 * QMAXN], nq = 0, nv0 = s.nv;
+        double sj;
+        memcpy(p, s.fv + s.fs[f], (size_t)n * sizeof(int));
+        GLPGP_CHECK_GOTO(st, split_even(&s, p, n, -1, outq, &nq, &sj), done);
+        if (nq == 0 || !(sj >= MIN_SJ)) {
+            s.nv = nv0;
+            continue;
+        }
+        for (int k = 0; k < nq; k++) GLPGP_CHECK_GOTO(st, soup_face(&s, outq + 4 * k, 4, NULL), done);
+        s.fn[f] = 0;
+        ps.split_even++;
+    }
+
+    /* triangles (see merge_triangle); first the quads that are triangles
+     * with a boundary vertex promoted to a corner by the extraction: a
+     * boundary vertex of valence 2 with a corner angle above 150 degrees
+     * (on a gently curved boundary the promoted vertex is nearly flat) is
+     * dropped again if the triangle left can be merged */
+    GLPGP_CHECK_GOTO(st, adj_build(&s, &A), done);
+    {
+        int nf0 = s.nf;
+        GLPGP_CHECK_GOTO(st, glpgp_calloc((size_t)nf0 + 1, 1, &used), done);
+        for (int f = 0; f < nf0; f++) {
+            if (s.fn[f] != 4 || used[f]) continue;
+            const int *c = s.fv + s.fs[f];
+            for (int k = 0; k < 4; k++) {
+                int v = c[k];
+                if (!A.bnd[v] || A.val[v] != 2) continue;
+                if (A.adj[s.fs[f] + k] != -1 || A.adj[s.fs[f] + (k + 3) % 4] != -1) continue;
+                const double *pv = s.xy + 2 * v, *pa = s.xy + 2 * c[(k + 1) % 4], *pb = s.xy + 2 * c[(k + 3) % 4];
+                double e1x = pa[0] - pv[0], e1y = pa[1] - pv[1], e2x = pb[0] - pv[0], e2y = pb[1] - pv[1];
+                double sine = (e1x * e2y - e1y * e2x) / (hypot(e1x, e1y) * hypot(e2x, e2y) + 1e-300);
+                /* only wide convex corners (150 to 180 deg): the chord b a then stays inside a convex arc */
+                if (!(sine < 0.5 && sine >= 0.0) || e1x * e2x + e1y * e2y > 0) continue;
+                /* triangle a -> c2 -> b (sides: f's two other sides, and the new boundary chord b -> a) */
+                int t[3] = {c[(k + 1) % 4], c[(k + 2) % 4], c[(k + 3) % 4]};
+                int nb[3] = {A.adj[s.fs[f] + (k + 1) % 4], A.adj[s.fs[f] + (k + 2) % 4], -1};
+                int nbi[3] = {A.adji[s.fs[f] + (k + 1) % 4], A.adji[s.fs[f] + (k + 2) % 4], -1};
+                int merged = 0;
+                GLPGP_CHECK_GOTO(st, merge_triangle(&s, used, t, nb, nbi, f, &merged, &ps), done);
+                if (merged) break;
+            }
+        }
+        for (int f = 0; f < nf0; f++) {
+            if (s.fn[f] != 3 || used[f]) continue;
+            int nb[3], nbi[3];
+            for (int i = 0; i < 3; i++) {
+                nb[i] = A.adj[s.fs[f] + i];
+                nbi[i] = A.adji[s.fs[f] + i];
+            }
+            int merged = 0;
+            GLPGP_CHECK_GOTO(st, merge_triangle(&s, used, s.fv + s.fs[f], nb, nbi, f, &merged, &ps), done);
+        }
+    }
+
+    for (int round = 0; round < MAX_ROUNDS; round++) {
+        GLPGP_CHECK_GOTO(st, adj_build(&s, &A), done);
+        int nf0 = s.nf, nodd = 0, progress = 0;
+        {
+            int old = cap_failed;
+            GLPGP_CHECK_GOTO(st, grow((void **)&failed, &cap_failed, nf0, 1), done);
+            if (cap_failed > old) memset(failed + old, 0, (size_t)(cap_failed - old));
+        }
+        free(used);
+        used = NULL;
+        free(odd);
+        odd = NULL;
+        free(S.dist);
+        free(S.pred);
+        free(S.ecost);
+        S.dist = NULL;
+        S.pred = NULL;
+        S.ecost = NULL;
+        GLPGP_CHECK_GOTO(st, glpgp_calloc((size_t)nf0 + 1, 1, &used), done);
+        GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)nf0 + 1, sizeof *odd, &odd), done);
+        GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)s.nfv + 1, sizeof(double), &S.dist), done);
+        GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)s.nfv + 1, sizeof(int), &S.pred), done);
+        GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)s.nfv + 1, sizeof(double), &S.ecost), done);
+        for (int i = 0; i <= s.nfv; i++) S.dist[i] = S.ecost[i] = INFINITY;
+        for (int f = 0; f < nf0; f++)
+            if (s.fn[f] % 2)
+                for (int i = 0; i < s.fn[f]; i++)
+                    GLPGP_CHECK_GOTO(st, end_cost(&s, &A, f, i, &S.ecost[s.fs[f] + i]), done);
+        /* cheapest strips first */
+        for (int f = 0; f < nf0; f++) {
+            if (s.fn[f] == 0 || s.fn[f] % 2 == 0 || s.fn[f] > QMAXN - 1) continue;
+            if (f < cap_failed && failed[f]) continue;
+            int len;
+            double cost;
+            GLPGP_CHECK_GOTO(st, find_strip(&s, &A, used, &S, f, &path, &cap_path, &len, &cost), done);
+            if (len > 0) odd[nodd++] = (odd_item){cost, f};
+        }
+        if (nodd == 0) break;
+        qsort(odd, (size_t)nodd, sizeof *odd, cmp_odd);
+        for (int k = 0; k < nodd; k++) {
+            int f = odd[k].f, len;
+            double cost;
+            if (used[f]) continue;
+            GLPGP_CHECK_GOTO(st, find_strip(&s, &A, used, &S, f, &path, &cap_path, &len, &cost), done);
+            if (len == 0) continue;
+            /* a strip that visits a face twice is not applied (marks: used) */
+            int rep = 0;
+            for (int i = 0; i < len && !rep; i++) {
+                if (used[path[i].f]) rep = 1;
+                used[path[i].f] = 1;
+            }
+            if (rep) {
+                for (int i = 0; i < len; i++) used[path[i].f] = 1;
+                continue;
+            }
+            pair_stats save = ps;
+            int ok = 0;
+            GLPGP_CHECK_GOTO(st, apply_strip(&s, path, len, &ok, &ps), done);
+            if (!ok) {
+                ps = save;
+                failed[f] = 1;
+            } else {
+                progress++;
+            }
+        }
+        if (!progress) break;
+    }
+    GLPGP_CHECK_GOTO(st, glpgp_calloc((size_t)s.nv + 1, 1, &mark), done);
+    for (int v = q->nv; v < s.nv; v++) mark[v] = 1; /* every vertex added here */
+    GLPGP_CHECK_GOTO(st, soup_to_mesh(&s, q, mark, &omark, &r), done);
+    r->closing = ps;
+    *out = r;
+    r = NULL;
+    if (new_vertices) {
+        *new_vertices = omark;
+        omark = NULL;
+    }
+done:
+    soup_free(&s);
+    adj_free(&A);
+    free(S.dist);
+    free(S.pred);
+    free(S.ecost);
+    free(S.touched);
+    free(S.h.a);
+    free(used);
+    free(failed);
+    free(odd);
+    free(path);
+    free(mark);
+    free(omark);
+    glpgp_quadmesh_destroy(&r);
+    return st;
+}
+
+/* ---- smoothing ------------------------------------------------------- */
+
+/* Worst corner over the faces around vertex v (its corner slots vc[vs[v] ..
+ * vs[v+1]), A->sf giving each slot's face). */
+static double worst_around(const glpgp_quadmesh *q, const adjacency *A, const int *vs, const int *vc, int v)
+{
+    double m = INFINITY;
+    for (int j = vs[v]; j < vs[v + 1]; j++) {
+        int f = A->sf[vc[j]], b = q->face_start[f];
+        m = fmin(m, glpgp_poly_min_sj(q->xy, q->face_vert + b, q->face_start[f + 1] - b));
+    }
+    return m;
+}
+
+glpgp_status glpgp_quadmesh_smooth(glpgp_quadmesh *q, const unsigned char *mark, int iterations, double sj_below,
+                                   int *moved)
+{
+    if (moved) *moved = 0;
+    if (!q || iterations <= 0 || q->nv <= 0) return GLPGP_OK;
+    int nv = q->nv, nf = q->nf, nc = q->face_start[nf];
+    int *vs = NULL, *vc = NULL, *cnt = NULL;
+    unsigned char *act = NULL;
+    psoup s;
+    adjacency A;
+    memset(&A, 0, sizeof A);
+    /* the soup has the mesh's corner layout (slot c = face_vert index c):
+     * A gives the boundary (and non-manifold) vertices and each slot's face */
+    glpgp_status st = soup_from_mesh(q, &s);
+    if (st == GLPGP_OK) st = adj_build(&s, &A);
+    if (st == GLPGP_OK) st = glpgp_calloc((size_t)nv + 1, sizeof(int), &vs);
+    if (st == GLPGP_OK) st = glpgp_malloc((size_t)nc + 1, sizeof(int), &vc);
+    if (st == GLPGP_OK) st = glpgp_calloc((size_t)nv + 1, sizeof(int), &cnt);
+    if (st == GLPGP_OK) st = glpgp_calloc((size_t)nv + 1, 1, &act);
+    if (st != GLPGP_OK) goto done;
+    /* vertex -> its corner slots (CSR) */
+    for (int c = 0; c < nc; c++) vs[q->face_vert[c] + 1]++;
+    for (int v = 0; v < nv; v++) vs[v + 1] += vs[v];
+    for (int c = 0; c < nc; c++) vc[vs[q->face_vert[c]] + cnt[q->face_vert[c]]++] = c;
+    /* active: vertices of marked faces (a corner is marked) or of faces worse
+     * than sj_below, and their edge neighbours; never boundary vertices */
+    for (int f = 0; f < nf; f++) {
+        int b = q->face_start[f], n = q->face_start[f + 1] - b;
+        int hit = glpgp_poly_min_sj(q->xy, q->face_vert + b, n) < sj_below;
+        for (int i = 0; i < n && !hit && mark; i++) hit = mark[q->face_vert[b + i]];
+        if (!hit) continue;
+        for (int i = 0; i < n; i++) {
+            int v = q->face_vert[b + i];
+            act[v] = 1;
+            for (int j = vs[v]; j < vs[v + 1]; j++) { /* edge neighbours: previous and next corners */
+                int c = vc[j], g = A.sf[c], gb = q->face_start[g], gn = q->face_start[g + 1] - gb;
+                act[q->face_vert[gb + (c - gb + 1) % gn]] = 1;
+                act[q->face_vert[gb + (c - gb + gn - 1) % gn]] = 1;
+            }
+        }
+    }
+    for (int it = 0; it < iterations; it++) {
+        int changed = 0;
+        for (int v = 0; v < nv; v++) {
+            if (!act[v] || A.bnd[v] || vs[v + 1] - vs[v] < 2) continue;
+            /* target: mean of the edge neighbours; for an interior vertex each
+             * neighbour is the previous corner of one face and the next corner
+             * of another, so the mean over the faces' previous and next
+             * corners is that mean */
+            double tx = 0.0, ty = 0.0;
+            int k = 0;
+            for (int j = vs[v]; j < vs[v + 1]; j++) {
+                int c = vc[j], f = A.sf[c], b = q->face_start[f], n = q->face_start[f + 1] - b, i = c - b;
+                int pv = q->face_vert[b + (i + n - 1) % n], nx = q->face_vert[b + (i + 1) % n];
+                tx += q->xy[2 * pv] + q->xy[2 * nx];
+                ty += q->xy[2 * pv + 1] + q->xy[2 * nx + 1];
+                k += 2;
+            }
+            tx /= k;
+            ty /= k;
+            /* the step (1/4 .. 1 of the way to the mean) that most raises the
+             * worst corner around v; none if no step raises it by 1e-3 */
+            double ox = q->xy[2 * v], oy = q->xy[2 * v + 1], bw = 0.0;
+            double bval = worst_around(q, &A, vs, vc, v) + 1e-3;
+            for (int tr = 1; tr <= 4; tr++) {
+                double w = 0.25 * tr;
+                q->xy[2 * v] = ox + w * (tx - ox);
+                q->xy[2 * v + 1] = oy + w * (ty - oy);
+                double after = worst_around(q, &A, vs, vc, v);
+                if (after > bval) {
+                    bval = after;
+                    bw = w;
+                }
+            }
+            q->xy[2 * v] = ox + bw * (tx - ox);
+            q->xy[2 * v + 1] = oy + bw * (ty - oy);
+            if (bw > 0.0) {
+                changed++;
+                if (act[v] == 1) {
+                    act[v] = 2; /* counted once */
+                    if (moved) (*moved)++;
+                }
+            }
+        }
+        if (!changed) break;
+    }
+done:
+    soup_free(&s);
+    adj_free(&A);
+    free(vs);
+    free(vc);
+    free(cnt);
+    free(act);
+    return st;
+}
+
+/* ---- pipeline --------------------------------------------------------- */
+
+void glpgp_quad_options_default(glpgp_quad_options *o)
+{
+    o->keep_polygons = 0;
+    o->smooth = 20;
+    o->smooth_below = 0.5;
+    o->all_quads = 0;
+}
+
+glpgp_status glpgp_quads_build(const glpgp_mesh *m, const glpgp_result *r, const glpgp_quad_options *o,
+                               glpgp_quadmesh **out, double *h)
+{
+    glpgp_quad_options def;
+    if (!o) {
+        glpgp_quad_options_default(&def);
+        o = &def;
+    }
+    *out = NULL;
+    glpgp_quadmesh *q = NULL, *c = NULL;
+    unsigned char *mark = NULL;
+    glpgp_status st = glpgp_quads_extract(m, r, &q);
+    if (st != GLPGP_OK) return st;
+    if (!o->keep_polygons) {
+        st = glpgp_quadmesh_close_polygons(q, &c, &mark);
+        if (st != GLPGP_OK) goto done;
+        glpgp_quadmesh_destroy(&q);
+        q = c;
+        c = NULL;
+    }
+    if (o->smooth > 0) {
+        int moved = 0;
+        st = glpgp_quadmesh_smooth(q, mark, o->smooth, o->smooth_below, &moved);
+        if (st != GLPGP_OK) goto done;
+        q->closing.smoothed_vertices = moved;
+    }
+    if (o->all_quads) {
+        st = glpgp_quadmesh_subdivide(q, &c);
+        if (st != GLPGP_OK) goto done;
+        glpgp_quadmesh_destroy(&q);
+        q = c;
+        c = NULL;
+        *h *= 0.5;
+    }
+    *out = q;
+    q = NULL;
+done:
+    free(mark);
+    glpgp_quadmesh_destroy(&q);
+    glpgp_quadmesh_destroy(&c);
+    return st;
+}

@@ -1,0 +1,1326 @@
+/* quads/extract.c: quad-mesh extraction from the two GL-PGP oscillators
+ * (glpgp/quads.h). Quality metrics: quality.c; writers and the MSH reader:
+ * io/quadmesh_io.c. Phases, charts and principal steps come from the phase
+ * module (glpgp/phase.h).
+ *
+ * Algorithm
+ * =========
+ * theta_k = arg(z_k) / 2 pi (k = u, v) is a per-vertex value in [0, 1), exact
+ * 0 where z_k = 1 (the Dirichlet vertices). The quad edges are the integer
+ * level lines of theta_u and theta_v. Everything is built as one planar
+ * straight-line graph (the "arrangement") whose nodes are
+ *   V  every mesh vertex (used when a line passes exactly through it, and for
+ *      the domain boundary polyline),
+ *   X  the crossing of an integer line of theta_k with a mesh edge: on edge
+ *      (a, b), a < b, with the canonical unwrapping c_a = theta(a),
+ *      c_b = c_a + step(theta(b) - theta(a)) (step: principal difference
+ *      in [-1/2, 1/2]), the integer n strictly between c_a and c_b (at most
+ *      one per edge and family since |c_b - c_a| <= 1/2), at parameter
+ *      s = (n - c_a) / (c_b - c_a). Computed once per edge, so both
+ *      triangles of the edge use the same node; u and v crossings at the
+ *      same parameter are one node (a grid point on the edge);
+ *   G  grid points (theta_u and theta_v both integer) inside a triangle.
+ * Per triangle t (corners p0 p1 p2, CCW) and family k, the chart unwraps
+ * theta relative to corner 0: c_0 = theta(p0), c_j = c_0 + step(theta(pj) -
+ * theta(p0)); it is affine in the triangle. Charts of two triangles differ by
+ * an integer translation on their shared edge, recovered as
+ * T = round(c_t(a) - c_canonical(a)) at the edge's base vertex a; the edge's
+ * crossing integer n is the chart integer n + T. For every chart integer i
+ * the triangle collects the points where theta_k = i on its perimeter
+ * (vertices whose theta is exactly integer, and edge crossings) and they must
+ * pair up: 2 points give a chord (the segment of the level line inside t),
+ * 1 vertex is a touch, 3 vertices a flat triangle (nothing drawn); anything
+ * else means the chart does not close (winding != 0, i.e. t is singular for
+ * k, or rounding) and no line of family k is drawn in t.
+ * A u-chord and a v-chord cross inside t exactly when their end points
+ * interleave along the triangle perimeter (a combinatorial test on the shared
+ * per-edge parameters, so neighbouring triangles can never disagree); the
+ * crossing is a G node placed at the segment intersection. Graph edges are
+ * the pieces of the chords between consecutive nodes, the pieces of mesh
+ * edges that lie on a level line (both ends exactly integer, e.g. along a
+ * Dirichlet boundary), and the pieces of the boundary edges between their
+ * nodes (so boundary parts that are not level lines close the cells cut by
+ * the boundary). Duplicates are merged.
+ *
+ * Singular triangles are holes for their family: the lines of that family
+ * entering them end on their edges; these dangling ends are pruned back to
+ * the last grid point (repeated removal of degree-1 nodes), so the cells
+ * around a singularity merge into one face, usually a pentagon with a
+ * T-junction vertex of valence 3 (a single dislocation has odd parity and
+ * cannot be closed into quads locally), or a quad with valence 3/5 corners
+ * when a u and a v singularity sit in the same cell.
+ *
+ * Faces: edges shorter than 1e-6 h are contracted, every node sorts its
+ * incident edges by angle, and the faces of the planar map are traced with
+ * next(h) = the edge before twin(h) in counter-clockwise order at its origin
+ * (face on the left). Faces containing a boundary edge traversed against the
+ * boundary loop direction are the outside and are dropped. Face corners are
+ * the nodes of degree >= 3 and the degree-2 boundary nodes where the boundary
+ * turns by more than 40 degrees (domain corners); other degree-2 nodes (a
+ * line crossing a mesh edge, a boundary vertex) are not corners, so a face
+ * side may be a polyline that is output as its chord.
+ *
+ * Clean-up (repeated until nothing changes, at most 8 rounds):
+ *  - corner-to-corner sides shorter than 0.2 h are contracted (boundary and
+ *    corner positions win), which removes the slivers that appear where a
+ *    level line meets the boundary at a grazing angle or near a corner; the
+ *    whole side collapses, its intermediate nodes too, even when its two end
+ *    corners were already merged through other short sides of the same small
+ *    face (otherwise the side survives as a loop through the merged node and
+ *    crosses the edges re-pointed to it: a zero-length edge and a face that
+ *    visits one vertex several times); two domain corners are never merged,
+ *    not even through a chain of short sides;
+ *  - faces with <= 2 corners (thin slivers between two parallel sides) are
+ *    merged into a neighbour by deleting one of their sides (never a
+ *    boundary side);
+ *  - a 3-corner face with a side on the boundary gets the boundary vertex
+ *    farthest from that side's chord as a fourth corner (this is free: the
+ *    vertex belongs to no other face).
+ * Output: a 5-corner face with a side on the boundary (a dislocation or a
+ * switch between u- and v-Dirichlet boundary next to the boundary) gets a
+ * boundary vertex M of that side (not within 30% of the side's ends) as a
+ * sixth corner (free: M belongs to no other face, so the odd parity is
+ * absorbed by the boundary). The hexagon is split either into two quads
+ * along one of its three diagonals or, when no diagonal reaches a scaled
+ * Jacobian of 0.5 and the alternative is better, into three quads around a
+ * new interior vertex X joined to every other hexagon corner (X gets
+ * valence 3, one corner one more edge: the 3-5 pair of a dislocation). The
+ * centre split is what closes a pentagon whose boundary side is a concave
+ * arc (a hole), where every diagonal gives a reflex quad. M, the pattern and
+ * X are chosen to maximise the smallest scaled Jacobian of the new quads,
+ * and a split is made only if that is > 0.1.
+ * Interior pentagons (a dislocation away from the boundary: odd parity, so
+ * no quad split exists that leaves the neighbours unchanged) are kept here;
+ * glpgp_quadmesh_close_polygons (quads_pair.c, run by glpgp_quads_build and
+ * the CLI unless --keep-polygons) closes them pairwise or against the
+ * boundary through strips of quads cut in two, at the same element size.
+ * glpgp_quadmesh_subdivide (--all-quads) is the other route to an all-quad
+ * mesh: one Catmull-Clark step (centroid + shared edge midpoints) turns
+ * every n-gon into n quads at half the size.
+ */
+#include "glpgp/quads.h"
+#include "glpgp/phase.h"
+#include "glpgp/solve.h"
+#include "geom.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define PI_ GLPGP_PI
+
+/* ---- small growable arrays --------------------------------------------- */
+
+typedef struct qnode {
+    double x, y;
+    int vert;            /* mesh vertex, or -1 */
+    unsigned char bnd;   /* on the domain boundary */
+    unsigned char fixed; /* domain corner / forced corner */
+} qnode;
+
+enum { QE_BND = 1, QE_U = 2, QE_V = 4, QE_DEL = 8 };
+typedef struct qedge {
+    int a, b;            /* for QE_BND edges a -> b is the boundary loop direction */
+    unsigned char flags;
+} qedge;
+
+typedef struct graph {
+    qnode *node;
+    int nn, capn;
+    qedge *edge;
+    int ne, cape;
+} graph;
+
+static glpgp_status add_node(graph *g, double x, double y, int vert, int bnd, int *id)
+{
+    if (g->nn == g->capn) {
+        int nc = g->capn ? 2 * g->capn : 1024;
+        qnode *p = realloc(g->node, (size_t)nc * sizeof *p);
+        if (!p) return GLPGP_FAIL(GLPGP_ERR_NOMEM, "out of memory (quad graph nodes)");
+        g->node = p;
+        g->capn = nc;
+    }
+    qnode *n = &g->node[g->nn];
+    n->x = x;
+    n->y = y;
+    n->vert = vert;
+    n->bnd = (unsigned char)bnd;
+    n->fixed = 0;
+    *id = g->nn++;
+    return GLPGP_OK;
+}
+
+static glpgp_status add_edge(graph *g, int a, int b, int flags)
+{
+    if (a == b) return GLPGP_OK;
+    if (g->ne == g->cape) {
+        int nc = g->cape ? 2 * g->cape : 2048;
+        qedge *p = realloc(g->edge, (size_t)nc * sizeof *p);
+        if (!p) return GLPGP_FAIL(GLPGP_ERR_NOMEM, "out of memory (quad graph edges)");
+        g->edge = p;
+        g->cape = nc;
+    }
+    g->edge[g->ne].a = a;
+    g->edge[g->ne].b = b;
+    g->edge[g->ne].flags = (unsigned char)flags;
+    g->ne++;
+    return GLPGP_OK;
+}
+
+/* ---- mesh edges -------------------------------------------------------- */
+
+typedef struct medges {
+    int ne;
+    int *ev;       /* 2*ne: a < b */
+    int *nbt;      /* 2*ne: adjacent triangles (second -1 on the boundary) */
+    int *tri_edge; /* 3*nt: edge of triangle side j = (p_j, p_{j+1}) */
+} medges;
+
+static int cmp_key3(const void *pa, const void *pb)
+{
+    const long long *a = pa, *b = pb;
+    if (a[0] != b[0]) return a[0] < b[0] ? -1 : 1;
+    return (a[1] > b[1]) - (a[1] < b[1]);
+}
+
+static glpgp_status build_edges(const glpgp_mesh *m, medges *E)
+{
+    long long *k = NULL;
+    size_t n3 = (size_t)3 * m->nt;
+    GLPGP_CHECK(glpgp_malloc(n3 * 2, sizeof *k, &k));
+    for (int t = 0; t < m->nt; t++)
+        for (int j = 0; j < 3; j++) {
+            int a = m->tri[3 * t + j], b = m->tri[3 * t + (j + 1) % 3];
+            int lo = a < b ? a : b, hi = a < b ? b : a;
+            k[2 * (3 * t + j)] = (long long)lo * m->nv + hi;
+            k[2 * (3 * t + j) + 1] = 3 * t + j;
+        }
+    qsort(k, n3, 2 * sizeof *k, cmp_key3);
+    glpgp_status st = GLPGP_OK;
+    E->ev = E->nbt = E->tri_edge = NULL;
+    GLPGP_CHECK_GOTO(st, glpgp_malloc(n3 * 2, sizeof(int), &E->ev), fail);
+    GLPGP_CHECK_GOTO(st, glpgp_malloc(n3 * 2, sizeof(int), &E->nbt), fail);
+    GLPGP_CHECK_GOTO(st, glpgp_malloc(n3, sizeof(int), &E->tri_edge), fail);
+    int ne = 0;
+    for (size_t i = 0; i < n3;) {
+        size_t j = i + 1;
+        while (j < n3 && k[2 * j] == k[2 * i]) j++;
+        long long key = k[2 * i];
+        E->ev[2 * ne] = (int)(key / m->nv);
+        E->ev[2 * ne + 1] = (int)(key % m->nv);
+        E->nbt[2 * ne] = (int)(k[2 * i + 1] / 3);
+        E->nbt[2 * ne + 1] = j > i + 1 ? (int)(k[2 * i + 3] / 3) : -1;
+        for (size_t q = i; q < j; q++) E->tri_edge[k[2 * q + 1]] = ne;
+        ne++;
+        i = j;
+    }
+    E->ne = ne;
+    free(k);
+    return GLPGP_OK;
+fail:
+    free(k);
+    free(E->ev);
+    free(E->nbt);
+    free(E->tri_edge);
+    return st;
+}
+
+/* ---- the arrangement --------------------------------------------------- */
+
+typedef struct chord {
+    double pos[2]; /* perimeter positions in [0, 3): corner j -> j, side j -> j + s */
+    int node[2];
+    int edge_side; /* >= 0: the chord is triangle side j (both ends exactly integer) */
+    int ng;        /* grid points on it */
+    int gnode[16];
+    double gpar[16];
+} chord;
+
+typedef struct builder {
+    const glpgp_mesh *m;
+    const glpgp_result *r;
+    medges E;
+    double *theta[2];
+    unsigned char *exact[2];
+    int *xint;      /* 2*ne: canonical crossing integer of family k, or INT_MIN-ish sentinel */
+    double *xs;     /* 2*ne: its parameter along a -> b */
+    int *xnode;     /* 2*ne: its node */
+    graph g;
+    int singular[2], inconsistent[2];
+} builder;
+
+#define NOX (-2147483647)
+
+/* Append the graph edges along mesh edge e (a -> b in the given direction),
+ * through its crossing nodes in order. */
+static glpgp_status add_mesh_edge_path(builder *B, int e, int from, int flags)
+{
+    int a = B->E.ev[2 * e], b = B->E.ev[2 * e + 1];
+    int seq[4], n = 0;
+    seq[n++] = a;
+    int x0 = B->xint[2 * e] != NOX ? B->xnode[2 * e] : -1;
+    int x1 = B->xint[2 * e + 1] != NOX ? B->xnode[2 * e + 1] : -1;
+    if (x0 >= 0 && x1 >= 0 && x0 != x1) {
+        if (B->xs[2 * e] <= B->xs[2 * e + 1]) {
+            seq[n++] = x0;
+            seq[n++] = x1;
+        } else {
+            seq[n++] = x1;
+            seq[n++] = x0;
+        }
+    } else if (x0 >= 0) {
+        seq[n++] = x0;
+    } else if (x1 >= 0) {
+        seq[n++] = x1;
+    }
+    seq[n++] = b;
+    if (from == a) {
+        for (int i = 0; i + 1 < n; i++) GLPGP_CHECK(add_edge(&B->g, seq[i], seq[i + 1], flags));
+    } else {
+        for (int i = n - 1; i > 0; i--) GLPGP_CHECK(add_edge(&B->g, seq[i], seq[i - 1], flags));
+    }
+    return GLPGP_OK;
+}
+
+/* Chords of family k in triangle t. Returns the number of chords (<= 3) or
+ * -1 when the chart does not close. */
+static int tri_chords(builder *B, int t, int k, chord *ch)
+{
+    const glpgp_mesh *m = B->m;
+    const double *th = B->theta[k];
+    const unsigned char *ex = B->exact[k];
+    int p[3];
+    double c[3];
+    for (int j = 0; j < 3; j++) p[j] = m->tri[3 * t + j];
+    const double tp[3] = {th[p[0]], th[p[1]], th[p[2]]};
+    glpgp_phase_chart(tp, c);
+    /* perimeter points: (chart integer, position, node) */
+    long ii[6];
+    double pos[6];
+    int nd[6], isv[6], np = 0;
+    for (int j = 0; j < 3; j++) {
+        if (ex[p[j]]) {
+            ii[np] = lround(c[j]);
+            pos[np] = j;
+            nd[np] = p[j];
+            isv[np] = 1;
+            np++;
+        }
+        int e = B->E.tri_edge[3 * t + j];
+        if (B->xint[2 * e + k] == NOX) continue;
+        int a = B->E.ev[2 * e];
+        int ja = p[0] == a ? 0 : p[1] == a ? 1 : 2;
+        long T = lround(c[ja] - th[a]); /* chart = canonical + T */
+        double s = B->xs[2 * e + k];    /* from a */
+        double sl = (a == p[j]) ? s : 1.0 - s;
+        ii[np] = B->xint[2 * e + k] + T;
+        pos[np] = j + sl;
+        nd[np] = B->xnode[2 * e + k];
+        isv[np] = 0;
+        np++;
+    }
+    int nch = 0;
+    unsigned char used[6] = {0};
+    for (int q = 0; q < np; q++) {
+        if (used[q]) continue;
+        int grp[6], ng = 0, nv = 0;
+        for (int w = q; w < np; w++)
+            if (!used[w] && ii[w] == ii[q]) {
+                grp[ng++] = w;
+                used[w] = 1;
+                nv += isv[w];
+            }
+        if (ng == 1 && nv == 1) continue; /* touches a corner */
+        if (ng == 3 && nv == 3) continue; /* flat triangle */
+        if (ng != 2) return -1;
+        chord *C = &ch[nch++];
+        int w0 = grp[0], w1 = grp[1];
+        if (pos[w0] > pos[w1]) {
+            int tmp = w0;
+            w0 = w1;
+            w1 = tmp;
+        }
+        C->pos[0] = pos[w0];
+        C->pos[1] = pos[w1];
+        C->node[0] = nd[w0];
+        C->node[1] = nd[w1];
+        C->ng = 0;
+        C->edge_side = -1;
+        if (isv[w0] && isv[w1]) {
+            int j0 = (int)pos[w0], j1 = (int)pos[w1];
+            C->edge_side = (j1 == j0 + 1) ? j0 : 2; /* (0,1)->0, (1,2)->1, (0,2)->2 */
+        }
+        if (nch > 3) return -1;
+    }
+    return nch;
+}
+
+static int in_arc(double x, double a0, double a1) { return x > a0 && x < a1; }
+
+static void node_xy(const graph *g, int n, double *x, double *y)
+{
+    *x = g->node[n].x;
+    *y = g->node[n].y;
+}
+
+/* Intersection parameters of segments P0P1 and Q0Q1 (clamped to [0, 1]). */
+static void seg_intersect(double px0, double py0, double px1, double py1, double qx0, double qy0,
+                          double qx1, double qy1, double *tp, double *tq)
+{
+    double rx = px1 - px0, ry = py1 - py0, sx = qx1 - qx0, sy = qy1 - qy0;
+    double den = rx * sy - ry * sx;
+    double wx = qx0 - px0, wy = qy0 - py0;
+    double a = 0.5, b = 0.5;
+    if (fabs(den) > 1e-300) {
+        a = (wx * sy - wy * sx) / den;
+        b = (wx * ry - wy * rx) / den;
+    }
+    *tp = fmin(1.0, fmax(0.0, a));
+    *tq = fmin(1.0, fmax(0.0, b));
+}
+
+static glpgp_status add_chord_edges(builder *B, chord *C, int flags)
+{
+    /* insertion sort of the grid points by parameter */
+    for (int i = 1; i < C->ng; i++) {
+        double pv = C->gpar[i];
+        int nv = C->gnode[i], j = i - 1;
+        while (j >= 0 && C->gpar[j] > pv) {
+            C->gpar[j + 1] = C->gpar[j];
+            C->gnode[j + 1] = C->gnode[j];
+            j--;
+        }
+        C->gpar[j + 1] = pv;
+        C->gnode[j + 1] = nv;
+    }
+    int prev = C->node[0];
+    for (int i = 0; i < C->ng; i++) {
+        GLPGP_CHECK(add_edge(&B->g, prev, C->gnode[i], flags));
+        prev = C->gnode[i];
+    }
+    return add_edge(&B->g, prev, C->node[1], flags);
+}
+
+static glpgp_status build_arrangement(builder *B)
+{
+    const glpgp_mesh *m = B->m;
+    const glpgp_result *r = B->r;
+    const int nv = m->nv, ne = B->E.ne;
+    graph *g = &B->g;
+    /* theta per family */
+    for (int k = 0; k < 2; k++) {
+        GLPGP_CHECK(glpgp_malloc((size_t)nv, sizeof(double), &B->theta[k]));
+        GLPGP_CHECK(glpgp_malloc((size_t)nv, 1, &B->exact[k]));
+        for (int i = 0; i < nv; i++) {
+            double t = glpgp_theta(r->osc[k].z[2 * i], r->osc[k].z[2 * i + 1]);
+            B->theta[k][i] = t;
+            B->exact[k][i] = (t == 0.0);
+        }
+    }
+    /* V nodes: one per mesh vertex, id = vertex index */
+    for (int i = 0; i < nv; i++) {
+        int id;
+        GLPGP_CHECK(add_node(g, m->xy[2 * i], m->xy[2 * i + 1], i, m->on_boundary[i], &id));
+    }
+    /* X nodes: crossings per edge and family, computed once per edge */
+    GLPGP_CHECK(glpgp_malloc((size_t)2 * ne, sizeof(int), &B->xint));
+    GLPGP_CHECK(glpgp_malloc((size_t)2 * ne, sizeof(double), &B->xs));
+    GLPGP_CHECK(glpgp_malloc((size_t)2 * ne, sizeof(int), &B->xnode));
+    for (int e = 0; e < ne; e++) {
+        int a = B->E.ev[2 * e], b = B->E.ev[2 * e + 1];
+        int bnd = B->E.nbt[2 * e + 1] < 0;
+        for (int k = 0; k < 2; k++) {
+            const double *th = B->theta[k];
+            double ca = th[a], cb = ca + glpgp_phase_step(th[b] - th[a]);
+            if (B->exact[k][b]) cb = (double)lround(cb);
+            B->xint[2 * e + k] = NOX;
+            double lo = fmin(ca, cb), hi = fmax(ca, cb);
+            double n = floor(lo) + 1.0; /* smallest integer > lo */
+            if (n < hi) {
+                B->xint[2 * e + k] = (int)n;
+                B->xs[2 * e + k] = (n - ca) / (cb - ca);
+            }
+        }
+        int have0 = B->xint[2 * e] != NOX, have1 = B->xint[2 * e + 1] != NOX;
+        double ax = m->xy[2 * a], ay = m->xy[2 * a + 1], bx = m->xy[2 * b], by = m->xy[2 * b + 1];
+        for (int k = 0; k < 2; k++) {
+            if (B->xint[2 * e + k] == NOX) continue;
+            if (k == 1 && have0 && fabs(B->xs[2 * e] - B->xs[2 * e + 1]) < 1e-12) {
+                B->xnode[2 * e + 1] = B->xnode[2 * e]; /* grid point on the edge */
+                continue;
+            }
+            double s = B->xs[2 * e + k];
+            int id = -1;
+            GLPGP_CHECK(add_node(g, ax + s * (bx - ax), ay + s * (by - ay), -1, bnd, &id));
+            B->xnode[2 * e + k] = id;
+        }
+        (void)have1;
+    }
+    /* boundary edges, in loop direction (the domain on the left) */
+    for (int t = 0; t < m->nt; t++)
+        for (int j = 0; j < 3; j++) {
+            int e = B->E.tri_edge[3 * t + j];
+            if (B->E.nbt[2 * e + 1] >= 0) continue;
+            GLPGP_CHECK(add_mesh_edge_path(B, e, m->tri[3 * t + j], QE_BND));
+        }
+    /* chords and grid points, triangle by triangle */
+    for (int t = 0; t < m->nt; t++) {
+        chord ch[2][3];
+        int nch[2];
+        for (int k = 0; k < 2; k++) {
+            int sing = r->osc[k].singular && r->osc[k].singular[t] != 0;
+            nch[k] = tri_chords(B, t, k, ch[k]);
+            if (sing) {
+                B->singular[k]++;
+                nch[k] = -1;
+            } else if (nch[k] < 0) {
+                B->inconsistent[k]++;
+            }
+        }
+        if (nch[0] > 0 && nch[1] > 0) {
+            for (int a = 0; a < nch[0]; a++) {
+                chord *U = &ch[0][a];
+                if (U->edge_side >= 0) continue;
+                for (int b = 0; b < nch[1]; b++) {
+                    chord *V = &ch[1][b];
+                    if (V->edge_side >= 0) continue;
+                    if (V->node[0] == U->node[0] || V->node[0] == U->node[1] ||
+                        V->node[1] == U->node[0] || V->node[1] == U->node[1])
+                        continue; /* they meet at a shared end point */
+                    int in0 = in_arc(V->pos[0], U->pos[0], U->pos[1]);
+                    int in1 = in_arc(V->pos[1], U->pos[0], U->pos[1]);
+                    if (in0 == in1) continue;
+                    if (U->ng >= 16 || V->ng >= 16) continue;
+                    double p0x, p0y, p1x, p1y, q0x, q0y, q1x, q1y, tu, tv;
+                    node_xy(g, U->node[0], &p0x, &p0y);
+                    node_xy(g, U->node[1], &p1x, &p1y);
+                    node_xy(g, V->node[0], &q0x, &q0y);
+                    node_xy(g, V->node[1], &q1x, &q1y);
+                    seg_intersect(p0x, p0y, p1x, p1y, q0x, q0y, q1x, q1y, &tu, &tv);
+                    int id = -1;
+                    GLPGP_CHECK(add_node(g, p0x + tu * (p1x - p0x), p0y + tu * (p1y - p0y), -1, 0,
+                                         &id));
+                    U->gnode[U->ng] = id;
+                    U->gpar[U->ng++] = tu;
+                    V->gnode[V->ng] = id;
+                    V->gpar[V->ng++] = tv;
+                }
+            }
+        }
+        for (int k = 0; k < 2; k++) {
+            for (int a = 0; a < nch[k]; a++) {
+                chord *C = &ch[k][a];
+                int fl = k == 0 ? QE_U : QE_V;
+                if (C->edge_side >= 0) {
+                    int e = B->E.tri_edge[3 * t + C->edge_side];
+                    GLPGP_CHECK(add_mesh_edge_path(B, e, B->E.ev[2 * e], fl));
+                } else {
+                    GLPGP_CHECK(add_chord_edges(B, C, fl));
+                }
+            }
+        }
+    }
+    return GLPGP_OK;
+}
+
+/* ---- graph simplification ---------------------------------------------- */
+
+static int uf_find(int *p, int i)
+{
+    while (p[i] != i) {
+        p[i] = p[p[i]];
+        i = p[i];
+    }
+    return i;
+}
+
+/* Node priority when merging: fixed corner > boundary > other. */
+static int node_rank(const qnode *n) { return 2 * n->fixed + n->bnd; }
+
+/* Merge node sets given by the union-find parent array: every edge is
+ * re-pointed to representatives, self-loops are removed, duplicates merged
+ * (flags OR-ed; a boundary direction is kept from the first boundary copy).
+ * The representative takes the position of its best-ranked member. */
+static int cmp_edge(const void *pa, const void *pb)
+{
+    const qedge *a = pa, *b = pb;
+    int a0 = a->a < a->b ? a->a : a->b, a1 = a->a < a->b ? a->b : a->a;
+    int b0 = b->a < b->b ? b->a : b->b, b1 = b->a < b->b ? b->b : b->a;
+    if (a0 != b0) return a0 < b0 ? -1 : 1;
+    if (a1 != b1) return a1 < b1 ? -1 : 1;
+    /* boundary copies first */
+    return (int)(b->flags & QE_BND) - (int)(a->flags & QE_BND);
+}
+
+static glpgp_status merge_nodes(graph *g, int *parent)
+{
+    /* representative position */
+    int *best = NULL;
+    int *cnt = NULL;
+    double *sx = NULL;
+    glpgp_status st = GLPGP_OK;
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)g->nn, sizeof(int), &best), done);
+    GLPGP_CHECK_GOTO(st, glpgp_calloc((size_t)g->nn, sizeof(int), &cnt), done);
+    GLPGP_CHECK_GOTO(st, glpgp_calloc((size_t)2 * g->nn, sizeof(double), &sx), done);
+    for (int i = 0; i < g->nn; i++) best[i] = -1;
+    for (int i = 0; i < g->nn; i++) {
+        int rp = uf_find(parent, i);
+        int rk = node_rank(&g->node[i]);
+        if (best[rp] < 0 || rk > node_rank(&g->node[best[rp]])) {
+            best[rp] = i;
+            cnt[rp] = 0;
+            sx[2 * rp] = sx[2 * rp + 1] = 0.0;
+        }
+        if (rk == node_rank(&g->node[best[rp]])) {
+            cnt[rp]++;
+            sx[2 * rp] += g->node[i].x;
+            sx[2 * rp + 1] += g->node[i].y;
+        }
+    }
+    for (int i = 0; i < g->nn; i++) {
+        if (parent[i] != i || uf_find(parent, i) != i) continue;
+        qnode nb = g->node[best[i]];
+        nb.x = sx[2 * i] / cnt[i];
+        nb.y = sx[2 * i + 1] / cnt[i];
+        /* a mesh vertex keeps its exact position */
+        if (nb.vert >= 0 || nb.fixed) {
+            nb.x = g->node[best[i]].x;
+            nb.y = g->node[best[i]].y;
+        }
+        g->node[i] = nb;
+    }
+    int w = 0;
+    for (int e = 0; e < g->ne; e++) {
+        qedge E = g->edge[e];
+        if (E.flags & QE_DEL) continue;
+        E.a = uf_find(parent, E.a);
+        E.b = uf_find(parent, E.b);
+        if (E.a == E.b) continue;
+        g->edge[w++] = E;
+    }
+    g->ne = w;
+    qsort(g->edge, (size_t)g->ne, sizeof *g->edge, cmp_edge);
+    w = 0;
+    for (int e = 0; e < g->ne; e++) {
+        if (w > 0) {
+            qedge *P = &g->edge[w - 1];
+            int p0 = P->a < P->b ? P->a : P->b, p1 = P->a < P->b ? P->b : P->a;
+            int q0 = g->edge[e].a < g->edge[e].b ? g->edge[e].a : g->edge[e].b;
+            int q1 = g->edge[e].a < g->edge[e].b ? g->edge[e].b : g->edge[e].a;
+            if (p0 == q0 && p1 == q1) {
+                P->flags |= (unsigned char)(g->edge[e].flags & (QE_U | QE_V));
+                continue;
+            }
+        }
+        g->edge[w++] = g->edge[e];
+    }
+    g->ne = w;
+done:
+    free(best);
+    free(cnt);
+    free(sx);
+    return st;
+}
+
+/* Remove dangling edges: repeatedly delete the edges of degree-1 nodes. */
+static glpgp_status prune(graph *g)
+{
+    int *deg = NULL, *adj_start = NULL, *adj = NULL, *stack = NULL;
+    glpgp_status st = GLPGP_OK;
+    GLPGP_CHECK_GOTO(st, glpgp_calloc((size_t)g->nn + 1, sizeof(int), &deg), done);
+    GLPGP_CHECK_GOTO(st, glpgp_calloc((size_t)g->nn + 1, sizeof(int), &adj_start), done);
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)2 * g->ne + 1, sizeof(int), &adj), done);
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)g->nn + 1, sizeof(int), &stack), done);
+    for (int e = 0; e < g->ne; e++) {
+        if (g->edge[e].flags & QE_DEL) continue;
+        deg[g->edge[e].a]++;
+        deg[g->edge[e].b]++;
+    }
+    for (int i = 0; i < g->nn; i++) adj_start[i + 1] = adj_start[i] + deg[i];
+    {
+        int *fill = stack; /* reuse as cursor */
+        for (int i = 0; i < g->nn; i++) fill[i] = adj_start[i];
+        for (int e = 0; e < g->ne; e++) {
+            if (g->edge[e].flags & QE_DEL) continue;
+            adj[fill[g->edge[e].a]++] = e;
+            adj[fill[g->edge[e].b]++] = e;
+        }
+    }
+    int sp = 0;
+    for (int i = 0; i < g->nn; i++)
+        if (deg[i] == 1) stack[sp++] = i;
+    while (sp > 0) {
+        int v = stack[--sp];
+        if (deg[v] != 1) continue;
+        for (int q = adj_start[v]; q < adj_start[v + 1]; q++) {
+            qedge *E = &g->edge[adj[q]];
+            if (E->flags & QE_DEL) continue;
+            E->flags |= QE_DEL;
+            int o = E->a == v ? E->b : E->a;
+            deg[v]--;
+            deg[o]--;
+            if (deg[o] == 1) stack[sp++] = o;
+            break;
+        }
+    }
+    int w = 0;
+    for (int e = 0; e < g->ne; e++)
+        if (!(g->edge[e].flags & QE_DEL)) g->edge[w++] = g->edge[e];
+    g->ne = w;
+done:
+    free(deg);
+    free(adj_start);
+    free(adj);
+    free(stack);
+    return st;
+}
+
+/* ---- planar map and faces ---------------------------------------------- */
+
+typedef struct pmap {
+    int nh;          /* 2 * ne half-edges: h = 2e (a -> b), 2e + 1 (b -> a) */
+    int *rot_start;  /* nn + 1 */
+    int *rot;        /* half-edges by origin, counter-clockwise */
+    int *rot_pos;    /* nh: index of h in rot */
+    int *face;       /* nh: face of h (face on the left) */
+    int nf;
+    int *face_he;    /* a half-edge of each face */
+    unsigned char *outer; /* nf */
+    int *deg;        /* nn */
+} pmap;
+
+static void pmap_free(pmap *p)
+{
+    free(p->rot_start);
+    free(p->rot);
+    free(p->rot_pos);
+    free(p->face);
+    free(p->face_he);
+    free(p->outer);
+    free(p->deg);
+    memset(p, 0, sizeof *p);
+}
+
+static const graph *g_sort_graph;
+static double *g_sort_ang;
+static int cmp_he_angle(const void *pa, const void *pb)
+{
+    int a = *(const int *)pa, b = *(const int *)pb;
+    double x = g_sort_ang[a], y = g_sort_ang[b];
+    return (x > y) - (x < y);
+}
+
+static int he_orig(const graph *g, int h) { return h & 1 ? g->edge[h >> 1].b : g->edge[h >> 1].a; }
+static int he_dest(const graph *g, int h) { return h & 1 ? g->edge[h >> 1].a : g->edge[h >> 1].b; }
+
+/* face_next(h) = the half-edge before twin(h) in counter-clockwise order
+ * around the origin of twin(h) (= destination of h). */
+static int face_next(const graph *g, const pmap *p, int h)
+{
+    int t = h ^ 1;
+    int v = he_orig(g, t);
+    int i = p->rot_pos[t];
+    int s = p->rot_start[v], n = p->rot_start[v + 1] - s;
+    return p->rot[s + (i - s + n - 1) % n];
+}
+
+static glpgp_status pmap_build(const graph *g, pmap *p)
+{
+    memset(p, 0, sizeof *p);
+    glpgp_status st = GLPGP_OK;
+    double *ang = NULL;
+    int *fill = NULL;
+    int nh = 2 * g->ne;
+    p->nh = nh;
+    GLPGP_CHECK_GOTO(st, glpgp_calloc((size_t)g->nn + 1, sizeof(int), &p->rot_start), fail);
+    GLPGP_CHECK_GOTO(st, glpgp_calloc((size_t)g->nn + 1, sizeof(int), &p->deg), fail);
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)nh + 1, sizeof(int), &p->rot), fail);
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)nh + 1, sizeof(int), &p->rot_pos), fail);
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)nh + 1, sizeof(int), &p->face), fail);
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)nh + 1, sizeof(double), &ang), fail);
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)g->nn + 1, sizeof(int), &fill), fail);
+    for (int h = 0; h < nh; h++) {
+        int o = he_orig(g, h), d = he_dest(g, h);
+        p->deg[o]++;
+        ang[h] = atan2(g->node[d].y - g->node[o].y, g->node[d].x - g->node[o].x);
+    }
+    for (int i = 0; i < g->nn; i++) p->rot_start[i + 1] = p->rot_start[i] + p->deg[i];
+    for (int i = 0; i < g->nn; i++) fill[i] = p->rot_start[i];
+    for (int h = 0; h < nh; h++) p->rot[fill[he_orig(g, h)]++] = h;
+    g_sort_graph = g;
+    g_sort_ang = ang;
+    for (int i = 0; i < g->nn; i++) {
+        int s = p->rot_start[i], n = p->rot_start[i + 1] - s;
+        if (n > 1) qsort(p->rot + s, (size_t)n, sizeof(int), cmp_he_angle);
+    }
+    for (int q = 0; q < nh; q++) p->rot_pos[p->rot[q]] = q;
+    for (int h = 0; h < nh; h++) p->face[h] = -1;
+    int nf = 0, capf = 0;
+    for (int h = 0; h < nh; h++) {
+        if (p->face[h] >= 0) continue;
+        if (nf == capf) {
+            capf = capf ? 2 * capf : 1024;
+            int *nfh = realloc(p->face_he, (size_t)capf * sizeof(int));
+            if (!nfh) {
+                st = GLPGP_FAIL(GLPGP_ERR_NOMEM, "out of memory (quad faces)");
+                goto fail;
+            }
+            p->face_he = nfh;
+        }
+        p->face_he[nf] = h;
+        int c = h, guard = 0;
+        do {
+            p->face[c] = nf;
+            c = face_next(g, p, c);
+        } while (c != h && ++guard <= nh);
+        nf++;
+    }
+    p->nf = nf;
+    GLPGP_CHECK_GOTO(st, glpgp_calloc((size_t)nf + 1, 1, &p->outer), fail);
+    for (int e = 0; e < g->ne; e++)
+        if (g->edge[e].flags & QE_BND) p->outer[p->face[2 * e + 1]] = 1; /* b -> a: outside */
+    free(ang);
+    free(fill);
+    return GLPGP_OK;
+fail:
+    free(ang);
+    free(fill);
+    pmap_free(p);
+    return st;
+}
+
+/* Turning angle at a degree-2 node between its two edges (0: straight). */
+static double turn_angle(const graph *g, const pmap *p, int v)
+{
+    int s = p->rot_start[v];
+    int h0 = p->rot[s], h1 = p->rot[s + 1];
+    int d0 = he_dest(g, h0), d1 = he_dest(g, h1);
+    double ax = g->node[d0].x - g->node[v].x, ay = g->node[d0].y - g->node[v].y;
+    double bx = g->node[d1].x - g->node[v].x, by = g->node[d1].y - g->node[v].y;
+    double c = (ax * bx + ay * by) / (hypot(ax, ay) * hypot(bx, by) + 1e-300);
+    c = fmax(-1.0, fmin(1.0, c));
+    return PI_ - acos(c);
+}
+
+/* Corner flags of all nodes for the current map. */
+static void corners(const graph *g, const pmap *p, unsigned char *corner)
+{
+    for (int v = 0; v < g->nn; v++) {
+        int d = p->deg[v];
+        corner[v] = 0;
+        if (d >= 3 || (d >= 1 && g->node[v].fixed))
+            corner[v] = 1;
+        else if (d == 2 && g->node[v].bnd && turn_angle(g, p, v) > 40.0 * PI_ / 180.0)
+            corner[v] = 1;
+    }
+}
+
+/* ---- clean-up ---------------------------------------------------------- */
+
+/* One round of clean-up on the current map. Returns the number of changes
+ * (0: the map is final). */
+static glpgp_status cleanup_round(graph *g, const pmap *p, double h, int *changes, int *collapsed,
+                                  int *promoted)
+{
+    glpgp_status st = GLPGP_OK;
+    unsigned char *corner = NULL;
+    int *parent = NULL;
+    unsigned char *fx = NULL; /* per union-find root: the set holds a domain corner */
+    int nchg = 0;
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)g->nn + 1, 1, &corner), done);
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)g->nn + 1, 1, &fx), done);
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)g->nn + 1, sizeof(int), &parent), done);
+    corners(g, p, corner);
+    for (int i = 0; i < g->nn; i++) {
+        parent[i] = i;
+        fx[i] = g->node[i].fixed;
+    }
+
+    /* 1. short sides: walk every side (corner to corner) once, from the
+     *    half-edge leaving a corner; contract those shorter than 0.2 h unless
+     *    that would merge two domain corners. */
+    for (int h0 = 0; h0 < p->nh; h0++) {
+        int a = he_orig(g, h0);
+        if (!corner[a]) continue;
+        if (p->outer[p->face[h0]] && p->outer[p->face[h0 ^ 1]]) continue;
+        double len = 0.0;
+        int c = h0, n = 0;
+        for (;;) {
+            int d = he_dest(g, c);
+            len += hypot(g->node[d].x - g->node[he_orig(g, c)].x,
+                         g->node[d].y - g->node[he_orig(g, c)].y);
+            if (corner[d] || ++n > 10000) break;
+            /* continue through the degree-2 node */
+            int s = p->rot_start[d];
+            c = (p->rot[s] == (c ^ 1)) ? p->rot[s + 1] : p->rot[s];
+        }
+        int b = he_dest(g, c);
+        /* each side once; a loop side (a == b: a closed level line through
+         * one corner, or a side whose two ends were merged) is seen twice,
+         * which is harmless since merging is idempotent */
+        if (a > b) continue;
+        if (len >= 0.2 * h) continue;
+        int ra = uf_find(parent, a), rb = uf_find(parent, b);
+        if (ra != rb && fx[ra] && fx[rb]) continue; /* would merge two domain corners */
+        /* merge the whole chain, interior nodes included: when a and b are
+         * already in one set (merged through other short sides of the same
+         * small face), the chain must collapse too, or it would be left as a
+         * loop that crosses the edges re-pointed to the merged node */
+        int changed = 0;
+        c = h0;
+        n = 0;
+        for (;;) {
+            int d = he_dest(g, c);
+            int rd = uf_find(parent, d), r = uf_find(parent, a);
+            if (rd != r) {
+                parent[rd] = r;
+                fx[r] = (unsigned char)(fx[r] | fx[rd]);
+                changed = 1;
+            }
+            if (corner[d] || ++n > 10000) break;
+            int s = p->rot_start[d];
+            c = (p->rot[s] == (c ^ 1)) ? p->rot[s + 1] : p->rot[s];
+        }
+        if (!changed) continue;
+        nchg++;
+        (*collapsed)++;
+    }
+
+    /* 2. faces with <= 2 corners: delete one of their non-boundary sides.
+     * 3. 3-corner faces with a boundary side through degree-2 boundary
+     *    nodes: promote the node farthest from the side's chord. */
+    if (nchg == 0) {
+        for (int f = 0; f < p->nf; f++) {
+            if (p->outer[f]) continue;
+            int h = p->face_he[f], nc = 0, guard = 0;
+            int c = h;
+            do {
+                if (corner[he_orig(g, c)]) nc++;
+                c = face_next(g, p, c);
+            } while (c != h && ++guard < p->nh);
+            if (nc <= 2) {
+                /* find a side (maximal run between corners) without boundary edges */
+                int start = h;
+                guard = 0;
+                while (!corner[he_orig(g, start)] && ++guard < p->nh) start = face_next(g, p, start);
+                c = start;
+                guard = 0;
+                do {
+                    int s0 = c, isb = 0;
+                    int d = c;
+                    do {
+                        if (g->edge[d >> 1].flags & QE_BND) isb = 1;
+                        d = face_next(g, p, d);
+                    } while (!corner[he_orig(g, d)] && ++guard < p->nh);
+                    if (!isb) {
+                        int q = s0;
+                        do {
+                            g->edge[q >> 1].flags |= QE_DEL;
+                            q = face_next(g, p, q);
+                        } while (q != d);
+                        nchg++;
+                        break;
+                    }
+                    c = d;
+                } while (c != start && guard < p->nh);
+            } else if (nc == 3) {
+                /* boundary side with intermediate nodes? */
+                int best = -1;
+                double bestd = 0.0;
+                int start = h;
+                guard = 0;
+                while (!corner[he_orig(g, start)] && ++guard < p->nh) start = face_next(g, p, start);
+                c = start;
+                guard = 0;
+                do {
+                    int a = he_orig(g, c);
+                    int d = c, allb = 1, cnt = 0;
+                    do {
+                        if (!(g->edge[d >> 1].flags & QE_BND)) allb = 0;
+                        d = face_next(g, p, d);
+                        cnt++;
+                    } while (!corner[he_orig(g, d)] && ++guard < p->nh);
+                    int b = he_orig(g, d);
+                    if (allb && cnt >= 2) {
+                        double ax = g->node[a].x, ay = g->node[a].y;
+                        double bx = g->node[b].x, by = g->node[b].y;
+                        double L = hypot(bx - ax, by - ay) + 1e-300;
+                        int q = face_next(g, p, c);
+                        while (q != d) {
+                            int v = he_orig(g, q);
+                            double dist = fabs((bx - ax) * (g->node[v].y - ay) -
+                                               (by - ay) * (g->node[v].x - ax)) / L;
+                            if (dist > bestd) {
+                                bestd = dist;
+                                best = v;
+                            }
+                            q = face_next(g, p, q);
+                        }
+                    }
+                    c = d;
+                } while (c != start && guard < p->nh);
+                if (best >= 0) {
+                    g->node[best].fixed = 1;
+                    (*promoted)++;
+                    nchg++;
+                }
+            }
+        }
+    }
+    if (nchg > 0) GLPGP_CHECK_GOTO(st, merge_nodes(g, parent), done);
+    *changes = nchg;
+done:
+    free(corner);
+    free(parent);
+    free(fx);
+    return st;
+}
+
+/* ---- driver ------------------------------------------------------------ */
+
+/* Minimum corner scaled Jacobian of the quad (a, b, c, d) of graph nodes. */
+static double quad_sj(const graph *g, const int *v)
+{
+    double xy[8];
+    int id[4] = {0, 1, 2, 3};
+    for (int i = 0; i < 4; i++) {
+        xy[2 * i] = g->node[v[i]].x;
+        xy[2 * i + 1] = g->node[v[i]].y;
+    }
+    return glpgp_poly_min_sj(xy, id, 4);
+}
+
+/* glpgp_hex_centre_split for the hexagon hx[0..5] of graph nodes. */
+static double hex_center_split(const graph *g, const int *hx, int *o_best, double *xb, double *yb)
+{
+    double xy[12];
+    int id[6] = {0, 1, 2, 3, 4, 5};
+    for (int i = 0; i < 6; i++) {
+        xy[2 * i] = g->node[hx[i]].x;
+        xy[2 * i + 1] = g->node[hx[i]].y;
+    }
+    return glpgp_hex_centre_split(xy, id, o_best, xb, yb);
+}
+
+/* Output index of graph node v (appended on first use). */
+static int out_vertex(const graph *g, glpgp_quadmesh *q, int *newid, int v)
+{
+    if (newid[v] < 0) {
+        newid[v] = q->nv;
+        q->xy[2 * q->nv] = g->node[v].x;
+        q->xy[2 * q->nv + 1] = g->node[v].y;
+        q->nv++;
+    }
+    return newid[v];
+}
+
+glpgp_status glpgp_quads_extract(const glpgp_mesh *m, const glpgp_result *r, glpgp_quadmesh **out)
+{
+    *out = NULL;
+    if (!m || !r) return GLPGP_FAIL(GLPGP_ERR_ARG, "quad extraction: no mesh or result");
+    if (r->nv != m->nv || r->nt != m->nt)
+        return GLPGP_FAIL(GLPGP_ERR_ARG,
+                          "quad extraction: result has %d vertices / %d triangles, mesh %d / %d",
+                          r->nv, r->nt, m->nv, m->nt);
+    if (!r->osc[0].z || !r->osc[1].z)
+        return GLPGP_FAIL(GLPGP_ERR_FORMAT, "quad extraction: the result has no oscillators z_u, z_v");
+    double h = r->size > 0.0 ? r->size : glpgp_default_size(m, NULL);
+
+    glpgp_status st = GLPGP_OK;
+    builder B;
+    memset(&B, 0, sizeof B);
+    B.m = m;
+    B.r = r;
+    pmap P;
+    memset(&P, 0, sizeof P);
+    int *parent = NULL, *newid = NULL;
+    unsigned char *corner = NULL;
+    glpgp_quadmesh *q = NULL;
+    int collapsed = 0, promoted = 0, split_pentagons = 0, center_splits = 0;
+    int *cyc = NULL, *cych = NULL;
+
+    GLPGP_CHECK_GOTO(st, build_edges(m, &B.E), done);
+    GLPGP_CHECK_GOTO(st, build_arrangement(&B), done);
+    graph *g = &B.g;
+
+    /* domain corners: boundary vertices where the boundary turns > 40 deg */
+    for (int i = 0; i < m->nv; i++) {
+        if (!m->on_boundary[i]) continue;
+        const double *a = m->normal_prev + 2 * i, *b = m->normal_next + 2 * i;
+        double c = a[0] * b[0] + a[1] * b[1];
+        if (c < cos(40.0 * PI_ / 180.0)) g->node[i].fixed = 1;
+    }
+
+    /* contract edges shorter than 1e-6 h (coincident nodes), drop duplicates */
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)g->nn, sizeof(int), &parent), done);
+    for (int i = 0; i < g->nn; i++) parent[i] = i;
+    for (int e = 0; e < g->ne; e++) {
+        const qnode *a = &g->node[g->edge[e].a], *b = &g->node[g->edge[e].b];
+        if (hypot(a->x - b->x, a->y - b->y) < 1e-6 * h) {
+            int ra = uf_find(parent, g->edge[e].a), rb = uf_find(parent, g->edge[e].b);
+            if (ra != rb) parent[rb] = ra;
+        }
+    }
+    GLPGP_CHECK_GOTO(st, merge_nodes(g, parent), done);
+    GLPGP_CHECK_GOTO(st, prune(g), done);
+
+    for (int round = 0; round < 8; round++) {
+        GLPGP_CHECK_GOTO(st, pmap_build(g, &P), done);
+        int changes = 0;
+        GLPGP_CHECK_GOTO(st, cleanup_round(g, &P, h, &changes, &collapsed, &promoted), done);
+        if (changes == 0) break;
+        pmap_free(&P);
+        GLPGP_CHECK_GOTO(st, prune(g), done);
+    }
+    if (!P.rot_start) GLPGP_CHECK_GOTO(st, pmap_build(g, &P), done);
+
+    /* output: corner nodes of inner faces, renumbered */
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)g->nn + 1, 1, &corner), done);
+    /* room for one centre vertex per face (pentagons split around a centre) */
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)g->nn + P.nf + 1, sizeof(int), &newid), done);
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)P.nh + 1, sizeof(int), &cyc), done);
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)P.nh + 1, sizeof(int), &cych), done);
+    corners(g, &P, corner);
+    for (int i = 0; i < g->nn + P.nf + 1; i++) newid[i] = -1;
+    GLPGP_CHECK_GOTO(st, glpgp_calloc(1, sizeof *q, &q), done);
+    /* a face becomes at most 3 quads (12 corners; it has >= 6 half-edges then) */
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)P.nf + 2, 3 * sizeof(int), &q->face_start), done);
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)P.nh + 1, 2 * sizeof(int), &q->face_vert), done);
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)P.nh + P.nf + 1, 2 * sizeof(double), &q->xy), done);
+    q->face_start[0] = 0;
+    int w = 0;
+    for (int f = 0; f < P.nf; f++) {
+        if (P.outer[f]) continue;
+        /* the face cycle, starting at a corner */
+        int h0 = P.face_he[f], guard = 0;
+        while (!corner[he_orig(g, h0)] && ++guard < P.nh) h0 = face_next(g, &P, h0);
+        int nc = 0, len = 0, c = h0;
+        guard = 0;
+        do {
+            cych[len] = c;
+            cyc[len++] = he_orig(g, c);
+            nc += corner[he_orig(g, c)];
+            c = face_next(g, &P, c);
+        } while (c != h0 && ++guard < P.nh);
+        if (nc < 3) continue;
+        int cs[8], split = -1;
+        double best_diag = -INFINITY;
+        int chx[6], co = 0, csplit = -1; /* centre split: hexagon, offset */
+        double cx = 0.0, cy = 0.0, cbest = -INFINITY;
+        if (nc == 5) {
+            /* boundary pentagon: make the best intermediate boundary node of a
+             * boundary side a sixth corner and split the hexagon by the
+             * diagonal from it to an opposite corner (of the three diagonals, the one
+             * whose worse quad has the best scaled Jacobian, if that is > 0.1),
+             * or, when no diagonal gives a quad as good as 0.5, into three
+             * quads around a new centre vertex (hex_center_split) if that is
+             * better: the usual case when the new corner sits on a concave
+             * boundary arc, where every diagonal makes a reflex quad */
+            double best = 0.1;
+            int pos5[5], np5 = 0;
+            for (int i = 0; i < len; i++)
+                if (corner[cyc[i]]) pos5[np5++] = i;
+            for (int sd = 0; sd < 5; sd++) {
+                int i0 = pos5[sd], i1 = sd < 4 ? pos5[sd + 1] : len;
+                int allb = 1;
+                for (int i = i0; i < i1; i++)
+                    if (!(g->edge[cych[i] >> 1].flags & QE_BND)) allb = 0;
+                if (!allb || i1 - i0 < 2) continue;
+                int ca = cyc[i0], cb = cyc[i1 % len];
+                double Lab = hypot(g->node[cb].x - g->node[ca].x, g->node[cb].y - g->node[ca].y);
+                for (int i = i0 + 1; i < i1; i++) {
+                    int hx[6];
+                    hx[0] = cyc[i];
+                    /* keep the new corner away from the side's ends */
+                    double da = hypot(g->node[hx[0]].x - g->node[ca].x, g->node[hx[0]].y - g->node[ca].y);
+                    double db = hypot(g->node[hx[0]].x - g->node[cb].x, g->node[hx[0]].y - g->node[cb].y);
+                    if (da < 0.3 * Lab || db < 0.3 * Lab) continue;
+                    for (int k = 1; k < 6; k++) hx[k] = cyc[pos5[(sd + k) % 5]];
+                    {
+                        int o = 0;
+                        double x = 0.0, y = 0.0;
+                        double sj = hex_center_split(g, hx, &o, &x, &y);
+                        if (sj > cbest) {
+                            cbest = sj;
+                            csplit = i;
+                            co = o;
+                            cx = x;
+                            cy = y;
+                            memcpy(chx, hx, sizeof chx);
+                        }
+                    }
+                    /* the three diagonals (d, d + 3) of the hexagon */
+                    for (int d = 0; d < 3; d++) {
+                        int qa[4], qb[4];
+                        for (int k = 0; k < 4; k++) {
+                            qa[k] = hx[(d + k) % 6];
+                            qb[k] = hx[(d + 3 + k) % 6];
+                        }
+                        double sj = fmin(quad_sj(g, qa), quad_sj(g, qb));
+                        if (sj > best) {
+                            best = best_diag = sj;
+                            split = i;
+                            for (int k = 0; k < 4; k++) {
+                                cs[k] = qa[k];
+                                cs[4 + k] = qb[k];
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        if (csplit >= 0 && cbest > 0.1 && (split < 0 || (best_diag < 0.5 && cbest > best_diag))) {
+            int X = -1;
+            GLPGP_CHECK_GOTO(st, add_node(g, cx, cy, -1, 0, &X), done);
+            newid[X] = -1;
+            for (int i = 0; i < 3; i++) {
+                for (int k = 0; k < 3; k++)
+                    q->face_vert[w++] = out_vertex(g, q, newid, chx[(co + 2 * i + k) % 6]);
+                q->face_vert[w++] = out_vertex(g, q, newid, X);
+                q->face_start[++q->nf] = w;
+            }
+            split_pentagons++;
+            center_splits++;
+            continue;
+        }
+        if (split >= 0) {
+            for (int k = 0; k < 8; k++) {
+                q->face_vert[w++] = out_vertex(g, q, newid, cs[k]);
+                if (k == 3 || k == 7) q->face_start[++q->nf] = w;
+            }
+            split_pentagons++;
+            continue;
+        }
+        for (int i = 0; i < len; i++)
+            if (corner[cyc[i]]) q->face_vert[w++] = out_vertex(g, q, newid, cyc[i]);
+        q->face_start[++q->nf] = w;
+    }
+    if (q->nf == 0) {
+        st = GLPGP_FAIL(GLPGP_ERR_NUMERIC,
+                        "quad extraction: no face found (is h = %g too large for the domain?)", h);
+        goto done;
+    }
+    for (int k = 0; k < 2; k++) {
+        q->singular_tris[k] = B.singular[k];
+        q->inconsistent_tris[k] = B.inconsistent[k];
+    }
+    q->collapsed_edges = collapsed;
+    q->promoted_corners = promoted;
+    q->split_pentagons = split_pentagons;
+    q->center_splits = center_splits;
+    *out = q;
+    q = NULL;
+done:
+    glpgp_quadmesh_destroy(&q);
+    pmap_free(&P);
+    free(parent);
+    free(newid);
+    free(corner);
+    free(cyc);
+    free(cych);
+    for (int k = 0; k < 2; k++) {
+        free(B.theta[k]);
+        free(B.exact[k]);
+    }
+    free(B.xint);
+    free(B.xs);
+    free(B.xnode);
+    free(B.E.ev);
+    free(B.E.nbt);
+    free(B.E.tri_edge);
+    free(B.g.node);
+    free(B.g.edge);
+    return st;
+}
+
+void glpgp_quadmesh_destroy(glpgp_quadmesh **q)
+{
+    if (!q || !*q) return;
+    free((*q)->xy);
+    free((*q)->face_start);
+    free((*q)->face_vert);
+    free(*q);
+    *q = NULL;
+}
+
+/* ---- refinement to an all-quad mesh ------------------------------------ */
+
+static int cmp_ll2(const void *pa, const void *pb)
+{
+    const long long *a = pa, *b = pb;
+    return (a[0] > b[0]) - (a[0] < b[0]);
+}
+
+glpgp_status glpgp_quadmesh_subdivide(const glpgp_quadmesh *q, glpgp_quadmesh **out)
+{
+    *out = NULL;
+    if (!q || q->nf < 1) return GLPGP_FAIL(GLPGP_ERR_ARG, "quad refinement: empty mesh");
+    const int nc = q->face_start[q->nf]; /* face sides = corners */
+    glpgp_status st = GLPGP_OK;
+    long long *key = NULL; /* (edge key, side index) pairs, sorted */
+    int *side_mid = NULL;  /* per side: index of its midpoint in the output */
+    glpgp_quadmesh *r = NULL;
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)nc, 2 * sizeof(long long), &key), done);
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)nc, sizeof(int), &side_mid), done);
+    for (int f = 0; f < q->nf; f++) {
+        int s = q->face_start[f], k = q->face_start[f + 1] - s;
+        for (int i = 0; i < k; i++) {
+            long long a = q->face_vert[s + i], b = q->face_vert[s + (i + 1) % k];
+            key[2 * (s + i)] = (a < b ? a : b) * (long long)q->nv + (a < b ? b : a);
+            key[2 * (s + i) + 1] = s + i;
+        }
+    }
+    qsort(key, (size_t)nc, 2 * sizeof(long long), cmp_ll2);
+    GLPGP_CHECK_GOTO(st, glpgp_calloc(1, sizeof *r, &r), done);
+    /* vertices: the old ones, one midpoint per edge, one centre per face */
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)q->nv + nc + q->nf, 2 * sizeof(double), &r->xy), done);
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)nc + 1, sizeof(int), &r->face_start), done);
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)nc, 4 * sizeof(int), &r->face_vert), done);
+    memcpy(r->xy, q->xy, (size_t)q->nv * 2 * sizeof(double));
+    r->nv = q->nv;
+    for (int i = 0; i < nc;) {
+        int j = i;
+        long long ab = key[2 * i];
+        int a = (int)(ab / q->nv), b = (int)(ab % q->nv);
+        r->xy[2 * r->nv] = 0.5 * (q->xy[2 * a] + q->xy[2 * b]);
+        r->xy[2 * r->nv + 1] = 0.5 * (q->xy[2 * a + 1] + q->xy[2 * b + 1]);
+        while (j < nc && key[2 * j] == ab) side_mid[key[2 * j++ + 1]] = r->nv;
+        r->nv++;
+        i = j;
+    }
+    int w = 0;
+    r->face_start[0] = 0;
+    for (int f = 0; f < q->nf; f++) {
+        int s = q->face_start[f], k = q->face_start[f + 1] - s;
+        double cx = 0.0, cy = 0.0;
+        for (int i = 0; i < k; i++) {
+            cx += q->xy[2 * q->face_vert[s + i]] / k;
+            cy += q->xy[2 * q->face_vert[s + i] + 1] / k;
+        }
+        int c = r->nv++;
+        r->xy[2 * c] = cx;
+        r->xy[2 * c + 1] = cy;
+        for (int i = 0; i < k; i++) { /* corner i, midpoint of side i, centre, midpoint of side i-1 */
+            r->face_vert[w++] = q->face_vert[s + i];
+            r->face_vert[w++] = side_mid[s + i];
+            r->face_vert[w++] = c;
+            r->face_vert[w++] = side_mid[s + (i + k - 1) % k];
+            r->face_start[++r->nf] = w;
+        }
+    }
+    for (int k = 0; k < 2; k++) {
+        r->singular_tris[k] = q->singular_tris[k];
+        r->inconsistent_tris[k] = q->inconsistent_tris[k];
+    }
+    r->collapsed_edges = q->collapsed_edges;
+    r->promoted_corners = q->promoted_corners;
+    r->split_pentagons = q->split_pentagons;
+    r->center_splits = q->center_splits;
+    *out = r;
+    r = NULL;
+done:
+    glpgp_quadmesh_destroy(&r);
+    free(key);
+    free(side_mid);
+    return st;
+}

@@ -1,0 +1,414 @@
+/* quads/quality.c: the quality report of a polygon mesh (glpgp/quads.h):
+ * valences and irregular vertices, scaled Jacobian, inverted / degenerate /
+ * non-manifold faces and edges, edge lengths, area and the boundary Hausdorff
+ * distance to a domain, and its printed form. */
+#include "glpgp/quads.h"
+#include "geom.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define PI_ 3.14159265358979323846
+
+/* ---- unique edges of a polygon mesh ------------------------------------ */
+
+typedef struct qe {
+    int a, b;   /* a < b */
+    int nface;  /* faces using it */
+} qe;
+
+static int cmp_pair(const void *pa, const void *pb)
+{
+    const int *a = pa, *b = pb;
+    if (a[0] != b[0]) return a[0] < b[0] ? -1 : 1;
+    return (a[1] > b[1]) - (a[1] < b[1]);
+}
+
+/* Unique edges with their face counts. */
+static glpgp_status face_edges(const glpgp_quadmesh *q, qe **out, int *nout)
+{
+    int n = q->face_start[q->nf];
+    int *pr = NULL;
+    GLPGP_CHECK(glpgp_malloc((size_t)2 * n + 2, sizeof(int), &pr));
+    for (int f = 0; f < q->nf; f++) {
+        int s = q->face_start[f], k = q->face_start[f + 1] - s;
+        for (int i = 0; i < k; i++) {
+            int a = q->face_vert[s + i], b = q->face_vert[s + (i + 1) % k];
+            pr[2 * (s + i)] = a < b ? a : b;
+            pr[2 * (s + i) + 1] = a < b ? b : a;
+        }
+    }
+    qsort(pr, (size_t)n, 2 * sizeof(int), cmp_pair);
+    qe *e = NULL;
+    glpgp_status st = glpgp_malloc((size_t)n + 1, sizeof *e, &e);
+    if (st != GLPGP_OK) {
+        free(pr);
+        return st;
+    }
+    int ne = 0;
+    for (int i = 0; i < n;) {
+        int j = i + 1;
+        while (j < n && pr[2 * j] == pr[2 * i] && pr[2 * j + 1] == pr[2 * i + 1]) j++;
+        e[ne].a = pr[2 * i];
+        e[ne].b = pr[2 * i + 1];
+        e[ne].nface = j - i;
+        ne++;
+        i = j;
+    }
+    free(pr);
+    *out = e;
+    *nout = ne;
+    return GLPGP_OK;
+}
+
+glpgp_status glpgp_quadmesh_valences(const glpgp_quadmesh *q, int **out)
+{
+    qe *E = NULL;
+    int ne = 0;
+    int *val = NULL;
+    *out = NULL;
+    GLPGP_CHECK(face_edges(q, &E, &ne));
+    glpgp_status st = glpgp_calloc((size_t)q->nv + 1, sizeof(int), &val);
+    if (st == GLPGP_OK) {
+        /* valence(v) = number of distinct edges at v */
+        for (int i = 0; i < ne; i++) {
+            val[E[i].a]++;
+            val[E[i].b]++;
+        }
+        *out = val;
+    }
+    free(E);
+    return st;
+}
+
+/* ---- nearest distance to a set of segments (uniform grid) ------------- */
+
+typedef struct segset {
+    int n;
+    double *s;      /* 4 per segment */
+    double x0, y0, cs;
+    int nx, ny;
+    int *start;     /* nx*ny + 1 */
+    int *item;
+} segset;
+
+static void segset_free(segset *S)
+{
+    free(S->s);
+    free(S->start);
+    free(S->item);
+    memset(S, 0, sizeof *S);
+}
+
+static glpgp_status segset_build(segset *S, double cs)
+{
+    double x0 = INFINITY, y0 = INFINITY, x1 = -INFINITY, y1 = -INFINITY;
+    for (int i = 0; i < S->n; i++) {
+        const double *p = S->s + 4 * i;
+        x0 = fmin(x0, fmin(p[0], p[2]));
+        x1 = fmax(x1, fmax(p[0], p[2]));
+        y0 = fmin(y0, fmin(p[1], p[3]));
+        y1 = fmax(y1, fmax(p[1], p[3]));
+    }
+    /* keep the grid at most ~ 4 n cells */
+    double w = x1 - x0, hgt = y1 - y0;
+    while ((w / cs + 1) * (hgt / cs + 1) > 4.0 * S->n + 16) cs *= 2.0;
+    S->cs = cs;
+    S->x0 = x0;
+    S->y0 = y0;
+    S->nx = (int)(w / cs) + 1;
+    S->ny = (int)(hgt / cs) + 1;
+    long nc = (long)S->nx * S->ny;
+    GLPGP_CHECK(glpgp_calloc((size_t)nc + 1, sizeof(int), &S->start));
+    /* each segment goes into the cells of its bounding box */
+    for (int pass = 0; pass < 2; pass++) {
+        for (int i = 0; i < S->n; i++) {
+            const double *p = S->s + 4 * i;
+            int ia = (int)((fmin(p[0], p[2]) - x0) / cs), ib = (int)((fmax(p[0], p[2]) - x0) / cs);
+            int ja = (int)((fmin(p[1], p[3]) - y0) / cs), jb = (int)((fmax(p[1], p[3]) - y0) / cs);
+            if (ib >= S->nx) ib = S->nx - 1;
+            if (jb >= S->ny) jb = S->ny - 1;
+            for (int j = ja; j <= jb; j++)
+                for (int k = ia; k <= ib; k++) {
+                    long c = (long)j * S->nx + k;
+                    if (pass == 0)
+                        S->start[c + 1]++;
+                    else
+                        S->item[S->start[c]++] = i;
+                }
+        }
+        if (pass == 0) {
+            for (long c = 0; c < nc; c++) S->start[c + 1] += S->start[c];
+            GLPGP_CHECK(glpgp_malloc((size_t)S->start[nc] + 1, sizeof(int), &S->item));
+        } else {
+            for (long c = nc; c > 0; c--) S->start[c] = S->start[c - 1];
+            S->start[0] = 0;
+        }
+    }
+    return GLPGP_OK;
+}
+
+static double seg_dist(const double *s, double x, double y)
+{
+    double dx = s[2] - s[0], dy = s[3] - s[1];
+    double l2 = dx * dx + dy * dy;
+    double t = l2 > 0 ? ((x - s[0]) * dx + (y - s[1]) * dy) / l2 : 0.0;
+    t = fmax(0.0, fmin(1.0, t));
+    return hypot(s[0] + t * dx - x, s[1] + t * dy - y);
+}
+
+static double segset_dist(const segset *S, double x, double y)
+{
+    if (S->n == 0) return INFINITY;
+    int ci = (int)floor((x - S->x0) / S->cs), cj = (int)floor((y - S->y0) / S->cs);
+    double best = INFINITY;
+    int maxr = S->nx + S->ny + 2;
+    for (int r = 0; r <= maxr; r++) {
+        /* cells at Chebyshev ring r around (ci, cj) */
+        for (int j = cj - r; j <= cj + r; j++) {
+            if (j < 0 || j >= S->ny) continue;
+            int step = (j == cj - r || j == cj + r) ? 1 : 2 * r;
+            if (step == 0) step = 1;
+            for (int i = ci - r; i <= ci + r; i += step) {
+                if (i < 0 || i >= S->nx) continue;
+                long c = (long)j * S->nx + i;
+                for (int q = S->start[c]; q < S->start[c + 1]; q++) {
+                    double d = seg_dist(S->s + 4 * S->item[q], x, y);
+                    if (d < best) best = d;
+                }
+            }
+        }
+        /* everything not yet searched is farther than r * cs from (x, y) */
+        if (best <= r * S->cs) break;
+    }
+    return best;
+}
+
+/* ---- quality ----------------------------------------------------------- */
+
+static int cmp_double(const void *pa, const void *pb)
+{
+    double a = *(const double *)pa, b = *(const double *)pb;
+    return (a > b) - (a < b);
+}
+
+glpgp_status glpgp_quads_quality(const glpgp_quadmesh *q, const glpgp_mesh *domain, double h,
+                                 glpgp_quad_quality *o)
+{
+    memset(o, 0, sizeof *o);
+    if (!(h > 0)) return GLPGP_FAIL(GLPGP_ERR_ARG, "quad quality: size h must be > 0");
+    if (!q || q->nf < 1) return GLPGP_FAIL(GLPGP_ERR_ARG, "quad quality: empty mesh");
+    o->h = h;
+    o->vertices = q->nv;
+    o->faces = q->nf;
+    o->singular[0] = o->singular[1] = -1;
+    o->closing = q->closing;
+    glpgp_status st = GLPGP_OK;
+    qe *E = NULL;
+    int ne = 0;
+    double *sj = NULL, *angle = NULL;
+    int *val = NULL;
+    unsigned char *bnd = NULL;
+    segset SD, SQ;
+    memset(&SD, 0, sizeof SD);
+    memset(&SQ, 0, sizeof SQ);
+    GLPGP_CHECK_GOTO(st, face_edges(q, &E, &ne), done);
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)q->nf + 1, sizeof(double), &sj), done);
+    GLPGP_CHECK_GOTO(st, glpgp_calloc((size_t)q->nv + 1, sizeof(double), &angle), done);
+    GLPGP_CHECK_GOTO(st, glpgp_calloc((size_t)q->nv + 1, sizeof(int), &val), done);
+    GLPGP_CHECK_GOTO(st, glpgp_calloc((size_t)q->nv + 1, 1, &bnd), done);
+
+    /* edges: valence, boundary, lengths */
+    o->edges = ne;
+    o->len_min = INFINITY;
+    o->len_max = 0.0;
+    double lsum = 0.0;
+    for (int i = 0; i < ne; i++) {
+        val[E[i].a]++;
+        val[E[i].b]++;
+        if (E[i].nface == 1) {
+            o->boundary_edges++;
+            bnd[E[i].a] = bnd[E[i].b] = 1;
+        }
+        if (E[i].nface > 2) o->nonmanifold_edges++;
+        double l = hypot(q->xy[2 * E[i].a] - q->xy[2 * E[i].b],
+                         q->xy[2 * E[i].a + 1] - q->xy[2 * E[i].b + 1]) / h;
+        lsum += l;
+        o->len_min = fmin(o->len_min, l);
+        o->len_max = fmax(o->len_max, l);
+    }
+    o->len_mean = ne ? lsum / ne : 0.0;
+
+    /* faces: corners, area, scaled Jacobian, interior angles per vertex */
+    int nsj = 0;
+    double sjsum = 0.0;
+    for (int f = 0; f < q->nf; f++) {
+        int s = q->face_start[f], k = q->face_start[f + 1] - s;
+        const int *v = q->face_vert + s;
+        if (k == 4)
+            o->quads++;
+        else {
+            o->others++;
+            int b = k - 3;
+            if (b < 0) b = 0;
+            if (b > 7) b = 7;
+            o->others_by_size[b]++;
+        }
+        double area = 0.0, fmin_sj = INFINITY;
+        int degen = 0;
+        for (int i = 0; i < k; i++) {
+            int a = v[i], b = v[(i + 1) % k], c = v[(i + k - 1) % k];
+            for (int j = i + 1; j < k; j++)
+                if (v[j] == a) degen = 1;
+            double ax = q->xy[2 * a], ay = q->xy[2 * a + 1];
+            double e1x = q->xy[2 * b] - ax, e1y = q->xy[2 * b + 1] - ay;
+            double e2x = q->xy[2 * c] - ax, e2y = q->xy[2 * c + 1] - ay;
+            double l1 = hypot(e1x, e1y), l2 = hypot(e2x, e2y);
+            if (l1 < 1e-9 * h) degen = 1;
+            area += 0.5 * (ax * q->xy[2 * b + 1] - q->xy[2 * b] * ay);
+            /* scaled Jacobian at corner a: sin of the angle from e1 to e2 */
+            double cr = e1x * e2y - e1y * e2x;
+            double sjc = (l1 > 0 && l2 > 0) ? cr / (l1 * l2) : 0.0;
+            fmin_sj = fmin(fmin_sj, sjc);
+            /* interior angle at a (from e1 counter-clockwise to e2) */
+            double ang = atan2(cr, e1x * e2x + e1y * e2y);
+            if (ang < 0) ang += 2 * PI_;
+            angle[a] += ang;
+        }
+        o->area += area;
+        if (fabs(area) < 1e-9 * h * h) degen = 1;
+        if (degen) o->degenerate++;
+        if (area <= 0.0 || (k == 4 && fmin_sj < 0.0)) o->inverted++;
+        if (k == 4) {
+            sj[nsj++] = fmin_sj;
+            sjsum += fmin_sj;
+        }
+    }
+    if (nsj > 0) {
+        qsort(sj, (size_t)nsj, sizeof(double), cmp_double);
+        o->sj_min = sj[0];
+        o->sj_mean = sjsum / nsj;
+        o->sj_p01 = sj[(int)floor(0.01 * (nsj - 1))];
+    } else {
+        o->sj_min = o->sj_mean = o->sj_p01 = NAN;
+    }
+
+    /* valences */
+    for (int i = 0; i < q->nv; i++) {
+        int vb = val[i] > GLPGP_QUAD_MAXVAL ? GLPGP_QUAD_MAXVAL : val[i];
+        if (bnd[i]) {
+            o->valence_boundary[vb]++;
+            int ideal = (int)lround(angle[i] / (PI_ / 2)) + 1;
+            if (val[i] != ideal) o->irregular_boundary++;
+        } else {
+            o->valence_interior[vb]++;
+            if (val[i] != 4) o->irregular_interior++;
+        }
+    }
+    o->irregular = o->irregular_interior + o->irregular_boundary;
+
+    /* boundary distance */
+    o->hausdorff = o->dist_quad_to_domain = o->dist_domain_to_quad = -1.0;
+    o->gap_edges = -1;
+    if (domain) {
+        o->domain_area = domain->area;
+        int nb = domain->loop_start[domain->nloops];
+        SD.n = nb;
+        GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)4 * nb + 4, sizeof(double), &SD.s), done);
+        for (int l = 0; l < domain->nloops; l++) {
+            int s = domain->loop_start[l], n = domain->loop_start[l + 1] - s;
+            for (int i = 0; i < n; i++) {
+                int a = domain->loop_vertices[s + i], b = domain->loop_vertices[s + (i + 1) % n];
+                double *p = SD.s + 4 * (s + i);
+                p[0] = domain->xy[2 * a];
+                p[1] = domain->xy[2 * a + 1];
+                p[2] = domain->xy[2 * b];
+                p[3] = domain->xy[2 * b + 1];
+            }
+        }
+        SQ.n = o->boundary_edges;
+        GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)4 * SQ.n + 4, sizeof(double), &SQ.s), done);
+        int w = 0;
+        for (int i = 0; i < ne; i++) {
+            if (E[i].nface != 1) continue;
+            double *p = SQ.s + 4 * w++;
+            p[0] = q->xy[2 * E[i].a];
+            p[1] = q->xy[2 * E[i].a + 1];
+            p[2] = q->xy[2 * E[i].b];
+            p[3] = q->xy[2 * E[i].b + 1];
+        }
+        GLPGP_CHECK_GOTO(st, segset_build(&SD, h), done);
+        if (SQ.n > 0) GLPGP_CHECK_GOTO(st, segset_build(&SQ, h), done);
+        double dq = 0.0, dd = 0.0;
+        int gaps = 0;
+        for (int i = 0; i < SQ.n; i++) {
+            const double *p = SQ.s + 4 * i;
+            double emax = 0.0;
+            for (int k = 0; k <= 8; k++) {
+                double t = k / 8.0;
+                double d = segset_dist(&SD, p[0] + t * (p[2] - p[0]), p[1] + t * (p[3] - p[1]));
+                emax = fmax(emax, d);
+            }
+            dq = fmax(dq, emax);
+            /* midpoint far from the domain boundary: an interior hole */
+            if (segset_dist(&SD, 0.5 * (p[0] + p[2]), 0.5 * (p[1] + p[3])) > 0.25 * h) gaps++;
+        }
+        for (int i = 0; i < SD.n; i++) {
+            const double *p = SD.s + 4 * i;
+            dd = fmax(dd, segset_dist(&SQ, p[0], p[1]));
+            dd = fmax(dd, segset_dist(&SQ, 0.5 * (p[0] + p[2]), 0.5 * (p[1] + p[3])));
+        }
+        o->dist_quad_to_domain = dq / h;
+        o->dist_domain_to_quad = dd / h;
+        o->hausdorff = fmax(dq, dd) / h;
+        o->gap_edges = gaps;
+    }
+done:
+    free(E);
+    free(sj);
+    free(angle);
+    free(val);
+    free(bnd);
+    segset_free(&SD);
+    segset_free(&SQ);
+    return st;
+}
+
+void glpgp_quads_print(FILE *f, const glpgp_quad_quality *qq, const char *prefix)
+{
+    const char *p = prefix ? prefix : "";
+    fprintf(f, "%squads          %d quads, %d other faces (", p, qq->quads, qq->others);
+    int first = 1;
+    for (int b = 0; b < 8; b++) {
+        if (b == 1 || !qq->others_by_size[b]) continue;
+        fprintf(f, "%s%d x %s%d-gon", first ? "" : ", ", qq->others_by_size[b], b == 7 ? ">=" : "",
+                b + 3);
+        first = 0;
+    }
+    fprintf(f, "%s), %d vertices\n", first ? "none" : "", qq->vertices);
+    fprintf(f, "%s  valence      interior", p);
+    for (int v = 0; v <= GLPGP_QUAD_MAXVAL; v++)
+        if (qq->valence_interior[v]) fprintf(f, " %d:%d", v, qq->valence_interior[v]);
+    fprintf(f, "   boundary");
+    for (int v = 0; v <= GLPGP_QUAD_MAXVAL; v++)
+        if (qq->valence_boundary[v]) fprintf(f, " %d:%d", v, qq->valence_boundary[v]);
+    fprintf(f, "\n");
+    fprintf(f, "%s  irregular    %d (interior %d, boundary %d)\n", p, qq->irregular,
+            qq->irregular_interior, qq->irregular_boundary);
+    fprintf(f, "%s  scaled jac.  min %.3f  mean %.3f  1%% %.3f;  inverted %d, degenerate %d\n", p,
+            qq->sj_min, qq->sj_mean, qq->sj_p01, qq->inverted, qq->degenerate);
+    fprintf(f, "%s  edge / h     mean %.3f  min %.3f  max %.3f\n", p, qq->len_mean, qq->len_min,
+            qq->len_max);
+    if (qq->closing.closed_polygons || qq->closing.split_even || qq->closing.smoothed_vertices)
+        fprintf(f, "%s  closing      %d odd faces closed by strips (%d to the boundary), %d quads cut, "
+                   "%d turns, %d even faces split; %d vertices smoothed\n",
+                p, qq->closing.closed_polygons, qq->closing.strips_to_boundary, qq->closing.strip_quads, qq->closing.strip_turns,
+                qq->closing.split_even, qq->closing.smoothed_vertices);
+    if (qq->hausdorff >= 0)
+        fprintf(f, "%s  boundary     Hausdorff %.3f h (quads->domain %.3f h, domain->quads %.3f h), "
+                   "area %.5g of %.5g\n",
+                p, qq->hausdorff, qq->dist_quad_to_domain, qq->dist_domain_to_quad, qq->area,
+                qq->domain_area);
+}
+

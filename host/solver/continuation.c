@@ -1,0 +1,240 @@
+/* solver/continuation.c: the whole pipeline of glpgp_solve: layout and
+ * backend setup, guiding field, then per oscillator (W = U, then V = U
+ * rotated by +90 degrees) the Dirichlet set, the quadratic form, the naive
+ * PGP solve (minimise E with z = 1 on the Dirichlet set) and the
+ * Ginzburg-Landau continuation: Newton levels at decreasing eps (eps0 h,
+ * times eps_ratio, down to eps_min mean edges), starting from the normalised
+ * naive solution (or z = 1), with one restart from z = 1 of a level that
+ * collapses (median |z| < collapse_zabs). Levels stopped by the Newton cap are
+ * flagged and warned about. */
+#include "internal.h"
+
+#include "glpgp/util.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+typedef struct osc_work {
+    glpgp_backend *b;
+    const glpgp_options *o;
+    glpgp_vec *x, *g, *d, *xt, *work;
+    double *host, *scratch;
+} osc_work;
+
+static int cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+/* median |z| of z (2*nv; scratch: nv doubles) */
+static double zabs_median(const double *z, int nv, double *scratch)
+{
+    for (int i = 0; i < nv; i++) scratch[i] = hypot(z[2 * i], z[2 * i + 1]);
+    qsort(scratch, (size_t)nv, sizeof(double), cmp_double);
+    return nv % 2 ? scratch[nv / 2] : 0.5 * (scratch[nv / 2 - 1] + scratch[nv / 2]);
+}
+
+static void fill_one(double *z, int nv)
+{
+    for (int i = 0; i < nv; i++) {
+        z[2 * i] = 1.0;
+        z[2 * i + 1] = 0.0;
+    }
+}
+
+/* x <- naive PGP: x = x0 + d with x0 = 1 on the Dirichlet set, N d = -(A x0)
+ * (N = A with Dirichlet rows and columns eliminated). */
+static glpgp_status naive_solve(osc_work *w, int k, glpgp_osc_result *r)
+{
+    glpgp_backend *b = w->b;
+    const glpgp_backend_ops *op = b->ops;
+    const glpgp_options *o = w->o;
+    GLPGP_CHECK(op->assemble_newton(b, w->x, 0.0, o->hess));
+    GLPGP_CHECK(op->gradient(b, w->x, 0.0, w->g));
+    GLPGP_CHECK(op->axpby(b, -1.0, w->g, 0.0, w->xt));
+    glpgp_cg_info ci;
+    GLPGP_CHECK(glpgp_cg(b, w->xt, w->d, o->cg_rtol, o->cg_max, o->cg_check, &ci));
+    r->cg_iterations += ci.iterations;
+    if (ci.reason == GLPGP_CG_BREAKDOWN)
+        return GLPGP_FAIL(GLPGP_ERR_NUMERIC, "%s: naive PGP solve: CG breakdown after %d iterations "
+                                             "(the quadratic form is not SPD: folded mesh?)",
+                          glpgp_osc_name(k), ci.iterations);
+    if (ci.reason == GLPGP_CG_MAXIT)
+        glpgp_log(GLPGP_LOG_WARNING, "%s: naive PGP solve stopped at the CG cap of %d iterations "
+                                     "(relative residual %.2e)", glpgp_osc_name(k), ci.iterations,
+                  ci.relres);
+    GLPGP_CHECK(op->axpby(b, 1.0, w->d, 1.0, w->x));
+    glpgp_log(GLPGP_LOG_INFO, "%s: naive PGP solve, %d Dirichlet vertices, %d CG iterations",
+              glpgp_osc_name(k), r->n_dirichlet, ci.iterations);
+    return GLPGP_OK;
+}
+
+static glpgp_status solve_oscillator(const glpgp_mesh *m, osc_work *w, int k, const double *hostw,
+                                     glpgp_osc_result *r, double h, const double *eps, int nlevels)
+{
+    glpgp_backend *b = w->b;
+    const glpgp_backend_ops *op = b->ops;
+    const glpgp_options *o = w->o;
+    const int nv = m->nv;
+    double t0 = glpgp_now();
+    r->n_dirichlet = glpgp_dirichlet_set(m, hostw, r->dirichlet);
+    GLPGP_CHECK(op->set_field(b, hostw, r->dirichlet));
+    GLPGP_CHECK(op->assemble_quadratic(b, o->energy, h));
+
+    for (int i = 0; i < nv; i++) {
+        w->host[2 * i] = r->dirichlet[i] ? 1.0 : 0.0;
+        w->host[2 * i + 1] = 0.0;
+    }
+    GLPGP_CHECK(op->vec_write(b, w->x, w->host));
+    int need_naive = o->method == GLPGP_METHOD_PGP || (o->init == GLPGP_INIT_NAIVE && r->n_dirichlet > 0);
+    if (need_naive) GLPGP_CHECK(naive_solve(w, k, r));
+    if (o->method == GLPGP_METHOD_GL) {
+        /* initial guess: normalised naive solution (phase kept), or z = 1 */
+        if (need_naive) {
+            GLPGP_CHECK(op->vec_read(b, w->x, w->host));
+            for (int i = 0; i < nv; i++) {
+                double a = hypot(w->host[2 * i], w->host[2 * i + 1]);
+                if (a > 1e-300) {
+                    w->host[2 * i] /= a;
+                    w->host[2 * i + 1] /= a;
+                } else {
+                    w->host[2 * i] = 1.0;
+                    w->host[2 * i + 1] = 0.0;
+                }
+            }
+        } else {
+            fill_one(w->host, nv);
+        }
+        GLPGP_CHECK(op->vec_write(b, w->x, w->host));
+        r->nlevels = nlevels;
+        glpgp_newton_state ns = {w->x, w->g, w->d, w->xt, w->work, 0.0, 0, 0};
+        for (int l = 0; l < nlevels; l++) {
+            glpgp_level_stats *ls = &r->level[l];
+            glpgp_log(GLPGP_LOG_INFO, "%s: level %d/%d, eps = %.4g", glpgp_osc_name(k), l + 1,
+                      nlevels, eps[l]);
+            /* intermediate levels only prepare the next one: looser tolerance */
+            const double rtol = l + 1 < nlevels ? fmax(o->newton_rtol, o->intermediate_rtol) : o->newton_rtol;
+            GLPGP_CHECK(glpgp_newton_level(b, o, &ns, k, eps[l], rtol, ls));
+            GLPGP_CHECK(op->vec_read(b, w->x, w->host));
+            ls->median_zabs = zabs_median(w->host, nv, w->scratch);
+            if (ls->median_zabs < o->collapse_zabs && !ls->restarted) {
+                /* collapse towards z = 0 (a stable critical point at large eps):
+                 * restart this level once from z = 1 */
+                glpgp_log(GLPGP_LOG_INFO, "%s: median |z| = %.3g at eps=%.4g: collapsed, restarting from z = 1",
+                          glpgp_osc_name(k), ls->median_zabs, eps[l]);
+                fill_one(w->host, nv);
+                GLPGP_CHECK(op->vec_write(b, w->x, w->host));
+                glpgp_level_stats keep = *ls;
+                GLPGP_CHECK(glpgp_newton_level(b, o, &ns, k, eps[l], rtol, ls));
+                ls->newton += keep.newton;
+                ls->cg += keep.cg;
+                ls->restarted = 1;
+                GLPGP_CHECK(op->vec_read(b, w->x, w->host));
+                ls->median_zabs = zabs_median(w->host, nv, w->scratch);
+            }
+            if (ls->capped) {
+                r->capped_levels++;
+                glpgp_log(GLPGP_LOG_WARNING,
+                          "%s: eps level %d/%d stopped at the Newton cap of %d steps with |g|/|g0| = %.2e "
+                          "(tolerance %.0e): not converged",
+                          glpgp_osc_name(k), l + 1, nlevels, o->newton_max,
+                          ls->grad0 > 0 ? ls->grad / ls->grad0 : 0.0, rtol);
+            }
+            r->newton_iterations += ls->newton;
+            r->cg_iterations += ls->cg;
+        }
+    }
+    GLPGP_CHECK(op->energy(b, w->x, 0.0, w->work));
+    double s[GLPGP_NSLOTS];
+    GLPGP_CHECK(op->get_scalars(b, s, GLPGP_NSLOTS));
+    r->energy = s[GLPGP_S_E];
+    GLPGP_CHECK(op->vec_read(b, w->x, r->z));
+    GLPGP_CHECK(glpgp_osc_summarize(m, r));
+    r->seconds = glpgp_now() - t0;
+    glpgp_log(GLPGP_LOG_INFO, "%s: done in %.2f s: median |z| = %.4f, singular +%d/-%d, %d Newton, %ld CG",
+              glpgp_osc_name(k), r->seconds, r->zabs_median, r->plus, r->minus, r->newton_iterations,
+              r->cg_iterations);
+    return GLPGP_OK;
+}
+
+glpgp_status glpgp_solve(const glpgp_mesh *m, glpgp_backend *b, const glpgp_options *o,
+                         glpgp_result **out)
+{
+    glpgp_status st = GLPGP_OK;
+    glpgp_result *r = NULL;
+    glpgp_system *sys = NULL;
+    osc_work w;
+    double *wv = NULL;
+    memset(&w, 0, sizeof w);
+    *out = NULL;
+    const double t0 = glpgp_now();
+    const int nv = m->nv, nt = m->nt;
+
+    GLPGP_CHECK(glpgp_options_check(o));
+    double h = o->size > 0.0 ? o->size : glpgp_default_size(m, o);
+    if (!isfinite(h) || h <= 0.0) return GLPGP_FAIL(GLPGP_ERR_ARG, "invalid target size h = %g", h);
+
+    GLPGP_CHECK(glpgp_result_create(nv, nt, &r));
+    r->size = h;
+    r->backend = b->ops->name;
+
+    /* layout + upload */
+    GLPGP_CHECK_GOTO(st, glpgp_system_create(m, &sys), fail);
+    glpgp_log(GLPGP_LOG_INFO, "%d vertices, %d triangles, %ld blocks, h = %g (%.1f edges per period), backend %s",
+              nv, nt, sys->nnzb, h, h / m->mean_edge, b->ops->name);
+    if (h < 6.0 * m->mean_edge)
+        glpgp_log(GLPGP_LOG_WARNING, "h = %g is only %.1f mean edges: P1 needs about 10 vertices per "
+                                     "period (refine the mesh, raise --size, or use --energy transport)",
+                  h, h / m->mean_edge);
+    GLPGP_CHECK_GOTO(st, b->ops->setup(b, sys), fail);
+    w.b = b;
+    w.o = o;
+    const size_t n2 = (size_t)2 * nv;
+    GLPGP_CHECK_GOTO(st, b->ops->vec_create(b, n2, &w.x), fail);
+    GLPGP_CHECK_GOTO(st, b->ops->vec_create(b, n2, &w.g), fail);
+    GLPGP_CHECK_GOTO(st, b->ops->vec_create(b, n2, &w.d), fail);
+    GLPGP_CHECK_GOTO(st, b->ops->vec_create(b, n2, &w.xt), fail);
+    GLPGP_CHECK_GOTO(st, b->ops->vec_create(b, n2, &w.work), fail);
+    GLPGP_CHECK_GOTO(st, glpgp_malloc(n2, sizeof(double), &w.host), fail);
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)nv, sizeof(double), &w.scratch), fail);
+    GLPGP_CHECK_GOTO(st, glpgp_malloc(n2, sizeof(double), &wv), fail);
+    r->seconds_setup = glpgp_now() - t0;
+
+    /* guiding field U */
+    double t1 = glpgp_now();
+    GLPGP_CHECK_GOTO(st, glpgp_field_compute(m, b, o, r->field, &r->field_cg_iterations), fail);
+    r->seconds_field = glpgp_now() - t1;
+
+    double eps[GLPGP_MAX_LEVELS];
+    int nlev = glpgp_eps_schedule(m, o, h, eps);
+
+    for (int k = 0; k < 2; k++) {
+        /* W = U (k = 0) or V = U rotated by +90 degrees (k = 1) */
+        for (int i = 0; i < nv; i++) {
+            double ux = r->field[2 * i], uy = r->field[2 * i + 1];
+            wv[2 * i] = k == 0 ? ux : -uy;
+            wv[2 * i + 1] = k == 0 ? uy : ux;
+        }
+        GLPGP_CHECK_GOTO(st, solve_oscillator(m, &w, k, wv, &r->osc[k], h, eps, nlev), fail);
+    }
+    r->seconds_total = glpgp_now() - t0;
+    goto cleanup;
+fail:
+    glpgp_result_destroy(&r);
+cleanup:
+    if (b->ops) {
+        b->ops->vec_destroy(b, &w.x);
+        b->ops->vec_destroy(b, &w.g);
+        b->ops->vec_destroy(b, &w.d);
+        b->ops->vec_destroy(b, &w.xt);
+        b->ops->vec_destroy(b, &w.work);
+    }
+    free(w.host);
+    free(w.scratch);
+    free(wv);
+    glpgp_system_destroy(&sys);
+    *out = r;
+    return st;
+}

@@ -1,0 +1,163 @@
+/* solver/field.c: the guiding field U: boundary-aligned (the boundary angle,
+ * folded to the 4-fold symmetry, interpolated harmonically inside with the
+ * backend's PCG), radial about a centre, or read from a file (glpgp/solve.h). */
+#include "glpgp/solve.h"
+
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* Angle of a direction folded into [-pi/4, pi/4] (mod pi/2). */
+static double fold4(double nx, double ny)
+{
+    double phi = atan2(ny, nx);
+    return phi - (GLPGP_PI / 2.0) * floor(phi / (GLPGP_PI / 2.0) + 0.5);
+}
+
+static glpgp_status field_boundary(const glpgp_mesh *m, glpgp_backend *b, const glpgp_options *o,
+                                   double *u, long *cg_iterations)
+{
+    const glpgp_backend_ops *op = b->ops;
+    const int nv = m->nv;
+    glpgp_status st = GLPGP_OK;
+    double *x0 = NULL;
+    glpgp_vec *x = NULL, *g = NULL, *d = NULL;
+    GLPGP_CHECK(glpgp_calloc((size_t)2 * nv, sizeof(double), &x0));
+    /* boundary angle alpha in [-pi/4, pi/4]: U is the normal or the tangent,
+     * whichever is closer to the x axis. At a vertex the two adjacent edges'
+     * angles are averaged as 4-fold directions (mean of exp(4 i alpha)). */
+    for (int i = 0; i < nv; i++) {
+        if (!m->on_boundary[i]) continue;
+        double a1 = fold4(m->normal_prev[2 * i], m->normal_prev[2 * i + 1]);
+        double a2 = fold4(m->normal_next[2 * i], m->normal_next[2 * i + 1]);
+        double c = cos(4 * a1) + cos(4 * a2), s = sin(4 * a1) + sin(4 * a2);
+        double a = (c * c + s * s > 1e-20) ? atan2(s, c) / 4.0 : a1;
+        x0[2 * i] = a;
+    }
+    /* harmonic interpolation: L alpha = 0 inside, alpha fixed on the boundary:
+     * alpha = alpha0 + d,  N d = -(L alpha0) with Dirichlet rows eliminated */
+    GLPGP_CHECK_GOTO(st, op->set_field(b, u, m->on_boundary), done);
+    GLPGP_CHECK_GOTO(st, op->assemble_quadratic(b, GLPGP_ELEM_LAPLACE, 1.0), done);
+    GLPGP_CHECK_GOTO(st, op->vec_create(b, (size_t)2 * nv, &x), done);
+    GLPGP_CHECK_GOTO(st, op->vec_create(b, (size_t)2 * nv, &g), done);
+    GLPGP_CHECK_GOTO(st, op->vec_create(b, (size_t)2 * nv, &d), done);
+    GLPGP_CHECK_GOTO(st, op->vec_write(b, x, x0), done);
+    GLPGP_CHECK_GOTO(st, op->assemble_newton(b, x, 0.0, GLPGP_HESS_PAPER), done);
+    GLPGP_CHECK_GOTO(st, op->gradient(b, x, 0.0, g), done);
+    GLPGP_CHECK_GOTO(st, op->axpby(b, 0.0, g, -1.0, g), done); /* g <- -g */
+    glpgp_cg_info ci;
+    GLPGP_CHECK_GOTO(st, glpgp_cg(b, g, d, o->cg_rtol, o->cg_max, o->cg_check, &ci), done);
+    *cg_iterations += ci.iterations;
+    if (ci.reason == GLPGP_CG_BREAKDOWN) {
+        st = GLPGP_FAIL(GLPGP_ERR_NUMERIC, "guiding field: CG breakdown after %d iterations "
+                                           "(is the mesh folded?)", ci.iterations);
+        goto done;
+    }
+    if (ci.reason == GLPGP_CG_MAXIT)
+        glpgp_log(GLPGP_LOG_WARNING, "guiding field: CG stopped at the cap of %d iterations "
+                                     "(relative residual %.2e)", ci.iterations, ci.relres);
+    GLPGP_CHECK_GOTO(st, op->axpby(b, 1.0, d, 1.0, x), done); /* alpha <- alpha0 + d */
+    GLPGP_CHECK_GOTO(st, op->vec_read(b, x, x0), done);
+    for (int i = 0; i < nv; i++) {
+        u[2 * i] = cos(x0[2 * i]);
+        u[2 * i + 1] = sin(x0[2 * i]);
+    }
+done:
+    op->vec_destroy(b, &x);
+    op->vec_destroy(b, &g);
+    op->vec_destroy(b, &d);
+    free(x0);
+    return st;
+}
+
+/* Longest line a field file may have (a "ux uy" pair needs < 100 characters). */
+#define FIELD_LINE_MAX 4096
+
+static glpgp_status field_file(const glpgp_mesh *m, const char *path, double *u)
+{
+    FILE *f = fopen(path, "r");
+    if (!f) return GLPGP_FAIL(GLPGP_ERR_IO, "cannot open field file '%s': %s", path, strerror(errno));
+    glpgp_status st = GLPGP_OK;
+    char line[FIELD_LINE_MAX + 2];
+    int i = 0, lineno = 0;
+    while (fgets(line, sizeof line, f)) {
+        lineno++;
+        size_t len = strlen(line);
+        if (len > FIELD_LINE_MAX && line[len - 1] != '\n') {
+            st = GLPGP_FAIL(GLPGP_ERR_FORMAT, "%s:%d: line longer than %d characters", path, lineno,
+                            FIELD_LINE_MAX);
+            goto done;
+        }
+        char *p = line;
+        while (*p == ' ' || *p == '\t') p++;
+        if (*p == '#' || *p == '\n' || *p == '\r' || *p == '\0') continue;
+        double ux, uy;
+        char extra;
+        if (sscanf(p, "%lf %lf %c", &ux, &uy, &extra) != 2 || !isfinite(ux) || !isfinite(uy)) {
+            st = GLPGP_FAIL(GLPGP_ERR_FORMAT, "%s:%d: expected two finite numbers 'ux uy'", path, lineno);
+            goto done;
+        }
+        if (i >= m->nv) {
+            st = GLPGP_FAIL(GLPGP_ERR_FORMAT, "%s: more than %d field lines (one per vertex expected)",
+                            path, m->nv);
+            goto done;
+        }
+        /* u <- (ux, uy) / |(ux, uy)|, hypot: no overflow for 1e200, no underflow for 1e-200 */
+        double n = hypot(ux, uy);
+        if (!(n > 0.0) || !isfinite(n)) {
+            st = GLPGP_FAIL(GLPGP_ERR_FORMAT, "%s:%d: zero vector", path, lineno);
+            goto done;
+        }
+        u[2 * i] = ux / n;
+        u[2 * i + 1] = uy / n;
+        i++;
+    }
+    if (ferror(f)) {
+        st = GLPGP_FAIL(GLPGP_ERR_IO, "%s: read error", path);
+        goto done;
+    }
+    if (i != m->nv)
+        st = GLPGP_FAIL(GLPGP_ERR_FORMAT, "%s: %d field lines for %d vertices", path, i, m->nv);
+done:
+    fclose(f);
+    return st;
+}
+
+static void field_radial(const glpgp_mesh *m, const glpgp_options *o, double *u)
+{
+    double cx = o->center[0], cy = o->center[1];
+    if (!o->has_center) { /* area centroid */
+        double sx = 0.0, sy = 0.0, sa = 0.0;
+        for (int t = 0; t < m->nt; t++) {
+            double x[3], y[3];
+            for (int a = 0; a < 3; a++) {
+                x[a] = m->xy[2 * m->tri[3 * t + a]];
+                y[a] = m->xy[2 * m->tri[3 * t + a] + 1];
+            }
+            double ar = 0.5 * ((x[1] - x[0]) * (y[2] - y[0]) - (x[2] - x[0]) * (y[1] - y[0]));
+            sx += ar * (x[0] + x[1] + x[2]) / 3.0;
+            sy += ar * (y[0] + y[1] + y[2]) / 3.0;
+            sa += ar;
+        }
+        cx = sx / sa;
+        cy = sy / sa;
+    }
+    for (int i = 0; i < m->nv; i++) {
+        double dx = m->xy[2 * i] - cx, dy = m->xy[2 * i + 1] - cy, n = sqrt(dx * dx + dy * dy);
+        u[2 * i] = n > 0.0 ? dx / n : 1.0;
+        u[2 * i + 1] = n > 0.0 ? dy / n : 0.0;
+    }
+}
+
+glpgp_status glpgp_field_compute(const glpgp_mesh *m, glpgp_backend *b, const glpgp_options *o,
+                                 double *u, long *cg_iterations)
+{
+    if (o->field == GLPGP_FIELD_FILE) return field_file(m, o->field_file, u);
+    if (o->field == GLPGP_FIELD_RADIAL) {
+        field_radial(m, o, u);
+        return GLPGP_OK;
+    }
+    return field_boundary(m, b, o, u, cg_iterations);
+}

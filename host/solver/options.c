@@ -1,0 +1,98 @@
+/* solver/options.c: the documented defaults and range checks of every solve
+ * parameter, the default quad size and the eps schedule (glpgp/solve.h). */
+#include "glpgp/solve.h"
+
+#include <math.h>
+#include <string.h>
+
+void glpgp_options_default(glpgp_options *o)
+{
+    memset(o, 0, sizeof *o);
+    o->size = 0.0;
+    o->method = GLPGP_METHOD_GL;
+    o->energy = GLPGP_ELEM_P1;
+    o->hess = GLPGP_HESS_MIXED;
+    o->field = GLPGP_FIELD_BOUNDARY;
+    o->init = GLPGP_INIT_NAIVE;
+    o->eps0 = 0.5;
+    o->eps_ratio = 0.5;
+    o->eps_min = 2.5;
+    o->eps_merge = 1.25;
+    o->collapse_zabs = 0.5;
+    o->newton_rtol = 1e-6;
+    o->intermediate_rtol = 1e-3;
+    o->newton_max = 50;
+    o->exact_switch = 0.05;
+    o->exact_cooldown = 5;
+    o->armijo = 1e-4;
+    o->max_backtracks = 40;
+    o->forcing = 0.1;
+    o->forcing_max = 1e-2;
+    o->cg_rtol = 1e-8;
+    o->cg_max = 20000;
+    o->cg_check = 10;
+    o->size_diag_div = 20.0;
+    o->size_min_edges = 10.0;
+}
+
+#define OPEN01(v) ((v) > 0.0 && (v) < 1.0)
+
+glpgp_status glpgp_options_check(const glpgp_options *o)
+{
+    if (!isfinite(o->size) || o->size < 0.0)
+        return GLPGP_FAIL(GLPGP_ERR_ARG, "size must be > 0 (or 0 for the default), got %g", o->size);
+    if (o->method != GLPGP_METHOD_GL && o->method != GLPGP_METHOD_PGP)
+        return GLPGP_FAIL(GLPGP_ERR_ARG, "unknown method %d", o->method);
+    if (o->energy != GLPGP_ELEM_P1 && o->energy != GLPGP_ELEM_TRANSPORT)
+        return GLPGP_FAIL(GLPGP_ERR_ARG, "unknown energy %d", o->energy);
+    if (o->hess < GLPGP_HESS_PAPER || o->hess > GLPGP_HESS_MIXED)
+        return GLPGP_FAIL(GLPGP_ERR_ARG, "unknown Newton Hessian %d", o->hess);
+    if (o->field == GLPGP_FIELD_FILE && (!o->field_file || !*o->field_file))
+        return GLPGP_FAIL(GLPGP_ERR_ARG, "field from a file needs a file name");
+    if (!(o->eps0 > 0.0) || !(o->eps_min > 0.0) || !isfinite(o->eps0) || !isfinite(o->eps_min))
+        return GLPGP_FAIL(GLPGP_ERR_ARG, "eps0 and eps-min must be positive");
+    if (!OPEN01(o->eps_ratio))
+        return GLPGP_FAIL(GLPGP_ERR_ARG, "eps ratio must be in (0,1), got %g", o->eps_ratio);
+    if (!(o->eps_merge >= 1.0)) return GLPGP_FAIL(GLPGP_ERR_ARG, "eps_merge must be >= 1");
+    if (!(o->collapse_zabs >= 0.0 && o->collapse_zabs < 1.0))
+        return GLPGP_FAIL(GLPGP_ERR_ARG, "collapse_zabs must be in [0,1)");
+    if (!OPEN01(o->newton_rtol) || !OPEN01(o->intermediate_rtol))
+        return GLPGP_FAIL(GLPGP_ERR_ARG, "Newton tolerances must be in (0,1)");
+    if (o->newton_max < 1 || o->cg_max < 1 || o->cg_check < 1 || o->max_backtracks < 1 ||
+        o->exact_cooldown < 0)
+        return GLPGP_FAIL(GLPGP_ERR_ARG, "iteration counts must be >= 1");
+    if (!OPEN01(o->cg_rtol)) return GLPGP_FAIL(GLPGP_ERR_ARG, "cg-rtol must be in (0,1)");
+    if (!(o->exact_switch >= 0.0) || !OPEN01(o->armijo) || !(o->forcing > 0.0) ||
+        !OPEN01(o->forcing_max))
+        return GLPGP_FAIL(GLPGP_ERR_ARG, "Newton step parameters out of range");
+    if (!(o->size_diag_div > 0.0) || !(o->size_min_edges >= 0.0))
+        return GLPGP_FAIL(GLPGP_ERR_ARG, "default-size parameters out of range");
+    return GLPGP_OK;
+}
+
+double glpgp_default_size(const glpgp_mesh *m, const glpgp_options *o)
+{
+    glpgp_options d;
+    if (!o) {
+        glpgp_options_default(&d);
+        o = &d;
+    }
+    /* diameter / 20, raised to 10 mean edges when the mesh is too coarse for it
+     * (P1 needs about 10 vertices per period, see host/README.md) */
+    double dx = m->bbox[2] - m->bbox[0], dy = m->bbox[3] - m->bbox[1];
+    return fmax(sqrt(dx * dx + dy * dy) / o->size_diag_div, o->size_min_edges * m->mean_edge);
+}
+
+int glpgp_eps_schedule(const glpgp_mesh *m, const glpgp_options *o, double h,
+                       double eps[GLPGP_MAX_LEVELS])
+{
+    /* eps_0 = eps0 h;  eps_{k+1} = max(ratio eps_k, emin) while eps_k > merge emin */
+    int n = 0;
+    double e = o->eps0 * h, emin = o->eps_min * m->mean_edge;
+    eps[n++] = e;
+    while (e > emin * o->eps_merge && n < GLPGP_MAX_LEVELS) {
+        e = fmax(e * o->eps_ratio, emin);
+        eps[n++] = e;
+    }
+    return n;
+}

@@ -1,0 +1,80 @@
+/* solver/result.c: creation and destruction of results, singular triangles
+ * and |z| statistics of an oscillator (glpgp/result.h). */
+#include "glpgp/result.h"
+#include "glpgp/phase.h"
+
+#include <math.h>
+#include <stdlib.h>
+
+glpgp_status glpgp_result_create(int nv, int nt, glpgp_result **out)
+{
+    glpgp_status st = GLPGP_OK;
+    glpgp_result *r = NULL;
+    *out = NULL;
+    if (nv < 1 || nt < 1) return GLPGP_FAIL(GLPGP_ERR_ARG, "result of %d vertices, %d triangles", nv, nt);
+    GLPGP_CHECK(glpgp_calloc(1, sizeof *r, &r));
+    r->nv = nv;
+    r->nt = nt;
+    GLPGP_CHECK_GOTO(st, glpgp_calloc((size_t)2 * nv, sizeof(double), &r->field), fail);
+    for (int k = 0; k < 2; k++) {
+        GLPGP_CHECK_GOTO(st, glpgp_calloc((size_t)2 * nv, sizeof(double), &r->osc[k].z), fail);
+        GLPGP_CHECK_GOTO(st, glpgp_calloc((size_t)nv, 1, &r->osc[k].dirichlet), fail);
+        GLPGP_CHECK_GOTO(st, glpgp_calloc((size_t)nt, 1, &r->osc[k].singular), fail);
+    }
+    *out = r;
+    return GLPGP_OK;
+fail:
+    glpgp_result_destroy(&r);
+    return st;
+}
+
+void glpgp_result_destroy(glpgp_result **pr)
+{
+    if (!pr || !*pr) return;
+    glpgp_result *r = *pr;
+    free(r->field);
+    for (int k = 0; k < 2; k++) {
+        free(r->osc[k].z);
+        free(r->osc[k].dirichlet);
+        free(r->osc[k].singular);
+    }
+    free(r);
+    *pr = NULL;
+}
+
+void glpgp_singularities(const glpgp_mesh *m, const double *z, signed char *sing, int *plus,
+                         int *minus)
+{
+    int p = 0, q = 0;
+    for (int t = 0; t < m->nt; t++) {
+        const int *v = m->tri + 3 * t;
+        int w = glpgp_phase_winding_z(z, v[0], v[1], v[2]);
+        if (sing) sing[t] = (signed char)w;
+        if (w > 0) p++;
+        if (w < 0) q++;
+    }
+    *plus = p;
+    *minus = q;
+}
+
+static int cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+glpgp_status glpgp_osc_summarize(const glpgp_mesh *m, glpgp_osc_result *o)
+{
+    double *s = NULL;
+    const int nv = m->nv;
+    GLPGP_CHECK(glpgp_malloc((size_t)nv, sizeof(double), &s));
+    glpgp_singularities(m, o->z, o->singular, &o->plus, &o->minus);
+    /* min, 10th percentile and median of |z| */
+    for (int i = 0; i < nv; i++) s[i] = hypot(o->z[2 * i], o->z[2 * i + 1]);
+    qsort(s, (size_t)nv, sizeof(double), cmp_double);
+    o->zabs_min = s[0];
+    o->zabs_p10 = s[(size_t)((nv - 1) * 0.1)];
+    o->zabs_median = nv % 2 ? s[nv / 2] : 0.5 * (s[nv / 2 - 1] + s[nv / 2]);
+    free(s);
+    return GLPGP_OK;
+}

@@ -1,0 +1,338 @@
+/* test_element.c: element formulas (kernels/element.h) against hand-computed
+ * values, the quadrature rule's exactness, the sign of the coupling term, and
+ * energy / gradient / Hessian of E and P against finite differences through
+ * the reference backend on a randomly perturbed mesh with random z. */
+#include "glpgp/backends.h"
+#include "element.h"
+#include "glpgp/solve.h"
+#include "testutil.h"
+
+#include <string.h>
+
+/* structured n x n grid on [0,L]^2, jittered interior vertices */
+static glpgp_mesh *grid_mesh(int n, double L, double jitter)
+{
+    int nv = (n + 1) * (n + 1), nt = 2 * n * n;
+    double *xy = malloc(sizeof(double) * 2 * nv);
+    int *tri = malloc(sizeof(int) * 3 * nt);
+    for (int j = 0; j <= n; j++)
+        for (int i = 0; i <= n; i++) {
+            double dx = 0, dy = 0;
+            if (i > 0 && i < n && j > 0 && j < n) {
+                dx = jitter * (tu_rand() - 0.5) * L / n;
+                dy = jitter * (tu_rand() - 0.5) * L / n;
+            }
+            xy[2 * (j * (n + 1) + i)] = L * i / n + dx;
+            xy[2 * (j * (n + 1) + i) + 1] = L * j / n + dy;
+        }
+    int t = 0;
+    for (int j = 0; j < n; j++)
+        for (int i = 0; i < n; i++) {
+            int v0 = j * (n + 1) + i, v1 = v0 + 1, v2 = v0 + n + 1, v3 = v2 + 1;
+            int a[6] = {v0, v1, v3, v0, v3, v2};
+            memcpy(tri + 3 * t, a, sizeof a);
+            t += 2;
+        }
+    glpgp_mesh *m = NULL;
+    if (glpgp_mesh_create(nv, xy, nt, tri, &m) != GLPGP_OK) {
+        fprintf(stderr, "mesh: %s\n", glpgp_error_message());
+        exit(1);
+    }
+    free(xy);
+    free(tri);
+    return m;
+}
+
+static void test_reference_triangle(void)
+{
+    /* T = (0,0),(1,0),(0,1): A = 1/2, g0 = (-1,-1), g1 = (1,0), g2 = (0,1). */
+    double x[3] = {0, 1, 0}, y[3] = {0, 0, 1};
+    double wx[3] = {1, 1, 1}, wy[3] = {0, 0, 0};
+    double re, im;
+    /* Laplace: S = A g.g: S00 = 1, S01 = -1/2, S12 = 0 */
+    glpgp_elem_entry(GLPGP_ELEM_LAPLACE, x, y, wx, wy, 1.0, 0, 0, &re, &im);
+    CHECK_CLOSE(re, 1.0, 1e-15, 0);
+    CHECK_CLOSE(im, 0.0, 1e-15, 0);
+    glpgp_elem_entry(GLPGP_ELEM_LAPLACE, x, y, wx, wy, 1.0, 0, 1, &re, &im);
+    CHECK_CLOSE(re, -0.5, 1e-15, 0);
+    glpgp_elem_entry(GLPGP_ELEM_LAPLACE, x, y, wx, wy, 1.0, 1, 2, &re, &im);
+    CHECK_CLOSE(re, 0.0, 1e-15, 0);
+    /* P1 with W = (1,0), h = 2 pi (|w| = 1): mass A(1+d)/12 -> diag 1/12, off 1/24;
+     * c_j = A (w.g_j)/3: c0 = -1/6, c1 = 1/6, c2 = 0;  K_ab = c_b - c_a */
+    double h = 2 * GLPGP_PI;
+    glpgp_elem_entry(GLPGP_ELEM_P1, x, y, wx, wy, h, 0, 0, &re, &im);
+    CHECK_CLOSE(re, 1.0 + 1.0 / 12, 1e-14, 0);
+    CHECK_CLOSE(im, 0.0, 1e-15, 0);
+    glpgp_elem_entry(GLPGP_ELEM_P1, x, y, wx, wy, h, 0, 1, &re, &im);
+    CHECK_CLOSE(re, -0.5 + 1.0 / 24, 1e-14, 0);
+    CHECK_CLOSE(im, 1.0 / 6 + 1.0 / 6, 1e-14, 0);
+    glpgp_elem_entry(GLPGP_ELEM_P1, x, y, wx, wy, h, 1, 0, &re, &im);
+    CHECK_CLOSE(im, -1.0 / 3, 1e-14, 0); /* Hermitian */
+    glpgp_elem_entry(GLPGP_ELEM_P1, x, y, wx, wy, h, 1, 2, &re, &im);
+    CHECK_CLOSE(re, 0.0 + 1.0 / 24, 1e-14, 0);
+    CHECK_CLOSE(im, 0.0 - 1.0 / 6, 1e-14, 0);
+    /* transport, edge (0,1) has opposite corner 2 with a right angle... corner 2
+     * angle is 45 deg: cot = 1 -> weight 1/2; r_01 = exp(i (x1-x0) . w) = exp(i) */
+    glpgp_elem_entry(GLPGP_ELEM_TRANSPORT, x, y, wx, wy, h, 0, 1, &re, &im);
+    CHECK_CLOSE(re, -0.5 * cos(1.0), 1e-14, 0);
+    CHECK_CLOSE(im, 0.5 * sin(1.0), 1e-14, 0);
+    /* diagonal: sum of weights of the two edges at corner 0: edge(0,1): 1/2,
+     * edge(2,0): opposite corner 1 (45 deg): 1/2 -> 1 */
+    glpgp_elem_entry(GLPGP_ELEM_TRANSPORT, x, y, wx, wy, h, 0, 0, &re, &im);
+    CHECK_CLOSE(re, 1.0, 1e-14, 0);
+    /* edge (1,2): opposite corner 0 has a right angle: weight 0 */
+    glpgp_elem_entry(GLPGP_ELEM_TRANSPORT, x, y, wx, wy, h, 1, 2, &re, &im);
+    CHECK_CLOSE(re, 0.0, 1e-15, 0);
+}
+
+static double fact(int n) { return n <= 1 ? 1.0 : n * fact(n - 1); }
+
+static void test_quadrature(void)
+{
+    /* int_T l0^a l1^b l2^c = 2A a! b! c! / (a+b+c+2)!, exact up to degree 4 */
+    for (int a = 0; a <= 4; a++)
+        for (int b = 0; a + b <= 4; b++)
+            for (int c = 0; a + b + c <= 4; c++) {
+                double s = 0.0;
+                for (int q = 0; q < 6; q++) {
+                    double l0, l1, l2, w = glpgp_quad4(q, &l0, &l1, &l2);
+                    s += w * pow(l0, a) * pow(l1, b) * pow(l2, c);
+                }
+                double exact = 2.0 * fact(a) * fact(b) * fact(c) / fact(a + b + c + 2);
+                CHECK_CLOSE(s, exact, 1e-15, 1e-14);
+            }
+}
+
+/* A penalty element matrix (6x6 from the 2x2 blocks) must be PSD for the
+ * paper and projected variants: check v^T M v >= 0 for random v and z. */
+static void test_penalty_psd(void)
+{
+    for (int trial = 0; trial < 2000; trial++) {
+        double zr[3], zi[3];
+        for (int a = 0; a < 3; a++) {
+            zr[a] = 2.0 * (tu_rand() - 0.5);
+            zi[a] = 2.0 * (tu_rand() - 0.5);
+        }
+        for (int hess = GLPGP_HESS_PAPER; hess <= GLPGP_HESS_EXACT; hess++) {
+            double M[6][6];
+            for (int a = 0; a < 3; a++)
+                for (int b = 0; b < 3; b++) {
+                    double blk[4];
+                    glpgp_pen_hess(hess, 0.7, 1.0, zr, zi, a, b, blk);
+                    M[2 * a][2 * b] = blk[0];
+                    M[2 * a][2 * b + 1] = blk[1];
+                    M[2 * a + 1][2 * b] = blk[2];
+                    M[2 * a + 1][2 * b + 1] = blk[3];
+                }
+            double minq = 1e300;
+            for (int r = 0; r < 20; r++) {
+                double v[6], q = 0.0, nn = 0.0;
+                for (int i = 0; i < 6; i++) v[i] = tu_rand() - 0.5, nn += v[i] * v[i];
+                for (int i = 0; i < 6; i++)
+                    for (int j = 0; j < 6; j++) q += v[i] * M[i][j] * v[j];
+                if (q / nn < minq) minq = q / nn;
+            }
+            if (hess != GLPGP_HESS_EXACT) CHECK(minq >= -1e-13);
+        }
+    }
+}
+
+/* E(exp(+i w.x)) must be small and E(exp(-i w.x)) large (the sign check). */
+static void test_sign(void)
+{
+    glpgp_mesh *m = grid_mesh(100, 1.0, 0.0); /* h = 0.1 -> 10 vertices per period */
+    glpgp_system *sys = NULL;
+    glpgp_backend *b = NULL;
+    CHECK_OK(glpgp_system_create(m, &sys));
+    CHECK_OK(glpgp_backend_create_reference(&b));
+    CHECK_OK(b->ops->setup(b, sys));
+    int nv = m->nv;
+    double *w = calloc(2 * nv, sizeof(double)), *z = calloc(2 * nv, sizeof(double));
+    unsigned char *dir = calloc(nv, 1);
+    for (int i = 0; i < nv; i++) w[2 * i] = 1.0;
+    CHECK_OK(b->ops->set_field(b, w, dir));
+    for (int kind = GLPGP_ELEM_P1; kind <= GLPGP_ELEM_TRANSPORT; kind++) {
+        CHECK_OK(b->ops->assemble_quadratic(b, kind, 0.1));
+        double e[2];
+        glpgp_vec *x = NULL, *wk = NULL;
+        CHECK_OK(b->ops->vec_create(b, 2 * nv, &x));
+        CHECK_OK(b->ops->vec_create(b, 2 * nv, &wk));
+        for (int sgn = 0; sgn < 2; sgn++) {
+            double s = sgn == 0 ? 1.0 : -1.0;
+            for (int i = 0; i < nv; i++) {
+                double ph = s * 2 * GLPGP_PI * m->xy[2 * i] / 0.1;
+                z[2 * i] = cos(ph);
+                z[2 * i + 1] = sin(ph);
+            }
+            CHECK_OK(b->ops->vec_write(b, x, z));
+            CHECK_OK(b->ops->energy(b, x, 0.0, wk));
+            double sl[GLPGP_NSLOTS];
+            CHECK_OK(b->ops->get_scalars(b, sl, GLPGP_NSLOTS));
+            e[sgn] = sl[GLPGP_S_E];
+        }
+        printf("kind %d: E(exp(+iwx)) = %g, E(exp(-iwx)) = %g\n", kind, e[0], e[1]);
+        /* prototype figures for P1: ~86 vs ~7476; transport is exact for plane waves */
+        CHECK(e[1] > 50 * e[0]);
+        if (kind == GLPGP_ELEM_P1) CHECK(e[0] > 50 && e[0] < 120 && e[1] > 6000 && e[1] < 9000);
+        if (kind == GLPGP_ELEM_TRANSPORT) CHECK(e[0] < 1e-9);
+        b->ops->vec_destroy(b, &x);
+        b->ops->vec_destroy(b, &wk);
+    }
+    free(w);
+    free(z);
+    free(dir);
+    glpgp_backend_destroy(&b);
+    glpgp_system_destroy(&sys);
+    glpgp_mesh_destroy(&m);
+}
+
+/* gradient = FD of energy; NEWTON (exact variant, no Dirichlet) = FD of gradient */
+static void test_fd(int kind)
+{
+    glpgp_mesh *m = grid_mesh(8, 1.0, 0.6);
+    glpgp_system *sys = NULL;
+    glpgp_backend *b = NULL;
+    CHECK_OK(glpgp_system_create(m, &sys));
+    CHECK_OK(glpgp_backend_create_reference(&b));
+    CHECK_OK(b->ops->setup(b, sys));
+    const glpgp_backend_ops *o = b->ops;
+    int nv = m->nv, n = 2 * nv;
+    double *w = calloc(n, sizeof(double)), *z = calloc(n, sizeof(double)), *g = calloc(n, sizeof(double));
+    double *zp = calloc(n, sizeof(double)), *gp = calloc(n, sizeof(double)), *gm = calloc(n, sizeof(double));
+    double *v = calloc(n, sizeof(double)), *hv = calloc(n, sizeof(double));
+    unsigned char *dir = calloc(nv, 1);
+    for (int i = 0; i < nv; i++) {
+        double a = 2 * GLPGP_PI * tu_rand();
+        w[2 * i] = cos(a);
+        w[2 * i + 1] = sin(a);
+        z[2 * i] = 1.5 * (tu_rand() - 0.5);
+        z[2 * i + 1] = 1.5 * (tu_rand() - 0.5);
+        v[2 * i] = tu_rand() - 0.5;
+        v[2 * i + 1] = tu_rand() - 0.5;
+    }
+    const double inv4e2 = 1.0 / (4 * 0.05 * 0.05);
+    glpgp_vec *X = NULL, *G = NULL, *W = NULL, *V = NULL;
+    CHECK_OK(o->vec_create(b, n, &X));
+    CHECK_OK(o->vec_create(b, n, &G));
+    CHECK_OK(o->vec_create(b, n, &W));
+    CHECK_OK(o->vec_create(b, n, &V));
+    CHECK_OK(o->set_field(b, w, dir));
+    CHECK_OK(o->assemble_quadratic(b, kind, 0.3));
+    double sl[GLPGP_NSLOTS];
+    CHECK_OK(o->vec_write(b, X, z));
+    CHECK_OK(o->gradient(b, X, inv4e2, G));
+    CHECK_OK(o->vec_read(b, G, g));
+    CHECK_OK(o->get_scalars(b, sl, GLPGP_NSLOTS));
+    double F0 = sl[GLPGP_S_E] + sl[GLPGP_S_P];
+    CHECK_OK(o->energy(b, X, inv4e2, W));
+    CHECK_OK(o->get_scalars(b, sl, GLPGP_NSLOTS));
+    CHECK_CLOSE(sl[GLPGP_S_E] + sl[GLPGP_S_P], F0, 1e-12, 1e-12);
+    /* directional derivative: (F(z + t v) - F(z - t v)) / 2t = g.v */
+    double t = 1e-6, Fp, Fm, gv = 0.0;
+    for (int i = 0; i < n; i++) gv += g[i] * v[i];
+    for (int i = 0; i < n; i++) zp[i] = z[i] + t * v[i];
+    CHECK_OK(o->vec_write(b, X, zp));
+    CHECK_OK(o->energy(b, X, inv4e2, W));
+    CHECK_OK(o->get_scalars(b, sl, GLPGP_NSLOTS));
+    Fp = sl[GLPGP_S_E] + sl[GLPGP_S_P];
+    for (int i = 0; i < n; i++) zp[i] = z[i] - t * v[i];
+    CHECK_OK(o->vec_write(b, X, zp));
+    CHECK_OK(o->energy(b, X, inv4e2, W));
+    CHECK_OK(o->get_scalars(b, sl, GLPGP_NSLOTS));
+    Fm = sl[GLPGP_S_E] + sl[GLPGP_S_P];
+    printf("kind %d: FD grad %.12g vs g.v %.12g\n", kind, (Fp - Fm) / (2 * t), gv);
+    CHECK_CLOSE((Fp - Fm) / (2 * t), gv, 1e-6, 1e-6);
+    /* per-component gradient check on a few coordinates */
+    for (int c = 0; c < n; c += 7) {
+        memcpy(zp, z, n * sizeof(double));
+        zp[c] += t;
+        CHECK_OK(o->vec_write(b, X, zp));
+        CHECK_OK(o->energy(b, X, inv4e2, W));
+        CHECK_OK(o->get_scalars(b, sl, GLPGP_NSLOTS));
+        Fp = sl[GLPGP_S_E] + sl[GLPGP_S_P];
+        zp[c] -= 2 * t;
+        CHECK_OK(o->vec_write(b, X, zp));
+        CHECK_OK(o->energy(b, X, inv4e2, W));
+        CHECK_OK(o->get_scalars(b, sl, GLPGP_NSLOTS));
+        Fm = sl[GLPGP_S_E] + sl[GLPGP_S_P];
+        CHECK_CLOSE((Fp - Fm) / (2 * t), g[c], 1e-5, 1e-6);
+    }
+    /* Hessian: NEWTON(exact) v = (g(z + t v) - g(z - t v)) / 2t */
+    CHECK_OK(o->vec_write(b, X, z));
+    CHECK_OK(o->assemble_newton(b, X, inv4e2, GLPGP_HESS_EXACT));
+    CHECK_OK(o->vec_write(b, V, v));
+    CHECK_OK(o->spmv(b, GLPGP_MAT_NEWTON, V, W));
+    CHECK_OK(o->vec_read(b, W, hv));
+    for (int i = 0; i < n; i++) zp[i] = z[i] + t * v[i];
+    CHECK_OK(o->vec_write(b, X, zp));
+    CHECK_OK(o->gradient(b, X, inv4e2, G));
+    CHECK_OK(o->vec_read(b, G, gp));
+    for (int i = 0; i < n; i++) zp[i] = z[i] - t * v[i];
+    CHECK_OK(o->vec_write(b, X, zp));
+    CHECK_OK(o->gradient(b, X, inv4e2, G));
+    CHECK_OK(o->vec_read(b, G, gm));
+    double maxd = 0, maxv = 0;
+    for (int i = 0; i < n; i++) {
+        double fd = (gp[i] - gm[i]) / (2 * t);
+        if (fabs(fd - hv[i]) > maxd) maxd = fabs(fd - hv[i]);
+        if (fabs(hv[i]) > maxv) maxv = fabs(hv[i]);
+    }
+    printf("kind %d: Hessian FD max diff %.3g (max entry %.3g)\n", kind, maxd, maxv);
+    CHECK(maxd <= 1e-6 * maxv + 1e-6);
+    /* the quadratic part alone: QUAD v = grad E(v) without penalty (linear) */
+    CHECK_OK(o->vec_write(b, X, v));
+    CHECK_OK(o->gradient(b, X, 0.0, G));
+    CHECK_OK(o->vec_read(b, G, gp));
+    CHECK_OK(o->spmv(b, GLPGP_MAT_QUAD, X, W));
+    CHECK_OK(o->vec_read(b, W, gm));
+    for (int i = 0; i < n; i++) CHECK_CLOSE(gp[i], gm[i], 1e-12, 1e-12);
+    /* QUAD is symmetric: u.(A v) = v.(A u) */
+    o->vec_destroy(b, &X);
+    o->vec_destroy(b, &G);
+    o->vec_destroy(b, &W);
+    o->vec_destroy(b, &V);
+    free(w); free(z); free(g); free(zp); free(gp); free(gm); free(v); free(hv); free(dir);
+    glpgp_backend_destroy(&b);
+    glpgp_system_destroy(&sys);
+    glpgp_mesh_destroy(&m);
+}
+
+/* singularity detection on analytic fields */
+static void test_winding(void)
+{
+    glpgp_mesh *m = grid_mesh(20, 1.0, 0.3);
+    int nv = m->nv, plus, minus;
+    double *z = malloc(sizeof(double) * 2 * nv);
+    const double px = 0.513, py = 0.487;
+    for (int s = 0; s < 3; s++) {
+        for (int i = 0; i < nv; i++) {
+            double x = m->xy[2 * i] - px, y = m->xy[2 * i + 1] - py;
+            double re = x, im = (s == 1) ? -y : y; /* z - p or conj(z - p) */
+            if (s == 2) { /* plane wave */
+                re = cos(9 * m->xy[2 * i]);
+                im = sin(9 * m->xy[2 * i]);
+            }
+            z[2 * i] = re;
+            z[2 * i + 1] = im;
+        }
+        glpgp_singularities(m, z, NULL, &plus, &minus);
+        printf("winding case %d: +%d -%d\n", s, plus, minus);
+        if (s == 0) CHECK(plus == 1 && minus == 0);
+        if (s == 1) CHECK(plus == 0 && minus == 1);
+        if (s == 2) CHECK(plus == 0 && minus == 0);
+    }
+    free(z);
+    glpgp_mesh_destroy(&m);
+}
+
+int main(void)
+{
+    test_reference_triangle();
+    test_quadrature();
+    test_penalty_psd();
+    test_sign();
+    test_fd(GLPGP_ELEM_P1);
+    test_fd(GLPGP_ELEM_TRANSPORT);
+    test_winding();
+    TEST_DONE();
+}

@@ -1,0 +1,1 @@
+/* A host source outside any layer folder (must be reported). */
