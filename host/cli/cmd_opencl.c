@@ -13,6 +13,7 @@
 #include "commands.h"
 
 #include "cli.h"
+#include "opts.h"
 #include "glpgp/backends.h"
 #include "glpgp/io.h"
 #include "glpgp/mesh.h"
@@ -21,81 +22,31 @@
 #include "glpgp/system.h"
 #include "element.h"
 
+#include <limits.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
 
-static const char devices_usage[] =
-    "usage: glpgp devices\n"
-    "List the OpenCL platforms and devices: global index (for --device N and the\n"
-    "GLPGP_DEVICE environment variable), name, vendor, version, compute units,\n"
-    "global memory, double precision support and type. Exit 1 if no platform.\n";
-
-static const char crosscheck_usage[] =
-    "usage: glpgp crosscheck INPUT [--size H] [--energy p1|transport] [--device N]\n"
-    "                        [--tol-scale F] [--no-solve]\n"
-    "Compare the OpenCL backend with the reference backend on one mesh, stage by\n"
-    "stage, and print a table; exit 1 if any stage exceeds its tolerance.\n"
-    "  INPUT            a .obj/.msh mesh or shape:NAME[:N] (built-in domain, N vertices)\n"
-    "  --size H         target quad size (default: bounding-box diagonal / 20)\n"
-    "  --energy KIND    p1 (default) or transport\n"
-    "  --device N       OpenCL device index as listed by 'glpgp devices'\n"
-    "  --tol-scale F    multiply every tolerance by F (default 1)\n"
-    "  --no-solve       skip the whole GL solve stage\n"
-    "Tolerances (|a-b| <= atol + rtol |b|): assembly, gradient, spmv, dot rtol 1e-12;\n"
-    "CG, Newton step and GL solve rtol 1e-6 on z (1e-4 for an oscillator whose GL\n"
-    "levels stopped at the Newton cap: unconverged vortex drift amplifies rounding).\n"
-    "The environment variable\n"
-    "GLPGP_CL_CORRUPT=1 corrupts the OpenCL QUAD assembly (the check must fail).\n";
-
-#ifndef GLPGP_HAVE_OPENCL
-
-int glpgp_cmd_devices(int argc, char **argv)
-{
-    if (argc >= 2 && !strcmp(argv[1], "--help")) {
-        fputs(devices_usage, stdout);
-        return 0;
-    }
-    fprintf(stderr, "glpgp devices: this glpgp was built without OpenCL support\n");
-    return 1;
-}
-
-int glpgp_cmd_crosscheck(int argc, char **argv)
-{
-    if (argc >= 2 && !strcmp(argv[1], "--help")) {
-        fputs(crosscheck_usage, stdout);
-        return 0;
-    }
-    fprintf(stderr, "glpgp crosscheck: this glpgp was built without OpenCL support\n");
-    return 1;
-}
-
-#else /* GLPGP_HAVE_OPENCL */
-
-static int report_error(const char *cmd)
-{
-    fprintf(stderr, "glpgp %s: error: %s\n", cmd, glpgp_error_message());
-    glpgp_error_clear();
-    return 1;
-}
-
 /* ---- glpgp devices ------------------------------------------------------- */
 
 int glpgp_cmd_devices(int argc, char **argv)
 {
-    if (argc >= 2 && !strcmp(argv[1], "--help")) {
-        fputs(devices_usage, stdout);
-        return 0;
-    }
-    if (argc >= 2) {
-        fprintf(stderr, "glpgp devices: usage error: unexpected argument '%s'\n", argv[1]);
-        return 2;
-    }
+    int verbosity = 1;
+    glpgp_opts t;
+    glpgp_opts_init(&t, "devices", "glpgp devices",
+                    "List the OpenCL platforms and devices: global index (for --device N and the\n"
+                    "GLPGP_DEVICE environment variable), name, vendor, version, compute units,\n"
+                    "global memory, double precision support and type. Exit 1 if no platform.\n");
+    glpgp_opts_add_verbosity(&t, &verbosity);
+    const char *none = NULL;
+    int npos = 0;
+    int rc = glpgp_opts_parse(&t, argc, argv, &none, 0, &npos);
+    if (rc >= 0) return rc;
     glpgp_device_info *devs = NULL;
     int n = 0;
-    if (glpgp_devices_list(&devs, &n) != GLPGP_OK) return report_error("devices");
+    if (glpgp_devices_list(&devs, &n) != GLPGP_OK) return glpgp_cli_fail();
     int last_plat = -1;
     if (n == 0) printf("OpenCL platforms found, but no devices\n");
     for (int i = 0; i < n; i++) {
@@ -113,6 +64,8 @@ int glpgp_cmd_devices(int argc, char **argv)
     free(devs);
     return 0;
 }
+
+#ifdef GLPGP_HAVE_OPENCL
 
 /* ---- glpgp crosscheck ---------------------------------------------------- */
 
@@ -433,64 +386,66 @@ done:
     return st;
 }
 
-static int cc_usage(const char *fmt, const char *arg)
+#else /* no OpenCL */
+
+typedef struct cc_args {
+    const char *input;
+    double size;
+    int kind, device;
+    double tscale;
+    int solve;
+} cc_args;
+typedef struct cc_table {
+    int n, failed;
+    double tscale;
+} cc_table;
+static void cc_print(const cc_table *t) { (void)t; }
+static glpgp_status cc_run(const cc_args *a, cc_table *t)
 {
-    fprintf(stderr, "glpgp crosscheck: usage error: ");
-    fprintf(stderr, fmt, arg);
-    fprintf(stderr, "\n(see glpgp crosscheck --help)\n");
-    return 2;
+    (void)a;
+    (void)t;
+    return GLPGP_FAIL(GLPGP_ERR_UNSUPPORTED, "this glpgp was built without OpenCL support");
 }
+
+#endif /* GLPGP_HAVE_OPENCL */
 
 int glpgp_cmd_crosscheck(int argc, char **argv)
 {
     cc_args a = {NULL, 0.0, GLPGP_ELEM_P1, -1, 1.0, 1};
-    for (int i = 1; i < argc; i++) {
-        const char *s = argv[i];
-        const char *v = i + 1 < argc ? argv[i + 1] : NULL;
-        char *end = NULL;
-        if (!strcmp(s, "--help") || !strcmp(s, "-h")) {
-            fputs(crosscheck_usage, stdout);
-            return 0;
-        } else if (!strcmp(s, "--no-solve")) {
-            a.solve = 0;
-        } else if (!strcmp(s, "--size") || !strcmp(s, "--tol-scale")) {
-            if (!v) return cc_usage("%s needs a value", s);
-            double x = strtod(v, &end);
-            if (end == v || *end != '\0' || !(x > 0.0) || !isfinite(x))
-                return cc_usage("expected a positive number, got '%s'", v);
-            if (!strcmp(s, "--size")) a.size = x;
-            else a.tscale = x;
-            i++;
-        } else if (!strcmp(s, "--energy")) {
-            if (!v) return cc_usage("%s needs a value", s);
-            if (!strcmp(v, "p1")) a.kind = GLPGP_ELEM_P1;
-            else if (!strcmp(v, "transport")) a.kind = GLPGP_ELEM_TRANSPORT;
-            else return cc_usage("--energy: '%s' is not p1 or transport", v);
-            i++;
-        } else if (!strcmp(s, "--device")) {
-            if (!v) return cc_usage("%s needs a value", s);
-            long d = strtol(v, &end, 10);
-            if (end == v || *end != '\0' || d < 0 || d > 1000000)
-                return cc_usage("--device: '%s' is not an integer >= 0", v);
-            a.device = (int)d;
-            i++;
-        } else if (s[0] == '-' && s[1] != '\0') {
-            return cc_usage("unknown option '%s'", s);
-        } else if (!a.input) {
-            a.input = s;
-        } else {
-            return cc_usage("unexpected argument '%s'", s);
-        }
-    }
-    if (!a.input) return cc_usage("%s", "missing INPUT (a .obj/.msh file or shape:NAME[:N])");
-    cc_table t;
-    memset(&t, 0, sizeof t);
-    t.tscale = a.tscale;
-    glpgp_status st = cc_run(&a, &t);
-    if (t.n > 0) cc_print(&t);
-    if (st != GLPGP_OK) return report_error("crosscheck");
-    printf("\ncrosscheck: %s\n", t.failed ? "FAILED" : "all stages PASS");
-    return t.failed ? 1 : 0;
+    static const char *const energies[] = {"p1", "transport", NULL};
+    static const int energy_vals[] = {GLPGP_ELEM_P1, GLPGP_ELEM_TRANSPORT};
+    int no_solve = 0, verbosity = 1;
+    glpgp_opts t;
+    glpgp_opts_init(&t, "crosscheck", "glpgp crosscheck INPUT [options]",
+                    "Compare the OpenCL backend with the reference backend on one mesh (a .obj/.msh\n"
+                    "file or shape:NAME[:N]), stage by stage, and print a table; exit 1 if any\n"
+                    "stage exceeds its tolerance.\n");
+    glpgp_opt *o = glpgp_opt_double(&t, "--size", &a.size, 0.0, 1, HUGE_VAL, 0, "H", "target quad size");
+    o->def = "bounding-box diagonal / 20";
+    glpgp_opt_choice(&t, "--energy", &a.kind, energies, energy_vals, "discretisation of the quadratic energy");
+    o = glpgp_opt_int(&t, "--device", &a.device, 0, INT_MAX, "N", "OpenCL device index as listed by 'glpgp devices'");
+    o->def = "$GLPGP_DEVICE or the first fp64 device";
+    glpgp_opt_double(&t, "--tol-scale", &a.tscale, 0.0, 1, HUGE_VAL, 0, "F", "multiply every tolerance by F");
+    glpgp_opt_flag(&t, "--no-solve", &no_solve, 1, "skip the whole GL solve stage");
+    glpgp_opts_add_verbosity(&t, &verbosity);
+    t.epilog = "Tolerances (|a-b| <= atol + rtol |b|): assembly, gradient, spmv, dot rtol 1e-12;\n"
+               "CG, Newton step and GL solve rtol 1e-6 on z (1e-4 for an oscillator whose GL\n"
+               "levels stopped at the Newton cap: unconverged vortex drift amplifies rounding).\n"
+               "The environment variable GLPGP_CL_CORRUPT=1 corrupts the OpenCL QUAD assembly\n"
+               "(the check must fail).\n";
+    int npos = 0;
+    int rc = glpgp_opts_parse(&t, argc, argv, &a.input, 1, &npos);
+    if (rc >= 0) return rc;
+    glpgp_cli_set_verbosity(verbosity);
+    a.solve = !no_solve;
+    if (!a.input) return glpgp_cli_usage_error("crosscheck", "missing INPUT (a .obj/.msh file or shape:NAME[:N])");
+    cc_table tab;
+    memset(&tab, 0, sizeof tab);
+    tab.tscale = a.tscale;
+    glpgp_status st = cc_run(&a, &tab);
+    if (tab.n > 0) cc_print(&tab);
+    if (st != GLPGP_OK) return glpgp_cli_fail();
+    printf("\ncrosscheck: %s\n", tab.failed ? "FAILED" : "all stages PASS");
+    return tab.failed ? 1 : 0;
 }
 
-#endif /* GLPGP_HAVE_OPENCL */

@@ -6,35 +6,9 @@
 # rejected inputs (missing, non-planar, degenerate, non-manifold, garbage),
 # rejected option values, and that a failed run never leaves (or clobbers) an
 # output file.
-set -u
+. "$(dirname "$0")/lib.sh" "$@"
 
-GLPGP=${1:?usage: cli_errors.sh <glpgp> <data-dir>}
-[ -x "$GLPGP" ] || { echo "glpgp binary '$GLPGP' not found"; exit 1; }
-GLPGP=$(cd "$(dirname "$GLPGP")" && pwd)/$(basename "$GLPGP")
-T=$(mktemp -d "${TMPDIR:-/tmp}/glpgp_cli_errors.XXXXXX")
-trap 'rm -rf "$T"' EXIT
-cd "$T" || exit 1
-
-fails=0
-fail() { echo "FAIL: $*"; fails=$((fails + 1)); }
-
-# run EXPECTED_RC DESCRIPTION -- ARGS...: runs glpgp, output in out.txt/err.txt
-run() {
-    local want=$1 what=$2
-    shift 3
-    "$GLPGP" "$@" >out.txt 2>err.txt </dev/null
-    local rc=$?
-    if [ "$want" = nonzero ]; then
-        [ "$rc" -ne 0 ] || fail "$what: expected failure, got exit 0"
-    elif [ "$rc" -ne "$want" ]; then
-        fail "$what: expected exit $want, got $rc (stderr: $(head -c 300 err.txt))"
-    fi
-    return 0
-}
-# expect_msg REGEX DESCRIPTION: stderr must match (case-insensitive ERE)
-expect_msg() {
-    grep -qiE -e "$1" err.txt || fail "$2: stderr does not match /$1/: $(head -c 300 err.txt)"
-}
+expect_msg() { expect_err "$@"; }
 no_outputs() {
     for f in o.vtk o.obj o.json; do
         [ ! -e "$f" ] || { fail "$1: output $f left behind"; rm -f "$f"; }
@@ -43,18 +17,18 @@ no_outputs() {
 }
 
 # ---- help / version -----------------------------------------------------
-run 0 "--help" -- --help
+run 0 "--help" --help
 grep -q "solve" out.txt && grep -q "generate" out.txt && grep -q "devices" out.txt &&
     grep -q "crosscheck" out.txt || fail "--help does not list every subcommand"
-run 0 "help" -- help
-run 0 "--version" -- --version
+run 0 "help" help
+run 0 "--version" --version
 grep -qE "glpgp [0-9]" out.txt || fail "--version prints no version"
-run 2 "no arguments" -- 
+run 2 "no arguments" 
 grep -qi "usage" err.txt || fail "no arguments: no usage text"
-run 2 "unknown command" -- frobnicate
+run 2 "unknown command" frobnicate
 expect_msg "frobnicate" "unknown command"
 
-run 0 "solve --help" -- solve --help
+run 0 "solve --help" solve --help
 for opt in --size --method --energy --newton --field --center --init --eps0 --eps-ratio \
     --eps-min --newton-rtol --newton-max --cg-rtol --cg-max --cg-check --backend --device \
     --out --stats --quiet --verbose shape: gl pgp p1 transport projected paper boundary radial \
@@ -62,61 +36,63 @@ for opt in --size --method --energy --newton --field --center --init --eps0 --ep
     grep -qe "$opt" out.txt || fail "solve --help does not mention $opt"
 done
 grep -qi "default" out.txt || fail "solve --help shows no defaults"
-run 0 "help solve" -- help solve
-run 0 "generate --help" -- generate --help
+run 0 "help solve" help solve
+run 0 "generate --help" generate --help
 grep -q -- "--vertices" out.txt || fail "generate --help does not mention --vertices"
 
-# ---- bad inputs: exit 1 with a meaningful message, no output ------------
-printf 'v 0 0 0\nv 1 0 0\nv 0 1 0.5\nv 1 1 0\nf 1 2 3\nf 2 4 3\n' >nonplanar.obj
-printf 'v 0 0 0\nv 1 0 0\nv 2 0 0\nv 0 1 0\nf 1 2 3\nf 1 2 4\n' >degenerate.obj
-printf 'v 0 0\nv 1 0\nv 0 1\nv 0 -1\nv 1 1\nf 1 2 3\nf 2 1 4\nf 1 2 5\n' >nonmanifold.obj
-printf 'hello world\nthis is not a mesh\n\001\002\003\n' >garbage.obj
-printf 'not a gmsh file\n' >garbage.msh
-printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n' >badindex.obj
-: >empty.obj
+# ---- bad inputs: exit 1 with one meaningful message line, no output ------
+# The files have neutral names (in_N.*), so a message can only match the
+# expected words by saying them itself.
+printf 'v 0 0 0\nv 1 0 0\nv 0 1 0.5\nv 1 1 0\nf 1 2 3\nf 2 4 3\n' >in_1.obj      # not planar
+printf 'v 0 0 0\nv 1 0 0\nv 2 0 0\nv 0 1 0\nf 1 2 3\nf 1 2 4\n' >in_2.obj        # degenerate triangle
+printf 'v 0 0\nv 1 0\nv 0 1\nv 0 -1\nv 1 1\nf 1 2 3\nf 2 1 4\nf 1 2 5\n' >in_3.obj # non-manifold edge
+printf 'hello world\nthis is not a mesh\n\001\002\003\n' >in_4.obj                 # garbage
+printf 'not a gmsh file\n' >in_5.msh                                                # garbage
+printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n' >in_6.obj                           # index out of range
+: >in_7.obj                                                                         # empty
 
-for f in missing.obj nonplanar.obj degenerate.obj nonmanifold.obj garbage.obj garbage.msh \
-    badindex.obj empty.obj; do
-    run 1 "solve $f" -- solve "$f" --out o.vtk --stats o.json --quiet
+for f in missing.obj in_1.obj in_2.obj in_3.obj in_4.obj in_5.msh in_6.obj in_7.obj; do
+    run 1 "solve $f" solve "$f" --out o.vtk --stats o.json --quiet
     expect_msg "^glpgp: error: " "solve $f"
+    one_error_line "solve $f"
     no_outputs "solve $f"
 done
-run 1 "missing file" -- solve missing.obj --quiet
+run 1 "missing file" solve missing.obj --quiet
 expect_msg "missing\.obj" "missing file (names the path)"
 expect_msg "no such file|cannot open|not found|does not exist" "missing file"
-run 1 "non-planar" -- solve nonplanar.obj --quiet
+run 1 "non-planar" solve in_1.obj --quiet
 expect_msg "planar" "non-planar"
-run 1 "degenerate" -- solve degenerate.obj --quiet
-expect_msg "degenerate|zero.area|area" "degenerate"
-run 1 "non-manifold" -- solve nonmanifold.obj --quiet
+run 1 "degenerate" solve in_2.obj --quiet
+expect_msg "degenerate|zero.area" "degenerate"
+run 1 "non-manifold" solve in_3.obj --quiet
 expect_msg "manifold" "non-manifold"
-run 1 "garbage" -- solve garbage.obj --quiet
+run 1 "garbage" solve in_4.obj --quiet
 expect_msg "format|malformed|unknown|invalid|parse|unexpected|binary|not a" "garbage"
-run 1 "garbage msh" -- solve garbage.msh --quiet
-expect_msg "format|malformed|unknown|invalid|parse|unexpected|gmsh|msh" "garbage msh"
-run 1 "bad index" -- solve badindex.obj --quiet
-expect_msg "index|range|vertex|invalid" "bad index"
+run 1 "garbage msh" solve in_5.msh --quiet
+expect_msg "format|malformed|invalid|parse|unexpected|gmsh|MeshFormat" "garbage msh"
+run 1 "bad index" solve in_6.obj --quiet
+expect_msg "index|range" "bad index"
 
 # a pre-existing output survives a failed run untouched
 echo "old content" >o.vtk
-run 1 "failed run keeps old output" -- solve nonmanifold.obj --out o.vtk --quiet
+run 1 "failed run keeps old output" solve in_3.obj --out o.vtk --quiet
 [ "$(cat o.vtk 2>/dev/null)" = "old content" ] || fail "failed run modified the existing o.vtk"
 rm -f o.vtk
 
 # output directory missing: fails before solving, creates nothing
-run 1 "output dir missing" -- solve shape:square:200 --out nodir/o.vtk --quiet
+run 1 "output dir missing" solve shape:square:200 --out nodir/o.vtk --quiet
 expect_msg "nodir" "output dir missing"
 [ ! -e nodir ] || fail "output dir missing: nodir was created"
-run 1 "stats dir missing" -- solve shape:square:200 --out o.vtk --stats nodir/o.json --quiet
+run 1 "stats dir missing" solve shape:square:200 --out o.vtk --stats nodir/o.json --quiet
 no_outputs "stats dir missing"
 
 # an explicit --device that does not exist is an error (no silent fallback), no output
-run 1 "no such device" -- solve shape:square:200 --device 99 --out o.vtk --quiet
+run 1 "no such device" solve shape:square:200 --device 99 --out o.vtk --quiet
 expect_msg "OpenCL|device" "no such device"
 no_outputs "no such device"
 
 # field file missing: the solve fails, no output
-run nonzero "field file missing" -- solve shape:square:300 --field nofield.txt --out o.vtk \
+run nonzero "field file missing" solve shape:square:300 --field nofield.txt --out o.vtk \
     --stats o.json --quiet
 expect_msg "nofield" "field file missing"
 no_outputs "field file missing"
@@ -125,7 +101,7 @@ no_outputs "field file missing"
 bad_opt() { # DESCRIPTION ARGS...
     local what=$1
     shift
-    run 2 "$what" -- solve shape:square:200 --out o.vtk --stats o.json --quiet "$@"
+    run 2 "$what" solve shape:square:200 --out o.vtk --stats o.json --quiet "$@"
     expect_msg "usage" "$what"
     no_outputs "$what"
 }
@@ -163,28 +139,40 @@ bad_opt "--quiet=1" --quiet=1
 bad_opt "unknown option" --bogus-option
 expect_msg "--bogus-option" "unknown option (named in the message)"
 bad_opt "second input" extra.obj
-run 2 "solve without input" -- solve --quiet
-run 2 "shape:nosuch" -- solve shape:nosuch --quiet
+run 2 "solve without input" solve --quiet
+run 2 "shape:nosuch" solve shape:nosuch --quiet
 expect_msg "nosuch" "shape:nosuch"
-run 2 "shape:square:abc" -- solve shape:square:abc --quiet
-run 2 "--out == --stats" -- solve shape:square:200 --out o.vtk --stats o.vtk --quiet
+run 2 "shape:square:abc" solve shape:square:abc --quiet
+run 2 "--out == --stats" solve shape:square:200 --out o.vtk --stats o.vtk --quiet
 no_outputs "--out == --stats"
 
 # ---- generate -------------------------------------------------------------
-run nonzero "generate bad shape" -- generate nosuchshape --vertices 500 -o g.obj
+run nonzero "generate bad shape" generate nosuchshape --vertices 500 -o g.obj
 expect_msg "nosuchshape" "generate bad shape"
 [ ! -e g.obj ] || fail "generate bad shape left g.obj"
-run 2 "generate bad count" -- generate square --vertices abc -o g.obj
-run 2 "generate tiny count" -- generate square --vertices 3 -o g.obj
-run 2 "generate no output" -- generate square --vertices 500
-run 2 "generate bad extension" -- generate square --vertices 500 -o g.txt
-run 1 "generate into missing dir" -- generate square --vertices 500 -o nodir/g.obj
+run 2 "generate bad count" generate square --vertices abc -o g.obj
+run 2 "generate tiny count" generate square --vertices 3 -o g.obj
+run 2 "generate no output" generate square --vertices 500
+run 2 "generate bad extension" generate square --vertices 500 -o g.txt
+run 1 "generate into missing dir" generate square --vertices 500 -o nodir/g.obj
 [ ! -e g.obj ] && [ ! -e g.txt ] || fail "generate failures left a file"
 if ls -A | grep -q '\.tmp'; then fail "temporary files left: $(ls -A | grep '\.tmp')"; fi
 
-if [ "$fails" -ne 0 ]; then
-    echo "cli_errors: $fails failure(s)"
-    exit 1
+# ---- one parser, one selector: the same option behaves the same in every command ----
+run 0 "generate --vertices=N" generate square --vertices=500 -o g2.obj
+[ -s g2.obj ] || fail "generate --vertices=500 wrote nothing"
+run 0 "solve --size=H" solve shape:square:300 --size=0.3 --backend=reference --quiet
+for cmd in solve figure crosscheck; do
+    run 2 "$cmd --size -1" $cmd shape:square:200 --size -1 -o o.png
+    expect_msg "size" "$cmd --size -1"
+done
+if "$GLPGP" --version | grep -q "OpenImageIO: yes"; then
+    # an explicit --device that does not exist is an error in figure as in solve
+    run 1 "figure --device 99" figure shape:square:200 --device 99 -o f.png --quiet
+    expect_msg "device" "figure --device 99"
+    [ ! -e f.png ] || fail "figure --device 99 wrote f.png"
 fi
-echo "cli_errors: all checks passed"
-exit 0
+run 2 "extract --smooth=x" extract r.vtk --quads=q.obj --smooth=x
+expect_msg "smooth" "extract --smooth=x"
+
+finish

@@ -10,32 +10,7 @@
 # and pentagons remain with --keep-polygons; a VTK without oscillators, a bad extension, a missing input and
 # --all-quads / --smooth without --quads fail with a clear message, a non-zero exit and
 # no output file.
-set -u
-
-GLPGP=${1:?usage: cli_quads.sh <glpgp> <data-dir>}
-[ -x "$GLPGP" ] || { echo "glpgp binary '$GLPGP' not found"; exit 1; }
-GLPGP=$(cd "$(dirname "$GLPGP")" && pwd)/$(basename "$GLPGP")
-T=$(mktemp -d "${TMPDIR:-/tmp}/glpgp_cli_quads.XXXXXX")
-trap 'rm -rf "$T"' EXIT
-cd "$T" || exit 1
-
-fails=0
-fail() { echo "FAIL: $*"; fails=$((fails + 1)); }
-run_ok() { # DESCRIPTION ARGS...
-    local what=$1
-    shift
-    "$GLPGP" "$@" >out.txt 2>err.txt </dev/null
-    local rc=$?
-    [ "$rc" -eq 0 ] || fail "$what: exit $rc: $(head -c 600 err.txt)"
-}
-run_fail() { # DESCRIPTION EXPECTED-RC PATTERN ARGS...
-    local what=$1 want=$2 pat=$3
-    shift 3
-    "$GLPGP" "$@" >out.txt 2>err.txt </dev/null
-    local rc=$?
-    [ "$rc" -eq "$want" ] || fail "$what: exit $rc, expected $want"
-    grep -qiE "$pat" err.txt || fail "$what: message does not match '$pat': $(head -c 300 err.txt)"
-}
+. "$(dirname "$0")/lib.sh" "$@"
 
 # ---- solve --quads --------------------------------------------------------
 run_ok "solve --quads" solve shape:square:4000 --size 0.2 --energy transport --backend reference \
@@ -83,7 +58,7 @@ n4=$(grep -cE '^f [0-9]+ [0-9]+ [0-9]+ [0-9]+ *$' a.obj)
 grep -qE "h = 0.1 \(--all-quads" out.txt || fail "extract --all-quads does not report h / 2: $(head -1 out.txt)"
 run_fail "solve --all-quads without --quads" 2 "need --quads" solve shape:square:100 --all-quads
 run_fail "solve --smooth without --quads" 2 "need --quads" solve shape:square:100 --smooth 3
-run_fail "extract --smooth -1" 2 "integer >= 0" extract r.vtk --quads b.obj --smooth -1
+run_fail "extract --smooth -1" 2 "smooth: .-1. is not an integer" extract r.vtk --quads b.obj --smooth -1
 [ -e b.obj ] && fail "b.obj written after a usage error"
 
 # ---- dislocations: all quads by default, polygons with --keep-polygons ------
@@ -124,8 +99,4 @@ run_fail "solve --quads .txt" 2 "obj, .vtk or .msh" solve shape:square:100 --qua
 run_fail "quality of a non-MSH file" 1 "MSH|MeshFormat" quality bad.vtk
 ls -A | grep -q '\.tmp' && fail "temporary file left: $(ls -A | grep '\.tmp')"
 
-if [ "$fails" -gt 0 ]; then
-    echo "$fails check(s) failed"
-    exit 1
-fi
-echo "all checks passed"
+finish

@@ -7,25 +7,9 @@
 # available) with consistent keys; overwriting existing outputs; built-in
 # shape: inputs; at most one warning line with --backend auto; no temporary
 # files left behind.
-set -u
+. "$(dirname "$0")/lib.sh" "$@"
 
-GLPGP=${1:?usage: cli_solve.sh <glpgp> <data-dir>}
-[ -x "$GLPGP" ] || { echo "glpgp binary '$GLPGP' not found"; exit 1; }
-GLPGP=$(cd "$(dirname "$GLPGP")" && pwd)/$(basename "$GLPGP")
-T=$(mktemp -d "${TMPDIR:-/tmp}/glpgp_cli_solve.XXXXXX")
-trap 'rm -rf "$T"' EXIT
-cd "$T" || exit 1
-
-fails=0
-fail() { echo "FAIL: $*"; fails=$((fails + 1)); }
-ok_run() { # DESCRIPTION ARGS...: must exit 0
-    local what=$1
-    shift
-    "$GLPGP" "$@" >out.txt 2>err.txt </dev/null
-    local rc=$?
-    [ "$rc" -eq 0 ] || fail "$what: exit $rc: $(head -c 600 err.txt)"
-    return 0
-}
+ok_run() { run_ok "$@"; }
 have_python=0
 if command -v python3 >/dev/null 2>&1; then have_python=1; fi
 json_ok() { # FILE NV: parses, has the documented keys, vertices == NV
@@ -48,9 +32,6 @@ assert set(d["seconds"]) >= {"setup", "field", "u", "v", "total"}
 assert set(d["mesh"]) >= {"area", "mean_edge", "boundary_loops"}
 assert d["newton_iterations"]["total"] == d["newton_iterations"]["u"] + d["newton_iterations"]["v"]
 EOF
-}
-no_tmp() {
-    if ls -A | grep -q '\.tmp'; then fail "$1: temporary file left: $(ls -A | grep '\.tmp')"; fi
 }
 
 # ---- generate -------------------------------------------------------------
@@ -119,9 +100,4 @@ nw=$(grep -ci "warning" err.txt)
 [ "$nw" -le 1 ] || fail "--backend auto printed $nw warning lines"
 no_tmp "end"
 
-if [ "$fails" -ne 0 ]; then
-    echo "cli_solve: $fails failure(s)"
-    exit 1
-fi
-echo "cli_solve: all checks passed"
-exit 0
+finish

@@ -1,0 +1,199 @@
+/* cli/cmd_solve.c: `glpgp solve INPUT [options]`: load or mesh the domain,
+ * solve with the chosen backend, then compute everything asked for (quad
+ * mesh and its report, picture) before writing any file, write the outputs
+ * and print the summary. A failure at any point leaves no output behind. */
+#include "commands.h"
+
+#include "cli.h"
+#include "opts.h"
+
+#include "glpgp/backends.h"
+#include "glpgp/image.h"
+#include "glpgp/io.h"
+#include "glpgp/quads.h"
+#include "glpgp/solve.h"
+#include "glpgp/util.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+static const char *const k_result_exts[] = {".vtk", ".obj", NULL};
+static const char *const k_quad_exts[] = {".obj", ".vtk", ".msh", NULL};
+static const char *const k_json_exts[] = {".json", NULL};
+
+typedef struct solve_cli {
+    glpgp_options o;
+    int backend, device, verbosity;
+    const char *out, *stats, *quads, *image;
+    glpgp_quad_options qo;
+    int quad_opts;
+    glpgp_render_options ro;
+    glpgp_mask_options mo;
+} solve_cli;
+
+static void build(glpgp_opts *t, solve_cli *c)
+{
+    glpgp_options_default(&c->o);
+    glpgp_quad_options_default(&c->qo);
+    glpgp_render_options_default(&c->ro);
+    glpgp_mask_options_default(&c->mo);
+    c->backend = GLPGP_BACKEND_AUTO;
+    c->device = -1;
+    c->verbosity = 1;
+    glpgp_opts_init(t, "solve", "glpgp solve INPUT [options]",
+                    "INPUT is a triangle mesh of a planar domain (.obj, or Gmsh .msh 2.2/4.1 ASCII),\n"
+                    "shape:NAME[:N], a built-in domain with about N vertices (default 20000;\n"
+                    "NAME is one of square, disk, annulus, lshape), or a mask image (.png, .tif,\n"
+                    ".exr, ...), meshed first (see 'Mask image input').\n");
+    glpgp_opts_add_solver(t, &c->o);
+    glpgp_opts_add_backend(t, &c->backend, &c->device);
+    glpgp_opts_group(t, "Output");
+    glpgp_opt *p = glpgp_opt_string(t, "--out", &c->out, "FILE",
+                                    "result as .vtk (ParaView) or .obj (texture coordinates)");
+    p->alias = "-o";
+    glpgp_opt_string(t, "--stats", &c->stats, "FILE", "statistics as JSON");
+    glpgp_opt_string(t, "--quads", &c->quads, "FILE",
+                     "extract the quad mesh (.obj/.vtk/.msh) and add its quality\n"
+                     "report to the summary and the statistics (\"quads\")");
+    glpgp_opts_add_quads(t, &c->qo, &c->quad_opts);
+    glpgp_opt_string(t, "--image", &c->image, "FILE",
+                     "picture of the result (.png, .exr, .tif, .jpg, ...)");
+    glpgp_opts_add_picture(t, &c->ro, 0);
+    glpgp_opts_group(t, "Mask image input (INPUT = image)");
+    glpgp_opts_add_mask(t, &c->mo);
+    glpgp_opts_add_verbosity(t, &c->verbosity);
+    t->epilog = "Files are written only after a successful solve, atomically (no partial file is\n"
+                "ever left; a failed run leaves existing files untouched). A summary is printed\n"
+                "on stdout.\n";
+}
+
+/* Validate the parsed options together; -1 when fine, else the exit code. */
+static int check(solve_cli *c, const char *input)
+{
+    const char *sub = "solve";
+    if (!input) return glpgp_cli_usage_error(sub, "missing INPUT (a .obj/.msh file or shape:NAME[:N])");
+    if (c->out && c->stats && !strcmp(c->out, c->stats))
+        return glpgp_cli_usage_error(sub, "--out and --stats name the same file '%s'", c->out);
+    if (c->quad_opts && !c->quads)
+        return glpgp_cli_usage_error(sub, "--all-quads, --keep-polygons and --smooth need --quads FILE");
+    if (c->quads && ((c->out && !strcmp(c->out, c->quads)) || (c->stats && !strcmp(c->stats, c->quads))))
+        return glpgp_cli_usage_error(sub, "--quads names the same file as --out or --stats: '%s'", c->quads);
+    if (c->image && ((c->out && !strcmp(c->out, c->image)) || (c->stats && !strcmp(c->stats, c->image)) ||
+                     (c->quads && !strcmp(c->quads, c->image))))
+        return glpgp_cli_usage_error(sub, "--image names the same file as another output: '%s'", c->image);
+    int rc;
+    if (c->out && (rc = glpgp_cli_check_output(sub, "--out", c->out, k_result_exts)) >= 0) return rc;
+    if (c->stats && (rc = glpgp_cli_check_output(sub, "--stats", c->stats, NULL)) >= 0) return rc;
+    if (c->quads && (rc = glpgp_cli_check_output(sub, "--quads", c->quads, k_quad_exts)) >= 0) return rc;
+    if (c->image) {
+        if (!glpgp_cli_need_images(1, 0)) return GLPGP_EXIT_FAIL;
+        if (!glpgp_image_path_writable(c->image))
+            return glpgp_cli_usage_error(sub, "--image: cannot write images of type '%s' (try .png, .exr, "
+                                              ".tif, .jpg)", c->image);
+        if ((rc = glpgp_cli_check_output(sub, "--image", c->image, NULL)) >= 0) return rc;
+    }
+    (void)k_json_exts;
+    return -1;
+}
+
+static void print_summary(const solve_cli *c, const char *input, const glpgp_mesh *m, const glpgp_result *r,
+                          double t_all, double t_read, const glpgp_quad_quality *qq)
+{
+    const glpgp_osc_result *u = &r->osc[0], *v = &r->osc[1];
+    printf("glpgp: %s: %d vertices, %d triangles, h = %.6g, backend %s\n", input, m->nv, m->nt, r->size,
+           r->backend ? r->backend : "?");
+    printf("  singularities  u: +%d -%d   v: +%d -%d\n", u->plus, u->minus, v->plus, v->minus);
+    printf("  median |z|     u: %.4f   v: %.4f\n", u->zabs_median, v->zabs_median);
+    printf("  iterations     newton %d (u %d, v %d), cg %ld\n", u->newton_iterations + v->newton_iterations,
+           u->newton_iterations, v->newton_iterations,
+           u->cg_iterations + v->cg_iterations + r->field_cg_iterations);
+    if (u->capped_levels + v->capped_levels)
+        printf("  unconverged    %d eps level(s) stopped at the Newton cap (u %d, v %d)\n",
+               u->capped_levels + v->capped_levels, u->capped_levels, v->capped_levels);
+    printf("  time           %.3f s (read %.3f s, solve %.3f s)\n", t_all, t_read, r->seconds_total);
+    if (c->out) printf("  wrote          %s\n", c->out);
+    if (c->stats) printf("  wrote          %s\n", c->stats);
+    if (c->quads) {
+        glpgp_quads_print(stdout, qq, "  ");
+        printf("  wrote          %s\n", c->quads);
+    }
+    if (c->image) printf("  wrote          %s\n", c->image);
+}
+
+int glpgp_cmd_solve(int argc, char **argv)
+{
+    solve_cli c;
+    glpgp_opts t;
+    build(&t, &c);
+    const char *input = NULL;
+    int npos = 0;
+    int rc = glpgp_opts_parse(&t, argc, argv, &input, 1, &npos);
+    if (rc >= 0) return rc;
+    glpgp_cli_set_verbosity(c.verbosity);
+    glpgp_error_clear();
+    if ((rc = check(&c, input)) >= 0) return rc;
+
+    double t0 = glpgp_now();
+    glpgp_mesh *m = NULL;
+    glpgp_backend *b = NULL;
+    glpgp_result *r = NULL;
+    glpgp_quadmesh *q = NULL;
+    glpgp_image *im = NULL;
+    glpgp_quad_quality qq;
+    memset(&qq, 0, sizeof qq);
+    c.mo.quad_size = c.o.size;
+    if ((rc = glpgp_cli_load_input("solve", input, &c.mo, &m, NULL)) >= 0) return rc;
+    double t_read = glpgp_now() - t0;
+    rc = GLPGP_EXIT_FAIL;
+
+    if (glpgp_backend_select(c.backend, c.device, c.verbosity > 0, &b) != GLPGP_OK) goto fail;
+    if (glpgp_solve(m, b, &c.o, &r) != GLPGP_OK) goto fail;
+
+    /* everything computed before anything is written */
+    if (c.quads) {
+        double h = r->size;
+        if (glpgp_quads_build(m, r, &c.qo, &q, &h) != GLPGP_OK) goto fail;
+        if (glpgp_quads_quality(q, m, h, &qq) != GLPGP_OK) goto fail;
+        qq.singular[0] = r->osc[0].plus + r->osc[0].minus;
+        qq.singular[1] = r->osc[1].plus + r->osc[1].minus;
+    }
+    if (c.image && glpgp_render(m, r, &c.ro, &im) != GLPGP_OK) goto fail;
+
+    /* outputs; a failure removes what this run already wrote */
+    if (c.out && glpgp_write_result(m, &c.o, r, c.out) != GLPGP_OK) goto fail;
+    if (c.stats) {
+        glpgp_stats_extra x;
+        x.input = input;
+        x.output = c.out;
+        x.seconds_read = t_read;
+        if (glpgp_write_stats_json(m, &c.o, r, c.stats, &x) != GLPGP_OK) goto fail_written;
+        if (c.quads && glpgp_quads_append_json(c.stats, &qq) != GLPGP_OK) goto fail_written;
+    }
+    if (c.quads && glpgp_quads_write(q, c.quads) != GLPGP_OK) goto fail_written;
+    if (c.image && glpgp_image_write(c.image, im) != GLPGP_OK) goto fail_written;
+
+    if (r->osc[0].zabs_median < 0.5 || r->osc[1].zabs_median < 0.5)
+        glpgp_log(GLPGP_LOG_WARNING,
+                  "median |z| < 0.5: the oscillators collapsed towards z = 0 (h = %g is %.1f mean edges; "
+                  "P1 needs about 10 per period): raise --size or refine the mesh",
+                  r->size, r->size / m->mean_edge);
+    print_summary(&c, input, m, r, glpgp_now() - t0, t_read, &qq);
+    rc = 0;
+    goto done;
+fail_written:
+    rc = glpgp_cli_fail();
+    if (c.out) remove(c.out);
+    if (c.stats) remove(c.stats);
+    if (c.quads) remove(c.quads);
+    goto done;
+fail:
+    rc = glpgp_cli_fail();
+done:
+    glpgp_image_destroy(&im);
+    glpgp_quadmesh_destroy(&q);
+    glpgp_result_destroy(&r);
+    glpgp_backend_destroy(&b);
+    glpgp_mesh_destroy(&m);
+    return rc;
+}

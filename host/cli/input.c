@@ -1,0 +1,73 @@
+/* cli/input.c: the one INPUT loader of the CLI: a built-in shape
+ * (shape:NAME[:N]), a mask image (meshed through the image layer) or a
+ * triangle mesh file (.obj / .msh), for every command that takes a domain. */
+#include "commands.h"
+
+#include "cli.h"
+#include "glpgp/image.h"
+#include "glpgp/io.h"
+#include "glpgp/shapes.h"
+#include "glpgp/util.h"
+
+#include <stdio.h>
+#include <string.h>
+
+int glpgp_cli_need_images(int oiio, int gmsh)
+{
+    if (oiio && !glpgp_have_oiio()) {
+        fprintf(stderr, "glpgp: error: this glpgp was built without OpenImageIO (install "
+                        "libopenimageio-dev and rebuild): no image files\n");
+        return 0;
+    }
+    if (gmsh && !glpgp_have_gmsh()) {
+        fprintf(stderr, "glpgp: error: this glpgp was built without Gmsh (install libgmsh-dev and "
+                        "rebuild): cannot mesh mask images\n");
+        return 0;
+    }
+    return 1;
+}
+
+int glpgp_cli_load_input(const char *cmd, const char *input, const glpgp_mask_options *mo,
+                         glpgp_mesh **m, int *is_mask)
+{
+    *m = NULL;
+    if (is_mask) *is_mask = 0;
+    if (strncmp(input, "shape:", 6) == 0) {
+        char name[64];
+        long nverts;
+        if (glpgp_shape_parse(input, 0, name, sizeof name, &nverts) != GLPGP_OK) {
+            int rc = glpgp_cli_usage_error(cmd, "INPUT %s", glpgp_error_message());
+            glpgp_error_clear();
+            return rc;
+        }
+        if (glpgp_mesh_generate(name, nverts, m) != GLPGP_OK) return glpgp_cli_fail();
+        return -1;
+    }
+    if (glpgp_is_image_path(input)) {
+        if (!glpgp_cli_need_images(1, 1)) return GLPGP_EXIT_FAIL;
+        glpgp_mask_info inf;
+        if (glpgp_mask_mesh(input, mo, m, &inf) != GLPGP_OK) return glpgp_cli_fail();
+        if (is_mask) *is_mask = 1;
+        glpgp_log(GLPGP_LOG_INFO, "%s: %d x %d mask -> %d vertices, %d triangles (%d hole%s, mesh size %.4g, %.2f s)",
+                  input, inf.width, inf.height, (*m)->nv, (*m)->nt, inf.nholes, inf.nholes == 1 ? "" : "s",
+                  inf.mesh_size, inf.seconds_read + inf.seconds_contour + inf.seconds_mesh);
+        return -1;
+    }
+    if (glpgp_mesh_read(input, m) != GLPGP_OK) return glpgp_cli_fail();
+    return -1;
+}
+
+int glpgp_cli_check_output(const char *cmd, const char *opt, const char *path,
+                           const char *const *exts)
+{
+    int ok = exts == NULL;
+    char list[128] = "";
+    for (int k = 0; exts && exts[k]; k++) {
+        if (glpgp_has_ext(path, exts[k])) ok = 1;
+        size_t n = strlen(list);
+        snprintf(list + n, sizeof list - n, "%s%s", k ? (exts[k + 1] ? ", " : " or ") : "", exts[k]);
+    }
+    if (!ok) return glpgp_cli_usage_error(cmd, "%s: '%s' must end in %s", opt, path, list);
+    if (glpgp_output_path_check(path) != GLPGP_OK) return glpgp_cli_fail();
+    return -1;
+}

@@ -1,0 +1,497 @@
+/* cli/opts.c: the table-driven option parser and help printer of the CLI
+ * (opts.h), and the option groups shared by several commands. */
+#include "opts.h"
+
+#include "cli.h"
+
+#include <limits.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+void glpgp_opts_init(glpgp_opts *t, const char *cmd, const char *usage, const char *about)
+{
+    memset(t, 0, sizeof *t);
+    t->cmd = cmd;
+    t->usage = usage;
+    t->about = about;
+    t->group = "Options";
+}
+
+void glpgp_opts_group(glpgp_opts *t, const char *title) { t->group = title; }
+
+glpgp_opt *glpgp_opts_add(glpgp_opts *t, glpgp_opt o)
+{
+    if (t->n >= GLPGP_OPTS_MAX) {
+        /* a programming error: the tables are static in size */
+        fprintf(stderr, "glpgp: internal error: too many options for '%s'\n", t->cmd);
+        abort();
+    }
+    o.group = t->group;
+    t->opt[t->n] = o;
+    return &t->opt[t->n++];
+}
+
+glpgp_opt *glpgp_opt_flag(glpgp_opts *t, const char *name, int *dest, int value, const char *help)
+{
+    glpgp_opt o = {0};
+    o.name = name;
+    o.kind = GLPGP_OPT_FLAG;
+    o.dest = dest;
+    o.ival = value;
+    o.help = help;
+    o.def = "";
+    return glpgp_opts_add(t, o);
+}
+
+glpgp_opt *glpgp_opt_int(glpgp_opts *t, const char *name, int *dest, long lo, long hi,
+                         const char *meta, const char *help)
+{
+    glpgp_opt o = {0};
+    o.name = name;
+    o.kind = GLPGP_OPT_INT;
+    o.dest = dest;
+    o.lo = (double)lo;
+    o.hi = (double)hi;
+    o.meta = meta;
+    o.help = help;
+    return glpgp_opts_add(t, o);
+}
+
+glpgp_opt *glpgp_opt_double(glpgp_opts *t, const char *name, double *dest, double lo, int lo_open,
+                            double hi, int hi_open, const char *meta, const char *help)
+{
+    glpgp_opt o = {0};
+    o.name = name;
+    o.kind = GLPGP_OPT_DOUBLE;
+    o.dest = dest;
+    o.lo = lo;
+    o.hi = hi;
+    o.lo_open = lo_open;
+    o.hi_open = hi_open;
+    o.meta = meta;
+    o.help = help;
+    return glpgp_opts_add(t, o);
+}
+
+glpgp_opt *glpgp_opt_string(glpgp_opts *t, const char *name, const char **dest, const char *meta,
+                            const char *help)
+{
+    glpgp_opt o = {0};
+    o.name = name;
+    o.kind = GLPGP_OPT_STRING;
+    o.dest = dest;
+    o.meta = meta;
+    o.help = help;
+    return glpgp_opts_add(t, o);
+}
+
+glpgp_opt *glpgp_opt_choice(glpgp_opts *t, const char *name, int *dest, const char *const *names,
+                            const int *values, const char *help)
+{
+    glpgp_opt o = {0};
+    o.name = name;
+    o.kind = GLPGP_OPT_CHOICE;
+    o.dest = dest;
+    o.names = names;
+    o.values = values;
+    o.help = help;
+    return glpgp_opts_add(t, o);
+}
+
+/* ---- values ------------------------------------------------------------------ */
+
+static int choice_value(const glpgp_opt *o, int k) { return o->values ? o->values[k] : k; }
+
+static void join_names(const char *const *names, const char *sep, char *buf, size_t len)
+{
+    size_t n = 0;
+    buf[0] = '\0';
+    for (int k = 0; names[k]; k++) {
+        int w = snprintf(buf + n, len - n, "%s%s", k ? sep : "", names[k]);
+        if (w < 0 || (size_t)w >= len - n) break;
+        n += (size_t)w;
+    }
+}
+
+/* The default of o as text (from *dest, before parsing). */
+static void capture_default(glpgp_opt *o)
+{
+    if (o->def) {
+        snprintf(o->defbuf, sizeof o->defbuf, "%s", o->def);
+        return;
+    }
+    o->defbuf[0] = '\0';
+    switch (o->kind) {
+    case GLPGP_OPT_INT: snprintf(o->defbuf, sizeof o->defbuf, "%d", *(int *)o->dest); break;
+    case GLPGP_OPT_DOUBLE: snprintf(o->defbuf, sizeof o->defbuf, "%g", *(double *)o->dest); break;
+    case GLPGP_OPT_STRING: {
+        const char *s = *(const char **)o->dest;
+        if (s) snprintf(o->defbuf, sizeof o->defbuf, "%s", s);
+        break;
+    }
+    case GLPGP_OPT_CHOICE:
+        for (int k = 0; o->names[k]; k++)
+            if (choice_value(o, k) == *(int *)o->dest) snprintf(o->defbuf, sizeof o->defbuf, "%s", o->names[k]);
+        break;
+    default: break;
+    }
+}
+
+/* Text describing the accepted range of a number ("a positive number", ...). */
+static void describe_range(const glpgp_opt *o, char *buf, size_t len)
+{
+    const char *what = o->kind == GLPGP_OPT_INT ? "an integer" : "a number";
+    int lo_inf = o->lo == -HUGE_VAL, hi_inf = o->hi == HUGE_VAL;
+    if (o->kind == GLPGP_OPT_INT) {
+        lo_inf = o->lo <= (double)INT_MIN;
+        hi_inf = o->hi >= (double)INT_MAX;
+    }
+    if (lo_inf && hi_inf)
+        snprintf(buf, len, "%s", what);
+    else if (hi_inf && o->lo == 0.0 && o->lo_open && o->kind == GLPGP_OPT_DOUBLE)
+        snprintf(buf, len, "a positive number");
+    else if (hi_inf)
+        snprintf(buf, len, "%s %s %g", what, o->lo_open ? ">" : ">=", o->lo);
+    else if (lo_inf)
+        snprintf(buf, len, "%s %s %g", what, o->hi_open ? "<" : "<=", o->hi);
+    else
+        snprintf(buf, len, "%s in %c%g, %g%c", what, o->lo_open ? '(' : '[', o->lo, o->hi,
+                 o->hi_open ? ')' : ']');
+}
+
+/* Store value v into o. Returns -1, or the usage-error exit code. */
+static int apply(glpgp_opts *t, glpgp_opt *o, const char *v)
+{
+    char range[96];
+    switch (o->kind) {
+    case GLPGP_OPT_FLAG: *(int *)o->dest = o->ival; break;
+    case GLPGP_OPT_INT: {
+        long l;
+        long lo = o->lo <= (double)LONG_MIN ? LONG_MIN : (long)o->lo;
+        long hi = o->hi >= (double)LONG_MAX ? LONG_MAX : (long)o->hi;
+        if (!glpgp_cli_long(v, lo, hi, &l)) {
+            describe_range(o, range, sizeof range);
+            return glpgp_cli_usage_error(t->cmd, "%s: '%s' is not %s", o->name, v, range);
+        }
+        *(int *)o->dest = (int)l;
+        break;
+    }
+    case GLPGP_OPT_DOUBLE: {
+        double d;
+        int ok = glpgp_cli_double(v, &d);
+        if (ok) ok = o->lo_open ? d > o->lo : d >= o->lo;
+        if (ok) ok = o->hi_open ? d < o->hi : d <= o->hi;
+        if (!ok) {
+            describe_range(o, range, sizeof range);
+            return glpgp_cli_usage_error(t->cmd, "%s: '%s' is not %s", o->name, v, range);
+        }
+        *(double *)o->dest = d;
+        break;
+    }
+    case GLPGP_OPT_STRING:
+        if (!*v) return glpgp_cli_usage_error(t->cmd, "%s: empty value", o->name);
+        *(const char **)o->dest = v;
+        break;
+    case GLPGP_OPT_CHOICE: {
+        for (int k = 0; o->names[k]; k++)
+            if (!strcmp(v, o->names[k])) {
+                *(int *)o->dest = choice_value(o, k);
+                if (o->seen) *o->seen = 1;
+                return -1;
+            }
+        char names[256];
+        join_names(o->names, ", ", names, sizeof names);
+        return glpgp_cli_usage_error(t->cmd, "%s: '%s' is not one of %s", o->name, v, names);
+    }
+    case GLPGP_OPT_CUSTOM: {
+        const char *why = o->parse(v, o->dest);
+        if (why) return glpgp_cli_usage_error(t->cmd, "%s: '%s' %s", o->name, v, why);
+        break;
+    }
+    }
+    if (o->seen) *o->seen = 1;
+    return -1;
+}
+
+static glpgp_opt *find(glpgp_opts *t, const char *name)
+{
+    for (int k = 0; k < t->n; k++)
+        if (!strcmp(t->opt[k].name, name) || (t->opt[k].alias && !strcmp(t->opt[k].alias, name)))
+            return &t->opt[k];
+    return NULL;
+}
+
+int glpgp_opts_parse(glpgp_opts *t, int argc, char **argv, const char **pos, int maxpos, int *npos)
+{
+    *npos = 0;
+    for (int k = 0; k < t->n; k++) capture_default(&t->opt[k]);
+    for (int i = 1; i < argc; i++) {
+        const char *arg = argv[i];
+        if (arg[0] != '-' || arg[1] == '\0') {
+            if (*npos >= maxpos) return glpgp_cli_usage_error(t->cmd, "unexpected argument '%s'", arg);
+            pos[(*npos)++] = arg;
+            continue;
+        }
+        /* "--name=value" or "--name [value]" */
+        char name[64];
+        const char *eq = strncmp(arg, "--", 2) == 0 ? strchr(arg, '=') : NULL;
+        size_t n = eq ? (size_t)(eq - arg) : strlen(arg);
+        if (n >= sizeof name) return glpgp_cli_usage_error(t->cmd, "unknown option '%.60s...'", arg);
+        memcpy(name, arg, n);
+        name[n] = '\0';
+        const char *value = eq ? eq + 1 : NULL;
+        if (!strcmp(name, "--help") || !strcmp(name, "-h")) {
+            if (value) return glpgp_cli_usage_error(t->cmd, "option %s takes no value", name);
+            t->help = 1;
+            glpgp_opts_usage(t, stdout);
+            return 0;
+        }
+        glpgp_opt *o = find(t, name);
+        if (!o) return glpgp_cli_usage_error(t->cmd, "unknown option '%s'", arg);
+        if (o->kind == GLPGP_OPT_FLAG) {
+            if (value) return glpgp_cli_usage_error(t->cmd, "option %s takes no value", name);
+        } else if (!value) {
+            if (i + 1 >= argc) return glpgp_cli_usage_error(t->cmd, "option %s needs a value", name);
+            value = argv[++i];
+        }
+        int rc = apply(t, o, value);
+        if (rc >= 0) return rc;
+    }
+    return -1;
+}
+
+/* ---- help ---------------------------------------------------------------------- */
+
+#define HELP_COL 24
+
+void glpgp_opts_usage(glpgp_opts *t, FILE *f)
+{
+    for (int k = 0; k < t->n; k++)
+        if (!t->opt[k].defbuf[0]) capture_default(&t->opt[k]);
+    fprintf(f, "Usage: %s\n", t->usage);
+    if (t->about) fprintf(f, "\n%s", t->about);
+    const char *group = NULL;
+    for (int k = 0; k < t->n; k++) {
+        const glpgp_opt *o = &t->opt[k];
+        if (!group || strcmp(group, o->group) != 0) {
+            group = o->group;
+            fprintf(f, "\n%s:\n", group);
+        }
+        char left[160], meta[128];
+        meta[0] = '\0';
+        if (o->kind == GLPGP_OPT_CHOICE && !o->meta)
+            join_names(o->names, "|", meta, sizeof meta);
+        else if (o->meta)
+            snprintf(meta, sizeof meta, "%s", o->meta);
+        snprintf(left, sizeof left, "  %s%s%s%s%s", o->name, o->alias ? ", " : "", o->alias ? o->alias : "",
+                 meta[0] ? " " : "", meta);
+        int w = (int)strlen(left);
+        fputs(left, f);
+        if (w >= HELP_COL - 1) {
+            fputc('\n', f);
+            w = 0;
+        }
+        /* help lines, the default appended to the last one */
+        const char *h = o->help ? o->help : "";
+        int first = 1, col = 0;
+        for (;;) {
+            const char *nl = strchr(h, '\n');
+            int len = nl ? (int)(nl - h) : (int)strlen(h);
+            fprintf(f, "%*s%.*s", first ? HELP_COL - w : HELP_COL, "", len, h);
+            col = HELP_COL + len;
+            first = 0;
+            if (!nl) break;
+            fputc('\n', f);
+            h = nl + 1;
+        }
+        if (o->defbuf[0]) {
+            /* the default on the last line, or on its own line when it does not fit */
+            int dl = (int)strlen(o->defbuf) + 12;
+            if (col + dl > 80)
+                fprintf(f, "\n%*s(default: %s)", HELP_COL, "", o->defbuf);
+            else
+                fprintf(f, " (default: %s)", o->defbuf);
+        }
+        fputc('\n', f);
+    }
+    fprintf(f, "\n  --help, -h            this text\n");
+    if (t->epilog) fprintf(f, "\n%s", t->epilog);
+}
+
+/* ---- shared groups -------------------------------------------------------------- */
+
+void glpgp_opts_add_verbosity(glpgp_opts *t, int *v)
+{
+    glpgp_opts_group(t, "Messages");
+    glpgp_opt_flag(t, "--quiet", v, 0, "no progress on stderr (warnings and errors only)");
+    glpgp_opt_flag(t, "--verbose", v, 2, "debug progress on stderr, and error traces");
+}
+
+static const char *parse_center(const char *v, void *dest)
+{
+    glpgp_options *o = dest;
+    const char *comma = strchr(v, ',');
+    char xs[128];
+    size_t n = comma ? (size_t)(comma - v) : 0;
+    if (!comma || n >= sizeof xs) return "is not X,Y (two numbers)";
+    memcpy(xs, v, n);
+    xs[n] = '\0';
+    if (!glpgp_cli_double(xs, &o->center[0]) || !glpgp_cli_double(comma + 1, &o->center[1]))
+        return "is not X,Y (two numbers)";
+    o->has_center = 1;
+    return NULL;
+}
+
+static const char *parse_field(const char *v, void *dest)
+{
+    glpgp_options *o = dest;
+    if (!*v) return "is empty";
+    if (!strcmp(v, "boundary")) {
+        o->field = GLPGP_FIELD_BOUNDARY;
+    } else if (!strcmp(v, "radial")) {
+        o->field = GLPGP_FIELD_RADIAL;
+    } else {
+        o->field = GLPGP_FIELD_FILE;
+        o->field_file = v;
+    }
+    return NULL;
+}
+
+static const char *const k_methods[] = {"gl", "pgp", NULL};
+static const int k_method_vals[] = {GLPGP_METHOD_GL, GLPGP_METHOD_PGP};
+static const char *const k_energies[] = {"p1", "transport", NULL};
+static const int k_energy_vals[] = {GLPGP_ELEM_P1, GLPGP_ELEM_TRANSPORT};
+static const char *const k_newtons[] = {"mixed", "projected", "paper", NULL};
+static const int k_newton_vals[] = {GLPGP_HESS_MIXED, GLPGP_HESS_PROJECTED, GLPGP_HESS_PAPER};
+static const char *const k_inits[] = {"naive", "one", NULL};
+static const int k_init_vals[] = {GLPGP_INIT_NAIVE, GLPGP_INIT_ONE};
+
+void glpgp_opts_add_solver(glpgp_opts *t, glpgp_options *o)
+{
+    glpgp_opts_group(t, "Parametrization");
+    glpgp_opt *p = glpgp_opt_double(t, "--size", &o->size, 0.0, 1, HUGE_VAL, 0, "H",
+                                    "target quad size h, the period of the oscillators");
+    p->def = "bounding-box diagonal / 20, at least 10 mean edges";
+    glpgp_opt_choice(t, "--method", &o->method, k_methods, k_method_vals,
+                     "Ginzburg-Landau continuation or naive PGP (one linear solve)");
+    glpgp_opt_choice(t, "--energy", &o->energy, k_energies, k_energy_vals,
+                     "discretisation of the quadratic energy: P1 finite elements or\n"
+                     "the edge-transport (cotan) form of the original PGP");
+    glpgp_opt_choice(t, "--newton", &o->hess, k_newtons, k_newton_vals,
+                     "penalty Hessian used by Newton: exact where |z|^2 >= 1/2 and\n"
+                     "projected in vortex cores, projected (PSD) everywhere, or the\n"
+                     "paper's eq. 8");
+    glpgp_opt c = {0};
+    c.name = "--field";
+    c.kind = GLPGP_OPT_CUSTOM;
+    c.dest = o;
+    c.parse = parse_field;
+    c.meta = "boundary|radial|FILE";
+    c.help = "guiding field U: smooth field aligned with the boundary, radial\n"
+             "about --center, or one \"ux uy\" line per vertex from FILE";
+    c.def = "boundary";
+    glpgp_opts_add(t, c);
+    c.name = "--center";
+    c.parse = parse_center;
+    c.meta = "X,Y";
+    c.help = "centre of the radial field";
+    c.def = "area centroid";
+    glpgp_opts_add(t, c);
+    glpgp_opt_choice(t, "--init", &o->init, k_inits, k_init_vals,
+                     "initial guess of the GL continuation: the normalised naive PGP\n"
+                     "solution, or z = 1");
+
+    glpgp_opts_group(t, "Continuation and solvers");
+    glpgp_opt_double(t, "--eps0", &o->eps0, 0.0, 1, HUGE_VAL, 0, "F", "first eps, as a multiple of h");
+    glpgp_opt_double(t, "--eps-ratio", &o->eps_ratio, 0.0, 1, 1.0, 1, "F", "eps_{k+1} = F eps_k");
+    glpgp_opt_double(t, "--eps-min", &o->eps_min, 0.0, 1, HUGE_VAL, 0, "F",
+                     "last eps, as a multiple of the mean edge length");
+    glpgp_opt_double(t, "--newton-rtol", &o->newton_rtol, 0.0, 1, 1.0, 1, "F",
+                     "the last level stops when |g| <= F |g0|");
+    glpgp_opt_int(t, "--newton-max", &o->newton_max, 1, INT_MAX, "N", "Newton iterations per eps level");
+    glpgp_opt_double(t, "--cg-rtol", &o->cg_rtol, 0.0, 1, 1.0, 1, "F", "CG stops when |r| <= F |b|");
+    glpgp_opt_int(t, "--cg-max", &o->cg_max, 1, INT_MAX, "N", "CG iteration cap");
+    glpgp_opt_int(t, "--cg-check", &o->cg_check, 1, INT_MAX, "N",
+                  "read the CG residual back every N iterations");
+}
+
+static const char *const k_backends[] = {"auto", "opencl", "reference", NULL};
+static const int k_backend_vals[] = {GLPGP_BACKEND_AUTO, GLPGP_BACKEND_OPENCL, GLPGP_BACKEND_REFERENCE};
+
+void glpgp_opts_add_backend(glpgp_opts *t, int *kind, int *device)
+{
+    glpgp_opts_group(t, "Backend");
+    glpgp_opt_choice(t, "--backend", kind, k_backends, k_backend_vals,
+                     "auto tries OpenCL and falls back to the reference C path with\n"
+                     "one warning");
+    glpgp_opt *d = glpgp_opt_int(t, "--device", device, 0, INT_MAX, "N",
+                                 "OpenCL device index as listed by 'glpgp devices'; with\n"
+                                 "--device, an unusable OpenCL backend is an error");
+    d->def = "$GLPGP_DEVICE or the first fp64 device";
+}
+
+void glpgp_opts_add_quads(glpgp_opts *t, glpgp_quad_options *q, int *given)
+{
+    glpgp_opt *o = glpgp_opt_flag(t, "--keep-polygons", &q->keep_polygons, 1,
+                                  "keep the faces left around dislocations as polygons\n"
+                                  "(default: join them pairwise or to the boundary by strips\n"
+                                  "of quads cut in two: all quads, same size)");
+    o->seen = given;
+    o = glpgp_opt_int(t, "--smooth", &q->smooth, 0, 100000, "N",
+                      "smoothing sweeps around the new vertices and the faces with\n"
+                      "scaled Jacobian < 0.5 (0: off; a move is kept only if no nearby\n"
+                      "corner gets worse)");
+    o->seen = given;
+    o = glpgp_opt_flag(t, "--all-quads", &q->all_quads, 1,
+                       "refine every face into quads (centroid + edge midpoints):\n"
+                       "half the element size");
+    o->seen = given;
+}
+
+static const char *const k_kinds[] = {"grid", "checker", "zabs", "field", "theta", NULL};
+static const int k_kind_vals[] = {GLPGP_IMAGE_GRID, GLPGP_IMAGE_CHECKER, GLPGP_IMAGE_ZABS,
+                                  GLPGP_IMAGE_FIELD, GLPGP_IMAGE_THETA};
+static const char *const k_backgrounds[] = {"white", "transparent", NULL};
+
+void glpgp_opts_add_picture(glpgp_opts *t, glpgp_render_options *r, int line_width)
+{
+    glpgp_opt_int(t, "--image-size", &r->size, 16, 32768, "N", "pixels on the long side");
+    glpgp_opt_choice(t, "--image-kind", &r->kind, k_kinds, k_kind_vals,
+                     "grid (unit grid of theta_u, theta_v: the paper's Fig. 4),\n"
+                     "checker, zabs (heat map of min |z_u|, |z_v|), field (arrows of\n"
+                     "the guiding field U), theta (red = theta_u, green = theta_v)");
+    glpgp_opt_choice(t, "--background", &r->transparent, k_backgrounds, NULL, "picture background");
+    if (line_width) {
+        glpgp_opt *o = glpgp_opt_double(t, "--line-width", &r->line_width, 0.0, 1, 100.0, 0, "W",
+                                        "grid line width in pixels");
+        o->def = "max(1, 1.5 N / 1024)";
+    }
+}
+
+static const char *const k_algorithms[] = {"frontal", "delaunay", NULL};
+static const int k_algorithm_vals[] = {6, 5};
+
+void glpgp_opts_add_mask(glpgp_opts *t, glpgp_mask_options *m)
+{
+    glpgp_opt_double(t, "--threshold", &m->contour.threshold, -HUGE_VAL, 0, HUGE_VAL, 0, "T",
+                     "inside = mask value >= T (alpha if the image has a varying\n"
+                     "alpha channel, else luminance, in [0, 1])");
+    glpgp_opt_flag(t, "--invert", &m->contour.invert, 1, "inside = mask value < T");
+    glpgp_opt_double(t, "--pixel-size", &m->contour.pixel_size, 0.0, 1, HUGE_VAL, 0, "S",
+                     "physical size of a pixel; y points up, the image covers\n"
+                     "[0, width S] x [0, height S]");
+    glpgp_opt *o = glpgp_opt_double(t, "--mesh-size", &m->mesh_size, 0.0, 1, HUGE_VAL, 0, "M",
+                                    "Gmsh target size, physical units (mean edge about 0.7 M)");
+    o->def = "h / 8 with h = --size, or the bounding-box diagonal / 20";
+    glpgp_opt_double(t, "--min-area", &m->contour.min_area, 0.0, 0, HUGE_VAL, 0, "A",
+                     "drop islands and fill holes under A square pixels");
+    glpgp_opt_double(t, "--simplify", &m->contour.tolerance, 0.0, 0, HUGE_VAL, 0, "P",
+                         "boundary simplification tolerance in pixels (raised to\n"
+                         "mesh size / 20)");
+    o = glpgp_opt_choice(t, "--algorithm", &m->algorithm, k_algorithms, k_algorithm_vals,
+                         "Gmsh 2D algorithm: Frontal-Delaunay, or Delaunay (faster on\n"
+                         "huge meshes)");
+    o->def = "frontal";
+}
