@@ -173,7 +173,7 @@ int glpgp_cmd_solve(int argc, char **argv)
     if (c.quads && glpgp_quads_write(q, c.quads) != GLPGP_OK) goto fail_written;
     if (c.image && glpgp_image_write(c.image, im) != GLPGP_OK) goto fail_written;
 
-    if (r->osc[0].zabs_median < 0.5 || r->osc[1].zabs_median < 0.5)
+    if (c.o.method == GLPGP_METHOD_GL && (r->osc[0].zabs_median < 0.5 || r->osc[1].zabs_median < 0.5))
         glpgp_log(GLPGP_LOG_WARNING,
                   "median |z| < 0.5: the oscillators collapsed towards z = 0 (h = %g is %.1f mean edges; "
                   "P1 needs about 10 per period): raise --size or refine the mesh",

@@ -410,8 +410,32 @@ glpgp_status glpgp_mesh_create(int nv, const double *xy, int nt, const int *tri,
     free(twin);
     twin = NULL;
 
+    /* Folds: after the orientation repair every triangle must be counter-
+     * clockwise; one that is not lies on the same side of an edge as its
+     * neighbour (the mesh folds over itself). Overlaps without a fold show as
+     * a triangle area larger than the area enclosed by the boundary loops. */
     double area = 0.0;
-    for (int t = 0; t < nt; t++) area += 0.5 * tri_cross(m->xy, m->tri[3 * t], m->tri[3 * t + 1], m->tri[3 * t + 2]);
+    for (int t = 0; t < nt; t++) {
+        const int *v = m->tri + 3 * t;
+        double c = tri_cross(m->xy, v[0], v[1], v[2]);
+        if (!(c > 0.0)) {
+            st = GLPGP_FAIL(GLPGP_ERR_MESH,
+                            "the mesh folds over itself: triangle %d (%d, %d, %d) is inverted relative "
+                            "to its neighbours",
+                            t, v[0], v[1], v[2]);
+            goto fail;
+        }
+        area += 0.5 * c;
+    }
+    double enclosed = 0.0;
+    for (int l = 0; l < m->nloops; l++)
+        enclosed += loop_area(m->xy, m->loop_vertices + m->loop_start[l], m->loop_start[l + 1] - m->loop_start[l]);
+    if (area > enclosed * (1.0 + 1e-9) + 1e-12 * diag2) {
+        st = GLPGP_FAIL(GLPGP_ERR_MESH,
+                        "the mesh overlaps itself: its triangles cover %.6g but its boundary encloses %.6g",
+                        area, enclosed);
+        goto fail;
+    }
     m->area = area;
     *out = m;
     return GLPGP_OK;
