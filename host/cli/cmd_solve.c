@@ -145,6 +145,12 @@ int glpgp_cmd_solve(int argc, char **argv)
     c.mo.quad_size = c.o.size;
     if ((rc = glpgp_cli_load_input("solve", input, &c.mo, &m, NULL)) >= 0) return rc;
     double t_read = glpgp_now() - t0;
+    if (glpgp_options_check_mesh(&c.o, m) != GLPGP_OK) {
+        rc = glpgp_cli_usage_error("solve", "--size: %s", glpgp_error_message());
+        glpgp_error_clear();
+        glpgp_mesh_destroy(&m);
+        return rc;
+    }
     rc = GLPGP_EXIT_FAIL;
 
     if (glpgp_backend_select(c.backend, c.device, c.verbosity > 0, &b) != GLPGP_OK) goto fail;

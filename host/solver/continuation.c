@@ -172,9 +172,8 @@ glpgp_status glpgp_solve(const glpgp_mesh *m, glpgp_backend *b, const glpgp_opti
     const double t0 = glpgp_now();
     const int nv = m->nv, nt = m->nt;
 
-    GLPGP_CHECK(glpgp_options_check(o));
+    GLPGP_CHECK(glpgp_options_check_mesh(o, m));
     double h = o->size > 0.0 ? o->size : glpgp_default_size(m, o);
-    if (!isfinite(h) || h <= 0.0) return GLPGP_FAIL(GLPGP_ERR_ARG, "invalid target size h = %g", h);
 
     GLPGP_CHECK(glpgp_result_create(nv, nt, &r));
     r->size = h;

@@ -70,6 +70,24 @@ glpgp_status glpgp_options_check(const glpgp_options *o)
     return GLPGP_OK;
 }
 
+glpgp_status glpgp_options_check_mesh(const glpgp_options *o, const glpgp_mesh *m)
+{
+    GLPGP_CHECK(glpgp_options_check(o));
+    double h = o->size > 0.0 ? o->size : glpgp_default_size(m, o);
+    double dx = m->bbox[2] - m->bbox[0], dy = m->bbox[3] - m->bbox[1], diag = sqrt(dx * dx + dy * dy);
+    if (!(h >= GLPGP_SIZE_MIN_EDGES * m->mean_edge))
+        return GLPGP_FAIL(GLPGP_ERR_ARG,
+                          "size h = %g is %.3g mean edge lengths of the mesh: at least %g are needed "
+                          "(P1 needs about 10 per period)",
+                          h, h / m->mean_edge, GLPGP_SIZE_MIN_EDGES);
+    if (!(h <= GLPGP_SIZE_MAX_DIAG * diag))
+        return GLPGP_FAIL(GLPGP_ERR_ARG,
+                          "size h = %g is %.3g times the domain's diameter: at most %g (no quad would "
+                          "fit in the domain)",
+                          h, h / diag, GLPGP_SIZE_MAX_DIAG);
+    return GLPGP_OK;
+}
+
 double glpgp_default_size(const glpgp_mesh *m, const glpgp_options *o)
 {
     glpgp_options d;

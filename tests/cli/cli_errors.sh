@@ -114,6 +114,10 @@ bad_opt "--size nan" --size nan
 bad_opt "--size inf" --size inf
 bad_opt "--size 1e999" --size 1e999
 bad_opt "--size 1x" --size 1x
+bad_opt "--size 1e-300 (below 2 mean edges)" --size 1e-300
+expect_msg "mean edge" "--size 1e-300"
+bad_opt "--size 1e300 (beyond the domain)" --size 1e300
+expect_msg "diameter" "--size 1e300"
 bad_opt "--size=" --size=
 bad_opt "--size (no value)" --size
 bad_opt "--method foo" --method foo

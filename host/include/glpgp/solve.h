@@ -72,6 +72,15 @@ void glpgp_options_default(glpgp_options *o);
 /* Check the values (ranges as documented; GLPGP_ERR_ARG naming the member). */
 glpgp_status glpgp_options_check(const glpgp_options *o);
 
+/* The size limits for a mesh: h (o->size, or the default size) must be at
+ * least GLPGP_SIZE_MIN_EDGES mean edge lengths (a period needs vertices to
+ * exist on; P1 wants about 10) and at most GLPGP_SIZE_MAX_DIAG times the
+ * bounding-box diagonal (beyond, there is no grid line to compute).
+ * GLPGP_ERR_ARG with a message naming the ratio otherwise. */
+#define GLPGP_SIZE_MIN_EDGES 2.0
+#define GLPGP_SIZE_MAX_DIAG 100.0
+glpgp_status glpgp_options_check_mesh(const glpgp_options *o, const glpgp_mesh *m);
+
 /* Run the whole pipeline on mesh m with backend b (already created; setup is
  * done here). On success *out holds the result (free with
  * glpgp_result_destroy). Progress: glpgp_log at GLPGP_LOG_INFO; a level that
