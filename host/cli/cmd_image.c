@@ -54,19 +54,21 @@ static int usage_err(const char *sub, const char *fmt, ...)
     return EXIT_USAGE;
 }
 
+/* OpenImageIO / Gmsh usable (their module loaded); else the reason is
+ * printed ("built without ...", or the module not found / not loadable). */
 static int need_oiio(void)
 {
-    if (glpgp_have_oiio()) return 1;
-    fprintf(stderr, "glpgp: error: this glpgp was built without OpenImageIO (install "
-                    "libopenimageio-dev and rebuild): no image files\n");
+    glpgp_error_clear();
+    if (glpgp_oiio_load() == GLPGP_OK) return 1;
+    fail_err();
     return 0;
 }
 
 static int need_gmsh(void)
 {
-    if (glpgp_have_gmsh()) return 1;
-    fprintf(stderr, "glpgp: error: this glpgp was built without Gmsh (install libgmsh-dev and "
-                    "rebuild): cannot mesh mask images\n");
+    glpgp_error_clear();
+    if (glpgp_gmsh_load() == GLPGP_OK) return 1;
+    fail_err();
     return 0;
 }
 
@@ -485,10 +487,14 @@ int glpgp_solve_image_parse(glpgp_solve_image_cli *sc, const char *name, const c
 {
     if (!strcmp(name, "--image")) {
         if (!value || !*value) return usage_err("solve", "--image: empty path");
-        if (!glpgp_have_oiio()) {
+        glpgp_error_clear();
+        glpgp_status st = glpgp_oiio_load();
+        if (st == GLPGP_ERR_UNSUPPORTED) {
             fprintf(stderr, "glpgp: usage error: --image: this glpgp was built without OpenImageIO\n");
+            glpgp_error_clear();
             return EXIT_USAGE;
         }
+        if (st != GLPGP_OK) return fail_err(); /* module missing or not loadable */
         if (!glpgp_image_path_writable(value))
             return usage_err("solve", "--image: cannot write images of type '%s' (try .png, .exr, .tif, .jpg)", value);
         sc->image = value;
