@@ -87,6 +87,11 @@ static int check(solve_cli *c, const char *input)
     if (c->stats && (rc = glpgp_cli_check_output(sub, "--stats", c->stats, NULL)) >= 0) return rc;
     if (c->quads && (rc = glpgp_cli_check_output(sub, "--quads", c->quads, k_quad_exts)) >= 0) return rc;
     if (c->image) {
+        glpgp_error_clear();
+        if (glpgp_oiio_load() == GLPGP_ERR_UNSUPPORTED) {
+            glpgp_error_clear();
+            return glpgp_cli_usage_error(sub, "--image: this glpgp was built without OpenImageIO");
+        }
         if (!glpgp_cli_need_images(1, 0)) return GLPGP_EXIT_FAIL;
         if (!glpgp_image_path_writable(c->image))
             return glpgp_cli_usage_error(sub, "--image: cannot write images of type '%s' (try .png, .exr, "

@@ -14,14 +14,11 @@
 
 int glpgp_cli_need_images(int oiio, int gmsh)
 {
-    if (oiio && !glpgp_have_oiio()) {
-        fprintf(stderr, "glpgp: error: this glpgp was built without OpenImageIO (install "
-                        "libopenimageio-dev and rebuild): no image files\n");
-        return 0;
-    }
-    if (gmsh && !glpgp_have_gmsh()) {
-        fprintf(stderr, "glpgp: error: this glpgp was built without Gmsh (install libgmsh-dev and "
-                        "rebuild): cannot mesh mask images\n");
+    /* load the modules now: "built without ...", or the module missing or
+     * not loadable, is reported before any work */
+    glpgp_error_clear();
+    if ((oiio && glpgp_oiio_load() != GLPGP_OK) || (gmsh && glpgp_gmsh_load() != GLPGP_OK)) {
+        glpgp_cli_fail();
         return 0;
     }
     return 1;

@@ -1,8 +1,12 @@
-/* image/image.c: the plain-C half of the image I/O of glpgp/image.h: image buffers (create/destroy),
- * the image-extension test, and, in builds without OpenImageIO, the stubs of
- * glpgp_image_read/write that fail with "built without OpenImageIO". */
+/* image/image.c: the plain-C half of the image I/O of glpgp/image.h: image
+ * buffers (create/destroy), the image-extension test, and glpgp_image_read,
+ * glpgp_image_write and glpgp_image_path_writable, which load the OpenImageIO
+ * module (glpgp_oiio.so, image/oiio_shim.cpp) on first use through
+ * image/module.c and fail with its reason ("built without OpenImageIO", module
+ * not found, not loadable) when it cannot be had. */
 #include "glpgp/util.h"
 #include "glpgp/image.h"
+#include "module.h"
 
 #include <stdlib.h>
 #include <string.h>
@@ -53,28 +57,33 @@ int glpgp_is_image_path(const char *path)
     return 0;
 }
 
-#ifndef GLPGP_HAVE_OIIO
-
-int glpgp_have_oiio(void) { return 0; }
-
 glpgp_status glpgp_image_read(const char *path, glpgp_image **out)
 {
-    if (out) *out = NULL;
-    return GLPGP_FAIL(GLPGP_ERR_UNSUPPORTED,
-                      "cannot read image '%s': glpgp was built without OpenImageIO", path);
+    if (!path || !out) return GLPGP_FAIL(GLPGP_ERR_ARG, "glpgp_image_read: NULL argument");
+    *out = NULL;
+    const glpgp_oiio_api *api;
+    const char *why;
+    glpgp_status st = glpgp_oiio_module_get(&api, &why);
+    if (st != GLPGP_OK) return GLPGP_FAIL(st, "cannot read image '%s': %s", path, why);
+    GLPGP_CHECK(api->read(path, out));
+    return GLPGP_OK;
 }
 
 glpgp_status glpgp_image_write(const char *path, const glpgp_image *im)
 {
-    (void)im;
-    return GLPGP_FAIL(GLPGP_ERR_UNSUPPORTED,
-                      "cannot write image '%s': glpgp was built without OpenImageIO", path);
+    if (!path || !*path) return GLPGP_FAIL(GLPGP_ERR_ARG, "glpgp_image_write: empty path");
+    const glpgp_oiio_api *api;
+    const char *why;
+    glpgp_status st = glpgp_oiio_module_get(&api, &why);
+    if (st != GLPGP_OK) return GLPGP_FAIL(st, "cannot write image '%s': %s", path, why);
+    GLPGP_CHECK(api->write(path, im));
+    return GLPGP_OK;
 }
 
 int glpgp_image_path_writable(const char *path)
 {
-    (void)path;
-    return 0;
+    const glpgp_oiio_api *api;
+    const char *why;
+    if (!path || glpgp_oiio_module_get(&api, &why) != GLPGP_OK) return 0;
+    return api->path_writable(path);
 }
-
-#endif

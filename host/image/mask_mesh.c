@@ -1,16 +1,13 @@
-/* image/mask_mesh.c: polygon-with-holes -> triangle mesh through the Gmsh C API
- * (gmshInitialize ... gmshFinalize around every call, terminal output off,
- * every ierr checked), and the mask image -> mesh pipeline (glpgp/image.h). */
+/* image/mask_mesh.c: polygon-with-holes -> triangle mesh through the Gmsh
+ * module (glpgp_gmsh.so, image/gmsh_shim.c, loaded on first use by
+ * image/module.c), and the mask image -> mesh pipeline (glpgp/image.h). */
 #include "glpgp/image.h"
+#include "module.h"
 
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
-
-#ifdef GLPGP_HAVE_GMSH
-#include <gmshc.h>
-#endif
 
 static double now_s(void)
 {
@@ -25,15 +22,6 @@ void glpgp_mask_options_default(glpgp_mask_options *o)
     o->mesh_size = 0;
     o->quad_size = 0;
     o->algorithm = 6;
-}
-
-int glpgp_have_gmsh(void)
-{
-#ifdef GLPGP_HAVE_GMSH
-    return 1;
-#else
-    return 0;
-#endif
 }
 
 double glpgp_mask_default_mesh_size(const glpgp_polygons *p, double quad_size)
@@ -53,59 +41,6 @@ double glpgp_mask_default_mesh_size(const glpgp_polygons *p, double quad_size)
     return h / 8.0;
 }
 
-#ifndef GLPGP_HAVE_GMSH
-
-glpgp_status glpgp_mesh_polygons(const glpgp_polygons *p, double mesh_size, int algorithm,
-                                 glpgp_mesh **out)
-{
-    (void)p, (void)mesh_size, (void)algorithm;
-    if (out) *out = NULL;
-    return GLPGP_FAIL(GLPGP_ERR_UNSUPPORTED,
-                      "cannot mesh the mask: glpgp was built without Gmsh (libgmsh-dev)");
-}
-
-#else
-
-/* Record Gmsh's last error message (or a generic one) for step `what`. */
-static glpgp_status gmsh_fail(const char *what, int ierr)
-{
-    char *msg = NULL;
-    int e2 = 0;
-    gmshLoggerGetLastError(&msg, &e2);
-    glpgp_status st = GLPGP_FAIL(GLPGP_ERR_MESH, "Gmsh failed in %s (error %d)%s%s", what, ierr,
-                                 (e2 == 0 && msg && *msg) ? ": " : "",
-                                 (e2 == 0 && msg && *msg) ? msg : "");
-    if (msg) gmshFree(msg);
-    return st;
-}
-
-#define GMSH_DO(what, call)                                   \
-    do {                                                      \
-        ierr = 0;                                             \
-        call;                                                 \
-        if (ierr) {                                           \
-            st = gmsh_fail(what, ierr);                       \
-            goto fin;                                         \
-        }                                                     \
-    } while (0)
-
-/* Add one polygon loop as points + lines + curve loop; returns its tag. */
-static glpgp_status add_loop(const double *xy, int n, double hm, int *loop_tag)
-{
-    glpgp_status st = GLPGP_OK;
-    int ierr = 0;
-    int *pt = NULL, *ln = NULL;
-    GLPGP_CHECK(glpgp_malloc((size_t)n, sizeof(int), &pt));
-    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)n, sizeof(int), &ln), fin);
-    for (int i = 0; i < n; i++) GMSH_DO("addPoint", pt[i] = gmshModelGeoAddPoint(xy[2 * i], xy[2 * i + 1], 0.0, hm, -1, &ierr));
-    for (int i = 0; i < n; i++) GMSH_DO("addLine", ln[i] = gmshModelGeoAddLine(pt[i], pt[(i + 1) % n], -1, &ierr));
-    GMSH_DO("addCurveLoop", *loop_tag = gmshModelGeoAddCurveLoop(ln, (size_t)n, -1, 0, &ierr));
-fin:
-    free(pt);
-    free(ln);
-    return st;
-}
-
 glpgp_status glpgp_mesh_polygons(const glpgp_polygons *p, double hm, int algorithm,
                                  glpgp_mesh **out)
 {
@@ -113,102 +48,20 @@ glpgp_status glpgp_mesh_polygons(const glpgp_polygons *p, double hm, int algorit
     *out = NULL;
     if (!(hm > 0) || !isfinite(hm)) return GLPGP_FAIL(GLPGP_ERR_ARG, "mesh size %g must be positive", hm);
     if (algorithm <= 0) algorithm = 6;
-    glpgp_status st = GLPGP_OK;
-    int ierr = 0;
-    int *loops = NULL;
-    size_t *ntags = NULL, *etags = NULL, *enodes = NULL;
-    size_t ntags_n = 0, etags_n = 0, enodes_n = 0, coord_n = 0, par_n = 0;
-    double *coord = NULL, *par = NULL;
-    int *map = NULL, *tri = NULL;
-    double *vxy = NULL;
-
-    gmshInitialize(0, NULL, 0, &ierr);
-    if (ierr) return GLPGP_FAIL(GLPGP_ERR_MESH, "cannot initialise Gmsh (error %d)", ierr);
-    GMSH_DO("option General.Terminal", gmshOptionSetNumber("General.Terminal", 0, &ierr));
-    GMSH_DO("option General.Verbosity", gmshOptionSetNumber("General.Verbosity", 1, &ierr));
-    GMSH_DO("model add", gmshModelAdd("glpgp_mask", &ierr));
-    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)p->n + 1, sizeof(int), &loops), fin);
-    for (int q = 0; q < p->n; q++) {
-        if (!(p->area[q] > 0)) continue;
-        int nl = 0;
-        for (int pass = 0; pass < 2; pass++)
-            for (int l = 0; l < p->n; l++) {
-                if (pass == 0 ? l != q : p->parent[l] != q) continue;
-                GLPGP_CHECK_GOTO(st, add_loop(p->xy + 2 * p->start[l], p->start[l + 1] - p->start[l], hm, &loops[nl]), fin);
-                nl++;
-            }
-        GMSH_DO("addPlaneSurface", gmshModelGeoAddPlaneSurface(loops, (size_t)nl, -1, &ierr));
-    }
-    GMSH_DO("synchronize", gmshModelGeoSynchronize(&ierr));
-    GMSH_DO("option Mesh.MeshSizeMax", gmshOptionSetNumber("Mesh.MeshSizeMax", hm, &ierr));
-    GMSH_DO("option Mesh.MeshSizeFromCurvature", gmshOptionSetNumber("Mesh.MeshSizeFromCurvature", 0, &ierr));
-    GMSH_DO("option Mesh.Algorithm", gmshOptionSetNumber("Mesh.Algorithm", algorithm, &ierr));
-    GMSH_DO("mesh generate", gmshModelMeshGenerate(2, &ierr));
-    GMSH_DO("getNodes", gmshModelMeshGetNodes(&ntags, &ntags_n, &coord, &coord_n, &par, &par_n, -1, -1, 0, 0, &ierr));
-    GMSH_DO("getElementsByType", gmshModelMeshGetElementsByType(2, &etags, &etags_n, &enodes, &enodes_n, -1, 0, 1, &ierr));
-    if (enodes_n < 3 || ntags_n < 3 || coord_n < 3 * ntags_n) {
-        st = GLPGP_FAIL(GLPGP_ERR_MESH, "Gmsh produced no triangles (mesh size %g too large?)", hm);
-        goto fin;
-    }
-    {
-        size_t maxtag = 0;
-        for (size_t i = 0; i < ntags_n; i++)
-            if (ntags[i] > maxtag) maxtag = ntags[i];
-        if (maxtag > (size_t)2147483000) {
-            st = GLPGP_FAIL(GLPGP_ERR_MESH, "Gmsh node tags too large");
-            goto fin;
-        }
-        size_t nt = enodes_n / 3;
-        if (nt > (size_t)2147483000 / 3) {
-            st = GLPGP_FAIL(GLPGP_ERR_MESH, "too many triangles (%zu)", nt);
-            goto fin;
-        }
-        int *pos = NULL; /* node tag -> index into coord */
-        GLPGP_CHECK_GOTO(st, glpgp_malloc(maxtag + 1, sizeof(int), &pos), fin);
-        GLPGP_CHECK_GOTO(st, glpgp_malloc(maxtag + 1, sizeof(int), &map), fin_pos);
-        for (size_t i = 0; i <= maxtag; i++) pos[i] = map[i] = -1;
-        for (size_t i = 0; i < ntags_n; i++) pos[ntags[i]] = (int)i;
-        GLPGP_CHECK_GOTO(st, glpgp_malloc(3 * nt, sizeof(int), &tri), fin_pos);
-        GLPGP_CHECK_GOTO(st, glpgp_malloc(2 * ntags_n, sizeof(double), &vxy), fin_pos);
-        int nv = 0;
-        for (size_t k = 0; k < 3 * nt; k++) {
-            size_t tag = enodes[k];
-            if (tag > maxtag || pos[tag] < 0) {
-                st = GLPGP_FAIL(GLPGP_ERR_MESH, "Gmsh triangle refers to unknown node %zu", tag);
-                goto fin_pos;
-            }
-            if (map[tag] < 0) {
-                map[tag] = nv;
-                vxy[2 * nv] = coord[3 * (size_t)pos[tag]];
-                vxy[2 * nv + 1] = coord[3 * (size_t)pos[tag] + 1];
-                nv++;
-            }
-            tri[k] = map[tag];
-        }
-        GLPGP_CHECK_GOTO(st, glpgp_mesh_create(nv, vxy, (int)nt, tri, out), fin_pos);
-    fin_pos:
-        free(pos);
-    }
-fin:
-    if (ntags) gmshFree(ntags);
-    if (coord) gmshFree(coord);
-    if (par) gmshFree(par);
-    if (etags) gmshFree(etags);
-    if (enodes) gmshFree(enodes);
-    free(loops);
-    free(map);
+    const glpgp_gmsh_api *api;
+    const char *why;
+    glpgp_status st = glpgp_gmsh_module_get(&api, &why);
+    if (st != GLPGP_OK) return GLPGP_FAIL(st, "cannot mesh the mask: %s", why);
+    int nv = 0, nt = 0;
+    double *xy = NULL;
+    int *tri = NULL;
+    GLPGP_CHECK(api->mesh_polygons(p, hm, algorithm, &nv, &xy, &nt, &tri));
+    st = glpgp_mesh_create(nv, xy, nt, tri, out);
+    if (st != GLPGP_OK) glpgp_error_push_trace(__FILE__, __LINE__);
+    free(xy);
     free(tri);
-    free(vxy);
-    ierr = 0;
-    gmshFinalize(&ierr);
-    if (ierr && st == GLPGP_OK) {
-        glpgp_mesh_destroy(out);
-        st = GLPGP_FAIL(GLPGP_ERR_MESH, "Gmsh failed to finalise (error %d)", ierr);
-    }
     return st;
 }
-
-#endif /* GLPGP_HAVE_GMSH */
 
 /* Re-simplify every loop with a coarser tolerance (physical units) and
  * compact the arrays; loops left with fewer than 3 points are dropped. */
@@ -254,11 +107,12 @@ glpgp_status glpgp_mask_mesh(const char *path, const glpgp_mask_options *opt, gl
         glpgp_mask_options_default(&o);
     glpgp_mask_info inf;
     memset(&inf, 0, sizeof inf);
-    if (!glpgp_have_gmsh())
-        return GLPGP_FAIL(GLPGP_ERR_UNSUPPORTED,
-                          "cannot mesh '%s': glpgp was built without Gmsh (libgmsh-dev)", path);
+    /* fail before reading the image when Gmsh cannot be had */
+    const glpgp_gmsh_api *api;
+    const char *why;
+    glpgp_status st = glpgp_gmsh_module_get(&api, &why);
+    if (st != GLPGP_OK) return GLPGP_FAIL(st, "cannot mesh '%s': %s", path, why);
     double t0 = now_s();
-    glpgp_status st = GLPGP_OK;
     glpgp_image *im = NULL;
     float *v = NULL;
     glpgp_polygons *p = NULL;

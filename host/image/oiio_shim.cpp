@@ -1,9 +1,12 @@
-/* image_oiio.cpp: the only C++ file of glpgp: glpgp_image_read and
- * glpgp_image_write (declared in image_io.h) on top of OpenImageIO. Every
- * call is wrapped in try/catch so no exception crosses into the C code;
- * failures are recorded with GLPGP_FAIL like everywhere else. Compiled only
- * when CMake finds OpenImageIO (GLPGP_HAVE_OIIO). */
-#include "glpgp/image.h"
+/* image/oiio_shim.cpp: the only C++ file of glpgp, built as the module
+ * glpgp_oiio.so (with image/shim_glue.c) when CMake finds OpenImageIO: the
+ * image read, write and writable-extension test behind glpgp_image_read,
+ * glpgp_image_write and glpgp_image_path_writable (glpgp/image.h), which
+ * dlopen the module on first use (image/module.c). Its one exported symbol
+ * glpgp_oiio_module returns the function table of image/module.h. Every call
+ * is wrapped in try/catch so no exception crosses into the C code; failures
+ * are recorded with GLPGP_FAIL like everywhere else (through the host table). */
+#include "module.h"
 
 #include <OpenImageIO/imageio.h>
 
@@ -145,11 +148,7 @@ glpgp_status write_impl(const char *path, const glpgp_image *im)
     return GLPGP_OK;
 }
 
-} // namespace
-
-extern "C" int glpgp_have_oiio(void) { return 1; }
-
-extern "C" glpgp_status glpgp_image_read(const char *path, glpgp_image **out)
+glpgp_status image_read(const char *path, glpgp_image **out)
 {
     if (!path || !out) return GLPGP_FAIL(GLPGP_ERR_ARG, "glpgp_image_read: NULL argument");
     *out = nullptr;
@@ -164,7 +163,7 @@ extern "C" glpgp_status glpgp_image_read(const char *path, glpgp_image **out)
     }
 }
 
-extern "C" glpgp_status glpgp_image_write(const char *path, const glpgp_image *im)
+glpgp_status image_write(const char *path, const glpgp_image *im)
 {
     if (!path || !*path) return GLPGP_FAIL(GLPGP_ERR_ARG, "glpgp_image_write: empty path");
     try {
@@ -178,7 +177,7 @@ extern "C" glpgp_status glpgp_image_write(const char *path, const glpgp_image *i
     }
 }
 
-extern "C" int glpgp_image_path_writable(const char *path)
+int image_path_writable(const char *path)
 {
     try {
         std::string ext = lower_ext(path ? path : "");
@@ -192,4 +191,13 @@ extern "C" int glpgp_image_path_writable(const char *path)
     } catch (...) {
         return 0;
     }
+}
+
+const glpgp_oiio_api oiio_api = {GLPGP_MODULE_ABI, image_read, image_write, image_path_writable};
+
+} // namespace
+
+extern "C" GLPGP_MODULE_EXPORT const void *glpgp_oiio_module(const glpgp_module_host *host)
+{
+    return glpgp_module_glue_init(host) ? &oiio_api : nullptr;
 }

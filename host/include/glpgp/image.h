@@ -1,15 +1,27 @@
 /* glpgp/image.h: pictures and image domains. Layer: image.
  *  - image I/O: the C interface of the OpenImageIO shim (image/oiio_shim.cpp,
- *    the only C++ file, which catches every exception); without OpenImageIO the
- *    functions fail with GLPGP_ERR_UNSUPPORTED ("built without OpenImageIO").
- *    Pixel buffers are float, row-major, the top row first, channels
- *    interleaved;
+ *    the only C++ file, which catches every exception), built as the module
+ *    glpgp_oiio.so and loaded on demand (see "Modules" below); without
+ *    OpenImageIO the functions fail with GLPGP_ERR_UNSUPPORTED ("built without
+ *    OpenImageIO"). Pixel buffers are float, row-major, the top row first,
+ *    channels interleaved;
  *  - the software rasteriser of results (image/render.c): the paper's Fig. 4
  *    grid texture and the other --image-kind views, side-by-side figures and a
  *    built-in bitmap font;
  *  - boundary polygons of a thresholded mask image (image/contour.c);
- *  - triangle meshes of polygon domains through the Gmsh C API and the whole
- *    mask image -> mesh pipeline (image/mask_mesh.c). */
+ *  - triangle meshes of polygon domains through the Gmsh C API (the module
+ *    glpgp_gmsh.so, image/gmsh_shim.c) and the whole mask image -> mesh
+ *    pipeline (image/mask_mesh.c).
+ *
+ * Modules. OpenImageIO and Gmsh are not linked into programs: the functions
+ * that need them dlopen glpgp_oiio.so / glpgp_gmsh.so the first time they are
+ * called, so a program that never reads, writes or meshes an image never
+ * loads them. The module is searched in $GLPGP_MODULE_DIR when that is set
+ * (and only there), else in <executable dir>/../lib/glpgp (the install
+ * layout: <prefix>/bin/glpgp, <prefix>/<libdir>/glpgp/), the configured
+ * install directory, and the build tree. A module that was built but cannot
+ * be found or loaded makes those functions fail with GLPGP_ERR_IO and one
+ * line naming the module and the directories searched (or dlopen's reason). */
 #ifndef GLPGP_IMAGE_H
 #define GLPGP_IMAGE_H
 
@@ -28,8 +40,17 @@ typedef struct glpgp_image {
     float *px;  /* w * h * nc values; integer formats are scaled to [0, 1] */
 } glpgp_image;
 
-/* Whether this build has OpenImageIO (1) or not (0). */
+/* Whether image I/O is available (1) or not (0): this build has OpenImageIO
+ * and the module file glpgp_oiio.so is in the search path (or loaded). Loads
+ * nothing. */
 int glpgp_have_oiio(void);
+
+/* Load the OpenImageIO module now (the image functions do it themselves on
+ * first use; this is for checking up front, e.g. before a long computation).
+ * GLPGP_OK, or GLPGP_ERR_UNSUPPORTED ("this glpgp was built without
+ * OpenImageIO ...") or GLPGP_ERR_IO (module not found: names it and the
+ * directories searched; not loadable: its path and dlerror()), recorded. */
+glpgp_status glpgp_oiio_load(void);
 
 /* Read the first subimage of any format OpenImageIO reads (PNG, TIFF, EXR,
  * JPEG, PNM, ...), any bit depth and channel count, converted to float.
@@ -50,7 +71,8 @@ glpgp_status glpgp_image_read(const char *path, glpgp_image **out);
 glpgp_status glpgp_image_write(const char *path, const glpgp_image *im);
 
 /* Whether OpenImageIO can write files with the extension of path (0 without
- * OpenImageIO). For validating command lines before a long computation. */
+ * OpenImageIO or its module; loads the module). For validating command lines
+ * before a long computation. */
 int glpgp_image_path_writable(const char *path);
 
 /* Allocate a w x h x nc image filled with zeros (alpha = nc == 4 ? 3 : -1). */
@@ -195,14 +217,20 @@ typedef struct glpgp_mask_info {
     double seconds_read, seconds_contour, seconds_mesh;
 } glpgp_mask_info;
 
-/* Whether this build has the Gmsh C API (1) or not (0). */
+/* Whether meshing is available (1) or not (0): this build has the Gmsh C API
+ * and the module file glpgp_gmsh.so is in the search path (or loaded). Loads
+ * nothing. */
 int glpgp_have_gmsh(void);
+
+/* Load the Gmsh module now; as glpgp_oiio_load ("built without Gmsh",
+ * module not found or not loadable). */
+glpgp_status glpgp_gmsh_load(void);
 
 /* The default mesh size for polygons p and a quad size h (<= 0: bounding-box
  * diagonal / 20): h / 8. */
 double glpgp_mask_default_mesh_size(const glpgp_polygons *p, double quad_size);
 
-/* Mesh the polygons with Gmsh (geo kernel: points, lines, one curve loop per
+/* Mesh the polygons with Gmsh (loads the module; geo kernel: points, lines, one curve loop per
  * polygon, one plane surface per outer loop with its holes; uniform size
  * mesh_size; Mesh.Algorithm algorithm, <= 0 for 6), then build the glpgp mesh
  * with glpgp_mesh_create (validated). Gmsh prints nothing (General.Terminal

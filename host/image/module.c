@@ -1,0 +1,252 @@
+/* image/module.c: finding and loading the image layer's modules (image/module.h)
+ * on first use, and the public glpgp_oiio_load / glpgp_gmsh_load.
+ *
+ * Search (the first directory that holds the module file wins; a file found
+ * but not loadable is an error, not a reason to look further):
+ *   1. $GLPGP_MODULE_DIR when set and not empty: that directory only;
+ *   2. the install location relative to the running executable,
+ *      <dir of /proc/self/exe>/GLPGP_MODULE_EXE_REL (e.g. bin/../lib/glpgp);
+ *   3. the configured install directory GLPGP_MODULE_INSTALL_DIR (programs
+ *      outside the prefix's bin/ linking the installed libraries);
+ *   4. the build tree, GLPGP_MODULE_BUILD_DIR (tests, build/glpgp).
+ * Nothing here dlopen's anything before a function needs the module; the
+ * outcome (table or error text) is kept for the life of the process. */
+#include "module.h"
+
+
+#include <dlfcn.h>
+#include <pthread.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#ifndef GLPGP_OIIO_MODULE_FILE
+#define GLPGP_OIIO_MODULE_FILE "glpgp_oiio.so"
+#endif
+#ifndef GLPGP_GMSH_MODULE_FILE
+#define GLPGP_GMSH_MODULE_FILE "glpgp_gmsh.so"
+#endif
+#ifndef GLPGP_MODULE_EXE_REL
+#define GLPGP_MODULE_EXE_REL "../lib/glpgp"
+#endif
+
+#ifdef GLPGP_HAVE_OIIO
+#define OIIO_BUILT 1
+#else
+#define OIIO_BUILT 0
+#endif
+#ifdef GLPGP_HAVE_GMSH
+#define GMSH_BUILT 1
+#else
+#define GMSH_BUILT 0
+#endif
+
+enum { MAX_DIRS = 4, PATH_LEN = 4096 };
+
+typedef struct module_slot {
+    const char *what;    /* "OpenImageIO" */
+    const char *file;    /* "glpgp_oiio.so" */
+    const char *entry;   /* exported symbol */
+    const char *package; /* Debian package to build with */
+    int built;
+    int state;           /* 0 not tried, 1 loaded, -1 failed */
+    const void *api;
+    glpgp_status st;
+    char why[3 * PATH_LEN];
+} module_slot;
+
+static module_slot g_slots[2] = {
+    {"OpenImageIO", GLPGP_OIIO_MODULE_FILE, GLPGP_OIIO_ENTRY, "libopenimageio-dev", OIIO_BUILT, 0,
+     NULL, GLPGP_OK, ""},
+    {"Gmsh", GLPGP_GMSH_MODULE_FILE, GLPGP_GMSH_ENTRY, "libgmsh-dev", GMSH_BUILT, 0, NULL,
+     GLPGP_OK, ""},
+};
+static pthread_mutex_t g_lock = PTHREAD_MUTEX_INITIALIZER;
+
+static const glpgp_module_host g_host = {
+    GLPGP_MODULE_ABI,     sizeof(glpgp_image),  sizeof(glpgp_polygons), glpgp_error_set,
+    glpgp_error_push_trace, glpgp_malloc,       glpgp_image_create,     glpgp_image_destroy,
+};
+
+typedef struct dir_list {
+    int n;
+    int from_env;
+    char dir[MAX_DIRS][PATH_LEN];
+} dir_list;
+
+static void add_dir(dir_list *d, const char *dir)
+{
+    if (!dir || !*dir || d->n >= MAX_DIRS || strlen(dir) >= PATH_LEN) return;
+    for (int i = 0; i < d->n; i++)
+        if (!strcmp(d->dir[i], dir)) return;
+    strcpy(d->dir[d->n++], dir);
+}
+
+/* The directories to search, in order (see the file comment). */
+static void module_dirs(dir_list *d)
+{
+    memset(d, 0, sizeof *d);
+    const char *env = getenv("GLPGP_MODULE_DIR");
+    if (env && *env) {
+        d->from_env = 1;
+        add_dir(d, env);
+        return;
+    }
+    /* <exe dir>/<rel>: /proc/self/exe is canonical, so a leading "../" of rel
+     * is resolved by dropping the last component of the directory */
+    char exe[PATH_LEN];
+    ssize_t n = readlink("/proc/self/exe", exe, sizeof exe - 1);
+    if (n > 0) {
+        exe[n] = '\0';
+        char *slash = strrchr(exe, '/');
+        if (slash) {
+            *slash = '\0';
+            const char *rel = GLPGP_MODULE_EXE_REL;
+            while (!strncmp(rel, "../", 3) && (slash = strrchr(exe, '/')) != NULL) {
+                *slash = '\0';
+                rel += 3;
+            }
+            char dir[PATH_LEN];
+            if (snprintf(dir, sizeof dir, "%s/%s", exe, rel) < (int)sizeof dir) add_dir(d, dir);
+        }
+    }
+#ifdef GLPGP_MODULE_INSTALL_DIR
+    add_dir(d, GLPGP_MODULE_INSTALL_DIR);
+#endif
+#ifdef GLPGP_MODULE_BUILD_DIR
+    add_dir(d, GLPGP_MODULE_BUILD_DIR);
+#endif
+}
+
+/* Path of the module file in the first directory that has it; 0 if none. */
+static int module_find(const module_slot *s, const dir_list *d, char *path, size_t len)
+{
+    for (int i = 0; i < d->n; i++) {
+        if (snprintf(path, len, "%s/%s", d->dir[i], s->file) >= (int)len) continue;
+        if (access(path, F_OK) == 0) return 1;
+    }
+    return 0;
+}
+
+static void slot_fail(module_slot *s, glpgp_status st, const char *fmt, const char *a, const char *b)
+{
+    s->state = -1;
+    s->st = st;
+    snprintf(s->why, sizeof s->why, fmt, s->what, a, b);
+}
+
+/* Load s (under g_lock). */
+static void slot_load(module_slot *s)
+{
+    if (!s->built) {
+        s->state = -1;
+        s->st = GLPGP_ERR_UNSUPPORTED;
+        snprintf(s->why, sizeof s->why,
+                 "this glpgp was built without %s (install %s and rebuild)", s->what, s->package);
+        return;
+    }
+    dir_list d;
+    module_dirs(&d);
+    char path[PATH_LEN + 64];
+    if (!module_find(s, &d, path, sizeof path)) {
+        char dirs[MAX_DIRS * (PATH_LEN + 2)] = "";
+        for (int i = 0; i < d.n; i++) {
+            if (i) strcat(dirs, ", ");
+            strcat(dirs, d.dir[i]);
+        }
+        slot_fail(s, GLPGP_ERR_IO,
+                  d.from_env ? "the %s module %s is not in %s ($GLPGP_MODULE_DIR)"
+                             : "the %s module %s is not in %s (set GLPGP_MODULE_DIR to its directory)",
+                  s->file, d.n ? dirs : "(no directory)");
+        return;
+    }
+    /* RTLD_LOCAL: the module's libraries (OpenImageIO, libstdc++, Gmsh) stay
+     * out of the global namespace; RTLD_NOW: a missing dependency fails here */
+    void *h = dlopen(path, RTLD_NOW | RTLD_LOCAL);
+    if (!h) {
+        const char *e = dlerror();
+        slot_fail(s, GLPGP_ERR_IO, "cannot load the %s module %s: %s", path, e ? e : "dlopen failed");
+        return;
+    }
+    glpgp_module_entry_fn entry;
+    void *sym = dlsym(h, s->entry);
+    memcpy(&entry, &sym, sizeof entry); /* object pointer -> function pointer, ISO C safe */
+    if (!sym) {
+        slot_fail(s, GLPGP_ERR_IO, "cannot load the %s module %s: it has no %s (not a glpgp module)",
+                  path, s->entry);
+        dlclose(h);
+        return;
+    }
+    const void *api = entry(&g_host);
+    if (!api || *(const int *)api != GLPGP_MODULE_ABI) {
+        slot_fail(s, GLPGP_ERR_IO,
+                  "cannot load the %s module %s: it belongs to another glpgp build (%s)", path,
+                  "module interface version mismatch");
+        /* not dlclose'd: the entry ran code of the module */
+        return;
+    }
+    s->api = api;
+    s->state = 1;
+}
+
+static glpgp_status slot_get(module_slot *s, const void **api, const char **why)
+{
+    pthread_mutex_lock(&g_lock);
+    if (s->state == 0) slot_load(s);
+    glpgp_status st = s->state == 1 ? GLPGP_OK : s->st;
+    *api = s->api;
+    if (why) *why = s->why;
+    pthread_mutex_unlock(&g_lock);
+    return st;
+}
+
+glpgp_status glpgp_oiio_module_get(const glpgp_oiio_api **api, const char **why)
+{
+    const void *a = NULL;
+    glpgp_status st = slot_get(&g_slots[0], &a, why);
+    *api = (const glpgp_oiio_api *)a;
+    return st;
+}
+
+glpgp_status glpgp_gmsh_module_get(const glpgp_gmsh_api **api, const char **why)
+{
+    const void *a = NULL;
+    glpgp_status st = slot_get(&g_slots[1], &a, why);
+    *api = (const glpgp_gmsh_api *)a;
+    return st;
+}
+
+int glpgp_module_available(int gmsh)
+{
+    module_slot *s = &g_slots[gmsh ? 1 : 0];
+    if (!s->built) return 0;
+    pthread_mutex_lock(&g_lock);
+    int state = s->state;
+    pthread_mutex_unlock(&g_lock);
+    if (state != 0) return state == 1;
+    dir_list d;
+    module_dirs(&d);
+    char path[PATH_LEN + 64];
+    return module_find(s, &d, path, sizeof path);
+}
+
+glpgp_status glpgp_oiio_load(void)
+{
+    const glpgp_oiio_api *api;
+    const char *why = "";
+    glpgp_status st = glpgp_oiio_module_get(&api, &why);
+    return st == GLPGP_OK ? GLPGP_OK : GLPGP_FAIL(st, "%s", why);
+}
+
+glpgp_status glpgp_gmsh_load(void)
+{
+    const glpgp_gmsh_api *api;
+    const char *why = "";
+    glpgp_status st = glpgp_gmsh_module_get(&api, &why);
+    return st == GLPGP_OK ? GLPGP_OK : GLPGP_FAIL(st, "%s", why);
+}
+
+int glpgp_have_oiio(void) { return glpgp_module_available(0); }
+
+int glpgp_have_gmsh(void) { return glpgp_module_available(1); }
