@@ -247,7 +247,8 @@ static glpgp_status ref_cg_update(glpgp_backend *b, glpgp_vec *x, glpgp_vec *r, 
      * z <- DINV r;  s[rz_new] <- r.z;  s[RR] <- r.r */
     const double alpha = glpgp_cg_alpha(im->s, rz);
     double s1 = 0.0, s2 = 0.0;
-    for (int i = 0; i < im->sys->nv; i++) glpgp_row_cg_update(i, alpha, x->a, r->a, p->a, q->a, im->dinv, z->a, &s1, &s2);
+    for (int i = 0; i < im->sys->nv; i++)
+        glpgp_row_cg_update(i, alpha, x->a, r->a, p->a, q->a, im->dinv, z->a, &s1, &s2);
     im->s[rz_new] = s1;
     im->s[GLPGP_S_RR] = s2;
     return GLPGP_OK;
