@@ -75,7 +75,9 @@ static void compare_mesh(const char *label, const glpgp_mesh *m, int energy, int
         if (!r) fprintf(stderr, "%s: stage '%s' missing from the table\n", label, required_stages[k]);
         CHECK(r != NULL);
     }
-    CHECK(find_row(t, "CG solve (*") != NULL);
+    /* the CG solution, normwise: tighter than the engine's 1e-6 (both solve to 1e-10) */
+    const glpgp_crosscheck_row *cg = find_row(t, "CG solve (*");
+    CHECK(cg != NULL && cg->max_rel <= 1e-8);
     CHECK(!solve || (t->solved && find_row(t, "GL solve z_u*") && find_row(t, "GL singularities v")));
     /* rows whose arithmetic is shared verbatim (kernels/rows.h) are bit-identical;
      * the transport element calls cos/sin, whose last bit the OpenCL library and
