@@ -1,11 +1,13 @@
-/* backend_common.cl: shared pieces of the OpenCL kernels of backend_cl.c:
+/* backend_common.cl: shared pieces of the OpenCL kernels of host/backends/opencl.c:
  * the fp64 pragma, the work-item -> index-range mapping (one kernel source
  * serves both launch shapes) and the deterministic work-group reductions.
  *
- * The kernel files are concatenated after kernels/element.h into one program
- * (see kernels/embed.cmake); the host also prepends the fp64 and FP_CONTRACT
- * pragmas so element.h's arithmetic is compiled exactly as written (no fused
- * multiply-add), which keeps per-row results bit-identical to backend_ref.c.
+ * The kernel files are concatenated after glpgp/kinds.h, kernels/element.h and
+ * kernels/rows.h into one program (see kernels/embed.cmake); every per-row body
+ * lives in rows.h, shared with the C reference (host/backends/reference.c).
+ * The host also prepends the fp64 and FP_CONTRACT pragmas so that arithmetic
+ * is compiled exactly as written (no fused multiply-add), which keeps per-row
+ * results bit-identical to the reference.
  *
  * Launch shapes (chosen by the host from the device type):
  *   - CPU devices: ~128 work-items, local size 1 (GLPGP_WG = 1), each owning
@@ -29,23 +31,6 @@
 #define GLPGP_RANGE(lo, hi, n, chunk)                    \
     const int lo = (int)get_global_id(0) * (chunk);      \
     const int hi = min(lo + (chunk), (n))
-
-/* (A x)_i for block row i of a 2x2-block CSR matrix: (*y0, *y1). */
-inline void glpgp_block_row(int i, __global const int *rowptr, __global const int *col,
-                            __global const double *A, __global const double *x, double *y0,
-                            double *y1)
-{
-    double s0 = 0.0, s1 = 0.0;
-    for (int k = rowptr[i]; k < rowptr[i + 1]; k++) {
-        __global const double *blk = A + 4 * (long)k;
-        const int j = col[k];
-        const double x0 = x[2 * j], x1 = x[2 * j + 1];
-        s0 += blk[0] * x0 + blk[1] * x1;
-        s1 += blk[2] * x0 + blk[3] * x1;
-    }
-    *y0 = s0;
-    *y1 = s1;
-}
 
 /* Work-group sum of v -> out[group] (buf: GLPGP_WG doubles of local memory).
  * Tree order is fixed, so the result is deterministic for a given shape. */

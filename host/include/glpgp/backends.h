@@ -1,8 +1,9 @@
 /* glpgp/backends.h: the implementations of the backend table
  * (glpgp/backend.h): the scalar C reference backend and the OpenCL backend,
  * the one backend selector every command uses (auto: OpenCL, falling back to
- * the reference backend with one warning), the OpenCL device list, and the
- * backend-independent matrix probe used by cross-checks. Layer: backends. */
+ * the reference backend with one warning), the OpenCL device list, the
+ * backend-independent matrix probe, and the cross-check engine (OpenCL
+ * against the reference, stage by stage, into a table). Layer: backends. */
 #ifndef GLPGP_BACKENDS_H
 #define GLPGP_BACKENDS_H
 
@@ -76,6 +77,85 @@ int glpgp_cl_backend_info(const glpgp_backend *b, char *buf, size_t len);
  * (it overwrites s[GLPGP_S_DOT] and s[GLPGP_S_RR]). Products with 0 and 1
  * are exact, so the values are bit-exact. */
 glpgp_status glpgp_probe_matrix(glpgp_backend *b, int which, double *vals);
+
+/* ---- cross-check engine (backends/crosscheck.c) ----------------------------
+ * Runs the OpenCL backend (a) and the reference backend (b) side by side on
+ * one mesh and compares every op of the backend table, then CG, one Newton
+ * step and (optionally) a whole GL solve. Data: the boundary-aligned guiding
+ * field and its Dirichlet set (computed on the reference backend), random z
+ * (|z| in [0.3, 1.3], random phase) and a random vector r, from `seed`.
+ * Matrices are read back exactly through the ops table (glpgp_probe_matrix).
+ * Stages, one table row each, in this order:
+ *   vector write/read, copy + axpby, axpby with zero coefficients on
+ *   NaN-filled vectors, dot z.r (and the same OpenCL dot again: bit for bit);
+ *   QUAD assembly of the chosen energy ("QUAD assembly") and of the other
+ *   element kinds; NEWTON assembly and DINV without penalty and for every
+ *   Hessian variant; gradient g, E, P with and without penalty, energy E, P;
+ *   spmv QUAD / NEWTON, dot x.(NEWTON x); the fused CG steps (precond, then
+ *   3 x spmv_dot, update, direction on the projected NEWTON); a CG solve
+ *   NEWTON d = -g; the Newton step z + d; with `solve`, the whole GL solve
+ *   (z of both oscillators, singularity counts exactly).
+ * Tolerance per entry: |a - b| <= atol + rtol |b|, atol = afac * max|b| over
+ * the stage (a dot: afac * sum |x_i y_i|); rtol 1e-12, afac 1e-14 for
+ * assembly, gradient, energies, spmv, dot and the first CG products; 1e-10
+ * for CG iterates after an update (alpha differs by rounding); 1e-6 for the
+ * CG solve, the Newton step and the GL solve (1e-4 for an oscillator whose
+ * GL levels stopped at the Newton cap); vectors, axpby: exact. A NaN fails. */
+
+/* What to compare. */
+typedef struct glpgp_crosscheck_options {
+    const glpgp_mesh *mesh;  /* the mesh (borrowed; required) */
+    double size;             /* target quad size h; <= 0: glpgp_default_size [0] */
+    int energy;              /* GLPGP_ELEM_P1 or GLPGP_ELEM_TRANSPORT [P1] */
+    int device;              /* OpenCL device index (glpgp devices); -1: GLPGP_DEVICE env or
+                              * the first device with fp64 [-1] */
+    double tol_scale;        /* every tolerance times this, > 0 [1] */
+    int solve;               /* also run the whole GL solve on both backends [1] */
+    unsigned long long seed; /* random z and r [12345] */
+} glpgp_crosscheck_options;
+
+/* Fill the defaults above (mesh NULL). */
+void glpgp_crosscheck_options_default(glpgp_crosscheck_options *o);
+
+/* One stage of the table. */
+typedef struct glpgp_crosscheck_row {
+    char stage[48];  /* "QUAD assembly", "CG solve (170 vs 170 it)", ... */
+    double max_abs;  /* max |a - b| over the stage (NaN if any difference is NaN) */
+    double max_rel;  /* max_abs / max |b| (normwise; 0 if both are 0, inf if only b is) */
+    char tol[48];    /* the tolerance as text: "rtol 1e-12, atol 4e-14", "exact", "exact (1+/1- vs 1+/1-)" */
+    int pass;        /* every entry within tolerance */
+} glpgp_crosscheck_row;
+
+/* The result table, with what was compared. */
+typedef struct glpgp_crosscheck {
+    int nrows;
+    glpgp_crosscheck_row *rows;
+    int pass;              /* every stage ran and every row passes */
+    /* the problem */
+    int nv, nt;
+    long nnzb;
+    double h;              /* target size used */
+    int energy;            /* GLPGP_ELEM_* */
+    char device[512];      /* glpgp_cl_backend_info of the OpenCL backend ("" before it exists) */
+    long field_cg;         /* CG iterations of the guiding field */
+    int ndirichlet;        /* Dirichlet vertices of the U field */
+    double eps;            /* GL eps of the penalty stages (0 before the field exists) */
+    /* the whole GL solve (solved = 1 when it ran); index 0: OpenCL, 1: reference */
+    int solved;
+    double solve_seconds[2];
+    long solve_cg[2][2];   /* [backend][oscillator u, v] CG iterations */
+} glpgp_crosscheck;
+
+/* Run every stage and return the table in *out (destroy it with
+ * glpgp_crosscheck_destroy). Returns GLPGP_OK when every stage ran (rows may
+ * still fail: see (*out)->pass). An error (no OpenCL in the build or no usable
+ * device: GLPGP_ERR_UNSUPPORTED / GLPGP_ERR_OPENCL; an op failing) stops the
+ * run: *out then still holds the rows completed so far, with pass = 0, so a
+ * caller can show them; *out is NULL only for invalid options
+ * (GLPGP_ERR_ARG) or when memory for the table ran out. */
+glpgp_status glpgp_crosscheck_create(const glpgp_crosscheck_options *o, glpgp_crosscheck **out);
+/* Free a table (NULL-safe, sets *t = NULL). */
+void glpgp_crosscheck_destroy(glpgp_crosscheck **t);
 
 #ifdef __cplusplus
 }

@@ -1,0 +1,520 @@
+/* backends/crosscheck.c: the cross-check engine of glpgp/backends.h: the
+ * OpenCL backend (side 0, "a") against the reference backend (side 1, "b") on
+ * one mesh, op by op and stage by stage, into a table of rows (stage, max
+ * abs / rel difference, tolerance, pass). The one comparison behind
+ * `glpgp crosscheck` (cli/cmd_opencl.c) and tests/backends/test_opencl.c.
+ * Everything goes through the ops table (matrices through glpgp_probe_matrix,
+ * exact), so the engine needs no backend internals. The stage list and the
+ * tolerances are documented in glpgp/backends.h. */
+#include "glpgp/backends.h"
+#include "glpgp/result.h"
+#include "glpgp/solve.h"
+#include "glpgp/util.h"
+
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* Device vectors of one side. */
+enum { VX, VY, VG, VD, VW, VR, VZ, VP, VQ, VS, NVEC };
+
+typedef struct cc_side {
+    glpgp_backend *b;
+    glpgp_vec *v[NVEC];
+} cc_side;
+
+/* The state of one run. */
+typedef struct cc {
+    const glpgp_crosscheck_options *opt;
+    glpgp_crosscheck *t;
+    const glpgp_mesh *m;
+    glpgp_system *sys;
+    glpgp_options so;       /* solver options: size, energy, eps0, ... */
+    cc_side S[2];           /* 0: OpenCL, 1: reference */
+    size_t n2, nm, nbuf;    /* 2 nv, 4 nnzb, host buffer length */
+    double *field, *z, *r, *nan;
+    unsigned char *dir;
+    double *h[2];           /* host copies of side 0 / side 1 (nbuf doubles each) */
+    double inv4e2;
+} cc;
+
+/* Run `call` on both sides in turn: s = 0 (OpenCL), 1 (reference), with that
+ * side's backend b, ops o and vectors v in scope; return on an error. */
+#define BOTH(call)                                                                                           \
+    for (int s = 0; s < 2; s++) {                                                                            \
+        glpgp_backend *b = c->S[s].b;                                                                        \
+        const glpgp_backend_ops *o = b->ops;                                                                 \
+        glpgp_vec **v = c->S[s].v;                                                                           \
+        (void)o;                                                                                             \
+        (void)v;                                                                                             \
+        GLPGP_CHECK(call);                                                                                   \
+    }
+
+void glpgp_crosscheck_options_default(glpgp_crosscheck_options *o)
+{
+    memset(o, 0, sizeof *o);
+    o->mesh = NULL;
+    o->size = 0.0;
+    o->energy = GLPGP_ELEM_P1;
+    o->device = -1;
+    o->tol_scale = 1.0;
+    o->solve = 1;
+    o->seed = 12345;
+}
+
+void glpgp_crosscheck_destroy(glpgp_crosscheck **t)
+{
+    if (!t || !*t) return;
+    free((*t)->rows);
+    free(*t);
+    *t = NULL;
+}
+
+/* ---- rows ------------------------------------------------------------------ */
+
+/* A new row named by fmt (zeroed, pass = 1). */
+static glpgp_status row_add(glpgp_crosscheck *t, glpgp_crosscheck_row **row, const char *fmt, ...)
+{
+    if ((t->nrows & (t->nrows - 1)) == 0) { /* 0, 1, 2, 4, ...: grow to the next power of two */
+        size_t cap = t->nrows ? 2 * (size_t)t->nrows : 1;
+        glpgp_crosscheck_row *nr = realloc(t->rows, cap * sizeof *nr);
+        if (!nr) return GLPGP_FAIL(GLPGP_ERR_NOMEM, "out of memory for the cross-check table");
+        t->rows = nr;
+    }
+    glpgp_crosscheck_row *r = &t->rows[t->nrows++];
+    memset(r, 0, sizeof *r);
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(r->stage, sizeof r->stage, fmt, ap);
+    va_end(ap);
+    r->pass = 1;
+    *row = r;
+    return GLPGP_OK;
+}
+
+/* Row `stage`: a (OpenCL) against b (reference), n entries:
+ *   pass iff |a_i - b_i| <= atol + rtol |b_i| for all i,  atol = afac * scale,
+ *   scale <= 0: max_i |b_i|;  rtol and afac are multiplied by tol_scale.
+ * A NaN difference fails and shows as max_abs = NaN. */
+static glpgp_status cmp(cc *c, const char *stage, const double *a, const double *b, size_t n, double rtol,
+                        double afac, double scale)
+{
+    glpgp_crosscheck_row *r;
+    GLPGP_CHECK(row_add(c->t, &r, "%s", stage));
+    rtol *= c->opt->tol_scale;
+    afac *= c->opt->tol_scale;
+    double maxb = 0.0, maxd = 0.0;
+    for (size_t i = 0; i < n; i++) maxb = fmax(maxb, fabs(b[i]));
+    if (scale <= 0.0) scale = maxb;
+    const double atol = afac * scale;
+    for (size_t i = 0; i < n; i++) {
+        const double d = fabs(a[i] - b[i]);
+        if (!(d <= atol + rtol * fabs(b[i]))) r->pass = 0;
+        if (!(d <= maxd)) maxd = d; /* keeps NaN */
+    }
+    r->max_abs = maxd;
+    r->max_rel = maxb > 0.0 ? maxd / maxb : (maxd > 0.0 ? INFINITY : maxd);
+    if (rtol == 0.0 && atol == 0.0) snprintf(r->tol, sizeof r->tol, "exact");
+    else snprintf(r->tol, sizeof r->tol, "rtol %.0e, atol %.0e", rtol, atol);
+    return GLPGP_OK;
+}
+
+/* Exact comparison of two integer pairs (singularity counts +/-). */
+static glpgp_status cmp_counts(cc *c, const char *stage, int a1, int a2, int b1, int b2)
+{
+    glpgp_crosscheck_row *r;
+    GLPGP_CHECK(row_add(c->t, &r, "%s", stage));
+    r->max_abs = fmax(fabs((double)a1 - b1), fabs((double)a2 - b2));
+    r->max_rel = r->max_abs / fmax(1.0, fmax(fabs((double)b1), fabs((double)b2)));
+    snprintf(r->tol, sizeof r->tol, "exact (%d+/%d- vs %d+/%d-)", a1, a2, b1, b2);
+    r->pass = r->max_abs == 0.0;
+    return GLPGP_OK;
+}
+
+/* Both sides' scalar registers into sc[side][slot]. */
+static glpgp_status scalars(cc *c, double sc[2][GLPGP_NSLOTS])
+{
+    BOTH(o->get_scalars(b, sc[s], GLPGP_NSLOTS));
+    return GLPGP_OK;
+}
+
+/* Deterministic pseudo-random numbers in [0, 1) (64-bit LCG, top 53 bits). */
+static double cc_rand(unsigned long long *s)
+{
+    *s = *s * 6364136223846793005ull + 1442695040888963407ull;
+    return (double)(*s >> 11) * (1.0 / 9007199254740992.0);
+}
+
+/* ---- stages ---------------------------------------------------------------- */
+
+/* Vector ops: write/read, copy, axpby (also with zero coefficients on NaN), dot. */
+static glpgp_status stage_vectors(cc *c)
+{
+    const size_t n2 = c->n2;
+    double sc[2][GLPGP_NSLOTS], again[GLPGP_NSLOTS];
+    BOTH(o->vec_write(b, v[VX], c->z));
+    BOTH(o->vec_write(b, v[VR], c->r));
+    BOTH(o->vec_read(b, v[VX], c->h[s]));
+    GLPGP_CHECK(cmp(c, "vector write/read", c->h[0], c->h[1], n2, 0.0, 0.0, 0.0));
+    /* y <- r;  y <- 0.75 z - 1.5 y */
+    BOTH(o->copy(b, v[VY], v[VR]));
+    BOTH(o->axpby(b, 0.75, v[VX], -1.5, v[VY]));
+    BOTH(o->vec_read(b, v[VY], c->h[s]));
+    GLPGP_CHECK(cmp(c, "copy, axpby 0.75 z - 1.5 r", c->h[0], c->h[1], n2, 0.0, 0.0, 0.0));
+    /* a zero coefficient does not read its vector (d, w NaN-filled):
+     *   w <- 0 d + 0 w = 0;   w <- r, w <- 0 d + 2 w = 2 r;   w <- NaN, w <- -3 z + 0 w = -3 z */
+    BOTH(o->vec_write(b, v[VD], c->nan));
+    BOTH(o->vec_write(b, v[VW], c->nan));
+    BOTH(o->axpby(b, 0.0, v[VD], 0.0, v[VW]));
+    BOTH(o->vec_read(b, v[VW], c->h[s]));
+    BOTH(o->copy(b, v[VW], v[VR]));
+    BOTH(o->axpby(b, 0.0, v[VD], 2.0, v[VW]));
+    BOTH(o->vec_read(b, v[VW], c->h[s] + n2));
+    BOTH(o->vec_write(b, v[VW], c->nan));
+    BOTH(o->axpby(b, -3.0, v[VX], 0.0, v[VW]));
+    BOTH(o->vec_read(b, v[VW], c->h[s] + 2 * n2));
+    GLPGP_CHECK(cmp(c, "axpby zero coefficients (NaN)", c->h[0], c->h[1], 3 * n2, 0.0, 0.0, 0.0));
+    /* s[DOT] <- z.r, scale sum |z_i r_i| */
+    double scale = 0.0;
+    for (size_t i = 0; i < n2; i++) scale += fabs(c->z[i] * c->r[i]);
+    BOTH(o->dot(b, v[VX], v[VR], GLPGP_S_DOT));
+    GLPGP_CHECK(scalars(c, sc));
+    GLPGP_CHECK(cmp(c, "dot z.r", &sc[0][GLPGP_S_DOT], &sc[1][GLPGP_S_DOT], 1, 1e-12, 1e-14, scale));
+    /* the OpenCL reduction order is fixed: the same dot again, bit for bit */
+    glpgp_backend *cl = c->S[0].b;
+    GLPGP_CHECK(cl->ops->dot(cl, c->S[0].v[VX], c->S[0].v[VR], GLPGP_S_DOT));
+    GLPGP_CHECK(cl->ops->get_scalars(cl, again, GLPGP_NSLOTS));
+    GLPGP_CHECK(cmp(c, "dot z.r again (OpenCL, same bits)", &again[GLPGP_S_DOT], &sc[0][GLPGP_S_DOT], 1, 0.0,
+                    0.0, 0.0));
+    return GLPGP_OK;
+}
+
+static const char *kind_name(int kind)
+{
+    return kind == GLPGP_ELEM_TRANSPORT ? "transport" : kind == GLPGP_ELEM_LAPLACE ? "laplace" : "p1";
+}
+
+/* QUAD of the chosen energy ("QUAD assembly"), then of the other kinds; QUAD
+ * is left as the chosen energy's. */
+static glpgp_status stage_quad(cc *c)
+{
+    static const int kinds[] = {GLPGP_ELEM_P1, GLPGP_ELEM_TRANSPORT, GLPGP_ELEM_LAPLACE};
+    const int kind = c->opt->energy;
+    const double h = c->t->h;
+    char name[48];
+    BOTH(o->set_field(b, c->field, c->dir));
+    BOTH(o->assemble_quadratic(b, kind, h));
+    BOTH(glpgp_probe_matrix(b, GLPGP_MAT_QUAD, c->h[s]));
+    GLPGP_CHECK(cmp(c, "QUAD assembly", c->h[0], c->h[1], c->nm, 1e-12, 1e-14, 0.0));
+    for (size_t k = 0; k < sizeof kinds / sizeof kinds[0]; k++) {
+        if (kinds[k] == kind) continue;
+        BOTH(o->assemble_quadratic(b, kinds[k], h));
+        BOTH(glpgp_probe_matrix(b, GLPGP_MAT_QUAD, c->h[s]));
+        snprintf(name, sizeof name, "QUAD assembly (%s)", kind_name(kinds[k]));
+        GLPGP_CHECK(cmp(c, name, c->h[0], c->h[1], c->nm, 1e-12, 1e-14, 0.0));
+    }
+    BOTH(o->assemble_quadratic(b, kind, h));
+    return GLPGP_OK;
+}
+
+/* NEWTON + DINV at z without penalty and for every Hessian variant (mixed last,
+ * so NEWTON stays the mixed one). */
+static glpgp_status stage_newton(cc *c)
+{
+    static const struct {
+        int hess;
+        const char *name;
+    } hv[] = {{-1, "no penalty"},
+              {GLPGP_HESS_PAPER, "paper"},
+              {GLPGP_HESS_PROJECTED, "projected"},
+              {GLPGP_HESS_EXACT, "exact"},
+              {GLPGP_HESS_MIXED, "mixed"}};
+    char name[48];
+    for (size_t k = 0; k < sizeof hv / sizeof hv[0]; k++) {
+        const double w = hv[k].hess < 0 ? 0.0 : c->inv4e2;
+        const int hess = hv[k].hess < 0 ? GLPGP_HESS_PAPER : hv[k].hess;
+        BOTH(o->assemble_newton(b, v[VX], w, hess));
+        BOTH(glpgp_probe_matrix(b, GLPGP_MAT_NEWTON, c->h[s]));
+        snprintf(name, sizeof name, "NEWTON assembly (%s)", hv[k].name);
+        GLPGP_CHECK(cmp(c, name, c->h[0], c->h[1], c->nm, 1e-12, 1e-14, 0.0));
+        BOTH(glpgp_probe_matrix(b, GLPGP_PROBE_DINV, c->h[s]));
+        snprintf(name, sizeof name, "DINV (%s)", hv[k].name);
+        GLPGP_CHECK(cmp(c, name, c->h[0], c->h[1], (size_t)4 * c->sys->nv, 1e-12, 1e-14, 0.0));
+    }
+    return GLPGP_OK;
+}
+
+/* gradient (g, E, P) and energy (E, P) at z, with the penalty and without. */
+static glpgp_status stage_gradient(cc *c)
+{
+    double sc[2][GLPGP_NSLOTS];
+    const size_t n2 = c->n2;
+    /* with the penalty */
+    BOTH(o->gradient(b, v[VX], c->inv4e2, v[VG]));
+    BOTH(o->vec_read(b, v[VG], c->h[s]));
+    GLPGP_CHECK(scalars(c, sc));
+    GLPGP_CHECK(cmp(c, "gradient g", c->h[0], c->h[1], n2, 1e-12, 1e-14, 0.0));
+    GLPGP_CHECK(cmp(c, "gradient: E = 1/2 x.QUAD x", &sc[0][GLPGP_S_E], &sc[1][GLPGP_S_E], 1, 1e-12, 1e-14, 0.0));
+    GLPGP_CHECK(cmp(c, "gradient: P (penalty)", &sc[0][GLPGP_S_P], &sc[1][GLPGP_S_P], 1, 1e-12, 1e-14, 0.0));
+    BOTH(o->energy(b, v[VX], c->inv4e2, v[VW]));
+    GLPGP_CHECK(scalars(c, sc));
+    GLPGP_CHECK(cmp(c, "energy: E", &sc[0][GLPGP_S_E], &sc[1][GLPGP_S_E], 1, 1e-12, 1e-14, 0.0));
+    GLPGP_CHECK(cmp(c, "energy: P", &sc[0][GLPGP_S_P], &sc[1][GLPGP_S_P], 1, 1e-12, 1e-14, 0.0));
+    /* without: g = QUAD x (0 at Dirichlet vertices), P = 0 exactly */
+    BOTH(o->gradient(b, v[VX], 0.0, v[VG]));
+    BOTH(o->vec_read(b, v[VG], c->h[s]));
+    GLPGP_CHECK(scalars(c, sc));
+    GLPGP_CHECK(cmp(c, "gradient g (no penalty)", c->h[0], c->h[1], n2, 1e-12, 1e-14, 0.0));
+    GLPGP_CHECK(cmp(c, "gradient: P = 0 (no penalty)", &sc[0][GLPGP_S_P], &sc[1][GLPGP_S_P], 1, 0.0, 0.0, 0.0));
+    BOTH(o->energy(b, v[VX], 0.0, v[VW]));
+    GLPGP_CHECK(scalars(c, sc));
+    GLPGP_CHECK(cmp(c, "energy: P = 0 (no penalty)", &sc[0][GLPGP_S_P], &sc[1][GLPGP_S_P], 1, 0.0, 0.0, 0.0));
+    return GLPGP_OK;
+}
+
+/* spmv on both matrices, then the dot x.(NEWTON x). */
+static glpgp_status stage_spmv(cc *c)
+{
+    double sc[2][GLPGP_NSLOTS];
+    for (int mat = 0; mat < 2; mat++) {
+        BOTH(o->spmv(b, mat, v[VX], v[VY]));
+        BOTH(o->vec_read(b, v[VY], c->h[s]));
+        GLPGP_CHECK(cmp(c, mat == GLPGP_MAT_QUAD ? "spmv QUAD" : "spmv NEWTON", c->h[0], c->h[1], c->n2, 1e-12,
+                        1e-14, 0.0));
+    }
+    double scale = 0.0;
+    for (size_t i = 0; i < c->n2; i++) scale += fabs(c->z[i] * c->h[1][i]);
+    BOTH(o->dot(b, v[VX], v[VY], GLPGP_S_DOT));
+    GLPGP_CHECK(scalars(c, sc));
+    GLPGP_CHECK(cmp(c, "dot x.(NEWTON x)", &sc[0][GLPGP_S_DOT], &sc[1][GLPGP_S_DOT], 1, 1e-12, 1e-14, scale));
+    return GLPGP_OK;
+}
+
+/* The fused CG ops one at a time on the projected NEWTON, right-hand side r:
+ * precond, then 3 x (spmv_dot, update, direction); each quantity's values over
+ * the 3 steps form one row. */
+static glpgp_status stage_cg_steps(cc *c)
+{
+    enum { NSTEP = 3 };
+    const size_t n2 = c->n2;
+    double sc[2][GLPGP_NSLOTS], pq[2][NSTEP], rz[2][NSTEP], rr[2][NSTEP];
+    /* host layout per side: q, r, x, p of step k at (quantity * NSTEP + k) * n2 */
+    double *q[2] = {c->h[0], c->h[1]};
+    BOTH(o->assemble_newton(b, v[VX], c->inv4e2, GLPGP_HESS_PROJECTED));
+    BOTH(o->vec_write(b, v[VR], c->r));
+    BOTH(o->axpby(b, 0.0, v[VS], 0.0, v[VS])); /* x <- 0 */
+    /* z <- DINV r;  s[RZ0] <- r.z;  s[RR] <- r.r;  p <- z */
+    BOTH(o->cg_precond(b, v[VR], v[VZ], GLPGP_S_RZ0));
+    BOTH(o->vec_read(b, v[VZ], c->h[s]));
+    GLPGP_CHECK(scalars(c, sc));
+    GLPGP_CHECK(cmp(c, "CG precond z", c->h[0], c->h[1], n2, 1e-12, 1e-14, 0.0));
+    GLPGP_CHECK(cmp(c, "CG precond r.z", &sc[0][GLPGP_S_RZ0], &sc[1][GLPGP_S_RZ0], 1, 1e-12, 1e-14, 0.0));
+    GLPGP_CHECK(cmp(c, "CG precond r.r", &sc[0][GLPGP_S_RR], &sc[1][GLPGP_S_RR], 1, 1e-12, 1e-14, 0.0));
+    BOTH(o->copy(b, v[VP], v[VZ]));
+    for (int k = 0; k < NSTEP; k++) {
+        const int rzo = k % 2 ? GLPGP_S_RZ1 : GLPGP_S_RZ0, rzn = k % 2 ? GLPGP_S_RZ0 : GLPGP_S_RZ1;
+        /* q <- NEWTON p;  s[PQ] <- p.q */
+        BOTH(o->cg_spmv_dot(b, v[VP], v[VQ]));
+        BOTH(o->vec_read(b, v[VQ], q[s] + (0 * NSTEP + k) * n2));
+        GLPGP_CHECK(scalars(c, sc));
+        for (int s = 0; s < 2; s++) pq[s][k] = sc[s][GLPGP_S_PQ];
+        /* x += alpha p;  r -= alpha q;  z <- DINV r;  s[rzn] <- r.z;  s[RR] <- r.r */
+        BOTH(o->cg_update(b, v[VS], v[VR], v[VP], v[VQ], v[VZ], rzo, rzn));
+        BOTH(o->vec_read(b, v[VR], q[s] + (1 * NSTEP + k) * n2));
+        BOTH(o->vec_read(b, v[VS], q[s] + (2 * NSTEP + k) * n2));
+        GLPGP_CHECK(scalars(c, sc));
+        for (int s = 0; s < 2; s++) {
+            rz[s][k] = sc[s][rzn];
+            rr[s][k] = sc[s][GLPGP_S_RR];
+        }
+        /* p <- z + beta p */
+        BOTH(o->cg_direction(b, v[VP], v[VZ], rzn, rzo));
+        BOTH(o->vec_read(b, v[VP], q[s] + (3 * NSTEP + k) * n2));
+    }
+    const size_t nn = NSTEP * n2;
+    GLPGP_CHECK(cmp(c, "CG spmv_dot q (3 steps)", q[0], q[1], nn, 1e-12, 1e-14, 0.0));
+    GLPGP_CHECK(cmp(c, "CG spmv_dot p.q (3 steps)", pq[0], pq[1], NSTEP, 1e-12, 1e-14, 0.0));
+    GLPGP_CHECK(cmp(c, "CG update r.z (3 steps)", rz[0], rz[1], NSTEP, 1e-12, 1e-14, 0.0));
+    GLPGP_CHECK(cmp(c, "CG update r.r (3 steps)", rr[0], rr[1], NSTEP, 1e-12, 1e-14, 0.0));
+    /* after an update alpha differs by rounding: 1e-10 */
+    GLPGP_CHECK(cmp(c, "CG update r (3 steps)", q[0] + nn, q[1] + nn, nn, 1e-10, 1e-10, 0.0));
+    GLPGP_CHECK(cmp(c, "CG update x (3 steps)", q[0] + 2 * nn, q[1] + 2 * nn, nn, 1e-10, 1e-10, 0.0));
+    GLPGP_CHECK(cmp(c, "CG direction p (3 steps)", q[0] + 3 * nn, q[1] + 3 * nn, nn, 1e-10, 1e-10, 0.0));
+    return GLPGP_OK;
+}
+
+/* One CG solve NEWTON d = -g (projected Hessian: SPD), then the Newton step z + d. */
+static glpgp_status stage_cg_solve(cc *c)
+{
+    glpgp_cg_info ci[2];
+    char name[48];
+    BOTH(o->assemble_newton(b, v[VX], c->inv4e2, GLPGP_HESS_PROJECTED));
+    BOTH(o->gradient(b, v[VX], c->inv4e2, v[VG]));
+    BOTH(o->axpby(b, -1.0, v[VG], 0.0, v[VY]));
+    BOTH(glpgp_cg(b, v[VY], v[VD], 1e-10, 20000, 10, &ci[s]));
+    BOTH(o->vec_read(b, v[VD], c->h[s]));
+    snprintf(name, sizeof name, "CG solve (%d vs %d it)", ci[0].iterations, ci[1].iterations);
+    GLPGP_CHECK(cmp(c, name, c->h[0], c->h[1], c->n2, 1e-6, 1e-6, 0.0));
+    /* z <- z + d */
+    BOTH(o->axpby(b, 1.0, v[VD], 1.0, v[VX]));
+    BOTH(o->vec_read(b, v[VX], c->h[s]));
+    GLPGP_CHECK(cmp(c, "Newton step z + d", c->h[0], c->h[1], c->n2, 1e-6, 1e-6, 0.0));
+    return GLPGP_OK;
+}
+
+/* The whole GL solve on fresh backends (glpgp_solve does its own setup),
+ * converged tightly so both paths reach the same minimiser (at the default
+ * 1e-6 they may stop one iteration apart, ~1e-6 apart in z). */
+static glpgp_status stage_gl_solve(cc *c)
+{
+    glpgp_status st = GLPGP_OK;
+    glpgp_backend *sb[2] = {NULL, NULL};
+    glpgp_result *res[2] = {NULL, NULL};
+    glpgp_options so = c->so;
+    glpgp_cl_options clo = {c->opt->device, 0};
+    char name[48];
+    so.newton_rtol = 1e-8;
+    so.cg_rtol = 1e-10;
+    GLPGP_CHECK_GOTO(st, glpgp_backend_create_opencl(&clo, &sb[0]), done);
+    GLPGP_CHECK_GOTO(st, glpgp_backend_create_reference(&sb[1]), done);
+    for (int s = 0; s < 2; s++) {
+        const double t0 = glpgp_now();
+        GLPGP_CHECK_GOTO(st, glpgp_solve(c->m, sb[s], &so, &res[s]), done);
+        c->t->solve_seconds[s] = glpgp_now() - t0;
+        for (int k = 0; k < 2; k++) c->t->solve_cg[s][k] = res[s]->osc[k].cg_iterations;
+    }
+    c->t->solved = 1;
+    for (int k = 0; k < 2; k++) {
+        /* a level stopped by the Newton cap (drifting vortices) is not converged:
+         * reduction-order rounding is amplified along the drift, so 1e-4 there */
+        int capped = 0;
+        for (int l = 0; l < res[1]->osc[k].nlevels; l++) capped |= res[1]->osc[k].level[l].newton >= so.newton_max;
+        const double gtol = capped ? 1e-4 : 1e-6;
+        snprintf(name, sizeof name, "GL solve z_%s (newton %d vs %d%s)", k ? "v" : "u",
+                 res[0]->osc[k].newton_iterations, res[1]->osc[k].newton_iterations, capped ? ", capped" : "");
+        GLPGP_CHECK_GOTO(st, cmp(c, name, res[0]->osc[k].z, res[1]->osc[k].z, c->n2, gtol, gtol, 0.0), done);
+        snprintf(name, sizeof name, "GL singularities %s", k ? "v" : "u");
+        GLPGP_CHECK_GOTO(st,
+                         cmp_counts(c, name, res[0]->osc[k].plus, res[0]->osc[k].minus, res[1]->osc[k].plus,
+                                    res[1]->osc[k].minus),
+                         done);
+    }
+done:
+    for (int s = 0; s < 2; s++) {
+        glpgp_result_destroy(&res[s]);
+        glpgp_backend_destroy(&sb[s]);
+    }
+    return st;
+}
+
+/* ---- driver ------------------------------------------------------------------ */
+
+static void sides_free(cc *c)
+{
+    for (int s = 0; s < 2; s++) {
+        cc_side *sd = &c->S[s];
+        if (sd->b)
+            for (int k = 0; k < NVEC; k++) sd->b->ops->vec_destroy(sd->b, &sd->v[k]);
+        glpgp_backend_destroy(&sd->b);
+    }
+}
+
+/* Backends, vectors, host buffers, the guiding field, z and r. */
+static glpgp_status prepare(cc *c)
+{
+    const glpgp_crosscheck_options *opt = c->opt;
+    const glpgp_mesh *m = c->m;
+    glpgp_crosscheck *t = c->t;
+    glpgp_cl_options clo = {opt->device, 0};
+    GLPGP_CHECK(glpgp_system_create(m, &c->sys));
+    c->n2 = (size_t)2 * m->nv;
+    c->nm = (size_t)4 * c->sys->nnzb;
+    c->nbuf = c->nm > 12 * c->n2 ? c->nm : 12 * c->n2; /* matrices; CG steps: 4 vectors x 3 steps */
+    t->nv = m->nv;
+    t->nt = m->nt;
+    t->nnzb = c->sys->nnzb;
+    t->energy = opt->energy;
+    t->h = opt->size > 0.0 ? opt->size : glpgp_default_size(m, NULL);
+    GLPGP_CHECK(glpgp_backend_create_opencl(&clo, &c->S[0].b));
+    GLPGP_CHECK(glpgp_backend_create_reference(&c->S[1].b));
+    glpgp_cl_backend_info(c->S[0].b, t->device, sizeof t->device);
+    for (int s = 0; s < 2; s++) {
+        glpgp_backend *b = c->S[s].b;
+        GLPGP_CHECK(b->ops->setup(b, c->sys));
+        for (int k = 0; k < NVEC; k++) GLPGP_CHECK(b->ops->vec_create(b, c->n2, &c->S[s].v[k]));
+        GLPGP_CHECK(glpgp_malloc(c->nbuf, sizeof(double), &c->h[s]));
+    }
+    GLPGP_CHECK(glpgp_malloc(c->n2, sizeof(double), &c->field));
+    GLPGP_CHECK(glpgp_malloc(c->n2, sizeof(double), &c->z));
+    GLPGP_CHECK(glpgp_malloc(c->n2, sizeof(double), &c->r));
+    GLPGP_CHECK(glpgp_malloc(c->n2, sizeof(double), &c->nan));
+    GLPGP_CHECK(glpgp_malloc((size_t)m->nv, 1, &c->dir));
+
+    /* guiding field (boundary-aligned, on the reference backend) and its Dirichlet set */
+    glpgp_options_default(&c->so);
+    c->so.size = t->h;
+    c->so.energy = opt->energy;
+    long fit = 0;
+    GLPGP_CHECK(glpgp_field_compute(m, c->S[1].b, &c->so, c->field, &fit));
+    t->field_cg = fit;
+    t->ndirichlet = glpgp_dirichlet_set(m, c->field, c->dir);
+    /* z_i = rho exp(i phi), rho in [0.3, 1.3], phi in [0, 2 pi); then r_i in [-1/2, 1/2)^2 */
+    unsigned long long seed = opt->seed;
+    for (int i = 0; i < m->nv; i++) {
+        const double rho = 0.3 + cc_rand(&seed), ph = 2.0 * GLPGP_PI * cc_rand(&seed);
+        c->z[2 * i] = rho * cos(ph);
+        c->z[2 * i + 1] = rho * sin(ph);
+    }
+    for (size_t i = 0; i < c->n2; i++) {
+        c->r[i] = cc_rand(&seed) - 0.5;
+        c->nan[i] = NAN;
+    }
+    const double eps = c->so.eps0 * t->h;
+    c->inv4e2 = 1.0 / (4.0 * eps * eps);
+    t->eps = eps;
+    return GLPGP_OK;
+}
+
+glpgp_status glpgp_crosscheck_create(const glpgp_crosscheck_options *opt, glpgp_crosscheck **out)
+{
+    *out = NULL;
+    if (!opt || !opt->mesh) return GLPGP_FAIL(GLPGP_ERR_ARG, "crosscheck: no mesh given");
+    if (opt->energy != GLPGP_ELEM_P1 && opt->energy != GLPGP_ELEM_TRANSPORT)
+        return GLPGP_FAIL(GLPGP_ERR_ARG, "crosscheck: energy %d is not p1 or transport", opt->energy);
+    if (!(opt->tol_scale > 0.0) || !isfinite(opt->tol_scale))
+        return GLPGP_FAIL(GLPGP_ERR_ARG, "crosscheck: tolerance scale %g is not a positive number", opt->tol_scale);
+    if (!isfinite(opt->size)) return GLPGP_FAIL(GLPGP_ERR_ARG, "crosscheck: size %g is not finite", opt->size);
+    glpgp_crosscheck *t = NULL;
+    GLPGP_CHECK(glpgp_calloc(1, sizeof *t, &t));
+    cc c;
+    memset(&c, 0, sizeof c);
+    c.opt = opt;
+    c.t = t;
+    c.m = opt->mesh;
+    glpgp_status st = GLPGP_OK;
+    GLPGP_CHECK_GOTO(st, prepare(&c), done);
+    GLPGP_CHECK_GOTO(st, stage_vectors(&c), done);
+    GLPGP_CHECK_GOTO(st, stage_quad(&c), done);
+    GLPGP_CHECK_GOTO(st, stage_newton(&c), done);
+    GLPGP_CHECK_GOTO(st, stage_gradient(&c), done);
+    GLPGP_CHECK_GOTO(st, stage_spmv(&c), done);
+    GLPGP_CHECK_GOTO(st, stage_cg_steps(&c), done);
+    GLPGP_CHECK_GOTO(st, stage_cg_solve(&c), done);
+    sides_free(&c); /* the GL solve makes its own backends */
+    if (opt->solve) GLPGP_CHECK_GOTO(st, stage_gl_solve(&c), done);
+done:
+    sides_free(&c);
+    for (int s = 0; s < 2; s++) free(c.h[s]);
+    free(c.field);
+    free(c.z);
+    free(c.r);
+    free(c.nan);
+    free(c.dir);
+    glpgp_system_destroy(&c.sys);
+    t->pass = st == GLPGP_OK;
+    for (int i = 0; i < t->nrows; i++) t->pass &= t->rows[i].pass;
+    *out = t;
+    return st;
+}
