@@ -155,15 +155,17 @@ int glpgp_cmd_extract(int argc, char **argv)
     }
     qq.singular[0] = r->osc[0].plus + r->osc[0].minus;
     qq.singular[1] = r->osc[1].plus + r->osc[1].minus;
-    if (quads && glpgp_quads_write(q, quads) != GLPGP_OK) {
+    /* both outputs or neither */
+    glpgp_output_set *outs = NULL;
+    if (glpgp_output_set_create(&outs) != GLPGP_OK ||
+        (quads && glpgp_output_set_quads(outs, q, quads) != GLPGP_OK) ||
+        (stats && glpgp_output_set_quads_json(outs, &qq, stats) != GLPGP_OK) ||
+        glpgp_output_set_commit(outs) != GLPGP_OK) {
+        glpgp_output_set_destroy(&outs);
         rc = q_fail();
         goto done;
     }
-    if (stats && glpgp_quads_write_json_file(&qq, stats) != GLPGP_OK) {
-        if (quads) remove(quads);
-        rc = q_fail();
-        goto done;
-    }
+    glpgp_output_set_destroy(&outs);
     printf("glpgp: %s: h = %.6g%s, singular triangles u %d, v %d\n", in, h,
            qo.all_quads ? " (--all-quads: half the solve's size)" : "", qq.singular[0], qq.singular[1]);
     glpgp_quads_print(stdout, &qq, "  ");
@@ -251,7 +253,7 @@ done:
 }
 
 int glpgp_solve_quads(const glpgp_mesh *m, const glpgp_result *r, const char *quads_path,
-                      const char *stats_path, const glpgp_quad_options *qo, glpgp_quad_quality *qq)
+                      glpgp_output_set *outs, const glpgp_quad_options *qo, glpgp_quad_quality *qq)
 {
     glpgp_quadmesh *q = NULL;
     double h = r->size > 0 ? r->size : glpgp_default_size(m, NULL);
@@ -260,11 +262,7 @@ int glpgp_solve_quads(const glpgp_mesh *m, const glpgp_result *r, const char *qu
     if (st == GLPGP_OK) {
         qq->singular[0] = r->osc[0].plus + r->osc[0].minus;
         qq->singular[1] = r->osc[1].plus + r->osc[1].minus;
-        st = glpgp_quads_write(q, quads_path);
-    }
-    if (st == GLPGP_OK && stats_path) {
-        st = glpgp_quads_append_json(stats_path, qq);
-        if (st != GLPGP_OK) remove(quads_path);
+        st = glpgp_output_set_quads(outs, q, quads_path);
     }
     glpgp_quadmesh_destroy(&q);
     return st == GLPGP_OK ? -1 : q_fail();

@@ -17,10 +17,10 @@ int glpgp_cmd_extract(int argc, char **argv);
  * quad quality report of a mesh made elsewhere (cmd_quads.c). */
 int glpgp_cmd_quality(int argc, char **argv);
 
-/* For `glpgp solve --quads FILE`: extract the quad mesh of result r on m,
- * write it to quads_path (.obj/.vtk/.msh) and, when stats_path is given,
- * append the quality report as "quads" to that (already written) JSON file;
- * *qq receives the report (print it with glpgp_quads_print). qo: what is
+/* For `glpgp solve --quads FILE`: extract the quad mesh of result r on m and
+ * add it as quads_path (.obj/.vtk/.vtu/.msh) to the output set outs (the
+ * caller commits it with the run's other outputs and puts *qq into the
+ * statistics); *qq receives the report (print it with glpgp_quads_print). qo: what is
  * done after the extraction (glpgp_quads_build; NULL: the defaults; with
  * all_quads the report uses h / 2). Returns -1 on success, else the exit
  * code after printing the error (cmd_quads.c). */
@@ -28,8 +28,9 @@ struct glpgp_mesh;
 struct glpgp_result;
 struct glpgp_quad_quality;
 struct glpgp_quad_options;
+struct glpgp_output_set;
 int glpgp_solve_quads(const struct glpgp_mesh *m, const struct glpgp_result *r,
-                      const char *quads_path, const char *stats_path,
+                      const char *quads_path, struct glpgp_output_set *outs,
                       const struct glpgp_quad_options *qo, struct glpgp_quad_quality *qq);
 
 /* ---- pictures and image domains (cmd_image.c) ---------------------------- */

@@ -472,6 +472,7 @@ static int cmd_solve(int argc, char **argv)
     glpgp_mesh *m = NULL;
     glpgp_backend *b = NULL;
     glpgp_result *r = NULL;
+    glpgp_output_set *outs = NULL;
     if (glpgp_is_image_path(c.input)) /* mask image: meshed on the fly */
         rc = glpgp_solve_image_load(&c.img, c.input, c.o.size, c.verbosity > 0, &m);
     else
@@ -487,35 +488,32 @@ static int cmd_solve(int argc, char **argv)
         goto done;
     }
 
-    /* Outputs: each atomic; if the second fails, the first is removed too so
-     * a failed run leaves no output behind. */
-    if (c.out && glpgp_write_result(m, &c.o, r, c.out) != GLPGP_OK) {
+    /* Outputs: one output set, committed together (all or nothing); the
+     * quad report goes into the statistics, which are written once. */
+    glpgp_quad_quality qq;
+    if (glpgp_output_set_create(&outs) != GLPGP_OK ||
+        (c.out && glpgp_output_set_result(outs, m, &c.o, r, c.out) != GLPGP_OK)) {
         rc = fail_with_error();
         goto done;
     }
+    if (c.quads && (rc = glpgp_solve_quads(m, r, c.quads, outs, &c.qo, &qq)) >= 0) goto done;
     if (c.stats) {
-        glpgp_stats_extra x;
-        x.input = c.input;
-        x.output = c.out;
-        x.seconds_read = t_read;
-        if (glpgp_write_stats_json(m, &c.o, r, c.stats, &x) != GLPGP_OK) {
-            if (c.out) remove(c.out);
+        glpgp_stats_extra x = {c.input, c.out, t_read, c.quads ? &qq : NULL};
+        if (glpgp_output_set_stats(outs, m, &c.o, r, c.stats, &x) != GLPGP_OK) {
             rc = fail_with_error();
             goto done;
         }
     }
-
-    glpgp_quad_quality qq;
-    if (c.quads && (rc = glpgp_solve_quads(m, r, c.quads, c.stats, &c.qo, &qq)) >= 0) {
-        if (c.out) remove(c.out);
-        if (c.stats) remove(c.stats);
-        goto done;
+    if (c.img.image) { /* the picture is written under the set's temporary name */
+        glpgp_solve_image_cli ic = c.img;
+        if (glpgp_output_set_reserve(outs, c.img.image, &ic.image) != GLPGP_OK) {
+            rc = fail_with_error();
+            goto done;
+        }
+        if ((rc = glpgp_solve_image_write(&ic, m, r)) >= 0) goto done;
     }
-
-    if (c.img.image && (rc = glpgp_solve_image_write(&c.img, m, r)) >= 0) {
-        if (c.quads) remove(c.quads);
-        if (c.out) remove(c.out);
-        if (c.stats) remove(c.stats);
+    if (glpgp_output_set_commit(outs) != GLPGP_OK) {
+        rc = fail_with_error();
         goto done;
     }
 
@@ -545,6 +543,7 @@ static int cmd_solve(int argc, char **argv)
     rc = 0;
 
 done:
+    glpgp_output_set_destroy(&outs);
     glpgp_result_destroy(&r);
     glpgp_backend_destroy(&b);
     glpgp_mesh_destroy(&m);
