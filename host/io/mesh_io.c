@@ -87,6 +87,12 @@ done:
 
 /* ---- OBJ ------------------------------------------------------------------ */
 
+static int cmp_ll(const void *a, const void *b)
+{
+    long long x = *(const long long *)a, y = *(const long long *)b;
+    return (x > y) - (x < y);
+}
+
 /* One pass: positive indices may refer to vertices defined later, so the
  * largest one is checked at the end (with the line it appeared on). */
 static glpgp_status read_obj(text_reader *tr, raw_mesh *r)
@@ -181,14 +187,18 @@ static glpgp_status read_obj(text_reader *tr, raw_mesh *r)
                                 n == 1 ? "" : "s");
                 goto done;
             }
-            /* fan triangulation (c0, ci, ci+1); each triangle needs 3 distinct vertices */
-            for (size_t i = 1; i + 1 < n; i++) {
-                long long a = corners[0], b = corners[i], c = corners[i + 1];
-                if (a == b || b == c || a == c) {
-                    long long dupv = a == b || a == c ? a : b;
-                    st = text_error(tr, GLPGP_ERR_FORMAT, 0, "face uses vertex %lld more than once", dupv + 1);
+            /* a face uses each vertex once (checked on a sorted copy) */
+            GLPGP_CHECK_GOTO(st, glpgp_grow(&corners, &ncap, 2 * n, sizeof *corners), done);
+            memcpy(corners + n, corners, n * sizeof *corners);
+            qsort(corners + n, n, sizeof *corners, cmp_ll);
+            for (size_t i = n + 1; i < 2 * n; i++)
+                if (corners[i] == corners[i - 1]) {
+                    st = text_error(tr, GLPGP_ERR_FORMAT, 0, "face uses vertex %lld more than once", corners[i] + 1);
                     goto done;
                 }
+            /* fan triangulation (c0, ci, ci+1) */
+            for (size_t i = 1; i + 1 < n; i++) {
+                long long a = corners[0], b = corners[i], c = corners[i + 1];
                 if (a > GLPGP_IO_MAX_ITEMS || b > GLPGP_IO_MAX_ITEMS || c > GLPGP_IO_MAX_ITEMS) {
                     st = text_error(tr, GLPGP_ERR_FORMAT, 0, "face index out of range");
                     goto done;
