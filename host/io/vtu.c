@@ -10,7 +10,9 @@
  *     compressed: UInt64 [nblocks, block size, last partial block size (0 if
  *                 none), compressed size of each block], the zlib streams;
  *   blocks hold whole tuples (block size = largest multiple of the tuple size
- *   <= 1 MiB). */
+ *   <= 1 MiB); an array whose first block shrinks by less than 10% has its
+ *   other blocks stored (zlib level 0): noisy doubles do not compress, and
+ *   trying costs more than the write. */
 #include "vtu.h"
 
 #include "glpgp/io.h"
@@ -145,12 +147,16 @@ static glpgp_status write_array(wstate *w, const vtu_array *a, int level, unsign
     hdr[2] = total % bs;
     const long long hdr_pos = w->pos;
     put(w, hdr, (size_t)(3 + nblocks) * sizeof *hdr); /* placeholder */
+    int lvl = level;
     for (uint64_t b = 0; b < nblocks; b++) {
         size_t t = (size_t)b * per_block;
         size_t k = a->ntuples - t < per_block ? a->ntuples - t : per_block;
         a->fill(a->ctx, t, k, stage);
         uLongf clen = (uLongf)cbuf_cap;
-        int zr = compress2(cbuf, &clen, stage, (uLong)(k * tb), level);
+        int zr = compress2(cbuf, &clen, stage, (uLong)(k * tb), lvl);
+        /* data that does not compress (noisy doubles): store the rest of the
+         * array's blocks (zlib level 0, a copy) instead of spending time */
+        if (zr == Z_OK && b == 0 && (double)clen > 0.9 * (double)(k * tb)) lvl = 0;
         if (zr != Z_OK) {
             free(hdr);
             return GLPGP_FAIL(zr == Z_MEM_ERROR ? GLPGP_ERR_NOMEM : GLPGP_ERR_IO, "zlib compression failed (%d)", zr);

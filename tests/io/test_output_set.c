@@ -279,7 +279,7 @@ static int enospc_child(void)
     char mnt[600];
     snprintf(mnt, sizeof mnt, "%s/small", g_dir);
     if (unshare(CLONE_NEWNS) != 0 && unshare(CLONE_NEWUSER | CLONE_NEWNS) != 0) return 77;
-    if (mount(NULL, "/", NULL, MS_REC | MS_PRIVATE, NULL) != 0) return 77;
+    if (mount("none", "/", "none", MS_REC | MS_PRIVATE, NULL) != 0) return 77; /* type ignored */
     if (mount("glpgp_test", mnt, "tmpfs", 0, "size=64k") != 0) return 77;
     return child_write_fails(mnt, 1 << 20, "No space left on device");
 }

@@ -25,10 +25,10 @@
  *  - Memory grows with the data actually read, never with a count a file
  *    declares: a count is checked for overflow, against GLPGP_IO_MAX_ITEMS
  *    and, for regular files, against the bytes left in the file before
- *    anything is reserved for it. Text formats need at most about 100 bytes
- *    of memory per input byte (less for everything but tiny files);
- *    compressed .vtu data at most its declared uncompressed size, which may
- *    not exceed 1100 times its compressed size.
+ *    anything is reserved for it (a 163-byte file cannot ask for 537 MiB).
+ *    Text formats need a small multiple (< 32x) of the input size; raw .vtu
+ *    data about twice its size; a compressed .vtu block may inflate to at
+ *    most 1100 times its compressed size.
  *  - Lines longer than GLPGP_IO_MAX_LINE bytes, NUL bytes in text formats,
  *    non-finite numbers (nan, inf, overflowing literals), repeated sections
  *    or arrays, counts that disagree with the data that follows are errors.
@@ -138,7 +138,7 @@ void glpgp_atomic_abort(glpgp_atomic_file *af);
  * Numbers are lossless: the shortest of %.15g/%.16g/%.17g that strtod reads
  * back exactly; non-finite numbers are written as null. Strings are escaped
  * (", \, control characters; invalid UTF-8 bytes become U+FFFD); a NULL
- * string is null. Deeper nesting than GLPGP_JSON_MAX_DEPTH is flattened. */
+ * string is null. At most GLPGP_JSON_MAX_DEPTH - 1 levels of nesting. */
 typedef struct glpgp_json {
     FILE *f;
     int depth;
@@ -176,8 +176,9 @@ glpgp_status glpgp_write_vtk(const glpgp_mesh *m, const glpgp_result *r, const c
 
 /* VTK XML UnstructuredGrid (.vtu), binary: every array in one appended raw
  * section (header_type UInt64, the host's byte order), zlib-compressed
- * (vtkZLibDataCompressor, blocks of at most 1 MiB) when level > 0 and the
- * build has zlib. Arrays as in glpgp_write_vtk: Points Float64 x3,
+ * (vtkZLibDataCompressor, blocks of at most 1 MiB; an array whose first
+ * block does not shrink by 10% is stored at zlib level 0) when level > 0
+ * and the build has zlib. Arrays as in glpgp_write_vtk: Points Float64 x3,
  * connectivity / offsets Int32, types UInt8 (5); PointData z_u, z_v (Float64
  * x2), theta_u, theta_v, zabs_u, zabs_v (Float64), dirichlet_u, dirichlet_v
  * (Int8), field_u, field_v (Float64 x3); CellData singular_u, singular_v
