@@ -55,7 +55,7 @@ int glpgp_cmd_render(int argc, char **argv)
     glpgp_result *r = NULL;
     glpgp_image *im = NULL;
     rc = 0;
-    if (glpgp_read_result_vtk(in, &m, &r) != GLPGP_OK || glpgp_render(m, r, &ro, &im) != GLPGP_OK ||
+    if (glpgp_read_result(in, &m, &r) != GLPGP_OK || glpgp_render(m, r, &ro, &im) != GLPGP_OK ||
         glpgp_image_write(out, im) != GLPGP_OK)
         rc = glpgp_cli_fail();
     else if (verbosity > 0)

@@ -18,7 +18,7 @@
 #include <stdio.h>
 #include <string.h>
 
-static const char *const k_quad_exts[] = {".obj", ".vtk", ".msh", NULL};
+static const char *const k_quad_exts[] = {".obj", ".vtk", ".vtu", ".msh", NULL};
 
 int glpgp_cmd_extract(int argc, char **argv)
 {
@@ -28,14 +28,14 @@ int glpgp_cmd_extract(int argc, char **argv)
     glpgp_quad_options qo;
     glpgp_quad_options_default(&qo);
     glpgp_opts t;
-    glpgp_opts_init(&t, sub, "glpgp extract RESULT.vtk --quads OUT.{obj,vtk,msh} [options]",
+    glpgp_opts_init(&t, sub, "glpgp extract RESULT.{vtu,vtk} --quads OUT.{obj,vtu,vtk,msh} [options]",
                     "Extract the quad mesh whose edges are the integer level lines of theta_u and\n"
                     "theta_v from a result written by 'glpgp solve -o RESULT.vtk', and print its\n"
                     "quality report.\n");
     glpgp_opt_string(&t, "--quads", &quads, "FILE",
                      "quad mesh: .obj (quads as 4-vertex faces, other faces as\n"
-                     "n-gons), .vtk (VTK_QUAD / VTK_POLYGON) or .msh (Gmsh 4.1,\n"
-                     "quadrangles; other faces split into quads + one triangle)");
+                     "n-gons), .vtu / .vtk (VTK_QUAD / VTK_POLYGON) or .msh (Gmsh\n"
+                     "4.1, quadrangles; other faces split into quads + one triangle)");
     glpgp_opt_string(&t, "--stats", &stats, "FILE", "quality report as JSON {\"quads\": {...}}");
     glpgp_opt *o = glpgp_opt_double(&t, "--size", &size, 0.0, 1, HUGE_VAL, 0, "H", "target size h");
     o->def = "the h recorded in RESULT";
@@ -55,9 +55,10 @@ int glpgp_cmd_extract(int argc, char **argv)
     glpgp_mesh *m = NULL;
     glpgp_result *r = NULL;
     glpgp_quadmesh *q = NULL;
+    glpgp_output_set *outs = NULL;
     glpgp_quad_quality qq;
     rc = GLPGP_EXIT_FAIL;
-    if (glpgp_read_result_vtk(in, &m, &r) != GLPGP_OK) goto fail;
+    if (glpgp_read_result(in, &m, &r) != GLPGP_OK) goto fail;
     if (size > 0) r->size = size;
     if (!(r->size > 0)) r->size = glpgp_default_size(m, NULL);
     double h = r->size;
@@ -65,11 +66,12 @@ int glpgp_cmd_extract(int argc, char **argv)
     if (glpgp_quads_quality(q, m, h, &qq) != GLPGP_OK) goto fail;
     qq.singular[0] = r->osc[0].plus + r->osc[0].minus;
     qq.singular[1] = r->osc[1].plus + r->osc[1].minus;
-    if (quads && glpgp_quads_write(q, quads) != GLPGP_OK) goto fail;
-    if (stats && glpgp_quads_write_json_file(&qq, stats) != GLPGP_OK) {
-        if (quads) remove(quads);
+    /* both outputs or neither */
+    if (glpgp_output_set_create(&outs) != GLPGP_OK ||
+        (quads && glpgp_output_set_quads(outs, q, quads) != GLPGP_OK) ||
+        (stats && glpgp_output_set_quads_json(outs, &qq, stats) != GLPGP_OK) ||
+        glpgp_output_set_commit(outs) != GLPGP_OK)
         goto fail;
-    }
     printf("glpgp: %s: h = %.6g%s, singular triangles u %d, v %d\n", in, h,
            qo.all_quads ? " (--all-quads: half the solve's size)" : "", qq.singular[0], qq.singular[1]);
     glpgp_quads_print(stdout, &qq, "  ");
@@ -80,6 +82,7 @@ int glpgp_cmd_extract(int argc, char **argv)
 fail:
     rc = glpgp_cli_fail();
 done:
+    glpgp_output_set_destroy(&outs);
     glpgp_quadmesh_destroy(&q);
     glpgp_result_destroy(&r);
     glpgp_mesh_destroy(&m);

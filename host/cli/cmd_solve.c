@@ -18,8 +18,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-static const char *const k_result_exts[] = {".vtk", ".obj", NULL};
-static const char *const k_quad_exts[] = {".obj", ".vtk", ".msh", NULL};
+static const char *const k_result_exts[] = {".vtk", ".vtu", ".obj", NULL};
+static const char *const k_quad_exts[] = {".obj", ".vtk", ".vtu", ".msh", NULL};
 static const char *const k_json_exts[] = {".json", NULL};
 
 typedef struct solve_cli {
@@ -50,11 +50,12 @@ static void build(glpgp_opts *t, solve_cli *c)
     glpgp_opts_add_backend(t, &c->backend, &c->device);
     glpgp_opts_group(t, "Output");
     glpgp_opt *p = glpgp_opt_string(t, "--out", &c->out, "FILE",
-                                    "result as .vtk (ParaView) or .obj (texture coordinates)");
+                                    "result: .vtu (binary VTK XML, compressed when built with\n"
+                                    "zlib), .vtk (legacy ASCII VTK) or .obj (texture coordinates)");
     p->alias = "-o";
     glpgp_opt_string(t, "--stats", &c->stats, "FILE", "statistics as JSON");
     glpgp_opt_string(t, "--quads", &c->quads, "FILE",
-                     "extract the quad mesh (.obj/.vtk/.msh) and add its quality\n"
+                     "extract the quad mesh (.obj/.vtu/.vtk/.msh) and add its quality\n"
                      "report to the summary and the statistics (\"quads\")");
     glpgp_opts_add_quads(t, &c->qo, &c->quad_opts);
     glpgp_opt_string(t, "--image", &c->image, "FILE",
@@ -145,6 +146,7 @@ int glpgp_cmd_solve(int argc, char **argv)
     glpgp_result *r = NULL;
     glpgp_quadmesh *q = NULL;
     glpgp_image *im = NULL;
+    glpgp_output_set *outs = NULL;
     glpgp_quad_quality qq;
     memset(&qq, 0, sizeof qq);
     c.mo.quad_size = c.o.size;
@@ -171,18 +173,21 @@ int glpgp_cmd_solve(int argc, char **argv)
     }
     if (c.image && glpgp_render(m, r, &c.ro, &im) != GLPGP_OK) goto fail;
 
-    /* outputs; a failure removes what this run already wrote */
-    if (c.out && glpgp_write_result(m, &c.o, r, c.out) != GLPGP_OK) goto fail;
+    /* outputs: one set, committed together (all or nothing: a failure leaves
+     * every existing file as it was and no temporary behind) */
+    if (glpgp_output_set_create(&outs) != GLPGP_OK) goto fail;
+    if (c.out && glpgp_output_set_result(outs, m, &c.o, r, c.out) != GLPGP_OK) goto fail;
+    if (c.quads && glpgp_output_set_quads(outs, q, c.quads) != GLPGP_OK) goto fail;
     if (c.stats) {
-        glpgp_stats_extra x;
-        x.input = input;
-        x.output = c.out;
-        x.seconds_read = t_read;
-        if (glpgp_write_stats_json(m, &c.o, r, c.stats, &x) != GLPGP_OK) goto fail_written;
-        if (c.quads && glpgp_quads_append_json(c.stats, &qq) != GLPGP_OK) goto fail_written;
+        glpgp_stats_extra x = {input, c.out, t_read, c.quads ? &qq : NULL};
+        if (glpgp_output_set_stats(outs, m, &c.o, r, c.stats, &x) != GLPGP_OK) goto fail;
     }
-    if (c.quads && glpgp_quads_write(q, c.quads) != GLPGP_OK) goto fail_written;
-    if (c.image && glpgp_image_write(c.image, im) != GLPGP_OK) goto fail_written;
+    if (c.image) { /* the picture is written under the set's temporary name */
+        const char *tmp = NULL;
+        if (glpgp_output_set_reserve(outs, c.image, &tmp) != GLPGP_OK) goto fail;
+        if (glpgp_image_write(tmp, im) != GLPGP_OK) goto fail;
+    }
+    if (glpgp_output_set_commit(outs) != GLPGP_OK) goto fail;
 
     if (c.o.method == GLPGP_METHOD_GL && (r->osc[0].zabs_median < 0.5 || r->osc[1].zabs_median < 0.5))
         glpgp_log(GLPGP_LOG_WARNING,
@@ -192,15 +197,10 @@ int glpgp_cmd_solve(int argc, char **argv)
     print_summary(&c, input, m, r, glpgp_now() - t0, t_read, &qq);
     rc = 0;
     goto done;
-fail_written:
-    rc = glpgp_cli_fail();
-    if (c.out) remove(c.out);
-    if (c.stats) remove(c.stats);
-    if (c.quads) remove(c.quads);
-    goto done;
 fail:
     rc = glpgp_cli_fail();
 done:
+    glpgp_output_set_destroy(&outs);
     glpgp_image_destroy(&im);
     glpgp_quadmesh_destroy(&q);
     glpgp_result_destroy(&r);
