@@ -1,30 +1,14 @@
 /* backends/reference.c: the scalar C reference backend: every op of backend.h as a
  * plain single-threaded loop over host arrays. It defines the semantics (and
- * the summation order) the OpenCL kernels reproduce. */
+ * the summation order) the OpenCL kernels reproduce. The multilevel
+ * preconditioner's ops (amg_*) are in reference_amg.c. */
 #include "glpgp/backends.h"
 #include "element.h"
 
+#include "reference_impl.h"
+
 #include <stdlib.h>
 #include <string.h>
-
-struct glpgp_vec {
-    size_t n;
-    double *a;
-};
-
-typedef struct ref_impl {
-    const glpgp_system *sys;
-    const double *w;           /* 2*nv field (copy owned) */
-    double *wbuf;
-    unsigned char *dir;        /* nv Dirichlet flags */
-    double *quad, *newton;     /* 4*nnzb */
-    double *dinv;              /* 4*nv */
-    int kind;
-    double h;
-    double s[GLPGP_NSLOTS];
-} ref_impl;
-
-#define IMPL(b) ((ref_impl *)(b)->impl)
 
 /* Corner coordinates, field and z of triangle t. */
 static void tri_load(const glpgp_system *sys, int t, double *x, double *y)
@@ -55,6 +39,7 @@ static void ref_destroy(glpgp_backend *b)
     free(r->quad);
     free(r->newton);
     free(r->dinv);
+    glpgp_ref_amg_free(r);
     free(r);
     b->impl = NULL;
 }
@@ -68,6 +53,7 @@ static glpgp_status ref_setup(glpgp_backend *b, const glpgp_system *sys)
     glpgp_free(&r->quad);
     glpgp_free(&r->newton);
     glpgp_free(&r->dinv);
+    glpgp_ref_amg_free(r); /* a hierarchy belongs to one system */
     r->sys = sys;
     b->sys = sys;
     GLPGP_CHECK(glpgp_calloc((size_t)2 * sys->nv, sizeof(double), &r->wbuf));
@@ -403,6 +389,7 @@ static const glpgp_backend_ops ref_ops = {
     .cg_spmv_dot = ref_cg_spmv_dot,
     .cg_update = ref_cg_update,
     .cg_direction = ref_cg_direction,
+    GLPGP_REF_AMG_OPS
 };
 
 glpgp_status glpgp_backend_create_reference(glpgp_backend **out)

@@ -138,6 +138,10 @@ static void usage_solve(FILE *f)
             "  --cg-rtol F         CG stops when |r| <= F |b| (0 < F < 1; default: %g)\n"
             "  --cg-max N          CG iteration cap (>= 1; default: %d)\n"
             "  --cg-check N        read the CG residual back every N iterations (>= 1; default: %d)\n"
+            "  --precond jacobi|amg\n"
+            "                      preconditioner: 2x2-block Jacobi CG, or aggregation multigrid\n"
+            "                      in flexible CG (default: %s; backends without multigrid use\n"
+            "                      Jacobi with one warning)\n"
             "\n"
             "Backend:\n"
             "  --backend auto|opencl|reference\n"
@@ -173,7 +177,8 @@ static void usage_solve(FILE *f)
             : d.hess == GLPGP_HESS_EXACT   ? "exact"
                                            : "projected",
             d.init == GLPGP_INIT_ONE ? "one" : "naive", d.eps0, d.eps_ratio, d.eps_min,
-            d.newton_rtol, d.newton_max, d.cg_rtol, d.cg_max, d.cg_check);
+            d.newton_rtol, d.newton_max, d.cg_rtol, d.cg_max, d.cg_check,
+            d.precond == GLPGP_PRECOND_AMG ? "amg" : "jacobi");
     fputc('\n', f);
     glpgp_solve_image_usage(f);
 }
@@ -295,7 +300,7 @@ static int parse_solve(int argc, char **argv, solve_cli *c)
             "--center",     "--init",     "--eps0",      "--eps-ratio", "--eps-min",
             "--newton-rtol", "--newton-max", "--cg-rtol", "--cg-max",   "--cg-check",
             "--backend",    "--device",   "--out",       "-o",         "--stats",    "--quads",
-            "--smooth",     NULL};
+            "--smooth",     "--precond",  NULL};
         int known = 0;
         for (int k = 0; valued[k]; k++)
             if (!strcmp(nm, valued[k])) known = 1;
@@ -398,6 +403,13 @@ static int parse_solve(int argc, char **argv, solve_cli *c)
                 return usage_error(sub, "--smooth: '%s' is not an integer >= 0", v);
             c->qo.smooth = (int)lv;
             c->quad_opts = 1;
+        } else if (!strcmp(nm, "--precond")) {
+            if (!strcmp(v, "jacobi"))
+                c->o.precond = GLPGP_PRECOND_JACOBI;
+            else if (!strcmp(v, "amg"))
+                c->o.precond = GLPGP_PRECOND_AMG;
+            else
+                return usage_error(sub, "--precond: '%s' is not one of jacobi, amg", v);
         } else if (!strcmp(nm, "--backend")) {
             if (strcmp(v, "auto") && strcmp(v, "opencl") && strcmp(v, "reference"))
                 return usage_error(sub, "--backend: '%s' is not one of auto, opencl, reference",

@@ -1,0 +1,92 @@
+/* amg_rows.h: the per-row / per-block arithmetic of the aggregation multigrid
+ * preconditioner (ops amg_* of glpgp/backend.h), written so that it compiles
+ * both as C11 (the reference backend, backends/reference_amg.c) and as
+ * OpenCL C (phase 2: move this file next to kernels/element.h and embed it):
+ * plain double arithmetic on values and private arrays only, no host types.
+ *
+ * Conventions: a 2x2 block a[4] is row-major [[a0, a1], [a2, a3]]; a complex
+ * prolongation weight c = (cr, ci) acts as the block P = [[cr, -ci], [ci, cr]]
+ * (multiplication by the complex number cr + i ci), so P^T = [[cr, ci],
+ * [-ci, cr]] (multiplication by its conjugate). */
+#ifndef GLPGP_AMG_ROWS_H
+#define GLPGP_AMG_ROWS_H
+
+#ifdef __OPENCL_VERSION__
+#define GLPGP_AMG_FN inline
+#else
+#include <math.h>
+#define GLPGP_AMG_FN static inline
+#endif
+
+/* acc += P_i^T A P_j for the complex weights (ir, ii) and (jr, ji):
+ *   T = A P_j,  acc += P_i^T T  (one Galerkin contribution of a fine block). */
+GLPGP_AMG_FN void glpgp_amg_ptap(double ir, double ii, const double *a, double jr, double ji,
+                                 double *acc)
+{
+    const double t0 = a[0] * jr + a[1] * ji, t1 = -a[0] * ji + a[1] * jr;
+    const double t2 = a[2] * jr + a[3] * ji, t3 = -a[2] * ji + a[3] * jr;
+    acc[0] += ir * t0 + ii * t2;
+    acc[1] += ir * t1 + ii * t3;
+    acc[2] += -ii * t0 + ir * t2;
+    acc[3] += -ii * t1 + ir * t3;
+}
+
+/* Spectral norm ||a||_2 of a 2x2 block:
+ *   sigma_max^2 = (F + sqrt(F^2 - 4 det^2)) / 2,  F = |a|_F^2. */
+GLPGP_AMG_FN double glpgp_amg_norm2(const double *a)
+{
+    const double f = a[0] * a[0] + a[1] * a[1] + a[2] * a[2] + a[3] * a[3];
+    const double det = a[0] * a[3] - a[1] * a[2];
+    const double disc = fmax(f * f - 4.0 * det * det, 0.0);
+    return sqrt(0.5 * (f + sqrt(disc)));
+}
+
+/* o <- inverse of the l1 block diagonal  d + s I  (d: the diagonal block,
+ * s = sum of the off-diagonal blocks' spectral norms); o <- 0 when singular
+ * or not finite (that node is then left alone by the smoother). */
+GLPGP_AMG_FN void glpgp_amg_l1_inverse(const double *d, double s, double *o)
+{
+    const double a0 = d[0] + s, a1 = d[1], a2 = d[2], a3 = d[3] + s;
+    const double det = a0 * a3 - a1 * a2;
+    const double i = 1.0 / det;
+    if (det == 0.0 || !isfinite(i) || !isfinite(a0 + a1 + a2 + a3)) {
+        o[0] = o[1] = o[2] = o[3] = 0.0;
+        return;
+    }
+    o[0] = a3 * i;
+    o[1] = -a1 * i;
+    o[2] = -a2 * i;
+    o[3] = a0 * i;
+}
+
+/* A coefficient from the scalar registers: sign * num / den, 0 when den is 0
+ * or the ratio is not finite. */
+GLPGP_AMG_FN double glpgp_amg_ratio(double sign, double num, double den)
+{
+    const double c = sign * (num / den);
+    return (den != 0.0 && isfinite(c)) ? c : 0.0;
+}
+
+/* The K-cycle's two-step Krylov combination e = c[0] v + c[1] d (Notay and
+ * Vassilevski's recursive Krylov cycle), from rho1 = v.A v, alpha1 = v.r,
+ * beta = d.A d, gamma = d.A v, alpha2 = d.r2 (r2 = r - (alpha1/rho1) A v):
+ *   rho2 = beta - gamma^2 / rho1,
+ *   c[0] = alpha1/rho1 - gamma alpha2 / (rho1 rho2),  c[1] = alpha2 / rho2;
+ * when rho2 <= 1e-12 |beta| (d adds nothing new) or a coefficient is not
+ * finite: c = (alpha1/rho1, 0); when rho1 is 0: c = (0, 0). */
+GLPGP_AMG_FN void glpgp_amg_kcoef(double rho1, double alpha1, double beta, double gamma,
+                                  double alpha2, double *c)
+{
+    const double c0 = glpgp_amg_ratio(1.0, alpha1, rho1);
+    c[0] = c0;
+    c[1] = 0.0;
+    if (c0 == 0.0) return;
+    const double rho2 = beta - gamma * gamma / rho1;
+    if (!(fabs(rho2) > 1e-12 * fabs(beta))) return;
+    const double d0 = alpha1 / rho1 - gamma * alpha2 / (rho1 * rho2), d1 = alpha2 / rho2;
+    if (!isfinite(d0) || !isfinite(d1)) return;
+    c[0] = d0;
+    c[1] = d1;
+}
+
+#endif
