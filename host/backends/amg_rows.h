@@ -31,6 +31,30 @@ GLPGP_AMG_FN void glpgp_amg_ptap(double ir, double ii, const double *a, double j
     acc[3] += -ii * t1 + ir * t3;
 }
 
+/* acc += P_i^T t  (restriction of one fine 2-vector t = (t0, t1) by the
+ * weight (cr, ci): multiplication by the conjugate). */
+GLPGP_AMG_FN void glpgp_amg_restrict_add(double cr, double ci, double t0, double t1, double *acc)
+{
+    acc[0] += cr * t0 + ci * t1;
+    acc[1] += -ci * t0 + cr * t1;
+}
+
+/* x += P_i e  (prolongation of the coarse 2-vector e = (e0, e1)). */
+GLPGP_AMG_FN void glpgp_amg_prolong_add(double cr, double ci, double e0, double e1, double *x)
+{
+    x[0] += cr * e0 - ci * e1;
+    x[1] += ci * e0 + cr * e1;
+}
+
+/* One smoother row: y = x + Minv (r - ax), Minv the row's 2x2 block. */
+GLPGP_AMG_FN void glpgp_amg_smooth_row(const double *minv, double r0, double r1, double ax0,
+                                       double ax1, double x0, double x1, double *y)
+{
+    const double t0 = r0 - ax0, t1 = r1 - ax1;
+    y[0] = x0 + minv[0] * t0 + minv[1] * t1;
+    y[1] = x1 + minv[2] * t0 + minv[3] * t1;
+}
+
 /* Spectral norm ||a||_2 of a 2x2 block:
  *   sigma_max^2 = (F + sqrt(F^2 - 4 det^2)) / 2,  F = |a|_F^2. */
 GLPGP_AMG_FN double glpgp_amg_norm2(const double *a)
@@ -41,14 +65,15 @@ GLPGP_AMG_FN double glpgp_amg_norm2(const double *a)
     return sqrt(0.5 * (f + sqrt(disc)));
 }
 
-/* o <- inverse of the l1 block diagonal  d + s I  (d: the diagonal block,
- * s = sum of the off-diagonal blocks' spectral norms); o <- 0 when singular
- * or not finite (that node is then left alone by the smoother). */
-GLPGP_AMG_FN void glpgp_amg_l1_inverse(const double *d, double s, double *o)
+/* o <- w times the inverse of the l1 block diagonal  d + s I  (d: the
+ * diagonal block, s = sum of the off-diagonal blocks' spectral norms);
+ * o <- 0 when singular or not finite (that node is then left alone by the
+ * smoother). */
+GLPGP_AMG_FN void glpgp_amg_l1_inverse(const double *d, double s, double w, double *o)
 {
     const double a0 = d[0] + s, a1 = d[1], a2 = d[2], a3 = d[3] + s;
     const double det = a0 * a3 - a1 * a2;
-    const double i = 1.0 / det;
+    const double i = w / det;
     if (det == 0.0 || !isfinite(i) || !isfinite(a0 + a1 + a2 + a3)) {
         o[0] = o[1] = o[2] = o[3] = 0.0;
         return;

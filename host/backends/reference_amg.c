@@ -35,6 +35,7 @@ typedef struct ref_level {
 
 struct ref_amg {
     int L;
+    double weight; /* smoother weight */
     ref_level lev[GLPGP_AMG_MAX_LEVELS];
     int m;        /* order of the coarse operator, 2 n_{L-1} */
     double *cinv; /* m*m, row-major */
@@ -91,6 +92,11 @@ glpgp_status glpgp_ref_amg_setup(glpgp_backend *b, const glpgp_amg_layout *lay)
     struct ref_amg *a = r->amg;
     glpgp_status st = GLPGP_OK;
     a->L = lay->nlevels;
+    a->weight = lay->weight;
+    if (!(a->weight > 0.0 && a->weight < 2.0)) {
+        st = GLPGP_FAIL(GLPGP_ERR_ARG, "amg_setup: smoother weight %g not in (0, 2)", a->weight);
+        goto fail;
+    }
     for (int l = 0; l < a->L; l++) {
         const glpgp_amg_level *in = &lay->lev[l];
         ref_level *v = &a->lev[l];
@@ -201,12 +207,12 @@ glpgp_status glpgp_ref_amg_values(glpgp_backend *b, const glpgp_vec *const *fram
                 d[0] = d[3] = 1.0;
                 d[1] = d[2] = 0.0;
             }
-        /* M_l^-1 <- (A_ii + sum_{j != i} ||A_ij||_2 I)^-1 */
+        /* M_l^-1 <- w (A_ii + sum_{j != i} ||A_ij||_2 I)^-1 */
         for (int i = 0; i < v->n; i++) {
             double s = 0.0;
             for (int k = v->rowptr[i]; k < v->rowptr[i + 1]; k++)
                 if (k != v->diag[i]) s += glpgp_amg_norm2(A + 4 * (size_t)k);
-            glpgp_amg_l1_inverse(A + 4 * (size_t)v->diag[i], s, v->minv + 4 * (size_t)i);
+            glpgp_amg_l1_inverse(A + 4 * (size_t)v->diag[i], s, a->weight, v->minv + 4 * (size_t)i);
         }
     }
     return GLPGP_OK;
@@ -259,18 +265,14 @@ glpgp_status glpgp_ref_amg_smooth(glpgp_backend *b, int l, const glpgp_vec *r, c
     const double *A = level_val(IMPL(b), l);
     /* y_i <- x_i + M_i^-1 (r_i - (A x)_i) */
     for (int i = 0; i < v->n; i++) {
-        double t0 = r->a[2 * i], t1 = r->a[2 * i + 1], x0 = 0.0, x1 = 0.0;
+        double ax[2] = {0.0, 0.0}, x0 = 0.0, x1 = 0.0;
         if (x) {
-            double ax[2];
             row_product(v, A, x->a, i, ax);
-            t0 -= ax[0];
-            t1 -= ax[1];
             x0 = x->a[2 * i];
             x1 = x->a[2 * i + 1];
         }
-        const double *mi = v->minv + 4 * (size_t)i;
-        y->a[2 * i] = x0 + mi[0] * t0 + mi[1] * t1;
-        y->a[2 * i + 1] = x1 + mi[2] * t0 + mi[3] * t1;
+        glpgp_amg_smooth_row(v->minv + 4 * (size_t)i, r->a[2 * i], r->a[2 * i + 1], ax[0], ax[1], x0,
+                             x1, y->a + 2 * (size_t)i);
     }
     return GLPGP_OK;
 }
@@ -294,16 +296,13 @@ glpgp_status glpgp_ref_amg_restrict(glpgp_backend *b, int l, const glpgp_vec *r,
         t = v->res;
     }
     for (int J = 0; J < v->nc; J++) {
-        double s0 = 0.0, s1 = 0.0;
+        double acc[2] = {0.0, 0.0};
         for (int p = v->aptr[J]; p < v->aptr[J + 1]; p++) {
             int i = v->amem[p];
-            const double t0 = t[2 * i], t1 = t[2 * i + 1];
-            const double cr = v->c[2 * i], ci = v->c[2 * i + 1];
-            s0 += cr * t0 + ci * t1;
-            s1 += -ci * t0 + cr * t1;
+            glpgp_amg_restrict_add(v->c[2 * i], v->c[2 * i + 1], t[2 * i], t[2 * i + 1], acc);
         }
-        rc->a[2 * J] = s0;
-        rc->a[2 * J + 1] = s1;
+        rc->a[2 * J] = acc[0];
+        rc->a[2 * J + 1] = acc[1];
     }
     return GLPGP_OK;
 }
@@ -316,10 +315,8 @@ glpgp_status glpgp_ref_amg_prolong(glpgp_backend *b, int l, const glpgp_vec *ec,
     for (int i = 0; i < v->n; i++) {
         int J = v->agg[i];
         if (J < 0) continue;
-        const double cr = v->c[2 * i], ci = v->c[2 * i + 1];
-        const double e0 = ec->a[2 * J], e1 = ec->a[2 * J + 1];
-        x->a[2 * i] += cr * e0 - ci * e1;
-        x->a[2 * i + 1] += ci * e0 + cr * e1;
+        glpgp_amg_prolong_add(v->c[2 * i], v->c[2 * i + 1], ec->a[2 * J], ec->a[2 * J + 1],
+                              x->a + 2 * (size_t)i);
     }
     return GLPGP_OK;
 }

@@ -35,25 +35,28 @@
  * Values, per Newton step (glpgp_amg_update), on the device: weights c from
  * the frames, A_{l+1} = P^T A_l P (one pass over A_l's blocks through the
  * map: unsmoothed aggregation), l1-Jacobi smoothers M_i = A_ii +
- * (sum_{j != i} ||A_ij||_2) I (convergent for any SPD A without an
- * eigenvalue estimate; the same formula stays usable on the indefinite exact
- * Hessian). The coarsest matrix (2 * amg_coarse unknowns at most) is read
- * back, inverted on the host by LU with complete pivoting (pivots below
- * 1e-12 of the largest are dropped: a generalised inverse, which handles the
- * exact gauge null vector of an oscillator without Dirichlet vertices and the
- * indefinite exact Hessian), and uploaded: the coarse solve is one dense
- * matrix-vector product on the device, no host round trip per cycle.
+ * (sum_{j != i} ||A_ij||_2) I weighted by o->amg_weight (1.5): M >= A, so the
+ * sweep converges for any SPD A with a weight below 2 and needs no
+ * eigenvalue estimate when z changes; the same formula stays usable on the
+ * indefinite exact Hessian. The coarsest matrix (2 * amg_coarse unknowns at
+ * most) is read back, inverted on the host by LU with complete pivoting
+ * (pivots below 1e-12 of the largest are dropped: a generalised inverse,
+ * which handles the exact gauge null vector of an oscillator without
+ * Dirichlet vertices and the indefinite exact Hessian), and uploaded: the
+ * coarse solve is one dense matrix-vector product on the device, no host
+ * round trip per cycle.
  *
- * Cycle: on level l, sweeps of l1-Jacobi from 0, restriction of the
- * residual, coarse correction, prolongation, sweeps. The coarse correction
- * on a level that is not the coarsest is a K-cycle (Notay & Vassilevski):
- * two flexible-CG steps on A_{l+1} preconditioned by the cycle on l+1
- * (o->amg_cycle = VCYCLE: one plain visit). The coefficients of those steps
- * stay in the backend's scalar registers (amg_kcombine). Unsmoothed
- * aggregation needs the K-cycle: its V-cycle iteration counts grow with the
- * number of levels. The preconditioner is not a fixed linear operator, so
- * the outer iteration is flexible CG (FCG(1)): one extra dot product per
- * iteration compared with CG. */
+ * Cycle: on level l, amg_pre sweeps of l1-Jacobi from 0, restriction of the
+ * residual, coarse correction, prolongation, amg_post sweeps. The coarse
+ * correction on a level that is not the coarsest is a K-cycle (Notay &
+ * Vassilevski): two flexible-CG steps on A_{l+1} preconditioned by the cycle
+ * on l+1 (o->amg_cycle = VCYCLE, or a level below o->amg_kcycle_min nodes:
+ * one plain visit). The coefficients of those steps stay in the backend's
+ * scalar registers (amg_kcombine): no host round trip inside a cycle.
+ * Unsmoothed aggregation needs the K-cycle: V-cycle counts grow with the
+ * number of levels (host/README.md has the counts). The preconditioner is
+ * not a fixed linear operator, so the outer iteration is flexible CG
+ * (FCG(1)): one extra dot product per iteration compared with CG. */
 #include "internal.h"
 
 #include "glpgp/util.h"
@@ -95,6 +98,7 @@ typedef struct amg_level {
 struct glpgp_amg {
     glpgp_backend *b;
     int cycle, pre, post, check, maxit;
+    int kmin;                  /* levels below this many nodes: V-cycle */
     int L;
     amg_level lev[GLPGP_AMG_MAX_LEVELS];
     int m;                     /* coarse order 2 n_{L-1} */
@@ -105,6 +109,12 @@ struct glpgp_amg {
     int warned;                /* the Jacobi fallback of glpgp_linear_solve was logged */
     glpgp_amg_info info;
 };
+
+/* whether the coarse correction on level c (0 < c < L-1) is a K-cycle */
+static int kcycle_level(const glpgp_amg *a, int c)
+{
+    return a->cycle == GLPGP_AMG_KCYCLE && a->lev[c].n >= a->kmin;
+}
 
 /* Dirichlet-free vertex graph of the system: edges of the block pattern
  * between free vertices, weight 1. */
@@ -544,6 +554,7 @@ glpgp_status glpgp_amg_create(glpgp_backend *b, const glpgp_options *o, const un
     a->cycle = o->amg_cycle;
     a->pre = o->amg_pre;
     a->post = o->amg_post;
+    a->kmin = o->amg_kcycle_min;
     a->check = o->amg_check;
     a->maxit = o->amg_maxit < o->cg_max ? o->amg_maxit : o->cg_max;
     a->has_phase = w != NULL && h > 0.0;
@@ -596,6 +607,7 @@ glpgp_status glpgp_amg_create(glpgp_backend *b, const glpgp_options *o, const un
     glpgp_amg_layout lay;
     memset(&lay, 0, sizeof lay);
     lay.nlevels = L;
+    lay.weight = o->amg_weight;
     for (int l = 0; l < L; l++) {
         amg_level *lv = &a->lev[l];
         glpgp_amg_level *d = &lay.lev[l];
@@ -623,7 +635,7 @@ glpgp_status glpgp_amg_create(glpgp_backend *b, const glpgp_options *o, const un
             GLPGP_CHECK_GOTO(st, op->vec_create(b, n2, &lv->b), fail);
             GLPGP_CHECK_GOTO(st, op->vec_create(b, n2, &lv->e), fail);
         }
-        if (l >= 1 && l + 1 < L && a->cycle == GLPGP_AMG_KCYCLE) {
+        if (l >= 1 && l + 1 < L && kcycle_level(a, l)) {
             glpgp_vec **vs[] = {&lv->v, &lv->w, &lv->r2, &lv->d, &lv->wd};
             for (size_t k = 0; k < sizeof vs / sizeof vs[0]; k++)
                 GLPGP_CHECK_GOTO(st, op->vec_create(b, n2, vs[k]), fail);
@@ -806,6 +818,7 @@ static glpgp_amg_coef ratio(int num, int den, double sign)
 
 static glpgp_status cycle(glpgp_amg *a, int l, const glpgp_vec *r, glpgp_vec *out);
 
+
 /* e[c] <- approximate solution of A_c e = b[c] */
 static glpgp_status coarse_correction(glpgp_amg *a, int c)
 {
@@ -813,7 +826,7 @@ static glpgp_status coarse_correction(glpgp_amg *a, int c)
     const glpgp_backend_ops *op = b->ops;
     amg_level *lv = &a->lev[c];
     if (c == a->L - 1) return op->amg_coarse_solve(b, lv->b, lv->e);
-    if (a->cycle == GLPGP_AMG_VCYCLE) return cycle(a, c, lv->b, lv->e);
+    if (!kcycle_level(a, c)) return cycle(a, c, lv->b, lv->e);
     /* K-cycle: two flexible-CG steps on A_c, preconditioned by the cycle on c
      *   v = B b;  w = A v;  rho1 = v.w;  alpha1 = v.b;  r2 = b - (alpha1/rho1) w
      *   d = B r2; wd = A d; beta = d.wd; gamma = d.w;   alpha2 = d.r2

@@ -75,7 +75,9 @@ typedef struct glpgp_amg_level {
 } glpgp_amg_level;
 
 typedef struct glpgp_amg_layout {
-    int nlevels; /* L, 2 .. GLPGP_AMG_MAX_LEVELS */
+    int nlevels;   /* L, 2 .. GLPGP_AMG_MAX_LEVELS */
+    double weight; /* smoother weight w in (0, 2): M_l^-1 below is w times the
+                      inverse of the l1 block diagonal */
     glpgp_amg_level lev[GLPGP_AMG_MAX_LEVELS];
 } glpgp_amg_layout;
 
@@ -158,8 +160,10 @@ typedef struct glpgp_backend_ops {
      *     c_i  = f_li / s_agg(i)  (0 when s = 0: J is dead, or agg(i) = -1),
      *     A_{l+1} = P_l^T A_l P_l through the Galerkin map; the diagonal block
      *       of a dead coarse node is the identity;
-     *     M_l^-1  = inverse of the l1 block diagonal
-     *       A_l,ii + (sum_{j != i} ||A_l,ij||_2) I  (0 where singular).
+     *     M_l^-1  = w times the inverse of the l1 block diagonal
+     *       A_l,ii + (sum_{j != i} ||A_l,ij||_2) I  (0 where singular);
+     *       since that diagonal bounds A from above, the sweep converges for
+     *       any SPD A_l when w < 2.
      * amg_coarse_read: the coarsest A_{L-1} as a dense row-major matrix of
      *   order m = 2 n_{L-1} (host array of m*m doubles; synchronises).
      * amg_coarse_set: upload C (m*m, row-major), the coarse solve operator

@@ -77,8 +77,12 @@ typedef struct glpgp_options {
                              solved by a dense inverse; 2 .. 1024 [48] */
     int amg_max_levels;   /* levels including the fine one, 2 .. GLPGP_AMG_MAX_LEVELS [20] */
     int amg_cycle;        /* GLPGP_AMG_KCYCLE or _VCYCLE [KCYCLE] */
+    int amg_kcycle_min;   /* with KCYCLE: levels with fewer nodes than this get a plain
+                             visit (V) instead, fewer small operations per cycle for a
+                             device with launch latency; >= 0 [0: K-cycle on every level] */
     int amg_pre;          /* l1-Jacobi sweeps before the coarse correction, 0 .. 8 [1] */
     int amg_post;         /* l1-Jacobi sweeps after the coarse correction, 1 .. 8 [1] */
+    double amg_weight;    /* l1-Jacobi weight, in (0, 2) (convergent for any SPD matrix) [1.5] */
     int amg_check;        /* flexible CG reads the residual back every k iterations [1] */
     int amg_maxit;        /* flexible-CG cap (the smaller of this and cg_max) [1000] */
 
