@@ -55,14 +55,13 @@ GLPGP_AMG_FN void glpgp_amg_smooth_row(const double *minv, double r0, double r1,
     y[1] = x1 + minv[2] * t0 + minv[3] * t1;
 }
 
-/* Spectral norm ||a||_2 of a 2x2 block:
- *   sigma_max^2 = (F + sqrt(F^2 - 4 det^2)) / 2,  F = |a|_F^2. */
+/* Spectral norm ||a||_2 of a 2x2 block: a acts on u = x + iy as
+ * u -> c u + d conj(u) with c = ((a0 + a3) + i (a2 - a1)) / 2 and
+ * d = ((a0 - a3) + i (a1 + a2)) / 2, so ||a||_2 = |c| + |d|. */
 GLPGP_AMG_FN double glpgp_amg_norm2(const double *a)
 {
-    const double f = a[0] * a[0] + a[1] * a[1] + a[2] * a[2] + a[3] * a[3];
-    const double det = a[0] * a[3] - a[1] * a[2];
-    const double disc = fmax(f * f - 4.0 * det * det, 0.0);
-    return sqrt(0.5 * (f + sqrt(disc)));
+    const double cr = a[0] + a[3], ci = a[2] - a[1], dr = a[0] - a[3], di = a[1] + a[2];
+    return 0.5 * (sqrt(cr * cr + ci * ci) + sqrt(dr * dr + di * di));
 }
 
 /* o <- w times the inverse of the l1 block diagonal  d + s I  (d: the
