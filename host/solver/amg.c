@@ -486,7 +486,8 @@ static void wave_phase(const amg_level *lv, const amg_level *nx, double h, doubl
         if (J < 0) continue;
         double wx = nx->wsum[2 * J], wy = nx->wsum[2 * J + 1], wn = hypot(wx, wy);
         if (!(wn > 0.0)) continue;
-        double a = k * (wx * (lv->pos[2 * i] - nx->pos[2 * J]) + wy * (lv->pos[2 * i + 1] - nx->pos[2 * J + 1])) / wn;
+        const double dx = lv->pos[2 * i] - nx->pos[2 * J], dy = lv->pos[2 * i + 1] - nx->pos[2 * J + 1];
+        const double a = k * (wx * dx + wy * dy) / wn;
         ph[2 * i] = cos(a);
         ph[2 * i + 1] = sin(a);
     }
@@ -705,7 +706,8 @@ static glpgp_status dense_inverse(int m, const double *A, double *inv, double *l
         pc[i] = i;
     }
     for (size_t k = 0; k < (size_t)m * m; k++)
-        if (!isfinite(lu[k])) return GLPGP_FAIL(GLPGP_ERR_NUMERIC, "multigrid: coarsest matrix is not finite");
+        if (!isfinite(lu[k]))
+            return GLPGP_FAIL(GLPGP_ERR_NUMERIC, "multigrid: coarsest matrix is not finite");
     int r = 0;
     double piv0 = 0.0;
     for (int k = 0; k < m; k++) {

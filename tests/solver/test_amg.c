@@ -200,7 +200,8 @@ static void test_galerkin(void)
         int bad = 0;
         for (int i = 0; i < in.n[l]; i++) {
             int nz = 0;
-            for (int j = 0; j < mc; j++) nz += P[(size_t)(2 * i) * mc + j] != 0.0 || P[(size_t)(2 * i + 1) * mc + j] != 0.0;
+            for (int j = 0; j < mc; j++)
+                nz += P[(size_t)(2 * i) * mc + j] != 0.0 || P[(size_t)(2 * i + 1) * mc + j] != 0.0;
             int dirichlet = l == 0 && f.dir[i];
             int vortex = l == 0 && i == nv / 2;
             if (dirichlet ? nz != 0 : (!vortex && nz != 2)) bad++;
@@ -447,6 +448,11 @@ static void test_dirichlet(void)
     fixture_free(&f);
 }
 
+static const char *reason_name(glpgp_cg_reason r)
+{
+    return r == GLPGP_CG_CONVERGED ? "converged" : r == GLPGP_CG_BREAKDOWN ? "breakdown" : "cap";
+}
+
 static void test_indefinite(void)
 {
     fixture f;
@@ -478,10 +484,8 @@ static void test_indefinite(void)
         double res = ci.reason == GLPGP_CG_CONVERGED ? true_residual(f.b, d, rhs, n2) : NAN;
         CHECK_OK(glpgp_cg(f.b, rhs, d, 1e-8, 20000, 10, &cj));
         printf("indefinite: %s Hessian at a vortex: multigrid %d iterations (%s, true residual %.2e), "
-               "Jacobi %d (%s)\n", k ? "projected" : "exact", ci.iterations,
-               ci.reason == GLPGP_CG_CONVERGED ? "converged" : ci.reason == GLPGP_CG_BREAKDOWN ? "breakdown" : "cap",
-               res, cj.iterations,
-               cj.reason == GLPGP_CG_CONVERGED ? "converged" : cj.reason == GLPGP_CG_BREAKDOWN ? "breakdown" : "cap");
+               "Jacobi %d (%s)\n", k ? "projected" : "exact", ci.iterations, reason_name(ci.reason), res,
+               cj.iterations, reason_name(cj.reason));
         CHECK(ci.reason != GLPGP_CG_MAXIT);
         if (ci.reason == GLPGP_CG_CONVERGED) CHECK(res <= 1e-7);
         /* the exact Hessian of this state is indefinite (Jacobi-PCG meets
