@@ -365,6 +365,8 @@ static const char *const k_energies[] = {"p1", "transport", NULL};
 static const int k_energy_vals[] = {GLPGP_ELEM_P1, GLPGP_ELEM_TRANSPORT};
 static const char *const k_newtons[] = {"mixed", "projected", "paper", NULL};
 static const int k_newton_vals[] = {GLPGP_HESS_MIXED, GLPGP_HESS_PROJECTED, GLPGP_HESS_PAPER};
+static const char *const k_preconds[] = {"jacobi", "amg", NULL};
+static const int k_precond_vals[] = {GLPGP_PRECOND_JACOBI, GLPGP_PRECOND_AMG};
 static const char *const k_inits[] = {"naive", "one", NULL};
 static const int k_init_vals[] = {GLPGP_INIT_NAIVE, GLPGP_INIT_ONE};
 
@@ -415,6 +417,10 @@ void glpgp_opts_add_solver(glpgp_opts *t, glpgp_options *o)
     glpgp_opt_int(t, "--cg-max", &o->cg_max, 1, INT_MAX, "N", "CG iteration cap");
     glpgp_opt_int(t, "--cg-check", &o->cg_check, 1, INT_MAX, "N",
                   "read the CG residual back every N iterations");
+    glpgp_opt_choice(t, "--precond", &o->precond, k_preconds, k_precond_vals,
+                     "preconditioner of the linear solves: 2x2-block Jacobi CG, or\n"
+                     "aggregation multigrid (K-cycle, flexible CG; falls back to\n"
+                     "Jacobi with one warning on a backend without it)");
 }
 
 static const char *const k_backends[] = {"auto", "opencl", "reference", NULL};

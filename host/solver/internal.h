@@ -14,4 +14,15 @@ const char *glpgp_osc_name(int k);
 glpgp_status glpgp_newton_level(glpgp_backend *b, const glpgp_options *o, glpgp_newton_state *ns,
                                 int k, double eps, double rtol, glpgp_level_stats *ls);
 
+/* The multigrid preconditioner for one system when o->precond asks for it:
+ * glpgp_amg_create, or NULL after one warning line naming `what` and the
+ * reason (the caller then uses Jacobi-PCG). NULL without a message when
+ * o->precond is Jacobi. */
+glpgp_amg *glpgp_amg_try_create(glpgp_backend *b, const glpgp_options *o, const unsigned char *dir,
+                                const double *w, double h, const char *what);
+
+/* glpgp_amg_update; on failure one warning line naming `what` and 0 (the
+ * caller stops using a), else 1. */
+int glpgp_amg_try_update(glpgp_amg *a, const glpgp_vec *x, const char *what);
+
 #endif

@@ -1,7 +1,8 @@
 /* solver/newton.c: the modified Newton step and one Newton level at fixed eps,
  * written once against the backend table:
  *   g = grad(E + P_eps)(x) (zero on Dirichlet vertices),
- *   (H_E + H~_P(x)) d = -g by PCG to the inexact-Newton tolerance,
+ *   (H_E + H~_P(x)) d = -g by PCG to the inexact-Newton tolerance (Jacobi,
+ *   or the multigrid preconditioner of solver/amg.c when the state has one),
  *   backtracking (Armijo) on E + P, x <- x + a d.
  * The penalty Hessian H~_P is the variant o->hess; `mixed` tries the exact one
  * near convergence and falls back exact -> mixed -> projected when CG meets
@@ -31,11 +32,13 @@ glpgp_status glpgp_newton_step(glpgp_backend *b, const glpgp_options *o, glpgp_n
     double slope = 0.0;
     for (;;) {
         GLPGP_CHECK(op->assemble_newton(b, ns->x, inv4e2, hess));
+        /* multigrid: values from the new matrix, frames from x */
+        if (ns->amg && !glpgp_amg_try_update(ns->amg, ns->x, "Newton step")) ns->amg = NULL;
         GLPGP_CHECK(op->axpby(b, -1.0, ns->g, 0.0, ns->xt)); /* xt <- -g (rhs) */
         /* inexact Newton: eta = forcing |g|/|g_0|, within [cg_rtol, forcing_max] */
         double eta = fmin(o->forcing_max, fmax(o->cg_rtol, o->forcing * gn / ns->grad0));
         glpgp_cg_info ci;
-        GLPGP_CHECK(glpgp_cg(b, ns->xt, ns->d, eta, o->cg_max, o->cg_check, &ci));
+        GLPGP_CHECK(glpgp_linear_solve(b, ns->amg, ns->xt, ns->d, eta, o->cg_max, o->cg_check, &ci));
         info->cg += ci.iterations;
         const int safe = hess == GLPGP_HESS_PROJECTED || hess == GLPGP_HESS_PAPER;
         if (ci.reason != GLPGP_CG_BREAKDOWN) {

@@ -31,6 +31,16 @@ void glpgp_options_default(glpgp_options *o)
     o->cg_rtol = 1e-8;
     o->cg_max = 20000;
     o->cg_check = 10;
+    o->precond = GLPGP_PRECOND_JACOBI;
+    o->amg_coarse = 48;
+    o->amg_max_levels = 20;
+    o->amg_cycle = GLPGP_AMG_KCYCLE;
+    o->amg_kcycle_min = 0;
+    o->amg_pre = 1;
+    o->amg_post = 1;
+    o->amg_weight = 1.5;
+    o->amg_check = 1;
+    o->amg_maxit = 1000;
     o->size_diag_div = 20.0;
     o->size_min_edges = 10.0;
 }
@@ -65,6 +75,24 @@ glpgp_status glpgp_options_check(const glpgp_options *o)
     if (!(o->exact_switch >= 0.0) || !OPEN01(o->armijo) || !(o->forcing > 0.0) ||
         !OPEN01(o->forcing_max))
         return GLPGP_FAIL(GLPGP_ERR_ARG, "Newton step parameters out of range");
+    if (o->precond != GLPGP_PRECOND_JACOBI && o->precond != GLPGP_PRECOND_AMG)
+        return GLPGP_FAIL(GLPGP_ERR_ARG, "unknown preconditioner %d", o->precond);
+    if (o->amg_coarse < 2 || o->amg_coarse > 1024)
+        return GLPGP_FAIL(GLPGP_ERR_ARG, "amg_coarse must be in [2, 1024], got %d", o->amg_coarse);
+    if (o->amg_max_levels < 2 || o->amg_max_levels > GLPGP_AMG_MAX_LEVELS)
+        return GLPGP_FAIL(GLPGP_ERR_ARG, "amg_max_levels must be in [2, %d], got %d",
+                          GLPGP_AMG_MAX_LEVELS, o->amg_max_levels);
+    if (o->amg_kcycle_min < 0)
+        return GLPGP_FAIL(GLPGP_ERR_ARG, "amg_kcycle_min must be >= 0, got %d", o->amg_kcycle_min);
+    if (o->amg_cycle != GLPGP_AMG_KCYCLE && o->amg_cycle != GLPGP_AMG_VCYCLE)
+        return GLPGP_FAIL(GLPGP_ERR_ARG, "unknown multigrid cycle %d", o->amg_cycle);
+    if (o->amg_pre < 0 || o->amg_pre > 8 || o->amg_post < 1 || o->amg_post > 8)
+        return GLPGP_FAIL(GLPGP_ERR_ARG, "amg_pre must be in [0, 8] and amg_post in [1, 8], got %d, %d",
+                          o->amg_pre, o->amg_post);
+    if (!(o->amg_weight > 0.0 && o->amg_weight < 2.0))
+        return GLPGP_FAIL(GLPGP_ERR_ARG, "amg_weight must be in (0, 2), got %g", o->amg_weight);
+    if (o->amg_check < 1 || o->amg_maxit < 1)
+        return GLPGP_FAIL(GLPGP_ERR_ARG, "amg_check and amg_maxit must be >= 1");
     if (!(o->size_diag_div > 0.0) || !(o->size_min_edges >= 0.0))
         return GLPGP_FAIL(GLPGP_ERR_ARG, "default-size parameters out of range");
     return GLPGP_OK;

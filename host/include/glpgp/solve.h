@@ -21,6 +21,16 @@ extern "C" {
 enum glpgp_method { GLPGP_METHOD_GL = 0, GLPGP_METHOD_PGP = 1 };
 enum glpgp_field { GLPGP_FIELD_BOUNDARY = 0, GLPGP_FIELD_RADIAL = 1, GLPGP_FIELD_FILE = 2 };
 enum glpgp_init { GLPGP_INIT_NAIVE = 0, GLPGP_INIT_ONE = 1 };
+/* Preconditioner of the Newton (and naive PGP, guiding field) systems. */
+enum glpgp_precond {
+    GLPGP_PRECOND_JACOBI = 0, /* 2x2-block Jacobi, CG (solver/cg.c) */
+    GLPGP_PRECOND_AMG = 1     /* aggregation multigrid, flexible CG (solver/amg.c) */
+};
+/* Multigrid cycle on the coarse levels. */
+enum glpgp_amg_cycle {
+    GLPGP_AMG_KCYCLE = 0, /* two flexible-CG steps per coarse level (K-cycle) */
+    GLPGP_AMG_VCYCLE = 1  /* one plain visit per coarse level (V-cycle) */
+};
 
 /* Every parameter of a solve (defaults in brackets). */
 typedef struct glpgp_options {
@@ -60,6 +70,21 @@ typedef struct glpgp_options {
     double cg_rtol;       /* CG: |r| <= rtol |b| [1e-8] */
     int cg_max;           /* CG iteration cap [20000] */
     int cg_check;         /* read the residual back every k iterations [10] */
+
+    /* preconditioner (glpgp/solve.h: glpgp_amg_*) */
+    int precond;          /* GLPGP_PRECOND_JACOBI or _AMG [JACOBI] */
+    int amg_coarse;       /* coarsening stops at <= this many nodes (2 unknowns each),
+                             solved by a dense inverse; 2 .. 1024 [48] */
+    int amg_max_levels;   /* levels including the fine one, 2 .. GLPGP_AMG_MAX_LEVELS [20] */
+    int amg_cycle;        /* GLPGP_AMG_KCYCLE or _VCYCLE [KCYCLE] */
+    int amg_kcycle_min;   /* with KCYCLE: levels with fewer nodes than this get a plain
+                             visit (V) instead, fewer small operations per cycle for a
+                             device with launch latency; >= 0 [0: K-cycle on every level] */
+    int amg_pre;          /* l1-Jacobi sweeps before the coarse correction, 0 .. 8 [1] */
+    int amg_post;         /* l1-Jacobi sweeps after the coarse correction, 1 .. 8 [1] */
+    double amg_weight;    /* l1-Jacobi weight, in (0, 2) (convergent for any SPD matrix) [1.5] */
+    int amg_check;        /* flexible CG reads the residual back every k iterations [1] */
+    int amg_maxit;        /* flexible-CG cap (the smaller of this and cg_max) [1000] */
 
     /* default h (glpgp_default_size) */
     double size_diag_div; /* h = bounding-box diagonal / this ... [20] */
@@ -117,6 +142,7 @@ typedef struct glpgp_newton_state {
     double grad0;    /* |g| at the start of the level */
     int near;        /* exact-Hessian switch of `mixed` (start at 0) */
     int cooldown;    /* steps left before `mixed` may try the exact Hessian again */
+    struct glpgp_amg *amg; /* multigrid preconditioner (borrowed; NULL: Jacobi) */
 } glpgp_newton_state;
 
 typedef struct glpgp_newton_step_info {
@@ -128,8 +154,10 @@ typedef struct glpgp_newton_step_info {
 } glpgp_newton_step_info;
 
 /* One modified Newton step at x: assemble (H_E + H~_P(x)), solve it by PCG to
- * the inexact-Newton tolerance, backtrack on E + P, update x. Needs QUAD
- * assembled and s->g = grad(E+P)(x) with F = (E+P)(x) and gn = |g|. */
+ * the inexact-Newton tolerance (Jacobi, or flexible CG with s->amg, whose
+ * values are rebuilt from the new matrix and x), backtrack on E + P, update
+ * x. Needs QUAD assembled and s->g = grad(E+P)(x) with F = (E+P)(x) and
+ * gn = |g|. */
 glpgp_status glpgp_newton_step(glpgp_backend *b, const glpgp_options *o, glpgp_newton_state *s,
                                double inv4e2, double F, double gn, glpgp_newton_step_info *info);
 
@@ -153,6 +181,71 @@ typedef struct glpgp_cg_info {
  * Work vectors are created and destroyed inside. */
 glpgp_status glpgp_cg(glpgp_backend *b, const glpgp_vec *rhs, glpgp_vec *x, double rtol,
                       int maxit, int check, glpgp_cg_info *info);
+
+/* ---- aggregation multigrid preconditioner (solver/amg.c) ----
+ * Structure once per (mesh, Dirichlet set): aggregates of about 4 vertices
+ * per level from two passes of pairwise matching on the vertex graph
+ * (Dirichlet vertices excluded), the coarse patterns and the Galerkin index
+ * maps, uploaded to the backend. Values per Newton step (glpgp_amg_update):
+ * the prolongation maps each aggregate's 2 coarse unknowns to the current
+ * oscillator's frame (so [z, iz] is reproduced exactly), A_c = P^T A P,
+ * l1-Jacobi smoothers and a dense inverse of the coarsest matrix. Applied as
+ * a K-cycle inside flexible CG (glpgp_fcg). Design: host/README.md. */
+typedef struct glpgp_amg glpgp_amg;
+
+/* Hierarchy facts for logs, tests and the benchmark. */
+typedef struct glpgp_amg_info {
+    int nlevels;
+    int n[GLPGP_AMG_MAX_LEVELS];      /* nodes per level */
+    long nnzb[GLPGP_AMG_MAX_LEVELS];  /* 2x2 blocks per level */
+    double operator_complexity;       /* sum_l nnzb_l / nnzb_0 */
+    double grid_complexity;           /* sum_l n_l / n_0 */
+    double seconds_structure;         /* glpgp_amg_create */
+    double seconds_values;            /* all glpgp_amg_update calls */
+    double seconds_coarse;            /* of which the coarsest inverse on the host */
+    int updates;                      /* glpgp_amg_update calls */
+} glpgp_amg_info;
+
+/* Whether backend b implements the multigrid ops (amg_setup etc.). */
+int glpgp_amg_supported(const glpgp_backend *b);
+
+/* Build the hierarchy structure for b's system (b->ops->setup done) and the
+ * Dirichlet flags dir (nv; NULL: none) and upload it. Options: o->amg_*.
+ * w (2*nv unit field, may be NULL) and h: the plane-wave frames
+ * exp(i (2 pi / h) W . (x_i - x_J)) used by glpgp_amg_update(a, NULL) for the
+ * quadratic problems (naive PGP); w NULL or h <= 0: constant frames (the
+ * Laplacian of the guiding field). GLPGP_ERR_UNSUPPORTED when the backend
+ * has no multigrid ops. */
+glpgp_status glpgp_amg_create(glpgp_backend *b, const glpgp_options *o, const unsigned char *dir,
+                              const double *w, double h, glpgp_amg **out);
+void glpgp_amg_destroy(glpgp_amg **a);
+
+/* Rebuild the values from the backend's current NEWTON matrix: frames from
+ * the oscillator x (2*nv on the device: the Newton iterate) or, x NULL, the
+ * plane-wave / constant frames given at creation. Fails (GLPGP_ERR_NUMERIC)
+ * when the coarsest matrix has no usable inverse. */
+glpgp_status glpgp_amg_update(glpgp_amg *a, const glpgp_vec *x);
+
+/* Hierarchy facts (valid after glpgp_amg_create). */
+void glpgp_amg_get_info(const glpgp_amg *a, glpgp_amg_info *info);
+
+/* One application of the preconditioner: z <- B r (a K- or V-cycle from
+ * z = 0 on level 0; r, z: 2*nv on the device). For tests. */
+glpgp_status glpgp_amg_apply(glpgp_amg *a, const glpgp_vec *r, glpgp_vec *z);
+
+/* Flexible CG (FCG(1), Notay) on NEWTON with the multigrid preconditioner a
+ * (glpgp_amg_update done for the current NEWTON): solves NEWTON x = rhs from
+ * x = 0, same contract as glpgp_cg (breakdown: p.Ap <= 0 or a non-finite
+ * residual; the cap is min(maxit, o->amg_maxit)); the residual is read back
+ * every o->amg_check iterations. */
+glpgp_status glpgp_fcg(glpgp_amg *a, const glpgp_vec *rhs, glpgp_vec *x, double rtol, int maxit,
+                       glpgp_cg_info *info);
+
+/* The linear solve the drivers use: glpgp_fcg when a is not NULL, else
+ * glpgp_cg. */
+glpgp_status glpgp_linear_solve(glpgp_backend *b, glpgp_amg *a, const glpgp_vec *rhs,
+                                glpgp_vec *x, double rtol, int maxit, int check,
+                                glpgp_cg_info *info);
 
 #ifdef __cplusplus
 }
