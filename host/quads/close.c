@@ -1139,6 +1139,7 @@ void glpgp_quad_options_default(glpgp_quad_options *o)
     o->smooth = 20;
     o->smooth_below = 0.5;
     o->all_quads = 0;
+    o->repair = 1;
 }
 
 glpgp_status glpgp_quads_build(const glpgp_mesh *m, const glpgp_result *r, const glpgp_quad_options *o,
