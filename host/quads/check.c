@@ -148,6 +148,12 @@ double glpgp_seg_dist(const double *a, const double *b, const double *p, double 
 
 int glpgp_seg_cross(const double *a, const double *b, const double *c, const double *d, double eps)
 {
+    /* an end point within eps of the other segment: touching, not crossing
+     * (this also settles nearly collinear pieces, whose orientation signs
+     * are rounding noise) */
+    if (glpgp_seg_dist(a, b, c, NULL) <= eps || glpgp_seg_dist(a, b, d, NULL) <= eps ||
+        glpgp_seg_dist(c, d, a, NULL) <= eps || glpgp_seg_dist(c, d, b, NULL) <= eps)
+        return 0;
     double d1 = orient2(a, b, c), d2 = orient2(a, b, d), d3 = orient2(c, d, a), d4 = orient2(c, d, b);
     if (!((d1 > 0 && d2 < 0) || (d1 < 0 && d2 > 0))) return 0;
     if (!((d3 > 0 && d4 < 0) || (d3 < 0 && d4 > 0))) return 0;

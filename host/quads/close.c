@@ -1168,6 +1168,13 @@ glpgp_status glpgp_quads_build(const glpgp_mesh *m, const glpgp_result *r, const
         if (st != GLPGP_OK) goto done;
         q->closing.smoothed_vertices = moved;
     }
+    if (o->repair) {
+        st = glpgp_quadmesh_repair(q, m, *h, o->smooth, &c);
+        if (st != GLPGP_OK) goto done;
+        glpgp_quadmesh_destroy(&q);
+        q = c;
+        c = NULL;
+    }
     if (o->all_quads) {
         st = glpgp_quadmesh_subdivide(q, &c);
         if (st != GLPGP_OK) goto done;

@@ -105,6 +105,24 @@ glpgp_status glpgp_quadmesh_close_polygons(const glpgp_quadmesh *q, glpgp_quadme
 glpgp_status glpgp_quadmesh_smooth(glpgp_quadmesh *q, const unsigned char *mark, int iterations,
                                    double sj_below, int *moved);
 
+/* Local repair (quads/repair.c): the faces of q that are invalid against
+ * the domain m (not quads, inverted, degenerate or flat, non-manifold,
+ * pinched, overlapping, outside the domain, a boundary edge farther than
+ * h/4 from the domain boundary, over a lost hole, corner or feature) are
+ * removed with one ring of neighbours (more in later rounds, at most 4),
+ * and each hole left is filled with quads: the polygon between the kept
+ * faces and the domain boundary (input boundary vertices, corners kept) is
+ * triangulated (constrained Delaunay, centroids in triangles longer than
+ * 2.6 h) and every triangle becomes 3 or 5 convex quads without splitting
+ * the edges shared with the kept faces. Boundary vertices within h/4 of the
+ * domain boundary are first moved onto it. smooth: sweeps of
+ * glpgp_quadmesh_smooth on the new vertices. *out: a new mesh (a copy when
+ * nothing was wrong; still invalid when a region could not be filled: the
+ * quality report tells). The algorithm is described at the top of
+ * quads/repair.c. */
+glpgp_status glpgp_quadmesh_repair(const glpgp_quadmesh *q, const glpgp_mesh *m, double h, int smooth,
+                                   glpgp_quadmesh **out);
+
 /* What glpgp_quads_build does after the extraction. */
 typedef struct glpgp_quad_options {
     int keep_polygons;  /* 1: leave non-quad faces as they are (no strips) */
@@ -117,8 +135,8 @@ typedef struct glpgp_quad_options {
 /* The defaults: strips on, 20 smoothing sweeps, smooth_below 0.5, repair on, no refinement. */
 void glpgp_quad_options_default(glpgp_quad_options *o);
 
-/* Extraction + closing of the polygons + smoothing (+ refinement), as the
- * CLI does it. *h: in: the target size, out: the size the mesh is made for
+/* Extraction + closing of the polygons + smoothing + repair (+ refinement),
+ * as the CLI does it. *h: in: the target size, out: the size the mesh is made for
  * (halved by all_quads). o = NULL: the defaults. */
 glpgp_status glpgp_quads_build(const glpgp_mesh *m, const glpgp_result *r, const glpgp_quad_options *o,
                                glpgp_quadmesh **out, double *h);
