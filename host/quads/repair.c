@@ -11,7 +11,7 @@
  *     degenerate or flat (SJ < 1e-3), non-manifold, pinched, overlapping,
  *     outside the domain, far from it, or over a lost part of the domain
  *     boundary (a hole, a corner, a feature); when the mesh area is off by
- *     more than 0.8%, also the faces along boundary pieces farther than
+ *     more than 1%, also the faces along boundary pieces farther than
  *     t from the mesh boundary, t the largest of h/10, h/20, ... h/80 that
  *     flags a face (smaller in later rounds): chords across fillets and
  *     rounded corners. None: done;
@@ -1485,10 +1485,10 @@ static glpgp_quadmesh *qm_copy(const glpgp_quadmesh *q)
 }
 
 glpgp_status glpgp_quadmesh_repair(const glpgp_quadmesh *qin, const glpgp_mesh *m, double h, int smooth,
-                                   glpgp_quadmesh **out)
+                                   int keep_polygons, glpgp_quadmesh **out)
 {
     *out = NULL;
-    if (!qin || !m || qin->nf < 1 || !(h > 0)) return GLPGP_FAIL(GLPGP_ERR_ARG, "quad repair: bad arguments");
+    if (!qin || !m || qin->nf < 0 || !(h > 0)) return GLPGP_FAIL(GLPGP_ERR_ARG, "quad repair: bad arguments");
     glpgp_status st = GLPGP_OK;
     dbnd D;
     memset(&D, 0, sizeof D);
@@ -1505,7 +1505,7 @@ glpgp_status glpgp_quadmesh_repair(const glpgp_quadmesh *qin, const glpgp_mesh *
     for (int round = 0; round < REPAIR_ROUNDS; round++) {
         glpgp_qcheck_free(&ck);
         GLPGP_CHECK_GOTO(st, glpgp_qcheck_run(q, m, h, 0.25 * h, &ck), done);
-        /* area off by more than 0.8%: the boundary chords cut too much; also
+        /* area off by more than 1% (invalid): the boundary chords cut too much; also
          * re-mesh along the boundary pieces farther than h/10 from the mesh */
         {
             double area = 0.0;
@@ -1516,7 +1516,7 @@ glpgp_status glpgp_quadmesh_repair(const glpgp_quadmesh *qin, const glpgp_mesh *
                     area += 0.5 * (a[0] * b[1] - b[0] * a[1]);
                 }
             }
-            if (m->area > 0 && fabs(area / m->area - 1.0) > 0.008) {
+            if (m->area > 0 && fabs(area / m->area - 1.0) > 0.01) {
                 /* the largest tolerance (h/10, h/20, ... h/80) that flags something */
                 for (double t = ldexp(0.1, -round); t >= 0.012; t *= 0.5) {
                     qcheck c2;
@@ -1532,6 +1532,8 @@ glpgp_status glpgp_quadmesh_repair(const glpgp_quadmesh *qin, const glpgp_mesh *
                 }
             }
         }
+        if (keep_polygons)
+            for (int f = 0; f < q->nf; f++) ck.flags[f] &= ~(unsigned)QF_NONQUAD;
         int nbad = 0;
         for (int f = 0; f < q->nf; f++) nbad += ck.flags[f] != 0;
         if (getenv("GLPGP_REPAIR_DEBUG"))
@@ -1543,8 +1545,7 @@ glpgp_status glpgp_quadmesh_repair(const glpgp_quadmesh *qin, const glpgp_mesh *
                     for (int i = 0; i < k; i++) fprintf(stderr, " (%.4f %.4f)", q->xy[2 * v[i]], q->xy[2 * v[i] + 1]);
                     fprintf(stderr, "\n");
                 }
-        if (ck.boundary_loops != m->nloops && nbad == 0) break; /* nothing local to repair */
-        if (nbad == 0) break;
+        if (nbad == 0 && q->nf > 0) break; /* an empty mesh: the whole domain is re-meshed */
         rs.rounds++;
         /* B: bad faces + (round + 1) vertex rings */
         free(inB);
@@ -1594,7 +1595,7 @@ glpgp_status glpgp_quadmesh_repair(const glpgp_quadmesh *qin, const glpgp_mesh *
         if (smooth > 0) GLPGP_CHECK_GOTO(st, glpgp_quadmesh_smooth(n, mark, smooth, 0.5, NULL), done);
         int odd = 0;
         for (int f = 0; f < n->nf; f++) odd |= (n->face_start[f + 1] - n->face_start[f]) != 4;
-        if (odd) {
+        if (odd && !keep_polygons) {
             free(mark2);
             mark2 = NULL;
             GLPGP_CHECK_GOTO(st, glpgp_quadmesh_close_polygons(n, &c, &mark2), done);

@@ -84,7 +84,7 @@ static glpgp_quad_quality report(const glpgp_quadmesh *q, const glpgp_mesh *m, d
 static void repaired_valid(const glpgp_quadmesh *q, const glpgp_mesh *m, double h, const char *what)
 {
     glpgp_quadmesh *r = NULL;
-    CHECK_OK(glpgp_quadmesh_repair(q, m, h, 20, &r));
+    CHECK_OK(glpgp_quadmesh_repair(q, m, h, 20, 0, &r));
     if (!r) return;
     glpgp_quad_quality qq = report(r, m, h, what);
     CHECK(qq.invalid == 0);

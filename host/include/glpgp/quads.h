@@ -116,12 +116,14 @@ glpgp_status glpgp_quadmesh_smooth(glpgp_quadmesh *q, const unsigned char *mark,
  * 2.6 h) and every triangle becomes 3 or 5 convex quads without splitting
  * the edges shared with the kept faces. Boundary vertices within h/4 of the
  * domain boundary are first moved onto it. smooth: sweeps of
- * glpgp_quadmesh_smooth on the new vertices. *out: a new mesh (a copy when
+ * glpgp_quadmesh_smooth on the new vertices. keep_polygons: faces that are
+ * not quads are not bad (--keep-polygons). q may have no face (the
+ * extraction found none): the whole domain is meshed. *out: a new mesh (a copy when
  * nothing was wrong; still invalid when a region could not be filled: the
  * quality report tells). The algorithm is described at the top of
  * quads/repair.c. */
 glpgp_status glpgp_quadmesh_repair(const glpgp_quadmesh *q, const glpgp_mesh *m, double h, int smooth,
-                                   glpgp_quadmesh **out);
+                                   int keep_polygons, glpgp_quadmesh **out);
 
 /* What glpgp_quads_build does after the extraction. */
 typedef struct glpgp_quad_options {
@@ -136,7 +138,9 @@ typedef struct glpgp_quad_options {
 void glpgp_quad_options_default(glpgp_quad_options *o);
 
 /* Extraction + closing of the polygons + smoothing + repair (+ refinement),
- * as the CLI does it. *h: in: the target size, out: the size the mesh is made for
+ * as the CLI does it. With repair on, an extraction that finds no face
+ * (GLPGP_ERR_NUMERIC: the oscillators collapsed) is not an error: the
+ * repair meshes the whole domain. *h: in: the target size, out: the size the mesh is made for
  * (halved by all_quads). o = NULL: the defaults. */
 glpgp_status glpgp_quads_build(const glpgp_mesh *m, const glpgp_result *r, const glpgp_quad_options *o,
                                glpgp_quadmesh **out, double *h);
