@@ -34,8 +34,8 @@
  *     put into the smallest outer loop that contains them;
  *  3. each polygon with holes is triangulated: holes bridged to the outer
  *     loop (shortest bridge that crosses nothing), ear clipping, edge flips
- *     to the constrained Delaunay triangulation, centroids inserted into
- *     triangles with an edge longer than 2.6 h (then flips again);
+ *     to the constrained Delaunay triangulation, inner edges longer than
+ *     2.6 h bisected (longest edge first, then flips again);
  *  4. triangles become quads without splitting the edges shared with K:
  *     every other edge starts "split" (a new vertex: its midpoint, or for a
  *     piece of domain boundary the input vertex nearest its middle), so a
@@ -61,7 +61,6 @@
 #include "glpgp/quads.h"
 
 #include <math.h>
-#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -466,42 +465,77 @@ static glpgp_status flips(tri_ctx *T, const eset *C)
     return GLPGP_OK;
 }
 
-/* Centroids into triangles with an edge longer than lmax. */
+/* Longest-edge bisection: a triangle whose longest edge is longer than
+ * lmax and not a region boundary edge is split with its neighbour at the
+ * edge's midpoint (t = a b c, u = b a d -> a m c, m b c, b m d, m a d) unless
+ * c or d is closer than L/4 to the edge (slivers along a long region
+ * boundary edge, which bisection cannot fix), then edge flips; repeated while something is split (at most max_new points).
+ * Unlike centroids, bisection never makes a triangle thinner than its
+ * parent's halves (no cascade of points in slivers). */
 static glpgp_status refine(tri_ctx *T, const eset *C, double lmax, int max_new)
 {
-    for (int pass = 0; pass < 30 && max_new > 0; pass++) {
+    for (int pass = 0; pass < 60 && max_new > 0; pass++) {
+        int *nb = NULL;
+        GLPGP_CHECK(build_adj(T, &nb));
         int nt = T->tri.n / 3, added = 0;
-        for (int t = 0; t < nt && max_new > 0; t++) {
-            int *v = T->tri.p + 3 * t;
-            double L = 0;
+        unsigned char *done = calloc((size_t)nt + 1, 1);
+        if (!done) {
+            free(nb);
+            return GLPGP_FAIL(GLPGP_ERR_NOMEM, "quad repair: out of memory");
+        }
+        glpgp_status st = GLPGP_OK;
+        for (int t = 0; t < nt && max_new > 0 && st == GLPGP_OK; t++) {
+            if (done[t]) continue;
+            int *v = T->tri.p + 3 * t, jl = -1;
+            double L = lmax;
             for (int j = 0; j < 3; j++) {
                 const double *a = T->xy.p + 2 * v[j], *b = T->xy.p + 2 * v[(j + 1) % 3];
-                L = fmax(L, hypot(b[0] - a[0], b[1] - a[1]));
+                double l = hypot(b[0] - a[0], b[1] - a[1]);
+                if (l > L) {
+                    L = l;
+                    jl = j;
+                }
             }
-            if (L <= lmax) continue;
-            double gx = 0, gy = 0;
-            for (int j = 0; j < 3; j++) {
-                gx += T->xy.p[2 * v[j]] / 3;
-                gy += T->xy.p[2 * v[j] + 1] / 3;
+            if (jl < 0) continue;
+            int a = v[jl], b = v[(jl + 1) % 3], c = v[(jl + 2) % 3];
+            if (eset_find(C, a, b)) continue; /* a region boundary edge: kept */
+            int u = nb[3 * t + jl];
+            if (u < 0 || done[u]) continue;
+            int *w = T->tri.p + 3 * u, k = 0;
+            while (k < 3 && !(w[k] == b && w[(k + 1) % 3] == a)) k++;
+            if (k == 3) continue;
+            int d = w[(k + 2) % 3];
+            {   /* not next to a sliver: bisecting there only piles points onto its long side */
+                const double *pa = T->xy.p + 2 * a, *pb = T->xy.p + 2 * b;
+                double hc = fabs(orient2(pa, pb, T->xy.p + 2 * c)) / L, hd = fabs(orient2(pa, pb, T->xy.p + 2 * d)) / L;
+                if (hc < 0.25 * L || hd < 0.25 * L) continue;
             }
-            int g = T->xy.n / 2;
-            GLPGP_CHECK(dpush(&T->xy, gx));
-            GLPGP_CHECK(dpush(&T->xy, gy));
-            GLPGP_CHECK(ipush(&T->kind, 0));
-            GLPGP_CHECK(ipush(&T->glob, -1));
-            int a = T->tri.p[3 * t], b = T->tri.p[3 * t + 1], c = T->tri.p[3 * t + 2];
-            T->tri.p[3 * t + 2] = g; /* a b g */
-            GLPGP_CHECK(ipush(&T->tri, b));
-            GLPGP_CHECK(ipush(&T->tri, c));
-            GLPGP_CHECK(ipush(&T->tri, g));
-            GLPGP_CHECK(ipush(&T->tri, c));
-            GLPGP_CHECK(ipush(&T->tri, a));
-            GLPGP_CHECK(ipush(&T->tri, g));
+            int mi = T->xy.n / 2;
+            double mx = 0.5 * (T->xy.p[2 * a] + T->xy.p[2 * b]), my = 0.5 * (T->xy.p[2 * a + 1] + T->xy.p[2 * b + 1]);
+            st = dpush(&T->xy, mx);
+            if (st == GLPGP_OK) st = dpush(&T->xy, my);
+            if (st == GLPGP_OK) st = ipush(&T->kind, 0);
+            if (st == GLPGP_OK) st = ipush(&T->glob, -1);
+            if (st != GLPGP_OK) break;
+            v = T->tri.p + 3 * t; /* the two halves in place first, then the two new ones */
+            w = T->tri.p + 3 * u;
+            v[0] = a;
+            v[1] = mi;
+            v[2] = c;
+            w[0] = b;
+            w[1] = mi;
+            w[2] = d;
+            int nt4[6] = {mi, b, c, mi, a, d};
+            for (int i = 0; i < 6 && st == GLPGP_OK; i++) st = ipush(&T->tri, nt4[i]);
+            done[t] = done[u] = 1;
             added++;
             max_new--;
         }
-        GLPGP_CHECK(flips(T, C));
+        free(done);
+        free(nb);
+        if (st != GLPGP_OK) return st;
         if (!added) break;
+        GLPGP_CHECK(flips(T, C));
     }
     return GLPGP_OK;
 }
@@ -1536,15 +1570,6 @@ glpgp_status glpgp_quadmesh_repair(const glpgp_quadmesh *qin, const glpgp_mesh *
             for (int f = 0; f < q->nf; f++) ck.flags[f] &= ~(unsigned)QF_NONQUAD;
         int nbad = 0;
         for (int f = 0; f < q->nf; f++) nbad += ck.flags[f] != 0;
-        if (getenv("GLPGP_REPAIR_DEBUG"))
-            for (int f = 0; f < q->nf; f++)
-                if (ck.flags[f]) {
-                    const int *v = q->face_vert + q->face_start[f];
-                    int k = q->face_start[f + 1] - q->face_start[f];
-                    fprintf(stderr, "round %d face %d flags %x:", round, f, ck.flags[f]);
-                    for (int i = 0; i < k; i++) fprintf(stderr, " (%.4f %.4f)", q->xy[2 * v[i]], q->xy[2 * v[i] + 1]);
-                    fprintf(stderr, "\n");
-                }
         if (nbad == 0 && q->nf > 0) break; /* an empty mesh: the whole domain is re-meshed */
         rs.rounds++;
         /* B: bad faces + (round + 1) vertex rings */
@@ -1594,7 +1619,7 @@ glpgp_status glpgp_quadmesh_repair(const glpgp_quadmesh *qin, const glpgp_mesh *
         /* smooth the new vertices; odd faces left: close them, smooth again */
         if (smooth > 0) GLPGP_CHECK_GOTO(st, glpgp_quadmesh_smooth(n, mark, smooth, 0.5, NULL), done);
         int odd = 0;
-        for (int f = 0; f < n->nf; f++) odd |= (n->face_start[f + 1] - n->face_start[f]) != 4;
+        for (int f = 0; f < n->nf; f++) odd += (n->face_start[f + 1] - n->face_start[f]) != 4;
         if (odd && !keep_polygons) {
             free(mark2);
             mark2 = NULL;

@@ -94,7 +94,7 @@ run_ok "quality e.msh" quality e.msh --size 0.2
 grep -qE "25 quads, 0 other faces" out.txt || fail "quality e.msh: $(cat out.txt)"
 
 # ---- invalid meshes: exit 3, not written, unless --allow-invalid ------------
-# a strip 8 x 0.3 (narrower than h = 1): the parametrization collapses
+# a strip 8 x 0.12 (much narrower than h = 1): the parametrization collapses
 awk 'BEGIN { nx = 160; ny = 6;
     for (j = 0; j <= ny; j++) for (i = 0; i <= nx; i++) printf "v %.6f %.6f 0\n", 8.0 * i / nx, 0.12 * j / ny;
     for (j = 0; j < ny; j++) for (i = 0; i < nx; i++) { a = j * (nx + 1) + i + 1; b = a + 1; c = a + nx + 2; d = a + nx + 1;

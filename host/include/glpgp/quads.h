@@ -112,8 +112,8 @@ glpgp_status glpgp_quadmesh_smooth(glpgp_quadmesh *q, const unsigned char *mark,
  * removed with one ring of neighbours (more in later rounds, at most 4),
  * and each hole left is filled with quads: the polygon between the kept
  * faces and the domain boundary (input boundary vertices, corners kept) is
- * triangulated (constrained Delaunay, centroids in triangles longer than
- * 2.6 h) and every triangle becomes 3 or 5 convex quads without splitting
+ * triangulated (constrained Delaunay, inner edges longer than
+ * 2.6 h bisected) and every triangle becomes 3 or 5 convex quads without splitting
  * the edges shared with the kept faces. Boundary vertices within h/4 of the
  * domain boundary are first moved onto it. smooth: sweeps of
  * glpgp_quadmesh_smooth on the new vertices. keep_polygons: faces that are
