@@ -34,6 +34,7 @@ typedef struct solve_cli {
 
 static void build(glpgp_opts *t, solve_cli *c)
 {
+    memset(c, 0, sizeof *c); /* outputs NULL, no option seen */
     glpgp_options_default(&c->o);
     glpgp_quad_options_default(&c->qo);
     glpgp_render_options_default(&c->ro);

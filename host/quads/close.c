@@ -1,4 +1,4 @@
-/* quads_pair.c: turning the polygon faces left by the extraction into quads
+/* quads/close.c: turning the polygon faces left by the extraction into quads
  * without changing the element size (glpgp_quadmesh_close_polygons), and a
  * quality-guarded smoothing of chosen vertices (glpgp_quadmesh_smooth).
  *

@@ -90,7 +90,7 @@ glpgp_status glpgp_quadmesh_subdivide(const glpgp_quadmesh *q, glpgp_quadmesh **
  * quality report). The strip statistics are set in *out, the extraction
  * diagnostics copied. new_vertices (may be NULL): *new_vertices receives a
  * calloc'ed flag per vertex of *out, 1 for the vertices added here (free()).
- * The algorithm is described at the top of quads_pair.c. */
+ * The algorithm is described at the top of quads/close.c. */
 glpgp_status glpgp_quadmesh_close_polygons(const glpgp_quadmesh *q, glpgp_quadmesh **out,
                                            unsigned char **new_vertices);
 
