@@ -16,7 +16,8 @@
  *     flags a face (smaller in later rounds): chords across fillets and
  *     rounded corners. None: done;
  *  2. B = the bad faces and every face sharing a vertex with them (r + 1
- *     rings); K = the others. The region R = domain \ K is built
+ *     rings; in the first round no ring around a face that is bad only for
+ *     the boundary distance, e.g. a chord across a fillet); K = the others. The region R = domain \ K is built
  *     combinatorially: its boundary is
  *       - every edge of K that has no K face on its other side, reversed,
  *         except a "covered chord": both ends on the same domain loop,
@@ -1595,8 +1596,11 @@ glpgp_status glpgp_quadmesh_repair(const glpgp_quadmesh *qin, const glpgp_mesh *
         for (int f = 0; f < q->nf; f++) inB[f] = ck.flags[f] != 0;
         for (int ring = 0; ring <= round; ring++) {
             memset(vb, 0, (size_t)q->nv + 1);
+            /* first round: a face that is only too far from the boundary (a
+             * chord across a feature, a lost hole) is fine in itself and gets
+             * no ring; the others do */
             for (int f = 0; f < q->nf; f++)
-                if (inB[f])
+                if (inB[f] && (round > 0 || ring > 0 || (ck.flags[f] & ~(unsigned)(QF_FAR | QF_LOST))))
                     for (int s = q->face_start[f]; s < q->face_start[f + 1]; s++) vb[q->face_vert[s]] = 1;
             for (int v = 0; v < q->nv; v++)
                 if (vb[v])
