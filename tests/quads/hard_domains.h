@@ -24,7 +24,7 @@
  * strip     a strip 8 H long, 0.12 H wide (much narrower than H)
  * smallhole square with a hole of radius 0.08 H and one of 0.3 H
  * wedge20   a 20-degree wedge closed by an arc
- * cusp      a crescent between two circles (tips of about 8 degrees) with a
+ * cusp      a crescent between two circles (tips of about 16 degrees) with a
  *           0.5-degree spike cut into its outer side
  * graded    NACA 0012 airfoil (chord 3 H) in a 14 x 10 H box: sizes e at the
  *           airfoil, 40 e at the box corners (edge ratio >= 40)
@@ -33,8 +33,9 @@
  * motor     lamination: annulus (radii 2.2 H / 4.5 H) with 8 slots 0.3 H
  *           wide and 1.2 H deep between teeth, filleted slot bottoms
  * fillet    L-shape with a fillet (radius 1.2 H) at the re-entrant corner
- *           and spline-rounded outer corners (polylines) */
-#define HD_NAMES "slot strip smallhole wedge20 cusp graded perforated ibeam motor fillet"
+ *           and spline-rounded outer corners (polylines)
+ * crack     square with a crack: a notch 0.01 H wide and 2.5 H long */
+#define HD_NAMES "slot strip smallhole wedge20 cusp graded perforated ibeam motor fillet crack"
 
 typedef struct hd_poly {
     int n, cap_l;      /* loops */
@@ -253,6 +254,9 @@ static int hd_build(const char *name, double e, hd_poly *p)
         hd_arc(p, rc, rc, rc, HD_PI, 1.5 * HD_PI, fmin(e, 0.1));
         p->np--;
         hd_end(p);
+    } else if (!strcmp(name, "crack")) {
+        double c[] = {0, 0, 5, 0, 5, 5, 0, 5, 0, 2.505, 2.5, 2.505, 2.5, 2.495, 0, 2.495};
+        hd_polygon(p, c, 8, e);
     } else {
         return 0;
     }

@@ -3,7 +3,8 @@
  * narrower than H, a strip much narrower than H, holes much smaller than H,
  * a 20-degree wedge, a crescent with a 0.5-degree spike (cusps), an airfoil
  * in a graded far field (edge ratio 40), a perforated plate, an I-beam with
- * a thin web, a lamination with slots between teeth, fillets) meshed by
+ * a thin web, a lamination with slots between teeth, fillets, a crack 0.01 H
+ * wide) meshed by
  * Gmsh from .poly files (the reader is used too), solved on the reference
  * backend at H = 1 with 12 and 6 mean edges per H (the graded one at 12
  * only: at 6 its far field is coarser than 2 mean edges, a usage error) and
@@ -127,7 +128,7 @@ int main(void)
 
     /* the failure classes at 12 and 6 mean edges per H */
     static const char *names[] = {"slot", "strip", "smallhole", "wedge20", "cusp", "graded",
-                                  "perforated", "ibeam", "motor", "fillet"};
+                                  "perforated", "ibeam", "motor", "fillet", "crack"};
     const int edges[2] = {12, 6};
     for (int s = 0; s < 2; s++) {
         int valid = 0, irr = 0, nq = 0, runs = 0;
