@@ -1435,9 +1435,6 @@ done:
 static glpgp_status snap_boundary(glpgp_quadmesh *q, dbnd *D, double h, int *snapped)
 {
     int *cnt = NULL, *cand = NULL, ncap = 0;
-    qcheck ck;
-    memset(&ck, 0, sizeof ck);
-    GLPGP_CHECK(glpgp_qcheck_run(q, NULL, h, 0.25 * h, &ck));
     glpgp_status st = glpgp_calloc((size_t)q->nv + 1, sizeof(int), &cnt);
     /* boundary vertices: an edge used once */
     ekv *E = NULL;
@@ -1491,7 +1488,6 @@ static glpgp_status snap_boundary(glpgp_quadmesh *q, dbnd *D, double h, int *sna
         }
     }
 done:
-    glpgp_qcheck_free(&ck);
     free(cnt);
     free(cand);
     free(E);
