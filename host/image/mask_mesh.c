@@ -251,10 +251,12 @@ static glpgp_status mesh_in_child(const glpgp_gmsh_api *api, const glpgp_polygon
                         timeout, hm_user);
     } else if (!data_ok) {
         char how[96];
-        if (w == pid)
+        if (bad_data) /* killed by us */
+            snprintf(how, sizeof how, "failed (its process sent a malformed reply)");
+        else if (w == pid)
             describe_exit(ws, how, sizeof how);
         else
-            snprintf(how, sizeof how, "failed (%s)", bad_data ? "garbled reply" : "no reply");
+            snprintf(how, sizeof how, "failed (its process sent no reply)");
         st = GLPGP_FAIL(GLPGP_ERR_MESH,
                         "Gmsh %s while meshing %d boundary loop%s (%d points) with mesh size %g; "
                         "Gmsh 4.8 aborts on some boundaries: try another --mesh-size, --simplify, "
