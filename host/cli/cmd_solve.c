@@ -161,6 +161,16 @@ int glpgp_cmd_solve(int argc, char **argv)
         return rc;
     }
     rc = GLPGP_EXIT_FAIL;
+    if (c.o.field == GLPGP_FIELD_FILE) {
+        /* read the field file now: a bad one fails before the backend starts
+         * (the solve reads it again) */
+        double *u = NULL;
+        long cg = 0;
+        glpgp_status st = glpgp_malloc(2 * (size_t)m->nv, sizeof *u, &u);
+        if (st == GLPGP_OK) st = glpgp_field_compute(m, NULL, &c.o, u, &cg);
+        free(u);
+        if (st != GLPGP_OK) goto fail;
+    }
 
     if (glpgp_backend_select(c.backend, c.device, c.verbosity > 0, &b) != GLPGP_OK) goto fail;
     if (glpgp_solve(m, b, &c.o, &r) != GLPGP_OK) goto fail;
