@@ -354,6 +354,8 @@ static const char *parse_field(const char *v, void *dest)
         o->field = GLPGP_FIELD_BOUNDARY;
     } else if (!strcmp(v, "radial")) {
         o->field = GLPGP_FIELD_RADIAL;
+    } else if (!strcmp(v, "cross")) {
+        o->field = GLPGP_FIELD_CROSS;
     } else {
         o->field = GLPGP_FIELD_FILE;
         o->field_file = v;
@@ -392,9 +394,10 @@ void glpgp_opts_add_solver(glpgp_opts *t, glpgp_options *o)
     c.kind = GLPGP_OPT_CUSTOM;
     c.dest = o;
     c.parse = parse_field;
-    c.meta = "boundary|radial|FILE";
+    c.meta = "boundary|radial|cross|FILE";
     c.help = "guiding field U: smooth field aligned with the boundary, radial\n"
-             "about --center, or one \"ux uy\" line per vertex from FILE";
+             "about --center, from the Ginzburg-Landau cross field (see\n"
+             "--cross-eps0), or one \"ux uy\" line per vertex from FILE";
     c.def = "boundary";
     glpgp_opts_add(t, c);
     c.name = "--center";
@@ -409,6 +412,12 @@ void glpgp_opts_add_solver(glpgp_opts *t, glpgp_options *o)
 
     glpgp_opts_group(t, "Continuation and solvers");
     glpgp_opt_double(t, "--eps0", &o->eps0, 0.0, 1, HUGE_VAL, 0, "F", "first eps, as a multiple of h");
+    glpgp_opt_double(t, "--cross-eps0", &o->cross_eps0, 0.0, 1, HUGE_VAL, 0, "F",
+                     "--field cross: first eps, as a multiple of the bounding-box diagonal");
+    glpgp_opt_double(t, "--cross-eps-min", &o->cross_eps_min, 0.0, 1, HUGE_VAL, 0, "F",
+                     "--field cross: last eps, as a multiple of the mean edge length");
+    glpgp_opt_double(t, "--cross-rtol", &o->cross_rtol, 0.0, 1, 1.0, 1, "F",
+                     "--field cross: each eps level stops when |g| <= F |g0|");
     glpgp_opt_double(t, "--eps-ratio", &o->eps_ratio, 0.0, 1, 1.0, 1, "F", "eps_{k+1} = F eps_k");
     glpgp_opt_double(t, "--eps-min", &o->eps_min, 0.0, 1, HUGE_VAL, 0, "F",
                      "last eps, as a multiple of the mean edge length");
