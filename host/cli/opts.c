@@ -476,9 +476,9 @@ void glpgp_opts_add_quads(glpgp_opts *t, glpgp_quad_options *q, int *given, int 
     o->seen = given;
 }
 
-static const char *const k_kinds[] = {"grid", "checker", "zabs", "field", "theta", NULL};
+static const char *const k_kinds[] = {"grid", "checker", "zabs", "field", "theta", "cross", NULL};
 static const int k_kind_vals[] = {GLPGP_IMAGE_GRID, GLPGP_IMAGE_CHECKER, GLPGP_IMAGE_ZABS,
-                                  GLPGP_IMAGE_FIELD, GLPGP_IMAGE_THETA};
+                                  GLPGP_IMAGE_FIELD, GLPGP_IMAGE_THETA, GLPGP_IMAGE_CROSS};
 static const char *const k_backgrounds[] = {"white", "transparent", NULL};
 
 void glpgp_opts_add_picture(glpgp_opts *t, glpgp_render_options *r, int line_width)
@@ -487,7 +487,9 @@ void glpgp_opts_add_picture(glpgp_opts *t, glpgp_render_options *r, int line_wid
     glpgp_opt_choice(t, "--image-kind", &r->kind, k_kinds, k_kind_vals,
                      "grid (unit grid of theta_u, theta_v: the paper's Fig. 4),\n"
                      "checker, zabs (heat map of min |z_u|, |z_v|), field (arrows of\n"
-                     "the guiding field U), theta (red = theta_u, green = theta_v)");
+                     "the guiding field U), theta (red = theta_u, green = theta_v),\n"
+                     "cross (the cross field of a --field cross result, singularities\n"
+                     "marked: +1/4 red, -1/4 blue)");
     glpgp_opt_choice(t, "--background", &r->transparent, k_backgrounds, NULL, "picture background");
     if (line_width) {
         glpgp_opt *o = glpgp_opt_double(t, "--line-width", &r->line_width, 0.0, 1, 100.0, 0, "W",

@@ -5,6 +5,8 @@
  * arrows, the boundary (anti-aliased strokes through a coverage buffer, so
  * joints are not drawn twice), captions with a 5x7 bitmap font. */
 #include "glpgp/image.h"
+#include "glpgp/cross.h"
+#include "glpgp/kinds.h"
 #include "glpgp/phase.h"
 
 #include <math.h>
@@ -24,7 +26,7 @@ void glpgp_render_options_default(glpgp_render_options *o)
     o->margin = -1;
 }
 
-static const char *const kind_names[] = {"grid", "checker", "zabs", "field", "theta", NULL};
+static const char *const kind_names[] = {"grid", "checker", "zabs", "field", "theta", "cross", NULL};
 
 int glpgp_image_kind_parse(const char *name)
 {
@@ -35,7 +37,7 @@ int glpgp_image_kind_parse(const char *name)
 
 const char *glpgp_image_kind_name(int kind)
 {
-    return kind >= 0 && kind <= GLPGP_IMAGE_THETA ? kind_names[kind] : "?";
+    return kind >= 0 && kind <= GLPGP_IMAGE_CROSS ? kind_names[kind] : "?";
 }
 
 /* ---- small helpers ------------------------------------------------------- */
@@ -128,8 +130,10 @@ glpgp_status glpgp_render(const glpgp_mesh *m, const glpgp_result *r, const glpg
         glpgp_render_options_default(&o);
     if (o.size < 16 || o.size > 32768)
         return GLPGP_FAIL(GLPGP_ERR_ARG, "image size %d out of range [16, 32768]", o.size);
-    if (o.kind < 0 || o.kind > GLPGP_IMAGE_THETA)
+    if (o.kind < 0 || o.kind > GLPGP_IMAGE_CROSS)
         return GLPGP_FAIL(GLPGP_ERR_ARG, "unknown image kind %d", o.kind);
+    if (o.kind == GLPGP_IMAGE_CROSS && !r->cross)
+        return GLPGP_FAIL(GLPGP_ERR_ARG, "render: the result has no cross field (solve with --field cross)");
     if (!r->osc[0].z || !r->osc[1].z) return GLPGP_FAIL(GLPGP_ERR_ARG, "render: result has no z");
     double lw = o.line_width > 0 ? o.line_width : fmax(1.0, 1.5 * o.size / 1024.0);
     int margin = o.margin >= 0 ? o.margin : o.size / 64;
@@ -150,7 +154,7 @@ glpgp_status glpgp_render(const glpgp_mesh *m, const glpgp_result *r, const glpg
     glpgp_status st = GLPGP_OK;
     GLPGP_CHECK(glpgp_image_create(W, H, 4, &im));
     GLPGP_CHECK_GOTO(st, glpgp_calloc((size_t)W * (size_t)H, sizeof(float), &cov), fail);
-    if (o.kind == GLPGP_IMAGE_FIELD) {
+    if (o.kind == GLPGP_IMAGE_FIELD || o.kind == GLPGP_IMAGE_CROSS) {
         GLPGP_CHECK_GOTO(st, glpgp_malloc(2 * (size_t)W * (size_t)H, sizeof(float), &fld), fail);
         for (size_t i = 0; i < 2 * (size_t)W * (size_t)H; i++) fld[i] = NAN;
     }
@@ -194,8 +198,8 @@ glpgp_status glpgp_render(const glpgp_mesh *m, const glpgp_result *r, const glpg
         gv[1] = (th[1][1] - th[1][0]) * g1y + (th[1][2] - th[1][0]) * g2y;
         gnu = hypot(gu[0], gu[1]);
         gnv = hypot(gv[0], gv[1]);
-        int sing = (r->osc[0].singular && r->osc[0].singular[t]) ||
-                   (r->osc[1].singular && r->osc[1].singular[t]);
+        int sing = o.kind != GLPGP_IMAGE_CROSS && ((r->osc[0].singular && r->osc[0].singular[t]) ||
+                                                   (r->osc[1].singular && r->osc[1].singular[t]));
 
         int x0 = (int)floor(fmin(P[0][0], fmin(P[1][0], P[2][0]))),
             x1 = (int)ceil(fmax(P[0][0], fmax(P[1][0], P[2][0])));
@@ -256,6 +260,20 @@ glpgp_status glpgp_render(const glpgp_mesh *m, const glpgp_result *r, const glpg
                             (float)(U[2 * tv[0] + 1] * l0 + U[2 * tv[1] + 1] * l1 + U[2 * tv[2] + 1] * l2);
                     }
                     break;
+                case GLPGP_IMAGE_CROSS: {
+                    /* background: |w| (light, darker in the cores); w kept for the crosses */
+                    const double *w = r->cross->w;
+                    size_t pi = (size_t)j * (size_t)W + (size_t)i;
+                    double wr = w[2 * tv[0]] * l0 + w[2 * tv[1]] * l1 + w[2 * tv[2]] * l2;
+                    double wi = w[2 * tv[0] + 1] * l0 + w[2 * tv[1] + 1] * l1 + w[2 * tv[2] + 1] * l2;
+                    double a = clamp01(hypot(wr, wi));
+                    fld[2 * pi] = (float)wr;
+                    fld[2 * pi + 1] = (float)wi;
+                    c[0] = (float)(0.80 + 0.17 * a);
+                    c[1] = (float)(0.80 + 0.17 * a);
+                    c[2] = (float)(0.78 + 0.17 * a);
+                    break;
+                }
                 default: /* THETA */
                     c[0] = (float)(tu - floor(tu));
                     c[1] = (float)(tvv - floor(tvv));
@@ -273,8 +291,43 @@ glpgp_status glpgp_render(const glpgp_mesh *m, const glpgp_result *r, const glpg
             }
     }
 
+    if (o.kind == GLPGP_IMAGE_CROSS) {
+        /* short crosses on a regular pixel grid: alpha = arg(w)/4 and alpha + 90 degrees */
+        int step = o.size / 40 < 8 ? 8 : o.size / 40;
+        double len = 0.75 * step;
+        for (int j = step / 2; j < H; j += step)
+            for (int i = step / 2; i < W; i += step) {
+                size_t pi = (size_t)j * (size_t)W + (size_t)i;
+                double wr = fld[2 * pi], wi = fld[2 * pi + 1];
+                if (isnan(wr) || !(hypot(wr, wi) > 1e-12)) continue;
+                double al = atan2(wi, wr) / 4.0;
+                double cx = i + 0.5, cy = j + 0.5;
+                for (int q = 0; q < 2; q++) {
+                    double ux = cos(al + q * GLPGP_PI / 2), uy = -sin(al + q * GLPGP_PI / 2); /* y down */
+                    stroke(cov, W, H, cx - 0.5 * len * ux, cy - 0.5 * len * uy, cx + 0.5 * len * ux,
+                           cy + 0.5 * len * uy, lw);
+                }
+            }
+        static const float col_cross[3] = {0.10f, 0.20f, 0.45f};
+        apply_cov(im, cov, col_cross);
+        /* singularities: +1/4 red, -1/4 blue; radius grows with |index| */
+        if (o.singular) {
+            static const float col_pos[3] = {0.90f, 0.05f, 0.05f}, col_neg[3] = {0.05f, 0.35f, 0.95f};
+            for (int sgn = 0; sgn < 2; sgn++) {
+                for (int k = 0; k < r->cross->nsing; k++) {
+                    const glpgp_cross_sing *q = &r->cross->sing[k];
+                    if ((q->index4 > 0) != (sgn == 0)) continue;
+                    double rad = fmax(4.0, 3.0 * lw) * sqrt((double)abs(q->index4));
+                    double cx = (q->x - ox) * scale, cy = (oy - q->y) * scale;
+                    stroke(cov, W, H, cx, cy, cx, cy, 2 * rad);
+                }
+                apply_cov(im, cov, sgn == 0 ? col_pos : col_neg);
+            }
+        }
+    }
+
     /* singular triangles can be smaller than a pixel: mark each with a red dot */
-    if (o.singular && o.kind != GLPGP_IMAGE_ZABS) {
+    if (o.singular && o.kind != GLPGP_IMAGE_ZABS && o.kind != GLPGP_IMAGE_CROSS) {
         double rad = fmax(2.5, 1.5 * lw);
         for (int t = 0; t < m->nt; t++) {
             if (!((r->osc[0].singular && r->osc[0].singular[t]) ||

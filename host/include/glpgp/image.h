@@ -103,7 +103,11 @@ enum glpgp_image_kind {
                              modulo 1 only, so whole cells cannot alternate) */
     GLPGP_IMAGE_ZABS,     /* heat map of min(|z_u|, |z_v|) (0 black .. >= 1 yellow-white) */
     GLPGP_IMAGE_FIELD,    /* arrows of the guiding field U on a light background */
-    GLPGP_IMAGE_THETA     /* raw colour map: red = theta_u, green = theta_v (mod 1) */
+    GLPGP_IMAGE_THETA,    /* raw colour map: red = theta_u, green = theta_v (mod 1) */
+    GLPGP_IMAGE_CROSS     /* the cross field of a --field cross result: short crosses
+                             (alpha = arg(w)/4 of the interpolated w, both directions), its
+                             singularities as dots (+1/4 red, -1/4 blue, larger for |index|
+                             > 1/4); needs a result with a cross field */
 };
 
 typedef struct glpgp_render_options {
@@ -120,7 +124,7 @@ typedef struct glpgp_render_options {
 
 void glpgp_render_options_default(glpgp_render_options *o);
 
-/* Kind from its name ("grid", "checker", "zabs", "field", "theta"); -1 if unknown. */
+/* Kind from its name ("grid", "checker", "zabs", "field", "theta", "cross"); -1 if unknown. */
 int glpgp_image_kind_parse(const char *name);
 const char *glpgp_image_kind_name(int kind);
 
