@@ -3,8 +3,9 @@
 # cross field's singularities (a disk: 4 of index +1/4, index sum = the
 # Poincare-Hopf value 1; a square: none, sum 0), the VTK result carries
 # cross_w and cross_index4 and reads back; `glpgp render --image-kind cross`
-# draws it (skipped without OpenImageIO), and refuses a result without a
-# cross field with one error line.
+# draws it and `glpgp figure --cross` makes the Fig. 1 triptych (skipped
+# without OpenImageIO), and render refuses a result without a cross field
+# with one error line.
 # Usage: bash cli_cross.sh <path-to-glpgp> <data-dir>
 . "$(dirname "$0")/lib.sh" "$@"
 
@@ -31,6 +32,9 @@ if "$GLPGP" render d.vtk --image-kind cross -o probe.png >/dev/null 2>probe.txt;
     run_ok "plain result" solve shape:square:500 --backend reference -o p.vtk
     run_fail "render cross of a result without one" 1 "no cross field" render p.vtk --image-kind cross -o p.png
     [ ! -e p.png ] || fail "p.png written"
+    run_ok "figure --cross" figure shape:disk:2000 --cross --backend reference --image-size 200 -o fig1.png
+    expect_out "cross field: 4 singularities \(index sum 1\)" "figure --cross"
+    [ -s fig1.png ] || fail "figure --cross wrote nothing"
 elif ! grep -qi "without OpenImageIO\|module" probe.txt; then
     fail "render --image-kind cross: $(cat probe.txt)"
 fi

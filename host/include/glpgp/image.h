@@ -146,6 +146,16 @@ glpgp_status glpgp_render_compare(const glpgp_mesh *m, const glpgp_result *const
                                   const char *const *labels, int n, const glpgp_render_options *o,
                                   glpgp_image **out);
 
+/* The paper's Fig. 1 for a --field cross result r on mesh m: three panels
+ * side by side, each rendered with o's size and options: the cross field
+ * (GLPGP_IMAGE_CROSS: crosses, singularities +1/4 red, -1/4 blue), the GL-PGP
+ * grid texture (GLPGP_IMAGE_GRID), and the quad mesh q (edges, interior
+ * vertices of valence 3 blue and >= 5 red; q NULL: that panel is left out),
+ * with captions (the cross field's singularity counts, the oscillators',
+ * the number of faces). GLPGP_ERR_ARG when r has no cross field. */
+glpgp_status glpgp_render_figure1(const glpgp_mesh *m, const glpgp_result *r, const glpgp_quadmesh *q,
+                                  const glpgp_render_options *o, glpgp_image **out);
+
 /* Draw text with the built-in 5x7 font (A-Z, 0-9, + - : . , ( ) / = _ and
  * space; lower case drawn as upper case, other characters as a box), each
  * font pixel a scale x scale block, top-left corner at (x, y), composited
