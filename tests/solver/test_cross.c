@@ -11,6 +11,8 @@
  *  - solves: the index sum equals Poincare-Hopf on every shape; the disk has 4
  *    singularities of +1/4, 90 degrees apart (within 5) at one radius (within
  *    5%); the square and the L-shape have none and give U = (1, 0) without cuts;
+ *  - the same sum on every bundled mesh (data/: annulus, L-shape, plate with
+ *    holes, square);
  *  - glpgp_solve with --field cross keeps the cross field in the result. */
 #include "testutil.h"
 
@@ -211,6 +213,28 @@ static void test_solves(void)
     }
 }
 
+/* every bundled mesh: the measured index sum is the Poincare-Hopf value */
+static void test_bundled(void)
+{
+    const char *data = getenv("GLPGP_DATA");
+    const char *files[4] = {"annulus.msh", "lshape.msh", "plate_holes.msh", "square.obj"};
+    for (int k = 0; k < 4; k++) {
+        char path[1024];
+        snprintf(path, sizeof path, "%s/%s", data ? data : "data", files[k]);
+        glpgp_mesh *m = NULL;
+        CHECK_OK(glpgp_mesh_read(path, &m));
+        if (!m) continue;
+        glpgp_cross_result *c = solve_cross(m, NULL);
+        if (c) {
+            printf("%s: %d singularities, index sum %d/4, Poincare-Hopf %d/4\n", files[k], c->nsing,
+                   c->index4_sum, c->index4_expected);
+            CHECK(c->index4_sum == c->index4_expected);
+        }
+        glpgp_cross_result_destroy(&c);
+        glpgp_mesh_destroy(&m);
+    }
+}
+
 static void test_pipeline(void)
 {
     glpgp_mesh *m = shape("square", 2500);
@@ -239,6 +263,7 @@ int main(void)
     test_poincare_hopf_formula();
     test_detection();
     test_solves();
+    test_bundled();
     test_pipeline();
     TEST_DONE();
 }
