@@ -549,6 +549,9 @@ static void json_body(FILE *f, const glpgp_mesh *m, const glpgp_options *o, cons
             jw_num(w, "median_zabs", ls->median_zabs);
             jw_bool(w, "restarted", ls->restarted);
             jw_int(w, "fallbacks", ls->fallbacks);
+            jw_int(w, "backtracked", ls->backtracked);
+            jw_num(w, "rtol", ls->rtol);
+            jw_bool(w, "capped", ls->capped);
             jw_close(w, '}');
         }
         jw_close(w, ']');

@@ -101,7 +101,8 @@ typedef struct glpgp_stats_extra {
  *   final_energy {u, v}, dirichlet {u, v},
  *   newton_iterations {total, u, v}, cg_iterations {total, u, v, field},
  *   eps_schedule {u: [{level, eps, newton, cg, grad0, grad, energy,
- *                      median_zabs, restarted, fallbacks}, ...],
+ *                      median_zabs, restarted, fallbacks, backtracked, rtol,
+ *                      capped}, ...],
  *                 v: [...]},
  *   seconds {read, setup, field, u, v, total}.
  * opts may be NULL (the option keys are then null); extra may be NULL. */
