@@ -37,12 +37,13 @@ typedef struct glpgp_trcg_info {
  * positive definite) with the block-Jacobi preconditioner M (DINV): x
  * approximately minimises -rhs.x + 1/2 x.A x subject to ||x||_M <= radius
  * (radius <= 0 or infinite: no region). Starts from x = 0; stops at
- * |r| <= rtol |rhs|, on the boundary, on negative curvature or after maxit
- * iterations (info->reason). Uses the fused CG ops of the backend table and
+ * |r| <= rtol |rhs|, on the boundary, on negative curvature (p.Ap <= 0; at
+ * the last iterate when p.Ap >= -flat ||p||_M^2, else on the boundary) or
+ * after maxit iterations (info->reason). Uses the fused CG ops of the backend table and
  * creates its four work vectors inside; reads the scalars back once per
  * iteration. Errors: backend failures, non-finite values. */
 glpgp_status glpgp_trcg(glpgp_backend *b, const glpgp_vec *rhs, glpgp_vec *x, double radius,
-                        double rtol, int maxit, glpgp_trcg_info *info);
+                        double flat, double rtol, int maxit, glpgp_trcg_info *info);
 const char *glpgp_trcg_reason_name(glpgp_trcg_reason r);
 
 #endif

@@ -154,14 +154,27 @@ static glpgp_status tr_step(glpgp_backend *b, const glpgp_options *o, glpgp_newt
     double s[GLPGP_NSLOTS];
     int hess = tr_hessian(o);
     glpgp_trcg_info ti;
-    /* inexact Newton: eta = forcing |g|/|g_0|, within [cg_rtol, forcing_max] */
-    const double eta = fmin(o->forcing_max, fmax(o->cg_rtol, o->forcing * gn / ns->grad0));
+    /* inexact Newton: eta = forcing |g|/|g_0|, within [cg_rtol, forcing_max],
+     * and at most forcing_final gtol/|g| (near the end of a level the linear
+     * residual is what is left of |g|: solve so that one step can finish) */
+    double eta = fmin(o->forcing_max, o->forcing * gn / ns->grad0);
+    if (ns->gtol > 0.0) eta = fmin(eta, o->forcing_final * ns->gtol / gn);
+    eta = fmax(o->cg_rtol, eta);
     for (;;) {
         GLPGP_CHECK(op->assemble_newton(b, ns->x, inv4e2, hess));
         /* d ~ argmin m(d) = F + g.d + 1/2 d.H d  subject to ||d||_M <= radius */
         GLPGP_CHECK(op->axpby(b, -1.0, ns->g, 0.0, ns->xt)); /* xt <- -g (rhs) */
-        GLPGP_CHECK(glpgp_trcg(b, ns->xt, ns->d, ns->radius, eta, o->cg_max, &ti));
+        GLPGP_CHECK(glpgp_trcg(b, ns->xt, ns->d, ns->radius, o->tr_flat, eta, o->cg_max, &ti));
         info->cg += ti.iterations;
+        if (ti.reason == GLPGP_TRCG_NEGCURV && !(ns->radius > 0.0) && ns->step_max > 0.0 &&
+            ti.norm > o->tr_grow * ns->step_max) {
+            /* negative curvature before any region, and a step longer than
+             * tr_grow times the longest good one so far (CG iterates along
+             * nearly flat directions can be huge): redo in that region */
+            ns->radius = o->tr_grow * ns->step_max;
+            GLPGP_CHECK(glpgp_trcg(b, ns->xt, ns->d, ns->radius, o->tr_flat, eta, o->cg_max, &ti));
+            info->cg += ti.iterations;
+        }
         if (ti.reason != GLPGP_TRCG_PRECOND || hess == GLPGP_HESS_PROJECTED || hess == GLPGP_HESS_PAPER)
             break;
         /* an indefinite diagonal block: the block-Jacobi norm is no norm; redo
@@ -193,8 +206,9 @@ static glpgp_status tr_step(glpgp_backend *b, const glpgp_options *o, glpgp_newt
      * a from the minimiser of the quadratic through F, a g.d and F(x (+) a d),
      * clamped to [tr_shrink_min, tr_shrink] times the previous a.
      * rho = (F - F(x (+) a d)) / pred(a); a point is taken when rho >=
-     * tr_accept, or, when pred(a) is below the rounding level of F, when F
-     * does not visibly rise (the level then ends: converged to rounding) */
+     * tr_accept, or, when pred(a) is below the rounding level of F (where
+     * rho means nothing), when F does not visibly rise and |g| decreases;
+     * otherwise the level ends there (converged to the rounding level) */
     double a = 1.0, Fa = F, rho = -HUGE_VAL;
     int take = 0, at_noise = 0;
     for (int j = 0; j <= o->max_backtracks; j++) {
@@ -211,15 +225,25 @@ static glpgp_status tr_step(glpgp_backend *b, const glpgp_options *o, glpgp_newt
         at_noise = pred <= ns->noise;
         rho = pred > 0.0 && isfinite(Fa) ? (F - Fa) / pred : -HUGE_VAL;
         take = isfinite(Fa) && (at_noise ? F - Fa >= -ns->noise : rho >= o->tr_accept);
+        if (take && at_noise) {
+            /* F cannot tell: take the point when it lowers |g| instead */
+            GLPGP_CHECK_GOTO(st, op->gradient(b, ns->xt, inv4e2, ns->work), done);
+            GLPGP_CHECK_GOTO(st, op->dot(b, ns->work, ns->work, GLPGP_S_DOT), done);
+            GLPGP_CHECK_GOTO(st, op->get_scalars(b, s, GLPGP_NSLOTS), done);
+            take = sqrt(s[GLPGP_S_DOT]) < gn;
+        }
         if (take || at_noise) break;
     }
     /* radius: a backtracked step sets it to the length taken (tr_grow times
      * that after a good model, rho > tr_good); after a full
      * step, shrink it after a poor model (rho < tr_poor; to a* |d|, a* as
      * above within [tr_shrink_min, tr_shrink]), grow it by tr_grow after a
-     * good step (rho > tr_good) that the region cut; the first region is
-     * tr_grow |d| of the first (unbounded) step taken */
+     * good step (rho > tr_good) that the region cut. Without a region
+     * (radius <= 0) the steps are plain Newton steps until one is
+     * backtracked, poor, or meets negative curvature: its length (tr_grow
+     * times that after a good model) is the first radius */
     const int cut = ti.reason == GLPGP_TRCG_BOUNDARY || ti.reason == GLPGP_TRCG_NEGCURV;
+    if (take && !at_noise && a == 1.0 && rho >= o->tr_poor) ns->step_max = fmax(ns->step_max, step);
     if (take && !at_noise) {
         if (a < 1.0) {
             ns->radius = (rho > o->tr_good ? o->tr_grow : 1.0) * a * step;
@@ -228,7 +252,7 @@ static glpgp_status tr_step(glpgp_backend *b, const glpgp_options *o, glpgp_newt
             double as = c > 0.0 ? -gd / (2.0 * c) : o->tr_shrink;
             ns->radius = fmax(o->tr_shrink_min, fmin(o->tr_shrink, as)) * step;
         } else if (ns->radius <= 0.0) {
-            ns->radius = o->tr_grow * step;
+            if (cut) ns->radius = (rho > o->tr_good ? o->tr_grow : 1.0) * step;
         } else if (rho > o->tr_good && cut) {
             ns->radius *= o->tr_grow;
         }
@@ -287,7 +311,10 @@ glpgp_status glpgp_newton_level(glpgp_backend *b, const glpgp_options *o, glpgp_
          * 64 eps (|F| + |x|^2) (64 eps |F| misses the cancellation when the
          * energy is small against its terms) */
         ns->noise = 64.0 * DBL_EPSILON * (fabs(F) + s[GLPGP_S_DOT2]);
-        if (it == 0) ls->grad0 = ns->grad0 = gn;
+        if (it == 0) {
+            ls->grad0 = ns->grad0 = gn;
+            ns->gtol = rtol * gn;
+        }
         ls->grad = gn;
         ls->energy = F;
         if (gn <= rtol * ls->grad0 || gn == 0.0) break;
@@ -311,10 +338,10 @@ glpgp_status glpgp_newton_level(glpgp_backend *b, const glpgp_options *o, glpgp_
         else
             glpgp_log(GLPGP_LOG_INFO, "  %s eps=%.4g newton %3d  |g|=%.3e  E+P=%.10g  cg=%d  step=%g",
                       glpgp_osc_name(k), eps, it + 1, gn, info.energy, info.cg, info.alpha);
-        /* no descent possible at this precision (line search failed, or the
-         * trust-region model promises less than the rounding level of F):
-         * level done */
-        if (!info.accepted || (tr && info.at_noise)) break;
+        /* no descent possible at this precision (the line search failed, or
+         * below the rounding level of F the trust-region step did not lower
+         * |g|): level done */
+        if (!info.accepted) break;
     }
     return GLPGP_OK;
 }

@@ -28,6 +28,7 @@ void glpgp_options_default(glpgp_options *o)
     o->max_backtracks = 40;
     o->forcing = 0.1;
     o->forcing_max = 1e-2;
+    o->forcing_final = 0.5;
     o->globalization = GLPGP_GLOBAL_TRUST_REGION;
     o->tr_accept = 1e-4;
     o->tr_poor = 0.25;
@@ -35,6 +36,7 @@ void glpgp_options_default(glpgp_options *o)
     o->tr_shrink_min = 0.1;
     o->tr_good = 0.75;
     o->tr_grow = 2.0;
+    o->tr_flat = 1e-4;
     o->retract_zabs = 0.8;
     o->cg_rtol = 1e-8;
     o->cg_max = 20000;
@@ -73,12 +75,14 @@ glpgp_status glpgp_options_check(const glpgp_options *o)
     if (!(o->exact_switch >= 0.0) || !OPEN01(o->armijo) || !(o->forcing > 0.0) ||
         !OPEN01(o->forcing_max))
         return GLPGP_FAIL(GLPGP_ERR_ARG, "Newton step parameters out of range");
+    if (!(o->forcing_final > 0.0 && o->forcing_final <= 1.0))
+        return GLPGP_FAIL(GLPGP_ERR_ARG, "forcing_final must be in (0,1], got %g", o->forcing_final);
     if (o->globalization != GLPGP_GLOBAL_TRUST_REGION && o->globalization != GLPGP_GLOBAL_LINE_SEARCH)
         return GLPGP_FAIL(GLPGP_ERR_ARG, "unknown Newton globalization %d", o->globalization);
     if (!(o->tr_accept >= 0.0 && o->tr_accept < o->tr_poor) || !(o->tr_poor < o->tr_good) ||
         !(o->tr_good < 1.0) || !OPEN01(o->tr_shrink) ||
         !(o->tr_shrink_min > 0.0 && o->tr_shrink_min <= o->tr_shrink) ||
-        !(o->retract_zabs >= 0.0 && o->retract_zabs <= 2.0) || !(o->tr_grow > 1.0 && isfinite(o->tr_grow)))
+        !(o->retract_zabs >= 0.0 && o->retract_zabs <= 2.0) || !(o->tr_flat >= 0.0 && o->tr_flat < 1.0) || !(o->tr_grow > 1.0 && isfinite(o->tr_grow)))
         return GLPGP_FAIL(GLPGP_ERR_ARG,
                           "trust-region parameters out of range (need 0 <= accept < poor < good < 1, "
                           "0 < shrink < 1 < grow)");

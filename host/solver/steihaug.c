@@ -8,7 +8,9 @@
  * backend's NEWTON matrix, b = rhs) inside the trust region ||d||_M <= radius,
  * M = the block-Jacobi preconditioner (the 2x2 diagonal blocks of A, whose
  * inverses DINV the backend holds). Unlike glpgp_cg it does not assume A SPD:
- *   - p.Ap <= 0 (negative curvature): follow p to the boundary, stop;
+ *   - p.Ap <= 0 (negative curvature): follow p to the boundary, stop (a
+ *     nearly flat one, p.Ap >= -flat ||p||_M^2, after at least one step:
+ *     stop at the last iterate instead);
  *   - the next iterate would leave the region: stop on the boundary;
  *   - |r| <= rtol |b|: the inexact Newton step, inside the region.
  * Every iterate lowers the model (Steihaug 1983; Conn, Gould, Toint,
@@ -54,7 +56,7 @@ const char *glpgp_trcg_reason_name(glpgp_trcg_reason r)
 }
 
 glpgp_status glpgp_trcg(glpgp_backend *b, const glpgp_vec *rhs, glpgp_vec *x, double radius,
-                        double rtol, int maxit, glpgp_trcg_info *info)
+                        double flat, double rtol, int maxit, glpgp_trcg_info *info)
 {
     const glpgp_backend_ops *o = b->ops;
     const size_t n = (size_t)2 * b->sys->nv;
@@ -118,9 +120,11 @@ glpgp_status glpgp_trcg(glpgp_backend *b, const glpgp_vec *rhs, glpgp_vec *x, do
             break;
         }
         const double kappa = s[GLPGP_S_PQ];
-        if (!(kappa > 0.0) && !bounded) {
-            /* negative curvature without a region: the last iterate (k > 0:
-             * it lowered the model), or the preconditioned gradient p_0 */
+        if (!(kappa > 0.0) && (!bounded || (k > 0 && -kappa <= flat * pp))) {
+            /* negative curvature without a region, or a flat one (p.Ap >=
+             * -flat ||p||^2: a direction along which E + P is quartic, not
+             * quadratic): the last iterate (k > 0: it lowered the model), or
+             * the preconditioned gradient p_0 */
             info->reason = GLPGP_TRCG_NEGCURV;
             if (k == 0) {
                 GLPGP_CHECK_GOTO(st, o->copy(b, x, p), done);

@@ -58,6 +58,8 @@ typedef struct glpgp_options {
     int max_backtracks;   /* line search halvings before the step is given up [40] */
     double forcing;       /* inexact Newton: CG tolerance eta = forcing |g| / |g_0| ... [0.1] */
     double forcing_max;   /* ... clamped to [cg_rtol, forcing_max] [1e-2] */
+    double forcing_final; /* trust region: eta also <= this (level's |g| target) / |g|,
+                             (0, 1] [0.5] */
     int globalization;    /* GLPGP_GLOBAL_* [TRUST_REGION] */
     /* trust region (radius in the block-Jacobi norm ||d||_M = sqrt(d.D d)):
      * rho = (actual decrease of E + P) / (decrease predicted by the model) */
@@ -69,6 +71,9 @@ typedef struct glpgp_options {
                              factor, (0, tr_shrink] [0.1] */
     double tr_good;       /* rho above this with a step on the boundary ... (tr_poor, 1) [0.75] */
     double tr_grow;       /* ... multiplies the radius by this, > 1 [2] */
+    double tr_flat;       /* negative curvature p.Ap >= -this ||p||_M^2 is flat: the CG step
+                             stops at its last iterate instead of following p to the
+                             boundary, [0, 1) [1e-4] */
     double retract_zabs;  /* trial points follow z (1 + Re w) e^{i Im w}, w = d/z, where
                              |z| >= this, z + d below half of it; 0: z + d everywhere;
                              [0, 2] [0.8] */
@@ -136,13 +141,17 @@ typedef struct glpgp_newton_state {
     int cooldown;    /* steps left before `mixed` may try the exact Hessian again */
     double radius;   /* trust region radius (<= 0: none yet, the next step is a plain
                         Newton step; set from it). Kept from level to level. */
-    double noise;    /* rounding level of F = E + P at x (set by the level loop; a
-                        step whose predicted decrease is below it ends the level) */
+    double gtol;     /* the level's target |g| (rtol |g_0|; set by the level loop, 0: none) */
+    double step_max; /* longest full step with rho >= tr_poor so far (the region set
+                        when negative curvature appears before any region) */
+    double noise;    /* rounding level of F = E + P at x (set by the level loop; below
+                        it a trial point is judged by |g| instead of F) */
 } glpgp_newton_state;
 
 typedef struct glpgp_newton_step_info {
     int cg;          /* CG iterations (all attempts) */
-    int at_noise;    /* trust region: the predicted decrease was below the rounding level */
+    int at_noise;    /* trust region: the predicted decrease was below the rounding level
+                        of F (the step was then judged by |g|) */
     double rho;      /* trust region: actual / predicted decrease */
     double step;     /* trust region: ||d||_M of the step tried */
     double radius;   /* trust region: the radius after the step */
