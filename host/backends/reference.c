@@ -2,31 +2,15 @@
  * plain single-threaded loop over host arrays. The loop bodies are the per-row
  * functions of kernels/rows.h, which the OpenCL kernels call too, so the two
  * backends store bit-identical rows; the reductions here are one sequential
- * sum over all rows (the kernels sum per-work-item partials). */
+ * sum over all rows (the kernels sum per-work-item partials). The multilevel
+ * preconditioner's ops (amg_*) are in reference_amg.c. */
 #include "glpgp/backends.h"
 #include "rows.h"
 
+#include "reference_impl.h"
+
 #include <stdlib.h>
 #include <string.h>
-
-struct glpgp_vec {
-    size_t n;
-    double *a;
-};
-
-typedef struct ref_impl {
-    const glpgp_system *sys;
-    const double *w;           /* 2*nv field (copy owned) */
-    double *wbuf;
-    unsigned char *dir;        /* nv Dirichlet flags */
-    double *quad, *newton;     /* 4*nnzb */
-    double *dinv;              /* 4*nv */
-    int kind;
-    double h;
-    double s[GLPGP_NSLOTS];
-} ref_impl;
-
-#define IMPL(b) ((ref_impl *)(b)->impl)
 
 _Static_assert(GLPGP_ROWS_S_PQ == GLPGP_S_PQ, "kernels/rows.h: p.Ap slot differs from glpgp/backend.h");
 
@@ -39,6 +23,7 @@ static void ref_destroy(glpgp_backend *b)
     free(r->quad);
     free(r->newton);
     free(r->dinv);
+    glpgp_ref_amg_free(r);
     free(r);
     b->impl = NULL;
 }
@@ -52,6 +37,7 @@ static glpgp_status ref_setup(glpgp_backend *b, const glpgp_system *sys)
     glpgp_free(&r->quad);
     glpgp_free(&r->newton);
     glpgp_free(&r->dinv);
+    glpgp_ref_amg_free(r); /* a hierarchy belongs to one system */
     r->sys = sys;
     b->sys = sys;
     GLPGP_CHECK(glpgp_calloc((size_t)2 * sys->nv, sizeof(double), &r->wbuf));
@@ -285,6 +271,7 @@ static const glpgp_backend_ops ref_ops = {
     .cg_spmv_dot = ref_cg_spmv_dot,
     .cg_update = ref_cg_update,
     .cg_direction = ref_cg_direction,
+    GLPGP_REF_AMG_OPS
 };
 
 glpgp_status glpgp_backend_create_reference(glpgp_backend **out)

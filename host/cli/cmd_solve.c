@@ -18,8 +18,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-static const char *const k_result_exts[] = {".vtk", ".obj", NULL};
-static const char *const k_quad_exts[] = {".obj", ".vtk", ".msh", NULL};
+static const char *const k_result_exts[] = {".vtk", ".vtu", ".obj", NULL};
+static const char *const k_quad_exts[] = {".obj", ".vtk", ".vtu", ".msh", NULL};
 static const char *const k_json_exts[] = {".json", NULL};
 
 typedef struct solve_cli {
@@ -27,13 +27,14 @@ typedef struct solve_cli {
     int backend, device, verbosity;
     const char *out, *stats, *quads, *image;
     glpgp_quad_options qo;
-    int quad_opts;
+    int quad_opts, allow_invalid;
     glpgp_render_options ro;
     glpgp_mask_options mo;
 } solve_cli;
 
 static void build(glpgp_opts *t, solve_cli *c)
 {
+    memset(c, 0, sizeof *c); /* outputs NULL, no option seen */
     glpgp_options_default(&c->o);
     glpgp_quad_options_default(&c->qo);
     glpgp_render_options_default(&c->ro);
@@ -41,6 +42,7 @@ static void build(glpgp_opts *t, solve_cli *c)
     c->backend = GLPGP_BACKEND_AUTO;
     c->device = -1;
     c->verbosity = 1;
+    c->allow_invalid = 0;
     glpgp_opts_init(t, "solve", "glpgp solve INPUT [options]",
                     "INPUT is a triangle mesh of a planar domain (.obj, or Gmsh .msh 2.2/4.1 ASCII),\n"
                     "shape:NAME[:N], a built-in domain with about N vertices (default 20000;\n"
@@ -50,18 +52,20 @@ static void build(glpgp_opts *t, solve_cli *c)
     glpgp_opts_add_backend(t, &c->backend, &c->device);
     glpgp_opts_group(t, "Output");
     glpgp_opt *p = glpgp_opt_string(t, "--out", &c->out, "FILE",
-                                    "result as .vtk (ParaView) or .obj (texture coordinates)");
+                                    "result: .vtu (binary VTK XML, compressed when built with\n"
+                                    "zlib), .vtk (legacy ASCII VTK) or .obj (texture coordinates)");
     p->alias = "-o";
     glpgp_opt_string(t, "--stats", &c->stats, "FILE", "statistics as JSON");
     glpgp_opt_string(t, "--quads", &c->quads, "FILE",
-                     "extract the quad mesh (.obj/.vtk/.msh) and add its quality\n"
+                     "extract the quad mesh (.obj/.vtu/.vtk/.msh) and add its quality\n"
                      "report to the summary and the statistics (\"quads\")");
-    glpgp_opts_add_quads(t, &c->qo, &c->quad_opts);
+    glpgp_opts_add_quads(t, &c->qo, &c->quad_opts, &c->allow_invalid);
     glpgp_opt_string(t, "--image", &c->image, "FILE",
                      "picture of the result (.png, .exr, .tif, .jpg, ...)");
     glpgp_opts_add_picture(t, &c->ro, 0);
     glpgp_opts_group(t, "Mask image input (INPUT = image)");
     glpgp_opts_add_mask(t, &c->mo);
+    glpgp_opts_add_limits(t, &c->mo.max_triangles, &c->mo.max_pixels);
     glpgp_opts_add_verbosity(t, &c->verbosity);
     t->epilog = "Files are written only after a successful solve, atomically (no partial file is\n"
                 "ever left; a failed run leaves existing files untouched). A summary is printed\n"
@@ -76,7 +80,7 @@ static int check(solve_cli *c, const char *input)
     if (c->out && c->stats && !strcmp(c->out, c->stats))
         return glpgp_cli_usage_error(sub, "--out and --stats name the same file '%s'", c->out);
     if (c->quad_opts && !c->quads)
-        return glpgp_cli_usage_error(sub, "--all-quads, --keep-polygons and --smooth need --quads FILE");
+        return glpgp_cli_usage_error(sub, "--all-quads, --keep-polygons, --smooth, --no-repair and --allow-invalid need --quads FILE");
     if (c->quads && ((c->out && !strcmp(c->out, c->quads)) || (c->stats && !strcmp(c->stats, c->quads))))
         return glpgp_cli_usage_error(sub, "--quads names the same file as --out or --stats: '%s'", c->quads);
     if (c->image && ((c->out && !strcmp(c->out, c->image)) || (c->stats && !strcmp(c->stats, c->image)) ||
@@ -87,6 +91,7 @@ static int check(solve_cli *c, const char *input)
     if (c->stats && (rc = glpgp_cli_check_output(sub, "--stats", c->stats, NULL)) >= 0) return rc;
     if (c->quads && (rc = glpgp_cli_check_output(sub, "--quads", c->quads, k_quad_exts)) >= 0) return rc;
     if (c->image) {
+        if ((rc = glpgp_cli_check_picture_size(sub, c->ro.size, 1, c->mo.max_pixels)) >= 0) return rc;
         glpgp_error_clear();
         if (glpgp_oiio_load() == GLPGP_ERR_UNSUPPORTED) {
             glpgp_error_clear();
@@ -103,7 +108,7 @@ static int check(solve_cli *c, const char *input)
 }
 
 static void print_summary(const solve_cli *c, const char *input, const glpgp_mesh *m, const glpgp_result *r,
-                          double t_all, double t_read, const glpgp_quad_quality *qq)
+                          double t_all, double t_read, const glpgp_quad_quality *qq, int quads_written)
 {
     const glpgp_osc_result *u = &r->osc[0], *v = &r->osc[1];
     printf("glpgp: %s: %d vertices, %d triangles, h = %.6g, backend %s\n", input, m->nv, m->nt, r->size,
@@ -121,7 +126,7 @@ static void print_summary(const solve_cli *c, const char *input, const glpgp_mes
     if (c->stats) printf("  wrote          %s\n", c->stats);
     if (c->quads) {
         glpgp_quads_print(stdout, qq, "  ");
-        printf("  wrote          %s\n", c->quads);
+        if (quads_written) printf("  wrote          %s\n", c->quads);
     }
     if (c->image) printf("  wrote          %s\n", c->image);
 }
@@ -145,8 +150,11 @@ int glpgp_cmd_solve(int argc, char **argv)
     glpgp_result *r = NULL;
     glpgp_quadmesh *q = NULL;
     glpgp_image *im = NULL;
+    glpgp_output_set *outs = NULL;
     glpgp_quad_quality qq;
     memset(&qq, 0, sizeof qq);
+    int invalid_rc = -1;
+    char why[1024] = "";
     c.mo.quad_size = c.o.size;
     if ((rc = glpgp_cli_load_input("solve", input, &c.mo, &m, NULL)) >= 0) return rc;
     double t_read = glpgp_now() - t0;
@@ -157,6 +165,16 @@ int glpgp_cmd_solve(int argc, char **argv)
         return rc;
     }
     rc = GLPGP_EXIT_FAIL;
+    if (c.o.field == GLPGP_FIELD_FILE) {
+        /* read the field file now: a bad one fails before the backend starts
+         * (the solve reads it again) */
+        double *u = NULL;
+        long cg = 0;
+        glpgp_status st = glpgp_malloc(2 * (size_t)m->nv, sizeof *u, &u);
+        if (st == GLPGP_OK) st = glpgp_field_compute(m, NULL, &c.o, u, &cg);
+        free(u);
+        if (st != GLPGP_OK) goto fail;
+    }
 
     if (glpgp_backend_select(c.backend, c.device, c.verbosity > 0, &b) != GLPGP_OK) goto fail;
     if (glpgp_solve(m, b, &c.o, &r) != GLPGP_OK) goto fail;
@@ -168,39 +186,40 @@ int glpgp_cmd_solve(int argc, char **argv)
         if (glpgp_quads_quality(q, m, h, &qq) != GLPGP_OK) goto fail;
         qq.singular[0] = r->osc[0].plus + r->osc[0].minus;
         qq.singular[1] = r->osc[1].plus + r->osc[1].minus;
+        /* an invalid mesh is not written (exit 3) unless --allow-invalid */
+        invalid_rc = glpgp_cli_quads_verdict(&qq, c.qo.keep_polygons ? GLPGP_QUAD_BAD_NONQUAD : 0u,
+                                             c.allow_invalid, why, sizeof why);
     }
     if (c.image && glpgp_render(m, r, &c.ro, &im) != GLPGP_OK) goto fail;
 
-    /* outputs; a failure removes what this run already wrote */
-    if (c.out && glpgp_write_result(m, &c.o, r, c.out) != GLPGP_OK) goto fail;
+    /* outputs: one set, committed together (all or nothing: a failure leaves
+     * every existing file as it was and no temporary behind) */
+    if (glpgp_output_set_create(&outs) != GLPGP_OK) goto fail;
+    if (c.out && glpgp_output_set_result(outs, m, &c.o, r, c.out) != GLPGP_OK) goto fail;
+    if (c.quads && invalid_rc < 0 && glpgp_output_set_quads(outs, q, c.quads) != GLPGP_OK) goto fail;
     if (c.stats) {
-        glpgp_stats_extra x;
-        x.input = input;
-        x.output = c.out;
-        x.seconds_read = t_read;
-        if (glpgp_write_stats_json(m, &c.o, r, c.stats, &x) != GLPGP_OK) goto fail_written;
-        if (c.quads && glpgp_quads_append_json(c.stats, &qq) != GLPGP_OK) goto fail_written;
+        glpgp_stats_extra x = {input, c.out, t_read, c.quads ? &qq : NULL};
+        if (glpgp_output_set_stats(outs, m, &c.o, r, c.stats, &x) != GLPGP_OK) goto fail;
     }
-    if (c.quads && glpgp_quads_write(q, c.quads) != GLPGP_OK) goto fail_written;
-    if (c.image && glpgp_image_write(c.image, im) != GLPGP_OK) goto fail_written;
+    if (c.image) { /* the picture is written under the set's temporary name */
+        const char *tmp = NULL;
+        if (glpgp_output_set_reserve(outs, c.image, &tmp) != GLPGP_OK) goto fail;
+        if (glpgp_image_write(tmp, im) != GLPGP_OK) goto fail;
+    }
+    if (glpgp_output_set_commit(outs) != GLPGP_OK) goto fail;
 
     if (c.o.method == GLPGP_METHOD_GL && (r->osc[0].zabs_median < 0.5 || r->osc[1].zabs_median < 0.5))
         glpgp_log(GLPGP_LOG_WARNING,
                   "median |z| < 0.5: the oscillators collapsed towards z = 0 (h = %g is %.1f mean edges; "
                   "P1 needs about 10 per period): raise --size or refine the mesh",
                   r->size, r->size / m->mean_edge);
-    print_summary(&c, input, m, r, glpgp_now() - t0, t_read, &qq);
-    rc = 0;
-    goto done;
-fail_written:
-    rc = glpgp_cli_fail();
-    if (c.out) remove(c.out);
-    if (c.stats) remove(c.stats);
-    if (c.quads) remove(c.quads);
+    print_summary(&c, input, m, r, glpgp_now() - t0, t_read, &qq, invalid_rc < 0);
+    rc = invalid_rc < 0 ? 0 : glpgp_cli_invalid(why, "not written (--allow-invalid writes it anyway)");
     goto done;
 fail:
     rc = glpgp_cli_fail();
 done:
+    glpgp_output_set_destroy(&outs);
     glpgp_image_destroy(&im);
     glpgp_quadmesh_destroy(&q);
     glpgp_result_destroy(&r);

@@ -7,10 +7,13 @@
 
 #include "glpgp/backends.h"
 #include "glpgp/image.h"
+#include "glpgp/io.h"
 #include "glpgp/version.h"
 
+#include <signal.h>
 #include <stdio.h>
 #include <string.h>
+#include <unistd.h>
 
 typedef struct command {
     const char *name;
@@ -65,9 +68,34 @@ static const command *find(const char *name)
     return NULL;
 }
 
+/* SIGINT / SIGTERM: remove the temporary outputs of the run (async-signal-
+ * safe: unlink/rename only), say so in one line, exit 130 / 143. */
+static void on_signal(int sig)
+{
+    glpgp_output_signal_cleanup();
+    static const char msg_int[] = "glpgp: interrupted (SIGINT): no output written\n";
+    static const char msg_term[] = "glpgp: terminated (SIGTERM): no output written\n";
+    if (sig == SIGINT)
+        (void)!write(2, msg_int, sizeof msg_int - 1);
+    else
+        (void)!write(2, msg_term, sizeof msg_term - 1);
+    _exit(128 + sig);
+}
+
+static void install_signal_handlers(void)
+{
+    struct sigaction sa;
+    memset(&sa, 0, sizeof sa);
+    sa.sa_handler = on_signal;
+    sigemptyset(&sa.sa_mask);
+    sigaction(SIGINT, &sa, NULL);
+    sigaction(SIGTERM, &sa, NULL);
+}
+
 int main(int argc, char **argv)
 {
     glpgp_cli_set_verbosity(1);
+    install_signal_handlers();
     if (argc < 2) {
         usage_main(stderr);
         return GLPGP_EXIT_USAGE;

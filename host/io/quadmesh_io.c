@@ -1,173 +1,180 @@
-/* io/quadmesh_io.c: quad meshes on disk (glpgp/io.h): the JSON form of the
- * quality report, the OBJ / legacy VTK / Gmsh MSH 4.1 writers and the MSH
- * 4.1/2.2 quad/triangle reader. */
+/* io/quadmesh_io.c: quad meshes on disk (glpgp/io.h): the quality report as
+ * JSON (through the one emitter, json.c), the OBJ / legacy VTK / VTK XML /
+ * Gmsh MSH 4.1 writers (through the output set) and the MSH reader (a thin
+ * wrapper of the shared parser, msh_read.c). */
 #include "glpgp/io.h"
 #include "glpgp/util.h"
 #include "glpgp/version.h"
 
-#include <ctype.h>
-#include <errno.h>
+#include "msh.h"
+#include "vtu.h"
+
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
 /* ---- JSON -------------------------------------------------------------- */
 
-static void jnum(FILE *f, double v)
+/* Histogram as an object {"<prefix>n": count} of the non-zero bins. */
+static void histogram(glpgp_json *w, const char *key, const int *h, int n, int first, int skip, int capped)
 {
-    if (!isfinite(v))
-        fputs("null", f);
-    else
-        fprintf(f, "%.10g", v);
+    glpgp_json_object(w, key);
+    for (int b = 0; b < n; b++) {
+        if (b == skip || !h[b]) continue;
+        char name[16];
+        snprintf(name, sizeof name, "%s%d", b == capped ? ">=" : "", b + first);
+        glpgp_json_int(w, name, h[b]);
+    }
+    glpgp_json_close(w);
 }
 
-void glpgp_quads_write_json(FILE *f, const glpgp_quad_quality *qq)
+void glpgp_quads_json(glpgp_json *w, const char *key, const glpgp_quad_quality *qq)
 {
-    fprintf(f, "{\"vertices\": %d, \"faces\": %d, \"quads\": %d, \"other_faces\": %d, ",
-            qq->vertices, qq->faces, qq->quads, qq->others);
-    fputs("\"other_faces_by_corners\": {", f);
-    int first = 1;
-    for (int b = 0; b < 8; b++) {
-        if (b == 1 || !qq->others_by_size[b]) continue;
-        fprintf(f, "%s\"%s%d\": %d", first ? "" : ", ", b == 7 ? ">=" : "", b + 3,
-                qq->others_by_size[b]);
-        first = 0;
-    }
-    fputs("}, \"valence\": {", f);
-    for (int s = 0; s < 2; s++) {
-        const int *h = s ? qq->valence_boundary : qq->valence_interior;
-        fprintf(f, "%s\"%s\": {", s ? ", " : "", s ? "boundary" : "interior");
-        first = 1;
-        for (int v = 0; v <= GLPGP_QUAD_MAXVAL; v++) {
-            if (!h[v]) continue;
-            fprintf(f, "%s\"%s%d\": %d", first ? "" : ", ", v == GLPGP_QUAD_MAXVAL ? ">=" : "", v,
-                    h[v]);
-            first = 0;
-        }
-        fputs("}", f);
-    }
-    fprintf(f, "}, \"irregular_vertices\": {\"interior\": %d, \"boundary\": %d, \"total\": %d}, ",
-            qq->irregular_interior, qq->irregular_boundary, qq->irregular);
-    fputs("\"scaled_jacobian\": {\"min\": ", f);
-    jnum(f, qq->sj_min);
-    fputs(", \"mean\": ", f);
-    jnum(f, qq->sj_mean);
-    fputs(", \"p01\": ", f);
-    jnum(f, qq->sj_p01);
-    fprintf(f, "}, \"inverted\": %d, \"degenerate\": %d, ", qq->inverted, qq->degenerate);
-    fprintf(f, "\"edges\": {\"count\": %d, \"boundary\": %d, \"nonmanifold\": %d}, ", qq->edges,
-            qq->boundary_edges, qq->nonmanifold_edges);
-    fputs("\"edge_length_over_h\": {\"mean\": ", f);
-    jnum(f, qq->len_mean);
-    fputs(", \"min\": ", f);
-    jnum(f, qq->len_min);
-    fputs(", \"max\": ", f);
-    jnum(f, qq->len_max);
-    fputs("}, \"h\": ", f);
-    jnum(f, qq->h);
-    fputs(", \"area\": ", f);
-    jnum(f, qq->area);
-    fputs(", \"domain_area\": ", f);
-    if (qq->hausdorff >= 0)
-        jnum(f, qq->domain_area);
+    glpgp_json_object(w, key);
+    glpgp_json_int(w, "vertices", qq->vertices);
+    glpgp_json_int(w, "faces", qq->faces);
+    glpgp_json_int(w, "quads", qq->quads);
+    glpgp_json_int(w, "other_faces", qq->others);
+    histogram(w, "other_faces_by_corners", qq->others_by_size, 8, 3, 1, 7);
+    glpgp_json_object(w, "valence");
+    histogram(w, "interior", qq->valence_interior, GLPGP_QUAD_MAXVAL + 1, 0, -1, GLPGP_QUAD_MAXVAL);
+    histogram(w, "boundary", qq->valence_boundary, GLPGP_QUAD_MAXVAL + 1, 0, -1, GLPGP_QUAD_MAXVAL);
+    glpgp_json_close(w);
+    glpgp_json_object(w, "irregular_vertices");
+    glpgp_json_int(w, "interior", qq->irregular_interior);
+    glpgp_json_int(w, "boundary", qq->irregular_boundary);
+    glpgp_json_int(w, "total", qq->irregular);
+    glpgp_json_close(w);
+    glpgp_json_object(w, "scaled_jacobian");
+    glpgp_json_num(w, "min", qq->sj_min);
+    glpgp_json_num(w, "mean", qq->sj_mean);
+    glpgp_json_num(w, "p01", qq->sj_p01);
+    glpgp_json_close(w);
+    glpgp_json_int(w, "inverted", qq->inverted);
+    glpgp_json_int(w, "degenerate", qq->degenerate);
+    glpgp_json_object(w, "edges");
+    glpgp_json_int(w, "count", qq->edges);
+    glpgp_json_int(w, "boundary", qq->boundary_edges);
+    glpgp_json_int(w, "nonmanifold", qq->nonmanifold_edges);
+    glpgp_json_close(w);
+    glpgp_json_object(w, "edge_length_over_h");
+    glpgp_json_num(w, "mean", qq->len_mean);
+    glpgp_json_num(w, "min", qq->len_min);
+    glpgp_json_num(w, "max", qq->len_max);
+    glpgp_json_close(w);
+    glpgp_json_num(w, "h", qq->h);
+    glpgp_json_num(w, "area", qq->area);
+    const int domain = qq->hausdorff >= 0;
+    if (domain)
+        glpgp_json_num(w, "domain_area", qq->domain_area);
     else
-        fputs("null", f);
-    fputs(", \"boundary_distance_over_h\": ", f);
-    if (qq->hausdorff >= 0) {
-        fputs("{\"hausdorff\": ", f);
-        jnum(f, qq->hausdorff);
-        fputs(", \"quads_to_domain\": ", f);
-        jnum(f, qq->dist_quad_to_domain);
-        fputs(", \"domain_to_quads\": ", f);
-        jnum(f, qq->dist_domain_to_quad);
-        fputs("}, \"gap_edges\": ", f);
-        jnum(f, qq->gap_edges);
+        glpgp_json_null(w, "domain_area");
+    if (domain) {
+        glpgp_json_object(w, "boundary_distance_over_h");
+        glpgp_json_num(w, "hausdorff", qq->hausdorff);
+        glpgp_json_num(w, "quads_to_domain", qq->dist_quad_to_domain);
+        glpgp_json_num(w, "domain_to_quads", qq->dist_domain_to_quad);
+        glpgp_json_close(w);
+        glpgp_json_num(w, "gap_edges", qq->gap_edges);
     } else {
-        fputs("null, \"gap_edges\": null", f);
+        glpgp_json_null(w, "boundary_distance_over_h");
+        glpgp_json_null(w, "gap_edges");
     }
-    fputs(", \"singular_triangles\": ", f);
-    if (qq->singular[0] >= 0)
-        fprintf(f, "{\"u\": %d, \"v\": %d}", qq->singular[0], qq->singular[1]);
+    if (qq->singular[0] >= 0) {
+        glpgp_json_object(w, "singular_triangles");
+        glpgp_json_int(w, "u", qq->singular[0]);
+        glpgp_json_int(w, "v", qq->singular[1]);
+        glpgp_json_close(w);
+    } else {
+        glpgp_json_null(w, "singular_triangles");
+    }
+    glpgp_json_bool(w, "valid", qq->invalid == 0);
+    glpgp_json_array(w, "invalid_reasons");
+    for (int b = 0; b < GLPGP_QUAD_BAD_COUNT; b++)
+        if (qq->invalid & (1u << b)) glpgp_json_str(w, NULL, glpgp_quad_bad_name(1u << b));
+    glpgp_json_close(w);
+    glpgp_json_int(w, "orientation", qq->orientation);
+    glpgp_json_int(w, "overlapping_faces", qq->overlaps);
+    glpgp_json_int(w, "pinched_vertices", qq->pinched);
+    glpgp_json_int(w, "non_quad_faces", qq->others);
+    glpgp_json_object(w, "boundary_loops");
+    glpgp_json_int(w, "mesh", qq->boundary_loops);
+    if (qq->domain_loops >= 0)
+        glpgp_json_int(w, "domain", qq->domain_loops);
     else
-        fputs("null", f);
-    fprintf(f,
-            ", \"closing\": {\"odd_faces_closed\": %d, \"strips_to_boundary\": %d, \"quads_cut\": %d, "
-            "\"turns\": %d, \"even_faces_split\": %d, \"smoothed_vertices\": %d}",
-            qq->closing.closed_polygons, qq->closing.strips_to_boundary, qq->closing.strip_quads, qq->closing.strip_turns, qq->closing.split_even,
-            qq->closing.smoothed_vertices);
-    fputs("}", f);
+        glpgp_json_null(w, "domain");
+    glpgp_json_close(w);
+    if (domain) {
+        glpgp_json_num(w, "area_ratio", qq->area_ratio);
+        glpgp_json_int(w, "outside_faces", qq->outside);
+        glpgp_json_int(w, "far_faces", qq->far_faces);
+        glpgp_json_int(w, "corners_lost", qq->corners_lost);
+        glpgp_json_num(w, "boundary_vertex_distance_over_h", qq->bnd_vertex_dist);
+    } else {
+        glpgp_json_null(w, "area_ratio");
+        glpgp_json_null(w, "outside_faces");
+        glpgp_json_null(w, "far_faces");
+        glpgp_json_null(w, "corners_lost");
+        glpgp_json_null(w, "boundary_vertex_distance_over_h");
+    }
+    glpgp_json_num(w, "max_edge_over_h", qq->len_max);
+    glpgp_json_object(w, "repair");
+    glpgp_json_int(w, "rounds", qq->repair.rounds);
+    glpgp_json_int(w, "removed_faces", qq->repair.removed_faces);
+    glpgp_json_int(w, "regions", qq->repair.regions);
+    glpgp_json_int(w, "new_quads", qq->repair.new_quads);
+    glpgp_json_int(w, "snapped_vertices", qq->repair.snapped);
+    glpgp_json_close(w);
+    glpgp_json_object(w, "closing");
+    glpgp_json_int(w, "odd_faces_closed", qq->closing.closed_polygons);
+    glpgp_json_int(w, "strips_to_boundary", qq->closing.strips_to_boundary);
+    glpgp_json_int(w, "quads_cut", qq->closing.strip_quads);
+    glpgp_json_int(w, "turns", qq->closing.strip_turns);
+    glpgp_json_int(w, "even_faces_split", qq->closing.split_even);
+    glpgp_json_int(w, "smoothed_vertices", qq->closing.smoothed_vertices);
+    glpgp_json_close(w);
+    glpgp_json_close(w);
+}
+
+glpgp_status glpgp_output_set_quads_json(glpgp_output_set *s, const glpgp_quad_quality *qq, const char *path)
+{
+    FILE *f;
+    if (!qq) return GLPGP_FAIL(GLPGP_ERR_ARG, "no quad report to write");
+    GLPGP_CHECK(glpgp_output_set_open(s, path, &f));
+    glpgp_json w;
+    glpgp_json_init(&w, f);
+    glpgp_json_object(&w, NULL);
+    glpgp_quads_json(&w, "quads", qq);
+    glpgp_json_finish(&w);
+    return GLPGP_OK;
 }
 
 glpgp_status glpgp_quads_write_json_file(const glpgp_quad_quality *qq, const char *path)
 {
-    glpgp_atomic_file af;
-    GLPGP_CHECK(glpgp_atomic_open(&af, path));
-    fputs("{\"quads\": ", af.f);
-    glpgp_quads_write_json(af.f, qq);
-    fputs("}\n", af.f);
-    GLPGP_CHECK(glpgp_atomic_commit(&af));
-    return GLPGP_OK;
-}
-
-glpgp_status glpgp_quads_append_json(const char *path, const glpgp_quad_quality *qq)
-{
-    FILE *f = fopen(path, "rb");
-    if (!f) return GLPGP_FAIL(GLPGP_ERR_IO, "cannot read '%s': %s", path, strerror(errno));
-    size_t cap = 1 << 16, n = 0;
-    char *buf = malloc(cap);
-    if (!buf) {
-        fclose(f);
-        return GLPGP_FAIL(GLPGP_ERR_NOMEM, "out of memory reading '%s'", path);
-    }
-    size_t k;
-    while ((k = fread(buf + n, 1, cap - n, f)) > 0) {
-        n += k;
-        if (n == cap) {
-            char *nb = realloc(buf, cap *= 2);
-            if (!nb) {
-                free(buf);
-                fclose(f);
-                return GLPGP_FAIL(GLPGP_ERR_NOMEM, "out of memory reading '%s'", path);
-            }
-            buf = nb;
-        }
-    }
-    fclose(f);
-    /* last non-space character must be the object's closing brace */
-    size_t end = n;
-    while (end > 0 && isspace((unsigned char)buf[end - 1])) end--;
-    size_t open = 0;
-    while (open < n && isspace((unsigned char)buf[open])) open++;
-    if (end == 0 || buf[end - 1] != '}' || open >= n || buf[open] != '{') {
-        free(buf);
-        return GLPGP_FAIL(GLPGP_ERR_FORMAT, "'%s' does not hold a JSON object", path);
-    }
-    size_t close = end - 1;
-    size_t before = close;
-    while (before > 0 && isspace((unsigned char)buf[before - 1])) before--;
-    int empty = buf[before - 1] == '{';
-    glpgp_atomic_file af;
-    glpgp_status st = glpgp_atomic_open(&af, path);
-    if (st != GLPGP_OK) {
-        free(buf);
-        glpgp_error_push_trace(__FILE__, __LINE__);
-        return st;
-    }
-    fwrite(buf, 1, before, af.f);
-    fputs(empty ? "\"quads\": " : ",\n  \"quads\": ", af.f);
-    glpgp_quads_write_json(af.f, qq);
-    fputs("\n}\n", af.f);
-    free(buf);
-    GLPGP_CHECK(glpgp_atomic_commit(&af));
-    return GLPGP_OK;
+    glpgp_output_set *s = NULL;
+    GLPGP_CHECK(glpgp_output_set_create(&s));
+    glpgp_status st = glpgp_output_set_quads_json(s, qq, path);
+    if (st == GLPGP_OK) st = glpgp_output_set_commit(s);
+    glpgp_output_set_destroy(&s);
+    if (st != GLPGP_OK) glpgp_error_push_trace(__FILE__, __LINE__);
+    return st;
 }
 
 /* ---- writers ----------------------------------------------------------- */
 
-int glpgp_quads_path_supported(const char *path)
+enum { QF_NONE = 0, QF_OBJ, QF_VTK, QF_VTU, QF_MSH };
+
+static int quads_format(const char *path)
 {
-    return path && (glpgp_has_ext(path, ".obj") || glpgp_has_ext(path, ".vtk") || glpgp_has_ext(path, ".msh"));
+    if (!path) return QF_NONE;
+    return glpgp_has_ext(path, ".obj")   ? QF_OBJ
+           : glpgp_has_ext(path, ".vtk") ? QF_VTK
+           : glpgp_has_ext(path, ".vtu") ? QF_VTU
+           : glpgp_has_ext(path, ".msh") ? QF_MSH
+                                         : QF_NONE;
 }
+
+int glpgp_quads_path_supported(const char *path) { return quads_format(path) != QF_NONE; }
 
 static void write_obj(FILE *f, const glpgp_quadmesh *q)
 {
@@ -261,276 +268,159 @@ static void write_msh(FILE *f, const glpgp_quadmesh *q)
     fprintf(f, "$EndElements\n");
 }
 
-glpgp_status glpgp_quads_write(const glpgp_quadmesh *q, const char *path)
+/* VTK XML: the arrays of the legacy writer, scaled Jacobian exact. */
+typedef struct q_ctx {
+    const glpgp_quadmesh *q;
+    const int *valence;
+} q_ctx;
+
+static void qfill_points(const void *c, size_t first, size_t n, void *out)
+{
+    const glpgp_quadmesh *q = ((const q_ctx *)c)->q;
+    double *o = out;
+    for (size_t i = 0; i < n; i++) {
+        o[3 * i] = q->xy[2 * (first + i)];
+        o[3 * i + 1] = q->xy[2 * (first + i) + 1];
+        o[3 * i + 2] = 0.0;
+    }
+}
+static void qfill_conn(const void *c, size_t first, size_t n, void *out)
+{
+    memcpy(out, ((const q_ctx *)c)->q->face_vert + first, n * sizeof(int));
+}
+static void qfill_offsets(const void *c, size_t first, size_t n, void *out)
+{
+    memcpy(out, ((const q_ctx *)c)->q->face_start + first + 1, n * sizeof(int));
+}
+static void qfill_types(const void *c, size_t first, size_t n, void *out)
+{
+    const glpgp_quadmesh *q = ((const q_ctx *)c)->q;
+    unsigned char *o = out;
+    for (size_t i = 0; i < n; i++) {
+        size_t f = first + i;
+        o[i] = q->face_start[f + 1] - q->face_start[f] == 4 ? 9 : 7; /* VTK_QUAD, VTK_POLYGON */
+    }
+}
+static void qfill_corners(const void *c, size_t first, size_t n, void *out)
+{
+    const glpgp_quadmesh *q = ((const q_ctx *)c)->q;
+    int *o = out;
+    for (size_t i = 0; i < n; i++) o[i] = q->face_start[first + i + 1] - q->face_start[first + i];
+}
+static void qfill_sj(const void *c, size_t first, size_t n, void *out)
+{
+    const glpgp_quadmesh *q = ((const q_ctx *)c)->q;
+    double *o = out;
+    for (size_t i = 0; i < n; i++) o[i] = glpgp_quad_face_sj(q, (int)(first + i));
+}
+static void qfill_valence(const void *c, size_t first, size_t n, void *out)
+{
+    memcpy(out, ((const q_ctx *)c)->valence + first, n * sizeof(int));
+}
+
+static glpgp_status write_vtu(FILE *f, const glpgp_quadmesh *q)
+{
+    int *val = NULL;
+    GLPGP_CHECK(glpgp_quadmesh_valences(q, &val));
+    q_ctx ctx = {q, val};
+    const size_t nv = (size_t)q->nv, nf = (size_t)q->nf;
+    const vtu_array a[] = {
+        {VTU_POINTDATA, "valence", "Int32", 4, 1, nv, qfill_valence, &ctx},
+        {VTU_CELLDATA, "corners", "Int32", 4, 1, nf, qfill_corners, &ctx},
+        {VTU_CELLDATA, "scaled_jacobian", "Float64", 8, 1, nf, qfill_sj, &ctx},
+        {VTU_POINTS, "Points", "Float64", 8, 3, nv, qfill_points, &ctx},
+        {VTU_CELLS, "connectivity", "Int32", 4, 1, (size_t)q->face_start[q->nf], qfill_conn, &ctx},
+        {VTU_CELLS, "offsets", "Int32", 4, 1, nf, qfill_offsets, &ctx},
+        {VTU_CELLS, "types", "UInt8", 1, 1, nf, qfill_types, &ctx},
+    };
+    char comment[128];
+    snprintf(comment, sizeof comment, "glpgp %s quad mesh", GLPGP_VERSION);
+    glpgp_status st = vtu_write(f, comment, nv, nf, a, (int)(sizeof a / sizeof a[0]),
+                                glpgp_io_have_zlib() ? GLPGP_VTU_DEFAULT_LEVEL : 0);
+    free(val);
+    if (st != GLPGP_OK) glpgp_error_push_trace(__FILE__, __LINE__);
+    return st;
+}
+
+glpgp_status glpgp_output_set_quads(glpgp_output_set *s, const glpgp_quadmesh *q, const char *path)
 {
     if (!q || !path) return GLPGP_FAIL(GLPGP_ERR_ARG, "quad writer: no mesh or path");
-    int kind = glpgp_has_ext(path, ".obj") ? 1 : glpgp_has_ext(path, ".vtk") ? 2 : glpgp_has_ext(path, ".msh") ? 3 : 0;
+    int kind = quads_format(path);
     if (!kind)
-        return GLPGP_FAIL(GLPGP_ERR_ARG, "quad mesh output '%s': extension must be .obj, .vtk or .msh",
-                          path);
-    glpgp_atomic_file af;
-    GLPGP_CHECK(glpgp_atomic_open(&af, path));
-    if (kind == 1)
-        write_obj(af.f, q);
-    else if (kind == 2) {
-        write_vtk(af.f, q);
-        glpgp_status st = write_vtk_valence(af.f, q);
-        if (st != GLPGP_OK) {
-            glpgp_atomic_abort(&af);
-            return st;
-        }
-    } else
-        write_msh(af.f, q);
-    GLPGP_CHECK(glpgp_atomic_commit(&af));
+        return GLPGP_FAIL(GLPGP_ERR_ARG, "quad mesh output '%s': extension must be .obj, .vtk, .vtu or .msh", path);
+    FILE *f;
+    GLPGP_CHECK(glpgp_output_set_open(s, path, &f));
+    if (kind == QF_OBJ) {
+        write_obj(f, q);
+    } else if (kind == QF_VTK) {
+        write_vtk(f, q);
+        GLPGP_CHECK(write_vtk_valence(f, q));
+    } else if (kind == QF_VTU) {
+        GLPGP_CHECK(write_vtu(f, q));
+    } else {
+        write_msh(f, q);
+    }
     return GLPGP_OK;
 }
 
-/* ---- MSH reader -------------------------------------------------------- */
-
-typedef struct growi {
-    int *v;
-    size_t n, cap;
-} growi;
-
-static int growi_push(growi *g, int x)
+glpgp_status glpgp_quads_write(const glpgp_quadmesh *q, const char *path)
 {
-    if (g->n == g->cap) {
-        size_t nc = g->cap ? 2 * g->cap : 4096;
-        int *p = realloc(g->v, nc * sizeof *p);
-        if (!p) return 0;
-        g->v = p;
-        g->cap = nc;
-    }
-    g->v[g->n++] = x;
-    return 1;
+    glpgp_output_set *s = NULL;
+    GLPGP_CHECK(glpgp_output_set_create(&s));
+    glpgp_status st = glpgp_output_set_quads(s, q, path);
+    if (st == GLPGP_OK) st = glpgp_output_set_commit(s);
+    glpgp_output_set_destroy(&s);
+    if (st != GLPGP_OK) glpgp_error_push_trace(__FILE__, __LINE__);
+    return st;
 }
 
-static int find_section(FILE *f, const char *name)
-{
-    char line[512];
-    while (fgets(line, sizeof line, f)) {
-        size_t n = strcspn(line, "\r\n");
-        line[n] = '\0';
-        if (!strcmp(line, name)) return 1;
-    }
-    return 0;
-}
+/* ---- MSH reader: faces of the shared parser ------------------------------ */
 
 glpgp_status glpgp_quads_read_msh(const char *path, glpgp_quadmesh **out)
 {
-    *out = NULL;
-    FILE *f = fopen(path, "r");
-    if (!f) return GLPGP_FAIL(GLPGP_ERR_IO, "cannot open '%s': %s", path, strerror(errno));
     glpgp_status st = GLPGP_OK;
-    double ver = 0;
-    int filetype = 0, dsize = 0;
-    long maxtag = 0;
-    double *nxy = NULL;  /* by tag */
-    growi fs = {0}, fv = {0};
+    msh_data d;
     int *used = NULL;
     glpgp_quadmesh *q = NULL;
-    if (!find_section(f, "$MeshFormat") || fscanf(f, "%lf %d %d", &ver, &filetype, &dsize) != 3) {
-        st = GLPGP_FAIL(GLPGP_ERR_FORMAT, "%s: not a Gmsh MSH file (no $MeshFormat)", path);
-        goto done;
-    }
-    if (filetype != 0) {
-        st = GLPGP_FAIL(GLPGP_ERR_FORMAT, "%s: binary MSH not supported, save as ASCII", path);
-        goto done;
-    }
-    int v4 = ver >= 4.0;
-    if (!find_section(f, "$Nodes")) {
-        st = GLPGP_FAIL(GLPGP_ERR_FORMAT, "%s: no $Nodes section", path);
-        goto done;
-    }
-    if (v4) {
-        long nblk, nnodes, mintag;
-        if (fscanf(f, "%ld %ld %ld %ld", &nblk, &nnodes, &mintag, &maxtag) != 4 || maxtag < 1 ||
-            maxtag > 100000000L) {
-            st = GLPGP_FAIL(GLPGP_ERR_FORMAT, "%s: bad $Nodes header", path);
-            goto done;
-        }
-        GLPGP_CHECK_GOTO(st, glpgp_calloc((size_t)maxtag + 1, 2 * sizeof(double), &nxy), done);
-        long *tags = NULL;
-        for (long b = 0; b < nblk; b++) {
-            int edim, etag, par;
-            long nin;
-            if (fscanf(f, "%d %d %d %ld", &edim, &etag, &par, &nin) != 4 || nin < 0) {
-                st = GLPGP_FAIL(GLPGP_ERR_FORMAT, "%s: bad node block", path);
-                goto done;
-            }
-            long *nt = realloc(tags, (size_t)(nin + 1) * sizeof *nt);
-            if (!nt) {
-                free(tags);
-                st = GLPGP_FAIL(GLPGP_ERR_NOMEM, "out of memory");
-                goto done;
-            }
-            tags = nt;
-            for (long i = 0; i < nin; i++)
-                if (fscanf(f, "%ld", &tags[i]) != 1 || tags[i] < 1 || tags[i] > maxtag) {
-                    free(tags);
-                    st = GLPGP_FAIL(GLPGP_ERR_FORMAT, "%s: bad node tag", path);
-                    goto done;
-                }
-            int npar = par ? edim : 0;
-            for (long i = 0; i < nin; i++) {
-                double x, y, z, u;
-                if (fscanf(f, "%lf %lf %lf", &x, &y, &z) != 3) {
-                    free(tags);
-                    st = GLPGP_FAIL(GLPGP_ERR_FORMAT, "%s: bad node coordinates", path);
-                    goto done;
-                }
-                for (int k = 0; k < npar; k++)
-                    if (fscanf(f, "%lf", &u) != 1) break;
-                nxy[2 * tags[i]] = x;
-                nxy[2 * tags[i] + 1] = y;
-            }
-        }
-        free(tags);
-    } else {
-        long nnodes;
-        if (fscanf(f, "%ld", &nnodes) != 1 || nnodes < 1 || nnodes > 100000000L) {
-            st = GLPGP_FAIL(GLPGP_ERR_FORMAT, "%s: bad $Nodes header", path);
-            goto done;
-        }
-        long pos = ftell(f);
-        maxtag = 0;
-        for (long i = 0; i < nnodes; i++) {
-            long t;
-            double x, y, z;
-            if (fscanf(f, "%ld %lf %lf %lf", &t, &x, &y, &z) != 4 || t < 1) {
-                st = GLPGP_FAIL(GLPGP_ERR_FORMAT, "%s: bad node line", path);
-                goto done;
-            }
-            if (t > maxtag) maxtag = t;
-        }
-        if (maxtag > 100000000L) {
-            st = GLPGP_FAIL(GLPGP_ERR_FORMAT, "%s: node tag too large", path);
-            goto done;
-        }
-        GLPGP_CHECK_GOTO(st, glpgp_calloc((size_t)maxtag + 1, 2 * sizeof(double), &nxy), done);
-        fseek(f, pos, SEEK_SET);
-        for (long i = 0; i < nnodes; i++) {
-            long t;
-            double x, y, z;
-            if (fscanf(f, "%ld %lf %lf %lf", &t, &x, &y, &z) != 4) break;
-            nxy[2 * t] = x;
-            nxy[2 * t + 1] = y;
-        }
-    }
-    if (!find_section(f, "$Elements")) {
-        st = GLPGP_FAIL(GLPGP_ERR_FORMAT, "%s: no $Elements section", path);
-        goto done;
-    }
-    if (!growi_push(&fs, 0)) goto nomem;
-    if (v4) {
-        long nblk, nel, a, b;
-        if (fscanf(f, "%ld %ld %ld %ld", &nblk, &nel, &a, &b) != 4) {
-            st = GLPGP_FAIL(GLPGP_ERR_FORMAT, "%s: bad $Elements header", path);
-            goto done;
-        }
-        for (long bl = 0; bl < nblk; bl++) {
-            int edim, etag, type;
-            long nin;
-            if (fscanf(f, "%d %d %d %ld", &edim, &etag, &type, &nin) != 4) {
-                st = GLPGP_FAIL(GLPGP_ERR_FORMAT, "%s: bad element block", path);
-                goto done;
-            }
-            int nper = type == 15 ? 1 : type == 1 ? 2 : type == 2 ? 3 : type == 3 ? 4 : -1;
-            if (nper < 0) {
-                st = GLPGP_FAIL(GLPGP_ERR_FORMAT, "%s: element type %d not supported (only points, "
-                                                  "lines, triangles, quadrangles)", path, type);
-                goto done;
-            }
-            for (long i = 0; i < nin; i++) {
-                long t, nd[4];
-                if (fscanf(f, "%ld", &t) != 1) goto badel;
-                for (int k = 0; k < nper; k++)
-                    if (fscanf(f, "%ld", &nd[k]) != 1 || nd[k] < 1 || nd[k] > maxtag) goto badel;
-                if (type == 2 || type == 3) {
-                    for (int k = 0; k < nper; k++)
-                        if (!growi_push(&fv, (int)nd[k])) goto nomem;
-                    if (!growi_push(&fs, (int)fv.n)) goto nomem;
-                }
-            }
-        }
-    } else {
-        long nel;
-        if (fscanf(f, "%ld", &nel) != 1) {
-            st = GLPGP_FAIL(GLPGP_ERR_FORMAT, "%s: bad $Elements header", path);
-            goto done;
-        }
-        for (long i = 0; i < nel; i++) {
-            long t, type, ntag, tg, nd[4];
-            if (fscanf(f, "%ld %ld %ld", &t, &type, &ntag) != 3) goto badel;
-            for (long k = 0; k < ntag; k++)
-                if (fscanf(f, "%ld", &tg) != 1) goto badel;
-            int nper = type == 15 ? 1 : type == 1 ? 2 : type == 2 ? 3 : type == 3 ? 4 : -1;
-            if (nper < 0) {
-                st = GLPGP_FAIL(GLPGP_ERR_FORMAT, "%s: element type %ld not supported", path, type);
-                goto done;
-            }
-            for (int k = 0; k < nper; k++)
-                if (fscanf(f, "%ld", &nd[k]) != 1 || nd[k] < 1 || nd[k] > maxtag) goto badel;
-            if (type == 2 || type == 3) {
-                for (int k = 0; k < nper; k++)
-                    if (!growi_push(&fv, (int)nd[k])) goto nomem;
-                if (!growi_push(&fs, (int)fv.n)) goto nomem;
-            }
-        }
-    }
-    if (fs.n < 2) {
+    *out = NULL;
+    GLPGP_CHECK(msh_read(path, &d));
+    if (d.nf == 0) {
         st = GLPGP_FAIL(GLPGP_ERR_FORMAT, "%s: no triangles or quadrangles", path);
         goto done;
     }
-    /* renumber the used nodes, orient faces counter-clockwise */
-    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)maxtag + 1, sizeof(int), &used), done);
-    for (long i = 0; i <= maxtag; i++) used[i] = -1;
+    /* renumber the used nodes in order of first use */
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)d.nv, sizeof(int), &used), done);
+    for (long i = 0; i < d.nv; i++) used[i] = -1;
     GLPGP_CHECK_GOTO(st, glpgp_calloc(1, sizeof *q, &q), done);
-    int nv = 0;
-    for (size_t i = 0; i < fv.n; i++)
-        if (used[fv.v[i]] < 0) used[fv.v[i]] = nv++;
-    q->nv = nv;
-    q->nf = (int)fs.n - 1;
-    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)2 * nv, sizeof(double), &q->xy), done);
-    GLPGP_CHECK_GOTO(st, glpgp_malloc(fs.n, sizeof(int), &q->face_start), done);
-    GLPGP_CHECK_GOTO(st, glpgp_malloc(fv.n, sizeof(int), &q->face_vert), done);
-    for (long t = 1; t <= maxtag; t++)
-        if (used[t] >= 0) {
-            q->xy[2 * used[t]] = nxy[2 * t];
-            q->xy[2 * used[t] + 1] = nxy[2 * t + 1];
+    const long ncorner = 3 * d.ntri + 4 * d.nquad;
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)d.nf + 1, sizeof(int), &q->face_start), done);
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)ncorner, sizeof(int), &q->face_vert), done);
+    int nv = 0, nc = 0;
+    q->face_start[0] = 0;
+    for (long f = 0; f < d.nf; f++) {
+        const int *c = d.corner + 4 * f;
+        for (int k = 0; k < 4 && c[k] >= 0; k++) {
+            if (used[c[k]] < 0) used[c[k]] = nv++;
+            q->face_vert[nc++] = used[c[k]];
         }
-    memcpy(q->face_start, fs.v, fs.n * sizeof(int));
-    for (size_t i = 0; i < fv.n; i++) q->face_vert[i] = used[fv.v[i]];
-    for (int fa = 0; fa < q->nf; fa++) {
-        int s = q->face_start[fa], k = q->face_start[fa + 1] - s;
-        int *v = q->face_vert + s;
-        double a = 0.0;
-        for (int i = 0; i < k; i++) {
-            int p = v[i], r = v[(i + 1) % k];
-            a += q->xy[2 * p] * q->xy[2 * r + 1] - q->xy[2 * r] * q->xy[2 * p + 1];
-        }
-        if (a < 0)
-            for (int i = 0; i < k / 2; i++) {
-                int tmp = v[i];
-                v[i] = v[k - 1 - i];
-                v[k - 1 - i] = tmp;
-            }
+        q->face_start[f + 1] = nc;
     }
+    q->nv = nv;
+    q->nf = (int)d.nf;
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)2 * nv, sizeof(double), &q->xy), done);
+    for (long i = 0; i < d.nv; i++)
+        if (used[i] >= 0) {
+            q->xy[2 * used[i]] = d.xyz[3 * i];
+            q->xy[2 * used[i] + 1] = d.xyz[3 * i + 1];
+        }
+    /* faces are kept in the file's orientation: the quality report takes
+     * one orientation for the whole mesh (the sign of its total area), so a
+     * folded face reads back as inverted */
     *out = q;
     q = NULL;
-    goto done;
-badel:
-    st = GLPGP_FAIL(GLPGP_ERR_FORMAT, "%s: bad element line", path);
-    goto done;
-nomem:
-    st = GLPGP_FAIL(GLPGP_ERR_NOMEM, "out of memory reading '%s'", path);
 done:
-    fclose(f);
-    free(nxy);
-    free(fs.v);
-    free(fv.v);
+    msh_free(&d);
     free(used);
     glpgp_quadmesh_destroy(&q);
     return st;
 }
-

@@ -1,199 +1,96 @@
-/* result_io.c: reader for glpgp's own legacy VTK results (see result_io.h). */
+/* io/result_read.c: reader of glpgp's own results (glpgp/io.h): legacy
+ * ASCII VTK (one pass over a text_reader, every section and array at most
+ * once, counts checked before anything is reserved, non-finite values
+ * rejected) and VTK XML .vtu (vtu.c); both end in the same assembly of the
+ * mesh and the result. */
 #include "glpgp/io.h"
 
-#include <errno.h>
+#include "text_reader.h"
+#include "vtu.h"
+
 #include <math.h>
-#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-typedef struct rd {
-    FILE *f;
-    const char *path;
-    char tok[256];
-} rd;
+/* What a result file provides, before validation. */
+typedef struct raw_result {
+    long long nv, nt;
+    double *xyz;       /* 3 * nv */
+    long long *tri;    /* 3 * nt */
+    double *z[2];      /* 2 * nv each */
+    double *field;     /* 2 * nv (U), may be NULL */
+    double *dir[2];    /* nv each, may be NULL */
+    double h;
+} raw_result;
 
-/* next whitespace-separated token; 0 at end of file */
-static int next(rd *r)
+static void raw_free(raw_result *w)
 {
-    return fscanf(r->f, "%255s", r->tok) == 1;
+    free(w->xyz);
+    free(w->tri);
+    free(w->z[0]);
+    free(w->z[1]);
+    free(w->field);
+    free(w->dir[0]);
+    free(w->dir[1]);
+    memset(w, 0, sizeof *w);
 }
 
-static glpgp_status read_doubles(rd *r, double *out, long n)
-{
-    for (long i = 0; i < n; i++)
-        if (fscanf(r->f, "%lf", &out[i]) != 1)
-            return GLPGP_FAIL(GLPGP_ERR_FORMAT, "%s: truncated or malformed data array", r->path);
-    return GLPGP_OK;
-}
-
-static int cmp_d(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
-glpgp_status glpgp_read_result_vtk(const char *path, glpgp_mesh **mout, glpgp_result **rout)
+/* Mesh (validated, must come back unchanged) and result from raw data. */
+static glpgp_status assemble(const char *path, raw_result *w, glpgp_mesh **mout, glpgp_result **rout)
 {
     glpgp_status st = GLPGP_OK;
-    rd r = {NULL, path, {0}};
-    double *xyz = NULL, *xy = NULL, *zs[2] = {NULL, NULL}, *field = NULL, *tmp = NULL;
-    int *tri = NULL, *dir[2] = {NULL, NULL};
-    long nv = -1, nt = -1;
-    double h = 0.0;
     glpgp_mesh *m = NULL;
     glpgp_result *res = NULL;
-    *mout = NULL;
-    *rout = NULL;
-    r.f = fopen(path, "r");
-    if (!r.f) return GLPGP_FAIL(GLPGP_ERR_IO, "cannot open result '%s': %s", path, strerror(errno));
-    char line[1024];
-    if (!fgets(line, sizeof line, r.f) || strncmp(line, "# vtk DataFile", 14) != 0) {
-        st = GLPGP_FAIL(GLPGP_ERR_FORMAT, "%s: not a legacy VTK file", path);
-        goto done;
+    double *xy = NULL;
+    int *tri = NULL;
+    if (w->nv < 0 || w->nt < 0 || !w->xyz || !w->tri)
+        return GLPGP_FAIL(GLPGP_ERR_FORMAT, "%s: no points / cells (not a glpgp result)", path);
+    if (!w->z[0] || !w->z[1])
+        return GLPGP_FAIL(GLPGP_ERR_FORMAT,
+                          "%s: result file without oscillators (arrays z_u and z_v are missing); "
+                          "write one with 'glpgp solve ... --out FILE.vtk'",
+                          path);
+    const int nv = (int)w->nv, nt = (int)w->nt;
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)2 * nv, sizeof *xy, &xy), done);
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)3 * nt, sizeof *tri, &tri), done);
+    for (int i = 0; i < nv; i++) {
+        xy[2 * i] = w->xyz[3 * i];
+        xy[2 * i + 1] = w->xyz[3 * i + 1];
     }
-    if (fgets(line, sizeof line, r.f)) {
-        const char *p = strstr(line, " h ");
-        if (p) h = atof(p + 3);
-    }
-    int in_cells = 0;
-    while (next(&r)) {
-        if (!strcmp(r.tok, "BINARY")) {
-            st = GLPGP_FAIL(GLPGP_ERR_FORMAT, "%s: binary VTK is not supported", path);
-            goto done;
-        } else if (!strcmp(r.tok, "POINTS")) {
-            if (fscanf(r.f, "%ld %*s", &nv) != 1 || nv < 3 || nv > 1L << 30) {
-                st = GLPGP_FAIL(GLPGP_ERR_FORMAT, "%s: bad POINTS header", path);
-                goto done;
-            }
-            GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)nv * 3, sizeof(double), &xyz), done);
-            GLPGP_CHECK_GOTO(st, read_doubles(&r, xyz, 3 * nv), done);
-        } else if (!strcmp(r.tok, "CELLS")) {
-            long size;
-            if (fscanf(r.f, "%ld %ld", &nt, &size) != 2 || nt < 1 || size != 4 * nt) {
-                st = GLPGP_FAIL(GLPGP_ERR_FORMAT, "%s: CELLS must hold triangles only", path);
-                goto done;
-            }
-            GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)nt * 3, sizeof(int), &tri), done);
-            for (long t = 0; t < nt; t++) {
-                int k;
-                if (fscanf(r.f, "%d %d %d %d", &k, &tri[3 * t], &tri[3 * t + 1], &tri[3 * t + 2]) != 4 || k != 3) {
-                    st = GLPGP_FAIL(GLPGP_ERR_FORMAT, "%s: cell %ld is not a triangle", path, t);
-                    goto done;
-                }
-            }
-        } else if (!strcmp(r.tok, "CELL_DATA")) {
-            in_cells = 1;
-        } else if (!strcmp(r.tok, "POINT_DATA")) {
-            in_cells = 0;
-        } else if (!strcmp(r.tok, "SCALARS") || !strcmp(r.tok, "VECTORS")) {
-            int vectors = r.tok[0] == 'V';
-            char name[256], type[64];
-            int ncomp = 1;
-            if (fscanf(r.f, "%255s %63s", name, type) != 2) {
-                st = GLPGP_FAIL(GLPGP_ERR_FORMAT, "%s: bad data array header", path);
-                goto done;
-            }
-            if (vectors) ncomp = 3;
-            else {
-                /* optional component count, then LOOKUP_TABLE name */
-                if (fscanf(r.f, " %d", &ncomp) != 1) ncomp = 1;
-                if (!next(&r) || strcmp(r.tok, "LOOKUP_TABLE") || !next(&r)) {
-                    st = GLPGP_FAIL(GLPGP_ERR_FORMAT, "%s: missing LOOKUP_TABLE for %s", path, name);
-                    goto done;
-                }
-            }
-            long n = in_cells ? nt : nv;
-            if (n < 0 || ncomp < 1 || ncomp > 4) {
-                st = GLPGP_FAIL(GLPGP_ERR_FORMAT, "%s: data array %s before the geometry", path, name);
-                goto done;
-            }
-            GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)n * ncomp, sizeof(double), &tmp), done);
-            GLPGP_CHECK_GOTO(st, read_doubles(&r, tmp, n * ncomp), done);
-            if (!in_cells && ncomp == 2 && (!strcmp(name, "z_u") || !strcmp(name, "z_v"))) {
-                int k = name[2] == 'v';
-                free(zs[k]);
-                zs[k] = tmp;
-                tmp = NULL;
-            } else if (!in_cells && vectors && !strcmp(name, "field_u")) {
-                GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)2 * nv, sizeof(double), &field), done);
-                for (long i = 0; i < nv; i++) {
-                    field[2 * i] = tmp[3 * i];
-                    field[2 * i + 1] = tmp[3 * i + 1];
-                }
-            } else if (!in_cells && ncomp == 1 && (!strcmp(name, "dirichlet_u") || !strcmp(name, "dirichlet_v"))) {
-                int k = name[10] == 'v';
-                free(dir[k]);
-                GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)nv, sizeof(int), &dir[k]), done);
-                for (long i = 0; i < nv; i++) dir[k][i] = tmp[i] != 0.0;
-            }
-            free(tmp);
-            tmp = NULL;
-        }
-    }
-    if (nv < 0 || nt < 0) {
-        st = GLPGP_FAIL(GLPGP_ERR_FORMAT, "%s: no POINTS/CELLS (not a glpgp result)", path);
-        goto done;
-    }
-    if (!zs[0] || !zs[1]) {
-        st = GLPGP_FAIL(GLPGP_ERR_FORMAT,
-                        "%s: result file without oscillators (arrays z_u and z_v are missing); "
-                        "write one with 'glpgp solve ... --out FILE.vtk'", path);
-        goto done;
-    }
-    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)2 * nv, sizeof(double), &xy), done);
-    for (long i = 0; i < nv; i++) {
-        xy[2 * i] = xyz[3 * i];
-        xy[2 * i + 1] = xyz[3 * i + 1];
-    }
-    for (long t = 0; t < 3 * nt; t++)
-        if (tri[t] < 0 || tri[t] >= nv) {
-            st = GLPGP_FAIL(GLPGP_ERR_FORMAT, "%s: vertex index %d out of range", path, tri[t]);
+    for (long long t = 0; t < 3LL * nt; t++) {
+        if (w->tri[t] < 0 || w->tri[t] >= nv) {
+            st = GLPGP_FAIL(GLPGP_ERR_FORMAT, "%s: cell %lld: vertex index %lld out of range", path, t / 3,
+                            w->tri[t]);
             goto done;
         }
-    GLPGP_CHECK_GOTO(st, glpgp_mesh_create((int)nv, xy, (int)nt, tri, &m), done);
+        tri[t] = (int)w->tri[t];
+    }
+    if ((st = glpgp_mesh_create(nv, xy, nt, tri, &m)) != GLPGP_OK) {
+        io_name_error(path, st);
+        goto done;
+    }
     if (m->nv != nv || m->nt != nt || m->orientation_fixed) {
         /* our writer emits validated CCW meshes: anything else is not ours */
         st = GLPGP_FAIL(GLPGP_ERR_FORMAT, "%s: mesh changed on validation (not written by glpgp?)", path);
         goto done;
     }
-    GLPGP_CHECK_GOTO(st, glpgp_calloc(1, sizeof *res, &res), done);
-    res->nv = (int)nv;
-    res->nt = (int)nt;
-    res->size = h;
+    GLPGP_CHECK_GOTO(st, glpgp_result_create(nv, nt, &res), done);
+    res->size = w->h;
     res->backend = "file";
-    res->field = field;
-    field = NULL;
-    if (!res->field) GLPGP_CHECK_GOTO(st, glpgp_calloc((size_t)2 * nv, sizeof(double), &res->field), done);
-    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)nv, sizeof(double), &tmp), done);
+    if (w->field) memcpy(res->field, w->field, (size_t)2 * nv * sizeof(double));
     for (int k = 0; k < 2; k++) {
         glpgp_osc_result *o = &res->osc[k];
-        o->z = zs[k];
-        zs[k] = NULL;
-        GLPGP_CHECK_GOTO(st, glpgp_calloc((size_t)nv, 1, &o->dirichlet), done);
-        GLPGP_CHECK_GOTO(st, glpgp_calloc((size_t)nt, 1, &o->singular), done);
-        for (long i = 0; i < nv; i++) {
-            o->dirichlet[i] = dir[k] ? (unsigned char)dir[k][i] : 0;
+        memcpy(o->z, w->z[k], (size_t)2 * nv * sizeof(double));
+        o->n_dirichlet = 0;
+        for (int i = 0; i < nv; i++) {
+            o->dirichlet[i] = w->dir[k] && w->dir[k][i] != 0.0;
             o->n_dirichlet += o->dirichlet[i];
-            tmp[i] = hypot(o->z[2 * i], o->z[2 * i + 1]);
         }
-        glpgp_singularities(m, o->z, o->singular, &o->plus, &o->minus);
-        qsort(tmp, (size_t)nv, sizeof(double), cmp_d);
-        o->zabs_min = tmp[0];
-        o->zabs_p10 = tmp[(size_t)((nv - 1) * 0.1)];
-        o->zabs_median = nv % 2 ? tmp[nv / 2] : 0.5 * (tmp[nv / 2 - 1] + tmp[nv / 2]);
+        GLPGP_CHECK_GOTO(st, glpgp_osc_summarize(m, o), done);
     }
 done:
-    if (r.f) fclose(r.f);
-    free(xyz);
     free(xy);
     free(tri);
-    free(zs[0]);
-    free(zs[1]);
-    free(dir[0]);
-    free(dir[1]);
-    free(field);
-    free(tmp);
     if (st != GLPGP_OK) {
         glpgp_mesh_destroy(&m);
         glpgp_result_destroy(&res);
@@ -201,4 +98,370 @@ done:
     *mout = m;
     *rout = res;
     return st;
+}
+
+/* ---- legacy VTK -------------------------------------------------------------- */
+
+typedef struct lex {
+    text_reader *tr;
+    char *p; /* cursor in the current line (NULL: need a line) */
+} lex;
+
+/* Next whitespace-delimited token (across lines), NULL at the end. */
+static glpgp_status next_tok(lex *lx, char **tok)
+{
+    for (;;) {
+        if (lx->p) {
+            char *s = text_skip_ws(lx->p);
+            if (*s) {
+                char *e = s;
+                while (*e && *e != ' ' && *e != '\t' && *e != '\r' && *e != '\f' && *e != '\v') e++;
+                lx->p = *e ? e + 1 : e;
+                *e = '\0';
+                *tok = s;
+                return GLPGP_OK;
+            }
+        }
+        GLPGP_CHECK(text_next_line(lx->tr, &lx->p));
+        if (!lx->p) {
+            *tok = NULL;
+            return GLPGP_OK;
+        }
+    }
+}
+
+/* The rest of the current line (and move to the next). */
+static char *rest_of_line(lex *lx)
+{
+    char *s = lx->p ? text_skip_ws(lx->p) : (char *)"";
+    lx->p = NULL;
+    return s;
+}
+
+static glpgp_status tok_ll(lex *lx, const char *what, long long *out)
+{
+    char *t;
+    GLPGP_CHECK(next_tok(lx, &t));
+    if (!t || !text_parse_ll(&t, out))
+        return text_error(lx->tr, GLPGP_ERR_FORMAT, 0, "expected an integer (%s)", what);
+    return GLPGP_OK;
+}
+
+/* Read n numbers into a buffer grown as they arrive (*out NULL: discard). */
+static glpgp_status read_numbers(lex *lx, long long n, const char *what, double **out)
+{
+    size_t cap = 0;
+    double *v = NULL;
+    for (long long i = 0; i < n; i++) {
+        char *t;
+        double x;
+        glpgp_status st = next_tok(lx, &t);
+        if (st == GLPGP_OK && (!t || !text_parse_double(&t, &x)))
+            st = text_error(lx->tr, GLPGP_ERR_FORMAT, 0, "%s: value %lld %s", what, i,
+                            !t ? "missing (truncated file)" : "is not a finite number");
+        if (st == GLPGP_OK && out) st = glpgp_grow(&v, &cap, (size_t)i + 1, sizeof *v);
+        if (st != GLPGP_OK) {
+            free(v);
+            glpgp_error_push_trace(__FILE__, __LINE__);
+            return st;
+        }
+        if (out) v[i] = x;
+    }
+    if (out) *out = v;
+    return GLPGP_OK;
+}
+
+static glpgp_status read_legacy(text_reader *tr, raw_result *w)
+{
+    glpgp_status st = GLPGP_OK;
+    lex lx = {tr, NULL};
+    char *s, *t;
+    double *tmp = NULL;
+    long long ncell_types = -1;
+    enum { NONE, POINT_DATA, CELL_DATA } where = NONE;
+    /* names of the arrays seen (each at most once) */
+    char seen[32][64];
+    int nseen = 0;
+
+    /* line 2: title, "... h VALUE ..." */
+    GLPGP_CHECK(text_next_line(tr, &s));
+    if (s) {
+        const char *p = strstr(s, " h ");
+        if (p) {
+            char *q = (char *)p + 3;
+            double h;
+            if (text_parse_double(&q, &h) && h >= 0) w->h = h;
+        }
+    }
+    GLPGP_CHECK(next_tok(&lx, &t));
+    if (!t || strcmp(t, "ASCII"))
+        return text_error(tr, GLPGP_ERR_FORMAT, 0, "%s VTK is not supported (only ASCII)", t ? t : "(empty)");
+    GLPGP_CHECK(next_tok(&lx, &t));
+    if (!t || strcmp(t, "DATASET")) return text_error(tr, GLPGP_ERR_FORMAT, 0, "expected DATASET UNSTRUCTURED_GRID");
+    GLPGP_CHECK(next_tok(&lx, &t));
+    if (!t || strcmp(t, "UNSTRUCTURED_GRID"))
+        return text_error(tr, GLPGP_ERR_FORMAT, 0, "dataset %s is not supported (UNSTRUCTURED_GRID only)",
+                          t ? t : "(none)");
+    for (;;) {
+        GLPGP_CHECK_GOTO(st, next_tok(&lx, &t), done);
+        if (!t) break;
+        if (!strcmp(t, "POINTS")) {
+            long long n;
+            if (w->xyz) {
+                st = text_error(tr, GLPGP_ERR_FORMAT, 0, "second POINTS section");
+                goto done;
+            }
+            GLPGP_CHECK_GOTO(st, tok_ll(&lx, "number of points", &n), done);
+            rest_of_line(&lx); /* data type */
+            GLPGP_CHECK_GOTO(st, text_check_count(tr, n, 6, "points"), done);
+            if (n < 3) {
+                st = text_error(tr, GLPGP_ERR_FORMAT, 0, "%lld points (at least 3 needed)", n);
+                goto done;
+            }
+            w->nv = n;
+            GLPGP_CHECK_GOTO(st, read_numbers(&lx, 3 * n, "POINTS", &w->xyz), done);
+        } else if (!strcmp(t, "CELLS")) {
+            long long n, size;
+            if (w->tri) {
+                st = text_error(tr, GLPGP_ERR_FORMAT, 0, "second CELLS section");
+                goto done;
+            }
+            GLPGP_CHECK_GOTO(st, tok_ll(&lx, "number of cells", &n), done);
+            GLPGP_CHECK_GOTO(st, tok_ll(&lx, "size of the cell list", &size), done);
+            GLPGP_CHECK_GOTO(st, text_check_count(tr, n, 8, "cells"), done);
+            if (n < 1 || size != 4 * n) { /* n <= GLPGP_IO_MAX_ITEMS: no overflow */
+                st = text_error(tr, GLPGP_ERR_FORMAT, 0, "CELLS must hold triangles only (%lld cells, size %lld)", n,
+                                size);
+                goto done;
+            }
+            w->nt = n;
+            GLPGP_CHECK_GOTO(st, read_numbers(&lx, 4 * n, "CELLS", &tmp), done);
+            GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)(3 * n), sizeof *w->tri, &w->tri), done);
+            for (long long c = 0; c < n; c++) {
+                const double *q = tmp + 4 * c;
+                for (int k = 0; k < 4; k++)
+                    if (q[k] != floor(q[k]) || fabs(q[k]) > 2147483647.0) {
+                        st = text_error(tr, GLPGP_ERR_FORMAT, 0, "cell %lld: not an integer index", c);
+                        goto done;
+                    }
+                if (q[0] != 3) {
+                    st = text_error(tr, GLPGP_ERR_FORMAT, 0, "cell %lld is not a triangle", c);
+                    goto done;
+                }
+                for (int k = 0; k < 3; k++) w->tri[3 * c + k] = (long long)q[k + 1];
+            }
+            free(tmp);
+            tmp = NULL;
+        } else if (!strcmp(t, "CELL_TYPES")) {
+            long long n;
+            if (ncell_types >= 0 || !w->tri) {
+                st = text_error(tr, GLPGP_ERR_FORMAT, 0, "%s CELL_TYPES section",
+                                ncell_types >= 0 ? "second" : "CELLS must come before the");
+                goto done;
+            }
+            GLPGP_CHECK_GOTO(st, tok_ll(&lx, "number of cell types", &n), done);
+            if (n != w->nt) {
+                st = text_error(tr, GLPGP_ERR_FORMAT, 0, "CELL_TYPES %lld does not match CELLS %lld", n, w->nt);
+                goto done;
+            }
+            ncell_types = n;
+            GLPGP_CHECK_GOTO(st, read_numbers(&lx, n, "CELL_TYPES", &tmp), done);
+            for (long long c = 0; c < n; c++)
+                if (tmp[c] != 5) {
+                    st = text_error(tr, GLPGP_ERR_FORMAT, 0, "cell %lld has type %g, not a triangle (5)", c, tmp[c]);
+                    goto done;
+                }
+            free(tmp);
+            tmp = NULL;
+        } else if (!strcmp(t, "POINT_DATA") || !strcmp(t, "CELL_DATA")) {
+            long long n;
+            int cells = t[0] == 'C';
+            GLPGP_CHECK_GOTO(st, tok_ll(&lx, t, &n), done);
+            if ((cells && (!w->tri || n != w->nt)) || (!cells && (!w->xyz || n != w->nv))) {
+                st = text_error(tr, GLPGP_ERR_FORMAT, 0, "%s %lld does not match the %s", cells ? "CELL_DATA" : "POINT_DATA",
+                                n, cells ? "cells" : "points");
+                goto done;
+            }
+            where = cells ? CELL_DATA : POINT_DATA;
+        } else if (!strcmp(t, "SCALARS") || !strcmp(t, "VECTORS")) {
+            const int vectors = t[0] == 'V';
+            char name[64];
+            long long ncomp = 3;
+            GLPGP_CHECK_GOTO(st, next_tok(&lx, &t), done);
+            if (!t || strlen(t) >= sizeof name) {
+                st = text_error(tr, GLPGP_ERR_FORMAT, 0, "bad data array header");
+                goto done;
+            }
+            strcpy(name, t);
+            GLPGP_CHECK_GOTO(st, next_tok(&lx, &t), done); /* data type */
+            if (!t) {
+                st = text_error(tr, GLPGP_ERR_FORMAT, 0, "bad data array header for %s", name);
+                goto done;
+            }
+            if (!vectors) { /* optional component count, then LOOKUP_TABLE name */
+                char *rest = rest_of_line(&lx);
+                ncomp = 1;
+                if (*rest && (!text_parse_ll(&rest, &ncomp) || !text_at_end(rest) || ncomp < 1 || ncomp > 4)) {
+                    st = text_error(tr, GLPGP_ERR_FORMAT, 0, "bad component count for %s", name);
+                    goto done;
+                }
+                GLPGP_CHECK_GOTO(st, next_tok(&lx, &t), done);
+                if (!t || strcmp(t, "LOOKUP_TABLE")) {
+                    st = text_error(tr, GLPGP_ERR_FORMAT, 0, "missing LOOKUP_TABLE for %s", name);
+                    goto done;
+                }
+                rest_of_line(&lx);
+            }
+            if (where == NONE) {
+                st = text_error(tr, GLPGP_ERR_FORMAT, 0, "data array %s before POINT_DATA / CELL_DATA", name);
+                goto done;
+            }
+            for (int i = 0; i < nseen; i++)
+                if (!strcmp(seen[i], name)) {
+                    st = text_error(tr, GLPGP_ERR_FORMAT, 0, "repeated data array %s", name);
+                    goto done;
+                }
+            if (nseen == 32) {
+                st = text_error(tr, GLPGP_ERR_FORMAT, 0, "more than 32 data arrays");
+                goto done;
+            }
+            strcpy(seen[nseen++], name);
+            const long long n = where == CELL_DATA ? w->nt : w->nv;
+            const int is_z = where == POINT_DATA && (!strcmp(name, "z_u") || !strcmp(name, "z_v"));
+            const int is_field = where == POINT_DATA && vectors && !strcmp(name, "field_u");
+            const int is_dir = where == POINT_DATA && (!strcmp(name, "dirichlet_u") || !strcmp(name, "dirichlet_v"));
+            if (is_z && ncomp != 2) {
+                st = text_error(tr, GLPGP_ERR_FORMAT, 0, "%s must have 2 components", name);
+                goto done;
+            }
+            if (is_dir && ncomp != 1) {
+                st = text_error(tr, GLPGP_ERR_FORMAT, 0, "%s must have 1 component", name);
+                goto done;
+            }
+            GLPGP_CHECK_GOTO(st, read_numbers(&lx, n * ncomp, name, (is_z || is_field || is_dir) ? &tmp : NULL), done);
+            if (is_z) {
+                w->z[name[2] == 'v'] = tmp;
+            } else if (is_dir) {
+                w->dir[name[10] == 'v'] = tmp;
+            } else if (is_field) {
+                for (long long i = 0; i < n; i++) { /* (x, y, 0) -> (x, y) in place */
+                    tmp[2 * i] = tmp[3 * i];
+                    tmp[2 * i + 1] = tmp[3 * i + 1];
+                }
+                w->field = tmp;
+            }
+            tmp = NULL;
+        } else {
+            st = text_error(tr, GLPGP_ERR_FORMAT, 0, "unexpected '%.40s' (not a glpgp result)", t);
+            goto done;
+        }
+    }
+done:
+    free(tmp);
+    return st;
+}
+
+/* ---- VTK XML (.vtu) ----------------------------------------------------------------- */
+
+static glpgp_status read_vtu(text_reader *tr, const char *first_line, raw_result *w)
+{
+    glpgp_status st = GLPGP_OK;
+    vtu_reader v;
+    GLPGP_CHECK(vtu_read_header(&v, tr, first_line));
+    const char *path = tr->path;
+    w->nv = v.npoints;
+    w->nt = v.ncells;
+    if (w->nv < 3 || w->nt < 1)
+        return GLPGP_FAIL(GLPGP_ERR_FORMAT, "%s: %lld points, %lld cells (not a triangle mesh)", path, w->nv, w->nt);
+    /* the arrays this reader uses, in offset order */
+    const vtu_in_array *want[10];
+    int nw = 0;
+    const vtu_in_array *pts = vtu_find(&v, VTU_POINTS, NULL), *conn = vtu_find(&v, VTU_CELLS, "connectivity"),
+                       *offs = vtu_find(&v, VTU_CELLS, "offsets"), *types = vtu_find(&v, VTU_CELLS, "types"),
+                       *h = vtu_find(&v, VTU_FIELD, "h"), *zu = vtu_find(&v, VTU_POINTDATA, "z_u"),
+                       *zv = vtu_find(&v, VTU_POINTDATA, "z_v"), *fu = vtu_find(&v, VTU_POINTDATA, "field_u"),
+                       *du = vtu_find(&v, VTU_POINTDATA, "dirichlet_u"),
+                       *dv = vtu_find(&v, VTU_POINTDATA, "dirichlet_v");
+    if (!pts || !conn || !offs || !types)
+        return GLPGP_FAIL(GLPGP_ERR_FORMAT, "%s: Points or Cells arrays missing", path);
+    if (pts->ncomp != 3 || (zu && zu->ncomp != 2) || (zv && zv->ncomp != 2) || (fu && fu->ncomp != 3) ||
+        (du && du->ncomp != 1) || (dv && dv->ncomp != 1) || (h && (h->ncomp != 1 || h->ntuples != 1)))
+        return GLPGP_FAIL(GLPGP_ERR_FORMAT, "%s: an array has the wrong number of components", path);
+    const vtu_in_array *all[10] = {pts, conn, offs, types, h, zu, zv, fu, du, dv};
+    for (int i = 0; i < 10; i++)
+        if (all[i]) want[nw++] = all[i];
+    for (int i = 1; i < nw; i++) /* insertion sort by offset */
+        for (int j = i; j > 0 && want[j]->offset < want[j - 1]->offset; j--) {
+            const vtu_in_array *x = want[j];
+            want[j] = want[j - 1];
+            want[j - 1] = x;
+        }
+    for (int i = 0; i < nw; i++) {
+        const vtu_in_array *a = want[i];
+        if (a == pts) {
+            GLPGP_CHECK(vtu_read_array(&v, a, (size_t)(3 * w->nv), &w->xyz, NULL));
+        } else if (a == conn) {
+            GLPGP_CHECK(vtu_read_array(&v, a, (size_t)(3 * w->nt), NULL, &w->tri));
+        } else if (a == offs || a == types) {
+            long long *l = NULL;
+            GLPGP_CHECK(vtu_read_array(&v, a, (size_t)w->nt, NULL, &l));
+            for (long long c = 0; c < w->nt; c++)
+                if (a == offs ? l[c] != 3 * (c + 1) : l[c] != 5) {
+                    free(l);
+                    return GLPGP_FAIL(GLPGP_ERR_FORMAT, "%s: cell %lld is not a triangle", path, c);
+                }
+            free(l);
+        } else if (a == h) {
+            double *x = NULL;
+            GLPGP_CHECK(vtu_read_array(&v, a, 1, &x, NULL));
+            w->h = x[0] >= 0 ? x[0] : 0.0;
+            free(x);
+        } else if (a == zu || a == zv) {
+            GLPGP_CHECK(vtu_read_array(&v, a, (size_t)(2 * w->nv), &w->z[a == zv], NULL));
+        } else if (a == fu) {
+            GLPGP_CHECK(vtu_read_array(&v, a, (size_t)(3 * w->nv), &w->field, NULL));
+            for (long long k = 0; k < w->nv; k++) {
+                w->field[2 * k] = w->field[3 * k];
+                w->field[2 * k + 1] = w->field[3 * k + 1];
+            }
+        } else {
+            GLPGP_CHECK(vtu_read_array(&v, a, (size_t)w->nv, &w->dir[a == dv], NULL));
+        }
+    }
+    return st;
+}
+
+/* ---- entry ---------------------------------------------------------------------------- */
+
+glpgp_status glpgp_read_result(const char *path, glpgp_mesh **mout, glpgp_result **rout)
+{
+    glpgp_status st = GLPGP_OK;
+    text_reader tr;
+    raw_result w;
+    memset(&w, 0, sizeof w);
+    w.nv = w.nt = -1;
+    *mout = NULL;
+    *rout = NULL;
+    GLPGP_CHECK(text_open(&tr, path));
+    char *s;
+    GLPGP_CHECK_GOTO(st, text_next_line(&tr, &s), done);
+    if (s && !strncmp(s, "# vtk DataFile", 14)) {
+        GLPGP_CHECK_GOTO(st, read_legacy(&tr, &w), done);
+    } else if (s && (!strncmp(s, "<?xml", 5) || !strncmp(s, "<VTKFile", 8))) {
+        GLPGP_CHECK_GOTO(st, read_vtu(&tr, s, &w), done);
+    } else {
+        st = GLPGP_FAIL(GLPGP_ERR_FORMAT, "%s: not a VTK file (legacy .vtk or XML .vtu)", path);
+        goto done;
+    }
+    text_close(&tr);
+    GLPGP_CHECK_GOTO(st, assemble(path, &w, mout, rout), done);
+done:
+    text_close(&tr);
+    raw_free(&w);
+    return st;
+}
+
+glpgp_status glpgp_read_result_vtk(const char *path, glpgp_mesh **m, glpgp_result **r)
+{
+    return glpgp_read_result(path, m, r);
 }

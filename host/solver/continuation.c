@@ -20,6 +20,7 @@ typedef struct osc_work {
     const glpgp_options *o;
     glpgp_vec *x, *g, *d, *xt, *work;
     double *host, *scratch;
+    glpgp_amg *amg; /* multigrid preconditioner of the current oscillator (NULL: Jacobi) */
 } osc_work;
 
 static int cmp_double(const void *a, const void *b)
@@ -52,10 +53,12 @@ static glpgp_status naive_solve(osc_work *w, int k, glpgp_osc_result *r)
     const glpgp_backend_ops *op = b->ops;
     const glpgp_options *o = w->o;
     GLPGP_CHECK(op->assemble_newton(b, w->x, 0.0, o->hess));
+    /* multigrid: plane-wave frames (x is 0 off the Dirichlet set) */
+    if (w->amg && !glpgp_amg_try_update(w->amg, NULL, "naive PGP solve")) glpgp_amg_destroy(&w->amg);
     GLPGP_CHECK(op->gradient(b, w->x, 0.0, w->g));
     GLPGP_CHECK(op->axpby(b, -1.0, w->g, 0.0, w->xt));
     glpgp_cg_info ci;
-    GLPGP_CHECK(glpgp_cg(b, w->xt, w->d, o->cg_rtol, o->cg_max, o->cg_check, &ci));
+    GLPGP_CHECK(glpgp_linear_solve(b, w->amg, w->xt, w->d, o->cg_rtol, o->cg_max, o->cg_check, &ci));
     r->cg_iterations += ci.iterations;
     if (ci.reason == GLPGP_CG_BREAKDOWN)
         return GLPGP_FAIL(GLPGP_ERR_NUMERIC, "%s: naive PGP solve: CG breakdown after %d iterations "
@@ -82,6 +85,9 @@ static glpgp_status solve_oscillator(const glpgp_mesh *m, osc_work *w, int k, co
     r->n_dirichlet = glpgp_dirichlet_set(m, hostw, r->dirichlet);
     GLPGP_CHECK(op->set_field(b, hostw, r->dirichlet));
     GLPGP_CHECK(op->assemble_quadratic(b, o->energy, h));
+    /* multigrid hierarchy for this Dirichlet set (NULL: Jacobi) */
+    glpgp_amg_destroy(&w->amg);
+    w->amg = glpgp_amg_try_create(b, o, r->dirichlet, hostw, h, glpgp_osc_name(k));
 
     for (int i = 0; i < nv; i++) {
         w->host[2 * i] = r->dirichlet[i] ? 1.0 : 0.0;
@@ -109,7 +115,8 @@ static glpgp_status solve_oscillator(const glpgp_mesh *m, osc_work *w, int k, co
         }
         GLPGP_CHECK(op->vec_write(b, w->x, w->host));
         r->nlevels = nlevels;
-        glpgp_newton_state ns = {.x = w->x, .g = w->g, .d = w->d, .xt = w->xt, .work = w->work};
+        glpgp_newton_state ns = {.x = w->x, .g = w->g, .d = w->d, .xt = w->xt, .work = w->work,
+                                 .amg = w->amg};
         for (int l = 0; l < nlevels; l++) {
             glpgp_level_stats *ls = &r->level[l];
             glpgp_log(GLPGP_LOG_INFO, "%s: level %d/%d, eps = %.4g", glpgp_osc_name(k), l + 1,
@@ -145,6 +152,14 @@ static glpgp_status solve_oscillator(const glpgp_mesh *m, osc_work *w, int k, co
             r->newton_iterations += ls->newton;
             r->cg_iterations += ls->cg;
         }
+        /* one warning per oscillator when CG hit its cap in Newton steps */
+        int capped = 0;
+        for (int l = 0; l < nlevels; l++) capped += r->level[l].cg_capped;
+        if (capped > 0)
+            glpgp_log(GLPGP_LOG_WARNING,
+                      "%s: CG stopped at its cap of %d iterations in %d of %d Newton steps: the steps "
+                      "were inexact (raise --cg-max)",
+                      glpgp_osc_name(k), o->cg_max, capped, r->newton_iterations);
     }
     GLPGP_CHECK(op->energy(b, w->x, 0.0, w->work));
     double s[GLPGP_NSLOTS];
@@ -153,6 +168,18 @@ static glpgp_status solve_oscillator(const glpgp_mesh *m, osc_work *w, int k, co
     GLPGP_CHECK(op->vec_read(b, w->x, r->z));
     GLPGP_CHECK(glpgp_osc_summarize(m, r));
     r->seconds = glpgp_now() - t0;
+    if (w->amg) {
+        glpgp_amg_info ai;
+        glpgp_amg_get_info(w->amg, &ai);
+        glpgp_log(GLPGP_LOG_INFO,
+                  "%s: multigrid %d levels (%d -> %d nodes), operator complexity %.3f; setup %.3f s "
+                  "once + %.3f s in %d updates (%.1f ms each, coarsest inverse %.1f ms)",
+                  glpgp_osc_name(k), ai.nlevels, ai.n[0], ai.n[ai.nlevels - 1],
+                  ai.operator_complexity, ai.seconds_structure, ai.seconds_values, ai.updates,
+                  ai.updates ? 1e3 * ai.seconds_values / ai.updates : 0.0,
+                  ai.updates ? 1e3 * ai.seconds_coarse / ai.updates : 0.0);
+        glpgp_amg_destroy(&w->amg);
+    }
     glpgp_log(GLPGP_LOG_INFO, "%s: done in %.2f s: median |z| = %.4f, singular +%d/-%d, %d Newton, %ld CG",
               glpgp_osc_name(k), r->seconds, r->zabs_median, r->plus, r->minus, r->newton_iterations,
               r->cg_iterations);
@@ -173,6 +200,15 @@ glpgp_status glpgp_solve(const glpgp_mesh *m, glpgp_backend *b, const glpgp_opti
     const int nv = m->nv, nt = m->nt;
 
     GLPGP_CHECK(glpgp_options_check_mesh(o, m));
+    glpgp_options ojac;
+    if (o->precond == GLPGP_PRECOND_AMG && !glpgp_amg_supported(b)) {
+        /* one warning for the whole solve, then Jacobi everywhere */
+        glpgp_log(GLPGP_LOG_WARNING, "the %s backend has no multigrid preconditioner; using Jacobi-PCG",
+                  b->ops->name);
+        ojac = *o;
+        ojac.precond = GLPGP_PRECOND_JACOBI;
+        o = &ojac;
+    }
     double h = o->size > 0.0 ? o->size : glpgp_default_size(m, o);
 
     GLPGP_CHECK(glpgp_result_create(nv, nt, &r));
@@ -223,6 +259,7 @@ glpgp_status glpgp_solve(const glpgp_mesh *m, glpgp_backend *b, const glpgp_opti
 fail:
     glpgp_result_destroy(&r);
 cleanup:
+    glpgp_amg_destroy(&w.amg);
     if (b->ops) {
         b->ops->vec_destroy(b, &w.x);
         b->ops->vec_destroy(b, &w.g);

@@ -1,7 +1,8 @@
 /* solver/field.c: the guiding field U: boundary-aligned (the boundary angle,
  * folded to the 4-fold symmetry, interpolated harmonically inside with the
- * backend's PCG), radial about a centre, or read from a file (glpgp/solve.h). */
-#include "glpgp/solve.h"
+ * backend's PCG, multigrid-preconditioned with --precond amg), radial about
+ * a centre, or read from a file (glpgp/solve.h). */
+#include "internal.h"
 
 #include <errno.h>
 #include <math.h>
@@ -24,6 +25,7 @@ static glpgp_status field_boundary(const glpgp_mesh *m, glpgp_backend *b, const 
     glpgp_status st = GLPGP_OK;
     double *x0 = NULL;
     glpgp_vec *x = NULL, *g = NULL, *d = NULL;
+    glpgp_amg *amg = NULL;
     GLPGP_CHECK(glpgp_calloc((size_t)2 * nv, sizeof(double), &x0));
     /* boundary angle alpha in [-pi/4, pi/4]: U is the normal or the tangent,
      * whichever is closer to the x axis. At a vertex the two adjacent edges'
@@ -48,7 +50,10 @@ static glpgp_status field_boundary(const glpgp_mesh *m, glpgp_backend *b, const 
     GLPGP_CHECK_GOTO(st, op->gradient(b, x, 0.0, g), done);
     GLPGP_CHECK_GOTO(st, op->axpby(b, 0.0, g, -1.0, g), done); /* g <- -g */
     glpgp_cg_info ci;
-    GLPGP_CHECK_GOTO(st, glpgp_cg(b, g, d, o->cg_rtol, o->cg_max, o->cg_check, &ci), done);
+    amg = glpgp_amg_try_create(b, o, m->on_boundary, NULL, 0.0, "guiding field");
+    if (amg && !glpgp_amg_try_update(amg, NULL, "guiding field")) glpgp_amg_destroy(&amg);
+    GLPGP_CHECK_GOTO(st, glpgp_linear_solve(b, amg, g, d, o->cg_rtol, o->cg_max, o->cg_check, &ci),
+                     done);
     *cg_iterations += ci.iterations;
     if (ci.reason == GLPGP_CG_BREAKDOWN) {
         st = GLPGP_FAIL(GLPGP_ERR_NUMERIC, "guiding field: CG breakdown after %d iterations "
@@ -65,6 +70,7 @@ static glpgp_status field_boundary(const glpgp_mesh *m, glpgp_backend *b, const 
         u[2 * i + 1] = sin(x0[2 * i]);
     }
 done:
+    glpgp_amg_destroy(&amg);
     op->vec_destroy(b, &x);
     op->vec_destroy(b, &g);
     op->vec_destroy(b, &d);

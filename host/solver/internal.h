@@ -30,6 +30,9 @@ typedef struct glpgp_trcg_info {
     int iterations;           /* spmv's (matrix-vector products) done */
     double relres;            /* |r| / |b| of the last full iterate */
     double norm;              /* ||x||_M of the returned step */
+    int crossed;              /* look-ahead: the path left the region, xb holds the
+                                 boundary point (x: the Newton step when reason is
+                                 CONVERGED, else of no use) */
     glpgp_trcg_reason reason;
 } glpgp_trcg_info;
 
@@ -37,13 +40,24 @@ typedef struct glpgp_trcg_info {
  * positive definite) with the block-Jacobi preconditioner M (DINV): x
  * approximately minimises -rhs.x + 1/2 x.A x subject to ||x||_M <= radius
  * (radius <= 0 or infinite: no region). Starts from x = 0; stops at
- * |r| <= rtol |rhs|, on the boundary, on negative curvature (p.Ap <= 0; at
- * the last iterate when p.Ap >= -flat ||p||_M^2, else on the boundary) or
- * after maxit iterations (info->reason). Uses the fused CG ops of the backend table and
+ * |r| <= rtol |rhs|, on the boundary, on negative curvature (p.Ap <= 0) or
+ * after maxit iterations (info->reason). xb (NULL: none): the look-ahead of
+ * steihaug.c (the boundary point there, x goes on to the Newton step).
+ * Uses the fused CG ops of the backend table and
  * creates its four work vectors inside; reads the scalars back once per
  * iteration. Errors: backend failures, non-finite values. */
 glpgp_status glpgp_trcg(glpgp_backend *b, const glpgp_vec *rhs, glpgp_vec *x, double radius,
-                        double flat, double rtol, int maxit, glpgp_trcg_info *info);
+                        double rtol, int maxit, glpgp_vec *xb, glpgp_trcg_info *info);
 const char *glpgp_trcg_reason_name(glpgp_trcg_reason r);
+/* The multigrid preconditioner for one system when o->precond asks for it:
+ * glpgp_amg_create, or NULL after one warning line naming `what` and the
+ * reason (the caller then uses Jacobi-PCG). NULL without a message when
+ * o->precond is Jacobi. */
+glpgp_amg *glpgp_amg_try_create(glpgp_backend *b, const glpgp_options *o, const unsigned char *dir,
+                                const double *w, double h, const char *what);
+
+/* glpgp_amg_update; on failure one warning line naming `what` and 0 (the
+ * caller stops using a), else 1. */
+int glpgp_amg_try_update(glpgp_amg *a, const glpgp_vec *x, const char *what);
 
 #endif

@@ -6,18 +6,29 @@
  *   H = H_E + exact penalty Hessian at x (indefinite in vortex states);
  *   d ~ argmin g.d + 1/2 d.H d over ||d||_M <= radius by Steihaug-Toint CG
  *     (solver/steihaug.c; M = block Jacobi, inexact-Newton tolerance);
+ *     with o->tr_lookahead the CG goes on past the boundary to the Newton
+ *     step, which is tried first;
  *   trial points x (+) a d: a polar update outside vortex cores (phase
  *     rotations stay rotations), the straight one inside; a = 1, then
  *     backtracking while rho = (F - F(x (+) a d)) / (model decrease) <
  *     tr_accept;
  *   radius from rho and the length taken; the level ends at |g| <= rtol |g0|,
- *     at the cap, or when the model decrease falls below the rounding
- *     level of F.
+ *     at the cap, or when, below the rounding level of F, a step no longer
+ *     lowers |g|.
+ *   The multigrid preconditioner (--precond amg) is not used here:
+ *   Steihaug-Toint needs a fixed SPD preconditioner M for its norm ||.||_M,
+ *   and the K-cycle inside flexible CG is neither fixed nor, on the
+ *   indefinite exact Hessian, SPD. Measured alternative (taking the
+ *   multigrid inexact Newton step when FCG saw positive curvature and
+ *   rho >= tr_poor, else the Steihaug step): it converged to saddle states
+ *   (disk 4k, h = 10 edges: +3/-3 singularities, E 32.8 vs 25.4) -- a CG
+ *   without the region does not see all negative curvature.
  * Line search (GLPGP_GLOBAL_LINE_SEARCH, the previous driver):
  *   (H_E + H~_P(x)) d = -g by PCG with the variant o->hess (`mixed` tries
  *   the exact one near convergence and falls back exact -> mixed ->
  *   projected when CG meets negative curvature or d is not a descent
- *   direction), backtracking (Armijo) on F, x <- x + a d. */
+ *   direction), Jacobi or the multigrid (flexible CG), backtracking (Armijo)
+ *   on F, x <- x + a d. */
 #include "internal.h"
 
 #include <float.h>
@@ -44,12 +55,15 @@ static glpgp_status ls_step(glpgp_backend *b, const glpgp_options *o, glpgp_newt
     double slope = 0.0;
     for (;;) {
         GLPGP_CHECK(op->assemble_newton(b, ns->x, inv4e2, hess));
+        /* multigrid: values from the new matrix, frames from x */
+        if (ns->amg && !glpgp_amg_try_update(ns->amg, ns->x, "Newton step")) ns->amg = NULL;
         GLPGP_CHECK(op->axpby(b, -1.0, ns->g, 0.0, ns->xt)); /* xt <- -g (rhs) */
         /* inexact Newton: eta = forcing |g|/|g_0|, within [cg_rtol, forcing_max] */
         double eta = fmin(o->forcing_max, fmax(o->cg_rtol, o->forcing * gn / ns->grad0));
         glpgp_cg_info ci;
-        GLPGP_CHECK(glpgp_cg(b, ns->xt, ns->d, eta, o->cg_max, o->cg_check, &ci));
+        GLPGP_CHECK(glpgp_linear_solve(b, ns->amg, ns->xt, ns->d, eta, o->cg_max, o->cg_check, &ci));
         info->cg += ci.iterations;
+        info->cg_capped += ci.reason == GLPGP_CG_MAXIT;
         const int safe = hess == GLPGP_HESS_PROJECTED || hess == GLPGP_HESS_PAPER;
         if (ci.reason != GLPGP_CG_BREAKDOWN) {
             GLPGP_CHECK(op->dot(b, ns->g, ns->d, GLPGP_S_DOT));
@@ -146,115 +160,170 @@ static int tr_hessian(const glpgp_options *o)
     return (o->hess == GLPGP_HESS_PAPER || o->hess == GLPGP_HESS_PROJECTED) ? o->hess : GLPGP_HESS_EXACT;
 }
 
+/* Steihaug-Toint direction in the block-Jacobi region (see glpgp_newton_step):
+ * ns->d and ti; the Hessian falls back exact -> mixed -> projected when a
+ * diagonal block is indefinite (M is then no norm). */
+static glpgp_status tr_direction(glpgp_backend *b, const glpgp_options *o, glpgp_newton_state *ns,
+                                 double inv4e2, double eta, glpgp_vec *xb, glpgp_trcg_info *ti,
+                                 glpgp_newton_step_info *info)
+{
+    const glpgp_backend_ops *op = b->ops;
+    int hess = tr_hessian(o);
+    for (;;) {
+        GLPGP_CHECK(op->assemble_newton(b, ns->x, inv4e2, hess));
+        /* d ~ argmin m(d) = F + g.d + 1/2 d.H d  subject to ||d||_M <= radius */
+        GLPGP_CHECK(op->axpby(b, -1.0, ns->g, 0.0, ns->xt)); /* xt <- -g (rhs) */
+        GLPGP_CHECK(glpgp_trcg(b, ns->xt, ns->d, ns->radius, eta, o->cg_max, xb, ti));
+        info->cg += ti->iterations;
+        info->cg_capped += ti->reason == GLPGP_TRCG_MAXIT;
+        if (ti->reason == GLPGP_TRCG_NEGCURV && !(ns->radius > 0.0) && ns->step_max > 0.0 &&
+            ti->norm > o->tr_grow * ns->step_max) {
+            /* negative curvature before any region, and a step longer than
+             * tr_grow times the longest good one so far (CG iterates along
+             * nearly flat directions can be huge): redo in that region */
+            ns->radius = o->tr_grow * ns->step_max;
+            GLPGP_CHECK(glpgp_trcg(b, ns->xt, ns->d, ns->radius, eta, o->cg_max, xb, ti));
+            info->cg += ti->iterations;
+            info->cg_capped += ti->reason == GLPGP_TRCG_MAXIT;
+        }
+        if (ti->reason != GLPGP_TRCG_PRECOND || hess == GLPGP_HESS_PROJECTED || hess == GLPGP_HESS_PAPER)
+            return GLPGP_OK;
+        /* an indefinite diagonal block: the block-Jacobi norm is no norm; redo
+         * with the Hessian projected in vortex cores, then everywhere */
+        hess = hess == GLPGP_HESS_EXACT ? GLPGP_HESS_MIXED : GLPGP_HESS_PROJECTED;
+        info->fallbacks++;
+    }
+}
+
 /* Trust-region step (see glpgp_newton_step). */
 static glpgp_status tr_step(glpgp_backend *b, const glpgp_options *o, glpgp_newton_state *ns,
                             double inv4e2, double F, double gn, glpgp_newton_step_info *info)
 {
     const glpgp_backend_ops *op = b->ops;
     double s[GLPGP_NSLOTS];
-    int hess = tr_hessian(o);
     glpgp_trcg_info ti;
-    /* inexact Newton: eta = forcing |g|/|g_0|, within [cg_rtol, forcing_max],
-     * and at most forcing_final gtol/|g| (near the end of a level the linear
-     * residual is what is left of |g|: solve so that one step can finish) */
-    double eta = fmin(o->forcing_max, o->forcing * gn / ns->grad0);
-    if (ns->gtol > 0.0) eta = fmin(eta, o->forcing_final * ns->gtol / gn);
-    eta = fmax(o->cg_rtol, eta);
-    for (;;) {
-        GLPGP_CHECK(op->assemble_newton(b, ns->x, inv4e2, hess));
-        /* d ~ argmin m(d) = F + g.d + 1/2 d.H d  subject to ||d||_M <= radius */
-        GLPGP_CHECK(op->axpby(b, -1.0, ns->g, 0.0, ns->xt)); /* xt <- -g (rhs) */
-        GLPGP_CHECK(glpgp_trcg(b, ns->xt, ns->d, ns->radius, o->tr_flat, eta, o->cg_max, &ti));
-        info->cg += ti.iterations;
-        if (ti.reason == GLPGP_TRCG_NEGCURV && !(ns->radius > 0.0) && ns->step_max > 0.0 &&
-            ti.norm > o->tr_grow * ns->step_max) {
-            /* negative curvature before any region, and a step longer than
-             * tr_grow times the longest good one so far (CG iterates along
-             * nearly flat directions can be huge): redo in that region */
-            ns->radius = o->tr_grow * ns->step_max;
-            GLPGP_CHECK(glpgp_trcg(b, ns->xt, ns->d, ns->radius, o->tr_flat, eta, o->cg_max, &ti));
-            info->cg += ti.iterations;
-        }
-        if (ti.reason != GLPGP_TRCG_PRECOND || hess == GLPGP_HESS_PROJECTED || hess == GLPGP_HESS_PAPER)
-            break;
-        /* an indefinite diagonal block: the block-Jacobi norm is no norm; redo
-         * with the Hessian projected in vortex cores, then everywhere */
-        hess = hess == GLPGP_HESS_EXACT ? GLPGP_HESS_MIXED : GLPGP_HESS_PROJECTED;
-        info->fallbacks++;
-    }
-    /* model along d:  m(a d) - F = a g.d + a^2/2 d.H d;  pred(a) = -(that) */
-    GLPGP_CHECK(op->spmv(b, GLPGP_MAT_NEWTON, ns->d, ns->work));
-    GLPGP_CHECK(op->dot(b, ns->g, ns->d, GLPGP_S_DOT));
-    GLPGP_CHECK(op->dot(b, ns->d, ns->work, GLPGP_S_DOT2));
-    GLPGP_CHECK(op->get_scalars(b, s, GLPGP_NSLOTS));
-    const double gd = s[GLPGP_S_DOT], dhd = s[GLPGP_S_DOT2];
-    const double step = ti.norm;
-    /* polar trial points: x and d read back once per step */
-    trial_host th = {NULL, NULL, NULL}, *h = NULL;
+    memset(&ti, 0, sizeof ti);
     glpgp_status st = GLPGP_OK;
+    trial_host th = {NULL, NULL, NULL}, *h = NULL;
+    /* inexact Newton: eta = forcing |g|/|g_0|, within [cg_rtol, forcing_max] */
+    const double eta = fmin(o->forcing_max, fmax(o->cg_rtol, o->forcing * gn / ns->grad0));
+    /* polar trial points: x (and each d) read back once */
     if (o->retract_zabs > 0.0) {
         const size_t n2 = (size_t)2 * b->sys->nv;
         GLPGP_CHECK_GOTO(st, glpgp_malloc(n2, sizeof(double), &th.x), done);
         GLPGP_CHECK_GOTO(st, glpgp_malloc(n2, sizeof(double), &th.d), done);
         GLPGP_CHECK_GOTO(st, glpgp_malloc(n2, sizeof(double), &th.xt), done);
         GLPGP_CHECK_GOTO(st, op->vec_read(b, ns->x, th.x), done);
-        GLPGP_CHECK_GOTO(st, op->vec_read(b, ns->d, th.d), done);
-        b->n_sync += 2;
+        b->n_sync++;
         h = &th;
     }
-    /* trial points x (+) a d: the full step, then backtracking along d with
-     * a from the minimiser of the quadratic through F, a g.d and F(x (+) a d),
-     * clamped to [tr_shrink_min, tr_shrink] times the previous a.
-     * rho = (F - F(x (+) a d)) / pred(a); a point is taken when rho >=
-     * tr_accept, or, when pred(a) is below the rounding level of F (where
-     * rho means nothing), when F does not visibly rise and |g| decreases;
-     * otherwise the level ends there (converged to the rounding level) */
-    double a = 1.0, Fa = F, rho = -HUGE_VAL;
+    /* look-ahead (tr_lookahead): where the Steihaug path leaves the region,
+     * CG goes on to the inexact Newton step, which is tried first and kept
+     * when its full step has rho >= tr_poor; else the boundary point */
+    glpgp_vec *xb = NULL;
+    if (o->tr_lookahead && ns->radius > 0.0 && isfinite(ns->radius))
+        GLPGP_CHECK_GOTO(st, op->vec_create(b, (size_t)2 * b->sys->nv, &xb), done);
+    int candidate = 0;
+    double a = 1.0, Fa = F, rho = -HUGE_VAL, gd = 0.0, step = 0.0;
     int take = 0, at_noise = 0;
-    for (int j = 0; j <= o->max_backtracks; j++) {
-        if (j > 0) {
-            const double c = isfinite(Fa) ? (Fa - F - a * gd) / (a * a) : HUGE_VAL;
-            double an = c > 0.0 ? -gd / (2.0 * c) : o->tr_shrink * a;
-            a = fmax(o->tr_shrink_min * a, fmin(o->tr_shrink * a, an));
+    for (;;) {
+        if (candidate) {
+            /* the look-ahead Newton step failed: d <- the boundary point */
+            GLPGP_CHECK_GOTO(st, op->copy(b, ns->d, xb), done);
+            ti.reason = GLPGP_TRCG_BOUNDARY;
+            ti.norm = ns->radius;
+            candidate = 0;
+        } else {
+            GLPGP_CHECK_GOTO(st, tr_direction(b, o, ns, inv4e2, eta, xb, &ti, info), done);
+            if (ti.crossed && ti.reason == GLPGP_TRCG_CONVERGED) {
+                candidate = 1;
+            } else if (ti.crossed) { /* negative curvature or the cap beyond the region */
+                GLPGP_CHECK_GOTO(st, op->copy(b, ns->d, xb), done);
+                ti.reason = GLPGP_TRCG_BOUNDARY;
+                ti.norm = ns->radius;
+            }
         }
-        GLPGP_CHECK_GOTO(st, trial_point(b, o, ns, h, a), done);
-        GLPGP_CHECK_GOTO(st, op->energy(b, ns->xt, inv4e2, ns->work), done);
+        /* model along d:  m(a d) - F = a g.d + a^2/2 d.H d;  pred(a) = -(that) */
+        GLPGP_CHECK_GOTO(st, op->spmv(b, GLPGP_MAT_NEWTON, ns->d, ns->work), done);
+        GLPGP_CHECK_GOTO(st, op->dot(b, ns->g, ns->d, GLPGP_S_DOT), done);
+        GLPGP_CHECK_GOTO(st, op->dot(b, ns->d, ns->work, GLPGP_S_DOT2), done);
         GLPGP_CHECK_GOTO(st, op->get_scalars(b, s, GLPGP_NSLOTS), done);
-        Fa = s[GLPGP_S_E] + s[GLPGP_S_P];
-        const double pred = -(a * gd + 0.5 * a * a * dhd);
-        at_noise = pred <= ns->noise;
-        rho = pred > 0.0 && isfinite(Fa) ? (F - Fa) / pred : -HUGE_VAL;
-        take = isfinite(Fa) && (at_noise ? F - Fa >= -ns->noise : rho >= o->tr_accept);
-        if (take && at_noise) {
-            /* F cannot tell: take the point when it lowers |g| instead */
-            GLPGP_CHECK_GOTO(st, op->gradient(b, ns->xt, inv4e2, ns->work), done);
-            GLPGP_CHECK_GOTO(st, op->dot(b, ns->work, ns->work, GLPGP_S_DOT), done);
-            GLPGP_CHECK_GOTO(st, op->get_scalars(b, s, GLPGP_NSLOTS), done);
-            take = sqrt(s[GLPGP_S_DOT]) < gn;
+        gd = s[GLPGP_S_DOT];
+        const double dhd = s[GLPGP_S_DOT2];
+        step = ti.norm;
+        if (h) {
+            GLPGP_CHECK_GOTO(st, op->vec_read(b, ns->d, th.d), done);
+            b->n_sync++;
         }
-        if (take || at_noise) break;
+        /* trial points x (+) a d: the full step, then backtracking along d with
+         * a from the minimiser of the quadratic through F, a g.d and F(x (+) a d),
+         * clamped to [tr_shrink_min, tr_shrink] times the previous a.
+         * rho = (F - F(x (+) a d)) / pred(a); a point is taken when rho >=
+         * tr_accept, or, when pred(a) is below the rounding level of F (where
+         * rho means nothing), when F does not visibly rise and |g| decreases;
+         * otherwise the level ends there (converged to the rounding level).
+         * The look-ahead candidate gets the full step only. */
+        a = 1.0;
+        Fa = F;
+        rho = -HUGE_VAL;
+        take = at_noise = 0;
+        const int maxbt = candidate ? 0 : o->max_backtracks;
+        for (int j = 0; j <= maxbt; j++) {
+            if (j > 0) {
+                const double c = isfinite(Fa) ? (Fa - F - a * gd) / (a * a) : HUGE_VAL;
+                double an = c > 0.0 ? -gd / (2.0 * c) : o->tr_shrink * a;
+                a = fmax(o->tr_shrink_min * a, fmin(o->tr_shrink * a, an));
+            }
+            GLPGP_CHECK_GOTO(st, trial_point(b, o, ns, h, a), done);
+            GLPGP_CHECK_GOTO(st, op->energy(b, ns->xt, inv4e2, ns->work), done);
+            GLPGP_CHECK_GOTO(st, op->get_scalars(b, s, GLPGP_NSLOTS), done);
+            Fa = s[GLPGP_S_E] + s[GLPGP_S_P];
+            const double pred = -(a * gd + 0.5 * a * a * dhd);
+            at_noise = pred <= ns->noise;
+            rho = pred > 0.0 && isfinite(Fa) ? (F - Fa) / pred : -HUGE_VAL;
+            take = isfinite(Fa) && (at_noise ? F - Fa >= -ns->noise : rho >= o->tr_accept);
+            if (take && at_noise) {
+                /* F cannot tell: take the point when it lowers |g| instead */
+                GLPGP_CHECK_GOTO(st, op->gradient(b, ns->xt, inv4e2, ns->work), done);
+                GLPGP_CHECK_GOTO(st, op->dot(b, ns->work, ns->work, GLPGP_S_DOT), done);
+                GLPGP_CHECK_GOTO(st, op->get_scalars(b, s, GLPGP_NSLOTS), done);
+                take = sqrt(s[GLPGP_S_DOT]) < gn;
+            }
+            if (take || at_noise) break;
+        }
+        if (!candidate) break;
+        /* the look-ahead step: kept when the model held (rho >= tr_poor) or,
+         * at the rounding level, |g| fell */
+        if (take && (at_noise || rho >= o->tr_poor)) break;
+        info->lookahead_rejected++;
     }
-    /* radius: a backtracked step sets it to the length taken (tr_grow times
-     * that after a good model, rho > tr_good); after a full
-     * step, shrink it after a poor model (rho < tr_poor; to a* |d|, a* as
-     * above within [tr_shrink_min, tr_shrink]), grow it by tr_grow after a
-     * good step (rho > tr_good) that the region cut. Without a region
-     * (radius <= 0) the steps are plain Newton steps until one is
-     * backtracked, poor, or meets negative curvature: its length (tr_grow
-     * times that after a good model) is the first radius */
-    const int cut = ti.reason == GLPGP_TRCG_BOUNDARY || ti.reason == GLPGP_TRCG_NEGCURV;
-    if (take && !at_noise && a == 1.0 && rho >= o->tr_poor) ns->step_max = fmax(ns->step_max, step);
-    if (take && !at_noise) {
-        if (a < 1.0) {
-            ns->radius = (rho > o->tr_good ? o->tr_grow : 1.0) * a * step;
-        } else if (rho < o->tr_poor) {
-            const double c = Fa - F - gd;
-            double as = c > 0.0 ? -gd / (2.0 * c) : o->tr_shrink;
-            ns->radius = fmax(o->tr_shrink_min, fmin(o->tr_shrink, as)) * step;
-        } else if (ns->radius <= 0.0) {
-            if (cut) ns->radius = (rho > o->tr_good ? o->tr_grow : 1.0) * step;
-        } else if (rho > o->tr_good && cut) {
-            ns->radius *= o->tr_grow;
+    info->lookahead_step = candidate;
+    if (candidate) {
+        /* a Newton step longer than the region held: the region grows to it */
+        if (take && !at_noise) ns->radius = fmax(ns->radius, step);
+    } else {
+        /* radius: a backtracked step sets it to the length taken (tr_grow times
+         * that after a good model, rho > tr_good); after a full
+         * step, shrink it after a poor model (rho < tr_poor; to a* |d|, a* as
+         * above within [tr_shrink_min, tr_shrink]), grow it by tr_grow after a
+         * good step (rho > tr_good) that the region cut. Without a region
+         * (radius <= 0) the steps are plain Newton steps until one is
+         * backtracked, poor, or meets negative curvature: its length (tr_grow
+         * times that after a good model) is the first radius */
+        const int cut = ti.reason == GLPGP_TRCG_BOUNDARY || ti.reason == GLPGP_TRCG_NEGCURV;
+        if (take && !at_noise && a == 1.0 && rho >= o->tr_poor) ns->step_max = fmax(ns->step_max, step);
+        if (take && !at_noise) {
+            if (a < 1.0) {
+                ns->radius = (rho > o->tr_good ? o->tr_grow : 1.0) * a * step;
+            } else if (rho < o->tr_poor) {
+                const double c = Fa - F - gd;
+                double as = c > 0.0 ? -gd / (2.0 * c) : o->tr_shrink;
+                ns->radius = fmax(o->tr_shrink_min, fmin(o->tr_shrink, as)) * step;
+            } else if (ns->radius <= 0.0) {
+                if (cut) ns->radius = (rho > o->tr_good ? o->tr_grow : 1.0) * step;
+            } else if (rho > o->tr_good && cut) {
+                ns->radius *= o->tr_grow;
+            }
         }
     }
     info->accepted = take;
@@ -267,6 +336,7 @@ static glpgp_status tr_step(glpgp_backend *b, const glpgp_options *o, glpgp_newt
     info->reason = (int)ti.reason;
     if (take) GLPGP_CHECK_GOTO(st, op->copy(b, ns->x, ns->xt), done); /* x <- x (+) a d */
 done:
+    op->vec_destroy(b, &xb);
     free(th.x);
     free(th.d);
     free(th.xt);
@@ -311,10 +381,7 @@ glpgp_status glpgp_newton_level(glpgp_backend *b, const glpgp_options *o, glpgp_
          * 64 eps (|F| + |x|^2) (64 eps |F| misses the cancellation when the
          * energy is small against its terms) */
         ns->noise = 64.0 * DBL_EPSILON * (fabs(F) + s[GLPGP_S_DOT2]);
-        if (it == 0) {
-            ls->grad0 = ns->grad0 = gn;
-            ns->gtol = rtol * gn;
-        }
+        if (it == 0) ls->grad0 = ns->grad0 = gn;
         ls->grad = gn;
         ls->energy = F;
         if (gn <= rtol * ls->grad0 || gn == 0.0) break;
@@ -327,13 +394,15 @@ glpgp_status glpgp_newton_level(glpgp_backend *b, const glpgp_options *o, glpgp_
         ls->cg += info.cg;
         ls->fallbacks += info.fallbacks;
         ls->backtracked += info.accepted && info.alpha < 1.0;
+        ls->cg_capped += info.cg_capped;
         ls->newton++;
         if (tr)
             glpgp_log(GLPGP_LOG_INFO,
                       "  %s eps=%.4g newton %3d  |g|=%.3e  E+P=%.10g  cg=%d  |d|=%.3g  a=%.3g  rho=%.3g  "
                       "radius=%.3g  %s%s",
                       glpgp_osc_name(k), eps, it + 1, gn, info.energy, info.cg, info.step, info.alpha,
-                      info.rho, info.radius, glpgp_trcg_reason_name((glpgp_trcg_reason)info.reason),
+                      info.rho, info.radius,
+                      info.lookahead_step ? "look-ahead" : glpgp_trcg_reason_name((glpgp_trcg_reason)info.reason),
                       info.at_noise ? "  (at the rounding level)" : "");
         else
             glpgp_log(GLPGP_LOG_INFO, "  %s eps=%.4g newton %3d  |g|=%.3e  E+P=%.10g  cg=%d  step=%g",

@@ -28,7 +28,6 @@ void glpgp_options_default(glpgp_options *o)
     o->max_backtracks = 40;
     o->forcing = 0.1;
     o->forcing_max = 1e-2;
-    o->forcing_final = 0.5;
     o->globalization = GLPGP_GLOBAL_TRUST_REGION;
     o->tr_accept = 1e-4;
     o->tr_poor = 0.25;
@@ -36,11 +35,21 @@ void glpgp_options_default(glpgp_options *o)
     o->tr_shrink_min = 0.1;
     o->tr_good = 0.75;
     o->tr_grow = 2.0;
-    o->tr_flat = 1e-4;
+    o->tr_lookahead = 0;
     o->retract_zabs = 0.8;
     o->cg_rtol = 1e-8;
     o->cg_max = 20000;
     o->cg_check = 10;
+    o->precond = GLPGP_PRECOND_JACOBI;
+    o->amg_coarse = 48;
+    o->amg_max_levels = 20;
+    o->amg_cycle = GLPGP_AMG_KCYCLE;
+    o->amg_kcycle_min = 0;
+    o->amg_pre = 1;
+    o->amg_post = 1;
+    o->amg_weight = 1.5;
+    o->amg_check = 1;
+    o->amg_maxit = 1000;
     o->size_diag_div = 20.0;
     o->size_min_edges = 10.0;
 }
@@ -75,17 +84,35 @@ glpgp_status glpgp_options_check(const glpgp_options *o)
     if (!(o->exact_switch >= 0.0) || !OPEN01(o->armijo) || !(o->forcing > 0.0) ||
         !OPEN01(o->forcing_max))
         return GLPGP_FAIL(GLPGP_ERR_ARG, "Newton step parameters out of range");
-    if (!(o->forcing_final > 0.0 && o->forcing_final <= 1.0))
-        return GLPGP_FAIL(GLPGP_ERR_ARG, "forcing_final must be in (0,1], got %g", o->forcing_final);
+    if (o->tr_lookahead != 0 && o->tr_lookahead != 1)
+        return GLPGP_FAIL(GLPGP_ERR_ARG, "tr_lookahead must be 0 or 1, got %d", o->tr_lookahead);
     if (o->globalization != GLPGP_GLOBAL_TRUST_REGION && o->globalization != GLPGP_GLOBAL_LINE_SEARCH)
         return GLPGP_FAIL(GLPGP_ERR_ARG, "unknown Newton globalization %d", o->globalization);
     if (!(o->tr_accept >= 0.0 && o->tr_accept < o->tr_poor) || !(o->tr_poor < o->tr_good) ||
         !(o->tr_good < 1.0) || !OPEN01(o->tr_shrink) ||
         !(o->tr_shrink_min > 0.0 && o->tr_shrink_min <= o->tr_shrink) ||
-        !(o->retract_zabs >= 0.0 && o->retract_zabs <= 2.0) || !(o->tr_flat >= 0.0 && o->tr_flat < 1.0) || !(o->tr_grow > 1.0 && isfinite(o->tr_grow)))
+        !(o->retract_zabs >= 0.0 && o->retract_zabs <= 2.0) || !(o->tr_grow > 1.0 && isfinite(o->tr_grow)))
         return GLPGP_FAIL(GLPGP_ERR_ARG,
                           "trust-region parameters out of range (need 0 <= accept < poor < good < 1, "
                           "0 < shrink < 1 < grow)");
+    if (o->precond != GLPGP_PRECOND_JACOBI && o->precond != GLPGP_PRECOND_AMG)
+        return GLPGP_FAIL(GLPGP_ERR_ARG, "unknown preconditioner %d", o->precond);
+    if (o->amg_coarse < 2 || o->amg_coarse > 1024)
+        return GLPGP_FAIL(GLPGP_ERR_ARG, "amg_coarse must be in [2, 1024], got %d", o->amg_coarse);
+    if (o->amg_max_levels < 2 || o->amg_max_levels > GLPGP_AMG_MAX_LEVELS)
+        return GLPGP_FAIL(GLPGP_ERR_ARG, "amg_max_levels must be in [2, %d], got %d",
+                          GLPGP_AMG_MAX_LEVELS, o->amg_max_levels);
+    if (o->amg_kcycle_min < 0)
+        return GLPGP_FAIL(GLPGP_ERR_ARG, "amg_kcycle_min must be >= 0, got %d", o->amg_kcycle_min);
+    if (o->amg_cycle != GLPGP_AMG_KCYCLE && o->amg_cycle != GLPGP_AMG_VCYCLE)
+        return GLPGP_FAIL(GLPGP_ERR_ARG, "unknown multigrid cycle %d", o->amg_cycle);
+    if (o->amg_pre < 0 || o->amg_pre > 8 || o->amg_post < 1 || o->amg_post > 8)
+        return GLPGP_FAIL(GLPGP_ERR_ARG, "amg_pre must be in [0, 8] and amg_post in [1, 8], got %d, %d",
+                          o->amg_pre, o->amg_post);
+    if (!(o->amg_weight > 0.0 && o->amg_weight < 2.0))
+        return GLPGP_FAIL(GLPGP_ERR_ARG, "amg_weight must be in (0, 2), got %g", o->amg_weight);
+    if (o->amg_check < 1 || o->amg_maxit < 1)
+        return GLPGP_FAIL(GLPGP_ERR_ARG, "amg_check and amg_maxit must be >= 1");
     if (!(o->size_diag_div > 0.0) || !(o->size_min_edges >= 0.0))
         return GLPGP_FAIL(GLPGP_ERR_ARG, "default-size parameters out of range");
     return GLPGP_OK;

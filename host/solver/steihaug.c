@@ -8,11 +8,15 @@
  * backend's NEWTON matrix, b = rhs) inside the trust region ||d||_M <= radius,
  * M = the block-Jacobi preconditioner (the 2x2 diagonal blocks of A, whose
  * inverses DINV the backend holds). Unlike glpgp_cg it does not assume A SPD:
- *   - p.Ap <= 0 (negative curvature): follow p to the boundary, stop (a
- *     nearly flat one, p.Ap >= -flat ||p||_M^2, after at least one step:
- *     stop at the last iterate instead);
+ *   - p.Ap <= 0 (negative curvature): follow p to the boundary, stop;
  *   - the next iterate would leave the region: stop on the boundary;
  *   - |r| <= rtol |b|: the inexact Newton step, inside the region.
+ * Look-ahead (xb given): where the path leaves the region, the boundary
+ * point (the Steihaug step) is saved in xb and CG goes on without the
+ * region; x is then the inexact Newton step when the run converges with
+ * positive curvature all along (info->crossed: the caller tries x first and
+ * falls back to xb), and negative curvature or the cap after the crossing
+ * stop it (xb is the step). Before the crossing the run is the same.
  * Every iterate lowers the model (Steihaug 1983; Conn, Gould, Toint,
  * Trust-Region Methods, alg. 7.5.1), as long as M is SPD; when it is not
  * (r.z <= 0: an indefinite diagonal block) the run stops with
@@ -56,11 +60,11 @@ const char *glpgp_trcg_reason_name(glpgp_trcg_reason r)
 }
 
 glpgp_status glpgp_trcg(glpgp_backend *b, const glpgp_vec *rhs, glpgp_vec *x, double radius,
-                        double flat, double rtol, int maxit, glpgp_trcg_info *info)
+                        double rtol, int maxit, glpgp_vec *xb, glpgp_trcg_info *info)
 {
     const glpgp_backend_ops *o = b->ops;
     const size_t n = (size_t)2 * b->sys->nv;
-    const int bounded = radius > 0.0 && isfinite(radius);
+    int bounded = radius > 0.0 && isfinite(radius);
     glpgp_status st = GLPGP_OK;
     glpgp_vec *r = NULL, *z = NULL, *p = NULL, *q = NULL;
     double s[GLPGP_NSLOTS];
@@ -69,6 +73,7 @@ glpgp_status glpgp_trcg(glpgp_backend *b, const glpgp_vec *rhs, glpgp_vec *x, do
     info->relres = 0.0;
     info->norm = 0.0;
     info->reason = GLPGP_TRCG_CONVERGED;
+    info->crossed = 0;
     GLPGP_CHECK_GOTO(st, o->vec_create(b, n, &r), done);
     GLPGP_CHECK_GOTO(st, o->vec_create(b, n, &z), done);
     GLPGP_CHECK_GOTO(st, o->vec_create(b, n, &p), done);
@@ -120,11 +125,13 @@ glpgp_status glpgp_trcg(glpgp_backend *b, const glpgp_vec *rhs, glpgp_vec *x, do
             break;
         }
         const double kappa = s[GLPGP_S_PQ];
-        if (!(kappa > 0.0) && (!bounded || (k > 0 && -kappa <= flat * pp))) {
-            /* negative curvature without a region, or a flat one (p.Ap >=
-             * -flat ||p||^2: a direction along which E + P is quartic, not
-             * quadratic): the last iterate (k > 0: it lowered the model), or
-             * the preconditioned gradient p_0 */
+        if (!(kappa > 0.0) && info->crossed) { /* look-ahead failed: xb is the step */
+            info->reason = GLPGP_TRCG_NEGCURV;
+            break;
+        }
+        if (!(kappa > 0.0) && !bounded) {
+            /* negative curvature without a region: the last iterate (k > 0:
+             * it lowered the model), or the preconditioned gradient p_0 */
             info->reason = GLPGP_TRCG_NEGCURV;
             if (k == 0) {
                 GLPGP_CHECK_GOTO(st, o->copy(b, x, p), done);
@@ -143,10 +150,19 @@ glpgp_status glpgp_trcg(glpgp_backend *b, const glpgp_vec *rhs, glpgp_vec *x, do
         const double dd_next = dd + 2.0 * alpha * dp + alpha * alpha * pp;
         if (bounded && dd_next >= radius * radius) {
             const double tau = to_boundary(dd, dp, pp, radius);
-            GLPGP_CHECK_GOTO(st, o->axpby(b, tau, p, 1.0, x), done);
-            dd = radius * radius;
-            info->reason = GLPGP_TRCG_BOUNDARY;
-            break;
+            if (xb) {
+                /* look-ahead: xb <- d + tau p (the Steihaug point), then go
+                 * on without the region towards the Newton step */
+                GLPGP_CHECK_GOTO(st, o->copy(b, xb, x), done);
+                GLPGP_CHECK_GOTO(st, o->axpby(b, tau, p, 1.0, xb), done);
+                info->crossed = 1;
+                bounded = 0;
+            } else {
+                GLPGP_CHECK_GOTO(st, o->axpby(b, tau, p, 1.0, x), done);
+                dd = radius * radius;
+                info->reason = GLPGP_TRCG_BOUNDARY;
+                break;
+            }
         }
         /* alpha = r.z / p.Ap;  x += alpha p;  r -= alpha q;  z <- M^-1 r */
         GLPGP_CHECK_GOTO(st, o->cg_update(b, x, r, p, q, z, rz, rzn), done);

@@ -179,4 +179,19 @@ fi
 run 2 "extract --smooth=x" extract r.vtk --quads=q.obj --smooth=x
 expect_msg "smooth" "extract --smooth=x"
 
+# ---- interrupted runs: exit 128 + signal, one line, no output and no temporary ----
+for sig in INT TERM; do
+    "$GLPGP" solve shape:disk:300000 --backend reference -o big.vtk --stats big.json >out.txt 2>err.txt </dev/null &
+    pid=$!
+    sleep 1
+    kill -s $sig $pid
+    wait $pid
+    rc=$?
+    want=$([ $sig = INT ] && echo 130 || echo 143)
+    [ "$rc" -eq "$want" ] || fail "SIG$sig: exit $rc, expected $want"
+    tail -n 1 err.txt | grep -qiE "interrupted|terminated" || fail "SIG$sig: no closing line: $(tail -n 2 err.txt)"
+    [ ! -e big.vtk ] && [ ! -e big.json ] || fail "SIG$sig: output left behind"
+    no_tmp "SIG$sig"
+done
+
 finish

@@ -1,39 +1,24 @@
-/* test_output.c: tests of host/output.c on a 3x3-vertex grid mesh with a
+/* test_output.c: tests of the result and statistics writers (io/result_write.c, io/stats.c) on a 3x3-vertex grid mesh with a
  * hand-made result (known z values, windings, level statistics):
  *  - VTK: every array present with the right counts and exact values, theta
  *    in [0, 1) and equal to arg(z)/2pi mod 1;
  *  - OBJ: 9 v, 24 vt, 8 f; texture coordinates unwrapped (no jump > 0.5 inside
  *    a triangle) and congruent to the vertex phases mod 1;
  *  - JSON: syntactically valid (a small recursive-descent checker), required
- *    keys present, NaN written as null, strings escaped;
+ *    keys present, NaN written as null, strings escaped; numbers read back
+ *    exactly (0.1 + 0.2, 1e-300, the smallest subnormal, DBL_MAX, -0, 1/3)
+ *    in the shortest of %.15g/%.16g/%.17g; statistics with a quad report
+ *    are one valid object with one "quads" member holding lossless numbers;
  *  - failures: nonexistent directory -> GLPGP_ERR_IO with no temp file left,
  *    destination is a directory -> GLPGP_ERR_IO, unsupported extension ->
  *    GLPGP_ERR_ARG with nothing written, mismatched result -> GLPGP_ERR_ARG;
  *  - atomic writer: abort keeps a pre-existing file intact, commit replaces it. */
+#include "testutil.h"
+
 #include <dirent.h>
-#include <math.h>
-#include <stdio.h>
-#include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
 #include <unistd.h>
-
-#include "glpgp/io.h"
-#include "glpgp/mesh.h"
-#include "glpgp/phase.h"
-#include "glpgp/shapes.h"
-#include "glpgp/io.h"
-#include "glpgp/solve.h"
-#include "glpgp/status.h"
-
-static int g_fail;
-#define CHECK(cond)                                                              \
-    do {                                                                         \
-        if (!(cond)) {                                                           \
-            fprintf(stderr, "%s:%d: check failed: %s\n", __FILE__, __LINE__, #cond); \
-            g_fail++;                                                            \
-        }                                                                        \
-    } while (0)
 
 #define NV 9
 #define NT 8
@@ -430,7 +415,7 @@ static void test_json(const char *dir, const glpgp_mesh *m, const glpgp_result *
     o.method = GLPGP_METHOD_GL;
     o.field = GLPGP_FIELD_FILE;
     o.field_file = "dir/field \"U\".txt";
-    glpgp_stats_extra x = {"in\\put\t.obj", NULL, 0.25};
+    glpgp_stats_extra x = {"in\\put\t.obj", NULL, 0.25, NULL};
     CHECK(glpgp_write_stats_json(m, &o, r, path, &x) == GLPGP_OK);
     char *buf = read_all(path);
     CHECK(buf != NULL);
@@ -450,11 +435,111 @@ static void test_json(const char *dir, const glpgp_mesh *m, const glpgp_result *
     for (int i = 0; keys[i]; i++) {
         if (!strstr(buf, keys[i])) {
             fprintf(stderr, "JSON lacks %s\n", keys[i]);
-            g_fail++;
+            tu_failures++;
         }
     }
     CHECK(!strstr(buf, "nan") && !strstr(buf, "inf"));
     free(buf);
+    CHECK(dir_count(dir) == 1);
+    remove(path);
+}
+
+static void test_json_numbers(const char *dir)
+{
+    const double v[] = {0.1 + 0.2, 1e-300, 4.9406564584124654e-324, 1.7976931348623157e308, -0.0, 1.0 / 3.0,
+                        0.1, 123456789012345678.0, -2.5e-8, 3.141592653589793, 1.0, 0.0};
+    char buf[32];
+    for (size_t i = 0; i < sizeof v / sizeof v[0]; i++) {
+        glpgp_json_format_number(v[i], buf);
+        double back = strtod(buf, NULL);
+        CHECK(memcmp(&back, &v[i], sizeof back) == 0); /* bit-exact, -0 included */
+        CHECK(strlen(buf) < 25);
+    }
+    CHECK(strcmp(glpgp_json_format_number(0.1, buf), "0.1") == 0);          /* shortest */
+    CHECK(strcmp(glpgp_json_format_number(0.1 + 0.2, buf), "0.30000000000000004") == 0);
+    CHECK(strcmp(glpgp_json_format_number(1e-300, buf), "1e-300") == 0);
+    CHECK(strcmp(glpgp_json_format_number(NAN, buf), "null") == 0);
+    CHECK(strcmp(glpgp_json_format_number(-INFINITY, buf), "null") == 0);
+
+    /* a document through the emitter: valid, numbers read back exactly */
+    char path[512];
+    snprintf(path, sizeof path, "%s/n.json", dir);
+    FILE *f = fopen(path, "w");
+    CHECK(f != NULL);
+    if (!f) return;
+    glpgp_json w;
+    glpgp_json_init(&w, f);
+    glpgp_json_object(&w, NULL);
+    glpgp_json_array(&w, "values");
+    for (size_t i = 0; i < sizeof v / sizeof v[0]; i++) glpgp_json_num(&w, NULL, v[i]);
+    glpgp_json_num(&w, NULL, NAN);
+    glpgp_json_close(&w);
+    glpgp_json_str(&w, "s\"k", "a\"b\\c\n\x01\xff");
+    glpgp_json_object(&w, "empty");
+    glpgp_json_close(&w);
+    glpgp_json_int(&w, "big", 9007199254740993LL);
+    glpgp_json_finish(&w);
+    fclose(f);
+    char *text = read_all(path);
+    CHECK(text && json_valid(text));
+    if (text) {
+        const char *p = strchr(text, '[');
+        for (size_t i = 0; p && i < sizeof v / sizeof v[0]; i++) {
+            char *e;
+            double back = strtod(p + 1, &e);
+            CHECK(memcmp(&back, &v[i], sizeof back) == 0);
+            p = strchr(e, ',');
+        }
+        CHECK(p && strncmp(p, ",\n    null\n  ]", 14) == 0);
+        CHECK(strstr(text, "\"s\\\"k\": \"a\\\"b\\\\c\\n\\u0001\\ufffd\"") != NULL);
+        CHECK(strstr(text, "\"empty\": {}") != NULL);
+        CHECK(strstr(text, "\"big\": 9007199254740993") != NULL);
+    }
+    free(text);
+    remove(path);
+}
+
+/* The statistics with a quad report: one object, "quads" once, lossless. */
+static void test_stats_quads(const char *dir, const glpgp_mesh *m, const glpgp_result *r)
+{
+    char path[512];
+    snprintf(path, sizeof path, "%s/sq.json", dir);
+    glpgp_quad_quality qq;
+    memset(&qq, 0, sizeof qq);
+    qq.vertices = 36;
+    qq.quads = qq.faces = 25;
+    qq.others_by_size[0] = 2;
+    qq.others_by_size[7] = 1;
+    qq.valence_interior[4] = 16;
+    qq.valence_boundary[GLPGP_QUAD_MAXVAL] = 3;
+    qq.sj_min = 0.1 + 0.2;
+    qq.sj_mean = 1.0 / 3.0;
+    qq.sj_p01 = NAN;
+    qq.h = 1e-300;
+    qq.hausdorff = -1;
+    qq.singular[0] = qq.singular[1] = -1;
+    glpgp_stats_extra x = {"in.obj", "out.vtu", 0.5, &qq};
+    CHECK_OK(glpgp_write_stats_json(m, NULL, r, path, &x));
+    char *text = read_all(path);
+    CHECK(text && json_valid(text));
+    if (!text) return;
+    const char *q = strstr(text, "\"quads\": {");
+    CHECK(q != NULL && strstr(q + 1, "\"quads\": {") == NULL);
+    if (q) {
+        const char *sj = strstr(q, "\"min\": ");
+        CHECK(sj && strtod(sj + 7, NULL) == 0.1 + 0.2);
+        sj = strstr(q, "\"mean\": ");
+        CHECK(sj && strtod(sj + 8, NULL) == 1.0 / 3.0);
+        CHECK(strstr(q, "\"p01\": null") != NULL);
+        const char *h = strstr(q, "\"h\": ");
+        CHECK(h && strtod(h + 5, NULL) == 1e-300);
+        CHECK(strstr(q, "\"3\": 2") && strstr(q, "\">=10\": 1") && strstr(q, "\"4\": 16"));
+        CHECK(strstr(q, "\"boundary_distance_over_h\": null") && strstr(q, "\"singular_triangles\": null"));
+    }
+    /* the quads member is the last one of the top-level object */
+    size_t n = strlen(text);
+    CHECK(n > 4 && strcmp(text + n - 4, "}\n}\n") == 0);
+    free(text);
     CHECK(dir_count(dir) == 1);
     remove(path);
 }
@@ -651,16 +736,13 @@ int main(void)
     test_obj(dir, m, r);
     test_json_checker();
     test_json(dir, m, r);
+    test_json_numbers(dir);
+    test_stats_quads(dir, m, r);
     test_failures(dir, m, r);
     CHECK(dir_count(dir) == 0);
     rmdir(dir);
 
     free(r);
     glpgp_mesh_destroy(&m);
-    if (g_fail) {
-        fprintf(stderr, "test_output: %d check(s) failed\n", g_fail);
-        return 1;
-    }
-    printf("test_output: all checks passed\n");
-    return 0;
+    TEST_DONE();
 }

@@ -1,26 +1,11 @@
 /* test_mesh.c: tests for glpgp_mesh_create (validation, orientation repair,
  * boundary loops and normals) and the mesh readers/writers (OBJ, MSH 2.2/4.1,
  * error cases, the meshes in data/, write/read round trips). */
-#include "glpgp/io.h"
-#include "glpgp/mesh.h"
-#include "glpgp/phase.h"
-#include "glpgp/shapes.h"
+#include "testutil.h"
 
 #include <dirent.h>
-#include <math.h>
-#include <stdio.h>
-#include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
-
-static int g_fail;
-#define CHECK(c)                                                                       \
-    do {                                                                               \
-        if (!(c)) {                                                                    \
-            fprintf(stderr, "%s:%d: CHECK failed: %s\n", __FILE__, __LINE__, #c);      \
-            g_fail++;                                                                  \
-        }                                                                              \
-    } while (0)
 
 static char g_tmp[256];
 
@@ -180,7 +165,7 @@ static void expect_reject(int nv, const double *xy, int nt, const int *tri, cons
     if (st != GLPGP_ERR_MESH || m != NULL || !strstr(glpgp_error_message(), needle)) {
         fprintf(stderr, "%s:%d: expected GLPGP_ERR_MESH containing '%s', got %d: %s\n", __FILE__, line, needle,
                 (int)st, glpgp_error_message());
-        g_fail++;
+        tu_failures++;
     }
     if (st == GLPGP_OK) glpgp_mesh_destroy(&m);
     glpgp_error_clear();
@@ -258,7 +243,7 @@ static const char *write_file(const char *name, const char *text, size_t len)
     FILE *f = fopen(p, "wb");
     if (!f) {
         fprintf(stderr, "cannot write %s\n", p);
-        g_fail++;
+        tu_failures++;
         return p;
     }
     fwrite(text, 1, len ? len : strlen(text), f);
@@ -275,7 +260,7 @@ static glpgp_mesh *read_expect(const char *path, glpgp_status st, const char *ne
     if (got != st || (needle && !strstr(glpgp_error_message(), needle)) || (st != GLPGP_OK && m)) {
         fprintf(stderr, "%s:%d: reading %s: expected status %d%s%s, got %d: %s\n", __FILE__, line, path, (int)st,
                 needle ? " containing " : "", needle ? needle : "", (int)got, glpgp_error_message());
-        g_fail++;
+        tu_failures++;
     }
     glpgp_error_clear();
     return m;
@@ -537,10 +522,5 @@ int main(void)
     test_data();
     test_roundtrip();
     remove_tmp_dir();
-    if (g_fail) {
-        fprintf(stderr, "test_mesh: %d check(s) failed\n", g_fail);
-        return 1;
-    }
-    printf("test_mesh: all checks passed\n");
-    return 0;
+    TEST_DONE();
 }

@@ -12,7 +12,10 @@
  *     current element kind, no Dirichlet handling, so grad E = QUAD x) and
  *     NEWTON (QUAD + penalty Hessian, with the Dirichlet rows and columns
  *     replaced by identity rows/columns), plus DINV, the inverses of NEWTON's
- *     2x2 diagonal blocks (block-Jacobi preconditioner).
+ *     2x2 diagonal blocks (block-Jacobi preconditioner);
+ *   - optionally an aggregation multigrid hierarchy on NEWTON (the amg_* ops
+ *     below): level matrices, prolongation weights, smoothers and the
+ *     coarse-solve operator, all on the device.
  * Layer: solver (the interface; implementations: backends). */
 #ifndef GLPGP_BACKEND_H
 #define GLPGP_BACKEND_H
@@ -39,6 +42,58 @@ enum glpgp_slot {
 };
 
 enum glpgp_matrix { GLPGP_MAT_QUAD = 0, GLPGP_MAT_NEWTON = 1 };
+
+/* ---- multilevel (aggregation AMG) preconditioner: data layout ------------
+ * The hierarchy (built on the host by solver/amg.c, design in its header and
+ * host/README.md) has levels l = 0 .. L-1; level 0 is NEWTON on the system's
+ * pattern, level L-1 the coarsest. Every level is a 2x2-block CSR matrix A_l
+ * on n_l nodes. Node i of level l < L-1 belongs to at most one aggregate
+ * agg[i] (a node of level l+1); the prolongation P_l maps the 2 unknowns of
+ * coarse node J to c_i (x) on each member i, where c_i = cr + i ci is a complex
+ * weight acting as the 2x2 block [[cr, -ci], [ci, cr]] (a scaled rotation).
+ * The structure is uploaded once per hierarchy (amg_setup); the values (c,
+ * A_l = P^T A_{l-1} P, smoothers, coarse solve) are rebuilt on the device
+ * per Newton step (amg_values, amg_coarse_set). */
+#define GLPGP_AMG_MAX_LEVELS 24
+
+/* Structure of level l (host arrays; the backend copies what it needs). */
+typedef struct glpgp_amg_level {
+    int n;             /* nodes (level 0: the system's vertices) */
+    long nnzb;         /* 2x2 blocks of A_l */
+    const int *rowptr; /* n + 1 (level 0: NULL, the system's pattern is used) */
+    const int *col;    /* nnzb, sorted within each row, diagonal included */
+    const int *diag;   /* n: slot of (i, i) */
+    /* transfer to level l+1 (NULL on the coarsest level): */
+    const int *agg;    /* n: aggregate of node i, -1 when i is on no coarser
+                          level (Dirichlet vertex: the smoother solves its
+                          identity row exactly) */
+    const int *aptr;   /* n_{l+1} + 1: members of aggregate J are */
+    const int *amem;   /*   amem[aptr[J] .. aptr[J+1]), increasing */
+    const int *gptr;   /* nnzb_{l+1} + 1: Galerkin map (gather form): block */
+    const int *gsrc;   /*   slot K of A_{l+1} sums the level-l slots
+                            gsrc[gptr[K] .. gptr[K+1]), increasing */
+} glpgp_amg_level;
+
+typedef struct glpgp_amg_layout {
+    int nlevels;   /* L, 2 .. GLPGP_AMG_MAX_LEVELS */
+    double weight; /* smoother weight w in (0, 2): M_l^-1 below is w times the
+                      inverse of the l1 block diagonal */
+    glpgp_amg_level lev[GLPGP_AMG_MAX_LEVELS];
+} glpgp_amg_layout;
+
+/* AMG scalar registers: a device array of GLPGP_AMG_NSLOTS doubles, separate
+ * from the s[] slots of the Jacobi path. Slots 0..7 belong to the outer
+ * flexible CG, slots GLPGP_AMG_KSLOT(l) .. +7 to the inner Krylov steps of
+ * the K-cycle on level l. */
+#define GLPGP_AMG_NSLOTS (8 + 8 * GLPGP_AMG_MAX_LEVELS)
+#define GLPGP_AMG_KSLOT(l) (8 + 8 * (l))
+
+/* A coefficient computed on the device: sign * t[num] / t[den], or 0 when
+ * t[den] is 0 or the ratio is not finite; num < 0: the constant sign. */
+typedef struct glpgp_amg_coef {
+    int num, den;
+    double sign;
+} glpgp_amg_coef;
 
 typedef struct glpgp_backend_ops {
     const char *name; /* "reference" or "opencl" */
@@ -90,6 +145,65 @@ typedef struct glpgp_backend_ops {
     glpgp_status (*cg_update)(glpgp_backend *b, glpgp_vec *x, glpgp_vec *r, const glpgp_vec *p,
                               const glpgp_vec *q, glpgp_vec *z, int rz, int rz_new);
     glpgp_status (*cg_direction)(glpgp_backend *b, glpgp_vec *p, const glpgp_vec *z, int rz_new, int rz);
+
+    /* ---- multilevel preconditioner (optional: a backend that leaves
+     * amg_setup NULL gets Jacobi-PCG, with one warning). t[] below are the
+     * AMG scalar registers (GLPGP_AMG_NSLOTS), l a level index, vectors of
+     * level l hold 2 n_l doubles. The drivers (solver/amg.c) call: ----
+     *
+     * amg_setup:   upload the hierarchy structure (replaces any previous one).
+     * amg_values:  per Newton step, from NEWTON (assembled) and the frame
+     *   vectors frames[0 .. L-2] (level-l vectors or NULL), for l = 0 .. L-2:
+     *     f_l  = frames[0]                                   (l = 0)
+     *     f_lJ = a_lJ (frames[l]_J, or 1 when NULL)          (l >= 1, complex)
+     *     s_J  = sqrt(sum_{i in J} |f_li|^2),  a_{l+1,J} = s_J,
+     *     c_i  = f_li / s_agg(i)  (0 when s = 0: J is dead, or agg(i) = -1),
+     *     A_{l+1} = P_l^T A_l P_l through the Galerkin map; the diagonal block
+     *       of a dead coarse node is the identity;
+     *     M_l^-1  = w times the inverse of the l1 block diagonal
+     *       A_l,ii + (sum_{j != i} ||A_l,ij||_2) I  (0 where singular);
+     *       since that diagonal bounds A from above, the sweep converges for
+     *       any SPD A_l when w < 2.
+     * amg_coarse_read: the coarsest A_{L-1} as a dense row-major matrix of
+     *   order m = 2 n_{L-1} (host array of m*m doubles; synchronises).
+     * amg_coarse_set: upload C (m*m, row-major), the coarse solve operator
+     *   (an inverse of A_{L-1} computed on the host).
+     * amg_smooth:  y <- x + M_l^-1 (r - A_l x)   (x NULL: y <- M_l^-1 r)
+     * amg_restrict: rc <- P_l^T (r - A_l x)       (x NULL: rc <- P_l^T r)
+     * amg_prolong: x <- x + P_l ec
+     * amg_coarse_solve: x <- C r  (coarsest level)
+     * amg_spmv_dots: y <- A_l x;  t[slot] <- x.y;  t[slot+1] <- x.u;
+     *   t[slot+2] <- x.w  (u, w may be NULL: that slot is left alone)
+     * amg_dots:    t[slot] <- x.u;  t[slot+1] <- x.w  (u, w may be NULL)
+     * amg_axpby:   y <- a x + c y  (a, c: glpgp_amg_coef; a zero coefficient
+     *   does not read its vector: 0 x + 0 y clears y even if it holds NaN)
+     * amg_kcombine: the K-cycle's two-step Krylov combination, from
+     *   rho1 = t[slot], alpha1 = t[slot+1], beta = t[slot+2],
+     *   gamma = t[slot+3], alpha2 = t[slot+4]:
+     *     rho2 = beta - gamma^2 / rho1,
+     *     e <- (alpha1/rho1 - gamma alpha2 / (rho1 rho2)) v + (alpha2/rho2) d,
+     *   falling back to e <- (alpha1/rho1) v when rho2 <= 1e-12 |beta| or a
+     *   coefficient is not finite, and to e <- 0 when rho1 is 0.
+     * amg_get_scalars: host out[0..n) <- t[0..n) (synchronises). */
+    glpgp_status (*amg_setup)(glpgp_backend *b, const glpgp_amg_layout *lay);
+    glpgp_status (*amg_values)(glpgp_backend *b, const glpgp_vec *const *frames);
+    glpgp_status (*amg_coarse_read)(glpgp_backend *b, double *dense);
+    glpgp_status (*amg_coarse_set)(glpgp_backend *b, const double *inv);
+    glpgp_status (*amg_smooth)(glpgp_backend *b, int l, const glpgp_vec *r, const glpgp_vec *x,
+                               glpgp_vec *y);
+    glpgp_status (*amg_restrict)(glpgp_backend *b, int l, const glpgp_vec *r, const glpgp_vec *x,
+                                 glpgp_vec *rc);
+    glpgp_status (*amg_prolong)(glpgp_backend *b, int l, const glpgp_vec *ec, glpgp_vec *x);
+    glpgp_status (*amg_coarse_solve)(glpgp_backend *b, const glpgp_vec *r, glpgp_vec *x);
+    glpgp_status (*amg_spmv_dots)(glpgp_backend *b, int l, const glpgp_vec *x, glpgp_vec *y,
+                                  const glpgp_vec *u, const glpgp_vec *w, int slot);
+    glpgp_status (*amg_dots)(glpgp_backend *b, const glpgp_vec *x, const glpgp_vec *u,
+                             const glpgp_vec *w, int slot);
+    glpgp_status (*amg_axpby)(glpgp_backend *b, glpgp_amg_coef a, const glpgp_vec *x,
+                              glpgp_amg_coef c, glpgp_vec *y);
+    glpgp_status (*amg_kcombine)(glpgp_backend *b, const glpgp_vec *v, const glpgp_vec *d,
+                                 glpgp_vec *e, int slot);
+    glpgp_status (*amg_get_scalars)(glpgp_backend *b, double *out, int n);
 } glpgp_backend_ops;
 
 struct glpgp_backend {

@@ -1,22 +1,41 @@
 /* glpgp/io.h: everything glpgp reads and writes: triangle meshes (OBJ, Gmsh
- * MSH 2.2/4.1), results (legacy VTK, textured OBJ; read back from VTK),
- * statistics JSON, quad meshes and their quality report, and the atomic-file
- * helper every writer uses. Layer: io.
+ * MSH 2.2/4.1), results (legacy VTK, VTK XML .vtu, textured OBJ; read back
+ * from .vtk and .vtu), statistics JSON, quad meshes and their quality report;
+ * the output set (atomic multi-file commit) every writer goes through, and
+ * the JSON emitter every JSON file is written with. Layer: io.
  *
- *  - glpgp_atomic_*: write a file under a temporary name in the destination's
- *    directory, then rename() it over the destination on success; on any
- *    failure the temporary file is removed and the destination is untouched
- *    (a pre-existing file keeps its old content, a new one never appears).
- *    Reusable by every writer of the library.
- *  - glpgp_write_vtk:          legacy VTK (ASCII) unstructured grid for ParaView;
- *  - glpgp_write_obj_textured: OBJ with per-corner (theta_u, theta_v) texture
- *                              coordinates, unwrapped inside every triangle;
- *  - glpgp_write_stats_json:   run statistics as JSON;
- *  - glpgp_write_result:       picks the VTK or OBJ writer by extension.
- * Every writer is atomic and returns GLPGP_ERR_IO (with a message naming the
- * path and the system error) when the file cannot be written. */
-#ifndef GLPGP_OUTPUT_H
-#define GLPGP_OUTPUT_H
+ * Writing. Every output is written under a temporary name in its
+ * destination's directory ("DIR/STEM.tmp.PID.N.EXT": the extension stays
+ * last) and renamed over the destination only when the whole output set it
+ * belongs to was written completely (streams flushed, fsync'ed and closed
+ * without error). If any write, sync or rename fails, no destination is left
+ * modified: files already renamed are restored from hard-link backups
+ * (DIR/STEM.tmp.PID.N.old, removed on success) or removed when they did not
+ * exist before, and every temporary is removed. Errors are GLPGP_ERR_IO with
+ * one line naming the file and the system error ("No space left on device").
+ * A process-wide list of the live temporaries lets a signal handler clean up
+ * (glpgp_output_signal_cleanup).
+ *
+ * Reading: limits and errors (every reader).
+ *  - Errors are one line, GLPGP_ERR_FORMAT "FILE:LINE: what" for text formats
+ *    (the section / array for binary .vtu data), GLPGP_ERR_IO for missing or
+ *    unreadable files, GLPGP_ERR_LIMIT above a limit below, GLPGP_ERR_MESH
+ *    when glpgp_mesh_create rejects the mesh.
+ *  - Inputs are read in one pass (pipes and FIFOs work; nothing seeks).
+ *  - Memory grows with the data actually read, never with a count a file
+ *    declares: a count is checked for overflow, against GLPGP_IO_MAX_ITEMS
+ *    and, for regular files, against the bytes left in the file before
+ *    anything is reserved for it (a 163-byte file cannot ask for 537 MiB).
+ *    Text formats need a small multiple (< 32x) of the input size; raw .vtu
+ *    data about twice its size; a compressed .vtu block may inflate to at
+ *    most 1100 times its compressed size.
+ *  - Lines longer than GLPGP_IO_MAX_LINE bytes, NUL bytes in text formats,
+ *    non-finite numbers (nan, inf, overflowing literals), repeated sections
+ *    or arrays, counts that disagree with the data that follows are errors.
+ *  - MSH node tags are mapped through a hash table (any tag in [0, 2^63)),
+ *    never through an array sized by the largest tag. */
+#ifndef GLPGP_IO_H
+#define GLPGP_IO_H
 
 #include <stdio.h>
 
@@ -30,7 +49,70 @@
 extern "C" {
 #endif
 
-/* ---- atomic file ------------------------------------------------------- */
+/* Largest count of vertices / nodes, triangles / elements / cells a reader
+ * accepts (so that 4 * count still fits an int). */
+#define GLPGP_IO_MAX_ITEMS ((1L << 29) - 1)
+/* Default limit on the triangles (faces, cells) of a mesh the glpgp CLI
+ * reads, generates or meshes (option --max-elements; the readers' own hard
+ * limit is GLPGP_IO_MAX_ITEMS), and of glpgp_mask_options.max_triangles. */
+#define GLPGP_DEFAULT_MAX_ELEMENTS 20000000L
+/* Longest line of a text format (bytes). */
+#define GLPGP_IO_MAX_LINE (1L << 20)
+/* Most files one output set (and the whole process) may have open at once. */
+#define GLPGP_IO_MAX_OPEN 256
+
+/* ---- output set: several files committed together ---------------------- */
+
+/* Files being written that appear together or not at all. Use:
+ *     glpgp_output_set *s = NULL;
+ *     GLPGP_CHECK(glpgp_output_set_create(&s));
+ *     FILE *f;
+ *     st = glpgp_output_set_open(s, "out/r.vtk", &f);   // write through f
+ *     st = glpgp_output_set_stats(s, ...);               // or a writer below
+ *     st = glpgp_output_set_commit(s);                   // all or nothing
+ *     glpgp_output_set_destroy(&s);                      // aborts if not committed
+ * A set is used by one thread at a time. */
+typedef struct glpgp_output_set glpgp_output_set;
+
+glpgp_status glpgp_output_set_create(glpgp_output_set **out);
+
+/* Create the temporary file of `path` (exclusive creation, mode 0666 &
+ * ~umask; at commit a replaced regular file's permission bits are kept) and
+ * return a binary stream on it in *f (owned by the set: do not fclose it).
+ * Write errors are remembered with their errno and reported by the commit.
+ * GLPGP_ERR_ARG: empty path, or a path the set already holds;
+ * GLPGP_ERR_IO: path is a directory or the temporary cannot be created
+ * (missing directory, permissions); GLPGP_ERR_LIMIT: GLPGP_IO_MAX_OPEN. */
+glpgp_status glpgp_output_set_open(glpgp_output_set *s, const char *path, FILE **f);
+
+/* Like _open for a writer that writes by file name (e.g. an image library):
+ * creates the empty temporary and returns its name in *tmp_path (owned by the
+ * set, valid until destroy). The writer must (re)create exactly that file;
+ * it keeps the extension of path. */
+glpgp_status glpgp_output_set_reserve(glpgp_output_set *s, const char *path,
+                                      const char **tmp_path);
+
+/* Flush, fsync and close every stream; then, if all succeeded, replace the
+ * destinations in the order they were added (hard-link backups of existing
+ * ones first). On any failure nothing is left modified (see the top of this
+ * header) and GLPGP_ERR_IO names the file and the system error. A set can be
+ * committed once; later calls return GLPGP_ERR_ARG. */
+glpgp_status glpgp_output_set_commit(glpgp_output_set *s);
+
+/* Remove every uncommitted temporary, free the set, *s = NULL (NULL ok). */
+void glpgp_output_set_destroy(glpgp_output_set **s);
+
+/* For a SIGINT/SIGTERM handler: remove the temporaries of every live output
+ * set of the process (and undo a commit that is half done). Only unlink()
+ * and rename(): async-signal-safe. The process should exit afterwards. */
+void glpgp_output_signal_cleanup(void);
+
+/* Check, before a long run, that path can be created: its directory exists
+ * and is writable and path itself is not a directory. GLPGP_ERR_IO naming
+ * the problem otherwise. */
+glpgp_status glpgp_output_path_check(const char *path);
+
+/* ---- one atomic file (an output set of one) ------------------------------ */
 
 /* An output file being written. Use:
  *     glpgp_atomic_file af;
@@ -41,24 +123,48 @@ extern "C" {
  * After commit or abort the struct holds no resources (both are safe to call
  * on a struct that was already committed/aborted, or whose open failed). */
 typedef struct glpgp_atomic_file {
-    FILE *f;    /* open stream on the temporary file (NULL when closed) */
-    char *path; /* final destination (owned copy) */
-    char *tmp;  /* temporary name "<path>.tmp.<pid>.<n>" in the same directory */
+    FILE *f;               /* open stream on the temporary file (NULL when closed) */
+    const char *path;      /* final destination (owned by set) */
+    const char *tmp;       /* temporary name (owned by set) */
+    glpgp_output_set *set; /* the set of one */
 } glpgp_atomic_file;
 
-/* Create the temporary file for `path` (exclusive creation, mode 0666 & ~umask)
- * and open it for binary writing. GLPGP_ERR_IO if it cannot be created (e.g.
- * the directory does not exist or path names an existing directory),
- * GLPGP_ERR_ARG for an empty path. On failure af holds nothing. */
 glpgp_status glpgp_atomic_open(glpgp_atomic_file *af, const char *path);
-
-/* Flush and close the stream, check that every write succeeded (ferror,
- * fflush, fclose), then rename the temporary file onto the destination. On
- * any failure the temporary file is removed and GLPGP_ERR_IO returned. */
 glpgp_status glpgp_atomic_commit(glpgp_atomic_file *af);
-
-/* Close and remove the temporary file; the destination is left untouched. */
 void glpgp_atomic_abort(glpgp_atomic_file *af);
+
+/* ---- JSON emitter ------------------------------------------------------- */
+
+#define GLPGP_JSON_MAX_DEPTH 32
+
+/* Pretty-printed JSON (two-space indentation) to a stream. key is the member
+ * name inside an object, NULL inside an array and for the top-level value.
+ * Numbers are lossless: the shortest of %.15g/%.16g/%.17g that strtod reads
+ * back exactly; non-finite numbers are written as null. Strings are escaped
+ * (", \, control characters; invalid UTF-8 bytes become U+FFFD); a NULL
+ * string is null. At most GLPGP_JSON_MAX_DEPTH - 1 levels of nesting. */
+typedef struct glpgp_json {
+    FILE *f;
+    int depth;
+    unsigned char used[GLPGP_JSON_MAX_DEPTH];  /* container has a member already */
+    char closer[GLPGP_JSON_MAX_DEPTH];         /* '}' or ']' */
+} glpgp_json;
+
+void glpgp_json_init(glpgp_json *w, FILE *f);
+void glpgp_json_object(glpgp_json *w, const char *key); /* opens { */
+void glpgp_json_array(glpgp_json *w, const char *key);  /* opens [ */
+void glpgp_json_close(glpgp_json *w);                   /* closes the innermost */
+void glpgp_json_num(glpgp_json *w, const char *key, double v);
+void glpgp_json_int(glpgp_json *w, const char *key, long long v);
+void glpgp_json_str(glpgp_json *w, const char *key, const char *v);
+void glpgp_json_bool(glpgp_json *w, const char *key, int v);
+void glpgp_json_null(glpgp_json *w, const char *key);
+/* After the top-level value: closes what is open and ends the line. */
+void glpgp_json_finish(glpgp_json *w);
+
+/* The number as glpgp_json_num writes it ("null" if not finite) into buf
+ * (at least 32 bytes). Returns buf. */
+char *glpgp_json_format_number(double v, char *buf);
 
 /* ---- result writers ---------------------------------------------------- */
 
@@ -72,6 +178,25 @@ void glpgp_atomic_abort(glpgp_atomic_file *af);
  * (nv, nt), else GLPGP_ERR_ARG. */
 glpgp_status glpgp_write_vtk(const glpgp_mesh *m, const glpgp_result *r, const char *path);
 
+/* VTK XML UnstructuredGrid (.vtu), binary: every array in one appended raw
+ * section (header_type UInt64, the host's byte order), zlib-compressed
+ * (vtkZLibDataCompressor, blocks of at most 1 MiB; an array whose first
+ * block does not shrink by 10% is stored at zlib level 0) when level > 0
+ * and the build has zlib. Arrays as in glpgp_write_vtk: Points Float64 x3,
+ * connectivity / offsets Int32, types UInt8 (5); PointData z_u, z_v (Float64
+ * x2), theta_u, theta_v, zabs_u, zabs_v (Float64), dirichlet_u, dirichlet_v
+ * (Int8), field_u, field_v (Float64 x3); CellData singular_u, singular_v
+ * (Int8); FieldData h (Float64, 1 tuple). Values are stored exactly.
+ * level: -1 default (GLPGP_VTU_DEFAULT_LEVEL with zlib, else 0), 0 raw,
+ * 1..9 zlib levels (raw when the build has no zlib). opts may be NULL (it
+ * only annotates the file). */
+#define GLPGP_VTU_DEFAULT_LEVEL 1
+glpgp_status glpgp_write_vtu(const glpgp_mesh *m, const glpgp_options *opts,
+                             const glpgp_result *r, const char *path, int level);
+
+/* Whether this build compresses .vtu data (zlib found at build time). */
+int glpgp_io_have_zlib(void);
+
 /* OBJ with texture coordinates: `v x y 0` per vertex, one `vt tu tv` per
  * triangle corner and `f a/ta b/tb c/tc`. (tu, tv) = (theta_u, theta_v),
  * unwrapped inside each triangle: corner 0 gets theta in [0, 1); corners 1, 2
@@ -80,16 +205,16 @@ glpgp_status glpgp_write_vtk(const glpgp_mesh *m, const glpgp_result *r, const c
 glpgp_status glpgp_write_obj_textured(const glpgp_mesh *m, const glpgp_result *r,
                                       const char *path);
 
-/* Caller-supplied context for the JSON statistics (every member optional). */
+/* Caller-supplied context for the JSON statistics (every member optional;
+ * zero-initialise the struct). */
 typedef struct glpgp_stats_extra {
     const char *input;   /* input path or "shape:NAME:N" (NULL: written as null) */
     const char *output;  /* result file written alongside (NULL: null) */
     double seconds_read; /* time to read / generate the mesh (< 0: omitted) */
+    const glpgp_quad_quality *quads; /* quad mesh report: "quads" member (NULL: none) */
 } glpgp_stats_extra;
 
-/* Statistics JSON (one object; numbers written losslessly: the shortest of
- * %.15g/%.16g/%.17g that reads back exactly; NaN/Inf written as null,
- * strings escaped). Top-level keys:
+/* Statistics JSON (one object, glpgp_json). Top-level keys:
  *   version, input, output, vertices, triangles, size, method ("gl"/"pgp"),
  *   energy ("p1"/"transport"), newton ("mixed"/"projected"/"paper"/"exact"), backend,
  *   field ("boundary"/"radial"/"file"), field_file, init ("naive"/"one"),
@@ -100,20 +225,23 @@ typedef struct glpgp_stats_extra {
  *   zabs {u: {min, p10, median}, v: {...}},
  *   final_energy {u, v}, dirichlet {u, v},
  *   newton_iterations {total, u, v}, cg_iterations {total, u, v, field},
+ *   converged {all (false when any eps level stopped at the Newton cap),
+ *              capped_levels_u, capped_levels_v},
  *   eps_schedule {u: [{level, eps, newton, cg, grad0, grad, energy,
  *                      median_zabs, restarted, fallbacks, backtracked, rtol,
  *                      capped}, ...],
  *                 v: [...]},
- *   seconds {read, setup, field, u, v, total}.
+ *   seconds {read, setup, field, u, v, total},
+ *   quads (the report of glpgp_quads_json; only when extra->quads is set).
  * opts may be NULL (the option keys are then null); extra may be NULL. */
 glpgp_status glpgp_write_stats_json(const glpgp_mesh *m, const glpgp_options *opts,
                                     const glpgp_result *r, const char *path,
                                     const glpgp_stats_extra *extra);
 
 /* Write the result with the writer chosen by the extension of path
- * (case-insensitive): ".vtk" -> glpgp_write_vtk, ".obj" ->
- * glpgp_write_obj_textured; anything else -> GLPGP_ERR_ARG (nothing written).
- * opts may be NULL (it only annotates the VTK header). */
+ * (case-insensitive): ".vtk" -> legacy VTK, ".vtu" -> glpgp_write_vtu
+ * (default level), ".obj" -> glpgp_write_obj_textured; anything else ->
+ * GLPGP_ERR_ARG (nothing written). opts may be NULL (it only annotates). */
 glpgp_status glpgp_write_result(const glpgp_mesh *m, const glpgp_options *opts,
                                 const glpgp_result *r, const char *path);
 
@@ -121,10 +249,14 @@ glpgp_status glpgp_write_result(const glpgp_mesh *m, const glpgp_options *opts,
  * validating command lines before a long solve). */
 int glpgp_result_path_supported(const char *path);
 
-/* Check, before a long run, that path can be created: its directory exists
- * and is writable and path itself is not a directory. GLPGP_ERR_IO naming
- * the problem otherwise. */
-glpgp_status glpgp_output_path_check(const char *path);
+/* The same writers, adding the file to an output set (committed by the
+ * caller together with the set's other files). */
+glpgp_status glpgp_output_set_result(glpgp_output_set *s, const glpgp_mesh *m,
+                                     const glpgp_options *opts, const glpgp_result *r,
+                                     const char *path);
+glpgp_status glpgp_output_set_stats(glpgp_output_set *s, const glpgp_mesh *m,
+                                    const glpgp_options *opts, const glpgp_result *r,
+                                    const char *path, const glpgp_stats_extra *extra);
 
 /* ---- triangle meshes --------------------------------------------------- */
 
@@ -134,26 +266,33 @@ glpgp_status glpgp_output_path_check(const char *path);
  * tolerance 1e-9 of the bbox size) and everything glpgp_mesh_create rejects
  * (GLPGP_ERR_MESH). OBJ: `v x y [z]`, `f` with a, a/b, a//c, a/b/c forms and
  * negative (relative) indices; polygons with more than 3 corners are
- * fan-triangulated. Unused vertices are dropped silently (with renumbering). */
+ * fan-triangulated; a face using a vertex twice is an error. MSH: element
+ * types other than 2 are skipped. Unused vertices are dropped silently (with
+ * renumbering). Limits: see the top of this header. */
 glpgp_status glpgp_mesh_read(const char *path, glpgp_mesh **out);
 
-/* Write the triangles as OBJ or MSH 4.1 (by extension), atomically
- * (temporary file + rename). */
+/* Write the triangles as OBJ or MSH 4.1 (by extension), atomically. */
 glpgp_status glpgp_mesh_write(const glpgp_mesh *m, const char *path);
+glpgp_status glpgp_output_set_mesh(glpgp_output_set *s, const glpgp_mesh *m, const char *path);
 
 /* ---- results read back ---------------------------------------------------- */
 
-/* Read path (ASCII legacy VTK from glpgp_write_vtk). On success *m is the
- * mesh (validated by glpgp_mesh_create) and *r a result with nv, nt, size
- * (from the header; 0 if absent), field (U, zeros if absent), osc[k].z,
- * dirichlet (if present), and singularities and |z| statistics recomputed
- * from z. A file without the z_u and z_v arrays -> GLPGP_ERR_FORMAT;
- * unreadable -> GLPGP_ERR_IO. */
+/* Read a result written by glpgp_write_vtk (legacy ASCII VTK) or
+ * glpgp_write_vtu (VTK XML, appended raw data, compressed or not); the format
+ * is recognised by the content. On success *m is the mesh (validated by
+ * glpgp_mesh_create) and *r a result with nv, nt, size (from the header or
+ * the h field; 0 if absent), field (U, zeros if absent), osc[k].z, dirichlet
+ * (if present), and singularities and |z| statistics recomputed from z.
+ * Each section / array may appear once; every value must be finite.
+ * A file without the z_u and z_v arrays -> GLPGP_ERR_FORMAT; unreadable ->
+ * GLPGP_ERR_IO. On failure *m and *r are NULL. */
 glpgp_status glpgp_read_result_vtk(const char *path, glpgp_mesh **m, glpgp_result **r);
+/* The same (name for new code). */
+glpgp_status glpgp_read_result(const char *path, glpgp_mesh **m, glpgp_result **r);
 
 /* ---- quad meshes and their quality report ---------------------------------- */
 
-/* Write the report as one JSON object (no trailing newline) to f:
+/* The report as a JSON object member `key` (NULL inside arrays / at top):
  * {"vertices", "faces", "quads", "other_faces", "other_faces_by_corners": {"3":..,"5":..},
  *  "valence": {"interior": {"2": n, ...}, "boundary": {...}},
  *  "irregular_vertices": {"interior", "boundary", "total"},
@@ -162,18 +301,22 @@ glpgp_status glpgp_read_result_vtk(const char *path, glpgp_mesh **m, glpgp_resul
  *  "edge_length_over_h": {"mean", "min", "max"}, "h", "area", "domain_area",
  *  "boundary_distance_over_h": {"hausdorff", "quads_to_domain", "domain_to_quads"}
  *  (null without a domain), "gap_edges", "singular_triangles": {"u", "v"},
+ *  "valid" (true / false), "invalid_reasons": ["inverted", "non-quad", ...]
+ *  (glpgp_quad_bad_name), "orientation" (+1 / -1), "overlapping_faces",
+ *  "pinched_vertices", "non_quad_faces", "boundary_loops": {"mesh", "domain"},
+ *  "area_ratio", "outside_faces", "far_faces", "corners_lost",
+ *  "boundary_vertex_distance_over_h" (the last five null without a domain),
+ *  "max_edge_over_h", "repair": {"rounds", "removed_faces", "regions",
+ *  "new_quads", "snapped_vertices"},
  *  "closing": {"odd_faces_closed", "strips_to_boundary", "quads_cut", "turns",
  *  "even_faces_split", "smoothed_vertices"}}.
- * Non-finite numbers are written as null. */
-void glpgp_quads_write_json(FILE *f, const glpgp_quad_quality *qq);
+ * Numbers lossless, non-finite ones null (glpgp_json). */
+void glpgp_quads_json(glpgp_json *w, const char *key, const glpgp_quad_quality *qq);
 
 /* Write a standalone JSON file {"quads": REPORT} atomically. */
 glpgp_status glpgp_quads_write_json_file(const glpgp_quad_quality *qq, const char *path);
-
-/* Insert "quads": REPORT as the last member of the JSON object stored in
- * path (e.g. the statistics written by glpgp_write_stats_json), atomically.
- * GLPGP_ERR_FORMAT when the file does not end with a JSON object. */
-glpgp_status glpgp_quads_append_json(const char *path, const glpgp_quad_quality *qq);
+glpgp_status glpgp_output_set_quads_json(glpgp_output_set *s, const glpgp_quad_quality *qq,
+                                         const char *path);
 
 /* Write q by extension (case-insensitive), atomically:
  *  .obj  `v x y 0` and one `f` line per face (quads: 4 indices, other faces
@@ -182,19 +325,25 @@ glpgp_status glpgp_quads_append_json(const char *path, const glpgp_quad_quality 
  *        VTK_POLYGON (7) for every other face; CELL_DATA corners (int) and
  *        scaled_jacobian (quads; min corner value for polygons); POINT_DATA
  *        valence;
+ *  .vtu  the same arrays as VTK XML (appended raw, zlib as glpgp_write_vtu;
+ *        scaled_jacobian stored exactly);
  *  .msh  Gmsh MSH 4.1 ASCII, one surface entity; quads are element type 3;
  *        a face with n != 4 corners is split into a fan of quads
  *        (0,2i+1,2i+2,2i+3) plus, for odd n, one triangle (type 2), so the
  *        file holds only quads and triangles and stays conforming.
  * Other extensions -> GLPGP_ERR_ARG. */
 glpgp_status glpgp_quads_write(const glpgp_quadmesh *q, const char *path);
+glpgp_status glpgp_output_set_quads(glpgp_output_set *s, const glpgp_quadmesh *q,
+                                    const char *path);
 
-/* Whether path ends in .obj, .vtk or .msh (case-insensitive). */
+/* Whether path ends in .obj, .vtk, .vtu or .msh (case-insensitive). */
 int glpgp_quads_path_supported(const char *path);
 
-/* Read a 2D quad/triangle mesh from Gmsh MSH 4.1 or 2.2 ASCII (element types
- * 2 = triangle and 3 = quadrangle; other element types are ignored; z
- * ignored). Faces are made counter-clockwise. GLPGP_ERR_IO / _FORMAT. */
+/* Read a 2D quad/triangle mesh from Gmsh MSH 4.1 or 2.2 ASCII (faces keep the
+ * file's vertex order, so the report can find folds; element types
+ * 2 = triangle and 3 = quadrangle, in file order; other element types are
+ * ignored; z ignored). Same parser and
+ * limits as glpgp_mesh_read. GLPGP_ERR_IO / _FORMAT / _LIMIT. */
 glpgp_status glpgp_quads_read_msh(const char *path, glpgp_quadmesh **out);
 
 

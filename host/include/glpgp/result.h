@@ -26,6 +26,7 @@ typedef struct glpgp_level_stats {
     int backtracked;     /* trust-region steps shortened along d (ratio test failed at full length) */
     int capped;          /* the level stopped at newton_max with |g| above its tolerance */
     double rtol;         /* the level's tolerance |g| <= rtol |g0| */
+    int cg_capped;       /* Newton linear solves stopped by the CG cap (cg_max) */
 } glpgp_level_stats;
 
 typedef struct glpgp_osc_result {

@@ -24,6 +24,16 @@ enum glpgp_init { GLPGP_INIT_NAIVE = 0, GLPGP_INIT_ONE = 1 };
 /* How a Newton step is made safe: a trust region around the exact-Hessian
  * model (Steihaug-Toint CG), or the line search of the modified Newton. */
 enum glpgp_globalization { GLPGP_GLOBAL_TRUST_REGION = 0, GLPGP_GLOBAL_LINE_SEARCH = 1 };
+/* Preconditioner of the Newton (and naive PGP, guiding field) systems. */
+enum glpgp_precond {
+    GLPGP_PRECOND_JACOBI = 0, /* 2x2-block Jacobi, CG (solver/cg.c) */
+    GLPGP_PRECOND_AMG = 1     /* aggregation multigrid, flexible CG (solver/amg.c) */
+};
+/* Multigrid cycle on the coarse levels. */
+enum glpgp_amg_cycle {
+    GLPGP_AMG_KCYCLE = 0, /* two flexible-CG steps per coarse level (K-cycle) */
+    GLPGP_AMG_VCYCLE = 1  /* one plain visit per coarse level (V-cycle) */
+};
 
 /* Every parameter of a solve (defaults in brackets). */
 typedef struct glpgp_options {
@@ -58,8 +68,6 @@ typedef struct glpgp_options {
     int max_backtracks;   /* line search halvings before the step is given up [40] */
     double forcing;       /* inexact Newton: CG tolerance eta = forcing |g| / |g_0| ... [0.1] */
     double forcing_max;   /* ... clamped to [cg_rtol, forcing_max] [1e-2] */
-    double forcing_final; /* trust region: eta also <= this (level's |g| target) / |g|,
-                             (0, 1] [0.5] */
     int globalization;    /* GLPGP_GLOBAL_* [TRUST_REGION] */
     /* trust region (radius in the block-Jacobi norm ||d||_M = sqrt(d.D d)):
      * rho = (actual decrease of E + P) / (decrease predicted by the model) */
@@ -71,9 +79,9 @@ typedef struct glpgp_options {
                              factor, (0, tr_shrink] [0.1] */
     double tr_good;       /* rho above this with a step on the boundary ... (tr_poor, 1) [0.75] */
     double tr_grow;       /* ... multiplies the radius by this, > 1 [2] */
-    double tr_flat;       /* negative curvature p.Ap >= -this ||p||_M^2 is flat: the CG step
-                             stops at its last iterate instead of following p to the
-                             boundary, [0, 1) [1e-4] */
+    int tr_lookahead;     /* 1: where the Steihaug path leaves the region, CG goes on to the
+                             inexact Newton step and tries it first (kept when its rho >=
+                             tr_poor; the region then grows to its length), 0: off [0] */
     double retract_zabs;  /* trial points follow z (1 + Re w) e^{i Im w}, w = d/z, where
                              |z| >= this, z + d below half of it; 0: z + d everywhere;
                              [0, 2] [0.8] */
@@ -82,6 +90,21 @@ typedef struct glpgp_options {
     double cg_rtol;       /* CG: |r| <= rtol |b| [1e-8] */
     int cg_max;           /* CG iteration cap [20000] */
     int cg_check;         /* read the residual back every k iterations [10] */
+
+    /* preconditioner (glpgp/solve.h: glpgp_amg_*) */
+    int precond;          /* GLPGP_PRECOND_JACOBI or _AMG [JACOBI] */
+    int amg_coarse;       /* coarsening stops at <= this many nodes (2 unknowns each),
+                             solved by a dense inverse; 2 .. 1024 [48] */
+    int amg_max_levels;   /* levels including the fine one, 2 .. GLPGP_AMG_MAX_LEVELS [20] */
+    int amg_cycle;        /* GLPGP_AMG_KCYCLE or _VCYCLE [KCYCLE] */
+    int amg_kcycle_min;   /* with KCYCLE: levels with fewer nodes than this get a plain
+                             visit (V) instead, fewer small operations per cycle for a
+                             device with launch latency; >= 0 [0: K-cycle on every level] */
+    int amg_pre;          /* l1-Jacobi sweeps before the coarse correction, 0 .. 8 [1] */
+    int amg_post;         /* l1-Jacobi sweeps after the coarse correction, 1 .. 8 [1] */
+    double amg_weight;    /* l1-Jacobi weight, in (0, 2) (convergent for any SPD matrix) [1.5] */
+    int amg_check;        /* flexible CG reads the residual back every k iterations [1] */
+    int amg_maxit;        /* flexible-CG cap (the smaller of this and cg_max) [1000] */
 
     /* default h (glpgp_default_size) */
     double size_diag_div; /* h = bounding-box diagonal / this ... [20] */
@@ -141,11 +164,11 @@ typedef struct glpgp_newton_state {
     int cooldown;    /* steps left before `mixed` may try the exact Hessian again */
     double radius;   /* trust region radius (<= 0: none yet, the next step is a plain
                         Newton step; set from it). Kept from level to level. */
-    double gtol;     /* the level's target |g| (rtol |g_0|; set by the level loop, 0: none) */
     double step_max; /* longest full step with rho >= tr_poor so far (the region set
                         when negative curvature appears before any region) */
     double noise;    /* rounding level of F = E + P at x (set by the level loop; below
                         it a trial point is judged by |g| instead of F) */
+    struct glpgp_amg *amg; /* multigrid preconditioner (borrowed; NULL: Jacobi) */
 } glpgp_newton_state;
 
 typedef struct glpgp_newton_step_info {
@@ -160,11 +183,17 @@ typedef struct glpgp_newton_step_info {
     int accepted;    /* the line search found a descent step */
     double alpha;    /* accepted step length (0 when none) */
     double energy;   /* E + P at the new x */
+    int cg_capped;   /* CG runs of this step stopped by the cap o->cg_max */
+    int lookahead_step;     /* trust region: the step taken is the Newton step beyond the region */
+    int lookahead_rejected; /* trust region: look-ahead Newton steps given up (rho < tr_poor) */
 } glpgp_newton_step_info;
 
 /* One Newton step at x. Line search: assemble (H_E + H~_P(x)), solve it by
- * PCG to the inexact-Newton tolerance, backtrack on E + P, update x. Trust
- * region: assemble the exact Hessian, Steihaug-CG in the region s->radius,
+ * PCG to the inexact-Newton tolerance (Jacobi, or flexible CG with s->amg,
+ * whose values are rebuilt from the new matrix and x), backtrack on E + P,
+ * update x. Trust region: assemble the exact Hessian, Steihaug-CG in the
+ * region s->radius (block-Jacobi preconditioner and norm, whatever s->amg:
+ * Steihaug-Toint needs a fixed SPD preconditioner, the K-cycle is not one),
  * take the trial point x (+) a d (polar update, retract_zabs) with a = 1 or
  * backtracked until the actual decrease is at least tr_accept of the
  * predicted one, update the radius. Needs QUAD assembled and
@@ -193,6 +222,71 @@ typedef struct glpgp_cg_info {
  * Work vectors are created and destroyed inside. */
 glpgp_status glpgp_cg(glpgp_backend *b, const glpgp_vec *rhs, glpgp_vec *x, double rtol,
                       int maxit, int check, glpgp_cg_info *info);
+
+/* ---- aggregation multigrid preconditioner (solver/amg.c) ----
+ * Structure once per (mesh, Dirichlet set): aggregates of about 4 vertices
+ * per level from two passes of pairwise matching on the vertex graph
+ * (Dirichlet vertices excluded), the coarse patterns and the Galerkin index
+ * maps, uploaded to the backend. Values per Newton step (glpgp_amg_update):
+ * the prolongation maps each aggregate's 2 coarse unknowns to the current
+ * oscillator's frame (so [z, iz] is reproduced exactly), A_c = P^T A P,
+ * l1-Jacobi smoothers and a dense inverse of the coarsest matrix. Applied as
+ * a K-cycle inside flexible CG (glpgp_fcg). Design: host/README.md. */
+typedef struct glpgp_amg glpgp_amg;
+
+/* Hierarchy facts for logs, tests and the benchmark. */
+typedef struct glpgp_amg_info {
+    int nlevels;
+    int n[GLPGP_AMG_MAX_LEVELS];      /* nodes per level */
+    long nnzb[GLPGP_AMG_MAX_LEVELS];  /* 2x2 blocks per level */
+    double operator_complexity;       /* sum_l nnzb_l / nnzb_0 */
+    double grid_complexity;           /* sum_l n_l / n_0 */
+    double seconds_structure;         /* glpgp_amg_create */
+    double seconds_values;            /* all glpgp_amg_update calls */
+    double seconds_coarse;            /* of which the coarsest inverse on the host */
+    int updates;                      /* glpgp_amg_update calls */
+} glpgp_amg_info;
+
+/* Whether backend b implements the multigrid ops (amg_setup etc.). */
+int glpgp_amg_supported(const glpgp_backend *b);
+
+/* Build the hierarchy structure for b's system (b->ops->setup done) and the
+ * Dirichlet flags dir (nv; NULL: none) and upload it. Options: o->amg_*.
+ * w (2*nv unit field, may be NULL) and h: the plane-wave frames
+ * exp(i (2 pi / h) W . (x_i - x_J)) used by glpgp_amg_update(a, NULL) for the
+ * quadratic problems (naive PGP); w NULL or h <= 0: constant frames (the
+ * Laplacian of the guiding field). GLPGP_ERR_UNSUPPORTED when the backend
+ * has no multigrid ops. */
+glpgp_status glpgp_amg_create(glpgp_backend *b, const glpgp_options *o, const unsigned char *dir,
+                              const double *w, double h, glpgp_amg **out);
+void glpgp_amg_destroy(glpgp_amg **a);
+
+/* Rebuild the values from the backend's current NEWTON matrix: frames from
+ * the oscillator x (2*nv on the device: the Newton iterate) or, x NULL, the
+ * plane-wave / constant frames given at creation. Fails (GLPGP_ERR_NUMERIC)
+ * when the coarsest matrix has no usable inverse. */
+glpgp_status glpgp_amg_update(glpgp_amg *a, const glpgp_vec *x);
+
+/* Hierarchy facts (valid after glpgp_amg_create). */
+void glpgp_amg_get_info(const glpgp_amg *a, glpgp_amg_info *info);
+
+/* One application of the preconditioner: z <- B r (a K- or V-cycle from
+ * z = 0 on level 0; r, z: 2*nv on the device). For tests. */
+glpgp_status glpgp_amg_apply(glpgp_amg *a, const glpgp_vec *r, glpgp_vec *z);
+
+/* Flexible CG (FCG(1), Notay) on NEWTON with the multigrid preconditioner a
+ * (glpgp_amg_update done for the current NEWTON): solves NEWTON x = rhs from
+ * x = 0, same contract as glpgp_cg (breakdown: p.Ap <= 0 or a non-finite
+ * residual; the cap is min(maxit, o->amg_maxit)); the residual is read back
+ * every o->amg_check iterations. */
+glpgp_status glpgp_fcg(glpgp_amg *a, const glpgp_vec *rhs, glpgp_vec *x, double rtol, int maxit,
+                       glpgp_cg_info *info);
+
+/* The linear solve the drivers use: glpgp_fcg when a is not NULL, else
+ * glpgp_cg. */
+glpgp_status glpgp_linear_solve(glpgp_backend *b, glpgp_amg *a, const glpgp_vec *rhs,
+                                glpgp_vec *x, double rtol, int maxit, int check,
+                                glpgp_cg_info *info);
 
 #ifdef __cplusplus
 }

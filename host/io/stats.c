@@ -1,0 +1,187 @@
+/* io/stats.c: the statistics JSON of a run (glpgp/io.h), written with the
+ * one JSON emitter (json.c); the quad-mesh report joins it as the "quads"
+ * member, so the file is written once. */
+#include "glpgp/io.h"
+
+#include "names.h"
+
+static void stats_body(FILE *f, const glpgp_mesh *m, const glpgp_options *o, const glpgp_result *r,
+                       const glpgp_stats_extra *x)
+{
+    static const char *const oname[2] = {"u", "v"};
+    glpgp_json w0, *w = &w0;
+    glpgp_json_init(w, f);
+    const glpgp_osc_result *ou = &r->osc[0], *ov = &r->osc[1];
+
+    glpgp_json_object(w, NULL);
+    glpgp_json_str(w, "version", GLPGP_VERSION);
+    glpgp_json_str(w, "input", x ? x->input : NULL);
+    glpgp_json_str(w, "output", x ? x->output : NULL);
+    glpgp_json_int(w, "vertices", m->nv);
+    glpgp_json_int(w, "triangles", m->nt);
+    glpgp_json_num(w, "size", r->size);
+    if (o) {
+        glpgp_json_str(w, "method", method_name(o->method));
+        glpgp_json_str(w, "energy", energy_name(o->energy));
+        glpgp_json_str(w, "newton", hess_name(o->hess));
+    } else {
+        glpgp_json_null(w, "method");
+        glpgp_json_null(w, "energy");
+        glpgp_json_null(w, "newton");
+    }
+    glpgp_json_str(w, "backend", r->backend);
+    if (o) {
+        glpgp_json_str(w, "field", field_name(o->field));
+        glpgp_json_str(w, "field_file", o->field == GLPGP_FIELD_FILE ? o->field_file : NULL);
+        glpgp_json_str(w, "init", init_name(o->init));
+        glpgp_json_object(w, "options");
+        glpgp_json_num(w, "eps0", o->eps0);
+        glpgp_json_num(w, "eps_ratio", o->eps_ratio);
+        glpgp_json_num(w, "eps_min", o->eps_min);
+        glpgp_json_num(w, "newton_rtol", o->newton_rtol);
+        glpgp_json_int(w, "newton_max", o->newton_max);
+        glpgp_json_num(w, "cg_rtol", o->cg_rtol);
+        glpgp_json_int(w, "cg_max", o->cg_max);
+        glpgp_json_int(w, "cg_check", o->cg_check);
+        if (o->has_center) {
+            glpgp_json_array(w, "center");
+            glpgp_json_num(w, NULL, o->center[0]);
+            glpgp_json_num(w, NULL, o->center[1]);
+            glpgp_json_close(w);
+        } else {
+            glpgp_json_null(w, "center");
+        }
+        glpgp_json_close(w);
+    } else {
+        glpgp_json_null(w, "field");
+        glpgp_json_null(w, "field_file");
+        glpgp_json_null(w, "init");
+        glpgp_json_null(w, "options");
+    }
+
+    glpgp_json_object(w, "mesh");
+    glpgp_json_num(w, "area", m->area);
+    glpgp_json_num(w, "mean_edge", m->mean_edge);
+    glpgp_json_int(w, "boundary_loops", m->nloops);
+    glpgp_json_array(w, "bbox");
+    for (int i = 0; i < 4; i++) glpgp_json_num(w, NULL, m->bbox[i]);
+    glpgp_json_close(w);
+    glpgp_json_int(w, "orientation_fixed", m->orientation_fixed);
+    glpgp_json_close(w);
+
+    glpgp_json_object(w, "singularities");
+    for (int k = 0; k < 2; k++) {
+        glpgp_json_object(w, oname[k]);
+        glpgp_json_int(w, "plus", r->osc[k].plus);
+        glpgp_json_int(w, "minus", r->osc[k].minus);
+        glpgp_json_close(w);
+    }
+    glpgp_json_close(w);
+
+    glpgp_json_object(w, "zabs");
+    for (int k = 0; k < 2; k++) {
+        glpgp_json_object(w, oname[k]);
+        glpgp_json_num(w, "min", r->osc[k].zabs_min);
+        glpgp_json_num(w, "p10", r->osc[k].zabs_p10);
+        glpgp_json_num(w, "median", r->osc[k].zabs_median);
+        glpgp_json_close(w);
+    }
+    glpgp_json_close(w);
+
+    glpgp_json_object(w, "final_energy");
+    glpgp_json_num(w, "u", ou->energy);
+    glpgp_json_num(w, "v", ov->energy);
+    glpgp_json_close(w);
+
+    glpgp_json_object(w, "dirichlet");
+    glpgp_json_int(w, "u", ou->n_dirichlet);
+    glpgp_json_int(w, "v", ov->n_dirichlet);
+    glpgp_json_close(w);
+
+    glpgp_json_object(w, "newton_iterations");
+    glpgp_json_int(w, "total", (long)ou->newton_iterations + ov->newton_iterations);
+    glpgp_json_int(w, "u", ou->newton_iterations);
+    glpgp_json_int(w, "v", ov->newton_iterations);
+    glpgp_json_close(w);
+
+    glpgp_json_object(w, "cg_iterations");
+    glpgp_json_int(w, "total", ou->cg_iterations + ov->cg_iterations + r->field_cg_iterations);
+    glpgp_json_int(w, "u", ou->cg_iterations);
+    glpgp_json_int(w, "v", ov->cg_iterations);
+    glpgp_json_int(w, "field", r->field_cg_iterations);
+    glpgp_json_close(w);
+
+    /* a level stopped by the Newton cap is not a converged state: said here */
+    glpgp_json_object(w, "converged");
+    glpgp_json_bool(w, "all", ou->capped_levels + ov->capped_levels == 0);
+    glpgp_json_int(w, "capped_levels_u", ou->capped_levels);
+    glpgp_json_int(w, "capped_levels_v", ov->capped_levels);
+    glpgp_json_close(w);
+
+    glpgp_json_object(w, "eps_schedule");
+    for (int k = 0; k < 2; k++) {
+        const glpgp_osc_result *os = &r->osc[k];
+        int nl = os->nlevels;
+        if (nl < 0) nl = 0;
+        if (nl > GLPGP_MAX_LEVELS) nl = GLPGP_MAX_LEVELS;
+        glpgp_json_array(w, oname[k]);
+        for (int l = 0; l < nl; l++) {
+            const glpgp_level_stats *ls = &os->level[l];
+            glpgp_json_object(w, NULL);
+            glpgp_json_int(w, "level", l);
+            glpgp_json_num(w, "eps", ls->eps);
+            glpgp_json_int(w, "newton", ls->newton);
+            glpgp_json_int(w, "cg", ls->cg);
+            glpgp_json_num(w, "grad0", ls->grad0);
+            glpgp_json_num(w, "grad", ls->grad);
+            glpgp_json_num(w, "energy", ls->energy);
+            glpgp_json_num(w, "median_zabs", ls->median_zabs);
+            glpgp_json_bool(w, "restarted", ls->restarted);
+            glpgp_json_int(w, "fallbacks", ls->fallbacks);
+            glpgp_json_int(w, "backtracked", ls->backtracked);
+            glpgp_json_num(w, "rtol", ls->rtol);
+            glpgp_json_bool(w, "capped", ls->capped);
+            glpgp_json_close(w);
+        }
+        glpgp_json_close(w);
+    }
+    glpgp_json_close(w);
+
+    glpgp_json_object(w, "seconds");
+    if (x && x->seconds_read >= 0)
+        glpgp_json_num(w, "read", x->seconds_read);
+    else
+        glpgp_json_null(w, "read");
+    glpgp_json_num(w, "setup", r->seconds_setup);
+    glpgp_json_num(w, "field", r->seconds_field);
+    glpgp_json_num(w, "u", ou->seconds);
+    glpgp_json_num(w, "v", ov->seconds);
+    glpgp_json_num(w, "total", r->seconds_total);
+    glpgp_json_close(w);
+
+    if (x && x->quads) glpgp_quads_json(w, "quads", x->quads);
+    glpgp_json_finish(w);
+}
+
+glpgp_status glpgp_output_set_stats(glpgp_output_set *s, const glpgp_mesh *m, const glpgp_options *opts,
+                                    const glpgp_result *r, const char *path, const glpgp_stats_extra *extra)
+{
+    FILE *f;
+    if (!m || !r) return GLPGP_FAIL(GLPGP_ERR_ARG, "no mesh or no result to write");
+    GLPGP_CHECK(glpgp_output_set_open(s, path, &f));
+    stats_body(f, m, opts, r, extra);
+    return GLPGP_OK;
+}
+
+glpgp_status glpgp_write_stats_json(const glpgp_mesh *m, const glpgp_options *opts,
+                                    const glpgp_result *r, const char *path,
+                                    const glpgp_stats_extra *extra)
+{
+    glpgp_output_set *s = NULL;
+    GLPGP_CHECK(glpgp_output_set_create(&s));
+    glpgp_status st = glpgp_output_set_stats(s, m, opts, r, path, extra);
+    if (st == GLPGP_OK) st = glpgp_output_set_commit(s);
+    glpgp_output_set_destroy(&s);
+    if (st != GLPGP_OK) glpgp_error_push_trace(__FILE__, __LINE__);
+    return st;
+}

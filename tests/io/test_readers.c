@@ -1,0 +1,302 @@
+/* test_readers.c: the hardened text readers (io/msh_read.c, io/mesh_io.c,
+ * io/text_reader.c) on hostile input:
+ *  - MSH from pipes (a FIFO named *.msh for glpgp_mesh_read, /dev/fd/N for
+ *    glpgp_quads_read_msh), 2.2 and 4.1: same mesh as from a file;
+ *  - every malformed class gives GLPGP_ERR_FORMAT or _LIMIT, nothing
+ *    returned, and bounded memory (each read runs in a child under a 256 MiB
+ *    address-space limit, except in sanitizer builds): node block counts of
+ *    2^61 and LONG_MAX, element counts beyond the bytes present, the
+ *    163-byte file with tags up to 1e8, huge tags (hash, not arrays),
+ *    duplicate tags, repeated sections, non-finite or overflowing
+ *    coordinates, unknown nodes, stray $End lines, element blocks that
+ *    disagree with the header, lines over the limit, NUL bytes;
+ *  - OBJ: non-finite coordinates, a face using a vertex twice, a face index
+ *    beyond the vertices (reported on its line), huge indices. */
+#include "testutil.h"
+
+#include <errno.h>
+#include <fcntl.h>
+#include <signal.h>
+#include <string.h>
+#include <sys/resource.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#if defined(__SANITIZE_ADDRESS__)
+#define TU_ASAN 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define TU_ASAN 1
+#endif
+#endif
+#ifndef TU_ASAN
+#define TU_ASAN 0
+#endif
+
+static char g_dir[256];
+
+static const char *P(const char *name)
+{
+    static char buf[8][512];
+    static int k;
+    k = (k + 1) % 8;
+    snprintf(buf[k], sizeof buf[k], "%s/%s", g_dir, name);
+    return buf[k];
+}
+
+static void put(const char *path, const char *text, size_t n)
+{
+    FILE *f = fopen(path, "wb");
+    if (!f) {
+        tu_failures++;
+        return;
+    }
+    fwrite(text, 1, n ? n : strlen(text), f);
+    fclose(f);
+}
+
+/* Read path in a child (limited address space): 0 = the reader returned
+ * want (and nothing), 1 = another status, 2 = crashed or out of memory. */
+static int read_in_child(const char *path, int quads, glpgp_status want1, glpgp_status want2, const char *needle)
+{
+    fflush(NULL);
+    pid_t pid = fork();
+    if (pid == 0) {
+        if (!TU_ASAN) {
+            struct rlimit rl = {256ul << 20, 256ul << 20};
+            setrlimit(RLIMIT_AS, &rl);
+        }
+        glpgp_status st;
+        if (quads) {
+            glpgp_quadmesh *q = (glpgp_quadmesh *)&q;
+            st = glpgp_quads_read_msh(path, &q);
+            if (st != GLPGP_OK && q) _exit(3);
+        } else {
+            glpgp_mesh *m = (glpgp_mesh *)&m;
+            st = glpgp_mesh_read(path, &m);
+            if (st != GLPGP_OK && m) _exit(3);
+        }
+        fprintf(stderr, "    %s\n", glpgp_error_message());
+        if (st == GLPGP_ERR_NOMEM) _exit(2);
+        if ((st == want1 || st == want2) && (!needle || strstr(glpgp_error_message(), needle))) _exit(0);
+        _exit(1);
+    }
+    int status;
+    if (pid < 0 || waitpid(pid, &status, 0) != pid) return 2;
+    return WIFEXITED(status) ? WEXITSTATUS(status) : 2;
+}
+
+static void bad(const char *name, const char *text, const char *needle, int line)
+{
+    const char *p = P(name);
+    put(p, text, 0);
+    for (int quads = 0; quads < 2; quads++) {
+        int rc = read_in_child(p, quads, GLPGP_ERR_FORMAT, GLPGP_ERR_LIMIT, needle);
+        if (rc) {
+            fprintf(stderr, "%s:%d: %s (%s reader): expected a format / limit error%s%s, got %s\n", __FILE__, line,
+                    name, quads ? "quad" : "mesh", needle ? " containing " : "", needle ? needle : "",
+                    rc == 2 ? "a crash or out of memory" : "another result");
+            tu_failures++;
+        }
+    }
+    unlink(p);
+}
+
+#define FMT22 "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n"
+#define FMT41 "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n"
+#define NODES22 "$Nodes\n4\n1 0 0 0\n2 1 0 0\n3 1 1 0\n4 0 1 0\n$EndNodes\n"
+#define ELEMS22 "$Elements\n2\n1 2 0 1 2 3\n2 2 0 1 3 4\n$EndElements\n"
+
+static void malformed_msh(void)
+{
+    /* the 163-byte file: 3 nodes with tags up to 1e8 (no max-tag-sized array) */
+    const char *small = FMT41 "$Nodes\n1 3 1 100000000\n2 1 0 3\n1\n50000000\n100000000\n0 0 0\n1 0 0\n0 1 0\n"
+                              "$EndNodes\n$Elements\n1 1 1 1\n2 1 2 1\n1 1 50000000 100000000\n$EndElements\n";
+    put(P("small.msh"), small, 0);
+    CHECK(read_in_child(P("small.msh"), 0, GLPGP_OK, GLPGP_OK, NULL) == 0);
+    CHECK(read_in_child(P("small.msh"), 1, GLPGP_OK, GLPGP_OK, NULL) == 0);
+    /* tags near 2^62 work too */
+    const char *bigtags = FMT22 "$Nodes\n3\n4611686018427387904 0 0 0\n7 1 0 0\n4611686018427387000 0 1 0\n$EndNodes\n"
+                                "$Elements\n1\n1 2 0 4611686018427387904 7 4611686018427387000\n$EndElements\n";
+    put(P("bigtags.msh"), bigtags, 0);
+    CHECK(read_in_child(P("bigtags.msh"), 0, GLPGP_OK, GLPGP_OK, NULL) == 0);
+    unlink(P("small.msh"));
+    unlink(P("bigtags.msh"));
+
+    bad("blocks61.msh", FMT41 "$Nodes\n1 3 1 3\n0 1 0 2305843009213693952\n1\n2\n3\n0 0 0\n1 0 0\n0 1 0\n$EndNodes\n",
+        "more nodes than", __LINE__);
+    bad("nodeslongmax.msh", FMT41 "$Nodes\n1 9223372036854775807 1 3\n0 1 0 9223372036854775807\n1\n$EndNodes\n",
+        "declared", __LINE__);
+    bad("blockslongmax.msh", FMT41 "$Nodes\n9223372036854775807 3 1 3\n0 1 0 3\n$EndNodes\n", "declared", __LINE__);
+    bad("nodes22huge.msh", FMT22 "$Nodes\n2305843009213693952\n1 0 0 0\n$EndNodes\n", "declared", __LINE__);
+    bad("elems41huge.msh", FMT41 "$Nodes\n1 3 1 3\n0 1 0 3\n1\n2\n3\n0 0 0\n1 0 0\n0 1 0\n$EndNodes\n"
+                                 "$Elements\n1 4611686018427387904 1 1\n2 1 2 1\n1 1 2 3\n$EndElements\n",
+        "declared", __LINE__);
+    bad("elemblock.msh", FMT41 "$Nodes\n1 3 1 3\n0 1 0 3\n1\n2\n3\n0 0 0\n1 0 0\n0 1 0\n$EndNodes\n"
+                               "$Elements\n1 1 1 1\n2 1 2 9223372036854775807\n1 1 2 3\n$EndElements\n",
+        "more elements than", __LINE__);
+    bad("elemcount.msh", FMT41 "$Nodes\n1 3 1 3\n0 1 0 3\n1\n2\n3\n0 0 0\n1 0 0\n0 1 0\n$EndNodes\n"
+                               "$Elements\n1 2 1 2\n2 1 2 1\n1 1 2 3\n$EndElements\n",
+        "header says", __LINE__);
+    bad("overflow.msh", FMT22 "$Nodes\n99999999999999999999\n$EndNodes\n", "number of nodes", __LINE__);
+    bad("negative.msh", FMT22 "$Nodes\n-5\n$EndNodes\n", "negative", __LINE__);
+    bad("dup.msh", FMT22 "$Nodes\n3\n1 0 0 0\n1 1 0 0\n3 0 1 0\n$EndNodes\n", "duplicate node tag 1", __LINE__);
+    bad("nodes2.msh", FMT22 NODES22 NODES22 ELEMS22, "repeated section $Nodes", __LINE__);
+    bad("elems2.msh", FMT22 NODES22 ELEMS22 ELEMS22, "repeated section $Elements", __LINE__);
+    bad("format2.msh", FMT22 "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n" NODES22 ELEMS22, "repeated", __LINE__);
+    bad("nan.msh", FMT22 "$Nodes\n3\n1 0 0 0\n2 nan 0 0\n3 0 1 0\n$EndNodes\n", "finite", __LINE__);
+    bad("inf.msh", FMT22 "$Nodes\n3\n1 0 0 0\n2 1e400 0 0\n3 0 1 0\n$EndNodes\n", "finite", __LINE__);
+    bad("inf41.msh", FMT41 "$Nodes\n1 3 1 3\n0 1 0 3\n1\n2\n3\n0 0 0\n1 inf 0\n0 1 0\n$EndNodes\n", "finite", __LINE__);
+    bad("unknown.msh", FMT22 NODES22 "$Elements\n1\n1 2 0 1 2 9\n$EndElements\n", "unknown node 9", __LINE__);
+    bad("before.msh", FMT22 ELEMS22 NODES22, "$Elements before $Nodes", __LINE__);
+    bad("stray.msh", FMT22 "$EndNodes\n", "without its section", __LINE__);
+    bad("unclosed.msh", FMT22 "$PhysicalNames\n1\n2 1 \"x\"\n", "not closed", __LINE__);
+    bad("noend.msh", FMT22 "$Nodes\n1\n1 0 0 0\n$Elements\n", "expected $EndNodes", __LINE__);
+    bad("nul.msh", FMT22 "$Nodes\n1\n1 0\x01 0 0\n", NULL, __LINE__);
+    {
+        char nulmsh[64] = FMT22 "$Nodes\n1\n1 0";
+        size_t n = strlen(nulmsh);
+        memcpy(nulmsh + n, "\0 0 0\n", 6);
+        put(P("nulbyte.msh"), nulmsh, n + 6);
+        CHECK(read_in_child(P("nulbyte.msh"), 0, GLPGP_ERR_FORMAT, GLPGP_ERR_FORMAT, "NUL") == 0);
+        unlink(P("nulbyte.msh"));
+    }
+    /* a line over GLPGP_IO_MAX_LINE */
+    size_t n = (size_t)GLPGP_IO_MAX_LINE + 100;
+    char *longl = malloc(n + 64);
+    if (longl) {
+        strcpy(longl, FMT22 "$Comments\n");
+        size_t k = strlen(longl);
+        memset(longl + k, 'x', n);
+        strcpy(longl + k + n, "\n$EndComments\n");
+        put(P("longline.msh"), longl, 0);
+        CHECK(read_in_child(P("longline.msh"), 0, GLPGP_ERR_LIMIT, GLPGP_ERR_LIMIT, "longer than") == 0);
+        unlink(P("longline.msh"));
+        free(longl);
+    }
+}
+
+/* ---- pipes ------------------------------------------------------------------ */
+
+static const char *const sq22 = FMT22 NODES22 "$Elements\n3\n1 15 2 0 1 1\n2 2 0 1 2 3\n3 3 0 1 3 4 2\n$EndElements\n";
+
+/* Write text into fd from a child process, then exit. */
+static pid_t feed(int fd, const char *text)
+{
+    fflush(NULL);
+    pid_t pid = fork();
+    if (pid == 0) {
+        size_t n = strlen(text), done = 0;
+        while (done < n) {
+            ssize_t k = write(fd, text + done, n - done);
+            if (k <= 0) _exit(1);
+            done += (size_t)k;
+        }
+        close(fd);
+        _exit(0);
+    }
+    return pid;
+}
+
+static void pipes(void)
+{
+    /* FIFO with a .msh name: the triangle reader dispatches by extension */
+    const char *fifo = P("pipe.msh");
+    CHECK(mkfifo(fifo, 0600) == 0);
+    fflush(NULL);
+    pid_t pid = fork();
+    if (pid == 0) {
+        int fd = open(fifo, O_WRONLY);
+        if (fd < 0) _exit(1);
+        const char *text = FMT41 "$Nodes\n2 4 1 4\n0 1 0 2\n1\n2\n0 0 0\n1 0 0\n2 1 0 2\n3\n4\n1 1 0\n0 1 0\n"
+                                 "$EndNodes\n$Elements\n1 2 1 2\n2 1 2 2\n1 1 2 3\n2 1 3 4\n$EndElements\n";
+        size_t n = strlen(text);
+        if (write(fd, text, n) != (ssize_t)n) _exit(1);
+        close(fd);
+        _exit(0);
+    }
+    glpgp_mesh *m = NULL;
+    CHECK_OK(glpgp_mesh_read(fifo, &m));
+    CHECK(m && m->nv == 4 && m->nt == 2 && fabs(m->area - 1.0) < 1e-15);
+    glpgp_mesh_destroy(&m);
+    int status;
+    waitpid(pid, &status, 0);
+    CHECK(WIFEXITED(status) && WEXITSTATUS(status) == 0);
+    unlink(fifo);
+
+    /* /dev/fd/N for the quad reader: 2.2 with a triangle and a quadrangle */
+    int fds[2];
+    CHECK(pipe(fds) == 0);
+    pid = feed(fds[1], sq22);
+    close(fds[1]);
+    char path[64];
+    snprintf(path, sizeof path, "/dev/fd/%d", fds[0]);
+    glpgp_quadmesh *q = NULL;
+    CHECK_OK(glpgp_quads_read_msh(path, &q));
+    CHECK(q && q->nv == 4 && q->nf == 2 && q->face_start[1] == 3 && q->face_start[2] == 7);
+    glpgp_quadmesh_destroy(&q);
+    close(fds[0]);
+    waitpid(pid, &status, 0);
+
+    /* the same from a regular file gives the same faces */
+    put(P("sq22.msh"), sq22, 0);
+    CHECK_OK(glpgp_quads_read_msh(P("sq22.msh"), &q));
+    CHECK(q && q->nv == 4 && q->nf == 2);
+    glpgp_quadmesh_destroy(&q);
+    unlink(P("sq22.msh"));
+
+    /* a lying count from a pipe (size unknown) still fails cleanly */
+    CHECK(pipe(fds) == 0);
+    pid = feed(fds[1], FMT22 "$Nodes\n2305843009213693952\n1 0 0 0\n$EndNodes\n");
+    close(fds[1]);
+    snprintf(path, sizeof path, "/dev/fd/%d", fds[0]);
+    CHECK(read_in_child(path, 1, GLPGP_ERR_FORMAT, GLPGP_ERR_LIMIT, NULL) == 0);
+    close(fds[0]);
+    waitpid(pid, &status, 0);
+}
+
+/* ---- OBJ ---------------------------------------------------------------------- */
+
+static void obj_expect(const char *name, const char *text, glpgp_status want, const char *needle, int line)
+{
+    const char *p = P(name);
+    put(p, text, 0);
+    int rc = read_in_child(p, 0, want, want, needle);
+    if (rc) {
+        fprintf(stderr, "%s:%d: %s: expected status %d containing '%s'\n", __FILE__, line, name, (int)want,
+                needle ? needle : "");
+        tu_failures++;
+    }
+    unlink(p);
+}
+
+static void malformed_obj(void)
+{
+    obj_expect("nan.obj", "v 0 0\nv nan 0\nv 0 1\nf 1 2 3\n", GLPGP_ERR_FORMAT, "nan.obj:2:", __LINE__);
+    obj_expect("inf.obj", "v 0 0\nv 1e999 0\nv 0 1\nf 1 2 3\n", GLPGP_ERR_FORMAT, "inf.obj:2:", __LINE__);
+    obj_expect("twice.obj", "v 0 0\nv 1 0\nv 0 1\nf 1 1 2\n", GLPGP_ERR_FORMAT, "vertex 1 more than once",
+               __LINE__);
+    obj_expect("twice2.obj", "v 0 0\nv 1 0\nv 0 1\nv 1 1\nf 1 2 4 -3\n", GLPGP_ERR_FORMAT, "more than once",
+               __LINE__);
+    obj_expect("forward.obj", "v 0 0\nf 1 2 3\nv 1 0\nv 0 1\n", GLPGP_OK, NULL, __LINE__);
+    obj_expect("range.obj", "v 0 0\nv 1 0\nv 0 1\nf 1 2 3\nf 1 2 99\n", GLPGP_ERR_FORMAT, "range.obj:5:", __LINE__);
+    obj_expect("hugeidx.obj", "v 0 0\nv 1 0\nv 0 1\nf 1 2 9223372036854775807\n", GLPGP_ERR_FORMAT, NULL, __LINE__);
+    obj_expect("overidx.obj", "v 0 0\nv 1 0\nv 0 1\nf 1 2 99999999999999999999\n", GLPGP_ERR_FORMAT, NULL, __LINE__);
+}
+
+int main(void)
+{
+    const char *base = getenv("TMPDIR");
+    snprintf(g_dir, sizeof g_dir, "%s/glpgp_test_readers_XXXXXX", base && *base ? base : "/tmp");
+    if (!mkdtemp(g_dir)) {
+        perror("mkdtemp");
+        return 1;
+    }
+    signal(SIGPIPE, SIG_IGN);
+    malformed_msh();
+    pipes();
+    malformed_obj();
+    rmdir(g_dir);
+    TEST_DONE();
+}
