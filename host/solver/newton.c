@@ -13,16 +13,20 @@
  *     backtracking while rho = (F - F(x (+) a d)) / (model decrease) <
  *     tr_accept;
  *   radius from rho and the length taken; the level ends at |g| <= rtol |g0|,
- *     at the cap, or when, below the rounding level of F, a step no longer
- *     lowers |g|.
- *   The multigrid preconditioner (--precond amg) is not used here:
- *   Steihaug-Toint needs a fixed SPD preconditioner M for its norm ||.||_M,
- *   and the K-cycle inside flexible CG is neither fixed nor, on the
- *   indefinite exact Hessian, SPD. Measured alternative (taking the
- *   multigrid inexact Newton step when FCG saw positive curvature and
- *   rho >= tr_poor, else the Steihaug step): it converged to saddle states
- *   (disk 4k, h = 10 edges: +3/-3 singularities, E 32.8 vs 25.4) -- a CG
- *   without the region does not see all negative curvature.
+ *     at the cap, or when the model decrease falls below the rounding
+ *     level of F.
+ *   Multigrid (--precond amg): the region's CG stays block-Jacobi
+ *   (Steihaug-Toint needs a fixed SPD preconditioner M for its norm ||.||_M;
+ *   the K-cycle inside flexible CG is neither fixed nor, on the indefinite
+ *   exact Hessian, SPD). Once the region is inactive (the last step was an
+ *   interior Steihaug step with rho >= tr_poor, or an accepted multigrid
+ *   step; never the first step of a level), the inexact Newton step by
+ *   flexible CG with the multigrid is tried first and kept when its full
+ *   step has rho >= tr_poor; otherwise (FCG breakdown, cap, poor rho) the
+ *   Steihaug step. Measured and rejected: trying the multigrid step at every
+ *   step converged to saddle states (disk 4k, h = 10 edges: +3/-3
+ *   singularities, E 32.8 vs 25.4): without the region CG does not see all
+ *   negative curvature during vortex drift.
  * Line search (GLPGP_GLOBAL_LINE_SEARCH, the previous driver):
  *   (H_E + H~_P(x)) d = -g by PCG with the variant o->hess (`mixed` tries
  *   the exact one near convergence and falls back exact -> mixed ->
@@ -176,16 +180,6 @@ static glpgp_status tr_direction(glpgp_backend *b, const glpgp_options *o, glpgp
         GLPGP_CHECK(glpgp_trcg(b, ns->xt, ns->d, ns->radius, eta, o->cg_max, xb, ti));
         info->cg += ti->iterations;
         info->cg_capped += ti->reason == GLPGP_TRCG_MAXIT;
-        if (ti->reason == GLPGP_TRCG_NEGCURV && !(ns->radius > 0.0) && ns->step_max > 0.0 &&
-            ti->norm > o->tr_grow * ns->step_max) {
-            /* negative curvature before any region, and a step longer than
-             * tr_grow times the longest good one so far (CG iterates along
-             * nearly flat directions can be huge): redo in that region */
-            ns->radius = o->tr_grow * ns->step_max;
-            GLPGP_CHECK(glpgp_trcg(b, ns->xt, ns->d, ns->radius, eta, o->cg_max, xb, ti));
-            info->cg += ti->iterations;
-            info->cg_capped += ti->reason == GLPGP_TRCG_MAXIT;
-        }
         if (ti->reason != GLPGP_TRCG_PRECOND || hess == GLPGP_HESS_PROJECTED || hess == GLPGP_HESS_PAPER)
             return GLPGP_OK;
         /* an indefinite diagonal block: the block-Jacobi norm is no norm; redo
@@ -193,6 +187,33 @@ static glpgp_status tr_direction(glpgp_backend *b, const glpgp_options *o, glpgp
         hess = hess == GLPGP_HESS_EXACT ? GLPGP_HESS_MIXED : GLPGP_HESS_PROJECTED;
         info->fallbacks++;
     }
+}
+
+/* Multigrid candidate (ns->amg, only while the region is inactive, see
+ * tr_step): d <- the inexact Newton step H d = -g of the trust region's
+ * Hessian by flexible CG with the multigrid preconditioner, to the same
+ * tolerance eta. *ok = 0 when there is none (FCG met p.Ap <= 0, i.e.
+ * negative curvature or an unusable preconditioner, or stopped at its cap).
+ * A multigrid setup failure drops ns->amg (one warning, Jacobi from then
+ * on). */
+static glpgp_status tr_amg_direction(glpgp_backend *b, const glpgp_options *o, glpgp_newton_state *ns,
+                                     double inv4e2, double eta, int *ok, glpgp_newton_step_info *info)
+{
+    const glpgp_backend_ops *op = b->ops;
+    *ok = 0;
+    GLPGP_CHECK(op->assemble_newton(b, ns->x, inv4e2, tr_hessian(o)));
+    /* multigrid: values from the new matrix, frames from x */
+    if (!glpgp_amg_try_update(ns->amg, ns->x, "Newton step")) {
+        ns->amg = NULL;
+        return GLPGP_OK;
+    }
+    GLPGP_CHECK(op->axpby(b, -1.0, ns->g, 0.0, ns->xt)); /* xt <- -g (rhs) */
+    glpgp_cg_info ci;
+    GLPGP_CHECK(glpgp_fcg(ns->amg, ns->xt, ns->d, eta, o->cg_max, &ci));
+    info->cg += ci.iterations;
+    info->cg_capped += ci.reason == GLPGP_CG_MAXIT;
+    *ok = ci.reason == GLPGP_CG_CONVERGED;
+    return GLPGP_OK;
 }
 
 /* Trust-region step (see glpgp_newton_step). */
@@ -223,11 +244,23 @@ static glpgp_status tr_step(glpgp_backend *b, const glpgp_options *o, glpgp_newt
     glpgp_vec *xb = NULL;
     if (o->tr_lookahead && ns->radius > 0.0 && isfinite(ns->radius))
         GLPGP_CHECK_GOTO(st, op->vec_create(b, (size_t)2 * b->sys->nv, &xb), done);
-    int candidate = 0;
+    /* multigrid (ns->amg): while the region is inactive (the last step was
+     * an interior Steihaug step, i.e. the plain inexact Newton step, with a
+     * good model, or an accepted multigrid step), the inexact Newton step by
+     * flexible CG with the multigrid is tried first, kept when its full
+     * step has rho >= tr_poor; else the Steihaug step */
+    int multigrid = ns->amg != NULL && ns->inside, candidate = 0;
     double a = 1.0, Fa = F, rho = -HUGE_VAL, gd = 0.0, step = 0.0;
     int take = 0, at_noise = 0;
     for (;;) {
-        if (candidate) {
+        if (multigrid) {
+            GLPGP_CHECK_GOTO(st, tr_amg_direction(b, o, ns, inv4e2, eta, &multigrid, info), done);
+            if (!multigrid) info->amg_rejected++;
+            candidate = multigrid;
+        }
+        if (multigrid) {
+            /* d from the multigrid */
+        } else if (candidate) {
             /* the look-ahead Newton step failed: d <- the boundary point */
             GLPGP_CHECK_GOTO(st, op->copy(b, ns->d, xb), done);
             ti.reason = GLPGP_TRCG_BOUNDARY;
@@ -250,7 +283,7 @@ static glpgp_status tr_step(glpgp_backend *b, const glpgp_options *o, glpgp_newt
         GLPGP_CHECK_GOTO(st, op->get_scalars(b, s, GLPGP_NSLOTS), done);
         gd = s[GLPGP_S_DOT];
         const double dhd = s[GLPGP_S_DOT2];
-        step = ti.norm;
+        step = multigrid ? 0.0 : ti.norm;
         if (h) {
             GLPGP_CHECK_GOTO(st, op->vec_read(b, ns->d, th.d), done);
             b->n_sync++;
@@ -260,8 +293,8 @@ static glpgp_status tr_step(glpgp_backend *b, const glpgp_options *o, glpgp_newt
          * clamped to [tr_shrink_min, tr_shrink] times the previous a.
          * rho = (F - F(x (+) a d)) / pred(a); a point is taken when rho >=
          * tr_accept, or, when pred(a) is below the rounding level of F (where
-         * rho means nothing), when F does not visibly rise and |g| decreases;
-         * otherwise the level ends there (converged to the rounding level).
+         * rho means nothing), when F does not visibly rise; the level then
+         * ends (converged to the rounding level).
          * The look-ahead candidate gets the full step only. */
         a = 1.0;
         Fa = F;
@@ -282,36 +315,37 @@ static glpgp_status tr_step(glpgp_backend *b, const glpgp_options *o, glpgp_newt
             at_noise = pred <= ns->noise;
             rho = pred > 0.0 && isfinite(Fa) ? (F - Fa) / pred : -HUGE_VAL;
             take = isfinite(Fa) && (at_noise ? F - Fa >= -ns->noise : rho >= o->tr_accept);
-            if (take && at_noise) {
-                /* F cannot tell: take the point when it lowers |g| instead */
-                GLPGP_CHECK_GOTO(st, op->gradient(b, ns->xt, inv4e2, ns->work), done);
-                GLPGP_CHECK_GOTO(st, op->dot(b, ns->work, ns->work, GLPGP_S_DOT), done);
-                GLPGP_CHECK_GOTO(st, op->get_scalars(b, s, GLPGP_NSLOTS), done);
-                take = sqrt(s[GLPGP_S_DOT]) < gn;
-            }
             if (take || at_noise) break;
         }
         if (!candidate) break;
-        /* the look-ahead step: kept when the model held (rho >= tr_poor) or,
-         * at the rounding level, |g| fell */
+        /* a candidate: kept when the model held (rho >= tr_poor) or at the
+         * rounding level */
         if (take && (at_noise || rho >= o->tr_poor)) break;
-        info->lookahead_rejected++;
+        if (multigrid) {
+            multigrid = candidate = 0;
+            info->amg_rejected++;
+        } else {
+            info->lookahead_rejected++;
+        }
     }
-    info->lookahead_step = candidate;
+    info->amg_step = multigrid;
+    info->lookahead_step = candidate && !multigrid;
+    /* region inactive: an accepted multigrid step, or a full interior
+     * Steihaug step with a good model */
+    ns->inside = take && (multigrid || (!candidate && ti.reason == GLPGP_TRCG_CONVERGED && a == 1.0 &&
+                                        (at_noise || rho >= o->tr_poor)));
     if (candidate) {
-        /* a Newton step longer than the region held: the region grows to it */
-        if (take && !at_noise) ns->radius = fmax(ns->radius, step);
+        /* a Newton step longer than the region held: the region grows to it
+         * (the multigrid step's M-length is unknown: the region stays) */
+        if (!multigrid && take && !at_noise) ns->radius = fmax(ns->radius, step);
     } else {
         /* radius: a backtracked step sets it to the length taken (tr_grow times
          * that after a good model, rho > tr_good); after a full
          * step, shrink it after a poor model (rho < tr_poor; to a* |d|, a* as
          * above within [tr_shrink_min, tr_shrink]), grow it by tr_grow after a
-         * good step (rho > tr_good) that the region cut. Without a region
-         * (radius <= 0) the steps are plain Newton steps until one is
-         * backtracked, poor, or meets negative curvature: its length (tr_grow
-         * times that after a good model) is the first radius */
+         * good step (rho > tr_good) that the region cut; the first region is
+         * tr_grow |d| of the first (unbounded) step taken */
         const int cut = ti.reason == GLPGP_TRCG_BOUNDARY || ti.reason == GLPGP_TRCG_NEGCURV;
-        if (take && !at_noise && a == 1.0 && rho >= o->tr_poor) ns->step_max = fmax(ns->step_max, step);
         if (take && !at_noise) {
             if (a < 1.0) {
                 ns->radius = (rho > o->tr_good ? o->tr_grow : 1.0) * a * step;
@@ -320,7 +354,7 @@ static glpgp_status tr_step(glpgp_backend *b, const glpgp_options *o, glpgp_newt
                 double as = c > 0.0 ? -gd / (2.0 * c) : o->tr_shrink;
                 ns->radius = fmax(o->tr_shrink_min, fmin(o->tr_shrink, as)) * step;
             } else if (ns->radius <= 0.0) {
-                if (cut) ns->radius = (rho > o->tr_good ? o->tr_grow : 1.0) * step;
+                ns->radius = o->tr_grow * step;
             } else if (rho > o->tr_good && cut) {
                 ns->radius *= o->tr_grow;
             }
@@ -381,7 +415,10 @@ glpgp_status glpgp_newton_level(glpgp_backend *b, const glpgp_options *o, glpgp_
          * 64 eps (|F| + |x|^2) (64 eps |F| misses the cancellation when the
          * energy is small against its terms) */
         ns->noise = 64.0 * DBL_EPSILON * (fabs(F) + s[GLPGP_S_DOT2]);
-        if (it == 0) ls->grad0 = ns->grad0 = gn;
+        if (it == 0) {
+            ls->grad0 = ns->grad0 = gn;
+            ns->inside = 0; /* the multigrid waits for an interior step on each level */
+        }
         ls->grad = gn;
         ls->energy = F;
         if (gn <= rtol * ls->grad0 || gn == 0.0) break;
@@ -402,15 +439,17 @@ glpgp_status glpgp_newton_level(glpgp_backend *b, const glpgp_options *o, glpgp_
                       "radius=%.3g  %s%s",
                       glpgp_osc_name(k), eps, it + 1, gn, info.energy, info.cg, info.step, info.alpha,
                       info.rho, info.radius,
-                      info.lookahead_step ? "look-ahead" : glpgp_trcg_reason_name((glpgp_trcg_reason)info.reason),
+                      info.amg_step         ? "multigrid"
+                      : info.lookahead_step ? "look-ahead"
+                                            : glpgp_trcg_reason_name((glpgp_trcg_reason)info.reason),
                       info.at_noise ? "  (at the rounding level)" : "");
         else
             glpgp_log(GLPGP_LOG_INFO, "  %s eps=%.4g newton %3d  |g|=%.3e  E+P=%.10g  cg=%d  step=%g",
                       glpgp_osc_name(k), eps, it + 1, gn, info.energy, info.cg, info.alpha);
         /* no descent possible at this precision (the line search failed, or
-         * below the rounding level of F the trust-region step did not lower
-         * |g|): level done */
-        if (!info.accepted) break;
+         * the trust-region model promises less than the rounding level of F):
+         * level done */
+        if (!info.accepted || (tr && info.at_noise)) break;
     }
     return GLPGP_OK;
 }

@@ -164,17 +164,16 @@ typedef struct glpgp_newton_state {
     int cooldown;    /* steps left before `mixed` may try the exact Hessian again */
     double radius;   /* trust region radius (<= 0: none yet, the next step is a plain
                         Newton step; set from it). Kept from level to level. */
-    double step_max; /* longest full step with rho >= tr_poor so far (the region set
-                        when negative curvature appears before any region) */
-    double noise;    /* rounding level of F = E + P at x (set by the level loop; below
-                        it a trial point is judged by |g| instead of F) */
+    double noise;    /* rounding level of F = E + P at x (set by the level loop; a
+                        step whose predicted decrease is below it ends the level) */
     struct glpgp_amg *amg; /* multigrid preconditioner (borrowed; NULL: Jacobi) */
+    int inside;      /* trust region: the region was inactive at the last step (set by the
+                        step, cleared at each level start): the multigrid may try */
 } glpgp_newton_state;
 
 typedef struct glpgp_newton_step_info {
     int cg;          /* CG iterations (all attempts) */
-    int at_noise;    /* trust region: the predicted decrease was below the rounding level
-                        of F (the step was then judged by |g|) */
+    int at_noise;    /* trust region: the predicted decrease was below the rounding level */
     double rho;      /* trust region: actual / predicted decrease */
     double step;     /* trust region: ||d||_M of the step tried */
     double radius;   /* trust region: the radius after the step */
@@ -184,6 +183,9 @@ typedef struct glpgp_newton_step_info {
     double alpha;    /* accepted step length (0 when none) */
     double energy;   /* E + P at the new x */
     int cg_capped;   /* CG runs of this step stopped by the cap o->cg_max */
+    int amg_step;    /* trust region: the step taken is the multigrid inexact Newton step */
+    int amg_rejected;/* trust region: multigrid candidates given up for the Steihaug step
+                        (FCG met p.Ap <= 0 or its cap, or rho < tr_poor) */
     int lookahead_step;     /* trust region: the step taken is the Newton step beyond the region */
     int lookahead_rejected; /* trust region: look-ahead Newton steps given up (rho < tr_poor) */
 } glpgp_newton_step_info;
@@ -192,9 +194,10 @@ typedef struct glpgp_newton_step_info {
  * PCG to the inexact-Newton tolerance (Jacobi, or flexible CG with s->amg,
  * whose values are rebuilt from the new matrix and x), backtrack on E + P,
  * update x. Trust region: assemble the exact Hessian, Steihaug-CG in the
- * region s->radius (block-Jacobi preconditioner and norm, whatever s->amg:
- * Steihaug-Toint needs a fixed SPD preconditioner, the K-cycle is not one),
- * take the trial point x (+) a d (polar update, retract_zabs) with a = 1 or
+ * region s->radius (block-Jacobi preconditioner and norm: Steihaug-Toint
+ * needs a fixed SPD preconditioner, the K-cycle is not one; with s->amg and
+ * s->inside, the region inactive, first the multigrid inexact Newton step,
+ * kept when its full step has rho >= tr_poor), take the trial point x (+) a d (polar update, retract_zabs) with a = 1 or
  * backtracked until the actual decrease is at least tr_accept of the
  * predicted one, update the radius. Needs QUAD assembled and
  * s->g = grad(E+P)(x) with F = (E+P)(x) and gn = |g| (and, for the trust
