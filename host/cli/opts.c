@@ -369,6 +369,8 @@ static const char *const k_energies[] = {"p1", "transport", NULL};
 static const int k_energy_vals[] = {GLPGP_ELEM_P1, GLPGP_ELEM_TRANSPORT};
 static const char *const k_newtons[] = {"mixed", "projected", "paper", NULL};
 static const int k_newton_vals[] = {GLPGP_HESS_MIXED, GLPGP_HESS_PROJECTED, GLPGP_HESS_PAPER};
+static const char *const k_globals[] = {"trust-region", "line-search", NULL};
+static const int k_global_vals[] = {GLPGP_GLOBAL_TRUST_REGION, GLPGP_GLOBAL_LINE_SEARCH};
 static const char *const k_preconds[] = {"jacobi", "amg", NULL};
 static const int k_precond_vals[] = {GLPGP_PRECOND_JACOBI, GLPGP_PRECOND_AMG};
 static const char *const k_inits[] = {"naive", "one", NULL};
@@ -387,8 +389,11 @@ void glpgp_opts_add_solver(glpgp_opts *t, glpgp_options *o)
                      "the edge-transport (cotan) form of the original PGP");
     glpgp_opt_choice(t, "--newton", &o->hess, k_newtons, k_newton_vals,
                      "penalty Hessian used by Newton: exact where |z|^2 >= 1/2 and\n"
-                     "projected in vortex cores, projected (PSD) everywhere, or the\n"
-                     "paper's eq. 8");
+                     "projected in vortex cores (the trust region uses the exact one\n"
+                     "everywhere), projected (PSD) everywhere, or the paper's eq. 8");
+    glpgp_opt_choice(t, "--globalization", &o->globalization, k_globals, k_global_vals,
+                     "Newton step: trust region on the exact Hessian (Steihaug CG,\n"
+                     "polar trial points), or the line search of the modified Newton");
     glpgp_opt c = {0};
     c.name = "--field";
     c.kind = GLPGP_OPT_CUSTOM;

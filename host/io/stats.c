@@ -186,6 +186,7 @@ static void stats_body(FILE *f, const glpgp_mesh *m, const glpgp_options *o, con
             glpgp_json_num(w, "median_zabs", ls->median_zabs);
             glpgp_json_bool(w, "restarted", ls->restarted);
             glpgp_json_int(w, "fallbacks", ls->fallbacks);
+            glpgp_json_int(w, "backtracked", ls->backtracked);
             glpgp_json_num(w, "rtol", ls->rtol);
             glpgp_json_bool(w, "capped", ls->capped);
             glpgp_json_close(w);

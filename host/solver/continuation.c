@@ -116,7 +116,8 @@ static glpgp_status solve_oscillator(const glpgp_mesh *m, osc_work *w, int k, co
         }
         GLPGP_CHECK(op->vec_write(b, w->x, w->host));
         r->nlevels = nlevels;
-        glpgp_newton_state ns = {w->x, w->g, w->d, w->xt, w->work, 0.0, 0, 0, w->amg};
+        glpgp_newton_state ns = {.x = w->x, .g = w->g, .d = w->d, .xt = w->xt, .work = w->work,
+                                 .amg = w->amg};
         for (int l = 0; l < nlevels; l++) {
             glpgp_level_stats *ls = &r->level[l];
             glpgp_log(GLPGP_LOG_INFO, "%s: level %d/%d, eps = %.4g", glpgp_osc_name(k), l + 1,

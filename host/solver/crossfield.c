@@ -360,7 +360,7 @@ glpgp_status glpgp_cross_solve(const glpgp_mesh *m, glpgp_backend *b, const glpg
     /* Ginzburg-Landau continuation: Newton levels at decreasing eps */
     double eps[GLPGP_CROSS_MAX_LEVELS];
     c->nlevels = glpgp_cross_eps_schedule(m, o, eps);
-    glpgp_newton_state ns = {x, g, d, xt, work, 0.0, 0, 0, amg};
+    glpgp_newton_state ns = {.x = x, .g = g, .d = d, .xt = xt, .work = work, .amg = amg};
     for (int l = 0; l < c->nlevels; l++) {
         glpgp_level_stats *ls = &c->level[l];
         const double rtol = o->cross_rtol;

@@ -1,5 +1,6 @@
 /* solver/internal.h: what the solver's files share and nobody else sees:
- * one Newton level at fixed eps (newton.c), used by the continuation. */
+ * one Newton level at fixed eps (newton.c), used by the continuation, and the
+ * truncated CG of the trust-region step (steihaug.c). */
 #ifndef GLPGP_SOLVER_INTERNAL_H
 #define GLPGP_SOLVER_INTERNAL_H
 
@@ -14,6 +15,40 @@ const char *glpgp_osc_name(int k);
 glpgp_status glpgp_newton_level(glpgp_backend *b, const glpgp_options *o, glpgp_newton_state *ns,
                                 int k, double eps, double rtol, glpgp_level_stats *ls);
 
+/* Why a trust-region CG run stopped. */
+typedef enum glpgp_trcg_reason {
+    GLPGP_TRCG_CONVERGED = 0, /* |r| <= rtol |b| inside the region (or b = 0) */
+    GLPGP_TRCG_MAXIT,         /* the iteration cap: the last iterate */
+    GLPGP_TRCG_BOUNDARY,      /* the CG path left the region: cut at its boundary */
+    GLPGP_TRCG_NEGCURV,       /* p.Ap <= 0: followed p to the boundary (or, without a
+                                 region, the last iterate / p_0) */
+    GLPGP_TRCG_PRECOND        /* r.z <= 0: the block-Jacobi preconditioner is not SPD;
+                                 the last iterate is returned, use a safer Hessian */
+} glpgp_trcg_reason;
+
+typedef struct glpgp_trcg_info {
+    int iterations;           /* spmv's (matrix-vector products) done */
+    double relres;            /* |r| / |b| of the last full iterate */
+    double norm;              /* ||x||_M of the returned step */
+    int crossed;              /* look-ahead: the path left the region, xb holds the
+                                 boundary point (x: the Newton step when reason is
+                                 CONVERGED, else of no use) */
+    glpgp_trcg_reason reason;
+} glpgp_trcg_info;
+
+/* Steihaug-Toint truncated PCG on the backend's NEWTON matrix A (need not be
+ * positive definite) with the block-Jacobi preconditioner M (DINV): x
+ * approximately minimises -rhs.x + 1/2 x.A x subject to ||x||_M <= radius
+ * (radius <= 0 or infinite: no region). Starts from x = 0; stops at
+ * |r| <= rtol |rhs|, on the boundary, on negative curvature (p.Ap <= 0) or
+ * after maxit iterations (info->reason). xb (NULL: none): the look-ahead of
+ * steihaug.c (the boundary point there, x goes on to the Newton step).
+ * Uses the fused CG ops of the backend table and
+ * creates its four work vectors inside; reads the scalars back once per
+ * iteration. Errors: backend failures, non-finite values. */
+glpgp_status glpgp_trcg(glpgp_backend *b, const glpgp_vec *rhs, glpgp_vec *x, double radius,
+                        double rtol, int maxit, glpgp_vec *xb, glpgp_trcg_info *info);
+const char *glpgp_trcg_reason_name(glpgp_trcg_reason r);
 /* The multigrid preconditioner for one system when o->precond asks for it:
  * glpgp_amg_create, or NULL after one warning line naming `what` and the
  * reason (the caller then uses Jacobi-PCG). NULL without a message when

@@ -1,26 +1,53 @@
-/* solver/newton.c: the modified Newton step and one Newton level at fixed eps,
- * written once against the backend table:
- *   g = grad(E + P_eps)(x) (zero on Dirichlet vertices),
- *   (H_E + H~_P(x)) d = -g by PCG to the inexact-Newton tolerance (Jacobi,
- *   or the multigrid preconditioner of solver/amg.c when the state has one),
- *   backtracking (Armijo) on E + P, x <- x + a d.
- * The penalty Hessian H~_P is the variant o->hess; `mixed` tries the exact one
- * near convergence and falls back exact -> mixed -> projected when CG meets
- * negative curvature or d is not a descent direction. */
+/* solver/newton.c: the Newton step and one Newton level at fixed eps, written
+ * once against the backend table. g = grad(E + P_eps)(x) (zero on Dirichlet
+ * vertices), F = E + P_eps.
+ *
+ * Trust region (o->globalization = GLPGP_GLOBAL_TRUST_REGION, the default):
+ *   H = H_E + exact penalty Hessian at x (indefinite in vortex states);
+ *   d ~ argmin g.d + 1/2 d.H d over ||d||_M <= radius by Steihaug-Toint CG
+ *     (solver/steihaug.c; M = block Jacobi, inexact-Newton tolerance);
+ *     with o->tr_lookahead the CG goes on past the boundary to the Newton
+ *     step, which is tried first;
+ *   trial points x (+) a d: a polar update outside vortex cores (phase
+ *     rotations stay rotations), the straight one inside; a = 1, then
+ *     backtracking while rho = (F - F(x (+) a d)) / (model decrease) <
+ *     tr_accept;
+ *   radius from rho and the length taken; the level ends at |g| <= rtol |g0|,
+ *     at the cap, or when the model decrease falls below the rounding
+ *     level of F.
+ *   Multigrid (--precond amg): the region's CG stays block-Jacobi
+ *   (Steihaug-Toint needs a fixed SPD preconditioner M for its norm ||.||_M;
+ *   the K-cycle inside flexible CG is neither fixed nor, on the indefinite
+ *   exact Hessian, SPD). Once the region is inactive (the last step was an
+ *   interior Steihaug step with rho >= tr_poor, or an accepted multigrid
+ *   step; never the first step of a level), the inexact Newton step by
+ *   flexible CG with the multigrid is tried first and kept when its full
+ *   step has rho >= tr_poor; otherwise (FCG breakdown, cap, poor rho) the
+ *   Steihaug step. Measured and rejected: trying the multigrid step at every
+ *   step converged to saddle states (disk 4k, h = 10 edges: +3/-3
+ *   singularities, E 32.8 vs 25.4): without the region CG does not see all
+ *   negative curvature during vortex drift.
+ * Line search (GLPGP_GLOBAL_LINE_SEARCH, the previous driver):
+ *   (H_E + H~_P(x)) d = -g by PCG with the variant o->hess (`mixed` tries
+ *   the exact one near convergence and falls back exact -> mixed ->
+ *   projected when CG meets negative curvature or d is not a descent
+ *   direction), Jacobi or the multigrid (flexible CG), backtracking (Armijo)
+ *   on F, x <- x + a d. */
 #include "internal.h"
 
 #include <float.h>
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
 
 const char *glpgp_osc_name(int k) { return k == 0 ? "u" : k == 1 ? "v" : "cross"; }
 
-glpgp_status glpgp_newton_step(glpgp_backend *b, const glpgp_options *o, glpgp_newton_state *ns,
-                               double inv4e2, double F, double gn, glpgp_newton_step_info *info)
+/* Line-search step (modified Newton; see the file comment). */
+static glpgp_status ls_step(glpgp_backend *b, const glpgp_options *o, glpgp_newton_state *ns,
+                            double inv4e2, double F, double gn, glpgp_newton_step_info *info)
 {
     const glpgp_backend_ops *op = b->ops;
     double s[GLPGP_NSLOTS];
-    memset(info, 0, sizeof *info);
     /* (H_E + H~_P) d = -g.  With `mixed`, once the previous step was a full
      * step without fallback and |g| <= exact_switch |g_0|, the exact Hessian
      * is tried first (quadratic convergence around localised vortices). On CG
@@ -84,11 +111,286 @@ glpgp_status glpgp_newton_step(glpgp_backend *b, const glpgp_options *o, glpgp_n
     return GLPGP_OK;
 }
 
+/* Host copies of x and d for the polar trial points (NULL: straight steps). */
+typedef struct trial_host {
+    double *x, *d, *xt;
+} trial_host;
+
+/* xt <- x (+) a d, the trust-region trial point (see glpgp_newton_step).
+ * Straight (h == NULL): xt = x + a d on the device. Polar: per vertex with
+ * w = a d_i / z_i, z_i (1 + Re w) e^{i Im w} where |z_i| >= retract_zabs
+ * (a phase rotation stays a rotation: the straight step would lengthen z and
+ * meet the quartic penalty), z_i + a d_i below half of it (vortex cores,
+ * where the phase is undefined), blended linearly between; straight also
+ * where 1 + Re w <= 0. It agrees with x + a d to first order in d. Computed
+ * on the host from the copies in h and written to the device (one vector
+ * write per trial point; the backend table has no op for it). */
+static glpgp_status trial_point(glpgp_backend *b, const glpgp_options *o, glpgp_newton_state *ns,
+                                const trial_host *h, double a)
+{
+    const glpgp_backend_ops *op = b->ops;
+    if (!h) {
+        GLPGP_CHECK(op->copy(b, ns->xt, ns->x));
+        return op->axpby(b, a, ns->d, 1.0, ns->xt); /* xt <- x + a d */
+    }
+    const int nv = b->sys->nv;
+    const double r1 = o->retract_zabs, r0 = 0.5 * r1;
+    for (int i = 0; i < nv; i++) {
+        const double zr = h->x[2 * i], zi = h->x[2 * i + 1], dr = a * h->d[2 * i], di = a * h->d[2 * i + 1];
+        const double m2 = zr * zr + zi * zi, m = sqrt(m2);
+        double xr = zr + dr, xi = zi + di; /* straight: z + a d */
+        const double t = m >= r1 ? 1.0 : m <= r0 ? 0.0 : (m - r0) / (r1 - r0);
+        if (t > 0.0) {
+            /* w = a d / z = a d conj(z) / |z|^2;  polar: z (1 + Re w) e^{i Im w} */
+            const double wr = (dr * zr + di * zi) / m2, wi = (di * zr - dr * zi) / m2;
+            const double amp = 1.0 + wr;
+            if (amp > 0.0) {
+                const double c = cos(wi), sn = sin(wi);
+                const double pr = amp * (zr * c - zi * sn), pi = amp * (zr * sn + zi * c);
+                xr = t * pr + (1.0 - t) * xr;
+                xi = t * pi + (1.0 - t) * xi;
+            }
+        }
+        h->xt[2 * i] = xr;
+        h->xt[2 * i + 1] = xi;
+    }
+    return op->vec_write(b, ns->xt, h->xt);
+}
+
+/* Hessian the trust region uses: exact (the region handles its negative
+ * curvature), or the PSD variant the user asked for. */
+static int tr_hessian(const glpgp_options *o)
+{
+    return (o->hess == GLPGP_HESS_PAPER || o->hess == GLPGP_HESS_PROJECTED) ? o->hess : GLPGP_HESS_EXACT;
+}
+
+/* Steihaug-Toint direction in the block-Jacobi region (see glpgp_newton_step):
+ * ns->d and ti; the Hessian falls back exact -> mixed -> projected when a
+ * diagonal block is indefinite (M is then no norm). */
+static glpgp_status tr_direction(glpgp_backend *b, const glpgp_options *o, glpgp_newton_state *ns,
+                                 double inv4e2, double eta, glpgp_vec *xb, glpgp_trcg_info *ti,
+                                 glpgp_newton_step_info *info)
+{
+    const glpgp_backend_ops *op = b->ops;
+    int hess = tr_hessian(o);
+    for (;;) {
+        GLPGP_CHECK(op->assemble_newton(b, ns->x, inv4e2, hess));
+        /* d ~ argmin m(d) = F + g.d + 1/2 d.H d  subject to ||d||_M <= radius */
+        GLPGP_CHECK(op->axpby(b, -1.0, ns->g, 0.0, ns->xt)); /* xt <- -g (rhs) */
+        GLPGP_CHECK(glpgp_trcg(b, ns->xt, ns->d, ns->radius, eta, o->cg_max, xb, ti));
+        info->cg += ti->iterations;
+        info->cg_capped += ti->reason == GLPGP_TRCG_MAXIT;
+        if (ti->reason != GLPGP_TRCG_PRECOND || hess == GLPGP_HESS_PROJECTED || hess == GLPGP_HESS_PAPER)
+            return GLPGP_OK;
+        /* an indefinite diagonal block: the block-Jacobi norm is no norm; redo
+         * with the Hessian projected in vortex cores, then everywhere */
+        hess = hess == GLPGP_HESS_EXACT ? GLPGP_HESS_MIXED : GLPGP_HESS_PROJECTED;
+        info->fallbacks++;
+    }
+}
+
+/* Multigrid candidate (ns->amg, only while the region is inactive, see
+ * tr_step): d <- the inexact Newton step H d = -g of the trust region's
+ * Hessian by flexible CG with the multigrid preconditioner, to the same
+ * tolerance eta. *ok = 0 when there is none (FCG met p.Ap <= 0, i.e.
+ * negative curvature or an unusable preconditioner, or stopped at its cap).
+ * A multigrid setup failure drops ns->amg (one warning, Jacobi from then
+ * on). */
+static glpgp_status tr_amg_direction(glpgp_backend *b, const glpgp_options *o, glpgp_newton_state *ns,
+                                     double inv4e2, double eta, int *ok, glpgp_newton_step_info *info)
+{
+    const glpgp_backend_ops *op = b->ops;
+    *ok = 0;
+    GLPGP_CHECK(op->assemble_newton(b, ns->x, inv4e2, tr_hessian(o)));
+    /* multigrid: values from the new matrix, frames from x */
+    if (!glpgp_amg_try_update(ns->amg, ns->x, "Newton step")) {
+        ns->amg = NULL;
+        return GLPGP_OK;
+    }
+    GLPGP_CHECK(op->axpby(b, -1.0, ns->g, 0.0, ns->xt)); /* xt <- -g (rhs) */
+    glpgp_cg_info ci;
+    GLPGP_CHECK(glpgp_fcg(ns->amg, ns->xt, ns->d, eta, o->cg_max, &ci));
+    info->cg += ci.iterations;
+    info->cg_capped += ci.reason == GLPGP_CG_MAXIT;
+    *ok = ci.reason == GLPGP_CG_CONVERGED;
+    return GLPGP_OK;
+}
+
+/* Trust-region step (see glpgp_newton_step). */
+static glpgp_status tr_step(glpgp_backend *b, const glpgp_options *o, glpgp_newton_state *ns,
+                            double inv4e2, double F, double gn, glpgp_newton_step_info *info)
+{
+    const glpgp_backend_ops *op = b->ops;
+    double s[GLPGP_NSLOTS];
+    glpgp_trcg_info ti;
+    memset(&ti, 0, sizeof ti);
+    glpgp_status st = GLPGP_OK;
+    trial_host th = {NULL, NULL, NULL}, *h = NULL;
+    /* inexact Newton: eta = forcing |g|/|g_0|, within [cg_rtol, forcing_max] */
+    const double eta = fmin(o->forcing_max, fmax(o->cg_rtol, o->forcing * gn / ns->grad0));
+    /* polar trial points: x (and each d) read back once */
+    if (o->retract_zabs > 0.0) {
+        const size_t n2 = (size_t)2 * b->sys->nv;
+        GLPGP_CHECK_GOTO(st, glpgp_malloc(n2, sizeof(double), &th.x), done);
+        GLPGP_CHECK_GOTO(st, glpgp_malloc(n2, sizeof(double), &th.d), done);
+        GLPGP_CHECK_GOTO(st, glpgp_malloc(n2, sizeof(double), &th.xt), done);
+        GLPGP_CHECK_GOTO(st, op->vec_read(b, ns->x, th.x), done);
+        b->n_sync++;
+        h = &th;
+    }
+    /* look-ahead (tr_lookahead): where the Steihaug path leaves the region,
+     * CG goes on to the inexact Newton step, which is tried first and kept
+     * when its full step has rho >= tr_poor; else the boundary point */
+    glpgp_vec *xb = NULL;
+    if (o->tr_lookahead && ns->radius > 0.0 && isfinite(ns->radius))
+        GLPGP_CHECK_GOTO(st, op->vec_create(b, (size_t)2 * b->sys->nv, &xb), done);
+    /* multigrid (ns->amg): while the region is inactive (the last step was
+     * an interior Steihaug step, i.e. the plain inexact Newton step, with a
+     * good model, or an accepted multigrid step), the inexact Newton step by
+     * flexible CG with the multigrid is tried first, kept when its full
+     * step has rho >= tr_poor; else the Steihaug step */
+    int multigrid = ns->amg != NULL && ns->inside, candidate = 0;
+    double a = 1.0, Fa = F, rho = -HUGE_VAL, gd = 0.0, step = 0.0;
+    int take = 0, at_noise = 0;
+    for (;;) {
+        if (multigrid) {
+            GLPGP_CHECK_GOTO(st, tr_amg_direction(b, o, ns, inv4e2, eta, &multigrid, info), done);
+            if (!multigrid) info->amg_rejected++;
+            candidate = multigrid;
+        }
+        if (multigrid) {
+            /* d from the multigrid */
+        } else if (candidate) {
+            /* the look-ahead Newton step failed: d <- the boundary point */
+            GLPGP_CHECK_GOTO(st, op->copy(b, ns->d, xb), done);
+            ti.reason = GLPGP_TRCG_BOUNDARY;
+            ti.norm = ns->radius;
+            candidate = 0;
+        } else {
+            GLPGP_CHECK_GOTO(st, tr_direction(b, o, ns, inv4e2, eta, xb, &ti, info), done);
+            if (ti.crossed && ti.reason == GLPGP_TRCG_CONVERGED) {
+                candidate = 1;
+            } else if (ti.crossed) { /* negative curvature or the cap beyond the region */
+                GLPGP_CHECK_GOTO(st, op->copy(b, ns->d, xb), done);
+                ti.reason = GLPGP_TRCG_BOUNDARY;
+                ti.norm = ns->radius;
+            }
+        }
+        /* model along d:  m(a d) - F = a g.d + a^2/2 d.H d;  pred(a) = -(that) */
+        GLPGP_CHECK_GOTO(st, op->spmv(b, GLPGP_MAT_NEWTON, ns->d, ns->work), done);
+        GLPGP_CHECK_GOTO(st, op->dot(b, ns->g, ns->d, GLPGP_S_DOT), done);
+        GLPGP_CHECK_GOTO(st, op->dot(b, ns->d, ns->work, GLPGP_S_DOT2), done);
+        GLPGP_CHECK_GOTO(st, op->get_scalars(b, s, GLPGP_NSLOTS), done);
+        gd = s[GLPGP_S_DOT];
+        const double dhd = s[GLPGP_S_DOT2];
+        step = multigrid ? 0.0 : ti.norm;
+        if (h) {
+            GLPGP_CHECK_GOTO(st, op->vec_read(b, ns->d, th.d), done);
+            b->n_sync++;
+        }
+        /* trial points x (+) a d: the full step, then backtracking along d with
+         * a from the minimiser of the quadratic through F, a g.d and F(x (+) a d),
+         * clamped to [tr_shrink_min, tr_shrink] times the previous a.
+         * rho = (F - F(x (+) a d)) / pred(a); a point is taken when rho >=
+         * tr_accept, or, when pred(a) is below the rounding level of F (where
+         * rho means nothing), when F does not visibly rise; the level then
+         * ends (converged to the rounding level).
+         * The look-ahead candidate gets the full step only. */
+        a = 1.0;
+        Fa = F;
+        rho = -HUGE_VAL;
+        take = at_noise = 0;
+        const int maxbt = candidate ? 0 : o->max_backtracks;
+        for (int j = 0; j <= maxbt; j++) {
+            if (j > 0) {
+                const double c = isfinite(Fa) ? (Fa - F - a * gd) / (a * a) : HUGE_VAL;
+                double an = c > 0.0 ? -gd / (2.0 * c) : o->tr_shrink * a;
+                a = fmax(o->tr_shrink_min * a, fmin(o->tr_shrink * a, an));
+            }
+            GLPGP_CHECK_GOTO(st, trial_point(b, o, ns, h, a), done);
+            GLPGP_CHECK_GOTO(st, op->energy(b, ns->xt, inv4e2, ns->work), done);
+            GLPGP_CHECK_GOTO(st, op->get_scalars(b, s, GLPGP_NSLOTS), done);
+            Fa = s[GLPGP_S_E] + s[GLPGP_S_P];
+            const double pred = -(a * gd + 0.5 * a * a * dhd);
+            at_noise = pred <= ns->noise;
+            rho = pred > 0.0 && isfinite(Fa) ? (F - Fa) / pred : -HUGE_VAL;
+            take = isfinite(Fa) && (at_noise ? F - Fa >= -ns->noise : rho >= o->tr_accept);
+            if (take || at_noise) break;
+        }
+        if (!candidate) break;
+        /* a candidate: kept when the model held (rho >= tr_poor) or at the
+         * rounding level */
+        if (take && (at_noise || rho >= o->tr_poor)) break;
+        if (multigrid) {
+            multigrid = candidate = 0;
+            info->amg_rejected++;
+        } else {
+            info->lookahead_rejected++;
+        }
+    }
+    info->amg_step = multigrid;
+    info->lookahead_step = candidate && !multigrid;
+    /* region inactive: an accepted multigrid step, or a full interior
+     * Steihaug step with a good model */
+    ns->inside = take && (multigrid || (!candidate && ti.reason == GLPGP_TRCG_CONVERGED && a == 1.0 &&
+                                        (at_noise || rho >= o->tr_poor)));
+    if (candidate) {
+        /* a Newton step longer than the region held: the region grows to it
+         * (the multigrid step's M-length is unknown: the region stays) */
+        if (!multigrid && take && !at_noise) ns->radius = fmax(ns->radius, step);
+    } else {
+        /* radius: a backtracked step sets it to the length taken (tr_grow times
+         * that after a good model, rho > tr_good); after a full
+         * step, shrink it after a poor model (rho < tr_poor; to a* |d|, a* as
+         * above within [tr_shrink_min, tr_shrink]), grow it by tr_grow after a
+         * good step (rho > tr_good) that the region cut; the first region is
+         * tr_grow |d| of the first (unbounded) step taken */
+        const int cut = ti.reason == GLPGP_TRCG_BOUNDARY || ti.reason == GLPGP_TRCG_NEGCURV;
+        if (take && !at_noise) {
+            if (a < 1.0) {
+                ns->radius = (rho > o->tr_good ? o->tr_grow : 1.0) * a * step;
+            } else if (rho < o->tr_poor) {
+                const double c = Fa - F - gd;
+                double as = c > 0.0 ? -gd / (2.0 * c) : o->tr_shrink;
+                ns->radius = fmax(o->tr_shrink_min, fmin(o->tr_shrink, as)) * step;
+            } else if (ns->radius <= 0.0) {
+                ns->radius = o->tr_grow * step;
+            } else if (rho > o->tr_good && cut) {
+                ns->radius *= o->tr_grow;
+            }
+        }
+    }
+    info->accepted = take;
+    info->at_noise = at_noise;
+    info->alpha = take ? a : 0.0;
+    info->energy = take ? Fa : F;
+    info->rho = rho;
+    info->step = step;
+    info->radius = ns->radius;
+    info->reason = (int)ti.reason;
+    if (take) GLPGP_CHECK_GOTO(st, op->copy(b, ns->x, ns->xt), done); /* x <- x (+) a d */
+done:
+    op->vec_destroy(b, &xb);
+    free(th.x);
+    free(th.d);
+    free(th.xt);
+    return st;
+}
+
+glpgp_status glpgp_newton_step(glpgp_backend *b, const glpgp_options *o, glpgp_newton_state *ns,
+                               double inv4e2, double F, double gn, glpgp_newton_step_info *info)
+{
+    memset(info, 0, sizeof *info);
+    if (o->globalization == GLPGP_GLOBAL_TRUST_REGION) return tr_step(b, o, ns, inv4e2, F, gn, info);
+    return ls_step(b, o, ns, inv4e2, F, gn, info);
+}
+
 glpgp_status glpgp_newton_level(glpgp_backend *b, const glpgp_options *o, glpgp_newton_state *ns,
                                 int k, double eps, double rtol, glpgp_level_stats *ls)
 {
     const glpgp_backend_ops *op = b->ops;
     const double inv4e2 = 1.0 / (4.0 * eps * eps);
+    const int tr = o->globalization == GLPGP_GLOBAL_TRUST_REGION;
     double s[GLPGP_NSLOTS];
     ns->grad0 = 0.0;
     ns->near = 0;
@@ -102,13 +404,21 @@ glpgp_status glpgp_newton_level(glpgp_backend *b, const glpgp_options *o, glpgp_
         /* g <- grad(E + P)(x) (zero on Dirichlet vertices); F = E + P */
         GLPGP_CHECK(op->gradient(b, ns->x, inv4e2, ns->g));
         GLPGP_CHECK(op->dot(b, ns->g, ns->g, GLPGP_S_DOT));
+        GLPGP_CHECK(op->dot(b, ns->x, ns->x, GLPGP_S_DOT2));
         GLPGP_CHECK(op->get_scalars(b, s, GLPGP_NSLOTS));
         const double F = s[GLPGP_S_E] + s[GLPGP_S_P];
         const double gn = sqrt(s[GLPGP_S_DOT]);
         if (!isfinite(F) || !isfinite(gn))
             return GLPGP_FAIL(GLPGP_ERR_NUMERIC, "oscillator %s: energy became non-finite at eps=%g",
                               glpgp_osc_name(k), eps);
-        if (it == 0) ls->grad0 = ns->grad0 = gn;
+        /* rounding level of F: its terms are about |z_i|^2 per vertex, so
+         * 64 eps (|F| + |x|^2) (64 eps |F| misses the cancellation when the
+         * energy is small against its terms) */
+        ns->noise = 64.0 * DBL_EPSILON * (fabs(F) + s[GLPGP_S_DOT2]);
+        if (it == 0) {
+            ls->grad0 = ns->grad0 = gn;
+            ns->inside = 0; /* the multigrid waits for an interior step on each level */
+        }
         ls->grad = gn;
         ls->energy = F;
         if (gn <= rtol * ls->grad0 || gn == 0.0) break;
@@ -120,11 +430,26 @@ glpgp_status glpgp_newton_level(glpgp_backend *b, const glpgp_options *o, glpgp_
         GLPGP_CHECK(glpgp_newton_step(b, o, ns, inv4e2, F, gn, &info));
         ls->cg += info.cg;
         ls->fallbacks += info.fallbacks;
+        ls->backtracked += info.accepted && info.alpha < 1.0;
         ls->cg_capped += info.cg_capped;
         ls->newton++;
-        glpgp_log(GLPGP_LOG_INFO, "  %s eps=%.4g newton %3d  |g|=%.3e  E+P=%.10g  cg=%d  step=%g",
-                  glpgp_osc_name(k), eps, it + 1, gn, info.energy, info.cg, info.alpha);
-        if (!info.accepted) break; /* no descent possible at this precision: level done */
+        if (tr)
+            glpgp_log(GLPGP_LOG_INFO,
+                      "  %s eps=%.4g newton %3d  |g|=%.3e  E+P=%.10g  cg=%d  |d|=%.3g  a=%.3g  rho=%.3g  "
+                      "radius=%.3g  %s%s",
+                      glpgp_osc_name(k), eps, it + 1, gn, info.energy, info.cg, info.step, info.alpha,
+                      info.rho, info.radius,
+                      info.amg_step         ? "multigrid"
+                      : info.lookahead_step ? "look-ahead"
+                                            : glpgp_trcg_reason_name((glpgp_trcg_reason)info.reason),
+                      info.at_noise ? "  (at the rounding level)" : "");
+        else
+            glpgp_log(GLPGP_LOG_INFO, "  %s eps=%.4g newton %3d  |g|=%.3e  E+P=%.10g  cg=%d  step=%g",
+                      glpgp_osc_name(k), eps, it + 1, gn, info.energy, info.cg, info.alpha);
+        /* no descent possible at this precision (the line search failed, or
+         * the trust-region model promises less than the rounding level of F):
+         * level done */
+        if (!info.accepted || (tr && info.at_noise)) break;
     }
     return GLPGP_OK;
 }

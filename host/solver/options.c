@@ -31,6 +31,15 @@ void glpgp_options_default(glpgp_options *o)
     o->max_backtracks = 40;
     o->forcing = 0.1;
     o->forcing_max = 1e-2;
+    o->globalization = GLPGP_GLOBAL_TRUST_REGION;
+    o->tr_accept = 1e-4;
+    o->tr_poor = 0.25;
+    o->tr_shrink = 0.5;
+    o->tr_shrink_min = 0.1;
+    o->tr_good = 0.75;
+    o->tr_grow = 2.0;
+    o->tr_lookahead = 0;
+    o->retract_zabs = 0.8;
     o->cg_rtol = 1e-8;
     o->cg_max = 20000;
     o->cg_check = 10;
@@ -82,6 +91,17 @@ glpgp_status glpgp_options_check(const glpgp_options *o)
     if (!(o->exact_switch >= 0.0) || !OPEN01(o->armijo) || !(o->forcing > 0.0) ||
         !OPEN01(o->forcing_max))
         return GLPGP_FAIL(GLPGP_ERR_ARG, "Newton step parameters out of range");
+    if (o->tr_lookahead != 0 && o->tr_lookahead != 1)
+        return GLPGP_FAIL(GLPGP_ERR_ARG, "tr_lookahead must be 0 or 1, got %d", o->tr_lookahead);
+    if (o->globalization != GLPGP_GLOBAL_TRUST_REGION && o->globalization != GLPGP_GLOBAL_LINE_SEARCH)
+        return GLPGP_FAIL(GLPGP_ERR_ARG, "unknown Newton globalization %d", o->globalization);
+    if (!(o->tr_accept >= 0.0 && o->tr_accept < o->tr_poor) || !(o->tr_poor < o->tr_good) ||
+        !(o->tr_good < 1.0) || !OPEN01(o->tr_shrink) ||
+        !(o->tr_shrink_min > 0.0 && o->tr_shrink_min <= o->tr_shrink) ||
+        !(o->retract_zabs >= 0.0 && o->retract_zabs <= 2.0) || !(o->tr_grow > 1.0 && isfinite(o->tr_grow)))
+        return GLPGP_FAIL(GLPGP_ERR_ARG,
+                          "trust-region parameters out of range (need 0 <= accept < poor < good < 1, "
+                          "0 < shrink < 1 < grow)");
     if (o->precond != GLPGP_PRECOND_JACOBI && o->precond != GLPGP_PRECOND_AMG)
         return GLPGP_FAIL(GLPGP_ERR_ARG, "unknown preconditioner %d", o->precond);
     if (o->amg_coarse < 2 || o->amg_coarse > 1024)
@@ -139,11 +159,18 @@ double glpgp_default_size(const glpgp_mesh *m, const glpgp_options *o)
 int glpgp_eps_schedule(const glpgp_mesh *m, const glpgp_options *o, double h,
                        double eps[GLPGP_MAX_LEVELS])
 {
-    /* eps_0 = eps0 h;  eps_{k+1} = max(ratio eps_k, emin) while eps_k > merge emin */
+    /* eps_0 = eps0 h;  eps_{k+1} = max(ratio eps_k, emin) while eps_k > emin,
+     * except that a level within merge of emin becomes the last one, lowered
+     * to emin (the level after it would be within merge of it); eps0 h <=
+     * emin: one level at eps0 h */
     int n = 0;
     double e = o->eps0 * h, emin = o->eps_min * m->mean_edge;
     eps[n++] = e;
-    while (e > emin * o->eps_merge && n < GLPGP_MAX_LEVELS) {
+    while (e > emin && n < GLPGP_MAX_LEVELS) {
+        if (e <= emin * o->eps_merge) {
+            eps[n - 1] = emin;
+            break;
+        }
         e = fmax(e * o->eps_ratio, emin);
         eps[n++] = e;
     }

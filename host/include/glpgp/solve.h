@@ -24,6 +24,9 @@ enum glpgp_field {
     GLPGP_FIELD_CROSS = 3 /* U from the Ginzburg-Landau cross field (glpgp/cross.h) */
 };
 enum glpgp_init { GLPGP_INIT_NAIVE = 0, GLPGP_INIT_ONE = 1 };
+/* How a Newton step is made safe: a trust region around the exact-Hessian
+ * model (Steihaug-Toint CG), or the line search of the modified Newton. */
+enum glpgp_globalization { GLPGP_GLOBAL_TRUST_REGION = 0, GLPGP_GLOBAL_LINE_SEARCH = 1 };
 /* Preconditioner of the Newton (and naive PGP, guiding field) systems. */
 enum glpgp_precond {
     GLPGP_PRECOND_JACOBI = 0, /* 2x2-block Jacobi, CG (solver/cg.c) */
@@ -75,6 +78,23 @@ typedef struct glpgp_options {
     int max_backtracks;   /* line search halvings before the step is given up [40] */
     double forcing;       /* inexact Newton: CG tolerance eta = forcing |g| / |g_0| ... [0.1] */
     double forcing_max;   /* ... clamped to [cg_rtol, forcing_max] [1e-2] */
+    int globalization;    /* GLPGP_GLOBAL_* [TRUST_REGION] */
+    /* trust region (radius in the block-Jacobi norm ||d||_M = sqrt(d.D d)):
+     * rho = (actual decrease of E + P) / (decrease predicted by the model) */
+    double tr_accept;     /* a trial point is taken when rho >= this, [0, tr_poor) [1e-4] */
+    double tr_poor;       /* rho below this after a full step shrinks the radius ... (0, tr_good) [0.25] */
+    double tr_shrink;     /* ... to at most this times the step length; also the largest
+                             backtracking factor, (0, 1) [0.5] */
+    double tr_shrink_min; /* ... and at least this times it; also the smallest backtracking
+                             factor, (0, tr_shrink] [0.1] */
+    double tr_good;       /* rho above this with a step on the boundary ... (tr_poor, 1) [0.75] */
+    double tr_grow;       /* ... multiplies the radius by this, > 1 [2] */
+    int tr_lookahead;     /* 1: where the Steihaug path leaves the region, CG goes on to the
+                             inexact Newton step and tries it first (kept when its rho >=
+                             tr_poor; the region then grows to its length), 0: off [0] */
+    double retract_zabs;  /* trial points follow z (1 + Re w) e^{i Im w}, w = d/z, where
+                             |z| >= this, z + d below half of it; 0: z + d everywhere;
+                             [0, 2] [0.8] */
 
     /* CG */
     double cg_rtol;       /* CG: |r| <= rtol |b| [1e-8] */
@@ -152,23 +172,46 @@ typedef struct glpgp_newton_state {
     double grad0;    /* |g| at the start of the level */
     int near;        /* exact-Hessian switch of `mixed` (start at 0) */
     int cooldown;    /* steps left before `mixed` may try the exact Hessian again */
+    double radius;   /* trust region radius (<= 0: none yet, the next step is a plain
+                        Newton step; set from it). Kept from level to level. */
+    double noise;    /* rounding level of F = E + P at x (set by the level loop; a
+                        step whose predicted decrease is below it ends the level) */
     struct glpgp_amg *amg; /* multigrid preconditioner (borrowed; NULL: Jacobi) */
+    int inside;      /* trust region: the region was inactive at the last step (set by the
+                        step, cleared at each level start): the multigrid may try */
 } glpgp_newton_state;
 
 typedef struct glpgp_newton_step_info {
     int cg;          /* CG iterations (all attempts) */
+    int at_noise;    /* trust region: the predicted decrease was below the rounding level */
+    double rho;      /* trust region: actual / predicted decrease */
+    double step;     /* trust region: ||d||_M of the step tried */
+    double radius;   /* trust region: the radius after the step */
+    int reason;      /* trust region: why its CG stopped (solver/internal.h) */
     int fallbacks;   /* Hessians abandoned for a safer one */
     int accepted;    /* the line search found a descent step */
     double alpha;    /* accepted step length (0 when none) */
     double energy;   /* E + P at the new x */
     int cg_capped;   /* CG runs of this step stopped by the cap o->cg_max */
+    int amg_step;    /* trust region: the step taken is the multigrid inexact Newton step */
+    int amg_rejected;/* trust region: multigrid candidates given up for the Steihaug step
+                        (FCG met p.Ap <= 0 or its cap, or rho < tr_poor) */
+    int lookahead_step;     /* trust region: the step taken is the Newton step beyond the region */
+    int lookahead_rejected; /* trust region: look-ahead Newton steps given up (rho < tr_poor) */
 } glpgp_newton_step_info;
 
-/* One modified Newton step at x: assemble (H_E + H~_P(x)), solve it by PCG to
- * the inexact-Newton tolerance (Jacobi, or flexible CG with s->amg, whose
- * values are rebuilt from the new matrix and x), backtrack on E + P, update
- * x. Needs QUAD assembled and s->g = grad(E+P)(x) with F = (E+P)(x) and
- * gn = |g|. */
+/* One Newton step at x. Line search: assemble (H_E + H~_P(x)), solve it by
+ * PCG to the inexact-Newton tolerance (Jacobi, or flexible CG with s->amg,
+ * whose values are rebuilt from the new matrix and x), backtrack on E + P,
+ * update x. Trust region: assemble the exact Hessian, Steihaug-CG in the
+ * region s->radius (block-Jacobi preconditioner and norm: Steihaug-Toint
+ * needs a fixed SPD preconditioner, the K-cycle is not one; with s->amg and
+ * s->inside, the region inactive, first the multigrid inexact Newton step,
+ * kept when its full step has rho >= tr_poor), take the trial point x (+) a d (polar update, retract_zabs) with a = 1 or
+ * backtracked until the actual decrease is at least tr_accept of the
+ * predicted one, update the radius. Needs QUAD assembled and
+ * s->g = grad(E+P)(x) with F = (E+P)(x) and gn = |g| (and, for the trust
+ * region, s->noise). */
 glpgp_status glpgp_newton_step(glpgp_backend *b, const glpgp_options *o, glpgp_newton_state *s,
                                double inv4e2, double F, double gn, glpgp_newton_step_info *info);
 

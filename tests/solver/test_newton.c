@@ -1,0 +1,247 @@
+/* test_newton.c: the trust-region Newton of the GL continuation (reference
+ * backend), counts never times:
+ *  - a vortex state (disk, 16k vertices, h = 10 mean edges: two +-1 pairs
+ *    per oscillator, the old line-search driver needed 110 Newton steps and
+ *    stopped one level at its cap): the Newton total stays under a fixed cap,
+ *    no level stops at the cap, the singularity counts and a final energy no
+ *    higher than the line search's;
+ *  - one trust-region step at an indefinite point (z small everywhere, so the
+ *    exact penalty Hessian is negative): it stays in the region, lowers
+ *    E + P, and reports the negative curvature or the boundary;
+ *  - the eps schedule ends at eps_min (a level within eps_merge of it is
+ *    lowered to it) and the trust-region options are range-checked. */
+#include "glpgp/solve.h"
+#include "testutil.h"
+
+#include <float.h>
+#include <string.h>
+
+static void test_vortex_disk(void)
+{
+    glpgp_mesh *m = NULL;
+    CHECK_OK(glpgp_mesh_generate("disk", 16000, &m));
+    if (!m) return;
+    glpgp_options o;
+    glpgp_options_default(&o);
+    o.size = 10.0 * m->mean_edge;
+    glpgp_backend *b = NULL;
+    glpgp_result *r = NULL;
+    CHECK_OK(glpgp_backend_create_reference(&b));
+    CHECK_OK(glpgp_solve(m, b, &o, &r));
+    if (r) {
+        const int total = r->osc[0].newton_iterations + r->osc[1].newton_iterations;
+        printf("vortex disk: %d vertices, h = %.4g: newton %d (u %d, v %d), cg %ld, capped levels %d, "
+               "singular u +%d-%d v +%d-%d, E u %.6f v %.6f\n",
+               m->nv, r->size, total, r->osc[0].newton_iterations, r->osc[1].newton_iterations,
+               r->osc[0].cg_iterations + r->osc[1].cg_iterations,
+               r->osc[0].capped_levels + r->osc[1].capped_levels, r->osc[0].plus, r->osc[0].minus,
+               r->osc[1].plus, r->osc[1].minus, r->osc[0].energy, r->osc[1].energy);
+        /* measured: 53 (the line search: 110, one level at the cap of 50) */
+        CHECK(total <= 70);
+        for (int k = 0; k < 2; k++) {
+            CHECK(r->osc[k].capped_levels == 0);
+            for (int l = 0; l < r->osc[k].nlevels; l++) {
+                const glpgp_level_stats *ls = &r->osc[k].level[l];
+                CHECK(!ls->capped);
+                CHECK(ls->grad <= ls->rtol * ls->grad0);
+            }
+            CHECK(r->osc[k].plus == 2 && r->osc[k].minus == 2);
+        }
+        /* the line search ended at E_u 83.0262 (capped), E_v 85.0112 */
+        CHECK(r->osc[0].energy <= 83.0262);
+        CHECK(r->osc[1].energy <= 85.0113);
+    }
+    glpgp_result_destroy(&r);
+    glpgp_backend_destroy(&b);
+    glpgp_mesh_destroy(&m);
+}
+
+static glpgp_result *solve_with(const glpgp_mesh *m, int globalization, int precond)
+{
+    glpgp_options o;
+    glpgp_options_default(&o);
+    o.size = 10.0 * m->mean_edge;
+    o.globalization = globalization;
+    o.precond = precond;
+    glpgp_backend *b = NULL;
+    glpgp_result *r = NULL;
+    CHECK_OK(glpgp_backend_create_reference(&b));
+    CHECK_OK(glpgp_solve(m, b, &o, &r));
+    glpgp_backend_destroy(&b);
+    return r;
+}
+
+/* Trust region vs line search on a small vortex case (disk, 4k vertices,
+ * h = 10 mean edges), and the trust region with --precond amg (its Steihaug
+ * CG stays block-Jacobi; the multigrid takes the inexact Newton steps while
+ * the region is inactive): the same singularity counts, final energies no
+ * higher than the line search's, fewer Newton steps in total, and fewer CG
+ * iterations with the multigrid. */
+static void test_compare(void)
+{
+    glpgp_mesh *m = NULL;
+    CHECK_OK(glpgp_mesh_generate("disk", 4000, &m));
+    if (!m) return;
+    glpgp_result *ls = solve_with(m, GLPGP_GLOBAL_LINE_SEARCH, GLPGP_PRECOND_JACOBI);
+    glpgp_result *tr = solve_with(m, GLPGP_GLOBAL_TRUST_REGION, GLPGP_PRECOND_JACOBI);
+    glpgp_result *ta = solve_with(m, GLPGP_GLOBAL_TRUST_REGION, GLPGP_PRECOND_AMG);
+    if (ls && tr && ta) {
+        int nls = 0, ntr = 0, nta = 0;
+        for (int k = 0; k < 2; k++) {
+            const glpgp_osc_result *l = &ls->osc[k], *t = &tr->osc[k], *a = &ta->osc[k];
+            printf("compare %c: line search +%d-%d E %.8f newton %d cg %ld | trust region +%d-%d E %.8f "
+                   "newton %d cg %ld | trust region, amg +%d-%d E %.8f newton %d cg %ld\n",
+                   "uv"[k], l->plus, l->minus, l->energy, l->newton_iterations, l->cg_iterations, t->plus,
+                   t->minus, t->energy, t->newton_iterations, t->cg_iterations, a->plus, a->minus,
+                   a->energy, a->newton_iterations, a->cg_iterations);
+            CHECK(t->plus == l->plus && t->minus == l->minus);
+            CHECK(a->plus == l->plus && a->minus == l->minus);
+            CHECK(t->energy <= l->energy * (1.0 + 1e-8));
+            CHECK_CLOSE(a->energy, t->energy, 0.0, 1e-6);
+            CHECK(t->capped_levels == 0 && a->capped_levels == 0);
+            nls += l->newton_iterations;
+            ntr += t->newton_iterations;
+            nta += a->newton_iterations;
+        }
+        CHECK(ntr < nls);
+        CHECK(nta < nls);
+        /* the multigrid takes the Newton steps once the region is inactive */
+        CHECK(ta->osc[0].cg_iterations + ta->osc[1].cg_iterations <
+              tr->osc[0].cg_iterations + tr->osc[1].cg_iterations);
+    }
+    glpgp_result_destroy(&ls);
+    glpgp_result_destroy(&tr);
+    glpgp_result_destroy(&ta);
+    glpgp_mesh_destroy(&m);
+}
+
+static void test_indefinite_step(void)
+{
+    glpgp_mesh *m = NULL;
+    glpgp_system *sys = NULL;
+    glpgp_backend *b = NULL;
+    CHECK_OK(glpgp_mesh_generate("disk", 3000, &m));
+    if (!m) return;
+    CHECK_OK(glpgp_system_create(m, &sys));
+    CHECK_OK(glpgp_backend_create_reference(&b));
+    CHECK_OK(b->ops->setup(b, sys));
+    const int nv = m->nv;
+    const size_t n2 = (size_t)2 * nv;
+    double *w = calloc(n2, sizeof(double)), *z = calloc(n2, sizeof(double));
+    unsigned char *dir = calloc((size_t)nv, 1);
+    unsigned rng = 12345u;
+    for (int i = 0; i < nv; i++) {
+        w[2 * i] = 1.0;
+        for (int c = 0; c < 2; c++) {
+            rng = rng * 1664525u + 1013904223u;
+            z[2 * i + c] = 0.05 * ((double)(rng >> 8) / (double)(1u << 24) - 0.5);
+        }
+    }
+    const double h = 10.0 * m->mean_edge, eps = 2.0 * m->mean_edge, inv4e2 = 1.0 / (4.0 * eps * eps);
+    CHECK_OK(b->ops->set_field(b, w, dir)); /* no Dirichlet vertex */
+    CHECK_OK(b->ops->assemble_quadratic(b, GLPGP_ELEM_P1, h));
+    glpgp_vec *x = NULL, *g = NULL, *d = NULL, *xt = NULL, *work = NULL;
+    CHECK_OK(b->ops->vec_create(b, n2, &x));
+    CHECK_OK(b->ops->vec_create(b, n2, &g));
+    CHECK_OK(b->ops->vec_create(b, n2, &d));
+    CHECK_OK(b->ops->vec_create(b, n2, &xt));
+    CHECK_OK(b->ops->vec_create(b, n2, &work));
+    glpgp_options o;
+    glpgp_options_default(&o);
+    for (int c = 0; c < 2; c++) {
+        const double radius = c == 0 ? 0.5 : 0.0; /* a region, then none yet */
+        double s[GLPGP_NSLOTS];
+        CHECK_OK(b->ops->vec_write(b, x, z));
+        CHECK_OK(b->ops->gradient(b, x, inv4e2, g));
+        CHECK_OK(b->ops->dot(b, g, g, GLPGP_S_DOT));
+        CHECK_OK(b->ops->get_scalars(b, s, GLPGP_NSLOTS));
+        const double F = s[GLPGP_S_E] + s[GLPGP_S_P], gn = sqrt(s[GLPGP_S_DOT]);
+        glpgp_newton_state ns = {.x = x, .g = g, .d = d, .xt = xt, .work = work, .grad0 = gn,
+                                 .radius = radius, .noise = 64.0 * DBL_EPSILON * fabs(F)};
+        glpgp_newton_step_info info;
+        CHECK_OK(glpgp_newton_step(b, &o, &ns, inv4e2, F, gn, &info));
+        printf("indefinite step (radius %g): |d|_M = %.4g, reason %d, alpha %g, rho %.3g, E+P %.6g -> %.6g, "
+               "new radius %.4g, cg %d\n",
+               radius, info.step, info.reason, info.alpha, info.rho, F, info.energy, info.radius, info.cg);
+        CHECK(info.accepted);
+        CHECK(info.energy < F);
+        CHECK(info.fallbacks == 0); /* the diagonal blocks stay positive at eps = 2 edges */
+        if (radius > 0.0) {
+            CHECK(info.step <= radius * (1.0 + 1e-9));
+            CHECK(info.reason == 2 || info.reason == 3); /* boundary or negative curvature */
+        } else {
+            CHECK(info.reason == 3);    /* no region: CG met the negative curvature */
+            CHECK(info.radius > 0.0);   /* and the first region was set */
+        }
+    }
+    b->ops->vec_destroy(b, &x);
+    b->ops->vec_destroy(b, &g);
+    b->ops->vec_destroy(b, &d);
+    b->ops->vec_destroy(b, &xt);
+    b->ops->vec_destroy(b, &work);
+    free(w);
+    free(z);
+    free(dir);
+    glpgp_backend_destroy(&b);
+    glpgp_system_destroy(&sys);
+    glpgp_mesh_destroy(&m);
+}
+
+static void test_schedule_and_options(void)
+{
+    glpgp_mesh *m = NULL;
+    CHECK_OK(glpgp_mesh_generate("square", 2000, &m));
+    if (!m) return;
+    glpgp_options o;
+    glpgp_options_default(&o);
+    double eps[GLPGP_MAX_LEVELS];
+    const double e = m->mean_edge;
+    /* h = 10 edges: 5, 2.5 edges */
+    int n = glpgp_eps_schedule(m, &o, 10.0 * e, eps);
+    CHECK(n == 2 && fabs(eps[0] - 5.0 * e) < 1e-12 && fabs(eps[1] - 2.5 * e) < 1e-12);
+    /* h = 12 edges: 6, then 3 is within 1.25 of 2.5: lowered to 2.5 */
+    n = glpgp_eps_schedule(m, &o, 12.0 * e, eps);
+    CHECK(n == 2 && fabs(eps[0] - 6.0 * e) < 1e-12 && fabs(eps[1] - 2.5 * e) < 1e-12);
+    /* h = 40 edges: 20, 10, 5, 2.5 */
+    n = glpgp_eps_schedule(m, &o, 40.0 * e, eps);
+    CHECK(n == 4 && fabs(eps[3] - 2.5 * e) < 1e-12);
+    /* eps0 h within 1.25 of eps_min: one level at eps_min */
+    o.eps0 = 0.3;
+    n = glpgp_eps_schedule(m, &o, 10.0 * e, eps);
+    CHECK(n == 1 && fabs(eps[0] - 2.5 * e) < 1e-12);
+    glpgp_mesh_destroy(&m);
+
+    struct { double *field; double bad; } cases[] = {
+        {&o.tr_accept, 0.3},  {&o.tr_accept, -1.0}, {&o.tr_poor, 0.9},   {&o.tr_good, 1.0},
+        {&o.tr_shrink, 1.0},  {&o.tr_shrink_min, 0.0}, {&o.tr_shrink_min, 0.6}, {&o.tr_grow, 1.0},
+        {&o.retract_zabs, -0.1}, {&o.retract_zabs, 3.0},
+    };
+    for (size_t c = 0; c < sizeof cases / sizeof cases[0]; c++) {
+        glpgp_options_default(&o);
+        CHECK_OK(glpgp_options_check(&o));
+        /* the pointers index the current o */
+        *cases[c].field = cases[c].bad;
+        CHECK(glpgp_options_check(&o) == GLPGP_ERR_ARG);
+        glpgp_error_clear();
+    }
+    glpgp_options_default(&o);
+    o.tr_lookahead = 2;
+    CHECK(glpgp_options_check(&o) == GLPGP_ERR_ARG);
+    glpgp_error_clear();
+    glpgp_options_default(&o);
+    o.globalization = 7;
+    CHECK(glpgp_options_check(&o) == GLPGP_ERR_ARG);
+    glpgp_error_clear();
+    o.globalization = GLPGP_GLOBAL_LINE_SEARCH;
+    CHECK_OK(glpgp_options_check(&o));
+}
+
+int main(int argc, char **argv)
+{
+    const char *only = argc > 1 ? argv[1] : "";
+    if (!*only || !strcmp(only, "schedule")) test_schedule_and_options();
+    if (!*only || !strcmp(only, "indefinite")) test_indefinite_step();
+    if (!*only || !strcmp(only, "vortex")) test_vortex_disk();
+    if (!*only || !strcmp(only, "compare")) test_compare();
+    TEST_DONE();
+}
