@@ -27,13 +27,14 @@ typedef struct solve_cli {
     int backend, device, verbosity;
     const char *out, *stats, *quads, *image;
     glpgp_quad_options qo;
-    int quad_opts;
+    int quad_opts, allow_invalid;
     glpgp_render_options ro;
     glpgp_mask_options mo;
 } solve_cli;
 
 static void build(glpgp_opts *t, solve_cli *c)
 {
+    memset(c, 0, sizeof *c); /* outputs NULL, no option seen */
     glpgp_options_default(&c->o);
     glpgp_quad_options_default(&c->qo);
     glpgp_render_options_default(&c->ro);
@@ -41,6 +42,7 @@ static void build(glpgp_opts *t, solve_cli *c)
     c->backend = GLPGP_BACKEND_AUTO;
     c->device = -1;
     c->verbosity = 1;
+    c->allow_invalid = 0;
     glpgp_opts_init(t, "solve", "glpgp solve INPUT [options]",
                     "INPUT is a triangle mesh of a planar domain (.obj, or Gmsh .msh 2.2/4.1 ASCII),\n"
                     "shape:NAME[:N], a built-in domain with about N vertices (default 20000;\n"
@@ -57,12 +59,13 @@ static void build(glpgp_opts *t, solve_cli *c)
     glpgp_opt_string(t, "--quads", &c->quads, "FILE",
                      "extract the quad mesh (.obj/.vtu/.vtk/.msh) and add its quality\n"
                      "report to the summary and the statistics (\"quads\")");
-    glpgp_opts_add_quads(t, &c->qo, &c->quad_opts);
+    glpgp_opts_add_quads(t, &c->qo, &c->quad_opts, &c->allow_invalid);
     glpgp_opt_string(t, "--image", &c->image, "FILE",
                      "picture of the result (.png, .exr, .tif, .jpg, ...)");
     glpgp_opts_add_picture(t, &c->ro, 0);
     glpgp_opts_group(t, "Mask image input (INPUT = image)");
     glpgp_opts_add_mask(t, &c->mo);
+    glpgp_opts_add_limits(t, &c->mo.max_triangles, &c->mo.max_pixels);
     glpgp_opts_add_verbosity(t, &c->verbosity);
     t->epilog = "Files are written only after a successful solve, atomically (no partial file is\n"
                 "ever left; a failed run leaves existing files untouched). A summary is printed\n"
@@ -77,7 +80,7 @@ static int check(solve_cli *c, const char *input)
     if (c->out && c->stats && !strcmp(c->out, c->stats))
         return glpgp_cli_usage_error(sub, "--out and --stats name the same file '%s'", c->out);
     if (c->quad_opts && !c->quads)
-        return glpgp_cli_usage_error(sub, "--all-quads, --keep-polygons and --smooth need --quads FILE");
+        return glpgp_cli_usage_error(sub, "--all-quads, --keep-polygons, --smooth, --no-repair and --allow-invalid need --quads FILE");
     if (c->quads && ((c->out && !strcmp(c->out, c->quads)) || (c->stats && !strcmp(c->stats, c->quads))))
         return glpgp_cli_usage_error(sub, "--quads names the same file as --out or --stats: '%s'", c->quads);
     if (c->image && ((c->out && !strcmp(c->out, c->image)) || (c->stats && !strcmp(c->stats, c->image)) ||
@@ -88,6 +91,7 @@ static int check(solve_cli *c, const char *input)
     if (c->stats && (rc = glpgp_cli_check_output(sub, "--stats", c->stats, NULL)) >= 0) return rc;
     if (c->quads && (rc = glpgp_cli_check_output(sub, "--quads", c->quads, k_quad_exts)) >= 0) return rc;
     if (c->image) {
+        if ((rc = glpgp_cli_check_picture_size(sub, c->ro.size, 1, c->mo.max_pixels)) >= 0) return rc;
         glpgp_error_clear();
         if (glpgp_oiio_load() == GLPGP_ERR_UNSUPPORTED) {
             glpgp_error_clear();
@@ -104,7 +108,7 @@ static int check(solve_cli *c, const char *input)
 }
 
 static void print_summary(const solve_cli *c, const char *input, const glpgp_mesh *m, const glpgp_result *r,
-                          double t_all, double t_read, const glpgp_quad_quality *qq)
+                          double t_all, double t_read, const glpgp_quad_quality *qq, int quads_written)
 {
     const glpgp_osc_result *u = &r->osc[0], *v = &r->osc[1];
     printf("glpgp: %s: %d vertices, %d triangles, h = %.6g, backend %s\n", input, m->nv, m->nt, r->size,
@@ -122,7 +126,7 @@ static void print_summary(const solve_cli *c, const char *input, const glpgp_mes
     if (c->stats) printf("  wrote          %s\n", c->stats);
     if (c->quads) {
         glpgp_quads_print(stdout, qq, "  ");
-        printf("  wrote          %s\n", c->quads);
+        if (quads_written) printf("  wrote          %s\n", c->quads);
     }
     if (c->image) printf("  wrote          %s\n", c->image);
 }
@@ -149,6 +153,8 @@ int glpgp_cmd_solve(int argc, char **argv)
     glpgp_output_set *outs = NULL;
     glpgp_quad_quality qq;
     memset(&qq, 0, sizeof qq);
+    int invalid_rc = -1;
+    char why[1024] = "";
     c.mo.quad_size = c.o.size;
     if ((rc = glpgp_cli_load_input("solve", input, &c.mo, &m, NULL)) >= 0) return rc;
     double t_read = glpgp_now() - t0;
@@ -159,6 +165,16 @@ int glpgp_cmd_solve(int argc, char **argv)
         return rc;
     }
     rc = GLPGP_EXIT_FAIL;
+    if (c.o.field == GLPGP_FIELD_FILE) {
+        /* read the field file now: a bad one fails before the backend starts
+         * (the solve reads it again) */
+        double *u = NULL;
+        long cg = 0;
+        glpgp_status st = glpgp_malloc(2 * (size_t)m->nv, sizeof *u, &u);
+        if (st == GLPGP_OK) st = glpgp_field_compute(m, NULL, &c.o, u, &cg);
+        free(u);
+        if (st != GLPGP_OK) goto fail;
+    }
 
     if (glpgp_backend_select(c.backend, c.device, c.verbosity > 0, &b) != GLPGP_OK) goto fail;
     if (glpgp_solve(m, b, &c.o, &r) != GLPGP_OK) goto fail;
@@ -170,6 +186,9 @@ int glpgp_cmd_solve(int argc, char **argv)
         if (glpgp_quads_quality(q, m, h, &qq) != GLPGP_OK) goto fail;
         qq.singular[0] = r->osc[0].plus + r->osc[0].minus;
         qq.singular[1] = r->osc[1].plus + r->osc[1].minus;
+        /* an invalid mesh is not written (exit 3) unless --allow-invalid */
+        invalid_rc = glpgp_cli_quads_verdict(&qq, c.qo.keep_polygons ? GLPGP_QUAD_BAD_NONQUAD : 0u,
+                                             c.allow_invalid, why, sizeof why);
     }
     if (c.image && glpgp_render(m, r, &c.ro, &im) != GLPGP_OK) goto fail;
 
@@ -177,7 +196,7 @@ int glpgp_cmd_solve(int argc, char **argv)
      * every existing file as it was and no temporary behind) */
     if (glpgp_output_set_create(&outs) != GLPGP_OK) goto fail;
     if (c.out && glpgp_output_set_result(outs, m, &c.o, r, c.out) != GLPGP_OK) goto fail;
-    if (c.quads && glpgp_output_set_quads(outs, q, c.quads) != GLPGP_OK) goto fail;
+    if (c.quads && invalid_rc < 0 && glpgp_output_set_quads(outs, q, c.quads) != GLPGP_OK) goto fail;
     if (c.stats) {
         glpgp_stats_extra x = {input, c.out, t_read, c.quads ? &qq : NULL};
         if (glpgp_output_set_stats(outs, m, &c.o, r, c.stats, &x) != GLPGP_OK) goto fail;
@@ -194,8 +213,8 @@ int glpgp_cmd_solve(int argc, char **argv)
                   "median |z| < 0.5: the oscillators collapsed towards z = 0 (h = %g is %.1f mean edges; "
                   "P1 needs about 10 per period): raise --size or refine the mesh",
                   r->size, r->size / m->mean_edge);
-    print_summary(&c, input, m, r, glpgp_now() - t0, t_read, &qq);
-    rc = 0;
+    print_summary(&c, input, m, r, glpgp_now() - t0, t_read, &qq, invalid_rc < 0);
+    rc = invalid_rc < 0 ? 0 : glpgp_cli_invalid(why, "not written (--allow-invalid writes it anyway)");
     goto done;
 fail:
     rc = glpgp_cli_fail();

@@ -52,6 +52,10 @@ extern "C" {
 /* Largest count of vertices / nodes, triangles / elements / cells a reader
  * accepts (so that 4 * count still fits an int). */
 #define GLPGP_IO_MAX_ITEMS ((1L << 29) - 1)
+/* Default limit on the triangles (faces, cells) of a mesh the glpgp CLI
+ * reads, generates or meshes (option --max-elements; the readers' own hard
+ * limit is GLPGP_IO_MAX_ITEMS), and of glpgp_mask_options.max_triangles. */
+#define GLPGP_DEFAULT_MAX_ELEMENTS 20000000L
 /* Longest line of a text format (bytes). */
 #define GLPGP_IO_MAX_LINE (1L << 20)
 /* Most files one output set (and the whole process) may have open at once. */
@@ -296,6 +300,13 @@ glpgp_status glpgp_read_result(const char *path, glpgp_mesh **m, glpgp_result **
  *  "edge_length_over_h": {"mean", "min", "max"}, "h", "area", "domain_area",
  *  "boundary_distance_over_h": {"hausdorff", "quads_to_domain", "domain_to_quads"}
  *  (null without a domain), "gap_edges", "singular_triangles": {"u", "v"},
+ *  "valid" (true / false), "invalid_reasons": ["inverted", "non-quad", ...]
+ *  (glpgp_quad_bad_name), "orientation" (+1 / -1), "overlapping_faces",
+ *  "pinched_vertices", "non_quad_faces", "boundary_loops": {"mesh", "domain"},
+ *  "area_ratio", "outside_faces", "far_faces", "corners_lost",
+ *  "boundary_vertex_distance_over_h" (the last five null without a domain),
+ *  "max_edge_over_h", "repair": {"rounds", "removed_faces", "regions",
+ *  "new_quads", "snapped_vertices"},
  *  "closing": {"odd_faces_closed", "strips_to_boundary", "quads_cut", "turns",
  *  "even_faces_split", "smoothed_vertices"}}.
  * Numbers lossless, non-finite ones null (glpgp_json). */
@@ -327,9 +338,10 @@ glpgp_status glpgp_output_set_quads(glpgp_output_set *s, const glpgp_quadmesh *q
 /* Whether path ends in .obj, .vtk, .vtu or .msh (case-insensitive). */
 int glpgp_quads_path_supported(const char *path);
 
-/* Read a 2D quad/triangle mesh from Gmsh MSH 4.1 or 2.2 ASCII (element types
+/* Read a 2D quad/triangle mesh from Gmsh MSH 4.1 or 2.2 ASCII (faces keep the
+ * file's vertex order, so the report can find folds; element types
  * 2 = triangle and 3 = quadrangle, in file order; other element types are
- * ignored; z ignored). Faces are made counter-clockwise. Same parser and
+ * ignored; z ignored). Same parser and
  * limits as glpgp_mesh_read. GLPGP_ERR_IO / _FORMAT / _LIMIT. */
 glpgp_status glpgp_quads_read_msh(const char *path, glpgp_quadmesh **out);
 
