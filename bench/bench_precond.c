@@ -39,6 +39,7 @@ typedef struct pc_step {
     int cg;
     double setup_s, solve_s, assemble_s, bytes, relres, alpha;
     int reason;
+    long sync_setup, sync_solve; /* host round trips counted by the drivers (b->n_sync) */
 } pc_step;
 
 typedef struct pc_case {
@@ -140,7 +141,10 @@ static glpgp_status run_case(const glpgp_mesh *m, const glpgp_system *sys, const
         double t1 = bench_now();
         s->assemble_s = t1 - t0;
         /* setup: the multigrid values of this step */
+        long ns0 = b->n_sync;
         if (a) GLPGP_CHECK_GOTO(st, glpgp_amg_update(a, x), done);
+        s->sync_setup = b->n_sync - ns0;
+        ns0 = b->n_sync;
         GLPGP_CHECK_GOTO(st, sync_be(b), done);
         double t2 = bench_now();
         s->setup_s = t2 - t1;
@@ -149,6 +153,7 @@ static glpgp_status run_case(const glpgp_mesh *m, const glpgp_system *sys, const
         GLPGP_CHECK_GOTO(st, glpgp_linear_solve(b, a, rhs, d, 1e-8, 20000, o.cg_check, &ci), done);
         GLPGP_CHECK_GOTO(st, sync_be(b), done);
         s->solve_s = bench_now() - t2;
+        s->sync_solve = b->n_sync - ns0;
         s->cg = ci.iterations;
         s->relres = ci.relres;
         s->reason = (int)ci.reason;
@@ -198,14 +203,15 @@ static void print_case(const pc_case *c, const int want[2])
         printf("multigrid: %d levels (%d -> %d nodes), operator complexity %.3f, structure %.3f s\n\n",
                c->info.nlevels, c->info.n[0], c->info.n[c->info.nlevels - 1], c->info.operator_complexity,
                c->info.seconds_structure);
-    printf("| step | precond | CG it | setup s | solve s | ms/it | GB moved | step length |\n"
-           "|---|---|---|---|---|---|---|---|\n");
+    printf("| step | precond | CG it | setup s | solve s | ms/it | GB moved | step length | host round trips setup / solve |\n"
+           "|---|---|---|---|---|---|---|---|---|\n");
     for (int k = 0; k < PC_MAX_STEPS; k++)
         for (int pc = 0; pc < 2; pc++) {
             if (!want[pc] || !c->ran[pc] || k >= c->nsteps[pc]) continue;
             const pc_step *s = &c->st[pc][k];
-            printf("| %d | %s | %d | %.3f | %.3f | %.3f | %.2f | %g |\n", k + 1, pc ? "amg" : "jacobi", s->cg,
-                   s->setup_s, s->solve_s, s->cg ? 1e3 * s->solve_s / s->cg : 0.0, s->bytes * 1e-9, s->alpha);
+            printf("| %d | %s | %d | %.3f | %.3f | %.3f | %.2f | %g | %ld / %ld |\n", k + 1, pc ? "amg" : "jacobi", s->cg,
+                   s->setup_s, s->solve_s, s->cg ? 1e3 * s->solve_s / s->cg : 0.0, s->bytes * 1e-9, s->alpha,
+                   s->sync_setup, s->sync_solve);
         }
     for (int pc = 0; pc < 2; pc++)
         if (want[pc] && !c->ran[pc]) printf("| - | %s | %s | | | | | |\n", pc ? "amg" : "jacobi", c->note[pc]);
@@ -241,9 +247,9 @@ static void json_case(FILE *f, const pc_case *c, int first)
         for (int k = 0; k < n; k++) {
             const pc_step *s = &c->st[pc][k];
             fprintf(f, "%s{\"cg\": %d, \"setup_s\": %.6f, \"solve_s\": %.6f, \"ms_per_it\": %.6f, \"bytes\": %.6g, "
-                       "\"assemble_s\": %.6f, \"relres\": %.3g, \"alpha\": %g}",
+                       "\"assemble_s\": %.6f, \"relres\": %.3g, \"alpha\": %g, \"syncs_setup\": %ld, \"syncs_solve\": %ld}",
                     k ? ", " : "", s->cg, s->setup_s, s->solve_s, s->cg ? 1e3 * s->solve_s / s->cg : 0.0, s->bytes,
-                    s->assemble_s, s->relres, s->alpha);
+                    s->assemble_s, s->relres, s->alpha, s->sync_setup, s->sync_solve);
         }
         fprintf(f, "]}");
     }

@@ -540,8 +540,8 @@ static glpgp_status init_device(cl_impl *c, const glpgp_cl_options *opt)
         c->wg = 128; /* power of two, at most the device limit */
         while (c->wg > maxwg && c->wg > 1) c->wg /= 2;
     }
-    c->amg_small = 2048;
-    c->amg_fuse = 2048;
+    c->amg_small = 32768;
+    c->amg_fuse = 32768;
     {
         static const char *const names[2] = {"GLPGP_CL_AMG_SMALL", "GLPGP_CL_AMG_FUSE"};
         int *dst[2] = {&c->amg_small, &c->amg_fuse};
