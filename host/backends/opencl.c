@@ -540,7 +540,7 @@ static glpgp_status init_device(cl_impl *c, const glpgp_cl_options *opt)
         c->wg = 128; /* power of two, at most the device limit */
         while (c->wg > maxwg && c->wg > 1) c->wg /= 2;
     }
-    c->amg_small = 32768;
+    c->amg_small = 2048;
     c->amg_fuse = 32768;
     {
         static const char *const names[2] = {"GLPGP_CL_AMG_SMALL", "GLPGP_CL_AMG_FUSE"};
@@ -1035,9 +1035,9 @@ static void amg_free(cl_impl *c)
 }
 
 /* Launch shape of a multigrid kernel over n indices (see above). */
-static launch_shape amg_shape(const cl_impl *c, size_t n)
+static launch_shape amg_shape_w(const cl_impl *c, size_t n, size_t work)
 {
-    if (c->cpu && n <= (size_t)c->amg_small) {
+    if (c->cpu && work <= (size_t)c->amg_small) {
         launch_shape s;
         s.n = (cl_int)n;
         s.chunk = (cl_int)(n ? n : 1);
@@ -1047,10 +1047,15 @@ static launch_shape amg_shape(const cl_impl *c, size_t n)
     return shape_for(c, n);
 }
 
-/* Enqueue multigrid kernel kid over n indices (arguments 0, 1 = n, chunk). */
-static glpgp_status amg_run(cl_impl *c, int kid, size_t n, size_t *groups)
+static launch_shape amg_shape(const cl_impl *c, size_t n) { return amg_shape_w(c, n, n); }
+
+/* Enqueue multigrid kernel kid over n indices (arguments 0, 1 = n, chunk);
+ * work: the size that decides the one-work-item shape (the fine level's
+ * node count for kernels indexed by aggregate or coarse row, whose work is
+ * proportional to the fine level). */
+static glpgp_status amg_run_w(cl_impl *c, int kid, size_t n, size_t work, size_t *groups)
 {
-    launch_shape s = amg_shape(c, n);
+    launch_shape s = amg_shape_w(c, n, work);
     cl_kernel k = c->k[kid];
     ARG(k, 0, s.n);
     ARG(k, 1, s.chunk);
@@ -1059,6 +1064,8 @@ static glpgp_status amg_run(cl_impl *c, int kid, size_t n, size_t *groups)
     if (groups) *groups = s.groups;
     return GLPGP_OK;
 }
+
+static glpgp_status amg_run(cl_impl *c, int kid, size_t n, size_t *groups) { return amg_run_w(c, kid, n, n, groups); }
 
 /* Where a reduction over n indices writes its partials: (buffer, stride) of
  * a->part, or, for a single work-group, the registers t + slot directly
@@ -1383,7 +1390,7 @@ static glpgp_status cl_amg_values(glpgp_backend *b, const glpgp_vec *const *fram
         ARG(k, 7, fr);
         ARG(k, 8, v->c);
         ARG(k, 9, w->amp);
-        GLPGP_CHECK(amg_run(c, K_AMG_WEIGHTS, (size_t)v->nc, NULL));
+        GLPGP_CHECK(amg_run_w(c, K_AMG_WEIGHTS, (size_t)v->nc, (size_t)v->n, NULL));
         /* A_{l+1} <- P^T A_l P (Galerkin rows), M_{l+1}^-1 unless coarsest */
         k = c->k[K_AMG_GALERKIN];
         cl_mem A = amg_val(c, l), col = amg_col(c, l);
@@ -1402,7 +1409,7 @@ static glpgp_status cl_amg_values(glpgp_backend *b, const glpgp_vec *const *fram
         ARG(k, 12, do_l1);
         ARG(k, 13, a->weight);
         ARG(k, 14, minv);
-        GLPGP_CHECK(amg_run(c, K_AMG_GALERKIN, (size_t)w->n, NULL));
+        GLPGP_CHECK(amg_run_w(c, K_AMG_GALERKIN, (size_t)w->n, (size_t)v->n, NULL));
     }
     return GLPGP_OK;
 }
@@ -1477,7 +1484,7 @@ static glpgp_status cl_amg_restrict(glpgp_backend *b, int l, const glpgp_vec *r,
     ARG(k, 9, r->m);
     ARG(k, 10, xm);
     ARG(k, 11, rc->m);
-    return amg_run(c, K_AMG_RESTRICT, (size_t)v->nc, NULL);
+    return amg_run_w(c, K_AMG_RESTRICT, (size_t)v->nc, (size_t)v->n, NULL);
 }
 
 static glpgp_status cl_amg_prolong(glpgp_backend *b, int l, const glpgp_vec *ec, glpgp_vec *x)
