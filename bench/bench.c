@@ -53,6 +53,8 @@ typedef struct bopts {
     int device;
     int keep_cache;        /* do not point POCL_CACHE_DIR at a fresh directory */
     const char *json, *compare, *against, *plot;
+    int precond;           /* --precond: -1 not given, else 0 jacobi, 1 amg, 2 both */
+    int sizes_given, with_4m, steps;
 } bopts;
 
 static void usage(FILE *f)
@@ -81,6 +83,13 @@ static void usage(FILE *f)
             "  --compare OLD.json       print new/old ratio per figure (of this run, or of --against)\n"
             "  --against NEW.json       with --compare: compare two files, run nothing\n"
             "  --plot FILE.png          log-log plot of time vs vertices (needs gnuplot)\n"
+            "  --precond jacobi|amg|both  instead of the above: the preconditioner ladder (bench_precond.c):\n"
+            "                           per Newton step Jacobi-PCG and flexible CG + multigrid side by side\n"
+            "                           (CG iterations, setup / solve seconds, ms per iteration, bytes moved)\n"
+            "                           at 64k, 256k, 1M vertices (or --sizes), h = 10 mean edges and the\n"
+            "                           default size, on both backends (--no-opencl / --no-reference)\n"
+            "  --with-4m                with --precond: add 4M vertices to the ladder (slow)\n"
+            "  --newton-steps N         with --precond: Newton steps per case (default 3)\n"
             "  -h, --help               this text\n");
 }
 
@@ -115,6 +124,8 @@ static glpgp_status parse_args(int argc, char **argv, bopts *o, int *help)
     o->max_cholmod = 2000000;
     o->solve_repeat = 1;
     o->device = -1;
+    o->precond = -1;
+    o->steps = 3;
     const long defsizes[] = {16000, 64000, 256000, 1000000};
     int sizes_given = 0, repeat_given = 0, stream_given = 0, reps_given = 0, mt_given = 0;
     *help = 0;
@@ -203,6 +214,18 @@ static glpgp_status parse_args(int argc, char **argv, bopts *o, int *help)
             o->device = (int)lv;
         } else if (!strcmp(a, "--keep-pocl-cache")) {
             o->keep_cache = 1;
+        } else if (!strcmp(a, "--precond")) {
+            NEEDV();
+            if (!strcmp(v, "jacobi")) o->precond = 0;
+            else if (!strcmp(v, "amg")) o->precond = 1;
+            else if (!strcmp(v, "both")) o->precond = 2;
+            else return GLPGP_FAIL(GLPGP_ERR_ARG, "--precond: '%s' is not jacobi, amg or both", v);
+        } else if (!strcmp(a, "--with-4m")) {
+            o->with_4m = 1;
+        } else if (!strcmp(a, "--newton-steps")) {
+            NEEDV();
+            if (!parse_long(v, &lv) || lv < 1 || lv > 20) return GLPGP_FAIL(GLPGP_ERR_ARG, "--newton-steps: expected 1..20");
+            o->steps = (int)lv;
         } else if (!strcmp(a, "--smoke")) {
             o->smoke = 1;
         } else if (!strcmp(a, "--json")) {
@@ -223,6 +246,7 @@ static glpgp_status parse_args(int argc, char **argv, bopts *o, int *help)
 #undef NEEDV
     }
     if (o->against && !o->compare) return GLPGP_FAIL(GLPGP_ERR_ARG, "--against needs --compare OLD.json");
+    o->sizes_given = sizes_given;
     if (o->smoke) {
         if (!sizes_given) {
             o->sizes[0] = 2000;
@@ -1423,6 +1447,22 @@ int main(int argc, char **argv)
     if (help) {
         usage(stdout);
         return 0;
+    }
+    if (o.precond >= 0) {
+        bench_precond_opts po;
+        memset(&po, 0, sizeof po);
+        po.which = o.precond;
+        po.nsizes = o.sizes_given ? o.nsizes : 0;
+        for (int k = 0; k < po.nsizes && k < 16; k++) po.sizes[k] = o.sizes[k];
+        if (po.nsizes > 16) po.nsizes = 16;
+        po.with_4m = o.with_4m;
+        po.steps = o.steps;
+        po.shape = o.shape;
+        po.no_opencl = o.no_opencl;
+        po.no_reference = o.no_reference;
+        po.device = o.device;
+        po.json = o.json;
+        return bench_precond_run(&po);
     }
     if (o.against) {
         char *text = NULL;

@@ -18,6 +18,23 @@
 /* Monotonic wall clock in seconds. */
 double bench_now(void);
 
+/* ---- preconditioner ladder (bench_precond.c) -------------------------------- */
+
+typedef struct bench_precond_opts {
+    int which;            /* 0 jacobi, 1 amg, 2 both */
+    long sizes[16];
+    int nsizes;           /* 0: 64k, 256k, 1M (+ 4M with with_4m) */
+    int with_4m;
+    int steps;            /* Newton steps per case */
+    const char *shape;
+    int no_opencl, no_reference;
+    int device;
+    const char *json;     /* NULL: no JSON */
+} bench_precond_opts;
+
+/* Run the ladder, print Markdown, write JSON; returns the exit code. */
+int bench_precond_run(const bench_precond_opts *o);
+
 /* ---- STREAM ---------------------------------------------------------------- */
 
 typedef struct bench_stream {

@@ -1,5 +1,5 @@
 # embed.cmake: turns the kernel sources (INPUTS, ';'-separated, in program
-# order: glpgp/kinds.h, element.h, rows.h, the .cl files) into one C file OUT
+# order: glpgp/kinds.h, element.h, rows.h, amg_rows.h, the .cl files) into one C file OUT
 # defining `const char glpgp_kernel_source[]` (all inputs concatenated) and
 # `const char glpgp_kernel_prelude[]` (the first input alone, prepended to the
 # sources read from GLPGP_KERNEL_DIR), so the binary needs no files at run time.

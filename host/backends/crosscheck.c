@@ -63,6 +63,9 @@ void glpgp_crosscheck_options_default(glpgp_crosscheck_options *o)
     o->tol_scale = 1.0;
     o->solve = 1;
     o->seed = 12345;
+    glpgp_options so;
+    glpgp_options_default(&so);
+    o->precond = so.precond;
 }
 
 void glpgp_crosscheck_destroy(glpgp_crosscheck **t)
@@ -365,6 +368,190 @@ static glpgp_status stage_cg_solve(cc *c)
     return GLPGP_OK;
 }
 
+/* Both sides' multigrid registers into t[side][0 .. GLPGP_AMG_NSLOTS). */
+static glpgp_status amg_scalars(cc *c, double t[2][GLPGP_AMG_NSLOTS])
+{
+    BOTH(o->amg_get_scalars(b, t[s], GLPGP_AMG_NSLOTS));
+    return GLPGP_OK;
+}
+
+/* n random numbers in [-1/2, 1/2) */
+static void cc_fill(unsigned long long *seed, double *x, size_t n)
+{
+    for (size_t i = 0; i < n; i++) x[i] = cc_rand(seed) - 0.5;
+}
+
+/* The multigrid ops (amg_* of the backend table) on the hierarchy of the
+ * mixed NEWTON at z, built on each side by solver/amg.c (the same host
+ * structure: aggregation is deterministic) with frames from z. Per level l,
+ * random x, r (level l) and e (level l+1):
+ *   A_l x with the dots x.(A_l x), x.r (amg_spmv_dots);
+ *   M_l^-1 r and x + M_l^-1 (r - A_l x) (amg_smooth, l < L-1);
+ *   P_l^T r and P_l^T (r - A_l x) (amg_restrict);  x + P_l e (amg_prolong);
+ * the coarsest matrix (amg_coarse_read) and C r (amg_coarse_solve); on level
+ * 0: amg_dots, amg_axpby with register coefficients, amg_kcombine; one whole
+ * cycle B r (glpgp_amg_apply; the OpenCL CPU shape runs its small levels in
+ * the fused kernel) and a flexible-CG solve NEWTON d = -g. Hierarchy values
+ * share kernels/amg_rows.h (bit-identical in practice): rtol 1e-12; the dense
+ * coarse inverse is computed on the host from the coarsest matrix: 1e-8; the
+ * cycle (K-cycle coefficients from dot products) 1e-10; the solve 1e-6. */
+static glpgp_status stage_amg(cc *c)
+{
+    glpgp_status st = GLPGP_OK;
+    glpgp_amg *a[2] = {NULL, NULL};
+    glpgp_vec *lv[2][4] = {{NULL}}; /* per side: x, r, y (level l), e (level l+1) */
+    double *hx = NULL, *hr = NULL, *he = NULL;
+    double t[2][GLPGP_AMG_NSLOTS];
+    char name[48];
+    unsigned long long seed = c->opt->seed ^ 0x9e3779b97f4a7c15ull;
+    glpgp_options so = c->so;
+    so.precond = GLPGP_PRECOND_AMG;
+    for (int s = 0; s < 2; s++)
+        if (!glpgp_amg_supported(c->S[s].b)) return GLPGP_OK;
+    /* the same z on both sides (the Newton step stage moved it by rounding) */
+    BOTH(o->vec_write(b, v[VX], c->z));
+    BOTH(o->assemble_newton(b, v[VX], c->inv4e2, GLPGP_HESS_MIXED));
+    for (int s = 0; s < 2; s++) {
+        GLPGP_CHECK_GOTO(st, glpgp_amg_create(c->S[s].b, &so, c->dir, NULL, 0.0, &a[s]), done);
+        GLPGP_CHECK_GOTO(st, glpgp_amg_update(a[s], c->S[s].v[VX]), done);
+    }
+    glpgp_amg_info in[2];
+    for (int s = 0; s < 2; s++) glpgp_amg_get_info(a[s], &in[s]);
+    {
+        glpgp_crosscheck_row *r;
+        GLPGP_CHECK_GOTO(st, row_add(c->t, &r, "multigrid levels (%d, %d -> %d)", in[1].nlevels, in[1].n[0],
+                                     in[1].n[in[1].nlevels - 1]), done);
+        snprintf(r->tol, sizeof r->tol, "exact");
+        r->pass = in[0].nlevels == in[1].nlevels;
+        for (int l = 0; r->pass && l < in[1].nlevels; l++)
+            r->pass = in[0].n[l] == in[1].n[l] && in[0].nnzb[l] == in[1].nnzb[l];
+        r->max_abs = r->max_rel = r->pass ? 0.0 : 1.0;
+        if (!r->pass) goto done;
+    }
+    const int L = in[1].nlevels;
+    GLPGP_CHECK_GOTO(st, glpgp_malloc(c->n2, sizeof(double), &hx), done);
+    GLPGP_CHECK_GOTO(st, glpgp_malloc(c->n2, sizeof(double), &hr), done);
+    GLPGP_CHECK_GOTO(st, glpgp_malloc(c->n2, sizeof(double), &he), done);
+    for (int l = 0; l < L; l++) {
+        const size_t n = (size_t)2 * in[1].n[l], nc = l + 1 < L ? (size_t)2 * in[1].n[l + 1] : 0;
+        const int S = GLPGP_AMG_KSLOT(0);
+        cc_fill(&seed, hx, n);
+        cc_fill(&seed, hr, n);
+        cc_fill(&seed, he, nc);
+        for (int s = 0; s < 2; s++) {
+            glpgp_backend *b = c->S[s].b;
+            for (int k = 0; k < 3; k++) GLPGP_CHECK_GOTO(st, b->ops->vec_create(b, n, &lv[s][k]), done);
+            if (nc) GLPGP_CHECK_GOTO(st, b->ops->vec_create(b, nc, &lv[s][3]), done);
+            GLPGP_CHECK_GOTO(st, b->ops->vec_write(b, lv[s][0], hx), done);
+            GLPGP_CHECK_GOTO(st, b->ops->vec_write(b, lv[s][1], hr), done);
+            if (nc) GLPGP_CHECK_GOTO(st, b->ops->vec_write(b, lv[s][3], he), done);
+        }
+#define LV(k) lv[s][k]
+#define BOTH_GOTO(call)                                                                                      \
+    for (int s = 0; s < 2; s++) {                                                                            \
+        glpgp_backend *b = c->S[s].b;                                                                        \
+        const glpgp_backend_ops *o = b->ops; (void)o;                                                              \
+        GLPGP_CHECK_GOTO(st, call, done);                                                                    \
+    }
+        /* y <- A_l x;  t[S] <- x.y;  t[S+1] <- x.r */
+        BOTH_GOTO(o->amg_spmv_dots(b, l, LV(0), LV(2), LV(1), NULL, S));
+        BOTH_GOTO(o->vec_read(b, LV(2), c->h[s]));
+        GLPGP_CHECK_GOTO(st, amg_scalars(c, t), done);
+        snprintf(name, sizeof name, "multigrid A_%d x", l);
+        GLPGP_CHECK_GOTO(st, cmp(c, name, c->h[0], c->h[1], n, 1e-12, 1e-14, 0.0), done);
+        snprintf(name, sizeof name, "multigrid A_%d x: x.Ax, x.r", l);
+        double d0[2] = {t[0][S], t[0][S + 1]}, d1[2] = {t[1][S], t[1][S + 1]};
+        GLPGP_CHECK_GOTO(st, cmp(c, name, d0, d1, 2, 1e-12, 1e-13, 0.0), done);
+        if (!nc) {
+            /* coarsest: the dense matrix and C r */
+            const size_t m = n, mm = m * m;
+            double *dn[2] = {NULL, NULL};
+            for (int s = 0; s < 2 && st == GLPGP_OK; s++) st = glpgp_malloc(mm ? mm : 1, sizeof(double), &dn[s]);
+            if (st == GLPGP_OK) BOTH_GOTO(o->amg_coarse_read(b, dn[s]));
+            if (st == GLPGP_OK) {
+                snprintf(name, sizeof name, "multigrid coarsest A_%d (dense)", l);
+                st = cmp(c, name, dn[0], dn[1], mm, 1e-12, 1e-14, 0.0);
+            }
+            free(dn[0]);
+            free(dn[1]);
+            if (st != GLPGP_OK) goto done;
+            BOTH_GOTO(o->amg_coarse_solve(b, LV(1), LV(2)));
+            BOTH_GOTO(o->vec_read(b, LV(2), c->h[s]));
+            GLPGP_CHECK_GOTO(st, cmp(c, "multigrid coarse solve C r", c->h[0], c->h[1], n, 1e-8, 1e-8, 0.0), done);
+        } else {
+            /* y <- M^-1 r;  then y <- x + M^-1 (r - A x) */
+            BOTH_GOTO(o->amg_smooth(b, l, LV(1), NULL, LV(2)));
+            BOTH_GOTO(o->vec_read(b, LV(2), c->h[s]));
+            BOTH_GOTO(o->amg_smooth(b, l, LV(1), LV(0), LV(2)));
+            BOTH_GOTO(o->vec_read(b, LV(2), c->h[s] + n));
+            snprintf(name, sizeof name, "multigrid smoother level %d", l);
+            GLPGP_CHECK_GOTO(st, cmp(c, name, c->h[0], c->h[1], 2 * n, 1e-12, 1e-14, 0.0), done);
+            /* e' <- P^T r;  e' <- P^T (r - A x)  (into the level-l+1 vector; e rewritten after) */
+            BOTH_GOTO(o->amg_restrict(b, l, LV(1), NULL, LV(3)));
+            BOTH_GOTO(o->vec_read(b, LV(3), c->h[s]));
+            BOTH_GOTO(o->amg_restrict(b, l, LV(1), LV(0), LV(3)));
+            BOTH_GOTO(o->vec_read(b, LV(3), c->h[s] + nc));
+            snprintf(name, sizeof name, "multigrid restriction %d -> %d", l, l + 1);
+            GLPGP_CHECK_GOTO(st, cmp(c, name, c->h[0], c->h[1], 2 * nc, 1e-12, 1e-14, 0.0), done);
+            /* y <- x;  y <- y + P e */
+            BOTH_GOTO(o->vec_write(b, LV(3), he));
+            BOTH_GOTO(o->copy(b, LV(2), LV(0)));
+            BOTH_GOTO(o->amg_prolong(b, l, LV(3), LV(2)));
+            BOTH_GOTO(o->vec_read(b, LV(2), c->h[s]));
+            snprintf(name, sizeof name, "multigrid prolongation %d -> %d", l + 1, l);
+            GLPGP_CHECK_GOTO(st, cmp(c, name, c->h[0], c->h[1], n, 1e-12, 1e-14, 0.0), done);
+        }
+        if (l == 0) {
+            /* t[S] <- x.r, t[S+1] <- x.x;  y <- r;  y <- (t[S]/t[S+1]) x - 0.5 y;
+             * t[S+2..S+4] <- a few more;  y <- kcombine(x, r) */
+            BOTH_GOTO(o->amg_dots(b, LV(0), LV(1), LV(0), S));
+            BOTH_GOTO(o->copy(b, LV(2), LV(1)));
+            {
+                const glpgp_amg_coef ca = {S, S + 1, 1.0}, cc2 = {-1, -1, -0.5};
+                BOTH_GOTO(o->amg_axpby(b, ca, LV(0), cc2, LV(2)));
+            }
+            BOTH_GOTO(o->vec_read(b, LV(2), c->h[s]));
+            BOTH_GOTO(o->amg_dots(b, LV(2), LV(0), LV(1), S + 2));
+            BOTH_GOTO(o->amg_dots(b, LV(2), LV(2), NULL, S + 4));
+            GLPGP_CHECK_GOTO(st, amg_scalars(c, t), done);
+            GLPGP_CHECK_GOTO(st, cmp(c, "multigrid dots (5)", t[0] + S, t[1] + S, 5, 1e-12, 1e-13, 0.0), done);
+            GLPGP_CHECK_GOTO(st, cmp(c, "multigrid axpby (coefficients)", c->h[0], c->h[1], n, 1e-12, 1e-14, 0.0),
+                             done);
+            BOTH_GOTO(o->amg_kcombine(b, LV(0), LV(1), LV(2), S));
+            BOTH_GOTO(o->vec_read(b, LV(2), c->h[s]));
+            GLPGP_CHECK_GOTO(st, cmp(c, "multigrid kcombine", c->h[0], c->h[1], n, 1e-10, 1e-10, 0.0), done);
+            /* one cycle z <- B r */
+            BOTH_GOTO(glpgp_amg_apply(a[s], LV(1), LV(2)));
+            BOTH_GOTO(o->vec_read(b, LV(2), c->h[s]));
+            GLPGP_CHECK_GOTO(st, cmp(c, "multigrid cycle B r", c->h[0], c->h[1], n, 1e-10, 1e-10, 0.0), done);
+        }
+#undef LV
+        for (int s = 0; s < 2; s++)
+            for (int k = 0; k < 4; k++) c->S[s].b->ops->vec_destroy(c->S[s].b, &lv[s][k]);
+    }
+    {
+        /* flexible CG + multigrid: NEWTON d = -g */
+        glpgp_cg_info ci[2];
+        BOTH_GOTO(o->gradient(b, c->S[s].v[VX], c->inv4e2, c->S[s].v[VG]));
+        BOTH_GOTO(o->axpby(b, -1.0, c->S[s].v[VG], 0.0, c->S[s].v[VY]));
+        BOTH_GOTO(glpgp_fcg(a[s], c->S[s].v[VY], c->S[s].v[VD], 1e-10, 1000, &ci[s]));
+        BOTH_GOTO(o->vec_read(b, c->S[s].v[VD], c->h[s]));
+        snprintf(name, sizeof name, "FCG+multigrid solve (%d vs %d it)", ci[0].iterations, ci[1].iterations);
+        GLPGP_CHECK_GOTO(st, cmp(c, name, c->h[0], c->h[1], c->n2, 1e-6, 1e-6, 0.0), done);
+    }
+#undef BOTH_GOTO
+done:
+    for (int s = 0; s < 2; s++) {
+        for (int k = 0; k < 4; k++)
+            if (lv[s][k]) c->S[s].b->ops->vec_destroy(c->S[s].b, &lv[s][k]);
+        glpgp_amg_destroy(&a[s]);
+    }
+    free(hx);
+    free(hr);
+    free(he);
+    return st;
+}
+
 /* The whole GL solve on fresh backends (glpgp_solve does its own setup),
  * converged tightly so both paths reach the same minimiser (at the default
  * 1e-6 they may stop one iteration apart, ~1e-6 apart in z). */
@@ -378,6 +565,7 @@ static glpgp_status stage_gl_solve(cc *c)
     char name[48];
     so.newton_rtol = 1e-8;
     so.cg_rtol = 1e-10;
+    so.precond = c->opt->precond;
     GLPGP_CHECK_GOTO(st, glpgp_backend_create_opencl(&clo, &sb[0]), done);
     GLPGP_CHECK_GOTO(st, glpgp_backend_create_reference(&sb[1]), done);
     for (int s = 0; s < 2; s++) {
@@ -550,6 +738,7 @@ glpgp_status glpgp_crosscheck_create(const glpgp_crosscheck_options *opt, glpgp_
     GLPGP_CHECK_GOTO(st, stage_spmv(&c), done);
     GLPGP_CHECK_GOTO(st, stage_cg_steps(&c), done);
     GLPGP_CHECK_GOTO(st, stage_cg_solve(&c), done);
+    GLPGP_CHECK_GOTO(st, stage_amg(&c), done);
     sides_free(&c); /* the GL solve makes its own backends */
     if (opt->solve) GLPGP_CHECK_GOTO(st, stage_gl_solve(&c), done);
     if (opt->solve) GLPGP_CHECK_GOTO(st, stage_cross_solve(&c), done);

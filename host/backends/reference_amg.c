@@ -1,11 +1,13 @@
 /* backends/reference_amg.c: the reference implementation of the multilevel
  * preconditioner's ops (amg_* in glpgp/backend.h): plain loops over host
- * arrays, the per-block arithmetic shared through amg_rows.h. The hierarchy
- * structure is copied at amg_setup (the "upload"); amg_values rebuilds every
- * value from NEWTON and the frame vectors; the cycle itself is driven by
- * solver/amg.c through these ops. Every loop is a gather (one output row per
- * iteration, no scatter), so an OpenCL kernel can run one work-item per row,
- * coarse node or coarse block with the same summation order. */
+ * arrays calling the per-row / per-aggregate / per-entry bodies of
+ * kernels/amg_rows.h, the same functions the OpenCL kernels
+ * (kernels/backend_multigrid.cl) call on their index ranges, so both store the
+ * same bits. The hierarchy structure is copied at amg_setup (the "upload");
+ * amg_values rebuilds every value from NEWTON and the frame vectors; the
+ * cycle itself is driven by solver/amg.c through these ops. Every loop is a
+ * gather (one output row, aggregate or coarse row per iteration, no
+ * scatter). Dot products are one sequential sum (glpgp_range_dot). */
 #include "amg_rows.h"
 #include "reference_impl.h"
 
@@ -21,16 +23,13 @@ typedef struct ref_level {
     int *srow;           /* nnzb: row of each slot (for the Galerkin map) */
     double *val;         /* 4 nnzb (levels >= 1; level 0 is NEWTON) */
     double *minv;        /* 4 n: l1 block-Jacobi inverse (levels < L-1) */
-    double *res;         /* 2 n: residual scratch of amg_restrict */
     /* transfer to level l+1 (levels < L-1) */
     int nc;              /* n_{l+1} */
     int *agg, *aptr, *amem;
-    int *kmap;           /* nnzb: coarse slot of each slot (-1: none): the inverse of
-                            the layout's gather map gptr/gsrc */
+    int *gptr, *gsrc;    /* Galerkin map of A_{l+1} (gather form, see backend.h) */
     double *c;           /* 2 n: complex prolongation weights */
-    /* frame amplitude (levels >= 1) and dead coarse nodes */
+    /* frame amplitude (levels >= 1); 0: dead coarse node */
     double *amp;         /* n */
-    unsigned char *dead; /* n */
 } ref_level;
 
 struct ref_amg {
@@ -56,14 +55,13 @@ void glpgp_ref_amg_free(ref_impl *r)
         free(v->srow);
         free(v->val);
         free(v->minv);
-        free(v->res);
         free(v->agg);
         free(v->aptr);
         free(v->amem);
-        free(v->kmap);
+        free(v->gptr);
+        free(v->gsrc);
         free(v->c);
         free(v->amp);
-        free(v->dead);
     }
     free(a->cinv);
     free(a);
@@ -115,7 +113,6 @@ glpgp_status glpgp_ref_amg_setup(glpgp_backend *b, const glpgp_amg_layout *lay)
             v->diag = v->own_diag;
             GLPGP_CHECK_GOTO(st, glpgp_calloc((size_t)4 * v->nnzb, sizeof(double), &v->val), fail);
             GLPGP_CHECK_GOTO(st, glpgp_calloc((size_t)v->n, sizeof(double), &v->amp), fail);
-            GLPGP_CHECK_GOTO(st, glpgp_calloc((size_t)v->n, 1, &v->dead), fail);
         }
         /* srow[k] <- row of slot k */
         GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)(v->nnzb ? v->nnzb : 1), sizeof(int), &v->srow), fail);
@@ -125,15 +122,12 @@ glpgp_status glpgp_ref_amg_setup(glpgp_backend *b, const glpgp_amg_layout *lay)
             const glpgp_amg_level *nx = &lay->lev[l + 1];
             v->nc = nx->n;
             GLPGP_CHECK_GOTO(st, glpgp_calloc((size_t)4 * v->n, sizeof(double), &v->minv), fail);
-            GLPGP_CHECK_GOTO(st, glpgp_calloc((size_t)2 * v->n, sizeof(double), &v->res), fail);
             GLPGP_CHECK_GOTO(st, glpgp_calloc((size_t)2 * v->n, sizeof(double), &v->c), fail);
             GLPGP_CHECK_GOTO(st, copy_ints(&v->agg, in->agg, (size_t)v->n), fail);
             GLPGP_CHECK_GOTO(st, copy_ints(&v->aptr, in->aptr, (size_t)v->nc + 1), fail);
             GLPGP_CHECK_GOTO(st, copy_ints(&v->amem, in->amem, (size_t)in->aptr[v->nc]), fail);
-            GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)(v->nnzb ? v->nnzb : 1), sizeof(int), &v->kmap), fail);
-            for (long k = 0; k < v->nnzb; k++) v->kmap[k] = -1;
-            for (long K = 0; K < nx->nnzb; K++)
-                for (int q = in->gptr[K]; q < in->gptr[K + 1]; q++) v->kmap[in->gsrc[q]] = (int)K;
+            GLPGP_CHECK_GOTO(st, copy_ints(&v->gptr, in->gptr, (size_t)nx->nnzb + 1), fail);
+            GLPGP_CHECK_GOTO(st, copy_ints(&v->gsrc, in->gsrc, (size_t)in->gptr[nx->nnzb]), fail);
         }
     }
     a->m = 2 * a->lev[a->L - 1].n;
@@ -162,58 +156,18 @@ glpgp_status glpgp_ref_amg_values(glpgp_backend *b, const glpgp_vec *const *fram
         if (frames[l] && frames[l]->n != (size_t)2 * v->n)
             return GLPGP_FAIL(GLPGP_ERR_ARG, "amg_values: frame %d has the wrong length", l);
         /* per aggregate J: f_i = a_i * frame_i (a = 1 on level 0, frame = 1
-         * when none);  s_J = sqrt(sum_{i in J} |f_i|^2);  c_i = f_i / s_J */
-        for (int J = 0; J < v->nc; J++) {
-            double ss = 0.0;
-            for (int p = v->aptr[J]; p < v->aptr[J + 1]; p++) {
-                int i = v->amem[p];
-                double am = l == 0 ? 1.0 : v->amp[i];
-                double fx = fr ? am * fr[2 * i] : am, fy = fr ? am * fr[2 * i + 1] : 0.0;
-                ss += fx * fx + fy * fy;
-            }
-            double s = sqrt(ss);
-            int dead = !(s > 0.0) || !isfinite(s);
-            w->amp[J] = dead ? 0.0 : s;
-            w->dead[J] = (unsigned char)dead;
-            for (int p = v->aptr[J]; p < v->aptr[J + 1]; p++) {
-                int i = v->amem[p];
-                double am = l == 0 ? 1.0 : v->amp[i];
-                double fx = fr ? am * fr[2 * i] : am, fy = fr ? am * fr[2 * i + 1] : 0.0;
-                v->c[2 * i] = dead ? 0.0 : fx / s;
-                v->c[2 * i + 1] = dead ? 0.0 : fy / s;
-            }
-        }
-        for (int i = 0; i < v->n; i++)
-            if (v->agg[i] < 0) v->c[2 * i] = v->c[2 * i + 1] = 0.0;
+         * when none);  s_J = sqrt(sum_{i in J} |f_i|^2);  c_i = f_i / s_J
+         * (nodes in no aggregate keep c = 0 from amg_setup) */
+        for (int J = 0; J < v->nc; J++)
+            glpgp_amg_agg_weights(J, v->aptr, v->amem, l > 0, v->amp, fr != NULL, fr, v->c, w->amp);
         /* A_{l+1}[K] = sum over the mapped level-l slots k = (i, j) of
-         * P_i^T A_l[k] P_j.  The reference streams A_l in slot order and adds
-         * into K = kmap[k]: per K this is the increasing-k order of the gather
-         * map gsrc, so a gather kernel (one work-item per K) gives the same
-         * bits. Dead coarse node: identity diagonal block. */
-        memset(w->val, 0, 4 * (size_t)w->nnzb * sizeof(double));
-        for (int i = 0; i < v->n; i++) {
-            const double ir = v->c[2 * i], ii = v->c[2 * i + 1];
-            for (int k = v->rowptr[i]; k < v->rowptr[i + 1]; k++) {
-                const int K = v->kmap[k];
-                if (K < 0) continue;
-                const int j = v->col[k];
-                glpgp_amg_ptap(ir, ii, A + 4 * (size_t)k, v->c[2 * j], v->c[2 * j + 1],
-                               w->val + 4 * (size_t)K);
-            }
-        }
-        for (int J = 0; J < w->n; J++)
-            if (w->dead[J]) {
-                double *d = w->val + 4 * (size_t)w->diag[J];
-                d[0] = d[3] = 1.0;
-                d[1] = d[2] = 0.0;
-            }
+         * P_i^T A_l[k] P_j (gather, increasing k); dead coarse node:
+         * identity diagonal block */
+        for (int I = 0; I < w->n; I++)
+            glpgp_amg_galerkin_row(I, w->rowptr, w->diag, v->gptr, v->gsrc, v->srow, v->col, v->c, A, w->amp,
+                                   w->val);
         /* M_l^-1 <- w (A_ii + sum_{j != i} ||A_ij||_2 I)^-1 */
-        for (int i = 0; i < v->n; i++) {
-            double s = 0.0;
-            for (int k = v->rowptr[i]; k < v->rowptr[i + 1]; k++)
-                if (k != v->diag[i]) s += glpgp_amg_norm2(A + 4 * (size_t)k);
-            glpgp_amg_l1_inverse(A + 4 * (size_t)v->diag[i], s, a->weight, v->minv + 4 * (size_t)i);
-        }
+        for (int i = 0; i < v->n; i++) glpgp_amg_l1_row(i, v->rowptr, v->diag, A, a->weight, v->minv);
     }
     return GLPGP_OK;
 }
@@ -243,20 +197,6 @@ glpgp_status glpgp_ref_amg_coarse_set(glpgp_backend *b, const double *inv)
     return GLPGP_OK;
 }
 
-/* (A_l x)_i, 2 components */
-static void row_product(const ref_level *v, const double *A, const double *x, int i, double *y)
-{
-    double y0 = 0.0, y1 = 0.0;
-    for (int k = v->rowptr[i]; k < v->rowptr[i + 1]; k++) {
-        const double *blk = A + 4 * (size_t)k;
-        const double *xj = x + 2 * (size_t)v->col[k];
-        y0 += blk[0] * xj[0] + blk[1] * xj[1];
-        y1 += blk[2] * xj[0] + blk[3] * xj[1];
-    }
-    y[0] = y0;
-    y[1] = y1;
-}
-
 glpgp_status glpgp_ref_amg_smooth(glpgp_backend *b, int l, const glpgp_vec *r, const glpgp_vec *x,
                                   glpgp_vec *y)
 {
@@ -264,16 +204,8 @@ glpgp_status glpgp_ref_amg_smooth(glpgp_backend *b, int l, const glpgp_vec *r, c
     const ref_level *v = &a->lev[l];
     const double *A = level_val(IMPL(b), l);
     /* y_i <- x_i + M_i^-1 (r_i - (A x)_i) */
-    for (int i = 0; i < v->n; i++) {
-        double ax[2] = {0.0, 0.0}, x0 = 0.0, x1 = 0.0;
-        if (x) {
-            row_product(v, A, x->a, i, ax);
-            x0 = x->a[2 * i];
-            x1 = x->a[2 * i + 1];
-        }
-        glpgp_amg_smooth_row(v->minv + 4 * (size_t)i, r->a[2 * i], r->a[2 * i + 1], ax[0], ax[1], x0,
-                             x1, y->a + 2 * (size_t)i);
-    }
+    for (int i = 0; i < v->n; i++)
+        glpgp_amg_row_smooth(i, x != NULL, v->rowptr, v->col, A, v->minv, r->a, x ? x->a : NULL, y->a);
     return GLPGP_OK;
 }
 
@@ -283,27 +215,10 @@ glpgp_status glpgp_ref_amg_restrict(glpgp_backend *b, int l, const glpgp_vec *r,
     struct ref_amg *a = AMG(b);
     const ref_level *v = &a->lev[l];
     const double *A = level_val(IMPL(b), l);
-    /* res <- r - A x, row by row (streams A in order), then
-     * rc_J <- sum_{i in J} P_i^T res_i  (gather over the members) */
-    const double *t = r->a;
-    if (x) {
-        for (int i = 0; i < v->n; i++) {
-            double ax[2];
-            row_product(v, A, x->a, i, ax);
-            v->res[2 * i] = r->a[2 * i] - ax[0];
-            v->res[2 * i + 1] = r->a[2 * i + 1] - ax[1];
-        }
-        t = v->res;
-    }
-    for (int J = 0; J < v->nc; J++) {
-        double acc[2] = {0.0, 0.0};
-        for (int p = v->aptr[J]; p < v->aptr[J + 1]; p++) {
-            int i = v->amem[p];
-            glpgp_amg_restrict_add(v->c[2 * i], v->c[2 * i + 1], t[2 * i], t[2 * i + 1], acc);
-        }
-        rc->a[2 * J] = acc[0];
-        rc->a[2 * J + 1] = acc[1];
-    }
+    /* rc_J <- sum_{i in J} P_i^T (r_i - (A x)_i)  (gather over the members) */
+    for (int J = 0; J < v->nc; J++)
+        glpgp_amg_agg_restrict(J, v->aptr, v->amem, v->c, x != NULL, v->rowptr, v->col, A, r->a,
+                               x ? x->a : NULL, rc->a);
     return GLPGP_OK;
 }
 
@@ -312,34 +227,16 @@ glpgp_status glpgp_ref_amg_prolong(glpgp_backend *b, int l, const glpgp_vec *ec,
     struct ref_amg *a = AMG(b);
     const ref_level *v = &a->lev[l];
     /* x_i <- x_i + P_i ec_agg(i) */
-    for (int i = 0; i < v->n; i++) {
-        int J = v->agg[i];
-        if (J < 0) continue;
-        glpgp_amg_prolong_add(v->c[2 * i], v->c[2 * i + 1], ec->a[2 * J], ec->a[2 * J + 1],
-                              x->a + 2 * (size_t)i);
-    }
+    for (int i = 0; i < v->n; i++) glpgp_amg_row_prolong(i, v->agg, v->c, ec->a, x->a);
     return GLPGP_OK;
 }
 
 glpgp_status glpgp_ref_amg_coarse_solve(glpgp_backend *b, const glpgp_vec *r, glpgp_vec *x)
 {
     struct ref_amg *a = AMG(b);
-    const int m = a->m;
     /* x <- C r (dense) */
-    for (int i = 0; i < m; i++) {
-        const double *ci = a->cinv + (size_t)i * m;
-        double s = 0.0;
-        for (int j = 0; j < m; j++) s += ci[j] * r->a[j];
-        x->a[i] = s;
-    }
+    for (int i = 0; i < a->m; i++) glpgp_amg_row_dense(i, a->m, a->cinv, r->a, x->a);
     return GLPGP_OK;
-}
-
-static double dot_n(const double *x, const double *y, size_t n)
-{
-    double s = 0.0;
-    for (size_t i = 0; i < n; i++) s += x[i] * y[i];
-    return s;
 }
 
 glpgp_status glpgp_ref_amg_spmv_dots(glpgp_backend *b, int l, const glpgp_vec *x, glpgp_vec *y,
@@ -349,10 +246,10 @@ glpgp_status glpgp_ref_amg_spmv_dots(glpgp_backend *b, int l, const glpgp_vec *x
     const ref_level *v = &a->lev[l];
     const double *A = level_val(IMPL(b), l);
     /* y <- A_l x;  t[slot] <- x.y;  t[slot+1] <- x.u;  t[slot+2] <- x.w */
-    for (int i = 0; i < v->n; i++) row_product(v, A, x->a, i, y->a + 2 * (size_t)i);
-    a->t[slot] = dot_n(x->a, y->a, x->n);
-    if (u) a->t[slot + 1] = dot_n(x->a, u->a, x->n);
-    if (w) a->t[slot + 2] = dot_n(x->a, w->a, x->n);
+    for (int i = 0; i < v->n; i++) glpgp_row_spmv_store(i, v->rowptr, v->col, A, x->a, y->a);
+    a->t[slot] = glpgp_range_dot(0, (long)x->n, x->a, y->a);
+    if (u) a->t[slot + 1] = glpgp_range_dot(0, (long)x->n, x->a, u->a);
+    if (w) a->t[slot + 2] = glpgp_range_dot(0, (long)x->n, x->a, w->a);
     return GLPGP_OK;
 }
 
@@ -360,29 +257,20 @@ glpgp_status glpgp_ref_amg_dots(glpgp_backend *b, const glpgp_vec *x, const glpg
                                 const glpgp_vec *w, int slot)
 {
     struct ref_amg *a = AMG(b);
-    if (u) a->t[slot] = dot_n(x->a, u->a, x->n);
-    if (w) a->t[slot + 1] = dot_n(x->a, w->a, x->n);
+    if (u) a->t[slot] = glpgp_range_dot(0, (long)x->n, x->a, u->a);
+    if (w) a->t[slot + 1] = glpgp_range_dot(0, (long)x->n, x->a, w->a);
     return GLPGP_OK;
-}
-
-static double coef(const struct ref_amg *a, glpgp_amg_coef c)
-{
-    return c.num < 0 ? c.sign : glpgp_amg_ratio(c.sign, a->t[c.num], a->t[c.den]);
 }
 
 glpgp_status glpgp_ref_amg_axpby(glpgp_backend *b, glpgp_amg_coef ca, const glpgp_vec *x,
                                  glpgp_amg_coef cc, glpgp_vec *y)
 {
     struct ref_amg *a = AMG(b);
-    const double p = coef(a, ca), q = coef(a, cc);
+    const double p = glpgp_amg_coef_value(a->t, ca.num, ca.den, ca.sign);
+    const double q = glpgp_amg_coef_value(a->t, cc.num, cc.den, cc.sign);
     /* y <- p x + q y; a zero coefficient does not read its vector (so
      * y <- 0 x + 0 y clears a y that holds NaN) */
-    for (size_t i = 0; i < y->n; i++) {
-        double v = 0.0;
-        if (p != 0.0) v += p * x->a[i];
-        if (q != 0.0) v += q * y->a[i];
-        y->a[i] = v;
-    }
+    for (size_t i = 0; i < y->n; i++) glpgp_amg_entry_axpby((long)i, p, x->a, q, y->a);
     return GLPGP_OK;
 }
 
@@ -394,10 +282,7 @@ glpgp_status glpgp_ref_amg_kcombine(glpgp_backend *b, const glpgp_vec *v, const 
     double c[2];
     glpgp_amg_kcoef(t[0], t[1], t[2], t[3], t[4], c);
     /* e <- c0 v + c1 d  (c1 = 0: d is not read) */
-    if (c[1] == 0.0)
-        for (size_t i = 0; i < e->n; i++) e->a[i] = c[0] * v->a[i];
-    else
-        for (size_t i = 0; i < e->n; i++) e->a[i] = c[0] * v->a[i] + c[1] * d->a[i];
+    for (size_t i = 0; i < e->n; i++) glpgp_amg_entry_kcombine((long)i, c[0], c[1], v->a, d->a, e->a);
     return GLPGP_OK;
 }
 

@@ -88,6 +88,8 @@ int glpgp_cmd_crosscheck(int argc, char **argv)
 {
     static const char *const energies[] = {"p1", "transport", NULL};
     static const int energy_vals[] = {GLPGP_ELEM_P1, GLPGP_ELEM_TRANSPORT};
+    static const char *const preconds[] = {"jacobi", "amg", NULL};
+    static const int precond_vals[] = {GLPGP_PRECOND_JACOBI, GLPGP_PRECOND_AMG};
     glpgp_crosscheck_options co;
     glpgp_crosscheck_options_default(&co);
     const char *input = NULL;
@@ -104,6 +106,9 @@ int glpgp_cmd_crosscheck(int argc, char **argv)
     o->def = "$GLPGP_DEVICE or the first fp64 device";
     glpgp_opt_double(&t, "--tol-scale", &co.tol_scale, 0.0, 1, HUGE_VAL, 0, "F", "multiply every tolerance by F");
     glpgp_opt_flag(&t, "--no-solve", &no_solve, 1, "skip the whole GL solve stage");
+    glpgp_opt_choice(&t, "--precond", &co.precond, preconds, precond_vals,
+                     "preconditioner of the whole GL solve stage (the multigrid ops are\n"
+                     "compared stage by stage either way)");
     glpgp_mask_options mo;
     glpgp_mask_options_default(&mo);
     glpgp_opts_add_limits(&t, &mo.max_triangles, &mo.max_pixels);

@@ -609,6 +609,9 @@ glpgp_status glpgp_amg_create(glpgp_backend *b, const glpgp_options *o, const un
     memset(&lay, 0, sizeof lay);
     lay.nlevels = L;
     lay.weight = o->amg_weight;
+    lay.pre = a->pre;
+    lay.post = a->post;
+    for (int l = 1; l + 1 < L; l++) lay.kcycle[l] = (unsigned char)kcycle_level(a, l);
     for (int l = 0; l < L; l++) {
         amg_level *lv = &a->lev[l];
         glpgp_amg_level *d = &lay.lev[l];
@@ -827,6 +830,12 @@ static glpgp_status coarse_correction(glpgp_amg *a, int c)
     glpgp_backend *b = a->b;
     const glpgp_backend_ops *op = b->ops;
     amg_level *lv = &a->lev[c];
+    if (op->amg_coarse_correction) {
+        /* the backend may run this level and all below itself (same sequence) */
+        int done = 0;
+        GLPGP_CHECK(op->amg_coarse_correction(b, c, lv->b, lv->e, &done));
+        if (done) return GLPGP_OK;
+    }
     if (c == a->L - 1) return op->amg_coarse_solve(b, lv->b, lv->e);
     if (!kcycle_level(a, c)) return cycle(a, c, lv->b, lv->e);
     /* K-cycle: two flexible-CG steps on A_c, preconditioned by the cycle on c

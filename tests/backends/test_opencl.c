@@ -3,14 +3,16 @@
  * compares every op of the backend table (vectors, axpby with zero
  * coefficients on NaN, dot, QUAD of every element kind, NEWTON + DINV of
  * every Hessian variant and without penalty, gradient and energy with and
- * without penalty, spmv, each fused CG step, a CG solve, a Newton step) on
- * random z and r: on a generated disk (3000 vertices, both launch shapes
+ * without penalty, spmv, each fused CG step, a CG solve, a Newton step, and
+ * the multigrid ops on the hierarchy of NEWTON: A_l, smoother, restriction,
+ * prolongation per level, coarsest matrix and solve, one cycle, a flexible-CG
+ * solve; the hierarchy values bit-identical on p1) on random z and r: on a generated disk (3000 vertices, both launch shapes
  * GLPGP_CL_SHAPE=cpu|gpu, the whole GL solve too) and on data/annulus.msh
  * (transport energy) and data/plate_holes.msh (GLPGP_DATA, skipped if
  * missing). Every table row must pass and every stage must be present; the
  * engine must fail when GLPGP_CL_CORRUPT=1 corrupts the OpenCL QUAD. Also
  * device-selection errors and GLPGP_KERNEL_DIR (good and broken kernels, a
- * missing rows.h). Exit 77 ("skipped: no OpenCL device") when no OpenCL
+ * missing rows.h or amg_rows.h). Exit 77 ("skipped: no OpenCL device") when no OpenCL
  * device can be used; the engine then reports GLPGP_ERR_UNSUPPORTED or
  * GLPGP_ERR_OPENCL. */
 #include "glpgp/backends.h"
@@ -36,7 +38,11 @@ static const char *const required_stages[] = {
     "gradient: P = 0 (no penalty)", "energy: P = 0 (no penalty)", "spmv QUAD", "spmv NEWTON",
     "dot x.(NEWTON x)", "CG precond z", "CG precond r.z", "CG precond r.r", "CG spmv_dot q (3 steps)",
     "CG spmv_dot p.q (3 steps)", "CG update r.z (3 steps)", "CG update r.r (3 steps)",
-    "CG update r (3 steps)", "CG update x (3 steps)", "CG direction p (3 steps)", "Newton step z + d"};
+    "CG update r (3 steps)", "CG update x (3 steps)", "CG direction p (3 steps)", "Newton step z + d",
+    "multigrid levels (*", "multigrid A_0 x", "multigrid A_1 x", "multigrid smoother level 0",
+    "multigrid restriction 0 -> 1", "multigrid prolongation 1 -> 0", "multigrid dots (5)",
+    "multigrid axpby (coefficients)", "multigrid kcombine", "multigrid cycle B r", "multigrid coarsest A_*",
+    "multigrid coarse solve C r", "FCG+multigrid solve (*"};
 
 /* The row named `name` (or, when name ends in '*', the first starting with the rest). */
 static const glpgp_crosscheck_row *find_row(const glpgp_crosscheck *t, const char *name)
@@ -83,7 +89,11 @@ static void compare_mesh(const char *label, const glpgp_mesh *m, int energy, int
      * the transport element calls cos/sin, whose last bit the OpenCL library and
      * libm may round differently, so with it only the other QUAD kinds are */
     static const char *const exact_p1[] = {"QUAD assembly", "NEWTON assembly (paper)", "DINV (mixed)",
-                                           "gradient g", "spmv NEWTON", "CG precond z", "QUAD assembly (laplace)"};
+                                           "gradient g", "spmv NEWTON", "CG precond z", "QUAD assembly (laplace)",
+                                           /* the hierarchy (kernels/amg_rows.h) */
+                                           "multigrid A_1 x", "multigrid smoother level 0",
+                                           "multigrid restriction 0 -> 1", "multigrid prolongation 1 -> 0",
+                                           "multigrid coarsest A_*", "multigrid coarse solve C r"};
     static const char *const exact_tr[] = {"QUAD assembly (p1)", "QUAD assembly (laplace)"};
     const int tr = energy == GLPGP_ELEM_TRANSPORT;
     const size_t nexact = tr ? sizeof exact_tr / sizeof exact_tr[0] : sizeof exact_p1 / sizeof exact_p1[0];
@@ -174,6 +184,12 @@ static void test_device_errors(void)
         CHECK(strstr(glpgp_error_message(), "rows.h") != NULL);
         glpgp_error_clear();
         write_file(dir, "rows.h", "/* empty */\n");
+        /* amg_rows.h missing: the same */
+        st = glpgp_backend_create_opencl(&o, &b);
+        CHECK(st == GLPGP_ERR_IO && b == NULL);
+        CHECK(strstr(glpgp_error_message(), "amg_rows.h") != NULL);
+        glpgp_error_clear();
+        write_file(dir, "amg_rows.h", "/* empty */\n");
         st = glpgp_backend_create_opencl(&o, &b);
         CHECK(st == GLPGP_ERR_OPENCL && b == NULL);
         CHECK(strstr(glpgp_error_message(), "build log") != NULL);
@@ -183,6 +199,7 @@ static void test_device_errors(void)
         remove_file(dir, "broken.cl");
         remove_file(dir, "element.h");
         remove_file(dir, "rows.h");
+        remove_file(dir, "amg_rows.h");
         rmdir(dir);
     }
     /* the source kernel directory (next to GLPGP_DATA) builds */

@@ -79,6 +79,12 @@ typedef struct glpgp_amg_layout {
     double weight; /* smoother weight w in (0, 2): M_l^-1 below is w times the
                       inverse of the l1 block diagonal */
     glpgp_amg_level lev[GLPGP_AMG_MAX_LEVELS];
+    /* the cycle of solver/amg.c, for a backend that runs whole coarse
+     * corrections itself (amg_coarse_correction): sweeps before / after the
+     * coarse correction, and kcycle[c] = 1 when the coarse correction on
+     * level c (0 < c < L-1) is a K-cycle (0: one plain visit) */
+    int pre, post;
+    unsigned char kcycle[GLPGP_AMG_MAX_LEVELS];
 } glpgp_amg_layout;
 
 /* AMG scalar registers: a device array of GLPGP_AMG_NSLOTS doubles, separate
@@ -184,7 +190,16 @@ typedef struct glpgp_backend_ops {
      *     e <- (alpha1/rho1 - gamma alpha2 / (rho1 rho2)) v + (alpha2/rho2) d,
      *   falling back to e <- (alpha1/rho1) v when rho2 <= 1e-12 |beta| or a
      *   coefficient is not finite, and to e <- 0 when rho1 is 0.
-     * amg_get_scalars: host out[0..n) <- t[0..n) (synchronises). */
+     * amg_get_scalars: host out[0..n) <- t[0..n) (synchronises).
+     * amg_coarse_correction (optional, may be NULL): e <- the coarse
+     *   correction of level c (1 <= c <= L-1) with right-hand side rhs
+     *   (level-c vectors), computed entirely inside the backend with the
+     *   sequence of solver/amg.c's coarse_correction (the layout's pre, post
+     *   and kcycle; the same ops, in the same order, registers t included);
+     *   *done <- 0 when the backend leaves level c to the driver (nothing is
+     *   done then). For devices where a launch costs more than a small
+     *   level's work (the OpenCL CPU shape runs the small levels in one
+     *   work-item). */
     glpgp_status (*amg_setup)(glpgp_backend *b, const glpgp_amg_layout *lay);
     glpgp_status (*amg_values)(glpgp_backend *b, const glpgp_vec *const *frames);
     glpgp_status (*amg_coarse_read)(glpgp_backend *b, double *dense);
@@ -204,6 +219,8 @@ typedef struct glpgp_backend_ops {
     glpgp_status (*amg_kcombine)(glpgp_backend *b, const glpgp_vec *v, const glpgp_vec *d,
                                  glpgp_vec *e, int slot);
     glpgp_status (*amg_get_scalars)(glpgp_backend *b, double *out, int n);
+    glpgp_status (*amg_coarse_correction)(glpgp_backend *b, int c, const glpgp_vec *rhs, glpgp_vec *e,
+                                          int *done);
 } glpgp_backend_ops;
 
 struct glpgp_backend {

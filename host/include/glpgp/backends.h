@@ -93,17 +93,25 @@ glpgp_status glpgp_probe_matrix(glpgp_backend *b, int which, double *vals);
  *   Hessian variant; gradient g, E, P with and without penalty, energy E, P;
  *   spmv QUAD / NEWTON, dot x.(NEWTON x); the fused CG steps (precond, then
  *   3 x spmv_dot, update, direction on the projected NEWTON); a CG solve
- *   NEWTON d = -g; the Newton step z + d; with `solve`, the whole GL solve
- *   (z of both oscillators, singularity counts exactly) and the cross field
- *   (glpgp/cross.h: w at 1e-3, its final energy at 1e-7 relative, the +1/4
- *   and -1/4 singularity counts exactly; its minimisers can form families,
- *   e.g. rotated on a disk, along which rounding moves w).
+ *   NEWTON d = -g; the Newton step z + d; when both backends have the
+ *   multigrid ops, the hierarchy of the mixed NEWTON at z (levels and sizes
+ *   exactly; per level A_l x with its dots, the smoother, restriction and
+ *   prolongation on random vectors; the coarsest matrix and its solve;
+ *   register dots, axpby, kcombine; one whole cycle; a flexible-CG solve);
+ *   with `solve`, the whole GL solve with `precond` (z of both oscillators,
+ *   singularity counts exactly) and the cross field (glpgp/cross.h, on the
+ *   line-search Newton: w at 1e-3, its final energy at 1e-7 relative, the
+ *   +1/4 and -1/4 singularity counts exactly; its minimisers can form
+ *   families, e.g. rotated on a disk, along which rounding moves w).
  * Tolerance per entry: |a - b| <= atol + rtol |b|, atol = afac * max|b| over
  * the stage (a dot: afac * sum |x_i y_i|); rtol 1e-12, afac 1e-14 for
  * assembly, gradient, energies, spmv, dot and the first CG products; 1e-10
  * for CG iterates after an update (alpha differs by rounding); 1e-6 for the
  * CG solve, the Newton step and the GL solve (1e-4 for an oscillator whose
- * GL levels stopped at the Newton cap); vectors, axpby: exact. A NaN fails. */
+ * GL levels stopped at the Newton cap); vectors, axpby: exact. Multigrid:
+ * 1e-12 for the hierarchy ops and register dots, 1e-8 for the coarse solve
+ * (an inverse computed on the host), 1e-10 for kcombine and the cycle, 1e-6
+ * for the flexible-CG solve. A NaN fails. */
 
 /* What to compare. */
 typedef struct glpgp_crosscheck_options {
@@ -115,6 +123,8 @@ typedef struct glpgp_crosscheck_options {
     double tol_scale;        /* every tolerance times this, > 0 [1] */
     int solve;               /* also run the whole GL solve on both backends [1] */
     unsigned long long seed; /* random z and r [12345] */
+    int precond;             /* GLPGP_PRECOND_* of the whole GL solve stage [the solver's
+                              * default, glpgp_options_default] */
 } glpgp_crosscheck_options;
 
 /* Fill the defaults above (mesh NULL). */

@@ -102,7 +102,7 @@ typedef struct glpgp_options {
     int cg_check;         /* read the residual back every k iterations [10] */
 
     /* preconditioner (glpgp/solve.h: glpgp_amg_*) */
-    int precond;          /* GLPGP_PRECOND_JACOBI or _AMG [JACOBI] */
+    int precond;          /* GLPGP_PRECOND_JACOBI or _AMG [AMG] */
     int amg_coarse;       /* coarsening stops at <= this many nodes (2 unknowns each),
                              solved by a dense inverse; 2 .. 1024 [48] */
     int amg_max_levels;   /* levels including the fine one, 2 .. GLPGP_AMG_MAX_LEVELS [20] */

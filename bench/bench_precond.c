@@ -1,0 +1,406 @@
+/* bench_precond.c: glpgp-bench --precond jacobi|amg|both, the preconditioner
+ * ladder (issue 12): for each size of the ladder (default 64k, 256k, 1M
+ * vertices; 4M with --with-4m), two target sizes (h = 10 mean edges, and
+ * the default size glpgp_default_size) and each backend, the same Newton
+ * steps solved with 2x2-block Jacobi PCG and with flexible CG + the
+ * aggregation multigrid of solver/amg.c, side by side in one run. Per Newton
+ * step and preconditioner: CG iterations, setup seconds (multigrid: the
+ * per-step values glpgp_amg_update; Jacobi: none, its DINV is part of the
+ * assembly), solve seconds, ms per iteration and bytes moved (model below);
+ * per case the hierarchy (levels, operator complexity, structure seconds)
+ * and the ratio of Jacobi to multigrid time. Markdown on stdout, JSON with
+ * --json (iterations vs vertices in "precond_ladder").
+ *
+ * The Newton steps: the bench's state (bench.c): field W = (1, 0) with its
+ * Dirichlet set, z = exp(i theta), theta = 2 pi x / h + a smooth
+ * perturbation, eps = 0.5 h; each step assembles NEWTON (o->hess, mixed),
+ * solves NEWTON d = -g to rtol 1e-8 from 0 (cap 20000), then x <- x + alpha
+ * d with alpha halved from 1 until E + P decreases (at most 10 halvings).
+ * Both preconditioners start from the same x; their steps then differ only
+ * by the solves' rounding.
+ *
+ * Bytes moved (a model, counted like bench.c's bytes_cg): Jacobi: bytes_cg
+ * per iteration. Multigrid, per flexible-CG iteration: one fine SpMV and 10
+ * fine vectors of the outer iteration, plus per visit of level l < L-1 three
+ * SpMVs of A_l (restriction residual, post-smoothing, the K-cycle's product)
+ * and 16 level vectors of 16 n_l bytes, per visit of the coarsest level the
+ * dense inverse (8 m^2); the K-cycle visits level l+1 twice per visit of
+ * level l (levels 1 .. L-2), V-cycle levels once. */
+#include "bench.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define PC_MAX_STEPS 20
+
+typedef struct pc_step {
+    int cg;
+    double setup_s, solve_s, assemble_s, bytes, relres, alpha;
+    int reason;
+    long sync_setup, sync_solve; /* host round trips counted by the drivers (b->n_sync) */
+} pc_step;
+
+typedef struct pc_case {
+    int nv;
+    long nnzb;
+    double h;
+    int hdefault;        /* 1: h = the default size, 0: 10 mean edges */
+    int opencl;
+    int ran[2];          /* [0] Jacobi, [1] multigrid */
+    char note[2][200];
+    pc_step st[2][PC_MAX_STEPS];
+    int nsteps[2];
+    glpgp_amg_info info;
+    double bytes_amg_it; /* model, per flexible-CG iteration */
+} pc_case;
+
+static double b_spmv(double nv, double nnzb) { return 36.0 * nnzb + 4.0 * (nv + 1) + 32.0 * nv; }
+static double b_cg(double nv, double nnzb) { return b_spmv(nv, nnzb) + 144.0 * nv + 48.0 * nv; }
+
+/* the multigrid byte model above */
+static double amg_bytes_per_it(const glpgp_amg_info *in, const glpgp_options *o)
+{
+    const int L = in->nlevels;
+    double visits = 1.0, bytes = b_spmv(in->n[0], (double)in->nnzb[0]) + 10.0 * 16.0 * in->n[0];
+    for (int l = 0; l < L; l++) {
+        if (l == L - 1) {
+            const double m = 2.0 * in->n[l];
+            bytes += visits * (8.0 * m * m + 32.0 * m);
+            break;
+        }
+        bytes += visits * (3.0 * b_spmv(in->n[l], (double)in->nnzb[l]) + 16.0 * 16.0 * in->n[l]);
+        const int next = l + 1;
+        const int k = o->amg_cycle == GLPGP_AMG_KCYCLE && next < L - 1 && in->n[next] >= o->amg_kcycle_min;
+        visits *= k ? 2.0 : 1.0;
+    }
+    return bytes;
+}
+
+static glpgp_status make_backend(int opencl, int device, glpgp_backend **b)
+{
+    if (!opencl) return glpgp_backend_create_reference(b);
+    glpgp_cl_options co = {device, 0};
+    return glpgp_backend_create_opencl(&co, b);
+}
+
+static glpgp_status sync_be(glpgp_backend *b)
+{
+    double s[1];
+    return b->ops->get_scalars(b, s, 1);
+}
+
+/* E + P at x into *F (work: scratch vector) */
+static glpgp_status energy_at(glpgp_backend *b, const glpgp_vec *x, double inv4e2, glpgp_vec *work, double *F)
+{
+    double s[GLPGP_NSLOTS];
+    GLPGP_CHECK(b->ops->energy(b, x, inv4e2, work));
+    GLPGP_CHECK(b->ops->get_scalars(b, s, GLPGP_NSLOTS));
+    *F = s[GLPGP_S_E] + s[GLPGP_S_P];
+    return GLPGP_OK;
+}
+
+/* The Newton steps of one case with one preconditioner (pc 0: Jacobi, 1: multigrid). */
+static glpgp_status run_case(const glpgp_mesh *m, const glpgp_system *sys, const double *w,
+                             const unsigned char *dir, const double *x0, pc_case *cs, int pc, int steps,
+                             int device)
+{
+    glpgp_status st = GLPGP_OK;
+    glpgp_backend *b = NULL;
+    glpgp_amg *a = NULL;
+    glpgp_vec *x = NULL, *g = NULL, *rhs = NULL, *d = NULL, *xt = NULL, *wk = NULL;
+    const size_t n2 = (size_t)2 * m->nv;
+    glpgp_options o;
+    glpgp_options_default(&o);
+    o.precond = pc ? GLPGP_PRECOND_AMG : GLPGP_PRECOND_JACOBI;
+    const double eps = 0.5 * cs->h, inv4e2 = 1.0 / (4.0 * eps * eps);
+    GLPGP_CHECK(make_backend(cs->opencl, device, &b));
+    const glpgp_backend_ops *op = b->ops;
+    GLPGP_CHECK_GOTO(st, op->setup(b, sys), done);
+    glpgp_vec **vs[] = {&x, &g, &rhs, &d, &xt, &wk};
+    for (size_t k = 0; k < sizeof vs / sizeof vs[0]; k++) GLPGP_CHECK_GOTO(st, op->vec_create(b, n2, vs[k]), done);
+    GLPGP_CHECK_GOTO(st, op->set_field(b, w, dir), done);
+    GLPGP_CHECK_GOTO(st, op->assemble_quadratic(b, GLPGP_ELEM_P1, cs->h), done);
+    GLPGP_CHECK_GOTO(st, op->vec_write(b, x, x0), done);
+    if (pc) {
+        GLPGP_CHECK_GOTO(st, glpgp_amg_create(b, &o, dir, w, cs->h, &a), done);
+        glpgp_amg_get_info(a, &cs->info);
+        cs->bytes_amg_it = amg_bytes_per_it(&cs->info, &o);
+    }
+    double F = 0.0;
+    GLPGP_CHECK_GOTO(st, energy_at(b, x, inv4e2, wk, &F), done);
+    for (int k = 0; k < steps; k++) {
+        pc_step *s = &cs->st[pc][k];
+        /* NEWTON at x (DINV included) */
+        double t0 = bench_now();
+        GLPGP_CHECK_GOTO(st, op->assemble_newton(b, x, inv4e2, o.hess), done);
+        GLPGP_CHECK_GOTO(st, op->gradient(b, x, inv4e2, g), done);
+        GLPGP_CHECK_GOTO(st, op->axpby(b, -1.0, g, 0.0, rhs), done);
+        GLPGP_CHECK_GOTO(st, sync_be(b), done);
+        double t1 = bench_now();
+        s->assemble_s = t1 - t0;
+        /* setup: the multigrid values of this step */
+        long ns0 = b->n_sync;
+        if (a) GLPGP_CHECK_GOTO(st, glpgp_amg_update(a, x), done);
+        s->sync_setup = b->n_sync - ns0;
+        ns0 = b->n_sync;
+        GLPGP_CHECK_GOTO(st, sync_be(b), done);
+        double t2 = bench_now();
+        s->setup_s = t2 - t1;
+        /* NEWTON d = -g */
+        glpgp_cg_info ci;
+        GLPGP_CHECK_GOTO(st, glpgp_linear_solve(b, a, rhs, d, 1e-8, 20000, o.cg_check, &ci), done);
+        GLPGP_CHECK_GOTO(st, sync_be(b), done);
+        s->solve_s = bench_now() - t2;
+        s->sync_solve = b->n_sync - ns0;
+        s->cg = ci.iterations;
+        s->relres = ci.relres;
+        s->reason = (int)ci.reason;
+        s->bytes = ci.iterations * (a ? cs->bytes_amg_it : b_cg(m->nv, (double)sys->nnzb));
+        /* x <- x + alpha d, alpha halved until E + P decreases */
+        double alpha = 1.0, Ft = F;
+        int ok = 0;
+        for (int h = 0; h <= 10; h++, alpha *= 0.5) {
+            GLPGP_CHECK_GOTO(st, op->copy(b, xt, x), done);
+            GLPGP_CHECK_GOTO(st, op->axpby(b, alpha, d, 1.0, xt), done);
+            GLPGP_CHECK_GOTO(st, energy_at(b, xt, inv4e2, wk, &Ft), done);
+            if (Ft < F) {
+                ok = 1;
+                break;
+            }
+        }
+        s->alpha = ok ? alpha : 0.0;
+        cs->nsteps[pc] = k + 1;
+        if (!ok) break;
+        GLPGP_CHECK_GOTO(st, op->copy(b, x, xt), done);
+        F = Ft;
+    }
+    cs->ran[pc] = 1;
+done:
+    glpgp_amg_destroy(&a);
+    if (b)
+        for (size_t k = 0; k < sizeof vs / sizeof vs[0]; k++) op->vec_destroy(b, vs[k]);
+    glpgp_backend_destroy(&b);
+    return st;
+}
+
+static double sum_field(const pc_case *c, int pc, int which)
+{
+    double s = 0.0;
+    for (int k = 0; k < c->nsteps[pc]; k++) {
+        const pc_step *t = &c->st[pc][k];
+        s += which == 0 ? t->cg : which == 1 ? t->setup_s : which == 2 ? t->solve_s : t->bytes;
+    }
+    return s;
+}
+
+static void print_case(const pc_case *c, const int want[2])
+{
+    printf("\n### %d vertices, h = %.4g (%s), %s\n\n", c->nv, c->h, c->hdefault ? "default size" : "10 mean edges",
+           c->opencl ? "OpenCL" : "reference");
+    if (c->ran[1])
+        printf("multigrid: %d levels (%d -> %d nodes), operator complexity %.3f, structure %.3f s\n\n",
+               c->info.nlevels, c->info.n[0], c->info.n[c->info.nlevels - 1], c->info.operator_complexity,
+               c->info.seconds_structure);
+    printf("| step | precond | CG it | setup s | solve s | ms/it | GB moved | step length | host round trips setup / solve |\n"
+           "|---|---|---|---|---|---|---|---|---|\n");
+    for (int k = 0; k < PC_MAX_STEPS; k++)
+        for (int pc = 0; pc < 2; pc++) {
+            if (!want[pc] || !c->ran[pc] || k >= c->nsteps[pc]) continue;
+            const pc_step *s = &c->st[pc][k];
+            printf("| %d | %s | %d | %.3f | %.3f | %.3f | %.2f | %g | %ld / %ld |\n", k + 1, pc ? "amg" : "jacobi", s->cg,
+                   s->setup_s, s->solve_s, s->cg ? 1e3 * s->solve_s / s->cg : 0.0, s->bytes * 1e-9, s->alpha,
+                   s->sync_setup, s->sync_solve);
+        }
+    for (int pc = 0; pc < 2; pc++)
+        if (want[pc] && !c->ran[pc]) printf("| - | %s | %s | | | | | |\n", pc ? "amg" : "jacobi", c->note[pc]);
+    if (c->ran[0] && c->ran[1] && c->nsteps[0] && c->nsteps[1]) {
+        const double tj = (sum_field(c, 0, 1) + sum_field(c, 0, 2)) / c->nsteps[0];
+        const double ta = (sum_field(c, 1, 1) + sum_field(c, 1, 2)) / c->nsteps[1];
+        printf("\nper Newton step: Jacobi %.1f CG it, %.3f s; multigrid %.1f CG it, %.3f s (setup %.3f s); "
+               "Jacobi / multigrid time %.2f\n",
+               sum_field(c, 0, 0) / c->nsteps[0], tj, sum_field(c, 1, 0) / c->nsteps[1], ta,
+               sum_field(c, 1, 1) / c->nsteps[1], ta > 0 ? tj / ta : 0.0);
+    }
+}
+
+static void json_case(FILE *f, const pc_case *c, int first)
+{
+    fprintf(f, "%s    {\"vertices\": %d, \"blocks\": %ld, \"h\": %.6g, \"h_case\": \"%s\", \"backend\": \"%s\"", first ? "" : ",\n",
+            c->nv, c->nnzb, c->h, c->hdefault ? "default" : "10_mean_edges", c->opencl ? "opencl" : "reference");
+    if (c->ran[1])
+        fprintf(f, ", \"amg_levels\": %d, \"amg_operator_complexity\": %.4f, \"amg_structure_s\": %.4f, "
+                   "\"amg_bytes_per_iteration\": %.6g",
+                c->info.nlevels, c->info.operator_complexity, c->info.seconds_structure, c->bytes_amg_it);
+    for (int pc = 0; pc < 2; pc++) {
+        const char *name = pc ? "amg" : "jacobi";
+        if (!c->ran[pc]) {
+            fprintf(f, ", \"%s\": null", name);
+            continue;
+        }
+        const int n = c->nsteps[pc];
+        fprintf(f, ", \"%s\": {\"steps\": %d, \"mean_cg\": %.3f, \"mean_setup_s\": %.6f, \"mean_solve_s\": %.6f, "
+                   "\"per_step\": [",
+                name, n, n ? sum_field(c, pc, 0) / n : 0.0, n ? sum_field(c, pc, 1) / n : 0.0,
+                n ? sum_field(c, pc, 2) / n : 0.0);
+        for (int k = 0; k < n; k++) {
+            const pc_step *s = &c->st[pc][k];
+            fprintf(f, "%s{\"cg\": %d, \"setup_s\": %.6f, \"solve_s\": %.6f, \"ms_per_it\": %.6f, \"bytes\": %.6g, "
+                       "\"assemble_s\": %.6f, \"relres\": %.3g, \"alpha\": %g, \"syncs_setup\": %ld, \"syncs_solve\": %ld}",
+                    k ? ", " : "", s->cg, s->setup_s, s->solve_s, s->cg ? 1e3 * s->solve_s / s->cg : 0.0, s->bytes,
+                    s->assemble_s, s->relres, s->alpha, s->sync_setup, s->sync_solve);
+        }
+        fprintf(f, "]}");
+    }
+    fprintf(f, "}");
+}
+
+int bench_precond_run(const bench_precond_opts *po)
+{
+    int want[2] = {po->which != 1, po->which != 0}; /* which: 0 jacobi, 1 amg, 2 both */
+    long sizes[16];
+    int ns = 0;
+    if (po->nsizes > 0) {
+        for (int i = 0; i < po->nsizes && ns < 16; i++) sizes[ns++] = po->sizes[i];
+    } else {
+        sizes[ns++] = 64000;
+        sizes[ns++] = 256000;
+        sizes[ns++] = 1000000;
+        if (po->with_4m) sizes[ns++] = 4000000;
+    }
+    const int nb = (!po->no_reference) + (!po->no_opencl);
+    pc_case *cases = calloc((size_t)ns * 2 * (nb ? nb : 1), sizeof(pc_case));
+    if (!cases) {
+        fprintf(stderr, "glpgp-bench: out of memory\n");
+        return 1;
+    }
+    int nc = 0, rc = 0;
+    /* warm-up: the first launches of every kernel (PoCL compiles or loads
+     * each at its first use in a process) on a small disk, not reported */
+    {
+        glpgp_mesh *m = NULL;
+        glpgp_system *sys = NULL;
+        double *w = NULL, *x0 = NULL;
+        unsigned char *dir = NULL;
+        pc_case *wc = calloc(1, sizeof *wc);
+        if (wc && glpgp_mesh_generate("disk", 2000, &m) == GLPGP_OK && glpgp_system_create(m, &sys) == GLPGP_OK &&
+            (w = calloc((size_t)2 * m->nv, sizeof(double))) && (x0 = calloc((size_t)2 * m->nv, sizeof(double))) &&
+            (dir = calloc((size_t)m->nv, 1))) {
+            for (int i = 0; i < m->nv; i++) w[2 * i] = x0[2 * i] = 1.0;
+            glpgp_dirichlet_set(m, w, dir);
+            wc->h = 10.0 * m->mean_edge;
+            for (int be = 0; be < 2; be++) {
+                if (be == 0 ? po->no_opencl : po->no_reference) continue;
+                wc->opencl = be == 0;
+                for (int pc = 0; pc < 2; pc++)
+                    if (want[pc]) (void)run_case(m, sys, w, dir, x0, wc, pc, 1, po->device);
+            }
+        }
+        glpgp_error_clear();
+        free(wc);
+        free(w);
+        free(x0);
+        free(dir);
+        glpgp_system_destroy(&sys);
+        glpgp_mesh_destroy(&m);
+    }
+    printf("# glpgp-bench --precond: Jacobi-PCG vs flexible CG + multigrid, %d Newton steps per case, shape %s\n",
+           po->steps, po->shape);
+    for (int si = 0; si < ns; si++) {
+        glpgp_mesh *m = NULL;
+        glpgp_system *sys = NULL;
+        double *w = NULL, *x0 = NULL;
+        unsigned char *dir = NULL;
+        if (glpgp_mesh_generate(po->shape, sizes[si], &m) != GLPGP_OK || glpgp_system_create(m, &sys) != GLPGP_OK) {
+            fprintf(stderr, "glpgp-bench: %ld vertices: %s\n", sizes[si], glpgp_error_message());
+            glpgp_error_clear();
+            glpgp_system_destroy(&sys);
+            glpgp_mesh_destroy(&m);
+            rc = 1;
+            continue;
+        }
+        const size_t n2 = (size_t)2 * m->nv;
+        w = calloc(n2, sizeof(double));
+        x0 = calloc(n2, sizeof(double));
+        dir = calloc((size_t)m->nv, 1);
+        if (!w || !x0 || !dir) {
+            rc = 1;
+            goto next;
+        }
+        for (int i = 0; i < m->nv; i++) w[2 * i] = 1.0;
+        glpgp_dirichlet_set(m, w, dir);
+        for (int hc = 0; hc < 2; hc++) {
+            const double h = hc ? glpgp_default_size(m, NULL) : 10.0 * m->mean_edge;
+            /* z = exp(i theta), theta = 2 pi x / h + a smooth perturbation (bench.c's state) */
+            const double L = fmax(m->bbox[2] - m->bbox[0], m->bbox[3] - m->bbox[1]);
+            for (int i = 0; i < m->nv; i++) {
+                const double x = m->xy[2 * i], y = m->xy[2 * i + 1];
+                const double th = 2.0 * GLPGP_PI * x / h + 0.5 * sin(2.0 * GLPGP_PI * x / L) * cos(2.0 * GLPGP_PI * y / L);
+                x0[2 * i] = cos(th);
+                x0[2 * i + 1] = sin(th);
+            }
+            for (int be = 0; be < 2; be++) {
+                if (be == 0 ? po->no_opencl : po->no_reference) continue;
+                pc_case *cs = &cases[nc++];
+                cs->nv = m->nv;
+                cs->nnzb = sys->nnzb;
+                cs->h = h;
+                cs->hdefault = hc;
+                cs->opencl = be == 0;
+                for (int pc = 0; pc < 2; pc++) {
+                    if (!want[pc]) continue;
+                    fprintf(stderr, "glpgp-bench: %d vertices, h = %.4g, %s, %s\n", m->nv, h,
+                            cs->opencl ? "OpenCL" : "reference", pc ? "multigrid" : "Jacobi");
+                    if (run_case(m, sys, w, dir, x0, cs, pc, po->steps, po->device) != GLPGP_OK) {
+                        snprintf(cs->note[pc], sizeof cs->note[pc], "failed: %s", glpgp_error_message());
+                        for (char *p = cs->note[pc]; *p; p++)
+                            if (*p == '\n' || *p == '|') *p = ' ';
+                        fprintf(stderr, "glpgp-bench: %s\n", cs->note[pc]);
+                        glpgp_error_clear();
+                        cs->ran[pc] = 0;
+                    }
+                }
+                print_case(cs, want);
+                fflush(stdout);
+            }
+        }
+    next:
+        free(w);
+        free(x0);
+        free(dir);
+        glpgp_system_destroy(&sys);
+        glpgp_mesh_destroy(&m);
+    }
+    /* iterations vs vertices */
+    printf("\n## CG iterations per Newton step vs vertices\n\n| vertices | h case | backend | Jacobi | multigrid | "
+           "Jacobi s/step | multigrid s/step | ratio |\n|---|---|---|---|---|---|---|---|\n");
+    for (int i = 0; i < nc; i++) {
+        const pc_case *c = &cases[i];
+        double it[2] = {0, 0}, t[2] = {0, 0};
+        for (int pc = 0; pc < 2; pc++)
+            if (c->ran[pc] && c->nsteps[pc]) {
+                it[pc] = sum_field(c, pc, 0) / c->nsteps[pc];
+                t[pc] = (sum_field(c, pc, 1) + sum_field(c, pc, 2)) / c->nsteps[pc];
+            }
+        printf("| %d | %s | %s | %.1f | %.1f | %.3f | %.3f | %.2f |\n", c->nv, c->hdefault ? "default" : "10 edges",
+               c->opencl ? "OpenCL" : "reference", it[0], it[1], t[0], t[1], t[1] > 0 && t[0] > 0 ? t[0] / t[1] : 0.0);
+    }
+    if (po->json) {
+        FILE *f = fopen(po->json, "w");
+        if (!f) {
+            fprintf(stderr, "glpgp-bench: cannot write %s\n", po->json);
+            rc = 1;
+        } else {
+            fprintf(f, "{\n  \"bench\": \"glpgp-bench --precond\",\n  \"shape\": \"%s\",\n  \"newton_steps\": %d,\n"
+                       "  \"cg_rtol\": 1e-8,\n  \"precond_ladder\": [\n",
+                    po->shape, po->steps);
+            for (int i = 0; i < nc; i++) json_case(f, &cases[i], i == 0);
+            fprintf(f, "\n  ]\n}\n");
+            if (fclose(f) != 0) rc = 1;
+            else fprintf(stderr, "glpgp-bench: wrote %s\n", po->json);
+        }
+    }
+    free(cases);
+    return rc;
+}

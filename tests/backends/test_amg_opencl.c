@@ -1,0 +1,393 @@
+/* test_amg_opencl.c: the multigrid preconditioner (solver/amg.c) on the
+ * OpenCL backend (kernels/backend_multigrid.cl), by counts and identities
+ * only (no timings):
+ *  - galerkin: on a small disk with several levels, every coarse matrix of
+ *    the OpenCL hierarchy equals the dense P^T A P of the level above
+ *    (prolongations recovered column by column through amg_prolong, matrices
+ *    through amg_spmv_dots), and P^T P = I;
+ *  - hierarchy: every level's A_l, the smoother, restriction, prolongation,
+ *    the coarsest matrix and a whole cycle equal the reference backend's on
+ *    random data (bit for bit for the hierarchy values, which share
+ *    kernels/amg_rows.h), on a generated disk and on data/plate_holes.msh,
+ *    with the fused small-level kernel and without it (GLPGP_CL_AMG_FUSE=0);
+ *  - refine: CG iterations per Newton step on the same disk and h at about
+ *    16k and 64k vertices: ratio <= 1.5 with multigrid on OpenCL;
+ *  - solve: a whole GL solve with --precond amg on OpenCL and on the
+ *    reference: same Newton counts and singularities, z within 1e-6.
+ * Exit 77 when no OpenCL device can be used. */
+#include "glpgp/backends.h"
+#include "glpgp/io.h"
+#include "glpgp/mesh.h"
+#include "glpgp/solve.h"
+#include "glpgp/system.h"
+#include "testutil.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+/* an OpenCL backend, or NULL (then the test is skipped) */
+static glpgp_backend *opencl(void)
+{
+    glpgp_backend *b = NULL;
+    glpgp_cl_options co = {-1, 0};
+    if (glpgp_backend_create_opencl(&co, &b) != GLPGP_OK) {
+        printf("skipped: no OpenCL device (%s)\n", glpgp_error_message());
+        glpgp_error_clear();
+        return NULL;
+    }
+    return b;
+}
+
+typedef struct fixture {
+    glpgp_mesh *m;
+    glpgp_system *sys;
+    glpgp_backend *b;
+    glpgp_options o;
+    double h;
+    double *w;
+    unsigned char *dir;
+} fixture;
+
+/* disk of about n vertices on backend b (taken), field U = (1, 0), its
+ * Dirichlet set, QUAD assembled at h */
+static void fixture_init(fixture *f, glpgp_backend *b, long n, double h)
+{
+    memset(f, 0, sizeof *f);
+    CHECK_OK(glpgp_mesh_generate("disk", n, &f->m));
+    CHECK_OK(glpgp_system_create(f->m, &f->sys));
+    f->b = b;
+    CHECK_OK(b->ops->setup(b, f->sys));
+    glpgp_options_default(&f->o);
+    f->o.precond = GLPGP_PRECOND_AMG;
+    f->h = h > 0 ? h : 10.0 * f->m->mean_edge;
+    const int nv = f->m->nv;
+    f->w = calloc((size_t)2 * nv, sizeof(double));
+    f->dir = calloc((size_t)nv, 1);
+    for (int i = 0; i < nv; i++) f->w[2 * i] = 1.0;
+    glpgp_dirichlet_set(f->m, f->w, f->dir);
+    CHECK_OK(b->ops->set_field(b, f->w, f->dir));
+    CHECK_OK(b->ops->assemble_quadratic(b, GLPGP_ELEM_P1, f->h));
+}
+
+static void fixture_free(fixture *f)
+{
+    free(f->w);
+    free(f->dir);
+    glpgp_backend_destroy(&f->b);
+    glpgp_system_destroy(&f->sys);
+    glpgp_mesh_destroy(&f->m);
+}
+
+/* z_i: a wave along x with a vortex of core radius `core` at (0.2, 0.1) */
+static void vortex_state(const glpgp_mesh *m, double h, double core, double *z)
+{
+    for (int i = 0; i < m->nv; i++) {
+        double x = m->xy[2 * i], y = m->xy[2 * i + 1];
+        double dx = x - 0.2, dy = y - 0.1, r = hypot(dx, dy);
+        double a = r / sqrt(r * r + core * core);
+        double th = 2 * GLPGP_PI * x / h + atan2(dy, dx);
+        z[2 * i] = a * cos(th);
+        z[2 * i + 1] = a * sin(th);
+    }
+}
+
+/* dense copy (order 2n) of level l's matrix through products with unit vectors */
+static double *dense_level(glpgp_backend *b, int l, int n)
+{
+    const glpgp_backend_ops *op = b->ops;
+    const int m = 2 * n;
+    double *A = calloc((size_t)m * m, sizeof(double)), *e = calloc((size_t)m, sizeof(double));
+    double *col = calloc((size_t)m, sizeof(double));
+    glpgp_vec *x = NULL, *y = NULL;
+    CHECK_OK(op->vec_create(b, (size_t)m, &x));
+    CHECK_OK(op->vec_create(b, (size_t)m, &y));
+    for (int j = 0; j < m; j++) {
+        e[j] = 1.0;
+        CHECK_OK(op->vec_write(b, x, e));
+        CHECK_OK(op->amg_spmv_dots(b, l, x, y, NULL, NULL, GLPGP_AMG_KSLOT(0)));
+        CHECK_OK(op->vec_read(b, y, col));
+        for (int i = 0; i < m; i++) A[(size_t)i * m + j] = col[i];
+        e[j] = 0.0;
+    }
+    op->vec_destroy(b, &x);
+    op->vec_destroy(b, &y);
+    free(e);
+    free(col);
+    return A;
+}
+
+/* dense P_l (2 n_l x 2 n_{l+1}) through amg_prolong on unit coarse vectors */
+static double *dense_prolong(glpgp_backend *b, int l, int nf, int nc)
+{
+    const glpgp_backend_ops *op = b->ops;
+    const int mf = 2 * nf, mc = 2 * nc;
+    double *P = calloc((size_t)mf * mc, sizeof(double)), *e = calloc((size_t)mc, sizeof(double));
+    double *col = calloc((size_t)mf, sizeof(double)), *zero = calloc((size_t)mf, sizeof(double));
+    glpgp_vec *ec = NULL, *x = NULL;
+    CHECK_OK(op->vec_create(b, (size_t)mc, &ec));
+    CHECK_OK(op->vec_create(b, (size_t)mf, &x));
+    for (int j = 0; j < mc; j++) {
+        e[j] = 1.0;
+        CHECK_OK(op->vec_write(b, ec, e));
+        CHECK_OK(op->vec_write(b, x, zero));
+        CHECK_OK(op->amg_prolong(b, l, ec, x));
+        CHECK_OK(op->vec_read(b, x, col));
+        for (int i = 0; i < mf; i++) P[(size_t)i * mc + j] = col[i];
+        e[j] = 0.0;
+    }
+    op->vec_destroy(b, &ec);
+    op->vec_destroy(b, &x);
+    free(e);
+    free(col);
+    free(zero);
+    return P;
+}
+
+static void test_galerkin(glpgp_backend *b)
+{
+    fixture f;
+    fixture_init(&f, b, 600, 0.0);
+    f.o.amg_coarse = 6; /* several levels on a small mesh */
+    const int nv = f.m->nv;
+    const glpgp_backend_ops *op = f.b->ops;
+    double *z = calloc((size_t)2 * nv, sizeof(double));
+    vortex_state(f.m, f.h, 0.05, z);
+    glpgp_vec *x = NULL;
+    CHECK_OK(op->vec_create(f.b, (size_t)2 * nv, &x));
+    CHECK_OK(op->vec_write(f.b, x, z));
+    CHECK_OK(op->assemble_newton(f.b, x, 1.0 / (4 * 0.05 * 0.05), GLPGP_HESS_MIXED));
+    glpgp_amg *a = NULL;
+    CHECK_OK(glpgp_amg_create(f.b, &f.o, f.dir, f.w, f.h, &a));
+    if (a) {
+        CHECK_OK(glpgp_amg_update(a, x));
+        glpgp_amg_info in;
+        glpgp_amg_get_info(a, &in);
+        printf("galerkin (OpenCL): %d vertices, %d levels, operator complexity %.3f\n", nv, in.nlevels,
+               in.operator_complexity);
+        CHECK(in.nlevels >= 4);
+        double *A = dense_level(f.b, 0, nv);
+        for (int l = 0; l + 1 < in.nlevels; l++) {
+            const int mf = 2 * in.n[l], mc = 2 * in.n[l + 1];
+            double *P = dense_prolong(f.b, l, in.n[l], in.n[l + 1]);
+            double *Ac = dense_level(f.b, l + 1, in.n[l + 1]);
+            /* T = A P, G = P^T T; compare with A_{l+1} */
+            double *T = calloc((size_t)mf * mc, sizeof(double));
+            double amax = 0.0, dmax = 0.0, ortho = 0.0;
+            for (int i = 0; i < mf; i++)
+                for (int k = 0; k < mf; k++) {
+                    double aik = A[(size_t)i * mf + k];
+                    if (aik == 0.0) continue;
+                    for (int j = 0; j < mc; j++) T[(size_t)i * mc + j] += aik * P[(size_t)k * mc + j];
+                }
+            for (int I = 0; I < mc; I++)
+                for (int J = 0; J < mc; J++) {
+                    double g = 0.0, pp = 0.0;
+                    for (int k = 0; k < mf; k++) {
+                        g += P[(size_t)k * mc + I] * T[(size_t)k * mc + J];
+                        pp += P[(size_t)k * mc + I] * P[(size_t)k * mc + J];
+                    }
+                    amax = fmax(amax, fabs(g));
+                    dmax = fmax(dmax, fabs(g - Ac[(size_t)I * mc + J]));
+                    ortho = fmax(ortho, fabs(pp - (I == J ? 1.0 : 0.0)));
+                }
+            printf("galerkin (OpenCL): level %d -> %d: max |P^T A P - A_c| = %.2e (max entry %.2e), "
+                   "max |P^T P - I| = %.2e\n", l, l + 1, dmax, amax, ortho);
+            CHECK(amax > 0.0);
+            CHECK(dmax <= 1e-13 * amax);
+            CHECK(ortho <= 1e-13);
+            free(T);
+            free(P);
+            free(A);
+            A = Ac;
+        }
+        free(A);
+    }
+    glpgp_amg_destroy(&a);
+    op->vec_destroy(f.b, &x);
+    free(z);
+    fixture_free(&f);
+}
+
+/* the cross-check engine's multigrid rows on mesh m: all pass, the
+ * hierarchy values bit for bit */
+static void hierarchy_rows(const char *label, const glpgp_mesh *m)
+{
+    glpgp_crosscheck_options o;
+    glpgp_crosscheck_options_default(&o);
+    o.mesh = m;
+    o.solve = 0;
+    o.seed = 777;
+    glpgp_crosscheck *t = NULL;
+    CHECK_OK(glpgp_crosscheck_create(&o, &t));
+    if (!t) return;
+    int nmg = 0, nexact = 0, levels = 0;
+    for (int i = 0; i < t->nrows; i++) {
+        const glpgp_crosscheck_row *r = &t->rows[i];
+        if (strncmp(r->stage, "multigrid", 9) != 0 && strncmp(r->stage, "FCG+multigrid", 13) != 0) continue;
+        nmg++;
+        if (!r->pass) fprintf(stderr, "%s: %s FAILED (%.3e)\n", label, r->stage, r->max_abs);
+        CHECK(r->pass);
+        if (sscanf(r->stage, "multigrid levels (%d", &levels) == 1) continue;
+        /* values that only go through kernels/amg_rows.h on identical inputs */
+        if (strstr(r->stage, " x") && !strstr(r->stage, ":") ) {
+            nexact++;
+            CHECK(r->max_abs == 0.0);
+        }
+        if (strstr(r->stage, "smoother") || strstr(r->stage, "restriction") || strstr(r->stage, "prolongation") ||
+            strstr(r->stage, "coarsest") || strstr(r->stage, "coarse solve")) {
+            nexact++;
+            if (r->max_abs != 0.0) fprintf(stderr, "%s: %s differs by %.3e\n", label, r->stage, r->max_abs);
+            CHECK(r->max_abs == 0.0);
+        }
+    }
+    printf("%s: %d multigrid rows (%d levels), %d bit-identical, all pass\n", label, nmg, levels, nexact);
+    CHECK(levels >= 2);
+    CHECK(nmg >= 5 * levels + 4);
+    CHECK(nexact >= 4 * levels - 1); /* A_l x, smoother, restriction, prolongation; coarsest: A, dense, solve */
+    glpgp_crosscheck_destroy(&t);
+}
+
+static void test_hierarchy(void)
+{
+    glpgp_mesh *m = NULL;
+    CHECK_OK(glpgp_mesh_generate("disk", 4000, &m));
+    if (m) {
+        hierarchy_rows("disk:4000", m);
+        setenv("GLPGP_CL_AMG_FUSE", "0", 1); /* every level through the per-op kernels */
+        setenv("GLPGP_CL_AMG_SMALL", "0", 1);
+        hierarchy_rows("disk:4000 (no fused levels)", m);
+        unsetenv("GLPGP_CL_AMG_FUSE");
+        unsetenv("GLPGP_CL_AMG_SMALL");
+    }
+    glpgp_mesh_destroy(&m);
+    const char *data = getenv("GLPGP_DATA");
+    if (data) {
+        char path[512];
+        snprintf(path, sizeof path, "%s/plate_holes.msh", data);
+        if (glpgp_mesh_read(path, &m) == GLPGP_OK) hierarchy_rows("plate_holes.msh", m);
+        else glpgp_error_clear();
+        glpgp_mesh_destroy(&m);
+    }
+}
+
+/* mean CG iterations of the first `steps` projected-Hessian Newton steps on
+ * the first eps level from z = the normalised naive PGP solution, disk of n
+ * vertices, size h, OpenCL backend */
+static double newton_cg_mean(glpgp_backend *b, long n, double h, int steps)
+{
+    fixture f;
+    fixture_init(&f, b, n, h);
+    const int nv = f.m->nv;
+    const size_t n2 = (size_t)2 * nv;
+    const glpgp_backend_ops *op = f.b->ops;
+    glpgp_vec *v[4];
+    for (int k = 0; k < 4; k++) CHECK_OK(op->vec_create(f.b, n2, &v[k]));
+    double *hx = calloc(n2, sizeof(double));
+    for (int i = 0; i < nv; i++) hx[2 * i] = f.dir[i] ? 1.0 : 0.0;
+    CHECK_OK(op->vec_write(f.b, v[0], hx));
+    glpgp_amg *a = NULL;
+    CHECK_OK(glpgp_amg_create(f.b, &f.o, f.dir, f.w, f.h, &a));
+    long cg = 0;
+    if (a) {
+        /* naive PGP: x <- x + d, N d = -grad E(x); then normalise */
+        glpgp_cg_info ci;
+        CHECK_OK(op->assemble_newton(f.b, v[0], 0.0, GLPGP_HESS_PROJECTED));
+        CHECK_OK(glpgp_amg_update(a, NULL));
+        CHECK_OK(op->gradient(f.b, v[0], 0.0, v[1]));
+        CHECK_OK(op->axpby(f.b, -1.0, v[1], 0.0, v[3]));
+        CHECK_OK(glpgp_fcg(a, v[3], v[2], 1e-8, 1000, &ci));
+        CHECK_OK(op->axpby(f.b, 1.0, v[2], 1.0, v[0]));
+        CHECK_OK(op->vec_read(f.b, v[0], hx));
+        for (int i = 0; i < nv; i++) {
+            double r = hypot(hx[2 * i], hx[2 * i + 1]);
+            hx[2 * i] = r > 0 ? hx[2 * i] / r : 1.0;
+            hx[2 * i + 1] = r > 0 ? hx[2 * i + 1] / r : 0.0;
+        }
+        CHECK_OK(op->vec_write(f.b, v[0], hx));
+        /* Newton steps on the projected Hessian, solved to 1e-6 */
+        const double eps = f.o.eps0 * f.h, inv4e2 = 1.0 / (4 * eps * eps);
+        for (int it = 0; it < steps; it++) {
+            CHECK_OK(op->assemble_newton(f.b, v[0], inv4e2, GLPGP_HESS_PROJECTED));
+            CHECK_OK(glpgp_amg_update(a, v[0]));
+            CHECK_OK(op->gradient(f.b, v[0], inv4e2, v[1]));
+            CHECK_OK(op->axpby(f.b, -1.0, v[1], 0.0, v[3]));
+            CHECK_OK(glpgp_fcg(a, v[3], v[2], 1e-6, 1000, &ci));
+            CHECK(ci.reason == GLPGP_CG_CONVERGED);
+            cg += ci.iterations;
+            CHECK_OK(op->axpby(f.b, 1.0, v[2], 1.0, v[0]));
+        }
+    }
+    glpgp_amg_destroy(&a);
+    for (int k = 0; k < 4; k++) op->vec_destroy(f.b, &v[k]);
+    free(hx);
+    fixture_free(&f);
+    return (double)cg / steps;
+}
+
+static void test_refine(void)
+{
+    /* the same disk and h (10 mean edges at 16k vertices, 20 at 64k) */
+    const double h = 0.15;
+    const int steps = 4;
+    glpgp_backend *b1 = opencl(), *b2 = opencl();
+    if (!b1 || !b2) {
+        glpgp_backend_destroy(&b1);
+        glpgp_backend_destroy(&b2);
+        return;
+    }
+    double a1 = newton_cg_mean(b1, 16000, h, steps);
+    double a2 = newton_cg_mean(b2, 64000, h, steps);
+    printf("refine (OpenCL): CG iterations per Newton step (first %d steps), 16k -> 64k vertices: "
+           "multigrid %.1f -> %.1f (ratio %.2f)\n", steps, a1, a2, a2 / a1);
+    CHECK(a1 > 0.0);
+    CHECK(a2 <= 1.5 * a1);
+    CHECK(a2 <= 30.0);
+}
+
+static void test_solve(void)
+{
+    glpgp_mesh *m = NULL;
+    CHECK_OK(glpgp_mesh_generate("annulus", 4000, &m));
+    glpgp_backend *bc = opencl(), *br = NULL;
+    CHECK_OK(glpgp_backend_create_reference(&br));
+    glpgp_options o;
+    glpgp_options_default(&o);
+    o.precond = GLPGP_PRECOND_AMG;
+    o.newton_rtol = 1e-8;
+    o.cg_rtol = 1e-10;
+    glpgp_result *rc = NULL, *rr = NULL;
+    if (bc && m) {
+        CHECK_OK(glpgp_solve(m, bc, &o, &rc));
+        CHECK_OK(glpgp_solve(m, br, &o, &rr));
+    }
+    if (rc && rr)
+        for (int k = 0; k < 2; k++) {
+            double dmax = 0.0;
+            for (int i = 0; i < 2 * m->nv; i++) dmax = fmax(dmax, fabs(rc->osc[k].z[i] - rr->osc[k].z[i]));
+            printf("solve (amg) %c: max |z_cl - z_ref| = %.3g, newton %d vs %d, cg %ld vs %ld, "
+                   "singular +%d-%d vs +%d-%d\n", "uv"[k], dmax, rc->osc[k].newton_iterations,
+                   rr->osc[k].newton_iterations, rc->osc[k].cg_iterations, rr->osc[k].cg_iterations,
+                   rc->osc[k].plus, rc->osc[k].minus, rr->osc[k].plus, rr->osc[k].minus);
+            int capped = 0;
+            for (int l = 0; l < rr->osc[k].nlevels; l++) capped |= rr->osc[k].level[l].newton >= o.newton_max;
+            CHECK(dmax <= (capped ? 1e-4 : 1e-6));
+            CHECK(rc->osc[k].newton_iterations == rr->osc[k].newton_iterations);
+            CHECK(rc->osc[k].plus == rr->osc[k].plus && rc->osc[k].minus == rr->osc[k].minus);
+        }
+    glpgp_result_destroy(&rc);
+    glpgp_result_destroy(&rr);
+    glpgp_backend_destroy(&bc);
+    glpgp_backend_destroy(&br);
+    glpgp_mesh_destroy(&m);
+}
+
+int main(void)
+{
+    glpgp_backend *b = opencl();
+    if (!b) return 77;
+    test_galerkin(b); /* takes b */
+    test_hierarchy();
+    test_refine();
+    test_solve();
+    TEST_DONE();
+}
