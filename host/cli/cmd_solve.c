@@ -25,6 +25,8 @@ static const char *const k_json_exts[] = {".json", NULL};
 typedef struct solve_cli {
     glpgp_options o;
     int backend, device, verbosity;
+    int no_refine;
+    glpgp_refine_info refined;
     const char *out, *stats, *quads, *image;
     glpgp_quad_options qo;
     int quad_opts;
@@ -47,6 +49,9 @@ static void build(glpgp_opts *t, solve_cli *c)
                     "NAME is one of square, disk, annulus, lshape), or a mask image (.png, .tif,\n"
                     ".exr, ...), meshed first (see 'Mask image input').\n");
     glpgp_opts_add_solver(t, &c->o);
+    glpgp_opt_flag(t, "--no-refine", &c->no_refine, 1,
+                   "fail on an input whose triangles are coarser than the local\n"
+                   "h / 4 instead of refining them (longest-edge bisection)");
     glpgp_opts_add_backend(t, &c->backend, &c->device);
     glpgp_opts_group(t, "Output");
     glpgp_opt *p = glpgp_opt_string(t, "--out", &c->out, "FILE",
@@ -117,6 +122,9 @@ static void print_summary(const solve_cli *c, const char *input, const glpgp_mes
     if (u->capped_levels + v->capped_levels)
         printf("  unconverged    %d eps level(s) stopped at the Newton cap (u %d, v %d)\n",
                u->capped_levels + v->capped_levels, u->capped_levels, v->capped_levels);
+    if (c->refined.rounds)
+        printf("  refined        %d -> %d vertices, %d -> %d triangles (%d rounds: too coarse for the local h)\n",
+               c->refined.nv0, c->refined.nv, c->refined.nt0, c->refined.nt, c->refined.rounds);
     printf("  time           %.3f s (read %.3f s, solve %.3f s)\n", t_all, t_read, r->seconds_total);
     if (c->out) printf("  wrote          %s\n", c->out);
     if (c->stats) printf("  wrote          %s\n", c->stats);
@@ -159,6 +167,22 @@ int glpgp_cmd_solve(int argc, char **argv)
         return rc;
     }
     rc = GLPGP_EXIT_FAIL;
+
+    /* triangles coarser than the local size: refined (longest-edge
+     * bisection), the size h fixed from the input mesh first */
+    memset(&c.refined, 0, sizeof c.refined);
+    if (!c.no_refine) {
+        const double h = c.o.size > 0.0 ? c.o.size : glpgp_default_size(m, &c.o);
+        glpgp_mesh *mr = NULL;
+        if (glpgp_size_refine(m, &c.o, h, &mr, &c.refined) != GLPGP_OK) goto fail;
+        if (mr) {
+            glpgp_log(GLPGP_LOG_INFO, "refined the input for the local size: %d -> %d vertices in %d rounds",
+                      c.refined.nv0, c.refined.nv, c.refined.rounds);
+            glpgp_mesh_destroy(&m);
+            m = mr;
+            c.o.size = h;
+        }
+    }
 
     if (glpgp_backend_select(c.backend, c.device, c.verbosity > 0, &b) != GLPGP_OK) goto fail;
     if (glpgp_solve(m, b, &c.o, &r) != GLPGP_OK) goto fail;
