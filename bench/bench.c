@@ -475,7 +475,14 @@ static glpgp_status op_newton_step(bctx *c)
     GLPGP_CHECK(o->gradient(c->b, c->x, c->inv4e2, c->g));
     GLPGP_CHECK(o->dot(c->b, c->g, c->g, GLPGP_S_DOT));
     GLPGP_CHECK(o->get_scalars(c->b, s, GLPGP_NSLOTS));
-    glpgp_newton_state ns = {c->x, c->g, c->d, c->y, c->r, sqrt(s[GLPGP_S_DOT]), 0, 0};
+    glpgp_newton_state ns;
+    memset(&ns, 0, sizeof ns);
+    ns.x = c->x;
+    ns.g = c->g;
+    ns.d = c->d;
+    ns.xt = c->y;
+    ns.work = c->r;
+    ns.grad0 = sqrt(s[GLPGP_S_DOT]);
     GLPGP_CHECK(glpgp_newton_step(c->b, &c->so, &ns, c->inv4e2, s[GLPGP_S_E] + s[GLPGP_S_P], ns.grad0, &c->nsi));
     return o->copy(c->b, c->x, c->x0); /* leave x as it was */
 }

@@ -2,6 +2,7 @@
  * shared by the CLI commands (cli.h). */
 #include "cli.h"
 
+#include "glpgp/quads.h"
 #include "glpgp/status.h"
 
 #include <errno.h>
@@ -75,4 +76,18 @@ int glpgp_cli_long(const char *s, long lo, long hi, long *out)
     if (end == s || *end != '\0' || errno == ERANGE || v < lo || v > hi) return 0;
     *out = v;
     return 1;
+}
+
+int glpgp_cli_quads_verdict(const struct glpgp_quad_quality *qq, unsigned ignore, int allow, char *why, size_t n)
+{
+    if (!glpgp_quads_invalid_text(qq, ignore, why, n)) return -1;
+    if (!allow) return GLPGP_EXIT_INVALID;
+    glpgp_log(GLPGP_LOG_WARNING, "the quad mesh is invalid (%s): written anyway (--allow-invalid)", why);
+    return -1;
+}
+
+int glpgp_cli_invalid(const char *why, const char *what)
+{
+    fprintf(stderr, "glpgp: error: the quad mesh is invalid (%s)%s%s\n", why, *what ? ": " : "", what);
+    return GLPGP_EXIT_INVALID;
 }

@@ -6,8 +6,13 @@
 #ifndef GLPGP_CLI_H
 #define GLPGP_CLI_H
 
+#include <stddef.h>
+
 #define GLPGP_EXIT_FAIL 1
 #define GLPGP_EXIT_USAGE 2
+#define GLPGP_EXIT_INVALID 3 /* a quad mesh is invalid: not written (README "Quad meshes") */
+
+struct glpgp_quad_quality;
 
 /* Verbosity: 0 = --quiet (warnings only), 1 = default (progress), 2 = --verbose. */
 void glpgp_cli_set_verbosity(int v);
@@ -24,6 +29,17 @@ int glpgp_cli_usage_error(const char *sub, const char *fmt, ...)
     __attribute__((format(printf, 2, 3)))
 #endif
     ;
+
+/* Verdict on a quad mesh with report qq: -1 when it is valid once the
+ * reasons in ignore are taken out. Otherwise, with allow (--allow-invalid),
+ * prints one warning line naming the reasons and returns -1 (write it
+ * anyway); without, returns GLPGP_EXIT_INVALID and leaves the reasons in why
+ * (for glpgp_cli_invalid, after the other outputs are written). */
+int glpgp_cli_quads_verdict(const struct glpgp_quad_quality *qq, unsigned ignore, int allow, char *why,
+                            size_t n);
+/* Print "glpgp: error: quad mesh is invalid (WHY): not written ..." and
+ * return GLPGP_EXIT_INVALID. what: "not written" or "" (quality). */
+int glpgp_cli_invalid(const char *why, const char *what);
 
 /* Parse all of s as a finite double into *out. Returns 1 on success, 0 on
  * empty input, trailing characters, overflow or a non-finite value. */

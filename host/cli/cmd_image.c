@@ -72,8 +72,11 @@ int glpgp_cmd_render(int argc, char **argv)
 
 static void print_mask_info(const char *input, const glpgp_mesh *m, const glpgp_mask_info *inf)
 {
-    printf("glpgp: %s: %d x %d mask, %d outer boundar%s, %d hole%s, %d boundary points, area %.6g\n",
-           input, inf->width, inf->height, inf->nouter, inf->nouter == 1 ? "y" : "ies", inf->nholes,
+    if (inf->width > 0)
+        printf("glpgp: %s: %d x %d mask, ", input, inf->width, inf->height);
+    else
+        printf("glpgp: %s: polygons, ", input);
+    printf("%d outer boundar%s, %d hole%s, %d boundary points, area %.6g\n", inf->nouter, inf->nouter == 1 ? "y" : "ies", inf->nholes,
            inf->nholes == 1 ? "" : "s", inf->boundary_points, inf->polygon_area);
     printf("  mesh           %d vertices, %d triangles, mesh size %.6g (mean edge %.6g), area %.6g\n",
            m->nv, m->nt, inf->mesh_size, m->mean_edge, m->area);
@@ -89,10 +92,12 @@ int glpgp_cmd_mesh(int argc, char **argv)
     glpgp_mask_options mo;
     glpgp_mask_options_default(&mo);
     glpgp_opts t;
-    glpgp_opts_init(&t, sub, "glpgp mesh MASK.{png,tif,exr,...} -o DOMAIN.{msh,obj} [options]",
+    glpgp_opts_init(&t, sub, "glpgp mesh {MASK.png,...|DOMAIN.poly} -o DOMAIN.{msh,obj} [options]",
                     "Triangle mesh of the domain drawn in a mask image: the mask is thresholded,\n"
                     "its boundary traced at sub-pixel precision (marching squares), holes kept,\n"
-                    "specks dropped, simplified, and meshed with Gmsh.\n");
+                    "specks dropped, simplified, and meshed with Gmsh. Or of the polygons of a\n"
+                    "Triangle .poly file (closed loops of segments, holes by nesting; the first\n"
+                    "vertex attribute, when > 0, is the local mesh size: graded meshes).\n");
     glpgp_opt *o = glpgp_opt_string(&t, "--out", &out, "FILE", "mesh file, .msh or .obj");
     o->alias = "-o";
     glpgp_opts_add_mask(&t, &mo);
@@ -104,10 +109,10 @@ int glpgp_cmd_mesh(int argc, char **argv)
     int rc = glpgp_opts_parse(&t, argc, argv, &in, 1, &npos);
     if (rc >= 0) return rc;
     glpgp_cli_set_verbosity(verbosity);
-    if (!in) return glpgp_cli_usage_error(sub, "missing MASK image");
+    if (!in) return glpgp_cli_usage_error(sub, "missing MASK image or .poly file");
     if (!out) return glpgp_cli_usage_error(sub, "missing -o DOMAIN.msh");
     if ((rc = glpgp_cli_check_output(sub, "--out", out, exts)) >= 0) return rc;
-    if (!glpgp_cli_need_images(1, 1)) return GLPGP_EXIT_FAIL;
+    if (!glpgp_cli_need_images(!glpgp_is_poly_path(in), 1)) return GLPGP_EXIT_FAIL;
     glpgp_error_clear();
     glpgp_mesh *m = NULL;
     glpgp_mask_info inf;

@@ -2,9 +2,11 @@
  *   glpgp extract RESULT.vtk --quads OUT.{obj,vtk,msh} [--stats OUT.json] [--size H]
  *                 [--keep-polygons] [--smooth N] [--all-quads]
  *       quad mesh from a result written by `glpgp solve -o RESULT.vtk`;
- *   glpgp quality MESH.msh [--size H] [--domain DOMAIN] [--stats OUT.json]
+ *   glpgp quality MESH.msh [--size H] [--domain DOMAIN] [--stats OUT.json] [--allow-invalid]
  *       the same quality report for a quad/triangle mesh made elsewhere (Gmsh),
- *       used by bench/gmsh_compare.sh. */
+ *       used by bench/gmsh_compare.sh.
+ * An invalid quad mesh exits with GLPGP_EXIT_INVALID (3) and is not written
+ * (extract; the --stats report is), unless --allow-invalid. */
 #include "commands.h"
 
 #include "cli.h"
@@ -24,7 +26,7 @@ int glpgp_cmd_extract(int argc, char **argv)
 {
     const char *sub = "extract", *in = NULL, *quads = NULL, *stats = NULL;
     double size = 0.0;
-    int verbosity = 1, qgiven = 0;
+    int verbosity = 1, qgiven = 0, allow_invalid = 0;
     glpgp_quad_options qo;
     glpgp_quad_options_default(&qo);
     glpgp_opts t;
@@ -39,7 +41,7 @@ int glpgp_cmd_extract(int argc, char **argv)
     glpgp_opt_string(&t, "--stats", &stats, "FILE", "quality report as JSON {\"quads\": {...}}");
     glpgp_opt *o = glpgp_opt_double(&t, "--size", &size, 0.0, 1, HUGE_VAL, 0, "H", "target size h");
     o->def = "the h recorded in RESULT";
-    glpgp_opts_add_quads(&t, &qo, &qgiven);
+    glpgp_opts_add_quads(&t, &qo, &qgiven, &allow_invalid);
     glpgp_opts_add_verbosity(&t, &verbosity);
     int npos = 0;
     int rc = glpgp_opts_parse(&t, argc, argv, &in, 1, &npos);
@@ -66,18 +68,22 @@ int glpgp_cmd_extract(int argc, char **argv)
     if (glpgp_quads_quality(q, m, h, &qq) != GLPGP_OK) goto fail;
     qq.singular[0] = r->osc[0].plus + r->osc[0].minus;
     qq.singular[1] = r->osc[1].plus + r->osc[1].minus;
-    /* both outputs or neither */
+    char why[1024] = "";
+    int invalid_rc = glpgp_cli_quads_verdict(&qq, qo.keep_polygons ? GLPGP_QUAD_BAD_NONQUAD : 0u, allow_invalid,
+                                             why, sizeof why);
+    /* both outputs or neither (an invalid mesh: the report only) */
     if (glpgp_output_set_create(&outs) != GLPGP_OK ||
-        (quads && glpgp_output_set_quads(outs, q, quads) != GLPGP_OK) ||
+        (quads && invalid_rc < 0 && glpgp_output_set_quads(outs, q, quads) != GLPGP_OK) ||
         (stats && glpgp_output_set_quads_json(outs, &qq, stats) != GLPGP_OK) ||
         glpgp_output_set_commit(outs) != GLPGP_OK)
         goto fail;
     printf("glpgp: %s: h = %.6g%s, singular triangles u %d, v %d\n", in, h,
            qo.all_quads ? " (--all-quads: half the solve's size)" : "", qq.singular[0], qq.singular[1]);
     glpgp_quads_print(stdout, &qq, "  ");
-    if (quads) printf("  wrote          %s\n", quads);
+    if (quads && invalid_rc < 0) printf("  wrote          %s\n", quads);
     if (stats) printf("  wrote          %s\n", stats);
-    rc = 0;
+    rc = invalid_rc < 0 ? 0
+                        : glpgp_cli_invalid(why, quads ? "not written (--allow-invalid writes it anyway)" : "");
     goto done;
 fail:
     rc = glpgp_cli_fail();
@@ -93,7 +99,7 @@ int glpgp_cmd_quality(int argc, char **argv)
 {
     const char *sub = "quality", *in = NULL, *domain = NULL, *stats = NULL;
     double size = 0.0;
-    int verbosity = 1;
+    int verbosity = 1, allow_invalid = 0;
     glpgp_opts t;
     glpgp_opts_init(&t, sub, "glpgp quality MESH.msh [options]",
                     "Quality report (valences, scaled Jacobian, edge lengths, boundary distance)\n"
@@ -104,7 +110,14 @@ int glpgp_cmd_quality(int argc, char **argv)
                      "triangle mesh (.obj/.msh) of the domain: adds the Hausdorff\n"
                      "distance of the boundaries");
     glpgp_opt_string(&t, "--stats", &stats, "FILE", "report as JSON {\"quads\": {...}}");
+    glpgp_opt_flag(&t, "--allow-invalid", &allow_invalid, 1,
+                   "exit 0 on an invalid mesh, with a warning (default: exit code 3)");
     glpgp_opts_add_verbosity(&t, &verbosity);
+    t.epilog = "Faces are read in the file's orientation; the report takes one orientation for the\n"
+               "whole mesh (the sign of its total area), so a folded face counts as inverted.\n"
+               "Exit code 3 when the mesh is invalid (inverted, degenerate, non-quad, overlapping\n"
+               "faces, non-manifold edges, pinched vertices; with --domain also faces outside it,\n"
+               "lost holes or corners, area off by > 1%, Hausdorff distance > h/4).\n";
     int npos = 0;
     int rc = glpgp_opts_parse(&t, argc, argv, &in, 1, &npos);
     if (rc >= 0) return rc;
@@ -136,7 +149,8 @@ int glpgp_cmd_quality(int argc, char **argv)
     printf("glpgp: %s: h = %.6g\n", in, size);
     glpgp_quads_print(stdout, &qq, "  ");
     if (stats) printf("  wrote          %s\n", stats);
-    rc = 0;
+    char why[1024] = "";
+    rc = glpgp_cli_quads_verdict(&qq, 0u, allow_invalid, why, sizeof why) < 0 ? 0 : glpgp_cli_invalid(why, "");
     goto done;
 fail:
     rc = glpgp_cli_fail();

@@ -29,13 +29,14 @@ typedef struct solve_cli {
     glpgp_refine_info refined;
     const char *out, *stats, *quads, *image;
     glpgp_quad_options qo;
-    int quad_opts;
+    int quad_opts, allow_invalid;
     glpgp_render_options ro;
     glpgp_mask_options mo;
 } solve_cli;
 
 static void build(glpgp_opts *t, solve_cli *c)
 {
+    memset(c, 0, sizeof *c); /* outputs NULL, no option seen */
     glpgp_options_default(&c->o);
     glpgp_quad_options_default(&c->qo);
     glpgp_render_options_default(&c->ro);
@@ -43,6 +44,7 @@ static void build(glpgp_opts *t, solve_cli *c)
     c->backend = GLPGP_BACKEND_AUTO;
     c->device = -1;
     c->verbosity = 1;
+    c->allow_invalid = 0;
     glpgp_opts_init(t, "solve", "glpgp solve INPUT [options]",
                     "INPUT is a triangle mesh of a planar domain (.obj, or Gmsh .msh 2.2/4.1 ASCII),\n"
                     "shape:NAME[:N], a built-in domain with about N vertices (default 20000;\n"
@@ -62,7 +64,7 @@ static void build(glpgp_opts *t, solve_cli *c)
     glpgp_opt_string(t, "--quads", &c->quads, "FILE",
                      "extract the quad mesh (.obj/.vtu/.vtk/.msh) and add its quality\n"
                      "report to the summary and the statistics (\"quads\")");
-    glpgp_opts_add_quads(t, &c->qo, &c->quad_opts);
+    glpgp_opts_add_quads(t, &c->qo, &c->quad_opts, &c->allow_invalid);
     glpgp_opt_string(t, "--image", &c->image, "FILE",
                      "picture of the result (.png, .exr, .tif, .jpg, ...)");
     glpgp_opts_add_picture(t, &c->ro, 0);
@@ -82,7 +84,7 @@ static int check(solve_cli *c, const char *input)
     if (c->out && c->stats && !strcmp(c->out, c->stats))
         return glpgp_cli_usage_error(sub, "--out and --stats name the same file '%s'", c->out);
     if (c->quad_opts && !c->quads)
-        return glpgp_cli_usage_error(sub, "--all-quads, --keep-polygons and --smooth need --quads FILE");
+        return glpgp_cli_usage_error(sub, "--all-quads, --keep-polygons, --smooth, --no-repair and --allow-invalid need --quads FILE");
     if (c->quads && ((c->out && !strcmp(c->out, c->quads)) || (c->stats && !strcmp(c->stats, c->quads))))
         return glpgp_cli_usage_error(sub, "--quads names the same file as --out or --stats: '%s'", c->quads);
     if (c->image && ((c->out && !strcmp(c->out, c->image)) || (c->stats && !strcmp(c->stats, c->image)) ||
@@ -109,7 +111,7 @@ static int check(solve_cli *c, const char *input)
 }
 
 static void print_summary(const solve_cli *c, const char *input, const glpgp_mesh *m, const glpgp_result *r,
-                          double t_all, double t_read, const glpgp_quad_quality *qq)
+                          double t_all, double t_read, const glpgp_quad_quality *qq, int quads_written)
 {
     const glpgp_osc_result *u = &r->osc[0], *v = &r->osc[1];
     printf("glpgp: %s: %d vertices, %d triangles, h = %.6g, backend %s\n", input, m->nv, m->nt, r->size,
@@ -130,7 +132,7 @@ static void print_summary(const solve_cli *c, const char *input, const glpgp_mes
     if (c->stats) printf("  wrote          %s\n", c->stats);
     if (c->quads) {
         glpgp_quads_print(stdout, qq, "  ");
-        printf("  wrote          %s\n", c->quads);
+        if (quads_written) printf("  wrote          %s\n", c->quads);
     }
     if (c->image) printf("  wrote          %s\n", c->image);
 }
@@ -157,6 +159,8 @@ int glpgp_cmd_solve(int argc, char **argv)
     glpgp_output_set *outs = NULL;
     glpgp_quad_quality qq;
     memset(&qq, 0, sizeof qq);
+    int invalid_rc = -1;
+    char why[1024] = "";
     c.mo.quad_size = c.o.size;
     if ((rc = glpgp_cli_load_input("solve", input, &c.mo, &m, NULL)) >= 0) return rc;
     double t_read = glpgp_now() - t0;
@@ -194,6 +198,9 @@ int glpgp_cmd_solve(int argc, char **argv)
         if (glpgp_quads_quality(q, m, h, &qq) != GLPGP_OK) goto fail;
         qq.singular[0] = r->osc[0].plus + r->osc[0].minus;
         qq.singular[1] = r->osc[1].plus + r->osc[1].minus;
+        /* an invalid mesh is not written (exit 3) unless --allow-invalid */
+        invalid_rc = glpgp_cli_quads_verdict(&qq, c.qo.keep_polygons ? GLPGP_QUAD_BAD_NONQUAD : 0u,
+                                             c.allow_invalid, why, sizeof why);
     }
     if (c.image && glpgp_render(m, r, &c.ro, &im) != GLPGP_OK) goto fail;
 
@@ -201,7 +208,7 @@ int glpgp_cmd_solve(int argc, char **argv)
      * every existing file as it was and no temporary behind) */
     if (glpgp_output_set_create(&outs) != GLPGP_OK) goto fail;
     if (c.out && glpgp_output_set_result(outs, m, &c.o, r, c.out) != GLPGP_OK) goto fail;
-    if (c.quads && glpgp_output_set_quads(outs, q, c.quads) != GLPGP_OK) goto fail;
+    if (c.quads && invalid_rc < 0 && glpgp_output_set_quads(outs, q, c.quads) != GLPGP_OK) goto fail;
     if (c.stats) {
         glpgp_stats_extra x = {input, c.out, t_read, c.quads ? &qq : NULL};
         if (glpgp_output_set_stats(outs, m, &c.o, r, c.stats, &x) != GLPGP_OK) goto fail;
@@ -218,8 +225,8 @@ int glpgp_cmd_solve(int argc, char **argv)
                   "median |z| < 0.5: the oscillators collapsed towards z = 0 (h = %g is %.1f mean edges; "
                   "P1 needs about 10 per period): raise --size or refine the mesh",
                   r->size, r->size / m->mean_edge);
-    print_summary(&c, input, m, r, glpgp_now() - t0, t_read, &qq);
-    rc = 0;
+    print_summary(&c, input, m, r, glpgp_now() - t0, t_read, &qq, invalid_rc < 0);
+    rc = invalid_rc < 0 ? 0 : glpgp_cli_invalid(why, "not written (--allow-invalid writes it anyway)");
     goto done;
 fail:
     rc = glpgp_cli_fail();

@@ -40,8 +40,8 @@ int glpgp_cli_load_input(const char *cmd, const char *input, const glpgp_mask_op
         if (glpgp_mesh_generate(name, nverts, m) != GLPGP_OK) return glpgp_cli_fail();
         return -1;
     }
-    if (glpgp_is_image_path(input)) {
-        if (!glpgp_cli_need_images(1, 1)) return GLPGP_EXIT_FAIL;
+    if (glpgp_is_image_path(input) || glpgp_is_poly_path(input)) {
+        if (!glpgp_cli_need_images(!glpgp_is_poly_path(input), 1)) return GLPGP_EXIT_FAIL;
         glpgp_mask_info inf;
         if (glpgp_mask_mesh(input, mo, m, &inf) != GLPGP_OK) return glpgp_cli_fail();
         if (is_mask) *is_mask = 1;

@@ -469,7 +469,7 @@ void glpgp_opts_add_backend(glpgp_opts *t, int *kind, int *device)
     d->def = "$GLPGP_DEVICE or the first fp64 device";
 }
 
-void glpgp_opts_add_quads(glpgp_opts *t, glpgp_quad_options *q, int *given)
+void glpgp_opts_add_quads(glpgp_opts *t, glpgp_quad_options *q, int *given, int *allow_invalid)
 {
     glpgp_opt *o = glpgp_opt_flag(t, "--keep-polygons", &q->keep_polygons, 1,
                                   "keep the faces left around dislocations as polygons\n"
@@ -484,6 +484,15 @@ void glpgp_opts_add_quads(glpgp_opts *t, glpgp_quad_options *q, int *given)
     o = glpgp_opt_flag(t, "--all-quads", &q->all_quads, 1,
                        "refine every face into quads (centroid + edge midpoints):\n"
                        "half the element size");
+    o->seen = given;
+    o = glpgp_opt_flag(t, "--no-repair", &q->repair, 0,
+                       "do not re-mesh the regions where the extracted mesh is invalid\n"
+                       "(default: remove the bad faces and their neighbours and fill the\n"
+                       "hole with quads)");
+    o->seen = given;
+    o = glpgp_opt_flag(t, "--allow-invalid", allow_invalid, 1,
+                       "write an invalid quad mesh anyway, with a warning (default: not\n"
+                       "written, exit code 3)");
     o->seen = given;
 }
 

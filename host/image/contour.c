@@ -55,6 +55,7 @@ void glpgp_polygons_destroy(glpgp_polygons **p)
     free((*p)->xy);
     free((*p)->area);
     free((*p)->parent);
+    free((*p)->size);
     free(*p);
     *p = NULL;
 }

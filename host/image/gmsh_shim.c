@@ -35,14 +35,14 @@ static glpgp_status gmsh_fail(const char *what, int ierr)
     } while (0)
 
 /* Add one polygon loop as points + lines + curve loop; returns its tag. */
-static glpgp_status add_loop(const double *xy, int n, double hm, int *loop_tag)
+static glpgp_status add_loop(const double *xy, const double *size, int n, double hm, int *loop_tag)
 {
     glpgp_status st = GLPGP_OK;
     int ierr = 0;
     int *pt = NULL, *ln = NULL;
     GLPGP_CHECK(glpgp_malloc((size_t)n, sizeof(int), &pt));
     GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)n, sizeof(int), &ln), fin);
-    for (int i = 0; i < n; i++) GMSH_DO("addPoint", pt[i] = gmshModelGeoAddPoint(xy[2 * i], xy[2 * i + 1], 0.0, hm, -1, &ierr));
+    for (int i = 0; i < n; i++) GMSH_DO("addPoint", pt[i] = gmshModelGeoAddPoint(xy[2 * i], xy[2 * i + 1], 0.0, size && size[i] > 0 ? size[i] : hm, -1, &ierr));
     for (int i = 0; i < n; i++) GMSH_DO("addLine", ln[i] = gmshModelGeoAddLine(pt[i], pt[(i + 1) % n], -1, &ierr));
     GMSH_DO("addCurveLoop", *loop_tag = gmshModelGeoAddCurveLoop(ln, (size_t)n, -1, 0, &ierr));
 fin:
@@ -81,13 +81,16 @@ static glpgp_status mesh_polygons(const glpgp_polygons *p, double hm, int algori
         for (int pass = 0; pass < 2; pass++)
             for (int l = 0; l < p->n; l++) {
                 if (pass == 0 ? l != q : p->parent[l] != q) continue;
-                GLPGP_CHECK_GOTO(st, add_loop(p->xy + 2 * p->start[l], p->start[l + 1] - p->start[l], hm, &loops[nl]), fin);
+                GLPGP_CHECK_GOTO(st, add_loop(p->xy + 2 * p->start[l], p->size ? p->size + p->start[l] : NULL, p->start[l + 1] - p->start[l], hm, &loops[nl]), fin);
                 nl++;
             }
         GMSH_DO("addPlaneSurface", gmshModelGeoAddPlaneSurface(loops, (size_t)nl, -1, &ierr));
     }
     GMSH_DO("synchronize", gmshModelGeoSynchronize(&ierr));
-    GMSH_DO("option Mesh.MeshSizeMax", gmshOptionSetNumber("Mesh.MeshSizeMax", hm, &ierr));
+    double hmax = hm; /* graded: the largest point size */
+    for (int i = 0; p->size && i < p->start[p->n]; i++)
+        if (p->size[i] > hmax) hmax = p->size[i];
+    GMSH_DO("option Mesh.MeshSizeMax", gmshOptionSetNumber("Mesh.MeshSizeMax", hmax, &ierr));
     GMSH_DO("option Mesh.MeshSizeFromCurvature", gmshOptionSetNumber("Mesh.MeshSizeFromCurvature", 0, &ierr));
     GMSH_DO("option Mesh.Algorithm", gmshOptionSetNumber("Mesh.Algorithm", algorithm, &ierr));
     GMSH_DO("mesh generate", gmshModelMeshGenerate(2, &ierr));

@@ -116,6 +116,23 @@ glpgp_status glpgp_mask_mesh(const char *path, const glpgp_mask_options *opt, gl
     glpgp_image *im = NULL;
     float *v = NULL;
     glpgp_polygons *p = NULL;
+    if (glpgp_is_poly_path(path)) { /* a polygon file: no image, no contours */
+        GLPGP_CHECK(glpgp_polygons_read(path, &p));
+        double t1 = now_s();
+        inf.seconds_read = t1 - t0;
+        double hm = o.mesh_size > 0 ? o.mesh_size : glpgp_mask_default_mesh_size(p, o.quad_size);
+        inf.nouter = p->nouter;
+        inf.nholes = p->nholes;
+        inf.boundary_points = p->start[p->n];
+        inf.polygon_area = p->total_area;
+        inf.mesh_size = hm;
+        st = glpgp_mesh_polygons(p, hm, o.algorithm, out);
+        inf.seconds_mesh = now_s() - t1;
+        if (st == GLPGP_OK && info) *info = inf;
+        glpgp_polygons_destroy(&p);
+        if (st != GLPGP_OK) glpgp_error_push_trace(__FILE__, __LINE__);
+        return st;
+    }
     GLPGP_CHECK(glpgp_image_read(path, &im));
     inf.width = im->w;
     inf.height = im->h;
@@ -147,4 +164,12 @@ fin:
     free(v);
     glpgp_polygons_destroy(&p);
     return st;
+}
+
+int glpgp_is_poly_path(const char *path)
+{
+    size_t n = path ? strlen(path) : 0;
+    if (n < 5) return 0;
+    const char *e = path + n - 5;
+    return e[0] == '.' && (e[1] | 32) == 'p' && (e[2] | 32) == 'o' && (e[3] | 32) == 'l' && (e[4] | 32) == 'y';
 }

@@ -26,7 +26,7 @@
 extern "C" {
 #endif
 
-#define GLPGP_MODULE_ABI 1
+#define GLPGP_MODULE_ABI 2 /* 2: glpgp_polygons.size */
 
 /* What the image layer lends a module. */
 typedef struct glpgp_module_host {

@@ -88,6 +88,43 @@ void glpgp_quads_json(glpgp_json *w, const char *key, const glpgp_quad_quality *
     } else {
         glpgp_json_null(w, "singular_triangles");
     }
+    glpgp_json_bool(w, "valid", qq->invalid == 0);
+    glpgp_json_array(w, "invalid_reasons");
+    for (int b = 0; b < GLPGP_QUAD_BAD_COUNT; b++)
+        if (qq->invalid & (1u << b)) glpgp_json_str(w, NULL, glpgp_quad_bad_name(1u << b));
+    glpgp_json_close(w);
+    glpgp_json_int(w, "orientation", qq->orientation);
+    glpgp_json_int(w, "overlapping_faces", qq->overlaps);
+    glpgp_json_int(w, "pinched_vertices", qq->pinched);
+    glpgp_json_int(w, "non_quad_faces", qq->others);
+    glpgp_json_object(w, "boundary_loops");
+    glpgp_json_int(w, "mesh", qq->boundary_loops);
+    if (qq->domain_loops >= 0)
+        glpgp_json_int(w, "domain", qq->domain_loops);
+    else
+        glpgp_json_null(w, "domain");
+    glpgp_json_close(w);
+    if (domain) {
+        glpgp_json_num(w, "area_ratio", qq->area_ratio);
+        glpgp_json_int(w, "outside_faces", qq->outside);
+        glpgp_json_int(w, "far_faces", qq->far_faces);
+        glpgp_json_int(w, "corners_lost", qq->corners_lost);
+        glpgp_json_num(w, "boundary_vertex_distance_over_h", qq->bnd_vertex_dist);
+    } else {
+        glpgp_json_null(w, "area_ratio");
+        glpgp_json_null(w, "outside_faces");
+        glpgp_json_null(w, "far_faces");
+        glpgp_json_null(w, "corners_lost");
+        glpgp_json_null(w, "boundary_vertex_distance_over_h");
+    }
+    glpgp_json_num(w, "max_edge_over_h", qq->len_max);
+    glpgp_json_object(w, "repair");
+    glpgp_json_int(w, "rounds", qq->repair.rounds);
+    glpgp_json_int(w, "removed_faces", qq->repair.removed_faces);
+    glpgp_json_int(w, "regions", qq->repair.regions);
+    glpgp_json_int(w, "new_quads", qq->repair.new_quads);
+    glpgp_json_int(w, "snapped_vertices", qq->repair.snapped);
+    glpgp_json_close(w);
     glpgp_json_object(w, "closing");
     glpgp_json_int(w, "odd_faces_closed", qq->closing.closed_polygons);
     glpgp_json_int(w, "strips_to_boundary", qq->closing.strips_to_boundary);
@@ -376,22 +413,9 @@ glpgp_status glpgp_quads_read_msh(const char *path, glpgp_quadmesh **out)
             q->xy[2 * used[i]] = d.xyz[3 * i];
             q->xy[2 * used[i] + 1] = d.xyz[3 * i + 1];
         }
-    /* faces counter-clockwise (shoelace sign) */
-    for (int fa = 0; fa < q->nf; fa++) {
-        int s = q->face_start[fa], k = q->face_start[fa + 1] - s;
-        int *v = q->face_vert + s;
-        double a = 0.0;
-        for (int i = 0; i < k; i++) {
-            int p = v[i], r = v[(i + 1) % k];
-            a += q->xy[2 * p] * q->xy[2 * r + 1] - q->xy[2 * r] * q->xy[2 * p + 1];
-        }
-        if (a < 0)
-            for (int i = 0; i < k / 2; i++) {
-                int tmp = v[i];
-                v[i] = v[k - 1 - i];
-                v[k - 1 - i] = tmp;
-            }
-    }
+    /* faces are kept in the file's orientation: the quality report takes
+     * one orientation for the whole mesh (the sign of its total area), so a
+     * folded face reads back as inverted */
     *out = q;
     q = NULL;
 done:

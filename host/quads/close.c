@@ -1,4 +1,4 @@
-/* quads_pair.c: turning the polygon faces left by the extraction into quads
+/* quads/close.c: turning the polygon faces left by the extraction into quads
  * without changing the element size (glpgp_quadmesh_close_polygons), and a
  * quality-guarded smoothing of chosen vertices (glpgp_quadmesh_smooth).
  *
@@ -1139,6 +1139,7 @@ void glpgp_quad_options_default(glpgp_quad_options *o)
     o->smooth = 20;
     o->smooth_below = 0.5;
     o->all_quads = 0;
+    o->repair = 1;
 }
 
 glpgp_status glpgp_quads_build(const glpgp_mesh *m, const glpgp_result *r, const glpgp_quad_options *o,
@@ -1153,19 +1154,36 @@ glpgp_status glpgp_quads_build(const glpgp_mesh *m, const glpgp_result *r, const
     glpgp_quadmesh *q = NULL, *c = NULL;
     unsigned char *mark = NULL;
     glpgp_status st = glpgp_quads_extract(m, r, &q);
+    if (st == GLPGP_ERR_NUMERIC && o->repair) { /* no face: the repair meshes everything */
+        glpgp_log(GLPGP_LOG_INFO, "quads: %s; the repair meshes the whole domain", glpgp_error_message());
+        glpgp_error_clear();
+        st = glpgp_calloc(1, sizeof *q, &q);
+        if (st == GLPGP_OK) st = glpgp_calloc(1, sizeof(int), &q->face_start);
+        if (st != GLPGP_OK) {
+            glpgp_quadmesh_destroy(&q);
+            return st;
+        }
+    }
     if (st != GLPGP_OK) return st;
-    if (!o->keep_polygons) {
+    if (!o->keep_polygons && q->nf > 0) {
         st = glpgp_quadmesh_close_polygons(q, &c, &mark);
         if (st != GLPGP_OK) goto done;
         glpgp_quadmesh_destroy(&q);
         q = c;
         c = NULL;
     }
-    if (o->smooth > 0) {
+    if (o->smooth > 0 && q->nf > 0) {
         int moved = 0;
         st = glpgp_quadmesh_smooth(q, mark, o->smooth, o->smooth_below, &moved);
         if (st != GLPGP_OK) goto done;
         q->closing.smoothed_vertices = moved;
+    }
+    if (o->repair) {
+        st = glpgp_quadmesh_repair(q, m, *h, o->smooth, o->keep_polygons, &c);
+        if (st != GLPGP_OK) goto done;
+        glpgp_quadmesh_destroy(&q);
+        q = c;
+        c = NULL;
     }
     if (o->all_quads) {
         st = glpgp_quadmesh_subdivide(q, &c);

@@ -91,9 +91,12 @@
  * and a split is made only if that is > 0.1.
  * Interior pentagons (a dislocation away from the boundary: odd parity, so
  * no quad split exists that leaves the neighbours unchanged) are kept here;
- * glpgp_quadmesh_close_polygons (quads_pair.c, run by glpgp_quads_build and
+ * glpgp_quadmesh_close_polygons (close.c, run by glpgp_quads_build and
  * the CLI unless --keep-polygons) closes them pairwise or against the
  * boundary through strips of quads cut in two, at the same element size.
+ * Whatever is still invalid against the domain after that (faces across
+ * features narrower than h, lost holes, wedges, coarse input triangles) is
+ * cut out and re-meshed by glpgp_quadmesh_repair (repair.c).
  * glpgp_quadmesh_subdivide (--all-quads) is the other route to an all-quad
  * mesh: one Catmull-Clark step (centroid + shared edge midpoints) turns
  * every n-gon into n quads at half the size.

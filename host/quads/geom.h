@@ -1,6 +1,6 @@
-/* quads_geom.h: small polygon-geometry helpers shared by the quad-mesh code
- * (quads.c extraction, quads_pair.c closing and smoothing, quads_io.c
- * quality report). Internal to the library; defined in quads_io.c. */
+/* quads/geom.h: small polygon-geometry helpers shared by the quad-mesh code
+ * (extract.c extraction, close.c closing and smoothing, repair.c repair,
+ * quality.c report). Internal to the library; defined in geom.c. */
 #ifndef GLPGP_QUADS_GEOM_H
 #define GLPGP_QUADS_GEOM_H
 

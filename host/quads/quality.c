@@ -3,6 +3,7 @@
  * non-manifold faces and edges, edge lengths, area and the boundary Hausdorff
  * distance to a domain, and its printed form. */
 #include "glpgp/quads.h"
+#include "check.h"
 #include "geom.h"
 
 #include <math.h>
@@ -204,7 +205,10 @@ glpgp_status glpgp_quads_quality(const glpgp_quadmesh *q, const glpgp_mesh *doma
     o->faces = q->nf;
     o->singular[0] = o->singular[1] = -1;
     o->closing = q->closing;
+    o->repair = q->repair;
     glpgp_status st = GLPGP_OK;
+    qcheck ck;
+    memset(&ck, 0, sizeof ck);
     qe *E = NULL;
     int ne = 0;
     double *sj = NULL, *angle = NULL;
@@ -213,6 +217,7 @@ glpgp_status glpgp_quads_quality(const glpgp_quadmesh *q, const glpgp_mesh *doma
     segset SD, SQ;
     memset(&SD, 0, sizeof SD);
     memset(&SQ, 0, sizeof SQ);
+    GLPGP_CHECK_GOTO(st, glpgp_qcheck_run(q, domain, h, 0.25 * h, &ck), done);
     GLPGP_CHECK_GOTO(st, face_edges(q, &E, &ne), done);
     GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)q->nf + 1, sizeof(double), &sj), done);
     GLPGP_CHECK_GOTO(st, glpgp_calloc((size_t)q->nv + 1, sizeof(double), &angle), done);
@@ -231,7 +236,6 @@ glpgp_status glpgp_quads_quality(const glpgp_quadmesh *q, const glpgp_mesh *doma
             o->boundary_edges++;
             bnd[E[i].a] = bnd[E[i].b] = 1;
         }
-        if (E[i].nface > 2) o->nonmanifold_edges++;
         double l = hypot(q->xy[2 * E[i].a] - q->xy[2 * E[i].b],
                          q->xy[2 * E[i].a + 1] - q->xy[2 * E[i].b + 1]) / h;
         lsum += l;
@@ -266,9 +270,10 @@ glpgp_status glpgp_quads_quality(const glpgp_quadmesh *q, const glpgp_mesh *doma
             double e2x = q->xy[2 * c] - ax, e2y = q->xy[2 * c + 1] - ay;
             double l1 = hypot(e1x, e1y), l2 = hypot(e2x, e2y);
             if (l1 < 1e-9 * h) degen = 1;
-            area += 0.5 * (ax * q->xy[2 * b + 1] - q->xy[2 * b] * ay);
-            /* scaled Jacobian at corner a: sin of the angle from e1 to e2 */
-            double cr = e1x * e2y - e1y * e2x;
+            area += 0.5 * ck.orientation * (ax * q->xy[2 * b + 1] - q->xy[2 * b] * ay);
+            /* scaled Jacobian at corner a: sin of the angle from e1 to e2
+             * (in the mesh orientation) */
+            double cr = ck.orientation * (e1x * e2y - e1y * e2x);
             double sjc = (l1 > 0 && l2 > 0) ? cr / (l1 * l2) : 0.0;
             fmin_sj = fmin(fmin_sj, sjc);
             /* interior angle at a (from e1 counter-clockwise to e2) */
@@ -277,9 +282,12 @@ glpgp_status glpgp_quads_quality(const glpgp_quadmesh *q, const glpgp_mesh *doma
             angle[a] += ang;
         }
         o->area += area;
-        if (fabs(area) < 1e-9 * h * h) degen = 1;
-        if (degen) o->degenerate++;
-        if (area <= 0.0 || (k == 4 && fmin_sj < 0.0)) o->inverted++;
+        (void)degen;
+        if (ck.flags[f] & QF_DEGENERATE) o->degenerate++;
+        if (ck.flags[f] & QF_INVERTED) o->inverted++;
+        if (ck.flags[f] & QF_OVERLAP) o->overlaps++;
+        if (ck.flags[f] & QF_OUTSIDE) o->outside++;
+        if (ck.flags[f] & (QF_FAR | QF_LOST)) o->far_faces++;
         if (k == 4) {
             sj[nsj++] = fmin_sj;
             sjsum += fmin_sj;
@@ -308,10 +316,21 @@ glpgp_status glpgp_quads_quality(const glpgp_quadmesh *q, const glpgp_mesh *doma
     }
     o->irregular = o->irregular_interior + o->irregular_boundary;
 
+    o->orientation = ck.orientation;
+    o->nonmanifold_edges = ck.nonmanifold_edges;
+    o->pinched = ck.pinched;
+    o->boundary_loops = ck.boundary_loops;
+    o->domain_loops = domain ? domain->nloops : -1;
+    o->corners_lost = ck.corners_lost;
+    if (!domain) o->outside = o->far_faces = -1;
+    o->bnd_vertex_dist = domain ? ck.bnd_vertex_dist / h : -1.0;
+    o->area_ratio = -1.0;
+
     /* boundary distance */
     o->hausdorff = o->dist_quad_to_domain = o->dist_domain_to_quad = -1.0;
     o->gap_edges = -1;
     if (domain) {
+        o->area_ratio = domain->area > 0 ? o->area / domain->area : -1.0;
         o->domain_area = domain->area;
         int nb = domain->loop_start[domain->nloops];
         SD.n = nb;
@@ -364,7 +383,27 @@ glpgp_status glpgp_quads_quality(const glpgp_quadmesh *q, const glpgp_mesh *doma
         o->hausdorff = fmax(dq, dd) / h;
         o->gap_edges = gaps;
     }
+    /* validity */
+    {
+        unsigned b = 0;
+        if (o->inverted) b |= GLPGP_QUAD_BAD_INVERTED;
+        if (o->degenerate) b |= GLPGP_QUAD_BAD_DEGENERATE;
+        if (o->nonmanifold_edges) b |= GLPGP_QUAD_BAD_NONMANIFOLD;
+        if (o->others) b |= GLPGP_QUAD_BAD_NONQUAD;
+        if (o->pinched) b |= GLPGP_QUAD_BAD_PINCHED;
+        if (o->overlaps) b |= GLPGP_QUAD_BAD_OVERLAP;
+        if (domain) {
+            if (o->outside) b |= GLPGP_QUAD_BAD_OUTSIDE;
+            if (o->boundary_loops != o->domain_loops) b |= GLPGP_QUAD_BAD_LOOPS;
+            if (!(fabs(o->area_ratio - 1.0) <= 0.01)) b |= GLPGP_QUAD_BAD_AREA;
+            if (!(o->hausdorff <= 0.25)) b |= GLPGP_QUAD_BAD_HAUSDORFF;
+            if (o->gap_edges > 0) b |= GLPGP_QUAD_BAD_GAPS;
+            if (o->corners_lost > 0) b |= GLPGP_QUAD_BAD_CORNERS;
+        }
+        o->invalid = b;
+    }
 done:
+    glpgp_qcheck_free(&ck);
     free(E);
     free(sj);
     free(angle);
@@ -405,10 +444,79 @@ void glpgp_quads_print(FILE *f, const glpgp_quad_quality *qq, const char *prefix
                    "%d turns, %d even faces split; %d vertices smoothed\n",
                 p, qq->closing.closed_polygons, qq->closing.strips_to_boundary, qq->closing.strip_quads, qq->closing.strip_turns,
                 qq->closing.split_even, qq->closing.smoothed_vertices);
+    if (qq->repair.rounds)
+        fprintf(f, "%s  repair       %d faces removed, %d regions re-meshed with %d quads, %d boundary "
+                   "vertices snapped (%d rounds)\n",
+                p, qq->repair.removed_faces, qq->repair.regions, qq->repair.new_quads, qq->repair.snapped,
+                qq->repair.rounds);
     if (qq->hausdorff >= 0)
         fprintf(f, "%s  boundary     Hausdorff %.3f h (quads->domain %.3f h, domain->quads %.3f h), "
-                   "area %.5g of %.5g\n",
+                   "area %.5g of %.5g (ratio %.4f), loops %d of %d\n",
                 p, qq->hausdorff, qq->dist_quad_to_domain, qq->dist_domain_to_quad, qq->area,
-                qq->domain_area);
+                qq->domain_area, qq->area_ratio, qq->boundary_loops, qq->domain_loops);
+    else
+        fprintf(f, "%s  boundary     %d loops (no domain given)\n", p, qq->boundary_loops);
+    fprintf(f, "%s  topology     non-manifold edges %d, pinched vertices %d, overlapping faces %d", p,
+            qq->nonmanifold_edges, qq->pinched, qq->overlaps);
+    if (qq->outside >= 0) fprintf(f, ", outside %d, corners lost %d", qq->outside, qq->corners_lost);
+    fprintf(f, "\n");
+    char why[512];
+    if (glpgp_quads_invalid_text(qq, 0, why, sizeof why))
+        fprintf(f, "%s  valid        no: %s\n", p, why);
+    else
+        fprintf(f, "%s  valid        yes\n", p);
+}
+
+const char *glpgp_quad_bad_name(unsigned b)
+{
+    switch (b) {
+    case GLPGP_QUAD_BAD_INVERTED: return "inverted";
+    case GLPGP_QUAD_BAD_DEGENERATE: return "degenerate";
+    case GLPGP_QUAD_BAD_NONMANIFOLD: return "non-manifold";
+    case GLPGP_QUAD_BAD_NONQUAD: return "non-quad";
+    case GLPGP_QUAD_BAD_PINCHED: return "pinched";
+    case GLPGP_QUAD_BAD_OVERLAP: return "overlap";
+    case GLPGP_QUAD_BAD_OUTSIDE: return "outside";
+    case GLPGP_QUAD_BAD_LOOPS: return "boundary-loops";
+    case GLPGP_QUAD_BAD_AREA: return "area";
+    case GLPGP_QUAD_BAD_HAUSDORFF: return "hausdorff";
+    case GLPGP_QUAD_BAD_GAPS: return "gaps";
+    case GLPGP_QUAD_BAD_CORNERS: return "corners";
+    case GLPGP_QUAD_BAD_EMPTY: return "empty";
+    default: return NULL;
+    }
+}
+
+unsigned glpgp_quads_invalid_text(const glpgp_quad_quality *qq, unsigned ignore, char *buf, size_t n)
+{
+    unsigned b = qq->invalid & ~ignore;
+    size_t w = 0;
+    if (n) buf[0] = 0;
+#define ADD(...)                                                                       \
+    do {                                                                               \
+        if (w < n) {                                                                   \
+            int r_ = snprintf(buf + w, n - w, "%s", w ? ", " : "");                    \
+            if (r_ > 0) w += (size_t)r_;                                               \
+        }                                                                              \
+        if (w < n) {                                                                   \
+            int r_ = snprintf(buf + w, n - w, __VA_ARGS__);                            \
+            if (r_ > 0) w += (size_t)r_;                                               \
+        }                                                                              \
+    } while (0)
+    if (b & GLPGP_QUAD_BAD_EMPTY) ADD("no face");
+    if (b & GLPGP_QUAD_BAD_INVERTED) ADD("%d inverted faces", qq->inverted);
+    if (b & GLPGP_QUAD_BAD_DEGENERATE) ADD("%d degenerate faces", qq->degenerate);
+    if (b & GLPGP_QUAD_BAD_NONMANIFOLD) ADD("%d non-manifold edges", qq->nonmanifold_edges);
+    if (b & GLPGP_QUAD_BAD_NONQUAD) ADD("%d non-quad faces", qq->others);
+    if (b & GLPGP_QUAD_BAD_PINCHED) ADD("%d pinched vertices", qq->pinched);
+    if (b & GLPGP_QUAD_BAD_OVERLAP) ADD("%d overlapping faces", qq->overlaps);
+    if (b & GLPGP_QUAD_BAD_OUTSIDE) ADD("%d faces outside the domain", qq->outside);
+    if (b & GLPGP_QUAD_BAD_LOOPS) ADD("boundary loops %d of %d", qq->boundary_loops, qq->domain_loops);
+    if (b & GLPGP_QUAD_BAD_AREA) ADD("area ratio %.4f", qq->area_ratio);
+    if (b & GLPGP_QUAD_BAD_HAUSDORFF) ADD("Hausdorff %.3f h", qq->hausdorff);
+    if (b & GLPGP_QUAD_BAD_GAPS) ADD("%d boundary edges away from the domain boundary", (int)qq->gap_edges);
+    if (b & GLPGP_QUAD_BAD_CORNERS) ADD("%d domain corners lost", qq->corners_lost);
+#undef ADD
+    return b;
 }
 

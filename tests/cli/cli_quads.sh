@@ -9,7 +9,11 @@
 # h / 2; on a radial annulus (dislocations) every face is a quad by default
 # and pentagons remain with --keep-polygons; a VTK without oscillators, a bad extension, a missing input and
 # --all-quads / --smooth without --quads fail with a clear message, a non-zero exit and
-# no output file.
+# no output file. An invalid quad mesh (a strip much narrower than h without
+# the repair) exits 3 and is not written, the statistics are, with
+# "valid": false and the reasons; --allow-invalid writes it with a warning;
+# the default repair makes it valid, all quads; extract --no-repair exits 3
+# too; quality reads a folded quad in the file's orientation and exits 3.
 . "$(dirname "$0")/lib.sh" "$@"
 
 # ---- solve --quads --------------------------------------------------------
@@ -88,6 +92,45 @@ grep -qE "[1-9][0-9]* other faces \([0-9]+ x 5-gon" out.txt ||
 # ---- quality of a mesh read back -------------------------------------------
 run_ok "quality e.msh" quality e.msh --size 0.2
 grep -qE "25 quads, 0 other faces" out.txt || fail "quality e.msh: $(cat out.txt)"
+
+# ---- invalid meshes: exit 3, not written, unless --allow-invalid ------------
+# a strip 8 x 0.12 (much narrower than h = 1): the parametrization collapses
+awk 'BEGIN { nx = 160; ny = 6;
+    for (j = 0; j <= ny; j++) for (i = 0; i <= nx; i++) printf "v %.6f %.6f 0\n", 8.0 * i / nx, 0.12 * j / ny;
+    for (j = 0; j < ny; j++) for (i = 0; i < nx; i++) { a = j * (nx + 1) + i + 1; b = a + 1; c = a + nx + 2; d = a + nx + 1;
+        printf "f %d %d %d\nf %d %d %d\n", a, b, c, a, c, d } }' >strip.obj
+run_fail "strip --no-repair: invalid" 3 "quad mesh is invalid .*not written" solve strip.obj --size 1 \
+    --backend reference --quiet --quads st.obj --stats st.json --no-repair
+[ -e st.obj ] && fail "an invalid quad mesh was written without --allow-invalid"
+[ -s st.json ] || fail "the statistics were not written for an invalid quad mesh"
+grep -qE "valid +no: " out.txt || fail "the report does not say the mesh is invalid: $(cat out.txt)"
+if command -v python3 >/dev/null 2>&1; then
+    python3 - st.json <<'PY' || fail "st.json: no valid=false with reasons"
+import json, sys
+q = json.load(open(sys.argv[1]))["quads"]
+assert q["valid"] is False and len(q["invalid_reasons"]) > 0, q
+assert q["boundary_loops"]["domain"] == 1 and q["area_ratio"] is not None
+PY
+fi
+run_ok "strip --no-repair --allow-invalid" solve strip.obj --size 1 --backend reference --quiet \
+    --quads st.obj --no-repair --allow-invalid
+[ -s st.obj ] || fail "--allow-invalid did not write the mesh"
+expect_err "warning: the quad mesh is invalid .*written anyway" "--allow-invalid warning"
+run_ok "strip repaired" solve strip.obj --size 1 --backend reference --quiet --quads sr.obj -o sr.vtk
+grep -qE "valid +yes" out.txt || fail "strip: the repaired mesh is not valid: $(cat out.txt)"
+grep -qE "repair +[0-9]+ faces removed" out.txt || fail "strip: no repair line: $(cat out.txt)"
+nf=$(grep -c '^f ' sr.obj)
+n4=$(grep -cE '^f [0-9]+ [0-9]+ [0-9]+ [0-9]+ *$' sr.obj)
+[ "$nf" -gt 8 ] && [ "$nf" -eq "$n4" ] || fail "strip repaired: $nf faces, $n4 quads"
+run_fail "extract --no-repair: invalid" 3 "quad mesh is invalid" extract sr.vtk --quads ex.obj --no-repair
+[ -e ex.obj ] && fail "extract wrote an invalid mesh"
+run_fail "--allow-invalid without --quads" 2 "need --quads" solve shape:square:100 --allow-invalid
+
+# quality reads faces in the file's orientation: a folded quad is invalid
+printf '$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n6\n1 0 0 0\n2 1 0 0\n3 2 0 0\n4 0 1 0\n5 1 1 0\n6 2 1 0\n$EndNodes\n$Elements\n2\n1 3 2 0 1 1 2 5 4\n2 3 2 0 1 2 5 6 3\n$EndElements\n' >fold.msh
+run_fail "quality of a folded mesh" 3 "quad mesh is invalid .*inverted" quality fold.msh --size 1
+grep -qE "inverted 1" out.txt || fail "quality: the folded quad is not counted: $(cat out.txt)"
+run_ok "quality --allow-invalid" quality fold.msh --size 1 --allow-invalid
 
 # ---- errors ------------------------------------------------------------------
 printf '# vtk DataFile Version 3.0\nmesh\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS 3 double\n0 0 0\n1 0 0\n0 1 0\nCELLS 1 4\n3 0 1 2\nCELL_TYPES 1\n5\n' >bad.vtk

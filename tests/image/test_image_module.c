@@ -50,7 +50,7 @@ static int child_without_modules(const char *empty)
     double xy[8] = {0, 0, 1, 0, 1, 1, 0, 1};
     int start[2] = {0, 4}, parent[1] = {-1};
     double area[1] = {1};
-    glpgp_polygons p = {1, start, xy, area, parent, 1, 0, 1.0};
+    glpgp_polygons p = {1, start, xy, area, parent, 1, 0, 1.0, NULL};
     glpgp_mesh *m = NULL;
     st = glpgp_mesh_polygons(&p, 0.3, 0, &m);
     msg = glpgp_error_message();
@@ -119,7 +119,7 @@ int main(void)
         double xy[8] = {0, 0, 1, 0, 1, 1, 0, 1};
         int start[2] = {0, 4}, parent[1] = {-1};
         double area[1] = {1};
-        glpgp_polygons p = {1, start, xy, area, parent, 1, 0, 1.0};
+        glpgp_polygons p = {1, start, xy, area, parent, 1, 0, 1.0, NULL};
         glpgp_mesh *m = NULL;
         CHECK_OK(glpgp_mesh_polygons(&p, 0.25, 0, &m));
         CHECK(m && m->nv > 4 && m->nt > 2);

@@ -152,6 +152,7 @@ typedef struct glpgp_polygons {
     int *parent;    /* n: for a hole the outer loop containing it, -1 for outer loops */
     int nouter, nholes;
     double total_area; /* sum of the signed areas = area of the domain */
+    double *size;      /* NULL, or start[n] local mesh sizes (<= 0: the uniform size) */
 } glpgp_polygons;
 
 typedef struct glpgp_contour_options {
@@ -185,6 +186,19 @@ glpgp_status glpgp_contours(const float *v, int w, int h, const glpgp_contour_op
                             glpgp_polygons **out);
 
 void glpgp_polygons_destroy(glpgp_polygons **p);
+
+/* Read a polygon file in Triangle's .poly format (image/poly.c: vertices
+ * "i x y [attributes] [marker]", segments "i a b [marker]", hole points):
+ * the segments must form closed, non-crossing loops; holes follow from the
+ * nesting of the loops (even-odd), hole points must lie outside the domain
+ * so found. The first vertex attribute, when > 0, is the local mesh size
+ * (size[]), which grades the Gmsh mesh. Loops come out oriented (outer
+ * counter-clockwise, holes clockwise) with areas and parents.
+ * GLPGP_ERR_IO (unreadable), GLPGP_ERR_FORMAT (one message with the line). */
+glpgp_status glpgp_polygons_read(const char *path, glpgp_polygons **out);
+
+/* Whether path ends in .poly (case-insensitive). */
+int glpgp_is_poly_path(const char *path);
 
 /* Douglas-Peucker simplification of one closed polygon in place: keeps the
  * points needed so that every dropped point lies within tol of the kept
@@ -231,15 +245,18 @@ glpgp_status glpgp_gmsh_load(void);
 double glpgp_mask_default_mesh_size(const glpgp_polygons *p, double quad_size);
 
 /* Mesh the polygons with Gmsh (loads the module; geo kernel: points, lines, one curve loop per
- * polygon, one plane surface per outer loop with its holes; uniform size
- * mesh_size; Mesh.Algorithm algorithm, <= 0 for 6), then build the glpgp mesh
+ * polygon, one plane surface per outer loop with its holes; size mesh_size,
+ * or p->size[i] at the points that have one (Gmsh interpolates between the
+ * boundary points: graded meshes); Mesh.Algorithm algorithm, <= 0 for 6), then build the glpgp mesh
  * with glpgp_mesh_create (validated). Gmsh prints nothing (General.Terminal
  * = 0); every Gmsh error becomes GLPGP_ERR_MESH with Gmsh's last message. */
 glpgp_status glpgp_mesh_polygons(const glpgp_polygons *p, double mesh_size, int algorithm,
                                  glpgp_mesh **out);
 
 /* Read the mask image at path, extract its contours and mesh them (see the
- * option struct for the defaults). The Douglas-Peucker tolerance actually used
+ * option struct for the defaults). A path ending in .poly is read with
+ * glpgp_polygons_read instead (no OpenImageIO needed; the contour options do
+ * not apply; the default mesh size is computed the same way). The Douglas-Peucker tolerance actually used
  * is max(o->contour.tolerance, mesh_size / 20 in pixels): the boundary needs
  * no detail finer than the mesh. info may be NULL. */
 glpgp_status glpgp_mask_mesh(const char *path, const glpgp_mask_options *o, glpgp_mesh **out,

@@ -296,6 +296,13 @@ glpgp_status glpgp_read_result(const char *path, glpgp_mesh **m, glpgp_result **
  *  "edge_length_over_h": {"mean", "min", "max"}, "h", "area", "domain_area",
  *  "boundary_distance_over_h": {"hausdorff", "quads_to_domain", "domain_to_quads"}
  *  (null without a domain), "gap_edges", "singular_triangles": {"u", "v"},
+ *  "valid" (true / false), "invalid_reasons": ["inverted", "non-quad", ...]
+ *  (glpgp_quad_bad_name), "orientation" (+1 / -1), "overlapping_faces",
+ *  "pinched_vertices", "non_quad_faces", "boundary_loops": {"mesh", "domain"},
+ *  "area_ratio", "outside_faces", "far_faces", "corners_lost",
+ *  "boundary_vertex_distance_over_h" (the last five null without a domain),
+ *  "max_edge_over_h", "repair": {"rounds", "removed_faces", "regions",
+ *  "new_quads", "snapped_vertices"},
  *  "closing": {"odd_faces_closed", "strips_to_boundary", "quads_cut", "turns",
  *  "even_faces_split", "smoothed_vertices"}}.
  * Numbers lossless, non-finite ones null (glpgp_json). */
@@ -327,9 +334,10 @@ glpgp_status glpgp_output_set_quads(glpgp_output_set *s, const glpgp_quadmesh *q
 /* Whether path ends in .obj, .vtk, .vtu or .msh (case-insensitive). */
 int glpgp_quads_path_supported(const char *path);
 
-/* Read a 2D quad/triangle mesh from Gmsh MSH 4.1 or 2.2 ASCII (element types
+/* Read a 2D quad/triangle mesh from Gmsh MSH 4.1 or 2.2 ASCII (faces keep the
+ * file's vertex order, so the report can find folds; element types
  * 2 = triangle and 3 = quadrangle, in file order; other element types are
- * ignored; z ignored). Faces are made counter-clockwise. Same parser and
+ * ignored; z ignored). Same parser and
  * limits as glpgp_mesh_read. GLPGP_ERR_IO / _FORMAT / _LIMIT. */
 glpgp_status glpgp_quads_read_msh(const char *path, glpgp_quadmesh **out);
 

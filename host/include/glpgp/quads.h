@@ -16,6 +16,15 @@
 extern "C" {
 #endif
 
+/* What glpgp_quadmesh_repair did. */
+typedef struct glpgp_quad_repair {
+    int rounds;          /* repair rounds run (0: the mesh was valid) */
+    int removed_faces;   /* faces removed (bad faces and their neighbours) */
+    int regions;         /* regions re-meshed */
+    int new_quads;       /* quads made in the regions */
+    int snapped;         /* boundary vertices moved onto the domain boundary */
+} glpgp_quad_repair;
+
 /* What glpgp_quadmesh_close_polygons and glpgp_quadmesh_smooth did. */
 typedef struct glpgp_quad_closing {
     int closed_polygons;    /* odd faces (dislocation pentagons, ...) made quads */
@@ -43,6 +52,7 @@ typedef struct glpgp_quadmesh {
     int split_pentagons;      /* boundary pentagons split into two or three quads */
     int center_splits;        /* of those: three quads around a new centre vertex */
     glpgp_quad_closing closing; /* set by glpgp_quadmesh_close_polygons / _smooth */
+    glpgp_quad_repair repair;   /* set by glpgp_quadmesh_repair */
 } glpgp_quadmesh;
 
 /* Extract the quad mesh of a result on mesh m (r->osc[k].z, .dirichlet and
@@ -80,7 +90,7 @@ glpgp_status glpgp_quadmesh_subdivide(const glpgp_quadmesh *q, glpgp_quadmesh **
  * quality report). The strip statistics are set in *out, the extraction
  * diagnostics copied. new_vertices (may be NULL): *new_vertices receives a
  * calloc'ed flag per vertex of *out, 1 for the vertices added here (free()).
- * The algorithm is described at the top of quads_pair.c. */
+ * The algorithm is described at the top of quads/close.c. */
 glpgp_status glpgp_quadmesh_close_polygons(const glpgp_quadmesh *q, glpgp_quadmesh **out,
                                            unsigned char **new_vertices);
 
@@ -95,19 +105,42 @@ glpgp_status glpgp_quadmesh_close_polygons(const glpgp_quadmesh *q, glpgp_quadme
 glpgp_status glpgp_quadmesh_smooth(glpgp_quadmesh *q, const unsigned char *mark, int iterations,
                                    double sj_below, int *moved);
 
+/* Local repair (quads/repair.c): the faces of q that are invalid against
+ * the domain m (not quads, inverted, degenerate or flat, non-manifold,
+ * pinched, overlapping, outside the domain, a boundary edge farther than
+ * h/4 from the domain boundary, over a lost hole, corner or feature) are
+ * removed with one ring of neighbours (more in later rounds, at most 4),
+ * and each hole left is filled with quads: the polygon between the kept
+ * faces and the domain boundary (input boundary vertices, corners kept) is
+ * triangulated (constrained Delaunay, inner edges longer than
+ * 2.6 h bisected) and every triangle becomes 3 or 5 convex quads without splitting
+ * the edges shared with the kept faces. Boundary vertices within h/4 of the
+ * domain boundary are first moved onto it. smooth: sweeps of
+ * glpgp_quadmesh_smooth on the new vertices. keep_polygons: faces that are
+ * not quads are not bad (--keep-polygons). q may have no face (the
+ * extraction found none): the whole domain is meshed. *out: a new mesh (a copy when
+ * nothing was wrong; still invalid when a region could not be filled: the
+ * quality report tells). The algorithm is described at the top of
+ * quads/repair.c. */
+glpgp_status glpgp_quadmesh_repair(const glpgp_quadmesh *q, const glpgp_mesh *m, double h, int smooth,
+                                   int keep_polygons, glpgp_quadmesh **out);
+
 /* What glpgp_quads_build does after the extraction. */
 typedef struct glpgp_quad_options {
     int keep_polygons;  /* 1: leave non-quad faces as they are (no strips) */
     int smooth;         /* smoothing sweeps (0: none; default 20) */
     double smooth_below;/* also smooth around faces with scaled Jacobian below this (default 0.5) */
     int all_quads;      /* 1: one Catmull-Clark step at the end (h halves) */
+    int repair;         /* 1: glpgp_quadmesh_repair after the smoothing (default) */
 } glpgp_quad_options;
 
-/* The defaults: strips on, 20 smoothing sweeps, smooth_below 0.5, no refinement. */
+/* The defaults: strips on, 20 smoothing sweeps, smooth_below 0.5, repair on, no refinement. */
 void glpgp_quad_options_default(glpgp_quad_options *o);
 
-/* Extraction + closing of the polygons + smoothing (+ refinement), as the
- * CLI does it. *h: in: the target size, out: the size the mesh is made for
+/* Extraction + closing of the polygons + smoothing + repair (+ refinement),
+ * as the CLI does it. With repair on, an extraction that finds no face
+ * (GLPGP_ERR_NUMERIC: the oscillators collapsed) is not an error: the
+ * repair meshes the whole domain. *h: in: the target size, out: the size the mesh is made for
  * (halved by all_quads). o = NULL: the defaults. */
 glpgp_status glpgp_quads_build(const glpgp_mesh *m, const glpgp_result *r, const glpgp_quad_options *o,
                                glpgp_quadmesh **out, double *h);
@@ -137,7 +170,54 @@ typedef struct glpgp_quad_quality {
     double h;
     int singular[2];         /* singular triangles of the solve (u, v), -1 if unknown */
     glpgp_quad_closing closing; /* copied from the mesh (0 when it was not closed) */
+    /* Validity (one orientation for the whole mesh: the sign of its total
+     * signed area; inverted counts the faces of the other sign). */
+    int orientation;         /* +1: faces counter-clockwise, -1: clockwise */
+    int overlaps;            /* faces overlapping another face: an edge crossing another
+                              * edge, or a vertex inside the face or on its sides */
+    int pinched;             /* vertices whose faces form more than one edge-connected fan */
+    int boundary_loops;      /* loops of boundary edges of the mesh */
+    int domain_loops;        /* boundary loops of the domain (-1 without domain) */
+    int outside;             /* faces with a corner outside the domain or an edge crossing
+                              * its boundary (-1 without domain) */
+    int far_faces;           /* faces with a boundary edge farther than h/4 from the domain
+                              * boundary, or over a part of the domain boundary farther than
+                              * h/4 from the mesh boundary (-1 without domain) */
+    int corners_lost;        /* domain corners (boundary turn > 40 deg) without a mesh vertex
+                              * (-1 without domain) */
+    double area_ratio;       /* area / domain_area (-1 without domain) */
+    double bnd_vertex_dist;  /* largest distance of a mesh boundary vertex from the domain
+                              * boundary, in units of h (-1 without domain) */
+    unsigned invalid;        /* GLPGP_QUAD_BAD_* bits: why the mesh is not valid (0: valid) */
+    glpgp_quad_repair repair;/* copied from the mesh */
 } glpgp_quad_quality;
+
+/* Reasons a quad mesh is invalid (glpgp_quad_quality.invalid). The domain
+ * reasons are only tested when the report was made with a domain. */
+enum {
+    GLPGP_QUAD_BAD_INVERTED = 1u << 0,    /* inverted faces */
+    GLPGP_QUAD_BAD_DEGENERATE = 1u << 1,  /* degenerate faces */
+    GLPGP_QUAD_BAD_NONMANIFOLD = 1u << 2, /* non-manifold edges (or folds across an edge) */
+    GLPGP_QUAD_BAD_NONQUAD = 1u << 3,     /* faces that are not quads */
+    GLPGP_QUAD_BAD_PINCHED = 1u << 4,     /* pinched vertices */
+    GLPGP_QUAD_BAD_OVERLAP = 1u << 5,     /* overlapping faces */
+    GLPGP_QUAD_BAD_OUTSIDE = 1u << 6,     /* faces outside the domain */
+    GLPGP_QUAD_BAD_LOOPS = 1u << 7,       /* boundary loops differ from the domain's (lost hole, gap) */
+    GLPGP_QUAD_BAD_AREA = 1u << 8,        /* area off by more than 1% */
+    GLPGP_QUAD_BAD_HAUSDORFF = 1u << 9,   /* boundary Hausdorff distance above h/4 */
+    GLPGP_QUAD_BAD_GAPS = 1u << 10,       /* boundary edges away from the domain boundary */
+    GLPGP_QUAD_BAD_CORNERS = 1u << 11,    /* domain corners without a mesh vertex */
+    GLPGP_QUAD_BAD_EMPTY = 1u << 12       /* no face */
+};
+#define GLPGP_QUAD_BAD_COUNT 13
+
+/* Short name of reason bit b ("inverted", "non-quad", ...); NULL for an unknown bit. */
+const char *glpgp_quad_bad_name(unsigned b);
+
+/* Write the reasons of qq->invalid, less the bits in ignore, as one line
+ * ("2 inverted faces, 1 lost hole (boundary loops 3 of 4)") into buf.
+ * Returns the bits that remain (0: valid once ignore is taken out). */
+unsigned glpgp_quads_invalid_text(const glpgp_quad_quality *qq, unsigned ignore, char *buf, size_t n);
 
 /* Compute the quality report of q for target size h (> 0). domain (may be
  * NULL) is the triangle mesh whose boundary the quads should reproduce: it

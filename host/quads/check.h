@@ -1,0 +1,67 @@
+/* quads/check.h: the validity checks of a polygon mesh against its domain,
+ * per face (private to host/quads/). Used by the quality report
+ * (quality.c: counts and the `valid` flag) and by the local repair
+ * (repair.c: which faces to remove and re-mesh). */
+#ifndef GLPGP_QUADS_CHECK_H
+#define GLPGP_QUADS_CHECK_H
+
+#include "glpgp/quads.h"
+
+/* Why a face is bad (bits of the per-face flags). */
+enum {
+    QF_NONQUAD = 1u << 0,     /* not 4 corners */
+    QF_INVERTED = 1u << 1,    /* area <= 0 in the mesh orientation, or a quad corner with SJ < 0 */
+    QF_DEGENERATE = 1u << 2,  /* repeated vertex, zero-length edge or ~zero area */
+    QF_NONMANIFOLD = 1u << 3, /* an edge used by > 2 faces, or twice in one direction (a fold) */
+    QF_PINCHED = 1u << 4,     /* a corner at a vertex whose faces form several fans */
+    QF_OVERLAP = 1u << 5,     /* an edge crosses another edge, a vertex lies inside it, or it lies inside another */
+    QF_OUTSIDE = 1u << 6,     /* a vertex outside the domain or an edge crossing the domain boundary */
+    QF_FAR = 1u << 7,         /* a boundary edge farther than tol from the domain boundary (gap, chord) */
+    QF_LOST = 1u << 8,        /* the domain boundary passes far from the mesh boundary here (lost hole,
+                               * lost corner, cut-off feature) */
+    QF_FLAT = 1u << 9         /* a quad corner with scaled Jacobian below 1e-3 (repair only) */
+};
+
+typedef struct qcheck {
+    int orientation;          /* +1 / -1: sign of the total signed area */
+    unsigned *flags;          /* nf per-face QF_* bits (malloc'ed) */
+    int nonmanifold_edges, pinched, boundary_loops;
+    int corners_lost;         /* domain corners with no mesh vertex on them (-1 without domain) */
+    double bnd_vertex_dist;   /* max distance of a mesh boundary vertex from the domain boundary (absolute) */
+} qcheck;
+
+/* Run every check of q (tolerance tol, absolute, for the boundary distances;
+ * domain may be NULL: no domain checks). */
+glpgp_status glpgp_qcheck_run(const glpgp_quadmesh *q, const glpgp_mesh *domain, double h, double tol,
+                              qcheck *c);
+void glpgp_qcheck_free(qcheck *c);
+
+/* ---- small geometry shared with repair.c --------------------------------- */
+
+/* Uniform grid of axis-aligned boxes for candidate queries. */
+typedef struct bgrid {
+    double x0, y0, cs;
+    int nx, ny;
+    int *start, *item; /* CSR: cell -> items */
+    int *stamp, tick;  /* per item: last query that returned it */
+    int nitems;
+} bgrid;
+
+/* box[4 i .. 4 i + 3] = xmin, ymin, xmax, ymax of item i. cs: cell size hint. */
+glpgp_status glpgp_bgrid_build(bgrid *g, const double *box, int n, double cs);
+void glpgp_bgrid_free(bgrid *g);
+/* Items whose box may overlap [x0, x1] x [y0, y1] (each once) into *out
+ * (grown as needed, *cap its capacity); returns their count or -1 on OOM. */
+int glpgp_bgrid_query(bgrid *g, double x0, double y0, double x1, double y1, int **out, int *cap);
+
+/* 1 when the open segments ab and cd cross properly (their intersection is
+ * a single point interior to both, farther than eps from the four end
+ * points). */
+int glpgp_seg_cross(const double *a, const double *b, const double *c, const double *d, double eps);
+/* Distance from p to segment ab; *t: parameter of the nearest point. */
+double glpgp_seg_dist(const double *a, const double *b, const double *p, double *t);
+/* Winding test: 1 when p is inside polygon xy[2 v[i]] (n corners, either
+ * orientation) and farther than eps from its sides. */
+int glpgp_point_in_poly(const double *xy, const int *v, int n, const double *p, double eps);
+
+#endif

@@ -1,0 +1,286 @@
+/* hard_domains.h: CAD-like planar test domains for the quad extraction, as
+ * polygons with holes in units of the target quad size H (H = 1), with an
+ * optional local mesh size per point (graded meshes). Header-only: used by
+ * tests/quads/test_repair.c (in-process, meshed by Gmsh through
+ * glpgp_mesh_polygons) and by bench/hard_domains.c (writes Triangle .poly
+ * files for `glpgp mesh` / `glpgp solve`, bench/gmsh_compare.sh).
+ *
+ * hd_build(name, e, &p): the domain `name` with point size e (the wanted
+ * triangle edge; graded domains use e near the feature and up to 40 e far
+ * away). Names: see HD_NAMES. */
+#ifndef GLPGP_HARD_DOMAINS_H
+#define GLPGP_HARD_DOMAINS_H
+
+#include "glpgp/image.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define HD_PI 3.14159265358979323846
+
+/* slot      rectangle with a slot 0.3 H wide cut into it (narrower than H)
+ * strip     a strip 8 H long, 0.12 H wide (much narrower than H)
+ * smallhole square with a hole of radius 0.08 H and one of 0.3 H
+ * wedge20   a 20-degree wedge closed by an arc
+ * cusp      a crescent between two circles (tips of about 16 degrees) with a
+ *           0.5-degree spike cut into its outer side
+ * graded    NACA 0012 airfoil (chord 3 H) in a 14 x 10 H box: sizes e at the
+ *           airfoil, 40 e at the box corners (edge ratio >= 40)
+ * perforated plate 6 x 6 H with 25 holes of radius 0.12 H
+ * ibeam     I-beam section: flanges 6 x 0.8 H, web 0.25 H thick
+ * motor     lamination: annulus (radii 2.2 H / 4.5 H) with 8 slots 0.3 H
+ *           wide and 1.2 H deep between teeth, filleted slot bottoms
+ * fillet    L-shape with a fillet (radius 1.2 H) at the re-entrant corner
+ *           and spline-rounded outer corners (polylines)
+ * crack     square with a crack: a notch 0.01 H wide and 2.5 H long */
+#define HD_NAMES "slot strip smallhole wedge20 cusp graded perforated ibeam motor fillet crack"
+
+typedef struct hd_poly {
+    int n, cap_l;      /* loops */
+    int *start;        /* n + 1 */
+    double *xy, *size; /* points */
+    int np, cap_p;
+} hd_poly;
+
+static void hd_point(hd_poly *p, double x, double y, double s)
+{
+    if (p->np == p->cap_p) {
+        p->cap_p = p->cap_p ? 2 * p->cap_p : 256;
+        p->xy = realloc(p->xy, sizeof(double) * 2 * (size_t)p->cap_p);
+        p->size = realloc(p->size, sizeof(double) * (size_t)p->cap_p);
+    }
+    p->xy[2 * p->np] = x;
+    p->xy[2 * p->np + 1] = y;
+    p->size[p->np] = s;
+    p->np++;
+}
+
+static void hd_begin(hd_poly *p)
+{
+    if (p->n + 2 > p->cap_l) {
+        p->cap_l = p->cap_l ? 2 * p->cap_l : 16;
+        p->start = realloc(p->start, sizeof(int) * (size_t)p->cap_l);
+    }
+    p->start[p->n] = p->np;
+}
+static void hd_end(hd_poly *p)
+{
+    p->n++;
+    p->start[p->n] = p->np;
+}
+
+/* Segment from the last point to (x, y), points every <= s (the end point included). */
+static void hd_line_to(hd_poly *p, double x, double y, double s)
+{
+    double x0 = p->xy[2 * (p->np - 1)], y0 = p->xy[2 * (p->np - 1) + 1];
+    int k = (int)ceil(hypot(x - x0, y - y0) / s);
+    if (k < 1) k = 1;
+    for (int i = 1; i <= k; i++) hd_point(p, x0 + (x - x0) * i / k, y0 + (y - y0) * i / k, s);
+}
+/* Closed polygon through the corners c[0..n) (counter-clockwise or not). */
+static void hd_polygon(hd_poly *p, const double *c, int n, double s)
+{
+    hd_begin(p);
+    hd_point(p, c[0], c[1], s);
+    for (int i = 1; i < n; i++) hd_line_to(p, c[2 * i], c[2 * i + 1], s);
+    hd_line_to(p, c[0], c[1], s);
+    p->np--; /* the first point is not repeated */
+    hd_end(p);
+}
+static void hd_circle(hd_poly *p, double cx, double cy, double r, double s)
+{
+    int k = (int)ceil(2 * HD_PI * r / s);
+    if (k < 8) k = 8;
+    hd_begin(p);
+    for (int i = 0; i < k; i++) hd_point(p, cx + r * cos(2 * HD_PI * i / k), cy + r * sin(2 * HD_PI * i / k), s);
+    hd_end(p);
+}
+/* Arc (centre, radius, angles a0 -> a1, end point included, start not). */
+static void hd_arc(hd_poly *p, double cx, double cy, double r, double a0, double a1, double s)
+{
+    int k = (int)ceil(fabs(a1 - a0) * r / s);
+    if (k < 2) k = 2;
+    for (int i = 1; i <= k; i++) {
+        double a = a0 + (a1 - a0) * i / k;
+        hd_point(p, cx + r * cos(a), cy + r * sin(a), s);
+    }
+}
+
+static void hd_free(hd_poly *p)
+{
+    free(p->start);
+    free(p->xy);
+    free(p->size);
+    memset(p, 0, sizeof *p);
+}
+
+/* NACA 0012 half thickness at x in [0, 1]. */
+static double hd_naca(double x)
+{
+    return 0.6 * (0.2969 * sqrt(x) - 0.1260 * x - 0.3516 * x * x + 0.2843 * x * x * x - 0.1036 * x * x * x * x);
+}
+
+/* Build domain `name` (H = 1) with triangle edge e. Returns 0 on an unknown name. */
+static int hd_build(const char *name, double e, hd_poly *p)
+{
+    memset(p, 0, sizeof *p);
+    if (!strcmp(name, "slot")) {
+        double c[] = {0, 0, 6, 0, 6, 4, 3.15, 4, 3.15, 1.2, 2.85, 1.2, 2.85, 4, 0, 4};
+        hd_polygon(p, c, 8, e);
+    } else if (!strcmp(name, "strip")) {
+        double c[] = {0, 0, 8, 0, 8, 0.12, 0, 0.12};
+        hd_polygon(p, c, 4, fmin(e, 0.04));
+    } else if (!strcmp(name, "smallhole")) {
+        double c[] = {0, 0, 5, 0, 5, 5, 0, 5};
+        hd_polygon(p, c, 4, e);
+        hd_circle(p, 1.7, 2.3, 0.08, fmin(e, 0.05));
+        hd_circle(p, 3.4, 3.1, 0.3, fmin(e, 0.1));
+    } else if (!strcmp(name, "wedge20")) {
+        double a = 10.0 * HD_PI / 180.0, R = 7.0;
+        hd_begin(p);
+        hd_point(p, 0, 0, e);
+        hd_line_to(p, R * cos(-a), R * sin(-a), e);
+        hd_arc(p, 0, 0, R, -a, a, e);
+        hd_line_to(p, 0, 0, e);
+        p->np--;
+        hd_end(p);
+    } else if (!strcmp(name, "cusp")) {
+        /* crescent: disk (0,0,3) minus disk (0.9,0,2.5): tips where they cross */
+        double R = 3.0, cx = 0.9, r = 2.5;
+        double xi = (R * R - r * r + cx * cx) / (2 * cx), yi = sqrt(R * R - xi * xi);
+        double A0 = atan2(yi, xi), A1 = atan2(yi, xi - cx);
+        hd_begin(p);
+        hd_point(p, xi, yi, e);
+        /* outer arc counter-clockwise from the upper tip to the lower tip, with a
+         * thin spike cut in at the far left */
+        int k = (int)ceil((2 * HD_PI - 2 * A0) * R / e);
+        int spike = 0;
+        for (int i = 1; i < k; i++) {
+            double a = A0 + (2 * HD_PI - 2 * A0) * i / k;
+            if (!spike && a >= HD_PI) { /* spike tip: 2 atan(0.005 / 1.2) = 0.5 deg */
+                double ds = 0.005 / R;
+                hd_point(p, R * cos(HD_PI - ds), R * sin(HD_PI - ds), e);
+                hd_point(p, -R + 1.2, 0.0, e);
+                hd_point(p, R * cos(HD_PI + ds), R * sin(HD_PI + ds), e);
+                spike = 1;
+                if (a - HD_PI < 0.3 * (2 * HD_PI - 2 * A0) / k) continue;
+            }
+            hd_point(p, R * cos(a), R * sin(a), e);
+        }
+        hd_point(p, xi, -yi, e);
+        /* inner arc clockwise back to the upper tip */
+        hd_arc(p, cx, 0, r, -A1, -(2 * HD_PI - A1), e);
+        p->np--;
+        hd_end(p);
+    } else if (!strcmp(name, "graded")) {
+        double big = 40 * e;
+        double c[] = {-5, -5, 9, -5, 9, 5, -5, 5};
+        hd_begin(p);
+        for (int i = 0; i < 4; i++) {
+            hd_point(p, c[2 * i], c[2 * i + 1], big);
+            /* a few points along the sides, sized by distance to the airfoil */
+            double nx = c[2 * ((i + 1) % 4)], ny = c[2 * ((i + 1) % 4) + 1];
+            for (int k = 1; k < 4; k++) {
+                double x = c[2 * i] + (nx - c[2 * i]) * k / 4, y = c[2 * i + 1] + (ny - c[2 * i + 1]) * k / 4;
+                hd_point(p, x, y, big);
+            }
+        }
+        hd_end(p);
+        /* airfoil, chord 3 from (0, 0) to (3, 0), clockwise (a hole) */
+        hd_begin(p);
+        int k = (int)ceil(3.0 / e);
+        for (int i = 0; i < k; i++) { /* upper side from the trailing edge to the leading edge, cosine spacing */
+            double t = 0.5 * (1 + cos(HD_PI * i / k));
+            hd_point(p, 3 * t, 3 * hd_naca(t), e);
+        }
+        for (int i = 0; i < k; i++) {
+            double t = 0.5 * (1 - cos(HD_PI * i / k));
+            hd_point(p, 3 * t, -3 * hd_naca(t), e);
+        }
+        hd_end(p);
+    } else if (!strcmp(name, "perforated")) {
+        double c[] = {0, 0, 6, 0, 6, 6, 0, 6};
+        hd_polygon(p, c, 4, e);
+        for (int i = 0; i < 5; i++)
+            for (int j = 0; j < 5; j++) hd_circle(p, 1 + i, 1 + j + 0.1 * (i % 2), 0.12, fmin(e, 0.06));
+    } else if (!strcmp(name, "ibeam")) {
+        double w = 0.125;
+        double c[] = {0, 0, 6, 0, 6, 0.8, 3 + w, 0.8, 3 + w, 4.2, 6, 4.2, 6, 5, 0, 5, 0, 4.2, 3 - w, 4.2, 3 - w, 0.8, 0, 0.8};
+        hd_polygon(p, c, 12, fmin(e, 0.08));
+    } else if (!strcmp(name, "motor")) {
+        double Ro = 4.5, Ri = 2.2, depth = 1.2, half = 0.15;
+        int ns = 8;
+        /* outer circle */
+        hd_circle(p, 0, 0, Ro, e);
+        /* bore with slots, clockwise (a hole): slot i at angle -2 pi i / ns */
+        hd_begin(p);
+        double da = half / Ri; /* slot half width as an angle on the bore */
+        double step = 2 * HD_PI / ns;
+        hd_point(p, Ri * cos(step - da), Ri * sin(step - da), e);
+        for (int i = 0; i < ns; i++) {
+            double a = -step * i;
+            hd_arc(p, 0, 0, Ri, a + step - da, a + da, e); /* bore, clockwise */
+            double ux = cos(a), uy = sin(a), vx = -sin(a), vy = cos(a);
+            double bx = (Ri + depth) * ux, by = (Ri + depth) * uy;
+            hd_line_to(p, bx + half * vx, by + half * vy, fmin(e, 0.1));
+            for (int k = 1; k < 8; k++) { /* round slot bottom */
+                double t = HD_PI * k / 8;
+                hd_point(p, bx + half * (cos(t) * vx + sin(t) * ux), by + half * (cos(t) * vy + sin(t) * uy),
+                         fmin(e, 0.05));
+            }
+            hd_point(p, bx - half * vx, by - half * vy, fmin(e, 0.05));
+            hd_line_to(p, Ri * cos(a - da), Ri * sin(a - da), fmin(e, 0.1));
+        }
+        p->np--; /* the last point repeats the first */
+        hd_end(p);
+    } else if (!strcmp(name, "fillet")) {
+        double rf = 1.2, rc = 0.4;
+        hd_begin(p);
+        /* L: (0,0) (6,0) (6,3) (3,3) (3,6) (0,6), re-entrant corner at (3,3) */
+        hd_point(p, rc, 0, e);
+        hd_line_to(p, 6 - rc, 0, e);
+        hd_arc(p, 6 - rc, rc, rc, -HD_PI / 2, 0, fmin(e, 0.1));
+        hd_line_to(p, 6, 3 - rc, e);
+        hd_arc(p, 6 - rc, 3 - rc, rc, 0, HD_PI / 2, fmin(e, 0.1));
+        hd_line_to(p, 3 + rf, 3, e);
+        hd_arc(p, 3 + rf, 3 + rf, rf, -HD_PI / 2, -HD_PI, e); /* concave fillet */
+        hd_line_to(p, 3, 6 - rc, e);
+        hd_arc(p, 3 - rc, 6 - rc, rc, 0, HD_PI / 2, fmin(e, 0.1));
+        hd_line_to(p, rc, 6, e);
+        hd_arc(p, rc, 6 - rc, rc, HD_PI / 2, HD_PI, fmin(e, 0.1));
+        hd_line_to(p, 0, rc, e);
+        hd_arc(p, rc, rc, rc, HD_PI, 1.5 * HD_PI, fmin(e, 0.1));
+        p->np--;
+        hd_end(p);
+    } else if (!strcmp(name, "crack")) {
+        double c[] = {0, 0, 5, 0, 5, 5, 0, 5, 0, 2.505, 2.5, 2.505, 2.5, 2.495, 0, 2.495};
+        hd_polygon(p, c, 8, e);
+    } else {
+        return 0;
+    }
+    return 1;
+}
+
+/* As glpgp_polygons (areas, orientation and parents by nesting are worked
+ * out by glpgp_polygons_read; here through a .poly round trip is not
+ * needed: the loops are written as they are). */
+static int hd_write_poly(const hd_poly *p, const char *path)
+{
+    FILE *f = fopen(path, "w");
+    if (!f) return 0;
+    fprintf(f, "# glpgp hard test domain (tests/quads/hard_domains.h)\n%d 2 1 0\n", p->np);
+    for (int i = 0; i < p->np; i++) fprintf(f, "%d %.17g %.17g %.17g\n", i, p->xy[2 * i], p->xy[2 * i + 1], p->size[i]);
+    fprintf(f, "%d 0\n", p->np);
+    int k = 0;
+    for (int l = 0; l < p->n; l++)
+        for (int i = p->start[l]; i < p->start[l + 1]; i++) {
+            int j = i + 1 < p->start[l + 1] ? i + 1 : p->start[l];
+            fprintf(f, "%d %d %d\n", k++, i, j);
+        }
+    fprintf(f, "0\n");
+    return fclose(f) == 0;
+}
+
+#endif
