@@ -14,6 +14,7 @@ int glpgp_cmd_generate(int argc, char **argv)
 {
     static const char *const exts[] = {".obj", ".msh", NULL};
     int nverts = (int)GLPGP_SHAPE_DEFAULT_VERTICES, verbosity = 1;
+    long max_elements = GLPGP_DEFAULT_MAX_ELEMENTS;
     const char *out = NULL, *shape = NULL;
     glpgp_opts t;
     glpgp_opts_init(&t, "generate", "glpgp generate SHAPE [--vertices N] -o FILE",
@@ -24,6 +25,7 @@ int glpgp_cmd_generate(int argc, char **argv)
     o->alias = "-n";
     o = glpgp_opt_string(&t, "--out", &out, "FILE", "output mesh, .obj or .msh (Gmsh 4.1 ASCII)");
     o->alias = "-o";
+    glpgp_opts_add_limits(&t, &max_elements, NULL);
     glpgp_opts_add_verbosity(&t, &verbosity);
     int npos = 0;
     int rc = glpgp_opts_parse(&t, argc, argv, &shape, 1, &npos);
@@ -39,6 +41,8 @@ int glpgp_cmd_generate(int argc, char **argv)
         return rc;
     }
     if ((rc = glpgp_cli_check_output("generate", "--out", out, exts)) >= 0) return rc;
+    /* about 2 triangles per vertex */
+    if ((rc = glpgp_cli_check_elements(name, 2L * nverts, "triangles", 1, max_elements)) >= 0) return rc;
     glpgp_mesh *m = NULL;
     if (glpgp_mesh_generate(name, nverts, &m) != GLPGP_OK) return glpgp_cli_fail();
     rc = 0;

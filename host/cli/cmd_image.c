@@ -17,10 +17,13 @@
 #include <stdio.h>
 #include <string.h>
 
-/* -o OUT: an image type OpenImageIO writes, in a writable directory. */
-static int check_picture_out(const char *sub, const char *out)
+/* -o OUT: an image type OpenImageIO writes, in a writable directory; panels
+ * pictures of at most --image-size^2 pixels each within --max-pixels. */
+static int check_picture_out(const char *sub, const char *out, int size, int panels, long long max_pixels)
 {
     if (!out) return glpgp_cli_usage_error(sub, "missing -o OUT.png");
+    int rc = glpgp_cli_check_picture_size(sub, size, panels, max_pixels);
+    if (rc >= 0) return rc;
     if (!glpgp_cli_need_images(1, 0)) return GLPGP_EXIT_FAIL;
     if (!glpgp_image_path_writable(out))
         return glpgp_cli_usage_error(sub, "-o: cannot write images of type '%s' (try .png, .exr, .tif, .jpg)", out);
@@ -33,6 +36,8 @@ int glpgp_cmd_render(int argc, char **argv)
 {
     const char *sub = "render", *in = NULL, *out = NULL;
     int verbosity = 1;
+    long max_elements = GLPGP_DEFAULT_MAX_ELEMENTS;
+    long long max_pixels = GLPGP_DEFAULT_MAX_PIXELS;
     glpgp_render_options ro;
     glpgp_render_options_default(&ro);
     glpgp_opts t;
@@ -43,22 +48,25 @@ int glpgp_cmd_render(int argc, char **argv)
     glpgp_opt *o = glpgp_opt_string(&t, "--out", &out, "FILE", "picture file");
     o->alias = "-o";
     glpgp_opts_add_picture(&t, &ro, 1);
+    glpgp_opts_add_limits(&t, &max_elements, &max_pixels);
     glpgp_opts_add_verbosity(&t, &verbosity);
     int npos = 0;
     int rc = glpgp_opts_parse(&t, argc, argv, &in, 1, &npos);
     if (rc >= 0) return rc;
     glpgp_cli_set_verbosity(verbosity);
     if (!in) return glpgp_cli_usage_error(sub, "missing RESULT.vtk");
-    if ((rc = check_picture_out(sub, out)) >= 0) return rc;
+    if ((rc = check_picture_out(sub, out, ro.size, 1, max_pixels)) >= 0) return rc;
     glpgp_error_clear();
     glpgp_mesh *m = NULL;
     glpgp_result *r = NULL;
     glpgp_image *im = NULL;
-    rc = 0;
-    if (glpgp_read_result(in, &m, &r) != GLPGP_OK || glpgp_render(m, r, &ro, &im) != GLPGP_OK ||
-        glpgp_image_write(out, im) != GLPGP_OK)
+    rc = -1;
+    if (glpgp_read_result(in, &m, &r) != GLPGP_OK) rc = glpgp_cli_fail();
+    if (rc < 0) rc = glpgp_cli_check_elements(in, m->nt, "triangles", 0, max_elements);
+    if (rc < 0 && (glpgp_render(m, r, &ro, &im) != GLPGP_OK || glpgp_image_write(out, im) != GLPGP_OK))
         rc = glpgp_cli_fail();
-    else if (verbosity > 0)
+    if (rc < 0) rc = 0;
+    if (rc == 0 && verbosity > 0)
         printf("glpgp: %s: %d x %d %s picture -> %s (singular triangles u: %d, v: %d)\n", in, im->w,
                im->h, glpgp_image_kind_name(ro.kind), out, r->osc[0].plus + r->osc[0].minus,
                r->osc[1].plus + r->osc[1].minus);
@@ -104,6 +112,7 @@ int glpgp_cmd_mesh(int argc, char **argv)
     o = glpgp_opt_double(&t, "--size", &mo.quad_size, 0.0, 1, HUGE_VAL, 0, "H",
                          "the quad size the mesh is for (sets the default mesh size)");
     o->def = "";
+    glpgp_opts_add_limits(&t, &mo.max_triangles, &mo.max_pixels);
     glpgp_opts_add_verbosity(&t, &verbosity);
     int npos = 0;
     int rc = glpgp_opts_parse(&t, argc, argv, &in, 1, &npos);
@@ -152,13 +161,14 @@ int glpgp_cmd_figure(int argc, char **argv)
     glpgp_opts_add_backend(&t, &backend, &device);
     glpgp_opts_group(&t, "Mask image input (INPUT = image)");
     glpgp_opts_add_mask(&t, &mo);
+    glpgp_opts_add_limits(&t, &mo.max_triangles, &mo.max_pixels);
     glpgp_opts_add_verbosity(&t, &verbosity);
     int npos = 0;
     int rc = glpgp_opts_parse(&t, argc, argv, &in, 1, &npos);
     if (rc >= 0) return rc;
     glpgp_cli_set_verbosity(verbosity);
     if (!in) return glpgp_cli_usage_error(sub, "missing INPUT");
-    if ((rc = check_picture_out(sub, out)) >= 0) return rc;
+    if ((rc = check_picture_out(sub, out, ro.size, 2, mo.max_pixels)) >= 0) return rc;
     glpgp_error_clear();
     mo.quad_size = so.size;
     glpgp_mesh *m = NULL;

@@ -104,6 +104,9 @@ int glpgp_cmd_crosscheck(int argc, char **argv)
     o->def = "$GLPGP_DEVICE or the first fp64 device";
     glpgp_opt_double(&t, "--tol-scale", &co.tol_scale, 0.0, 1, HUGE_VAL, 0, "F", "multiply every tolerance by F");
     glpgp_opt_flag(&t, "--no-solve", &no_solve, 1, "skip the whole GL solve stage");
+    glpgp_mask_options mo;
+    glpgp_mask_options_default(&mo);
+    glpgp_opts_add_limits(&t, &mo.max_triangles, &mo.max_pixels);
     glpgp_opts_add_verbosity(&t, &verbosity);
     t.epilog = "Tolerances (|a-b| <= atol + rtol |b|): assembly, gradient, spmv, dot rtol 1e-12;\n"
                "CG, Newton step and GL solve rtol 1e-6 on z (1e-4 for an oscillator whose GL\n"
@@ -117,8 +120,6 @@ int glpgp_cmd_crosscheck(int argc, char **argv)
     co.solve = !no_solve;
     if (!input) return glpgp_cli_usage_error("crosscheck", "missing INPUT (a .obj/.msh file or shape:NAME[:N])");
     glpgp_mesh *m = NULL;
-    glpgp_mask_options mo;
-    glpgp_mask_options_default(&mo);
     if ((rc = glpgp_cli_load_input("crosscheck", input, &mo, &m, NULL)) >= 0) return rc;
     co.mesh = m;
     glpgp_crosscheck *tab = NULL;

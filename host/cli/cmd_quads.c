@@ -27,6 +27,7 @@ int glpgp_cmd_extract(int argc, char **argv)
     const char *sub = "extract", *in = NULL, *quads = NULL, *stats = NULL;
     double size = 0.0;
     int verbosity = 1, qgiven = 0, allow_invalid = 0;
+    long max_elements = GLPGP_DEFAULT_MAX_ELEMENTS;
     glpgp_quad_options qo;
     glpgp_quad_options_default(&qo);
     glpgp_opts t;
@@ -42,6 +43,7 @@ int glpgp_cmd_extract(int argc, char **argv)
     glpgp_opt *o = glpgp_opt_double(&t, "--size", &size, 0.0, 1, HUGE_VAL, 0, "H", "target size h");
     o->def = "the h recorded in RESULT";
     glpgp_opts_add_quads(&t, &qo, &qgiven, &allow_invalid);
+    glpgp_opts_add_limits(&t, &max_elements, NULL);
     glpgp_opts_add_verbosity(&t, &verbosity);
     int npos = 0;
     int rc = glpgp_opts_parse(&t, argc, argv, &in, 1, &npos);
@@ -61,8 +63,30 @@ int glpgp_cmd_extract(int argc, char **argv)
     glpgp_quad_quality qq;
     rc = GLPGP_EXIT_FAIL;
     if (glpgp_read_result(in, &m, &r) != GLPGP_OK) goto fail;
+    if ((rc = glpgp_cli_check_elements(in, m->nt, "triangles", 0, max_elements)) >= 0) goto done;
+    rc = GLPGP_EXIT_FAIL;
     if (size > 0) r->size = size;
     if (!(r->size > 0)) r->size = glpgp_default_size(m, NULL);
+    {
+        /* h within the limits solve uses (2 mean edges .. 100 diameters): a
+         * recorded h of 1e-300 would make the extraction print 300-digit
+         * numbers, one of 1e300 find no grid line */
+        glpgp_options so;
+        glpgp_options_default(&so);
+        so.size = r->size;
+        if (glpgp_options_check_mesh(&so, m) != GLPGP_OK) {
+            if (size > 0) {
+                rc = glpgp_cli_usage_error(sub, "--size: %s", glpgp_error_message());
+                glpgp_error_clear();
+                goto done;
+            }
+            char msg[1024];
+            snprintf(msg, sizeof msg, "%s", glpgp_error_message());
+            glpgp_error_clear();
+            GLPGP_FAIL(GLPGP_ERR_FORMAT, "%s: the recorded %s (give --size H)", in, msg);
+            goto fail;
+        }
+    }
     double h = r->size;
     if (glpgp_quads_build(m, r, &qo, &q, &h) != GLPGP_OK) goto fail;
     if (glpgp_quads_quality(q, m, h, &qq) != GLPGP_OK) goto fail;
@@ -100,6 +124,7 @@ int glpgp_cmd_quality(int argc, char **argv)
     const char *sub = "quality", *in = NULL, *domain = NULL, *stats = NULL;
     double size = 0.0;
     int verbosity = 1, allow_invalid = 0;
+    long max_elements = GLPGP_DEFAULT_MAX_ELEMENTS;
     glpgp_opts t;
     glpgp_opts_init(&t, sub, "glpgp quality MESH.msh [options]",
                     "Quality report (valences, scaled Jacobian, edge lengths, boundary distance)\n"
@@ -112,6 +137,7 @@ int glpgp_cmd_quality(int argc, char **argv)
     glpgp_opt_string(&t, "--stats", &stats, "FILE", "report as JSON {\"quads\": {...}}");
     glpgp_opt_flag(&t, "--allow-invalid", &allow_invalid, 1,
                    "exit 0 on an invalid mesh, with a warning (default: exit code 3)");
+    glpgp_opts_add_limits(&t, &max_elements, NULL);
     glpgp_opts_add_verbosity(&t, &verbosity);
     t.epilog = "Faces are read in the file's orientation; the report takes one orientation for the\n"
                "whole mesh (the sign of its total area), so a folded face counts as inverted.\n"
@@ -129,8 +155,12 @@ int glpgp_cmd_quality(int argc, char **argv)
     glpgp_mesh *dm = NULL;
     rc = GLPGP_EXIT_FAIL;
     if (glpgp_quads_read_msh(in, &q) != GLPGP_OK) goto fail;
+    if ((rc = glpgp_cli_check_elements(in, q->nf, "faces", 0, max_elements)) >= 0) goto done;
+    rc = GLPGP_EXIT_FAIL;
     if (domain && glpgp_mesh_read(domain, &dm) != GLPGP_OK) goto fail;
-    if (!(size > 0)) { /* mean edge length */
+    if (dm && (rc = glpgp_cli_check_elements(domain, dm->nt, "triangles", 0, max_elements)) >= 0) goto done;
+    rc = GLPGP_EXIT_FAIL;
+    {
         double s = 0.0;
         long n = 0;
         for (int f = 0; f < q->nf; f++) {
@@ -141,7 +171,15 @@ int glpgp_cmd_quality(int argc, char **argv)
                 n++;
             }
         }
-        size = n ? s / (double)n : 1.0;
+        double mean = n ? s / (double)n : 1.0;
+        if (!(size > 0)) {
+            size = mean;
+        } else if (mean > 0 && !(size >= 1e-3 * mean && size <= 1e3 * mean)) {
+            /* the report divides lengths by h: keep them readable */
+            rc = glpgp_cli_usage_error(sub, "--size: h = %g is %.3g mean edge lengths of '%s': it must be "
+                                            "within 1e-3 .. 1e3 of them", size, size / mean, in);
+            goto done;
+        }
     }
     glpgp_quad_quality qq;
     if (glpgp_quads_quality(q, dm, size, &qq) != GLPGP_OK) goto fail;

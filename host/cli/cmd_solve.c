@@ -70,6 +70,7 @@ static void build(glpgp_opts *t, solve_cli *c)
     glpgp_opts_add_picture(t, &c->ro, 0);
     glpgp_opts_group(t, "Mask image input (INPUT = image)");
     glpgp_opts_add_mask(t, &c->mo);
+    glpgp_opts_add_limits(t, &c->mo.max_triangles, &c->mo.max_pixels);
     glpgp_opts_add_verbosity(t, &c->verbosity);
     t->epilog = "Files are written only after a successful solve, atomically (no partial file is\n"
                 "ever left; a failed run leaves existing files untouched). A summary is printed\n"
@@ -95,6 +96,7 @@ static int check(solve_cli *c, const char *input)
     if (c->stats && (rc = glpgp_cli_check_output(sub, "--stats", c->stats, NULL)) >= 0) return rc;
     if (c->quads && (rc = glpgp_cli_check_output(sub, "--quads", c->quads, k_quad_exts)) >= 0) return rc;
     if (c->image) {
+        if ((rc = glpgp_cli_check_picture_size(sub, c->ro.size, 1, c->mo.max_pixels)) >= 0) return rc;
         glpgp_error_clear();
         if (glpgp_oiio_load() == GLPGP_ERR_UNSUPPORTED) {
             glpgp_error_clear();
@@ -171,6 +173,16 @@ int glpgp_cmd_solve(int argc, char **argv)
         return rc;
     }
     rc = GLPGP_EXIT_FAIL;
+    if (c.o.field == GLPGP_FIELD_FILE) {
+        /* read the field file now: a bad one fails before the backend starts
+         * (the solve reads it again) */
+        double *u = NULL;
+        long cg = 0;
+        glpgp_status st = glpgp_malloc(2 * (size_t)m->nv, sizeof *u, &u);
+        if (st == GLPGP_OK) st = glpgp_field_compute(m, NULL, &c.o, u, &cg);
+        free(u);
+        if (st != GLPGP_OK) goto fail;
+    }
 
     /* triangles coarser than the local size: refined (longest-edge
      * bisection), the size h fixed from the input mesh first */

@@ -19,11 +19,23 @@ int glpgp_cmd_mesh(int argc, char **argv);
 int glpgp_cmd_figure(int argc, char **argv);
 
 /* Load INPUT: shape:NAME[:N], a mask image (meshed with mo) or a mesh file.
+ * mo->max_triangles (--max-elements) limits every kind: the estimate of
+ * shape:NAME:N (2 N) and of a mask (before Gmsh), the triangles of a file
+ * (after reading: the readers' memory is bounded by the file size).
  * *is_mask (may be NULL) tells whether it was an image. Returns -1 on
  * success, else the exit code after printing the error (2 for a malformed
  * shape:..., 1 otherwise). */
 int glpgp_cli_load_input(const char *cmd, const char *input, const glpgp_mask_options *mo,
                          glpgp_mesh **m, int *is_mask);
+
+/* --max-elements: -1 when count <= max (max <= 0: the default), else print
+ * "glpgp: error: WHAT: [about ]COUNT ITEMS: more than the limit of MAX
+ * (--max-elements)" and return 1. */
+int glpgp_cli_check_elements(const char *what, long count, const char *items, int approx, long max);
+
+/* --image-size vs --max-pixels: -1 when panels pictures of size x size
+ * pixels fit in max_pixels (<= 0: the default), else a usage error (2). */
+int glpgp_cli_check_picture_size(const char *cmd, int size, int panels, long long max_pixels);
 
 /* Whether the image modules a command needs are built in (prints the error
  * and returns 0 when not). */

@@ -24,19 +24,42 @@ int glpgp_cli_need_images(int oiio, int gmsh)
     return 1;
 }
 
+int glpgp_cli_check_elements(const char *what, long count, const char *items, int approx, long max)
+{
+    if (max <= 0) max = GLPGP_DEFAULT_MAX_ELEMENTS;
+    if (count <= max) return -1;
+    glpgp_error_clear();
+    GLPGP_FAIL(GLPGP_ERR_LIMIT, "%s: %s%ld %s: more than the limit of %ld (--max-elements)", what,
+               approx ? "about " : "", count, items, max);
+    return glpgp_cli_fail();
+}
+
+int glpgp_cli_check_picture_size(const char *cmd, int size, int panels, long long max_pixels)
+{
+    long long n = (long long)size * size * panels;
+    if (max_pixels <= 0) max_pixels = GLPGP_DEFAULT_MAX_PIXELS;
+    if (n <= max_pixels) return -1;
+    return glpgp_cli_usage_error(cmd, "--image-size %d: up to %lld pixels, more than the limit of %lld "
+                                      "(--max-pixels)", size, n, max_pixels);
+}
+
 int glpgp_cli_load_input(const char *cmd, const char *input, const glpgp_mask_options *mo,
                          glpgp_mesh **m, int *is_mask)
 {
     *m = NULL;
     if (is_mask) *is_mask = 0;
+    int rc;
     if (strncmp(input, "shape:", 6) == 0) {
         char name[64];
         long nverts;
         if (glpgp_shape_parse(input, 0, name, sizeof name, &nverts) != GLPGP_OK) {
-            int rc = glpgp_cli_usage_error(cmd, "INPUT %s", glpgp_error_message());
+            rc = glpgp_cli_usage_error(cmd, "INPUT %s", glpgp_error_message());
             glpgp_error_clear();
             return rc;
         }
+        /* a built-in shape has about 2 triangles per vertex */
+        if ((rc = glpgp_cli_check_elements(input, 2 * nverts, "triangles", 1, mo->max_triangles)) >= 0)
+            return rc;
         if (glpgp_mesh_generate(name, nverts, m) != GLPGP_OK) return glpgp_cli_fail();
         return -1;
     }
@@ -51,6 +74,10 @@ int glpgp_cli_load_input(const char *cmd, const char *input, const glpgp_mask_op
         return -1;
     }
     if (glpgp_mesh_read(input, m) != GLPGP_OK) return glpgp_cli_fail();
+    if ((rc = glpgp_cli_check_elements(input, (*m)->nt, "triangles", 0, mo->max_triangles)) >= 0) {
+        glpgp_mesh_destroy(m);
+        return rc;
+    }
     return -1;
 }
 

@@ -4,6 +4,8 @@
 
 #include "cli.h"
 
+#include "glpgp/io.h"
+
 #include <limits.h>
 #include <math.h>
 #include <stdio.h>
@@ -540,4 +542,49 @@ void glpgp_opts_add_mask(glpgp_opts *t, glpgp_mask_options *m)
                          "Gmsh 2D algorithm: Frontal-Delaunay, or Delaunay (faster on\n"
                          "huge meshes)");
     o->def = "frontal";
+    glpgp_opt_double(t, "--mesh-timeout", &m->timeout, 0.0, 0, HUGE_VAL, 0, "S",
+                         "stop Gmsh after S seconds (0: no limit)");
+}
+
+static const char *parse_max_elements(const char *v, void *dest)
+{
+    long n;
+    if (!glpgp_cli_long(v, 1, GLPGP_IO_MAX_ITEMS, &n)) return "is not an integer in [1, 536870911]";
+    *(long *)dest = n;
+    return NULL;
+}
+
+static const char *parse_max_pixels(const char *v, void *dest)
+{
+    long n;
+    if (!glpgp_cli_long(v, 1, LONG_MAX, &n)) return "is not a positive integer";
+    *(long long *)dest = n;
+    return NULL;
+}
+
+void glpgp_opts_add_limits(glpgp_opts *t, long *max_elements, long long *max_pixels)
+{
+    static char def_elements[32], def_pixels[32];
+    snprintf(def_elements, sizeof def_elements, "%ld", (long)GLPGP_DEFAULT_MAX_ELEMENTS);
+    snprintf(def_pixels, sizeof def_pixels, "%lld", (long long)GLPGP_DEFAULT_MAX_PIXELS);
+    glpgp_opts_group(t, "Limits");
+    glpgp_opt c = {0};
+    c.name = "--max-elements";
+    c.kind = GLPGP_OPT_CUSTOM;
+    c.dest = max_elements;
+    c.parse = parse_max_elements;
+    c.meta = "N";
+    c.help = "refuse meshes with more triangles (or faces) than N: files,\n"
+             "shape:NAME:N (about 2 N), and masks (estimated before Gmsh)";
+    c.def = def_elements;
+    glpgp_opts_add(t, c);
+    if (max_pixels) {
+        c.name = "--max-pixels";
+        c.dest = max_pixels;
+        c.parse = parse_max_pixels;
+        c.help = "refuse mask images (width x height, read from the header\n"
+                 "before any pixel) and pictures (--image-size^2) with more pixels";
+        c.def = def_pixels;
+        glpgp_opts_add(t, c);
+    }
 }

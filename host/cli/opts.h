@@ -102,7 +102,13 @@ void glpgp_opts_add_backend(glpgp_opts *t, int *kind, int *device);
 void glpgp_opts_add_quads(glpgp_opts *t, glpgp_quad_options *q, int *given, int *allow_invalid);
 /* --image-size, --image-kind, --background[, --line-width]. */
 void glpgp_opts_add_picture(glpgp_opts *t, glpgp_render_options *r, int line_width);
-/* --threshold, --invert, --pixel-size, --mesh-size, --min-area, --simplify, --algorithm. */
+/* --threshold, --invert, --pixel-size, --mesh-size, --min-area, --simplify, --algorithm,
+ * --mesh-timeout. */
 void glpgp_opts_add_mask(glpgp_opts *t, glpgp_mask_options *m);
+/* Limits (group "Limits"): --max-elements N into *max_elements (the
+ * triangles / faces of any mesh the command reads, generates or meshes,
+ * 1 .. GLPGP_IO_MAX_ITEMS) and, when max_pixels is not NULL, --max-pixels N
+ * (width x height of a mask image read or a picture written, >= 1). */
+void glpgp_opts_add_limits(glpgp_opts *t, long *max_elements, long long *max_pixels);
 
 #endif

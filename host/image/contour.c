@@ -373,12 +373,7 @@ glpgp_status glpgp_contours(const float *v, int w, int h, const glpgp_contour_op
             loops.n = 2 * first;
             continue;
         }
-        GLPGP_CHECK_GOTO(st, glpgp_simplify_closed(xy, &n, o.tolerance), done2);
-        if (n < 3) {
-            loops.n = 2 * first;
-            continue;
-        }
-        loops.n = 2 * (first + (size_t)n);
+        /* simplified at the end, all loops together (glpgp_polygons_simplify) */
         GLPGP_CHECK_GOTO(st, ibuf_push(&lstart, (int)first), done2);
     }
     GLPGP_CHECK_GOTO(st, ibuf_push(&lstart, (int)(loops.n / 2)), done2);
@@ -447,6 +442,10 @@ glpgp_status glpgp_contours(const float *v, int w, int h, const glpgp_contour_op
             st = GLPGP_FAIL(GLPGP_ERR_NUMERIC, "contour: hole %d lies in no outer boundary", l);
             goto done2;
         }
+    /* Douglas-Peucker without changing the topology (a loop that would cross
+     * or touch another is simplified less) */
+    if (o.tolerance > 0)
+        GLPGP_CHECK_GOTO(st, glpgp_polygons_simplify(P, o.tolerance * s, GLPGP_CONTOUR_MIN_DIST * s), done2);
     *out = P;
     P = NULL;
 
@@ -465,5 +464,328 @@ done:
     free(hid_a);
     free(hid_b);
     free(vid);
+    return st;
+}
+
+/* ---- topology checks and topology-preserving simplification --------------- */
+
+typedef struct seg_ref {
+    double xmin;
+    int loop, i; /* segment from point i to point i + 1 (mod n) of loop */
+} seg_ref;
+
+static int cmp_seg(const void *a, const void *b)
+{
+    double x = ((const seg_ref *)a)->xmin, y = ((const seg_ref *)b)->xmin;
+    return (x > y) - (x < y);
+}
+
+/* orientation of (a, b, c): > 0 counter-clockwise */
+static double orient(const double *a, const double *b, const double *c)
+{
+    return (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
+}
+
+/* Problems between the boundary segments of p: two segments that cross or
+ * touch, non-adjacent segments closer than min_dist, adjacent segments that
+ * fold back onto each other (a spike narrower than min_dist) or have zero
+ * length. Sweep over the segments sorted by their smallest x: each segment is
+ * tested against those whose x-range overlaps its own (widened by min_dist).
+ * bad (p->n flags, may be NULL) marks every loop involved. Returns the number
+ * of problems (-1: out of memory, recorded); the first one's position is
+ * where[0..1] and *cross tells whether it is a crossing (1) or a
+ * near-contact (0). */
+static long polygon_problems(const glpgp_polygons *p, double min_dist, unsigned char *bad,
+                             double where[2], int *cross)
+{
+    const int ns = p->start[p->n];
+    seg_ref *sg = NULL;
+    if (ns <= 0) return 0;
+    if (glpgp_malloc((size_t)ns, sizeof *sg, &sg) != GLPGP_OK) return -1;
+    for (int l = 0; l < p->n; l++)
+        for (int k = p->start[l]; k < p->start[l + 1]; k++) {
+            int n = p->start[l + 1] - p->start[l], i = k - p->start[l];
+            int k1 = p->start[l] + (i + 1) % n;
+            sg[k].xmin = fmin(p->xy[2 * k], p->xy[2 * k1]);
+            sg[k].loop = l;
+            sg[k].i = i;
+        }
+    qsort(sg, (size_t)ns, sizeof *sg, cmp_seg);
+    const double d2 = min_dist * min_dist;
+    long count = 0;
+    for (int s = 0; s < ns; s++) {
+        const int la = sg[s].loop, na = p->start[la + 1] - p->start[la];
+        const double *a0 = p->xy + 2 * (p->start[la] + sg[s].i);
+        const double *a1 = p->xy + 2 * (p->start[la] + (sg[s].i + 1) % na);
+        const double axmax = fmax(a0[0], a1[0]) + min_dist;
+        const double aymin = fmin(a0[1], a1[1]) - min_dist, aymax = fmax(a0[1], a1[1]) + min_dist;
+        int problem = 0, is_cross = 0;
+        double px = a0[0], py = a0[1];
+        if ((a1[0] - a0[0]) * (a1[0] - a0[0]) + (a1[1] - a0[1]) * (a1[1] - a0[1]) < d2) problem = 1;
+        for (int t = s + 1; t < ns && !problem && sg[t].xmin <= axmax; t++) {
+            const int lb = sg[t].loop, nb = p->start[lb + 1] - p->start[lb];
+            const double *b0 = p->xy + 2 * (p->start[lb] + sg[t].i);
+            const double *b1 = p->xy + 2 * (p->start[lb] + (sg[t].i + 1) % nb);
+            if (fmax(b0[1], b1[1]) < aymin || fmin(b0[1], b1[1]) > aymax) continue;
+            int next = la == lb && (sg[t].i == (sg[s].i + 1) % na); /* a1 == b0 */
+            int prev = la == lb && (sg[s].i == (sg[t].i + 1) % na); /* b1 == a0 */
+            if (next && prev) { /* a loop of two points */
+                problem = 1;
+            } else if (next) { /* fold back: b1 close to segment a, or a0 close to b */
+                problem = seg_dist2(b1, a0, a1) < d2 || seg_dist2(a0, b0, b1) < d2;
+            } else if (prev) {
+                problem = seg_dist2(a1, b0, b1) < d2 || seg_dist2(b0, a0, a1) < d2;
+            } else {
+                double o1 = orient(a0, a1, b0), o2 = orient(a0, a1, b1);
+                double o3 = orient(b0, b1, a0), o4 = orient(b0, b1, a1);
+                if (((o1 > 0 && o2 < 0) || (o1 < 0 && o2 > 0)) && ((o3 > 0 && o4 < 0) || (o3 < 0 && o4 > 0))) {
+                    problem = is_cross = 1;
+                } else {
+                    double m = fmin(fmin(seg_dist2(b0, a0, a1), seg_dist2(b1, a0, a1)),
+                                    fmin(seg_dist2(a0, b0, b1), seg_dist2(a1, b0, b1)));
+                    problem = m < d2;
+                }
+            }
+            if (problem) {
+                if (is_cross) { /* the crossing point: a0 + t (a1 - a0), t = o3 / (o3 - o4) */
+                    double o3 = orient(b0, b1, a0), o4 = orient(b0, b1, a1), t = o3 / (o3 - o4);
+                    px = a0[0] + t * (a1[0] - a0[0]);
+                    py = a0[1] + t * (a1[1] - a0[1]);
+                } else { /* the endpoint closest to the other segment */
+                    const double *cand[4] = {b0, b1, a0, a1};
+                    const double *s0[4] = {a0, a0, b0, b0}, *s1[4] = {a1, a1, b1, b1};
+                    double best = INFINITY;
+                    for (int c = 0; c < 4; c++) {
+                        double d = seg_dist2(cand[c], s0[c], s1[c]);
+                        if (d < best) best = d, px = cand[c][0], py = cand[c][1];
+                    }
+                }
+                if (bad) bad[lb] = 1;
+            }
+        }
+        if (problem) {
+            if (bad) bad[la] = 1;
+            if (count == 0) {
+                where[0] = px;
+                where[1] = py;
+                *cross = is_cross;
+            }
+            count++;
+        }
+    }
+    free(sg);
+    return count;
+}
+
+glpgp_status glpgp_polygons_check(const glpgp_polygons *p, double min_dist)
+{
+    if (!p) return GLPGP_FAIL(GLPGP_ERR_ARG, "glpgp_polygons_check: NULL argument");
+    for (int l = 0; l < p->n; l++)
+        if (p->start[l + 1] - p->start[l] < 3)
+            return GLPGP_FAIL(GLPGP_ERR_MESH, "boundary loop %d has fewer than 3 points", l);
+    for (int i = 0; i < 2 * p->start[p->n]; i++)
+        if (!isfinite(p->xy[i]))
+            return GLPGP_FAIL(GLPGP_ERR_MESH, "boundary point %d is not finite", i / 2);
+    double where[2] = {0, 0};
+    int cross = 0;
+    long n = polygon_problems(p, min_dist, NULL, where, &cross);
+    if (n < 0) {
+        glpgp_error_push_trace(__FILE__, __LINE__);
+        return GLPGP_ERR_NOMEM;
+    }
+    if (n > 0 && cross)
+        return GLPGP_FAIL(GLPGP_ERR_MESH, "the boundary crosses itself near (%.6g, %.6g) (%ld place%s)",
+                          where[0], where[1], n, n == 1 ? "" : "s");
+    if (n > 0)
+        return GLPGP_FAIL(GLPGP_ERR_MESH,
+                          "the boundary touches itself near (%.6g, %.6g): points closer than %.3g (%ld place%s)",
+                          where[0], where[1], min_dist, n, n == 1 ? "" : "s");
+    return GLPGP_OK;
+}
+
+/* Loop bounding boxes in a uniform grid of g x g cells over the bounding box
+ * of all loops (each loop listed in every cell its box overlaps), to find
+ * the loops that may contain a point. */
+typedef struct loop_grid {
+    int g;
+    double x0, y0, cw, ch;
+    int *cell_start; /* g*g + 1 */
+    int *items;      /* loop ids */
+    double *box;     /* 4 per loop: xmin, ymin, xmax, ymax */
+} loop_grid;
+
+static void grid_cells(const loop_grid *G, const double *b, int *i0, int *j0, int *i1, int *j1)
+{
+    *i0 = (int)fmin(G->g - 1, fmax(0, floor((b[0] - G->x0) / G->cw)));
+    *j0 = (int)fmin(G->g - 1, fmax(0, floor((b[1] - G->y0) / G->ch)));
+    *i1 = (int)fmin(G->g - 1, fmax(0, floor((b[2] - G->x0) / G->cw)));
+    *j1 = (int)fmin(G->g - 1, fmax(0, floor((b[3] - G->y0) / G->ch)));
+}
+
+static void grid_free(loop_grid *G)
+{
+    free(G->cell_start);
+    free(G->items);
+    free(G->box);
+    memset(G, 0, sizeof *G);
+}
+
+static glpgp_status grid_build(loop_grid *G, const glpgp_polygons *p)
+{
+    memset(G, 0, sizeof *G);
+    const int nl = p->n;
+    GLPGP_CHECK(glpgp_malloc(4 * (size_t)nl + 4, sizeof(double), &G->box));
+    double all[4] = {INFINITY, INFINITY, -INFINITY, -INFINITY};
+    for (int l = 0; l < nl; l++) {
+        double *b = G->box + 4 * l;
+        b[0] = b[1] = INFINITY;
+        b[2] = b[3] = -INFINITY;
+        for (int k = p->start[l]; k < p->start[l + 1]; k++) {
+            b[0] = fmin(b[0], p->xy[2 * k]);
+            b[1] = fmin(b[1], p->xy[2 * k + 1]);
+            b[2] = fmax(b[2], p->xy[2 * k]);
+            b[3] = fmax(b[3], p->xy[2 * k + 1]);
+        }
+        for (int c = 0; c < 2; c++) {
+            all[c] = fmin(all[c], b[c]);
+            all[c + 2] = fmax(all[c + 2], b[c + 2]);
+        }
+    }
+    G->g = (int)fmin(256.0, ceil(sqrt((double)nl)) + 1);
+    G->x0 = all[0];
+    G->y0 = all[1];
+    G->cw = fmax(all[2] - all[0], 1e-300) / G->g;
+    G->ch = fmax(all[3] - all[1], 1e-300) / G->g;
+    const size_t ncell = (size_t)G->g * (size_t)G->g;
+    glpgp_status st = glpgp_calloc(ncell + 1, sizeof(int), &G->cell_start);
+    size_t total = 0;
+    for (int pass = 0; st == GLPGP_OK && pass < 2; pass++) {
+        if (pass == 1) {
+            for (size_t c = 0; c < ncell; c++) G->cell_start[c + 1] += G->cell_start[c];
+            total = (size_t)G->cell_start[ncell];
+            st = glpgp_malloc(total + 1, sizeof(int), &G->items);
+            if (st != GLPGP_OK) break;
+        }
+        for (int l = 0; l < nl; l++) {
+            int i0, j0, i1, j1;
+            grid_cells(G, G->box + 4 * l, &i0, &j0, &i1, &j1);
+            for (int j = j0; j <= j1; j++)
+                for (int i = i0; i <= i1; i++) {
+                    size_t c = (size_t)j * (size_t)G->g + (size_t)i;
+                    if (pass == 0)
+                        G->cell_start[c + 1]++;
+                    else
+                        G->items[G->cell_start[c]++] = l;
+                }
+        }
+        if (pass == 1) /* cell_start was advanced to the ends: shift back */
+            for (size_t c = ncell; c > 0; c--) G->cell_start[c] = G->cell_start[c - 1];
+        if (pass == 1) G->cell_start[0] = 0;
+    }
+    if (st != GLPGP_OK) {
+        grid_free(G);
+        glpgp_error_push_trace(__FILE__, __LINE__);
+    }
+    return st;
+}
+
+/* Number of loops of p other than l containing point x (grid G of p). */
+static int containing_loops(const loop_grid *G, const glpgp_polygons *p, int l, const double *x)
+{
+    if (x[0] < G->x0 || x[1] < G->y0) return 0;
+    int i = (int)floor((x[0] - G->x0) / G->cw), j = (int)floor((x[1] - G->y0) / G->ch);
+    if (i >= G->g) i = G->g - 1;
+    if (j >= G->g) j = G->g - 1;
+    size_t c = (size_t)j * (size_t)G->g + (size_t)i;
+    int depth = 0;
+    for (int k = G->cell_start[c]; k < G->cell_start[c + 1]; k++) {
+        int q = G->items[k];
+        const double *b = G->box + 4 * q;
+        if (q == l || x[0] < b[0] || x[0] > b[2] || x[1] < b[1] || x[1] > b[3]) continue;
+        depth += point_in_loop(p->xy + 2 * p->start[q], p->start[q + 1] - p->start[q], x[0], x[1]);
+    }
+    return depth;
+}
+
+glpgp_status glpgp_polygons_simplify(glpgp_polygons *p, double tol, double min_dist)
+{
+    if (!p) return GLPGP_FAIL(GLPGP_ERR_ARG, "glpgp_polygons_simplify: NULL argument");
+    if (!(tol > 0) || p->n == 0) return GLPGP_OK;
+    const int nl = p->n, np = p->start[nl];
+    glpgp_status st = GLPGP_OK;
+    double *raw = NULL, *ltol = NULL;
+    int *rstart = NULL, *depth = NULL;
+    unsigned char *bad = NULL;
+    loop_grid G;
+    memset(&G, 0, sizeof G);
+    GLPGP_CHECK_GOTO(st, glpgp_malloc(2 * (size_t)np + 2, sizeof(double), &raw), done);
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)nl + 1, sizeof(int), &rstart), done);
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)nl + 1, sizeof(double), &ltol), done);
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)nl + 1, sizeof(int), &depth), done);
+    GLPGP_CHECK_GOTO(st, glpgp_calloc((size_t)nl + 1, 1, &bad), done);
+    memcpy(raw, p->xy, 2 * (size_t)np * sizeof(double));
+    memcpy(rstart, p->start, ((size_t)nl + 1) * sizeof(int));
+    /* nesting depth of every loop's first point (kept by the simplification) */
+    GLPGP_CHECK_GOTO(st, grid_build(&G, p), done);
+    for (int l = 0; l < nl; l++) {
+        depth[l] = containing_loops(&G, p, l, raw + 2 * rstart[l]);
+        ltol[l] = tol;
+    }
+    grid_free(&G);
+    for (int round = 0;; round++) {
+        /* every loop simplified from its raw points with its own tolerance */
+        int w = 0;
+        for (int l = 0; l < nl; l++) {
+            int n = rstart[l + 1] - rstart[l];
+            memmove(p->xy + 2 * (size_t)w, raw + 2 * (size_t)rstart[l], 2 * (size_t)n * sizeof(double));
+            GLPGP_CHECK_GOTO(st, glpgp_simplify_closed(p->xy + 2 * (size_t)w, &n, ltol[l]), done);
+            p->start[l] = w;
+            double a0 = loop_area(raw + 2 * (size_t)rstart[l], rstart[l + 1] - rstart[l]);
+            double a1 = loop_area(p->xy + 2 * (size_t)w, n);
+            /* a loop must keep 3 points, its orientation and most of its area */
+            bad[l] = n < 3 || !(a0 * a1 > 0) || !(fabs(a1) >= 0.5 * fabs(a0));
+            w += n;
+        }
+        p->start[nl] = w;
+        double where[2];
+        int cross;
+        if (polygon_problems(p, min_dist, bad, where, &cross) < 0) {
+            st = GLPGP_ERR_NOMEM;
+            glpgp_error_push_trace(__FILE__, __LINE__);
+            goto done;
+        }
+        GLPGP_CHECK_GOTO(st, grid_build(&G, p), done);
+        for (int l = 0; l < nl; l++)
+            if (containing_loops(&G, p, l, p->xy + 2 * (size_t)p->start[l]) != depth[l]) bad[l] = 1;
+        grid_free(&G);
+        int nbad = 0, stuck = 0;
+        for (int l = 0; l < nl; l++) {
+            if (!bad[l]) continue;
+            nbad++;
+            if (ltol[l] == 0.0) stuck++;
+            /* a quarter of the tolerance, down to none */
+            ltol[l] = ltol[l] < tol / 1000.0 ? 0.0 : 0.25 * ltol[l];
+        }
+        if (nbad == 0) break;
+        if (stuck == nbad) { /* the loops themselves are the problem */
+            memcpy(p->xy, raw, 2 * (size_t)np * sizeof(double));
+            memcpy(p->start, rstart, ((size_t)nl + 1) * sizeof(int));
+            GLPGP_CHECK_GOTO(st, glpgp_polygons_check(p, min_dist), done);
+            /* (only a loop's own area or orientation: not a topology problem) */
+            break;
+        }
+    }
+    p->total_area = 0;
+    for (int l = 0; l < nl; l++) {
+        p->area[l] = loop_area(p->xy + 2 * (size_t)p->start[l], p->start[l + 1] - p->start[l]);
+        p->total_area += p->area[l];
+    }
+done:
+    grid_free(&G);
+    free(raw);
+    free(rstart);
+    free(ltol);
+    free(depth);
+    free(bad);
     return st;
 }

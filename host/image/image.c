@@ -57,7 +57,7 @@ int glpgp_is_image_path(const char *path)
     return 0;
 }
 
-glpgp_status glpgp_image_read(const char *path, glpgp_image **out)
+glpgp_status glpgp_image_read_limited(const char *path, long long max_pixels, glpgp_image **out)
 {
     if (!path || !out) return GLPGP_FAIL(GLPGP_ERR_ARG, "glpgp_image_read: NULL argument");
     *out = NULL;
@@ -65,7 +65,13 @@ glpgp_status glpgp_image_read(const char *path, glpgp_image **out)
     const char *why;
     glpgp_status st = glpgp_oiio_module_get(&api, &why);
     if (st != GLPGP_OK) return GLPGP_FAIL(st, "cannot read image '%s': %s", path, why);
-    GLPGP_CHECK(api->read(path, out));
+    GLPGP_CHECK(api->read(path, max_pixels > 0 ? max_pixels : GLPGP_DEFAULT_MAX_PIXELS, out));
+    return GLPGP_OK;
+}
+
+glpgp_status glpgp_image_read(const char *path, glpgp_image **out)
+{
+    GLPGP_CHECK(glpgp_image_read_limited(path, 0, out));
     return GLPGP_OK;
 }
 

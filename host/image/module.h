@@ -26,7 +26,7 @@
 extern "C" {
 #endif
 
-#define GLPGP_MODULE_ABI 2 /* 2: glpgp_polygons.size */
+#define GLPGP_MODULE_ABI 3 /* 2: read takes max_pixels; 3: glpgp_polygons.size */
 
 /* What the image layer lends a module. */
 typedef struct glpgp_module_host {
@@ -39,10 +39,15 @@ typedef struct glpgp_module_host {
     void (*image_destroy)(glpgp_image **im);
 } glpgp_module_host;
 
-/* glpgp_oiio.so: the image I/O of glpgp/image.h (same contracts). */
+/* glpgp_oiio.so: the image I/O of glpgp/image.h (same contracts; read is
+ * glpgp_image_read_limited with max_pixels > 0). The image library's own
+ * messages (libpng writes "libpng error: ..." lines on stderr) are kept off
+ * stderr: file descriptor 2 points to /dev/null during every call into it
+ * (not thread-safe with respect to other threads writing to stderr at that
+ * moment; the CLI has none). */
 typedef struct glpgp_oiio_api {
     int abi; /* GLPGP_MODULE_ABI */
-    glpgp_status (*read)(const char *path, glpgp_image **out);
+    glpgp_status (*read)(const char *path, long long max_pixels, glpgp_image **out);
     glpgp_status (*write)(const char *path, const glpgp_image *im);
     int (*path_writable)(const char *path);
 } glpgp_oiio_api;

@@ -18,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include <fcntl.h>
 #include <unistd.h>
 
 using namespace OIIO;
@@ -43,8 +44,37 @@ std::string temp_name(const std::string &path, const std::string &ext)
     return stem + ".tmp." + std::to_string((long)getpid()) + ext;
 }
 
-glpgp_status read_impl(const char *path, glpgp_image **out)
+/* While alive, file descriptor 2 points to /dev/null: the image libraries
+ * (libpng's "libpng error: ..." / "libpng warning: ...") print nothing; their
+ * messages reach the caller through OpenImageIO's geterror() instead. */
+class QuietStderr {
+  public:
+    QuietStderr()
+    {
+        std::fflush(stderr);
+        saved_ = dup(2);
+        int fd = open("/dev/null", O_WRONLY | O_CLOEXEC);
+        if (saved_ >= 0 && fd >= 0) dup2(fd, 2);
+        if (fd >= 0) close(fd);
+    }
+    ~QuietStderr()
+    {
+        std::fflush(stderr);
+        if (saved_ >= 0) {
+            dup2(saved_, 2);
+            close(saved_);
+        }
+    }
+    QuietStderr(const QuietStderr &) = delete;
+    QuietStderr &operator=(const QuietStderr &) = delete;
+
+  private:
+    int saved_ = -1;
+};
+
+glpgp_status read_impl(const char *path, long long max_pixels, glpgp_image **out)
 {
+    QuietStderr quiet;
     ImageSpec config;
     config.attribute("oiio:UnassociatedAlpha", 1); /* keep colour as stored */
     auto in = ImageInput::open(path, &config);
@@ -63,6 +93,18 @@ glpgp_status read_impl(const char *path, glpgp_image **out)
         in->close();
         return GLPGP_FAIL(GLPGP_ERR_FORMAT, "image '%s' is empty (%d x %d, %d channels)", path, w,
                           h, nc);
+    }
+    /* the header is all that was read: refuse before reserving the pixels */
+    if ((long long)w * (long long)h > max_pixels) {
+        in->close();
+        return GLPGP_FAIL(GLPGP_ERR_LIMIT,
+                          "image '%s' has %d x %d = %lld pixels: more than the limit of %lld "
+                          "(--max-pixels)",
+                          path, w, h, (long long)w * (long long)h, max_pixels);
+    }
+    if (nc > 64) {
+        in->close();
+        return GLPGP_FAIL(GLPGP_ERR_LIMIT, "image '%s' has %d channels: more than 64", path, nc);
     }
     glpgp_image *im = nullptr;
     glpgp_status st = glpgp_image_create(w, h, nc, &im);
@@ -85,6 +127,7 @@ glpgp_status read_impl(const char *path, glpgp_image **out)
 
 glpgp_status write_impl(const char *path, const glpgp_image *im)
 {
+    QuietStderr quiet;
     std::string p(path), ext = lower_ext(p);
     if (ext.empty())
         return GLPGP_FAIL(GLPGP_ERR_ARG, "image '%s' has no file extension (.png, .exr, ...)", path);
@@ -148,12 +191,12 @@ glpgp_status write_impl(const char *path, const glpgp_image *im)
     return GLPGP_OK;
 }
 
-glpgp_status image_read(const char *path, glpgp_image **out)
+glpgp_status image_read(const char *path, long long max_pixels, glpgp_image **out)
 {
     if (!path || !out) return GLPGP_FAIL(GLPGP_ERR_ARG, "glpgp_image_read: NULL argument");
     *out = nullptr;
     try {
-        return read_impl(path, out);
+        return read_impl(path, max_pixels, out);
     } catch (const std::bad_alloc &) {
         return GLPGP_FAIL(GLPGP_ERR_NOMEM, "out of memory reading image '%s'", path);
     } catch (const std::exception &e) {
@@ -179,6 +222,7 @@ glpgp_status image_write(const char *path, const glpgp_image *im)
 
 int image_path_writable(const char *path)
 {
+    QuietStderr quiet;
     try {
         std::string ext = lower_ext(path ? path : "");
         if (ext.empty()) return 0;

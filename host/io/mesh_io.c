@@ -78,7 +78,8 @@ static glpgp_status finish(const char *path, raw_mesh *r, glpgp_mesh **out)
         xy[2 * map[v] + 1] = r->xyz[3 * v + 1];
     }
     for (size_t i = 0; i < 3 * r->nt; i++) r->tri[i] = map[r->tri[i]];
-    GLPGP_CHECK_GOTO(st, glpgp_mesh_create(nv, xy, (int)r->nt, r->tri, out), done);
+    if ((st = glpgp_mesh_create(nv, xy, (int)r->nt, r->tri, out)) != GLPGP_OK)
+        io_name_error(path, st); /* "FILE: the mesh folds over itself ..." */
 done:
     free(map);
     free(xy);

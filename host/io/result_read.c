@@ -65,7 +65,10 @@ static glpgp_status assemble(const char *path, raw_result *w, glpgp_mesh **mout,
         }
         tri[t] = (int)w->tri[t];
     }
-    GLPGP_CHECK_GOTO(st, glpgp_mesh_create(nv, xy, nt, tri, &m), done);
+    if ((st = glpgp_mesh_create(nv, xy, nt, tri, &m)) != GLPGP_OK) {
+        io_name_error(path, st);
+        goto done;
+    }
     if (m->nv != nv || m->nt != nt || m->orientation_fixed) {
         /* our writer emits validated CCW meshes: anything else is not ours */
         st = GLPGP_FAIL(GLPGP_ERR_FORMAT, "%s: mesh changed on validation (not written by glpgp?)", path);

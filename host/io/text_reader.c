@@ -178,6 +178,14 @@ int text_parse_double(char **p, double *out)
     return 1;
 }
 
+glpgp_status io_name_error(const char *path, glpgp_status st)
+{
+    char msg[1024];
+    snprintf(msg, sizeof msg, "%s", glpgp_error_message());
+    glpgp_error_clear();
+    return glpgp_error_set(__FILE__, __LINE__, st, "%s: %s", path, msg);
+}
+
 glpgp_status text_check_count(const text_reader *tr, long long n, long long min_bytes, const char *what)
 {
     if (n < 0) return text_error(tr, GLPGP_ERR_FORMAT, 0, "negative number of %s (%lld)", what, n);

@@ -44,6 +44,10 @@ glpgp_status text_error(const text_reader *tr, glpgp_status st, long line, const
 #endif
     ;
 
+/* Put "PATH: " in front of the recorded error (for errors of
+ * glpgp_mesh_create, which does not know the file). Returns st. */
+glpgp_status io_name_error(const char *path, glpgp_status st);
+
 /* Token parsing on a line: skip blanks, parse one whitespace-delimited
  * number, advance *p. 0 when there is no such token (or it is not entirely
  * a number). parse_double also fails on non-finite values. */

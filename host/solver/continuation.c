@@ -153,6 +153,14 @@ static glpgp_status solve_oscillator(const glpgp_mesh *m, osc_work *w, int k, co
             r->newton_iterations += ls->newton;
             r->cg_iterations += ls->cg;
         }
+        /* one warning per oscillator when CG hit its cap in Newton steps */
+        int capped = 0;
+        for (int l = 0; l < nlevels; l++) capped += r->level[l].cg_capped;
+        if (capped > 0)
+            glpgp_log(GLPGP_LOG_WARNING,
+                      "%s: CG stopped at its cap of %d iterations in %d of %d Newton steps: the steps "
+                      "were inexact (raise --cg-max)",
+                      glpgp_osc_name(k), o->cg_max, capped, r->newton_iterations);
     }
     GLPGP_CHECK(op->energy(b, w->x, 0.0, w->work));
     double s[GLPGP_NSLOTS];

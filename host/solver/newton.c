@@ -40,6 +40,7 @@ glpgp_status glpgp_newton_step(glpgp_backend *b, const glpgp_options *o, glpgp_n
         glpgp_cg_info ci;
         GLPGP_CHECK(glpgp_linear_solve(b, ns->amg, ns->xt, ns->d, eta, o->cg_max, o->cg_check, &ci));
         info->cg += ci.iterations;
+        info->cg_capped += ci.reason == GLPGP_CG_MAXIT;
         const int safe = hess == GLPGP_HESS_PROJECTED || hess == GLPGP_HESS_PAPER;
         if (ci.reason != GLPGP_CG_BREAKDOWN) {
             GLPGP_CHECK(op->dot(b, ns->g, ns->d, GLPGP_S_DOT));
@@ -119,6 +120,7 @@ glpgp_status glpgp_newton_level(glpgp_backend *b, const glpgp_options *o, glpgp_
         GLPGP_CHECK(glpgp_newton_step(b, o, ns, inv4e2, F, gn, &info));
         ls->cg += info.cg;
         ls->fallbacks += info.fallbacks;
+        ls->cg_capped += info.cg_capped;
         ls->newton++;
         glpgp_log(GLPGP_LOG_INFO, "  %s eps=%.4g newton %3d  |g|=%.3e  E+P=%.10g  cg=%d  step=%g",
                   glpgp_osc_name(k), eps, it + 1, gn, info.energy, info.cg, info.alpha);

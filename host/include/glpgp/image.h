@@ -25,6 +25,7 @@
 #ifndef GLPGP_IMAGE_H
 #define GLPGP_IMAGE_H
 
+#include "glpgp/io.h" /* GLPGP_DEFAULT_MAX_ELEMENTS */
 #include "glpgp/mesh.h"
 #include "glpgp/result.h"
 #include "glpgp/status.h"
@@ -58,6 +59,15 @@ glpgp_status glpgp_oiio_load(void);
  * GLPGP_ERR_FORMAT; no OpenImageIO -> GLPGP_ERR_UNSUPPORTED. Free the result
  * with glpgp_image_destroy. */
 glpgp_status glpgp_image_read(const char *path, glpgp_image **out);
+
+/* Default limit on the pixels (width x height) of an image glpgp reads. */
+#define GLPGP_DEFAULT_MAX_PIXELS 100000000LL
+
+/* glpgp_image_read with a limit on width x height (<= 0: the default
+ * GLPGP_DEFAULT_MAX_PIXELS), checked on the header before any pixel is read
+ * or memory reserved for it: GLPGP_ERR_LIMIT naming the size and the limit.
+ * glpgp_image_read applies the default limit. */
+glpgp_status glpgp_image_read_limited(const char *path, long long max_pixels, glpgp_image **out);
 
 /* Write im to path; the format follows the extension (.png, .tif/.tiff,
  * .exr, .jpg/.jpeg, .ppm, ... whatever OpenImageIO writes). im->px holds
@@ -179,9 +189,12 @@ glpgp_status glpgp_mask_values(const glpgp_image *im, float **out);
  * closed half a pixel beyond the border pixels. Crossings are placed on the
  * pixel-centre grid by linear interpolation of v (a binary mask gives
  * midpoints; an anti-aliased one sub-pixel positions); ambiguous saddle cells
- * are resolved by the mean of their four corners. Errors (GLPGP_ERR_ARG with a
- * message for the user): no pixel inside ("empty mask"), every pixel inside,
- * nothing left after dropping specks. */
+ * are resolved by the mean of their four corners. Loops are simplified by
+ * glpgp_polygons_simplify (tolerance o->tolerance pixels, so the topology is
+ * kept: no two loops cross or come closer than GLPGP_CONTOUR_MIN_DIST
+ * pixels). Errors (GLPGP_ERR_ARG with a message for the user): no pixel
+ * inside ("empty mask"), every pixel inside, nothing left after dropping
+ * specks. */
 glpgp_status glpgp_contours(const float *v, int w, int h, const glpgp_contour_options *o,
                             glpgp_polygons **out);
 
@@ -205,6 +218,31 @@ int glpgp_is_poly_path(const char *path);
  * polyline. *n is updated (it stays >= 3 when it was). Exposed for tests. */
 glpgp_status glpgp_simplify_closed(double *xy, int *n, double tol);
 
+/* Smallest distance (in pixels) glpgp_contours keeps between boundary
+ * segments that are not neighbours: crossings of the marching squares lie
+ * at least 0.01 px from a pixel centre, so unsimplified contours are always
+ * further apart than this. */
+#define GLPGP_CONTOUR_MIN_DIST 1e-3
+
+/* Douglas-Peucker on every loop of p (tolerance tol, p's units) without
+ * changing its topology: a loop whose simplified form would cross or come
+ * closer than min_dist to any boundary segment, lose its orientation or half
+ * its area, or change which loops contain it, is simplified again from its
+ * original points with a quarter of its tolerance, down to none. Areas and
+ * total_area are updated; start/xy shrink in place. GLPGP_ERR_MESH (as
+ * glpgp_polygons_check) when the unsimplified loops already have such a
+ * problem. */
+glpgp_status glpgp_polygons_simplify(glpgp_polygons *p, double tol, double min_dist);
+
+/* Whether p can be meshed: every loop has >= 3 finite points, no two
+ * boundary segments cross or touch, segments that are not neighbours are at
+ * least min_dist apart, no zero-length segment or spike narrower than
+ * min_dist. GLPGP_ERR_MESH naming the first place ("the boundary crosses
+ * itself near (x, y)") and the number of places otherwise. Cost: a sweep
+ * over the segments sorted by x (O(n log n) for boundaries whose segments
+ * are short compared to the domain). */
+glpgp_status glpgp_polygons_check(const glpgp_polygons *p, double min_dist);
+
 /* ---- meshing polygons and masks (image/mask_mesh.c, Gmsh) ------------------ */
 
 typedef struct glpgp_mask_options {
@@ -217,7 +255,20 @@ typedef struct glpgp_mask_options {
                           (so mesh size = diagonal / 160) */
     int algorithm;     /* Gmsh Mesh.Algorithm: 6 frontal-Delaunay (default), 5 Delaunay,
                           1 MeshAdapt, 8 frontal-Delaunay for quads is not allowed */
+    long max_triangles; /* refuse, before Gmsh runs, a mesh size whose estimated triangle
+                           count (GLPGP_MASK_TRIANGLES_PER_AREA area / mesh_size^2)
+                           exceeds this (GLPGP_ERR_LIMIT) [GLPGP_DEFAULT_MAX_ELEMENTS] */
+    long long max_pixels; /* refuse images with more pixels, read from the header before
+                             any pixel is [GLPGP_DEFAULT_MAX_PIXELS] */
+    double timeout;    /* seconds the Gmsh process may run (<= 0: no limit) [0] */
 } glpgp_mask_options;
+
+/* Triangles Gmsh makes per area / mesh_size^2 once the mesh is fine
+ * compared to the domain (measured on a 200 x 200 px disk with a slot:
+ * 2.8 to 3.2 at mesh sizes of 0.3 and 1 px with either algorithm; 4.0 to
+ * 4.5 at 3 px, where the boundary starts to dominate, on meshes far too
+ * small for a limit to matter). */
+#define GLPGP_MASK_TRIANGLES_PER_AREA 3.5
 
 void glpgp_mask_options_default(glpgp_mask_options *o);
 
@@ -247,18 +298,34 @@ double glpgp_mask_default_mesh_size(const glpgp_polygons *p, double quad_size);
 /* Mesh the polygons with Gmsh (loads the module; geo kernel: points, lines, one curve loop per
  * polygon, one plane surface per outer loop with its holes; size mesh_size,
  * or p->size[i] at the points that have one (Gmsh interpolates between the
- * boundary points: graded meshes); Mesh.Algorithm algorithm, <= 0 for 6), then build the glpgp mesh
- * with glpgp_mesh_create (validated). Gmsh prints nothing (General.Terminal
- * = 0); every Gmsh error becomes GLPGP_ERR_MESH with Gmsh's last message. */
+ * boundary points: graded meshes); Mesh.Algorithm algorithm, <= 0 for 6), then
+ * build the glpgp mesh with glpgp_mesh_create (validated). The polygons are
+ * checked first (glpgp_polygons_check with 1e-10 of their bounding-box
+ * diagonal: crossing or touching boundaries are GLPGP_ERR_MESH). Gmsh runs in
+ * a forked child process that sends the vertices and triangles back through a
+ * pipe, with its stdout/stderr on /dev/null, so that a Gmsh abort (Gmsh 4.8
+ * throws inside OpenMP regions, which ends in std::terminate) or crash
+ * becomes GLPGP_ERR_MESH ("Gmsh crashed ...") in the caller instead of
+ * killing it; every Gmsh error becomes GLPGP_ERR_MESH with Gmsh's last
+ * message. */
 glpgp_status glpgp_mesh_polygons(const glpgp_polygons *p, double mesh_size, int algorithm,
                                  glpgp_mesh **out);
 
+/* The same with a limit on Gmsh's run time: after timeout seconds (> 0) the
+ * Gmsh process is killed and GLPGP_ERR_LIMIT returned. */
+glpgp_status glpgp_mesh_polygons_timeout(const glpgp_polygons *p, double mesh_size, int algorithm,
+                                         double timeout, glpgp_mesh **out);
+
 /* Read the mask image at path, extract its contours and mesh them (see the
- * option struct for the defaults). A path ending in .poly is read with
- * glpgp_polygons_read instead (no OpenImageIO needed; the contour options do
- * not apply; the default mesh size is computed the same way). The Douglas-Peucker tolerance actually used
- * is max(o->contour.tolerance, mesh_size / 20 in pixels): the boundary needs
- * no detail finer than the mesh. info may be NULL. */
+ * option struct for the defaults and limits). A path ending in .poly is read
+ * with glpgp_polygons_read instead (no OpenImageIO needed; the contour options
+ * do not apply; the default mesh size is computed the same way). The
+ * Douglas-Peucker tolerance actually used is max(o->contour.tolerance,
+ * mesh_size / 20 in pixels): the boundary needs no detail finer than the mesh;
+ * the simplification keeps the topology (glpgp_polygons_simplify). Limits
+ * (GLPGP_ERR_LIMIT, before the work): image pixels (o->max_pixels), estimated
+ * triangles (o->max_triangles, at the finest point size of a .poly file), Gmsh
+ * time (o->timeout). info may be NULL. */
 glpgp_status glpgp_mask_mesh(const char *path, const glpgp_mask_options *o, glpgp_mesh **out,
                              glpgp_mask_info *info);
 

@@ -25,6 +25,7 @@ typedef struct glpgp_level_stats {
     int fallbacks;       /* Newton steps redone with a safer Hessian */
     int capped;          /* the level stopped at newton_max with |g| above its tolerance */
     double rtol;         /* the level's tolerance |g| <= rtol |g0| */
+    int cg_capped;       /* Newton linear solves stopped by the CG cap (cg_max) */
 } glpgp_level_stats;
 
 typedef struct glpgp_osc_result {

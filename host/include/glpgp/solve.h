@@ -216,6 +216,7 @@ typedef struct glpgp_newton_step_info {
     int accepted;    /* the line search found a descent step */
     double alpha;    /* accepted step length (0 when none) */
     double energy;   /* E + P at the new x */
+    int cg_capped;   /* CG runs of this step stopped by the cap o->cg_max */
 } glpgp_newton_step_info;
 
 /* One modified Newton step at x: assemble (H_E + H~_P(x)), solve it by PCG to
