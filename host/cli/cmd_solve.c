@@ -187,7 +187,9 @@ int glpgp_cmd_solve(int argc, char **argv)
     /* triangles coarser than the local size: refined (longest-edge
      * bisection), the size h fixed from the input mesh first */
     memset(&c.refined, 0, sizeof c.refined);
-    if (!c.no_refine) {
+    /* a guiding field read from a file belongs to the input's vertices: no
+     * refinement then (the size field stays limited to what the mesh resolves) */
+    if (!c.no_refine && c.o.field != GLPGP_FIELD_FILE) {
         const double h = c.o.size > 0.0 ? c.o.size : glpgp_default_size(m, &c.o);
         glpgp_mesh *mr = NULL;
         if (glpgp_size_refine(m, &c.o, h, &mr, &c.refined) != GLPGP_OK) goto fail;

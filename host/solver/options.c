@@ -45,7 +45,7 @@ void glpgp_options_default(glpgp_options *o)
     o->size_file = NULL;
     o->size_grading = 0.5;
     o->size_across = 2.0;
-    o->size_min = 1e-3;
+    o->size_min = 0.05;
     o->size_resolution = 4.0;
     o->size_diag_div = 20.0;
     o->size_min_edges = 10.0;

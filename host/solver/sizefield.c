@@ -393,15 +393,52 @@ done:
     return st;
 }
 
-glpgp_status glpgp_size_compute(const glpgp_mesh *m, const glpgp_options *o, double h, const double *u,
-                                double *size, int *uniform)
+/* auto / iso on a mesh that cannot resolve them: s_i <- max(s_i, min(h, R l_i))
+ * with l_i the longest mesh edge at vertex i and R = size_resolution, so that
+ * every triangle keeps q_T >= R (the input is not refined here: glpgp_solve
+ * keeps the caller's vertices; glpgp_size_refine refines first). Returns the
+ * number of values raised. */
+static int size_clamp_to_mesh(const glpgp_mesh *m, double R, double h, double *size)
 {
     const int nv = m->nv;
+    double *l = NULL;
+    int raised = 0;
+    if (glpgp_calloc((size_t)nv, sizeof(double), &l) != GLPGP_OK) return -1;
+    for (int t = 0; t < m->nt; t++)
+        for (int a = 0; a < 3; a++) {
+            const int i = m->tri[3 * t + a], j = m->tri[3 * t + (a + 1) % 3];
+            const double e = hypot(m->xy[2 * j] - m->xy[2 * i], m->xy[2 * j + 1] - m->xy[2 * i + 1]);
+            if (e > l[i]) l[i] = e;
+            if (e > l[j]) l[j] = e;
+        }
+    for (int k = 0; k < 2; k++)
+        for (int i = 0; i < nv; i++) {
+            const double lo = fmin(h, R * l[i]);
+            if (size[(size_t)k * nv + i] < lo) {
+                size[(size_t)k * nv + i] = lo;
+                raised++;
+            }
+        }
+    free(l);
+    return raised;
+}
+
+/* The field of glpgp_size_compute; clamp: auto / iso limited to what m resolves. */
+static glpgp_status size_compute(const glpgp_mesh *m, const glpgp_options *o, double h, const double *u,
+                                 double *size, int *uniform, int clamp, int *raised)
+{
+    const int nv = m->nv;
+    if (raised) *raised = 0;
     if (!(h > 0.0) || !isfinite(h)) return GLPGP_FAIL(GLPGP_ERR_ARG, "size field: h = %g is not positive", h);
     if (o->size_field == GLPGP_SIZE_FILE) {
         GLPGP_CHECK(size_file(m, o->size_file, size));
     } else if (o->size_field == GLPGP_SIZE_AUTO || o->size_field == GLPGP_SIZE_ISO) {
         GLPGP_CHECK(size_feature(m, o, h, u, size));
+        if (clamp) {
+            const int n = size_clamp_to_mesh(m, o->size_resolution, h, size);
+            if (n < 0) return GLPGP_FAIL(GLPGP_ERR_NOMEM, "size field: out of memory");
+            if (raised) *raised = n;
+        }
     } else {
         for (int i = 0; i < 2 * nv; i++) size[i] = h;
     }
@@ -409,6 +446,12 @@ glpgp_status glpgp_size_compute(const glpgp_mesh *m, const glpgp_options *o, dou
     for (int i = 0; i < 2 * nv && uni; i++) uni = size[i] == h;
     if (uniform) *uniform = uni;
     return GLPGP_OK;
+}
+
+glpgp_status glpgp_size_compute(const glpgp_mesh *m, const glpgp_options *o, double h, const double *u,
+                                double *size, int *uniform)
+{
+    return size_compute(m, o, h, u, size, uniform, 1, NULL);
 }
 
 /* ---- resolution ------------------------------------------------------------- */
@@ -457,11 +500,20 @@ glpgp_status glpgp_size_check_mesh(const glpgp_mesh *m, const glpgp_options *o, 
     /* the isotropic sizes: a lower bound of both oscillators' (no guiding field yet) */
     if (oi.size_field == GLPGP_SIZE_AUTO) oi.size_field = GLPGP_SIZE_ISO;
     GLPGP_CHECK(glpgp_malloc((size_t)2 * m->nv, sizeof(double), &size));
-    glpgp_status st = glpgp_size_compute(m, &oi, h, NULL, size, NULL);
+    int raised = 0;
+    glpgp_status st = size_compute(m, &oi, h, NULL, size, NULL, 1, &raised);
     if (st == GLPGP_OK) st = glpgp_size_resolution(m, size, o->size_resolution, &res);
     free(size);
     GLPGP_CHECK(st);
-    if (res.worst < GLPGP_SIZE_MIN_EDGES)
+    if (raised > 0)
+        glpgp_log(GLPGP_LOG_WARNING,
+                  "the local size is limited by the mesh at %d vertex value(s): features thinner than the mesh "
+                  "resolves (h_local < %g x the longest edge there) keep the coarser size; refine the input there "
+                  "(glpgp solve refines it unless --no-refine)",
+                  raised, o->size_resolution);
+    /* none: today's pipeline on any input (a warning, below); a local size
+     * the mesh cannot carry at all is an error */
+    if (res.worst < GLPGP_SIZE_MIN_EDGES && o->size_field != GLPGP_SIZE_NONE)
         return GLPGP_FAIL(GLPGP_ERR_MESH,
                           "the mesh is too coarse for the local size: near (%.6g, %.6g) triangle %d has an edge of "
                           "%.3g for h = %.3g there (%.2f edges per period, at least %g needed, %g wanted; %d "
@@ -679,7 +731,7 @@ glpgp_status glpgp_size_refine(const glpgp_mesh *m, const glpgp_options *o, doub
     for (int round = 0;; round++) {
         glpgp_size_res res;
         GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)2 * mm->nv, sizeof(double), &size), done);
-        GLPGP_CHECK_GOTO(st, glpgp_size_compute(mm, &oi, h, NULL, size, NULL), done);
+        GLPGP_CHECK_GOTO(st, size_compute(mm, &oi, h, NULL, size, NULL, 0, NULL), done);
         GLPGP_CHECK_GOTO(st, glpgp_size_resolution(mm, size, o->size_resolution, &res), done);
         if (res.coarse == 0) break;
         GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)mm->nt + 1, 1, &need), done);

@@ -52,7 +52,7 @@ static void check_valid(const glpgp_quad_quality *qq, const char *what)
 }
 
 /* Solve at h = 1, extract with the defaults, report. */
-static void pipeline(const glpgp_mesh *m, const char *what, int *valid, int *irregular, int *quads)
+static void pipeline(const glpgp_mesh *m0, const char *what, int *valid, int *irregular, int *quads)
 {
     glpgp_backend *b = NULL;
     glpgp_result *r = NULL;
@@ -61,6 +61,12 @@ static void pipeline(const glpgp_mesh *m, const char *what, int *valid, int *irr
     glpgp_options_default(&o);
     o.size = 1.0;
     o.newton_max = 20;
+    /* the CLI's default pipeline: triangles coarser than the local size
+     * refined first (glpgp_size_refine; NULL: nothing to refine) */
+    glpgp_mesh *mr = NULL;
+    glpgp_refine_info ri;
+    CHECK_OK(glpgp_size_refine(m0, &o, o.size, &mr, &ri));
+    const glpgp_mesh *m = mr ? mr : m0;
     CHECK_OK(glpgp_solve(m, b, &o, &r));
     glpgp_quadmesh *q = NULL;
     double h = 1.0;
@@ -80,6 +86,7 @@ static void pipeline(const glpgp_mesh *m, const char *what, int *valid, int *irr
     glpgp_quadmesh_destroy(&q);
     glpgp_result_destroy(&r);
     glpgp_backend_destroy(&b);
+    glpgp_mesh_destroy(&mr);
 }
 
 /* Random star-shaped polygon with spikes and round holes (H = 1). */

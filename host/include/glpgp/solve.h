@@ -98,7 +98,9 @@ typedef struct glpgp_options {
     const char *size_file; /* for GLPGP_SIZE_FILE [NULL] */
     double size_grading;  /* g: h_i <= h_j + g |x_i - x_j| on every mesh edge, > 0 [0.5] */
     double size_across;   /* periods (quads) across a feature (wall, strip, slot, hole), >= 1 [2] */
-    double size_min;      /* smallest local size as a fraction of h, in (0, 1] [0.001] */
+    double size_min;      /* smallest local size as a fraction of h, in (0, 1] [0.05]: cusps and
+                             wedge tips (feature size -> 0) stop there; the repair meshes what
+                             is thinner */
     double size_resolution; /* a triangle's longest edge should be <= its local h / this:
                              glpgp_size_refine refines to it, glpgp_solve warns below it
                              (and fails below GLPGP_SIZE_MIN_EDGES), >= 2 [4] */
@@ -131,6 +133,10 @@ glpgp_status glpgp_options_check_mesh(const glpgp_options *o, const glpgp_mesh *
  * local feature size measured along each oscillator's field (u: the guiding
  * field U, 2*nv; v: U rotated by +90 degrees); AUTO with u NULL, and ISO: the
  * isotropic size (a lower bound of AUTO's); FILE: read from o->size_file.
+ * AUTO and ISO are limited to what m resolves: a value below
+ * o->size_resolution x the longest mesh edge at its vertex is raised to that
+ * (at most h), so the solve never asks for periods the mesh cannot carry
+ * (glpgp_size_refine refines the input first where it should).
  * *uniform (may be NULL) <- 1 when every value equals h exactly (the solve
  * then uses the uniform element arithmetic, bit for bit). */
 glpgp_status glpgp_size_compute(const glpgp_mesh *m, const glpgp_options *o, double h, const double *u,
