@@ -146,10 +146,10 @@ GLPGP_FN void glpgp_row_asm_quad(int i, int kind, double h, int sized, GLPGP_GLO
             glpgp_tri_load(xy, tri, t, x, y);
             glpgp_tri_vals(tri, w, t, wx, wy);
             if (sized) {
-                double s[3], kt, ke[3];
+                double s[3], kt, ke[3], wt, we[3];
                 glpgp_tri_scalars(tri, sz, t, s);
-                glpgp_elem_scales(s, &kt, ke);
-                glpgp_elem_entry_k(kind, x, y, wx, wy, kt, ke, a, b, &er, &ei);
+                glpgp_elem_scales(s, h, &kt, ke, &wt, we);
+                glpgp_elem_entry_k(kind, x, y, wx, wy, kt, wt, ke, we, a, b, &er, &ei);
             } else {
                 glpgp_elem_entry(kind, x, y, wx, wy, h, a, b, &er, &ei);
             }

@@ -426,10 +426,11 @@ void glpgp_opts_add_solver(glpgp_opts *t, glpgp_options *o)
     c.name = "--size-field";
     c.parse = parse_size_field;
     c.meta = "auto|iso|none|FILE";
-    c.help = "local size h(x) <= h: auto shrinks it where a feature (wall,\n"
-             "strip, slot, hole) is thinner than --size-across periods,\n"
-             "per oscillator along its direction; iso: the same for both;\n"
-             "none: h everywhere; FILE: one \"h\" or \"h_u h_v\" line per vertex";
+    c.help = "local size h(x) <= h: auto shrinks it where the domain (a wall,\n"
+             "strip, web) is thinner than --size-across periods, per\n"
+             "oscillator along its direction, and refines the input there;\n"
+             "iso: the same for both; none: h everywhere (the input as it\n"
+             "is); FILE: one \"h\" or \"h_u h_v\" line per vertex";
     c.def = "auto";
     glpgp_opts_add(t, c);
     glpgp_opt_double(t, "--size-grading", &o->size_grading, 0.0, 1, HUGE_VAL, 0, "G",

@@ -5,16 +5,21 @@
  * auto (GLPGP_SIZE_AUTO, anisotropic) and iso (GLPGP_SIZE_ISO): local feature
  * size from the boundary.
  *   1. From the midpoint p_e of every boundary edge e (outward unit normal
- *      n_e) a ray is cast inward (-n_e) and outward (+n_e) to the first other
- *      boundary edge (uniform grid of boundary edges, cell walk): the chords
- *      t_in (the thickness of the domain there: a wall, a strip, a tooth) and
- *      t_out (the width of a gap: a slot, a hole, a notch);
- *      t_e = min(t_in, t_out) (rays longer than N H are not followed: they
- *      cannot lower the size below H).
+ *      n_e) a ray is cast inward (-n_e) to the first other boundary edge
+ *      (uniform grid of boundary edges, cell walk): the chord t_e, the
+ *      thickness of the domain there (a wall, a strip, a web, a tooth; rays
+ *      longer than N H are not followed: they cannot lower the size below H).
+ *      Gaps (slots, cracks, small holes: the chord outward) are not sized:
+ *      they are not meshed, and shrinking the size next to them was measured
+ *      to cost more repairs and irregular vertices (bench/results/size_field.md).
  *   2. An oscillator with unit field W crosses that feature along W, over
  *      t_e / |W.n_e| for walls parallel to e, and needs N = size_across
  *      periods there:  s_e(W) = t_e / (N |W.n_e|)  (auto; |W.n_e| -> 0, a
- *      wave running along the feature, gives no constraint). iso uses
+ *      wave running along the feature, gives no constraint). The gradation
+ *      of step 4 lets the size grow towards the feature's middle, so a strip
+ *      gets about 0.8 N periods across at g = 1/2 (a wall size making it
+ *      exactly N, t g / (2 (exp(g N / 2) - 1)), was measured no better on the
+ *      hard domains: bench/results/size_field.md). iso uses
  *      s_e = t_e / N for both oscillators, the lower bound over W (used for
  *      the resolution check and the refinement, which come before the
  *      guiding field).
@@ -301,10 +306,11 @@ static glpgp_status size_feature(const glpgp_mesh *m, const glpgp_options *o, do
         const double nx = be.nrm[2 * e], ny = be.nrm[2 * e + 1];
         const double len = hypot(m->xy[2 * b] - m->xy[2 * a], m->xy[2 * b + 1] - m->xy[2 * a + 1]);
         const double tmin = 1e-9 * len, tmax = N * h;
-        /* t_e = min(t_in, t_out): the domain's thickness and the gap's width along n_e */
-        const double tin = ray_cast(m, &be, e, px, py, -nx, -ny, tmin, tmax);
-        const double tout = ray_cast(m, &be, e, px, py, nx, ny, tmin, tmax);
-        const double t = fmin(tin, tout);
+        /* t_e = t_in: the domain's thickness along n_e. The gap outside
+         * (t_out: a slot, a crack, a small hole) needs no periods across it
+         * -- it is not meshed -- and shrinking the size next to it was
+         * measured to cost more repairs, not fewer (bench/results/size_field.md) */
+        const double t = ray_cast(m, &be, e, px, py, -nx, -ny, tmin, tmax);
         if (!(t < HUGE_VAL)) continue;
         double c[2] = {1.0, 1.0};
         if (aniso) {

@@ -94,7 +94,7 @@ typedef struct glpgp_options {
     int amg_maxit;        /* flexible-CG cap (the smaller of this and cg_max) [1000] */
 
     /* local size h(x) (glpgp_size_compute); h above is the largest size */
-    int size_field;       /* GLPGP_SIZE_* [AUTO] */
+    int size_field;       /* GLPGP_SIZE_* [AUTO: measured better than NONE, README "Local size"] */
     const char *size_file; /* for GLPGP_SIZE_FILE [NULL] */
     double size_grading;  /* g: h_i <= h_j + g |x_i - x_j| on every mesh edge, > 0 [0.5] */
     double size_across;   /* periods (quads) across a feature (wall, strip, slot, hole), >= 1 [2] */
