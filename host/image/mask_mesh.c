@@ -140,12 +140,16 @@ static void child_main(int wfd, pid_t parent, const glpgp_gmsh_api *api, const g
         if (dn > 2) close(dn);
     }
     glpgp_error_clear();
-    /* fault injection for tests/image/test_gmsh_child.c: how a child that
-     * dies or misbehaves is reported */
+    /* fault injection for tests/image/test_mask_guard.c: how a child that
+     * dies or misbehaves is reported (segv with the default disposition, so
+     * that a sanitizer's handler does not turn the crash into an exit) */
     const char *fault = getenv("GLPGP_TEST_GMSH_FAULT");
     if (fault && *fault) {
         if (!strcmp(fault, "abort")) abort();
-        if (!strcmp(fault, "segv")) raise(SIGSEGV);
+        if (!strcmp(fault, "segv")) {
+            signal(SIGSEGV, SIG_DFL);
+            raise(SIGSEGV);
+        }
         if (!strcmp(fault, "hang"))
             for (;;) pause();
         if (!strcmp(fault, "garbage")) (void)!write(wfd, "not a header, not a header, not a header", 40);

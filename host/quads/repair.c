@@ -1509,9 +1509,11 @@ static glpgp_quadmesh *qm_copy(const glpgp_quadmesh *q)
         glpgp_quadmesh_destroy(&o);
         return NULL;
     }
-    memcpy(o->xy, q->xy, sizeof(double) * 2 * (size_t)q->nv);
+    /* an empty mesh may have NULL arrays: copy only what is there */
+    if (q->nv > 0) memcpy(o->xy, q->xy, sizeof(double) * 2 * (size_t)q->nv);
     memcpy(o->face_start, q->face_start, sizeof(int) * ((size_t)q->nf + 1));
-    memcpy(o->face_vert, q->face_vert, sizeof(int) * (size_t)q->face_start[q->nf]);
+    if (q->face_start[q->nf] > 0)
+        memcpy(o->face_vert, q->face_vert, sizeof(int) * (size_t)q->face_start[q->nf]);
     return o;
 }
 
