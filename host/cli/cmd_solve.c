@@ -52,8 +52,10 @@ static void build(glpgp_opts *t, solve_cli *c)
                     ".exr, ...), meshed first (see 'Mask image input').\n");
     glpgp_opts_add_solver(t, &c->o);
     glpgp_opt_flag(t, "--no-refine", &c->no_refine, 1,
-                   "fail on an input whose triangles are coarser than the local\n"
-                   "h / 4 instead of refining them (longest-edge bisection)");
+                   "solve the input as it is: where its triangles are coarser\n"
+                   "than the local h / 4 (auto, iso) the local size is limited\n"
+                   "to what they resolve (a warning) instead of refining them\n"
+                   "(longest-edge bisection)");
     glpgp_opts_add_backend(t, &c->backend, &c->device);
     glpgp_opts_group(t, "Output");
     glpgp_opt *p = glpgp_opt_string(t, "--out", &c->out, "FILE",
@@ -166,7 +168,21 @@ int glpgp_cmd_solve(int argc, char **argv)
     c.mo.quad_size = c.o.size;
     if ((rc = glpgp_cli_load_input("solve", input, &c.mo, &m, NULL)) >= 0) return rc;
     double t_read = glpgp_now() - t0;
-    if (glpgp_options_check_mesh(&c.o, m) != GLPGP_OK) {
+    /* the input is refined for the local size (auto / iso, refinement on,
+     * no per-vertex field file): h may be down to half a mean edge here (a
+     * graded input whose far field is coarser than h); the refined mesh is
+     * checked against the full rule below */
+    const int refine = !c.no_refine && c.o.field != GLPGP_FIELD_FILE &&
+                       (c.o.size_field == GLPGP_SIZE_AUTO || c.o.size_field == GLPGP_SIZE_ISO);
+    glpgp_status chk;
+    if (refine && c.o.size > 0.0 && c.o.size >= 0.5 * m->mean_edge && c.o.size < GLPGP_SIZE_MIN_EDGES * m->mean_edge) {
+        glpgp_options big = c.o;
+        big.size = GLPGP_SIZE_MIN_EDGES * m->mean_edge; /* the other rules (diameter, options) */
+        chk = glpgp_options_check_mesh(&big, m);
+    } else {
+        chk = glpgp_options_check_mesh(&c.o, m);
+    }
+    if (chk != GLPGP_OK) {
         rc = glpgp_cli_usage_error("solve", "--size: %s", glpgp_error_message());
         glpgp_error_clear();
         glpgp_mesh_destroy(&m);
@@ -189,7 +205,7 @@ int glpgp_cmd_solve(int argc, char **argv)
     memset(&c.refined, 0, sizeof c.refined);
     /* a guiding field read from a file belongs to the input's vertices: no
      * refinement then (the size field stays limited to what the mesh resolves) */
-    if (!c.no_refine && c.o.field != GLPGP_FIELD_FILE) {
+    if (refine) {
         const double h = c.o.size > 0.0 ? c.o.size : glpgp_default_size(m, &c.o);
         glpgp_mesh *mr = NULL;
         if (glpgp_size_refine(m, &c.o, h, &mr, &c.refined) != GLPGP_OK) goto fail;
@@ -199,7 +215,14 @@ int glpgp_cmd_solve(int argc, char **argv)
             glpgp_mesh_destroy(&m);
             m = mr;
             c.o.size = h;
+            if (c.mo.max_triangles > 0 && m->nt > c.mo.max_triangles) {
+                GLPGP_FAIL(GLPGP_ERR_LIMIT, "the refined mesh has %d triangles, above --max-elements %ld", m->nt,
+                           c.mo.max_triangles);
+                goto fail;
+            }
         }
+        /* the full rule (h >= 2 mean edges) on the mesh that is solved */
+        if (glpgp_options_check_mesh(&c.o, m) != GLPGP_OK) goto fail;
     }
 
     if (glpgp_backend_select(c.backend, c.device, c.verbosity > 0, &b) != GLPGP_OK) goto fail;

@@ -153,10 +153,12 @@ typedef struct glpgp_size_res {
 } glpgp_size_res;
 glpgp_status glpgp_size_resolution(const glpgp_mesh *m, const double *size, double R, glpgp_size_res *res);
 
-/* The local resolution check of glpgp_solve, with the isotropic size (AUTO)
- * or the file's: GLPGP_ERR_MESH naming the place when a triangle has
- * q_T < GLPGP_SIZE_MIN_EDGES, one warning line when some have
- * q_T < o->size_resolution. */
+/* The local resolution check of glpgp_solve (max edge against the local
+ * size, not the mean edge), with the isotropic size (AUTO, limited to what
+ * the mesh resolves: a warning line when the limit raised any value), the
+ * file's, or h (NONE): GLPGP_ERR_MESH naming the place when a triangle has
+ * q_T < GLPGP_SIZE_MIN_EDGES (NONE: a warning only, today's pipeline), one
+ * warning line when some have q_T < o->size_resolution. */
 glpgp_status glpgp_size_check_mesh(const glpgp_mesh *m, const glpgp_options *o, double h);
 
 /* Refinement of the triangles too coarse for the local size (q_T <
