@@ -5,6 +5,7 @@
 #define GLPGP_TESTUTIL_H
 
 #include "glpgp/backends.h"
+#include "glpgp/cross.h"
 #include "glpgp/image.h"
 #include "glpgp/io.h"
 #include "glpgp/mesh.h"

@@ -7,6 +7,7 @@
  * exact), so the engine needs no backend internals. The stage list and the
  * tolerances are documented in glpgp/backends.h. */
 #include "glpgp/backends.h"
+#include "glpgp/cross.h"
 #include "glpgp/result.h"
 #include "glpgp/solve.h"
 #include "glpgp/util.h"
@@ -430,6 +431,47 @@ done:
     return st;
 }
 
+/* The Ginzburg-Landau cross field (glpgp_cross_solve: the same ops with W = 0
+ * and every boundary vertex fixed) on fresh backends. Its minimisers can form
+ * families (on a disk, the four singularities rotated together), along which
+ * reduction-order rounding moves the result (2e-4 on a 3000-vertex disk):
+ * w is compared at 1e-3, the final energy F_eps (constant along such a family)
+ * at 1e-7 relative (the levels stop at --cross-rtol, 1e-3), the singularity
+ * counts (+1/4 .. and -1/4 ..) exactly. */
+static glpgp_status stage_cross_solve(cc *c)
+{
+    glpgp_status st = GLPGP_OK;
+    glpgp_backend *sb[2] = {NULL, NULL};
+    glpgp_cross_result *cr[2] = {NULL, NULL};
+    glpgp_options so = c->so;
+    glpgp_cl_options clo = {c->opt->device, 0};
+    char name[64];
+    so.cg_rtol = 1e-10;
+    GLPGP_CHECK_GOTO(st, glpgp_backend_create_opencl(&clo, &sb[0]), done);
+    GLPGP_CHECK_GOTO(st, glpgp_backend_create_reference(&sb[1]), done);
+    int np[2] = {0, 0}, nm[2] = {0, 0};
+    for (int s = 0; s < 2; s++) {
+        GLPGP_CHECK_GOTO(st, sb[s]->ops->setup(sb[s], c->sys), done);
+        GLPGP_CHECK_GOTO(st, glpgp_cross_solve(c->m, sb[s], &so, &cr[s]), done);
+        for (int k = 0; k < cr[s]->nsing; k++) {
+            if (cr[s]->sing[k].index4 > 0) np[s]++;
+            else nm[s]++;
+        }
+    }
+    snprintf(name, sizeof name, "cross field w (newton %d vs %d)", cr[0]->newton_iterations,
+             cr[1]->newton_iterations);
+    GLPGP_CHECK_GOTO(st, cmp(c, name, cr[0]->w, cr[1]->w, c->n2, 1e-3, 1e-3, 0.0), done);
+    const double fe[2] = {cr[0]->level[cr[0]->nlevels - 1].energy, cr[1]->level[cr[1]->nlevels - 1].energy};
+    GLPGP_CHECK_GOTO(st, cmp(c, "cross field energy", &fe[0], &fe[1], 1, 1e-7, 0.0, 0.0), done);
+    GLPGP_CHECK_GOTO(st, cmp_counts(c, "cross field singularities", np[0], nm[0], np[1], nm[1]), done);
+done:
+    for (int s = 0; s < 2; s++) {
+        glpgp_cross_result_destroy(&cr[s]);
+        glpgp_backend_destroy(&sb[s]);
+    }
+    return st;
+}
+
 /* ---- driver ------------------------------------------------------------------ */
 
 static void sides_free(cc *c)
@@ -525,6 +567,7 @@ glpgp_status glpgp_crosscheck_create(const glpgp_crosscheck_options *opt, glpgp_
     GLPGP_CHECK_GOTO(st, stage_cg_solve(&c), done);
     sides_free(&c); /* the GL solve makes its own backends */
     if (opt->solve) GLPGP_CHECK_GOTO(st, stage_gl_solve(&c), done);
+    if (opt->solve) GLPGP_CHECK_GOTO(st, stage_cross_solve(&c), done);
 done:
     sides_free(&c);
     for (int s = 0; s < 2; s++) free(c.h[s]);

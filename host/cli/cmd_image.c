@@ -8,6 +8,7 @@
 #include "opts.h"
 
 #include "glpgp/backends.h"
+#include "glpgp/cross.h"
 #include "glpgp/image.h"
 #include "glpgp/io.h"
 #include "glpgp/solve.h"
@@ -151,11 +152,17 @@ int glpgp_cmd_figure(int argc, char **argv)
     glpgp_render_options_default(&ro);
     glpgp_mask_options_default(&mo);
     glpgp_opts t;
+    int fig1 = 0;
     glpgp_opts_init(&t, sub, "glpgp figure INPUT -o OUT.{png,exr,tif,jpg,...} [options]",
                     "Solve INPUT (a .obj/.msh mesh, shape:NAME[:N] or a mask image) with naive PGP\n"
-                    "and with GL-PGP and render both side by side with their singularity counts.\n");
+                    "and with GL-PGP and render both side by side with their singularity counts;\n"
+                    "with --cross: the paper's Fig. 1 (cross field, GL-PGP texture, quads).\n");
     glpgp_opt *o = glpgp_opt_string(&t, "--out", &out, "FILE", "picture file");
     o->alias = "-o";
+    glpgp_opt_flag(&t, "--cross", &fig1, 1,
+                   "the paper's Fig. 1 instead: one GL-PGP solve with --field cross,\n"
+                   "then the cross field (singularities +1/4 red, -1/4 blue), the\n"
+                   "grid texture and the quad mesh (valence 3 blue, 5+ red) side by side");
     glpgp_opts_add_picture(&t, &ro, 1);
     glpgp_opts_add_solver(&t, &so);
     glpgp_opts_add_backend(&t, &backend, &device);
@@ -168,7 +175,7 @@ int glpgp_cmd_figure(int argc, char **argv)
     if (rc >= 0) return rc;
     glpgp_cli_set_verbosity(verbosity);
     if (!in) return glpgp_cli_usage_error(sub, "missing INPUT");
-    if ((rc = check_picture_out(sub, out, ro.size, 2, mo.max_pixels)) >= 0) return rc;
+    if ((rc = check_picture_out(sub, out, ro.size, fig1 ? 3 : 2, mo.max_pixels)) >= 0) return rc;
     glpgp_error_clear();
     mo.quad_size = so.size;
     glpgp_mesh *m = NULL;
@@ -181,7 +188,29 @@ int glpgp_cmd_figure(int argc, char **argv)
     if (glpgp_backend_select(backend, device, verbosity > 0, &b) != GLPGP_OK) goto err;
     /* the solves' own progress only with --verbose: figure prints a line per solve */
     glpgp_cli_set_verbosity(verbosity > 1 ? verbosity : 0);
-    for (int k = 0; k < 2; k++) {
+    if (fig1) {
+        /* Fig. 1: cross field, texture, quads of one --field cross solve */
+        glpgp_options oo = so;
+        oo.method = GLPGP_METHOD_GL;
+        oo.field = GLPGP_FIELD_CROSS;
+        if (glpgp_solve(m, b, &oo, &res[1]) != GLPGP_OK) goto err;
+        glpgp_quadmesh *q = NULL;
+        double hq = res[1]->size;
+        if (glpgp_quads_build(m, res[1], NULL, &q, &hq) != GLPGP_OK) {
+            fprintf(stderr, "glpgp: warning: no quad mesh (%s): its panel is left out\n", glpgp_error_message());
+            glpgp_error_clear();
+        }
+        if (verbosity > 0)
+            printf("glpgp: cross field: %d singularities (index sum %g), GL-PGP singularities u: +%d -%d  "
+                   "v: +%d -%d, %d quads (%.2f s)\n",
+                   res[1]->cross->nsing, res[1]->cross->index4_sum / 4.0, res[1]->osc[0].plus,
+                   res[1]->osc[0].minus, res[1]->osc[1].plus, res[1]->osc[1].minus, q ? q->nf : 0,
+                   glpgp_now() - t0);
+        glpgp_status fs = glpgp_render_figure1(m, res[1], q, &ro, &im);
+        glpgp_quadmesh_destroy(&q);
+        if (fs != GLPGP_OK) goto err;
+    }
+    for (int k = 0; k < 2 && !fig1; k++) {
         glpgp_options oo = so;
         oo.method = k == 0 ? GLPGP_METHOD_PGP : GLPGP_METHOD_GL;
         if (glpgp_solve(m, b, &oo, &res[k]) != GLPGP_OK) goto err;
@@ -190,7 +219,7 @@ int glpgp_cmd_figure(int argc, char **argv)
                    res[k]->osc[0].plus, res[k]->osc[0].minus, res[k]->osc[1].plus, res[k]->osc[1].minus,
                    res[k]->seconds_total);
     }
-    {
+    if (!fig1) {
         const glpgp_result *rr[2] = {res[0], res[1]};
         static const char *const labels[2] = {"NAIVE PGP", "GL-PGP"};
         if (glpgp_render_compare(m, rr, labels, 2, &ro, &im) != GLPGP_OK) goto err;

@@ -10,6 +10,7 @@
 #include "glpgp/backends.h"
 #include "glpgp/image.h"
 #include "glpgp/io.h"
+#include "glpgp/cross.h"
 #include "glpgp/quads.h"
 #include "glpgp/solve.h"
 #include "glpgp/util.h"
@@ -121,6 +122,16 @@ static void print_summary(const solve_cli *c, const char *input, const glpgp_mes
     printf("glpgp: %s: %d vertices, %d triangles, h = %.6g, backend %s\n", input, m->nv, m->nt, r->size,
            r->backend ? r->backend : "?");
     printf("  singularities  u: +%d -%d   v: +%d -%d\n", u->plus, u->minus, v->plus, v->minus);
+    if (r->cross) { /* --field cross: the cross field's singularities, index sum vs Poincare-Hopf */
+        int np = 0, nm = 0;
+        for (int k = 0; k < r->cross->nsing; k++) {
+            if (r->cross->sing[k].index4 > 0) np++;
+            else nm++;
+        }
+        printf("  cross field    %d singularities (+%d -%d), index sum %g (Poincare-Hopf %g), %d Newton, %.2f s\n",
+               r->cross->nsing, np, nm, r->cross->index4_sum / 4.0, r->cross->index4_expected / 4.0,
+               r->cross->newton_iterations, r->cross->seconds);
+    }
     printf("  median |z|     u: %.4f   v: %.4f\n", u->zabs_median, v->zabs_median);
     printf("  iterations     newton %d (u %d, v %d), cg %ld\n", u->newton_iterations + v->newton_iterations,
            u->newton_iterations, v->newton_iterations,

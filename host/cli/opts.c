@@ -354,6 +354,8 @@ static const char *parse_field(const char *v, void *dest)
         o->field = GLPGP_FIELD_BOUNDARY;
     } else if (!strcmp(v, "radial")) {
         o->field = GLPGP_FIELD_RADIAL;
+    } else if (!strcmp(v, "cross")) {
+        o->field = GLPGP_FIELD_CROSS;
     } else {
         o->field = GLPGP_FIELD_FILE;
         o->field_file = v;
@@ -409,9 +411,10 @@ void glpgp_opts_add_solver(glpgp_opts *t, glpgp_options *o)
     c.kind = GLPGP_OPT_CUSTOM;
     c.dest = o;
     c.parse = parse_field;
-    c.meta = "boundary|radial|FILE";
+    c.meta = "boundary|radial|cross|FILE";
     c.help = "guiding field U: smooth field aligned with the boundary, radial\n"
-             "about --center, or one \"ux uy\" line per vertex from FILE";
+             "about --center, from the Ginzburg-Landau cross field (see\n"
+             "--cross-eps0), or one \"ux uy\" line per vertex from FILE";
     c.def = "boundary";
     glpgp_opts_add(t, c);
     c.name = "--center";
@@ -441,6 +444,12 @@ void glpgp_opts_add_solver(glpgp_opts *t, glpgp_options *o)
 
     glpgp_opts_group(t, "Continuation and solvers");
     glpgp_opt_double(t, "--eps0", &o->eps0, 0.0, 1, HUGE_VAL, 0, "F", "first eps, as a multiple of h");
+    glpgp_opt_double(t, "--cross-eps0", &o->cross_eps0, 0.0, 1, HUGE_VAL, 0, "F",
+                     "--field cross: first eps, as a multiple of the bounding-box diagonal");
+    glpgp_opt_double(t, "--cross-eps-min", &o->cross_eps_min, 0.0, 1, HUGE_VAL, 0, "F",
+                     "--field cross: last eps, as a multiple of the mean edge length");
+    glpgp_opt_double(t, "--cross-rtol", &o->cross_rtol, 0.0, 1, 1.0, 1, "F",
+                     "--field cross: each eps level stops when |g| <= F |g0|");
     glpgp_opt_double(t, "--eps-ratio", &o->eps_ratio, 0.0, 1, 1.0, 1, "F", "eps_{k+1} = F eps_k");
     glpgp_opt_double(t, "--eps-min", &o->eps_min, 0.0, 1, HUGE_VAL, 0, "F",
                      "last eps, as a multiple of the mean edge length");
@@ -499,9 +508,9 @@ void glpgp_opts_add_quads(glpgp_opts *t, glpgp_quad_options *q, int *given, int 
     o->seen = given;
 }
 
-static const char *const k_kinds[] = {"grid", "checker", "zabs", "field", "theta", NULL};
+static const char *const k_kinds[] = {"grid", "checker", "zabs", "field", "theta", "cross", NULL};
 static const int k_kind_vals[] = {GLPGP_IMAGE_GRID, GLPGP_IMAGE_CHECKER, GLPGP_IMAGE_ZABS,
-                                  GLPGP_IMAGE_FIELD, GLPGP_IMAGE_THETA};
+                                  GLPGP_IMAGE_FIELD, GLPGP_IMAGE_THETA, GLPGP_IMAGE_CROSS};
 static const char *const k_backgrounds[] = {"white", "transparent", NULL};
 
 void glpgp_opts_add_picture(glpgp_opts *t, glpgp_render_options *r, int line_width)
@@ -510,7 +519,9 @@ void glpgp_opts_add_picture(glpgp_opts *t, glpgp_render_options *r, int line_wid
     glpgp_opt_choice(t, "--image-kind", &r->kind, k_kinds, k_kind_vals,
                      "grid (unit grid of theta_u, theta_v: the paper's Fig. 4),\n"
                      "checker, zabs (heat map of min |z_u|, |z_v|), field (arrows of\n"
-                     "the guiding field U), theta (red = theta_u, green = theta_v)");
+                     "the guiding field U), theta (red = theta_u, green = theta_v),\n"
+                     "cross (the cross field of a --field cross result, singularities\n"
+                     "marked: +1/4 red, -1/4 blue)");
     glpgp_opt_choice(t, "--background", &r->transparent, k_backgrounds, NULL, "picture background");
     if (line_width) {
         glpgp_opt *o = glpgp_opt_double(t, "--line-width", &r->line_width, 0.0, 1, 100.0, 0, "W",

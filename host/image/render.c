@@ -5,6 +5,8 @@
  * arrows, the boundary (anti-aliased strokes through a coverage buffer, so
  * joints are not drawn twice), captions with a 5x7 bitmap font. */
 #include "glpgp/image.h"
+#include "glpgp/cross.h"
+#include "glpgp/kinds.h"
 #include "glpgp/phase.h"
 
 #include <math.h>
@@ -24,7 +26,7 @@ void glpgp_render_options_default(glpgp_render_options *o)
     o->margin = -1;
 }
 
-static const char *const kind_names[] = {"grid", "checker", "zabs", "field", "theta", NULL};
+static const char *const kind_names[] = {"grid", "checker", "zabs", "field", "theta", "cross", NULL};
 
 int glpgp_image_kind_parse(const char *name)
 {
@@ -35,7 +37,7 @@ int glpgp_image_kind_parse(const char *name)
 
 const char *glpgp_image_kind_name(int kind)
 {
-    return kind >= 0 && kind <= GLPGP_IMAGE_THETA ? kind_names[kind] : "?";
+    return kind >= 0 && kind <= GLPGP_IMAGE_CROSS ? kind_names[kind] : "?";
 }
 
 /* ---- small helpers ------------------------------------------------------- */
@@ -128,8 +130,10 @@ glpgp_status glpgp_render(const glpgp_mesh *m, const glpgp_result *r, const glpg
         glpgp_render_options_default(&o);
     if (o.size < 16 || o.size > 32768)
         return GLPGP_FAIL(GLPGP_ERR_ARG, "image size %d out of range [16, 32768]", o.size);
-    if (o.kind < 0 || o.kind > GLPGP_IMAGE_THETA)
+    if (o.kind < 0 || o.kind > GLPGP_IMAGE_CROSS)
         return GLPGP_FAIL(GLPGP_ERR_ARG, "unknown image kind %d", o.kind);
+    if (o.kind == GLPGP_IMAGE_CROSS && !r->cross)
+        return GLPGP_FAIL(GLPGP_ERR_ARG, "render: the result has no cross field (solve with --field cross)");
     if (!r->osc[0].z || !r->osc[1].z) return GLPGP_FAIL(GLPGP_ERR_ARG, "render: result has no z");
     double lw = o.line_width > 0 ? o.line_width : fmax(1.0, 1.5 * o.size / 1024.0);
     int margin = o.margin >= 0 ? o.margin : o.size / 64;
@@ -150,7 +154,7 @@ glpgp_status glpgp_render(const glpgp_mesh *m, const glpgp_result *r, const glpg
     glpgp_status st = GLPGP_OK;
     GLPGP_CHECK(glpgp_image_create(W, H, 4, &im));
     GLPGP_CHECK_GOTO(st, glpgp_calloc((size_t)W * (size_t)H, sizeof(float), &cov), fail);
-    if (o.kind == GLPGP_IMAGE_FIELD) {
+    if (o.kind == GLPGP_IMAGE_FIELD || o.kind == GLPGP_IMAGE_CROSS) {
         GLPGP_CHECK_GOTO(st, glpgp_malloc(2 * (size_t)W * (size_t)H, sizeof(float), &fld), fail);
         for (size_t i = 0; i < 2 * (size_t)W * (size_t)H; i++) fld[i] = NAN;
     }
@@ -194,8 +198,8 @@ glpgp_status glpgp_render(const glpgp_mesh *m, const glpgp_result *r, const glpg
         gv[1] = (th[1][1] - th[1][0]) * g1y + (th[1][2] - th[1][0]) * g2y;
         gnu = hypot(gu[0], gu[1]);
         gnv = hypot(gv[0], gv[1]);
-        int sing = (r->osc[0].singular && r->osc[0].singular[t]) ||
-                   (r->osc[1].singular && r->osc[1].singular[t]);
+        int sing = o.kind != GLPGP_IMAGE_CROSS && ((r->osc[0].singular && r->osc[0].singular[t]) ||
+                                                   (r->osc[1].singular && r->osc[1].singular[t]));
 
         int x0 = (int)floor(fmin(P[0][0], fmin(P[1][0], P[2][0]))),
             x1 = (int)ceil(fmax(P[0][0], fmax(P[1][0], P[2][0])));
@@ -256,6 +260,20 @@ glpgp_status glpgp_render(const glpgp_mesh *m, const glpgp_result *r, const glpg
                             (float)(U[2 * tv[0] + 1] * l0 + U[2 * tv[1] + 1] * l1 + U[2 * tv[2] + 1] * l2);
                     }
                     break;
+                case GLPGP_IMAGE_CROSS: {
+                    /* background: |w| (light, darker in the cores); w kept for the crosses */
+                    const double *w = r->cross->w;
+                    size_t pi = (size_t)j * (size_t)W + (size_t)i;
+                    double wr = w[2 * tv[0]] * l0 + w[2 * tv[1]] * l1 + w[2 * tv[2]] * l2;
+                    double wi = w[2 * tv[0] + 1] * l0 + w[2 * tv[1] + 1] * l1 + w[2 * tv[2] + 1] * l2;
+                    double a = clamp01(hypot(wr, wi));
+                    fld[2 * pi] = (float)wr;
+                    fld[2 * pi + 1] = (float)wi;
+                    c[0] = (float)(0.80 + 0.17 * a);
+                    c[1] = (float)(0.80 + 0.17 * a);
+                    c[2] = (float)(0.78 + 0.17 * a);
+                    break;
+                }
                 default: /* THETA */
                     c[0] = (float)(tu - floor(tu));
                     c[1] = (float)(tvv - floor(tvv));
@@ -273,8 +291,43 @@ glpgp_status glpgp_render(const glpgp_mesh *m, const glpgp_result *r, const glpg
             }
     }
 
+    if (o.kind == GLPGP_IMAGE_CROSS) {
+        /* short crosses on a regular pixel grid: alpha = arg(w)/4 and alpha + 90 degrees */
+        int step = o.size / 40 < 8 ? 8 : o.size / 40;
+        double len = 0.75 * step;
+        for (int j = step / 2; j < H; j += step)
+            for (int i = step / 2; i < W; i += step) {
+                size_t pi = (size_t)j * (size_t)W + (size_t)i;
+                double wr = fld[2 * pi], wi = fld[2 * pi + 1];
+                if (isnan(wr) || !(hypot(wr, wi) > 1e-12)) continue;
+                double al = atan2(wi, wr) / 4.0;
+                double cx = i + 0.5, cy = j + 0.5;
+                for (int q = 0; q < 2; q++) {
+                    double ux = cos(al + q * GLPGP_PI / 2), uy = -sin(al + q * GLPGP_PI / 2); /* y down */
+                    stroke(cov, W, H, cx - 0.5 * len * ux, cy - 0.5 * len * uy, cx + 0.5 * len * ux,
+                           cy + 0.5 * len * uy, lw);
+                }
+            }
+        static const float col_cross[3] = {0.10f, 0.20f, 0.45f};
+        apply_cov(im, cov, col_cross);
+        /* singularities: +1/4 red, -1/4 blue; radius grows with |index| */
+        if (o.singular) {
+            static const float col_pos[3] = {0.90f, 0.05f, 0.05f}, col_neg[3] = {0.05f, 0.35f, 0.95f};
+            for (int sgn = 0; sgn < 2; sgn++) {
+                for (int k = 0; k < r->cross->nsing; k++) {
+                    const glpgp_cross_sing *q = &r->cross->sing[k];
+                    if ((q->index4 > 0) != (sgn == 0)) continue;
+                    double rad = fmax(4.0, 3.0 * lw) * sqrt((double)abs(q->index4));
+                    double cx = (q->x - ox) * scale, cy = (oy - q->y) * scale;
+                    stroke(cov, W, H, cx, cy, cx, cy, 2 * rad);
+                }
+                apply_cov(im, cov, sgn == 0 ? col_pos : col_neg);
+            }
+        }
+    }
+
     /* singular triangles can be smaller than a pixel: mark each with a red dot */
-    if (o.singular && o.kind != GLPGP_IMAGE_ZABS) {
+    if (o.singular && o.kind != GLPGP_IMAGE_ZABS && o.kind != GLPGP_IMAGE_CROSS) {
         double rad = fmax(2.5, 1.5 * lw);
         for (int t = 0; t < m->nt; t++) {
             if (!((r->osc[0].singular && r->osc[0].singular[t]) ||
@@ -445,6 +498,149 @@ glpgp_status glpgp_render_compare(const glpgp_mesh *m, const glpgp_result *const
     im = NULL;
 fin:
     for (int i = 0; i < n; i++) glpgp_image_destroy(&panel[i]);
+    glpgp_image_destroy(&im);
+    return st;
+}
+
+/* ---- the paper's Fig. 1: cross field, texture, quads -------------------------- */
+
+static int cmp_ll(const void *a, const void *b)
+{
+    long long x = *(const long long *)a, y = *(const long long *)b;
+    return (x > y) - (x < y);
+}
+
+/* Quad mesh q drawn over the domain m's frame (same scale and margins as
+ * glpgp_render): light domain fill, face edges, interior vertices of
+ * valence 3 (blue) and 5+ (red) as dots. */
+static glpgp_status render_quads(const glpgp_mesh *m, const glpgp_quadmesh *q, const glpgp_render_options *o,
+                                 glpgp_image **out)
+{
+    glpgp_status st = GLPGP_OK;
+    glpgp_image *im = NULL;
+    float *cov = NULL;
+    long long *keys = NULL;
+    int *val = NULL;
+    unsigned char *bnd = NULL;
+    *out = NULL;
+    /* frame: as glpgp_render */
+    double lw = o->line_width > 0 ? o->line_width : fmax(1.0, 1.5 * o->size / 1024.0);
+    int margin = o->margin >= 0 ? o->margin : o->size / 64;
+    double bw = m->bbox[2] - m->bbox[0], bh = m->bbox[3] - m->bbox[1], span = fmax(bw, bh);
+    int inner = o->size - 2 * margin;
+    if (inner < 8) inner = 8;
+    double scale = inner / span;
+    int W = (int)ceil(bw * scale - 1e-9) + 2 * margin, H = (int)ceil(bh * scale - 1e-9) + 2 * margin;
+    if (W < 1) W = 1;
+    if (H < 1) H = 1;
+    double ox = m->bbox[0] - margin / scale, oy = m->bbox[3] + margin / scale;
+    GLPGP_CHECK(glpgp_image_create(W, H, 4, &im));
+    for (size_t i = 0; i < (size_t)W * (size_t)H; i++) {
+        float *p = im->px + 4 * i;
+        p[0] = p[1] = p[2] = 1.0f;
+        p[3] = o->transparent ? 0.0f : 1.0f;
+    }
+    GLPGP_CHECK_GOTO(st, glpgp_calloc((size_t)W * (size_t)H, sizeof(float), &cov), fail);
+    /* face edges; an edge is on the boundary when its reverse is no face's edge */
+    const int ne = q->face_start[q->nf];
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)ne + 1, sizeof(long long), &keys), fail);
+    GLPGP_CHECK_GOTO(st, glpgp_calloc((size_t)q->nv + 1, 1, &bnd), fail);
+    for (int f = 0; f < q->nf; f++)
+        for (int k = q->face_start[f]; k < q->face_start[f + 1]; k++) {
+            int a = q->face_vert[k], b = q->face_vert[k + 1 < q->face_start[f + 1] ? k + 1 : q->face_start[f]];
+            keys[k] = (long long)a * q->nv + b;
+            stroke(cov, W, H, (q->xy[2 * a] - ox) * scale, (oy - q->xy[2 * a + 1]) * scale,
+                   (q->xy[2 * b] - ox) * scale, (oy - q->xy[2 * b + 1]) * scale, fmax(1.0, 0.8 * lw));
+        }
+    static const float col_e[3] = {0.15f, 0.15f, 0.20f};
+    apply_cov(im, cov, col_e);
+    qsort(keys, (size_t)ne, sizeof(long long), cmp_ll);
+    for (int f = 0; f < q->nf; f++)
+        for (int k = q->face_start[f]; k < q->face_start[f + 1]; k++) {
+            int a = q->face_vert[k], b = q->face_vert[k + 1 < q->face_start[f + 1] ? k + 1 : q->face_start[f]];
+            long long rev = (long long)b * q->nv + a;
+            if (!bsearch(&rev, keys, (size_t)ne, sizeof(long long), cmp_ll)) bnd[a] = bnd[b] = 1;
+        }
+    GLPGP_CHECK_GOTO(st, glpgp_quadmesh_valences(q, &val), fail);
+    static const float col_3[3] = {0.05f, 0.35f, 0.95f}, col_5[3] = {0.90f, 0.05f, 0.05f};
+    for (int pass = 0; pass < 2; pass++) {
+        for (int i = 0; i < q->nv; i++) {
+            if (bnd[i] || val[i] == 4 || val[i] == 0 || (pass == 0) != (val[i] < 4)) continue;
+            double cx = (q->xy[2 * i] - ox) * scale, cy = (oy - q->xy[2 * i + 1]) * scale;
+            stroke(cov, W, H, cx, cy, cx, cy, 2 * fmax(3.0, 2.5 * lw));
+        }
+        apply_cov(im, cov, pass == 0 ? col_3 : col_5);
+    }
+    *out = im;
+    im = NULL;
+fail:
+    glpgp_image_destroy(&im);
+    free(cov);
+    free(keys);
+    free(val);
+    free(bnd);
+    return st;
+}
+
+glpgp_status glpgp_render_figure1(const glpgp_mesh *m, const glpgp_result *r, const glpgp_quadmesh *q,
+                                  const glpgp_render_options *opt, glpgp_image **out)
+{
+    if (!m || !r || !out) return GLPGP_FAIL(GLPGP_ERR_ARG, "glpgp_render_figure1: bad arguments");
+    if (!r->cross) return GLPGP_FAIL(GLPGP_ERR_ARG, "figure: the result has no cross field");
+    *out = NULL;
+    glpgp_render_options o;
+    if (opt)
+        o = *opt;
+    else
+        glpgp_render_options_default(&o);
+    const int n = q ? 3 : 2;
+    glpgp_image *panel[3] = {0};
+    glpgp_image *im = NULL;
+    glpgp_status st = GLPGP_OK;
+    glpgp_render_options oc = o, og = o;
+    oc.kind = GLPGP_IMAGE_CROSS;
+    og.kind = GLPGP_IMAGE_GRID;
+    GLPGP_CHECK_GOTO(st, glpgp_render(m, r, &oc, &panel[0]), fin);
+    GLPGP_CHECK_GOTO(st, glpgp_render(m, r, &og, &panel[1]), fin);
+    if (q) GLPGP_CHECK_GOTO(st, render_quads(m, q, &o, &panel[2]), fin);
+    int pw = panel[0]->w, ph = panel[0]->h;
+    int ts = o.size / 300 < 2 ? 2 : o.size / 300; /* font scale */
+    int cap = 2 * 9 * ts + 4 * ts + 8;
+    int gap = o.size / 64 < 2 ? 2 : o.size / 64;
+    int W = n * pw + (n - 1) * gap, H = ph + cap;
+    GLPGP_CHECK_GOTO(st, glpgp_image_create(W, H, 4, &im), fin);
+    if (!o.transparent)
+        for (size_t i = 0; i < 4 * (size_t)W * (size_t)H; i++) im->px[i] = 1.0f;
+    static const float ink[4] = {0.05f, 0.05f, 0.05f, 1.0f};
+    /* captions: the cross field's singularities, the parametrization's, the quads' irregular vertices */
+    char l1[3][64], l2[3][96];
+    int sp = 0, sm = 0;
+    for (int k = 0; k < r->cross->nsing; k++) {
+        if (r->cross->sing[k].index4 > 0) sp += r->cross->sing[k].index4;
+        else sm -= r->cross->sing[k].index4;
+    }
+    snprintf(l1[0], sizeof l1[0], "CROSS FIELD");
+    snprintf(l2[0], sizeof l2[0], "+1/4 X %d   -1/4 X %d", sp, sm);
+    snprintf(l1[1], sizeof l1[1], "GL-PGP");
+    snprintf(l2[1], sizeof l2[1], "U +%d -%d   V +%d -%d", r->osc[0].plus, r->osc[0].minus, r->osc[1].plus,
+             r->osc[1].minus);
+    if (q) {
+        snprintf(l1[2], sizeof l1[2], "QUADS");
+        snprintf(l2[2], sizeof l2[2], "%d FACES", q->nf);
+    }
+    for (int k = 0; k < n; k++) {
+        int x0 = k * (pw + gap);
+        for (int j = 0; j < ph && j < panel[k]->h; j++)
+            memcpy(im->px + 4 * ((size_t)j * (size_t)W + (size_t)x0), panel[k]->px + 4 * (size_t)j * (size_t)panel[k]->w,
+                   4 * (size_t)(panel[k]->w < pw ? panel[k]->w : pw) * sizeof(float));
+        int w1 = 6 * ts * (int)strlen(l1[k]), w2 = 6 * ts * (int)strlen(l2[k]);
+        glpgp_draw_text(im, x0 + (pw - w1) / 2, ph + 4, ts, l1[k], ink);
+        glpgp_draw_text(im, x0 + (pw - w2) / 2, ph + 4 + 9 * ts + 2 * ts, ts, l2[k], ink);
+    }
+    *out = im;
+    im = NULL;
+fin:
+    for (int i = 0; i < 3; i++) glpgp_image_destroy(&panel[i]);
     glpgp_image_destroy(&im);
     return st;
 }

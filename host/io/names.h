@@ -26,6 +26,7 @@ static inline const char *field_name(int v)
     return v == GLPGP_FIELD_BOUNDARY ? "boundary"
            : v == GLPGP_FIELD_RADIAL ? "radial"
            : v == GLPGP_FIELD_FILE   ? "file"
+           : v == GLPGP_FIELD_CROSS  ? "cross"
                                      : "unknown";
 }
 static inline const char *init_name(int v)

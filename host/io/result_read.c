@@ -4,6 +4,7 @@
  * rejected) and VTK XML .vtu (vtu.c); both end in the same assembly of the
  * mesh and the result. */
 #include "glpgp/io.h"
+#include "glpgp/cross.h"
 
 #include "text_reader.h"
 #include "vtu.h"
@@ -20,6 +21,7 @@ typedef struct raw_result {
     double *z[2];      /* 2 * nv each */
     double *field;     /* 2 * nv (U), may be NULL */
     double *dir[2];    /* nv each, may be NULL */
+    double *cross;     /* 2 * nv (cross field w), may be NULL */
     double h;
 } raw_result;
 
@@ -32,6 +34,7 @@ static void raw_free(raw_result *w)
     free(w->field);
     free(w->dir[0]);
     free(w->dir[1]);
+    free(w->cross);
     memset(w, 0, sizeof *w);
 }
 
@@ -87,6 +90,16 @@ static glpgp_status assemble(const char *path, raw_result *w, glpgp_mesh **mout,
             o->n_dirichlet += o->dirichlet[i];
         }
         GLPGP_CHECK_GOTO(st, glpgp_osc_summarize(m, o), done);
+    }
+    if (w->cross) { /* the cross field: singularities recomputed from w */
+        for (long long i = 0; i < 2 * w->nv; i++)
+            if (!isfinite(w->cross[i])) {
+                st = GLPGP_FAIL(GLPGP_ERR_FORMAT, "%s: cross_w has a non-finite value", path);
+                goto done;
+            }
+        GLPGP_CHECK_GOTO(st, glpgp_cross_result_create(nv, nt, &res->cross), done);
+        memcpy(res->cross->w, w->cross, (size_t)2 * nv * sizeof(double));
+        GLPGP_CHECK_GOTO(st, glpgp_cross_analyze(m, res->cross), done);
     }
 done:
     free(xy);
@@ -330,7 +343,8 @@ static glpgp_status read_legacy(text_reader *tr, raw_result *w)
             const int is_z = where == POINT_DATA && (!strcmp(name, "z_u") || !strcmp(name, "z_v"));
             const int is_field = where == POINT_DATA && vectors && !strcmp(name, "field_u");
             const int is_dir = where == POINT_DATA && (!strcmp(name, "dirichlet_u") || !strcmp(name, "dirichlet_v"));
-            if (is_z && ncomp != 2) {
+            const int is_cross = where == POINT_DATA && !strcmp(name, "cross_w");
+            if ((is_z || is_cross) && ncomp != 2) {
                 st = text_error(tr, GLPGP_ERR_FORMAT, 0, "%s must have 2 components", name);
                 goto done;
             }
@@ -338,8 +352,10 @@ static glpgp_status read_legacy(text_reader *tr, raw_result *w)
                 st = text_error(tr, GLPGP_ERR_FORMAT, 0, "%s must have 1 component", name);
                 goto done;
             }
-            GLPGP_CHECK_GOTO(st, read_numbers(&lx, n * ncomp, name, (is_z || is_field || is_dir) ? &tmp : NULL), done);
-            if (is_z) {
+            GLPGP_CHECK_GOTO(st, read_numbers(&lx, n * ncomp, name, (is_z || is_field || is_dir || is_cross) ? &tmp : NULL), done);
+            if (is_cross) {
+                w->cross = tmp;
+            } else if (is_z) {
                 w->z[name[2] == 'v'] = tmp;
             } else if (is_dir) {
                 w->dir[name[10] == 'v'] = tmp;
@@ -374,21 +390,22 @@ static glpgp_status read_vtu(text_reader *tr, const char *first_line, raw_result
     if (w->nv < 3 || w->nt < 1)
         return GLPGP_FAIL(GLPGP_ERR_FORMAT, "%s: %lld points, %lld cells (not a triangle mesh)", path, w->nv, w->nt);
     /* the arrays this reader uses, in offset order */
-    const vtu_in_array *want[10];
+    const vtu_in_array *want[11];
     int nw = 0;
     const vtu_in_array *pts = vtu_find(&v, VTU_POINTS, NULL), *conn = vtu_find(&v, VTU_CELLS, "connectivity"),
                        *offs = vtu_find(&v, VTU_CELLS, "offsets"), *types = vtu_find(&v, VTU_CELLS, "types"),
                        *h = vtu_find(&v, VTU_FIELD, "h"), *zu = vtu_find(&v, VTU_POINTDATA, "z_u"),
                        *zv = vtu_find(&v, VTU_POINTDATA, "z_v"), *fu = vtu_find(&v, VTU_POINTDATA, "field_u"),
                        *du = vtu_find(&v, VTU_POINTDATA, "dirichlet_u"),
-                       *dv = vtu_find(&v, VTU_POINTDATA, "dirichlet_v");
+                       *dv = vtu_find(&v, VTU_POINTDATA, "dirichlet_v"),
+                       *cw = vtu_find(&v, VTU_POINTDATA, "cross_w");
     if (!pts || !conn || !offs || !types)
         return GLPGP_FAIL(GLPGP_ERR_FORMAT, "%s: Points or Cells arrays missing", path);
     if (pts->ncomp != 3 || (zu && zu->ncomp != 2) || (zv && zv->ncomp != 2) || (fu && fu->ncomp != 3) ||
-        (du && du->ncomp != 1) || (dv && dv->ncomp != 1) || (h && (h->ncomp != 1 || h->ntuples != 1)))
+        (du && du->ncomp != 1) || (dv && dv->ncomp != 1) || (cw && cw->ncomp != 2) || (h && (h->ncomp != 1 || h->ntuples != 1)))
         return GLPGP_FAIL(GLPGP_ERR_FORMAT, "%s: an array has the wrong number of components", path);
-    const vtu_in_array *all[10] = {pts, conn, offs, types, h, zu, zv, fu, du, dv};
-    for (int i = 0; i < 10; i++)
+    const vtu_in_array *all[11] = {pts, conn, offs, types, h, zu, zv, fu, du, dv, cw};
+    for (int i = 0; i < 11; i++)
         if (all[i]) want[nw++] = all[i];
     for (int i = 1; i < nw; i++) /* insertion sort by offset */
         for (int j = i; j > 0 && want[j]->offset < want[j - 1]->offset; j--) {
@@ -416,6 +433,8 @@ static glpgp_status read_vtu(text_reader *tr, const char *first_line, raw_result
             GLPGP_CHECK(vtu_read_array(&v, a, 1, &x, NULL));
             w->h = x[0] >= 0 ? x[0] : 0.0;
             free(x);
+        } else if (a == cw) {
+            GLPGP_CHECK(vtu_read_array(&v, a, (size_t)(2 * w->nv), &w->cross, NULL));
         } else if (a == zu || a == zv) {
             GLPGP_CHECK(vtu_read_array(&v, a, (size_t)(2 * w->nv), &w->z[a == zv], NULL));
         } else if (a == fu) {

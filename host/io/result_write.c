@@ -3,6 +3,8 @@
  * extension; every one adds its file to an output set. Phases come from the
  * phase module. */
 #include "glpgp/io.h"
+#include "glpgp/cross.h"
+#include "glpgp/kinds.h"
 #include "glpgp/phase.h"
 #include "glpgp/util.h"
 
@@ -24,6 +26,13 @@ static glpgp_status check_result(const glpgp_mesh *m, const glpgp_result *r)
     if (!r->osc[0].z || !r->osc[1].z)
         return GLPGP_FAIL(GLPGP_ERR_ARG, "result has no oscillator values");
     return GLPGP_OK;
+}
+
+/* alpha = arg(w) / 4 in [0, pi/2): the cross's direction closest above the x axis */
+static double cross_alpha(const double *w)
+{
+    double a = atan2(w[1], w[0]) / 4.0;
+    return a < 0.0 ? a + GLPGP_PI / 2.0 : a;
 }
 
 /* ---- legacy VTK ------------------------------------------------------- */
@@ -77,13 +86,25 @@ static void vtk_body(FILE *f, const glpgp_mesh *m, const glpgp_options *o, const
         for (int i = 0; i < nv; i++) fprintf(f, "%.17g %.17g 0\n", -u[2 * i + 1], u[2 * i]);
     }
 
+    if (r->cross) { /* cross field w = exp(4 i alpha), and alpha in [0, pi/2) */
+        const double *w = r->cross->w;
+        fprintf(f, "SCALARS cross_w double 2\nLOOKUP_TABLE default\n");
+        for (int i = 0; i < nv; i++) fprintf(f, "%.17g %.17g\n", w[2 * i], w[2 * i + 1]);
+        fprintf(f, "SCALARS cross_alpha double 1\nLOOKUP_TABLE default\n");
+        for (int i = 0; i < nv; i++) fprintf(f, "%.17g\n", cross_alpha(w + 2 * i));
+    }
+
     int have_sing = r->osc[0].singular || r->osc[1].singular;
-    if (have_sing) {
+    if (have_sing || r->cross) {
         fprintf(f, "CELL_DATA %d\n", nt);
         for (int k = 0; k < 2; k++) {
             const signed char *s = r->osc[k].singular;
             fprintf(f, "SCALARS singular_%s int 1\nLOOKUP_TABLE default\n", osc_name[k]);
             for (int t = 0; t < nt; t++) fprintf(f, "%d\n", s ? (int)s[t] : 0);
+        }
+        if (r->cross) { /* cross-field index of each triangle, in quarters (-1, 0, +1) */
+            fprintf(f, "SCALARS cross_index4 int 1\nLOOKUP_TABLE default\n");
+            for (int t = 0; t < nt; t++) fprintf(f, "%d\n", (int)r->cross->winding[t]);
         }
     }
 }
@@ -175,6 +196,22 @@ static void fill_singular(const void *c, size_t first, size_t n, void *out)
     else
         memset(out, 0, n);
 }
+static void fill_cross_w(const void *c, size_t first, size_t n, void *out)
+{
+    const res_ctx *x = c;
+    memcpy(out, x->r->cross->w + 2 * first, 2 * n * sizeof(double));
+}
+static void fill_cross_alpha(const void *c, size_t first, size_t n, void *out)
+{
+    const res_ctx *x = c;
+    double *o = out;
+    for (size_t i = 0; i < n; i++) o[i] = cross_alpha(x->r->cross->w + 2 * (first + i));
+}
+static void fill_cross_index(const void *c, size_t first, size_t n, void *out)
+{
+    const res_ctx *x = c;
+    memcpy(out, x->r->cross->winding + first, n);
+}
 static void fill_h(const void *c, size_t first, size_t n, void *out)
 {
     const res_ctx *x = c;
@@ -205,6 +242,11 @@ static glpgp_status vtu_result(FILE *f, const glpgp_mesh *m, const glpgp_options
         for (int k = 0; k < 2; k++) ARR(VTU_POINTDATA, fn[k], "Float64", 8, 3, nv, fill_field, &ctx[k]);
     if (r->osc[0].singular || r->osc[1].singular)
         for (int k = 0; k < 2; k++) ARR(VTU_CELLDATA, sn[k], "Int8", 1, 1, nt, fill_singular, &ctx[k]);
+    if (r->cross) {
+        ARR(VTU_POINTDATA, "cross_w", "Float64", 8, 2, nv, fill_cross_w, &ctx[0]);
+        ARR(VTU_POINTDATA, "cross_alpha", "Float64", 8, 1, nv, fill_cross_alpha, &ctx[0]);
+        ARR(VTU_CELLDATA, "cross_index4", "Int8", 1, 1, nt, fill_cross_index, &ctx[0]);
+    }
     ARR(VTU_POINTS, "Points", "Float64", 8, 3, nv, fill_points, &ctx[0]);
     ARR(VTU_CELLS, "connectivity", "Int32", 4, 1, 3 * nt, fill_conn, &ctx[0]);
     ARR(VTU_CELLS, "offsets", "Int32", 4, 1, nt, fill_offsets, &ctx[0]);

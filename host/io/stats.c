@@ -2,6 +2,7 @@
  * one JSON emitter (json.c); the quad-mesh report joins it as the "quads"
  * member, so the file is written once. */
 #include "glpgp/io.h"
+#include "glpgp/cross.h"
 
 #include "names.h"
 
@@ -43,6 +44,9 @@ static void stats_body(FILE *f, const glpgp_mesh *m, const glpgp_options *o, con
         glpgp_json_num(w, "cg_rtol", o->cg_rtol);
         glpgp_json_int(w, "cg_max", o->cg_max);
         glpgp_json_int(w, "cg_check", o->cg_check);
+        glpgp_json_num(w, "cross_eps0", o->cross_eps0);
+        glpgp_json_num(w, "cross_eps_min", o->cross_eps_min);
+        glpgp_json_num(w, "cross_rtol", o->cross_rtol);
         if (o->has_center) {
             glpgp_json_array(w, "center");
             glpgp_json_num(w, NULL, o->center[0]);
@@ -77,6 +81,50 @@ static void stats_body(FILE *f, const glpgp_mesh *m, const glpgp_options *o, con
         glpgp_json_close(w);
     }
     glpgp_json_close(w);
+
+    /* the cross field (--field cross): singularities with index and position */
+    if (r->cross) {
+        const glpgp_cross_result *c = r->cross;
+        glpgp_json_object(w, "cross_field");
+        glpgp_json_int(w, "singularities", c->nsing);
+        glpgp_json_num(w, "index_sum", c->index4_sum / 4.0);
+        glpgp_json_num(w, "index_expected", c->index4_expected / 4.0);
+        glpgp_json_bool(w, "poincare_hopf", c->index4_sum == c->index4_expected);
+        glpgp_json_num(w, "median_abs_w", c->zabs_median);
+        glpgp_json_array(w, "singular");
+        for (int k = 0; k < c->nsing; k++) {
+            glpgp_json_object(w, NULL);
+            glpgp_json_num(w, "x", c->sing[k].x);
+            glpgp_json_num(w, "y", c->sing[k].y);
+            glpgp_json_num(w, "index", c->sing[k].index4 / 4.0);
+            glpgp_json_int(w, "triangles", c->sing[k].ntri);
+            glpgp_json_int(w, "triangle", c->sing[k].tri);
+            glpgp_json_close(w);
+        }
+        glpgp_json_close(w);
+        glpgp_json_int(w, "newton_iterations", c->newton_iterations);
+        glpgp_json_int(w, "cg_iterations", c->cg_iterations);
+        glpgp_json_int(w, "capped_levels", c->capped_levels);
+        glpgp_json_array(w, "eps_schedule");
+        for (int l = 0; l < c->nlevels && l < GLPGP_CROSS_MAX_LEVELS; l++) {
+            const glpgp_level_stats *ls = &c->level[l];
+            glpgp_json_object(w, NULL);
+            glpgp_json_int(w, "level", l);
+            glpgp_json_num(w, "eps", ls->eps);
+            glpgp_json_int(w, "newton", ls->newton);
+            glpgp_json_int(w, "cg", ls->cg);
+            glpgp_json_num(w, "grad0", ls->grad0);
+            glpgp_json_num(w, "grad", ls->grad);
+            glpgp_json_num(w, "energy", ls->energy);
+            glpgp_json_int(w, "fallbacks", ls->fallbacks);
+            glpgp_json_num(w, "rtol", ls->rtol);
+            glpgp_json_bool(w, "capped", ls->capped);
+            glpgp_json_close(w);
+        }
+        glpgp_json_close(w);
+        glpgp_json_num(w, "seconds", c->seconds);
+        glpgp_json_close(w);
+    }
 
     glpgp_json_object(w, "zabs");
     for (int k = 0; k < 2; k++) {

@@ -9,6 +9,7 @@
  * flagged and warned about. */
 #include "internal.h"
 
+#include "glpgp/cross.h"
 #include "glpgp/util.h"
 
 #include <math.h>
@@ -239,7 +240,10 @@ glpgp_status glpgp_solve(const glpgp_mesh *m, glpgp_backend *b, const glpgp_opti
 
     /* guiding field U */
     double t1 = glpgp_now();
-    GLPGP_CHECK_GOTO(st, glpgp_field_compute(m, b, o, r->field, &r->field_cg_iterations), fail);
+    if (o->field == GLPGP_FIELD_CROSS) /* keep the cross field in the result */
+        GLPGP_CHECK_GOTO(st, glpgp_cross_guiding_field(m, b, o, &r->cross, r->field, &r->field_cg_iterations), fail);
+    else
+        GLPGP_CHECK_GOTO(st, glpgp_field_compute(m, b, o, r->field, &r->field_cg_iterations), fail);
     r->seconds_field = glpgp_now() - t1;
     /* local size h(x) per oscillator (uniform: NULL, today's arithmetic) */
     GLPGP_CHECK_GOTO(st, glpgp_malloc(n2, sizeof(double), &size), fail);

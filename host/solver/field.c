@@ -4,6 +4,8 @@
  * a centre, or read from a file (glpgp/solve.h). */
 #include "internal.h"
 
+#include "glpgp/cross.h"
+
 #include <errno.h>
 #include <math.h>
 #include <stdio.h>
@@ -161,6 +163,7 @@ glpgp_status glpgp_field_compute(const glpgp_mesh *m, glpgp_backend *b, const gl
                                  double *u, long *cg_iterations)
 {
     if (o->field == GLPGP_FIELD_FILE) return field_file(m, o->field_file, u);
+    if (o->field == GLPGP_FIELD_CROSS) return glpgp_cross_guiding_field(m, b, o, NULL, u, cg_iterations);
     if (o->field == GLPGP_FIELD_RADIAL) {
         field_radial(m, o, u);
         return GLPGP_OK;

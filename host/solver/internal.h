@@ -5,7 +5,7 @@
 
 #include "glpgp/solve.h"
 
-/* Name of oscillator k ("u" or "v") for messages. */
+/* Name of oscillator k ("u", "v", or "cross" for k = 2: the cross field) for messages. */
 const char *glpgp_osc_name(int k);
 
 /* One Newton level: x <- argmin E + P_eps from the state's x, modified Newton

@@ -13,7 +13,7 @@
 #include <math.h>
 #include <string.h>
 
-const char *glpgp_osc_name(int k) { return k == 0 ? "u" : "v"; }
+const char *glpgp_osc_name(int k) { return k == 0 ? "u" : k == 1 ? "v" : "cross"; }
 
 glpgp_status glpgp_newton_step(glpgp_backend *b, const glpgp_options *o, glpgp_newton_state *ns,
                                double inv4e2, double F, double gn, glpgp_newton_step_info *info)

@@ -19,6 +19,9 @@ void glpgp_options_default(glpgp_options *o)
     o->eps_min = 2.5;
     o->eps_merge = 1.25;
     o->collapse_zabs = 0.5;
+    o->cross_eps0 = 0.05;
+    o->cross_eps_min = 2.5;
+    o->cross_rtol = 1e-3;
     o->newton_rtol = 1e-6;
     o->intermediate_rtol = 1e-3;
     o->newton_max = 50;
@@ -67,6 +70,10 @@ glpgp_status glpgp_options_check(const glpgp_options *o)
         return GLPGP_FAIL(GLPGP_ERR_ARG, "field from a file needs a file name");
     if (!(o->eps0 > 0.0) || !(o->eps_min > 0.0) || !isfinite(o->eps0) || !isfinite(o->eps_min))
         return GLPGP_FAIL(GLPGP_ERR_ARG, "eps0 and eps-min must be positive");
+    if (!(o->cross_eps0 > 0.0) || !(o->cross_eps_min > 0.0) || !isfinite(o->cross_eps0) ||
+        !isfinite(o->cross_eps_min))
+        return GLPGP_FAIL(GLPGP_ERR_ARG, "cross-eps0 and cross-eps-min must be positive");
+    if (!OPEN01(o->cross_rtol)) return GLPGP_FAIL(GLPGP_ERR_ARG, "cross-rtol must be in (0,1)");
     if (!OPEN01(o->eps_ratio))
         return GLPGP_FAIL(GLPGP_ERR_ARG, "eps ratio must be in (0,1), got %g", o->eps_ratio);
     if (!(o->eps_merge >= 1.0)) return GLPGP_FAIL(GLPGP_ERR_ARG, "eps_merge must be >= 1");

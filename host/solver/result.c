@@ -1,6 +1,7 @@
 /* solver/result.c: creation and destruction of results, singular triangles
  * and |z| statistics of an oscillator (glpgp/result.h). */
 #include "glpgp/result.h"
+#include "glpgp/cross.h"
 #include "glpgp/phase.h"
 
 #include <math.h>
@@ -33,6 +34,7 @@ void glpgp_result_destroy(glpgp_result **pr)
     if (!pr || !*pr) return;
     glpgp_result *r = *pr;
     free(r->field);
+    glpgp_cross_result_destroy(&r->cross);
     for (int k = 0; k < 2; k++) {
         free(r->osc[k].z);
         free(r->osc[k].dirichlet);

@@ -95,7 +95,10 @@ glpgp_status glpgp_probe_matrix(glpgp_backend *b, int which, double *vals);
  *   with and without penalty, energy E, P; spmv QUAD / NEWTON, dot x.(NEWTON x); the fused CG steps (precond, then
  *   3 x spmv_dot, update, direction on the projected NEWTON); a CG solve
  *   NEWTON d = -g; the Newton step z + d; with `solve`, the whole GL solve
- *   (z of both oscillators, singularity counts exactly).
+ *   (z of both oscillators, singularity counts exactly) and the cross field
+ *   (glpgp/cross.h: w at 1e-3, its final energy at 1e-7 relative, the +1/4
+ *   and -1/4 singularity counts exactly; its minimisers can form families,
+ *   e.g. rotated on a disk, along which rounding moves w).
  * Tolerance per entry: |a - b| <= atol + rtol |b|, atol = afac * max|b| over
  * the stage (a dot: afac * sum |x_i y_i|); rtol 1e-12, afac 1e-14 for
  * assembly, gradient, energies, spmv, dot and the first CG products; 1e-10

@@ -103,7 +103,11 @@ enum glpgp_image_kind {
                              modulo 1 only, so whole cells cannot alternate) */
     GLPGP_IMAGE_ZABS,     /* heat map of min(|z_u|, |z_v|) (0 black .. >= 1 yellow-white) */
     GLPGP_IMAGE_FIELD,    /* arrows of the guiding field U on a light background */
-    GLPGP_IMAGE_THETA     /* raw colour map: red = theta_u, green = theta_v (mod 1) */
+    GLPGP_IMAGE_THETA,    /* raw colour map: red = theta_u, green = theta_v (mod 1) */
+    GLPGP_IMAGE_CROSS     /* the cross field of a --field cross result: short crosses
+                             (alpha = arg(w)/4 of the interpolated w, both directions), its
+                             singularities as dots (+1/4 red, -1/4 blue, larger for |index|
+                             > 1/4); needs a result with a cross field */
 };
 
 typedef struct glpgp_render_options {
@@ -120,7 +124,7 @@ typedef struct glpgp_render_options {
 
 void glpgp_render_options_default(glpgp_render_options *o);
 
-/* Kind from its name ("grid", "checker", "zabs", "field", "theta"); -1 if unknown. */
+/* Kind from its name ("grid", "checker", "zabs", "field", "theta", "cross"); -1 if unknown. */
 int glpgp_image_kind_parse(const char *name);
 const char *glpgp_image_kind_name(int kind);
 
@@ -141,6 +145,16 @@ glpgp_status glpgp_render(const glpgp_mesh *m, const glpgp_result *r, const glpg
 glpgp_status glpgp_render_compare(const glpgp_mesh *m, const glpgp_result *const *r,
                                   const char *const *labels, int n, const glpgp_render_options *o,
                                   glpgp_image **out);
+
+/* The paper's Fig. 1 for a --field cross result r on mesh m: three panels
+ * side by side, each rendered with o's size and options: the cross field
+ * (GLPGP_IMAGE_CROSS: crosses, singularities +1/4 red, -1/4 blue), the GL-PGP
+ * grid texture (GLPGP_IMAGE_GRID), and the quad mesh q (edges, interior
+ * vertices of valence 3 blue and >= 5 red; q NULL: that panel is left out),
+ * with captions (the cross field's singularity counts, the oscillators',
+ * the number of faces). GLPGP_ERR_ARG when r has no cross field. */
+glpgp_status glpgp_render_figure1(const glpgp_mesh *m, const glpgp_result *r, const glpgp_quadmesh *q,
+                                  const glpgp_render_options *o, glpgp_image **out);
 
 /* Draw text with the built-in 5x7 font (A-Z, 0-9, + - : . , ( ) / = _ and
  * space; lower case drawn as upper case, other characters as a box), each

@@ -52,6 +52,7 @@ typedef struct glpgp_result {
     const char *backend;       /* backend name (static string) */
     double seconds_setup, seconds_field, seconds_total;
     long field_cg_iterations;
+    struct glpgp_cross_result *cross; /* the cross field of --field cross (glpgp/cross.h), else NULL */
 } glpgp_result;
 
 /* A zeroed result for nv vertices and nt triangles with field, z,

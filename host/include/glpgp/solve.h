@@ -19,7 +19,10 @@ extern "C" {
 #endif
 
 enum glpgp_method { GLPGP_METHOD_GL = 0, GLPGP_METHOD_PGP = 1 };
-enum glpgp_field { GLPGP_FIELD_BOUNDARY = 0, GLPGP_FIELD_RADIAL = 1, GLPGP_FIELD_FILE = 2 };
+enum glpgp_field {
+    GLPGP_FIELD_BOUNDARY = 0, GLPGP_FIELD_RADIAL = 1, GLPGP_FIELD_FILE = 2,
+    GLPGP_FIELD_CROSS = 3 /* U from the Ginzburg-Landau cross field (glpgp/cross.h) */
+};
 enum glpgp_init { GLPGP_INIT_NAIVE = 0, GLPGP_INIT_ONE = 1 };
 /* Preconditioner of the Newton (and naive PGP, guiding field) systems. */
 enum glpgp_precond {
@@ -60,6 +63,13 @@ typedef struct glpgp_options {
                              dropped (the previous one is lowered to eps_min) [1.25] */
     double collapse_zabs; /* a level ending with median |z| below this is restarted
                              once from z = 1 [0.5] */
+
+    /* cross field (--field cross, glpgp/cross.h): its own eps schedule, same
+       eps_ratio and eps_merge */
+    double cross_eps0;    /* first eps as a multiple of the bounding-box diagonal [0.05] */
+    double cross_eps_min; /* last eps as a multiple of the mean edge length [2.5] */
+    double cross_rtol;    /* every cross level stops when |g| <= this |g_0| (the singularities
+                             are placed long before; later steps are slow vortex drift) [1e-3] */
 
     /* Newton */
     double newton_rtol;   /* stop the last level when |g| <= rtol |g_0| [1e-6] */
