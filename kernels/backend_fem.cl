@@ -13,10 +13,12 @@
 GLPGP_KERNEL void glpgp_asm_quad(int n, int chunk, int kind, double h, __global const double *xy,
                                  __global const int *tri, __global const double *w,
                                  __global const int *rowptr, __global const int *cptr,
-                                 __global const int *contrib, __global double *quad)
+                                 __global const int *contrib, __global double *quad, int sized,
+                                 __global const double *sz)
 {
     GLPGP_RANGE(lo, hi, n, chunk);
-    for (int i = lo; i < hi; i++) glpgp_row_asm_quad(i, kind, h, xy, tri, w, rowptr, cptr, contrib, quad);
+    for (int i = lo; i < hi; i++)
+        glpgp_row_asm_quad(i, kind, h, sized, sz, xy, tri, w, rowptr, cptr, contrib, quad);
 }
 
 /* NEWTON <- QUAD + penalty Hessian (variant hess, weight inv4e2, at z), Dirichlet rows and

@@ -12,12 +12,31 @@
  *                    = sum_ab conj(z_b) [ i (c_a - c_b) ] z_a,  c_a = A (w . g_a) / 3
  *     so  S_ab = A g_a.g_b + |w|^2 A (1+delta_ab)/12,   K_ab = c_b - c_a   (row a, col b).
  *   w_T is constant per triangle: (2 pi / h) * normalised mean of the three W_a.
+ *   With a local size field s (one value per vertex, solver/sizefield.c) the
+ *   scale 2 pi / h becomes the mean of the corner frequencies,
+ *   w_T = 2 pi (1/s0 + 1/s1 + 1/s2)/3 * normalised mean W; the element is still
+ *   exactly 1/2 int_T |grad z - i w_T z|^2, so H_T stays Hermitian PSD. The
+ *   field w(x) = 2 pi W / s(x) is no longer a gradient (curl w != 0 where s
+ *   varies across W), so no plane wave has E = 0: the GL minimiser puts what
+ *   is not integrable into singularities (host/README.md, "Local size").
+ *   Local eps: the GL energy E + 1/(4 eps^2) int (|z|^2-1)^2 is invariant
+ *   under x -> x / h only when eps scales with the period, so with a local
+ *   period h_T the penalty length should be eps_T = eps h_T / h. Per
+ *   triangle, E_T + P_T / (4 eps_T^2) = (h / h_T)^2 (w_T E_T + P_T / (4 eps^2))
+ *   with w_T = (h_T / h)^2: the same minimiser up to the positive factor
+ *   per triangle that keeps one global eps for the penalty kernels. So the
+ *   sized quadratic element is weighted: H_T <- w_T H_T, h_T = 1 / mean(1/s_a)
+ *   (P1), and w_e = (h_e / h)^2, h_e = 1 / mean(1/s_p, 1/s_q), for the
+ *   transport edge (the energy is then sum_T w_T E_T + P, still Hermitian
+ *   PSD). Measured: fewer repairs and irregular vertices on the hard domains
+ *   than the unweighted field (bench/results/size_field.md).
  *   Sign check: z = exp(+i w.x) has grad z = i w z, so E is ~0 for it and large
  *   for exp(-i w.x) (tests/test_element.c checks both).
  * Edge-transport discretisation (original PGP), per triangle edge (a,b) with
  * opposite corner k and cotan weight c = cot(theta_k)/2 = (e_ka . e_kb) / (4A):
  *   1/2 c |z_b - r_ab z_a|^2,  r_ab = exp(i (2 pi / h) W_ab . (x_b - x_a)),
- *   W_ab = normalised (W_a + W_b)  (edge-based, so both triangles agree):
+ *   W_ab = normalised (W_a + W_b)  (edge-based, so both triangles agree;
+ *   with a size field 2 pi / h is 2 pi (1/s_a + 1/s_b)/2, also edge-based):
  *   H_aa += c, H_bb += c, H_ba += -c r_ab, H_ab += -c conj(r_ab).
  * Real unknowns X = [Re z_a, Im z_a] per vertex: the 2x2 block of a complex
  * entry h = p + i q is [[p, -q], [q, p]] and E = 1/2 X^T A X, grad E = A X.
@@ -68,12 +87,42 @@ GLPGP_FN double glpgp_tri_grads(const double *x, const double *y, double *gx, do
     return a2;
 }
 
+/* Wave scales 2 pi / h of a triangle with corner sizes s[0..2] (local size
+ * field): *kt = 2 pi (1/s0 + 1/s1 + 1/s2) / 3 for the P1 element (the mean
+ * of the corner frequencies |W| / s_a, so w_T = kt * normalised mean W), and
+ * ke[e] = 2 pi (1/s_e + 1/s_{e+1}) / 2 for the transport edge (e, e+1)
+ * (edge-based: both triangles of an edge agree); the local-eps weights
+ * (see the top) *wt = (h_T / h)^2 with h_T = 2 pi / kt, and
+ * we[e] = (h_e / h)^2 with h_e = 2 pi / ke[e] (h: the largest size). */
+GLPGP_FN void glpgp_elem_scales(const double *s, double h, double *kt, double *ke, double *wt, double *we)
+{
+    const double f0 = 1.0 / s[0], f1 = 1.0 / s[1], f2 = 1.0 / s[2];
+    const double ft = (f0 + f1 + f2) / 3.0, fe0 = 0.5 * (f0 + f1), fe1 = 0.5 * (f1 + f2), fe2 = 0.5 * (f2 + f0);
+    *kt = 2.0 * GLPGP_PI * ft;
+    ke[0] = 2.0 * GLPGP_PI * fe0;
+    ke[1] = 2.0 * GLPGP_PI * fe1;
+    ke[2] = 2.0 * GLPGP_PI * fe2;
+    /* weights (h_T / h)^2, h_T = 1 / ft: the local eps (see the top) */
+    *wt = 1.0 / (ft * h * ft * h);
+    we[0] = 1.0 / (fe0 * h * fe0 * h);
+    we[1] = 1.0 / (fe1 * h * fe1 * h);
+    we[2] = 1.0 / (fe2 * h * fe2 * h);
+}
+
 /* Entry (a,b) (row a, column b) of the complex element matrix of kind `kind`
  * on the triangle with corners (x,y) and unit field (wx,wy) at its corners,
- * target size h. Returns the real part in *re and the imaginary part in *im. */
-GLPGP_FN void glpgp_elem_entry(int kind, const double *x, const double *y,
-                               const double *wx, const double *wy, double h,
-                               int a, int b, double *re, double *im)
+ * with wave scales kt (P1: w_T = kt * normalised mean W) and ke[e]
+ * (transport edge (e, e+1): phase ke[e] W_e . (x_{e+1} - x_e)) and the
+ * local-eps weights wt (P1) and we[e] (transport edge e); the uniform size h
+ * has kt = ke[e] = 2 pi / h and weights 1 (glpgp_elem_entry). For every kt
+ * the P1 element matrix is exactly wt/2 int_T |grad z - i w_T z|^2 for P1 z,
+ * so it is Hermitian positive semi-definite whatever the size field (the
+ * Laplace kind is not weighted).
+ * Returns the real part in *re and the imaginary part in *im. */
+GLPGP_FN void glpgp_elem_entry_k(int kind, const double *x, const double *y,
+                                 const double *wx, const double *wy, double kt, double wt,
+                                 const double *ke, const double *we, int a, int b, double *re,
+                                 double *im)
 {
     double gx[3], gy[3];
     double a2 = glpgp_tri_grads(x, y, gx, gy);
@@ -82,19 +131,21 @@ GLPGP_FN void glpgp_elem_entry(int kind, const double *x, const double *y,
         double s = area * (gx[a] * gx[b] + gy[a] * gy[b]);
         double k = 0.0;
         if (kind == GLPGP_ELEM_P1) {
-            /* w_T = (2 pi / h) * normalised mean field */
+            /* w_T = kt * normalised mean field  (kt = 2 pi / h for a uniform size) */
             double mx = wx[0] + wx[1] + wx[2], my = wy[0] + wy[1] + wy[2];
             double mn = sqrt(mx * mx + my * my);
             double ox = 0.0, oy = 0.0;
             if (mn > 0.0) {
-                ox = 2.0 * GLPGP_PI / h * mx / mn;
-                oy = 2.0 * GLPGP_PI / h * my / mn;
+                ox = kt * mx / mn;
+                oy = kt * my / mn;
             }
             s += (ox * ox + oy * oy) * area * (a == b ? 2.0 : 1.0) / 12.0;
             /* K_ab = c_b - c_a,  c_j = A (w . g_j) / 3 */
             double ca = area * (ox * gx[a] + oy * gy[a]) / 3.0;
             double cb = area * (ox * gx[b] + oy * gy[b]) / 3.0;
             k = cb - ca;
+            s *= wt;
+            k *= wt;
         }
         *re = s;
         *im = k;
@@ -106,17 +157,17 @@ GLPGP_FN void glpgp_elem_entry(int kind, const double *x, const double *y,
         int p = e, q = (e + 1) % 3, o = (e + 2) % 3; /* edge (p,q), opposite o */
         double ex1 = x[p] - x[o], ey1 = y[p] - y[o];
         double ex2 = x[q] - x[o], ey2 = y[q] - y[o];
-        double c = (ex1 * ex2 + ey1 * ey2) / (2.0 * a2); /* cot(theta_o)/2 */
+        double c = (ex1 * ex2 + ey1 * ey2) / (2.0 * a2) * we[e]; /* weight cot(theta_o)/2 */
         if (a == b) {
             if (a == p || a == q) sre += c;
             continue;
         }
         if (!((a == p && b == q) || (a == q && b == p))) continue;
-        /* r_pq = exp(i phase), phase = (2 pi / h) W_pq . (x_q - x_p) */
+        /* r_pq = exp(i phase), phase = ke[p] W_pq . (x_q - x_p)  (ke = 2 pi / h uniform) */
         double mx = wx[p] + wx[q], my = wy[p] + wy[q];
         double mn = sqrt(mx * mx + my * my);
         double ph = 0.0;
-        if (mn > 0.0) ph = 2.0 * GLPGP_PI / h * (mx * (x[q] - x[p]) + my * (y[q] - y[p])) / mn;
+        if (mn > 0.0) ph = ke[p] * (mx * (x[q] - x[p]) + my * (y[q] - y[p])) / mn;
         /* H_qp = -c r_pq, H_pq = -c conj(r_pq) */
         double cr = cos(ph), sr = sin(ph);
         sre += -c * cr;
@@ -124,6 +175,24 @@ GLPGP_FN void glpgp_elem_entry(int kind, const double *x, const double *y,
     }
     *re = sre;
     *im = sim;
+}
+
+/* Entry (a,b) with the uniform target size h: glpgp_elem_entry_k with
+ * kt = ke[e] = 2 pi / h (the same arithmetic as before size fields existed). */
+GLPGP_FN void glpgp_elem_entry(int kind, const double *x, const double *y,
+                               const double *wx, const double *wy, double h,
+                               int a, int b, double *re, double *im)
+{
+    const double k = 2.0 * GLPGP_PI / h;
+    double ke[3], we[3];
+    ke[0] = k;
+    ke[1] = k;
+    ke[2] = k;
+    we[0] = 1.0;
+    we[1] = 1.0;
+    we[2] = 1.0;
+    /* weights 1: x * 1.0 is exact, so this is the arithmetic of the uniform size bit for bit */
+    glpgp_elem_entry_k(kind, x, y, wx, wy, k, 1.0, ke, we, a, b, re, im);
 }
 
 /* Degree-4 Dunavant rule: barycentric point q (0..5), weight (sums to 1). */

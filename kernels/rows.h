@@ -122,13 +122,21 @@ GLPGP_FN void glpgp_row_spmv_dot(int i, GLPGP_GLOBAL const int *rowptr, GLPGP_GL
 
 /* ---- assembly ------------------------------------------------------------- */
 
+/* Corner values s[a] of the 1-per-vertex array v on triangle t. */
+GLPGP_FN void glpgp_tri_scalars(GLPGP_GLOBAL const int *tri, GLPGP_GLOBAL const double *v, int t, double *s)
+{
+    for (int a = 0; a < 3; a++) s[a] = v[tri[3 * t + a]];
+}
+
 /* QUAD block row i (gather through the slot map, in slot-map order):
  *   block(k) = sum_{(t,a,b) in contrib(k)} H_T(a,b),  H = re + i im  ->  [[re, -im], [im, re]]
- * for every slot k of row i; element kind `kind`, field w, target size h. */
-GLPGP_FN void glpgp_row_asm_quad(int i, int kind, double h, GLPGP_GLOBAL const double *xy,
-                                 GLPGP_GLOBAL const int *tri, GLPGP_GLOBAL const double *w,
-                                 GLPGP_GLOBAL const int *rowptr, GLPGP_GLOBAL const int *cptr,
-                                 GLPGP_GLOBAL const int *contrib, GLPGP_GLOBAL double *quad)
+ * for every slot k of row i; element kind `kind`, field w, target size h
+ * (sized == 0), or the per-vertex sizes sz (sized != 0; glpgp_elem_scales). */
+GLPGP_FN void glpgp_row_asm_quad(int i, int kind, double h, int sized, GLPGP_GLOBAL const double *sz,
+                                 GLPGP_GLOBAL const double *xy, GLPGP_GLOBAL const int *tri,
+                                 GLPGP_GLOBAL const double *w, GLPGP_GLOBAL const int *rowptr,
+                                 GLPGP_GLOBAL const int *cptr, GLPGP_GLOBAL const int *contrib,
+                                 GLPGP_GLOBAL double *quad)
 {
     for (int k = rowptr[i]; k < rowptr[i + 1]; k++) {
         double re = 0.0, im = 0.0;
@@ -137,7 +145,14 @@ GLPGP_FN void glpgp_row_asm_quad(int i, int kind, double h, GLPGP_GLOBAL const d
             double x[3], y[3], wx[3], wy[3], er, ei;
             glpgp_tri_load(xy, tri, t, x, y);
             glpgp_tri_vals(tri, w, t, wx, wy);
-            glpgp_elem_entry(kind, x, y, wx, wy, h, a, b, &er, &ei);
+            if (sized) {
+                double s[3], kt, ke[3], wt, we[3];
+                glpgp_tri_scalars(tri, sz, t, s);
+                glpgp_elem_scales(s, h, &kt, ke, &wt, we);
+                glpgp_elem_entry_k(kind, x, y, wx, wy, kt, wt, ke, we, a, b, &er, &ei);
+            } else {
+                glpgp_elem_entry(kind, x, y, wx, wy, h, a, b, &er, &ei);
+            }
             re += er;
             im += ei;
         }

@@ -219,6 +219,27 @@ static glpgp_status stage_quad(cc *c)
         snprintf(name, sizeof name, "QUAD assembly (%s)", kind_name(kinds[k]));
         GLPGP_CHECK(cmp(c, name, c->h[0], c->h[1], c->nm, 1e-12, 1e-14, 0.0));
     }
+    /* a non-uniform size field (set_size): random sizes in [h/4, h] per vertex */
+    unsigned long long seed = c->opt->seed ^ 0x5eedULL;
+    for (int i = 0; i < c->sys->nv; i++) c->h[1][i] = h * (0.25 + 0.75 * cc_rand(&seed));
+    static const int skinds[] = {GLPGP_ELEM_P1, GLPGP_ELEM_TRANSPORT};
+    double *sz = NULL;
+    GLPGP_CHECK(glpgp_malloc((size_t)c->sys->nv, sizeof(double), &sz));
+    memcpy(sz, c->h[1], (size_t)c->sys->nv * sizeof(double));
+    glpgp_status st = GLPGP_OK;
+    for (size_t k = 0; k < sizeof skinds / sizeof skinds[0] && st == GLPGP_OK; k++) {
+        for (int s = 0; s < 2 && st == GLPGP_OK; s++) {
+            glpgp_backend *b = c->S[s].b;
+            st = b->ops->set_size(b, sz);
+            if (st == GLPGP_OK) st = b->ops->assemble_quadratic(b, skinds[k], h);
+            if (st == GLPGP_OK) st = glpgp_probe_matrix(b, GLPGP_MAT_QUAD, c->h[s]);
+        }
+        snprintf(name, sizeof name, "QUAD assembly (%s, sized)", kind_name(skinds[k]));
+        if (st == GLPGP_OK) st = cmp(c, name, c->h[0], c->h[1], c->nm, 1e-12, 1e-14, 0.0);
+    }
+    free(sz);
+    GLPGP_CHECK(st);
+    BOTH(o->set_size(b, NULL));
     BOTH(o->assemble_quadratic(b, kind, h));
     return GLPGP_OK;
 }

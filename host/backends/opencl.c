@@ -179,6 +179,8 @@ typedef struct cl_impl {
     const glpgp_system *sys;
     cl_mem xy, tri, rowptr, col, diag, cptr, contrib, vptr, vtri; /* mesh + pattern */
     cl_mem w, dir;                                                /* field */
+    cl_mem size;                                                  /* nv target sizes */
+    int sized;                                                    /* set_size given */
     cl_mem quad, newton, dinv;                                    /* matrices */
     cl_mem s;                                                     /* GLPGP_NSLOTS scalars */
     cl_mem part;                                                  /* 2 * pstride partials */
@@ -221,7 +223,7 @@ static void cl_destroy(glpgp_backend *b)
     amg_free(c);
     cl_mem *mems[] = {&c->xy,   &c->tri,  &c->rowptr, &c->col,    &c->diag, &c->cptr,
                       &c->contrib, &c->vptr, &c->vtri, &c->w,      &c->dir,  &c->quad,
-                      &c->newton, &c->dinv, &c->s,      &c->part,   &c->bad};
+                      &c->newton, &c->dinv, &c->s,      &c->part,   &c->bad,  &c->size};
     for (size_t i = 0; i < sizeof mems / sizeof mems[0]; i++) release_mem(mems[i]);
     for (int i = 0; i < K_COUNT; i++)
         if (c->k[i]) clReleaseKernel(c->k[i]);
@@ -625,10 +627,10 @@ static glpgp_status cl_setup(glpgp_backend *b, const glpgp_system *sys)
                           nv, nt);
 
     /* device memory estimate: pattern and maps, two matrices, DINV, field,
-     * ~8 working vectors of 2 nv doubles, partial sums */
+     * sizes, ~8 working vectors of 2 nv doubles, partial sums */
     size_t ngr = shape_for(c, 2 * nv > nt ? 2 * nv : nt).groups;
     double need = 4.0 * (3.0 * nt + (nv + 1) + nnzb + nv + (nnzb + 1) + 9.0 * nt + (nv + 1) + 3.0 * nt) +
-                  8.0 * (2.0 * nv + 2.0 * nv + 8.0 * nnzb + 4.0 * nv + 8.0 * 2.0 * nv + 2.0 * ngr + GLPGP_NSLOTS) +
+                  8.0 * (2.0 * nv + 2.0 * nv + 1.0 * nv + 8.0 * nnzb + 4.0 * nv + 8.0 * 2.0 * nv + 2.0 * ngr + GLPGP_NSLOTS) +
                   1.0 * nv;
     const double mib = 1024.0 * 1024.0;
     if (need > (double)c->global_mem)
@@ -668,6 +670,7 @@ static glpgp_status cl_setup(glpgp_backend *b, const glpgp_system *sys)
     GLPGP_CHECK(upload(c, &c->vtri, sys->vtri, 3 * nt * sizeof(int)));
     GLPGP_CHECK(upload(c, &c->w, NULL, 2 * nv * sizeof(double)));
     GLPGP_CHECK(upload(c, &c->dir, NULL, nv));
+    GLPGP_CHECK(upload(c, &c->size, NULL, nv * sizeof(double)));
     GLPGP_CHECK(upload(c, &c->quad, NULL, 4 * nnzb * sizeof(double)));
     GLPGP_CHECK(upload(c, &c->newton, NULL, 4 * nnzb * sizeof(double)));
     GLPGP_CHECK(upload(c, &c->dinv, NULL, 4 * nv * sizeof(double)));
@@ -777,6 +780,17 @@ static glpgp_status cl_set_field(glpgp_backend *b, const double *w, const unsign
     const size_t nv = (size_t)c->sys->nv;
     GLPGP_CL(clEnqueueWriteBuffer(c->q, c->w, CL_TRUE, 0, 2 * nv * sizeof(double), w, 0, NULL, NULL));
     GLPGP_CL(clEnqueueWriteBuffer(c->q, c->dir, CL_TRUE, 0, nv, dir, 0, NULL, NULL));
+    c->sized = 0;
+    return GLPGP_OK;
+}
+
+static glpgp_status cl_set_size(glpgp_backend *b, const double *size)
+{
+    cl_impl *c = IMPL(b);
+    c->sized = size != NULL;
+    if (size)
+        GLPGP_CL(clEnqueueWriteBuffer(c->q, c->size, CL_TRUE, 0, (size_t)c->sys->nv * sizeof(double), size, 0,
+                                      NULL, NULL));
     return GLPGP_OK;
 }
 
@@ -795,6 +809,9 @@ static glpgp_status cl_assemble_quadratic(glpgp_backend *b, int kind, double h)
     ARG(k, 8, c->cptr);
     ARG(k, 9, c->contrib);
     ARG(k, 10, c->quad);
+    cl_int sized = c->sized;
+    ARG(k, 11, sized);
+    ARG(k, 12, c->size);
     GLPGP_CHECK(run(c, K_ASM_QUAD, (size_t)c->sys->nv, NULL));
     if (c->corrupt) {
         /* test switch: QUAD value 0 += 1 (crosscheck must then fail) */
@@ -1678,6 +1695,7 @@ static const glpgp_backend_ops cl_ops = {
     .dot = cl_dot,
     .get_scalars = cl_get_scalars,
     .set_field = cl_set_field,
+    .set_size = cl_set_size,
     .assemble_quadratic = cl_assemble_quadratic,
     .assemble_newton = cl_assemble_newton,
     .gradient = cl_gradient,

@@ -20,6 +20,7 @@ static void ref_destroy(glpgp_backend *b)
     if (!r) return;
     free(r->wbuf);
     free(r->dir);
+    free(r->size);
     free(r->quad);
     free(r->newton);
     free(r->dinv);
@@ -34,6 +35,8 @@ static glpgp_status ref_setup(glpgp_backend *b, const glpgp_system *sys)
     /* a backend may be set up again for another system: drop the old buffers */
     glpgp_free(&r->wbuf);
     glpgp_free(&r->dir);
+    glpgp_free(&r->size);
+    r->sized = 0;
     glpgp_free(&r->quad);
     glpgp_free(&r->newton);
     glpgp_free(&r->dinv);
@@ -43,6 +46,7 @@ static glpgp_status ref_setup(glpgp_backend *b, const glpgp_system *sys)
     GLPGP_CHECK(glpgp_calloc((size_t)2 * sys->nv, sizeof(double), &r->wbuf));
     r->w = r->wbuf;
     GLPGP_CHECK(glpgp_calloc((size_t)sys->nv, 1, &r->dir));
+    GLPGP_CHECK(glpgp_calloc((size_t)sys->nv, sizeof(double), &r->size));
     GLPGP_CHECK(glpgp_calloc((size_t)4 * sys->nnzb, sizeof(double), &r->quad));
     GLPGP_CHECK(glpgp_calloc((size_t)4 * sys->nnzb, sizeof(double), &r->newton));
     GLPGP_CHECK(glpgp_calloc((size_t)4 * sys->nv, sizeof(double), &r->dinv));
@@ -122,6 +126,15 @@ static glpgp_status ref_set_field(glpgp_backend *b, const double *w, const unsig
     ref_impl *r = IMPL(b);
     memcpy(r->wbuf, w, (size_t)2 * r->sys->nv * sizeof(double));
     memcpy(r->dir, dir, (size_t)r->sys->nv);
+    r->sized = 0;
+    return GLPGP_OK;
+}
+
+static glpgp_status ref_set_size(glpgp_backend *b, const double *size)
+{
+    ref_impl *r = IMPL(b);
+    r->sized = size != NULL;
+    if (size) memcpy(r->size, size, (size_t)r->sys->nv * sizeof(double));
     return GLPGP_OK;
 }
 
@@ -134,7 +147,8 @@ static glpgp_status ref_assemble_quadratic(glpgp_backend *b, int kind, double h)
     r->h = h;
     /* QUAD <- gather of the element entries into each block slot, row by row */
     for (int i = 0; i < sys->nv; i++)
-        glpgp_row_asm_quad(i, kind, h, m->xy, m->tri, r->w, sys->rowptr, sys->cptr, sys->contrib, r->quad);
+        glpgp_row_asm_quad(i, kind, h, r->sized, r->size, m->xy, m->tri, r->w, sys->rowptr, sys->cptr,
+                           sys->contrib, r->quad);
     return GLPGP_OK;
 }
 
@@ -262,6 +276,7 @@ static const glpgp_backend_ops ref_ops = {
     .dot = ref_dot,
     .get_scalars = ref_get_scalars,
     .set_field = ref_set_field,
+    .set_size = ref_set_size,
     .assemble_quadratic = ref_assemble_quadratic,
     .assemble_newton = ref_assemble_newton,
     .gradient = ref_gradient,

@@ -20,6 +20,8 @@ typedef struct ref_impl {
     const double *w;           /* 2*nv field (copy owned) */
     double *wbuf;
     unsigned char *dir;        /* nv Dirichlet flags */
+    double *size;              /* nv target sizes (set_size) */
+    int sized;                 /* assemble with size[] instead of h */
     double *quad, *newton;     /* 4*nnzb */
     double *dinv;              /* 4*nv */
     int kind;

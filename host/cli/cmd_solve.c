@@ -26,6 +26,8 @@ static const char *const k_json_exts[] = {".json", NULL};
 typedef struct solve_cli {
     glpgp_options o;
     int backend, device, verbosity;
+    int no_refine;
+    glpgp_refine_info refined;
     const char *out, *stats, *quads, *image;
     glpgp_quad_options qo;
     int quad_opts, allow_invalid;
@@ -50,6 +52,11 @@ static void build(glpgp_opts *t, solve_cli *c)
                     "NAME is one of square, disk, annulus, lshape), or a mask image (.png, .tif,\n"
                     ".exr, ...), meshed first (see 'Mask image input').\n");
     glpgp_opts_add_solver(t, &c->o);
+    glpgp_opt_flag(t, "--no-refine", &c->no_refine, 1,
+                   "solve the input as it is: where its triangles are coarser\n"
+                   "than the local h / 4 (auto, iso) the local size is limited\n"
+                   "to what they resolve (a warning) instead of refining them\n"
+                   "(longest-edge bisection)");
     glpgp_opts_add_backend(t, &c->backend, &c->device);
     glpgp_opts_group(t, "Output");
     glpgp_opt *p = glpgp_opt_string(t, "--out", &c->out, "FILE",
@@ -132,6 +139,9 @@ static void print_summary(const solve_cli *c, const char *input, const glpgp_mes
     if (u->capped_levels + v->capped_levels)
         printf("  unconverged    %d eps level(s) stopped at the Newton cap (u %d, v %d)\n",
                u->capped_levels + v->capped_levels, u->capped_levels, v->capped_levels);
+    if (c->refined.rounds)
+        printf("  refined        %d -> %d vertices, %d -> %d triangles (%d rounds: too coarse for the local h)\n",
+               c->refined.nv0, c->refined.nv, c->refined.nt0, c->refined.nt, c->refined.rounds);
     printf("  time           %.3f s (read %.3f s, solve %.3f s)\n", t_all, t_read, r->seconds_total);
     if (c->out) printf("  wrote          %s\n", c->out);
     if (c->stats) printf("  wrote          %s\n", c->stats);
@@ -169,7 +179,21 @@ int glpgp_cmd_solve(int argc, char **argv)
     c.mo.quad_size = c.o.size;
     if ((rc = glpgp_cli_load_input("solve", input, &c.mo, &m, NULL)) >= 0) return rc;
     double t_read = glpgp_now() - t0;
-    if (glpgp_options_check_mesh(&c.o, m) != GLPGP_OK) {
+    /* the input is refined for the local size (auto / iso, refinement on,
+     * no per-vertex field file): h may be down to half a mean edge here (a
+     * graded input whose far field is coarser than h); the refined mesh is
+     * checked against the full rule below */
+    const int refine = !c.no_refine && c.o.field != GLPGP_FIELD_FILE &&
+                       (c.o.size_field == GLPGP_SIZE_AUTO || c.o.size_field == GLPGP_SIZE_ISO);
+    glpgp_status chk;
+    if (refine && c.o.size > 0.0 && c.o.size >= 0.5 * m->mean_edge && c.o.size < GLPGP_SIZE_MIN_EDGES * m->mean_edge) {
+        glpgp_options big = c.o;
+        big.size = GLPGP_SIZE_MIN_EDGES * m->mean_edge; /* the other rules (diameter, options) */
+        chk = glpgp_options_check_mesh(&big, m);
+    } else {
+        chk = glpgp_options_check_mesh(&c.o, m);
+    }
+    if (chk != GLPGP_OK) {
         rc = glpgp_cli_usage_error("solve", "--size: %s", glpgp_error_message());
         glpgp_error_clear();
         glpgp_mesh_destroy(&m);
@@ -185,6 +209,31 @@ int glpgp_cmd_solve(int argc, char **argv)
         if (st == GLPGP_OK) st = glpgp_field_compute(m, NULL, &c.o, u, &cg);
         free(u);
         if (st != GLPGP_OK) goto fail;
+    }
+
+    /* triangles coarser than the local size: refined (longest-edge
+     * bisection), the size h fixed from the input mesh first */
+    memset(&c.refined, 0, sizeof c.refined);
+    /* a guiding field read from a file belongs to the input's vertices: no
+     * refinement then (the size field stays limited to what the mesh resolves) */
+    if (refine) {
+        const double h = c.o.size > 0.0 ? c.o.size : glpgp_default_size(m, &c.o);
+        glpgp_mesh *mr = NULL;
+        if (glpgp_size_refine(m, &c.o, h, &mr, &c.refined) != GLPGP_OK) goto fail;
+        if (mr) {
+            glpgp_log(GLPGP_LOG_INFO, "refined the input for the local size: %d -> %d vertices in %d rounds",
+                      c.refined.nv0, c.refined.nv, c.refined.rounds);
+            glpgp_mesh_destroy(&m);
+            m = mr;
+            c.o.size = h;
+            if (c.mo.max_triangles > 0 && m->nt > c.mo.max_triangles) {
+                GLPGP_FAIL(GLPGP_ERR_LIMIT, "the refined mesh has %d triangles, above --max-elements %ld", m->nt,
+                           c.mo.max_triangles);
+                goto fail;
+            }
+        }
+        /* the full rule (h >= 2 mean edges) on the mesh that is solved */
+        if (glpgp_options_check_mesh(&c.o, m) != GLPGP_OK) goto fail;
     }
 
     if (glpgp_backend_select(c.backend, c.device, c.verbosity > 0, &b) != GLPGP_OK) goto fail;

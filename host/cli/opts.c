@@ -363,6 +363,23 @@ static const char *parse_field(const char *v, void *dest)
     return NULL;
 }
 
+static const char *parse_size_field(const char *v, void *dest)
+{
+    glpgp_options *o = dest;
+    if (!*v) return "is empty";
+    if (!strcmp(v, "auto")) {
+        o->size_field = GLPGP_SIZE_AUTO;
+    } else if (!strcmp(v, "iso")) {
+        o->size_field = GLPGP_SIZE_ISO;
+    } else if (!strcmp(v, "none")) {
+        o->size_field = GLPGP_SIZE_NONE;
+    } else {
+        o->size_field = GLPGP_SIZE_FILE;
+        o->size_file = v;
+    }
+    return NULL;
+}
+
 static const char *const k_methods[] = {"gl", "pgp", NULL};
 static const int k_method_vals[] = {GLPGP_METHOD_GL, GLPGP_METHOD_PGP};
 static const char *const k_energies[] = {"p1", "transport", NULL};
@@ -414,6 +431,21 @@ void glpgp_opts_add_solver(glpgp_opts *t, glpgp_options *o)
     glpgp_opt_choice(t, "--init", &o->init, k_inits, k_init_vals,
                      "initial guess of the GL continuation: the normalised naive PGP\n"
                      "solution, or z = 1");
+    c.name = "--size-field";
+    c.parse = parse_size_field;
+    c.meta = "auto|iso|none|FILE";
+    c.help = "local size h(x) <= h: auto shrinks it where the domain (a wall,\n"
+             "strip, web) is thinner than --size-across periods, per\n"
+             "oscillator along its direction, and refines the input there;\n"
+             "iso: the same for both; none: h everywhere (the input as it\n"
+             "is); FILE: one \"h\" or \"h_u h_v\" line per vertex";
+    c.def = "auto";
+    glpgp_opts_add(t, c);
+    glpgp_opt_double(t, "--size-grading", &o->size_grading, 0.0, 1, HUGE_VAL, 0, "G",
+                     "local size grows at most G per unit length:\n"
+                     "h(x) <= h(y) + G |x - y| along mesh edges");
+    glpgp_opt_double(t, "--size-across", &o->size_across, 1.0, 0, HUGE_VAL, 0, "N",
+                     "periods (quads) across the thinnest features");
 
     glpgp_opts_group(t, "Continuation and solvers");
     glpgp_opt_double(t, "--eps0", &o->eps0, 0.0, 1, HUGE_VAL, 0, "F", "first eps, as a multiple of h");

@@ -76,7 +76,8 @@ static glpgp_status naive_solve(osc_work *w, int k, glpgp_osc_result *r)
 }
 
 static glpgp_status solve_oscillator(const glpgp_mesh *m, osc_work *w, int k, const double *hostw,
-                                     glpgp_osc_result *r, double h, const double *eps, int nlevels)
+                                     const double *size, glpgp_osc_result *r, double h, const double *eps,
+                                     int nlevels)
 {
     glpgp_backend *b = w->b;
     const glpgp_backend_ops *op = b->ops;
@@ -85,6 +86,7 @@ static glpgp_status solve_oscillator(const glpgp_mesh *m, osc_work *w, int k, co
     double t0 = glpgp_now();
     r->n_dirichlet = glpgp_dirichlet_set(m, hostw, r->dirichlet);
     GLPGP_CHECK(op->set_field(b, hostw, r->dirichlet));
+    if (size) GLPGP_CHECK(op->set_size(b, size)); /* local size h(x) (NULL: uniform h) */
     GLPGP_CHECK(op->assemble_quadratic(b, o->energy, h));
     /* multigrid hierarchy for this Dirichlet set (NULL: Jacobi) */
     glpgp_amg_destroy(&w->amg);
@@ -194,7 +196,8 @@ glpgp_status glpgp_solve(const glpgp_mesh *m, glpgp_backend *b, const glpgp_opti
     glpgp_result *r = NULL;
     glpgp_system *sys = NULL;
     osc_work w;
-    double *wv = NULL;
+    double *wv = NULL, *size = NULL;
+    int uniform = 1;
     memset(&w, 0, sizeof w);
     *out = NULL;
     const double t0 = glpgp_now();
@@ -220,10 +223,8 @@ glpgp_status glpgp_solve(const glpgp_mesh *m, glpgp_backend *b, const glpgp_opti
     GLPGP_CHECK_GOTO(st, glpgp_system_create(m, &sys), fail);
     glpgp_log(GLPGP_LOG_INFO, "%d vertices, %d triangles, %ld blocks, h = %g (%.1f edges per period), backend %s",
               nv, nt, sys->nnzb, h, h / m->mean_edge, b->ops->name);
-    if (h < 6.0 * m->mean_edge)
-        glpgp_log(GLPGP_LOG_WARNING, "h = %g is only %.1f mean edges: P1 needs about 10 vertices per "
-                                     "period (refine the mesh, raise --size, or use --energy transport)",
-                  h, h / m->mean_edge);
+    /* local resolution: longest edges against the local size (error / warning) */
+    GLPGP_CHECK_GOTO(st, glpgp_size_check_mesh(m, o, h), fail);
     GLPGP_CHECK_GOTO(st, b->ops->setup(b, sys), fail);
     w.b = b;
     w.o = o;
@@ -245,6 +246,10 @@ glpgp_status glpgp_solve(const glpgp_mesh *m, glpgp_backend *b, const glpgp_opti
     else
         GLPGP_CHECK_GOTO(st, glpgp_field_compute(m, b, o, r->field, &r->field_cg_iterations), fail);
     r->seconds_field = glpgp_now() - t1;
+    /* local size h(x) per oscillator (uniform: NULL, today's arithmetic) */
+    GLPGP_CHECK_GOTO(st, glpgp_malloc(n2, sizeof(double), &size), fail);
+    GLPGP_CHECK_GOTO(st, glpgp_size_compute(m, o, h, r->field, size, &uniform), fail);
+    if (!uniform) glpgp_size_log(m, size, h);
 
     double eps[GLPGP_MAX_LEVELS];
     int nlev = glpgp_eps_schedule(m, o, h, eps);
@@ -256,7 +261,9 @@ glpgp_status glpgp_solve(const glpgp_mesh *m, glpgp_backend *b, const glpgp_opti
             wv[2 * i] = k == 0 ? ux : -uy;
             wv[2 * i + 1] = k == 0 ? uy : ux;
         }
-        GLPGP_CHECK_GOTO(st, solve_oscillator(m, &w, k, wv, &r->osc[k], h, eps, nlev), fail);
+        GLPGP_CHECK_GOTO(st, solve_oscillator(m, &w, k, wv, uniform ? NULL : size + (size_t)k * nv, &r->osc[k], h,
+                                              eps, nlev),
+                         fail);
     }
     r->seconds_total = glpgp_now() - t0;
     goto cleanup;
@@ -274,6 +281,7 @@ cleanup:
     free(w.host);
     free(w.scratch);
     free(wv);
+    free(size);
     glpgp_system_destroy(&sys);
     *out = r;
     return st;

@@ -60,4 +60,7 @@ glpgp_amg *glpgp_amg_try_create(glpgp_backend *b, const glpgp_options *o, const 
  * caller stops using a), else 1. */
 int glpgp_amg_try_update(glpgp_amg *a, const glpgp_vec *x, const char *what);
 
+/* One INFO line about a non-uniform size field (solver/sizefield.c). */
+void glpgp_size_log(const glpgp_mesh *m, const double *size, double h);
+
 #endif

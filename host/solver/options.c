@@ -53,6 +53,12 @@ void glpgp_options_default(glpgp_options *o)
     o->amg_weight = 1.5;
     o->amg_check = 1;
     o->amg_maxit = 1000;
+    o->size_field = GLPGP_SIZE_AUTO;
+    o->size_file = NULL;
+    o->size_grading = 0.5;
+    o->size_across = 2.0;
+    o->size_min = 0.05;
+    o->size_resolution = 4.0;
     o->size_diag_div = 20.0;
     o->size_min_edges = 10.0;
 }
@@ -120,6 +126,19 @@ glpgp_status glpgp_options_check(const glpgp_options *o)
         return GLPGP_FAIL(GLPGP_ERR_ARG, "amg_weight must be in (0, 2), got %g", o->amg_weight);
     if (o->amg_check < 1 || o->amg_maxit < 1)
         return GLPGP_FAIL(GLPGP_ERR_ARG, "amg_check and amg_maxit must be >= 1");
+    if (o->size_field < GLPGP_SIZE_NONE || o->size_field > GLPGP_SIZE_FILE)
+        return GLPGP_FAIL(GLPGP_ERR_ARG, "unknown size field %d", o->size_field);
+    if (o->size_field == GLPGP_SIZE_FILE && (!o->size_file || !*o->size_file))
+        return GLPGP_FAIL(GLPGP_ERR_ARG, "size field from a file needs a file name");
+    if (!(o->size_grading > 0.0) || !isfinite(o->size_grading))
+        return GLPGP_FAIL(GLPGP_ERR_ARG, "size grading must be a positive number, got %g", o->size_grading);
+    if (!(o->size_across >= 1.0) || !isfinite(o->size_across))
+        return GLPGP_FAIL(GLPGP_ERR_ARG, "size_across must be >= 1, got %g", o->size_across);
+    if (!(o->size_min > 0.0 && o->size_min <= 1.0))
+        return GLPGP_FAIL(GLPGP_ERR_ARG, "size_min must be in (0, 1], got %g", o->size_min);
+    if (!(o->size_resolution >= GLPGP_SIZE_MIN_EDGES) || !isfinite(o->size_resolution))
+        return GLPGP_FAIL(GLPGP_ERR_ARG, "size_resolution must be >= %g, got %g", GLPGP_SIZE_MIN_EDGES,
+                          o->size_resolution);
     if (!(o->size_diag_div > 0.0) || !(o->size_min_edges >= 0.0))
         return GLPGP_FAIL(GLPGP_ERR_ARG, "default-size parameters out of range");
     return GLPGP_OK;

@@ -187,7 +187,7 @@ static void test_sign(void)
 }
 
 /* gradient = FD of energy; NEWTON (exact variant, no Dirichlet) = FD of gradient */
-static void test_fd(int kind)
+static void test_fd(int kind, int sized)
 {
     glpgp_mesh *m = grid_mesh(8, 1.0, 0.6);
     glpgp_system *sys = NULL;
@@ -217,6 +217,13 @@ static void test_fd(int kind)
     CHECK_OK(o->vec_create(b, n, &W));
     CHECK_OK(o->vec_create(b, n, &V));
     CHECK_OK(o->set_field(b, w, dir));
+    if (sized) {
+        /* a non-uniform size field: random sizes in [h/4, h] per vertex */
+        double *sz = malloc(sizeof(double) * nv);
+        for (int i = 0; i < nv; i++) sz[i] = 0.3 * (0.25 + 0.75 * tu_rand());
+        CHECK_OK(o->set_size(b, sz));
+        free(sz);
+    }
     CHECK_OK(o->assemble_quadratic(b, kind, 0.3));
     double sl[GLPGP_NSLOTS];
     CHECK_OK(o->vec_write(b, X, z));
@@ -240,7 +247,7 @@ static void test_fd(int kind)
     CHECK_OK(o->energy(b, X, inv4e2, W));
     CHECK_OK(o->get_scalars(b, sl, GLPGP_NSLOTS));
     Fm = sl[GLPGP_S_E] + sl[GLPGP_S_P];
-    printf("kind %d: FD grad %.12g vs g.v %.12g\n", kind, (Fp - Fm) / (2 * t), gv);
+    printf("kind %d%s: FD grad %.12g vs g.v %.12g\n", kind, sized ? " sized" : "", (Fp - Fm) / (2 * t), gv);
     CHECK_CLOSE((Fp - Fm) / (2 * t), gv, 1e-6, 1e-6);
     /* per-component gradient check on a few coordinates */
     for (int c = 0; c < n; c += 7) {
@@ -277,7 +284,7 @@ static void test_fd(int kind)
         if (fabs(fd - hv[i]) > maxd) maxd = fabs(fd - hv[i]);
         if (fabs(hv[i]) > maxv) maxv = fabs(hv[i]);
     }
-    printf("kind %d: Hessian FD max diff %.3g (max entry %.3g)\n", kind, maxd, maxv);
+    printf("kind %d%s: Hessian FD max diff %.3g (max entry %.3g)\n", kind, sized ? " sized" : "", maxd, maxv);
     CHECK(maxd <= 1e-6 * maxv + 1e-6);
     /* the quadratic part alone: QUAD v = grad E(v) without penalty (linear) */
     CHECK_OK(o->vec_write(b, X, v));
@@ -295,6 +302,143 @@ static void test_fd(int kind)
     glpgp_backend_destroy(&b);
     glpgp_system_destroy(&sys);
     glpgp_mesh_destroy(&m);
+}
+
+/* Independent energy of one triangle with corner sizes s and largest size h
+ * (z = zr + i zi at the corners), with the local-eps weights of element.h:
+ * P1: (h_T/h)^2 / 2 int_T |grad z - i w_T z|^2, h_T = 1 / mean(1/s_a), by the degree-4 rule
+ * (the integrand is quadratic), w_T = 2 pi mean(1/s_a) * normalised mean W;
+ * transport: sum over edges (p,q) of (h_e/h)^2 / 2 cot(theta_o)/2 |z_q - r z_p|^2,
+ * r = exp(i 2 pi (1/s_p + 1/s_q)/2 W_pq . (x_q - x_p)). */
+static double sized_energy(int kind, const double *x, const double *y, const double *wx, const double *wy,
+                           const double *s, double h, const double *zr, const double *zi)
+{
+    double gx[3], gy[3];
+    const double a2 = glpgp_tri_grads(x, y, gx, gy), A = 0.5 * a2;
+    if (kind == GLPGP_ELEM_P1) {
+        double mx = wx[0] + wx[1] + wx[2], my = wy[0] + wy[1] + wy[2], mn = hypot(mx, my);
+        double k = 2 * GLPGP_PI * (1 / s[0] + 1 / s[1] + 1 / s[2]) / 3;
+        double ox = k * mx / mn, oy = k * my / mn;
+        /* grad z (constant) */
+        double dxr = 0, dyr = 0, dxi = 0, dyi = 0;
+        for (int a = 0; a < 3; a++) {
+            dxr += zr[a] * gx[a];
+            dyr += zr[a] * gy[a];
+            dxi += zi[a] * gx[a];
+            dyi += zi[a] * gy[a];
+        }
+        double e = 0;
+        for (int q = 0; q < 6; q++) {
+            double l[3];
+            double wq = glpgp_quad4(q, &l[0], &l[1], &l[2]);
+            double r = l[0] * zr[0] + l[1] * zr[1] + l[2] * zr[2], i = l[0] * zi[0] + l[1] * zi[1] + l[2] * zi[2];
+            /* grad z - i w z: real part grad zr + w zi, imaginary part grad zi - w zr */
+            double ax = dxr + ox * i, ay = dyr + oy * i, bx = dxi - ox * r, by = dyi - oy * r;
+            e += wq * (ax * ax + ay * ay + bx * bx + by * by);
+        }
+        /* local eps: weight (h_T / h)^2, h_T = 1 / mean(1/s_a) */
+        const double hT = 3 / (1 / s[0] + 1 / s[1] + 1 / s[2]);
+        return (hT / h) * (hT / h) * 0.5 * A * e;
+    }
+    double e = 0;
+    for (int p = 0; p < 3; p++) {
+        int q = (p + 1) % 3, o = (p + 2) % 3;
+        double c = ((x[p] - x[o]) * (x[q] - x[o]) + (y[p] - y[o]) * (y[q] - y[o])) / (2 * a2);
+        double mx = wx[p] + wx[q], my = wy[p] + wy[q], mn = hypot(mx, my);
+        double ph = 2 * GLPGP_PI * 0.5 * (1 / s[p] + 1 / s[q]) * (mx * (x[q] - x[p]) + my * (y[q] - y[p])) / mn;
+        double rr = cos(ph), ri = sin(ph);
+        double dr = zr[q] - (rr * zr[p] - ri * zi[p]), di = zi[q] - (rr * zi[p] + ri * zr[p]);
+        const double he = 2 / (1 / s[p] + 1 / s[q]); /* local eps: weight (h_e / h)^2 */
+        e += (he / h) * (he / h) * 0.5 * c * (dr * dr + di * di);
+    }
+    return e;
+}
+
+/* glpgp_elem_scales + glpgp_elem_entry_k with random corner sizes: the real
+ * 6x6 matrix A (blocks [[p, -q], [q, p]] of H_ab = p + i q) is the Hessian of
+ * the independent energy (central second differences, exact for a quadratic up
+ * to rounding), and 1/2 X^T A X equals it; equal sizes give glpgp_elem_entry's
+ * arithmetic bit for bit. */
+static void test_sized_element(void)
+{
+    const int kinds[2] = {GLPGP_ELEM_P1, GLPGP_ELEM_TRANSPORT};
+    double maxrel = 0;
+    for (int trial = 0; trial < 20; trial++) {
+        double x[3], y[3], wx[3], wy[3], s[3], zr[3], zi[3];
+        for (int a = 0; a < 3; a++) {
+            x[a] = tu_rand();
+            y[a] = tu_rand();
+            double ang = 0.6 * tu_rand();
+            wx[a] = cos(ang);
+            wy[a] = sin(ang);
+            s[a] = 0.2 + 0.8 * tu_rand();
+            zr[a] = tu_rand() - 0.5;
+            zi[a] = tu_rand() - 0.5;
+        }
+        if (glpgp_tri_area(x, y) < 0.02) { /* counter-clockwise, not too flat */
+            double t = x[1];
+            x[1] = x[2];
+            x[2] = t;
+            t = y[1];
+            y[1] = y[2];
+            y[2] = t;
+        }
+        if (glpgp_tri_area(x, y) < 0.02) continue;
+        double kt, ke[3], wt, we[3];
+        const double h = 1.0; /* the largest size (s <= 1) */
+        glpgp_elem_scales(s, h, &kt, ke, &wt, we);
+        for (int kk = 0; kk < 2; kk++) {
+            const int kind = kinds[kk];
+            double A[6][6], X[6];
+            for (int a = 0; a < 3; a++)
+                for (int b = 0; b < 3; b++) {
+                    double re, im;
+                    glpgp_elem_entry_k(kind, x, y, wx, wy, kt, wt, ke, we, a, b, &re, &im);
+                    A[2 * a][2 * b] = re;
+                    A[2 * a][2 * b + 1] = -im;
+                    A[2 * a + 1][2 * b] = im;
+                    A[2 * a + 1][2 * b + 1] = re;
+                }
+            for (int a = 0; a < 3; a++) X[2 * a] = zr[a], X[2 * a + 1] = zi[a];
+            double q = 0;
+            for (int i = 0; i < 6; i++)
+                for (int j = 0; j < 6; j++) q += 0.5 * X[i] * A[i][j] * X[j];
+            CHECK_CLOSE(q, sized_energy(kind, x, y, wx, wy, s, h, zr, zi), 1e-12, 1e-11);
+            /* Hessian by central second differences of the independent energy */
+            const double t = 1e-3;
+            double amax = 0, dmax = 0;
+            for (int i = 0; i < 6; i++)
+                for (int j = 0; j < 6; j++) {
+                    double f[4];
+                    for (int c = 0; c < 4; c++) {
+                        double Y[6], yr[3], yi[3];
+                        memcpy(Y, X, sizeof Y);
+                        Y[i] += (c & 1) ? -t : t;
+                        Y[j] += (c & 2) ? -t : t;
+                        for (int a = 0; a < 3; a++) yr[a] = Y[2 * a], yi[a] = Y[2 * a + 1];
+                        f[c] = sized_energy(kind, x, y, wx, wy, s, h, yr, yi);
+                    }
+                    double fd = (f[0] - f[1] - f[2] + f[3]) / (4 * t * t);
+                    dmax = fmax(dmax, fabs(fd - A[i][j]));
+                    amax = fmax(amax, fabs(A[i][j]));
+                }
+            maxrel = fmax(maxrel, dmax / amax);
+            CHECK(dmax <= 1e-6 * amax);
+        }
+        /* equal sizes h: the uniform arithmetic bit for bit */
+        double su[3] = {0.37, 0.37, 0.37};
+        glpgp_elem_scales(su, 0.37, &kt, ke, &wt, we);
+        for (int kk = 0; kk < 2; kk++)
+            for (int a = 0; a < 3; a++)
+                for (int b = 0; b < 3; b++) {
+                    double r1, i1, r2, i2;
+                    glpgp_elem_entry_k(kinds[kk], x, y, wx, wy, kt, wt, ke, we, a, b, &r1, &i1);
+                    glpgp_elem_entry(kinds[kk], x, y, wx, wy, 0.37, a, b, &r2, &i2);
+                    CHECK_CLOSE(r1, r2, 1e-14, 1e-13);
+                    CHECK_CLOSE(i1, i2, 1e-14, 1e-13);
+                }
+    }
+    printf("sized elements: Hessian vs FD of the energy, max rel diff %.3g\n", maxrel);
 }
 
 /* singularity detection on analytic fields */
@@ -331,8 +475,11 @@ int main(void)
     test_quadrature();
     test_penalty_psd();
     test_sign();
-    test_fd(GLPGP_ELEM_P1);
-    test_fd(GLPGP_ELEM_TRANSPORT);
+    test_fd(GLPGP_ELEM_P1, 0);
+    test_fd(GLPGP_ELEM_TRANSPORT, 0);
+    test_fd(GLPGP_ELEM_P1, 1);
+    test_fd(GLPGP_ELEM_TRANSPORT, 1);
+    test_sized_element();
     test_winding();
     TEST_DONE();
 }

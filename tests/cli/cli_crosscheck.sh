@@ -1,7 +1,8 @@
 #!/bin/bash
 # cli_crosscheck.sh: `glpgp crosscheck` end to end: passes (exit 0) on a
 # generated disk and on data/annulus.msh, and fails (exit 1, QUAD assembly
-# FAIL) when GLPGP_CL_CORRUPT=1 corrupts the OpenCL assembly.
+# FAIL) when GLPGP_CL_CORRUPT=1 corrupts the OpenCL assembly; the disk run
+# includes the sized QUAD assembly rows (set_size, both energies).
 # Args: GLPGP_BINARY DATA_DIR. Exit 77 (skip) if `glpgp devices` fails.
 set -u
 glpgp=$1
@@ -20,6 +21,11 @@ fi
 # 1. a generated disk, whole pipeline included: must pass
 if "$glpgp" crosscheck shape:disk:2000 >"$out" 2>&1; then
     grep -q "all stages PASS" "$out" || { echo "FAIL: no PASS summary"; cat "$out"; fail=1; }
+    # the local size field (set_size) on both backends, both energies
+    for k in p1 transport; do
+        grep -q "^QUAD assembly ($k, sized) .*PASS" "$out" ||
+            { echo "FAIL: no passing sized QUAD assembly row for $k"; cat "$out"; fail=1; }
+    done
 else
     echo "FAIL: crosscheck shape:disk:2000 exited $?"; cat "$out"; fail=1
 fi

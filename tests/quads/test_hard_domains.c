@@ -11,7 +11,10 @@
  * extracted with the default pipeline (closing, smoothing, repair). Every
  * mesh must be valid: all quads, nothing inverted, degenerate, overlapping
  * or outside, same boundary loops as the domain, area within 1%, Hausdorff
- * distance <= h/4, corners kept.
+ * distance <= h/4, corners kept. The default options include the local size
+ * field (--size-field auto: the input refined first as `glpgp solve` does);
+ * the I-beam, strip, cusp and wedge at 12 edges run again with the uniform
+ * size (none) and must be valid too.
  * Property tests on random polygons with holes (star-shaped outer loop with
  * spikes, 0-3 round holes of radius 0.05 to 0.6 H): the repair alone fills
  * the whole domain from nothing with a valid all-quad mesh (20 polygons),
@@ -52,7 +55,7 @@ static void check_valid(const glpgp_quad_quality *qq, const char *what)
 }
 
 /* Solve at h = 1, extract with the defaults, report. */
-static void pipeline(const glpgp_mesh *m, const char *what, int *valid, int *irregular, int *quads)
+static void pipeline(const glpgp_mesh *m0, const char *what, int size_field, int *valid, int *irregular, int *quads)
 {
     glpgp_backend *b = NULL;
     glpgp_result *r = NULL;
@@ -61,6 +64,13 @@ static void pipeline(const glpgp_mesh *m, const char *what, int *valid, int *irr
     glpgp_options_default(&o);
     o.size = 1.0;
     o.newton_max = 20;
+    o.size_field = size_field;
+    /* the CLI's default pipeline: triangles coarser than the local size
+     * refined first (glpgp_size_refine; NULL: nothing to refine) */
+    glpgp_mesh *mr = NULL;
+    glpgp_refine_info ri;
+    CHECK_OK(glpgp_size_refine(m0, &o, o.size, &mr, &ri));
+    const glpgp_mesh *m = mr ? mr : m0;
     CHECK_OK(glpgp_solve(m, b, &o, &r));
     glpgp_quadmesh *q = NULL;
     double h = 1.0;
@@ -80,6 +90,7 @@ static void pipeline(const glpgp_mesh *m, const char *what, int *valid, int *irr
     glpgp_quadmesh_destroy(&q);
     glpgp_result_destroy(&r);
     glpgp_backend_destroy(&b);
+    glpgp_mesh_destroy(&mr);
 }
 
 /* Random star-shaped polygon with spikes and round holes (H = 1). */
@@ -146,8 +157,17 @@ int main(void)
             glpgp_mesh *m = mesh_of(&p, e / 0.7, names[k]);
             hd_free(&p);
             if (!m) continue;
-            pipeline(m, what, &valid, &irr, &nq);
+            /* the default options (the local size field auto: the input
+             * refined where it is coarser than the local h / 4), then the
+             * uniform size (none) on the thin-wall and cusp classes at 12 */
+            pipeline(m, what, GLPGP_SIZE_AUTO, &valid, &irr, &nq);
             runs++;
+            if (edges[s] == 12 && (!strcmp(names[k], "ibeam") || !strcmp(names[k], "strip") ||
+                                   !strcmp(names[k], "cusp") || !strcmp(names[k], "wedge20"))) {
+                int v2 = 0, i2 = 0, q2 = 0;
+                snprintf(what, sizeof what, "%s @ %d none", names[k], edges[s]);
+                pipeline(m, what, GLPGP_SIZE_NONE, &v2, &i2, &q2);
+            }
             glpgp_mesh_destroy(&m);
         }
         printf("%d mean edges per H: %d of %d valid, %.1f irregular vertices per 100 quads\n", edges[s], valid, runs,
@@ -198,7 +218,7 @@ int main(void)
         hd_free(&p);
         if (!m) continue;
         int valid = 0, irr = 0, nq = 0;
-        pipeline(m, what, &valid, &irr, &nq);
+        pipeline(m, what, GLPGP_SIZE_AUTO, &valid, &irr, &nq);
         glpgp_mesh_destroy(&m);
     }
     rmdir(g_dir);

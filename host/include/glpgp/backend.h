@@ -123,10 +123,16 @@ typedef struct glpgp_backend_ops {
     glpgp_status (*get_scalars)(glpgp_backend *b, double *out, int n);
 
     /* Per oscillator: unit field W (2*nv doubles) and Dirichlet mask (nv
-     * flags, 1 = fixed vertex). */
+     * flags, 1 = fixed vertex). Resets the size field to the uniform h. */
     glpgp_status (*set_field)(glpgp_backend *b, const double *w, const unsigned char *dirichlet);
+    /* Per oscillator, after set_field: per-vertex target sizes (nv doubles,
+     * > 0; glpgp_size_compute) used by assemble_quadratic instead of its h
+     * (kernels/element.h: glpgp_elem_scales); NULL: back to the uniform h,
+     * whose arithmetic is unchanged (bit for bit). */
+    glpgp_status (*set_size)(glpgp_backend *b, const double *size);
     /* QUAD <- sum over triangles of the element matrices of `kind`
-     * (GLPGP_ELEM_*) with target size h, gathered through the slot map. */
+     * (GLPGP_ELEM_*) with target size h (or the sizes of set_size), gathered
+     * through the slot map. */
     glpgp_status (*assemble_quadratic)(glpgp_backend *b, int kind, double h);
     /* NEWTON <- QUAD + penalty Hessian variant `hess` (GLPGP_HESS_*) at x with
      * weight inv4e2 = 1/(4 eps^2) (0: no penalty); Dirichlet rows/cols ->

@@ -89,9 +89,10 @@ glpgp_status glpgp_probe_matrix(glpgp_backend *b, int which, double *vals);
  *   vector write/read, copy + axpby, axpby with zero coefficients on
  *   NaN-filled vectors, dot z.r (and the same OpenCL dot again: bit for bit);
  *   QUAD assembly of the chosen energy ("QUAD assembly") and of the other
- *   element kinds; NEWTON assembly and DINV without penalty and for every
- *   Hessian variant; gradient g, E, P with and without penalty, energy E, P;
- *   spmv QUAD / NEWTON, dot x.(NEWTON x); the fused CG steps (precond, then
+ *   element kinds, then of p1 and transport with a non-uniform size field
+ *   ("sized": set_size, random sizes in [h/4, h]); NEWTON assembly and
+ *   DINV without penalty and for every Hessian variant; gradient g, E, P
+ *   with and without penalty, energy E, P; spmv QUAD / NEWTON, dot x.(NEWTON x); the fused CG steps (precond, then
  *   3 x spmv_dot, update, direction on the projected NEWTON); a CG solve
  *   NEWTON d = -g; the Newton step z + d; when both backends have the
  *   multigrid ops, the hierarchy of the mixed NEWTON at z (levels and sizes

@@ -32,6 +32,13 @@ enum glpgp_precond {
     GLPGP_PRECOND_JACOBI = 0, /* 2x2-block Jacobi, CG (solver/cg.c) */
     GLPGP_PRECOND_AMG = 1     /* aggregation multigrid, flexible CG (solver/amg.c) */
 };
+/* Local target size h(x) (solver/sizefield.c, host/README.md "Local size"). */
+enum glpgp_size_mode {
+    GLPGP_SIZE_NONE = 0, /* h everywhere (today's uniform size) */
+    GLPGP_SIZE_AUTO = 1, /* local feature size from the boundary, per oscillator along its W */
+    GLPGP_SIZE_ISO = 2,  /* the same, isotropic: one size for both oscillators */
+    GLPGP_SIZE_FILE = 3  /* one "h" or "h_u h_v" line per vertex from size_file */
+};
 /* Multigrid cycle on the coarse levels. */
 enum glpgp_amg_cycle {
     GLPGP_AMG_KCYCLE = 0, /* two flexible-CG steps per coarse level (K-cycle) */
@@ -116,6 +123,18 @@ typedef struct glpgp_options {
     int amg_check;        /* flexible CG reads the residual back every k iterations [1] */
     int amg_maxit;        /* flexible-CG cap (the smaller of this and cg_max) [1000] */
 
+    /* local size h(x) (glpgp_size_compute); h above is the largest size */
+    int size_field;       /* GLPGP_SIZE_* [AUTO: measured better than NONE, README "Local size"] */
+    const char *size_file; /* for GLPGP_SIZE_FILE [NULL] */
+    double size_grading;  /* g: h_i <= h_j + g |x_i - x_j| on every mesh edge, > 0 [0.5] */
+    double size_across;   /* periods (quads) across a feature (wall, strip, slot, hole), >= 1 [2] */
+    double size_min;      /* smallest local size as a fraction of h, in (0, 1] [0.05]: cusps and
+                             wedge tips (feature size -> 0) stop there; the repair meshes what
+                             is thinner */
+    double size_resolution; /* a triangle's longest edge should be <= its local h / this:
+                             glpgp_size_refine refines to it, glpgp_solve warns below it
+                             (and fails below GLPGP_SIZE_MIN_EDGES), >= 2 [4] */
+
     /* default h (glpgp_default_size) */
     double size_diag_div; /* h = bounding-box diagonal / this ... [20] */
     double size_min_edges;/* ... raised to this many mean edges [10] */
@@ -135,6 +154,60 @@ glpgp_status glpgp_options_check(const glpgp_options *o);
 #define GLPGP_SIZE_MIN_EDGES 2.0
 #define GLPGP_SIZE_MAX_DIAG 100.0
 glpgp_status glpgp_options_check_mesh(const glpgp_options *o, const glpgp_mesh *m);
+
+/* ---- local size (solver/sizefield.c) ----
+ * Per-vertex target sizes of the two oscillators: size[0 .. nv) for u,
+ * size[nv .. 2 nv) for v. h is the user's (largest) size. */
+
+/* The size field of option o->size_field for mesh m: NONE: h; AUTO: the
+ * local feature size measured along each oscillator's field (u: the guiding
+ * field U, 2*nv; v: U rotated by +90 degrees); AUTO with u NULL, and ISO: the
+ * isotropic size (a lower bound of AUTO's); FILE: read from o->size_file.
+ * AUTO and ISO are limited to what m resolves: a value below
+ * o->size_resolution x the longest mesh edge at its vertex is raised to that
+ * (at most h), so the solve never asks for periods the mesh cannot carry
+ * (glpgp_size_refine refines the input first where it should).
+ * *uniform (may be NULL) <- 1 when every value equals h exactly (the solve
+ * then uses the uniform element arithmetic, bit for bit). */
+glpgp_status glpgp_size_compute(const glpgp_mesh *m, const glpgp_options *o, double h, const double *u,
+                                double *size, int *uniform);
+
+/* Local resolution of a mesh for a size field: per triangle T,
+ * q_T = (smallest size at T's corners, both oscillators) / (longest edge). */
+typedef struct glpgp_size_res {
+    double worst;   /* min q_T */
+    int tri;        /* the triangle where it is reached */
+    double x, y;    /* its centroid */
+    double lmax, h; /* its longest edge and size */
+    int coarse;     /* triangles with q_T < R */
+} glpgp_size_res;
+glpgp_status glpgp_size_resolution(const glpgp_mesh *m, const double *size, double R, glpgp_size_res *res);
+
+/* The local resolution check of glpgp_solve (max edge against the local
+ * size, not the mean edge), with the isotropic size (AUTO, limited to what
+ * the mesh resolves: a warning line when the limit raised any value), the
+ * file's, or h (NONE): GLPGP_ERR_MESH naming the place when a triangle has
+ * q_T < GLPGP_SIZE_MIN_EDGES (NONE: a warning only, today's pipeline), one
+ * warning line when some have q_T < o->size_resolution. */
+glpgp_status glpgp_size_check_mesh(const glpgp_mesh *m, const glpgp_options *o, double h);
+
+/* Refinement of the triangles too coarse for the local size (q_T <
+ * o->size_resolution, isotropic size), by conforming longest-edge bisection
+ * in rounds, the sizes recomputed on each new mesh, until none is left.
+ * *out <- the refined mesh, or NULL when nothing needed refining (and
+ * always for GLPGP_SIZE_NONE, today's pipeline on the input as it is, and
+ * GLPGP_SIZE_FILE, whose values belong to m's vertices).
+ * GLPGP_ERR_LIMIT (naming the place) beyond GLPGP_REFINE_MAX_ROUNDS rounds
+ * or GLPGP_REFINE_MAX_VERTICES vertices. info may be NULL. */
+#define GLPGP_REFINE_MAX_ROUNDS 64
+#define GLPGP_REFINE_MAX_VERTICES 8000000
+typedef struct glpgp_refine_info {
+    int rounds;
+    long split_edges;
+    int nv0, nt0, nv, nt; /* before and after */
+} glpgp_refine_info;
+glpgp_status glpgp_size_refine(const glpgp_mesh *m, const glpgp_options *o, double h, glpgp_mesh **out,
+                               glpgp_refine_info *info);
 
 /* Run the whole pipeline on mesh m with backend b (already created; setup is
  * done here). On success *out holds the result (free with

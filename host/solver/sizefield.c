@@ -1,0 +1,800 @@
+/* solver/sizefield.c: the local target size h(x) of each oscillator, the
+ * local resolution check of the input mesh and its refinement
+ * (glpgp/solve.h; design and measurements in host/README.md, "Local size").
+ *
+ * auto (GLPGP_SIZE_AUTO, anisotropic) and iso (GLPGP_SIZE_ISO): local feature
+ * size from the boundary.
+ *   1. From the midpoint p_e of every boundary edge e (outward unit normal
+ *      n_e) a ray is cast inward (-n_e) to the first other boundary edge
+ *      (uniform grid of boundary edges, cell walk): the chord t_e, the
+ *      thickness of the domain there (a wall, a strip, a web, a tooth; rays
+ *      longer than N H are not followed: they cannot lower the size below H).
+ *      Gaps (slots, cracks, small holes: the chord outward) are not sized:
+ *      they are not meshed, and shrinking the size next to them was measured
+ *      to cost more repairs and irregular vertices (bench/results/size_field.md).
+ *   2. An oscillator with unit field W crosses that feature along W, over
+ *      t_e / |W.n_e| for walls parallel to e, and needs N = size_across
+ *      periods there:  s_e(W) = t_e / (N |W.n_e|)  (auto; |W.n_e| -> 0, a
+ *      wave running along the feature, gives no constraint). The gradation
+ *      of step 4 lets the size grow towards the feature's middle, so a strip
+ *      gets about 0.8 N periods across at g = 1/2 (a wall size making it
+ *      exactly N, t g / (2 (exp(g N / 2) - 1)), was measured no better on the
+ *      hard domains: bench/results/size_field.md). iso uses
+ *      s_e = t_e / N for both oscillators, the lower bound over W (used for
+ *      the resolution check and the refinement, which come before the
+ *      guiding field).
+ *   3. A boundary vertex's seed is the smaller of its two edges' s_e,
+ *      floored at size_min H; every other vertex starts at H.
+ *   4. Gradation by Dijkstra over the mesh edges (g = size_grading):
+ *        h_i = min(H, min_j (seed_j + g d(i, j))),  d the shortest mesh path,
+ *      so h_i <= h_j + g |x_i - x_j| holds on every mesh edge (i, j).
+ * file (GLPGP_SIZE_FILE): one positive value per line and vertex (both
+ * oscillators) or two (h_u h_v); '#' comments and blank lines skipped.
+ * none: H everywhere.
+ *
+ * Resolution: triangle T needs its longest edge L_T <= h_T / R with h_T the
+ * smallest size at its corners (both oscillators, iso for auto), R =
+ * size_resolution. glpgp_size_refine splits the triangles that do not
+ * satisfy it by conforming longest-edge bisection (each round: the longest
+ * edge of every such triangle is marked, then the longest edge of every
+ * triangle with a marked edge, until closed; each triangle is bisected at its
+ * longest edge and its halves at their marked edges: 2, 3 or 4 children;
+ * angles stay bounded below by half the smallest input angle), recomputing the
+ * sizes on the new mesh each round. */
+#include "internal.h"
+
+#include <errno.h>
+#include <math.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* ---- boundary edges and the ray grid -------------------------------------- */
+
+typedef struct bedges {
+    int n;        /* boundary edges */
+    int *v;       /* 2n: endpoints a, b (domain on the left of a -> b) */
+    double *nrm;  /* 2n: outward unit normals */
+    /* uniform grid over the edges' bounding box: cell (ix, iy) lists
+     * item[start[c] .. start[c+1]), c = iy nx + ix */
+    double x0, y0, cs;
+    int nx, ny;
+    int *start, *item;
+} bedges;
+
+static void bedges_free(bedges *be)
+{
+    free(be->v);
+    free(be->nrm);
+    free(be->start);
+    free(be->item);
+    memset(be, 0, sizeof *be);
+}
+
+static int clampi(int v, int lo, int hi) { return v < lo ? lo : v > hi ? hi : v; }
+
+static glpgp_status bedges_build(const glpgp_mesh *m, bedges *be)
+{
+    memset(be, 0, sizeof *be);
+    const int n = m->loop_start[m->nloops];
+    be->n = n;
+    GLPGP_CHECK(glpgp_malloc((size_t)2 * n + 2, sizeof(int), &be->v));
+    GLPGP_CHECK(glpgp_malloc((size_t)2 * n + 2, sizeof(double), &be->nrm));
+    double xmin = HUGE_VAL, ymin = HUGE_VAL, xmax = -HUGE_VAL, ymax = -HUGE_VAL, len = 0.0;
+    int k = 0;
+    for (int l = 0; l < m->nloops; l++) {
+        const int s = m->loop_start[l], e = m->loop_start[l + 1];
+        for (int p = s; p < e; p++) {
+            const int a = m->loop_vertices[p], b = m->loop_vertices[p + 1 < e ? p + 1 : s];
+            const double dx = m->xy[2 * b] - m->xy[2 * a], dy = m->xy[2 * b + 1] - m->xy[2 * a + 1];
+            const double L = hypot(dx, dy);
+            be->v[2 * k] = a;
+            be->v[2 * k + 1] = b;
+            /* domain on the left of a -> b: outward normal = direction turned clockwise */
+            be->nrm[2 * k] = L > 0.0 ? dy / L : 0.0;
+            be->nrm[2 * k + 1] = L > 0.0 ? -dx / L : 0.0;
+            len += L;
+            const int vv[2] = {a, b};
+            for (int q = 0; q < 2; q++) {
+                xmin = fmin(xmin, m->xy[2 * vv[q]]);
+                xmax = fmax(xmax, m->xy[2 * vv[q]]);
+                ymin = fmin(ymin, m->xy[2 * vv[q] + 1]);
+                ymax = fmax(ymax, m->xy[2 * vv[q] + 1]);
+            }
+            k++;
+        }
+    }
+    /* cell size: the mean boundary edge, raised so there are at most ~4 cells per edge */
+    const double w = xmax - xmin, hgt = ymax - ymin;
+    double cs = n > 0 ? len / n : 1.0;
+    const double cmin = sqrt(w * hgt / (4.0 * n + 1.0));
+    if (cs < cmin) cs = cmin;
+    cs = fmax(cs, fmax(w, hgt) / 65000.0); /* at most 65001 cells a side */
+    if (!(cs > 0.0)) cs = fmax(fmax(w, hgt), 1e-300);
+    be->x0 = xmin - 1e-9 * cs;
+    be->y0 = ymin - 1e-9 * cs;
+    be->cs = cs;
+    be->nx = (int)floor(w / cs) + 1;
+    be->ny = (int)floor(hgt / cs) + 1;
+    const size_t nc = (size_t)be->nx * be->ny;
+    GLPGP_CHECK(glpgp_calloc(nc + 1, sizeof(int), &be->start));
+    /* two passes over the cells each edge's bounding box covers: count, fill */
+    for (int pass = 0; pass < 2; pass++) {
+        for (int e = 0; e < n; e++) {
+            const int a = be->v[2 * e], b = be->v[2 * e + 1];
+            const int ix0 = clampi((int)floor((fmin(m->xy[2 * a], m->xy[2 * b]) - be->x0) / cs), 0, be->nx - 1);
+            const int ix1 = clampi((int)floor((fmax(m->xy[2 * a], m->xy[2 * b]) - be->x0) / cs), 0, be->nx - 1);
+            const int iy0 = clampi((int)floor((fmin(m->xy[2 * a + 1], m->xy[2 * b + 1]) - be->y0) / cs), 0, be->ny - 1);
+            const int iy1 = clampi((int)floor((fmax(m->xy[2 * a + 1], m->xy[2 * b + 1]) - be->y0) / cs), 0, be->ny - 1);
+            for (int iy = iy0; iy <= iy1; iy++)
+                for (int ix = ix0; ix <= ix1; ix++) {
+                    const size_t c = (size_t)iy * be->nx + ix;
+                    if (pass == 0) be->start[c + 1]++;
+                    else be->item[be->start[c]++] = e;
+                }
+        }
+        if (pass == 0) {
+            for (size_t c = 0; c < nc; c++) be->start[c + 1] += be->start[c];
+            GLPGP_CHECK(glpgp_malloc((size_t)be->start[nc] + 1, sizeof(int), &be->item));
+        } else {
+            /* start[c] now holds the end of cell c: shift back */
+            for (size_t c = nc; c > 0; c--) be->start[c] = be->start[c - 1];
+            be->start[0] = 0;
+        }
+    }
+    return GLPGP_OK;
+}
+
+/* Ray p + t d (d unit) against boundary edge e: t of the crossing, or +inf.
+ * The segment is a + s (b - a), s in [0, 1]:  t d - s (b - a) = a - p. */
+static double ray_edge(const glpgp_mesh *m, const bedges *be, int e, double px, double py, double dx, double dy)
+{
+    const double *A = m->xy + 2 * be->v[2 * e], *B = m->xy + 2 * be->v[2 * e + 1];
+    const double ex = B[0] - A[0], ey = B[1] - A[1];
+    const double den = dx * ey - dy * ex; /* cross(d, b - a) */
+    if (fabs(den) <= 1e-12 * hypot(ex, ey)) return HUGE_VAL; /* parallel: its neighbours are hit */
+    const double wx = A[0] - px, wy = A[1] - py;
+    const double t = (wx * ey - wy * ex) / den; /* cross(w, b - a) / cross(d, b - a) */
+    const double s = (wx * dy - wy * dx) / den; /* cross(w, d) / cross(d, b - a) */
+    if (s < -1e-9 || s > 1.0 + 1e-9) return HUGE_VAL;
+    return t;
+}
+
+/* Distance from p along d (unit) to the first boundary edge other than
+ * `self` with t in (tmin, tmax]; +inf when none. Walks the grid cells the
+ * ray crosses (Amanatides-Woo) and stops once the best hit lies before the
+ * current cell's exit. */
+static double ray_cast(const glpgp_mesh *m, const bedges *be, int self, double px, double py, double dx, double dy,
+                       double tmin, double tmax)
+{
+    const double cs = be->cs;
+    int ix = clampi((int)floor((px - be->x0) / cs), 0, be->nx - 1);
+    int iy = clampi((int)floor((py - be->y0) / cs), 0, be->ny - 1);
+    const int sx = dx > 0.0 ? 1 : (dx < 0.0 ? -1 : 0), sy = dy > 0.0 ? 1 : (dy < 0.0 ? -1 : 0);
+    double tx = sx > 0 ? (be->x0 + (ix + 1) * cs - px) / dx : sx < 0 ? (be->x0 + ix * cs - px) / dx : HUGE_VAL;
+    double ty = sy > 0 ? (be->y0 + (iy + 1) * cs - py) / dy : sy < 0 ? (be->y0 + iy * cs - py) / dy : HUGE_VAL;
+    const double ddx = sx ? cs / fabs(dx) : HUGE_VAL, ddy = sy ? cs / fabs(dy) : HUGE_VAL;
+    double best = HUGE_VAL;
+    for (;;) {
+        const size_t c = (size_t)iy * be->nx + ix;
+        for (int k = be->start[c]; k < be->start[c + 1]; k++) {
+            const int e = be->item[k];
+            if (e == self) continue;
+            const double t = ray_edge(m, be, e, px, py, dx, dy);
+            if (t > tmin && t < best) best = t;
+        }
+        const double texit = fmin(tx, ty);
+        if (best <= texit || texit > tmax) break;
+        if (tx < ty) {
+            ix += sx;
+            tx += ddx;
+        } else {
+            iy += sy;
+            ty += ddy;
+        }
+        if (ix < 0 || iy < 0 || ix >= be->nx || iy >= be->ny) break;
+    }
+    return best <= tmax ? best : HUGE_VAL;
+}
+
+/* ---- gradation ------------------------------------------------------------- */
+
+typedef struct heap_item {
+    double key;
+    int v;
+} heap_item;
+
+static void heap_push(heap_item *h, size_t *n, double key, int v)
+{
+    size_t i = (*n)++;
+    while (i > 0) {
+        size_t p = (i - 1) / 2;
+        if (h[p].key <= key) break;
+        h[i] = h[p];
+        i = p;
+    }
+    h[i].key = key;
+    h[i].v = v;
+}
+
+static heap_item heap_pop(heap_item *h, size_t *n)
+{
+    heap_item top = h[0], last = h[--(*n)];
+    size_t i = 0;
+    for (;;) {
+        size_t c = 2 * i + 1;
+        if (c >= *n) break;
+        if (c + 1 < *n && h[c + 1].key < h[c].key) c++;
+        if (h[c].key >= last.key) break;
+        h[i] = h[c];
+        i = c;
+    }
+    if (*n > 0) h[i] = last;
+    return top;
+}
+
+/* Vertex adjacency of the mesh (CSR, an interior edge listed from both of its
+ * triangles: duplicates are harmless for Dijkstra). */
+static glpgp_status vertex_graph(const glpgp_mesh *m, int **pptr, int **padj)
+{
+    int *ptr = NULL, *adj = NULL;
+    GLPGP_CHECK(glpgp_calloc((size_t)m->nv + 1, sizeof(int), &ptr));
+    for (int t = 0; t < m->nt; t++)
+        for (int a = 0; a < 3; a++) ptr[m->tri[3 * t + a] + 1] += 2;
+    for (int i = 0; i < m->nv; i++) ptr[i + 1] += ptr[i];
+    glpgp_status st = glpgp_malloc((size_t)ptr[m->nv] + 1, sizeof(int), &adj);
+    if (st != GLPGP_OK) {
+        free(ptr);
+        GLPGP_CHECK(st);
+    }
+    for (int t = 0; t < m->nt; t++)
+        for (int a = 0; a < 3; a++) {
+            const int i = m->tri[3 * t + a];
+            adj[ptr[i]++] = m->tri[3 * t + (a + 1) % 3];
+            adj[ptr[i]++] = m->tri[3 * t + (a + 2) % 3];
+        }
+    for (int i = m->nv; i > 0; i--) ptr[i] = ptr[i - 1];
+    ptr[0] = 0;
+    *pptr = ptr;
+    *padj = adj;
+    return GLPGP_OK;
+}
+
+/* s <- min(s_i, min_j s_j + g |x_i - x_j| along mesh paths) (Dijkstra, lazy heap). */
+static glpgp_status grade(const glpgp_mesh *m, const int *ptr, const int *adj, double g, double *s)
+{
+    heap_item *heap = NULL;
+    size_t n = 0;
+    GLPGP_CHECK(glpgp_malloc((size_t)m->nv + (size_t)ptr[m->nv] + 1, sizeof(heap_item), &heap));
+    for (int i = 0; i < m->nv; i++) heap_push(heap, &n, s[i], i);
+    while (n > 0) {
+        heap_item it = heap_pop(heap, &n);
+        const int i = it.v;
+        if (it.key > s[i]) continue; /* stale entry */
+        for (int k = ptr[i]; k < ptr[i + 1]; k++) {
+            const int j = adj[k];
+            /* s_j <- min(s_j, s_i + g |x_i - x_j|) */
+            const double c = s[i] + g * hypot(m->xy[2 * j] - m->xy[2 * i], m->xy[2 * j + 1] - m->xy[2 * i + 1]);
+            if (c < s[j]) {
+                s[j] = c;
+                heap_push(heap, &n, c, j);
+            }
+        }
+    }
+    free(heap);
+    return GLPGP_OK;
+}
+
+/* ---- the size field -------------------------------------------------------- */
+
+/* auto / iso: seeds from the boundary chords, then gradation (see the top). */
+static glpgp_status size_feature(const glpgp_mesh *m, const glpgp_options *o, double h, const double *u,
+                                 double *size)
+{
+    const int nv = m->nv;
+    glpgp_status st = GLPGP_OK;
+    bedges be;
+    int *ptr = NULL, *adj = NULL;
+    const double N = o->size_across, floor_h = o->size_min * h;
+    const int aniso = u && o->size_field == GLPGP_SIZE_AUTO;
+    for (int i = 0; i < 2 * nv; i++) size[i] = h;
+    GLPGP_CHECK(bedges_build(m, &be));
+    for (int e = 0; e < be.n; e++) {
+        const int a = be.v[2 * e], b = be.v[2 * e + 1];
+        const double px = 0.5 * (m->xy[2 * a] + m->xy[2 * b]), py = 0.5 * (m->xy[2 * a + 1] + m->xy[2 * b + 1]);
+        const double nx = be.nrm[2 * e], ny = be.nrm[2 * e + 1];
+        const double len = hypot(m->xy[2 * b] - m->xy[2 * a], m->xy[2 * b + 1] - m->xy[2 * a + 1]);
+        const double tmin = 1e-9 * len, tmax = N * h;
+        /* t_e = t_in: the domain's thickness along n_e. The gap outside
+         * (t_out: a slot, a crack, a small hole) needs no periods across it
+         * -- it is not meshed -- and shrinking the size next to it was
+         * measured to cost more repairs, not fewer (bench/results/size_field.md) */
+        const double t = ray_cast(m, &be, e, px, py, -nx, -ny, tmin, tmax);
+        if (!(t < HUGE_VAL)) continue;
+        double c[2] = {1.0, 1.0};
+        if (aniso) {
+            /* |W.n_e| for W = U (u) and V = U rotated by +90 degrees (v) at the edge */
+            double wx = u[2 * a] + u[2 * b], wy = u[2 * a + 1] + u[2 * b + 1], wn = hypot(wx, wy);
+            if (wn > 0.0) {
+                wx /= wn;
+                wy /= wn;
+            } else {
+                wx = 1.0;
+                wy = 0.0;
+            }
+            c[0] = fabs(wx * nx + wy * ny);
+            c[1] = fabs(-wy * nx + wx * ny);
+        }
+        for (int k = 0; k < 2; k++) {
+            /* s_e(W) = t_e / (N |W.n_e|), floored, at most h */
+            double s = c[k] > 0.0 ? t / (N * c[k]) : HUGE_VAL;
+            if (s < floor_h) s = floor_h;
+            if (s < size[k * nv + a]) size[k * nv + a] = s;
+            if (s < size[k * nv + b]) size[k * nv + b] = s;
+        }
+    }
+    bedges_free(&be);
+    GLPGP_CHECK(vertex_graph(m, &ptr, &adj));
+    for (int k = 0; k < 2 && st == GLPGP_OK; k++) st = grade(m, ptr, adj, o->size_grading, size + (size_t)k * nv);
+    free(ptr);
+    free(adj);
+    GLPGP_CHECK(st);
+    return GLPGP_OK;
+}
+
+/* Longest line a size file may have. */
+#define SIZE_LINE_MAX 4096
+
+static glpgp_status size_file(const glpgp_mesh *m, const char *path, double *size)
+{
+    FILE *f = fopen(path, "r");
+    if (!f) return GLPGP_FAIL(GLPGP_ERR_IO, "cannot open size file '%s': %s", path, strerror(errno));
+    glpgp_status st = GLPGP_OK;
+    char line[SIZE_LINE_MAX + 2];
+    int i = 0, lineno = 0, cols = 0;
+    while (fgets(line, sizeof line, f)) {
+        lineno++;
+        size_t len = strlen(line);
+        if (len > SIZE_LINE_MAX && line[len - 1] != '\n') {
+            st = GLPGP_FAIL(GLPGP_ERR_FORMAT, "%s:%d: line longer than %d characters", path, lineno, SIZE_LINE_MAX);
+            goto done;
+        }
+        char *p = line;
+        while (*p == ' ' || *p == '\t') p++;
+        if (*p == '#' || *p == '\n' || *p == '\r' || *p == '\0') continue;
+        double a, b;
+        char extra;
+        const int nread = sscanf(p, "%lf %lf %c", &a, &b, &extra);
+        if (nread != 1 && nread != 2) {
+            st = GLPGP_FAIL(GLPGP_ERR_FORMAT, "%s:%d: expected one size 'h' or two 'h_u h_v'", path, lineno);
+            goto done;
+        }
+        if (cols == 0) cols = nread;
+        if (nread != cols) {
+            st = GLPGP_FAIL(GLPGP_ERR_FORMAT, "%s:%d: %d value(s) where the first line had %d", path, lineno, nread,
+                            cols);
+            goto done;
+        }
+        if (nread == 1) b = a;
+        if (!(a > 0.0) || !(b > 0.0) || !isfinite(a) || !isfinite(b)) {
+            st = GLPGP_FAIL(GLPGP_ERR_FORMAT, "%s:%d: sizes must be positive finite numbers", path, lineno);
+            goto done;
+        }
+        if (i >= m->nv) {
+            st = GLPGP_FAIL(GLPGP_ERR_FORMAT, "%s: more than %d size lines (one per vertex expected)", path, m->nv);
+            goto done;
+        }
+        size[i] = a;
+        size[m->nv + i] = b;
+        i++;
+    }
+    if (ferror(f)) {
+        st = GLPGP_FAIL(GLPGP_ERR_IO, "%s: read error", path);
+        goto done;
+    }
+    if (i != m->nv) st = GLPGP_FAIL(GLPGP_ERR_FORMAT, "%s: %d size lines for %d vertices", path, i, m->nv);
+done:
+    fclose(f);
+    return st;
+}
+
+/* auto / iso on a mesh that cannot resolve them: s_i <- max(s_i, min(h, R l_i))
+ * with l_i the longest mesh edge at vertex i and R = size_resolution, so that
+ * every triangle keeps q_T >= R (the input is not refined here: glpgp_solve
+ * keeps the caller's vertices; glpgp_size_refine refines first). Returns the
+ * number of values raised. */
+static int size_clamp_to_mesh(const glpgp_mesh *m, double R, double h, double *size)
+{
+    const int nv = m->nv;
+    double *l = NULL;
+    int raised = 0;
+    if (glpgp_calloc((size_t)nv, sizeof(double), &l) != GLPGP_OK) return -1;
+    for (int t = 0; t < m->nt; t++)
+        for (int a = 0; a < 3; a++) {
+            const int i = m->tri[3 * t + a], j = m->tri[3 * t + (a + 1) % 3];
+            const double e = hypot(m->xy[2 * j] - m->xy[2 * i], m->xy[2 * j + 1] - m->xy[2 * i + 1]);
+            if (e > l[i]) l[i] = e;
+            if (e > l[j]) l[j] = e;
+        }
+    for (int k = 0; k < 2; k++)
+        for (int i = 0; i < nv; i++) {
+            const double lo = fmin(h, R * l[i]);
+            if (size[(size_t)k * nv + i] < lo) {
+                size[(size_t)k * nv + i] = lo;
+                raised++;
+            }
+        }
+    free(l);
+    return raised;
+}
+
+/* The field of glpgp_size_compute; clamp: auto / iso limited to what m resolves. */
+static glpgp_status size_compute(const glpgp_mesh *m, const glpgp_options *o, double h, const double *u,
+                                 double *size, int *uniform, int clamp, int *raised)
+{
+    const int nv = m->nv;
+    if (raised) *raised = 0;
+    if (!(h > 0.0) || !isfinite(h)) return GLPGP_FAIL(GLPGP_ERR_ARG, "size field: h = %g is not positive", h);
+    if (o->size_field == GLPGP_SIZE_FILE) {
+        GLPGP_CHECK(size_file(m, o->size_file, size));
+    } else if (o->size_field == GLPGP_SIZE_AUTO || o->size_field == GLPGP_SIZE_ISO) {
+        GLPGP_CHECK(size_feature(m, o, h, u, size));
+        if (clamp) {
+            const int n = size_clamp_to_mesh(m, o->size_resolution, h, size);
+            if (n < 0) return GLPGP_FAIL(GLPGP_ERR_NOMEM, "size field: out of memory");
+            if (raised) *raised = n;
+        }
+    } else {
+        for (int i = 0; i < 2 * nv; i++) size[i] = h;
+    }
+    int uni = 1;
+    for (int i = 0; i < 2 * nv && uni; i++) uni = size[i] == h;
+    if (uniform) *uniform = uni;
+    return GLPGP_OK;
+}
+
+glpgp_status glpgp_size_compute(const glpgp_mesh *m, const glpgp_options *o, double h, const double *u,
+                                double *size, int *uniform)
+{
+    return size_compute(m, o, h, u, size, uniform, 1, NULL);
+}
+
+/* ---- resolution ------------------------------------------------------------- */
+
+/* Local resolution of triangle t: (smallest corner size over both oscillators) / longest edge. */
+static double tri_resolution(const glpgp_mesh *m, const double *size, int t, double *lmax)
+{
+    const int *v = m->tri + 3 * t;
+    double L = 0.0, s = HUGE_VAL;
+    for (int a = 0; a < 3; a++) {
+        const int i = v[a], j = v[(a + 1) % 3];
+        L = fmax(L, hypot(m->xy[2 * j] - m->xy[2 * i], m->xy[2 * j + 1] - m->xy[2 * i + 1]));
+        s = fmin(s, fmin(size[i], size[m->nv + i]));
+    }
+    if (lmax) *lmax = L;
+    return s / L;
+}
+
+glpgp_status glpgp_size_resolution(const glpgp_mesh *m, const double *size, double R, glpgp_size_res *res)
+{
+    memset(res, 0, sizeof *res);
+    res->worst = HUGE_VAL;
+    res->tri = -1;
+    for (int t = 0; t < m->nt; t++) {
+        double L;
+        const double q = tri_resolution(m, size, t, &L);
+        if (q < R) res->coarse++;
+        if (q < res->worst) {
+            const int *v = m->tri + 3 * t;
+            res->worst = q;
+            res->tri = t;
+            res->lmax = L;
+            res->x = (m->xy[2 * v[0]] + m->xy[2 * v[1]] + m->xy[2 * v[2]]) / 3.0;
+            res->y = (m->xy[2 * v[0] + 1] + m->xy[2 * v[1] + 1] + m->xy[2 * v[2] + 1]) / 3.0;
+            res->h = q * L;
+        }
+    }
+    return GLPGP_OK;
+}
+
+glpgp_status glpgp_size_check_mesh(const glpgp_mesh *m, const glpgp_options *o, double h)
+{
+    double *size = NULL;
+    glpgp_size_res res;
+    glpgp_options oi = *o;
+    /* the isotropic sizes: a lower bound of both oscillators' (no guiding field yet) */
+    if (oi.size_field == GLPGP_SIZE_AUTO) oi.size_field = GLPGP_SIZE_ISO;
+    GLPGP_CHECK(glpgp_malloc((size_t)2 * m->nv, sizeof(double), &size));
+    int raised = 0;
+    glpgp_status st = size_compute(m, &oi, h, NULL, size, NULL, 1, &raised);
+    if (st == GLPGP_OK) st = glpgp_size_resolution(m, size, o->size_resolution, &res);
+    free(size);
+    GLPGP_CHECK(st);
+    if (raised > 0)
+        glpgp_log(GLPGP_LOG_WARNING,
+                  "the local size is limited by the mesh at %d vertex value(s): features thinner than the mesh "
+                  "resolves (h_local < %g x the longest edge there) keep the coarser size; refine the input there "
+                  "(glpgp solve refines it unless --no-refine)",
+                  raised, o->size_resolution);
+    /* none: today's pipeline on any input (a warning, below); a local size
+     * the mesh cannot carry at all is an error */
+    if (res.worst < GLPGP_SIZE_MIN_EDGES && o->size_field != GLPGP_SIZE_NONE)
+        return GLPGP_FAIL(GLPGP_ERR_MESH,
+                          "the mesh is too coarse for the local size: near (%.6g, %.6g) triangle %d has an edge of "
+                          "%.3g for h = %.3g there (%.2f edges per period, at least %g needed, %g wanted; %d "
+                          "triangles under %g): refine the mesh there (glpgp solve refines it unless --no-refine)",
+                          res.x, res.y, res.tri, res.lmax, res.h, res.worst, GLPGP_SIZE_MIN_EDGES,
+                          o->size_resolution, res.coarse, o->size_resolution);
+    if (res.coarse > 0)
+        glpgp_log(GLPGP_LOG_WARNING,
+                  "%d triangle(s) are coarser than the local h / %g (P1 needs about 10 vertices per period); "
+                  "worst near (%.6g, %.6g): edge %.3g for h = %.3g (%.2f edges per period): refine the mesh "
+                  "there, raise --size, or use --energy transport",
+                  res.coarse, o->size_resolution, res.x, res.y, res.lmax, res.h, res.worst);
+    return GLPGP_OK;
+}
+
+/* ---- refinement ------------------------------------------------------------- */
+
+typedef struct rmesh {
+    int nv, nt;
+    double *xy;
+    int *tri;
+} rmesh;
+
+/* Edge key (i < j) of vertices a, b. */
+static uint64_t ekey(int a, int b)
+{
+    const uint32_t i = (uint32_t)(a < b ? a : b), j = (uint32_t)(a < b ? b : a);
+    return ((uint64_t)i << 32) | j;
+}
+
+typedef struct ekey_ref {
+    uint64_t key;
+    int he; /* half-edge t*3 + a */
+} ekey_ref;
+
+static int cmp_ekey(const void *p, const void *q)
+{
+    const ekey_ref *a = p, *b = q;
+    if (a->key != b->key) return a->key < b->key ? -1 : 1;
+    return (a->he > b->he) - (a->he < b->he);
+}
+
+/* Squared length of edge a of triangle t (from corner a to a + 1). */
+static double elen2(const rmesh *r, int t, int a)
+{
+    const int i = r->tri[3 * t + a], j = r->tri[3 * t + (a + 1) % 3];
+    const double dx = r->xy[2 * j] - r->xy[2 * i], dy = r->xy[2 * j + 1] - r->xy[2 * i + 1];
+    return dx * dx + dy * dy;
+}
+
+/* The longest edge of triangle t; ties broken by the edge key, a total order
+ * on edges, so that every triangle of a longest-edge chain agrees. */
+static int longest(const rmesh *r, int t)
+{
+    int best = 0;
+    double lb = elen2(r, t, 0);
+    uint64_t kb = ekey(r->tri[3 * t], r->tri[3 * t + 1]);
+    for (int a = 1; a < 3; a++) {
+        const double l = elen2(r, t, a);
+        const uint64_t k = ekey(r->tri[3 * t + a], r->tri[3 * t + (a + 1) % 3]);
+        if (l > lb || (l == lb && k > kb)) {
+            best = a;
+            lb = l;
+            kb = k;
+        }
+    }
+    return best;
+}
+
+/* One refinement round: split the triangles flagged in need[] (and the
+ * closure), out-of-place into *out. Returns the number of split edges. */
+static glpgp_status refine_round(const rmesh *r, const unsigned char *need, rmesh *out, long *nsplit)
+{
+    glpgp_status st = GLPGP_OK;
+    const int nt = r->nt;
+    ekey_ref *ref = NULL;
+    int *edge = NULL, *mid = NULL, *etri = NULL, *work = NULL;
+    unsigned char *mark = NULL;
+    int ne = 0;
+    out->xy = NULL;
+    out->tri = NULL;
+    /* edges: sort the 3 nt half-edges by key; edge[he] = edge index */
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)3 * nt, sizeof *ref, &ref), done);
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)3 * nt, sizeof(int), &edge), done);
+    for (int t = 0; t < nt; t++)
+        for (int a = 0; a < 3; a++) {
+            ref[3 * t + a].key = ekey(r->tri[3 * t + a], r->tri[3 * t + (a + 1) % 3]);
+            ref[3 * t + a].he = 3 * t + a;
+        }
+    qsort(ref, (size_t)3 * nt, sizeof *ref, cmp_ekey);
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)6 * nt + 2, sizeof(int), &etri), done);
+    for (int k = 0; k < 3 * nt; k++) {
+        if (k == 0 || ref[k].key != ref[k - 1].key) {
+            etri[2 * ne] = ref[k].he / 3;
+            etri[2 * ne + 1] = -1;
+            ne++;
+        } else {
+            etri[2 * (ne - 1) + 1] = ref[k].he / 3;
+        }
+        edge[ref[k].he] = ne - 1;
+    }
+    GLPGP_CHECK_GOTO(st, glpgp_calloc((size_t)ne + 1, 1, &mark), done);
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)nt + 2 * (size_t)ne + 1, sizeof(int), &work), done);
+    /* mark the longest edge of every triangle that needs it, then close: a
+     * triangle with a marked edge gets its longest edge marked (worklist) */
+    size_t nw = 0;
+    for (int t = 0; t < nt; t++)
+        if (need[t]) work[nw++] = t;
+    while (nw > 0) {
+        const int t = work[--nw];
+        const int e = edge[3 * t + longest(r, t)];
+        if (mark[e]) continue;
+        mark[e] = 1;
+        for (int s = 0; s < 2; s++) {
+            const int u = etri[2 * e + s];
+            if (u >= 0 && u != t) work[nw++] = u;
+        }
+    }
+    /* new vertices: one midpoint per marked edge */
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)ne + 1, sizeof(int), &mid), done);
+    int nv2 = r->nv;
+    for (int e = 0; e < ne; e++) mid[e] = mark[e] ? nv2++ : -1;
+    long ntri2 = 0;
+    for (int t = 0; t < nt; t++) {
+        int c = 0;
+        for (int a = 0; a < 3; a++) c += mark[edge[3 * t + a]];
+        ntri2 += 1 + c;
+    }
+    if (ntri2 > INT32_MAX / 9) {
+        st = GLPGP_FAIL(GLPGP_ERR_LIMIT, "refinement: %ld triangles is too many", ntri2);
+        goto done;
+    }
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)2 * nv2, sizeof(double), &out->xy), done);
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)3 * ntri2, sizeof(int), &out->tri), done);
+    memcpy(out->xy, r->xy, (size_t)2 * r->nv * sizeof(double));
+    for (int t = 0; t < nt; t++)
+        for (int a = 0; a < 3; a++) {
+            const int e = edge[3 * t + a];
+            if (mid[e] < 0) continue;
+            const int i = r->tri[3 * t + a], j = r->tri[3 * t + (a + 1) % 3];
+            out->xy[2 * mid[e]] = 0.5 * (r->xy[2 * i] + r->xy[2 * j]);
+            out->xy[2 * mid[e] + 1] = 0.5 * (r->xy[2 * i + 1] + r->xy[2 * j + 1]);
+        }
+    int k = 0;
+#define EMIT(p, q, s)                                                                                        \
+    do {                                                                                                     \
+        out->tri[3 * k] = (p);                                                                               \
+        out->tri[3 * k + 1] = (q);                                                                           \
+        out->tri[3 * k + 2] = (s);                                                                           \
+        k++;                                                                                                 \
+    } while (0)
+    for (int t = 0; t < nt; t++) {
+        const int L = longest(r, t);
+        const int a = r->tri[3 * t + L], b = r->tri[3 * t + (L + 1) % 3], c = r->tri[3 * t + (L + 2) % 3];
+        const int mab = mid[edge[3 * t + L]];
+        if (mab < 0) { /* the closure marks the longest edge first: no marked edge at all */
+            EMIT(a, b, c);
+            continue;
+        }
+        /* (a, b, c) -> (a, mab, c) + (mab, b, c); then the halves at their other marked edge:
+         * (p0, p1, p2) split at the midpoint q of (p2, p0) -> (p0, p1, q), (p1, p2, q) */
+        const int mca = mid[edge[3 * t + (L + 2) % 3]], mbc = mid[edge[3 * t + (L + 1) % 3]];
+        if (mca >= 0) {
+            EMIT(a, mab, mca);
+            EMIT(mab, c, mca);
+        } else {
+            EMIT(a, mab, c);
+        }
+        if (mbc >= 0) { /* (mab, b, c) at the midpoint of (b, c) */
+            EMIT(mab, b, mbc);
+            EMIT(mab, mbc, c);
+        } else {
+            EMIT(mab, b, c);
+        }
+    }
+#undef EMIT
+    out->nv = nv2;
+    out->nt = k;
+    *nsplit = nv2 - r->nv;
+done:
+    if (st != GLPGP_OK) {
+        glpgp_free(&out->xy);
+        glpgp_free(&out->tri);
+    }
+    free(ref);
+    free(edge);
+    free(mid);
+    free(etri);
+    free(work);
+    free(mark);
+    return st;
+}
+
+glpgp_status glpgp_size_refine(const glpgp_mesh *m, const glpgp_options *o, double h, glpgp_mesh **out,
+                               glpgp_refine_info *info)
+{
+    glpgp_status st = GLPGP_OK;
+    glpgp_options oi = *o;
+    glpgp_mesh *cur = NULL;
+    double *size = NULL;
+    unsigned char *need = NULL;
+    *out = NULL;
+    if (info) {
+        memset(info, 0, sizeof *info);
+        info->nv0 = m->nv;
+        info->nt0 = m->nt;
+        info->nv = m->nv;
+        info->nt = m->nt;
+    }
+    /* none: the input as it is (today's pipeline); a file's values belong to
+     * the input's vertices: no refinement */
+    if (o->size_field == GLPGP_SIZE_FILE || o->size_field == GLPGP_SIZE_NONE) return GLPGP_OK;
+    if (oi.size_field == GLPGP_SIZE_AUTO) oi.size_field = GLPGP_SIZE_ISO;
+    const glpgp_mesh *mm = m;
+    for (int round = 0;; round++) {
+        glpgp_size_res res;
+        GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)2 * mm->nv, sizeof(double), &size), done);
+        GLPGP_CHECK_GOTO(st, size_compute(mm, &oi, h, NULL, size, NULL, 0, NULL), done);
+        GLPGP_CHECK_GOTO(st, glpgp_size_resolution(mm, size, o->size_resolution, &res), done);
+        if (res.coarse == 0) break;
+        GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)mm->nt + 1, 1, &need), done);
+        for (int t = 0; t < mm->nt; t++) need[t] = tri_resolution(mm, size, t, NULL) < o->size_resolution;
+        rmesh r = {mm->nv, mm->nt, mm->xy, mm->tri}, r2 = {0, 0, NULL, NULL};
+        long nsplit = 0;
+        if (round < GLPGP_REFINE_MAX_ROUNDS) GLPGP_CHECK_GOTO(st, refine_round(&r, need, &r2, &nsplit), done);
+        if (round >= GLPGP_REFINE_MAX_ROUNDS || r2.nv > GLPGP_REFINE_MAX_VERTICES) {
+            free(r2.xy);
+            free(r2.tri);
+            st = GLPGP_FAIL(GLPGP_ERR_LIMIT,
+                            "refinement stopped after %d rounds at %d vertices (limits: %d rounds, %d vertices): "
+                            "%d triangles are still coarser than h / %g, worst near (%.6g, %.6g) (edge %.3g for "
+                            "h = %.3g)",
+                            round, mm->nv, GLPGP_REFINE_MAX_ROUNDS, GLPGP_REFINE_MAX_VERTICES, res.coarse,
+                            o->size_resolution, res.x, res.y, res.lmax, res.h);
+            goto done;
+        }
+        glpgp_mesh *next = NULL;
+        st = glpgp_mesh_create(r2.nv, r2.xy, r2.nt, r2.tri, &next);
+        free(r2.xy);
+        free(r2.tri);
+        GLPGP_CHECK_GOTO(st, st, done);
+        glpgp_mesh_destroy(&cur);
+        cur = next;
+        mm = cur;
+        glpgp_free(&size);
+        glpgp_free(&need);
+        if (info) {
+            info->rounds = round + 1;
+            info->split_edges += nsplit;
+            info->nv = mm->nv;
+            info->nt = mm->nt;
+        }
+    }
+done:
+    free(size);
+    free(need);
+    if (st != GLPGP_OK) {
+        glpgp_mesh_destroy(&cur);
+        return st;
+    }
+    *out = cur;
+    return GLPGP_OK;
+}
+
+void glpgp_size_log(const glpgp_mesh *m, const double *size, double h)
+{
+    double mn[2] = {HUGE_VAL, HUGE_VAL};
+    int below[2] = {0, 0};
+    for (int k = 0; k < 2; k++)
+        for (int i = 0; i < m->nv; i++) {
+            const double s = size[(size_t)k * m->nv + i];
+            mn[k] = fmin(mn[k], s);
+            below[k] += s < h;
+        }
+    glpgp_log(GLPGP_LOG_INFO,
+              "local size: u min %.4g (h / %.1f), %.1f%% of the vertices below h; v min %.4g (h / %.1f), %.1f%% below",
+              mn[0], h / mn[0], 100.0 * below[0] / m->nv, mn[1], h / mn[1], 100.0 * below[1] / m->nv);
+}

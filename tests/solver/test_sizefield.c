@@ -1,0 +1,363 @@
+/* test_sizefield.c: the local size field h(x) (solver/sizefield.c):
+ *  - a strip 0.12 h wide (structured mesh, fine enough that the mesh limit
+ *    is inactive): iso sizes at most h, graded by the bounded ratio on every
+ *    mesh edge (h_i <= h_j + g |x_i - x_j|), at least ~N periods across
+ *    (int dy / h(y) over the width >= 0.75 N: the size grows towards the
+ *    middle); auto with the guiding field
+ *    along the strip keeps the along-wave at h and shrinks only the across-wave;
+ *  - the same strip on a coarse mesh: auto limited to what the mesh resolves
+ *    (size >= min(h, R x the longest edge at the vertex)); the resolution
+ *    check of glpgp_solve passes with it, a file asking for less fails naming
+ *    the place; refinement (glpgp_size_refine) makes every triangle fine
+ *    enough (q_T >= R) and keeps the domain's area;
+ *  - a graded mesh with a 40x edge ratio (fine on the left, coarse on the
+ *    right): `none` warns only (today's pipeline), the refinement of auto
+ *    leaves no triangle coarser than its local h / R;
+ *  - the user's size file: one or two values per line read back exactly;
+ *    too few / too many lines, non-positive, nan, mixed columns are one-line
+ *    errors naming the file;
+ *  - a uniform field reports uniform (the solve then uses the uniform element
+ *    arithmetic bit for bit);
+ *  - with Gmsh, the I-beam of tests/quads/hard_domains.h (web 0.25 h thick),
+ *    refined: inside the web the size stays under the graded profile that
+ *    gives N periods across. */
+#define _DEFAULT_SOURCE /* mkstemps */
+#include "testutil.h"
+#include "../quads/hard_domains.h"
+
+#include <string.h>
+#include <unistd.h>
+
+/* nx x ny grid on [0,Lx] x [0,Ly]; x coordinates through xmap (NULL: uniform). */
+static glpgp_mesh *grid(int nx, int ny, double Lx, double Ly, double (*xmap)(double))
+{
+    int nv = (nx + 1) * (ny + 1), nt = 2 * nx * ny;
+    double *xy = malloc(sizeof(double) * 2 * nv);
+    int *tri = malloc(sizeof(int) * 3 * nt);
+    for (int j = 0; j <= ny; j++)
+        for (int i = 0; i <= nx; i++) {
+            double s = (double)i / nx;
+            xy[2 * (j * (nx + 1) + i)] = Lx * (xmap ? xmap(s) : s);
+            xy[2 * (j * (nx + 1) + i) + 1] = Ly * j / ny;
+        }
+    int t = 0;
+    for (int j = 0; j < ny; j++)
+        for (int i = 0; i < nx; i++) {
+            int v0 = j * (nx + 1) + i, v1 = v0 + 1, v2 = v0 + nx + 1, v3 = v2 + 1;
+            int a[6] = {v0, v1, v3, v0, v3, v2};
+            memcpy(tri + 3 * t, a, sizeof a);
+            t += 2;
+        }
+    glpgp_mesh *m = NULL;
+    CHECK_OK(glpgp_mesh_create(nv, xy, nt, tri, &m));
+    free(xy);
+    free(tri);
+    return m;
+}
+
+static double mesh_area(const glpgp_mesh *m)
+{
+    double a = 0;
+    for (int t = 0; t < m->nt; t++) {
+        const int *v = m->tri + 3 * t;
+        a += 0.5 * ((m->xy[2 * v[1]] - m->xy[2 * v[0]]) * (m->xy[2 * v[2] + 1] - m->xy[2 * v[0] + 1]) -
+                    (m->xy[2 * v[2]] - m->xy[2 * v[0]]) * (m->xy[2 * v[1] + 1] - m->xy[2 * v[0] + 1]));
+    }
+    return a;
+}
+
+/* max over mesh edges of (h_i - h_j) / |x_i - x_j| for one oscillator */
+static double max_grading(const glpgp_mesh *m, const double *s)
+{
+    double g = 0;
+    for (int t = 0; t < m->nt; t++)
+        for (int a = 0; a < 3; a++) {
+            int i = m->tri[3 * t + a], j = m->tri[3 * t + (a + 1) % 3];
+            double d = hypot(m->xy[2 * i] - m->xy[2 * j], m->xy[2 * i + 1] - m->xy[2 * j + 1]);
+            g = fmax(g, fabs(s[i] - s[j]) / d);
+        }
+    return g;
+}
+
+static void test_strip(void)
+{
+    const double h = 1.0, w = 0.12;
+    /* edge 0.0075: R x diagonal = 4 x 0.0106 < w / 2, the mesh limit inactive */
+    glpgp_mesh *m = grid(400, 16, 3.0, w, NULL);
+    if (!m) return;
+    glpgp_options o;
+    glpgp_options_default(&o);
+    double *s = malloc(sizeof(double) * 2 * m->nv);
+    int uni = 1;
+    o.size_field = GLPGP_SIZE_ISO;
+    CHECK_OK(glpgp_size_compute(m, &o, h, NULL, s, &uni));
+    CHECK(!uni);
+    double smax = 0, smin = HUGE_VAL;
+    for (int i = 0; i < 2 * m->nv; i++) smax = fmax(smax, s[i]), smin = fmin(smin, s[i]);
+    printf("strip iso: sizes in [%.4f, %.4f], grading %.3f (bound %.3f)\n", smin, smax, max_grading(m, s),
+           o.size_grading);
+    CHECK(smax <= h && smin >= o.size_min * h);
+    CHECK(max_grading(m, s) <= o.size_grading * (1 + 1e-12));
+    CHECK(max_grading(m, s + m->nv) <= o.size_grading * (1 + 1e-12));
+    /* periods across the strip at x = 1.5: sum over the column of dy / h */
+    int col = 200;
+    double periods = 0;
+    for (int j = 0; j < 16; j++) {
+        int a = j * 401 + col, b = a + 401;
+        periods += (w / 16) * 0.5 * (1 / s[a] + 1 / s[b]);
+    }
+    printf("strip iso: %.2f periods across (N = %g)\n", periods, o.size_across);
+    CHECK(periods >= 0.75 * o.size_across);
+    /* auto, guiding field along the strip: u (along) stays h, v (across) shrinks */
+    double *u = malloc(sizeof(double) * 2 * m->nv);
+    for (int i = 0; i < m->nv; i++) u[2 * i] = 1, u[2 * i + 1] = 0;
+    o.size_field = GLPGP_SIZE_AUTO;
+    CHECK_OK(glpgp_size_compute(m, &o, h, u, s, &uni));
+    double umin = HUGE_VAL, vmax = 0;
+    for (int i = 0; i < m->nv; i++) umin = fmin(umin, s[i]), vmax = fmax(vmax, s[m->nv + i]);
+    printf("strip auto: u min %.4f, v max %.4f\n", umin, vmax);
+    CHECK(umin == h);
+    CHECK(vmax <= w); /* at most w: >= 1 period across everywhere, ~2 at the walls */
+    /* none: uniform, reported so */
+    o.size_field = GLPGP_SIZE_NONE;
+    CHECK_OK(glpgp_size_compute(m, &o, h, u, s, &uni));
+    CHECK(uni);
+    for (int i = 0; i < 2 * m->nv; i++) CHECK(s[i] == h);
+    free(u);
+    free(s);
+    glpgp_mesh_destroy(&m);
+}
+
+static void test_coarse_and_refine(void)
+{
+    const double h = 1.0, w = 0.12;
+    glpgp_mesh *m = grid(60, 2, 3.0, w, NULL); /* edges 0.05 / 0.06: too coarse for h = 0.06 */
+    if (!m) return;
+    glpgp_options o;
+    glpgp_options_default(&o);
+    o.size_field = GLPGP_SIZE_AUTO;
+    double *s = malloc(sizeof(double) * 2 * m->nv);
+    CHECK_OK(glpgp_size_compute(m, &o, h, NULL, s, NULL));
+    /* limited by the mesh: s_i >= min(h, R l_i) */
+    int raised = 0;
+    for (int i = 0; i < m->nv; i++) {
+        double l = 0;
+        for (int t = 0; t < m->nt; t++)
+            for (int a = 0; a < 3; a++) {
+                int p = m->tri[3 * t + a], q = m->tri[3 * t + (a + 1) % 3];
+                if (p != i && q != i) continue;
+                l = fmax(l, hypot(m->xy[2 * p] - m->xy[2 * q], m->xy[2 * p + 1] - m->xy[2 * q + 1]));
+            }
+        CHECK(s[i] >= fmin(h, o.size_resolution * l) * (1 - 1e-12));
+        raised += s[i] > w / o.size_across;
+    }
+    CHECK(raised > 0);
+    /* the solve's resolution check accepts the limited auto field */
+    CHECK_OK(glpgp_size_check_mesh(m, &o, h));
+    /* a file asking for h / 50 everywhere: error naming the place */
+    char path[] = "/tmp/glpgp_size_XXXXXX";
+    int fd = mkstemp(path);
+    CHECK(fd >= 0);
+    FILE *f = fdopen(fd, "w");
+    for (int i = 0; i < m->nv; i++) fprintf(f, "%g\n", h / 50);
+    fclose(f);
+    o.size_field = GLPGP_SIZE_FILE;
+    o.size_file = path;
+    glpgp_status st = glpgp_size_check_mesh(m, &o, h);
+    printf("file h / 50 on the coarse strip -> %s\n", glpgp_error_message());
+    CHECK(st != GLPGP_OK && strstr(glpgp_error_message(), "too coarse"));
+    glpgp_error_clear();
+    unlink(path);
+    /* refinement of auto: afterwards q_T >= R everywhere, area kept */
+    o.size_field = GLPGP_SIZE_AUTO;
+    glpgp_mesh *r = NULL;
+    glpgp_refine_info info;
+    CHECK_OK(glpgp_size_refine(m, &o, h, &r, &info));
+    CHECK(r != NULL);
+    if (r) {
+        double *sr = malloc(sizeof(double) * 2 * r->nv);
+        glpgp_size_res res;
+        o.size_field = GLPGP_SIZE_ISO;
+        CHECK_OK(glpgp_size_compute(r, &o, h, NULL, sr, NULL));
+        CHECK_OK(glpgp_size_resolution(r, sr, o.size_resolution, &res));
+        printf("refined strip: %d -> %d vertices in %d rounds, worst %.2f edges per h_local, %d coarse\n",
+               info.nv0, info.nv, info.rounds, res.worst, res.coarse);
+        CHECK(res.coarse == 0 && res.worst >= o.size_resolution);
+        CHECK_CLOSE(mesh_area(r), mesh_area(m), 1e-12, 1e-12);
+        free(sr);
+    }
+    glpgp_mesh_destroy(&r);
+    free(s);
+    glpgp_mesh_destroy(&m);
+}
+
+/* x edges graded geometrically over [0,1]: last / first = 40 */
+static double graded_x(double s)
+{
+    const double q = pow(40.0, 1.0 / 39.0); /* 40 columns, last / first = q^39 = 40 */
+    return (pow(q, 40.0 * s) - 1.0) / (pow(q, 40.0) - 1.0);
+}
+
+static void test_graded(void)
+{
+    /* 40 columns on [0, 8]: x edges from 0.019 (left) to 0.74 (right), h = 1 */
+    glpgp_mesh *m = grid(40, 4, 8.0, 2.0, graded_x);
+    if (!m) return;
+    glpgp_options o;
+    glpgp_options_default(&o);
+    o.size_field = GLPGP_SIZE_NONE;
+    /* none: today's pipeline (a warning, no error); no refinement */
+    CHECK_OK(glpgp_size_check_mesh(m, &o, 1.0));
+    glpgp_mesh *r = NULL;
+    CHECK_OK(glpgp_size_refine(m, &o, 1.0, &r, NULL));
+    CHECK(r == NULL);
+    /* auto: the library check names the coarse place; the refinement fixes it */
+    o.size_field = GLPGP_SIZE_AUTO;
+    glpgp_status st = glpgp_size_check_mesh(m, &o, 1.0);
+    printf("graded 40x, auto, unrefined -> %s\n", st == GLPGP_OK ? "accepted" : glpgp_error_message());
+    CHECK(st != GLPGP_OK && strstr(glpgp_error_message(), "refine") && !strchr(glpgp_error_message(), '\n'));
+    glpgp_error_clear();
+    glpgp_refine_info info;
+    CHECK_OK(glpgp_size_refine(m, &o, 1.0, &r, &info));
+    CHECK(r != NULL);
+    if (r) {
+        printf("graded 40x: refined %d -> %d vertices in %d rounds\n", info.nv0, info.nv, info.rounds);
+        CHECK_OK(glpgp_size_check_mesh(r, &o, 1.0));
+        CHECK_CLOSE(mesh_area(r), 16.0, 1e-9, 0);
+    }
+    glpgp_mesh_destroy(&r);
+    glpgp_mesh_destroy(&m);
+}
+
+static glpgp_mesh *g_sq;
+static char g_path[64];
+
+static glpgp_status size_of(const char *text, double *s)
+{
+    FILE *f = fopen(g_path, "w");
+    fputs(text, f);
+    fclose(f);
+    glpgp_options o;
+    glpgp_options_default(&o);
+    o.size_field = GLPGP_SIZE_FILE;
+    o.size_file = g_path;
+    glpgp_error_clear();
+    return glpgp_size_compute(g_sq, &o, 1.0, NULL, s, NULL);
+}
+
+static void expect_error(const char *what, const char *text)
+{
+    double s[64];
+    glpgp_status st = size_of(text, s);
+    const char *msg = glpgp_error_message();
+    printf("%-24s -> %s\n", what, st == GLPGP_OK ? "accepted" : msg);
+    CHECK(st != GLPGP_OK);
+    CHECK(msg[0] && !strchr(msg, '\n') && strstr(msg, g_path));
+    glpgp_error_clear();
+}
+
+static void test_file(void)
+{
+    CHECK_OK(glpgp_mesh_generate("square", 16, &g_sq));
+    if (!g_sq) return;
+    CHECK(g_sq->nv == 16);
+    snprintf(g_path, sizeof g_path, "/tmp/glpgp_sizef_%d.txt", (int)getpid());
+    char one[1024] = "# sizes\n", two[1024] = "", buf[64];
+    for (int i = 0; i < 16; i++) {
+        snprintf(buf, sizeof buf, "%.17g\n", 0.1 + 0.01 * i);
+        strcat(one, buf);
+        snprintf(buf, sizeof buf, "%.17g %.17g\n", 0.1 + 0.01 * i, 0.5 - 0.01 * i);
+        strcat(two, buf);
+    }
+    double s[32];
+    CHECK_OK(size_of(one, s));
+    for (int i = 0; i < 16; i++) CHECK(s[i] == 0.1 + 0.01 * i && s[16 + i] == s[i]);
+    CHECK_OK(size_of(two, s));
+    for (int i = 0; i < 16; i++) CHECK(s[i] == 0.1 + 0.01 * i && s[16 + i] == 0.5 - 0.01 * i);
+    char bad[1100];
+    expect_error("15 lines", one + strlen("# sizes\n") + strlen("0.10000000000000001\n"));
+    snprintf(bad, sizeof bad, "%s0.3\n", one);
+    expect_error("17 lines", bad);
+    snprintf(bad, sizeof bad, "0\n%s", strchr(one + 8, '\n') + 1);
+    expect_error("zero size", bad);
+    snprintf(bad, sizeof bad, "-1\n%s", strchr(one + 8, '\n') + 1);
+    expect_error("negative size", bad);
+    snprintf(bad, sizeof bad, "nan\n%s", strchr(one + 8, '\n') + 1);
+    expect_error("nan size", bad);
+    snprintf(bad, sizeof bad, "0.1 0.2\n%s", strchr(one + 8, '\n') + 1);
+    expect_error("1 and 2 columns mixed", bad);
+    expect_error("words", "abc\n");
+    expect_error("empty file", "");
+    unlink(g_path);
+    glpgp_options o;
+    glpgp_options_default(&o);
+    o.size_field = GLPGP_SIZE_FILE;
+    o.size_file = "/nonexistent/sizes.txt";
+    glpgp_error_clear();
+    CHECK(glpgp_size_compute(g_sq, &o, 1.0, NULL, s, NULL) != GLPGP_OK);
+    glpgp_error_clear();
+    glpgp_mesh_destroy(&g_sq);
+}
+
+static void test_ibeam(void)
+{
+    if (!glpgp_have_gmsh()) {
+        printf("ibeam: skipped (no Gmsh)\n");
+        return;
+    }
+    hd_poly p;
+    CHECK(hd_build("ibeam", 1.0 / 12, &p));
+    char path[] = "/tmp/glpgp_ibeam_XXXXXX.poly";
+    int fd = mkstemps(path, 5);
+    CHECK(fd >= 0);
+    close(fd);
+    CHECK(hd_write_poly(&p, path));
+    hd_free(&p);
+    glpgp_polygons *P = NULL;
+    CHECK_OK(glpgp_polygons_read(path, &P));
+    unlink(path);
+    glpgp_mesh *m = NULL, *r = NULL;
+    if (P) CHECK_OK(glpgp_mesh_polygons(P, 1.0 / 12, 6, &m));
+    glpgp_polygons_destroy(&P);
+    if (!m) return;
+    glpgp_options o;
+    glpgp_options_default(&o);
+    o.size_field = GLPGP_SIZE_AUTO;
+    CHECK_OK(glpgp_size_refine(m, &o, 1.0, &r, NULL));
+    const glpgp_mesh *mm = r ? r : m;
+    double *s = malloc(sizeof(double) * 2 * mm->nv);
+    o.size_field = GLPGP_SIZE_ISO;
+    CHECK_OK(glpgp_size_compute(mm, &o, 1.0, NULL, s, NULL));
+    /* the web: x in [2.875, 3.125], y in [0.8, 4.2], thickness t = 0.25 h; away
+     * from its ends: s <= s0 + g d (d: distance to the nearer wall; 1.3 g d:
+     * the gradation runs along mesh paths, a little longer than d),
+     * s0 = t / N (sizefield.c, step 2) */
+    const double t = 0.25, g = o.size_grading, N = o.size_across;
+    const double s0 = fmax(t / N, o.size_min);
+    int in = 0, bad = 0;
+    for (int i = 0; i < mm->nv; i++) {
+        double x = mm->xy[2 * i], y = mm->xy[2 * i + 1];
+        if (y < 1.5 || y > 3.5 || fabs(x - 3.0) > 0.125 + 1e-9) continue;
+        in++;
+        bad += s[i] > s0 + 1.3 * g * (0.125 - fabs(x - 3.0)) + 1e-9;
+    }
+    printf("ibeam web: %d vertices, %d above the profile bound (s0 = %.4f h)\n", in, bad, s0);
+    CHECK(in > 20 && bad == 0);
+    free(s);
+    glpgp_mesh_destroy(&r);
+    glpgp_mesh_destroy(&m);
+}
+
+int main(void)
+{
+    glpgp_log_set_callback(NULL, NULL);
+    glpgp_options d;
+    glpgp_options_default(&d);
+    CHECK(d.size_field == GLPGP_SIZE_AUTO); /* the measured default (README, "Local size") */
+    test_strip();
+    test_coarse_and_refine();
+    test_graded();
+    test_file();
+    test_ibeam();
+    TEST_DONE();
+}
