@@ -12,6 +12,7 @@
 #include "cli.h"
 #include "opts.h"
 
+#include "glpgp/cross.h"
 #include "glpgp/io.h"
 #include "glpgp/quads.h"
 #include "glpgp/solve.h"
@@ -92,6 +93,9 @@ int glpgp_cmd_extract(int argc, char **argv)
     if (glpgp_quads_quality(q, m, h, &qq) != GLPGP_OK) goto fail;
     qq.singular[0] = r->osc[0].plus + r->osc[0].minus;
     qq.singular[1] = r->osc[1].plus + r->osc[1].minus;
+    /* --field cross: irregular interior vertices within h of a cross-field singularity, and the others */
+    if (r->cross && glpgp_quads_quality_cross(q, r->cross->sing, r->cross->nsing, r->size, &qq) != GLPGP_OK)
+        goto fail;
     char why[1024] = "";
     int invalid_rc = glpgp_cli_quads_verdict(&qq, qo.keep_polygons ? GLPGP_QUAD_BAD_NONQUAD : 0u, allow_invalid,
                                              why, sizeof why);

@@ -44,7 +44,18 @@ void glpgp_quads_json(glpgp_json *w, const char *key, const glpgp_quad_quality *
     glpgp_json_int(w, "interior", qq->irregular_interior);
     glpgp_json_int(w, "boundary", qq->irregular_boundary);
     glpgp_json_int(w, "total", qq->irregular);
+    if (qq->cross_singularities >= 0) { /* a --field cross solve: interior = near + far */
+        glpgp_json_int(w, "interior_near_cross", qq->irregular_near_cross);
+        glpgp_json_int(w, "interior_far_cross", qq->irregular_far_cross);
+    }
     glpgp_json_close(w);
+    if (qq->cross_singularities >= 0) {
+        glpgp_json_object(w, "cross_singularities");
+        glpgp_json_int(w, "count", qq->cross_singularities);
+        glpgp_json_num(w, "radius", qq->cross_radius);
+        glpgp_json_int(w, "with_irregular_vertex", qq->cross_matched);
+        glpgp_json_close(w);
+    }
     glpgp_json_object(w, "scaled_jacobian");
     glpgp_json_num(w, "min", qq->sj_min);
     glpgp_json_num(w, "mean", qq->sj_mean);

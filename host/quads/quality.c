@@ -3,6 +3,7 @@
  * non-manifold faces and edges, edge lengths, area and the boundary Hausdorff
  * distance to a domain, and its printed form. */
 #include "glpgp/quads.h"
+#include "glpgp/cross.h"
 #include "check.h"
 #include "geom.h"
 
@@ -204,6 +205,8 @@ glpgp_status glpgp_quads_quality(const glpgp_quadmesh *q, const glpgp_mesh *doma
     o->vertices = q->nv;
     o->faces = q->nf;
     o->singular[0] = o->singular[1] = -1;
+    o->cross_singularities = o->irregular_near_cross = o->irregular_far_cross = o->cross_matched = -1;
+    o->cross_radius = -1.0;
     o->closing = q->closing;
     o->repair = q->repair;
     glpgp_status st = GLPGP_OK;
@@ -414,6 +417,62 @@ done:
     return st;
 }
 
+glpgp_status glpgp_quads_quality_cross(const glpgp_quadmesh *q, const glpgp_cross_sing *sing, int nsing,
+                                       double radius, glpgp_quad_quality *qq)
+{
+    if (!(radius > 0) || !isfinite(radius))
+        return GLPGP_FAIL(GLPGP_ERR_ARG, "quad quality: singularity radius must be > 0");
+    if (nsing < 0 || (nsing > 0 && !sing))
+        return GLPGP_FAIL(GLPGP_ERR_ARG, "quad quality: bad singularity list");
+    if (!q || q->nf < 1) return GLPGP_FAIL(GLPGP_ERR_ARG, "quad quality: empty mesh");
+    qe *E = NULL;
+    int ne = 0, *val = NULL;
+    unsigned char *bnd = NULL, *hit = NULL;
+    glpgp_status st = GLPGP_OK;
+    GLPGP_CHECK_GOTO(st, face_edges(q, &E, &ne), done);
+    GLPGP_CHECK_GOTO(st, glpgp_calloc((size_t)q->nv + 1, sizeof(int), &val), done);
+    GLPGP_CHECK_GOTO(st, glpgp_calloc((size_t)q->nv + 1, 1, &bnd), done);
+    GLPGP_CHECK_GOTO(st, glpgp_calloc((size_t)nsing + 1, 1, &hit), done);
+    /* valence = distinct edges at the vertex; boundary = on an edge of one face
+     * (as in glpgp_quads_quality) */
+    for (int i = 0; i < ne; i++) {
+        val[E[i].a]++;
+        val[E[i].b]++;
+        if (E[i].nface == 1) bnd[E[i].a] = bnd[E[i].b] = 1;
+    }
+    /* an irregular interior vertex p is near when min_s |p - s| <= radius */
+    int near = 0, far = 0;
+    const double r2 = radius * radius;
+    for (int i = 0; i < q->nv; i++) {
+        if (bnd[i] || val[i] == 4) continue;
+        const double x = q->xy[2 * i], y = q->xy[2 * i + 1];
+        int is_near = 0;
+        for (int k = 0; k < nsing; k++) {
+            const double dx = x - sing[k].x, dy = y - sing[k].y;
+            if (dx * dx + dy * dy <= r2) {
+                is_near = 1;
+                hit[k] = 1;
+            }
+        }
+        if (is_near)
+            near++;
+        else
+            far++;
+    }
+    qq->cross_singularities = nsing;
+    qq->cross_radius = radius;
+    qq->irregular_near_cross = near;
+    qq->irregular_far_cross = far;
+    qq->cross_matched = 0;
+    for (int k = 0; k < nsing; k++) qq->cross_matched += hit[k];
+done:
+    free(E);
+    free(val);
+    free(bnd);
+    free(hit);
+    return st;
+}
+
 void glpgp_quads_print(FILE *f, const glpgp_quad_quality *qq, const char *prefix)
 {
     const char *p = prefix ? prefix : "";
@@ -435,6 +494,11 @@ void glpgp_quads_print(FILE *f, const glpgp_quad_quality *qq, const char *prefix
     fprintf(f, "\n");
     fprintf(f, "%s  irregular    %d (interior %d, boundary %d)\n", p, qq->irregular,
             qq->irregular_interior, qq->irregular_boundary);
+    if (qq->cross_singularities >= 0)
+        fprintf(f, "%s  near cross   irregular interior %d within %.4g of the %d cross-field singularities, "
+                   "%d farther; %d of %d singularities have one\n",
+                p, qq->irregular_near_cross, qq->cross_radius, qq->cross_singularities, qq->irregular_far_cross,
+                qq->cross_matched, qq->cross_singularities);
     fprintf(f, "%s  scaled jac.  min %.3f  mean %.3f  1%% %.3f;  inverted %d, degenerate %d\n", p,
             qq->sj_min, qq->sj_mean, qq->sj_p01, qq->inverted, qq->degenerate);
     fprintf(f, "%s  edge / h     mean %.3f  min %.3f  max %.3f\n", p, qq->len_mean, qq->len_min,

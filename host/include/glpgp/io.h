@@ -295,7 +295,10 @@ glpgp_status glpgp_read_result(const char *path, glpgp_mesh **m, glpgp_result **
 /* The report as a JSON object member `key` (NULL inside arrays / at top):
  * {"vertices", "faces", "quads", "other_faces", "other_faces_by_corners": {"3":..,"5":..},
  *  "valence": {"interior": {"2": n, ...}, "boundary": {...}},
- *  "irregular_vertices": {"interior", "boundary", "total"},
+ *  "irregular_vertices": {"interior", "boundary", "total"; with a cross field
+ *  (qq->cross_singularities >= 0) also "interior_near_cross", "interior_far_cross"},
+ *  "cross_singularities": {"count", "radius", "with_irregular_vertex"} (only
+ *  with a cross field: glpgp_quads_quality_cross),
  *  "scaled_jacobian": {"min", "mean", "p01"}, "inverted", "degenerate",
  *  "edges": {"count", "boundary", "nonmanifold"},
  *  "edge_length_over_h": {"mean", "min", "max"}, "h", "area", "domain_area",

@@ -190,6 +190,14 @@ typedef struct glpgp_quad_quality {
                               * boundary, in units of h (-1 without domain) */
     unsigned invalid;        /* GLPGP_QUAD_BAD_* bits: why the mesh is not valid (0: valid) */
     glpgp_quad_repair repair;/* copied from the mesh */
+    /* Irregular interior vertices against the singularities of the cross
+     * field (glpgp_quads_quality_cross); all -1 when no cross field was
+     * given (glpgp_quads_quality sets them so): the report then omits them. */
+    int cross_singularities; /* cross-field singularities given */
+    double cross_radius;     /* "near": within this distance (the solve's target size h) */
+    int irregular_near_cross;/* irregular interior vertices within cross_radius of a singularity */
+    int irregular_far_cross; /* the other irregular interior vertices (near + far = irregular_interior) */
+    int cross_matched;       /* singularities with an irregular interior vertex within cross_radius */
 } glpgp_quad_quality;
 
 /* Reasons a quad mesh is invalid (glpgp_quad_quality.invalid). The domain
@@ -227,6 +235,19 @@ unsigned glpgp_quads_invalid_text(const glpgp_quad_quality *qq, unsigned ignore,
  * right-angle corner). */
 glpgp_status glpgp_quads_quality(const glpgp_quadmesh *q, const glpgp_mesh *domain, double h,
                                  glpgp_quad_quality *out);
+
+/* Count the irregular interior vertices of q (valence != 4, the vertices
+ * not on a boundary edge; the same rule as glpgp_quads_quality) that lie
+ * within distance radius (> 0; the solve's target size h) of one of the
+ * nsing points sing (the cross-field singularities of a --field cross solve,
+ * glpgp/cross.h; sing may be NULL when nsing is 0) and those that do not,
+ * and the singularities that have an irregular interior vertex within
+ * radius: fills qq->cross_* and qq->irregular_near_cross / _far_cross (qq
+ * made by glpgp_quads_quality on the same q). GLPGP_ERR_ARG on radius <= 0,
+ * nsing < 0 or an empty mesh. */
+struct glpgp_cross_sing;
+glpgp_status glpgp_quads_quality_cross(const glpgp_quadmesh *q, const struct glpgp_cross_sing *sing, int nsing,
+                                       double radius, glpgp_quad_quality *qq);
 
 /* Print the report as a short human-readable block (each line prefixed). */
 void glpgp_quads_print(FILE *f, const glpgp_quad_quality *qq, const char *prefix);
