@@ -15,15 +15,19 @@
 #     matching data/ triangle mesh;
 #   - the hard domains of tests/quads/hard_domains.h (written as .poly files
 #     by glpgp-domains, H = 1), at h = 1 with glpgp's triangle mesh at 12
-#     and at 6 mean edges per h (glpgp mesh, Gmsh Frontal-Delaunay; the
-#     graded airfoil at 12 only), and as a .geo of the same polygons,
+#     and at 6 mean edges per h (glpgp mesh; the graded airfoil's far field
+#     at 6 is coarser than the local h / 4, which solve refines), and as a
+#     .geo of the same polygons,
 #     simplified by Douglas-Peucker at 0.02 h with the corners kept (as the
 #     repair does; Gmsh puts a mesh edge on every geometry line), for Gmsh's
 #     own quad meshing at size h. Every mesh is measured against glpgp's
 #     12-edge triangle mesh of the domain.
 # glpgp: `glpgp solve --backend reference --newton-max 30 --quads`, default
-# pipeline (closing, smoothing, repair), --allow-invalid so that an invalid
-# mesh is measured too (its row says so).
+# pipeline (size field auto, trust-region Newton, AMG, closing, smoothing,
+# repair), --allow-invalid so that an invalid mesh is measured too (its row
+# says so); its rows also give the solved mesh's vertices (after any
+# refinement), the repair (faces removed / quads made) and the wall seconds
+# of the whole command (shared machine: compare within a run only).
 # Gmsh (Mesh.MeshSizeMin = Mesh.MeshSizeMax = size, curvature sizing off,
 # Mesh.RecombineAll = 1, Blossom recombination), labelled with the surface
 # algorithm Gmsh's log says it ran ("Meshing surface N (Plane, X)"):
@@ -153,13 +157,16 @@ rows=()
 run_glpgp() { # name triangle-mesh label extra-solve-args...
     local name=$1 tri=$2 label=$3
     shift 3
+    local t0 t1
+    t0=$(date +%s.%N)
     if ! "$GLPGP" solve "$tri" --backend reference --quiet --newton-max 30 --allow-invalid "$@" \
         --stats "$W/$name.$label.json" --quads "$W/$name.$label.msh" >"$W/$name.$label.txt" 2>&1; then
         rows+=("$name|glpgp $label|failed: $(grep -m1 error "$W/$name.$label.txt" | cut -c1-80)|-|")
         return 1
     fi
+    t1=$(date +%s.%N)
     GLPGP_H=$(python3 -c 'import json,sys; print(json.load(open(sys.argv[1]))["quads"]["h"])' "$W/$name.$label.json")
-    rows+=("$name|glpgp $label|$W/$name.$label.json|$GLPGP_H|")
+    rows+=("$name|glpgp $label|$W/$name.$label.json|$GLPGP_H||$(python3 -c "print('%.1f' % ($t1 - $t0))")")
 }
 run_gmsh() { # name geo triangle-mesh h glpgp-json
     local name=$1 geo=$2 tri=$3 h=$4 gj=$5
@@ -230,7 +237,6 @@ if [ -x "$DOMAINS_BIN" ]; then
     for name in $("$DOMAINS_BIN" 1 12 "$W/hard12"); do
         poly2geo "$W/hard12/$name.poly" "$W/$name.geo"
         for edges in 12 6; do
-            [ "$name" = graded ] && [ "$edges" = 6 ] && continue
             # Gmsh's mean edge is about 0.7 of the point size: ask for e / 0.7
             # (the graded far field as written, so its mean edge stays < h / 2)
             scale=$(python3 -c "print(1 if '$name' == 'graded' else 1 / 0.7)")
@@ -257,26 +263,54 @@ fi
 
 printf '%s\n' "${rows[@]}" | python3 -c '
 import json, sys
+DATA = ("square", "lshape", "annulus", "plate_holes", "disk")
 hdr = ("domain", "mesher (what ran)", "h", "quads", "other", "irreg int", "irreg bnd", "irreg / 100 quads",
-       "SJ min", "SJ mean", "inv", "edge/h mean [min,max]", "Hausdorff/h", "area", "valid")
+       "SJ min", "SJ mean", "inv", "edge/h mean [min,max]", "Hausdorff/h", "area", "valid",
+       "repair removed/made", "vertices solved", "s")
 print("| " + " | ".join(hdr) + " |")
 print("|" + "|".join("---" for _ in hdr) + "|")
+agg = {}  # (group, mesher kind) -> [irregular, quads, valid, runs, repaired]
+def add(group, kind, irr, nq, ok, rep):
+    a = agg.setdefault((group, kind), [0, 0, 0, 0, 0])
+    a[0] += irr; a[1] += nq; a[2] += ok; a[3] += 1; a[4] += rep
 for line in sys.stdin:
-    name, mesher, path, h, ran = line.rstrip("\n").split("|")
+    f5 = line.rstrip("\n").split("|") + [""]
+    name, mesher, path, h, ran, secs = f5[:6]
     label = mesher + (" [" + ran + "]" if ran else "")
+    group = "data" if name in DATA else "hard"
+    if mesher.startswith("glpgp"):
+        kind = "glpgp" + ("" if group == "data" else " " + mesher.split()[1])
+    else:
+        kind = " ".join(mesher.split()[:2]) + (" matched" if " x" in mesher else " size h")
     if not path.endswith(".json"):
         print("| %s | %s | %s | %s |" % (name, label, h, path) + " |" * (len(hdr) - 4))
+        add(group, kind, 0, 0, 0, 0)
         continue
-    d = json.load(open(path))["quads"]
+    top = json.load(open(path))
+    d = top["quads"]
     bd = d["boundary_distance_over_h"]
     f = lambda v: "-" if v is None else "%.3f" % v
     el = d["edge_length_over_h"]
     irr = d["irregular_vertices"]
     per = 100.0 * irr["total"] / d["quads"] if d["quads"] else float("nan")
     valid = "yes" if d.get("valid") else "no: " + ", ".join(d.get("invalid_reasons", []))
-    print("| %s | %s | %.4g | %d | %d | %d | %d | %.1f | %s | %s | %d | %.2f [%.2f, %.2f] | %s | %s | %s |" % (
+    if mesher.startswith("glpgp"):
+        rp = d.get("repair", {})
+        rep = "%d / %d" % (rp.get("removed_faces", 0), rp.get("new_quads", 0))
+        nv = str(top.get("vertices", "-"))
+        repaired = 1 if rp.get("removed_faces", 0) else 0
+    else:
+        rep, nv, secs, repaired = "-", "-", "-", 0
+    add(group, kind, irr["total"], d["quads"], 1 if d.get("valid") else 0, repaired)
+    print("| %s | %s | %.4g | %d | %d | %d | %d | %.1f | %s | %s | %d | %.2f [%.2f, %.2f] | %s | %s | %s | %s | %s | %s |" % (
         name, label, float(h), d["quads"], d["other_faces"], irr["interior"], irr["boundary"], per,
         f(d["scaled_jacobian"]["min"]), f(d["scaled_jacobian"]["mean"]), d["inverted"],
         el["mean"], el["min"], el["max"], f(bd["hausdorff"]) if bd else "-",
-        f(d.get("area_ratio")), valid))
+        f(d.get("area_ratio")), valid, rep, nv, secs or "-"))
+print()
+print("| domains | mesher | runs | irregular / 100 quads (pooled) | valid | repaired |")
+print("|---|---|---|---|---|---|")
+for (group, kind), (i, q, ok, n, rep) in agg.items():
+    print("| %s | %s | %d | %s | %d of %d | %s |" % (group, kind, n, "%.1f" % (100.0 * i / q) if q else "-", ok, n,
+        "%d of %d" % (rep, n) if kind.startswith("glpgp") else "-"))
 '
