@@ -29,14 +29,14 @@ GLPGP_KERNEL void glpgp_asm_newton(int n, int chunk, int hess, double inv4e2,
                                    __global const double *xy, __global const int *tri,
                                    __global const double *z, __global const int *rowptr,
                                    __global const int *col, __global const int *diag,
-                                   __global const int *cptr, __global const int *contrib,
+                                   __global const int *vptr, __global const int *vtri,
                                    __global const uchar *dir, __global const double *quad,
                                    __global double *newton, __global double *dinv,
                                    __global int *bad)
 {
     GLPGP_RANGE(lo, hi, n, chunk);
     for (int i = lo; i < hi; i++)
-        if (glpgp_row_asm_newton(i, hess, inv4e2, xy, tri, z, rowptr, col, diag, cptr, contrib, dir,
+        if (glpgp_row_asm_newton(i, hess, inv4e2, xy, tri, z, rowptr, col, diag, vptr, vtri, dir,
                                  quad, newton, dinv))
             atomic_min(bad, i);
 }

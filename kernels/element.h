@@ -243,6 +243,37 @@ GLPGP_FN void glpgp_pen_grad(double area, double inv4e2, const double *zr, const
     *gi = 4.0 * area * inv4e2 * si;
 }
 
+/* The 2x2 matrix M_q / 4 of variant `hess` (see the top) at the quadrature
+ * value z_q = (x, y): (*h00, *h01 = *h10, *h11). */
+GLPGP_FN void glpgp_pen_hess_point(int hess, double x, double y, double *h00, double *h01, double *h11)
+{
+    double r2 = x * x + y * y;
+    if (hess == GLPGP_HESS_PAPER) {
+        *h00 = 3.0 * x * x;
+        *h01 = 2.0 * x * y;
+        *h11 = 3.0 * y * y;
+    } else if (hess == GLPGP_HESS_EXACT || (hess == GLPGP_HESS_MIXED && r2 >= 0.5)) {
+        *h00 = r2 - 1.0 + 2.0 * x * x;
+        *h01 = 2.0 * x * y;
+        *h11 = r2 - 1.0 + 2.0 * y * y;
+    } else {
+        /* eigen-decomposition of s I + 2 z z^T: along zhat 3r2-1, across r2-1 */
+        double lp = 3.0 * r2 - 1.0, lt = r2 - 1.0;
+        lp = lp > 0.0 ? lp : 0.0;
+        lt = lt > 0.0 ? lt : 0.0;
+        if (r2 > 0.0) {
+            double ux = x * x / r2, uxy = x * y / r2, uy = y * y / r2;
+            *h00 = lp * ux + lt * (1.0 - ux);
+            *h01 = (lp - lt) * uxy;
+            *h11 = lp * uy + lt * (1.0 - uy);
+        } else {
+            *h00 = 0.0;
+            *h01 = 0.0;
+            *h11 = 0.0;
+        }
+    }
+}
+
 /* Penalty Hessian block (a,b) (2x2, row-major into m[4]) of variant `hess`. */
 GLPGP_FN void glpgp_pen_hess(int hess, double area, double inv4e2, const double *zr,
                              const double *zi, int a, int b, double *m)
@@ -253,33 +284,9 @@ GLPGP_FN void glpgp_pen_hess(int hess, double area, double inv4e2, const double 
         double w = glpgp_quad4(q, &l[0], &l[1], &l[2]);
         double x = l[0] * zr[0] + l[1] * zr[1] + l[2] * zr[2];
         double y = l[0] * zi[0] + l[1] * zi[1] + l[2] * zi[2];
-        double r2 = x * x + y * y;
         double f = w * l[a] * l[b];
         double h00, h01, h11;
-        if (hess == GLPGP_HESS_PAPER) {
-            h00 = 3.0 * x * x;
-            h01 = 2.0 * x * y;
-            h11 = 3.0 * y * y;
-        } else if (hess == GLPGP_HESS_EXACT || (hess == GLPGP_HESS_MIXED && r2 >= 0.5)) {
-            h00 = r2 - 1.0 + 2.0 * x * x;
-            h01 = 2.0 * x * y;
-            h11 = r2 - 1.0 + 2.0 * y * y;
-        } else {
-            /* eigen-decomposition of s I + 2 z z^T: along zhat 3r2-1, across r2-1 */
-            double lp = 3.0 * r2 - 1.0, lt = r2 - 1.0;
-            lp = lp > 0.0 ? lp : 0.0;
-            lt = lt > 0.0 ? lt : 0.0;
-            if (r2 > 0.0) {
-                double ux = x * x / r2, uxy = x * y / r2, uy = y * y / r2;
-                h00 = lp * ux + lt * (1.0 - ux);
-                h01 = (lp - lt) * uxy;
-                h11 = lp * uy + lt * (1.0 - uy);
-            } else {
-                h00 = 0.0;
-                h01 = 0.0;
-                h11 = 0.0;
-            }
-        }
+        glpgp_pen_hess_point(hess, x, y, &h00, &h01, &h11);
         m0 += f * h00;
         m1 += f * h01;
         m3 += f * h11;
@@ -290,6 +297,37 @@ GLPGP_FN void glpgp_pen_hess(int hess, double area, double inv4e2, const double 
     m[1] = c * m1;
     m[2] = c * m2;
     m[3] = c * m3;
+}
+
+/* The three penalty Hessian blocks (a,0), (a,1), (a,2) of one triangle at once:
+ * block (a,b) -> m[3b] = m_00, m[3b+1] = m_01 = m_10, m[3b+2] = m_11.
+ * The quadrature values z_q and M_q are evaluated once for the three blocks
+ * (glpgp_pen_hess evaluates them per block); every block is computed with
+ * exactly the arithmetic of glpgp_pen_hess(hess, .., a, b, ..), so the two
+ * agree bit for bit (tests/backends/test_element.c checks it). */
+GLPGP_FN void glpgp_pen_hess_row(int hess, double area, double inv4e2, const double *zr,
+                                 const double *zi, int a, double *m)
+{
+    double s[9];
+    for (int k = 0; k < 9; k++) s[k] = 0.0;
+    for (int q = 0; q < 6; q++) {
+        double l[3];
+        double w = glpgp_quad4(q, &l[0], &l[1], &l[2]);
+        double x = l[0] * zr[0] + l[1] * zr[1] + l[2] * zr[2];
+        double y = l[0] * zi[0] + l[1] * zi[1] + l[2] * zi[2];
+        double h00, h01, h11;
+        glpgp_pen_hess_point(hess, x, y, &h00, &h01, &h11);
+        const double wa = w * l[a];
+        for (int b = 0; b < 3; b++) {
+            /* f = w l_a l_b, the same product order as glpgp_pen_hess */
+            const double f = wa * l[b];
+            s[3 * b] += f * h00;
+            s[3 * b + 1] += f * h01;
+            s[3 * b + 2] += f * h11;
+        }
+    }
+    double c = 4.0 * area * inv4e2;
+    for (int k = 0; k < 9; k++) m[k] = c * s[k];
 }
 
 #endif

@@ -170,16 +170,55 @@ GLPGP_FN void glpgp_row_asm_quad(int i, int kind, double h, int sized, GLPGP_GLO
  *   a block in a Dirichlet row or column (dir[i] or dir[j]) becomes I (diagonal) or 0;
  *   DINV_i <- [[d0, d1], [d2, d3]]^-1 = [[d3, -d1], [-d2, d0]] / (d0 d3 - d1 d2) of NEWTON's
  *             diagonal block (diag[i]).
+ * Loop over the corners (t,a) of vertex i (vtri, increasing t*3 + a) rather than over
+ * the slot map: each triangle is loaded and its quadrature values z_q and M_q are
+ * evaluated once for its three blocks (a,0..2) (glpgp_pen_hess_row), not once per
+ * block (9 times per triangle, 3 times per row). Each block (t,a,b) is added to the
+ * slot k of column tri[3t+b] in increasing t*9 + a*3 + b, which is the slot-map order
+ * (contrib lists increasing element entries), so every NEWTON value is bit for bit
+ * what the per-slot sum gives. The row's NEWTON blocks are the accumulators.
  * Returns 1 (DINV_i set to 0) when that block is singular (det == 0), else 0. */
 GLPGP_FN int glpgp_row_asm_newton(int i, int hess, double inv4e2, GLPGP_GLOBAL const double *xy,
                                   GLPGP_GLOBAL const int *tri, GLPGP_GLOBAL const double *z,
                                   GLPGP_GLOBAL const int *rowptr, GLPGP_GLOBAL const int *col,
-                                  GLPGP_GLOBAL const int *diag, GLPGP_GLOBAL const int *cptr,
-                                  GLPGP_GLOBAL const int *contrib, GLPGP_GLOBAL const unsigned char *dir,
+                                  GLPGP_GLOBAL const int *diag, GLPGP_GLOBAL const int *vptr,
+                                  GLPGP_GLOBAL const int *vtri, GLPGP_GLOBAL const unsigned char *dir,
                                   GLPGP_GLOBAL const double *quad, GLPGP_GLOBAL double *newton,
                                   GLPGP_GLOBAL double *dinv)
 {
-    for (int k = rowptr[i]; k < rowptr[i + 1]; k++) {
+    const int k0 = rowptr[i], k1 = rowptr[i + 1];
+    /* NEWTON_k <- 0 (the penalty sums start at 0, as m = 0.0 per slot) */
+    for (int k = k0; k < k1; k++) {
+        GLPGP_GLOBAL double *blk = newton + 4 * (long)k;
+        blk[0] = 0.0;
+        blk[1] = 0.0;
+        blk[2] = 0.0;
+        blk[3] = 0.0;
+    }
+    if (!dir[i] && inv4e2 > 0.0) {
+        /* NEWTON_k += d2P_t/dX_a dX_b for the corners (t,a) of i, b = 0..2 */
+        for (int p = vptr[i]; p < vptr[i + 1]; p++) {
+            const int t = vtri[p] / 3, a = vtri[p] % 3;
+            double x[3], y[3], zr[3], zi[3], hm[9];
+            glpgp_tri_load(xy, tri, t, x, y);
+            glpgp_tri_vals(tri, z, t, zr, zi);
+            glpgp_pen_hess_row(hess, glpgp_tri_area(x, y), inv4e2, zr, zi, a, hm);
+            for (int b = 0; b < 3; b++) {
+                const int j = tri[3 * t + b];
+                if (dir[j]) continue; /* overwritten below */
+                int k = k0;
+                while (k < k1 && col[k] != j) k++;
+                if (k == k1) continue; /* not in the pattern: cannot happen (pattern from tri) */
+                GLPGP_GLOBAL double *blk = newton + 4 * (long)k;
+                blk[0] += hm[3 * b];
+                blk[1] += hm[3 * b + 1];
+                blk[2] += hm[3 * b + 1];
+                blk[3] += hm[3 * b + 2];
+            }
+        }
+    }
+    /* NEWTON_k <- QUAD_k + penalty sum; Dirichlet row/column -> I or 0 */
+    for (int k = k0; k < k1; k++) {
         const int j = col[k];
         GLPGP_GLOBAL double *blk = newton + 4 * (long)k;
         if (dir[i] || dir[j]) {
@@ -190,25 +229,11 @@ GLPGP_FN int glpgp_row_asm_newton(int i, int hess, double inv4e2, GLPGP_GLOBAL c
             blk[3] = d;
             continue;
         }
-        double m0 = 0.0, m1 = 0.0, m2 = 0.0, m3 = 0.0;
-        if (inv4e2 > 0.0) {
-            for (int c = cptr[k]; c < cptr[k + 1]; c++) {
-                const int e = contrib[c], t = e / 9, a = (e % 9) / 3, b = e % 3;
-                double x[3], y[3], zr[3], zi[3], hm[4];
-                glpgp_tri_load(xy, tri, t, x, y);
-                glpgp_tri_vals(tri, z, t, zr, zi);
-                glpgp_pen_hess(hess, glpgp_tri_area(x, y), inv4e2, zr, zi, a, b, hm);
-                m0 += hm[0];
-                m1 += hm[1];
-                m2 += hm[2];
-                m3 += hm[3];
-            }
-        }
         GLPGP_GLOBAL const double *qb = quad + 4 * (long)k;
-        blk[0] = qb[0] + m0;
-        blk[1] = qb[1] + m1;
-        blk[2] = qb[2] + m2;
-        blk[3] = qb[3] + m3;
+        blk[0] = qb[0] + blk[0];
+        blk[1] = qb[1] + blk[1];
+        blk[2] = qb[2] + blk[2];
+        blk[3] = qb[3] + blk[3];
     }
     GLPGP_GLOBAL const double *d = newton + 4 * (long)diag[i];
     const double det = d[0] * d[3] - d[1] * d[2];

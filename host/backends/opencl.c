@@ -839,8 +839,8 @@ static glpgp_status cl_assemble_newton(glpgp_backend *b, const glpgp_vec *x, dou
     ARG(k, 7, c->rowptr);
     ARG(k, 8, c->col);
     ARG(k, 9, c->diag);
-    ARG(k, 10, c->cptr);
-    ARG(k, 11, c->contrib);
+    ARG(k, 10, c->vptr);
+    ARG(k, 11, c->vtri);
     ARG(k, 12, c->dir);
     ARG(k, 13, c->quad);
     ARG(k, 14, c->newton);

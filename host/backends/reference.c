@@ -162,7 +162,7 @@ static glpgp_status ref_assemble_newton(glpgp_backend *b, const glpgp_vec *xv, d
      * DINV_i <- inverse of the 2x2 diagonal block */
     for (int i = 0; i < sys->nv; i++)
         if (glpgp_row_asm_newton(i, hess, inv4e2, m->xy, m->tri, xv->a, sys->rowptr, sys->col, sys->diag,
-                                 sys->cptr, sys->contrib, r->dir, r->quad, r->newton, r->dinv) &&
+                                 sys->vptr, sys->vtri, r->dir, r->quad, r->newton, r->dinv) &&
             bad < 0)
             bad = i;
     if (bad >= 0) return GLPGP_FAIL(GLPGP_ERR_NUMERIC, "singular diagonal block at vertex %d", bad);
