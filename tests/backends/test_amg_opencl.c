@@ -21,6 +21,7 @@
 #include "glpgp/solve.h"
 #include "glpgp/system.h"
 #include "testutil.h"
+#include "amg_testutil.h"
 
 #include <stdlib.h>
 #include <string.h>
@@ -78,71 +79,6 @@ static void fixture_free(fixture *f)
     glpgp_mesh_destroy(&f->m);
 }
 
-/* z_i: a wave along x with a vortex of core radius `core` at (0.2, 0.1) */
-static void vortex_state(const glpgp_mesh *m, double h, double core, double *z)
-{
-    for (int i = 0; i < m->nv; i++) {
-        double x = m->xy[2 * i], y = m->xy[2 * i + 1];
-        double dx = x - 0.2, dy = y - 0.1, r = hypot(dx, dy);
-        double a = r / sqrt(r * r + core * core);
-        double th = 2 * GLPGP_PI * x / h + atan2(dy, dx);
-        z[2 * i] = a * cos(th);
-        z[2 * i + 1] = a * sin(th);
-    }
-}
-
-/* dense copy (order 2n) of level l's matrix through products with unit vectors */
-static double *dense_level(glpgp_backend *b, int l, int n)
-{
-    const glpgp_backend_ops *op = b->ops;
-    const int m = 2 * n;
-    double *A = calloc((size_t)m * m, sizeof(double)), *e = calloc((size_t)m, sizeof(double));
-    double *col = calloc((size_t)m, sizeof(double));
-    glpgp_vec *x = NULL, *y = NULL;
-    CHECK_OK(op->vec_create(b, (size_t)m, &x));
-    CHECK_OK(op->vec_create(b, (size_t)m, &y));
-    for (int j = 0; j < m; j++) {
-        e[j] = 1.0;
-        CHECK_OK(op->vec_write(b, x, e));
-        CHECK_OK(op->amg_spmv_dots(b, l, x, y, NULL, NULL, GLPGP_AMG_KSLOT(0)));
-        CHECK_OK(op->vec_read(b, y, col));
-        for (int i = 0; i < m; i++) A[(size_t)i * m + j] = col[i];
-        e[j] = 0.0;
-    }
-    op->vec_destroy(b, &x);
-    op->vec_destroy(b, &y);
-    free(e);
-    free(col);
-    return A;
-}
-
-/* dense P_l (2 n_l x 2 n_{l+1}) through amg_prolong on unit coarse vectors */
-static double *dense_prolong(glpgp_backend *b, int l, int nf, int nc)
-{
-    const glpgp_backend_ops *op = b->ops;
-    const int mf = 2 * nf, mc = 2 * nc;
-    double *P = calloc((size_t)mf * mc, sizeof(double)), *e = calloc((size_t)mc, sizeof(double));
-    double *col = calloc((size_t)mf, sizeof(double)), *zero = calloc((size_t)mf, sizeof(double));
-    glpgp_vec *ec = NULL, *x = NULL;
-    CHECK_OK(op->vec_create(b, (size_t)mc, &ec));
-    CHECK_OK(op->vec_create(b, (size_t)mf, &x));
-    for (int j = 0; j < mc; j++) {
-        e[j] = 1.0;
-        CHECK_OK(op->vec_write(b, ec, e));
-        CHECK_OK(op->vec_write(b, x, zero));
-        CHECK_OK(op->amg_prolong(b, l, ec, x));
-        CHECK_OK(op->vec_read(b, x, col));
-        for (int i = 0; i < mf; i++) P[(size_t)i * mc + j] = col[i];
-        e[j] = 0.0;
-    }
-    op->vec_destroy(b, &ec);
-    op->vec_destroy(b, &x);
-    free(e);
-    free(col);
-    free(zero);
-    return P;
-}
-
 static void test_galerkin(glpgp_backend *b)
 {
     fixture f;
@@ -151,7 +87,7 @@ static void test_galerkin(glpgp_backend *b)
     const int nv = f.m->nv;
     const glpgp_backend_ops *op = f.b->ops;
     double *z = calloc((size_t)2 * nv, sizeof(double));
-    vortex_state(f.m, f.h, 0.05, z);
+    amg_vortex_state(f.m, f.h, 0.05, -1, z);
     glpgp_vec *x = NULL;
     CHECK_OK(op->vec_create(f.b, (size_t)2 * nv, &x));
     CHECK_OK(op->vec_write(f.b, x, z));
@@ -165,42 +101,7 @@ static void test_galerkin(glpgp_backend *b)
         printf("galerkin (OpenCL): %d vertices, %d levels, operator complexity %.3f\n", nv, in.nlevels,
                in.operator_complexity);
         CHECK(in.nlevels >= 4);
-        double *A = dense_level(f.b, 0, nv);
-        for (int l = 0; l + 1 < in.nlevels; l++) {
-            const int mf = 2 * in.n[l], mc = 2 * in.n[l + 1];
-            double *P = dense_prolong(f.b, l, in.n[l], in.n[l + 1]);
-            double *Ac = dense_level(f.b, l + 1, in.n[l + 1]);
-            /* T = A P, G = P^T T; compare with A_{l+1} */
-            double *T = calloc((size_t)mf * mc, sizeof(double));
-            double amax = 0.0, dmax = 0.0, ortho = 0.0;
-            for (int i = 0; i < mf; i++)
-                for (int k = 0; k < mf; k++) {
-                    double aik = A[(size_t)i * mf + k];
-                    if (aik == 0.0) continue;
-                    for (int j = 0; j < mc; j++) T[(size_t)i * mc + j] += aik * P[(size_t)k * mc + j];
-                }
-            for (int I = 0; I < mc; I++)
-                for (int J = 0; J < mc; J++) {
-                    double g = 0.0, pp = 0.0;
-                    for (int k = 0; k < mf; k++) {
-                        g += P[(size_t)k * mc + I] * T[(size_t)k * mc + J];
-                        pp += P[(size_t)k * mc + I] * P[(size_t)k * mc + J];
-                    }
-                    amax = fmax(amax, fabs(g));
-                    dmax = fmax(dmax, fabs(g - Ac[(size_t)I * mc + J]));
-                    ortho = fmax(ortho, fabs(pp - (I == J ? 1.0 : 0.0)));
-                }
-            printf("galerkin (OpenCL): level %d -> %d: max |P^T A P - A_c| = %.2e (max entry %.2e), "
-                   "max |P^T P - I| = %.2e\n", l, l + 1, dmax, amax, ortho);
-            CHECK(amax > 0.0);
-            CHECK(dmax <= 1e-13 * amax);
-            CHECK(ortho <= 1e-13);
-            free(T);
-            free(P);
-            free(A);
-            A = Ac;
-        }
-        free(A);
+        amg_check_galerkin("galerkin (OpenCL)", f.b, &in, f.dir, -1);
     }
     glpgp_amg_destroy(&a);
     op->vec_destroy(f.b, &x);
