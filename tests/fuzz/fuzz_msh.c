@@ -1,35 +1,9 @@
 /* fuzz_msh.c: the Gmsh MSH 2.2 / 4.1 triangle-mesh reader (glpgp_mesh_read on a
- * .msh file: io/msh_read.c, io/mesh_io.c, then glpgp_mesh_create). Properties: a
- * failure returns no mesh and one error line; an accepted mesh has >= 3
- * vertices and >= 1 triangle, finite coordinates, indices in range, and
- * survives a write / read round trip with the same counts. */
-#include "fuzz_common.h"
-
-#include "glpgp/io.h"
-
-#include <math.h>
+ * .msh file: io/msh_read.c, io/mesh_io.c, then glpgp_mesh_create), with the
+ * properties of fuzz_mesh_file.h. */
+#include "fuzz_mesh_file.h"
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
-    glpgp_error_clear();
-    const char *path = fuzz_write_file(0, ".msh", data, size);
-    glpgp_mesh *m = (glpgp_mesh *)&m; /* must be reset to NULL on failure */
-    glpgp_status st = glpgp_mesh_read(path, &m);
-    if (st != GLPGP_OK) {
-        FUZZ_ASSERT(m == NULL);
-        fuzz_check_error(st);
-        return 0;
-    }
-    FUZZ_ASSERT(m && m->nv >= 3 && m->nt >= 1);
-    for (int i = 0; i < 2 * m->nv; i++) FUZZ_ASSERT(isfinite(m->xy[i]));
-    for (int k = 0; k < 3 * m->nt; k++) FUZZ_ASSERT(m->tri[k] >= 0 && m->tri[k] < m->nv);
-    /* round trip */
-    const char *back = fuzz_write_file(1, ".msh", NULL, 0);
-    glpgp_mesh *m2 = NULL;
-    FUZZ_ASSERT(glpgp_mesh_write(m, back) == GLPGP_OK);
-    FUZZ_ASSERT(glpgp_mesh_read(back, &m2) == GLPGP_OK);
-    FUZZ_ASSERT(m2->nv == m->nv && m2->nt == m->nt);
-    glpgp_mesh_destroy(&m2);
-    glpgp_mesh_destroy(&m);
-    return 0;
+    return fuzz_mesh_file(".msh", data, size);
 }
