@@ -165,6 +165,8 @@ int glpgp_cmd_figure(int argc, char **argv)
                    "grid texture and the quad mesh (valence 3 blue, 5+ red) side by side");
     glpgp_opts_add_picture(&t, &ro, 1);
     glpgp_opts_add_solver(&t, &so);
+    double size_box[4];
+    glpgp_opts_add_size_image(&t, size_box);
     glpgp_opts_add_backend(&t, &backend, &device);
     glpgp_opts_group(&t, "Mask image input (INPUT = image)");
     glpgp_opts_add_mask(&t, &mo);
@@ -183,7 +185,9 @@ int glpgp_cmd_figure(int argc, char **argv)
     glpgp_result *res[2] = {NULL, NULL};
     glpgp_image *im = NULL;
     double t0 = glpgp_now();
+    glpgp_size_image *simg = NULL; /* --size-field IMAGE */
     if ((rc = glpgp_cli_load_input(sub, in, &mo, &m, NULL)) >= 0) return rc;
+    if ((rc = glpgp_cli_size_image(sub, &so, m, size_box, &mo, &simg)) >= 0) goto done;
     rc = GLPGP_EXIT_FAIL;
     if (glpgp_backend_select(backend, device, verbosity > 0, &b) != GLPGP_OK) goto err;
     /* the solves' own progress only with --verbose: figure prints a line per solve */
@@ -238,5 +242,6 @@ done:
     glpgp_result_destroy(&res[1]);
     glpgp_backend_destroy(&b);
     glpgp_mesh_destroy(&m);
+    glpgp_size_image_destroy(&simg);
     return rc;
 }

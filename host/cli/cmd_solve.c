@@ -33,6 +33,7 @@ typedef struct solve_cli {
     int quad_opts, allow_invalid;
     glpgp_render_options ro;
     glpgp_mask_options mo;
+    double size_box[4];  /* --size-image-box */
 } solve_cli;
 
 static void build(glpgp_opts *t, solve_cli *c)
@@ -52,9 +53,10 @@ static void build(glpgp_opts *t, solve_cli *c)
                     "NAME is one of square, disk, annulus, lshape), or a mask image (.png, .tif,\n"
                     ".exr, ...), meshed first (see 'Mask image input').\n");
     glpgp_opts_add_solver(t, &c->o);
+    glpgp_opts_add_size_image(t, c->size_box);
     glpgp_opt_flag(t, "--no-refine", &c->no_refine, 1,
                    "solve the input as it is: where its triangles are coarser\n"
-                   "than the local h / 4 (auto, iso) the local size is limited\n"
+                   "than the local h / 4 (auto, iso, IMAGE) the local size is limited\n"
                    "to what they resolve (a warning) instead of refining them\n"
                    "(longest-edge bisection)");
     glpgp_opts_add_backend(t, &c->backend, &c->device);
@@ -178,13 +180,19 @@ int glpgp_cmd_solve(int argc, char **argv)
     char why[1024] = "";
     c.mo.quad_size = c.o.size;
     if ((rc = glpgp_cli_load_input("solve", input, &c.mo, &m, NULL)) >= 0) return rc;
+    glpgp_size_image *simg = NULL; /* --size-field IMAGE */
+    if ((rc = glpgp_cli_size_image("solve", &c.o, m, c.size_box, &c.mo, &simg)) >= 0) {
+        glpgp_mesh_destroy(&m);
+        return rc;
+    }
     double t_read = glpgp_now() - t0;
     /* the input is refined for the local size (auto / iso, refinement on,
      * no per-vertex field file): h may be down to half a mean edge here (a
      * graded input whose far field is coarser than h); the refined mesh is
      * checked against the full rule below */
     const int refine = !c.no_refine && c.o.field != GLPGP_FIELD_FILE &&
-                       (c.o.size_field == GLPGP_SIZE_AUTO || c.o.size_field == GLPGP_SIZE_ISO);
+                       (c.o.size_field == GLPGP_SIZE_AUTO || c.o.size_field == GLPGP_SIZE_ISO ||
+                        c.o.size_field == GLPGP_SIZE_FUNC);
     glpgp_status chk;
     if (refine && c.o.size > 0.0 && c.o.size >= 0.5 * m->mean_edge && c.o.size < GLPGP_SIZE_MIN_EDGES * m->mean_edge) {
         glpgp_options big = c.o;
@@ -197,6 +205,7 @@ int glpgp_cmd_solve(int argc, char **argv)
         rc = glpgp_cli_usage_error("solve", "--size: %s", glpgp_error_message());
         glpgp_error_clear();
         glpgp_mesh_destroy(&m);
+        glpgp_size_image_destroy(&simg);
         return rc;
     }
     rc = GLPGP_EXIT_FAIL;
@@ -288,5 +297,6 @@ done:
     glpgp_result_destroy(&r);
     glpgp_backend_destroy(&b);
     glpgp_mesh_destroy(&m);
+    glpgp_size_image_destroy(&simg);
     return rc;
 }

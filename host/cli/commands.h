@@ -7,6 +7,7 @@
 
 #include "glpgp/image.h"
 #include "glpgp/mesh.h"
+#include "glpgp/solve.h"
 
 int glpgp_cmd_solve(int argc, char **argv);
 int glpgp_cmd_generate(int argc, char **argv);
@@ -17,6 +18,15 @@ int glpgp_cmd_quality(int argc, char **argv);
 int glpgp_cmd_render(int argc, char **argv);
 int glpgp_cmd_mesh(int argc, char **argv);
 int glpgp_cmd_figure(int argc, char **argv);
+
+/* --size-field IMAGE (o->size_field GLPGP_SIZE_FUNC with o->size_file the
+ * image and no size_fn yet): read the image (limit mo->max_pixels) over box
+ * (--size-image-box; NaN: m's bounding box), black = o->size_min, white = 1,
+ * and attach it (o->size_fn, o->size_ctx = *out, freed by the caller with
+ * glpgp_size_image_destroy after the solve). Nothing to do otherwise.
+ * Returns -1 on success, else the exit code after printing the error. */
+int glpgp_cli_size_image(const char *cmd, glpgp_options *o, const glpgp_mesh *m, const double box[4],
+                         const glpgp_mask_options *mo, glpgp_size_image **out);
 
 /* Load INPUT: shape:NAME[:N], a mask image (meshed with mo) or a mesh file.
  * mo->max_triangles (--max-elements) limits every kind: the estimate of

@@ -9,6 +9,7 @@
 #include "glpgp/shapes.h"
 #include "glpgp/util.h"
 
+#include <math.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -93,5 +94,26 @@ int glpgp_cli_check_output(const char *cmd, const char *opt, const char *path,
     }
     if (!ok) return glpgp_cli_usage_error(cmd, "%s: '%s' must end in %s", opt, path, list);
     if (glpgp_output_path_check(path) != GLPGP_OK) return glpgp_cli_fail();
+    return -1;
+}
+
+int glpgp_cli_size_image(const char *cmd, glpgp_options *o, const glpgp_mesh *m, const double box[4],
+                         const glpgp_mask_options *mo, glpgp_size_image **out)
+{
+    (void)cmd;
+    *out = NULL;
+    if (o->size_field != GLPGP_SIZE_FUNC || o->size_fn) return -1;
+    double b[4];
+    for (int k = 0; k < 4; k++) b[k] = isnan(box[0]) ? m->bbox[k] : box[k];
+    glpgp_error_clear();
+    if (!glpgp_cli_need_images(1, 0)) return GLPGP_EXIT_FAIL;
+    if (glpgp_size_image_create(o->size_file, mo->max_pixels, b, o->size_min, 1.0, out) != GLPGP_OK)
+        return glpgp_cli_fail();
+    int w, h;
+    glpgp_size_image_dims(*out, &w, &h);
+    glpgp_log(GLPGP_LOG_INFO, "size field: %s (%d x %d pixels) over [%g, %g] x [%g, %g], black = %g h", o->size_file,
+              w, h, b[0], b[2], b[1], b[3], o->size_min);
+    o->size_fn = glpgp_size_image_eval;
+    o->size_ctx = *out;
     return -1;
 }

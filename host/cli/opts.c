@@ -373,11 +373,50 @@ static const char *parse_size_field(const char *v, void *dest)
         o->size_field = GLPGP_SIZE_ISO;
     } else if (!strcmp(v, "none")) {
         o->size_field = GLPGP_SIZE_NONE;
+    } else if (glpgp_is_image_path(v)) {
+        /* a grey-level image: the command reads it once the domain is known
+         * (glpgp_cli_size_image sets size_fn) */
+        o->size_field = GLPGP_SIZE_FUNC;
+        o->size_file = v;
     } else {
         o->size_field = GLPGP_SIZE_FILE;
         o->size_file = v;
     }
     return NULL;
+}
+
+static const char *parse_box(const char *v, void *dest)
+{
+    double *box = dest, b[4];
+    const char *p = v;
+    for (int k = 0; k < 4; k++) {
+        const char *comma = strchr(p, ',');
+        char num[128];
+        size_t n = comma ? (size_t)(comma - p) : strlen(p);
+        if ((k < 3) != (comma != NULL) || n >= sizeof num) return "is not X0,Y0,X1,Y1 (four numbers)";
+        memcpy(num, p, n);
+        num[n] = '\0';
+        if (!glpgp_cli_double(num, &b[k])) return "is not X0,Y0,X1,Y1 (four numbers)";
+        p = comma ? comma + 1 : p + n;
+    }
+    if (!(b[2] > b[0]) || !(b[3] > b[1])) return "is an empty box (need X1 > X0 and Y1 > Y0)";
+    for (int k = 0; k < 4; k++) box[k] = b[k];
+    return NULL;
+}
+
+void glpgp_opts_add_size_image(glpgp_opts *t, double box[4])
+{
+    for (int k = 0; k < 4; k++) box[k] = NAN;
+    glpgp_opt c = {0};
+    c.name = "--size-image-box";
+    c.kind = GLPGP_OPT_CUSTOM;
+    c.dest = box;
+    c.parse = parse_box;
+    c.meta = "X0,Y0,X1,Y1";
+    c.help = "area the --size-field IMAGE covers (top row at Y1); for a mask\n"
+             "input of W x H pixels: 0,0,W*s,H*s with s = --pixel-size";
+    c.def = "the domain's bounding box";
+    glpgp_opts_add(t, c);
 }
 
 static const char *const k_methods[] = {"gl", "pgp", NULL};
@@ -433,12 +472,14 @@ void glpgp_opts_add_solver(glpgp_opts *t, glpgp_options *o)
                      "solution, or z = 1");
     c.name = "--size-field";
     c.parse = parse_size_field;
-    c.meta = "auto|iso|none|FILE";
+    c.meta = "auto|iso|none|FILE|IMAGE";
     c.help = "local size h(x) <= h: auto shrinks it where the domain (a wall,\n"
              "strip, web) is thinner than --size-across periods, per\n"
              "oscillator along its direction, and refines the input there;\n"
              "iso: the same for both; none: h everywhere (the input as it\n"
-             "is); FILE: one \"h\" or \"h_u h_v\" line per vertex";
+             "is); FILE: one \"h\" or \"h_u h_v\" line per vertex; IMAGE (.png,\n"
+             ".tif, .exr, ...): auto, further limited to the grey level times\n"
+             "h (black: --size-min h, white: h) over --size-image-box";
     c.def = "auto";
     glpgp_opts_add(t, c);
     glpgp_opt_double(t, "--size-grading", &o->size_grading, 0.0, 1, HUGE_VAL, 0, "G",
@@ -446,6 +487,9 @@ void glpgp_opts_add_solver(glpgp_opts *t, glpgp_options *o)
                      "h(x) <= h(y) + G |x - y| along mesh edges");
     glpgp_opt_double(t, "--size-across", &o->size_across, 1.0, 0, HUGE_VAL, 0, "N",
                      "periods (quads) across the thinnest features");
+    glpgp_opt_double(t, "--size-min", &o->size_min, 0.0, 1, 1.0, 0, "F",
+                     "smallest local size, as a fraction of h (cusps and wedge tips\n"
+                     "stop there; black in a --size-field IMAGE)");
 
     glpgp_opts_group(t, "Continuation and solvers");
     glpgp_opt_double(t, "--eps0", &o->eps0, 0.0, 1, HUGE_VAL, 0, "F", "first eps, as a multiple of h");

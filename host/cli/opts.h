@@ -95,6 +95,9 @@ void glpgp_opts_add_verbosity(glpgp_opts *t, int *v);
 /* The solver parameters of glpgp_options (every documented member a user may
  * set): parametrization, continuation and solvers. */
 void glpgp_opts_add_solver(glpgp_opts *t, glpgp_options *o);
+/* --size-image-box X0,Y0,X1,Y1 into box[4] (NaN until given: the domain's
+ * bounding box), for --size-field IMAGE (glpgp_cli_size_image). */
+void glpgp_opts_add_size_image(glpgp_opts *t, double box[4]);
 /* --backend auto|opencl|reference, --device N (-1: none given). */
 void glpgp_opts_add_backend(glpgp_opts *t, int *kind, int *device);
 /* --keep-polygons, --smooth N, --all-quads, --no-repair, --allow-invalid;

@@ -55,6 +55,8 @@ void glpgp_options_default(glpgp_options *o)
     o->amg_maxit = 1000;
     o->size_field = GLPGP_SIZE_AUTO;
     o->size_file = NULL;
+    o->size_fn = NULL;
+    o->size_ctx = NULL;
     o->size_grading = 0.5;
     o->size_across = 2.0;
     o->size_min = 0.05;
@@ -126,10 +128,12 @@ glpgp_status glpgp_options_check(const glpgp_options *o)
         return GLPGP_FAIL(GLPGP_ERR_ARG, "amg_weight must be in (0, 2), got %g", o->amg_weight);
     if (o->amg_check < 1 || o->amg_maxit < 1)
         return GLPGP_FAIL(GLPGP_ERR_ARG, "amg_check and amg_maxit must be >= 1");
-    if (o->size_field < GLPGP_SIZE_NONE || o->size_field > GLPGP_SIZE_FILE)
+    if (o->size_field < GLPGP_SIZE_NONE || o->size_field > GLPGP_SIZE_FUNC)
         return GLPGP_FAIL(GLPGP_ERR_ARG, "unknown size field %d", o->size_field);
     if (o->size_field == GLPGP_SIZE_FILE && (!o->size_file || !*o->size_file))
         return GLPGP_FAIL(GLPGP_ERR_ARG, "size field from a file needs a file name");
+    if (o->size_field == GLPGP_SIZE_FUNC && !o->size_fn)
+        return GLPGP_FAIL(GLPGP_ERR_ARG, "size field from a function needs the function (size_fn)");
     if (!(o->size_grading > 0.0) || !isfinite(o->size_grading))
         return GLPGP_FAIL(GLPGP_ERR_ARG, "size grading must be a positive number, got %g", o->size_grading);
     if (!(o->size_across >= 1.0) || !isfinite(o->size_across))

@@ -28,6 +28,10 @@
  *   4. Gradation by Dijkstra over the mesh edges (g = size_grading):
  *        h_i = min(H, min_j (seed_j + g d(i, j))),  d the shortest mesh path,
  *      so h_i <= h_j + g |x_i - x_j| holds on every mesh edge (i, j).
+ * function (GLPGP_SIZE_FUNC, e.g. a grey-level image): auto's seeds of step 3
+ * are further limited to h f(x_i) (f clamped to [size_min, 1]) at every
+ * vertex before the gradation of step 4, so the user's field refines where
+ * it asks and the thin features keep auto's periods across.
  * file (GLPGP_SIZE_FILE): one positive value per line and vertex (both
  * oscillators) or two (h_u h_v); '#' comments and blank lines skipped.
  * none: H everywhere.
@@ -297,7 +301,7 @@ static glpgp_status size_feature(const glpgp_mesh *m, const glpgp_options *o, do
     bedges be;
     int *ptr = NULL, *adj = NULL;
     const double N = o->size_across, floor_h = o->size_min * h;
-    const int aniso = u && o->size_field == GLPGP_SIZE_AUTO;
+    const int aniso = u && o->size_field != GLPGP_SIZE_ISO;
     for (int i = 0; i < 2 * nv; i++) size[i] = h;
     GLPGP_CHECK(bedges_build(m, &be));
     for (int e = 0; e < be.n; e++) {
@@ -335,6 +339,16 @@ static glpgp_status size_feature(const glpgp_mesh *m, const glpgp_options *o, do
         }
     }
     bedges_free(&be);
+    if (o->size_field == GLPGP_SIZE_FUNC) {
+        /* the user's field: s_i <- min(s_i, h clamp(f(x_i), size_min, 1)) */
+        for (int i = 0; i < nv; i++) {
+            double f = o->size_fn(o->size_ctx, m->xy[2 * i], m->xy[2 * i + 1]);
+            if (!isfinite(f) || f < o->size_min) f = o->size_min; /* NaN: the finest, never a crash */
+            if (f > 1.0) f = 1.0;
+            for (int k = 0; k < 2; k++)
+                if (f * h < size[(size_t)k * nv + i]) size[(size_t)k * nv + i] = f * h;
+        }
+    }
     GLPGP_CHECK(vertex_graph(m, &ptr, &adj));
     for (int k = 0; k < 2 && st == GLPGP_OK; k++) st = grade(m, ptr, adj, o->size_grading, size + (size_t)k * nv);
     free(ptr);
@@ -438,7 +452,8 @@ static glpgp_status size_compute(const glpgp_mesh *m, const glpgp_options *o, do
     if (!(h > 0.0) || !isfinite(h)) return GLPGP_FAIL(GLPGP_ERR_ARG, "size field: h = %g is not positive", h);
     if (o->size_field == GLPGP_SIZE_FILE) {
         GLPGP_CHECK(size_file(m, o->size_file, size));
-    } else if (o->size_field == GLPGP_SIZE_AUTO || o->size_field == GLPGP_SIZE_ISO) {
+    } else if (o->size_field == GLPGP_SIZE_AUTO || o->size_field == GLPGP_SIZE_ISO ||
+               o->size_field == GLPGP_SIZE_FUNC) {
         GLPGP_CHECK(size_feature(m, o, h, u, size));
         if (clamp) {
             const int n = size_clamp_to_mesh(m, o->size_resolution, h, size);

@@ -299,6 +299,70 @@ static void test_file(void)
     glpgp_mesh_destroy(&g_sq);
 }
 
+/* A user size function (GLPGP_SIZE_FUNC): 0.25 on the left of x = c, 1 on
+ * the right, NaN (must not crash: the finest) in a small disc. */
+static double g_cut = 1.5;
+static double half_fn(void *ctx, double x, double y)
+{
+    (void)ctx;
+    if (hypot(x - 2.5, y - 0.06) < 0.01) return NAN;
+    return x < g_cut ? 0.25 : 7.0; /* 7: clamped to 1 */
+}
+static double one_fn(void *ctx, double x, double y)
+{
+    (void)ctx, (void)x, (void)y;
+    return 1.0;
+}
+
+static void test_function(void)
+{
+    const double h = 1.0;
+    glpgp_mesh *m = grid(400, 16, 3.0, 0.12, NULL);
+    if (!m) return;
+    glpgp_options o;
+    glpgp_options_default(&o);
+    const size_t n2 = 2 * (size_t)m->nv;
+    double *s = malloc(sizeof(double) * n2), *a = malloc(sizeof(double) * n2);
+    double *u = malloc(sizeof(double) * n2);
+    for (int i = 0; i < m->nv; i++) u[2 * i] = 1, u[2 * i + 1] = 0;
+    /* without size_fn: refused */
+    o.size_field = GLPGP_SIZE_FUNC;
+    CHECK(glpgp_options_check(&o) != GLPGP_OK);
+    glpgp_error_clear();
+    /* f = 1 everywhere: auto's sizes bit for bit */
+    o.size_field = GLPGP_SIZE_AUTO;
+    CHECK_OK(glpgp_size_compute(m, &o, h, u, a, NULL));
+    o.size_field = GLPGP_SIZE_FUNC;
+    o.size_fn = one_fn;
+    CHECK_OK(glpgp_options_check(&o));
+    CHECK_OK(glpgp_size_compute(m, &o, h, u, s, NULL));
+    CHECK(memcmp(s, a, sizeof(double) * n2) == 0);
+    /* the half function: s <= 0.25 h left of the cut, auto's sizes far right,
+     * never above auto's, graded, floored */
+    o.size_fn = half_fn;
+    CHECK_OK(glpgp_size_compute(m, &o, h, u, s, NULL));
+    int left_ok = 1, right_ok = 1, below = 1;
+    double smin = HUGE_VAL;
+    for (int k = 0; k < 2; k++)
+        for (int i = 0; i < m->nv; i++) {
+            const double x = m->xy[2 * i], v = s[(size_t)k * m->nv + i], va = a[(size_t)k * m->nv + i];
+            if (x < g_cut && v > 0.25 * h) left_ok = 0;
+            if (x > g_cut + 1.0 && hypot(x - 2.5, m->xy[2 * i + 1] - 0.06) > 1.0 && v != va) right_ok = 0;
+            if (v > va) below = 0;
+            smin = fmin(smin, v);
+        }
+    printf("function: left <= h/4 %d, right = auto %d, <= auto %d, min %.4f, grading %.3f\n", left_ok, right_ok,
+           below, smin, fmax(max_grading(m, s), max_grading(m, s + m->nv)));
+    CHECK(left_ok && right_ok && below);
+    CHECK(smin >= o.size_min * h * (1 - 1e-12));
+    CHECK(max_grading(m, s) <= o.size_grading * (1 + 1e-12));
+    CHECK(max_grading(m, s + m->nv) <= o.size_grading * (1 + 1e-12));
+    free(u);
+    free(a);
+    free(s);
+    glpgp_mesh_destroy(&m);
+}
+
 static void test_ibeam(void)
 {
     if (!glpgp_have_gmsh()) {
@@ -358,6 +422,7 @@ int main(void)
     test_coarse_and_refine();
     test_graded();
     test_file();
+    test_function();
     test_ibeam();
     TEST_DONE();
 }

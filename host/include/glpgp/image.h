@@ -95,6 +95,24 @@ void glpgp_image_destroy(glpgp_image **im);
 int glpgp_is_image_path(const char *path);
 
 
+/* ---- user size field from a grey-level image (image/size_image.c) -------- */
+
+/* A size image: the local quad size painted in grey, black = the finest.
+ * Read from path (at most max_pixels pixels; <= 0: the default limit),
+ * covering the box x0 = box[0], y0 = box[1], x1 = box[2], y1 = box[3] (top row
+ * at y1); the luminance v in [0, 1] maps to the size fraction lo + (hi - lo) v
+ * (0 < lo <= hi). Errors: the image's (unreadable, too large), an empty box
+ * or a bad range (GLPGP_ERR_ARG). */
+typedef struct glpgp_size_image glpgp_size_image;
+glpgp_status glpgp_size_image_create(const char *path, long long max_pixels, const double box[4], double lo,
+                                     double hi, glpgp_size_image **out);
+void glpgp_size_image_destroy(glpgp_size_image **s);
+void glpgp_size_image_dims(const glpgp_size_image *s, int *w, int *h);
+/* The size fraction at (x, y): bilinear between pixel centres, the nearest
+ * border sample outside the box. A glpgp_size_fn (glpgp/solve.h) with ctx the
+ * glpgp_size_image. */
+double glpgp_size_image_eval(void *ctx, double x, double y);
+
 /* ---- rasteriser (image/render.c) ------------------------------------------ */
 
 enum glpgp_image_kind {

@@ -37,8 +37,13 @@ enum glpgp_size_mode {
     GLPGP_SIZE_NONE = 0, /* h everywhere (today's uniform size) */
     GLPGP_SIZE_AUTO = 1, /* local feature size from the boundary, per oscillator along its W */
     GLPGP_SIZE_ISO = 2,  /* the same, isotropic: one size for both oscillators */
-    GLPGP_SIZE_FILE = 3  /* one "h" or "h_u h_v" line per vertex from size_file */
+    GLPGP_SIZE_FILE = 3, /* one "h" or "h_u h_v" line per vertex from size_file */
+    GLPGP_SIZE_FUNC = 4  /* AUTO, further limited by a user function of position
+                            (size_fn: e.g. a grey-level image, glpgp/image.h) */
 };
+/* A user size field: the local size at (x, y) as a fraction of h, in (0, 1]
+ * (values outside are clamped to [size_min, 1]); ctx is o->size_ctx. */
+typedef double (*glpgp_size_fn)(void *ctx, double x, double y);
 /* Multigrid cycle on the coarse levels. */
 enum glpgp_amg_cycle {
     GLPGP_AMG_KCYCLE = 0, /* two flexible-CG steps per coarse level (K-cycle) */
@@ -125,7 +130,10 @@ typedef struct glpgp_options {
 
     /* local size h(x) (glpgp_size_compute); h above is the largest size */
     int size_field;       /* GLPGP_SIZE_* [AUTO: measured better than NONE, README "Local size"] */
-    const char *size_file; /* for GLPGP_SIZE_FILE [NULL] */
+    const char *size_file; /* for GLPGP_SIZE_FILE [NULL]; GLPGP_SIZE_FUNC: names the
+                             source of size_fn in messages (e.g. the image) */
+    glpgp_size_fn size_fn; /* for GLPGP_SIZE_FUNC [NULL] */
+    void *size_ctx;        /* its context [NULL] */
     double size_grading;  /* g: h_i <= h_j + g |x_i - x_j| on every mesh edge, > 0 [0.5] */
     double size_across;   /* periods (quads) across a feature (wall, strip, slot, hole), >= 1 [2] */
     double size_min;      /* smallest local size as a fraction of h, in (0, 1] [0.05]: cusps and
@@ -162,8 +170,12 @@ glpgp_status glpgp_options_check_mesh(const glpgp_options *o, const glpgp_mesh *
 /* The size field of option o->size_field for mesh m: NONE: h; AUTO: the
  * local feature size measured along each oscillator's field (u: the guiding
  * field U, 2*nv; v: U rotated by +90 degrees); AUTO with u NULL, and ISO: the
- * isotropic size (a lower bound of AUTO's); FILE: read from o->size_file.
- * AUTO and ISO are limited to what m resolves: a value below
+ * isotropic size (a lower bound of AUTO's); FILE: read from o->size_file;
+ * FUNC: AUTO's seeds further limited to h o->size_fn(x_i) (clamped to
+ * [size_min h, h]) at every vertex, then graded like AUTO -- so the user's
+ * field can only make quads smaller than AUTO's, and thin features keep
+ * their periods across.
+ * AUTO, ISO and FUNC are limited to what m resolves: a value below
  * o->size_resolution x the longest mesh edge at its vertex is raised to that
  * (at most h), so the solve never asks for periods the mesh cannot carry
  * (glpgp_size_refine refines the input first where it should).
