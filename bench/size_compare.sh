@@ -8,7 +8,8 @@
 #
 # Usage: bash bench/size_compare.sh <glpgp-binary> [work-dir] > table.md
 #   GLPGP_DOMAINS=<glpgp-domains> (default: next to the binary, bench/);
-#   SIZE_MODES="none auto" (default) picks the --size-field values run.
+#   SIZE_MODES="none auto" (default) picks the --size-field values run;
+#   QUAD_ARGS="..." extra options of every solve (e.g. --no-cleanup).
 # Both modes: --backend reference --newton-max 30 --allow-invalid (an invalid
 # mesh is measured too, its row says so); auto refines the input where its
 # triangles are coarser than the local h / 4 (the default; "vertices" is the
@@ -57,7 +58,7 @@ PY
             tag=$name.$edges.$mode
             t0=$(date +%s.%N)
             if "$GLPGP" solve "$tri" --backend reference --quiet --newton-max 30 --allow-invalid --size 1 \
-                --size-field "$mode" --stats "$W/$tag.json" --quads "$W/$tag.msh" >"$W/$tag.txt" 2>&1; then
+                --size-field "$mode" --stats "$W/$tag.json" --quads "$W/$tag.msh" ${QUAD_ARGS:-} >"$W/$tag.txt" 2>&1; then
                 t1=$(date +%s.%N)
                 rows+=("$name|$edges|$mode|$W/$tag.json|$(python3 -c "print('%.1f' % ($t1 - $t0))")")
             else

@@ -551,6 +551,11 @@ void glpgp_opts_add_quads(glpgp_opts *t, glpgp_quad_options *q, int *given, int 
                        "(default: remove the bad faces and their neighbours and fill the\n"
                        "hole with quads)");
     o->seen = given;
+    o = glpgp_opt_flag(t, "--no-cleanup", &q->cleanup, 0,
+                       "keep the irregular vertices the repair and the strips leave\n"
+                       "(default: doublet removal, diagonal collapse and edge rotation\n"
+                       "where they lower the irregular vertices and keep the quality)");
+    o->seen = given;
     o = glpgp_opt_flag(t, "--allow-invalid", allow_invalid, 1,
                        "write an invalid quad mesh anyway, with a warning (default: not\n"
                        "written, exit code 3)");

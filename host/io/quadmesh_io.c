@@ -136,6 +136,13 @@ void glpgp_quads_json(glpgp_json *w, const char *key, const glpgp_quad_quality *
     glpgp_json_int(w, "new_quads", qq->repair.new_quads);
     glpgp_json_int(w, "snapped_vertices", qq->repair.snapped);
     glpgp_json_close(w);
+    glpgp_json_object(w, "cleanup");
+    glpgp_json_int(w, "doublets", qq->cleanup.doublets);
+    glpgp_json_int(w, "collapses", qq->cleanup.collapses);
+    glpgp_json_int(w, "rotations", qq->cleanup.rotations);
+    glpgp_json_int(w, "cost_before", qq->cleanup.cost_before);
+    glpgp_json_int(w, "cost_after", qq->cleanup.cost_after);
+    glpgp_json_close(w);
     glpgp_json_object(w, "closing");
     glpgp_json_int(w, "odd_faces_closed", qq->closing.closed_polygons);
     glpgp_json_int(w, "strips_to_boundary", qq->closing.strips_to_boundary);

@@ -1140,6 +1140,7 @@ void glpgp_quad_options_default(glpgp_quad_options *o)
     o->smooth_below = 0.5;
     o->all_quads = 0;
     o->repair = 1;
+    o->cleanup = 1;
 }
 
 glpgp_status glpgp_quads_build(const glpgp_mesh *m, const glpgp_result *r, const glpgp_quad_options *o,
@@ -1184,6 +1185,27 @@ glpgp_status glpgp_quads_build(const glpgp_mesh *m, const glpgp_result *r, const
         glpgp_quadmesh_destroy(&q);
         q = c;
         c = NULL;
+    }
+    if (o->cleanup && !o->keep_polygons) {
+        st = glpgp_quadmesh_cleanup(q, &c);
+        if (st != GLPGP_OK) goto done;
+        if (c) {
+            /* kept only if it is as valid as before (by construction it
+             * should be: the report's own checks make sure) */
+            glpgp_quad_quality q0, q1;
+            st = glpgp_quads_quality(q, m, *h, &q0);
+            if (st == GLPGP_OK) st = glpgp_quads_quality(c, m, *h, &q1);
+            if (st != GLPGP_OK) goto done;
+            if ((q1.invalid & ~q0.invalid) == 0) {
+                glpgp_quadmesh_destroy(&q);
+                q = c;
+                c = NULL;
+            } else {
+                glpgp_log(GLPGP_LOG_WARNING, "quads: the clean-up made the mesh invalid (0x%x): not used",
+                          q1.invalid & ~q0.invalid);
+                glpgp_quadmesh_destroy(&c);
+            }
+        }
     }
     if (o->all_quads) {
         st = glpgp_quadmesh_subdivide(q, &c);

@@ -209,6 +209,7 @@ glpgp_status glpgp_quads_quality(const glpgp_quadmesh *q, const glpgp_mesh *doma
     o->cross_radius = -1.0;
     o->closing = q->closing;
     o->repair = q->repair;
+    o->cleanup = q->cleanup;
     glpgp_status st = GLPGP_OK;
     qcheck ck;
     memset(&ck, 0, sizeof ck);
@@ -513,6 +514,10 @@ void glpgp_quads_print(FILE *f, const glpgp_quad_quality *qq, const char *prefix
                    "vertices snapped (%d rounds)\n",
                 p, qq->repair.removed_faces, qq->repair.regions, qq->repair.new_quads, qq->repair.snapped,
                 qq->repair.rounds);
+    if (qq->cleanup.doublets + qq->cleanup.collapses + qq->cleanup.rotations)
+        fprintf(f, "%s  cleanup      %d doublets removed, %d quads collapsed, %d edges rotated (valence cost %d -> %d)\n",
+                p, qq->cleanup.doublets, qq->cleanup.collapses, qq->cleanup.rotations, qq->cleanup.cost_before,
+                qq->cleanup.cost_after);
     if (qq->hausdorff >= 0)
         fprintf(f, "%s  boundary     Hausdorff %.3f h (quads->domain %.3f h, domain->quads %.3f h), "
                    "area %.5g of %.5g (ratio %.4f), loops %d of %d\n",

@@ -35,6 +35,15 @@ typedef struct glpgp_quad_closing {
     int smoothed_vertices;  /* vertices moved by the smoothing */
 } glpgp_quad_closing;
 
+/* What glpgp_quadmesh_cleanup did. */
+typedef struct glpgp_quad_cleanup {
+    int doublets;      /* interior valence-2 vertices removed (two quads merged) */
+    int collapses;     /* quads removed by merging two opposite corners */
+    int rotations;     /* edges rotated within the hexagon of their two quads */
+    int passes;        /* passes over the mesh */
+    int cost_before, cost_after; /* sum over vertices of d^2 + [d > 0], d = |valence - ideal| */
+} glpgp_quad_cleanup;
+
 /* A polygon mesh of a planar domain, mostly quads. Faces are counter-clockwise
  * and stored back to back: face f has the vertices
  * face_vert[face_start[f] .. face_start[f+1]). */
@@ -53,6 +62,7 @@ typedef struct glpgp_quadmesh {
     int center_splits;        /* of those: three quads around a new centre vertex */
     glpgp_quad_closing closing; /* set by glpgp_quadmesh_close_polygons / _smooth */
     glpgp_quad_repair repair;   /* set by glpgp_quadmesh_repair */
+    glpgp_quad_cleanup cleanup; /* set by glpgp_quadmesh_cleanup */
 } glpgp_quadmesh;
 
 /* Extract the quad mesh of a result on mesh m (r->osc[k].z, .dirichlet and
@@ -125,6 +135,17 @@ glpgp_status glpgp_quadmesh_smooth(glpgp_quadmesh *q, const unsigned char *mark,
 glpgp_status glpgp_quadmesh_repair(const glpgp_quadmesh *q, const glpgp_mesh *m, double h, int smooth,
                                    int keep_polygons, glpgp_quadmesh **out);
 
+/* Topological clean-up of an all-quad mesh (quads/cleanup.c): doublet
+ * removal, diagonal collapse and edge rotation, each applied only where it
+ * lowers sum d^2 + [d > 0] over the vertices, d = |valence - ideal| (ideal:
+ * 4 inside, round(boundary angle / 90 deg) + 1 on the boundary) and kept
+ * only when the faces around it (after a local smoothing) keep a smallest
+ * corner scaled Jacobian >= min(0.15, the smallest before) and > 0.05. Boundary vertices
+ * never move nor go, so the boundary, corners and area are unchanged.
+ * *out: the cleaned mesh (q's diagnostics, cleanup set), or NULL when q is
+ * not all quads, is non-manifold or nothing could be improved (q stands). */
+glpgp_status glpgp_quadmesh_cleanup(const glpgp_quadmesh *q, glpgp_quadmesh **out);
+
 /* What glpgp_quads_build does after the extraction. */
 typedef struct glpgp_quad_options {
     int keep_polygons;  /* 1: leave non-quad faces as they are (no strips) */
@@ -132,9 +153,10 @@ typedef struct glpgp_quad_options {
     double smooth_below;/* also smooth around faces with scaled Jacobian below this (default 0.5) */
     int all_quads;      /* 1: one Catmull-Clark step at the end (h halves) */
     int repair;         /* 1: glpgp_quadmesh_repair after the smoothing (default) */
+    int cleanup;        /* 1: glpgp_quadmesh_cleanup after the repair (default) */
 } glpgp_quad_options;
 
-/* The defaults: strips on, 20 smoothing sweeps, smooth_below 0.5, repair on, no refinement. */
+/* The defaults: strips on, 20 smoothing sweeps, smooth_below 0.5, repair on, clean-up on, no refinement. */
 void glpgp_quad_options_default(glpgp_quad_options *o);
 
 /* Extraction + closing of the polygons + smoothing + repair (+ refinement),
@@ -190,6 +212,7 @@ typedef struct glpgp_quad_quality {
                               * boundary, in units of h (-1 without domain) */
     unsigned invalid;        /* GLPGP_QUAD_BAD_* bits: why the mesh is not valid (0: valid) */
     glpgp_quad_repair repair;/* copied from the mesh */
+    glpgp_quad_cleanup cleanup; /* copied from the mesh */
     /* Irregular interior vertices against the singularities of the cross
      * field (glpgp_quads_quality_cross); all -1 when no cross field was
      * given (glpgp_quads_quality sets them so): the report then omits them. */
