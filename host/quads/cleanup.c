@@ -435,8 +435,13 @@ glpgp_status glpgp_quadmesh_cleanup(const glpgp_quadmesh *q, glpgp_quadmesh **ou
 {
     *out = NULL;
     int all_quads = q->nf > 0;
-    for (int f = 0; f < q->nf && all_quads; f++) all_quads = q->face_start[f + 1] - q->face_start[f] == 4;
-    if (!all_quads) return GLPGP_OK; /* polygons kept (--keep-polygons) or nothing to do */
+    for (int f = 0; f < q->nf && all_quads; f++) {
+        all_quads = q->face_start[f + 1] - q->face_start[f] == 4;
+        const int *v = q->face_vert + q->face_start[f];
+        for (int k = 0; k < 4 && all_quads; k++) /* a repeated corner, or an index out of range */
+            all_quads = v[k] >= 0 && v[k] < q->nv && v[k] != v[(k + 1) % 4] && v[k] != v[(k + 2) % 4];
+    }
+    if (!all_quads) return GLPGP_OK; /* polygons kept (--keep-polygons), degenerate faces, or nothing to do */
     cmesh c;
     memset(&c, 0, sizeof c);
     glpgp_status st = GLPGP_OK;
