@@ -152,6 +152,9 @@ static void print_summary(const solve_cli *c, const char *input, const glpgp_mes
     if (c->image) printf("  wrote          %s\n", c->image);
 }
 
+static int solve_ranks(solve_cli *c, const char *input);
+static int solve_main(solve_cli *c, const char *input);
+
 int glpgp_cmd_solve(int argc, char **argv)
 {
     solve_cli c;
@@ -164,7 +167,39 @@ int glpgp_cmd_solve(int argc, char **argv)
     glpgp_cli_set_verbosity(c.verbosity);
     glpgp_error_clear();
     if ((rc = check(&c, input)) >= 0) return rc;
+    if (c.backend == GLPGP_BACKEND_PETSC) {
+        /* MPI + PETSc first: every rank runs this command alike (reads the
+         * input, solves its rows); only rank 0 prints and writes */
+        if (glpgp_petsc_init() != GLPGP_OK) return glpgp_cli_fail();
+        rc = solve_ranks(&c, input);
+        glpgp_petsc_finalize();
+        return rc;
+    }
+    return solve_main(&c, input);
+}
 
+/* The PETSc run on every rank: ranks other than 0 print nothing (stdout and
+ * stderr to /dev/null) and write no file; every rank returns the same code
+ * (a failure on any rank fails all). */
+static int solve_ranks(solve_cli *c, const char *input)
+{
+    const int rank = glpgp_petsc_rank();
+    if (rank != 0) {
+        if (!freopen("/dev/null", "w", stdout) || !freopen("/dev/null", "w", stderr)) {
+            /* nothing to do: the output of this rank is lost either way */
+        }
+        c->out = c->stats = c->quads = c->image = NULL;
+    }
+    int rc = solve_main(c, input);
+    /* the same exit code everywhere (a rank that failed alone: all fail) */
+    if (!glpgp_petsc_all_ok(rc == 0) && rc == 0) rc = GLPGP_EXIT_FAIL;
+    return rc;
+}
+
+static int solve_main(solve_cli *cc, const char *input)
+{
+    solve_cli c = *cc;
+    int rc;
     double t0 = glpgp_now();
     glpgp_mesh *m = NULL;
     glpgp_backend *b = NULL;
@@ -236,7 +271,11 @@ int glpgp_cmd_solve(int argc, char **argv)
         if (glpgp_options_check_mesh(&c.o, m) != GLPGP_OK) goto fail;
     }
 
-    if (glpgp_backend_select(c.backend, c.device, c.verbosity > 0, &b) != GLPGP_OK) goto fail;
+    if (c.backend == GLPGP_BACKEND_PETSC) {
+        if (glpgp_backend_create_petsc(c.o.precond, &b) != GLPGP_OK) goto fail;
+    } else if (glpgp_backend_select(c.backend, c.device, c.verbosity > 0, &b) != GLPGP_OK) {
+        goto fail;
+    }
     if (glpgp_solve(m, b, &c.o, &r) != GLPGP_OK) goto fail;
 
     /* everything computed before anything is written */
