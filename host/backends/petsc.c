@@ -870,8 +870,15 @@ static glpgp_status m_create(int precond, glpgp_backend **out)
     return GLPGP_OK;
 }
 
-static const glpgp_petsc_api g_api = {GLPGP_PETSC_ABI, m_init,   m_finalize, m_rank,   m_size,
-                                      m_create,        m_all_ok, m_gather,   m_max_rss};
+static void m_local_info(const glpgp_backend *b, int *owned, int *ghosts)
+{
+    const pimpl *p = PI(b);
+    *owned = p->sys ? p->hi - p->lo : 0;
+    *ghosts = p->sys ? p->nghost : 0;
+}
+
+static const glpgp_petsc_api g_api = {GLPGP_PETSC_ABI, m_init,   m_finalize, m_rank,    m_size,
+                                      m_create,        m_all_ok, m_gather,   m_max_rss, m_local_info};
 
 /* glue (petsc_glue.c) */
 int glpgp_petsc_glue_init(const glpgp_petsc_host *host);

@@ -144,6 +144,12 @@ void glpgp_petsc_gather(const double *vals, int n, double *out)
     else memcpy(out, vals, (size_t)n * sizeof *vals);
 }
 
+void glpgp_petsc_backend_info(const glpgp_backend *b, int *owned, int *ghosts)
+{
+    *owned = *ghosts = 0;
+    if (g_initialised && b && b->ops && !strcmp(b->ops->name, "petsc")) g_api->local_info(b, owned, ghosts);
+}
+
 double glpgp_petsc_max_rss(void) { return g_initialised ? g_api->max_rss() : 0.0; }
 
 glpgp_status glpgp_backend_create_petsc(int precond, glpgp_backend **out)

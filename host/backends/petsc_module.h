@@ -42,6 +42,8 @@ typedef struct glpgp_petsc_api {
     void (*gather)(const double *vals, int n, double *out);
     /* the whole-process peak resident set of this rank (bytes) */
     double (*max_rss)(void);
+    /* owned and ghost vertices of backend b on this rank (b: this module's, set up) */
+    void (*local_info)(const glpgp_backend *b, int *owned, int *ghosts);
 } glpgp_petsc_api;
 
 typedef const glpgp_petsc_api *(*glpgp_petsc_entry_fn)(const glpgp_petsc_host *host);

@@ -210,6 +210,8 @@ static int solve_main(solve_cli *cc, const char *input)
     glpgp_quad_quality qq;
     memset(&qq, 0, sizeof qq);
     int invalid_rc = -1;
+    int nranks = 0;             /* --backend petsc: MPI ranks, per-rank numbers */
+    double *rank_info = NULL;
     char why[1024] = "";
     c.mo.quad_size = c.o.size;
     if ((rc = glpgp_cli_load_input("solve", input, &c.mo, &m, NULL)) >= 0) return rc;
@@ -276,7 +278,30 @@ static int solve_main(solve_cli *cc, const char *input)
     } else if (glpgp_backend_select(c.backend, c.device, c.verbosity > 0, &b) != GLPGP_OK) {
         goto fail;
     }
-    if (glpgp_solve(m, b, &c.o, &r) != GLPGP_OK) goto fail;
+    glpgp_status sst = glpgp_solve(m, b, &c.o, &r);
+    if (c.backend == GLPGP_BACKEND_PETSC) {
+        /* every rank: the same verdict (a rank that failed alone fails all,
+         * no rank waits in a collective the others never reach) */
+        if (!glpgp_petsc_all_ok(sst == GLPGP_OK)) {
+            if (sst == GLPGP_OK) GLPGP_FAIL(GLPGP_ERR_NUMERIC, "the solve failed on another MPI rank");
+            goto fail;
+        }
+        /* per-rank sizes, time and memory to rank 0 (stats JSON) */
+        nranks = glpgp_petsc_size();
+        int owned = 0, ghosts = 0;
+        glpgp_petsc_backend_info(b, &owned, &ghosts);
+        const double mine[GLPGP_RANK_INFO_N] = {owned, ghosts, r->seconds_total, glpgp_petsc_max_rss()};
+        if (glpgp_malloc((size_t)nranks * GLPGP_RANK_INFO_N, sizeof(double), &rank_info) != GLPGP_OK) goto fail;
+        glpgp_petsc_gather(mine, GLPGP_RANK_INFO_N, rank_info);
+        if (glpgp_petsc_rank() == 0 && c.verbosity > 0)
+            for (int k = 0; k < nranks; k++) {
+                const double *ri = rank_info + (size_t)k * GLPGP_RANK_INFO_N;
+                glpgp_log(GLPGP_LOG_INFO, "rank %d: %.0f owned + %.0f ghost vertices, solve %.3f s, max RSS %.1f MiB",
+                          k, ri[0], ri[1], ri[2], ri[3] / 1048576.0);
+            }
+    } else if (sst != GLPGP_OK) {
+        goto fail;
+    }
 
     /* everything computed before anything is written */
     if (c.quads) {
@@ -300,7 +325,7 @@ static int solve_main(solve_cli *cc, const char *input)
     if (c.out && glpgp_output_set_result(outs, m, &c.o, r, c.out) != GLPGP_OK) goto fail;
     if (c.quads && invalid_rc < 0 && glpgp_output_set_quads(outs, q, c.quads) != GLPGP_OK) goto fail;
     if (c.stats) {
-        glpgp_stats_extra x = {input, c.out, t_read, c.quads ? &qq : NULL};
+        glpgp_stats_extra x = {input, c.out, t_read, c.quads ? &qq : NULL, nranks, rank_info};
         if (glpgp_output_set_stats(outs, m, &c.o, r, c.stats, &x) != GLPGP_OK) goto fail;
     }
     if (c.image) { /* the picture is written under the set's temporary name */
@@ -327,5 +352,6 @@ done:
     glpgp_result_destroy(&r);
     glpgp_backend_destroy(&b);
     glpgp_mesh_destroy(&m);
+    free(rank_info);
     return rc;
 }

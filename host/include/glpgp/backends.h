@@ -72,6 +72,9 @@ int glpgp_petsc_size(void);
 int glpgp_petsc_all_ok(int ok);
 /* out[r * n + k] <- vals[k] of rank r, on rank 0 (collective; out: size * n). */
 void glpgp_petsc_gather(const double *vals, int n, double *out);
+/* Owned and ghost vertices of this rank in the PETSc backend b (0, 0 for
+ * another backend or before setup). */
+void glpgp_petsc_backend_info(const glpgp_backend *b, int *owned, int *ghosts);
 /* Peak resident set of this process, bytes (0 before init). */
 double glpgp_petsc_max_rss(void);
 /* The PETSc backend (init first if needed); precond: GLPGP_PRECOND_* of its
