@@ -781,9 +781,15 @@ static glpgp_status p_linear_solve(glpgp_backend *b, const glpgp_vec *rhs, glpgp
          * system (CG stopped with DIVERGED_INDEFINITE_PC after 3 iterations
          * on shape:disk:3000); damped point-block Jacobi is SPD for these
          * matrices. Defaults only: $PETSC_OPTIONS wins. */
+        /* GAMG keeps the prolongator of its first setup by default, that is
+         * the near null space of the first system (the naive solve: none);
+         * rebuilding it per Newton step uses the current [z, iz] (shape:
+         * square:40000, line search: 661 CG iterations against 898, about
+         * the same time) */
         static const char *const defaults[][2] = {{"-mg_levels_ksp_type", "richardson"},
                                                   {"-mg_levels_pc_type", "pbjacobi"},
-                                                  {"-mg_levels_ksp_richardson_scale", "0.6"}};
+                                                  {"-mg_levels_ksp_richardson_scale", "0.6"},
+                                                  {"-pc_gamg_reuse_interpolation", "false"}};
         for (size_t k = 0; k < sizeof defaults / sizeof defaults[0]; k++) {
             PetscBool set = PETSC_FALSE;
             PCHK(PetscOptionsHasName(NULL, NULL, defaults[k][0], &set));
