@@ -153,6 +153,54 @@ static void print_summary(const solve_cli *c, const char *input, const glpgp_mes
 }
 
 static int solve_ranks(solve_cli *c, const char *input);
+
+/* *mp <- m renumbered for P ranks: rank r owns the vertices [r nv / P,
+ * (r+1) nv / P) of the backend's rows, filled with the part r of a
+ * recursive coordinate bisection (input order kept within a part) */
+static glpgp_status partition_mesh(const glpgp_mesh *m, int P, glpgp_mesh **mp, int **new_of_old)
+{
+    glpgp_status st = GLPGP_OK;
+    int *size = NULL, *part = NULL, *next = NULL;
+    *mp = NULL;
+    GLPGP_CHECK(glpgp_malloc((size_t)m->nv, sizeof(int), new_of_old));
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)P, sizeof(int), &size), done);
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)P, sizeof(int), &next), done);
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)m->nv, sizeof(int), &part), done);
+    for (int r = 0; r < P; r++) {
+        next[r] = (int)((long long)m->nv * r / P);
+        size[r] = (int)((long long)m->nv * (r + 1) / P) - next[r];
+    }
+    GLPGP_CHECK_GOTO(st, glpgp_mesh_partition(m, P, size, part), done);
+    for (int i = 0; i < m->nv; i++) (*new_of_old)[i] = next[part[i]]++;
+    GLPGP_CHECK_GOTO(st, glpgp_mesh_renumber(m, *new_of_old, mp), done);
+done:
+    free(size);
+    free(next);
+    free(part);
+    return st;
+}
+
+/* the per-vertex arrays of r back to the input order: a[i] <- a'[new(i)] */
+static glpgp_status unpermute_result(glpgp_result *r, int nv, const int *new_of_old)
+{
+    double *t = NULL;
+    GLPGP_CHECK(glpgp_malloc((size_t)2 * nv, sizeof *t, &t));
+    double *vec[3] = {r->field, r->osc[0].z, r->osc[1].z};
+    for (int k = 0; k < 3; k++) {
+        memcpy(t, vec[k], (size_t)2 * nv * sizeof *t);
+        for (int i = 0; i < nv; i++) {
+            vec[k][2 * i] = t[2 * new_of_old[i]];
+            vec[k][2 * i + 1] = t[2 * new_of_old[i] + 1];
+        }
+    }
+    unsigned char *f = (unsigned char *)t;
+    for (int k = 0; k < 2; k++) {
+        memcpy(f, r->osc[k].dirichlet, (size_t)nv);
+        for (int i = 0; i < nv; i++) r->osc[k].dirichlet[i] = f[new_of_old[i]];
+    }
+    free(t);
+    return GLPGP_OK;
+}
 static int solve_main(solve_cli *c, const char *input);
 
 int glpgp_cmd_solve(int argc, char **argv)
@@ -211,6 +259,8 @@ static int solve_main(solve_cli *cc, const char *input)
     memset(&qq, 0, sizeof qq);
     int invalid_rc = -1;
     int nranks = 0;             /* --backend petsc: MPI ranks, per-rank numbers */
+    glpgp_mesh *mp = NULL;      /* the renumbered mesh the ranks solve (NULL: m) */
+    int *new_of_old = NULL;
     double *rank_info = NULL;
     char why[1024] = "";
     c.mo.quad_size = c.o.size;
@@ -278,7 +328,15 @@ static int solve_main(solve_cli *cc, const char *input)
     } else if (glpgp_backend_select(c.backend, c.device, c.verbosity > 0, &b) != GLPGP_OK) {
         goto fail;
     }
-    glpgp_status sst = glpgp_solve(m, b, &c.o, &r);
+    /* several ranks: the vertices renumbered so that each rank's rows are
+     * a compact region (recursive coordinate bisection); the result comes
+     * back in the input's vertex order. Not with per-vertex input files
+     * (field, sizes), whose lines belong to the input's numbering. */
+    if (c.backend == GLPGP_BACKEND_PETSC && glpgp_petsc_size() > 1 && c.o.field != GLPGP_FIELD_FILE &&
+        c.o.field != GLPGP_FIELD_CROSS && c.o.size_field != GLPGP_SIZE_FILE)
+        if (partition_mesh(m, glpgp_petsc_size(), &mp, &new_of_old) != GLPGP_OK) goto fail;
+    glpgp_status sst = glpgp_solve(mp ? mp : m, b, &c.o, &r);
+    if (sst == GLPGP_OK && mp) sst = unpermute_result(r, m->nv, new_of_old);
     if (c.backend == GLPGP_BACKEND_PETSC) {
         /* every rank: the same verdict (a rank that failed alone fails all,
          * no rank waits in a collective the others never reach) */
@@ -352,6 +410,8 @@ done:
     glpgp_result_destroy(&r);
     glpgp_backend_destroy(&b);
     glpgp_mesh_destroy(&m);
+    glpgp_mesh_destroy(&mp);
+    free(new_of_old);
     free(rank_info);
     return rc;
 }
