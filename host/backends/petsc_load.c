@@ -124,6 +124,7 @@ glpgp_status glpgp_petsc_init(void)
 {
     GLPGP_CHECK(load());
     GLPGP_CHECK(g_api->init());
+    if (!g_initialised) atexit(glpgp_petsc_finalize); /* a caller that forgets: MPI still ends cleanly */
     g_initialised = 1;
     return GLPGP_OK;
 }
