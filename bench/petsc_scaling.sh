@@ -48,6 +48,8 @@ done
 "$GLPGP" --version | grep -q "PETSc: yes" || { echo "petsc_scaling.sh: $GLPGP was built without PETSc" >&2; exit 1; }
 command -v mpirun >/dev/null || { echo "petsc_scaling.sh: no mpirun (openmpi-bin)" >&2; exit 1; }
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
+# containers often forbid the cross-memory attach of OpenMPI's shared-memory transport
+export OMPI_MCA_btl_vader_single_copy_mechanism=${OMPI_MCA_btl_vader_single_copy_mechanism:-none}
 export POCL_CACHE_DIR=${POCL_CACHE_DIR:-$PWD/build/pocl-cache}
 mkdir -p "$(dirname "$OUT")" "$POCL_CACHE_DIR"
 W=$(mktemp -d "${TMPDIR:-/tmp}/glpgp_petsc_scaling.XXXXXX")

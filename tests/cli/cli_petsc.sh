@@ -45,6 +45,8 @@ fi
 
 # OpenMPI refuses root without these (CI runs as root) and 2 ranks may exceed the cores
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
+# containers often forbid the cross-memory attach of OpenMPI's shared-memory transport
+export OMPI_MCA_btl_vader_single_copy_mechanism=${OMPI_MCA_btl_vader_single_copy_mechanism:-none}
 MPIRUN=(mpirun --oversubscribe)
 unset PETSC_OPTIONS
 
