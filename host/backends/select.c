@@ -2,6 +2,7 @@
  * command that solves creates its backend here, so `--backend` and
  * `--device` behave the same everywhere. */
 #include "glpgp/backends.h"
+#include "glpgp/solve.h"
 
 #include <string.h>
 
@@ -10,6 +11,7 @@ int glpgp_backend_kind_parse(const char *name)
     if (!strcmp(name, "auto")) return GLPGP_BACKEND_AUTO;
     if (!strcmp(name, "opencl")) return GLPGP_BACKEND_OPENCL;
     if (!strcmp(name, "reference")) return GLPGP_BACKEND_REFERENCE;
+    if (!strcmp(name, "petsc")) return GLPGP_BACKEND_PETSC;
     return -1;
 }
 
@@ -21,6 +23,7 @@ glpgp_status glpgp_backend_select(glpgp_backend_kind kind, int device, int verbo
     clo.device = device;
     clo.verbose = verbose;
     if (kind == GLPGP_BACKEND_REFERENCE) return glpgp_backend_create_reference(out);
+    if (kind == GLPGP_BACKEND_PETSC) return glpgp_backend_create_petsc(GLPGP_PRECOND_AMG, out);
     /* an explicit --device asks for OpenCL: its failure is an error, not a fallback */
     if (kind == GLPGP_BACKEND_OPENCL || device >= 0) return glpgp_backend_create_opencl(&clo, out);
     if (glpgp_have_opencl()) {

@@ -177,6 +177,8 @@ int glpgp_cmd_figure(int argc, char **argv)
     if (rc >= 0) return rc;
     glpgp_cli_set_verbosity(verbosity);
     if (!in) return glpgp_cli_usage_error(sub, "missing INPUT");
+    if (backend == GLPGP_BACKEND_PETSC)
+        return glpgp_cli_usage_error(sub, "--backend petsc: only 'glpgp solve' runs on MPI ranks");
     if ((rc = check_picture_out(sub, out, ro.size, fig1 ? 3 : 2, mo.max_pixels)) >= 0) return rc;
     glpgp_error_clear();
     mo.quad_size = so.size;

@@ -154,6 +154,57 @@ static void print_summary(const solve_cli *c, const char *input, const glpgp_mes
     if (c->image) printf("  wrote          %s\n", c->image);
 }
 
+static int solve_ranks(solve_cli *c, const char *input);
+
+/* *mp <- m renumbered for P ranks: rank r owns the vertices [r nv / P,
+ * (r+1) nv / P) of the backend's rows, filled with the part r of a
+ * recursive coordinate bisection (input order kept within a part) */
+static glpgp_status partition_mesh(const glpgp_mesh *m, int P, glpgp_mesh **mp, int **new_of_old)
+{
+    glpgp_status st = GLPGP_OK;
+    int *size = NULL, *part = NULL, *next = NULL;
+    *mp = NULL;
+    GLPGP_CHECK(glpgp_malloc((size_t)m->nv, sizeof(int), new_of_old));
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)P, sizeof(int), &size), done);
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)P, sizeof(int), &next), done);
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)m->nv, sizeof(int), &part), done);
+    for (int r = 0; r < P; r++) {
+        next[r] = (int)((long long)m->nv * r / P);
+        size[r] = (int)((long long)m->nv * (r + 1) / P) - next[r];
+    }
+    GLPGP_CHECK_GOTO(st, glpgp_mesh_partition(m, P, size, part), done);
+    for (int i = 0; i < m->nv; i++) (*new_of_old)[i] = next[part[i]]++;
+    GLPGP_CHECK_GOTO(st, glpgp_mesh_renumber(m, *new_of_old, mp), done);
+done:
+    free(size);
+    free(next);
+    free(part);
+    return st;
+}
+
+/* the per-vertex arrays of r back to the input order: a[i] <- a'[new(i)] */
+static glpgp_status unpermute_result(glpgp_result *r, int nv, const int *new_of_old)
+{
+    double *t = NULL;
+    GLPGP_CHECK(glpgp_malloc((size_t)2 * nv, sizeof *t, &t));
+    double *vec[3] = {r->field, r->osc[0].z, r->osc[1].z};
+    for (int k = 0; k < 3; k++) {
+        memcpy(t, vec[k], (size_t)2 * nv * sizeof *t);
+        for (int i = 0; i < nv; i++) {
+            vec[k][2 * i] = t[2 * new_of_old[i]];
+            vec[k][2 * i + 1] = t[2 * new_of_old[i] + 1];
+        }
+    }
+    unsigned char *f = (unsigned char *)t;
+    for (int k = 0; k < 2; k++) {
+        memcpy(f, r->osc[k].dirichlet, (size_t)nv);
+        for (int i = 0; i < nv; i++) r->osc[k].dirichlet[i] = f[new_of_old[i]];
+    }
+    free(t);
+    return GLPGP_OK;
+}
+static int solve_main(solve_cli *c, const char *input);
+
 int glpgp_cmd_solve(int argc, char **argv)
 {
     solve_cli c;
@@ -166,7 +217,39 @@ int glpgp_cmd_solve(int argc, char **argv)
     glpgp_cli_set_verbosity(c.verbosity);
     glpgp_error_clear();
     if ((rc = check(&c, input)) >= 0) return rc;
+    if (c.backend == GLPGP_BACKEND_PETSC) {
+        /* MPI + PETSc first: every rank runs this command alike (reads the
+         * input, solves its rows); only rank 0 prints and writes */
+        if (glpgp_petsc_init() != GLPGP_OK) return glpgp_cli_fail();
+        rc = solve_ranks(&c, input);
+        glpgp_petsc_finalize();
+        return rc;
+    }
+    return solve_main(&c, input);
+}
 
+/* The PETSc run on every rank: ranks other than 0 print nothing (stdout and
+ * stderr to /dev/null) and write no file; every rank returns the same code
+ * (a failure on any rank fails all). */
+static int solve_ranks(solve_cli *c, const char *input)
+{
+    const int rank = glpgp_petsc_rank();
+    if (rank != 0) {
+        if (!freopen("/dev/null", "w", stdout) || !freopen("/dev/null", "w", stderr)) {
+            /* nothing to do: the output of this rank is lost either way */
+        }
+        c->out = c->stats = c->quads = c->image = NULL;
+    }
+    int rc = solve_main(c, input);
+    /* the same exit code everywhere (a rank that failed alone: all fail) */
+    if (!glpgp_petsc_all_ok(rc == 0) && rc == 0) rc = GLPGP_EXIT_FAIL;
+    return rc;
+}
+
+static int solve_main(solve_cli *cc, const char *input)
+{
+    solve_cli c = *cc;
+    int rc;
     double t0 = glpgp_now();
     glpgp_mesh *m = NULL;
     glpgp_backend *b = NULL;
@@ -177,6 +260,10 @@ int glpgp_cmd_solve(int argc, char **argv)
     glpgp_quad_quality qq;
     memset(&qq, 0, sizeof qq);
     int invalid_rc = -1;
+    int nranks = 0;             /* --backend petsc: MPI ranks, per-rank numbers */
+    glpgp_mesh *mp = NULL;      /* the renumbered mesh the ranks solve (NULL: m) */
+    int *new_of_old = NULL;
+    double *rank_info = NULL;
     char why[1024] = "";
     c.mo.quad_size = c.o.size;
     if ((rc = glpgp_cli_load_input("solve", input, &c.mo, &m, NULL)) >= 0) return rc;
@@ -245,8 +332,43 @@ int glpgp_cmd_solve(int argc, char **argv)
         if (glpgp_options_check_mesh(&c.o, m) != GLPGP_OK) goto fail;
     }
 
-    if (glpgp_backend_select(c.backend, c.device, c.verbosity > 0, &b) != GLPGP_OK) goto fail;
-    if (glpgp_solve(m, b, &c.o, &r) != GLPGP_OK) goto fail;
+    if (c.backend == GLPGP_BACKEND_PETSC) {
+        if (glpgp_backend_create_petsc(c.o.precond, &b) != GLPGP_OK) goto fail;
+    } else if (glpgp_backend_select(c.backend, c.device, c.verbosity > 0, &b) != GLPGP_OK) {
+        goto fail;
+    }
+    /* several ranks: the vertices renumbered so that each rank's rows are
+     * a compact region (recursive coordinate bisection); the result comes
+     * back in the input's vertex order. Not with per-vertex input files
+     * (field, sizes), whose lines belong to the input's numbering. */
+    if (c.backend == GLPGP_BACKEND_PETSC && glpgp_petsc_size() > 1 && c.o.field != GLPGP_FIELD_FILE &&
+        c.o.field != GLPGP_FIELD_CROSS && c.o.size_field != GLPGP_SIZE_FILE)
+        if (partition_mesh(m, glpgp_petsc_size(), &mp, &new_of_old) != GLPGP_OK) goto fail;
+    glpgp_status sst = glpgp_solve(mp ? mp : m, b, &c.o, &r);
+    if (sst == GLPGP_OK && mp) sst = unpermute_result(r, m->nv, new_of_old);
+    if (c.backend == GLPGP_BACKEND_PETSC) {
+        /* every rank: the same verdict (a rank that failed alone fails all,
+         * no rank waits in a collective the others never reach) */
+        if (!glpgp_petsc_all_ok(sst == GLPGP_OK)) {
+            if (sst == GLPGP_OK) GLPGP_FAIL(GLPGP_ERR_NUMERIC, "the solve failed on another MPI rank");
+            goto fail;
+        }
+        /* per-rank sizes, time and memory to rank 0 (stats JSON) */
+        nranks = glpgp_petsc_size();
+        int owned = 0, ghosts = 0;
+        glpgp_petsc_backend_info(b, &owned, &ghosts);
+        const double mine[GLPGP_RANK_INFO_N] = {owned, ghosts, r->seconds_total, glpgp_petsc_max_rss()};
+        if (glpgp_malloc((size_t)nranks * GLPGP_RANK_INFO_N, sizeof(double), &rank_info) != GLPGP_OK) goto fail;
+        glpgp_petsc_gather(mine, GLPGP_RANK_INFO_N, rank_info);
+        if (glpgp_petsc_rank() == 0 && c.verbosity > 0)
+            for (int k = 0; k < nranks; k++) {
+                const double *ri = rank_info + (size_t)k * GLPGP_RANK_INFO_N;
+                glpgp_log(GLPGP_LOG_INFO, "rank %d: %.0f owned + %.0f ghost vertices, solve %.3f s, max RSS %.1f MiB",
+                          k, ri[0], ri[1], ri[2], ri[3] / 1048576.0);
+            }
+    } else if (sst != GLPGP_OK) {
+        goto fail;
+    }
 
     /* everything computed before anything is written */
     if (c.quads) {
@@ -270,7 +392,7 @@ int glpgp_cmd_solve(int argc, char **argv)
     if (c.out && glpgp_output_set_result(outs, m, &c.o, r, c.out) != GLPGP_OK) goto fail;
     if (c.quads && invalid_rc < 0 && glpgp_output_set_quads(outs, q, c.quads) != GLPGP_OK) goto fail;
     if (c.stats) {
-        glpgp_stats_extra x = {input, c.out, t_read, c.quads ? &qq : NULL};
+        glpgp_stats_extra x = {input, c.out, t_read, c.quads ? &qq : NULL, nranks, rank_info};
         if (glpgp_output_set_stats(outs, m, &c.o, r, c.stats, &x) != GLPGP_OK) goto fail;
     }
     if (c.image) { /* the picture is written under the set's temporary name */
@@ -298,5 +420,8 @@ done:
     glpgp_backend_destroy(&b);
     glpgp_mesh_destroy(&m);
     glpgp_size_image_destroy(&simg);
+    glpgp_mesh_destroy(&mp);
+    free(new_of_old);
+    free(rank_info);
     return rc;
 }

@@ -106,9 +106,9 @@ int main(int argc, char **argv)
         return 0;
     }
     if (!strcmp(cmd, "--version") || !strcmp(cmd, "version")) {
-        printf("glpgp %s (OpenCL backend: %s; OpenImageIO: %s; Gmsh: %s)\n", GLPGP_VERSION,
+        printf("glpgp %s (OpenCL backend: %s; OpenImageIO: %s; Gmsh: %s; PETSc: %s)\n", GLPGP_VERSION,
                glpgp_have_opencl() ? "built in" : "not built", glpgp_have_oiio() ? "yes" : "no",
-               glpgp_have_gmsh() ? "yes" : "no");
+               glpgp_have_gmsh() ? "yes" : "no", glpgp_have_petsc() ? "yes" : "no");
         return 0;
     }
     if (!strcmp(cmd, "help")) {

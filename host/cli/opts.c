@@ -515,15 +515,17 @@ void glpgp_opts_add_solver(glpgp_opts *t, glpgp_options *o)
                      "Jacobi with one warning on a backend without it)");
 }
 
-static const char *const k_backends[] = {"auto", "opencl", "reference", NULL};
-static const int k_backend_vals[] = {GLPGP_BACKEND_AUTO, GLPGP_BACKEND_OPENCL, GLPGP_BACKEND_REFERENCE};
+static const char *const k_backends[] = {"auto", "opencl", "reference", "petsc", NULL};
+static const int k_backend_vals[] = {GLPGP_BACKEND_AUTO, GLPGP_BACKEND_OPENCL, GLPGP_BACKEND_REFERENCE,
+                                     GLPGP_BACKEND_PETSC};
 
 void glpgp_opts_add_backend(glpgp_opts *t, int *kind, int *device)
 {
     glpgp_opts_group(t, "Backend");
     glpgp_opt_choice(t, "--backend", kind, k_backends, k_backend_vals,
                      "auto tries OpenCL and falls back to the reference C path with\n"
-                     "one warning");
+                     "one warning; petsc runs on MPI ranks (mpirun -n P glpgp solve\n"
+                     "... --backend petsc; PETSc options in $PETSC_OPTIONS)");
     glpgp_opt *d = glpgp_opt_int(t, "--device", device, 0, INT_MAX, "N",
                                  "OpenCL device index as listed by 'glpgp devices'; with\n"
                                  "--device, an unusable OpenCL backend is an error");

@@ -207,6 +207,21 @@ static void stats_body(FILE *f, const glpgp_mesh *m, const glpgp_options *o, con
     glpgp_json_num(w, "total", r->seconds_total);
     glpgp_json_close(w);
 
+    if (x && x->ranks > 0 && x->rank_info) {
+        glpgp_json_int(w, "ranks", x->ranks);
+        glpgp_json_array(w, "per_rank");
+        for (int k = 0; k < x->ranks; k++) {
+            const double *ri = x->rank_info + (size_t)k * GLPGP_RANK_INFO_N;
+            glpgp_json_object(w, NULL);
+            glpgp_json_int(w, "rank", k);
+            glpgp_json_int(w, "owned", (long)ri[0]);
+            glpgp_json_int(w, "ghosts", (long)ri[1]);
+            glpgp_json_num(w, "seconds", ri[2]);
+            glpgp_json_num(w, "max_rss_mib", ri[3] / (1024.0 * 1024.0));
+            glpgp_json_close(w);
+        }
+        glpgp_json_close(w);
+    }
     if (x && x->quads) glpgp_quads_json(w, "quads", x->quads);
     glpgp_json_finish(w);
 }

@@ -977,6 +977,18 @@ glpgp_status glpgp_linear_solve(glpgp_backend *b, glpgp_amg *a, const glpgp_vec 
                                 glpgp_vec *x, double rtol, int maxit, int check,
                                 glpgp_cg_info *info)
 {
+    if (b->ops->linear_solve) {
+        /* the backend's own solver (PETSc: KSP); the reason values are glpgp_cg_reason's */
+        int it = 0, reason = 0;
+        double relres = 0.0;
+        GLPGP_CHECK(b->ops->linear_solve(b, rhs, x, rtol, maxit, &it, &relres, &reason));
+        info->iterations = it;
+        info->relres = relres;
+        info->reason = reason == 0 ? GLPGP_CG_CONVERGED : reason == 1 ? GLPGP_CG_MAXIT : GLPGP_CG_BREAKDOWN;
+        b->n_cg_iter += it;
+        b->n_spmv += it;
+        return GLPGP_OK;
+    }
     if (!a) return glpgp_cg(b, rhs, x, rtol, maxit, check, info);
     int nonfinite = 0;
     GLPGP_CHECK(fcg_run(a, rhs, x, rtol, maxit, info, &nonfinite));
@@ -998,6 +1010,7 @@ glpgp_amg *glpgp_amg_try_create(glpgp_backend *b, const glpgp_options *o, const 
 {
     glpgp_amg *a = NULL;
     if (o->precond != GLPGP_PRECOND_AMG) return NULL;
+    if (b->ops->linear_solve) return NULL; /* the backend's own solver preconditions */
     if (glpgp_amg_create(b, o, dir, w, h, &a) != GLPGP_OK) {
         glpgp_log(GLPGP_LOG_WARNING, "%s: multigrid setup failed (%s); using Jacobi-PCG", what,
                   glpgp_error_message());

@@ -205,7 +205,7 @@ glpgp_status glpgp_solve(const glpgp_mesh *m, glpgp_backend *b, const glpgp_opti
 
     GLPGP_CHECK(glpgp_options_check_mesh(o, m));
     glpgp_options ojac;
-    if (o->precond == GLPGP_PRECOND_AMG && !glpgp_amg_supported(b)) {
+    if (o->precond == GLPGP_PRECOND_AMG && !glpgp_amg_supported(b) && !b->ops->linear_solve) {
         /* one warning for the whole solve, then Jacobi everywhere */
         glpgp_log(GLPGP_LOG_WARNING, "the %s backend has no multigrid preconditioner; using Jacobi-PCG",
                   b->ops->name);

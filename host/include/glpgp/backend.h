@@ -227,6 +227,18 @@ typedef struct glpgp_backend_ops {
     glpgp_status (*amg_get_scalars)(glpgp_backend *b, double *out, int n);
     glpgp_status (*amg_coarse_correction)(glpgp_backend *b, int c, const glpgp_vec *rhs, glpgp_vec *e,
                                           int *done);
+
+    /* ---- whole linear solve (optional, NULL: the drivers' CG / multigrid):
+     * x <- NEWTON^-1 rhs from x = 0 by the backend's own Krylov solver and
+     * preconditioner, stopping at |r| <= rtol |rhs| (unpreconditioned
+     * residual) or after maxit iterations. *iterations, *relres <- what was
+     * done; *reason <- 0 converged, 1 the cap, 2 breakdown (not SPD, non-
+     * finite): the values of glpgp_cg_reason (glpgp/solve.h). A backend with
+     * this op gets no host multigrid (amg_setup stays NULL): glpgp_linear_solve
+     * calls it whatever the preconditioner option, which the backend was
+     * created with (the PETSc backend: KSPCG + GAMG or point-block Jacobi). */
+    glpgp_status (*linear_solve)(glpgp_backend *b, const glpgp_vec *rhs, glpgp_vec *x, double rtol,
+                                 int maxit, int *iterations, double *relres, int *reason);
 } glpgp_backend_ops;
 
 struct glpgp_backend {

@@ -31,10 +31,11 @@ int glpgp_have_opencl(void);
 typedef enum glpgp_backend_kind {
     GLPGP_BACKEND_AUTO = 0,  /* OpenCL when usable, else reference (one warning) */
     GLPGP_BACKEND_OPENCL,    /* OpenCL or an error */
-    GLPGP_BACKEND_REFERENCE  /* the scalar C reference */
+    GLPGP_BACKEND_REFERENCE, /* the scalar C reference */
+    GLPGP_BACKEND_PETSC      /* PETSc on MPI ranks (glpgp_backend_create_petsc) */
 } glpgp_backend_kind;
 
-/* Parse "auto", "opencl", "reference" (-1 when unknown). */
+/* Parse "auto", "opencl", "reference", "petsc" (-1 when unknown). */
 int glpgp_backend_kind_parse(const char *name);
 
 /* The one backend selector. device >= 0 asks for that OpenCL device: with
@@ -44,6 +45,41 @@ int glpgp_backend_kind_parse(const char *name);
  * verbose: log the chosen OpenCL device. */
 glpgp_status glpgp_backend_select(glpgp_backend_kind kind, int device, int verbose,
                                   glpgp_backend **out);
+
+/* ---- PETSc backend (backends/petsc.c, a dlopen'd module glpgp_petsc.so) ----
+ * Every rank runs the same driver (glpgp_solve) on the same mesh; the
+ * backend distributes the rows: rank r owns the vertices [r nv / P,
+ * (r+1) nv / P) of the mesh numbering, its vectors are PETSc Vecs of those
+ * rows, and every element op runs the per-row bodies of kernels/rows.h (the
+ * reference arithmetic) on the owned rows after a ghost exchange. Scalars
+ * are summed in rank order, so every rank takes the same decisions; vec_read
+ * gathers the whole vector on every rank. Linear solves (op linear_solve):
+ * KSPCG with PCGAMG and the near null space [z, iz] (precond AMG) or point-
+ * block Jacobi. PETSc options come from $PETSC_OPTIONS (-ksp_view, ...). */
+
+/* Whether this build has the PETSc module. */
+int glpgp_have_petsc(void);
+/* Load the module, MPI_Init and PetscInitialize (idempotent). Without PETSc
+ * in the build: GLPGP_ERR_UNSUPPORTED, "glpgp was built without PETSc
+ * (install petsc-dev and rebuild)". */
+glpgp_status glpgp_petsc_init(void);
+/* PetscFinalize and MPI_Finalize when glpgp_petsc_init ran (NULL-safe). */
+void glpgp_petsc_finalize(void);
+/* This process's rank and the number of ranks (0 and 1 before init). */
+int glpgp_petsc_rank(void);
+int glpgp_petsc_size(void);
+/* 1 when ok is non-zero on every rank (collective; ok itself before init). */
+int glpgp_petsc_all_ok(int ok);
+/* out[r * n + k] <- vals[k] of rank r, on rank 0 (collective; out: size * n). */
+void glpgp_petsc_gather(const double *vals, int n, double *out);
+/* Owned and ghost vertices of this rank in the PETSc backend b (0, 0 for
+ * another backend or before setup). */
+void glpgp_petsc_backend_info(const glpgp_backend *b, int *owned, int *ghosts);
+/* Peak resident set of this process, bytes (0 before init). */
+double glpgp_petsc_max_rss(void);
+/* The PETSc backend (init first if needed); precond: GLPGP_PRECOND_* of its
+ * linear solves (glpgp/solve.h). */
+glpgp_status glpgp_backend_create_petsc(int precond, glpgp_backend **out);
 
 /* One OpenCL device, as listed by `glpgp devices`. */
 typedef struct glpgp_device_info {

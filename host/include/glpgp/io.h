@@ -212,7 +212,14 @@ typedef struct glpgp_stats_extra {
     const char *output;  /* result file written alongside (NULL: null) */
     double seconds_read; /* time to read / generate the mesh (< 0: omitted) */
     const glpgp_quad_quality *quads; /* quad mesh report: "quads" member (NULL: none) */
+    /* MPI runs (--backend petsc): ranks > 0 writes "ranks" and "per_rank", an
+     * array of {rank, owned, ghosts, seconds, max_rss_mib} from rank_info
+     * (ranks x GLPGP_RANK_INFO_N doubles, in that order; seconds: the
+     * rank's solve, max_rss in bytes) */
+    int ranks;
+    const double *rank_info;
 } glpgp_stats_extra;
+#define GLPGP_RANK_INFO_N 4
 
 /* Statistics JSON (one object, glpgp_json). Top-level keys:
  *   version, input, output, vertices, triangles, size, method ("gl"/"pgp"),
@@ -232,6 +239,8 @@ typedef struct glpgp_stats_extra {
  *                      capped}, ...],
  *                 v: [...]},
  *   seconds {read, setup, field, u, v, total},
+ *   ranks, per_rank [{rank, owned, ghosts, seconds, max_rss_mib}, ...]
+ *     (only when extra->ranks > 0: MPI runs),
  *   quads (the report of glpgp_quads_json; only when extra->quads is set).
  * opts may be NULL (the option keys are then null); extra may be NULL. */
 glpgp_status glpgp_write_stats_json(const glpgp_mesh *m, const glpgp_options *opts,

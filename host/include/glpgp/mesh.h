@@ -51,6 +51,17 @@ typedef struct glpgp_mesh {
 glpgp_status glpgp_mesh_create(int nv, const double *xy, int nt, const int *tri, glpgp_mesh **out);
 void glpgp_mesh_destroy(glpgp_mesh **m);
 
+/* ---- partitions (mesh/partition.c) ---- */
+
+/* part[i] <- the part (0 .. nparts-1) of vertex i, part p holding exactly
+ * size[p] vertices (sizes sum to m->nv): recursive coordinate bisection,
+ * each set split across the longer side of its bounding box. Deterministic
+ * (ties broken by vertex index): every process computes the same parts. */
+glpgp_status glpgp_mesh_partition(const glpgp_mesh *m, int nparts, const int *size, int *part);
+/* *out <- m with vertex i renumbered new_of_old[i] (a permutation of
+ * 0 .. nv-1); triangles keep their order and corner order. */
+glpgp_status glpgp_mesh_renumber(const glpgp_mesh *m, const int *new_of_old, glpgp_mesh **out);
+
 #ifdef __cplusplus
 }
 #endif

@@ -1,0 +1,132 @@
+#!/usr/bin/env bash
+# bench/petsc_scaling.sh: strong scaling of the PETSc backend (1 -> P ranks)
+# beside the OpenCL and reference backends, whole GL solves, in one run.
+#
+#   bash bench/petsc_scaling.sh [--sizes 1000000,4000000] [--ranks 1,2]
+#        [--shape square] [--glpgp build/glpgp] [--out bench/results/petsc_scaling]
+#        [--globalization line-search] [--no-opencl] [--no-reference]
+#
+# Per size N (input shape:SHAPE:N, the same mesh for every run), one whole
+# `glpgp solve` per configuration: --backend reference, --backend opencl
+# (skipped when no OpenCL device answers), --backend petsc under
+# `mpirun -n P` for each P of --ranks. Every run uses the backend's default
+# preconditioner (reference, OpenCL: glpgp's multigrid; petsc: KSPCG + GAMG
+# with the near null space [z, iz]) and the same --globalization
+# (line-search by default: the multigrid / GAMG then runs in every Newton
+# step). Recorded per run: wall time of the process (mpirun included), CPU
+# time (user + sys of all processes), the solve's own time, Newton and CG
+# iterations, singularity counts, final energies, and memory: max RSS of the
+# process (/usr/bin/time), per rank for petsc (stats JSON per_rank).
+# Writes OUT.json (every run) and OUT.md (one table, speed-ups of P ranks
+# over 1 rank by solve time). Benchmarks, not tests: nothing is asserted.
+# As root, OpenMPI needs OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
+# (set here); --oversubscribe lets P exceed the cores.
+set -euo pipefail
+
+SIZES=1000000,4000000
+RANKS=1,2
+SHAPE=square
+GLPGP=build/glpgp
+OUT=bench/results/petsc_scaling
+GLOB=line-search
+OPENCL=1
+REFERENCE=1
+while [ $# -gt 0 ]; do
+    case "$1" in
+    --sizes) SIZES=$2; shift 2 ;;
+    --ranks) RANKS=$2; shift 2 ;;
+    --shape) SHAPE=$2; shift 2 ;;
+    --glpgp) GLPGP=$2; shift 2 ;;
+    --out) OUT=$2; shift 2 ;;
+    --globalization) GLOB=$2; shift 2 ;;
+    --no-opencl) OPENCL=0; shift ;;
+    --no-reference) REFERENCE=0; shift ;;
+    -h | --help) sed -n '2,26p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    *) echo "petsc_scaling.sh: unknown argument '$1'" >&2; exit 2 ;;
+    esac
+done
+"$GLPGP" --version | grep -q "PETSc: yes" || { echo "petsc_scaling.sh: $GLPGP was built without PETSc" >&2; exit 1; }
+command -v mpirun >/dev/null || { echo "petsc_scaling.sh: no mpirun (openmpi-bin)" >&2; exit 1; }
+export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
+# containers often forbid the cross-memory attach of OpenMPI's shared-memory transport
+export OMPI_MCA_btl_vader_single_copy_mechanism=${OMPI_MCA_btl_vader_single_copy_mechanism:-none}
+export POCL_CACHE_DIR=${POCL_CACHE_DIR:-$PWD/build/pocl-cache}
+mkdir -p "$(dirname "$OUT")" "$POCL_CACHE_DIR"
+W=$(mktemp -d "${TMPDIR:-/tmp}/glpgp_petsc_scaling.XXXXXX")
+trap 'rm -rf "$W"' EXIT
+
+runs=()
+# one NAME NP CMD...: run CMD, record time / CPU / RSS and the stats JSON
+one() {
+    local name=$1 np=$2
+    shift 2
+    echo "== $name: $*" >&2
+    if /usr/bin/time -f "%e %U %S %M" -o "$W/$name.time" "$@" --stats "$W/$name.json" \
+        --globalization "$GLOB" >"$W/$name.out" 2>"$W/$name.err" </dev/null; then
+        runs+=("$name:$np")
+        tail -3 "$W/$name.out" >&2
+    else
+        echo "   failed: $(tail -2 "$W/$name.err")" >&2
+    fi
+}
+
+IFS=, read -r -a sizes <<<"$SIZES"
+IFS=, read -r -a ranks <<<"$RANKS"
+for n in "${sizes[@]}"; do
+    in=shape:$SHAPE:$n
+    [ "$REFERENCE" = 1 ] && one "ref_$n" 0 "$GLPGP" solve "$in" --backend reference
+    if [ "$OPENCL" = 1 ] && "$GLPGP" devices >/dev/null 2>&1; then
+        one "ocl_$n" 0 "$GLPGP" solve "$in" --backend opencl
+    fi
+    for p in "${ranks[@]}"; do
+        one "petsc${p}_$n" "$p" mpirun --oversubscribe -n "$p" "$GLPGP" solve "$in" --backend petsc
+    done
+done
+
+python3 - "$W" "$OUT" "$SHAPE" "$GLOB" "$(uptime)" "${runs[@]}" <<'EOF'
+import json, os, sys, platform
+w, out, shape, glob, load = sys.argv[1:6]
+rows = []
+for tag in sys.argv[6:]:
+    name, np = tag.rsplit(":", 1)
+    d = json.load(open(os.path.join(w, name + ".json")))
+    wall, user, sys_, rss = open(os.path.join(w, name + ".time")).read().split()[:4]
+    kind, n = name.split("_", 1)
+    r = {
+        "run": kind, "ranks": int(np) if int(np) > 0 else None, "vertices": d["vertices"],
+        "input": d["input"], "backend": d["backend"], "wall_s": float(wall),
+        "cpu_s": float(user) + float(sys_), "solve_s": d["seconds"]["total"],
+        "newton": d["newton_iterations"]["total"], "cg": d["cg_iterations"]["total"],
+        "singularities": d["singularities"], "final_energy": d["final_energy"],
+        "max_rss_mib": float(rss) / 1024.0,
+    }
+    if "per_rank" in d:
+        r["per_rank"] = d["per_rank"]
+        r["max_rss_mib_per_rank"] = max(x["max_rss_mib"] for x in d["per_rank"])
+    rows.append(r)
+meta = {"shape": shape, "globalization": glob, "machine": platform.node(), "cpus": os.cpu_count(),
+        "load_at_end": load.strip(), "note": "shared machine: compare runs within this file only"}
+json.dump({"meta": meta, "runs": rows}, open(out + ".json", "w"), indent=1)
+base = {}
+for r in rows:
+    if r["run"] == "petsc1":
+        base[r["vertices"]] = r["solve_s"]
+lines = [f"# PETSc strong scaling beside OpenCL and reference ({shape}, --globalization {glob})", "",
+         f"Machine: {meta['cpus']} CPUs, {meta['load_at_end']} (shared: times are comparable within this table only).", "",
+         "| vertices | run | solve s | wall s | CPU s | speed-up vs 1 rank | Newton | CG | singular u / v | E_u | max RSS MiB (per rank) |",
+         "|---|---|---|---|---|---|---|---|---|---|---|"]
+for r in rows:
+    su = ""
+    if r["run"].startswith("petsc") and r["vertices"] in base:
+        su = f"{base[r['vertices']] / r['solve_s']:.2f}"
+    s = r["singularities"]
+    sing = f"+{s['u']['plus']}-{s['u']['minus']} / +{s['v']['plus']}-{s['v']['minus']}"
+    rss = f"{r['max_rss_mib']:.0f}"
+    if "max_rss_mib_per_rank" in r:
+        rss = " + ".join(f"{x['max_rss_mib']:.0f}" for x in r["per_rank"])
+    name = r["backend"] + (f" x{r['ranks']}" if r["ranks"] else "")
+    lines.append(f"| {r['vertices']} | {name} | {r['solve_s']:.2f} | {r['wall_s']:.2f} | {r['cpu_s']:.2f} | {su} | "
+                 f"{r['newton']} | {r['cg']} | {sing} | {r['final_energy']['u']:.9g} | {rss} |")
+open(out + ".md", "w").write("\n".join(lines) + "\n")
+print("\n".join(lines))
+EOF

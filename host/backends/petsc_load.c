@@ -1,0 +1,161 @@
+/* backends/petsc_load.c: the glpgp side of the PETSc backend (glpgp/backends.h:
+ * glpgp_petsc_*, glpgp_backend_create_petsc): finds and dlopen's the module
+ * glpgp_petsc.so the first time it is needed (never for other backends, so
+ * `glpgp --version` and every other command load no PETSc or MPI library),
+ * hands it the error record and the log, and forwards to its table.
+ *
+ * Search (the first directory that holds the file wins), as for the image
+ * modules (image/module.c): $GLPGP_MODULE_DIR; <dir of the executable>/
+ * GLPGP_MODULE_EXE_REL; GLPGP_MODULE_INSTALL_DIR; GLPGP_MODULE_BUILD_DIR. */
+#include "glpgp/backends.h"
+#include "glpgp/solve.h"
+
+#include "petsc_module.h"
+
+#include <dlfcn.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#ifndef GLPGP_PETSC_MODULE_FILE
+#define GLPGP_PETSC_MODULE_FILE "glpgp_petsc.so"
+#endif
+#ifndef GLPGP_MODULE_EXE_REL
+#define GLPGP_MODULE_EXE_REL "../lib/glpgp"
+#endif
+
+static const glpgp_petsc_api *g_api;
+static int g_tried, g_initialised;
+static glpgp_status g_st = GLPGP_OK;
+static char g_why[8192];
+
+static void host_log(glpgp_log_level level, const char *msg) { glpgp_log(level, "%s", msg); }
+
+static const glpgp_petsc_host g_host = {GLPGP_PETSC_ABI, sizeof(glpgp_system), sizeof(glpgp_backend),
+                                        sizeof(glpgp_backend_ops), glpgp_error_set, glpgp_error_push_trace,
+                                        host_log};
+
+int glpgp_have_petsc(void)
+{
+#ifdef GLPGP_HAVE_PETSC
+    return 1;
+#else
+    return 0;
+#endif
+}
+
+/* Try dir/file: 1 loaded or failed for good (g_why set on failure), 0 not there. */
+static int try_dir(const char *dir)
+{
+    char path[4200];
+    if (!dir || !*dir || snprintf(path, sizeof path, "%s/%s", dir, GLPGP_PETSC_MODULE_FILE) >= (int)sizeof path)
+        return 0;
+    if (access(path, F_OK) != 0) return 0;
+    /* RTLD_GLOBAL: MPI's own plugins (OpenMPI's mca components) dlopen later and
+     * need libmpi's symbols in the global namespace */
+    void *h = dlopen(path, RTLD_NOW | RTLD_GLOBAL);
+    if (!h) {
+        const char *e = dlerror();
+        snprintf(g_why, sizeof g_why, "cannot load the PETSc module %s: %s", path, e ? e : "dlopen failed");
+        return 1;
+    }
+    void *sym = dlsym(h, GLPGP_PETSC_ENTRY);
+    glpgp_petsc_entry_fn entry;
+    memcpy(&entry, &sym, sizeof entry);
+    const glpgp_petsc_api *api = sym ? entry(&g_host) : NULL;
+    if (!api || api->abi != GLPGP_PETSC_ABI) {
+        snprintf(g_why, sizeof g_why, "cannot load the PETSc module %s: it belongs to another glpgp build", path);
+        return 1;
+    }
+    g_api = api;
+    return 1;
+}
+
+static glpgp_status load(void)
+{
+    if (g_tried) {
+        if (g_api) return GLPGP_OK;
+        return glpgp_error_set(__FILE__, __LINE__, g_st, "%s", g_why);
+    }
+    g_tried = 1;
+    if (!glpgp_have_petsc()) {
+        g_st = GLPGP_ERR_UNSUPPORTED;
+        snprintf(g_why, sizeof g_why, "glpgp was built without PETSc (install petsc-dev and rebuild)");
+        return glpgp_error_set(__FILE__, __LINE__, g_st, "%s", g_why);
+    }
+    g_st = GLPGP_ERR_IO;
+    const char *env = getenv("GLPGP_MODULE_DIR");
+    int done = 0;
+    if (env && *env) {
+        done = try_dir(env);
+    } else {
+        char exe[4096];
+        ssize_t n = readlink("/proc/self/exe", exe, sizeof exe - 1);
+        if (n > 0) {
+            exe[n] = '\0';
+            char *slash = strrchr(exe, '/');
+            if (slash) {
+                *slash = '\0';
+                const char *rel = GLPGP_MODULE_EXE_REL;
+                while (!strncmp(rel, "../", 3) && (slash = strrchr(exe, '/')) != NULL) {
+                    *slash = '\0';
+                    rel += 3;
+                }
+                char dir[4200];
+                if (snprintf(dir, sizeof dir, "%s/%s", exe, rel) < (int)sizeof dir) done = try_dir(dir);
+            }
+        }
+#ifdef GLPGP_MODULE_INSTALL_DIR
+        if (!done) done = try_dir(GLPGP_MODULE_INSTALL_DIR);
+#endif
+#ifdef GLPGP_MODULE_BUILD_DIR
+        if (!done) done = try_dir(GLPGP_MODULE_BUILD_DIR);
+#endif
+    }
+    if (!done)
+        snprintf(g_why, sizeof g_why, "the PETSc module %s was not found%s", GLPGP_PETSC_MODULE_FILE,
+                 env && *env ? " in $GLPGP_MODULE_DIR" : " (set GLPGP_MODULE_DIR to its directory)");
+    if (g_api) return GLPGP_OK;
+    return glpgp_error_set(__FILE__, __LINE__, g_st, "%s", g_why);
+}
+
+glpgp_status glpgp_petsc_init(void)
+{
+    GLPGP_CHECK(load());
+    GLPGP_CHECK(g_api->init());
+    if (!g_initialised) atexit(glpgp_petsc_finalize); /* a caller that forgets: MPI still ends cleanly */
+    g_initialised = 1;
+    return GLPGP_OK;
+}
+
+void glpgp_petsc_finalize(void)
+{
+    if (g_initialised && g_api) g_api->finalize();
+    g_initialised = 0;
+}
+
+int glpgp_petsc_rank(void) { return g_initialised ? g_api->rank() : 0; }
+int glpgp_petsc_size(void) { return g_initialised ? g_api->size() : 1; }
+int glpgp_petsc_all_ok(int ok) { return g_initialised ? g_api->all_ok(ok) : ok; }
+
+void glpgp_petsc_gather(const double *vals, int n, double *out)
+{
+    if (g_initialised) g_api->gather(vals, n, out);
+    else memcpy(out, vals, (size_t)n * sizeof *vals);
+}
+
+void glpgp_petsc_backend_info(const glpgp_backend *b, int *owned, int *ghosts)
+{
+    *owned = *ghosts = 0;
+    if (g_initialised && b && b->ops && !strcmp(b->ops->name, "petsc")) g_api->local_info(b, owned, ghosts);
+}
+
+double glpgp_petsc_max_rss(void) { return g_initialised ? g_api->max_rss() : 0.0; }
+
+glpgp_status glpgp_backend_create_petsc(int precond, glpgp_backend **out)
+{
+    *out = NULL;
+    GLPGP_CHECK(glpgp_petsc_init());
+    return g_api->create(precond, out);
+}
