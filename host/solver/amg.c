@@ -106,6 +106,9 @@ struct glpgp_amg {
     int *perm_r, *perm_c;
     glpgp_vec *r, *z, *p, *q;  /* flexible CG */
     int has_phase;
+    int layout_sym;            /* the layout's cycle is a symmetric V-cycle (pre = post, no
+                                  K-cycle level): the backend's coarse corrections serve
+                                  glpgp_amg_apply_spd too */
     int warned;                /* the Jacobi fallback of glpgp_linear_solve was logged */
     glpgp_amg_info info;
 };
@@ -611,7 +614,11 @@ glpgp_status glpgp_amg_create(glpgp_backend *b, const glpgp_options *o, const un
     lay.weight = o->amg_weight;
     lay.pre = a->pre;
     lay.post = a->post;
-    for (int l = 1; l + 1 < L; l++) lay.kcycle[l] = (unsigned char)kcycle_level(a, l);
+    a->layout_sym = a->pre == a->post;
+    for (int l = 1; l + 1 < L; l++) {
+        lay.kcycle[l] = (unsigned char)kcycle_level(a, l);
+        if (lay.kcycle[l]) a->layout_sym = 0;
+    }
     for (int l = 0; l < L; l++) {
         amg_level *lv = &a->lev[l];
         glpgp_amg_level *d = &lay.lev[l];
@@ -785,7 +792,84 @@ static glpgp_status dense_inverse(int m, const double *A, double *inv, double *l
     return GLPGP_OK;
 }
 
-glpgp_status glpgp_amg_update(glpgp_amg *a, const glpgp_vec *x)
+/* inv <- |A_s|^+ for the m x m matrix A (row-major), A_s = (A + A^T)/2: with
+ * A_s = V diag(lambda) V^T (cyclic Jacobi rotations until the off-diagonal
+ * part is below 1e-15 of the whole), inv = V diag(1/|lambda_k|) V^T over
+ * the |lambda_k| > 1e-12 max |lambda|, the others dropped. Symmetric by
+ * construction (entry (j, i) is written as entry (i, j)) and positive
+ * semi-definite whatever the sign of A's eigenvalues: the coarse solve of
+ * the fixed SPD cycle (glpgp_amg_apply_spd). work: m*m doubles (V); the
+ * eigenvalues are kept in a temporary. Fails on non-finite entries. */
+static glpgp_status spd_inverse(int m, const double *A, double *inv, double *V)
+{
+    double *S = inv, *lam = NULL; /* S: the symmetric part, rotated in place */
+    for (size_t k = 0; k < (size_t)m * m; k++)
+        if (!isfinite(A[k])) return GLPGP_FAIL(GLPGP_ERR_NUMERIC, "multigrid: coarsest matrix is not finite");
+    GLPGP_CHECK(glpgp_malloc((size_t)m + 1, sizeof(double), &lam));
+    double total = 0.0;
+    for (int i = 0; i < m; i++)
+        for (int j = 0; j < m; j++) {
+            S[(size_t)i * m + j] = 0.5 * (A[(size_t)i * m + j] + A[(size_t)j * m + i]);
+            V[(size_t)i * m + j] = i == j ? 1.0 : 0.0;
+            total += S[(size_t)i * m + j] * S[(size_t)i * m + j];
+        }
+    for (int sweep = 0; sweep < 100; sweep++) {
+        double off = 0.0;
+        for (int i = 0; i < m; i++)
+            for (int j = i + 1; j < m; j++) off += 2.0 * S[(size_t)i * m + j] * S[(size_t)i * m + j];
+        if (!(off > 1e-30 * total)) break;
+        for (int p = 0; p < m; p++)
+            for (int q = p + 1; q < m; q++) {
+                const double apq = S[(size_t)p * m + q];
+                if (apq == 0.0) continue;
+                /* rotation (c, s) zeroing S_pq:  theta = (S_qq - S_pp) / (2 S_pq),
+                 * t = sign(theta) / (|theta| + sqrt(theta^2 + 1)) */
+                const double app = S[(size_t)p * m + p], aqq = S[(size_t)q * m + q];
+                const double theta = (aqq - app) / (2.0 * apq);
+                const double t = (theta >= 0.0 ? 1.0 : -1.0) / (fabs(theta) + sqrt(theta * theta + 1.0));
+                const double c = 1.0 / sqrt(t * t + 1.0), s = t * c;
+                /* S <- J^T S J (columns p, q, then rows p, q);  V <- V J */
+                for (int k = 0; k < m; k++) {
+                    double *rk = S + (size_t)k * m;
+                    const double skp = rk[p], skq = rk[q];
+                    rk[p] = c * skp - s * skq;
+                    rk[q] = s * skp + c * skq;
+                }
+                for (int k = 0; k < m; k++) {
+                    const double spk = S[(size_t)p * m + k], sqk = S[(size_t)q * m + k];
+                    S[(size_t)p * m + k] = c * spk - s * sqk;
+                    S[(size_t)q * m + k] = s * spk + c * sqk;
+                }
+                for (int k = 0; k < m; k++) {
+                    double *vk = V + (size_t)k * m;
+                    const double vkp = vk[p], vkq = vk[q];
+                    vk[p] = c * vkp - s * vkq;
+                    vk[q] = s * vkp + c * vkq;
+                }
+            }
+    }
+    double lmax = 0.0;
+    for (int k = 0; k < m; k++) {
+        lam[k] = S[(size_t)k * m + k];
+        lmax = fmax(lmax, fabs(lam[k]));
+    }
+    for (int k = 0; k < m; k++) lam[k] = fabs(lam[k]) > 1e-12 * lmax ? 1.0 / fabs(lam[k]) : 0.0;
+    /* inv_ij = sum_k V_ik V_jk / |lambda_k|  (S is no longer needed) */
+    for (int i = 0; i < m; i++)
+        for (int j = i; j < m; j++) {
+            double sum = 0.0;
+            for (int k = 0; k < m; k++) sum += V[(size_t)i * m + k] * V[(size_t)j * m + k] * lam[k];
+            inv[(size_t)i * m + j] = sum;
+        }
+    for (int i = 0; i < m; i++)
+        for (int j = 0; j < i; j++) inv[(size_t)i * m + j] = inv[(size_t)j * m + i];
+    free(lam);
+    return GLPGP_OK;
+}
+
+/* glpgp_amg_update (spd = 0) and glpgp_amg_update_spd (spd = 1: the coarse
+ * operator is |A_c|^+, see spd_inverse) */
+static glpgp_status update(glpgp_amg *a, const glpgp_vec *x, int spd)
 {
     glpgp_backend *b = a->b;
     const glpgp_backend_ops *op = b->ops;
@@ -802,7 +886,10 @@ glpgp_status glpgp_amg_update(glpgp_amg *a, const glpgp_vec *x)
     const double t1 = glpgp_now();
     GLPGP_CHECK(op->amg_coarse_read(b, a->dense));
     b->n_sync++;
-    GLPGP_CHECK(dense_inverse(a->m, a->dense, a->inv, a->work, a->perm_r, a->perm_c));
+    if (spd)
+        GLPGP_CHECK(spd_inverse(a->m, a->dense, a->inv, a->work));
+    else
+        GLPGP_CHECK(dense_inverse(a->m, a->dense, a->inv, a->work, a->perm_r, a->perm_c));
     GLPGP_CHECK(op->amg_coarse_set(b, a->inv));
     const double t2 = glpgp_now();
     a->info.seconds_values += t2 - t0;
@@ -810,6 +897,10 @@ glpgp_status glpgp_amg_update(glpgp_amg *a, const glpgp_vec *x)
     a->info.updates++;
     return GLPGP_OK;
 }
+
+glpgp_status glpgp_amg_update(glpgp_amg *a, const glpgp_vec *x) { return update(a, x, 0); }
+
+glpgp_status glpgp_amg_update_spd(glpgp_amg *a, const glpgp_vec *x) { return update(a, x, 1); }
 
 /* ---- the cycle ---------------------------------------------------------- */
 
@@ -821,53 +912,58 @@ static glpgp_amg_coef ratio(int num, int den, double sign)
     return c;
 }
 
-static glpgp_status cycle(glpgp_amg *a, int l, const glpgp_vec *r, glpgp_vec *out);
+static glpgp_status cycle(glpgp_amg *a, int l, const glpgp_vec *r, glpgp_vec *out, int sym);
 
 
-/* e[c] <- approximate solution of A_c e = b[c] */
-static glpgp_status coarse_correction(glpgp_amg *a, int c)
+/* e[c] <- approximate solution of A_c e = b[c]; sym: the symmetric V-cycle
+ * of glpgp_amg_apply_spd (plain visits below, whatever the layout's cycle) */
+static glpgp_status coarse_correction(glpgp_amg *a, int c, int sym)
 {
     glpgp_backend *b = a->b;
     const glpgp_backend_ops *op = b->ops;
     amg_level *lv = &a->lev[c];
-    if (op->amg_coarse_correction) {
+    if (op->amg_coarse_correction && (!sym || a->layout_sym)) {
         /* the backend may run this level and all below itself (same sequence) */
         int done = 0;
         GLPGP_CHECK(op->amg_coarse_correction(b, c, lv->b, lv->e, &done));
         if (done) return GLPGP_OK;
     }
     if (c == a->L - 1) return op->amg_coarse_solve(b, lv->b, lv->e);
-    if (!kcycle_level(a, c)) return cycle(a, c, lv->b, lv->e);
+    if (sym || !kcycle_level(a, c)) return cycle(a, c, lv->b, lv->e, sym);
     /* K-cycle: two flexible-CG steps on A_c, preconditioned by the cycle on c
      *   v = B b;  w = A v;  rho1 = v.w;  alpha1 = v.b;  r2 = b - (alpha1/rho1) w
      *   d = B r2; wd = A d; beta = d.wd; gamma = d.w;   alpha2 = d.r2
      *   e = combination of v and d (amg_kcombine) */
     const int S = GLPGP_AMG_KSLOT(c);
-    GLPGP_CHECK(cycle(a, c, lv->b, lv->v));
+    GLPGP_CHECK(cycle(a, c, lv->b, lv->v, 0));
     GLPGP_CHECK(op->amg_spmv_dots(b, c, lv->v, lv->w, lv->b, NULL, S));
     GLPGP_CHECK(op->amg_axpby(b, ONE, lv->b, ZERO, lv->r2));
     GLPGP_CHECK(op->amg_axpby(b, ratio(S + 1, S, -1.0), lv->w, ONE, lv->r2));
-    GLPGP_CHECK(cycle(a, c, lv->r2, lv->d));
+    GLPGP_CHECK(cycle(a, c, lv->r2, lv->d, 0));
     GLPGP_CHECK(op->amg_spmv_dots(b, c, lv->d, lv->wd, lv->w, lv->r2, S + 2));
     return op->amg_kcombine(b, lv->v, lv->d, lv->e, S);
 }
 
 /* out <- B_l r on level l < L-1: `pre` sweeps of l1-Jacobi from 0 (none:
  * x = 0), coarse correction, `post` sweeps. The iterate alternates between
- * tmp and out, starting so that the last write lands in out. */
-static glpgp_status cycle(glpgp_amg *a, int l, const glpgp_vec *r, glpgp_vec *out)
+ * tmp and out, starting so that the last write lands in out.
+ * sym: max(pre, post) sweeps before and after, plain visits on every level
+ * (the symmetric V-cycle of glpgp_amg_apply_spd). */
+static glpgp_status cycle(glpgp_amg *a, int l, const glpgp_vec *r, glpgp_vec *out, int sym)
 {
     glpgp_backend *b = a->b;
     const glpgp_backend_ops *op = b->ops;
     amg_level *lv = &a->lev[l];
     glpgp_vec *buf[2] = {lv->tmp, out};
-    const int writes = (a->pre > 0 ? a->pre : 1) + a->post;
+    const int nu = a->pre > a->post ? a->pre : a->post;
+    const int pre = sym ? nu : a->pre, post = sym ? nu : a->post;
+    const int writes = (pre > 0 ? pre : 1) + post;
     int k = writes % 2; /* buf[k] receives the first write */
     glpgp_vec *cur = buf[k];
-    if (a->pre > 0) {
+    if (pre > 0) {
         /* x <- M^-1 r, then x <- x + M^-1 (r - A x) */
         GLPGP_CHECK(op->amg_smooth(b, l, r, NULL, cur));
-        for (int s = 1; s < a->pre; s++) {
+        for (int s = 1; s < pre; s++) {
             k ^= 1;
             GLPGP_CHECK(op->amg_smooth(b, l, r, cur, buf[k]));
             cur = buf[k];
@@ -880,9 +976,9 @@ static glpgp_status cycle(glpgp_amg *a, int l, const glpgp_vec *r, glpgp_vec *ou
         GLPGP_CHECK(op->amg_restrict(b, l, r, NULL, a->lev[l + 1].b));
     }
     /* e_{l+1} ~ A_{l+1}^-1 b_{l+1};  x <- x + P e */
-    GLPGP_CHECK(coarse_correction(a, l + 1));
+    GLPGP_CHECK(coarse_correction(a, l + 1, sym));
     GLPGP_CHECK(op->amg_prolong(b, l, a->lev[l + 1].e, cur));
-    for (int s = 0; s < a->post; s++) {
+    for (int s = 0; s < post; s++) {
         k ^= 1;
         GLPGP_CHECK(op->amg_smooth(b, l, r, cur, buf[k]));
         cur = buf[k];
@@ -892,7 +988,12 @@ static glpgp_status cycle(glpgp_amg *a, int l, const glpgp_vec *r, glpgp_vec *ou
 
 glpgp_status glpgp_amg_apply(glpgp_amg *a, const glpgp_vec *r, glpgp_vec *z)
 {
-    return cycle(a, 0, r, z);
+    return cycle(a, 0, r, z, 0);
+}
+
+glpgp_status glpgp_amg_apply_spd(glpgp_amg *a, const glpgp_vec *r, glpgp_vec *z)
+{
+    return cycle(a, 0, r, z, 1);
 }
 
 /* ---- flexible CG -------------------------------------------------------- */
@@ -925,7 +1026,7 @@ static glpgp_status fcg_run(glpgp_amg *a, const glpgp_vec *rhs, glpgp_vec *x, do
     double rel = 1.0;
     for (k = 1; k <= maxit; k++) {
         /* z <- B r;  p <- z - (z.q / p.q) p  (q = A p of the previous step) */
-        GLPGP_CHECK(cycle(a, 0, r, z));
+        GLPGP_CHECK(cycle(a, 0, r, z, 0));
         if (k == 1) {
             GLPGP_CHECK(op->amg_axpby(b, ONE, z, ZERO, p));
         } else {
@@ -993,6 +1094,8 @@ glpgp_status glpgp_linear_solve(glpgp_backend *b, glpgp_amg *a, const glpgp_vec 
     return GLPGP_OK;
 }
 
+static int glpgp_amg_try_update_mode(glpgp_amg *a, const glpgp_vec *x, int spd, const char *what);
+
 glpgp_amg *glpgp_amg_try_create(glpgp_backend *b, const glpgp_options *o, const unsigned char *dir,
                                 const double *w, double h, const char *what)
 {
@@ -1014,7 +1117,17 @@ glpgp_amg *glpgp_amg_try_create(glpgp_backend *b, const glpgp_options *o, const 
 
 int glpgp_amg_try_update(glpgp_amg *a, const glpgp_vec *x, const char *what)
 {
-    if (glpgp_amg_update(a, x) == GLPGP_OK) return 1;
+    return glpgp_amg_try_update_mode(a, x, 0, what);
+}
+
+int glpgp_amg_try_update_spd(glpgp_amg *a, const glpgp_vec *x, const char *what)
+{
+    return glpgp_amg_try_update_mode(a, x, 1, what);
+}
+
+static int glpgp_amg_try_update_mode(glpgp_amg *a, const glpgp_vec *x, int spd, const char *what)
+{
+    if (update(a, x, spd) == GLPGP_OK) return 1;
     glpgp_log(GLPGP_LOG_WARNING, "%s: multigrid setup failed (%s); using Jacobi-PCG", what,
               glpgp_error_message());
     glpgp_error_clear();

@@ -164,24 +164,47 @@ static int tr_hessian(const glpgp_options *o)
     return (o->hess == GLPGP_HESS_PAPER || o->hess == GLPGP_HESS_PROJECTED) ? o->hess : GLPGP_HESS_EXACT;
 }
 
-/* Steihaug-Toint direction in the block-Jacobi region (see glpgp_newton_step):
- * ns->d and ti; the Hessian falls back exact -> mixed -> projected when a
- * diagonal block is indefinite (M is then no norm). */
+/* Steihaug-Toint direction (see glpgp_newton_step): ns->d and ti.
+ * Multigrid region (ns->amg and o->tr_precond AMG): the hierarchy is built
+ * (glpgp_amg_update_spd) from the projected Hessian, which is positive
+ * semi-definite and bounds the exact one from above, then the trust region's
+ * Hessian is assembled: the symmetric V-cycle is then SPD (glpgp_amg_apply_spd)
+ * and its norm the region's. With the projected or paper Hessian one
+ * assembly serves both. Block-Jacobi region: the Hessian falls back exact ->
+ * mixed -> projected when a diagonal block is indefinite (M is then no
+ * norm); a multigrid region that meets r.z <= 0 (not expected) or whose setup
+ * fails redoes the step in the block-Jacobi region. */
 static glpgp_status tr_direction(glpgp_backend *b, const glpgp_options *o, glpgp_newton_state *ns,
                                  double inv4e2, double eta, glpgp_vec *xb, glpgp_trcg_info *ti,
                                  glpgp_newton_step_info *info)
 {
     const glpgp_backend_ops *op = b->ops;
     int hess = tr_hessian(o);
+    int mg = ns->amg != NULL && o->tr_precond == GLPGP_PRECOND_AMG;
     for (;;) {
-        GLPGP_CHECK(op->assemble_newton(b, ns->x, inv4e2, hess));
+        const int psd = hess == GLPGP_HESS_PROJECTED || hess == GLPGP_HESS_PAPER;
+        if (mg) {
+            /* hierarchy from H_proj >= H (values, frames from x, |A_c|^+) */
+            GLPGP_CHECK(op->assemble_newton(b, ns->x, inv4e2, psd ? hess : GLPGP_HESS_PROJECTED));
+            if (!glpgp_amg_try_update_spd(ns->amg, ns->x, "trust-region step")) {
+                ns->amg = NULL;
+                mg = 0;
+            }
+            if (mg && !psd) GLPGP_CHECK(op->assemble_newton(b, ns->x, inv4e2, hess));
+        }
+        if (!mg) GLPGP_CHECK(op->assemble_newton(b, ns->x, inv4e2, hess));
         /* d ~ argmin m(d) = F + g.d + 1/2 d.H d  subject to ||d||_M <= radius */
         GLPGP_CHECK(op->axpby(b, -1.0, ns->g, 0.0, ns->xt)); /* xt <- -g (rhs) */
-        GLPGP_CHECK(glpgp_trcg(b, ns->xt, ns->d, ns->radius, eta, o->cg_max, xb, ti));
+        GLPGP_CHECK(glpgp_trcg(b, mg ? ns->amg : NULL, ns->xt, ns->d, ns->radius, eta, o->cg_max, xb, ti));
         info->cg += ti->iterations;
         info->cg_capped += ti->reason == GLPGP_TRCG_MAXIT;
-        if (ti->reason != GLPGP_TRCG_PRECOND || hess == GLPGP_HESS_PROJECTED || hess == GLPGP_HESS_PAPER)
-            return GLPGP_OK;
+        if (ti->reason != GLPGP_TRCG_PRECOND) return GLPGP_OK;
+        if (mg) { /* the V-cycle was not SPD: block-Jacobi region */
+            mg = 0;
+            info->fallbacks++;
+            continue;
+        }
+        if (psd) return GLPGP_OK;
         /* an indefinite diagonal block: the block-Jacobi norm is no norm; redo
          * with the Hessian projected in vortex cores, then everywhere */
         hess = hess == GLPGP_HESS_EXACT ? GLPGP_HESS_MIXED : GLPGP_HESS_PROJECTED;

@@ -96,6 +96,10 @@ typedef struct glpgp_options {
                              factor, (0, tr_shrink] [0.1] */
     double tr_good;       /* rho above this with a step on the boundary ... (tr_poor, 1) [0.75] */
     double tr_grow;       /* ... multiplies the radius by this, > 1 [2] */
+    int tr_precond;       /* trust region, with precond AMG: the Steihaug-Toint CG's
+                             preconditioner and norm, GLPGP_PRECOND_JACOBI (block Jacobi)
+                             or _AMG (the symmetric V-cycle of glpgp_amg_apply_spd on
+                             the projected Hessian) [AMG] */
     int tr_lookahead;     /* 1: where the Steihaug path leaves the region, CG goes on to the
                              inexact Newton step and tries it first (kept when its rho >=
                              tr_poor; the region then grows to its length), 0: off [0] */
@@ -353,12 +357,31 @@ void glpgp_amg_destroy(glpgp_amg **a);
  * when the coarsest matrix has no usable inverse. */
 glpgp_status glpgp_amg_update(glpgp_amg *a, const glpgp_vec *x);
 
+/* glpgp_amg_update for glpgp_amg_apply_spd: the same values, but the
+ * coarsest operator is |A_c|^+ (symmetric part, eigenvalues by their
+ * absolute value, generalised inverse) instead of the LU inverse, so that the
+ * symmetric V-cycle is a fixed symmetric positive (semi-)definite operator.
+ * The trust region calls it with a positive semi-definite NEWTON (the
+ * projected Hessian) and then reassembles the exact one. */
+glpgp_status glpgp_amg_update_spd(glpgp_amg *a, const glpgp_vec *x);
+
 /* Hierarchy facts (valid after glpgp_amg_create). */
 void glpgp_amg_get_info(const glpgp_amg *a, glpgp_amg_info *info);
 
 /* One application of the preconditioner: z <- B r (a K- or V-cycle from
  * z = 0 on level 0; r, z: 2*nv on the device). For tests. */
 glpgp_status glpgp_amg_apply(glpgp_amg *a, const glpgp_vec *r, glpgp_vec *z);
+
+/* z <- B r by the symmetric V-cycle: max(amg_pre, amg_post) l1-Jacobi sweeps
+ * before and after each coarse correction, plain visits on every level (no
+ * K-cycle), the coarsest operator of the last update. B is a fixed linear
+ * operator, symmetric when the coarsest operator is (glpgp_amg_update_spd),
+ * and positive definite when in addition 2 M_l / w - A_l > 0 on every level
+ * (l1-Jacobi with w < 2 on a positive semi-definite hierarchy; level 0's
+ * A may then be any symmetric matrix below the one the hierarchy was built
+ * from). The preconditioner and norm of the trust region's Steihaug-Toint
+ * CG (glpgp_options.tr_precond). */
+glpgp_status glpgp_amg_apply_spd(glpgp_amg *a, const glpgp_vec *r, glpgp_vec *z);
 
 /* Flexible CG (FCG(1), Notay) on NEWTON with the multigrid preconditioner a
  * (glpgp_amg_update done for the current NEWTON): solves NEWTON x = rhs from
