@@ -5,7 +5,17 @@
  * Trust region (o->globalization = GLPGP_GLOBAL_TRUST_REGION, the default):
  *   H = H_E + exact penalty Hessian at x (indefinite in vortex states);
  *   d ~ argmin g.d + 1/2 d.H d over ||d||_M <= radius by Steihaug-Toint CG
- *     (solver/steihaug.c; M = block Jacobi, inexact-Newton tolerance);
+ *     (solver/steihaug.c, inexact-Newton tolerance); M = block Jacobi, or,
+ *     with the multigrid (--precond amg) and o->tr_precond AMG (the
+ *     default), M^-1 = the symmetric V-cycle of solver/amg.c
+ *     (glpgp_amg_apply_spd): its hierarchy is built from the projected
+ *     Hessian H_proj >= H (PSD; |A_c|^+ on the coarsest level), then H is
+ *     assembled, so the cycle is a fixed SPD operator whatever H's inertia,
+ *     and the region is measured in the norm of H_proj's multigrid
+ *     approximation. The low-frequency directions (vortex drift, the
+ *     indefinite direction at a new eps level) are short in that norm: the
+ *     region CG finds them in a few iterations where block Jacobi needed
+ *     hundreds (square 1M: 255 instead of 1501 CG for the whole solve);
  *     with o->tr_lookahead the CG goes on past the boundary to the Newton
  *     step, which is tried first;
  *   trial points x (+) a d: a polar update outside vortex cores (phase
@@ -15,18 +25,16 @@
  *   radius from rho and the length taken; the level ends at |g| <= rtol |g0|,
  *     at the cap, or when the model decrease falls below the rounding
  *     level of F.
- *   Multigrid (--precond amg): the region's CG stays block-Jacobi
- *   (Steihaug-Toint needs a fixed SPD preconditioner M for its norm ||.||_M;
- *   the K-cycle inside flexible CG is neither fixed nor, on the indefinite
- *   exact Hessian, SPD). Once the region is inactive (the last step was an
- *   interior Steihaug step with rho >= tr_poor, or an accepted multigrid
- *   step; never the first step of a level), the inexact Newton step by
- *   flexible CG with the multigrid is tried first and kept when its full
- *   step has rho >= tr_poor; otherwise (FCG breakdown, cap, poor rho) the
- *   Steihaug step. Measured and rejected: trying the multigrid step at every
- *   step converged to saddle states (disk 4k, h = 10 edges: +3/-3
- *   singularities, E 32.8 vs 25.4): without the region CG does not see all
- *   negative curvature during vortex drift.
+ *   Multigrid (--precond amg), either region: once the region is inactive
+ *   (the last step was an interior Steihaug step with rho >= tr_poor, or an
+ *   accepted multigrid step; never the first step of a level), the inexact
+ *   Newton step by flexible CG with the K-cycle (fewer iterations than the
+ *   V-cycle) is tried first and kept when its full step has rho >= tr_poor;
+ *   otherwise (FCG breakdown, cap, poor rho) the Steihaug step. Measured and
+ *   rejected: trying the multigrid step at every step converged to saddle
+ *   states (disk 4k, h = 10 edges: +3/-3 singularities, E 32.8 vs 25.4):
+ *   without the region CG does not see all negative curvature during vortex
+ *   drift.
  * Line search (GLPGP_GLOBAL_LINE_SEARCH, the previous driver):
  *   (H_E + H~_P(x)) d = -g by PCG with the variant o->hess (`mixed` tries
  *   the exact one near convergence and falls back exact -> mixed ->

@@ -86,7 +86,8 @@ typedef struct glpgp_options {
     double forcing;       /* inexact Newton: CG tolerance eta = forcing |g| / |g_0| ... [0.1] */
     double forcing_max;   /* ... clamped to [cg_rtol, forcing_max] [1e-2] */
     int globalization;    /* GLPGP_GLOBAL_* [TRUST_REGION] */
-    /* trust region (radius in the block-Jacobi norm ||d||_M = sqrt(d.D d)):
+    /* trust region (radius in the norm ||d||_M = sqrt(d.M d) of the region's
+     * preconditioner: block Jacobi, or the multigrid of tr_precond):
      * rho = (actual decrease of E + P) / (decrease predicted by the model) */
     double tr_accept;     /* a trial point is taken when rho >= this, [0, tr_poor) [1e-4] */
     double tr_poor;       /* rho below this after a full step shrinks the radius ... (0, tr_good) [0.25] */
@@ -281,10 +282,12 @@ typedef struct glpgp_newton_step_info {
  * PCG to the inexact-Newton tolerance (Jacobi, or flexible CG with s->amg,
  * whose values are rebuilt from the new matrix and x), backtrack on E + P,
  * update x. Trust region: assemble the exact Hessian, Steihaug-CG in the
- * region s->radius (block-Jacobi preconditioner and norm: Steihaug-Toint
- * needs a fixed SPD preconditioner, the K-cycle is not one; with s->amg and
- * s->inside, the region inactive, first the multigrid inexact Newton step,
- * kept when its full step has rho >= tr_poor), take the trial point x (+) a d (polar update, retract_zabs) with a = 1 or
+ * region s->radius (preconditioner and norm: block Jacobi, or with s->amg
+ * and o->tr_precond AMG the symmetric V-cycle built on the projected
+ * Hessian, glpgp_amg_apply_spd: Steihaug-Toint needs a fixed SPD
+ * preconditioner, the K-cycle is not one; with s->amg and s->inside, the
+ * region inactive, first the K-cycle FCG inexact Newton step, kept when its
+ * full step has rho >= tr_poor), take the trial point x (+) a d (polar update, retract_zabs) with a = 1 or
  * backtracked until the actual decrease is at least tr_accept of the
  * predicted one, update the radius. Needs QUAD assembled and
  * s->g = grad(E+P)(x) with F = (E+P)(x) and gn = |g| (and, for the trust
