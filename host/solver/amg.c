@@ -792,83 +792,107 @@ static glpgp_status dense_inverse(int m, const double *A, double *inv, double *l
     return GLPGP_OK;
 }
 
-/* inv <- |A_s|^+ for the m x m matrix A (row-major), A_s = (A + A^T)/2: with
- * A_s = V diag(lambda) V^T (cyclic Jacobi rotations until the off-diagonal
- * part is below 1e-15 of the whole), inv = V diag(1/|lambda_k|) V^T over
- * the |lambda_k| > 1e-12 max |lambda|, the others dropped. Symmetric by
+/* inv <- a symmetric positive semi-definite generalised inverse of the
+ * m x m matrix A (row-major), for the symmetric V-cycle's coarse solve: with
+ * A_s = (A + A^T)/2, symmetric pivoted LDL^T (the largest remaining |d| on
+ * the diagonal first: P A_s P^T = L D L^T, stable for the positive
+ * semi-definite coarse matrices of the projected Hessian; pivots below
+ * 1e-12 of the first end it at rank r), then
+ *   inv = P^T [L11^-T |D|^-1 L11^-1, 0; 0, 0] P
+ * (the components beyond r set to 0, as dense_inverse does). Symmetric by
  * construction (entry (j, i) is written as entry (i, j)) and positive
- * semi-definite whatever the sign of A's eigenvalues: the coarse solve of
- * the fixed SPD cycle (glpgp_amg_apply_spd). work: m*m doubles (V); the
- * eigenvalues are kept in a temporary. Fails on non-finite entries. */
-static glpgp_status spd_inverse(int m, const double *A, double *inv, double *V)
+ * semi-definite whatever the signs of D; for a nonsingular PSD A it is A^-1.
+ * O(m^3) like dense_inverse. S: m*m work (overwritten). Fails on non-finite
+ * entries. */
+static glpgp_status spd_inverse(int m, const double *A, double *inv, double *S)
 {
-    double *S = inv, *lam = NULL; /* S: the symmetric part, rotated in place */
+    int *perm = NULL;
     for (size_t k = 0; k < (size_t)m * m; k++)
         if (!isfinite(A[k])) return GLPGP_FAIL(GLPGP_ERR_NUMERIC, "multigrid: coarsest matrix is not finite");
-    GLPGP_CHECK(glpgp_malloc((size_t)m + 1, sizeof(double), &lam));
-    double total = 0.0;
-    for (int i = 0; i < m; i++)
-        for (int j = 0; j < m; j++) {
-            S[(size_t)i * m + j] = 0.5 * (A[(size_t)i * m + j] + A[(size_t)j * m + i]);
-            V[(size_t)i * m + j] = i == j ? 1.0 : 0.0;
-            total += S[(size_t)i * m + j] * S[(size_t)i * m + j];
-        }
-    for (int sweep = 0; sweep < 100; sweep++) {
-        double off = 0.0;
-        for (int i = 0; i < m; i++)
-            for (int j = i + 1; j < m; j++) off += 2.0 * S[(size_t)i * m + j] * S[(size_t)i * m + j];
-        if (!(off > 1e-30 * total)) break;
-        for (int p = 0; p < m; p++)
-            for (int q = p + 1; q < m; q++) {
-                const double apq = S[(size_t)p * m + q];
-                if (apq == 0.0) continue;
-                /* rotation (c, s) zeroing S_pq:  theta = (S_qq - S_pp) / (2 S_pq),
-                 * t = sign(theta) / (|theta| + sqrt(theta^2 + 1)) */
-                const double app = S[(size_t)p * m + p], aqq = S[(size_t)q * m + q];
-                const double theta = (aqq - app) / (2.0 * apq);
-                const double t = (theta >= 0.0 ? 1.0 : -1.0) / (fabs(theta) + sqrt(theta * theta + 1.0));
-                const double c = 1.0 / sqrt(t * t + 1.0), s = t * c;
-                /* S <- J^T S J (columns p, q, then rows p, q);  V <- V J */
-                for (int k = 0; k < m; k++) {
-                    double *rk = S + (size_t)k * m;
-                    const double skp = rk[p], skq = rk[q];
-                    rk[p] = c * skp - s * skq;
-                    rk[q] = s * skp + c * skq;
-                }
-                for (int k = 0; k < m; k++) {
-                    const double spk = S[(size_t)p * m + k], sqk = S[(size_t)q * m + k];
-                    S[(size_t)p * m + k] = c * spk - s * sqk;
-                    S[(size_t)q * m + k] = s * spk + c * sqk;
-                }
-                for (int k = 0; k < m; k++) {
-                    double *vk = V + (size_t)k * m;
-                    const double vkp = vk[p], vkq = vk[q];
-                    vk[p] = c * vkp - s * vkq;
-                    vk[q] = s * vkp + c * vkq;
-                }
-            }
+    GLPGP_CHECK(glpgp_malloc((size_t)m + 1, sizeof(int), &perm));
+    for (int i = 0; i < m; i++) {
+        perm[i] = i;
+        for (int j = 0; j < m; j++) S[(size_t)i * m + j] = 0.5 * (A[(size_t)i * m + j] + A[(size_t)j * m + i]);
     }
-    double lmax = 0.0;
+    /* P A_s P^T = L D L^T: l_ik in S's lower part (i > k), d_k on its diagonal */
+    int r = 0;
+    double piv0 = 0.0;
     for (int k = 0; k < m; k++) {
-        lam[k] = S[(size_t)k * m + k];
-        lmax = fmax(lmax, fabs(lam[k]));
-    }
-    for (int k = 0; k < m; k++) lam[k] = fabs(lam[k]) > 1e-12 * lmax ? 1.0 / fabs(lam[k]) : 0.0;
-    /* inv_ij = sum_k V_ik V_jk / |lambda_k|  (S is no longer needed) */
-    for (int i = 0; i < m; i++)
-        for (int j = i; j < m; j++) {
-            double sum = 0.0;
-            for (int k = 0; k < m; k++) sum += V[(size_t)i * m + k] * V[(size_t)j * m + k] * lam[k];
-            inv[(size_t)i * m + j] = sum;
+        int bj = k;
+        for (int j = k + 1; j < m; j++)
+            if (fabs(S[(size_t)j * m + j]) > fabs(S[(size_t)bj * m + bj])) bj = j;
+        const double bv = fabs(S[(size_t)bj * m + bj]);
+        if (k == 0) piv0 = bv;
+        if (!(bv > 1e-12 * piv0) || bv == 0.0) break;
+        if (bj != k) { /* symmetric swap of rows and columns k, bj */
+            for (int j = 0; j < m; j++) {
+                double t = S[(size_t)k * m + j];
+                S[(size_t)k * m + j] = S[(size_t)bj * m + j];
+                S[(size_t)bj * m + j] = t;
+            }
+            for (int i = 0; i < m; i++) {
+                double t = S[(size_t)i * m + k];
+                S[(size_t)i * m + k] = S[(size_t)i * m + bj];
+                S[(size_t)i * m + bj] = t;
+            }
+            int t = perm[k];
+            perm[k] = perm[bj];
+            perm[bj] = t;
         }
-    for (int i = 0; i < m; i++)
-        for (int j = 0; j < i; j++) inv[(size_t)i * m + j] = inv[(size_t)j * m + i];
-    free(lam);
+        /* d = s_kk;  l_ik = s_ik / d;  s_ij -= l_ik d l_jk  (i, j > k, lower part) */
+        const double d = S[(size_t)k * m + k];
+        for (int i = k + 1; i < m; i++) S[(size_t)i * m + k] /= d;
+        for (int i = k + 1; i < m; i++) {
+            const double lid = S[(size_t)i * m + k] * d;
+            if (lid == 0.0) continue;
+            for (int j = k + 1; j <= i; j++) S[(size_t)i * m + j] -= lid * S[(size_t)j * m + k];
+        }
+        /* keep the trailing block symmetric for the next pivot search and swaps */
+        for (int i = k + 1; i < m; i++)
+            for (int j = k + 1; j < i; j++) S[(size_t)j * m + i] = S[(size_t)i * m + j];
+        r = k + 1;
+    }
+    /* X = L11^-1 (unit lower triangular, r x r) into inv's lower part:
+     * column c: x_c = c, x_i = -sum_{c <= j < i} l_ij x_j */
+    for (size_t k = 0; k < (size_t)m * m; k++) inv[k] = 0.0;
+    for (int c = 0; c < r; c++) {
+        inv[(size_t)c * m + c] = 1.0;
+        for (int i = c + 1; i < r; i++) {
+            double sum = 0.0;
+            for (int j = c; j < i; j++) sum += S[(size_t)i * m + j] * inv[(size_t)j * m + c];
+            inv[(size_t)i * m + c] = -sum;
+        }
+    }
+    /* C = X^T |D|^-1 X (r x r, symmetric):  C_ij = sum_{k >= max(i,j)} x_ki x_kj / |d_k|;
+     * built in S's upper part (i <= j; S's strict lower part, L, is no longer
+     * needed after X), then scattered to inv through the permutation */
+    double *dinv = NULL;
+    glpgp_status st = glpgp_malloc((size_t)m + 1, sizeof(double), &dinv);
+    if (st != GLPGP_OK) {
+        free(perm);
+        return st;
+    }
+    for (int k = 0; k < r; k++) dinv[k] = 1.0 / fabs(S[(size_t)k * m + k]);
+    for (int i = 0; i < r; i++)
+        for (int j = i; j < r; j++) {
+            double sum = 0.0;
+            for (int k = j; k < r; k++) sum += inv[(size_t)k * m + i] * inv[(size_t)k * m + j] * dinv[k];
+            S[(size_t)i * m + j] = sum;
+        }
+    for (size_t k = 0; k < (size_t)m * m; k++) inv[k] = 0.0;
+    for (int i = 0; i < r; i++)
+        for (int j = i; j < r; j++) {
+            const double v = S[(size_t)i * m + j];
+            inv[(size_t)perm[i] * m + perm[j]] = v;
+            inv[(size_t)perm[j] * m + perm[i]] = v;
+        }
+    free(dinv);
+    free(perm);
     return GLPGP_OK;
 }
 
 /* glpgp_amg_update (spd = 0) and glpgp_amg_update_spd (spd = 1: the coarse
- * operator is |A_c|^+, see spd_inverse) */
+ * operator is symmetric PSD, see spd_inverse) */
 static glpgp_status update(glpgp_amg *a, const glpgp_vec *x, int spd)
 {
     glpgp_backend *b = a->b;

@@ -9,7 +9,7 @@
  *     with the multigrid (--precond amg) and o->tr_precond AMG (the
  *     default), M^-1 = the symmetric V-cycle of solver/amg.c
  *     (glpgp_amg_apply_spd): its hierarchy is built from the projected
- *     Hessian H_proj >= H (PSD; |A_c|^+ on the coarsest level), then H is
+ *     Hessian H_proj >= H (PSD; a symmetric PSD inverse on the coarsest level), then H is
  *     assembled, so the cycle is a fixed SPD operator whatever H's inertia,
  *     and the region is measured in the norm of H_proj's multigrid
  *     approximation. The low-frequency directions (vortex drift, the
@@ -192,7 +192,7 @@ static glpgp_status tr_direction(glpgp_backend *b, const glpgp_options *o, glpgp
     for (;;) {
         const int psd = hess == GLPGP_HESS_PROJECTED || hess == GLPGP_HESS_PAPER;
         if (mg) {
-            /* hierarchy from H_proj >= H (values, frames from x, |A_c|^+) */
+            /* hierarchy from H_proj >= H (values, frames from x, SPD coarse inverse) */
             GLPGP_CHECK(op->assemble_newton(b, ns->x, inv4e2, psd ? hess : GLPGP_HESS_PROJECTED));
             if (!glpgp_amg_try_update_spd(ns->amg, ns->x, "trust-region step")) {
                 ns->amg = NULL;

@@ -361,8 +361,9 @@ void glpgp_amg_destroy(glpgp_amg **a);
 glpgp_status glpgp_amg_update(glpgp_amg *a, const glpgp_vec *x);
 
 /* glpgp_amg_update for glpgp_amg_apply_spd: the same values, but the
- * coarsest operator is |A_c|^+ (symmetric part, eigenvalues by their
- * absolute value, generalised inverse) instead of the LU inverse, so that the
+ * coarsest operator is a symmetric positive semi-definite generalised
+ * inverse (symmetric part, pivoted L D L^T, |D|^-1: the inverse for a
+ * nonsingular PSD A_c) instead of the LU inverse, so that the
  * symmetric V-cycle is a fixed symmetric positive (semi-)definite operator.
  * The trust region calls it with a positive semi-definite NEWTON (the
  * projected Hessian) and then reassembles the exact one. */
