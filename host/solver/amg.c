@@ -793,7 +793,7 @@ static glpgp_status dense_inverse(int m, const double *A, double *inv, double *l
 }
 
 /* inv <- a symmetric positive semi-definite generalised inverse of the
- * m x m matrix A (row-major), for the symmetric V-cycle's coarse solve: with
+ * m x m matrix A (row-major), for the symmetric cycle's coarse solve: with
  * A_s = (A + A^T)/2, symmetric pivoted LDL^T (the largest remaining |d| on
  * the diagonal first: P A_s P^T = L D L^T, stable for the positive
  * semi-definite coarse matrices of the projected Hessian; pivots below
@@ -939,8 +939,10 @@ static glpgp_amg_coef ratio(int num, int den, double sign)
 static glpgp_status cycle(glpgp_amg *a, int l, const glpgp_vec *r, glpgp_vec *out, int sym);
 
 
-/* e[c] <- approximate solution of A_c e = b[c]; sym: the symmetric V-cycle
- * of glpgp_amg_apply_spd (plain visits below, whatever the layout's cycle) */
+/* e[c] <- approximate solution of A_c e = b[c]; sym: the symmetric cycle
+ * of glpgp_amg_apply_spd (a W-visit where the layout has a K-cycle, a plain
+ * visit elsewhere; never the backend's fused coarse correction unless the
+ * layout is itself a symmetric V-cycle) */
 static glpgp_status coarse_correction(glpgp_amg *a, int c, int sym)
 {
     glpgp_backend *b = a->b;
@@ -953,6 +955,21 @@ static glpgp_status coarse_correction(glpgp_amg *a, int c, int sym)
         if (done) return GLPGP_OK;
     }
     if (c == a->L - 1) return op->amg_coarse_solve(b, lv->b, lv->e);
+    if (sym && kcycle_level(a, c)) {
+        /* symmetric cycle on a K-cycle level: a W-visit, two stationary
+         * steps of the cycle on c (fixed and symmetric, unlike the K-cycle's
+         * Krylov steps; positive definite when B_c A_c < 2, which holds on
+         * the positive semi-definite hierarchy of glpgp_amg_update_spd):
+         *   e = B b;  r2 = b - A e;  d = B r2;  e <- e + d   (e = (2B - BAB) b) */
+        const int S = GLPGP_AMG_KSLOT(c);
+        const glpgp_amg_coef MINUS = {-1, -1, -1.0};
+        GLPGP_CHECK(cycle(a, c, lv->b, lv->e, 1));
+        GLPGP_CHECK(op->amg_spmv_dots(b, c, lv->e, lv->w, NULL, NULL, S));
+        GLPGP_CHECK(op->amg_axpby(b, ONE, lv->b, ZERO, lv->r2));
+        GLPGP_CHECK(op->amg_axpby(b, MINUS, lv->w, ONE, lv->r2));
+        GLPGP_CHECK(cycle(a, c, lv->r2, lv->d, 1));
+        return op->amg_axpby(b, ONE, lv->d, ONE, lv->e);
+    }
     if (sym || !kcycle_level(a, c)) return cycle(a, c, lv->b, lv->e, sym);
     /* K-cycle: two flexible-CG steps on A_c, preconditioned by the cycle on c
      *   v = B b;  w = A v;  rho1 = v.w;  alpha1 = v.b;  r2 = b - (alpha1/rho1) w
@@ -971,8 +988,8 @@ static glpgp_status coarse_correction(glpgp_amg *a, int c, int sym)
 /* out <- B_l r on level l < L-1: `pre` sweeps of l1-Jacobi from 0 (none:
  * x = 0), coarse correction, `post` sweeps. The iterate alternates between
  * tmp and out, starting so that the last write lands in out.
- * sym: max(pre, post) sweeps before and after, plain visits on every level
- * (the symmetric V-cycle of glpgp_amg_apply_spd). */
+ * sym: max(pre, post) sweeps before and after, W- or plain visits below
+ * (the symmetric cycle of glpgp_amg_apply_spd). */
 static glpgp_status cycle(glpgp_amg *a, int l, const glpgp_vec *r, glpgp_vec *out, int sym)
 {
     glpgp_backend *b = a->b;

@@ -38,7 +38,7 @@ typedef struct glpgp_trcg_info {
 
 /* Steihaug-Toint truncated PCG on the backend's NEWTON matrix A (need not be
  * positive definite) with the block-Jacobi preconditioner M (DINV), or, mg
- * not NULL, M^-1 = the symmetric V-cycle glpgp_amg_apply_spd of mg (updated
+ * not NULL, M^-1 = the symmetric multigrid cycle glpgp_amg_apply_spd of mg (updated
  * by glpgp_amg_update_spd): x
  * approximately minimises -rhs.x + 1/2 x.A x subject to ||x||_M <= radius
  * (radius <= 0 or infinite: no region). Starts from x = 0; stops at

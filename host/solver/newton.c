@@ -7,7 +7,7 @@
  *   d ~ argmin g.d + 1/2 d.H d over ||d||_M <= radius by Steihaug-Toint CG
  *     (solver/steihaug.c, inexact-Newton tolerance); M = block Jacobi, or,
  *     with the multigrid (--precond amg) and o->tr_precond AMG (the
- *     default), M^-1 = the symmetric V-cycle of solver/amg.c
+ *     default), M^-1 = the symmetric multigrid cycle of solver/amg.c
  *     (glpgp_amg_apply_spd): its hierarchy is built from the projected
  *     Hessian H_proj >= H (PSD; a symmetric PSD inverse on the coarsest level), then H is
  *     assembled, so the cycle is a fixed SPD operator whatever H's inertia,
@@ -29,7 +29,7 @@
  *   (the last step was an interior Steihaug step with rho >= tr_poor, or an
  *   accepted multigrid step; never the first step of a level), the inexact
  *   Newton step by flexible CG with the K-cycle (fewer iterations than the
- *   V-cycle) is tried first and kept when its full step has rho >= tr_poor;
+ *   symmetric cycle) is tried first and kept when its full step has rho >= tr_poor;
  *   otherwise (FCG breakdown, cap, poor rho) the Steihaug step. Measured and
  *   rejected: trying the multigrid step at every step converged to saddle
  *   states (disk 4k, h = 10 edges: +3/-3 singularities, E 32.8 vs 25.4):
@@ -176,7 +176,7 @@ static int tr_hessian(const glpgp_options *o)
  * Multigrid region (ns->amg and o->tr_precond AMG): the hierarchy is built
  * (glpgp_amg_update_spd) from the projected Hessian, which is positive
  * semi-definite and bounds the exact one from above, then the trust region's
- * Hessian is assembled: the symmetric V-cycle is then SPD (glpgp_amg_apply_spd)
+ * Hessian is assembled: the symmetric cycle is then SPD (glpgp_amg_apply_spd)
  * and its norm the region's. With the projected or paper Hessian one
  * assembly serves both. Block-Jacobi region: the Hessian falls back exact ->
  * mixed -> projected when a diagonal block is indefinite (M is then no
@@ -207,7 +207,7 @@ static glpgp_status tr_direction(glpgp_backend *b, const glpgp_options *o, glpgp
         info->cg += ti->iterations;
         info->cg_capped += ti->reason == GLPGP_TRCG_MAXIT;
         if (ti->reason != GLPGP_TRCG_PRECOND) return GLPGP_OK;
-        if (mg) { /* the V-cycle was not SPD: block-Jacobi region */
+        if (mg) { /* the cycle was not SPD: block-Jacobi region */
             mg = 0;
             info->fallbacks++;
             continue;

@@ -2,13 +2,13 @@
  * gradient of the trust-region Newton step, written once against the
  * backend table: with the same fused Jacobi ops as the project's CG
  * (solver/cg.c: cg_precond, cg_spmv_dot, cg_update, cg_direction), or with
- * the multigrid ops (amg_*: the symmetric V-cycle of solver/amg.c as the
+ * the multigrid ops (amg_*: the symmetric multigrid cycle of solver/amg.c as the
  * preconditioner), so it works unchanged on every backend.
  *
  * It approximately minimises the model m(d) = -b.d + 1/2 d.A d (A = the
  * backend's NEWTON matrix, b = rhs) inside the trust region ||d||_M <= radius,
  * M = the block-Jacobi preconditioner (the 2x2 diagonal blocks of A, whose
- * inverses DINV the backend holds), or M = B^-1 with B the symmetric V-cycle
+ * inverses DINV the backend holds), or M = B^-1 with B the symmetric multigrid cycle
  * glpgp_amg_apply_spd (a fixed SPD operator when its hierarchy was built from
  * a positive semi-definite Hessian above A: glpgp_amg_update_spd; the
  * multigrid path needs only B r, never M itself: the recurrences below use

@@ -12,7 +12,7 @@
  *    with the fused small-level kernel and without it (GLPGP_CL_AMG_FUSE=0);
  *  - refine: CG iterations per Newton step on the same disk and h at about
  *    16k and 64k vertices: ratio <= 1.5 with multigrid on OpenCL;
- *  - spd: the trust region's symmetric V-cycle (glpgp_amg_update_spd on
+ *  - spd: the trust region's symmetric cycle (glpgp_amg_update_spd on
  *    the projected Hessian at a vortex, the exact Hessian assembled, then
  *    glpgp_amg_apply_spd; every level through the driver) equals the
  *    reference backend's on random vectors and is symmetric on OpenCL;
@@ -320,7 +320,7 @@ static void test_spd(void)
             yx += hv[1][i] * hc[0][i];
             xx += hv[0][i] * hc[0][i];
         }
-        printf("spd: symmetric V-cycle OpenCL vs reference max |diff| / max |Bv| = %.3g, "
+        printf("spd: symmetric cycle OpenCL vs reference max |diff| / max |Bv| = %.3g, "
                "OpenCL |x.By - y.Bx| / x.Bx = %.3g, x.Bx = %.6g\n", dmax / nmax, fabs(xy - yx) / xx, xx);
         CHECK(nmax > 0.0 && dmax <= 1e-10 * nmax);
         CHECK(fabs(xy - yx) <= 1e-12 * xx);

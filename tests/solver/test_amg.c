@@ -13,7 +13,7 @@
  *    failure; a backend without the ops gives Jacobi with one warning;
  *  - indefinite: the exact Hessian at a vortex ansatz does not break it
  *    (converged with a true residual, or a reported breakdown);
- *  - spd: the trust region's symmetric V-cycle (glpgp_amg_update_spd on the
+ *  - spd: the trust region's symmetric cycle (glpgp_amg_update_spd on the
  *    projected Hessian at a vortex, then the exact, indefinite Hessian
  *    assembled) is a fixed linear operator, symmetric (x.By = y.Bx) and
  *    positive definite (x.Bx > 0) on random vectors; the K-cycle is not
@@ -471,7 +471,7 @@ static void test_spd(void)
         }
         printf("spd: %s at a vortex (exact Hessian, hierarchy from the projected one): "
                "linearity %.2e, asymmetry |x.By - y.Bx| / sqrt(x.Bx y.By) %.2e, min x.Bx / x.x %.3e\n",
-               kcycle ? "K-cycle (flexible CG)" : "symmetric V-cycle", lin, asym, minq);
+               kcycle ? "K-cycle (flexible CG)" : "symmetric cycle", lin, asym, minq);
         if (!kcycle) {
             CHECK(lin <= 1e-12);
             CHECK(asym <= 1e-12);

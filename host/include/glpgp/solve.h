@@ -99,7 +99,7 @@ typedef struct glpgp_options {
     double tr_grow;       /* ... multiplies the radius by this, > 1 [2] */
     int tr_precond;       /* trust region, with precond AMG: the Steihaug-Toint CG's
                              preconditioner and norm, GLPGP_PRECOND_JACOBI (block Jacobi)
-                             or _AMG (the symmetric V-cycle of glpgp_amg_apply_spd on
+                             or _AMG (the symmetric multigrid cycle of glpgp_amg_apply_spd on
                              the projected Hessian) [AMG] */
     int tr_lookahead;     /* 1: where the Steihaug path leaves the region, CG goes on to the
                              inexact Newton step and tries it first (kept when its rho >=
@@ -283,7 +283,7 @@ typedef struct glpgp_newton_step_info {
  * whose values are rebuilt from the new matrix and x), backtrack on E + P,
  * update x. Trust region: assemble the exact Hessian, Steihaug-CG in the
  * region s->radius (preconditioner and norm: block Jacobi, or with s->amg
- * and o->tr_precond AMG the symmetric V-cycle built on the projected
+ * and o->tr_precond AMG the symmetric multigrid cycle built on the projected
  * Hessian, glpgp_amg_apply_spd: Steihaug-Toint needs a fixed SPD
  * preconditioner, the K-cycle is not one; with s->amg and s->inside, the
  * region inactive, first the K-cycle FCG inexact Newton step, kept when its
@@ -364,7 +364,8 @@ glpgp_status glpgp_amg_update(glpgp_amg *a, const glpgp_vec *x);
  * coarsest operator is a symmetric positive semi-definite generalised
  * inverse (symmetric part, pivoted L D L^T, |D|^-1: the inverse for a
  * nonsingular PSD A_c) instead of the LU inverse, so that the
- * symmetric V-cycle is a fixed symmetric positive (semi-)definite operator.
+ * symmetric cycle (glpgp_amg_apply_spd) is a fixed symmetric positive
+ * (semi-)definite operator.
  * The trust region calls it with a positive semi-definite NEWTON (the
  * projected Hessian) and then reassembles the exact one. */
 glpgp_status glpgp_amg_update_spd(glpgp_amg *a, const glpgp_vec *x);
@@ -376,14 +377,17 @@ void glpgp_amg_get_info(const glpgp_amg *a, glpgp_amg_info *info);
  * z = 0 on level 0; r, z: 2*nv on the device). For tests. */
 glpgp_status glpgp_amg_apply(glpgp_amg *a, const glpgp_vec *r, glpgp_vec *z);
 
-/* z <- B r by the symmetric V-cycle: max(amg_pre, amg_post) l1-Jacobi sweeps
- * before and after each coarse correction, plain visits on every level (no
- * K-cycle), the coarsest operator of the last update. B is a fixed linear
- * operator, symmetric when the coarsest operator is (glpgp_amg_update_spd),
- * and positive definite when in addition 2 M_l / w - A_l > 0 on every level
- * (l1-Jacobi with w < 2 on a positive semi-definite hierarchy; level 0's
- * A may then be any symmetric matrix below the one the hierarchy was built
- * from). The preconditioner and norm of the trust region's Steihaug-Toint
+/* z <- B r by the symmetric multigrid cycle: max(amg_pre, amg_post)
+ * l1-Jacobi sweeps before and after each coarse correction; where the
+ * K-cycle would make two Krylov steps on a coarse level (amg_cycle,
+ * amg_kcycle_min) a W-visit instead (two stationary steps of the cycle
+ * there: e = (2 B_c - B_c A_c B_c) b), elsewhere a plain visit; the
+ * coarsest operator of the last update. B is a fixed linear operator,
+ * symmetric when the coarsest operator is (glpgp_amg_update_spd), and
+ * positive definite when in addition 2 M_l / w - A_l > 0 on every level and
+ * the coarse levels are positive semi-definite (l1-Jacobi with w < 2 on the
+ * hierarchy of a positive semi-definite matrix; level 0's A may then be any
+ * symmetric matrix below the one the hierarchy was built from). The preconditioner and norm of the trust region's Steihaug-Toint
  * CG (glpgp_options.tr_precond). */
 glpgp_status glpgp_amg_apply_spd(glpgp_amg *a, const glpgp_vec *r, glpgp_vec *z);
 
