@@ -15,7 +15,7 @@
  *     approximation. The low-frequency directions (vortex drift, the
  *     indefinite direction at a new eps level) are short in that norm: the
  *     region CG finds them in a few iterations where block Jacobi needed
- *     hundreds (square 1M: 255 instead of 1501 CG for the whole solve);
+ *     hundreds (square 1M: 118 instead of 1501 CG for the whole solve);
  *     with o->tr_lookahead the CG goes on past the boundary to the Newton
  *     step, which is tried first;
  *   trial points x (+) a d: a polar update outside vortex cores (phase
