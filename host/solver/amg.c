@@ -106,6 +106,9 @@ struct glpgp_amg {
     int *perm_r, *perm_c;
     glpgp_vec *r, *z, *p, *q;  /* flexible CG */
     int has_phase;
+    int layout_sym;            /* the layout's cycle is a symmetric V-cycle (pre = post, no
+                                  K-cycle level): the backend's coarse corrections serve
+                                  glpgp_amg_apply_spd too */
     int warned;                /* the Jacobi fallback of glpgp_linear_solve was logged */
     glpgp_amg_info info;
 };
@@ -611,7 +614,11 @@ glpgp_status glpgp_amg_create(glpgp_backend *b, const glpgp_options *o, const un
     lay.weight = o->amg_weight;
     lay.pre = a->pre;
     lay.post = a->post;
-    for (int l = 1; l + 1 < L; l++) lay.kcycle[l] = (unsigned char)kcycle_level(a, l);
+    a->layout_sym = a->pre == a->post;
+    for (int l = 1; l + 1 < L; l++) {
+        lay.kcycle[l] = (unsigned char)kcycle_level(a, l);
+        if (lay.kcycle[l]) a->layout_sym = 0;
+    }
     for (int l = 0; l < L; l++) {
         amg_level *lv = &a->lev[l];
         glpgp_amg_level *d = &lay.lev[l];
@@ -785,7 +792,108 @@ static glpgp_status dense_inverse(int m, const double *A, double *inv, double *l
     return GLPGP_OK;
 }
 
-glpgp_status glpgp_amg_update(glpgp_amg *a, const glpgp_vec *x)
+/* inv <- a symmetric positive semi-definite generalised inverse of the
+ * m x m matrix A (row-major), for the symmetric cycle's coarse solve: with
+ * A_s = (A + A^T)/2, symmetric pivoted LDL^T (the largest remaining |d| on
+ * the diagonal first: P A_s P^T = L D L^T, stable for the positive
+ * semi-definite coarse matrices of the projected Hessian; pivots below
+ * 1e-12 of the first end it at rank r), then
+ *   inv = P^T [L11^-T |D|^-1 L11^-1, 0; 0, 0] P
+ * (the components beyond r set to 0, as dense_inverse does). Symmetric by
+ * construction (entry (j, i) is written as entry (i, j)) and positive
+ * semi-definite whatever the signs of D; for a nonsingular PSD A it is A^-1.
+ * O(m^3) like dense_inverse. S: m*m work (overwritten). Fails on non-finite
+ * entries. */
+static glpgp_status spd_inverse(int m, const double *A, double *inv, double *S)
+{
+    int *perm = NULL;
+    for (size_t k = 0; k < (size_t)m * m; k++)
+        if (!isfinite(A[k])) return GLPGP_FAIL(GLPGP_ERR_NUMERIC, "multigrid: coarsest matrix is not finite");
+    GLPGP_CHECK(glpgp_malloc((size_t)m + 1, sizeof(int), &perm));
+    for (int i = 0; i < m; i++) {
+        perm[i] = i;
+        for (int j = 0; j < m; j++) S[(size_t)i * m + j] = 0.5 * (A[(size_t)i * m + j] + A[(size_t)j * m + i]);
+    }
+    /* P A_s P^T = L D L^T: l_ik in S's lower part (i > k), d_k on its diagonal */
+    int r = 0;
+    double piv0 = 0.0;
+    for (int k = 0; k < m; k++) {
+        int bj = k;
+        for (int j = k + 1; j < m; j++)
+            if (fabs(S[(size_t)j * m + j]) > fabs(S[(size_t)bj * m + bj])) bj = j;
+        const double bv = fabs(S[(size_t)bj * m + bj]);
+        if (k == 0) piv0 = bv;
+        if (!(bv > 1e-12 * piv0) || bv == 0.0) break;
+        if (bj != k) { /* symmetric swap of rows and columns k, bj */
+            for (int j = 0; j < m; j++) {
+                double t = S[(size_t)k * m + j];
+                S[(size_t)k * m + j] = S[(size_t)bj * m + j];
+                S[(size_t)bj * m + j] = t;
+            }
+            for (int i = 0; i < m; i++) {
+                double t = S[(size_t)i * m + k];
+                S[(size_t)i * m + k] = S[(size_t)i * m + bj];
+                S[(size_t)i * m + bj] = t;
+            }
+            int t = perm[k];
+            perm[k] = perm[bj];
+            perm[bj] = t;
+        }
+        /* d = s_kk;  l_ik = s_ik / d;  s_ij -= l_ik d l_jk  (i, j > k, lower part) */
+        const double d = S[(size_t)k * m + k];
+        for (int i = k + 1; i < m; i++) S[(size_t)i * m + k] /= d;
+        for (int i = k + 1; i < m; i++) {
+            const double lid = S[(size_t)i * m + k] * d;
+            if (lid == 0.0) continue;
+            for (int j = k + 1; j <= i; j++) S[(size_t)i * m + j] -= lid * S[(size_t)j * m + k];
+        }
+        /* keep the trailing block symmetric for the next pivot search and swaps */
+        for (int i = k + 1; i < m; i++)
+            for (int j = k + 1; j < i; j++) S[(size_t)j * m + i] = S[(size_t)i * m + j];
+        r = k + 1;
+    }
+    /* X = L11^-1 (unit lower triangular, r x r) into inv's lower part:
+     * column c: x_c = c, x_i = -sum_{c <= j < i} l_ij x_j */
+    for (size_t k = 0; k < (size_t)m * m; k++) inv[k] = 0.0;
+    for (int c = 0; c < r; c++) {
+        inv[(size_t)c * m + c] = 1.0;
+        for (int i = c + 1; i < r; i++) {
+            double sum = 0.0;
+            for (int j = c; j < i; j++) sum += S[(size_t)i * m + j] * inv[(size_t)j * m + c];
+            inv[(size_t)i * m + c] = -sum;
+        }
+    }
+    /* C = X^T |D|^-1 X (r x r, symmetric):  C_ij = sum_{k >= max(i,j)} x_ki x_kj / |d_k|;
+     * built in S's upper part (i <= j; S's strict lower part, L, is no longer
+     * needed after X), then scattered to inv through the permutation */
+    double *dinv = NULL;
+    glpgp_status st = glpgp_malloc((size_t)m + 1, sizeof(double), &dinv);
+    if (st != GLPGP_OK) {
+        free(perm);
+        return st;
+    }
+    for (int k = 0; k < r; k++) dinv[k] = 1.0 / fabs(S[(size_t)k * m + k]);
+    for (int i = 0; i < r; i++)
+        for (int j = i; j < r; j++) {
+            double sum = 0.0;
+            for (int k = j; k < r; k++) sum += inv[(size_t)k * m + i] * inv[(size_t)k * m + j] * dinv[k];
+            S[(size_t)i * m + j] = sum;
+        }
+    for (size_t k = 0; k < (size_t)m * m; k++) inv[k] = 0.0;
+    for (int i = 0; i < r; i++)
+        for (int j = i; j < r; j++) {
+            const double v = S[(size_t)i * m + j];
+            inv[(size_t)perm[i] * m + perm[j]] = v;
+            inv[(size_t)perm[j] * m + perm[i]] = v;
+        }
+    free(dinv);
+    free(perm);
+    return GLPGP_OK;
+}
+
+/* glpgp_amg_update (spd = 0) and glpgp_amg_update_spd (spd = 1: the coarse
+ * operator is symmetric PSD, see spd_inverse) */
+static glpgp_status update(glpgp_amg *a, const glpgp_vec *x, int spd)
 {
     glpgp_backend *b = a->b;
     const glpgp_backend_ops *op = b->ops;
@@ -802,7 +910,10 @@ glpgp_status glpgp_amg_update(glpgp_amg *a, const glpgp_vec *x)
     const double t1 = glpgp_now();
     GLPGP_CHECK(op->amg_coarse_read(b, a->dense));
     b->n_sync++;
-    GLPGP_CHECK(dense_inverse(a->m, a->dense, a->inv, a->work, a->perm_r, a->perm_c));
+    if (spd)
+        GLPGP_CHECK(spd_inverse(a->m, a->dense, a->inv, a->work));
+    else
+        GLPGP_CHECK(dense_inverse(a->m, a->dense, a->inv, a->work, a->perm_r, a->perm_c));
     GLPGP_CHECK(op->amg_coarse_set(b, a->inv));
     const double t2 = glpgp_now();
     a->info.seconds_values += t2 - t0;
@@ -810,6 +921,10 @@ glpgp_status glpgp_amg_update(glpgp_amg *a, const glpgp_vec *x)
     a->info.updates++;
     return GLPGP_OK;
 }
+
+glpgp_status glpgp_amg_update(glpgp_amg *a, const glpgp_vec *x) { return update(a, x, 0); }
+
+glpgp_status glpgp_amg_update_spd(glpgp_amg *a, const glpgp_vec *x) { return update(a, x, 1); }
 
 /* ---- the cycle ---------------------------------------------------------- */
 
@@ -821,53 +936,75 @@ static glpgp_amg_coef ratio(int num, int den, double sign)
     return c;
 }
 
-static glpgp_status cycle(glpgp_amg *a, int l, const glpgp_vec *r, glpgp_vec *out);
+static glpgp_status cycle(glpgp_amg *a, int l, const glpgp_vec *r, glpgp_vec *out, int sym);
 
 
-/* e[c] <- approximate solution of A_c e = b[c] */
-static glpgp_status coarse_correction(glpgp_amg *a, int c)
+/* e[c] <- approximate solution of A_c e = b[c]; sym: the symmetric cycle
+ * of glpgp_amg_apply_spd (a W-visit where the layout has a K-cycle, a plain
+ * visit elsewhere; never the backend's fused coarse correction unless the
+ * layout is itself a symmetric V-cycle) */
+static glpgp_status coarse_correction(glpgp_amg *a, int c, int sym)
 {
     glpgp_backend *b = a->b;
     const glpgp_backend_ops *op = b->ops;
     amg_level *lv = &a->lev[c];
-    if (op->amg_coarse_correction) {
+    if (op->amg_coarse_correction && (!sym || a->layout_sym)) {
         /* the backend may run this level and all below itself (same sequence) */
         int done = 0;
         GLPGP_CHECK(op->amg_coarse_correction(b, c, lv->b, lv->e, &done));
         if (done) return GLPGP_OK;
     }
     if (c == a->L - 1) return op->amg_coarse_solve(b, lv->b, lv->e);
-    if (!kcycle_level(a, c)) return cycle(a, c, lv->b, lv->e);
+    if (sym && kcycle_level(a, c)) {
+        /* symmetric cycle on a K-cycle level: a W-visit, two stationary
+         * steps of the cycle on c (fixed and symmetric, unlike the K-cycle's
+         * Krylov steps; positive definite when B_c A_c < 2, which holds on
+         * the positive semi-definite hierarchy of glpgp_amg_update_spd):
+         *   e = B b;  r2 = b - A e;  d = B r2;  e <- e + d   (e = (2B - BAB) b) */
+        const int S = GLPGP_AMG_KSLOT(c);
+        const glpgp_amg_coef MINUS = {-1, -1, -1.0};
+        GLPGP_CHECK(cycle(a, c, lv->b, lv->e, 1));
+        GLPGP_CHECK(op->amg_spmv_dots(b, c, lv->e, lv->w, NULL, NULL, S));
+        GLPGP_CHECK(op->amg_axpby(b, ONE, lv->b, ZERO, lv->r2));
+        GLPGP_CHECK(op->amg_axpby(b, MINUS, lv->w, ONE, lv->r2));
+        GLPGP_CHECK(cycle(a, c, lv->r2, lv->d, 1));
+        return op->amg_axpby(b, ONE, lv->d, ONE, lv->e);
+    }
+    if (sym || !kcycle_level(a, c)) return cycle(a, c, lv->b, lv->e, sym);
     /* K-cycle: two flexible-CG steps on A_c, preconditioned by the cycle on c
      *   v = B b;  w = A v;  rho1 = v.w;  alpha1 = v.b;  r2 = b - (alpha1/rho1) w
      *   d = B r2; wd = A d; beta = d.wd; gamma = d.w;   alpha2 = d.r2
      *   e = combination of v and d (amg_kcombine) */
     const int S = GLPGP_AMG_KSLOT(c);
-    GLPGP_CHECK(cycle(a, c, lv->b, lv->v));
+    GLPGP_CHECK(cycle(a, c, lv->b, lv->v, 0));
     GLPGP_CHECK(op->amg_spmv_dots(b, c, lv->v, lv->w, lv->b, NULL, S));
     GLPGP_CHECK(op->amg_axpby(b, ONE, lv->b, ZERO, lv->r2));
     GLPGP_CHECK(op->amg_axpby(b, ratio(S + 1, S, -1.0), lv->w, ONE, lv->r2));
-    GLPGP_CHECK(cycle(a, c, lv->r2, lv->d));
+    GLPGP_CHECK(cycle(a, c, lv->r2, lv->d, 0));
     GLPGP_CHECK(op->amg_spmv_dots(b, c, lv->d, lv->wd, lv->w, lv->r2, S + 2));
     return op->amg_kcombine(b, lv->v, lv->d, lv->e, S);
 }
 
 /* out <- B_l r on level l < L-1: `pre` sweeps of l1-Jacobi from 0 (none:
  * x = 0), coarse correction, `post` sweeps. The iterate alternates between
- * tmp and out, starting so that the last write lands in out. */
-static glpgp_status cycle(glpgp_amg *a, int l, const glpgp_vec *r, glpgp_vec *out)
+ * tmp and out, starting so that the last write lands in out.
+ * sym: max(pre, post) sweeps before and after, W- or plain visits below
+ * (the symmetric cycle of glpgp_amg_apply_spd). */
+static glpgp_status cycle(glpgp_amg *a, int l, const glpgp_vec *r, glpgp_vec *out, int sym)
 {
     glpgp_backend *b = a->b;
     const glpgp_backend_ops *op = b->ops;
     amg_level *lv = &a->lev[l];
     glpgp_vec *buf[2] = {lv->tmp, out};
-    const int writes = (a->pre > 0 ? a->pre : 1) + a->post;
+    const int nu = a->pre > a->post ? a->pre : a->post;
+    const int pre = sym ? nu : a->pre, post = sym ? nu : a->post;
+    const int writes = (pre > 0 ? pre : 1) + post;
     int k = writes % 2; /* buf[k] receives the first write */
     glpgp_vec *cur = buf[k];
-    if (a->pre > 0) {
+    if (pre > 0) {
         /* x <- M^-1 r, then x <- x + M^-1 (r - A x) */
         GLPGP_CHECK(op->amg_smooth(b, l, r, NULL, cur));
-        for (int s = 1; s < a->pre; s++) {
+        for (int s = 1; s < pre; s++) {
             k ^= 1;
             GLPGP_CHECK(op->amg_smooth(b, l, r, cur, buf[k]));
             cur = buf[k];
@@ -880,9 +1017,9 @@ static glpgp_status cycle(glpgp_amg *a, int l, const glpgp_vec *r, glpgp_vec *ou
         GLPGP_CHECK(op->amg_restrict(b, l, r, NULL, a->lev[l + 1].b));
     }
     /* e_{l+1} ~ A_{l+1}^-1 b_{l+1};  x <- x + P e */
-    GLPGP_CHECK(coarse_correction(a, l + 1));
+    GLPGP_CHECK(coarse_correction(a, l + 1, sym));
     GLPGP_CHECK(op->amg_prolong(b, l, a->lev[l + 1].e, cur));
-    for (int s = 0; s < a->post; s++) {
+    for (int s = 0; s < post; s++) {
         k ^= 1;
         GLPGP_CHECK(op->amg_smooth(b, l, r, cur, buf[k]));
         cur = buf[k];
@@ -892,7 +1029,12 @@ static glpgp_status cycle(glpgp_amg *a, int l, const glpgp_vec *r, glpgp_vec *ou
 
 glpgp_status glpgp_amg_apply(glpgp_amg *a, const glpgp_vec *r, glpgp_vec *z)
 {
-    return cycle(a, 0, r, z);
+    return cycle(a, 0, r, z, 0);
+}
+
+glpgp_status glpgp_amg_apply_spd(glpgp_amg *a, const glpgp_vec *r, glpgp_vec *z)
+{
+    return cycle(a, 0, r, z, 1);
 }
 
 /* ---- flexible CG -------------------------------------------------------- */
@@ -925,7 +1067,7 @@ static glpgp_status fcg_run(glpgp_amg *a, const glpgp_vec *rhs, glpgp_vec *x, do
     double rel = 1.0;
     for (k = 1; k <= maxit; k++) {
         /* z <- B r;  p <- z - (z.q / p.q) p  (q = A p of the previous step) */
-        GLPGP_CHECK(cycle(a, 0, r, z));
+        GLPGP_CHECK(cycle(a, 0, r, z, 0));
         if (k == 1) {
             GLPGP_CHECK(op->amg_axpby(b, ONE, z, ZERO, p));
         } else {
@@ -1005,6 +1147,8 @@ glpgp_status glpgp_linear_solve(glpgp_backend *b, glpgp_amg *a, const glpgp_vec 
     return GLPGP_OK;
 }
 
+static int glpgp_amg_try_update_mode(glpgp_amg *a, const glpgp_vec *x, int spd, const char *what);
+
 glpgp_amg *glpgp_amg_try_create(glpgp_backend *b, const glpgp_options *o, const unsigned char *dir,
                                 const double *w, double h, const char *what)
 {
@@ -1027,7 +1171,17 @@ glpgp_amg *glpgp_amg_try_create(glpgp_backend *b, const glpgp_options *o, const 
 
 int glpgp_amg_try_update(glpgp_amg *a, const glpgp_vec *x, const char *what)
 {
-    if (glpgp_amg_update(a, x) == GLPGP_OK) return 1;
+    return glpgp_amg_try_update_mode(a, x, 0, what);
+}
+
+int glpgp_amg_try_update_spd(glpgp_amg *a, const glpgp_vec *x, const char *what)
+{
+    return glpgp_amg_try_update_mode(a, x, 1, what);
+}
+
+static int glpgp_amg_try_update_mode(glpgp_amg *a, const glpgp_vec *x, int spd, const char *what)
+{
+    if (update(a, x, spd) == GLPGP_OK) return 1;
     glpgp_log(GLPGP_LOG_WARNING, "%s: multigrid setup failed (%s); using Jacobi-PCG", what,
               glpgp_error_message());
     glpgp_error_clear();

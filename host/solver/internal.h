@@ -22,7 +22,7 @@ typedef enum glpgp_trcg_reason {
     GLPGP_TRCG_BOUNDARY,      /* the CG path left the region: cut at its boundary */
     GLPGP_TRCG_NEGCURV,       /* p.Ap <= 0: followed p to the boundary (or, without a
                                  region, the last iterate / p_0) */
-    GLPGP_TRCG_PRECOND        /* r.z <= 0: the block-Jacobi preconditioner is not SPD;
+    GLPGP_TRCG_PRECOND        /* r.z <= 0: the preconditioner is not SPD;
                                  the last iterate is returned, use a safer Hessian */
 } glpgp_trcg_reason;
 
@@ -37,7 +37,9 @@ typedef struct glpgp_trcg_info {
 } glpgp_trcg_info;
 
 /* Steihaug-Toint truncated PCG on the backend's NEWTON matrix A (need not be
- * positive definite) with the block-Jacobi preconditioner M (DINV): x
+ * positive definite) with the block-Jacobi preconditioner M (DINV), or, mg
+ * not NULL, M^-1 = the symmetric multigrid cycle glpgp_amg_apply_spd of mg (updated
+ * by glpgp_amg_update_spd): x
  * approximately minimises -rhs.x + 1/2 x.A x subject to ||x||_M <= radius
  * (radius <= 0 or infinite: no region). Starts from x = 0; stops at
  * |r| <= rtol |rhs|, on the boundary, on negative curvature (p.Ap <= 0) or
@@ -46,8 +48,8 @@ typedef struct glpgp_trcg_info {
  * Uses the fused CG ops of the backend table and
  * creates its four work vectors inside; reads the scalars back once per
  * iteration. Errors: backend failures, non-finite values. */
-glpgp_status glpgp_trcg(glpgp_backend *b, const glpgp_vec *rhs, glpgp_vec *x, double radius,
-                        double rtol, int maxit, glpgp_vec *xb, glpgp_trcg_info *info);
+glpgp_status glpgp_trcg(glpgp_backend *b, glpgp_amg *mg, const glpgp_vec *rhs, glpgp_vec *x,
+                        double radius, double rtol, int maxit, glpgp_vec *xb, glpgp_trcg_info *info);
 const char *glpgp_trcg_reason_name(glpgp_trcg_reason r);
 /* The multigrid preconditioner for one system when o->precond asks for it:
  * glpgp_amg_create, or NULL after one warning line naming `what` and the
@@ -59,6 +61,8 @@ glpgp_amg *glpgp_amg_try_create(glpgp_backend *b, const glpgp_options *o, const 
 /* glpgp_amg_update; on failure one warning line naming `what` and 0 (the
  * caller stops using a), else 1. */
 int glpgp_amg_try_update(glpgp_amg *a, const glpgp_vec *x, const char *what);
+/* the same with glpgp_amg_update_spd (the trust region's multigrid region) */
+int glpgp_amg_try_update_spd(glpgp_amg *a, const glpgp_vec *x, const char *what);
 
 /* One INFO line about a non-uniform size field (solver/sizefield.c). */
 void glpgp_size_log(const glpgp_mesh *m, const double *size, double h);

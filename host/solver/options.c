@@ -39,6 +39,7 @@ void glpgp_options_default(glpgp_options *o)
     o->tr_good = 0.75;
     o->tr_grow = 2.0;
     o->tr_lookahead = 0;
+    o->tr_precond = GLPGP_PRECOND_AMG;
     o->retract_zabs = 0.8;
     o->cg_rtol = 1e-8;
     o->cg_max = 20000;
@@ -101,6 +102,8 @@ glpgp_status glpgp_options_check(const glpgp_options *o)
         return GLPGP_FAIL(GLPGP_ERR_ARG, "Newton step parameters out of range");
     if (o->tr_lookahead != 0 && o->tr_lookahead != 1)
         return GLPGP_FAIL(GLPGP_ERR_ARG, "tr_lookahead must be 0 or 1, got %d", o->tr_lookahead);
+    if (o->tr_precond != GLPGP_PRECOND_JACOBI && o->tr_precond != GLPGP_PRECOND_AMG)
+        return GLPGP_FAIL(GLPGP_ERR_ARG, "unknown trust-region preconditioner %d", o->tr_precond);
     if (o->globalization != GLPGP_GLOBAL_TRUST_REGION && o->globalization != GLPGP_GLOBAL_LINE_SEARCH)
         return GLPGP_FAIL(GLPGP_ERR_ARG, "unknown Newton globalization %d", o->globalization);
     if (!(o->tr_accept >= 0.0 && o->tr_accept < o->tr_poor) || !(o->tr_poor < o->tr_good) ||

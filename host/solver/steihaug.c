@@ -1,13 +1,20 @@
 /* solver/steihaug.c: the truncated (Steihaug-Toint) preconditioned conjugate
  * gradient of the trust-region Newton step, written once against the
- * backend table with the same fused Jacobi ops as the project's CG
- * (solver/cg.c: cg_precond, cg_spmv_dot, cg_update, cg_direction), so it
- * works unchanged on every backend.
+ * backend table: with the same fused Jacobi ops as the project's CG
+ * (solver/cg.c: cg_precond, cg_spmv_dot, cg_update, cg_direction), or with
+ * the multigrid ops (amg_*: the symmetric multigrid cycle of solver/amg.c as the
+ * preconditioner), so it works unchanged on every backend.
  *
  * It approximately minimises the model m(d) = -b.d + 1/2 d.A d (A = the
  * backend's NEWTON matrix, b = rhs) inside the trust region ||d||_M <= radius,
  * M = the block-Jacobi preconditioner (the 2x2 diagonal blocks of A, whose
- * inverses DINV the backend holds). Unlike glpgp_cg it does not assume A SPD:
+ * inverses DINV the backend holds), or M = B^-1 with B the symmetric multigrid cycle
+ * glpgp_amg_apply_spd (a fixed SPD operator when its hierarchy was built from
+ * a positive semi-definite Hessian above A: glpgp_amg_update_spd; the
+ * multigrid path needs only B r, never M itself: the recurrences below use
+ * r.z). In the multigrid norm the low-frequency directions (the phase mode,
+ * vortex drift) are short, so the region and the negative-curvature test see
+ * them in the first few iterations. Unlike glpgp_cg it does not assume A SPD:
  *   - p.Ap <= 0 (negative curvature): follow p to the boundary, stop;
  *   - the next iterate would leave the region: stop on the boundary;
  *   - |r| <= rtol |b|: the inexact Newton step, inside the region.
@@ -36,6 +43,80 @@
 
 #include <math.h>
 
+/* The preconditioned-CG pieces of one run: the backend's fused Jacobi ops
+ * (scalars in s[]: GLPGP_S_RZ0/RZ1, GLPGP_S_PQ, GLPGP_S_RR), or, mg not
+ * NULL, the multigrid ops (scalars in the AMG registers t[]: t[rz] = r.z,
+ * t[rz + 1] = r.r for rz = T_RZ0 or T_RZ1, t[T_PQ] = p.Ap). */
+typedef struct pcg {
+    glpgp_backend *b;
+    glpgp_amg *mg;
+} pcg;
+
+enum { T_RZ0 = 0, T_RZ1 = 2, T_PQ = 4, T_N = 8 };
+
+static glpgp_amg_coef coef(int num, int den, double sign)
+{
+    glpgp_amg_coef c = {num, den, sign};
+    return c;
+}
+
+/* z <- M^-1 r;  r.z -> slot rz;  r.r */
+static glpgp_status pc_precond(const pcg *c, const glpgp_vec *r, glpgp_vec *z, int rz)
+{
+    if (!c->mg) return c->b->ops->cg_precond(c->b, r, z, rz);
+    GLPGP_CHECK(glpgp_amg_apply_spd(c->mg, r, z));
+    return c->b->ops->amg_dots(c->b, r, z, r, rz); /* t[rz] <- r.z;  t[rz+1] <- r.r */
+}
+
+/* q <- A p;  p.q */
+static glpgp_status pc_spmv_dot(const pcg *c, const glpgp_vec *p, glpgp_vec *q)
+{
+    if (!c->mg) return c->b->ops->cg_spmv_dot(c->b, p, q);
+    return c->b->ops->amg_spmv_dots(c->b, 0, p, q, NULL, NULL, T_PQ);
+}
+
+/* alpha = r.z / p.q;  x += alpha p;  r -= alpha q;  z <- M^-1 r;  r.z -> rzn */
+static glpgp_status pc_update(const pcg *c, glpgp_vec *x, glpgp_vec *r, const glpgp_vec *p,
+                              const glpgp_vec *q, glpgp_vec *z, int rz, int rzn)
+{
+    glpgp_backend *b = c->b;
+    if (!c->mg) return b->ops->cg_update(b, x, r, p, q, z, rz, rzn);
+    const glpgp_amg_coef one = {-1, -1, 1.0};
+    GLPGP_CHECK(b->ops->amg_axpby(b, coef(rz, T_PQ, 1.0), p, one, x));
+    GLPGP_CHECK(b->ops->amg_axpby(b, coef(rz, T_PQ, -1.0), q, one, r));
+    return pc_precond(c, r, z, rzn);
+}
+
+/* p <- z + (r.z_new / r.z) p */
+static glpgp_status pc_direction(const pcg *c, glpgp_vec *p, const glpgp_vec *z, int rzn, int rz)
+{
+    glpgp_backend *b = c->b;
+    if (!c->mg) return b->ops->cg_direction(b, p, z, rzn, rz);
+    const glpgp_amg_coef one = {-1, -1, 1.0};
+    return b->ops->amg_axpby(b, one, z, coef(rzn, rz, 1.0), p);
+}
+
+/* read the scalars: *rr = r.r, *pq = p.Ap, *rzv = r.z of slot rz */
+static glpgp_status pc_scalars(const pcg *c, int rz, double *rr, double *pq, double *rzv)
+{
+    glpgp_backend *b = c->b;
+    if (!c->mg) {
+        double s[GLPGP_NSLOTS];
+        GLPGP_CHECK(b->ops->get_scalars(b, s, GLPGP_NSLOTS));
+        *rr = s[GLPGP_S_RR];
+        *pq = s[GLPGP_S_PQ];
+        *rzv = s[rz];
+    } else {
+        double t[T_N];
+        GLPGP_CHECK(b->ops->amg_get_scalars(b, t, T_N));
+        *rr = t[rz + 1];
+        *pq = t[T_PQ];
+        *rzv = t[rz];
+    }
+    b->n_sync++;
+    return GLPGP_OK;
+}
+
 /* tau >= 0 with ||d + tau p||_M = radius, from dd = ||d||^2, dp = d.Mp,
  * pp = ||p||^2 (dd <= radius^2): the positive root of
  * pp tau^2 + 2 dp tau + dd - radius^2 = 0, written without cancellation. */
@@ -59,15 +140,16 @@ const char *glpgp_trcg_reason_name(glpgp_trcg_reason r)
     return "?";
 }
 
-glpgp_status glpgp_trcg(glpgp_backend *b, const glpgp_vec *rhs, glpgp_vec *x, double radius,
-                        double rtol, int maxit, glpgp_vec *xb, glpgp_trcg_info *info)
+glpgp_status glpgp_trcg(glpgp_backend *b, glpgp_amg *mg, const glpgp_vec *rhs, glpgp_vec *x,
+                        double radius, double rtol, int maxit, glpgp_vec *xb, glpgp_trcg_info *info)
 {
+    const pcg pc = {b, mg};
     const glpgp_backend_ops *o = b->ops;
     const size_t n = (size_t)2 * b->sys->nv;
     int bounded = radius > 0.0 && isfinite(radius);
     glpgp_status st = GLPGP_OK;
     glpgp_vec *r = NULL, *z = NULL, *p = NULL, *q = NULL;
-    double s[GLPGP_NSLOTS];
+    double rr = 0.0, pq = 0.0, rzv = 0.0;
     int k = 0, nspmv = 0;
     info->iterations = 0;
     info->relres = 0.0;
@@ -82,49 +164,47 @@ glpgp_status glpgp_trcg(glpgp_backend *b, const glpgp_vec *rhs, glpgp_vec *x, do
     /* x <- 0;  r <- b;  z <- M^-1 r;  p <- z */
     GLPGP_CHECK_GOTO(st, o->axpby(b, 0.0, x, 0.0, x), done);
     GLPGP_CHECK_GOTO(st, o->copy(b, r, rhs), done);
-    GLPGP_CHECK_GOTO(st, o->cg_precond(b, r, z, GLPGP_S_RZ0), done);
+    int rz = mg ? T_RZ0 : GLPGP_S_RZ0, rzn = mg ? T_RZ1 : GLPGP_S_RZ1;
+    GLPGP_CHECK_GOTO(st, pc_precond(&pc, r, z, rz), done);
     GLPGP_CHECK_GOTO(st, o->copy(b, p, z), done);
-    GLPGP_CHECK_GOTO(st, o->get_scalars(b, s, GLPGP_NSLOTS), done);
-    b->n_sync++;
-    const double bnorm = sqrt(s[GLPGP_S_RR]);
-    if (!isfinite(bnorm) || !isfinite(s[GLPGP_S_RZ0])) {
+    GLPGP_CHECK_GOTO(st, pc_scalars(&pc, rz, &rr, &pq, &rzv), done);
+    const double bnorm = sqrt(rr);
+    if (!isfinite(bnorm) || !isfinite(rzv)) {
         st = GLPGP_FAIL(GLPGP_ERR_NUMERIC, "trust-region CG right-hand side is not finite");
         goto done;
     }
     if (bnorm == 0.0) goto done;
-    int rz = GLPGP_S_RZ0, rzn = GLPGP_S_RZ1;
-    double dd = 0.0, dp = 0.0, pp = s[GLPGP_S_RZ0]; /* ||d||_M^2, d.Mp, ||p||_M^2 */
-    double rzk = s[GLPGP_S_RZ0], alpha = 0.0, rel = 1.0;
+    double dd = 0.0, dp = 0.0, pp = rzv; /* ||d||_M^2, d.Mp, ||p||_M^2 */
+    double rzk = rzv, alpha = 0.0, rel = 1.0;
     for (k = 0;; k++) {
         if (k >= maxit) {
             info->reason = GLPGP_TRCG_MAXIT;
             break;
         }
         /* q <- A p;  s[PQ] <- p.q   (then read p.Ap, r.z and r.r of this iterate) */
-        GLPGP_CHECK_GOTO(st, o->cg_spmv_dot(b, p, q), done);
+        GLPGP_CHECK_GOTO(st, pc_spmv_dot(&pc, p, q), done);
         b->n_spmv++;
         nspmv++;
-        GLPGP_CHECK_GOTO(st, o->get_scalars(b, s, GLPGP_NSLOTS), done);
-        b->n_sync++;
-        if (!isfinite(s[GLPGP_S_RR]) || !isfinite(s[GLPGP_S_PQ]) || !isfinite(s[rz])) {
+        GLPGP_CHECK_GOTO(st, pc_scalars(&pc, rz, &rr, &pq, &rzv), done);
+        if (!isfinite(rr) || !isfinite(pq) || !isfinite(rzv)) {
             st = GLPGP_FAIL(GLPGP_ERR_NUMERIC, "trust-region CG: non-finite residual at iteration %d", k);
             goto done;
         }
         if (k > 0) {
             /* beta_{k-1} = (r.z)_k / (r.z)_{k-1} (as the device computed p_k):
              * d_k.M p_k = beta (d.Mp + alpha ||p||^2);  ||p_k||^2 = r.z + beta^2 ||p||^2 */
-            const double beta = s[rz] / rzk;
+            const double beta = rzv / rzk;
             dp = beta * (dp + alpha * pp);
-            pp = s[rz] + beta * beta * pp;
-            rzk = s[rz];
+            pp = rzv + beta * beta * pp;
+            rzk = rzv;
         }
-        rel = sqrt(s[GLPGP_S_RR]) / bnorm;
+        rel = sqrt(rr) / bnorm;
         if (rel <= rtol) break; /* |r_k| <= rtol |b|: d_k is the inexact Newton step */
         if (!(rzk > 0.0)) { /* r.z <= 0 with r != 0: M is not SPD */
             info->reason = GLPGP_TRCG_PRECOND;
             break;
         }
-        const double kappa = s[GLPGP_S_PQ];
+        const double kappa = pq;
         if (!(kappa > 0.0) && info->crossed) { /* look-ahead failed: xb is the step */
             info->reason = GLPGP_TRCG_NEGCURV;
             break;
@@ -165,9 +245,9 @@ glpgp_status glpgp_trcg(glpgp_backend *b, const glpgp_vec *rhs, glpgp_vec *x, do
             }
         }
         /* alpha = r.z / p.Ap;  x += alpha p;  r -= alpha q;  z <- M^-1 r */
-        GLPGP_CHECK_GOTO(st, o->cg_update(b, x, r, p, q, z, rz, rzn), done);
+        GLPGP_CHECK_GOTO(st, pc_update(&pc, x, r, p, q, z, rz, rzn), done);
         /* beta = r.z_new / r.z;  p <- z + beta p */
-        GLPGP_CHECK_GOTO(st, o->cg_direction(b, p, z, rzn, rz), done);
+        GLPGP_CHECK_GOTO(st, pc_direction(&pc, p, z, rzn, rz), done);
         b->n_cg_iter++;
         dd = dd_next;
         int tmp = rz;

@@ -12,8 +12,13 @@
  *    with the fused small-level kernel and without it (GLPGP_CL_AMG_FUSE=0);
  *  - refine: CG iterations per Newton step on the same disk and h at about
  *    16k and 64k vertices: ratio <= 1.5 with multigrid on OpenCL;
+ *  - spd: the trust region's symmetric cycle (glpgp_amg_update_spd on
+ *    the projected Hessian at a vortex, the exact Hessian assembled, then
+ *    glpgp_amg_apply_spd; every level through the driver) equals the
+ *    reference backend's on random vectors and is symmetric on OpenCL;
  *  - solve: a whole GL solve with --precond amg on OpenCL and on the
- *    reference: same Newton counts and singularities, z within 1e-6.
+ *    reference (the default trust region, multigrid region included): same
+ *    Newton counts and singularities, z within 1e-6.
  * Exit 77 when no OpenCL device can be used. */
 #include "glpgp/backends.h"
 #include "glpgp/io.h"
@@ -245,6 +250,92 @@ static void test_refine(void)
     CHECK(a2 <= 30.0);
 }
 
+/* B v for the random vectors v[0..1] on backend b (taken): hb[k] */
+static void spd_apply(glpgp_backend *b, double *const hv[2], double *hb[2])
+{
+    fixture f;
+    fixture_init(&f, b, 4000, 0.0);
+    const int nv = f.m->nv;
+    const size_t n2 = (size_t)2 * nv;
+    const glpgp_backend_ops *op = f.b->ops;
+    double *z = calloc(n2, sizeof(double));
+    amg_vortex_state(f.m, f.h, 0.25, -1, z);
+    glpgp_vec *x = NULL, *v = NULL, *bv = NULL;
+    CHECK_OK(op->vec_create(f.b, n2, &x));
+    CHECK_OK(op->vec_create(f.b, n2, &v));
+    CHECK_OK(op->vec_create(f.b, n2, &bv));
+    CHECK_OK(op->vec_write(f.b, x, z));
+    glpgp_amg *a = NULL;
+    CHECK_OK(glpgp_amg_create(f.b, &f.o, f.dir, f.w, f.h, &a));
+    const double eps = 2.5 * f.m->mean_edge, inv4e2 = 1.0 / (4 * eps * eps);
+    if (a) {
+        CHECK_OK(op->assemble_newton(f.b, x, inv4e2, GLPGP_HESS_PROJECTED));
+        CHECK_OK(glpgp_amg_update_spd(a, x));
+        CHECK_OK(op->assemble_newton(f.b, x, inv4e2, GLPGP_HESS_EXACT));
+        for (int k = 0; k < 2; k++) {
+            CHECK_OK(op->vec_write(f.b, v, hv[k]));
+            CHECK_OK(glpgp_amg_apply_spd(a, v, bv));
+            CHECK_OK(op->vec_read(f.b, bv, hb[k]));
+        }
+    }
+    glpgp_amg_destroy(&a);
+    op->vec_destroy(f.b, &x);
+    op->vec_destroy(f.b, &v);
+    op->vec_destroy(f.b, &bv);
+    free(z);
+    fixture_free(&f);
+}
+
+static void test_spd(void)
+{
+    glpgp_mesh *m = NULL;
+    CHECK_OK(glpgp_mesh_generate("disk", 4000, &m));
+    if (!m) return;
+    const size_t n2 = (size_t)2 * m->nv;
+    glpgp_mesh_destroy(&m);
+    double *hv[2], *hc[2], *hr[2];
+    unsigned long long seed = 777;
+    for (int k = 0; k < 2; k++) {
+        hv[k] = calloc(n2, sizeof(double));
+        hc[k] = calloc(n2, sizeof(double));
+        hr[k] = calloc(n2, sizeof(double));
+        for (size_t i = 0; i < n2; i++) {
+            seed = seed * 6364136223846793005ULL + 1442695040888963407ULL;
+            hv[k][i] = (double)(seed >> 11) / 9007199254740992.0 - 0.5;
+        }
+    }
+    glpgp_backend *bc = opencl(), *br = NULL;
+    CHECK_OK(glpgp_backend_create_reference(&br));
+    if (bc && br) {
+        spd_apply(bc, hv, hc);
+        spd_apply(br, hv, hr);
+        double dmax = 0.0, nmax = 0.0, xy = 0.0, yx = 0.0, xx = 0.0;
+        for (size_t i = 0; i < n2; i++)
+            for (int k = 0; k < 2; k++) {
+                dmax = fmax(dmax, fabs(hc[k][i] - hr[k][i]));
+                nmax = fmax(nmax, fabs(hr[k][i]));
+            }
+        for (size_t i = 0; i < n2; i++) {
+            xy += hv[0][i] * hc[1][i];
+            yx += hv[1][i] * hc[0][i];
+            xx += hv[0][i] * hc[0][i];
+        }
+        printf("spd: symmetric cycle OpenCL vs reference max |diff| / max |Bv| = %.3g, "
+               "OpenCL |x.By - y.Bx| / x.Bx = %.3g, x.Bx = %.6g\n", dmax / nmax, fabs(xy - yx) / xx, xx);
+        CHECK(nmax > 0.0 && dmax <= 1e-10 * nmax);
+        CHECK(fabs(xy - yx) <= 1e-12 * xx);
+        CHECK(xx > 0.0);
+    } else {
+        glpgp_backend_destroy(&bc);
+        glpgp_backend_destroy(&br);
+    }
+    for (int k = 0; k < 2; k++) {
+        free(hv[k]);
+        free(hc[k]);
+        free(hr[k]);
+    }
+}
+
 static void test_solve(void)
 {
     glpgp_mesh *m = NULL;
@@ -289,6 +380,7 @@ int main(void)
     test_galerkin(b); /* takes b */
     test_hierarchy();
     test_refine();
+    test_spd();
     test_solve();
     TEST_DONE();
 }

@@ -122,6 +122,8 @@ bad_opt "--size=" --size=
 bad_opt "--size (no value)" --size
 bad_opt "--method foo" --method foo
 expect_msg "method" "--method foo"
+bad_opt "--tr-precond foo" --tr-precond foo
+expect_msg "tr-precond" "--tr-precond foo"
 bad_opt "--energy foo" --energy foo
 bad_opt "--newton foo" --newton foo
 bad_opt "--init foo" --init foo

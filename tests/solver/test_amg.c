@@ -13,6 +13,11 @@
  *    failure; a backend without the ops gives Jacobi with one warning;
  *  - indefinite: the exact Hessian at a vortex ansatz does not break it
  *    (converged with a true residual, or a reported breakdown);
+ *  - spd: the trust region's symmetric cycle (glpgp_amg_update_spd on the
+ *    projected Hessian at a vortex, then the exact, indefinite Hessian
+ *    assembled) is a fixed linear operator, symmetric (x.By = y.Bx) and
+ *    positive definite (x.Bx > 0) on random vectors; the K-cycle is not
+ *    linear;
  *  - refine: CG iterations per Newton step on the same disk and h at about
  *    16k and 64k vertices: ratio <= 1.5 with multigrid, while Jacobi-PCG
  *    grows (the problem is refinement-sensitive);
@@ -387,6 +392,109 @@ static void test_indefinite(void)
     fixture_free(&f);
 }
 
+static double dotv(const double *x, const double *y, size_t n)
+{
+    double s = 0.0;
+    for (size_t i = 0; i < n; i++) s += x[i] * y[i];
+    return s;
+}
+
+static void test_spd(void)
+{
+    fixture f;
+    fixture_init(&f, 8000, 10.0, 0.0);
+    const int nv = f.m->nv;
+    const size_t n2 = (size_t)2 * nv;
+    const glpgp_backend_ops *op = f.b->ops;
+    enum { NR = 4 };
+    double *z = calloc(n2, sizeof(double)), *hx[NR], *hb[NR], *hs = calloc(n2, sizeof(double));
+    glpgp_vec *x = NULL, *v[NR], *bv[NR], *sum = NULL, *bsum = NULL;
+    amg_vortex_state(f.m, f.h, 0.25, -1, z);
+    CHECK_OK(op->vec_create(f.b, n2, &x));
+    CHECK_OK(op->vec_create(f.b, n2, &sum));
+    CHECK_OK(op->vec_create(f.b, n2, &bsum));
+    CHECK_OK(op->vec_write(f.b, x, z));
+    unsigned long long seed = 12345;
+    for (int k = 0; k < NR; k++) {
+        hx[k] = calloc(n2, sizeof(double));
+        hb[k] = calloc(n2, sizeof(double));
+        for (size_t i = 0; i < n2; i++) {
+            seed = seed * 6364136223846793005ULL + 1442695040888963407ULL;
+            hx[k][i] = (double)(seed >> 11) / 9007199254740992.0 - 0.5;
+        }
+        CHECK_OK(op->vec_create(f.b, n2, &v[k]));
+        CHECK_OK(op->vec_create(f.b, n2, &bv[k]));
+        CHECK_OK(op->vec_write(f.b, v[k], hx[k]));
+    }
+    glpgp_amg *a = make_amg(&f);
+    CHECK(a != NULL);
+    const double eps = 2.5 * f.m->mean_edge, inv4e2 = 1.0 / (4 * eps * eps);
+    for (int kcycle = 0; kcycle < 2 && a; kcycle++) {
+        /* hierarchy from the projected Hessian (|A_c|^+ coarse), then the
+         * exact one in NEWTON, as the trust region does */
+        CHECK_OK(op->assemble_newton(f.b, x, inv4e2, GLPGP_HESS_PROJECTED));
+        if (kcycle)
+            CHECK_OK(glpgp_amg_update(a, x));
+        else
+            CHECK_OK(glpgp_amg_update_spd(a, x));
+        CHECK_OK(op->assemble_newton(f.b, x, inv4e2, GLPGP_HESS_EXACT));
+        for (int k = 0; k < NR; k++) {
+            if (kcycle)
+                CHECK_OK(glpgp_amg_apply(a, v[k], bv[k]));
+            else
+                CHECK_OK(glpgp_amg_apply_spd(a, v[k], bv[k]));
+            CHECK_OK(op->vec_read(f.b, bv[k], hb[k]));
+        }
+        /* linearity: B(v0 + 3 v1) = B v0 + 3 B v1 */
+        CHECK_OK(op->copy(f.b, sum, v[0]));
+        CHECK_OK(op->axpby(f.b, 3.0, v[1], 1.0, sum));
+        if (kcycle)
+            CHECK_OK(glpgp_amg_apply(a, sum, bsum));
+        else
+            CHECK_OK(glpgp_amg_apply_spd(a, sum, bsum));
+        CHECK_OK(op->vec_read(f.b, bsum, hs));
+        double lin = 0.0, nb = 0.0;
+        for (size_t i = 0; i < n2; i++) {
+            lin = fmax(lin, fabs(hs[i] - hb[0][i] - 3.0 * hb[1][i]));
+            nb = fmax(nb, fabs(hs[i]));
+        }
+        lin /= nb;
+        double asym = 0.0, minq = HUGE_VAL;
+        for (int i = 0; i < NR; i++) {
+            const double q = dotv(hx[i], hb[i], n2) / dotv(hx[i], hx[i], n2);
+            minq = fmin(minq, q);
+            for (int j = i + 1; j < NR; j++) {
+                const double xy = dotv(hx[i], hb[j], n2), yx = dotv(hx[j], hb[i], n2);
+                const double scale = sqrt(dotv(hx[i], hb[i], n2) * dotv(hx[j], hb[j], n2));
+                asym = fmax(asym, fabs(xy - yx) / scale);
+            }
+        }
+        printf("spd: %s at a vortex (exact Hessian, hierarchy from the projected one): "
+               "linearity %.2e, asymmetry |x.By - y.Bx| / sqrt(x.Bx y.By) %.2e, min x.Bx / x.x %.3e\n",
+               kcycle ? "K-cycle (flexible CG)" : "symmetric cycle", lin, asym, minq);
+        if (!kcycle) {
+            CHECK(lin <= 1e-12);
+            CHECK(asym <= 1e-12);
+            CHECK(minq > 0.0);
+        } else {
+            CHECK(lin > 1e-6); /* the K-cycle is no fixed linear operator: the test can tell */
+        }
+    }
+    glpgp_amg_destroy(&a);
+    for (int k = 0; k < NR; k++) {
+        op->vec_destroy(f.b, &v[k]);
+        op->vec_destroy(f.b, &bv[k]);
+        free(hx[k]);
+        free(hb[k]);
+    }
+    op->vec_destroy(f.b, &x);
+    op->vec_destroy(f.b, &sum);
+    op->vec_destroy(f.b, &bsum);
+    free(z);
+    free(hs);
+    fixture_free(&f);
+}
+
 /* mean CG iterations of the first `steps` Newton steps on the first eps
  * level (from the normalised naive PGP solution), disk of n vertices, size h */
 static double newton_cg_mean(long n, double h, int precond, int steps)
@@ -521,6 +629,7 @@ int main(int argc, char **argv)
     if (!*only || !strcmp(only, "nullspace")) test_nullspace();
     if (!*only || !strcmp(only, "dirichlet")) test_dirichlet();
     if (!*only || !strcmp(only, "indefinite")) test_indefinite();
+    if (!*only || !strcmp(only, "spd")) test_spd();
     if (!*only || !strcmp(only, "refine")) test_refine();
     if (!*only || !strcmp(only, "solves")) test_solves();
     TEST_DONE();

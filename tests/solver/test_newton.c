@@ -56,13 +56,14 @@ static void test_vortex_disk(void)
     glpgp_mesh_destroy(&m);
 }
 
-static glpgp_result *solve_with(const glpgp_mesh *m, int globalization, int precond)
+static glpgp_result *solve_with(const glpgp_mesh *m, int globalization, int precond, int tr_precond)
 {
     glpgp_options o;
     glpgp_options_default(&o);
     o.size = 10.0 * m->mean_edge;
     o.globalization = globalization;
     o.precond = precond;
+    o.tr_precond = tr_precond;
     glpgp_backend *b = NULL;
     glpgp_result *r = NULL;
     CHECK_OK(glpgp_backend_create_reference(&b));
@@ -72,46 +73,59 @@ static glpgp_result *solve_with(const glpgp_mesh *m, int globalization, int prec
 }
 
 /* Trust region vs line search on a small vortex case (disk, 4k vertices,
- * h = 10 mean edges), and the trust region with --precond amg (its Steihaug
- * CG stays block-Jacobi; the multigrid takes the inexact Newton steps while
- * the region is inactive): the same singularity counts, final energies no
- * higher than the line search's, fewer Newton steps in total, and fewer CG
- * iterations with the multigrid. */
+ * h = 10 mean edges), and the trust region with --precond amg, its Steihaug
+ * CG block-Jacobi (--tr-precond jacobi: the multigrid takes the inexact
+ * Newton steps while the region is inactive) or multigrid-preconditioned
+ * (the default): the same singularity counts, final energies no higher than
+ * the line search's, fewer Newton steps in total, fewer CG iterations with
+ * the multigrid, and fewer still with the multigrid region. */
 static void test_compare(void)
 {
     glpgp_mesh *m = NULL;
     CHECK_OK(glpgp_mesh_generate("disk", 4000, &m));
     if (!m) return;
-    glpgp_result *ls = solve_with(m, GLPGP_GLOBAL_LINE_SEARCH, GLPGP_PRECOND_JACOBI);
-    glpgp_result *tr = solve_with(m, GLPGP_GLOBAL_TRUST_REGION, GLPGP_PRECOND_JACOBI);
-    glpgp_result *ta = solve_with(m, GLPGP_GLOBAL_TRUST_REGION, GLPGP_PRECOND_AMG);
-    if (ls && tr && ta) {
-        int nls = 0, ntr = 0, nta = 0;
+    const int J = GLPGP_PRECOND_JACOBI, A = GLPGP_PRECOND_AMG;
+    glpgp_result *ls = solve_with(m, GLPGP_GLOBAL_LINE_SEARCH, J, J);
+    glpgp_result *tr = solve_with(m, GLPGP_GLOBAL_TRUST_REGION, J, J);
+    glpgp_result *ta = solve_with(m, GLPGP_GLOBAL_TRUST_REGION, A, J);
+    glpgp_result *tm = solve_with(m, GLPGP_GLOBAL_TRUST_REGION, A, A);
+    if (ls && tr && ta && tm) {
+        int nls = 0, ntr = 0, nta = 0, ntm = 0;
         for (int k = 0; k < 2; k++) {
-            const glpgp_osc_result *l = &ls->osc[k], *t = &tr->osc[k], *a = &ta->osc[k];
+            const glpgp_osc_result *l = &ls->osc[k], *t = &tr->osc[k], *a = &ta->osc[k], *g = &tm->osc[k];
             printf("compare %c: line search +%d-%d E %.8f newton %d cg %ld | trust region +%d-%d E %.8f "
-                   "newton %d cg %ld | trust region, amg +%d-%d E %.8f newton %d cg %ld\n",
+                   "newton %d cg %ld | trust region, amg +%d-%d E %.8f newton %d cg %ld | multigrid "
+                   "region +%d-%d E %.8f newton %d cg %ld\n",
                    "uv"[k], l->plus, l->minus, l->energy, l->newton_iterations, l->cg_iterations, t->plus,
                    t->minus, t->energy, t->newton_iterations, t->cg_iterations, a->plus, a->minus,
-                   a->energy, a->newton_iterations, a->cg_iterations);
+                   a->energy, a->newton_iterations, a->cg_iterations, g->plus, g->minus, g->energy,
+                   g->newton_iterations, g->cg_iterations);
             CHECK(t->plus == l->plus && t->minus == l->minus);
             CHECK(a->plus == l->plus && a->minus == l->minus);
+            CHECK(g->plus == l->plus && g->minus == l->minus);
             CHECK(t->energy <= l->energy * (1.0 + 1e-8));
             CHECK_CLOSE(a->energy, t->energy, 0.0, 1e-6);
-            CHECK(t->capped_levels == 0 && a->capped_levels == 0);
+            CHECK_CLOSE(g->energy, t->energy, 0.0, 1e-6);
+            CHECK(t->capped_levels == 0 && a->capped_levels == 0 && g->capped_levels == 0);
             nls += l->newton_iterations;
             ntr += t->newton_iterations;
             nta += a->newton_iterations;
+            ntm += g->newton_iterations;
         }
         CHECK(ntr < nls);
         CHECK(nta < nls);
+        CHECK(ntm < nls);
         /* the multigrid takes the Newton steps once the region is inactive */
         CHECK(ta->osc[0].cg_iterations + ta->osc[1].cg_iterations <
               tr->osc[0].cg_iterations + tr->osc[1].cg_iterations);
+        /* ... and the multigrid region's CG costs less than the Jacobi region's */
+        CHECK(tm->osc[0].cg_iterations + tm->osc[1].cg_iterations <
+              ta->osc[0].cg_iterations + ta->osc[1].cg_iterations);
     }
     glpgp_result_destroy(&ls);
     glpgp_result_destroy(&tr);
     glpgp_result_destroy(&ta);
+    glpgp_result_destroy(&tm);
     glpgp_mesh_destroy(&m);
 }
 
@@ -226,6 +240,10 @@ static void test_schedule_and_options(void)
     }
     glpgp_options_default(&o);
     o.tr_lookahead = 2;
+    CHECK(glpgp_options_check(&o) == GLPGP_ERR_ARG);
+    glpgp_error_clear();
+    glpgp_options_default(&o);
+    o.tr_precond = 5;
     CHECK(glpgp_options_check(&o) == GLPGP_ERR_ARG);
     glpgp_error_clear();
     glpgp_options_default(&o);

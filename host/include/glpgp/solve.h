@@ -91,7 +91,8 @@ typedef struct glpgp_options {
     double forcing;       /* inexact Newton: CG tolerance eta = forcing |g| / |g_0| ... [0.1] */
     double forcing_max;   /* ... clamped to [cg_rtol, forcing_max] [1e-2] */
     int globalization;    /* GLPGP_GLOBAL_* [TRUST_REGION] */
-    /* trust region (radius in the block-Jacobi norm ||d||_M = sqrt(d.D d)):
+    /* trust region (radius in the norm ||d||_M = sqrt(d.M d) of the region's
+     * preconditioner: block Jacobi, or the multigrid of tr_precond):
      * rho = (actual decrease of E + P) / (decrease predicted by the model) */
     double tr_accept;     /* a trial point is taken when rho >= this, [0, tr_poor) [1e-4] */
     double tr_poor;       /* rho below this after a full step shrinks the radius ... (0, tr_good) [0.25] */
@@ -101,6 +102,10 @@ typedef struct glpgp_options {
                              factor, (0, tr_shrink] [0.1] */
     double tr_good;       /* rho above this with a step on the boundary ... (tr_poor, 1) [0.75] */
     double tr_grow;       /* ... multiplies the radius by this, > 1 [2] */
+    int tr_precond;       /* trust region, with precond AMG: the Steihaug-Toint CG's
+                             preconditioner and norm, GLPGP_PRECOND_JACOBI (block Jacobi)
+                             or _AMG (the symmetric multigrid cycle of glpgp_amg_apply_spd on
+                             the projected Hessian) [AMG] */
     int tr_lookahead;     /* 1: where the Steihaug path leaves the region, CG goes on to the
                              inexact Newton step and tries it first (kept when its rho >=
                              tr_poor; the region then grows to its length), 0: off [0] */
@@ -289,10 +294,12 @@ typedef struct glpgp_newton_step_info {
  * PCG to the inexact-Newton tolerance (Jacobi, or flexible CG with s->amg,
  * whose values are rebuilt from the new matrix and x), backtrack on E + P,
  * update x. Trust region: assemble the exact Hessian, Steihaug-CG in the
- * region s->radius (block-Jacobi preconditioner and norm: Steihaug-Toint
- * needs a fixed SPD preconditioner, the K-cycle is not one; with s->amg and
- * s->inside, the region inactive, first the multigrid inexact Newton step,
- * kept when its full step has rho >= tr_poor), take the trial point x (+) a d (polar update, retract_zabs) with a = 1 or
+ * region s->radius (preconditioner and norm: block Jacobi, or with s->amg
+ * and o->tr_precond AMG the symmetric multigrid cycle built on the projected
+ * Hessian, glpgp_amg_apply_spd: Steihaug-Toint needs a fixed SPD
+ * preconditioner, the K-cycle is not one; with s->amg and s->inside, the
+ * region inactive, first the K-cycle FCG inexact Newton step, kept when its
+ * full step has rho >= tr_poor), take the trial point x (+) a d (polar update, retract_zabs) with a = 1 or
  * backtracked until the actual decrease is at least tr_accept of the
  * predicted one, update the radius. Needs QUAD assembled and
  * s->g = grad(E+P)(x) with F = (E+P)(x) and gn = |g| (and, for the trust
@@ -365,12 +372,36 @@ void glpgp_amg_destroy(glpgp_amg **a);
  * when the coarsest matrix has no usable inverse. */
 glpgp_status glpgp_amg_update(glpgp_amg *a, const glpgp_vec *x);
 
+/* glpgp_amg_update for glpgp_amg_apply_spd: the same values, but the
+ * coarsest operator is a symmetric positive semi-definite generalised
+ * inverse (symmetric part, pivoted L D L^T, |D|^-1: the inverse for a
+ * nonsingular PSD A_c) instead of the LU inverse, so that the
+ * symmetric cycle (glpgp_amg_apply_spd) is a fixed symmetric positive
+ * (semi-)definite operator.
+ * The trust region calls it with a positive semi-definite NEWTON (the
+ * projected Hessian) and then reassembles the exact one. */
+glpgp_status glpgp_amg_update_spd(glpgp_amg *a, const glpgp_vec *x);
+
 /* Hierarchy facts (valid after glpgp_amg_create). */
 void glpgp_amg_get_info(const glpgp_amg *a, glpgp_amg_info *info);
 
 /* One application of the preconditioner: z <- B r (a K- or V-cycle from
  * z = 0 on level 0; r, z: 2*nv on the device). For tests. */
 glpgp_status glpgp_amg_apply(glpgp_amg *a, const glpgp_vec *r, glpgp_vec *z);
+
+/* z <- B r by the symmetric multigrid cycle: max(amg_pre, amg_post)
+ * l1-Jacobi sweeps before and after each coarse correction; where the
+ * K-cycle would make two Krylov steps on a coarse level (amg_cycle,
+ * amg_kcycle_min) a W-visit instead (two stationary steps of the cycle
+ * there: e = (2 B_c - B_c A_c B_c) b), elsewhere a plain visit; the
+ * coarsest operator of the last update. B is a fixed linear operator,
+ * symmetric when the coarsest operator is (glpgp_amg_update_spd), and
+ * positive definite when in addition 2 M_l / w - A_l > 0 on every level and
+ * the coarse levels are positive semi-definite (l1-Jacobi with w < 2 on the
+ * hierarchy of a positive semi-definite matrix; level 0's A may then be any
+ * symmetric matrix below the one the hierarchy was built from). The preconditioner and norm of the trust region's Steihaug-Toint
+ * CG (glpgp_options.tr_precond). */
+glpgp_status glpgp_amg_apply_spd(glpgp_amg *a, const glpgp_vec *r, glpgp_vec *z);
 
 /* Flexible CG (FCG(1), Notay) on NEWTON with the multigrid preconditioner a
  * (glpgp_amg_update done for the current NEWTON): solves NEWTON x = rhs from
