@@ -103,6 +103,9 @@ typedef struct glpgp_amg_coef {
 
 typedef struct glpgp_backend_ops {
     const char *name; /* "reference" or "opencl" */
+    /* 1: setup accepts a coupled cross-field system (glpgp_system with cconj,
+     * solver/coupled.c); 0: setup refuses it */
+    int coupled_systems;
     void (*destroy)(glpgp_backend *b); /* frees b->impl, not b */
 
     /* Upload the mesh layout (coordinates, triangles, pattern, gather maps).
