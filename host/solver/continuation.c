@@ -179,6 +179,7 @@ static glpgp_status solve_oscillator(const glpgp_mesh *m, osc_work *w, int k, co
     r->energy = s[GLPGP_S_E];
     GLPGP_CHECK(op->vec_read(b, w->x, r->z));
     if (!dir_given) GLPGP_CHECK(glpgp_osc_summarize(m, r));
+    else r->zabs_median = zabs_median(r->z, nv, w->scratch); /* for the log line; the caller summarises */
     r->seconds = glpgp_now() - t0;
     if (w->amg) {
         glpgp_amg_info ai;
