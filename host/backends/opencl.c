@@ -620,10 +620,10 @@ static glpgp_status cl_setup(glpgp_backend *b, const glpgp_system *sys)
     cl_impl *c = IMPL(b);
     const glpgp_mesh *m = sys->mesh;
     const size_t nv = (size_t)sys->nv, nt = (size_t)sys->nt, nnzb = (size_t)sys->nnzb;
-    if (c->sys) return GLPGP_FAIL(GLPGP_ERR_ARG, "OpenCL backend: setup called twice");
     if (sys->cconj)
         return GLPGP_FAIL(GLPGP_ERR_UNSUPPORTED, "the OpenCL backend does not support the coupled cross-field "
                                                  "solve (use --backend reference, or --cross-coupling off)");
+    if (c->sys) return GLPGP_FAIL(GLPGP_ERR_ARG, "OpenCL backend: setup called twice");
     /* kernels index with int (4*k for matrix values uses long) */
     if (2 * nv > (size_t)INT_MAX - 1024 || 9 * nt > (size_t)INT_MAX || nnzb > (size_t)INT_MAX - 1)
         return GLPGP_FAIL(GLPGP_ERR_UNSUPPORTED, "mesh too large for the OpenCL backend (%zu vertices, %zu triangles)",

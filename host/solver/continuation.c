@@ -222,9 +222,10 @@ static int use_coupling(const glpgp_mesh *m, glpgp_backend *b, const glpgp_optio
 
 /* The coupled pair (z_u, z_v) across the cross field's cuts (solver/coupled.c):
  * one GL solve on the 2 nv-node coupled system, then split per vertex into
- * r->osc[0] (z_u) and r->osc[1] (z_v), each in its vertex's own frame; both
- * carry the coupled solve's statistics (its Newton / CG counts, levels and
- * quadratic energy E_u + E_v), and their singular triangles are the frame
+ * r->osc[0] (z_u) and r->osc[1] (z_v), each in its vertex's own frame;
+ * r->osc[0] carries the coupled solve's statistics (its Newton / CG counts,
+ * levels, seconds and quadratic energy E_u + E_v), r->osc[1] none (zeros), so
+ * sums over u and v stay right; their singular triangles are the frame
  * windings (glpgp_coupled_windings). */
 static glpgp_status solve_coupled(const glpgp_mesh *m, glpgp_backend *b, const glpgp_options *o, glpgp_result *r,
                                   const double *size, double h, const double *eps, int nlev)
@@ -287,13 +288,15 @@ static glpgp_status solve_coupled(const glpgp_mesh *m, glpgp_backend *b, const g
         }
         os->n_dirichlet = 0;
         for (int i = 0; i < nv; i++) os->n_dirichlet += os->dirichlet[i];
-        os->energy = co.energy;
-        os->newton_iterations = co.newton_iterations;
-        os->cg_iterations = co.cg_iterations;
-        os->nlevels = co.nlevels;
-        memcpy(os->level, co.level, sizeof co.level);
-        os->capped_levels = co.capped_levels;
-        os->seconds = co.seconds;
+        if (s == 0) { /* the coupled solve's statistics, once (totals u + v stay right) */
+            os->energy = co.energy;
+            os->newton_iterations = co.newton_iterations;
+            os->cg_iterations = co.cg_iterations;
+            os->nlevels = co.nlevels;
+            memcpy(os->level, co.level, sizeof co.level);
+            os->capped_levels = co.capped_levels;
+            os->seconds = co.seconds;
+        }
         GLPGP_CHECK_GOTO(st, glpgp_osc_summarize(m, os), done);
     }
     for (int s = 0; s < 2; s++)
