@@ -1,7 +1,8 @@
 /* coupled_rows.h: the per-row bodies of the coupled cross-field solve
  * (issue 14, item 3; solver/coupled.c, host/README.md "Coupled oscillators
- * across the cross field's cuts"), written once for the C reference backend
- * and an OpenCL twin (compiled as C11 here; OpenCL C-clean like rows.h).
+ * across the cuts"), written once for the C reference backend and the
+ * OpenCL kernels of kernels/backend_coupled.cl (compiled as C11 and as
+ * OpenCL C, like rows.h).
  *
  * The system has 2 nv nodes, node 2i + s = oscillator s (0: u, 1: v) of
  * vertex i in that vertex's own representative frame, and 2 nt "virtual"
@@ -23,7 +24,9 @@
 #ifndef GLPGP_COUPLED_ROWS_H
 #define GLPGP_COUPLED_ROWS_H
 
-#include "rows.h"
+#ifndef __OPENCL_VERSION__
+#include "rows.h" /* OpenCL: rows.h precedes this file in the embedded program */
+#endif
 
 /* Frame values of triangle t (virtual) at x: (vr[a], vi[a]) = C^{c_a} x_node(a). */
 GLPGP_FN void glpgp_ctri_vals(GLPGP_GLOBAL const int *tri, GLPGP_GLOBAL const unsigned char *cconj,

@@ -10,8 +10,8 @@
 #  - `--cross-coupling off` solves them apart ("coupled": false), as before;
 #  - `extract` of the saved coupled result reads its matching back (the
 #    cross_coupled cell array) and gives the same quad mesh counts;
-#  - OpenCL (when a device is there): `--cross-coupling on` is one clear
-#    error, the default falls back to the uncoupled solve with a warning.
+#  - OpenCL (when a device is there): the same coupled solve, the same
+#    Newton steps and frame windings as the reference.
 # Usage: bash cli_crosscoupled.sh <path-to-glpgp> <data-dir>
 . "$(dirname "$0")/lib.sh" "$@"
 
@@ -69,14 +69,16 @@ assert a["irregular_vertices"] == b["irregular_vertices"], (a["irregular_vertice
 PY
 grep -q "cross_coupled" c.vtk || fail "c.vtk has no cross_coupled array"
 
-# OpenCL: no coupled systems there
+# OpenCL: the same coupled solve (kernels/backend_coupled.cl), the same Newton count
 if "$GLPGP" devices >/dev/null 2>&1 && "$GLPGP" devices 2>/dev/null | grep -qi "device"; then
-    run_fail "opencl coupling on" nonzero "does not support the coupled cross-field solve" \
-        solve shape:disk:2000 --field cross --cross-coupling on --backend opencl --quiet
-    one_error_line "opencl coupling on"
-    run_ok "opencl coupling auto" solve shape:disk:2000 --field cross --backend opencl --stats k.json
-    expect_err "does not support the coupled cross-field solve" "opencl auto warning"
-    python3 -c 'import json, sys; assert json.load(open("k.json"))["cross_field"]["coupled"] is False' ||
-        fail "opencl auto run says coupled"
+    run_ok "opencl coupled" solve shape:disk:2000 --field cross --backend opencl --stats k.json
+    run_ok "reference coupled" solve shape:disk:2000 --field cross --backend reference --stats r.json
+    python3 - k.json r.json <<'PY' || fail "opencl coupled solve"
+import json, sys
+k, r = (json.load(open(p)) for p in sys.argv[1:3])
+assert k["cross_field"]["coupled"] is True and r["cross_field"]["coupled"] is True
+assert k["newton_iterations"] == r["newton_iterations"], (k["newton_iterations"], r["newton_iterations"])
+assert k["singularities"] == r["singularities"], (k["singularities"], r["singularities"])
+PY
 fi
 finish
