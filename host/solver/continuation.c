@@ -387,6 +387,18 @@ glpgp_status glpgp_solve(const glpgp_mesh *m, glpgp_backend *b, const glpgp_opti
     /* local size h(x) per oscillator (uniform: NULL, today's arithmetic) */
     GLPGP_CHECK_GOTO(st, glpgp_malloc(n2, sizeof(double), &size), fail);
     GLPGP_CHECK_GOTO(st, glpgp_size_compute(m, o, h, r->field, size, &uniform), fail);
+    if (o->field == GLPGP_FIELD_CROSS && o->cross_size && r->cross) {
+        /* --cross-size: the cross field's conformal size, the smaller of the two, both oscillators */
+        double *cs = NULL;
+        GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)nv, sizeof(double), &cs), fail);
+        st = glpgp_cross_conformal_size(m, b, o, r->cross->w, h, cs, &r->field_cg_iterations);
+        if (st == GLPGP_OK)
+            for (int k = 0; k < 2; k++)
+                for (int i = 0; i < nv; i++) size[(size_t)k * nv + i] = fmin(size[(size_t)k * nv + i], cs[i]);
+        free(cs);
+        if (st != GLPGP_OK) goto fail;
+        uniform = 0;
+    }
     if (!uniform) glpgp_size_log(m, size, h);
 
     double eps[GLPGP_MAX_LEVELS];

@@ -160,3 +160,86 @@ void glpgp_coupled_windings(const glpgp_mesh *m, const double *u, const double *
         if (w < 0) (*minus)++;
     }
 }
+
+glpgp_status glpgp_cross_conformal_size(const glpgp_mesh *m, glpgp_backend *b, const glpgp_options *o,
+                                        const double *w, double h, double *size, long *cg_iterations)
+{
+    const glpgp_backend_ops *op = b->ops;
+    const int nv = m->nv, nt = m->nt;
+    const size_t n2 = (size_t)2 * nv;
+    glpgp_status st = GLPGP_OK;
+    double *f = NULL, *zero = NULL, *l = NULL;
+    unsigned char *dir = NULL;
+    glpgp_vec *x = NULL, *rhs = NULL, *d = NULL;
+    GLPGP_CHECK_GOTO(st, glpgp_calloc(n2, sizeof(double), &f), done);
+    GLPGP_CHECK_GOTO(st, glpgp_calloc(n2, sizeof(double), &zero), done);
+    GLPGP_CHECK_GOTO(st, glpgp_calloc((size_t)nv, sizeof(double), &l), done);
+    GLPGP_CHECK_GOTO(st, glpgp_calloc((size_t)nv, 1, &dir), done);
+    /* f_a = sum_T A_T g_a . R(grad theta)_T,  R(gx, gy) = (gy, -gx),
+     * theta = arg(w) / 4 unwrapped on each triangle from corner 0 (the
+     * cross-field singular triangles, where it does not close, add nothing) */
+    for (int t = 0; t < nt; t++) {
+        const int *v = m->tri + 3 * t;
+        double x3[3], y3[3], gx[3], gy[3], ar[3];
+        for (int a = 0; a < 3; a++) {
+            x3[a] = m->xy[2 * v[a]];
+            y3[a] = m->xy[2 * v[a] + 1];
+            ar[a] = atan2(w[2 * v[a] + 1], w[2 * v[a]]);
+        }
+        const double d1 = remainder(ar[1] - ar[0], 2.0 * GLPGP_PI), d2 = remainder(ar[2] - ar[1], 2.0 * GLPGP_PI),
+                     d3 = remainder(ar[0] - ar[2], 2.0 * GLPGP_PI);
+        if (fabs(d1 + d2 + d3) > 1.0) continue; /* w winds: singular */
+        const double a2 = (x3[1] - x3[0]) * (y3[2] - y3[0]) - (x3[2] - x3[0]) * (y3[1] - y3[0]);
+        for (int a = 0; a < 3; a++) {
+            gx[a] = (y3[(a + 1) % 3] - y3[(a + 2) % 3]) / a2;
+            gy[a] = (x3[(a + 2) % 3] - x3[(a + 1) % 3]) / a2;
+        }
+        const double th1 = d1 / 4.0, th2 = (d1 + d2) / 4.0;
+        const double tx = th1 * gx[1] + th2 * gx[2], ty = th1 * gy[1] + th2 * gy[2];
+        for (int a = 0; a < 3; a++) f[2 * v[a]] += 0.5 * a2 * (gx[a] * ty - gy[a] * tx);
+    }
+    /* K phi = f (cotan Laplacian, Neumann; phi fixed to 0 at vertex 0 for the
+     * constant), solved by the backend: QUAD = the Laplacian, NEWTON = QUAD
+     * with vertex 0's identity row (real parts carry phi, imaginary parts 0) */
+    dir[0] = 1;
+    f[0] = 0.0;
+    GLPGP_CHECK_GOTO(st, op->set_field(b, zero, dir), done);
+    GLPGP_CHECK_GOTO(st, op->assemble_quadratic(b, GLPGP_ELEM_LAPLACE, h), done);
+    GLPGP_CHECK_GOTO(st, op->vec_create(b, n2, &x), done);
+    GLPGP_CHECK_GOTO(st, op->vec_create(b, n2, &rhs), done);
+    GLPGP_CHECK_GOTO(st, op->vec_create(b, n2, &d), done);
+    GLPGP_CHECK_GOTO(st, op->assemble_newton(b, x, 0.0, o->hess), done);
+    GLPGP_CHECK_GOTO(st, op->vec_write(b, rhs, f), done);
+    glpgp_cg_info ci;
+    GLPGP_CHECK_GOTO(st, glpgp_linear_solve(b, NULL, rhs, d, o->cg_rtol, o->cg_max, o->cg_check, &ci), done);
+    *cg_iterations += ci.iterations;
+    if (ci.reason == GLPGP_CG_BREAKDOWN) {
+        st = GLPGP_FAIL(GLPGP_ERR_NUMERIC, "cross size field: CG breakdown after %d iterations", ci.iterations);
+        goto done;
+    }
+    GLPGP_CHECK_GOTO(st, op->vec_read(b, d, f), done);
+    /* s_i = h exp(phi_i - max phi), at least size_min h and what the mesh
+     * resolves, min(h, size_resolution l_i) (l_i: longest edge at i) */
+    double mx = -HUGE_VAL;
+    for (int i = 0; i < nv; i++) mx = fmax(mx, f[2 * i]);
+    for (int t = 0; t < nt; t++)
+        for (int a = 0; a < 3; a++) {
+            const int i = m->tri[3 * t + a], j = m->tri[3 * t + (a + 1) % 3];
+            const double e = hypot(m->xy[2 * j] - m->xy[2 * i], m->xy[2 * j + 1] - m->xy[2 * i + 1]);
+            l[i] = fmax(l[i], e);
+            l[j] = fmax(l[j], e);
+        }
+    for (int i = 0; i < nv; i++) {
+        const double s = h * exp(f[2 * i] - mx);
+        size[i] = fmax(s, fmax(o->size_min * h, fmin(h, o->size_resolution * l[i])));
+    }
+done:
+    op->vec_destroy(b, &x);
+    op->vec_destroy(b, &rhs);
+    op->vec_destroy(b, &d);
+    free(f);
+    free(zero);
+    free(l);
+    free(dir);
+    return st;
+}

@@ -10,6 +10,8 @@
 #  - `--cross-coupling off` solves them apart ("coupled": false), as before;
 #  - `extract` of the saved coupled result reads its matching back (the
 #    cross_coupled cell array) and gives the same quad mesh counts;
+#  - `--cross-size on` (disk, h = 0.15): valid, at most 8 irregular interior
+#    vertices, the 4 singularities each with one, min scaled Jacobian >= 0.7;
 #  - OpenCL (when a device is there): the same coupled solve, the same
 #    Newton steps and frame windings as the reference.
 # Usage: bash cli_crosscoupled.sh <path-to-glpgp> <data-dir>
@@ -68,6 +70,22 @@ for k in ("faces", "quads", "vertices"):
 assert a["irregular_vertices"] == b["irregular_vertices"], (a["irregular_vertices"], b["irregular_vertices"])
 PY
 grep -q "cross_coupled" c.vtk || fail "c.vtk has no cross_coupled array"
+
+# --cross-size on: the cross field's conformal size removes the dislocations
+# around the singularities: the four valence-3 vertices and (almost) nothing else
+run_ok "coupled disk, cross size" solve shape:disk:20000 --size 0.15 --field cross --cross-size on \
+    --backend reference --quads s.obj --stats s.json
+python3 - s.json <<'PY' || fail "cross-size disk report"
+import json, sys
+d = json.load(open(sys.argv[1]))
+q = d["quads"]
+assert d["cross_field"]["coupled"] is True and d["cross_field"]["singularities"] == 4
+assert q["valid"] is True and q["quads"] == q["faces"], q
+iv = q["irregular_vertices"]
+assert iv["interior"] <= 8 and iv["interior_near_cross"] >= 4, iv
+assert q["cross_singularities"]["with_irregular_vertex"] == 4, q["cross_singularities"]
+assert q["scaled_jacobian"]["min"] >= 0.7, q["scaled_jacobian"]
+PY
 
 # OpenCL: the same coupled solve (kernels/backend_coupled.cl), the same Newton count
 if "$GLPGP" devices >/dev/null 2>&1 && "$GLPGP" devices 2>/dev/null | grep -qi "device"; then

@@ -8,8 +8,7 @@
  *  - finite differences of the coupled energy (gradient) and gradient
  *    (exact Hessian, NEWTON) at a random state, with representatives from a
  *    field with a singularity (cuts, conjugated corners);
- *  - a disk solved with --field cross: coupled, converged, no frame
- *    winding at distance from the 4 cross singularities. */
+ *  - the conformal size of a cross field with theta = a y is h e^{a x + c}. */
 #include "testutil.h"
 
 #include <string.h>
@@ -274,10 +273,54 @@ static void test_fd(void)
     glpgp_mesh_destroy(&m);
 }
 
+/* glpgp_cross_conformal_size on theta = a y (harmonic, no singularity):
+ * phi = a x + c, so log s = a x + const (exact for P1 up to the Neumann
+ * solve's discretisation: theta is linear, grad phi constant). */
+static void test_conformal_size(void)
+{
+    glpgp_mesh *m = NULL;
+    CHECK_OK(glpgp_mesh_generate("disk", 800, &m));
+    if (!m) return;
+    const int nv = m->nv;
+    const double a = 0.3;
+    double *w = malloc((size_t)2 * nv * sizeof(double)), *sz = malloc((size_t)nv * sizeof(double));
+    for (int i = 0; i < nv; i++) {
+        w[2 * i] = cos(4.0 * a * m->xy[2 * i + 1]);
+        w[2 * i + 1] = sin(4.0 * a * m->xy[2 * i + 1]);
+    }
+    glpgp_system *sys = NULL;
+    glpgp_backend *b = NULL;
+    glpgp_options o;
+    glpgp_options_default(&o);
+    CHECK_OK(glpgp_system_create(m, &sys));
+    CHECK_OK(glpgp_backend_create_reference(&b));
+    CHECK_OK(b->ops->setup(b, sys));
+    long cg = 0;
+    CHECK_OK(glpgp_cross_conformal_size(m, b, &o, w, 1.0, sz, &cg));
+    /* log s_i - a x_i is constant; the largest size is h = 1 */
+    double lo = HUGE_VAL, hi = -HUGE_VAL, smax = 0.0;
+    for (int i = 0; i < nv; i++) {
+        const double r = log(sz[i]) - a * m->xy[2 * i];
+        lo = fmin(lo, r);
+        hi = fmax(hi, r);
+        smax = fmax(smax, sz[i]);
+    }
+    printf("conformal size: log s - a x in [%.3g, %.3g], max s %.6g, %ld CG\n", lo, hi, smax, cg);
+    CHECK(hi - lo <= 1e-6);
+    CHECK_CLOSE(smax, 1.0, 1e-12, 0.0);
+    CHECK(cg > 0);
+    glpgp_backend_destroy(&b);
+    glpgp_system_destroy(&sys);
+    free(w);
+    free(sz);
+    glpgp_mesh_destroy(&m);
+}
+
 int main(void)
 {
     test_maps();
     test_invariance();
     test_fd();
+    test_conformal_size();
     TEST_DONE();
 }

@@ -169,6 +169,17 @@ void glpgp_coupled_node_field(const double *u, int nv, double *w);
 void glpgp_coupled_windings(const glpgp_mesh *m, const double *u, const double *zu, const double *zv, int k,
                             signed char *sing, int *plus, int *minus);
 
+/* Conformal size field of the cross field w (2*nv) for target size h
+ * (--cross-size, host/README.md "Coupled oscillators"): phi minimising
+ * int |grad phi - R grad theta|^2, theta = arg(w)/4 per triangle, R the turn
+ * by -90 degrees (so that U / s and V / s are curl-free where theta is
+ * harmonic), by one linear solve on backend b (set up for m; its field,
+ * Dirichlet set and matrices are overwritten); size (nv) <- h exp(phi -
+ * max phi), at least size_min h and min(h, size_resolution x the longest
+ * edge at the vertex). *cg_iterations is increased by its CG iterations. */
+glpgp_status glpgp_cross_conformal_size(const glpgp_mesh *m, glpgp_backend *b, const struct glpgp_options *o,
+                                        const double *w, double h, double *size, long *cg_iterations);
+
 #ifdef __cplusplus
 }
 #endif

@@ -81,6 +81,8 @@ typedef struct glpgp_options {
     double cross_rtol;    /* every cross level stops when |g| <= this |g_0| (the singularities
                              are placed long before; later steps are slow vortex drift) [1e-3] */
     int cross_coupling;   /* GLPGP_COUPLING_* [AUTO] */
+    int cross_size;       /* 1: local size from the cross field (glpgp_cross_conformal_size),
+                             the smaller of it and the size field's, for both oscillators [0] */
 
     /* Newton */
     double newton_rtol;   /* stop the last level when |g| <= rtol |g_0| [1e-6] */
