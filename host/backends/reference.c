@@ -6,6 +6,7 @@
  * preconditioner's ops (amg_*) are in reference_amg.c. */
 #include "glpgp/backends.h"
 #include "rows.h"
+#include "coupled_rows.h"
 
 #include "reference_impl.h"
 
@@ -145,7 +146,14 @@ static glpgp_status ref_assemble_quadratic(glpgp_backend *b, int kind, double h)
     const glpgp_mesh *m = sys->mesh;
     r->kind = kind;
     r->h = h;
-    /* QUAD <- gather of the element entries into each block slot, row by row */
+    /* QUAD <- gather of the element entries into each block slot, row by row
+     * (coupled cross-field system: pulled back through each corner's matching) */
+    if (sys->cconj) {
+        for (int i = 0; i < sys->nv; i++)
+            glpgp_crow_asm_quad(i, kind, h, r->sized, r->size, m->xy, m->tri, sys->cconj, sys->cfield,
+                                sys->rowptr, sys->cptr, sys->contrib, r->quad);
+        return GLPGP_OK;
+    }
     for (int i = 0; i < sys->nv; i++)
         glpgp_row_asm_quad(i, kind, h, r->sized, r->size, m->xy, m->tri, r->w, sys->rowptr, sys->cptr,
                            sys->contrib, r->quad);
@@ -160,11 +168,19 @@ static glpgp_status ref_assemble_newton(glpgp_backend *b, const glpgp_vec *xv, d
     int bad = -1;
     /* NEWTON <- QUAD + penalty Hessian (Dirichlet rows/cols -> identity);
      * DINV_i <- inverse of the 2x2 diagonal block */
+    if (sys->cconj) {
+        for (int i = 0; i < sys->nv; i++)
+            if (glpgp_crow_asm_newton(i, hess, inv4e2, m->xy, m->tri, sys->cconj, xv->a, sys->rowptr, sys->col,
+                                      sys->diag, sys->vptr, sys->vtri, r->dir, r->quad, r->newton, r->dinv) &&
+                bad < 0)
+                bad = i;
+    } else {
     for (int i = 0; i < sys->nv; i++)
         if (glpgp_row_asm_newton(i, hess, inv4e2, m->xy, m->tri, xv->a, sys->rowptr, sys->col, sys->diag,
                                  sys->vptr, sys->vtri, r->dir, r->quad, r->newton, r->dinv) &&
             bad < 0)
             bad = i;
+    }
     if (bad >= 0) return GLPGP_FAIL(GLPGP_ERR_NUMERIC, "singular diagonal block at vertex %d", bad);
     return GLPGP_OK;
 }
@@ -174,6 +190,11 @@ static double penalty_sum(const glpgp_system *sys, const double *z, double inv4e
 {
     double p = 0.0;
     if (!(inv4e2 > 0.0)) return 0.0;
+    if (sys->cconj) { /* coupled: at the frame values */
+        for (int t = 0; t < sys->nt; t++)
+            p += glpgp_ctri_pen_energy(t, inv4e2, sys->mesh->xy, sys->mesh->tri, sys->cconj, z);
+        return p;
+    }
     for (int t = 0; t < sys->nt; t++) p += glpgp_tri_pen_energy(t, inv4e2, sys->mesh->xy, sys->mesh->tri, z);
     return p;
 }
@@ -185,6 +206,11 @@ static glpgp_status ref_gradient(glpgp_backend *b, const glpgp_vec *xv, double i
     const glpgp_mesh *m = sys->mesh;
     /* g <- QUAD x + grad P (0 at Dirichlet vertices);  E = 1/2 x.QUAD x;  P = sum_t P_t */
     double e = 0.0;
+    if (sys->cconj)
+        for (int i = 0; i < sys->nv; i++)
+            glpgp_crow_gradient(i, inv4e2, m->xy, m->tri, sys->cconj, xv->a, sys->rowptr, sys->col, r->quad,
+                                sys->vptr, sys->vtri, r->dir, g->a, &e);
+    else
     for (int i = 0; i < sys->nv; i++)
         glpgp_row_gradient(i, inv4e2, m->xy, m->tri, xv->a, sys->rowptr, sys->col, r->quad, sys->vptr, sys->vtri,
                            r->dir, g->a, &e);
@@ -265,6 +291,7 @@ static glpgp_status ref_cg_direction(glpgp_backend *b, glpgp_vec *p, const glpgp
 
 static const glpgp_backend_ops ref_ops = {
     .name = "reference",
+    .coupled_systems = 1,
     .destroy = ref_destroy,
     .setup = ref_setup,
     .vec_create = ref_vec_create,

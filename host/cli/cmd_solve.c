@@ -135,9 +135,13 @@ static void print_summary(const solve_cli *c, const char *input, const glpgp_mes
                r->cross->newton_iterations, r->cross->seconds);
     }
     printf("  median |z|     u: %.4f   v: %.4f\n", u->zabs_median, v->zabs_median);
-    printf("  iterations     newton %d (u %d, v %d), cg %ld\n", u->newton_iterations + v->newton_iterations,
-           u->newton_iterations, v->newton_iterations,
-           u->cg_iterations + v->cg_iterations + r->field_cg_iterations);
+    if (r->coupled) /* one system for both (--cross-coupling): its counts are in u */
+        printf("  iterations     newton %d (u and v coupled across the cross field's cuts), cg %ld\n",
+               u->newton_iterations, u->cg_iterations + r->field_cg_iterations);
+    else
+        printf("  iterations     newton %d (u %d, v %d), cg %ld\n", u->newton_iterations + v->newton_iterations,
+               u->newton_iterations, v->newton_iterations,
+               u->cg_iterations + v->cg_iterations + r->field_cg_iterations);
     if (u->capped_levels + v->capped_levels)
         printf("  unconverged    %d eps level(s) stopped at the Newton cap (u %d, v %d)\n",
                u->capped_levels + v->capped_levels, u->capped_levels, v->capped_levels);

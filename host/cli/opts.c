@@ -429,6 +429,10 @@ static const char *const k_globals[] = {"trust-region", "line-search", NULL};
 static const int k_global_vals[] = {GLPGP_GLOBAL_TRUST_REGION, GLPGP_GLOBAL_LINE_SEARCH};
 static const char *const k_preconds[] = {"jacobi", "amg", NULL};
 static const int k_precond_vals[] = {GLPGP_PRECOND_JACOBI, GLPGP_PRECOND_AMG};
+static const char *const k_onoff[] = {"off", "on", NULL};
+static const int k_onoff_vals[] = {0, 1};
+static const char *const k_couplings[] = {"auto", "off", "on", NULL};
+static const int k_coupling_vals[] = {GLPGP_COUPLING_AUTO, GLPGP_COUPLING_OFF, GLPGP_COUPLING_ON};
 static const char *const k_inits[] = {"naive", "one", NULL};
 static const int k_init_vals[] = {GLPGP_INIT_NAIVE, GLPGP_INIT_ONE};
 
@@ -503,6 +507,15 @@ void glpgp_opts_add_solver(glpgp_opts *t, glpgp_options *o)
                      "--field cross: last eps, as a multiple of the mean edge length");
     glpgp_opt_double(t, "--cross-rtol", &o->cross_rtol, 0.0, 1, 1.0, 1, "F",
                      "--field cross: each eps level stops when |g| <= F |g0|");
+    glpgp_opt_choice(t, "--cross-size", &o->cross_size, k_onoff, k_onoff_vals,
+                     "--field cross: local size from the cross field (its conformal\n"
+                     "scale, which makes the quads' grid integrable away from the\n"
+                     "singularities: fewer dislocations), the smaller of it and\n"
+                     "--size-field's");
+    glpgp_opt_choice(t, "--cross-coupling", &o->cross_coupling, k_couplings, k_coupling_vals,
+                     "--field cross with singularities: solve u and v coupled across the\n"
+                     "cross field's cuts (auto: when it has cuts and the backend can,\n"
+                     "on: an error where the backend cannot), or apart (off)");
     glpgp_opt_double(t, "--eps-ratio", &o->eps_ratio, 0.0, 1, 1.0, 1, "F", "eps_{k+1} = F eps_k");
     glpgp_opt_double(t, "--eps-min", &o->eps_min, 0.0, 1, HUGE_VAL, 0, "F",
                      "last eps, as a multiple of the mean edge length");

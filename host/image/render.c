@@ -186,6 +186,13 @@ glpgp_status glpgp_render(const glpgp_mesh *m, const glpgp_result *r, const glpg
             double tc[3];
             for (int k = 0; k < 3; k++) {
                 double br = z[2 * tv[k]], bi = z[2 * tv[k] + 1];
+                if (r->coupled && r->field) { /* coupled solve: the triangle's frame oscillator q */
+                    double f[2];
+                    glpgp_coupled_frame_value(glpgp_cross_turn(r->field + 2 * tv[0], r->field + 2 * tv[k]), q,
+                                              zu + 2 * tv[k], zv + 2 * tv[k], f);
+                    br = f[0];
+                    bi = f[1];
+                }
                 za[q][k] = hypot(br, bi);
                 tc[k] = glpgp_theta(br, bi);
             }

@@ -22,6 +22,7 @@ typedef struct raw_result {
     double *field;     /* 2 * nv (U), may be NULL */
     double *dir[2];    /* nv each, may be NULL */
     double *cross;     /* 2 * nv (cross field w), may be NULL */
+    int coupled;       /* a cross_coupled cell array was present (coupled solve) */
     double h;
 } raw_result;
 
@@ -90,6 +91,12 @@ static glpgp_status assemble(const char *path, raw_result *w, glpgp_mesh **mout,
             o->n_dirichlet += o->dirichlet[i];
         }
         GLPGP_CHECK_GOTO(st, glpgp_osc_summarize(m, o), done);
+    }
+    if (w->coupled && w->field) { /* coupled solve: the frame windings (glpgp/cross.h) */
+        res->coupled = 1;
+        for (int k = 0; k < 2; k++)
+            glpgp_coupled_windings(m, res->field, res->osc[0].z, res->osc[1].z, k, res->osc[k].singular,
+                                   &res->osc[k].plus, &res->osc[k].minus);
     }
     if (w->cross) { /* the cross field: singularities recomputed from w */
         for (long long i = 0; i < 2 * w->nv; i++)
@@ -344,6 +351,7 @@ static glpgp_status read_legacy(text_reader *tr, raw_result *w)
             const int is_field = where == POINT_DATA && vectors && !strcmp(name, "field_u");
             const int is_dir = where == POINT_DATA && (!strcmp(name, "dirichlet_u") || !strcmp(name, "dirichlet_v"));
             const int is_cross = where == POINT_DATA && !strcmp(name, "cross_w");
+            if (where == CELL_DATA && !strcmp(name, "cross_coupled")) w->coupled = 1;
             if ((is_z || is_cross) && ncomp != 2) {
                 st = text_error(tr, GLPGP_ERR_FORMAT, 0, "%s must have 2 components", name);
                 goto done;
@@ -399,6 +407,7 @@ static glpgp_status read_vtu(text_reader *tr, const char *first_line, raw_result
                        *du = vtu_find(&v, VTU_POINTDATA, "dirichlet_u"),
                        *dv = vtu_find(&v, VTU_POINTDATA, "dirichlet_v"),
                        *cw = vtu_find(&v, VTU_POINTDATA, "cross_w");
+    w->coupled = vtu_find(&v, VTU_CELLDATA, "cross_coupled") != NULL;
     if (!pts || !conn || !offs || !types)
         return GLPGP_FAIL(GLPGP_ERR_FORMAT, "%s: Points or Cells arrays missing", path);
     if (pts->ncomp != 3 || (zu && zu->ncomp != 2) || (zv && zv->ncomp != 2) || (fu && fu->ncomp != 3) ||

@@ -35,6 +35,15 @@ static double cross_alpha(const double *w)
     return a < 0.0 ? a + GLPGP_PI / 2.0 : a;
 }
 
+/* Matching of triangle t of a coupled result (glpgp/cross.h): r_1 + 4 r_2,
+ * the quarter turns of corners 1 and 2 relative to corner 0's representative. */
+static int coupled_match(const glpgp_mesh *m, const glpgp_result *r, int t)
+{
+    const int *v = m->tri + 3 * t;
+    return glpgp_cross_turn(r->field + 2 * v[0], r->field + 2 * v[1]) +
+           4 * glpgp_cross_turn(r->field + 2 * v[0], r->field + 2 * v[2]);
+}
+
 /* ---- legacy VTK ------------------------------------------------------- */
 
 static void vtk_body(FILE *f, const glpgp_mesh *m, const glpgp_options *o, const glpgp_result *r)
@@ -105,6 +114,10 @@ static void vtk_body(FILE *f, const glpgp_mesh *m, const glpgp_options *o, const
         if (r->cross) { /* cross-field index of each triangle, in quarters (-1, 0, +1) */
             fprintf(f, "SCALARS cross_index4 int 1\nLOOKUP_TABLE default\n");
             for (int t = 0; t < nt; t++) fprintf(f, "%d\n", (int)r->cross->winding[t]);
+        }
+        if (r->coupled && r->field) { /* coupled solve: each triangle's matching r_1 + 4 r_2 */
+            fprintf(f, "SCALARS cross_coupled int 1\nLOOKUP_TABLE default\n");
+            for (int t = 0; t < nt; t++) fprintf(f, "%d\n", coupled_match(m, r, t));
         }
     }
 }
@@ -212,6 +225,12 @@ static void fill_cross_index(const void *c, size_t first, size_t n, void *out)
     const res_ctx *x = c;
     memcpy(out, x->r->cross->winding + first, n);
 }
+static void fill_coupled(const void *c, size_t first, size_t n, void *out)
+{
+    const res_ctx *x = c;
+    signed char *o = out;
+    for (size_t t = 0; t < n; t++) o[t] = (signed char)coupled_match(x->m, x->r, (int)(first + t));
+}
 static void fill_h(const void *c, size_t first, size_t n, void *out)
 {
     const res_ctx *x = c;
@@ -247,6 +266,7 @@ static glpgp_status vtu_result(FILE *f, const glpgp_mesh *m, const glpgp_options
         ARR(VTU_POINTDATA, "cross_alpha", "Float64", 8, 1, nv, fill_cross_alpha, &ctx[0]);
         ARR(VTU_CELLDATA, "cross_index4", "Int8", 1, 1, nt, fill_cross_index, &ctx[0]);
     }
+    if (r->coupled && r->field) ARR(VTU_CELLDATA, "cross_coupled", "Int8", 1, 1, nt, fill_coupled, &ctx[0]);
     ARR(VTU_POINTS, "Points", "Float64", 8, 3, nv, fill_points, &ctx[0]);
     ARR(VTU_CELLS, "connectivity", "Int32", 4, 1, 3 * nt, fill_conn, &ctx[0]);
     ARR(VTU_CELLS, "offsets", "Int32", 4, 1, nt, fill_offsets, &ctx[0]);

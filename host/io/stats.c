@@ -91,6 +91,8 @@ static void stats_body(FILE *f, const glpgp_mesh *m, const glpgp_options *o, con
         glpgp_json_num(w, "index_expected", c->index4_expected / 4.0);
         glpgp_json_bool(w, "poincare_hopf", c->index4_sum == c->index4_expected);
         glpgp_json_num(w, "median_abs_w", c->zabs_median);
+        /* u and v solved as one system coupled across the cuts (--cross-coupling) */
+        glpgp_json_bool(w, "coupled", r->coupled != 0);
         glpgp_json_array(w, "singular");
         for (int k = 0; k < c->nsing; k++) {
             glpgp_json_object(w, NULL);

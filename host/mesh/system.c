@@ -122,6 +122,8 @@ void glpgp_system_destroy(glpgp_system **ps)
     free(s->contrib);
     free(s->vptr);
     free(s->vtri);
+    free(s->cconj);
+    free(s->cfield);
     free(s);
     *ps = NULL;
 }

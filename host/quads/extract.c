@@ -102,6 +102,7 @@
  * every n-gon into n quads at half the size.
  */
 #include "glpgp/quads.h"
+#include "glpgp/cross.h"
 #include "glpgp/phase.h"
 #include "glpgp/solve.h"
 #include "geom.h"
@@ -245,6 +246,7 @@ typedef struct builder {
     medges E;
     double *theta[2];
     unsigned char *exact[2];
+    const double *rep; /* coupled result: the representatives U (2*nv), else NULL */
     int *xint;      /* 2*ne: canonical crossing integer of family k, or INT_MIN-ish sentinel */
     double *xs;     /* 2*ne: its parameter along a -> b */
     int *xnode;     /* 2*ne: its node */
@@ -290,19 +292,26 @@ static glpgp_status add_mesh_edge_path(builder *B, int e, int from, int flags)
 static int tri_chords(builder *B, int t, int k, chord *ch)
 {
     const glpgp_mesh *m = B->m;
-    const double *th = B->theta[k];
-    const unsigned char *ex = B->exact[k];
     int p[3];
-    double c[3];
+    double c[3], tp[3];
+    unsigned char exv[3];
+    int fam[3] = {k, k, k}, cj[3] = {0, 0, 0};
     for (int j = 0; j < 3; j++) p[j] = m->tri[3 * t + j];
-    const double tp[3] = {th[p[0]], th[p[1]], th[p[2]]};
+    for (int j = 0; j < 3; j++) {
+        /* coupled: the frame (corner 0's representative) family k at corner j
+         * is family fam[j] of vertex p[j], conjugated (theta -> -theta) when cj[j] */
+        if (B->rep) glpgp_cross_frame_map(glpgp_cross_turn(B->rep + 2 * p[0], B->rep + 2 * p[j]), k, &fam[j], &cj[j]);
+        const double v = B->theta[fam[j]][p[j]];
+        tp[j] = cj[j] ? -v : v;
+        exv[j] = B->exact[fam[j]][p[j]];
+    }
     glpgp_phase_chart(tp, c);
     /* perimeter points: (chart integer, position, node) */
     long ii[6];
     double pos[6];
     int nd[6], isv[6], np = 0;
     for (int j = 0; j < 3; j++) {
-        if (ex[p[j]]) {
+        if (exv[j]) {
             ii[np] = lround(c[j]);
             pos[np] = j;
             nd[np] = p[j];
@@ -310,15 +319,19 @@ static int tri_chords(builder *B, int t, int k, chord *ch)
             np++;
         }
         int e = B->E.tri_edge[3 * t + j];
-        if (B->xint[2 * e + k] == NOX) continue;
         int a = B->E.ev[2 * e];
         int ja = p[0] == a ? 0 : p[1] == a ? 1 : 2;
-        long T = lround(c[ja] - th[a]); /* chart = canonical + T */
-        double s = B->xs[2 * e + k];    /* from a */
+        /* the edge's crossings are stored in a's own families: the frame's
+         * family k is a's family fam[ja], with the sign sg */
+        const int ka = fam[ja];
+        const long sg = cj[ja] ? -1 : 1;
+        if (B->xint[2 * e + ka] == NOX) continue;
+        long T = lround(c[ja] - (double)sg * B->theta[ka][a]); /* chart = sg canonical + T */
+        double s = B->xs[2 * e + ka];    /* from a */
         double sl = (a == p[j]) ? s : 1.0 - s;
-        ii[np] = B->xint[2 * e + k] + T;
+        ii[np] = sg * B->xint[2 * e + ka] + T;
         pos[np] = j + sl;
-        nd[np] = B->xnode[2 * e + k];
+        nd[np] = B->xnode[2 * e + ka];
         isv[np] = 0;
         np++;
     }
@@ -434,8 +447,12 @@ static glpgp_status build_arrangement(builder *B)
         int bnd = B->E.nbt[2 * e + 1] < 0;
         for (int k = 0; k < 2; k++) {
             const double *th = B->theta[k];
-            double ca = th[a], cb = ca + glpgp_phase_step(th[b] - th[a]);
-            if (B->exact[k][b]) cb = (double)lround(cb);
+            /* b's value in a's family k (coupled: through the matching of the edge) */
+            int fb = k, cb_conj = 0;
+            if (B->rep) glpgp_cross_frame_map(glpgp_cross_turn(B->rep + 2 * a, B->rep + 2 * b), k, &fb, &cb_conj);
+            const double tb = cb_conj ? -B->theta[fb][b] : B->theta[fb][b];
+            double ca = th[a], cb = ca + glpgp_phase_step(tb - th[a]);
+            if (B->exact[fb][b]) cb = (double)lround(cb);
             B->xint[2 * e + k] = NOX;
             double lo = fmin(ca, cb), hi = fmax(ca, cb);
             double n = floor(lo) + 1.0; /* smallest integer > lo */
@@ -472,6 +489,14 @@ static glpgp_status build_arrangement(builder *B)
         int nch[2];
         for (int k = 0; k < 2; k++) {
             int sing = r->osc[k].singular && r->osc[k].singular[t] != 0;
+            if (B->rep) { /* coupled: a cross-field singular triangle (matching around it not the
+                             identity) has no consistent frame: no quad corner there */
+                const int *v = m->tri + 3 * t;
+                const int q = glpgp_cross_turn(B->rep + 2 * v[0], B->rep + 2 * v[1]) +
+                              glpgp_cross_turn(B->rep + 2 * v[1], B->rep + 2 * v[2]) +
+                              glpgp_cross_turn(B->rep + 2 * v[2], B->rep + 2 * v[0]);
+                if (q % 4 != 0) sing = 1;
+            }
             nch[k] = tri_chords(B, t, k, ch[k]);
             if (sing) {
                 B->singular[k]++;
@@ -1034,6 +1059,7 @@ glpgp_status glpgp_quads_extract(const glpgp_mesh *m, const glpgp_result *r, glp
     memset(&B, 0, sizeof B);
     B.m = m;
     B.r = r;
+    B.rep = r->coupled && r->field ? r->field : NULL;
     pmap P;
     memset(&P, 0, sizeof P);
     int *parent = NULL, *newid = NULL;

@@ -75,16 +75,25 @@ static glpgp_status naive_solve(osc_work *w, int k, glpgp_osc_result *r)
     return GLPGP_OK;
 }
 
+/* One oscillator (k = 0, 1) on mesh m, or the coupled pair (k = 3) on the
+ * coupled system's virtual mesh m with its Dirichlet set dir_given (then r
+ * is not summarised: the caller splits it per vertex first). */
 static glpgp_status solve_oscillator(const glpgp_mesh *m, osc_work *w, int k, const double *hostw,
                                      const double *size, glpgp_osc_result *r, double h, const double *eps,
-                                     int nlevels)
+                                     int nlevels, const unsigned char *dir_given)
 {
     glpgp_backend *b = w->b;
     const glpgp_backend_ops *op = b->ops;
     const glpgp_options *o = w->o;
     const int nv = m->nv;
     double t0 = glpgp_now();
-    r->n_dirichlet = glpgp_dirichlet_set(m, hostw, r->dirichlet);
+    if (dir_given) {
+        memcpy(r->dirichlet, dir_given, (size_t)nv);
+        r->n_dirichlet = 0;
+        for (int i = 0; i < nv; i++) r->n_dirichlet += dir_given[i] != 0;
+    } else {
+        r->n_dirichlet = glpgp_dirichlet_set(m, hostw, r->dirichlet);
+    }
     GLPGP_CHECK(op->set_field(b, hostw, r->dirichlet));
     if (size) GLPGP_CHECK(op->set_size(b, size)); /* local size h(x) (NULL: uniform h) */
     GLPGP_CHECK(op->assemble_quadratic(b, o->energy, h));
@@ -169,7 +178,8 @@ static glpgp_status solve_oscillator(const glpgp_mesh *m, osc_work *w, int k, co
     GLPGP_CHECK(op->get_scalars(b, s, GLPGP_NSLOTS));
     r->energy = s[GLPGP_S_E];
     GLPGP_CHECK(op->vec_read(b, w->x, r->z));
-    GLPGP_CHECK(glpgp_osc_summarize(m, r));
+    if (!dir_given) GLPGP_CHECK(glpgp_osc_summarize(m, r));
+    else r->zabs_median = zabs_median(r->z, nv, w->scratch); /* for the log line; the caller summarises */
     r->seconds = glpgp_now() - t0;
     if (w->amg) {
         glpgp_amg_info ai;
@@ -187,6 +197,134 @@ static glpgp_status solve_oscillator(const glpgp_mesh *m, osc_work *w, int k, co
               glpgp_osc_name(k), r->seconds, r->zabs_median, r->plus, r->minus, r->newton_iterations,
               r->cg_iterations);
     return GLPGP_OK;
+}
+
+/* Whether --field cross solves the coupled pair: --cross-coupling on, or
+ * auto (default) when the representatives have cuts (the cross field has
+ * singularities); auto falls back to the uncoupled oscillators, with one
+ * warning, on a backend without coupled systems. */
+static int use_coupling(const glpgp_mesh *m, glpgp_backend *b, const glpgp_options *o, const glpgp_result *r)
+{
+    if (o->cross_coupling == GLPGP_COUPLING_OFF) return 0;
+    int cuts = 0;
+    for (int t = 0; t < m->nt && !cuts; t++)
+        for (int a = 1; a < 3; a++)
+            if (glpgp_cross_turn(r->field + 2 * m->tri[3 * t], r->field + 2 * m->tri[3 * t + a]) != 0) cuts = 1;
+    if (o->cross_coupling == GLPGP_COUPLING_AUTO && !cuts) return 0;
+    if (o->cross_coupling == GLPGP_COUPLING_AUTO && !b->ops->coupled_systems) {
+        glpgp_log(GLPGP_LOG_WARNING, "the %s backend does not support the coupled cross-field solve: the "
+                                     "oscillators are solved separately and see the cuts (--backend reference "
+                                     "couples them)", b->ops->name);
+        return 0;
+    }
+    return 1; /* on: a backend without coupled systems refuses it at setup */
+}
+
+/* The coupled pair (z_u, z_v) across the cross field's cuts (solver/coupled.c):
+ * one GL solve on the 2 nv-node coupled system, then split per vertex into
+ * r->osc[0] (z_u) and r->osc[1] (z_v), each in its vertex's own frame;
+ * r->osc[0] carries the coupled solve's statistics (its Newton / CG counts,
+ * levels, seconds and quadratic energy E_u + E_v), r->osc[1] none (zeros), so
+ * sums over u and v stay right; their singular triangles are the frame
+ * windings (glpgp_coupled_windings). */
+static glpgp_status solve_coupled(const glpgp_mesh *m, glpgp_backend *b, const glpgp_options *o, glpgp_result *r,
+                                  const double *size, double h, const double *eps, int nlev)
+{
+    glpgp_status st = GLPGP_OK;
+    const int nv = m->nv, nt = m->nt;
+    const size_t n4 = (size_t)4 * nv;
+    glpgp_coupled *cp = NULL;
+    osc_work w;
+    glpgp_osc_result co;
+    double *wn = NULL, *sn = NULL, *wu = NULL;
+    unsigned char *dn = NULL, *du = NULL;
+    memset(&w, 0, sizeof w);
+    memset(&co, 0, sizeof co);
+    GLPGP_CHECK(glpgp_coupled_create(m, r->field, &cp));
+    GLPGP_CHECK_GOTO(st, b->ops->setup(b, cp->sys), done);
+    w.b = b;
+    w.o = o;
+    GLPGP_CHECK_GOTO(st, b->ops->vec_create(b, n4, &w.x), done);
+    GLPGP_CHECK_GOTO(st, b->ops->vec_create(b, n4, &w.g), done);
+    GLPGP_CHECK_GOTO(st, b->ops->vec_create(b, n4, &w.d), done);
+    GLPGP_CHECK_GOTO(st, b->ops->vec_create(b, n4, &w.xt), done);
+    GLPGP_CHECK_GOTO(st, b->ops->vec_create(b, n4, &w.work), done);
+    GLPGP_CHECK_GOTO(st, glpgp_malloc(n4, sizeof(double), &w.host), done);
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)2 * nv, sizeof(double), &w.scratch), done);
+    GLPGP_CHECK_GOTO(st, glpgp_malloc(n4, sizeof(double), &co.z), done);
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)2 * nv, 1, &co.dirichlet), done);
+    GLPGP_CHECK_GOTO(st, glpgp_malloc(n4, sizeof(double), &wn), done);
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)2 * nv, sizeof(double), &wu), done);
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)2 * nv, 1, &dn), done);
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)nv, 1, &du), done);
+    /* node fields and Dirichlet sets: node (i, s) fixed where its own direction
+     * is normal to the boundary (the rule of glpgp_dirichlet_set per family) */
+    glpgp_coupled_node_field(r->field, nv, wn);
+    for (int s = 0; s < 2; s++) {
+        for (int i = 0; i < nv; i++) {
+            wu[2 * i] = wn[4 * i + 2 * s];
+            wu[2 * i + 1] = wn[4 * i + 2 * s + 1];
+        }
+        glpgp_dirichlet_set(m, wu, du);
+        for (int i = 0; i < nv; i++) dn[2 * i + s] = du[i];
+    }
+    if (size) { /* per-node sizes: node (i, s) takes oscillator s's size at i */
+        GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)2 * nv, sizeof(double), &sn), done);
+        for (int i = 0; i < nv; i++) {
+            sn[2 * i] = size[i];
+            sn[2 * i + 1] = size[nv + i];
+        }
+    }
+    glpgp_log(GLPGP_LOG_INFO, "coupled u+v: %d nodes, %ld blocks across the cross field's cuts", 2 * nv,
+              cp->sys->nnzb);
+    GLPGP_CHECK_GOTO(st, solve_oscillator(&cp->vm, &w, 3, wn, sn, &co, h, eps, nlev, dn), done);
+    /* split per vertex; the statistics go to both */
+    for (int s = 0; s < 2; s++) {
+        glpgp_osc_result *os = &r->osc[s];
+        for (int i = 0; i < nv; i++) {
+            os->z[2 * i] = co.z[4 * i + 2 * s];
+            os->z[2 * i + 1] = co.z[4 * i + 2 * s + 1];
+            os->dirichlet[i] = co.dirichlet[2 * i + s];
+        }
+        os->n_dirichlet = 0;
+        for (int i = 0; i < nv; i++) os->n_dirichlet += os->dirichlet[i];
+        if (s == 0) { /* the coupled solve's statistics, once (totals u + v stay right) */
+            os->energy = co.energy;
+            os->newton_iterations = co.newton_iterations;
+            os->cg_iterations = co.cg_iterations;
+            os->nlevels = co.nlevels;
+            memcpy(os->level, co.level, sizeof co.level);
+            os->capped_levels = co.capped_levels;
+            os->seconds = co.seconds;
+        }
+        GLPGP_CHECK_GOTO(st, glpgp_osc_summarize(m, os), done);
+    }
+    for (int s = 0; s < 2; s++)
+        glpgp_coupled_windings(m, r->field, r->osc[0].z, r->osc[1].z, s, r->osc[s].singular, &r->osc[s].plus,
+                               &r->osc[s].minus);
+    r->coupled = 1;
+    glpgp_log(GLPGP_LOG_INFO, "coupled u+v: frame windings u +%d/-%d, v +%d/-%d (%d triangles)", r->osc[0].plus,
+              r->osc[0].minus, r->osc[1].plus, r->osc[1].minus, nt);
+done:
+    glpgp_amg_destroy(&w.amg);
+    b->ops->vec_destroy(b, &w.x);
+    b->ops->vec_destroy(b, &w.g);
+    b->ops->vec_destroy(b, &w.d);
+    b->ops->vec_destroy(b, &w.xt);
+    b->ops->vec_destroy(b, &w.work);
+    free(w.host);
+    free(w.scratch);
+    free(co.z);
+    free(co.dirichlet);
+    free(wn);
+    free(sn);
+    free(wu);
+    free(dn);
+    free(du);
+    /* the backend keeps a pointer to cp->sys: glpgp_solve's caller sets it up
+     * again before any further use, as after every solve */
+    glpgp_coupled_destroy(&cp);
+    return st;
 }
 
 glpgp_status glpgp_solve(const glpgp_mesh *m, glpgp_backend *b, const glpgp_options *o,
@@ -249,11 +387,28 @@ glpgp_status glpgp_solve(const glpgp_mesh *m, glpgp_backend *b, const glpgp_opti
     /* local size h(x) per oscillator (uniform: NULL, today's arithmetic) */
     GLPGP_CHECK_GOTO(st, glpgp_malloc(n2, sizeof(double), &size), fail);
     GLPGP_CHECK_GOTO(st, glpgp_size_compute(m, o, h, r->field, size, &uniform), fail);
+    if (o->field == GLPGP_FIELD_CROSS && o->cross_size && r->cross) {
+        /* --cross-size: the cross field's conformal size, the smaller of the two, both oscillators */
+        double *cs = NULL;
+        GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)nv, sizeof(double), &cs), fail);
+        st = glpgp_cross_conformal_size(m, b, o, r->cross->w, h, cs, &r->field_cg_iterations);
+        if (st == GLPGP_OK)
+            for (int k = 0; k < 2; k++)
+                for (int i = 0; i < nv; i++) size[(size_t)k * nv + i] = fmin(size[(size_t)k * nv + i], cs[i]);
+        free(cs);
+        if (st != GLPGP_OK) goto fail;
+        uniform = 0;
+    }
     if (!uniform) glpgp_size_log(m, size, h);
 
     double eps[GLPGP_MAX_LEVELS];
     int nlev = glpgp_eps_schedule(m, o, h, eps);
 
+    if (o->field == GLPGP_FIELD_CROSS && r->cross && use_coupling(m, b, o, r)) {
+        GLPGP_CHECK_GOTO(st, solve_coupled(m, b, o, r, uniform ? NULL : size, h, eps, nlev), fail);
+        r->seconds_total = glpgp_now() - t0;
+        goto cleanup;
+    }
     for (int k = 0; k < 2; k++) {
         /* W = U (k = 0) or V = U rotated by +90 degrees (k = 1) */
         for (int i = 0; i < nv; i++) {
@@ -262,7 +417,7 @@ glpgp_status glpgp_solve(const glpgp_mesh *m, glpgp_backend *b, const glpgp_opti
             wv[2 * i + 1] = k == 0 ? uy : ux;
         }
         GLPGP_CHECK_GOTO(st, solve_oscillator(m, &w, k, wv, uniform ? NULL : size + (size_t)k * nv, &r->osc[k], h,
-                                              eps, nlev),
+                                              eps, nlev, NULL),
                          fail);
     }
     r->seconds_total = glpgp_now() - t0;

@@ -427,7 +427,12 @@ glpgp_status glpgp_cross_guiding_field(const glpgp_mesh *m, glpgp_backend *b, co
         glpgp_cross_result_destroy(&c);
         return GLPGP_FAIL(GLPGP_ERR_NOMEM, "cross field: no memory for the vector field");
     }
-    if (c->nsing > 0 || cuts > 0)
+    if ((c->nsing > 0 || cuts > 0) && o->cross_coupling != GLPGP_COUPLING_OFF)
+        glpgp_log(GLPGP_LOG_INFO,
+                  "cross field has %d singularities: U (alpha = arg(w)/4) turns by 90 degrees across %d edges; "
+                  "the oscillators are coupled across them (--cross-coupling)",
+                  c->nsing, cuts);
+    else if (c->nsing > 0 || cuts > 0)
         glpgp_log(GLPGP_LOG_WARNING,
                   "cross field has %d singularities: U (alpha = arg(w)/4, branches chosen outward from the "
                   "centre) turns by 90 degrees across %d edges, which the oscillators see as cuts",

@@ -48,7 +48,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-const char *glpgp_osc_name(int k) { return k == 0 ? "u" : k == 1 ? "v" : "cross"; }
+const char *glpgp_osc_name(int k) { return k == 0 ? "u" : k == 1 ? "v" : k == 3 ? "coupled u+v" : "cross"; }
 
 /* Line-search step (modified Newton; see the file comment). */
 static glpgp_status ls_step(glpgp_backend *b, const glpgp_options *o, glpgp_newton_state *ns,

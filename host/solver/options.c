@@ -22,6 +22,8 @@ void glpgp_options_default(glpgp_options *o)
     o->cross_eps0 = 0.05;
     o->cross_eps_min = 2.5;
     o->cross_rtol = 1e-3;
+    o->cross_coupling = GLPGP_COUPLING_AUTO;
+    o->cross_size = 0;
     o->newton_rtol = 1e-6;
     o->intermediate_rtol = 1e-3;
     o->newton_max = 50;
@@ -86,6 +88,10 @@ glpgp_status glpgp_options_check(const glpgp_options *o)
         !isfinite(o->cross_eps_min))
         return GLPGP_FAIL(GLPGP_ERR_ARG, "cross-eps0 and cross-eps-min must be positive");
     if (!OPEN01(o->cross_rtol)) return GLPGP_FAIL(GLPGP_ERR_ARG, "cross-rtol must be in (0,1)");
+    if (o->cross_coupling < GLPGP_COUPLING_AUTO || o->cross_coupling > GLPGP_COUPLING_ON)
+        return GLPGP_FAIL(GLPGP_ERR_ARG, "cross_coupling must be auto, off or on, got %d", o->cross_coupling);
+    if (o->cross_size != 0 && o->cross_size != 1)
+        return GLPGP_FAIL(GLPGP_ERR_ARG, "cross_size must be 0 or 1, got %d", o->cross_size);
     if (!OPEN01(o->eps_ratio))
         return GLPGP_FAIL(GLPGP_ERR_ARG, "eps ratio must be in (0,1), got %g", o->eps_ratio);
     if (!(o->eps_merge >= 1.0)) return GLPGP_FAIL(GLPGP_ERR_ARG, "eps_merge must be >= 1");

@@ -190,6 +190,12 @@ static void test_device_errors(void)
         CHECK(strstr(glpgp_error_message(), "amg_rows.h") != NULL);
         glpgp_error_clear();
         write_file(dir, "amg_rows.h", "/* empty */\n");
+        /* coupled_rows.h missing: the same */
+        st = glpgp_backend_create_opencl(&o, &b);
+        CHECK(st == GLPGP_ERR_IO && b == NULL);
+        CHECK(strstr(glpgp_error_message(), "coupled_rows.h") != NULL);
+        glpgp_error_clear();
+        write_file(dir, "coupled_rows.h", "/* empty */\n");
         st = glpgp_backend_create_opencl(&o, &b);
         CHECK(st == GLPGP_ERR_OPENCL && b == NULL);
         CHECK(strstr(glpgp_error_message(), "build log") != NULL);
@@ -198,6 +204,7 @@ static void test_device_errors(void)
         unsetenv("GLPGP_KERNEL_DIR");
         remove_file(dir, "broken.cl");
         remove_file(dir, "element.h");
+        remove_file(dir, "coupled_rows.h");
         remove_file(dir, "rows.h");
         remove_file(dir, "amg_rows.h");
         rmdir(dir);

@@ -103,10 +103,16 @@ typedef struct glpgp_amg_coef {
 
 typedef struct glpgp_backend_ops {
     const char *name; /* "reference" or "opencl" */
+    /* 1: setup accepts a coupled cross-field system (glpgp_system with cconj,
+     * solver/coupled.c); 0: setup refuses it */
+    int coupled_systems;
     void (*destroy)(glpgp_backend *b); /* frees b->impl, not b */
 
-    /* Upload the mesh layout (coordinates, triangles, pattern, gather maps).
-     * Called once; the system must outlive the backend's use of it. */
+    /* Upload the mesh layout (coordinates, triangles, pattern, gather maps;
+     * a coupled system's matching, system.h). Called again for another
+     * system, it releases the previous one's data (its matrices, multigrid;
+     * vectors stay valid only if of the new size). The system must outlive
+     * the backend's use of it. */
     glpgp_status (*setup)(glpgp_backend *b, const glpgp_system *sys);
 
     /* Vectors of n doubles, zero-initialised. */

@@ -122,6 +122,64 @@ glpgp_status glpgp_cross_guiding_field(const glpgp_mesh *m, glpgp_backend *b,
 int glpgp_cross_eps_schedule(const glpgp_mesh *m, const struct glpgp_options *o,
                              double eps[GLPGP_CROSS_MAX_LEVELS]);
 
+/* ---- coupled oscillators across the branch cuts (issue 14, item 3;
+ * solver/coupled.c, host/README.md "Coupled oscillators") -----------------
+ * Vertex i has the representative U_i (glpgp_cross_to_vector) and two nodes,
+ * 2i (z_u, along U_i) and 2i + 1 (z_v, along V_i = U_i rotated by +90 deg).
+ * Triangle t's frame is its corner 0's representative; corner a has the
+ * quarter-turn count r_a = glpgp_cross_turn(U_{corner 0}, U_a). */
+
+/* Quarter turns r in 0..3 with rot^r(U_b) closest to U_a (rot: +90 degrees). */
+int glpgp_cross_turn(const double *ua, const double *ub);
+
+/* The frame oscillator k (0: u, 1: v) at a corner with quarter-turn count r
+ * is the node family *family (0: z_u, 1: z_v) of that vertex, conjugated when
+ * *conj:  r = 0: (z_u, z_v), 1: (z_v, conj z_u), 2: (conj z_u, conj z_v),
+ * 3: (conj z_v, z_u). */
+void glpgp_cross_frame_map(int r, int k, int *family, int *conj);
+
+/* out (2 doubles) <- the frame oscillator k at a corner with count r, from
+ * that vertex's own (z_u, z_v) (2 doubles each). */
+void glpgp_coupled_frame_value(int r, int k, const double *zu, const double *zv, double *out);
+
+/* The coupled system of mesh m and representatives u (2*nv): a virtual mesh
+ * of 2 nv nodes (node 2i + s at x_i) and 2 nt triangles (2t + s: the frame
+ * oscillator s of triangle t, on the nodes that carry it), its block layout
+ * with the matching attached (sys->cconj, sys->cfield), and match[3t + a] =
+ * r_a. Vectors of the coupled solve hold 4 nv doubles: (Re, Im) of node
+ * 2i + s at 4i + 2s. */
+typedef struct glpgp_coupled {
+    int nv, nt;               /* of the real mesh */
+    glpgp_mesh vm;            /* virtual mesh: nv, nt, xy, tri set (no boundary data) */
+    glpgp_system *sys;        /* layout of vm with cconj, cfield */
+    unsigned char *match;     /* 3 * nt: r_a per corner */
+} glpgp_coupled;
+
+glpgp_status glpgp_coupled_create(const glpgp_mesh *m, const double *u, glpgp_coupled **out);
+void glpgp_coupled_destroy(glpgp_coupled **c);
+
+/* Per-node unit fields of the coupled system (4 nv): U_i at node 2i, V_i at
+ * node 2i + 1 (each node's own frame; used for Dirichlet sets and the
+ * multigrid's plane-wave frames). */
+void glpgp_coupled_node_field(const double *u, int nv, double *w);
+
+/* Windings of the frame oscillator k per triangle (sing: nt, -1, 0, +1) from
+ * the per-vertex own-frame values zu, zv (2*nv each) and representatives u;
+ * counts into *plus, *minus. */
+void glpgp_coupled_windings(const glpgp_mesh *m, const double *u, const double *zu, const double *zv, int k,
+                            signed char *sing, int *plus, int *minus);
+
+/* Conformal size field of the cross field w (2*nv) for target size h
+ * (--cross-size, host/README.md "Coupled oscillators"): phi minimising
+ * int |grad phi - R grad theta|^2, theta = arg(w)/4 per triangle, R the turn
+ * by -90 degrees (so that U / s and V / s are curl-free where theta is
+ * harmonic), by one linear solve on backend b (set up for m; its field,
+ * Dirichlet set and matrices are overwritten); size (nv) <- h exp(phi -
+ * max phi), at least size_min h and min(h, size_resolution x the longest
+ * edge at the vertex). *cg_iterations is increased by its CG iterations. */
+glpgp_status glpgp_cross_conformal_size(const glpgp_mesh *m, glpgp_backend *b, const struct glpgp_options *o,
+                                        const double *w, double h, double *size, long *cg_iterations);
+
 #ifdef __cplusplus
 }
 #endif

@@ -54,6 +54,12 @@ typedef struct glpgp_result {
     double seconds_setup, seconds_field, seconds_total;
     long field_cg_iterations;
     struct glpgp_cross_result *cross; /* the cross field of --field cross (glpgp/cross.h), else NULL */
+    int coupled;               /* 1: osc[0], osc[1] were solved coupled across the cuts of the
+                                  representatives `field` (glpgp/cross.h): z stays per vertex in
+                                  each vertex's own frame, and a triangle's (u, v) is read through
+                                  its corners' matching (glpgp_coupled_frame_value); osc[0]
+                                  carries the coupled solve's statistics and energy E_u + E_v,
+                                  osc[1] zeros; singular = the frame windings */
 } glpgp_result;
 
 /* A zeroed result for nv vertices and nt triangles with field, z,

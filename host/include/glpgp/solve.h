@@ -23,6 +23,13 @@ enum glpgp_field {
     GLPGP_FIELD_BOUNDARY = 0, GLPGP_FIELD_RADIAL = 1, GLPGP_FIELD_FILE = 2,
     GLPGP_FIELD_CROSS = 3 /* U from the Ginzburg-Landau cross field (glpgp/cross.h) */
 };
+/* --field cross with singularities: the two oscillators coupled across the
+ * cross field's cuts (glpgp/cross.h, solver/coupled.c), or solved apart. */
+enum glpgp_cross_coupling {
+    GLPGP_COUPLING_AUTO = 0, /* coupled when the representatives have cuts and the backend can */
+    GLPGP_COUPLING_OFF = 1,  /* never: u and v solved apart (they see the cuts) */
+    GLPGP_COUPLING_ON = 2    /* coupled when there are cuts; a backend that cannot is an error */
+};
 enum glpgp_init { GLPGP_INIT_NAIVE = 0, GLPGP_INIT_ONE = 1 };
 /* How a Newton step is made safe: a trust region around the exact-Hessian
  * model (Steihaug-Toint CG), or the line search of the modified Newton. */
@@ -78,6 +85,9 @@ typedef struct glpgp_options {
     double cross_eps_min; /* last eps as a multiple of the mean edge length [2.5] */
     double cross_rtol;    /* every cross level stops when |g| <= this |g_0| (the singularities
                              are placed long before; later steps are slow vortex drift) [1e-3] */
+    int cross_coupling;   /* GLPGP_COUPLING_* [AUTO] */
+    int cross_size;       /* 1: local size from the cross field (glpgp_cross_conformal_size),
+                             the smaller of it and the size field's, for both oscillators [0] */
 
     /* Newton */
     double newton_rtol;   /* stop the last level when |g| <= rtol |g_0| [1e-6] */

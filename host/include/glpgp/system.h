@@ -28,6 +28,14 @@ typedef struct glpgp_system {
     int *vptr;     /* nv + 1 */
     int *vtri;     /* 3 * nt */
     const glpgp_mesh *mesh; /* borrowed, must outlive the system */
+    /* Matching of the coupled cross-field solve (solver/coupled.c, NULL for
+     * every other system; owned, freed by glpgp_system_destroy): per corner
+     * (t, a) of the mesh's triangles, cconj[3t+a] = 1 when the node's values
+     * enter triangle t's frame conjugated (real transform diag(1, -1)) and
+     * cfield[2(3t+a) .. +1] the unit field of the frame at that corner; the
+     * backends then assemble with kernels/coupled_rows.h. */
+    unsigned char *cconj; /* 3 * nt or NULL */
+    double *cfield;       /* 6 * nt or NULL */
 } glpgp_system;
 
 /* Build the layout and maps for mesh m (borrowed). */
