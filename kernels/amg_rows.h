@@ -313,6 +313,50 @@ GLPGP_FN void glpgp_amg_agg_restrict(int J, GLPGP_GLOBAL const int *aptr, GLPGP_
     rc[2 * J + 1] = acc[1];
 }
 
+/* Residual row i:  t_i <- r_i - (A x)_i  (the first pass of the two-pass
+ * restriction of a parallel device: rows in order, then the aggregates
+ * gather t with has_x = 0 -- the sums of glpgp_amg_agg_restrict with
+ * has_x = 1, bit for bit, reading 2 doubles per member instead of a row). */
+GLPGP_FN void glpgp_amg_row_residual(int i, GLPGP_GLOBAL const int *rowptr, GLPGP_GLOBAL const int *col,
+                                     GLPGP_GLOBAL const double *A, GLPGP_GLOBAL const double *r,
+                                     GLPGP_GLOBAL const double *x, GLPGP_GLOBAL double *t)
+{
+    double ax0, ax1;
+    glpgp_row_spmv(i, rowptr, col, A, x, &ax0, &ax1);
+    t[2 * i] = r[2 * i] - ax0;
+    t[2 * i + 1] = r[2 * i + 1] - ax1;
+}
+
+/* Restriction in row order (the serial reference): for row i of aggregate
+ * J = agg[i] >= 0,  rc_J += P_i^T (r_i - (A x)_i)  (has_x = 0: P_i^T r_i).
+ * Called for i = 0, 1, ... after rc <- 0, every aggregate sums its members
+ * in increasing order from 0: the sums of glpgp_amg_agg_restrict, bit for
+ * bit, with the level's rows read in order (the gather reads them aggregate
+ * by aggregate, scattered over the level: 46% of a reference solve on a
+ * 107k-vertex CAD part). */
+GLPGP_FN void glpgp_amg_row_restrict_scatter(int i, GLPGP_GLOBAL const int *agg, GLPGP_GLOBAL const double *c,
+                                             int has_x, GLPGP_GLOBAL const int *rowptr,
+                                             GLPGP_GLOBAL const int *col, GLPGP_GLOBAL const double *A,
+                                             GLPGP_GLOBAL const double *r, GLPGP_GLOBAL const double *x,
+                                             GLPGP_GLOBAL double *rc)
+{
+    const int J = agg[i];
+    if (J < 0) return;
+    double t0 = r[2 * i], t1 = r[2 * i + 1];
+    if (has_x) {
+        double ax0, ax1;
+        glpgp_row_spmv(i, rowptr, col, A, x, &ax0, &ax1);
+        t0 = r[2 * i] - ax0;
+        t1 = r[2 * i + 1] - ax1;
+    }
+    double acc[2];
+    acc[0] = rc[2 * J];
+    acc[1] = rc[2 * J + 1];
+    glpgp_amg_restrict_add(c[2 * i], c[2 * i + 1], t0, t1, acc);
+    rc[2 * J] = acc[0];
+    rc[2 * J + 1] = acc[1];
+}
+
 /* Prolongation row i:  x_i <- x_i + P_i ec_agg(i)  (agg(i) < 0: unchanged). */
 GLPGP_FN void glpgp_amg_row_prolong(int i, GLPGP_GLOBAL const int *agg, GLPGP_GLOBAL const double *c,
                                     GLPGP_GLOBAL const double *ec, GLPGP_GLOBAL double *x)

@@ -139,6 +139,17 @@ GLPGP_KERNEL void glpgp_amg_restrict(int n, int chunk, __global const int *aptr,
     for (int J = lo; J < hi; J++) glpgp_amg_agg_restrict(J, aptr, amem, c, has_x, rowptr, col, A, r, x, rc);
 }
 
+/* Rows [lo, hi):  t_i <- r_i - (A x)_i  (first pass of the restriction: the
+ * aggregates then gather t, 2 doubles per member, instead of each reading
+ * its members' rows scattered over the level). */
+GLPGP_KERNEL void glpgp_amg_residual(int n, int chunk, __global const int *rowptr, __global const int *col,
+                                     __global const double *A, __global const double *r,
+                                     __global const double *x, __global double *t)
+{
+    GLPGP_RANGE(lo, hi, n, chunk);
+    for (int i = lo; i < hi; i++) glpgp_amg_row_residual(i, rowptr, col, A, r, x, t);
+}
+
 /* Rows [lo, hi):  x_i <- x_i + P_i ec_agg(i). */
 GLPGP_KERNEL void glpgp_amg_prolong(int n, int chunk, __global const int *agg, __global const double *c,
                                     __global const double *ec, __global double *x)

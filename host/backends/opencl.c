@@ -106,6 +106,7 @@ enum {
     K_AMG_AXPBY,
     K_AMG_KCOMBINE,
     K_AMG_BOTTOM,
+    K_AMG_RESIDUAL,
     /* coupled cross-field system (backend_coupled.cl) */
     K_CASM_QUAD,
     K_CASM_NEWTON,
@@ -121,7 +122,7 @@ static const char *const kernel_names[K_COUNT] = {
     "glpgp_amg_finalize", "glpgp_amg_weights", "glpgp_amg_galerkin", "glpgp_amg_l1",
     "glpgp_amg_smooth",   "glpgp_amg_restrict", "glpgp_amg_prolong", "glpgp_amg_dense",
     "glpgp_amg_spmv_dots", "glpgp_amg_dots",   "glpgp_amg_axpby",   "glpgp_amg_kcombine",
-    "glpgp_amg_bottom",
+    "glpgp_amg_bottom", "glpgp_amg_residual",
     "glpgp_casm_quad", "glpgp_casm_newton", "glpgp_cgradient", "glpgp_cpen_energy_part",
 };
 
@@ -154,6 +155,7 @@ typedef struct cl_amg {
     double *cval;        /* host buffer for its values */
     cl_mem cinv;         /* m*m */
     cl_mem t;            /* GLPGP_AMG_NSLOTS registers */
+    cl_mem resid;        /* 2 n_0 doubles: the residual of the two-pass restriction */
     cl_mem part;         /* 3 * pstride partials */
     size_t pstride;
     /* fused coarse corrections (CPU shape): levels lb .. L-1 live in the
@@ -1138,6 +1140,7 @@ static void amg_free(cl_impl *c)
     }
     release_mem(&a->cinv);
     release_mem(&a->t);
+    release_mem(&a->resid);
     release_mem(&a->part);
     release_mem(&a->tab);
     release_mem(&a->ipack);
@@ -1435,6 +1438,7 @@ static glpgp_status cl_amg_setup(glpgp_backend *b, const glpgp_amg_layout *lay)
             GLPGP_CHECK_GOTO(st, upload(c, &a->cinv, NULL, (size_t)a->m * a->m * sizeof(double)), fail);
     }
     GLPGP_CHECK_GOTO(st, upload(c, &a->t, NULL, GLPGP_AMG_NSLOTS * sizeof(double)), fail);
+    GLPGP_CHECK_GOTO(st, upload(c, &a->resid, NULL, (size_t)2 * lay->lev[0].n * sizeof(double)), fail);
     {
         cl_int err = clFinish(c->q);
         if (err != CL_SUCCESS) {
@@ -1585,10 +1589,24 @@ static glpgp_status cl_amg_restrict(glpgp_backend *b, int l, const glpgp_vec *r,
     cl_impl *c = IMPL(b);
     GLPGP_CHECK(amg_level_ok(c, l, 0, "amg_restrict"));
     const cl_amg_level *v = &c->amg->lev[l];
-    /* rc_J <- sum_{i in J} P_i^T (r - A x)_i */
+    /* rc_J <- sum_{i in J} P_i^T (r - A x)_i, in two passes when x is given:
+     * t <- r - A x (rows in order), then rc_J <- sum_{i in J} P_i^T t_i */
+    cl_mem rp = amg_rowptr(c, l), col = amg_col(c, l), A = amg_val(c, l);
+    cl_mem rin = r->m;
+    if (x) {
+        cl_kernel kr = c->k[K_AMG_RESIDUAL];
+        ARG(kr, 2, rp);
+        ARG(kr, 3, col);
+        ARG(kr, 4, A);
+        ARG(kr, 5, r->m);
+        ARG(kr, 6, x->m);
+        ARG(kr, 7, c->amg->resid);
+        GLPGP_CHECK(amg_run(c, K_AMG_RESIDUAL, (size_t)v->n, NULL));
+        rin = c->amg->resid;
+    }
     cl_kernel k = c->k[K_AMG_RESTRICT];
-    const cl_int has_x = x != NULL;
-    cl_mem rp = amg_rowptr(c, l), col = amg_col(c, l), A = amg_val(c, l), xm = x ? x->m : r->m;
+    const cl_int has_x = 0;
+    cl_mem xm = rin;
     ARG(k, 2, v->aptr);
     ARG(k, 3, v->amem);
     ARG(k, 4, v->c);
@@ -1596,7 +1614,7 @@ static glpgp_status cl_amg_restrict(glpgp_backend *b, int l, const glpgp_vec *r,
     ARG(k, 6, rp);
     ARG(k, 7, col);
     ARG(k, 8, A);
-    ARG(k, 9, r->m);
+    ARG(k, 9, rin);
     ARG(k, 10, xm);
     ARG(k, 11, rc->m);
     return amg_run_w(c, K_AMG_RESTRICT, (size_t)v->nc, (size_t)v->n, NULL);

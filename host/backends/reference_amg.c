@@ -215,10 +215,12 @@ glpgp_status glpgp_ref_amg_restrict(glpgp_backend *b, int l, const glpgp_vec *r,
     struct ref_amg *a = AMG(b);
     const ref_level *v = &a->lev[l];
     const double *A = level_val(IMPL(b), l);
-    /* rc_J <- sum_{i in J} P_i^T (r_i - (A x)_i)  (gather over the members) */
-    for (int J = 0; J < v->nc; J++)
-        glpgp_amg_agg_restrict(J, v->aptr, v->amem, v->c, x != NULL, v->rowptr, v->col, A, r->a,
-                               x ? x->a : NULL, rc->a);
+    /* rc_J <- sum_{i in J} P_i^T (r_i - (A x)_i): rc <- 0, then the rows in
+     * order, each added to its aggregate (the gather's sums, bit for bit) */
+    for (int J = 0; J < 2 * v->nc; J++) rc->a[J] = 0.0;
+    for (int i = 0; i < v->n; i++)
+        glpgp_amg_row_restrict_scatter(i, v->agg, v->c, x != NULL, v->rowptr, v->col, A, r->a, x ? x->a : NULL,
+                                       rc->a);
     return GLPGP_OK;
 }
 
