@@ -289,6 +289,22 @@ GLPGP_FN void glpgp_amg_row_smooth(int i, int has_x, GLPGP_GLOBAL const int *row
     y[2 * i + 1] = o[1];
 }
 
+/* Residual of row i:  (t0, t1) <- r_i - (A x)_i  (has_x = 0: r_i), the
+ * one form every restriction variant below uses. */
+GLPGP_FN void glpgp_amg_row_resid(int i, int has_x, GLPGP_GLOBAL const int *rowptr, GLPGP_GLOBAL const int *col,
+                                  GLPGP_GLOBAL const double *A, GLPGP_GLOBAL const double *r,
+                                  GLPGP_GLOBAL const double *x, double *t0, double *t1)
+{
+    *t0 = r[2 * i];
+    *t1 = r[2 * i + 1];
+    if (has_x) {
+        double ax0, ax1;
+        glpgp_row_spmv(i, rowptr, col, A, x, &ax0, &ax1);
+        *t0 = r[2 * i] - ax0;
+        *t1 = r[2 * i + 1] - ax1;
+    }
+}
+
 /* Restriction of aggregate J:  rc_J <- sum_{i in J} P_i^T (r_i - (A x)_i)
  * (has_x = 0: P_i^T r_i), members in increasing order. */
 GLPGP_FN void glpgp_amg_agg_restrict(int J, GLPGP_GLOBAL const int *aptr, GLPGP_GLOBAL const int *amem,
@@ -300,13 +316,8 @@ GLPGP_FN void glpgp_amg_agg_restrict(int J, GLPGP_GLOBAL const int *aptr, GLPGP_
     double acc[2] = {0.0, 0.0};
     for (int p = aptr[J]; p < aptr[J + 1]; p++) {
         const int i = amem[p];
-        double t0 = r[2 * i], t1 = r[2 * i + 1];
-        if (has_x) {
-            double ax0, ax1;
-            glpgp_row_spmv(i, rowptr, col, A, x, &ax0, &ax1);
-            t0 = r[2 * i] - ax0;
-            t1 = r[2 * i + 1] - ax1;
-        }
+        double t0, t1;
+        glpgp_amg_row_resid(i, has_x, rowptr, col, A, r, x, &t0, &t1);
         glpgp_amg_restrict_add(c[2 * i], c[2 * i + 1], t0, t1, acc);
     }
     rc[2 * J] = acc[0];
@@ -321,10 +332,10 @@ GLPGP_FN void glpgp_amg_row_residual(int i, GLPGP_GLOBAL const int *rowptr, GLPG
                                      GLPGP_GLOBAL const double *A, GLPGP_GLOBAL const double *r,
                                      GLPGP_GLOBAL const double *x, GLPGP_GLOBAL double *t)
 {
-    double ax0, ax1;
-    glpgp_row_spmv(i, rowptr, col, A, x, &ax0, &ax1);
-    t[2 * i] = r[2 * i] - ax0;
-    t[2 * i + 1] = r[2 * i + 1] - ax1;
+    double t0, t1;
+    glpgp_amg_row_resid(i, 1, rowptr, col, A, r, x, &t0, &t1);
+    t[2 * i] = t0;
+    t[2 * i + 1] = t1;
 }
 
 /* Restriction in row order (the serial reference): for row i of aggregate
@@ -342,13 +353,8 @@ GLPGP_FN void glpgp_amg_row_restrict_scatter(int i, GLPGP_GLOBAL const int *agg,
 {
     const int J = agg[i];
     if (J < 0) return;
-    double t0 = r[2 * i], t1 = r[2 * i + 1];
-    if (has_x) {
-        double ax0, ax1;
-        glpgp_row_spmv(i, rowptr, col, A, x, &ax0, &ax1);
-        t0 = r[2 * i] - ax0;
-        t1 = r[2 * i + 1] - ax1;
-    }
+    double t0, t1;
+    glpgp_amg_row_resid(i, has_x, rowptr, col, A, r, x, &t0, &t1);
     double acc[2];
     acc[0] = rc[2 * J];
     acc[1] = rc[2 * J + 1];

@@ -135,38 +135,7 @@ GLPGP_FN int glpgp_crow_asm_newton(int i, int hess, double inv4e2, GLPGP_GLOBAL 
             }
         }
     }
-    for (int k = k0; k < k1; k++) {
-        const int j = col[k];
-        GLPGP_GLOBAL double *blk = newton + 4 * (long)k;
-        if (dir[i] || dir[j]) {
-            const double d = (i == j) ? 1.0 : 0.0;
-            blk[0] = d;
-            blk[1] = 0.0;
-            blk[2] = 0.0;
-            blk[3] = d;
-            continue;
-        }
-        GLPGP_GLOBAL const double *qb = quad + 4 * (long)k;
-        blk[0] = qb[0] + blk[0];
-        blk[1] = qb[1] + blk[1];
-        blk[2] = qb[2] + blk[2];
-        blk[3] = qb[3] + blk[3];
-    }
-    GLPGP_GLOBAL const double *d = newton + 4 * (long)diag[i];
-    const double det = d[0] * d[3] - d[1] * d[2];
-    GLPGP_GLOBAL double *o = dinv + 4 * (long)i;
-    if (det == 0.0) {
-        o[0] = 0.0;
-        o[1] = 0.0;
-        o[2] = 0.0;
-        o[3] = 0.0;
-        return 1;
-    }
-    o[0] = d[3] / det;
-    o[1] = -d[1] / det;
-    o[2] = -d[2] / det;
-    o[3] = d[0] / det;
-    return 0;
+    return glpgp_row_newton_finish(i, k0, k1, col, diag, dir, quad, newton, dinv);
 }
 
 /* Gradient row i of the coupled system: g_i <- (QUAD x)_i + sum over the

@@ -164,6 +164,50 @@ GLPGP_FN void glpgp_row_asm_quad(int i, int kind, double h, int sized, GLPGP_GLO
     }
 }
 
+/* The end of a NEWTON row i (slots k0 .. k1, the penalty sums already in
+ * newton): NEWTON_k <- QUAD_k + penalty sum, a Dirichlet row / column -> I
+ * or 0; DINV_i <- the inverse of the diagonal block (0 and returns 1 when
+ * singular). Shared by the plain and the coupled rows (coupled_rows.h). */
+GLPGP_FN int glpgp_row_newton_finish(int i, int k0, int k1, GLPGP_GLOBAL const int *col,
+                                     GLPGP_GLOBAL const int *diag, GLPGP_GLOBAL const unsigned char *dir,
+                                     GLPGP_GLOBAL const double *quad, GLPGP_GLOBAL double *newton,
+                                     GLPGP_GLOBAL double *dinv)
+{
+    /* NEWTON_k <- QUAD_k + penalty sum; Dirichlet row/column -> I or 0 */
+    for (int k = k0; k < k1; k++) {
+        const int j = col[k];
+        GLPGP_GLOBAL double *blk = newton + 4 * (long)k;
+        if (dir[i] || dir[j]) {
+            const double d = (i == j) ? 1.0 : 0.0;
+            blk[0] = d;
+            blk[1] = 0.0;
+            blk[2] = 0.0;
+            blk[3] = d;
+            continue;
+        }
+        GLPGP_GLOBAL const double *qb = quad + 4 * (long)k;
+        blk[0] = qb[0] + blk[0];
+        blk[1] = qb[1] + blk[1];
+        blk[2] = qb[2] + blk[2];
+        blk[3] = qb[3] + blk[3];
+    }
+    GLPGP_GLOBAL const double *d = newton + 4 * (long)diag[i];
+    const double det = d[0] * d[3] - d[1] * d[2];
+    GLPGP_GLOBAL double *o = dinv + 4 * (long)i;
+    if (det == 0.0) {
+        o[0] = 0.0;
+        o[1] = 0.0;
+        o[2] = 0.0;
+        o[3] = 0.0;
+        return 1;
+    }
+    o[0] = d[3] / det;
+    o[1] = -d[1] / det;
+    o[2] = -d[2] / det;
+    o[3] = d[0] / det;
+    return 0;
+}
+
 /* NEWTON block row i and DINV_i:
  *   NEWTON_k <- QUAD_k + sum_{(t,a,b) in contrib(k)} d2P_t/dX_a dX_b  (variant hess, weight
  *               inv4e2 = 1/(4 eps^2) at z; no penalty when inv4e2 <= 0), slot-map order;
@@ -217,39 +261,7 @@ GLPGP_FN int glpgp_row_asm_newton(int i, int hess, double inv4e2, GLPGP_GLOBAL c
             }
         }
     }
-    /* NEWTON_k <- QUAD_k + penalty sum; Dirichlet row/column -> I or 0 */
-    for (int k = k0; k < k1; k++) {
-        const int j = col[k];
-        GLPGP_GLOBAL double *blk = newton + 4 * (long)k;
-        if (dir[i] || dir[j]) {
-            const double d = (i == j) ? 1.0 : 0.0;
-            blk[0] = d;
-            blk[1] = 0.0;
-            blk[2] = 0.0;
-            blk[3] = d;
-            continue;
-        }
-        GLPGP_GLOBAL const double *qb = quad + 4 * (long)k;
-        blk[0] = qb[0] + blk[0];
-        blk[1] = qb[1] + blk[1];
-        blk[2] = qb[2] + blk[2];
-        blk[3] = qb[3] + blk[3];
-    }
-    GLPGP_GLOBAL const double *d = newton + 4 * (long)diag[i];
-    const double det = d[0] * d[3] - d[1] * d[2];
-    GLPGP_GLOBAL double *o = dinv + 4 * (long)i;
-    if (det == 0.0) {
-        o[0] = 0.0;
-        o[1] = 0.0;
-        o[2] = 0.0;
-        o[3] = 0.0;
-        return 1;
-    }
-    o[0] = d[3] / det;
-    o[1] = -d[1] / det;
-    o[2] = -d[2] / det;
-    o[3] = d[0] / det;
-    return 0;
+    return glpgp_row_newton_finish(i, k0, k1, col, diag, dir, quad, newton, dinv);
 }
 
 /* ---- energy and gradient -------------------------------------------------- */

@@ -102,17 +102,14 @@ static double min_sj(const glpgp_quadmesh *r)
 static void check_mesh(const glpgp_quadmesh *q, const glpgp_quadmesh *r, const char *what)
 {
     /* convex CCW quads, the boundary square kept, area N^2 */
-    double area = 0, sjmin = 1;
+    double area = 0;
+    const double sjmin = min_sj(r);
     for (int f = 0; f < r->nf; f++) {
         CHECK(r->face_start[f + 1] - r->face_start[f] == 4);
         const int *v = r->face_vert + r->face_start[f];
-        for (int k = 0; k < 4; k++) {
-            const int p = v[(k + 3) % 4], c = v[k], n = v[(k + 1) % 4];
-            const double ax = r->xy[2 * n] - r->xy[2 * c], ay = r->xy[2 * n + 1] - r->xy[2 * c + 1];
-            const double bx = r->xy[2 * p] - r->xy[2 * c], by = r->xy[2 * p + 1] - r->xy[2 * c + 1];
-            sjmin = fmin(sjmin, (ax * by - ay * bx) / (hypot(ax, ay) * hypot(bx, by)));
-            area += 0.5 * (r->xy[2 * c] * r->xy[2 * n + 1] - r->xy[2 * n] * r->xy[2 * c + 1]);
-        }
+        for (int k = 0; k < 4; k++)
+            area += 0.5 * (r->xy[2 * v[k]] * r->xy[2 * v[(k + 1) % 4] + 1] -
+                           r->xy[2 * v[(k + 1) % 4]] * r->xy[2 * v[k] + 1]);
     }
     printf("%s: %d -> %d faces, area %.12g, min scaled Jacobian %.3f\n", what, q->nf, r->nf, area, sjmin);
     CHECK(fabs(area - N * N) < 1e-9);
