@@ -1196,13 +1196,18 @@ glpgp_status glpgp_quads_build(const glpgp_mesh *m, const glpgp_result *r, const
             st = glpgp_quads_quality(q, m, *h, &q0);
             if (st == GLPGP_OK) st = glpgp_quads_quality(c, m, *h, &q1);
             if (st != GLPGP_OK) goto done;
-            if ((q1.invalid & ~q0.invalid) == 0) {
+            /* kept only if as valid as before and with no more irregular
+             * vertices (the operations lower the squared valence defect, which
+             * may trade one valence-6 vertex for two irregular ones: the
+             * strip of the hard domains, 61.9 -> 66.7 per 100 quads) */
+            if ((q1.invalid & ~q0.invalid) == 0 && q1.irregular <= q0.irregular) {
                 glpgp_quadmesh_destroy(&q);
                 q = c;
                 c = NULL;
             } else {
-                glpgp_log(GLPGP_LOG_WARNING, "quads: the clean-up made the mesh invalid (0x%x): not used",
-                          q1.invalid & ~q0.invalid);
+                if (q1.invalid & ~q0.invalid)
+                    glpgp_log(GLPGP_LOG_WARNING, "quads: the clean-up made the mesh invalid (0x%x): not used",
+                              q1.invalid & ~q0.invalid);
                 glpgp_quadmesh_destroy(&c);
             }
         }
