@@ -159,8 +159,10 @@ typedef struct glpgp_quad_options {
 /* The defaults: strips on, 20 smoothing sweeps, smooth_below 0.5, repair on, clean-up on, no refinement. */
 void glpgp_quad_options_default(glpgp_quad_options *o);
 
-/* Extraction + closing of the polygons + smoothing + repair (+ refinement),
- * as the CLI does it. With repair on, an extraction that finds no face
+/* Extraction + closing of the polygons + smoothing + repair + clean-up
+ * (glpgp_quadmesh_cleanup, its result kept only when it is as valid as the
+ * mesh before and has no more irregular vertices) (+ refinement), as the
+ * CLI does it. With repair on, an extraction that finds no face
  * (GLPGP_ERR_NUMERIC: the oscillators collapsed) is not an error: the
  * repair meshes the whole domain. *h: in: the target size, out: the size the mesh is made for
  * (halved by all_quads). o = NULL: the defaults. */
