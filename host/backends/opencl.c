@@ -827,39 +827,30 @@ static glpgp_status cl_set_size(glpgp_backend *b, const double *size)
 static glpgp_status cl_assemble_quadratic(glpgp_backend *b, int kind, double h)
 {
     cl_impl *c = IMPL(b);
-    /* QUAD <- gather of the element matrices H_T(a,b) into each block slot */
-    if (c->cconj) { /* coupled: pulled back through each corner's matching */
-        cl_kernel kc = c->k[K_CASM_QUAD];
-        cl_int kd = kind, sized = c->sized;
-        ARG(kc, 2, kd);
-        ARG(kc, 3, h);
-        ARG(kc, 4, c->xy);
-        ARG(kc, 5, c->tri);
-        ARG(kc, 6, c->cconj);
-        ARG(kc, 7, c->cfield);
-        ARG(kc, 8, c->rowptr);
-        ARG(kc, 9, c->cptr);
-        ARG(kc, 10, c->contrib);
-        ARG(kc, 11, c->quad);
-        ARG(kc, 12, sized);
-        ARG(kc, 13, c->size);
-        return run(c, K_CASM_QUAD, (size_t)c->sys->nv, NULL);
+    /* QUAD <- gather of the element matrices H_T(a,b) into each block slot
+     * (coupled: pulled back through each corner's matching; its kernel takes
+     * the matching and the frame fields where the plain one takes W) */
+    const int kid = c->cconj ? K_CASM_QUAD : K_ASM_QUAD;
+    cl_kernel k = c->k[kid];
+    cl_int kd = kind, sized = c->sized;
+    cl_uint a = 2;
+    ARG(k, a++, kd);
+    ARG(k, a++, h);
+    ARG(k, a++, c->xy);
+    ARG(k, a++, c->tri);
+    if (c->cconj) {
+        ARG(k, a++, c->cconj);
+        ARG(k, a++, c->cfield);
+    } else {
+        ARG(k, a++, c->w);
     }
-    cl_kernel k = c->k[K_ASM_QUAD];
-    cl_int kd = kind;
-    ARG(k, 2, kd);
-    ARG(k, 3, h);
-    ARG(k, 4, c->xy);
-    ARG(k, 5, c->tri);
-    ARG(k, 6, c->w);
-    ARG(k, 7, c->rowptr);
-    ARG(k, 8, c->cptr);
-    ARG(k, 9, c->contrib);
-    ARG(k, 10, c->quad);
-    cl_int sized = c->sized;
-    ARG(k, 11, sized);
-    ARG(k, 12, c->size);
-    GLPGP_CHECK(run(c, K_ASM_QUAD, (size_t)c->sys->nv, NULL));
+    ARG(k, a++, c->rowptr);
+    ARG(k, a++, c->cptr);
+    ARG(k, a++, c->contrib);
+    ARG(k, a++, c->quad);
+    ARG(k, a++, sized);
+    ARG(k, a++, c->size);
+    GLPGP_CHECK(run(c, kid, (size_t)c->sys->nv, NULL));
     if (c->corrupt) {
         /* test switch: QUAD value 0 += 1 (crosscheck must then fail) */
         double v;
@@ -877,44 +868,27 @@ static glpgp_status cl_assemble_newton(glpgp_backend *b, const glpgp_vec *x, dou
     const cl_int none = INT_MAX;
     GLPGP_CL(clEnqueueFillBuffer(c->q, c->bad, &none, sizeof none, 0, sizeof none, 0, NULL, NULL));
     cl_int hs = hess;
-    if (c->cconj) { /* coupled: penalty at the frame values, pulled back */
-        cl_kernel kc = c->k[K_CASM_NEWTON];
-        ARG(kc, 2, hs);
-        ARG(kc, 3, inv4e2);
-        ARG(kc, 4, c->xy);
-        ARG(kc, 5, c->tri);
-        ARG(kc, 6, c->cconj);
-        ARG(kc, 7, x->m);
-        ARG(kc, 8, c->rowptr);
-        ARG(kc, 9, c->col);
-        ARG(kc, 10, c->diag);
-        ARG(kc, 11, c->vptr);
-        ARG(kc, 12, c->vtri);
-        ARG(kc, 13, c->dir);
-        ARG(kc, 14, c->quad);
-        ARG(kc, 15, c->newton);
-        ARG(kc, 16, c->dinv);
-        ARG(kc, 17, c->bad);
-        GLPGP_CHECK(run(c, K_CASM_NEWTON, (size_t)c->sys->nv, NULL));
-    } else {
-    cl_kernel k = c->k[K_ASM_NEWTON];
-    ARG(k, 2, hs);
-    ARG(k, 3, inv4e2);
-    ARG(k, 4, c->xy);
-    ARG(k, 5, c->tri);
-    ARG(k, 6, x->m);
-    ARG(k, 7, c->rowptr);
-    ARG(k, 8, c->col);
-    ARG(k, 9, c->diag);
-    ARG(k, 10, c->vptr);
-    ARG(k, 11, c->vtri);
-    ARG(k, 12, c->dir);
-    ARG(k, 13, c->quad);
-    ARG(k, 14, c->newton);
-    ARG(k, 15, c->dinv);
-    ARG(k, 16, c->bad);
-    GLPGP_CHECK(run(c, K_ASM_NEWTON, (size_t)c->sys->nv, NULL));
-    }
+    /* coupled: the penalty at the frame values, pulled back (the matching cconj) */
+    const int kid = c->cconj ? K_CASM_NEWTON : K_ASM_NEWTON;
+    cl_kernel k = c->k[kid];
+    cl_uint a = 2;
+    ARG(k, a++, hs);
+    ARG(k, a++, inv4e2);
+    ARG(k, a++, c->xy);
+    ARG(k, a++, c->tri);
+    if (c->cconj) ARG(k, a++, c->cconj);
+    ARG(k, a++, x->m);
+    ARG(k, a++, c->rowptr);
+    ARG(k, a++, c->col);
+    ARG(k, a++, c->diag);
+    ARG(k, a++, c->vptr);
+    ARG(k, a++, c->vtri);
+    ARG(k, a++, c->dir);
+    ARG(k, a++, c->quad);
+    ARG(k, a++, c->newton);
+    ARG(k, a++, c->dinv);
+    ARG(k, a++, c->bad);
+    GLPGP_CHECK(run(c, kid, (size_t)c->sys->nv, NULL));
     cl_int bad = none;
     GLPGP_CL(clEnqueueReadBuffer(c->q, c->bad, CL_TRUE, 0, sizeof bad, &bad, 0, NULL, NULL));
     if (bad != none) return GLPGP_FAIL(GLPGP_ERR_NUMERIC, "singular diagonal block at vertex %d", (int)bad);
@@ -927,26 +901,18 @@ static glpgp_status penalty_partials(cl_impl *c, const glpgp_vec *x, double inv4
     *g1 = 0;
     if (!(inv4e2 > 0.0)) return GLPGP_OK;
     cl_int off = (cl_int)c->pstride;
-    if (c->cconj) { /* coupled: at the frame values */
-        cl_kernel kc = c->k[K_CPEN_ENERGY];
-        ARG(kc, 2, inv4e2);
-        ARG(kc, 3, c->xy);
-        ARG(kc, 4, c->tri);
-        ARG(kc, 5, c->cconj);
-        ARG(kc, 6, x->m);
-        ARG(kc, 7, c->part);
-        ARG(kc, 8, off);
-        return run(c, K_CPEN_ENERGY, (size_t)c->sys->nt, g1);
-    }
-    cl_kernel k = c->k[K_PEN_ENERGY];
-    ARG(k, 2, inv4e2);
-    ARG(k, 3, c->xy);
-    ARG(k, 4, c->tri);
-    ARG(k, 5, x->m);
-    ARG(k, 6, c->part);
-    ARG(k, 7, off);
-    GLPGP_CHECK(run(c, K_PEN_ENERGY, (size_t)c->sys->nt, g1));
-    return GLPGP_OK;
+    /* coupled: at the frame values (the matching cconj) */
+    const int kid = c->cconj ? K_CPEN_ENERGY : K_PEN_ENERGY;
+    cl_kernel k = c->k[kid];
+    cl_uint a = 2;
+    ARG(k, a++, inv4e2);
+    ARG(k, a++, c->xy);
+    ARG(k, a++, c->tri);
+    if (c->cconj) ARG(k, a++, c->cconj);
+    ARG(k, a++, x->m);
+    ARG(k, a++, c->part);
+    ARG(k, a++, off);
+    return run(c, kid, (size_t)c->sys->nt, g1);
 }
 
 /* y <- A x for A = QUAD or NEWTON, with the partials of x.y in part[0..groups). */
@@ -974,42 +940,25 @@ static glpgp_status cl_gradient(glpgp_backend *b, const glpgp_vec *x, double inv
     GLPGP_CHECK(groups_for(c, (size_t)sys->nt, &g1));
     /* g <- QUAD x + grad P (0 at Dirichlet vertices); partials of x.QUAD x */
     cl_int off = 0;
-    if (c->cconj) { /* coupled: penalty gradient at the frame values, pulled back */
-        cl_kernel kc = c->k[K_CGRADIENT];
-        ARG(kc, 2, inv4e2);
-        ARG(kc, 3, c->xy);
-        ARG(kc, 4, c->tri);
-        ARG(kc, 5, c->cconj);
-        ARG(kc, 6, x->m);
-        ARG(kc, 7, c->rowptr);
-        ARG(kc, 8, c->col);
-        ARG(kc, 9, c->quad);
-        ARG(kc, 10, c->vptr);
-        ARG(kc, 11, c->vtri);
-        ARG(kc, 12, c->dir);
-        ARG(kc, 13, g->m);
-        ARG(kc, 14, c->part);
-        ARG(kc, 15, off);
-        GLPGP_CHECK(run(c, K_CGRADIENT, (size_t)sys->nv, &g0));
-        GLPGP_CHECK(penalty_partials(c, x, inv4e2, &g1));
-        GLPGP_CHECK(finalize(c, g0, g1, 0.5, 1.0, GLPGP_S_E, GLPGP_S_P));
-        return GLPGP_OK;
-    }
-    cl_kernel k = c->k[K_GRADIENT];
-    ARG(k, 2, inv4e2);
-    ARG(k, 3, c->xy);
-    ARG(k, 4, c->tri);
-    ARG(k, 5, x->m);
-    ARG(k, 6, c->rowptr);
-    ARG(k, 7, c->col);
-    ARG(k, 8, c->quad);
-    ARG(k, 9, c->vptr);
-    ARG(k, 10, c->vtri);
-    ARG(k, 11, c->dir);
-    ARG(k, 12, g->m);
-    ARG(k, 13, c->part);
-    ARG(k, 14, off);
-    GLPGP_CHECK(run(c, K_GRADIENT, (size_t)sys->nv, &g0));
+    /* coupled: the penalty gradient at the frame values, pulled back */
+    const int kid = c->cconj ? K_CGRADIENT : K_GRADIENT;
+    cl_kernel k = c->k[kid];
+    cl_uint a = 2;
+    ARG(k, a++, inv4e2);
+    ARG(k, a++, c->xy);
+    ARG(k, a++, c->tri);
+    if (c->cconj) ARG(k, a++, c->cconj);
+    ARG(k, a++, x->m);
+    ARG(k, a++, c->rowptr);
+    ARG(k, a++, c->col);
+    ARG(k, a++, c->quad);
+    ARG(k, a++, c->vptr);
+    ARG(k, a++, c->vtri);
+    ARG(k, a++, c->dir);
+    ARG(k, a++, g->m);
+    ARG(k, a++, c->part);
+    ARG(k, a++, off);
+    GLPGP_CHECK(run(c, kid, (size_t)sys->nv, &g0));
     GLPGP_CHECK(penalty_partials(c, x, inv4e2, &g1));
     /* s[E] <- 1/2 x.QUAD x;  s[P] <- P(x) */
     GLPGP_CHECK(finalize(c, g0, g1, 0.5, 1.0, GLPGP_S_E, GLPGP_S_P));
