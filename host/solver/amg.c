@@ -704,6 +704,24 @@ fail:
 
 void glpgp_amg_get_info(const glpgp_amg *a, glpgp_amg_info *info) { *info = a->info; }
 
+/* Swap rows (rows = 1) or columns (rows = 0) a and b of the dense row-major
+ * m x m matrix M, and entries a and b of the permutation p (may be NULL). */
+static void dense_swap(double *M, int m, int a, int b, int rows, int *p)
+{
+    for (int k = 0; k < m; k++) {
+        double *x = rows ? M + (size_t)a * m + k : M + (size_t)k * m + a;
+        double *y = rows ? M + (size_t)b * m + k : M + (size_t)k * m + b;
+        const double t = *x;
+        *x = *y;
+        *y = t;
+    }
+    if (p) {
+        const int t = p[a];
+        p[a] = p[b];
+        p[b] = t;
+    }
+}
+
 /* inv <- a generalised inverse of the m x m matrix A (row-major) by LU with
  * complete pivoting: P A Q = L U; pivots below 1e-12 |u_11| end the
  * elimination (rank r), the solution components beyond r are set to 0.
@@ -735,26 +753,8 @@ static glpgp_status dense_inverse(int m, const double *A, double *inv, double *l
             }
         if (k == 0) piv0 = bv;
         if (!(bv > 1e-12 * piv0) || bv == 0.0) break;
-        if (bi != k) {
-            for (int j = 0; j < m; j++) {
-                double t = lu[(size_t)k * m + j];
-                lu[(size_t)k * m + j] = lu[(size_t)bi * m + j];
-                lu[(size_t)bi * m + j] = t;
-            }
-            int t = pr[k];
-            pr[k] = pr[bi];
-            pr[bi] = t;
-        }
-        if (bj != k) {
-            for (int i = 0; i < m; i++) {
-                double t = lu[(size_t)i * m + k];
-                lu[(size_t)i * m + k] = lu[(size_t)i * m + bj];
-                lu[(size_t)i * m + bj] = t;
-            }
-            int t = pc[k];
-            pc[k] = pc[bj];
-            pc[bj] = t;
-        }
+        if (bi != k) dense_swap(lu, m, k, bi, 1, pr);
+        if (bj != k) dense_swap(lu, m, k, bj, 0, pc);
         /* eliminate below the pivot: l_ik = a_ik / a_kk;  a_ij -= l_ik a_kj */
         const double pk = lu[(size_t)k * m + k];
         for (int i = k + 1; i < m; i++) {
@@ -825,19 +825,8 @@ static glpgp_status spd_inverse(int m, const double *A, double *inv, double *S)
         if (k == 0) piv0 = bv;
         if (!(bv > 1e-12 * piv0) || bv == 0.0) break;
         if (bj != k) { /* symmetric swap of rows and columns k, bj */
-            for (int j = 0; j < m; j++) {
-                double t = S[(size_t)k * m + j];
-                S[(size_t)k * m + j] = S[(size_t)bj * m + j];
-                S[(size_t)bj * m + j] = t;
-            }
-            for (int i = 0; i < m; i++) {
-                double t = S[(size_t)i * m + k];
-                S[(size_t)i * m + k] = S[(size_t)i * m + bj];
-                S[(size_t)i * m + bj] = t;
-            }
-            int t = perm[k];
-            perm[k] = perm[bj];
-            perm[bj] = t;
+            dense_swap(S, m, k, bj, 1, NULL);
+            dense_swap(S, m, k, bj, 0, perm);
         }
         /* d = s_kk;  l_ik = s_ik / d;  s_ij -= l_ik d l_jk  (i, j > k, lower part) */
         const double d = S[(size_t)k * m + k];
