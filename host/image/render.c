@@ -461,6 +461,35 @@ int glpgp_draw_text(glpgp_image *im, int x, int y, int scale, const char *text, 
     return cx - x;
 }
 
+/* Panels side by side (the first panel's size; a smaller panel is drawn
+ * from the top left) on white (unless o->transparent), each with two
+ * centred caption lines l1[k], l2[k] below it: *out (RGBA). */
+static glpgp_status compose_panels(glpgp_image *const *panel, int n, const char *const *l1, const char *const *l2,
+                                   const glpgp_render_options *o, glpgp_image **out)
+{
+    const int pw = panel[0]->w, ph = panel[0]->h;
+    const int ts = o->size / 300 < 2 ? 2 : o->size / 300; /* font scale */
+    const int cap = 2 * 9 * ts + 4 * ts + 8;
+    const int gap = o->size / 64 < 2 ? 2 : o->size / 64;
+    const int W = n * pw + (n - 1) * gap, H = ph + cap;
+    glpgp_image *im = NULL;
+    GLPGP_CHECK(glpgp_image_create(W, H, 4, &im));
+    if (!o->transparent)
+        for (size_t i = 0; i < 4 * (size_t)W * (size_t)H; i++) im->px[i] = 1.0f;
+    static const float ink[4] = {0.05f, 0.05f, 0.05f, 1.0f};
+    for (int k = 0; k < n; k++) {
+        const int x0 = k * (pw + gap), w = panel[k]->w < pw ? panel[k]->w : pw;
+        for (int j = 0; j < ph && j < panel[k]->h; j++)
+            memcpy(im->px + 4 * ((size_t)j * (size_t)W + (size_t)x0), panel[k]->px + 4 * (size_t)j * (size_t)panel[k]->w,
+                   4 * (size_t)w * sizeof(float));
+        const int w1 = 6 * ts * (int)strlen(l1[k]), w2 = 6 * ts * (int)strlen(l2[k]);
+        glpgp_draw_text(im, x0 + (pw - w1) / 2, ph + 4, ts, l1[k], ink);
+        glpgp_draw_text(im, x0 + (pw - w2) / 2, ph + 4 + 9 * ts + 2 * ts, ts, l2[k], ink);
+    }
+    *out = im;
+    return GLPGP_OK;
+}
+
 /* ---- comparison figure -------------------------------------------------------- */
 
 glpgp_status glpgp_render_compare(const glpgp_mesh *m, const glpgp_result *const *r,
@@ -479,28 +508,15 @@ glpgp_status glpgp_render_compare(const glpgp_mesh *m, const glpgp_result *const
     glpgp_image *im = NULL;
     glpgp_status st = GLPGP_OK;
     for (int i = 0; i < n; i++) GLPGP_CHECK_GOTO(st, glpgp_render(m, r[i], &o, &panel[i]), fin);
-    int pw = panel[0]->w, ph = panel[0]->h;
-    int ts = o.size / 300 < 2 ? 2 : o.size / 300; /* font scale */
-    int cap = 2 * 9 * ts + 4 * ts + 8;
-    int gap = o.size / 64 < 2 ? 2 : o.size / 64;
-    int W = n * pw + (n - 1) * gap, H = ph + cap;
-    GLPGP_CHECK_GOTO(st, glpgp_image_create(W, H, 4, &im), fin);
-    if (!o.transparent)
-        for (size_t i = 0; i < 4 * (size_t)W * (size_t)H; i++) im->px[i] = 1.0f;
-    static const float ink[4] = {0.05f, 0.05f, 0.05f, 1.0f};
+    const char *l1[16], *l2[16];
+    char line2[16][128];
     for (int k = 0; k < n; k++) {
-        int x0 = k * (pw + gap);
-        for (int j = 0; j < ph; j++)
-            memcpy(im->px + 4 * ((size_t)j * (size_t)W + (size_t)x0),
-                   panel[k]->px + 4 * (size_t)j * (size_t)pw, 4 * (size_t)pw * sizeof(float));
-        char line2[128];
-        snprintf(line2, sizeof line2, "U +%d -%d   V +%d -%d", r[k]->osc[0].plus, r[k]->osc[0].minus,
+        snprintf(line2[k], sizeof line2[k], "U +%d -%d   V +%d -%d", r[k]->osc[0].plus, r[k]->osc[0].minus,
                  r[k]->osc[1].plus, r[k]->osc[1].minus);
-        const char *l1 = labels && labels[k] ? labels[k] : "";
-        int w1 = 6 * ts * (int)strlen(l1), w2 = 6 * ts * (int)strlen(line2);
-        glpgp_draw_text(im, x0 + (pw - w1) / 2, ph + 4, ts, l1, ink);
-        glpgp_draw_text(im, x0 + (pw - w2) / 2, ph + 4 + 9 * ts + 2 * ts, ts, line2, ink);
+        l1[k] = labels && labels[k] ? labels[k] : "";
+        l2[k] = line2[k];
     }
+    GLPGP_CHECK_GOTO(st, compose_panels(panel, n, l1, l2, &o, &im), fin);
     *out = im;
     im = NULL;
 fin:
@@ -610,15 +626,6 @@ glpgp_status glpgp_render_figure1(const glpgp_mesh *m, const glpgp_result *r, co
     GLPGP_CHECK_GOTO(st, glpgp_render(m, r, &oc, &panel[0]), fin);
     GLPGP_CHECK_GOTO(st, glpgp_render(m, r, &og, &panel[1]), fin);
     if (q) GLPGP_CHECK_GOTO(st, render_quads(m, q, &o, &panel[2]), fin);
-    int pw = panel[0]->w, ph = panel[0]->h;
-    int ts = o.size / 300 < 2 ? 2 : o.size / 300; /* font scale */
-    int cap = 2 * 9 * ts + 4 * ts + 8;
-    int gap = o.size / 64 < 2 ? 2 : o.size / 64;
-    int W = n * pw + (n - 1) * gap, H = ph + cap;
-    GLPGP_CHECK_GOTO(st, glpgp_image_create(W, H, 4, &im), fin);
-    if (!o.transparent)
-        for (size_t i = 0; i < 4 * (size_t)W * (size_t)H; i++) im->px[i] = 1.0f;
-    static const float ink[4] = {0.05f, 0.05f, 0.05f, 1.0f};
     /* captions: the cross field's singularities, the parametrization's, the quads' irregular vertices */
     char l1[3][64], l2[3][96];
     int sp = 0, sm = 0;
@@ -635,15 +642,8 @@ glpgp_status glpgp_render_figure1(const glpgp_mesh *m, const glpgp_result *r, co
         snprintf(l1[2], sizeof l1[2], "QUADS");
         snprintf(l2[2], sizeof l2[2], "%d FACES", q->nf);
     }
-    for (int k = 0; k < n; k++) {
-        int x0 = k * (pw + gap);
-        for (int j = 0; j < ph && j < panel[k]->h; j++)
-            memcpy(im->px + 4 * ((size_t)j * (size_t)W + (size_t)x0), panel[k]->px + 4 * (size_t)j * (size_t)panel[k]->w,
-                   4 * (size_t)(panel[k]->w < pw ? panel[k]->w : pw) * sizeof(float));
-        int w1 = 6 * ts * (int)strlen(l1[k]), w2 = 6 * ts * (int)strlen(l2[k]);
-        glpgp_draw_text(im, x0 + (pw - w1) / 2, ph + 4, ts, l1[k], ink);
-        glpgp_draw_text(im, x0 + (pw - w2) / 2, ph + 4 + 9 * ts + 2 * ts, ts, l2[k], ink);
-    }
+    const char *c1[3] = {l1[0], l1[1], l1[2]}, *c2[3] = {l2[0], l2[1], l2[2]};
+    GLPGP_CHECK_GOTO(st, compose_panels(panel, n, c1, c2, &o, &im), fin);
     *out = im;
     im = NULL;
 fin:
