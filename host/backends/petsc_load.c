@@ -4,11 +4,11 @@
  * `glpgp --version` and every other command load no PETSc or MPI library),
  * hands it the error record and the log, and forwards to its table.
  *
- * Search (the first directory that holds the file wins), as for the image
- * modules (image/module.c): $GLPGP_MODULE_DIR; <dir of the executable>/
- * GLPGP_MODULE_EXE_REL; GLPGP_MODULE_INSTALL_DIR; GLPGP_MODULE_BUILD_DIR. */
+ * Search: the first directory of glpgp_module_dirs_get (core/module_dirs.c,
+ * the same as for the image modules) that holds the file. */
 #include "glpgp/backends.h"
 #include "glpgp/solve.h"
+#include "glpgp/util.h"
 
 #include "petsc_module.h"
 
@@ -20,9 +20,6 @@
 
 #ifndef GLPGP_PETSC_MODULE_FILE
 #define GLPGP_PETSC_MODULE_FILE "glpgp_petsc.so"
-#endif
-#ifndef GLPGP_MODULE_EXE_REL
-#define GLPGP_MODULE_EXE_REL "../lib/glpgp"
 #endif
 
 static const glpgp_petsc_api *g_api;
@@ -45,20 +42,16 @@ int glpgp_have_petsc(void)
 #endif
 }
 
-/* Try dir/file: 1 loaded or failed for good (g_why set on failure), 0 not there. */
-static int try_dir(const char *dir)
+/* Load the module at path (g_api; g_why set on failure). */
+static void load_path(const char *path)
 {
-    char path[4200];
-    if (!dir || !*dir || snprintf(path, sizeof path, "%s/%s", dir, GLPGP_PETSC_MODULE_FILE) >= (int)sizeof path)
-        return 0;
-    if (access(path, F_OK) != 0) return 0;
     /* RTLD_GLOBAL: MPI's own plugins (OpenMPI's mca components) dlopen later and
      * need libmpi's symbols in the global namespace */
     void *h = dlopen(path, RTLD_NOW | RTLD_GLOBAL);
     if (!h) {
         const char *e = dlerror();
         snprintf(g_why, sizeof g_why, "cannot load the PETSc module %s: %s", path, e ? e : "dlopen failed");
-        return 1;
+        return;
     }
     void *sym = dlsym(h, GLPGP_PETSC_ENTRY);
     glpgp_petsc_entry_fn entry;
@@ -66,10 +59,9 @@ static int try_dir(const char *dir)
     const glpgp_petsc_api *api = sym ? entry(&g_host) : NULL;
     if (!api || api->abi != GLPGP_PETSC_ABI) {
         snprintf(g_why, sizeof g_why, "cannot load the PETSc module %s: it belongs to another glpgp build", path);
-        return 1;
+        return;
     }
     g_api = api;
-    return 1;
 }
 
 static glpgp_status load(void)
@@ -85,37 +77,14 @@ static glpgp_status load(void)
         return glpgp_error_set(__FILE__, __LINE__, g_st, "%s", g_why);
     }
     g_st = GLPGP_ERR_IO;
-    const char *env = getenv("GLPGP_MODULE_DIR");
-    int done = 0;
-    if (env && *env) {
-        done = try_dir(env);
-    } else {
-        char exe[4096];
-        ssize_t n = readlink("/proc/self/exe", exe, sizeof exe - 1);
-        if (n > 0) {
-            exe[n] = '\0';
-            char *slash = strrchr(exe, '/');
-            if (slash) {
-                *slash = '\0';
-                const char *rel = GLPGP_MODULE_EXE_REL;
-                while (!strncmp(rel, "../", 3) && (slash = strrchr(exe, '/')) != NULL) {
-                    *slash = '\0';
-                    rel += 3;
-                }
-                char dir[4200];
-                if (snprintf(dir, sizeof dir, "%s/%s", exe, rel) < (int)sizeof dir) done = try_dir(dir);
-            }
-        }
-#ifdef GLPGP_MODULE_INSTALL_DIR
-        if (!done) done = try_dir(GLPGP_MODULE_INSTALL_DIR);
-#endif
-#ifdef GLPGP_MODULE_BUILD_DIR
-        if (!done) done = try_dir(GLPGP_MODULE_BUILD_DIR);
-#endif
-    }
-    if (!done)
+    glpgp_module_dirs d;
+    glpgp_module_dirs_get(&d);
+    char path[GLPGP_MODULE_PATH_LEN + 64];
+    if (glpgp_module_find(&d, GLPGP_PETSC_MODULE_FILE, path, sizeof path))
+        load_path(path);
+    else
         snprintf(g_why, sizeof g_why, "the PETSc module %s was not found%s", GLPGP_PETSC_MODULE_FILE,
-                 env && *env ? " in $GLPGP_MODULE_DIR" : " (set GLPGP_MODULE_DIR to its directory)");
+                 d.from_env ? " in $GLPGP_MODULE_DIR" : " (set GLPGP_MODULE_DIR to its directory)");
     if (g_api) return GLPGP_OK;
     return glpgp_error_set(__FILE__, __LINE__, g_st, "%s", g_why);
 }

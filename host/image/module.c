@@ -1,7 +1,8 @@
 /* image/module.c: finding and loading the image layer's modules (image/module.h)
  * on first use, and the public glpgp_oiio_load / glpgp_gmsh_load.
  *
- * Search (the first directory that holds the module file wins; a file found
+ * Search (glpgp_module_dirs_get, core/module_dirs.c, shared with the PETSc
+ * module; the first directory that holds the module file wins; a file found
  * but not loadable is an error, not a reason to look further):
  *   1. $GLPGP_MODULE_DIR when set and not empty: that directory only;
  *   2. the install location relative to the running executable,
@@ -13,6 +14,7 @@
  * outcome (table or error text) is kept for the life of the process. */
 #include "module.h"
 
+#include "glpgp/util.h"
 
 #include <dlfcn.h>
 #include <pthread.h>
@@ -27,9 +29,6 @@
 #ifndef GLPGP_GMSH_MODULE_FILE
 #define GLPGP_GMSH_MODULE_FILE "glpgp_gmsh.so"
 #endif
-#ifndef GLPGP_MODULE_EXE_REL
-#define GLPGP_MODULE_EXE_REL "../lib/glpgp"
-#endif
 
 #ifdef GLPGP_HAVE_OIIO
 #define OIIO_BUILT 1
@@ -42,7 +41,7 @@
 #define GMSH_BUILT 0
 #endif
 
-enum { MAX_DIRS = 4, PATH_LEN = 4096 };
+enum { PATH_LEN = GLPGP_MODULE_PATH_LEN };
 
 typedef struct module_slot {
     const char *what;    /* "OpenImageIO" */
@@ -69,66 +68,6 @@ static const glpgp_module_host g_host = {
     glpgp_error_push_trace, glpgp_malloc,       glpgp_image_create,     glpgp_image_destroy,
 };
 
-typedef struct dir_list {
-    int n;
-    int from_env;
-    char dir[MAX_DIRS][PATH_LEN];
-} dir_list;
-
-static void add_dir(dir_list *d, const char *dir)
-{
-    if (!dir || !*dir || d->n >= MAX_DIRS || strlen(dir) >= PATH_LEN) return;
-    for (int i = 0; i < d->n; i++)
-        if (!strcmp(d->dir[i], dir)) return;
-    strcpy(d->dir[d->n++], dir);
-}
-
-/* The directories to search, in order (see the file comment). */
-static void module_dirs(dir_list *d)
-{
-    memset(d, 0, sizeof *d);
-    const char *env = getenv("GLPGP_MODULE_DIR");
-    if (env && *env) {
-        d->from_env = 1;
-        add_dir(d, env);
-        return;
-    }
-    /* <exe dir>/<rel>: /proc/self/exe is canonical, so a leading "../" of rel
-     * is resolved by dropping the last component of the directory */
-    char exe[PATH_LEN];
-    ssize_t n = readlink("/proc/self/exe", exe, sizeof exe - 1);
-    if (n > 0) {
-        exe[n] = '\0';
-        char *slash = strrchr(exe, '/');
-        if (slash) {
-            *slash = '\0';
-            const char *rel = GLPGP_MODULE_EXE_REL;
-            while (!strncmp(rel, "../", 3) && (slash = strrchr(exe, '/')) != NULL) {
-                *slash = '\0';
-                rel += 3;
-            }
-            char dir[PATH_LEN];
-            if (snprintf(dir, sizeof dir, "%s/%s", exe, rel) < (int)sizeof dir) add_dir(d, dir);
-        }
-    }
-#ifdef GLPGP_MODULE_INSTALL_DIR
-    add_dir(d, GLPGP_MODULE_INSTALL_DIR);
-#endif
-#ifdef GLPGP_MODULE_BUILD_DIR
-    add_dir(d, GLPGP_MODULE_BUILD_DIR);
-#endif
-}
-
-/* Path of the module file in the first directory that has it; 0 if none. */
-static int module_find(const module_slot *s, const dir_list *d, char *path, size_t len)
-{
-    for (int i = 0; i < d->n; i++) {
-        if (snprintf(path, len, "%s/%s", d->dir[i], s->file) >= (int)len) continue;
-        if (access(path, F_OK) == 0) return 1;
-    }
-    return 0;
-}
-
 static void slot_fail(module_slot *s, glpgp_status st, const char *fmt, const char *a, const char *b)
 {
     s->state = -1;
@@ -146,11 +85,11 @@ static void slot_load(module_slot *s)
                  "this glpgp was built without %s (install %s and rebuild)", s->what, s->package);
         return;
     }
-    dir_list d;
-    module_dirs(&d);
+    glpgp_module_dirs d;
+    glpgp_module_dirs_get(&d);
     char path[PATH_LEN + 64];
-    if (!module_find(s, &d, path, sizeof path)) {
-        char dirs[MAX_DIRS * (PATH_LEN + 2)] = "";
+    if (!glpgp_module_find(&d, s->file, path, sizeof path)) {
+        char dirs[GLPGP_MODULE_MAX_DIRS * (PATH_LEN + 2)] = "";
         for (int i = 0; i < d.n; i++) {
             if (i) strcat(dirs, ", ");
             strcat(dirs, d.dir[i]);
@@ -225,10 +164,10 @@ int glpgp_module_available(int gmsh)
     int state = s->state;
     pthread_mutex_unlock(&g_lock);
     if (state != 0) return state == 1;
-    dir_list d;
-    module_dirs(&d);
+    glpgp_module_dirs d;
+    glpgp_module_dirs_get(&d);
     char path[PATH_LEN + 64];
-    return module_find(s, &d, path, sizeof path);
+    return glpgp_module_find(&d, s->file, path, sizeof path);
 }
 
 glpgp_status glpgp_oiio_load(void)

@@ -1,7 +1,10 @@
-/* glpgp/util.h: small helpers every layer uses: a monotonic clock and
- * case-insensitive file-extension tests. Layer: core. */
+/* glpgp/util.h: small helpers every layer uses: a monotonic clock,
+ * case-insensitive file-extension tests, and where the dlopen'd modules are
+ * looked for. Layer: core. */
 #ifndef GLPGP_UTIL_H
 #define GLPGP_UTIL_H
+
+#include <stddef.h>
 
 #ifdef __cplusplus
 extern "C" {
@@ -13,6 +16,21 @@ double glpgp_now(void);
 /* Whether path ends with ext (lower-case, with the dot: ".png"), ignoring
  * the case of path. */
 int glpgp_has_ext(const char *path, const char *ext);
+
+/* The directories glpgp's modules (glpgp_oiio.so, glpgp_gmsh.so,
+ * glpgp_petsc.so) are looked for in, in order: $GLPGP_MODULE_DIR alone when
+ * set (from_env = 1); else <directory of the executable>/<its relative
+ * install path>, the configured install directory, the build tree. */
+#define GLPGP_MODULE_MAX_DIRS 4
+#define GLPGP_MODULE_PATH_LEN 4096
+typedef struct glpgp_module_dirs {
+    int n;
+    int from_env;
+    char dir[GLPGP_MODULE_MAX_DIRS][GLPGP_MODULE_PATH_LEN];
+} glpgp_module_dirs;
+void glpgp_module_dirs_get(glpgp_module_dirs *d);
+/* path <- the first d->dir[i]/file that exists (returns 1), or 0 if none. */
+int glpgp_module_find(const glpgp_module_dirs *d, const char *file, char *path, size_t len);
 
 #ifdef __cplusplus
 }
