@@ -189,7 +189,7 @@ int glpgp_cmd_figure(int argc, char **argv)
     double t0 = glpgp_now();
     glpgp_size_image *simg = NULL; /* --size-field IMAGE */
     if ((rc = glpgp_cli_load_input(sub, in, &mo, &m, NULL)) >= 0) return rc;
-    if ((rc = glpgp_cli_size_image(sub, &so, m, size_box, &mo, &simg)) >= 0) goto done;
+    if ((rc = glpgp_cli_size_image(&so, m, size_box, &mo, &simg)) >= 0) goto done;
     rc = GLPGP_EXIT_FAIL;
     if (glpgp_backend_select(backend, device, verbosity > 0, &b) != GLPGP_OK) goto err;
     /* the solves' own progress only with --verbose: figure prints a line per solve */

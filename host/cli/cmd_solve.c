@@ -272,7 +272,7 @@ static int solve_main(solve_cli *cc, const char *input)
     c.mo.quad_size = c.o.size;
     if ((rc = glpgp_cli_load_input("solve", input, &c.mo, &m, NULL)) >= 0) return rc;
     glpgp_size_image *simg = NULL; /* --size-field IMAGE */
-    if ((rc = glpgp_cli_size_image("solve", &c.o, m, c.size_box, &c.mo, &simg)) >= 0) {
+    if ((rc = glpgp_cli_size_image(&c.o, m, c.size_box, &c.mo, &simg)) >= 0) {
         glpgp_mesh_destroy(&m);
         return rc;
     }

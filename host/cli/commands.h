@@ -25,7 +25,7 @@ int glpgp_cmd_figure(int argc, char **argv);
  * and attach it (o->size_fn, o->size_ctx = *out, freed by the caller with
  * glpgp_size_image_destroy after the solve). Nothing to do otherwise.
  * Returns -1 on success, else the exit code after printing the error. */
-int glpgp_cli_size_image(const char *cmd, glpgp_options *o, const glpgp_mesh *m, const double box[4],
+int glpgp_cli_size_image(glpgp_options *o, const glpgp_mesh *m, const double box[4],
                          const glpgp_mask_options *mo, glpgp_size_image **out);
 
 /* Load INPUT: shape:NAME[:N], a mask image (meshed with mo) or a mesh file.

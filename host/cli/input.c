@@ -97,10 +97,9 @@ int glpgp_cli_check_output(const char *cmd, const char *opt, const char *path,
     return -1;
 }
 
-int glpgp_cli_size_image(const char *cmd, glpgp_options *o, const glpgp_mesh *m, const double box[4],
+int glpgp_cli_size_image(glpgp_options *o, const glpgp_mesh *m, const double box[4],
                          const glpgp_mask_options *mo, glpgp_size_image **out)
 {
-    (void)cmd;
     *out = NULL;
     if (o->size_field != GLPGP_SIZE_FUNC || o->size_fn) return -1;
     double b[4];

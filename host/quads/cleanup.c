@@ -321,7 +321,7 @@ static glpgp_status try_collapse(cmesh *c, int f, int diag, int *done)
     if (c->bnd[a] || c->bnd[cc]) return GLPGP_OK;
     const int va = valence(c, a), vc = valence(c, cc), vb = valence(c, b), vd = valence(c, d);
     const int delta = DCOST(a, va, va + vc - 2) - vcost(c, cc, vc) + DCOST(b, vb, vb - 1) + DCOST(d, vd, vd - 1);
-    if (delta >= 0 || va + vc - 2 > 2 * CL_LOCAL / 4) return GLPGP_OK;
+    if (delta >= 0 || va + vc - 2 > CL_LOCAL / 2) return GLPGP_OK;
     /* link condition: the common neighbours of a and c are exactly b and d */
     int na[CL_LOCAL], nc[CL_LOCAL];
     const int ka = neighbours(c, a, na, CL_LOCAL), kc = neighbours(c, cc, nc, CL_LOCAL);
