@@ -40,6 +40,7 @@
 
 #include <petscksp.h>
 
+#include <limits.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/resource.h>
@@ -60,9 +61,11 @@ struct glpgp_vec {
 typedef struct pimpl {
     const glpgp_system *sys;
     int rank, size;
-    int lo, hi;                 /* owned vertices [lo, hi) */
+    int lo, hi;                 /* owned vertices [lo, hi) (system numbering) */
+    int vstart;                 /* global id of vertex lo (the PETSc numbering: block rows) */
+    const int *gid;             /* global id of each system vertex (a part's), NULL: the identity */
     long slo, shi;              /* owned block slots [rowptr[lo], rowptr[hi]) */
-    double *wbuf, *size_;       /* 2 nv field, nv sizes (whole, as the driver hands them) */
+    double *wbuf, *size_;       /* 2 nv field, nv sizes (as the driver hands them) */
     unsigned char *dir;         /* nv Dirichlet flags */
     int sized;
     double *quadb, *newtonb, *dinvb; /* owned slices */
@@ -70,7 +73,7 @@ typedef struct pimpl {
     int *ghost;                 /* ghost vertices, increasing */
     int *tcount;                /* triangles counted here (lowest vertex owned), increasing */
     int ntcount;
-    double *xf[2];              /* whole-length scratch arrays (owned + ghost values valid) */
+    double *xf[2];              /* system-length scratch arrays (owned + ghost values valid) */
     Vec xseq[2];                /* Seq Vecs over xf */
     VecScatter sc;              /* owned parts of a global Vec -> ghost entries of xseq */
     int *rcounts, *rdispls;     /* all-gather of vectors (doubles) */
@@ -89,6 +92,9 @@ typedef struct pimpl {
 #define QUAD(p) ((p)->quadb - 4 * (p)->slo)
 #define NEWT(p) ((p)->newtonb - 4 * (p)->slo)
 #define DINV(p) ((p)->dinvb - 4 * (long)(p)->lo)
+
+/* the global (PETSc) block index of system vertex j */
+static inline PetscInt gcol(const pimpl *p, int j) { return p->gid ? p->gid[j] : j; }
 
 /* ---- process-wide: MPI / PETSc ------------------------------------------- */
 
@@ -243,8 +249,18 @@ static glpgp_status p_setup(glpgp_backend *b, const glpgp_system *sys)
     p->sys = sys;
     b->sys = sys;
     const int nv = sys->nv, P = p->size, r = p->rank;
-    p->lo = (int)((long long)nv * r / P);
-    p->hi = (int)((long long)nv * (r + 1) / P);
+    const glpgp_mesh_part *part = sys->mesh->part;
+    if (part) { /* one rank's part: the owned vertices first, then the ghosts */
+        p->lo = 0;
+        p->hi = part->nv_owned;
+        p->vstart = part->first;
+        p->gid = part->gid;
+    } else { /* the whole mesh on every rank: a slice of its rows */
+        p->lo = (int)((long long)nv * r / P);
+        p->hi = (int)((long long)nv * (r + 1) / P);
+        p->vstart = p->lo;
+        p->gid = NULL;
+    }
     p->slo = sys->rowptr[p->lo];
     p->shi = sys->rowptr[p->hi];
     const long nslot = p->shi - p->slo;
@@ -280,21 +296,15 @@ static glpgp_status p_setup(glpgp_backend *b, const glpgp_system *sys)
     for (int j = 0; j < nv; j++)
         if (mark[j]) p->ghost[p->nghost++] = j;
     free(mark);
-    /* triangles counted here: lowest vertex owned */
-    int nc = 0;
-    for (int t = 0; t < sys->nt; t++) {
-        const int *tv = sys->mesh->tri + 3 * (size_t)t;
-        int mn = tv[0] < tv[1] ? tv[0] : tv[1];
-        mn = mn < tv[2] ? mn : tv[2];
-        if (mn >= p->lo && mn < p->hi) nc++;
-    }
-    GLPGP_CHECK(glpgp_malloc((size_t)(nc > 0 ? nc : 1), sizeof(int), &p->tcount));
+    /* triangles counted here: lowest (global) vertex owned */
+    GLPGP_CHECK(glpgp_malloc((size_t)(sys->nt > 0 ? sys->nt : 1), sizeof(int), &p->tcount));
     p->ntcount = 0;
     for (int t = 0; t < sys->nt; t++) {
         const int *tv = sys->mesh->tri + 3 * (size_t)t;
-        int mn = tv[0] < tv[1] ? tv[0] : tv[1];
-        mn = mn < tv[2] ? mn : tv[2];
-        if (mn >= p->lo && mn < p->hi) p->tcount[p->ntcount++] = t;
+        PetscInt mn = gcol(p, tv[0]);
+        for (int a = 1; a < 3; a++)
+            if (gcol(p, tv[a]) < mn) mn = gcol(p, tv[a]);
+        if (mn >= p->vstart && mn < p->vstart + (p->hi - p->lo)) p->tcount[p->ntcount++] = t;
     }
     /* all-gather layout of vectors */
     GLPGP_CHECK(glpgp_malloc((size_t)P, sizeof(int), &p->rcounts));
@@ -304,22 +314,32 @@ static glpgp_status p_setup(glpgp_backend *b, const glpgp_system *sys)
         p->rcounts[q] = 2 * (e - a);
         p->rdispls[q] = 2 * a;
     }
-    /* ghost scatter: global unknowns 2 j, 2 j + 1 of the ghosts -> the same
-     * positions of the whole-length scratch */
+    /* ghost scatter: global unknowns 2 gid(j), 2 gid(j) + 1 of the ghosts ->
+     * positions 2 j, 2 j + 1 of the scratch */
     if (P > 1) {
         glpgp_vec *tmpl = NULL;
-        GLPGP_CHECK(p_vec_create(b, (size_t)2 * nv, &tmpl));
-        IS is = NULL;
-        PetscErrorCode pe = ISCreateBlock(PETSC_COMM_SELF, 2, p->nghost, p->ghost, PETSC_COPY_VALUES, &is);
-        if (!pe) pe = VecScatterCreate(tmpl->v, is, p->xseq[0], is, &p->sc);
-        if (is) ISDestroy(&is);
+        PetscInt *gg = NULL;
+        GLPGP_CHECK(glpgp_malloc((size_t)(p->nghost > 0 ? p->nghost : 1), sizeof(PetscInt), &gg));
+        for (int g = 0; g < p->nghost; g++) gg[g] = gcol(p, p->ghost[g]);
+        glpgp_status vst = p_vec_create(b, (size_t)2 * nv, &tmpl);
+        if (vst != GLPGP_OK) {
+            free(gg);
+            return vst;
+        }
+        IS isg = NULL, isl = NULL;
+        PetscErrorCode pe = ISCreateBlock(PETSC_COMM_SELF, 2, p->nghost, gg, PETSC_COPY_VALUES, &isg);
+        if (!pe) pe = ISCreateBlock(PETSC_COMM_SELF, 2, p->nghost, p->ghost, PETSC_COPY_VALUES, &isl);
+        if (!pe) pe = VecScatterCreate(tmpl->v, isg, p->xseq[0], isl, &p->sc);
+        if (isg) ISDestroy(&isg);
+        if (isl) ISDestroy(&isl);
+        free(gg);
         p_vec_destroy(b, &tmpl);
         if (pe) return GLPGP_FAIL(GLPGP_ERR_NUMERIC, "PETSc error %d creating the ghost scatter", (int)pe);
     }
     p->A_dirty = 1;
     p->nn_valid = 0;
-    glpgp_log(GLPGP_LOG_DEBUG, "petsc rank %d/%d: vertices [%d, %d), %d ghosts, %d triangles counted", p->rank,
-              P, p->lo, p->hi, p->nghost, p->ntcount);
+    glpgp_log(GLPGP_LOG_DEBUG, "petsc rank %d/%d: vertices [%d, %d) (global from %d), %d ghosts, %d triangles counted",
+              p->rank, P, p->lo, p->hi, p->vstart, p->nghost, p->ntcount);
     return GLPGP_OK;
 }
 
@@ -331,7 +351,7 @@ static glpgp_status p_vec_create(glpgp_backend *b, size_t n, glpgp_vec **out)
         return GLPGP_FAIL(GLPGP_ERR_UNSUPPORTED, "the petsc backend has vectors of 2 nv doubles only (asked %zu)", n);
     glpgp_vec *v = NULL;
     GLPGP_CHECK(glpgp_calloc(1, sizeof *v, &v));
-    PetscErrorCode pe = VecCreateMPI(PETSC_COMM_WORLD, (PetscInt)2 * (p->hi - p->lo), (PetscInt)n, &v->v);
+    PetscErrorCode pe = VecCreateMPI(PETSC_COMM_WORLD, (PetscInt)2 * (p->hi - p->lo), PETSC_DETERMINE, &v->v);
     if (!pe) pe = VecSetBlockSize(v->v, 2);
     if (!pe) pe = VecSet(v->v, 0.0);
     if (pe) {
@@ -365,6 +385,11 @@ static glpgp_status p_vec_write(glpgp_backend *b, glpgp_vec *v, const double *h)
 static glpgp_status p_vec_read(glpgp_backend *b, const glpgp_vec *v, double *h)
 {
     pimpl *p = PI(b);
+    if (p->gid) { /* a part: the owned and ghost values, one ghost scatter */
+        GLPGP_CHECK(load_ghosted(p, v, 0));
+        memcpy(h, p->xf[0], (size_t)2 * p->sys->nv * sizeof(double));
+        return GLPGP_OK;
+    }
     const PetscScalar *a;
     PCHK(VecGetArrayRead(v->v, &a));
     int rc = MPI_SUCCESS;
@@ -673,7 +698,7 @@ static glpgp_status newton_to_mat(pimpl *p)
                 else on[i - p->lo]++;
             }
         PetscErrorCode pe = MatCreate(PETSC_COMM_WORLD, &p->A);
-        if (!pe) pe = MatSetSizes(p->A, 2 * nown, 2 * nown, 2 * (PetscInt)sys->nv, 2 * (PetscInt)sys->nv);
+        if (!pe) pe = MatSetSizes(p->A, 2 * nown, 2 * nown, PETSC_DETERMINE, PETSC_DETERMINE);
         if (!pe) pe = MatSetType(p->A, MATAIJ);
         if (!pe) pe = MatSetBlockSize(p->A, 2);
         if (!pe) pe = MatXAIJSetPreallocation(p->A, 2, dn, on, NULL, NULL);
@@ -702,13 +727,13 @@ static glpgp_status newton_to_mat(pimpl *p)
         const int k0 = sys->rowptr[i], nc = sys->rowptr[i + 1] - k0;
         for (int c = 0; c < nc; c++) {
             const double *blk = N + 4 * (long)(k0 + c);
-            cols[c] = sys->col[k0 + c];
+            cols[c] = gcol(p, sys->col[k0 + c]);
             vals[2 * c] = blk[0];
             vals[2 * c + 1] = blk[1];
             vals[2 * nc + 2 * c] = blk[2];
             vals[2 * nc + 2 * c + 1] = blk[3];
         }
-        PetscInt row = i;
+        PetscInt row = p->vstart + (i - p->lo);
         pe = MatSetValuesBlocked(p->A, 1, &row, nc, cols, vals, INSERT_VALUES);
     }
     free(vals);
@@ -818,6 +843,21 @@ static glpgp_status p_linear_solve(glpgp_backend *b, const glpgp_vec *rhs, glpgp
     return GLPGP_OK;
 }
 
+static glpgp_status p_reduce(glpgp_backend *b, double *v, int n, int op)
+{
+    pimpl *p = PI(b);
+    /* sums: partials summed in rank order (the same bits everywhere) */
+    if (op == GLPGP_REDUCE_SUM) {
+        for (int k = 0; k < n; k += 4) GLPGP_CHECK(reduce_sum(p, v + k, n - k < 4 ? n - k : 4));
+        return GLPGP_OK;
+    }
+    if (p->size == 1) return GLPGP_OK;
+    if (MPI_Allreduce(MPI_IN_PLACE, v, n, MPI_DOUBLE, op == GLPGP_REDUCE_MAX ? MPI_MAX : MPI_MIN,
+                      PETSC_COMM_WORLD) != MPI_SUCCESS)
+        return GLPGP_FAIL(GLPGP_ERR_NUMERIC, "MPI_Allreduce failed");
+    return GLPGP_OK;
+}
+
 static const glpgp_backend_ops petsc_ops = {
     .name = "petsc",
     .destroy = p_destroy,
@@ -842,6 +882,7 @@ static const glpgp_backend_ops petsc_ops = {
     .cg_update = p_cg_update,
     .cg_direction = p_cg_direction,
     .linear_solve = p_linear_solve,
+    .reduce = p_reduce,
 };
 
 /* --precond jacobi: no linear_solve op, so the drivers' own block-Jacobi CG
@@ -883,8 +924,134 @@ static void m_local_info(const glpgp_backend *b, int *owned, int *ghosts)
     *ghosts = p->sys ? p->nghost : 0;
 }
 
-static const glpgp_petsc_api g_api = {GLPGP_PETSC_ABI, m_init,   m_finalize, m_rank,    m_size,
-                                      m_create,        m_all_ok, m_gather,   m_max_rss, m_local_info};
+/* ---- distributed meshes: parts sent by rank 0, results gathered --------- */
+
+enum { TAG_MESH = 7301 };
+
+/* one message per array; a header first (sizes, flags) and the scalars */
+static glpgp_status m_mesh_send(const glpgp_mesh *m, int dest)
+{
+    const glpgp_mesh_part *pt = m->part;
+    if (!pt) return GLPGP_FAIL(GLPGP_ERR_ARG, "mesh_send: not a part");
+    int hdr[7] = {m->nv, m->nt, pt->nv_owned, pt->first, pt->nv_global, pt->nt_global, pt->size != NULL};
+    double sc[9] = {m->area, m->bbox[0], m->bbox[1], m->bbox[2], m->bbox[3], m->mean_edge,
+                    pt->center[0], pt->center[1], pt->size_opt};
+    const MPI_Comm cw = PETSC_COMM_WORLD;
+    int rc = MPI_Send(hdr, 7, MPI_INT, dest, TAG_MESH, cw);
+    if (rc == MPI_SUCCESS) rc = MPI_Send(sc, 9, MPI_DOUBLE, dest, TAG_MESH, cw);
+    if (rc == MPI_SUCCESS) rc = MPI_Send(m->xy, 2 * m->nv, MPI_DOUBLE, dest, TAG_MESH, cw);
+    if (rc == MPI_SUCCESS) rc = MPI_Send(m->tri, 3 * m->nt, MPI_INT, dest, TAG_MESH, cw);
+    if (rc == MPI_SUCCESS) rc = MPI_Send(m->on_boundary, m->nv, MPI_UNSIGNED_CHAR, dest, TAG_MESH, cw);
+    if (rc == MPI_SUCCESS) rc = MPI_Send(m->normal_prev, 2 * m->nv, MPI_DOUBLE, dest, TAG_MESH, cw);
+    if (rc == MPI_SUCCESS) rc = MPI_Send(m->normal_next, 2 * m->nv, MPI_DOUBLE, dest, TAG_MESH, cw);
+    if (rc == MPI_SUCCESS) rc = MPI_Send(pt->gid, m->nv, MPI_INT, dest, TAG_MESH, cw);
+    if (rc == MPI_SUCCESS && pt->size) rc = MPI_Send(pt->size, 2 * m->nv, MPI_DOUBLE, dest, TAG_MESH, cw);
+    if (rc != MPI_SUCCESS) return GLPGP_FAIL(GLPGP_ERR_IO, "MPI_Send of the mesh part to rank %d failed", dest);
+    return GLPGP_OK;
+}
+
+static void mesh_free(glpgp_mesh *m)
+{
+    if (!m) return;
+    free(m->xy);
+    free(m->tri);
+    free(m->loop_start);
+    free(m->on_boundary);
+    free(m->normal_prev);
+    free(m->normal_next);
+    if (m->part) {
+        free(m->part->gid);
+        free(m->part->size);
+        free(m->part);
+    }
+    free(m);
+}
+
+static glpgp_status m_mesh_recv(glpgp_mesh **out)
+{
+    *out = NULL;
+    const MPI_Comm cw = PETSC_COMM_WORLD;
+    int hdr[7];
+    double sc[9];
+    if (MPI_Recv(hdr, 7, MPI_INT, 0, TAG_MESH, cw, MPI_STATUS_IGNORE) != MPI_SUCCESS ||
+        MPI_Recv(sc, 9, MPI_DOUBLE, 0, TAG_MESH, cw, MPI_STATUS_IGNORE) != MPI_SUCCESS)
+        return GLPGP_FAIL(GLPGP_ERR_IO, "MPI_Recv of the mesh part failed");
+    glpgp_status st = GLPGP_OK;
+    glpgp_mesh *m = NULL;
+    const int nv = hdr[0], nt = hdr[1];
+    GLPGP_CHECK(glpgp_calloc(1, sizeof *m, &m));
+    m->nv = nv;
+    m->nt = nt;
+    GLPGP_CHECK_GOTO(st, glpgp_calloc(1, sizeof *m->part, &m->part), fail);
+    glpgp_mesh_part *pt = m->part;
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)2 * nv, sizeof(double), &m->xy), fail);
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)3 * (nt > 0 ? nt : 1), sizeof(int), &m->tri), fail);
+    GLPGP_CHECK_GOTO(st, glpgp_calloc(1, sizeof(int), &m->loop_start), fail); /* nloops = 0 */
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)nv, 1, &m->on_boundary), fail);
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)2 * nv, sizeof(double), &m->normal_prev), fail);
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)2 * nv, sizeof(double), &m->normal_next), fail);
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)nv, sizeof(int), &pt->gid), fail);
+    if (hdr[6]) GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)2 * nv, sizeof(double), &pt->size), fail);
+    int rc = MPI_Recv(m->xy, 2 * nv, MPI_DOUBLE, 0, TAG_MESH, cw, MPI_STATUS_IGNORE);
+    if (rc == MPI_SUCCESS) rc = MPI_Recv(m->tri, 3 * nt, MPI_INT, 0, TAG_MESH, cw, MPI_STATUS_IGNORE);
+    if (rc == MPI_SUCCESS) rc = MPI_Recv(m->on_boundary, nv, MPI_UNSIGNED_CHAR, 0, TAG_MESH, cw, MPI_STATUS_IGNORE);
+    if (rc == MPI_SUCCESS) rc = MPI_Recv(m->normal_prev, 2 * nv, MPI_DOUBLE, 0, TAG_MESH, cw, MPI_STATUS_IGNORE);
+    if (rc == MPI_SUCCESS) rc = MPI_Recv(m->normal_next, 2 * nv, MPI_DOUBLE, 0, TAG_MESH, cw, MPI_STATUS_IGNORE);
+    if (rc == MPI_SUCCESS) rc = MPI_Recv(pt->gid, nv, MPI_INT, 0, TAG_MESH, cw, MPI_STATUS_IGNORE);
+    if (rc == MPI_SUCCESS && pt->size) rc = MPI_Recv(pt->size, 2 * nv, MPI_DOUBLE, 0, TAG_MESH, cw, MPI_STATUS_IGNORE);
+    if (rc != MPI_SUCCESS) {
+        st = GLPGP_FAIL(GLPGP_ERR_IO, "MPI_Recv of the mesh part failed");
+        goto fail;
+    }
+    pt->nv_owned = hdr[2];
+    pt->first = hdr[3];
+    pt->nv_global = hdr[4];
+    pt->nt_global = hdr[5];
+    m->area = sc[0];
+    memcpy(m->bbox, sc + 1, sizeof m->bbox);
+    m->mean_edge = sc[5];
+    pt->center[0] = sc[6];
+    pt->center[1] = sc[7];
+    pt->size_opt = sc[8];
+    *out = m;
+    return GLPGP_OK;
+fail:
+    mesh_free(m);
+    return st;
+}
+
+static glpgp_status m_gather_bytes(const void *mine, size_t bytes, void *out)
+{
+    const int P = m_size(), r = m_rank();
+    if (bytes > (size_t)INT_MAX) return GLPGP_FAIL(GLPGP_ERR_LIMIT, "gather of %zu bytes from one rank", bytes);
+    int n = (int)bytes, *cnt = NULL, *dsp = NULL;
+    if (r == 0) {
+        GLPGP_CHECK(glpgp_malloc((size_t)P, sizeof(int), &cnt));
+        glpgp_status st = glpgp_malloc((size_t)P, sizeof(int), &dsp);
+        if (st != GLPGP_OK) {
+            free(cnt);
+            return st;
+        }
+    }
+    int rc = MPI_Gather(&n, 1, MPI_INT, cnt, 1, MPI_INT, 0, PETSC_COMM_WORLD);
+    if (rc == MPI_SUCCESS && r == 0) {
+        long long at = 0;
+        for (int q = 0; q < P; q++) {
+            dsp[q] = (int)at;
+            at += cnt[q];
+        }
+        if (at > INT_MAX) rc = MPI_ERR_COUNT; /* the other ranks still take part below */
+    }
+    int rc2 = MPI_Gatherv(mine, n, MPI_BYTE, out, cnt, dsp, MPI_BYTE, 0, PETSC_COMM_WORLD);
+    free(cnt);
+    free(dsp);
+    if (rc != MPI_SUCCESS || rc2 != MPI_SUCCESS) return GLPGP_FAIL(GLPGP_ERR_IO, "MPI_Gatherv to rank 0 failed");
+    return GLPGP_OK;
+}
+
+static const glpgp_petsc_api g_api = {GLPGP_PETSC_ABI, m_init,      m_finalize,  m_rank,         m_size,
+                                      m_create,        m_all_ok,    m_gather,    m_max_rss,      m_local_info,
+                                      m_mesh_send,     m_mesh_recv, m_gather_bytes};
 
 /* glue (petsc_glue.c) */
 int glpgp_petsc_glue_init(const glpgp_petsc_host *host);

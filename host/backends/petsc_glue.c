@@ -16,7 +16,8 @@ static const glpgp_petsc_host *g_host;
 int glpgp_petsc_glue_init(const glpgp_petsc_host *host)
 {
     if (!host || host->abi != GLPGP_PETSC_ABI || host->sizeof_system != sizeof(glpgp_system) ||
-        host->sizeof_backend != sizeof(glpgp_backend) || host->sizeof_ops != sizeof(glpgp_backend_ops))
+        host->sizeof_backend != sizeof(glpgp_backend) || host->sizeof_ops != sizeof(glpgp_backend_ops) ||
+        host->sizeof_mesh != sizeof(glpgp_mesh) || host->sizeof_part != sizeof(glpgp_mesh_part))
         return 0;
     g_host = host;
     return 1;

@@ -29,9 +29,9 @@ static char g_why[8192];
 
 static void host_log(glpgp_log_level level, const char *msg) { glpgp_log(level, "%s", msg); }
 
-static const glpgp_petsc_host g_host = {GLPGP_PETSC_ABI, sizeof(glpgp_system), sizeof(glpgp_backend),
-                                        sizeof(glpgp_backend_ops), glpgp_error_set, glpgp_error_push_trace,
-                                        host_log};
+static const glpgp_petsc_host g_host = {GLPGP_PETSC_ABI,        sizeof(glpgp_system),   sizeof(glpgp_backend),
+                                        sizeof(glpgp_backend_ops), sizeof(glpgp_mesh),    sizeof(glpgp_mesh_part),
+                                        glpgp_error_set,        glpgp_error_push_trace, host_log};
 
 int glpgp_have_petsc(void)
 {
@@ -118,6 +118,28 @@ void glpgp_petsc_backend_info(const glpgp_backend *b, int *owned, int *ghosts)
 {
     *owned = *ghosts = 0;
     if (g_initialised && b && b->ops && !strcmp(b->ops->name, "petsc")) g_api->local_info(b, owned, ghosts);
+}
+
+glpgp_status glpgp_petsc_mesh_send(const glpgp_mesh *m, int dest)
+{
+    if (!g_initialised) return GLPGP_FAIL(GLPGP_ERR_UNSUPPORTED, "MPI is not initialised");
+    return g_api->mesh_send(m, dest);
+}
+
+glpgp_status glpgp_petsc_mesh_recv(glpgp_mesh **out)
+{
+    *out = NULL;
+    if (!g_initialised) return GLPGP_FAIL(GLPGP_ERR_UNSUPPORTED, "MPI is not initialised");
+    return g_api->mesh_recv(out);
+}
+
+glpgp_status glpgp_petsc_gather_bytes(const void *mine, size_t bytes, void *out)
+{
+    if (!g_initialised) {
+        memcpy(out, mine, bytes);
+        return GLPGP_OK;
+    }
+    return g_api->gather_bytes(mine, bytes, out);
 }
 
 double glpgp_petsc_max_rss(void) { return g_initialised ? g_api->max_rss() : 0.0; }

@@ -13,13 +13,13 @@
 
 #include "glpgp/backend.h"
 
-#define GLPGP_PETSC_ABI 1
+#define GLPGP_PETSC_ABI 2
 #define GLPGP_PETSC_ENTRY "glpgp_petsc_module_entry"
 
 /* glpgp -> module */
 typedef struct glpgp_petsc_host {
     int abi;
-    size_t sizeof_system, sizeof_backend, sizeof_ops;
+    size_t sizeof_system, sizeof_backend, sizeof_ops, sizeof_mesh, sizeof_part;
     glpgp_status (*error_set)(const char *file, int line, glpgp_status st, const char *fmt, ...);
     void (*push_trace)(const char *file, int line);
     void (*log_msg)(glpgp_log_level level, const char *msg);
@@ -44,6 +44,13 @@ typedef struct glpgp_petsc_api {
     double (*max_rss)(void);
     /* owned and ghost vertices of backend b on this rank (b: this module's, set up) */
     void (*local_info)(const glpgp_backend *b, int *owned, int *ghosts);
+    /* rank 0: send the part m (glpgp_mesh_extract_part) to rank dest */
+    glpgp_status (*mesh_send)(const glpgp_mesh *m, int dest);
+    /* a rank other than 0: *out <- the part rank 0 sent it (free: glpgp_mesh_destroy) */
+    glpgp_status (*mesh_recv)(glpgp_mesh **out);
+    /* every rank: bytes of mine to rank 0, where out (rank 0 only) receives
+     * them all back to back in rank order */
+    glpgp_status (*gather_bytes)(const void *mine, size_t bytes, void *out);
 } glpgp_petsc_api;
 
 typedef const glpgp_petsc_api *(*glpgp_petsc_entry_fn)(const glpgp_petsc_host *host);

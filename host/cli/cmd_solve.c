@@ -250,6 +250,187 @@ static int solve_ranks(solve_cli *c, const char *input)
     return rc;
 }
 
+/* Read the input, check the options against it and refine it for the
+ * local size: *pm (and *psimg, --size-field IMAGE). -1 when fine, else the
+ * exit code (the error reported, nothing left allocated). */
+static int prepare(solve_cli *c, const char *input, glpgp_mesh **pm, glpgp_size_image **psimg)
+{
+    int rc;
+    glpgp_mesh *m = NULL;
+    *pm = NULL;
+    *psimg = NULL;
+    c->mo.quad_size = c->o.size;
+    if ((rc = glpgp_cli_load_input("solve", input, &c->mo, &m, NULL)) >= 0) return rc;
+    if ((rc = glpgp_cli_size_image(&c->o, m, c->size_box, &c->mo, psimg)) >= 0) {
+        glpgp_mesh_destroy(&m);
+        return rc;
+    }
+    /* the input is refined for the local size (auto / iso, refinement on,
+     * no per-vertex field file): h may be down to half a mean edge here (a
+     * graded input whose far field is coarser than h); the refined mesh is
+     * checked against the full rule below */
+    const int refine = !c->no_refine && c->o.field != GLPGP_FIELD_FILE &&
+                       (c->o.size_field == GLPGP_SIZE_AUTO || c->o.size_field == GLPGP_SIZE_ISO ||
+                        c->o.size_field == GLPGP_SIZE_FUNC);
+    glpgp_status chk;
+    if (refine && c->o.size > 0.0 && c->o.size >= 0.5 * m->mean_edge && c->o.size < GLPGP_SIZE_MIN_EDGES * m->mean_edge) {
+        glpgp_options big = c->o;
+        big.size = GLPGP_SIZE_MIN_EDGES * m->mean_edge; /* the other rules (diameter, options) */
+        chk = glpgp_options_check_mesh(&big, m);
+    } else {
+        chk = glpgp_options_check_mesh(&c->o, m);
+    }
+    if (chk != GLPGP_OK) {
+        rc = glpgp_cli_usage_error("solve", "--size: %s", glpgp_error_message());
+        glpgp_error_clear();
+        glpgp_mesh_destroy(&m);
+        glpgp_size_image_destroy(psimg);
+        return rc;
+    }
+    if (c->o.field == GLPGP_FIELD_FILE) {
+        /* read the field file now: a bad one fails before the backend starts
+         * (the solve reads it again) */
+        double *u = NULL;
+        long cg = 0;
+        glpgp_status st = glpgp_malloc(2 * (size_t)m->nv, sizeof *u, &u);
+        if (st == GLPGP_OK) st = glpgp_field_compute(m, NULL, &c->o, u, &cg);
+        free(u);
+        if (st != GLPGP_OK) goto fail;
+    }
+
+    /* triangles coarser than the local size: refined (longest-edge
+     * bisection), the size h fixed from the input mesh first */
+    memset(&c->refined, 0, sizeof c->refined);
+    /* a guiding field read from a file belongs to the input's vertices: no
+     * refinement then (the size field stays limited to what the mesh resolves) */
+    if (refine) {
+        const double h = c->o.size > 0.0 ? c->o.size : glpgp_default_size(m, &c->o);
+        glpgp_mesh *mr = NULL;
+        if (glpgp_size_refine(m, &c->o, h, &mr, &c->refined) != GLPGP_OK) goto fail;
+        if (mr) {
+            glpgp_log(GLPGP_LOG_INFO, "refined the input for the local size: %d -> %d vertices in %d rounds",
+                      c->refined.nv0, c->refined.nv, c->refined.rounds);
+            glpgp_mesh_destroy(&m);
+            m = mr;
+            c->o.size = h;
+            if (c->mo.max_triangles > 0 && m->nt > c->mo.max_triangles) {
+                GLPGP_FAIL(GLPGP_ERR_LIMIT, "the refined mesh has %d triangles, above --max-elements %ld", m->nt,
+                           c->mo.max_triangles);
+                goto fail;
+            }
+        }
+        /* the full rule (h >= 2 mean edges) on the mesh that is solved */
+        if (glpgp_options_check_mesh(&c->o, m) != GLPGP_OK) goto fail;
+    }
+    *pm = m;
+    return -1;
+fail:
+    rc = glpgp_cli_fail();
+    glpgp_mesh_destroy(&m);
+    glpgp_size_image_destroy(psimg);
+    return rc;
+}
+
+/* Whether the PETSc ranks split the mesh (each holds its part,
+ * glpgp_mesh_part) rather than every rank holding the whole mesh: several
+ * ranks, and no per-vertex input file (field, sizes: their lines belong to
+ * the input's numbering), no cross field, no size function (--size-field
+ * IMAGE: evaluated on rank 0 only). */
+static int distributed(const solve_cli *c)
+{
+    return c->backend == GLPGP_BACKEND_PETSC && glpgp_petsc_size() > 1 && c->o.field != GLPGP_FIELD_FILE &&
+           c->o.field != GLPGP_FIELD_CROSS && c->o.size_field != GLPGP_SIZE_FILE &&
+           c->o.size_field != GLPGP_SIZE_FUNC;
+}
+
+/* Rank 0 of a distributed solve: what needs the whole renumbered mesh mp
+ * (the local size field and its check, the radial field's centre), then
+ * each rank's part: sent to ranks 1 .. P-1, rank 0's own in *mine. The
+ * other ranks wait in glpgp_petsc_mesh_recv after the all_ok verdict that
+ * the caller announces between split_prepare and split_send. */
+static glpgp_status split_prepare(const solve_cli *c, const glpgp_mesh *mp, double **size, double center[2])
+{
+    *size = NULL;
+    const double h = c->o.size > 0.0 ? c->o.size : glpgp_default_size(mp, &c->o);
+    /* the local resolution of the whole mesh (glpgp_solve skips it on a part) */
+    GLPGP_CHECK(glpgp_options_check_mesh(&c->o, mp));
+    GLPGP_CHECK(glpgp_size_check_mesh(mp, &c->o, h));
+    /* the field where the size field reads it (the boundary), the centroid;
+     * the sizes of both oscillators (NULL when uniform) */
+    double *u = NULL, *sz = NULL;
+    int uniform = 1;
+    glpgp_status st = glpgp_malloc((size_t)2 * mp->nv, sizeof(double), &u);
+    if (st == GLPGP_OK) st = glpgp_malloc((size_t)2 * mp->nv, sizeof(double), &sz);
+    if (st == GLPGP_OK) {
+        glpgp_field_presolve(mp, &c->o, u, center);
+        glpgp_options oc = c->o;
+        if (oc.field == GLPGP_FIELD_RADIAL && !oc.has_center) {
+            oc.center[0] = center[0];
+            oc.center[1] = center[1];
+            oc.has_center = 1;
+        }
+        st = glpgp_size_compute(mp, &oc, h, u, sz, &uniform);
+    }
+    free(u);
+    if (st == GLPGP_OK && !uniform) *size = sz;
+    else free(sz);
+    return st;
+}
+
+static glpgp_status split_send(const solve_cli *c, const glpgp_mesh *mp, const double *size, const double center[2],
+                               glpgp_mesh **mine)
+{
+    const int P = glpgp_petsc_size();
+    *mine = NULL;
+    for (int q = 1; q < P; q++) {
+        glpgp_mesh *pq = NULL;
+        GLPGP_CHECK(glpgp_mesh_extract_part(mp, P, q, size, center, c->o.size, &pq));
+        glpgp_status st = glpgp_petsc_mesh_send(pq, q);
+        glpgp_mesh_destroy(&pq);
+        GLPGP_CHECK(st);
+    }
+    return glpgp_mesh_extract_part(mp, P, 0, size, center, c->o.size, mine);
+}
+
+/* The whole result on rank 0 from the parts' results (rl: this rank's, of
+ * its part pm): the per-vertex arrays of the owned vertices gathered in rank
+ * order (the renumbered mesh's order), the scalars (global already) copied;
+ * *out (rank 0, of nv vertices and nt triangles) then summarised by the
+ * caller. Every rank calls it. */
+static glpgp_status gather_result(const glpgp_result *rl, const glpgp_mesh *pm, int nv, int nt, glpgp_result **out)
+{
+    *out = NULL;
+    const int root = glpgp_petsc_rank() == 0;
+    const size_t n = (size_t)pm->part->nv_owned;
+    glpgp_result *rw = NULL;
+    if (root) {
+        GLPGP_CHECK(glpgp_result_create(nv, nt, &rw));
+        glpgp_result keep = *rw;
+        *rw = *rl; /* the scalars and statistics */
+        rw->nv = keep.nv;
+        rw->nt = keep.nt;
+        rw->field = keep.field;
+        rw->cross = NULL;
+        for (int k = 0; k < 2; k++) {
+            rw->osc[k].z = keep.osc[k].z;
+            rw->osc[k].dirichlet = keep.osc[k].dirichlet;
+            rw->osc[k].singular = keep.osc[k].singular;
+        }
+    }
+    glpgp_status st = glpgp_petsc_gather_bytes(rl->field, 2 * n * sizeof(double), root ? rw->field : NULL);
+    for (int k = 0; k < 2 && st == GLPGP_OK; k++) {
+        st = glpgp_petsc_gather_bytes(rl->osc[k].z, 2 * n * sizeof(double), root ? rw->osc[k].z : NULL);
+        if (st == GLPGP_OK)
+            st = glpgp_petsc_gather_bytes(rl->osc[k].dirichlet, n, root ? rw->osc[k].dirichlet : NULL);
+    }
+    if (st != GLPGP_OK) {
+        glpgp_result_destroy(&rw);
+        return st;
+    }
+    *out = rw;
+    return GLPGP_OK;
+}
+
 static int solve_main(solve_cli *cc, const char *input)
 {
     solve_cli c = *cc;
@@ -266,75 +447,31 @@ static int solve_main(solve_cli *cc, const char *input)
     int invalid_rc = -1;
     int nranks = 0;             /* --backend petsc: MPI ranks, per-rank numbers */
     glpgp_mesh *mp = NULL;      /* the renumbered mesh the ranks solve (NULL: m) */
+    glpgp_mesh *part = NULL;    /* distributed: this rank's part of mp */
     int *new_of_old = NULL;
-    double *rank_info = NULL;
+    double *rank_info = NULL, *split_size = NULL;
+    double center[2] = {0.0, 0.0};
     char why[1024] = "";
-    c.mo.quad_size = c.o.size;
-    if ((rc = glpgp_cli_load_input("solve", input, &c.mo, &m, NULL)) >= 0) return rc;
     glpgp_size_image *simg = NULL; /* --size-field IMAGE */
-    if ((rc = glpgp_cli_size_image(&c.o, m, c.size_box, &c.mo, &simg)) >= 0) {
-        glpgp_mesh_destroy(&m);
-        return rc;
-    }
-    double t_read = glpgp_now() - t0;
-    /* the input is refined for the local size (auto / iso, refinement on,
-     * no per-vertex field file): h may be down to half a mean edge here (a
-     * graded input whose far field is coarser than h); the refined mesh is
-     * checked against the full rule below */
-    const int refine = !c.no_refine && c.o.field != GLPGP_FIELD_FILE &&
-                       (c.o.size_field == GLPGP_SIZE_AUTO || c.o.size_field == GLPGP_SIZE_ISO ||
-                        c.o.size_field == GLPGP_SIZE_FUNC);
-    glpgp_status chk;
-    if (refine && c.o.size > 0.0 && c.o.size >= 0.5 * m->mean_edge && c.o.size < GLPGP_SIZE_MIN_EDGES * m->mean_edge) {
-        glpgp_options big = c.o;
-        big.size = GLPGP_SIZE_MIN_EDGES * m->mean_edge; /* the other rules (diameter, options) */
-        chk = glpgp_options_check_mesh(&big, m);
+    const int dist = distributed(&c), root = glpgp_petsc_rank() == 0;
+    int announced = 0;          /* distributed: rank 0's verdict on the input sent */
+    double t_read = 0.0;
+    memset(&c.refined, 0, sizeof c.refined);
+    if (dist && !root) {
+        /* rank 0 reads, checks, refines and splits the input: its verdict,
+         * then this rank's part */
+        announced = 1;
+        if (!glpgp_petsc_all_ok(1)) return GLPGP_EXIT_FAIL; /* rank 0 reported it */
+        if (glpgp_petsc_mesh_recv(&part) != GLPGP_OK) goto fail;
+        c.o.size = part->part->size_opt; /* rank 0's (set by the refinement) */
     } else {
-        chk = glpgp_options_check_mesh(&c.o, m);
-    }
-    if (chk != GLPGP_OK) {
-        rc = glpgp_cli_usage_error("solve", "--size: %s", glpgp_error_message());
-        glpgp_error_clear();
-        glpgp_mesh_destroy(&m);
-        glpgp_size_image_destroy(&simg);
-        return rc;
+        if ((rc = prepare(&c, input, &m, &simg)) >= 0) {
+            if (dist) glpgp_petsc_all_ok(0);
+            return rc;
+        }
+        t_read = glpgp_now() - t0;
     }
     rc = GLPGP_EXIT_FAIL;
-    if (c.o.field == GLPGP_FIELD_FILE) {
-        /* read the field file now: a bad one fails before the backend starts
-         * (the solve reads it again) */
-        double *u = NULL;
-        long cg = 0;
-        glpgp_status st = glpgp_malloc(2 * (size_t)m->nv, sizeof *u, &u);
-        if (st == GLPGP_OK) st = glpgp_field_compute(m, NULL, &c.o, u, &cg);
-        free(u);
-        if (st != GLPGP_OK) goto fail;
-    }
-
-    /* triangles coarser than the local size: refined (longest-edge
-     * bisection), the size h fixed from the input mesh first */
-    memset(&c.refined, 0, sizeof c.refined);
-    /* a guiding field read from a file belongs to the input's vertices: no
-     * refinement then (the size field stays limited to what the mesh resolves) */
-    if (refine) {
-        const double h = c.o.size > 0.0 ? c.o.size : glpgp_default_size(m, &c.o);
-        glpgp_mesh *mr = NULL;
-        if (glpgp_size_refine(m, &c.o, h, &mr, &c.refined) != GLPGP_OK) goto fail;
-        if (mr) {
-            glpgp_log(GLPGP_LOG_INFO, "refined the input for the local size: %d -> %d vertices in %d rounds",
-                      c.refined.nv0, c.refined.nv, c.refined.rounds);
-            glpgp_mesh_destroy(&m);
-            m = mr;
-            c.o.size = h;
-            if (c.mo.max_triangles > 0 && m->nt > c.mo.max_triangles) {
-                GLPGP_FAIL(GLPGP_ERR_LIMIT, "the refined mesh has %d triangles, above --max-elements %ld", m->nt,
-                           c.mo.max_triangles);
-                goto fail;
-            }
-        }
-        /* the full rule (h >= 2 mean edges) on the mesh that is solved */
-        if (glpgp_options_check_mesh(&c.o, m) != GLPGP_OK) goto fail;
-    }
 
     if (c.backend == GLPGP_BACKEND_PETSC) {
         if (glpgp_backend_create_petsc(c.o.precond, &b) != GLPGP_OK) goto fail;
@@ -344,12 +481,23 @@ static int solve_main(solve_cli *cc, const char *input)
     /* several ranks: the vertices renumbered so that each rank's rows are
      * a compact region (recursive coordinate bisection); the result comes
      * back in the input's vertex order. Not with per-vertex input files
-     * (field, sizes), whose lines belong to the input's numbering. */
+     * (field, sizes), whose lines belong to the input's numbering.
+     * Distributed: rank 0 only, which then splits the renumbered mesh. */
     if (c.backend == GLPGP_BACKEND_PETSC && glpgp_petsc_size() > 1 && c.o.field != GLPGP_FIELD_FILE &&
-        c.o.field != GLPGP_FIELD_CROSS && c.o.size_field != GLPGP_SIZE_FILE)
+        c.o.field != GLPGP_FIELD_CROSS && c.o.size_field != GLPGP_SIZE_FILE && (root || !dist))
         if (partition_mesh(m, glpgp_petsc_size(), &mp, &new_of_old) != GLPGP_OK) goto fail;
-    glpgp_status sst = glpgp_solve(mp ? mp : m, b, &c.o, &r);
-    if (sst == GLPGP_OK && mp) sst = unpermute_result(r, m->nv, new_of_old);
+    if (dist && root) {
+        /* rank 0: the whole-mesh work, the verdict, the parts; then only
+         * the input mesh m stays whole here (for the outputs) */
+        glpgp_status pst = split_prepare(&c, mp, &split_size, center);
+        announced = 1;
+        if (!glpgp_petsc_all_ok(pst == GLPGP_OK)) goto fail;
+        if (split_send(&c, mp, split_size, center, &part) != GLPGP_OK) goto fail;
+        free(split_size);
+        split_size = NULL;
+        glpgp_mesh_destroy(&mp);
+    }
+    glpgp_status sst = glpgp_solve(dist ? part : mp ? mp : m, b, &c.o, &r);
     if (c.backend == GLPGP_BACKEND_PETSC) {
         /* every rank: the same verdict (a rank that failed alone fails all,
          * no rank waits in a collective the others never reach) */
@@ -364,16 +512,37 @@ static int solve_main(solve_cli *cc, const char *input)
         const double mine[GLPGP_RANK_INFO_N] = {owned, ghosts, r->seconds_total, glpgp_petsc_max_rss()};
         if (glpgp_malloc((size_t)nranks * GLPGP_RANK_INFO_N, sizeof(double), &rank_info) != GLPGP_OK) goto fail;
         glpgp_petsc_gather(mine, GLPGP_RANK_INFO_N, rank_info);
-        if (glpgp_petsc_rank() == 0 && c.verbosity > 0)
+        if (root && c.verbosity > 0)
             for (int k = 0; k < nranks; k++) {
                 const double *ri = rank_info + (size_t)k * GLPGP_RANK_INFO_N;
                 glpgp_log(GLPGP_LOG_INFO, "rank %d: %.0f owned + %.0f ghost vertices, solve %.3f s, max RSS %.1f MiB",
                           k, ri[0], ri[1], ri[2], ri[3] / 1048576.0);
             }
+        if (dist) {
+            /* the whole result on rank 0 (outputs, summary); the others are done */
+            glpgp_result *rw = NULL;
+            const glpgp_status gst = gather_result(r, part, root ? m->nv : 0, root ? m->nt : 0, &rw);
+            if (!glpgp_petsc_all_ok(gst == GLPGP_OK)) goto fail;
+            glpgp_mesh_destroy(&part);
+            if (!root) {
+                rc = 0;
+                goto done;
+            }
+            glpgp_result_destroy(&r);
+            r = rw;
+        }
     } else if (sst != GLPGP_OK) {
         goto fail;
     }
-
+    if (new_of_old) {
+        /* back to the input's vertex order; a gathered result: its
+         * singular triangles and |z| statistics on the whole mesh (the
+         * parts' global ones, recomputed) */
+        if (unpermute_result(r, m->nv, new_of_old) != GLPGP_OK) goto fail;
+        if (dist)
+            for (int k = 0; k < 2; k++)
+                if (glpgp_osc_summarize(m, &r->osc[k]) != GLPGP_OK) goto fail;
+    }
     /* everything computed before anything is written */
     if (c.quads) {
         double h = r->size;
@@ -415,6 +584,7 @@ static int solve_main(solve_cli *cc, const char *input)
     rc = invalid_rc < 0 ? 0 : glpgp_cli_invalid(why, "not written (--allow-invalid writes it anyway)");
     goto done;
 fail:
+    if (dist && !announced) glpgp_petsc_all_ok(0); /* the other ranks wait for rank 0's verdict */
     rc = glpgp_cli_fail();
 done:
     glpgp_output_set_destroy(&outs);
@@ -425,6 +595,8 @@ done:
     glpgp_mesh_destroy(&m);
     glpgp_size_image_destroy(&simg);
     glpgp_mesh_destroy(&mp);
+    glpgp_mesh_destroy(&part);
+    free(split_size);
     free(new_of_old);
     free(rank_info);
     return rc;

@@ -20,6 +20,11 @@ void glpgp_mesh_destroy(glpgp_mesh **m)
     free(p->on_boundary);
     free(p->normal_prev);
     free(p->normal_next);
+    if (p->part) {
+        free(p->part->gid);
+        free(p->part->size);
+        free(p->part);
+    }
     free(p);
     *m = NULL;
 }

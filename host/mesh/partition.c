@@ -2,7 +2,8 @@
  * recursive coordinate bisection into parts of prescribed sizes, and the
  * renumbering of a mesh so that each part's vertices are contiguous.
  * Deterministic: the same mesh gives the same partition in every process
- * (sorts break coordinate ties by vertex index). */
+ * (sorts break coordinate ties by vertex index); one rank's part of a
+ * renumbered mesh: its vertices, one layer of ghosts, its triangles. */
 #include "glpgp/mesh.h"
 
 #include <stdlib.h>
@@ -88,5 +89,86 @@ glpgp_status glpgp_mesh_renumber(const glpgp_mesh *m, const int *new_of_old, glp
 done:
     free(xy);
     free(tri);
+    return st;
+}
+
+glpgp_status glpgp_mesh_extract_part(const glpgp_mesh *m, int P, int q, const double *size, const double center[2],
+                                     double size_opt, glpgp_mesh **out)
+{
+    *out = NULL;
+    if (P < 1 || q < 0 || q >= P) return GLPGP_FAIL(GLPGP_ERR_ARG, "part %d of %d", q, P);
+    const int nv = m->nv, nt = m->nt;
+    const int lo = (int)((long long)nv * q / P), hi = (int)((long long)nv * (q + 1) / P);
+    glpgp_status st = GLPGP_OK;
+    int *loc = NULL;
+    glpgp_mesh *o = NULL;
+    GLPGP_CHECK(glpgp_malloc((size_t)nv, sizeof(int), &loc));
+    /* loc[g] <- local id of global vertex g: owned g - lo, ghosts (vertices of
+     * triangles touching an owned vertex) after them in increasing g, -1 else */
+    for (int g = 0; g < nv; g++) loc[g] = -1;
+    int ntl = 0;
+    for (int t = 0; t < nt; t++) {
+        const int *v = m->tri + 3 * (size_t)t;
+        int touch = 0;
+        for (int a = 0; a < 3; a++) touch |= v[a] >= lo && v[a] < hi;
+        if (!touch) continue;
+        ntl++;
+        for (int a = 0; a < 3; a++)
+            if (v[a] < lo || v[a] >= hi) loc[v[a]] = -2; /* ghost, id below */
+    }
+    int nvl = hi - lo;
+    for (int g = 0; g < nv; g++) {
+        if (g >= lo && g < hi) loc[g] = g - lo;
+        else if (loc[g] == -2) loc[g] = nvl++;
+    }
+    GLPGP_CHECK_GOTO(st, glpgp_calloc(1, sizeof *o, &o), fail);
+    o->nv = nvl;
+    o->nt = ntl;
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)2 * nvl, sizeof(double), &o->xy), fail);
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)3 * (ntl > 0 ? ntl : 1), sizeof(int), &o->tri), fail);
+    GLPGP_CHECK_GOTO(st, glpgp_calloc(1, sizeof(int), &o->loop_start), fail); /* nloops = 0 */
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)nvl, 1, &o->on_boundary), fail);
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)2 * nvl, sizeof(double), &o->normal_prev), fail);
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)2 * nvl, sizeof(double), &o->normal_next), fail);
+    GLPGP_CHECK_GOTO(st, glpgp_calloc(1, sizeof *o->part, &o->part), fail);
+    glpgp_mesh_part *pt = o->part;
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)nvl, sizeof(int), &pt->gid), fail);
+    if (size) GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)2 * nvl, sizeof(double), &pt->size), fail);
+    /* per local vertex i of global g: the whole mesh's data at g */
+    for (int g = 0; g < nv; g++) {
+        const int i = loc[g];
+        if (i < 0) continue;
+        pt->gid[i] = g;
+        for (int c = 0; c < 2; c++) {
+            o->xy[2 * i + c] = m->xy[2 * g + c];
+            o->normal_prev[2 * i + c] = m->normal_prev[2 * g + c];
+            o->normal_next[2 * i + c] = m->normal_next[2 * g + c];
+            if (size) pt->size[(size_t)c * nvl + i] = size[(size_t)c * nv + g];
+        }
+        o->on_boundary[i] = m->on_boundary[g];
+    }
+    int k = 0;
+    for (int t = 0; t < nt; t++) {
+        const int *v = m->tri + 3 * (size_t)t;
+        if (!((v[0] >= lo && v[0] < hi) || (v[1] >= lo && v[1] < hi) || (v[2] >= lo && v[2] < hi))) continue;
+        for (int a = 0; a < 3; a++) o->tri[3 * (size_t)k + a] = loc[v[a]];
+        k++;
+    }
+    o->area = m->area;
+    memcpy(o->bbox, m->bbox, sizeof o->bbox);
+    o->mean_edge = m->mean_edge;
+    pt->nv_owned = hi - lo;
+    pt->first = lo;
+    pt->nv_global = nv;
+    pt->nt_global = nt;
+    pt->center[0] = center ? center[0] : 0.0;
+    pt->center[1] = center ? center[1] : 0.0;
+    pt->size_opt = size_opt;
+    free(loc);
+    *out = o;
+    return GLPGP_OK;
+fail:
+    free(loc);
+    glpgp_mesh_destroy(&o);
     return st;
 }

@@ -38,6 +38,14 @@ static double zabs_median(const double *z, int nv, double *scratch)
     return nv % 2 ? scratch[nv / 2] : 0.5 * (scratch[nv / 2 - 1] + scratch[nv / 2]);
 }
 
+/* *out <- median |z| of the mesh m (a part: over all ranks) */
+static glpgp_status level_median(osc_work *w, const glpgp_mesh *m, const double *z, double *out)
+{
+    if (m->part) return glpgp_dist_zabs_stats(w->b, m, z, NULL, NULL, out);
+    *out = zabs_median(z, m->nv, w->scratch);
+    return GLPGP_OK;
+}
+
 static void fill_one(double *z, int nv)
 {
     for (int i = 0; i < nv; i++) {
@@ -93,6 +101,7 @@ static glpgp_status solve_oscillator(const glpgp_mesh *m, osc_work *w, int k, co
         for (int i = 0; i < nv; i++) r->n_dirichlet += dir_given[i] != 0;
     } else {
         r->n_dirichlet = glpgp_dirichlet_set(m, hostw, r->dirichlet);
+        if (m->part) GLPGP_CHECK(glpgp_dist_count(b, m, r->dirichlet, &r->n_dirichlet)); /* all ranks' */
     }
     GLPGP_CHECK(op->set_field(b, hostw, r->dirichlet));
     if (size) GLPGP_CHECK(op->set_size(b, size)); /* local size h(x) (NULL: uniform h) */
@@ -137,7 +146,7 @@ static glpgp_status solve_oscillator(const glpgp_mesh *m, osc_work *w, int k, co
             const double rtol = l + 1 < nlevels ? fmax(o->newton_rtol, o->intermediate_rtol) : o->newton_rtol;
             GLPGP_CHECK(glpgp_newton_level(b, o, &ns, k, eps[l], rtol, ls));
             GLPGP_CHECK(op->vec_read(b, w->x, w->host));
-            ls->median_zabs = zabs_median(w->host, nv, w->scratch);
+            GLPGP_CHECK(level_median(w, m, w->host, &ls->median_zabs));
             if (ls->median_zabs < o->collapse_zabs && !ls->restarted) {
                 /* collapse towards z = 0 (a stable critical point at large eps):
                  * restart this level once from z = 1 */
@@ -151,7 +160,7 @@ static glpgp_status solve_oscillator(const glpgp_mesh *m, osc_work *w, int k, co
                 ls->cg += keep.cg;
                 ls->restarted = 1;
                 GLPGP_CHECK(op->vec_read(b, w->x, w->host));
-                ls->median_zabs = zabs_median(w->host, nv, w->scratch);
+                GLPGP_CHECK(level_median(w, m, w->host, &ls->median_zabs));
             }
             if (ls->capped) {
                 r->capped_levels++;
@@ -178,7 +187,8 @@ static glpgp_status solve_oscillator(const glpgp_mesh *m, osc_work *w, int k, co
     GLPGP_CHECK(op->get_scalars(b, s, GLPGP_NSLOTS));
     r->energy = s[GLPGP_S_E];
     GLPGP_CHECK(op->vec_read(b, w->x, r->z));
-    if (!dir_given) GLPGP_CHECK(glpgp_osc_summarize(m, r));
+    if (m->part) GLPGP_CHECK(glpgp_dist_summarize(b, m, r));
+    else if (!dir_given) GLPGP_CHECK(glpgp_osc_summarize(m, r));
     else r->zabs_median = zabs_median(r->z, nv, w->scratch); /* for the log line; the caller summarises */
     r->seconds = glpgp_now() - t0;
     if (w->amg) {
@@ -342,6 +352,10 @@ glpgp_status glpgp_solve(const glpgp_mesh *m, glpgp_backend *b, const glpgp_opti
     const int nv = m->nv, nt = m->nt;
 
     GLPGP_CHECK(glpgp_options_check_mesh(o, m));
+    if (m->part && (o->field == GLPGP_FIELD_FILE || o->field == GLPGP_FIELD_CROSS || o->size_field == GLPGP_SIZE_FILE ||
+                    o->size_field == GLPGP_SIZE_FUNC))
+        return GLPGP_FAIL(GLPGP_ERR_UNSUPPORTED, "a distributed mesh takes the boundary or radial guiding field and "
+                                                 "no per-vertex input file or size function");
     glpgp_options ojac;
     if (o->precond == GLPGP_PRECOND_AMG && !glpgp_amg_supported(b) && !b->ops->linear_solve) {
         /* one warning for the whole solve, then Jacobi everywhere */
@@ -359,10 +373,16 @@ glpgp_status glpgp_solve(const glpgp_mesh *m, glpgp_backend *b, const glpgp_opti
 
     /* layout + upload */
     GLPGP_CHECK_GOTO(st, glpgp_system_create(m, &sys), fail);
-    glpgp_log(GLPGP_LOG_INFO, "%d vertices, %d triangles, %ld blocks, h = %g (%.1f edges per period), backend %s",
-              nv, nt, sys->nnzb, h, h / m->mean_edge, b->ops->name);
-    /* local resolution: longest edges against the local size (error / warning) */
-    GLPGP_CHECK_GOTO(st, glpgp_size_check_mesh(m, o, h), fail);
+    if (m->part)
+        glpgp_log(GLPGP_LOG_INFO, "%d vertices, %d triangles (this rank: %d owned + %d ghost vertices, %d triangles, "
+                  "%ld blocks), h = %g (%.1f edges per period), backend %s", m->part->nv_global, m->part->nt_global,
+                  m->part->nv_owned, nv - m->part->nv_owned, nt, sys->nnzb, h, h / m->mean_edge, b->ops->name);
+    else
+        glpgp_log(GLPGP_LOG_INFO, "%d vertices, %d triangles, %ld blocks, h = %g (%.1f edges per period), backend %s",
+                  nv, nt, sys->nnzb, h, h / m->mean_edge, b->ops->name);
+    /* local resolution: longest edges against the local size (error /
+     * warning); a part: checked on the whole mesh before it was split */
+    if (!m->part) GLPGP_CHECK_GOTO(st, glpgp_size_check_mesh(m, o, h), fail);
     GLPGP_CHECK_GOTO(st, b->ops->setup(b, sys), fail);
     w.b = b;
     w.o = o;
@@ -386,7 +406,12 @@ glpgp_status glpgp_solve(const glpgp_mesh *m, glpgp_backend *b, const glpgp_opti
     r->seconds_field = glpgp_now() - t1;
     /* local size h(x) per oscillator (uniform: NULL, today's arithmetic) */
     GLPGP_CHECK_GOTO(st, glpgp_malloc(n2, sizeof(double), &size), fail);
-    GLPGP_CHECK_GOTO(st, glpgp_size_compute(m, o, h, r->field, size, &uniform), fail);
+    if (m->part) { /* a part: the sizes computed on the whole mesh, see glpgp_field_presolve */
+        uniform = m->part->size == NULL;
+        if (!uniform) memcpy(size, m->part->size, n2 * sizeof(double));
+    } else {
+        GLPGP_CHECK_GOTO(st, glpgp_size_compute(m, o, h, r->field, size, &uniform), fail);
+    }
     if (o->field == GLPGP_FIELD_CROSS && o->cross_size && r->cross) {
         /* --cross-size: the cross field's conformal size, the smaller of the two, both oscillators */
         double *cs = NULL;
@@ -399,7 +424,7 @@ glpgp_status glpgp_solve(const glpgp_mesh *m, glpgp_backend *b, const glpgp_opti
         if (st != GLPGP_OK) goto fail;
         uniform = 0;
     }
-    if (!uniform) glpgp_size_log(m, size, h);
+    if (!uniform && !m->part) glpgp_size_log(m, size, h);
 
     double eps[GLPGP_MAX_LEVELS];
     int nlev = glpgp_eps_schedule(m, o, h, eps);

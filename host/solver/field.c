@@ -19,6 +19,18 @@ static double fold4(double nx, double ny)
     return phi - (GLPGP_PI / 2.0) * floor(phi / (GLPGP_PI / 2.0) + 0.5);
 }
 
+/* Boundary angle alpha in [-pi/4, pi/4] at boundary vertex i: U is the
+ * normal or the tangent, whichever is closer to the x axis. At a vertex the
+ * two adjacent edges' angles are averaged as 4-fold directions (mean of
+ * exp(4 i alpha)). */
+static double boundary_angle(const glpgp_mesh *m, int i)
+{
+    double a1 = fold4(m->normal_prev[2 * i], m->normal_prev[2 * i + 1]);
+    double a2 = fold4(m->normal_next[2 * i], m->normal_next[2 * i + 1]);
+    double c = cos(4 * a1) + cos(4 * a2), s = sin(4 * a1) + sin(4 * a2);
+    return (c * c + s * s > 1e-20) ? atan2(s, c) / 4.0 : a1;
+}
+
 static glpgp_status field_boundary(const glpgp_mesh *m, glpgp_backend *b, const glpgp_options *o,
                                    double *u, long *cg_iterations)
 {
@@ -29,17 +41,8 @@ static glpgp_status field_boundary(const glpgp_mesh *m, glpgp_backend *b, const 
     glpgp_vec *x = NULL, *g = NULL, *d = NULL;
     glpgp_amg *amg = NULL;
     GLPGP_CHECK(glpgp_calloc((size_t)2 * nv, sizeof(double), &x0));
-    /* boundary angle alpha in [-pi/4, pi/4]: U is the normal or the tangent,
-     * whichever is closer to the x axis. At a vertex the two adjacent edges'
-     * angles are averaged as 4-fold directions (mean of exp(4 i alpha)). */
-    for (int i = 0; i < nv; i++) {
-        if (!m->on_boundary[i]) continue;
-        double a1 = fold4(m->normal_prev[2 * i], m->normal_prev[2 * i + 1]);
-        double a2 = fold4(m->normal_next[2 * i], m->normal_next[2 * i + 1]);
-        double c = cos(4 * a1) + cos(4 * a2), s = sin(4 * a1) + sin(4 * a2);
-        double a = (c * c + s * s > 1e-20) ? atan2(s, c) / 4.0 : a1;
-        x0[2 * i] = a;
-    }
+    for (int i = 0; i < nv; i++)
+        if (m->on_boundary[i]) x0[2 * i] = boundary_angle(m, i);
     /* harmonic interpolation: L alpha = 0 inside, alpha fixed on the boundary:
      * alpha = alpha0 + d,  N d = -(L alpha0) with Dirichlet rows eliminated */
     GLPGP_CHECK_GOTO(st, op->set_field(b, u, m->on_boundary), done);
@@ -133,10 +136,10 @@ done:
     return st;
 }
 
-static void field_radial(const glpgp_mesh *m, const glpgp_options *o, double *u)
+/* c <- the area centroid of m */
+static void centroid(const glpgp_mesh *m, double c[2])
 {
-    double cx = o->center[0], cy = o->center[1];
-    if (!o->has_center) { /* area centroid */
+    {
         double sx = 0.0, sy = 0.0, sa = 0.0;
         for (int t = 0; t < m->nt; t++) {
             double x[3], y[3];
@@ -149,8 +152,20 @@ static void field_radial(const glpgp_mesh *m, const glpgp_options *o, double *u)
             sy += ar * (y[0] + y[1] + y[2]) / 3.0;
             sa += ar;
         }
-        cx = sx / sa;
-        cy = sy / sa;
+        c[0] = sx / sa;
+        c[1] = sy / sa;
+    }
+}
+
+static void field_radial(const glpgp_mesh *m, const glpgp_options *o, double *u)
+{
+    double cx = o->center[0], cy = o->center[1];
+    if (!o->has_center) { /* area centroid (a part: the whole mesh's) */
+        double c[2];
+        if (m->part) memcpy(c, m->part->center, sizeof c);
+        else centroid(m, c);
+        cx = c[0];
+        cy = c[1];
     }
     for (int i = 0; i < m->nv; i++) {
         double dx = m->xy[2 * i] - cx, dy = m->xy[2 * i + 1] - cy, n = sqrt(dx * dx + dy * dy);
@@ -169,4 +184,20 @@ glpgp_status glpgp_field_compute(const glpgp_mesh *m, glpgp_backend *b, const gl
         return GLPGP_OK;
     }
     return field_boundary(m, b, o, u, cg_iterations);
+}
+
+void glpgp_field_presolve(const glpgp_mesh *m, const glpgp_options *o, double *u, double center[2])
+{
+    centroid(m, center);
+    if (o->field == GLPGP_FIELD_RADIAL) {
+        field_radial(m, o, u);
+        return;
+    }
+    /* boundary: alpha is fixed (Dirichlet) at the boundary vertices, the
+     * harmonic solve leaves it there: u = (cos alpha, sin alpha) */
+    for (int i = 0; i < m->nv; i++) {
+        const double a = m->on_boundary[i] ? boundary_angle(m, i) : 0.0;
+        u[2 * i] = cos(a);
+        u[2 * i + 1] = sin(a);
+    }
 }

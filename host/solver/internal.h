@@ -64,6 +64,18 @@ int glpgp_amg_try_update(glpgp_amg *a, const glpgp_vec *x, const char *what);
 /* the same with glpgp_amg_update_spd (the trust region's multigrid region) */
 int glpgp_amg_try_update_spd(glpgp_amg *a, const glpgp_vec *x, const char *what);
 
+/* ---- one rank's part of a distributed mesh (m->part; solver/distributed.c):
+ * global values through the backend's reduce op, the same on every rank ---- */
+/* *n <- the number of owned vertices with flag set, over all ranks */
+glpgp_status glpgp_dist_count(glpgp_backend *b, const glpgp_mesh *m, const unsigned char *flag, int *n);
+/* minimum, 10th percentile and median of |z| over the owned vertices of all
+ * ranks (z: 2 m->nv, owned first), as glpgp_osc_summarize (NULL: not wanted) */
+glpgp_status glpgp_dist_zabs_stats(glpgp_backend *b, const glpgp_mesh *m, const double *z, double *min, double *p10,
+                                   double *median);
+/* glpgp_osc_summarize on a part: o->singular of the local triangles, the
+ * counts and |z| statistics of the whole mesh */
+glpgp_status glpgp_dist_summarize(glpgp_backend *b, const glpgp_mesh *m, glpgp_osc_result *o);
+
 /* One INFO line about a non-uniform size field (solver/sizefield.c). */
 void glpgp_size_log(const glpgp_mesh *m, const double *size, double h);
 

@@ -245,7 +245,16 @@ typedef struct glpgp_backend_ops {
      * created with (the PETSc backend: KSPCG + GAMG or point-block Jacobi). */
     glpgp_status (*linear_solve)(glpgp_backend *b, const glpgp_vec *rhs, glpgp_vec *x, double rtol,
                                  int maxit, int *iterations, double *relres, int *reason);
+
+    /* ---- distributed meshes (optional, NULL: one process): the driver's
+     * reductions of host values over the ranks of a mesh that is one rank's
+     * part (glpgp_mesh.part): v[0 .. n) <- the sum (GLPGP_REDUCE_SUM, the
+     * same bits on every rank), maximum or minimum over the ranks; every
+     * rank calls it alike. */
+    glpgp_status (*reduce)(glpgp_backend *b, double *v, int n, int op);
 } glpgp_backend_ops;
+
+enum { GLPGP_REDUCE_SUM = 0, GLPGP_REDUCE_MAX = 1, GLPGP_REDUCE_MIN = 2 };
 
 struct glpgp_backend {
     const glpgp_backend_ops *ops;

@@ -77,6 +77,14 @@ void glpgp_petsc_gather(const double *vals, int n, double *out);
 void glpgp_petsc_backend_info(const glpgp_backend *b, int *owned, int *ghosts);
 /* Peak resident set of this process, bytes (0 before init). */
 double glpgp_petsc_max_rss(void);
+/* Distributed meshes (glpgp_mesh.part): rank 0 sends rank dest its part
+ * (glpgp_mesh_extract_part); every other rank receives its own (*out, free
+ * with glpgp_mesh_destroy). */
+glpgp_status glpgp_petsc_mesh_send(const glpgp_mesh *m, int dest);
+glpgp_status glpgp_petsc_mesh_recv(glpgp_mesh **out);
+/* Every rank: `bytes` bytes of mine to rank 0, whose out (NULL elsewhere)
+ * receives all ranks' back to back in rank order. */
+glpgp_status glpgp_petsc_gather_bytes(const void *mine, size_t bytes, void *out);
 /* The PETSc backend (init first if needed); precond: GLPGP_PRECOND_* of its
  * linear solves (glpgp/solve.h). */
 glpgp_status glpgp_backend_create_petsc(int precond, glpgp_backend **out);

@@ -11,6 +11,36 @@
 extern "C" {
 #endif
 
+/* One rank's part of a distributed mesh (glpgp_mesh.part; NULL: a whole
+ * mesh). Its vertices are the rank's owned ones, local ids 0 .. nv_owned-1
+ * (global ids first .. first + nv_owned - 1, increasing), then its ghosts
+ * (one layer: every other vertex of a triangle touching an owned vertex,
+ * increasing global id); its triangles are those touching an owned vertex
+ * (whole-mesh order and orientation). The boundary flags and normals are the
+ * whole mesh's (a cut between parts is no boundary), nloops is 0, and area,
+ * bbox and mean_edge are the whole mesh's, so sizes and eps derived from
+ * them are the same on every rank. Built on the rank that holds the whole
+ * mesh (glpgp_mesh_extract_part) and sent to the others. */
+typedef struct glpgp_mesh_part {
+    int nv_owned;      /* owned vertices: local 0 .. nv_owned-1 */
+    int first;         /* global id of local vertex 0 */
+    int nv_global, nt_global;
+    int *gid;          /* nv: global id of each local vertex */
+    double *size;      /* 2 nv: local size of u then v (size[k nv + i]) from the whole mesh; NULL: uniform h */
+    double center[2];  /* area centroid of the whole mesh (radial field's default centre) */
+    double size_opt;   /* glpgp_options.size of the rank that built the parts (0: default) */
+} glpgp_mesh_part;
+
+/* Whether local triangle t of a part is counted by its rank: its lowest
+ * global vertex is owned (each triangle is counted by exactly one rank). */
+static inline int glpgp_part_counts_tri(const glpgp_mesh_part *p, const int *tri, int t)
+{
+    int g = p->gid[tri[3 * t]];
+    for (int a = 1; a < 3; a++)
+        if (p->gid[tri[3 * t + a]] < g) g = p->gid[tri[3 * t + a]];
+    return g >= p->first && g < p->first + p->nv_owned;
+}
+
 typedef struct glpgp_mesh {
     int nv;            /* vertices */
     int nt;            /* triangles */
@@ -35,6 +65,7 @@ typedef struct glpgp_mesh {
     double bbox[4];     /* xmin, ymin, xmax, ymax */
     double mean_edge;   /* mean edge length */
     int orientation_fixed; /* number of triangles flipped to make the mesh consistently CCW */
+    glpgp_mesh_part *part; /* one rank's part of a distributed mesh (owned), NULL: a whole mesh */
 } glpgp_mesh;
 
 /* Build a mesh from raw arrays (copied). Validates and normalises:
@@ -61,6 +92,13 @@ glpgp_status glpgp_mesh_partition(const glpgp_mesh *m, int nparts, const int *si
 /* *out <- m with vertex i renumbered new_of_old[i] (a permutation of
  * 0 .. nv-1); triangles keep their order and corner order. */
 glpgp_status glpgp_mesh_renumber(const glpgp_mesh *m, const int *new_of_old, glpgp_mesh **out);
+/* *out <- the part of rank q of the whole mesh m whose vertices are split
+ * into P contiguous ranges, rank r owning [r nv / P, (r+1) nv / P) (the
+ * numbering glpgp_mesh_renumber gives a partition): see glpgp_mesh_part.
+ * size: 2 m->nv local sizes of the whole mesh (u then v) or NULL (uniform);
+ * center, size_opt: copied into the part. */
+glpgp_status glpgp_mesh_extract_part(const glpgp_mesh *m, int P, int q, const double *size, const double center[2],
+                                     double size_opt, glpgp_mesh **out);
 
 #ifdef __cplusplus
 }

@@ -257,6 +257,13 @@ int glpgp_eps_schedule(const glpgp_mesh *m, const glpgp_options *o, double h,
 
 /* ---- lower-level pieces, exposed for tests, crosscheck and the benchmark ---- */
 
+/* What the rank holding the whole mesh m computes before splitting it
+ * (glpgp_mesh_extract_part): the guiding field u (2 m->nv) where it is known
+ * without a solve -- radial: everywhere; boundary: at the boundary vertices
+ * (fixed there by the harmonic solve), (1, 0) inside -- which is all the
+ * size field (glpgp_size_compute) reads of it, and m's area centroid. */
+void glpgp_field_presolve(const glpgp_mesh *m, const glpgp_options *o, double *u, double center[2]);
+
 /* Guiding field U (2*nv) for option o (boundary/radial/file). */
 glpgp_status glpgp_field_compute(const glpgp_mesh *m, glpgp_backend *b, const glpgp_options *o,
                                  double *u, long *cg_iterations);
