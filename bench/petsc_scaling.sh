@@ -5,6 +5,7 @@
 #   bash bench/petsc_scaling.sh [--sizes 1000000,4000000] [--ranks 1,2]
 #        [--shape square] [--glpgp build/glpgp] [--out bench/results/petsc_scaling]
 #        [--globalization line-search] [--no-opencl] [--no-reference]
+#        [--solver-args "--newton-max 2 --cg-max 100"] [--compare OTHER_GLPGP]
 #
 # Per size N (input shape:SHAPE:N, the same mesh for every run), one whole
 # `glpgp solve` per configuration: --backend reference, --backend opencl
@@ -18,7 +19,13 @@
 # iterations, singularity counts, final energies, and memory: max RSS of the
 # process (/usr/bin/time), per rank for petsc (stats JSON per_rank).
 # Writes OUT.json (every run) and OUT.md (one table, speed-ups of P ranks
-# over 1 rank by solve time). Benchmarks, not tests: nothing is asserted.
+# over 1 rank by solve time). --solver-args: more options for every solve
+# (e.g. a capped continuation for a memory series: the peak memory is set by
+# the system, the matrices and the preconditioner, built alike however many
+# steps run). --compare: a second glpgp (e.g. a build of an earlier commit)
+# whose petsc runs follow each of this one's, named "petscP (compare)" --
+# a before / after series in one run.
+# Benchmarks, not tests: nothing is asserted.
 # As root, OpenMPI needs OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 # (set here); --oversubscribe lets P exceed the cores.
 set -euo pipefail
@@ -31,6 +38,8 @@ OUT=bench/results/petsc_scaling
 GLOB=line-search
 OPENCL=1
 REFERENCE=1
+EXTRA=""
+COMPARE=""
 while [ $# -gt 0 ]; do
     case "$1" in
     --sizes) SIZES=$2; shift 2 ;;
@@ -41,7 +50,9 @@ while [ $# -gt 0 ]; do
     --globalization) GLOB=$2; shift 2 ;;
     --no-opencl) OPENCL=0; shift ;;
     --no-reference) REFERENCE=0; shift ;;
-    -h | --help) sed -n '2,26p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    --solver-args) EXTRA=$2; shift 2 ;;
+    --compare) COMPARE=$2; shift 2 ;;
+    -h | --help) sed -n '2,33p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
     *) echo "petsc_scaling.sh: unknown argument '$1'" >&2; exit 2 ;;
     esac
 done
@@ -61,8 +72,9 @@ one() {
     local name=$1 np=$2
     shift 2
     echo "== $name: $*" >&2
+    # shellcheck disable=SC2086 # EXTRA: several options
     if /usr/bin/time -f "%e %U %S %M" -o "$W/$name.time" "$@" --stats "$W/$name.json" \
-        --globalization "$GLOB" >"$W/$name.out" 2>"$W/$name.err" </dev/null; then
+        --globalization "$GLOB" $EXTRA >"$W/$name.out" 2>"$W/$name.err" </dev/null; then
         runs+=("$name:$np")
         tail -3 "$W/$name.out" >&2
     else
@@ -80,14 +92,16 @@ for n in "${sizes[@]}"; do
     fi
     for p in "${ranks[@]}"; do
         one "petsc${p}_$n" "$p" mpirun --oversubscribe -n "$p" "$GLPGP" solve "$in" --backend petsc
+        [ -n "$COMPARE" ] &&
+            one "petsc${p}compare_$n" "$p" mpirun --oversubscribe -n "$p" "$COMPARE" solve "$in" --backend petsc
     done
 done
 
-python3 - "$W" "$OUT" "$SHAPE" "$GLOB" "$(uptime)" "${runs[@]}" <<'EOF'
+python3 - "$W" "$OUT" "$SHAPE" "$GLOB" "$(uptime)" "$EXTRA" "$COMPARE" "${runs[@]}" <<'EOF'
 import json, os, sys, platform
-w, out, shape, glob, load = sys.argv[1:6]
+w, out, shape, glob, load, extra, compare = sys.argv[1:8]
 rows = []
-for tag in sys.argv[6:]:
+for tag in sys.argv[8:]:
     name, np = tag.rsplit(":", 1)
     d = json.load(open(os.path.join(w, name + ".json")))
     wall, user, sys_, rss = open(os.path.join(w, name + ".time")).read().split()[:4]
@@ -104,27 +118,35 @@ for tag in sys.argv[6:]:
         r["per_rank"] = d["per_rank"]
         r["max_rss_mib_per_rank"] = max(x["max_rss_mib"] for x in d["per_rank"])
     rows.append(r)
-meta = {"shape": shape, "globalization": glob, "machine": platform.node(), "cpus": os.cpu_count(),
+meta = {"shape": shape, "globalization": glob, "solver_args": extra, "compare": compare,
+        "machine": platform.node(), "cpus": os.cpu_count(),
         "load_at_end": load.strip(), "note": "shared machine: compare runs within this file only"}
+if compare:
+    lines_compare = f"(compare): the petsc runs of {compare}"
+else:
+    lines_compare = ""
 json.dump({"meta": meta, "runs": rows}, open(out + ".json", "w"), indent=1)
 base = {}
 for r in rows:
-    if r["run"] == "petsc1":
-        base[r["vertices"]] = r["solve_s"]
-lines = [f"# PETSc strong scaling beside OpenCL and reference ({shape}, --globalization {glob})", "",
-         f"Machine: {meta['cpus']} CPUs, {meta['load_at_end']} (shared: times are comparable within this table only).", "",
+    if r["run"] in ("petsc1", "petsc1compare"):
+        base[(r["vertices"], r["run"] == "petsc1compare")] = r["solve_s"]
+lines = [f"# PETSc strong scaling beside OpenCL and reference ({shape}, --globalization {glob}"
+         + (f", {extra}" if extra else "") + ")", "",
+         f"Machine: {meta['cpus']} CPUs, {meta['load_at_end']} (shared: times are comparable within this table only)."
+         + (f" {lines_compare}." if compare else ""), "",
          "| vertices | run | solve s | wall s | CPU s | speed-up vs 1 rank | Newton | CG | singular u / v | E_u | max RSS MiB (per rank) |",
          "|---|---|---|---|---|---|---|---|---|---|---|"]
 for r in rows:
     su = ""
-    if r["run"].startswith("petsc") and r["vertices"] in base:
-        su = f"{base[r['vertices']] / r['solve_s']:.2f}"
+    key = (r["vertices"], "compare" in r["run"])
+    if r["run"].startswith("petsc") and key in base:
+        su = f"{base[key] / r['solve_s']:.2f}"
     s = r["singularities"]
     sing = f"+{s['u']['plus']}-{s['u']['minus']} / +{s['v']['plus']}-{s['v']['minus']}"
     rss = f"{r['max_rss_mib']:.0f}"
     if "max_rss_mib_per_rank" in r:
         rss = " + ".join(f"{x['max_rss_mib']:.0f}" for x in r["per_rank"])
-    name = r["backend"] + (f" x{r['ranks']}" if r["ranks"] else "")
+    name = r["backend"] + (f" x{r['ranks']}" if r["ranks"] else "") + (" (compare)" if "compare" in r["run"] else "")
     lines.append(f"| {r['vertices']} | {name} | {r['solve_s']:.2f} | {r['wall_s']:.2f} | {r['cpu_s']:.2f} | {su} | "
                  f"{r['newton']} | {r['cg']} | {sing} | {r['final_energy']['u']:.9g} | {rss} |")
 open(out + ".md", "w").write("\n".join(lines) + "\n")

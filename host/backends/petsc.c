@@ -2,24 +2,39 @@
  * built into the module glpgp_petsc.so (with petsc_glue.c) that
  * backends/petsc_load.c dlopen's for `--backend petsc`.
  *
- * Distribution. Every rank runs the same driver (glpgp_solve) on the same
- * mesh and system (read by every rank); the backend splits the rows: rank r
- * owns the vertices [lo, hi) = [r nv / P, (r+1) nv / P) of the mesh
- * numbering. A vector is a PETSc Vec of the 2 (hi - lo) owned unknowns. An
- * element op (assembly, gradient, energy, spmv, the fused CG steps) first
- * brings the vector it reads into a whole-length scratch array, the owned
+ * Distribution. Rank r owns a contiguous block of the global vertex numbering
+ * (the coordinate-bisection renumbering of cli/cmd_solve.c): its vertices are
+ * the block rows of its PETSc Vecs (2 unknowns each) and of the Newton
+ * matrix. Two layouts of the system the driver hands to setup:
+ *  - a part (sys->mesh->part, glpgp_mesh_part; the default with P > 1): the
+ *    rank holds only its part of the mesh -- owned vertices first (system
+ *    rows [0, nv_owned), global rows first + i), then one layer of ghosts
+ *    (global ids in part->gid), and the triangles touching an owned vertex
+ *    -- and the driver's host arrays are of that local length: vec_write
+ *    takes the owned entries, vec_read returns owned + ghost values (one
+ *    ghost scatter). Rank 0 read and split the input (glpgp_mesh_extract_part,
+ *    sent by mesh_send / mesh_recv below) and keeps only the input mesh for
+ *    the outputs; the results come back to it by gather_bytes.
+ *  - the whole mesh on every rank (per-vertex input files, cross field, size
+ *    function, one rank): rank r owns [r nv / P, (r+1) nv / P) of it and
+ *    vec_read all-gathers.
+ * An element op (assembly, gradient, energy, spmv, the fused CG steps) first
+ * brings the vector it reads into a system-length scratch array, the owned
  * part copied and the ghost vertices (the pattern's off-rank columns of the
  * owned rows: every vertex of every triangle touching an owned vertex) by one
  * VecScatter, then runs the per-row bodies of kernels/rows.h -- the reference
  * backend's arithmetic, not a copy -- on the owned rows only: the matrices
  * are stored as the owned slice [rowptr[lo], rowptr[hi]) of the block slots.
- * So every stored row is bit-identical to the reference backend's.
+ * So every stored row is bit-identical to the reference backend's (a part's
+ * owned rows see all their triangles, in the whole mesh's order).
  *
  * Reductions: each rank sums its rows (triangles: those whose lowest vertex
  * it owns, so each triangle counts once) in increasing order, the partials
  * are all-gathered and summed in rank order: the same value on every rank
  * (the driver's decisions are taken everywhere alike) and, on one rank, the
- * reference backend's sums bit for bit. vec_read all-gathers the vector.
+ * reference backend's sums bit for bit. The reduce op gives the driver the
+ * same sums (and max / min) for its host values on a part (solver/distributed.c:
+ * Dirichlet counts, median |z|, singular triangles).
  *
  * Linear solves (op linear_solve): NEWTON is copied into a MATMPIBAIJ
  * (AIJ, block size 2: GAMG needs AIJ) when it changed, then KSPCG (unpreconditioned residual norm) with
@@ -30,8 +45,9 @@
  * backend's iterates bit for bit). $PETSC_OPTIONS reaches KSP
  * (KSPSetFromOptions: -ksp_view, -pc_gamg_threshold, ...).
  *
- * What is not distributed: the mesh, the system maps and the host arrays of
- * the driver (field, Dirichlet flags, z) are whole on every rank. */
+ * What stays whole: on rank 0 of a part layout, the input mesh (for the
+ * writers, the quad extraction and the picture) and the gathered result;
+ * in the whole-mesh layout, everything on every rank. */
 #include "glpgp/backends.h"
 #include "glpgp/solve.h"
 #include "rows.h"
@@ -931,6 +947,14 @@ enum { TAG_MESH = 7301 };
 /* one message per array; a header first (sizes, flags) and the scalars */
 static glpgp_status m_mesh_send(const glpgp_mesh *m, int dest)
 {
+    if (!m) { /* rank 0 failed: the header nv = -1 ends the receiver's wait */
+        int hdr[7] = {-1, 0, 0, 0, 0, 0, 0};
+        double sc[9] = {0};
+        if (MPI_Send(hdr, 7, MPI_INT, dest, TAG_MESH, PETSC_COMM_WORLD) != MPI_SUCCESS ||
+            MPI_Send(sc, 9, MPI_DOUBLE, dest, TAG_MESH, PETSC_COMM_WORLD) != MPI_SUCCESS)
+            return GLPGP_FAIL(GLPGP_ERR_IO, "MPI_Send to rank %d failed", dest);
+        return GLPGP_OK;
+    }
     const glpgp_mesh_part *pt = m->part;
     if (!pt) return GLPGP_FAIL(GLPGP_ERR_ARG, "mesh_send: not a part");
     int hdr[7] = {m->nv, m->nt, pt->nv_owned, pt->first, pt->nv_global, pt->nt_global, pt->size != NULL};
@@ -976,6 +1000,7 @@ static glpgp_status m_mesh_recv(glpgp_mesh **out)
     if (MPI_Recv(hdr, 7, MPI_INT, 0, TAG_MESH, cw, MPI_STATUS_IGNORE) != MPI_SUCCESS ||
         MPI_Recv(sc, 9, MPI_DOUBLE, 0, TAG_MESH, cw, MPI_STATUS_IGNORE) != MPI_SUCCESS)
         return GLPGP_FAIL(GLPGP_ERR_IO, "MPI_Recv of the mesh part failed");
+    if (hdr[0] < 0) return GLPGP_FAIL(GLPGP_ERR_IO, "rank 0 failed to send this rank's part of the mesh");
     glpgp_status st = GLPGP_OK;
     glpgp_mesh *m = NULL;
     const int nv = hdr[0], nt = hdr[1];

@@ -44,7 +44,8 @@ typedef struct glpgp_petsc_api {
     double (*max_rss)(void);
     /* owned and ghost vertices of backend b on this rank (b: this module's, set up) */
     void (*local_info)(const glpgp_backend *b, int *owned, int *ghosts);
-    /* rank 0: send the part m (glpgp_mesh_extract_part) to rank dest */
+    /* rank 0: send the part m (glpgp_mesh_extract_part) to rank dest; m NULL:
+     * rank 0 failed, dest's mesh_recv fails */
     glpgp_status (*mesh_send)(const glpgp_mesh *m, int dest);
     /* a rank other than 0: *out <- the part rank 0 sent it (free: glpgp_mesh_destroy) */
     glpgp_status (*mesh_recv)(glpgp_mesh **out);

@@ -382,13 +382,16 @@ static glpgp_status split_send(const solve_cli *c, const glpgp_mesh *mp, const d
 {
     const int P = glpgp_petsc_size();
     *mine = NULL;
+    glpgp_status st = GLPGP_OK;
     for (int q = 1; q < P; q++) {
         glpgp_mesh *pq = NULL;
-        GLPGP_CHECK(glpgp_mesh_extract_part(mp, P, q, size, center, c->o.size, &pq));
-        glpgp_status st = glpgp_petsc_mesh_send(pq, q);
+        if (st == GLPGP_OK) st = glpgp_mesh_extract_part(mp, P, q, size, center, c->o.size, &pq);
+        /* after a failure the remaining ranks get the NULL part: their receive fails, none waits */
+        glpgp_status sst = glpgp_petsc_mesh_send(st == GLPGP_OK ? pq : NULL, q);
         glpgp_mesh_destroy(&pq);
-        GLPGP_CHECK(st);
+        if (st == GLPGP_OK) st = sst;
     }
+    GLPGP_CHECK(st);
     return glpgp_mesh_extract_part(mp, P, 0, size, center, c->o.size, mine);
 }
 

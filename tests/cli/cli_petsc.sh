@@ -14,6 +14,9 @@
 #    energies within 1e-6; with the line-search Newton (GAMG with the near
 #    null space [z, iz] in every step): same counts, energies within 1e-3
 #    (another inexact path, a neighbouring minimum: see below);
+#  - 3 ranks on their parts of the mesh with the radial field, and 2 ranks
+#    with a per-vertex field file (the whole mesh on every rank): the
+#    reference's counts, energies within 1e-6;
 #  - data/plate_holes.msh (a domain with holes) on 2 ranks: the reference's
 #    singularity counts, energies within 1e-6, stats JSON with ranks = 2,
 #    per_rank owned vertices summing to the vertex count and fewer than
@@ -143,6 +146,21 @@ EOF
     [ -s p2_holes.vtu ] || fail "plate_holes: no .vtu written"
 else
     fail "data/plate_holes.msh not found (data dir '$DATA')"
+fi
+
+# 3 ranks, each on its part of the mesh: the radial field (its centre from
+# the whole mesh) against the reference; a per-vertex field file keeps the
+# whole mesh on every rank: 2 ranks against the reference
+run_ok "annulus radial reference" solve shape:annulus:2500 --field radial --backend reference --precond jacobi \
+    --stats ref_radial.json
+mpi radial 3 solve shape:annulus:2500 --field radial --backend petsc --precond jacobi --stats p3_radial.json
+[ -f p3_radial.json ] && compare p3_radial.json ref_radial.json "annulus radial, 3 ranks"
+if [ -f ref_radial.json ]; then
+    python3 -c "import json; print('0.6 0.8\n' * json.load(open('ref_radial.json'))['vertices'], end='')" >field.txt
+    run_ok "annulus field file reference" solve shape:annulus:2500 --field field.txt --backend reference \
+        --precond jacobi --stats ref_ffile.json
+    mpi ffile 2 solve shape:annulus:2500 --field field.txt --backend petsc --precond jacobi --stats p2_ffile.json
+    [ -f p2_ffile.json ] && compare p2_ffile.json ref_ffile.json "annulus field file, 2 ranks (whole mesh per rank)"
 fi
 
 # a bad input on every rank: one line, the same non-zero exit, no hang

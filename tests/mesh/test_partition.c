@@ -3,7 +3,11 @@
  * same parts on a second call, compact parts (few cut edges against a
  * partition by vertex index on a mesh numbered in random order), and a
  * renumbered mesh that is the same mesh (area, boundary loops, the
- * coordinates of every triangle's corners). */
+ * coordinates of every triangle's corners); the parts of a distributed solve
+ * (glpgp_mesh_extract_part): owned vertices first with consecutive global
+ * ids, increasing ghosts outside the owned range, every triangle touching
+ * an owned vertex and no other, each triangle counted by exactly one part,
+ * the whole mesh's coordinates, boundary data, sizes and scalars. */
 #include "testutil.h"
 
 #include "glpgp/mesh.h"
@@ -71,6 +75,55 @@ int main(void)
         CHECK(!memcmp(back->xy, m->xy, sizeof(double) * 2 * nv));
         CHECK(!memcmp(back->tri, m->tri, sizeof(int) * 3 * m->nt));
     }
+
+    /* the parts of 3 ranks of the renumbered mesh shuf */
+    double *sz = malloc(sizeof(double) * 2 * nv);
+    for (int i = 0; i < 2 * nv; i++) sz[i] = 1.0 + i;
+    const double cen[2] = {0.25, -0.5};
+    long counted = 0;
+    int *touch = calloc((size_t)m->nt, sizeof(int));
+    for (int q = 0; q < P; q++) {
+        glpgp_mesh *pq = NULL;
+        CHECK_OK(glpgp_mesh_extract_part(shuf, P, q, sz, cen, 0.5, &pq));
+        if (!pq) continue;
+        const glpgp_mesh_part *pt = pq->part;
+        const int lo = (int)((long long)nv * q / P), hi = (int)((long long)nv * (q + 1) / P);
+        CHECK(pt->nv_owned == hi - lo && pt->first == lo && pt->nv_global == nv && pt->nt_global == m->nt);
+        CHECK(pt->center[0] == 0.25 && pt->center[1] == -0.5 && pt->size_opt == 0.5);
+        CHECK(pq->area == shuf->area && pq->mean_edge == shuf->mean_edge && pq->nloops == 0);
+        for (int i = 0; i < pq->nv; i++) {
+            const int g = pt->gid[i];
+            if (i < pt->nv_owned) CHECK(g == lo + i);
+            else CHECK((g < lo || g >= hi) && (i == pt->nv_owned || g > pt->gid[i - 1]));
+            CHECK(pq->xy[2 * i] == shuf->xy[2 * g] && pq->xy[2 * i + 1] == shuf->xy[2 * g + 1]);
+            CHECK(pq->on_boundary[i] == shuf->on_boundary[g] && pq->normal_next[2 * i] == shuf->normal_next[2 * g]);
+            CHECK(pt->size[i] == sz[g] && pt->size[pq->nv + i] == sz[nv + g]);
+        }
+        /* the triangles touching [lo, hi), in the whole mesh's order */
+        int k = 0;
+        for (int t = 0; t < shuf->nt; t++) {
+            const int *v = shuf->tri + 3 * t;
+            int own = 0;
+            for (int a = 0; a < 3; a++) own |= v[a] >= lo && v[a] < hi;
+            if (!own) continue;
+            touch[t]++;
+            CHECK(k < pq->nt);
+            if (k >= pq->nt) break;
+            for (int a = 0; a < 3; a++) CHECK(pt->gid[pq->tri[3 * k + a]] == v[a]);
+            counted += glpgp_part_counts_tri(pt, pq->tri, k);
+            k++;
+        }
+        CHECK(k == pq->nt);
+        printf("part %d: %d owned + %d ghosts, %d triangles\n", q, pt->nv_owned, pq->nv - pt->nv_owned, pq->nt);
+        glpgp_mesh_destroy(&pq);
+    }
+    CHECK(counted == shuf->nt);
+    for (int t = 0; t < m->nt; t++) CHECK(touch[t] >= 1);
+    free(touch);
+    free(sz);
+    glpgp_mesh *bad_part = NULL;
+    CHECK(glpgp_mesh_extract_part(shuf, P, P, NULL, NULL, 0.0, &bad_part) == GLPGP_ERR_ARG && !bad_part);
+    glpgp_error_clear();
 
     /* bad sizes: an error, not a crash */
     int bad[3] = {1, 1, 1};

@@ -47,15 +47,19 @@ glpgp_status glpgp_backend_select(glpgp_backend_kind kind, int device, int verbo
                                   glpgp_backend **out);
 
 /* ---- PETSc backend (backends/petsc.c, a dlopen'd module glpgp_petsc.so) ----
- * Every rank runs the same driver (glpgp_solve) on the same mesh; the
- * backend distributes the rows: rank r owns the vertices [r nv / P,
- * (r+1) nv / P) of the mesh numbering, its vectors are PETSc Vecs of those
- * rows, and every element op runs the per-row bodies of kernels/rows.h (the
- * reference arithmetic) on the owned rows after a ghost exchange. Scalars
- * are summed in rank order, so every rank takes the same decisions; vec_read
- * gathers the whole vector on every rank. Linear solves (op linear_solve):
- * KSPCG with PCGAMG and the near null space [z, iz] (precond AMG) or point-
- * block Jacobi. PETSc options come from $PETSC_OPTIONS (-ksp_view, ...). */
+ * Every rank runs the same driver (glpgp_solve); the backend distributes the
+ * rows: rank r owns a contiguous block of the global vertex numbering. The
+ * mesh the driver gets is either one rank's part (glpgp_mesh.part: owned
+ * vertices plus one ghost layer, sent by rank 0 with glpgp_petsc_mesh_send)
+ * or the whole mesh on every rank (rank r owning [r nv / P, (r+1) nv / P)).
+ * Its vectors are PETSc Vecs of the owned rows, and every element op runs
+ * the per-row bodies of kernels/rows.h (the reference arithmetic) on the
+ * owned rows after a ghost exchange. Scalars are summed in rank order, so
+ * every rank takes the same decisions; vec_read returns the owned and ghost
+ * values of a part (the whole vector of a whole mesh). Linear solves (op
+ * linear_solve): KSPCG with PCGAMG and the near null space [z, iz]
+ * (precond AMG) or point-block Jacobi. PETSc options come from
+ * $PETSC_OPTIONS (-ksp_view, ...). */
 
 /* Whether this build has the PETSc module. */
 int glpgp_have_petsc(void);
@@ -78,8 +82,8 @@ void glpgp_petsc_backend_info(const glpgp_backend *b, int *owned, int *ghosts);
 /* Peak resident set of this process, bytes (0 before init). */
 double glpgp_petsc_max_rss(void);
 /* Distributed meshes (glpgp_mesh.part): rank 0 sends rank dest its part
- * (glpgp_mesh_extract_part); every other rank receives its own (*out, free
- * with glpgp_mesh_destroy). */
+ * (glpgp_mesh_extract_part; NULL: rank 0 failed, dest's receive fails);
+ * every other rank receives its own (*out, free with glpgp_mesh_destroy). */
 glpgp_status glpgp_petsc_mesh_send(const glpgp_mesh *m, int dest);
 glpgp_status glpgp_petsc_mesh_recv(glpgp_mesh **out);
 /* Every rank: `bytes` bytes of mine to rank 0, whose out (NULL elsewhere)
