@@ -19,7 +19,8 @@
 # iterations, singularity counts, final energies, and memory: max RSS of the
 # process (/usr/bin/time), per rank for petsc (stats JSON per_rank).
 # Writes OUT.json (every run) and OUT.md (one table, speed-ups of P ranks
-# over 1 rank by solve time). --solver-args: more options for every solve
+# over 1 rank by solve time; $PETSC_OPTIONS, which every rank inherits, is
+# recorded). --solver-args: more options for every solve
 # (e.g. a capped continuation for a memory series: the peak memory is set by
 # the system, the matrices and the preconditioner, built alike however many
 # steps run). --compare: a second glpgp (e.g. a build of an earlier commit)
@@ -52,7 +53,7 @@ while [ $# -gt 0 ]; do
     --no-reference) REFERENCE=0; shift ;;
     --solver-args) EXTRA=$2; shift 2 ;;
     --compare) COMPARE=$2; shift 2 ;;
-    -h | --help) sed -n '2,33p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    -h | --help) sed -n '2,32p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
     *) echo "petsc_scaling.sh: unknown argument '$1'" >&2; exit 2 ;;
     esac
 done
@@ -119,6 +120,7 @@ for tag in sys.argv[8:]:
         r["max_rss_mib_per_rank"] = max(x["max_rss_mib"] for x in d["per_rank"])
     rows.append(r)
 meta = {"shape": shape, "globalization": glob, "solver_args": extra, "compare": compare,
+        "petsc_options": os.environ.get("PETSC_OPTIONS", ""),
         "machine": platform.node(), "cpus": os.cpu_count(),
         "load_at_end": load.strip(), "note": "shared machine: compare runs within this file only"}
 if compare:
@@ -133,7 +135,8 @@ for r in rows:
 lines = [f"# PETSc strong scaling beside OpenCL and reference ({shape}, --globalization {glob}"
          + (f", {extra}" if extra else "") + ")", "",
          f"Machine: {meta['cpus']} CPUs, {meta['load_at_end']} (shared: times are comparable within this table only)."
-         + (f" {lines_compare}." if compare else ""), "",
+         + (f" {lines_compare}." if compare else "")
+         + (f" PETSC_OPTIONS=\"{meta['petsc_options']}\"." if meta["petsc_options"] else ""), "",
          "| vertices | run | solve s | wall s | CPU s | speed-up vs 1 rank | Newton | CG | singular u / v | E_u | max RSS MiB (per rank) |",
          "|---|---|---|---|---|---|---|---|---|---|---|"]
 for r in rows:
