@@ -974,23 +974,6 @@ static glpgp_status m_mesh_send(const glpgp_mesh *m, int dest)
     return GLPGP_OK;
 }
 
-static void mesh_free(glpgp_mesh *m)
-{
-    if (!m) return;
-    free(m->xy);
-    free(m->tri);
-    free(m->loop_start);
-    free(m->on_boundary);
-    free(m->normal_prev);
-    free(m->normal_next);
-    if (m->part) {
-        free(m->part->gid);
-        free(m->part->size);
-        free(m->part);
-    }
-    free(m);
-}
-
 static glpgp_status m_mesh_recv(glpgp_mesh **out)
 {
     *out = NULL;
@@ -1041,7 +1024,7 @@ static glpgp_status m_mesh_recv(glpgp_mesh **out)
     *out = m;
     return GLPGP_OK;
 fail:
-    mesh_free(m);
+    glpgp_mesh_destroy(&m);
     return st;
 }
 

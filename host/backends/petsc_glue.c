@@ -1,7 +1,8 @@
 /* backends/petsc_glue.c: the module side of backends/petsc_module.h, compiled
  * into glpgp_petsc.so only: the few core functions backends/petsc.c calls
- * (error record, log, checked allocation) as forwarders to the table the
- * loader (backends/petsc_load.c) hands over, so the module needs no glpgp
+ * (error record, log, checked allocation, mesh destruction) as forwarders
+ * to the table the loader (backends/petsc_load.c) hands over (allocation:
+ * its own, the same C library), so the module needs no glpgp
  * symbol from the program that loads it and its errors and messages land in
  * the caller's. Built with hidden visibility: these stay private. */
 #include "petsc_module.h"
@@ -34,6 +35,8 @@ glpgp_status glpgp_error_set(const char *file, int line, glpgp_status st, const 
 }
 
 void glpgp_error_push_trace(const char *file, int line) { g_host->push_trace(file, line); }
+
+void glpgp_mesh_destroy(glpgp_mesh **m) { g_host->mesh_destroy(m); }
 
 void glpgp_log(glpgp_log_level level, const char *fmt, ...)
 {

@@ -273,7 +273,8 @@ static int prepare(solve_cli *c, const char *input, glpgp_mesh **pm, glpgp_size_
                        (c->o.size_field == GLPGP_SIZE_AUTO || c->o.size_field == GLPGP_SIZE_ISO ||
                         c->o.size_field == GLPGP_SIZE_FUNC);
     glpgp_status chk;
-    if (refine && c->o.size > 0.0 && c->o.size >= 0.5 * m->mean_edge && c->o.size < GLPGP_SIZE_MIN_EDGES * m->mean_edge) {
+    if (refine && c->o.size > 0.0 && c->o.size >= 0.5 * m->mean_edge &&
+        c->o.size < GLPGP_SIZE_MIN_EDGES * m->mean_edge) {
         glpgp_options big = c->o;
         big.size = GLPGP_SIZE_MIN_EDGES * m->mean_edge; /* the other rules (diameter, options) */
         chk = glpgp_options_check_mesh(&big, m);

@@ -21,7 +21,8 @@ static int cmp_double(const void *a, const void *b)
 
 static glpgp_status reduce(glpgp_backend *b, double *v, int n, int op)
 {
-    if (!b->ops->reduce) return GLPGP_FAIL(GLPGP_ERR_UNSUPPORTED, "the %s backend has no distributed meshes", b->ops->name);
+    if (!b->ops->reduce)
+        return GLPGP_FAIL(GLPGP_ERR_UNSUPPORTED, "the %s backend has no distributed meshes", b->ops->name);
     return b->ops->reduce(b, v, n, op);
 }
 
