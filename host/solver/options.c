@@ -63,6 +63,8 @@ void glpgp_options_default(glpgp_options *o)
     o->size_grading = 0.5;
     o->size_across = 2.0;
     o->size_min = 0.05;
+    o->size_chord_area = 0.005;
+    o->size_chord_depth = 0.125;
     o->size_resolution = 4.0;
     o->size_diag_div = 20.0;
     o->size_min_edges = 10.0;
@@ -149,6 +151,10 @@ glpgp_status glpgp_options_check(const glpgp_options *o)
         return GLPGP_FAIL(GLPGP_ERR_ARG, "size_across must be >= 1, got %g", o->size_across);
     if (!(o->size_min > 0.0 && o->size_min <= 1.0))
         return GLPGP_FAIL(GLPGP_ERR_ARG, "size_min must be in (0, 1], got %g", o->size_min);
+    if (!(o->size_chord_area >= 0.0 && o->size_chord_area < 1.0))
+        return GLPGP_FAIL(GLPGP_ERR_ARG, "size_chord_area must be in [0, 1), got %g", o->size_chord_area);
+    if (!(o->size_chord_depth >= 0.0 && o->size_chord_depth < 1.0))
+        return GLPGP_FAIL(GLPGP_ERR_ARG, "size_chord_depth must be in [0, 1), got %g", o->size_chord_depth);
     if (!(o->size_resolution >= GLPGP_SIZE_MIN_EDGES) || !isfinite(o->size_resolution))
         return GLPGP_FAIL(GLPGP_ERR_ARG, "size_resolution must be >= %g, got %g", GLPGP_SIZE_MIN_EDGES,
                           o->size_resolution);

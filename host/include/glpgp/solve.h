@@ -154,6 +154,13 @@ typedef struct glpgp_options {
     double size_min;      /* smallest local size as a fraction of h, in (0, 1] [0.05]: cusps and
                              wedge tips (feature size -> 0) stop there; the repair meshes what
                              is thinner */
+    double size_chord_area; /* boundary chords: auto / iso / function sizes are capped at
+                             c R (R: the boundary's radius of curvature) near curved parts
+                             when the chords' predicted area error (the part lost on convex
+                             arcs, or the part gained on concave ones) exceeds this fraction of
+                             the domain's area; c the largest that meets it; 0: off [0.005] */
+    double size_chord_depth; /* ... and where a chord's sagitta would exceed this fraction of
+                             h, the size is capped so that it does not; 0: off [0.125] */
     double size_resolution; /* a triangle's longest edge should be <= its local h / this:
                              glpgp_size_refine refines to it, glpgp_solve warns below it
                              (and fails below GLPGP_SIZE_MIN_EDGES), >= 2 [4] */
