@@ -156,9 +156,10 @@ typedef struct glpgp_options {
                              is thinner */
     double size_chord_area; /* boundary chords: auto / iso / function sizes are capped at
                              c R (R: the boundary's radius of curvature) near curved parts
-                             when the chords' predicted area error (the part lost on convex
-                             arcs, or the part gained on concave ones) exceeds this fraction of
-                             the domain's area; c the largest that meets it; 0: off [0.005] */
+                             when the chords' predicted area error (lost on convex arcs net
+                             of gained on concave ones) exceeds this fraction F of the
+                             domain's area, or one side alone 2 F; that side's c the largest
+                             bringing it within F; 0: off [0.005] */
     double size_chord_depth; /* ... and where a chord's sagitta would exceed this fraction of
                              h, the size is capped so that it does not; 0: off [0.125] */
     double size_resolution; /* a triangle's longest edge should be <= its local h / this:
