@@ -23,7 +23,8 @@
  *    gives N periods across;
  *  - the chord budget (size_chord_area, size_chord_depth): domains with only
  *    straight edges (square, L-shape) get exactly the sizes without it (iso
- *    and auto with a guiding field); the unit disk at its default size gets
+ *    and auto with a guiding field), and so does a plate whose holes are
+ *    smaller than a quad (with Gmsh); the unit disk at its default size gets
  *    boundary sizes of about sqrt(6 budget) (chords losing h^2 / 6 of its
  *    area) and, with `--field cross` and `--field boundary`, a quad mesh that
  *    is valid (area within 1%) as extracted, the repair not touching it. */
@@ -461,6 +462,42 @@ static void test_chord_straight(void)
     }
 }
 
+/* The perforated plate of tests/quads/hard_domains.h (25 holes of radius
+ * 0.12 h, with Gmsh): holes smaller than a quad are left to the repair, so
+ * the chord budget changes no size. */
+static void test_chord_small_holes(void)
+{
+    if (!glpgp_have_gmsh()) {
+        printf("chord budget, perforated: skipped (no Gmsh)\n");
+        return;
+    }
+    hd_poly p;
+    CHECK(hd_build("perforated", 1.0 / 6, &p));
+    char path[] = "/tmp/glpgp_perf_XXXXXX.poly";
+    int fd = mkstemps(path, 5);
+    CHECK(fd >= 0);
+    close(fd);
+    CHECK(hd_write_poly(&p, path));
+    hd_free(&p);
+    glpgp_polygons *P = NULL;
+    CHECK_OK(glpgp_polygons_read(path, &P));
+    unlink(path);
+    glpgp_mesh *m = NULL;
+    if (P) CHECK_OK(glpgp_mesh_polygons(P, 1.0 / 6, 6, &m));
+    glpgp_polygons_destroy(&P);
+    if (!m) return;
+    double *a = malloc(sizeof(double) * 2 * m->nv), *b = malloc(sizeof(double) * 2 * m->nv);
+    chord_sizes(m, GLPGP_SIZE_ISO, 1, 1.0, a);
+    chord_sizes(m, GLPGP_SIZE_ISO, 0, 1.0, b);
+    int diff = 0;
+    for (int i = 0; i < 2 * m->nv; i++) diff += a[i] != b[i];
+    printf("chord budget, perforated (%d loops): %d of %d sizes differ\n", m->nloops, diff, 2 * m->nv);
+    CHECK(m->nloops == 26 && diff == 0);
+    free(a);
+    free(b);
+    glpgp_mesh_destroy(&m);
+}
+
 static void test_chord_disk(void)
 {
     glpgp_mesh *m = NULL;
@@ -534,6 +571,7 @@ int main(void)
     test_function();
     test_ibeam();
     test_chord_straight();
+    test_chord_small_holes();
     test_chord_disk();
     TEST_DONE();
 }
