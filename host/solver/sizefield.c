@@ -334,10 +334,8 @@ static glpgp_status grade(const glpgp_mesh *m, const int *ptr, const int *adj, d
 
 /* ---- boundary curvature and the chord budget -------------------------------- */
 
-/* The boundary turns by more than this at a domain corner (as in the
- * extraction and the quality check: quads/extract.c, quads/check.c): a corner
- * is kept as a mesh vertex, so its turn is no curvature. */
-#define CHORD_CORNER_DEG 40.0
+/* A domain corner (turn > GLPGP_CORNER_DEG, glpgp/mesh.h: the extraction's and
+ * the quality check's) is kept as a mesh vertex, so its turn is no curvature. */
 
 /* The smallest cap c (h <= c R): 100 chords per full turn, which cut
  * c^2 R / 12 per unit of arc, c^2 / 6 ~ 0.07% of a whole circle's area;
@@ -385,7 +383,7 @@ static int arc_index(const double *a, int n, double r)
  *   kappa_i = (sum_{p in window} tau_p) / |window|,
  * tau_p the signed turn at boundary vertex p (> 0: a left turn, a convex part
  * of the domain, which lies on the left), 0 at corners (|tau_p| >
- * CHORD_CORNER_DEG). Per loop, with arc positions a_p and T(s) = sum of
+ * GLPGP_CORNER_DEG). Per loop, with arc positions a_p and T(s) = sum of
  * tau_p over a_p <= s extended periodically (T(s + P) = T(s) + T_loop, P the
  * loop's length), the window sum is T(a_i + hb_i / 2) - T(a_i - hb_i / 2):
  * O(log n) per vertex whatever the window holds. Features smaller than a
@@ -406,7 +404,7 @@ static glpgp_status boundary_curvature(const glpgp_mesh *m, const double *hb, do
         free(cum);
         GLPGP_CHECK(st);
     }
-    const double corner = CHORD_CORNER_DEG * 3.14159265358979323846 / 180.0;
+    const double corner = GLPGP_CORNER_DEG * 3.14159265358979323846 / 180.0;
     memset(kappa, 0, (size_t)m->nv * sizeof(double));
     for (int l = 0; l < m->nloops; l++) {
         const int s = m->loop_start[l], n = m->loop_start[l + 1] - s;
