@@ -378,7 +378,7 @@ static glpgp_status tr_step(glpgp_backend *b, const glpgp_options *o, glpgp_newt
             at_noise = pred <= ns->noise;
             rho = pred > 0.0 && isfinite(Fa) ? (F - Fa) / pred : -HUGE_VAL;
             take = isfinite(Fa) && (at_noise ? F - Fa >= -ns->noise : rho >= o->tr_accept);
-            if (j == 0 && cut && !at_noise && info->resolves < o->tr_resolve &&
+            if (j == 0 && cut && step > 0.0 && !at_noise && info->resolves < o->tr_resolve &&
                 (!take || rho < o->tr_resolve_rho)) {
                 resolve = 1;
                 break;
