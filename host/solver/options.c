@@ -40,6 +40,9 @@ void glpgp_options_default(glpgp_options *o)
     o->tr_shrink_min = 0.1;
     o->tr_good = 0.75;
     o->tr_grow = 2.0;
+    o->tr_resolve = 3;
+    o->tr_resolve_shrink = 0.7;
+    o->tr_resolve_rho = 0.1;
     o->tr_lookahead = 0;
     o->tr_precond = GLPGP_PRECOND_AMG;
     o->retract_zabs = 0.8;
@@ -121,6 +124,11 @@ glpgp_status glpgp_options_check(const glpgp_options *o)
         return GLPGP_FAIL(GLPGP_ERR_ARG,
                           "trust-region parameters out of range (need 0 <= accept < poor < good < 1, "
                           "0 < shrink < 1 < grow)");
+    if (o->tr_resolve < 0 || !OPEN01(o->tr_resolve_shrink) ||
+        !(o->tr_resolve_rho >= o->tr_accept && o->tr_resolve_rho <= o->tr_poor))
+        return GLPGP_FAIL(GLPGP_ERR_ARG,
+                          "trust-region re-solve parameters out of range (need resolve >= 0, "
+                          "0 < resolve_shrink < 1, accept <= resolve_rho <= poor)");
     if (o->precond != GLPGP_PRECOND_JACOBI && o->precond != GLPGP_PRECOND_AMG)
         return GLPGP_FAIL(GLPGP_ERR_ARG, "unknown preconditioner %d", o->precond);
     if (o->amg_coarse < 2 || o->amg_coarse > 1024)
