@@ -553,7 +553,7 @@ glpgp_status glpgp_qcheck_run(const glpgp_quadmesh *q, const glpgp_mesh *dm, dou
                 int vi = dm->loop_vertices[s + i];
                 const double *a = dm->xy + 2 * vi, *b = DSEG_B(s + i);
                 const double *np = dm->normal_prev + 2 * vi, *nn = dm->normal_next + 2 * vi;
-                int corner = np[0] * nn[0] + np[1] * nn[1] < cos(40.0 * 3.14159265358979323846 / 180.0);
+                int corner = np[0] * nn[0] + np[1] * nn[1] < cos(GLPGP_CORNER_DEG * 3.14159265358979323846 / 180.0);
                 for (int k = 0; k < 2; k++) {
                     double p[2] = {k ? 0.5 * (a[0] + b[0]) : a[0], k ? 0.5 * (a[1] + b[1]) : a[1]};
                     double r = k == 0 && corner ? 1e-3 * h : tol;

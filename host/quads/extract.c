@@ -838,7 +838,7 @@ static void corners(const graph *g, const pmap *p, unsigned char *corner)
         corner[v] = 0;
         if (d >= 3 || (d >= 1 && g->node[v].fixed))
             corner[v] = 1;
-        else if (d == 2 && g->node[v].bnd && turn_angle(g, p, v) > 40.0 * PI_ / 180.0)
+        else if (d == 2 && g->node[v].bnd && turn_angle(g, p, v) > GLPGP_CORNER_DEG * PI_ / 180.0)
             corner[v] = 1;
     }
 }
@@ -1077,7 +1077,7 @@ glpgp_status glpgp_quads_extract(const glpgp_mesh *m, const glpgp_result *r, glp
         if (!m->on_boundary[i]) continue;
         const double *a = m->normal_prev + 2 * i, *b = m->normal_next + 2 * i;
         double c = a[0] * b[0] + a[1] * b[1];
-        if (c < cos(40.0 * PI_ / 180.0)) g->node[i].fixed = 1;
+        if (c < cos(GLPGP_CORNER_DEG * PI_ / 180.0)) g->node[i].fixed = 1;
     }
 
     /* contract edges shorter than 1e-6 h (coincident nodes), drop duplicates */

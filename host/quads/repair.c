@@ -715,7 +715,7 @@ static glpgp_status emit_arc(round_ctx *C, int l, int u, double pu, int w, doubl
     for (int i = 1; i + 1 < np; i++) {
         int vi = -1 - ids.p[i];
         const double *a = m->normal_prev + 2 * vi, *b = m->normal_next + 2 * vi;
-        if (a[0] * b[0] + a[1] * b[1] < cos(40.0 * 3.14159265358979323846 / 180.0)) keep[i] = 1;
+        if (a[0] * b[0] + a[1] * b[1] < cos(GLPGP_CORNER_DEG * 3.14159265358979323846 / 180.0)) keep[i] = 1;
     }
     if (whole && np > 3) keep[np / 2] = keep[np / 4] = keep[3 * np / 4] = 1; /* a closed loop needs a triangle */
     int sp = 0;

@@ -19,9 +19,13 @@
  *     with o->tr_lookahead the CG goes on past the boundary to the Newton
  *     step, which is tried first;
  *   trial points x (+) a d: a polar update outside vortex cores (phase
- *     rotations stay rotations), the straight one inside; a = 1, then
- *     backtracking while rho = (F - F(x (+) a d)) / (model decrease) <
- *     tr_accept;
+ *     rotations stay rotations), the straight one inside; a = 1; a step cut
+ *     by the region whose full step fails or is poor (rho = (F - F(x (+) d))
+ *     / (model decrease) < tr_resolve_rho) is solved again in the region
+ *     shrunk by tr_resolve_shrink, on the same Hessian (no new assembly, up
+ *     to tr_resolve times: a new direction of the smaller region, where
+ *     backtracking along the old one takes a fraction of a direction meant
+ *     for the larger region); then backtracking while rho < tr_accept;
  *   radius from rho and the length taken; the level ends at |g| <= rtol |g0|,
  *     at the cap, or when the model decrease falls below the rounding
  *     level of F.
@@ -181,17 +185,29 @@ static int tr_hessian(const glpgp_options *o)
  * assembly serves both. Block-Jacobi region: the Hessian falls back exact ->
  * mixed -> projected when a diagonal block is indefinite (M is then no
  * norm); a multigrid region that meets r.z <= 0 (not expected) or whose setup
- * fails redoes the step in the block-Jacobi region. */
+ * fails redoes the step in the block-Jacobi region.
+ * tm: the matrix the last call left (tm->set 0: none yet at this x, assemble;
+ * 1: a re-solve in a smaller region at the same x, only the Steihaug CG runs,
+ * with that call's Hessian and region); set on return. */
+typedef struct tr_matrix {
+    int set;  /* the NEWTON matrix (and, mg, the region's hierarchy) hold the values below */
+    int hess; /* GLPGP_HESS_* assembled */
+    int mg;   /* 1: the multigrid region (hierarchy from H_proj), 0: block Jacobi */
+} tr_matrix;
+
 static glpgp_status tr_direction(glpgp_backend *b, const glpgp_options *o, glpgp_newton_state *ns,
-                                 double inv4e2, double eta, glpgp_vec *xb, glpgp_trcg_info *ti,
-                                 glpgp_newton_step_info *info)
+                                 double inv4e2, double eta, glpgp_vec *xb, tr_matrix *tm,
+                                 glpgp_trcg_info *ti, glpgp_newton_step_info *info)
 {
     const glpgp_backend_ops *op = b->ops;
-    int hess = tr_hessian(o);
-    int mg = ns->amg != NULL && o->tr_precond == GLPGP_PRECOND_AMG;
+    int reuse = tm->set;
+    int hess = reuse ? tm->hess : tr_hessian(o);
+    int mg = reuse ? tm->mg : ns->amg != NULL && o->tr_precond == GLPGP_PRECOND_AMG;
     for (;;) {
         const int psd = hess == GLPGP_HESS_PROJECTED || hess == GLPGP_HESS_PAPER;
-        if (mg) {
+        if (reuse) {
+            /* re-solve: the matrix and the region of the last call */
+        } else if (mg) {
             /* hierarchy from H_proj >= H (values, frames from x, SPD coarse inverse) */
             GLPGP_CHECK(op->assemble_newton(b, ns->x, inv4e2, psd ? hess : GLPGP_HESS_PROJECTED));
             if (!glpgp_amg_try_update_spd(ns->amg, ns->x, "trust-region step")) {
@@ -200,7 +216,11 @@ static glpgp_status tr_direction(glpgp_backend *b, const glpgp_options *o, glpgp
             }
             if (mg && !psd) GLPGP_CHECK(op->assemble_newton(b, ns->x, inv4e2, hess));
         }
-        if (!mg) GLPGP_CHECK(op->assemble_newton(b, ns->x, inv4e2, hess));
+        if (!mg && !reuse) GLPGP_CHECK(op->assemble_newton(b, ns->x, inv4e2, hess));
+        reuse = 0;
+        tm->set = 1;
+        tm->hess = hess;
+        tm->mg = mg;
         /* d ~ argmin m(d) = F + g.d + 1/2 d.H d  subject to ||d||_M <= radius */
         GLPGP_CHECK(op->axpby(b, -1.0, ns->g, 0.0, ns->xt)); /* xt <- -g (rhs) */
         GLPGP_CHECK(glpgp_trcg(b, mg ? ns->amg : NULL, ns->xt, ns->d, ns->radius, eta, o->cg_max, xb, ti));
@@ -283,9 +303,11 @@ static glpgp_status tr_step(glpgp_backend *b, const glpgp_options *o, glpgp_newt
     int multigrid = ns->amg != NULL && ns->inside, candidate = 0;
     double a = 1.0, Fa = F, rho = -HUGE_VAL, gd = 0.0, step = 0.0;
     int take = 0, at_noise = 0;
+    tr_matrix tm = {0, 0, 0}; /* what the NEWTON matrix holds for tr_direction */
     for (;;) {
         if (multigrid) {
             GLPGP_CHECK_GOTO(st, tr_amg_direction(b, o, ns, inv4e2, eta, &multigrid, info), done);
+            tm.set = 0; /* the trust region's Hessian and hierarchy are assembled anew */
             if (!multigrid) info->amg_rejected++;
             candidate = multigrid;
         }
@@ -298,7 +320,7 @@ static glpgp_status tr_step(glpgp_backend *b, const glpgp_options *o, glpgp_newt
             ti.norm = ns->radius;
             candidate = 0;
         } else {
-            GLPGP_CHECK_GOTO(st, tr_direction(b, o, ns, inv4e2, eta, xb, &ti, info), done);
+            GLPGP_CHECK_GOTO(st, tr_direction(b, o, ns, inv4e2, eta, xb, &tm, &ti, info), done);
             if (ti.crossed && ti.reason == GLPGP_TRCG_CONVERGED) {
                 candidate = 1;
             } else if (ti.crossed) { /* negative curvature or the cap beyond the region */
@@ -326,7 +348,17 @@ static glpgp_status tr_step(glpgp_backend *b, const glpgp_options *o, glpgp_newt
          * tr_accept, or, when pred(a) is below the rounding level of F (where
          * rho means nothing), when F does not visibly rise; the level then
          * ends (converged to the rounding level).
-         * The look-ahead candidate gets the full step only. */
+         * The look-ahead candidate gets the full step only.
+         * A Steihaug step cut by the region (boundary, negative curvature)
+         * whose full step fails or is poor (rho < tr_resolve_rho) is solved
+         * again in the region shrunk by tr_resolve_shrink (at most
+         * tr_resolve times per Newton step, on the same matrix) before
+         * backtracking: backtracking along d takes a fraction of a direction
+         * meant for the larger region (measured: the region's full step
+         * fails at twice the length of the last good one, the backtrack
+         * then lands at 0.2-0.4 of it and the radius oscillates). */
+        const int cut = !candidate && (ti.reason == GLPGP_TRCG_BOUNDARY || ti.reason == GLPGP_TRCG_NEGCURV);
+        int resolve = 0;
         a = 1.0;
         Fa = F;
         rho = -HUGE_VAL;
@@ -346,7 +378,18 @@ static glpgp_status tr_step(glpgp_backend *b, const glpgp_options *o, glpgp_newt
             at_noise = pred <= ns->noise;
             rho = pred > 0.0 && isfinite(Fa) ? (F - Fa) / pred : -HUGE_VAL;
             take = isfinite(Fa) && (at_noise ? F - Fa >= -ns->noise : rho >= o->tr_accept);
+            if (j == 0 && cut && step > 0.0 && !at_noise && info->resolves < o->tr_resolve &&
+                (!take || rho < o->tr_resolve_rho)) {
+                resolve = 1;
+                break;
+            }
             if (take || at_noise) break;
+        }
+        if (resolve) {
+            /* radius <- tr_resolve_shrink |d|_M;  d <- Steihaug step in it */
+            ns->radius = o->tr_resolve_shrink * step;
+            info->resolves++;
+            continue;
         }
         if (!candidate) break;
         /* a candidate: kept when the model held (rho >= tr_poor) or at the
@@ -374,8 +417,9 @@ static glpgp_status tr_step(glpgp_backend *b, const glpgp_options *o, glpgp_newt
          * that after a good model, rho > tr_good); after a full
          * step, shrink it after a poor model (rho < tr_poor; to a* |d|, a* as
          * above within [tr_shrink_min, tr_shrink]), grow it by tr_grow after a
-         * good step (rho > tr_good) that the region cut; the first region is
-         * tr_grow |d| of the first (unbounded) step taken */
+         * good step (rho > tr_good) that the region cut, unless the region
+         * was shrunk in this step (re-solved: the larger one just failed);
+         * the first region is tr_grow |d| of the first (unbounded) step taken */
         const int cut = ti.reason == GLPGP_TRCG_BOUNDARY || ti.reason == GLPGP_TRCG_NEGCURV;
         if (take && !at_noise) {
             if (a < 1.0) {
@@ -386,7 +430,7 @@ static glpgp_status tr_step(glpgp_backend *b, const glpgp_options *o, glpgp_newt
                 ns->radius = fmax(o->tr_shrink_min, fmin(o->tr_shrink, as)) * step;
             } else if (ns->radius <= 0.0) {
                 ns->radius = o->tr_grow * step;
-            } else if (rho > o->tr_good && cut) {
+            } else if (rho > o->tr_good && cut && info->resolves == 0) {
                 ns->radius *= o->tr_grow;
             }
         }
@@ -467,9 +511,9 @@ glpgp_status glpgp_newton_level(glpgp_backend *b, const glpgp_options *o, glpgp_
         if (tr)
             glpgp_log(GLPGP_LOG_INFO,
                       "  %s eps=%.4g newton %3d  |g|=%.3e  E+P=%.10g  cg=%d  |d|=%.3g  a=%.3g  rho=%.3g  "
-                      "radius=%.3g  %s%s",
+                      "radius=%.3g  re-solved %d  %s%s",
                       glpgp_osc_name(k), eps, it + 1, gn, info.energy, info.cg, info.step, info.alpha,
-                      info.rho, info.radius,
+                      info.rho, info.radius, info.resolves,
                       info.amg_step         ? "multigrid"
                       : info.lookahead_step ? "look-ahead"
                                             : glpgp_trcg_reason_name((glpgp_trcg_reason)info.reason),

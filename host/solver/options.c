@@ -40,6 +40,9 @@ void glpgp_options_default(glpgp_options *o)
     o->tr_shrink_min = 0.1;
     o->tr_good = 0.75;
     o->tr_grow = 2.0;
+    o->tr_resolve = 3;
+    o->tr_resolve_shrink = 0.7;
+    o->tr_resolve_rho = 0.1;
     o->tr_lookahead = 0;
     o->tr_precond = GLPGP_PRECOND_AMG;
     o->retract_zabs = 0.8;
@@ -63,6 +66,8 @@ void glpgp_options_default(glpgp_options *o)
     o->size_grading = 0.5;
     o->size_across = 2.0;
     o->size_min = 0.05;
+    o->size_chord_area = 0.005;
+    o->size_chord_depth = 0.125;
     o->size_resolution = 4.0;
     o->size_diag_div = 20.0;
     o->size_min_edges = 10.0;
@@ -119,6 +124,11 @@ glpgp_status glpgp_options_check(const glpgp_options *o)
         return GLPGP_FAIL(GLPGP_ERR_ARG,
                           "trust-region parameters out of range (need 0 <= accept < poor < good < 1, "
                           "0 < shrink < 1 < grow)");
+    if (o->tr_resolve < 0 || !OPEN01(o->tr_resolve_shrink) ||
+        !(o->tr_resolve_rho >= o->tr_accept && o->tr_resolve_rho <= o->tr_poor))
+        return GLPGP_FAIL(GLPGP_ERR_ARG,
+                          "trust-region re-solve parameters out of range (need resolve >= 0, "
+                          "0 < resolve_shrink < 1, accept <= resolve_rho <= poor)");
     if (o->precond != GLPGP_PRECOND_JACOBI && o->precond != GLPGP_PRECOND_AMG)
         return GLPGP_FAIL(GLPGP_ERR_ARG, "unknown preconditioner %d", o->precond);
     if (o->amg_coarse < 2 || o->amg_coarse > 1024)
@@ -149,6 +159,10 @@ glpgp_status glpgp_options_check(const glpgp_options *o)
         return GLPGP_FAIL(GLPGP_ERR_ARG, "size_across must be >= 1, got %g", o->size_across);
     if (!(o->size_min > 0.0 && o->size_min <= 1.0))
         return GLPGP_FAIL(GLPGP_ERR_ARG, "size_min must be in (0, 1], got %g", o->size_min);
+    if (!(o->size_chord_area >= 0.0 && o->size_chord_area < 1.0))
+        return GLPGP_FAIL(GLPGP_ERR_ARG, "size_chord_area must be in [0, 1), got %g", o->size_chord_area);
+    if (!(o->size_chord_depth >= 0.0 && o->size_chord_depth < 1.0))
+        return GLPGP_FAIL(GLPGP_ERR_ARG, "size_chord_depth must be in [0, 1), got %g", o->size_chord_depth);
     if (!(o->size_resolution >= GLPGP_SIZE_MIN_EDGES) || !isfinite(o->size_resolution))
         return GLPGP_FAIL(GLPGP_ERR_ARG, "size_resolution must be >= %g, got %g", GLPGP_SIZE_MIN_EDGES,
                           o->size_resolution);

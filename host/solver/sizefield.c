@@ -28,6 +28,40 @@
  *   4. Gradation by Dijkstra over the mesh edges (g = size_grading):
  *        h_i = min(H, min_j (seed_j + g d(i, j))),  d the shortest mesh path,
  *      so h_i <= h_j + g |x_i - x_j| holds on every mesh edge (i, j).
+ *   5. Boundary chords (size_chord_area, size_chord_depth; 0 both: off).
+ *      The boundary quads cut straight chords across curved boundary parts.
+ *      A chord of length h on an arc of radius R = 1 / |kappa| spans
+ *      theta = 2 asin(h / 2R) and cuts the segment R^2 (theta - sin theta) / 2,
+ *      per unit of arc a(h, kappa) = R (theta - sin theta) / (2 theta) ~
+ *      h^2 / (12 R) (sagitta s = h^2 / 8R, segment ~ 2/3 s h). kappa_i per
+ *      boundary vertex: the turning angle over an arc window of length h_i
+ *      centred at i over its length, corners (turns > 40 degrees, kept as
+ *      mesh vertices) excluded. Predicted error at the graded sizes (h_b the
+ *      larger oscillator's, the chord along the boundary):
+ *        L = sum_{convex e} a(h_e, kappa_e) |e| (lost),  G = the same over
+ *        concave edges (gained: holes);
+ *      the quality check compares the net area L - G. With B =
+ *      size_chord_area x area, side S (L or G, O the other) needs capping
+ *      when S - O > B (the net) or S > 2 B (one side alone beyond the
+ *      check's tolerance: the model, measured 1.4x under the disk's real
+ *      error, is not netted blindly). Otherwise the sizes stay exactly as
+ *      they are. A side that needs it gets its boundary sizes capped at
+ *      h_i(c) = min(h_i, max(size_min h, c R_i)) with the largest c giving
+ *      S <= B (bisection: L, G are non-decreasing in c; c >= 1/16, 100
+ *      chords per turn, where B cannot be met; capping only down to the
+ *      trigger was measured to break the quads' structure and gain nothing),
+ *      then the other side is checked again. Features smaller than a quad
+ *      (R < h_b / 2: small holes, slot ends, small rounded corners), and the
+ *      boundary within h_b / 2 of them, are left out: like the gaps of step 1
+ *      they are the repair's (sizing them was measured to cost vertices and
+ *      irregular vertices). Independently, where the sagitta
+ *      R - sqrt(R^2 - h^2 / 4) exceeds d = size_chord_depth h the size is
+ *      capped at 2 sqrt(2 R d - d^2). A cap reaches about R into the
+ *      domain: it grows from cap_i at the boundary with slope
+ *      (h - cap_i) / R_i (at most g), so a disk gets a smaller size
+ *      throughout (a thin band of smaller size at g was measured to change
+ *      nothing: the oscillators keep their winding along the boundary), a
+ *      small fillet only around it; the sizes become min(graded, capped).
  * function (GLPGP_SIZE_FUNC, e.g. a grey-level image): auto's seeds of step 3
  * are further limited to h f(x_i) (f clamped to [size_min, 1]) at every
  * vertex before the gradation of step 4, so the user's field refines where
@@ -265,8 +299,14 @@ static glpgp_status vertex_graph(const glpgp_mesh *m, int **pptr, int **padj)
     return GLPGP_OK;
 }
 
-/* s <- min(s_i, min_j s_j + g |x_i - x_j| along mesh paths) (Dijkstra, lazy heap). */
-static glpgp_status grade(const glpgp_mesh *m, const int *ptr, const int *adj, double g, double *s)
+/* s <- min(s_i, min_j s_j + g |x_i - x_j| along mesh paths) (Dijkstra, lazy heap).
+ * slope (nv, may be NULL: g everywhere): per-source slopes instead, each
+ * value carried on with the slope of the vertex it came from,
+ *   s_j <- min(s_j, s_i + slope_i |x_i - x_j|),  slope_j <- slope_i when it wins;
+ * with unequal slopes this is the label-setting approximation of
+ * min_j (s_j + slope_j d(i, j)), and s_j <= s_i + slope_i |x_i - x_j| holds on
+ * every mesh edge when it returns. */
+static glpgp_status grade(const glpgp_mesh *m, const int *ptr, const int *adj, double g, double *s, double *slope)
 {
     heap_item *heap = NULL;
     size_t n = 0;
@@ -276,17 +316,284 @@ static glpgp_status grade(const glpgp_mesh *m, const int *ptr, const int *adj, d
         heap_item it = heap_pop(heap, &n);
         const int i = it.v;
         if (it.key > s[i]) continue; /* stale entry */
+        const double gi = slope ? slope[i] : g;
         for (int k = ptr[i]; k < ptr[i + 1]; k++) {
             const int j = adj[k];
-            /* s_j <- min(s_j, s_i + g |x_i - x_j|) */
-            const double c = s[i] + g * hypot(m->xy[2 * j] - m->xy[2 * i], m->xy[2 * j + 1] - m->xy[2 * i + 1]);
+            /* s_j <- min(s_j, s_i + g_i |x_i - x_j|) */
+            const double c = s[i] + gi * hypot(m->xy[2 * j] - m->xy[2 * i], m->xy[2 * j + 1] - m->xy[2 * i + 1]);
             if (c < s[j]) {
                 s[j] = c;
+                if (slope) slope[j] = gi;
                 heap_push(heap, &n, c, j);
             }
         }
     }
     free(heap);
+    return GLPGP_OK;
+}
+
+/* ---- boundary curvature and the chord budget -------------------------------- */
+
+/* A domain corner (turn > GLPGP_CORNER_DEG, glpgp/mesh.h: the extraction's and
+ * the quality check's) is kept as a mesh vertex, so its turn is no curvature. */
+
+/* The smallest cap c (h <= c R): 100 chords per full turn, which cut
+ * c^2 R / 12 per unit of arc, c^2 / 6 ~ 0.07% of a whole circle's area;
+ * where the budget asks for less the sizes stop there. */
+#define CHORD_C_MIN 0.0625
+
+/* Area between an arc of radius R = 1 / kappa and its chord of length h,
+ * per unit of arc length: the chord spans theta = 2 asin(h / 2R) (h >= 2R:
+ * theta = pi, the whole arc), the segment's area is R^2 (theta - sin theta) / 2
+ * over an arc of R theta:
+ *   a(h, kappa) = R (theta - sin theta) / (2 theta)  ~  h^2 kappa / 12  (h << R),
+ * bounded by R / 2 (a circle of radius R chorded away entirely: pi R^2). */
+static double chord_area_rate(double h, double kappa)
+{
+    if (!(kappa > 0.0)) return 0.0;
+    const double th = 2.0 * asin(fmin(1.0, 0.5 * h * kappa));
+    /* (theta - sin theta) / theta = theta^2 / 6 - theta^4 / 120 + ...: the series where it cancels */
+    const double q = th < 1e-3 ? th * th / 6.0 * (1.0 - th * th / 20.0) : (th - sin(th)) / th;
+    return 0.5 * q / kappa;
+}
+
+/* Largest chord whose sagitta on an arc of radius R is at most d:
+ *   s(h) = R - sqrt(R^2 - h^2 / 4) <= d  <=>  h <= 2 sqrt(2 R d - d^2);
+ * +inf when d >= R (no chord of the arc is deeper than R). */
+static double chord_max_for_depth(double R, double d)
+{
+    return d < R ? 2.0 * sqrt(d * (2.0 * R - d)) : HUGE_VAL;
+}
+
+/* Last index p of the increasing a[0 .. n) (a[0] = 0) with a[p] <= r, r >= 0. */
+static int arc_index(const double *a, int n, double r)
+{
+    int lo = 0, hi = n - 1;
+    while (lo < hi) {
+        const int mid = (lo + hi + 1) / 2;
+        if (a[mid] <= r) lo = mid;
+        else hi = mid - 1;
+    }
+    return lo;
+}
+
+/* Signed curvature kappa_i of every boundary vertex (0 elsewhere): the
+ * boundary's turning angle over an arc window of length hb_i centred at i
+ * (the whole loop when that is shorter) over the window's length,
+ *   kappa_i = (sum_{p in window} tau_p) / |window|,
+ * tau_p the signed turn at boundary vertex p (> 0: a left turn, a convex part
+ * of the domain, which lies on the left), 0 at corners (|tau_p| >
+ * GLPGP_CORNER_DEG). Per loop, with arc positions a_p and T(s) = sum of
+ * tau_p over a_p <= s extended periodically (T(s + P) = T(s) + T_loop, P the
+ * loop's length), the window sum is T(a_i + hb_i / 2) - T(a_i - hb_i / 2):
+ * O(log n) per vertex whatever the window holds. Features smaller than a
+ * quad (|kappa_i| hb_i > 2: R_i < hb_i / 2, a small hole, a slot end) and
+ * every vertex whose window reaches one get kappa_i = 0: no chord of the size
+ * follows them, and their turn would show as a false curvature of the
+ * boundary next to them (they are left to the repair, as the gaps of step 1). */
+static glpgp_status boundary_curvature(const glpgp_mesh *m, const double *hb, double *kappa)
+{
+    const int nb = m->loop_start[m->nloops];
+    double *pos = NULL, *cum = NULL;
+    unsigned char *small = NULL;
+    GLPGP_CHECK(glpgp_malloc((size_t)nb + 1, sizeof(double), &pos));
+    glpgp_status st = glpgp_malloc((size_t)nb + 1, sizeof(double), &cum);
+    if (st == GLPGP_OK) st = glpgp_malloc((size_t)nb + 1, 1, &small);
+    if (st != GLPGP_OK) {
+        free(pos);
+        free(cum);
+        GLPGP_CHECK(st);
+    }
+    const double corner = GLPGP_CORNER_DEG * 3.14159265358979323846 / 180.0;
+    memset(kappa, 0, (size_t)m->nv * sizeof(double));
+    for (int l = 0; l < m->nloops; l++) {
+        const int s = m->loop_start[l], n = m->loop_start[l + 1] - s;
+        if (n < 3) continue;
+        const int *lv = m->loop_vertices + s;
+        double *a = pos + s, *T = cum + s, P = 0.0, Tl = 0.0;
+        for (int p = 0; p < n; p++) {
+            const double *x0 = m->xy + 2 * lv[(p + n - 1) % n], *x1 = m->xy + 2 * lv[p];
+            const double *x2 = m->xy + 2 * lv[(p + 1) % n];
+            const double ux = x1[0] - x0[0], uy = x1[1] - x0[1], vx = x2[0] - x1[0], vy = x2[1] - x1[1];
+            /* tau_p = angle from (x_p - x_{p-1}) to (x_{p+1} - x_p) */
+            double tau = atan2(ux * vy - uy * vx, ux * vx + uy * vy);
+            if (fabs(tau) > corner) tau = 0.0;
+            a[p] = P;
+            Tl += tau;
+            T[p] = Tl;
+            P += hypot(vx, vy);
+        }
+        if (!(P > 0.0)) continue;
+        for (int p = 0; p < n; p++) {
+            const double w = fmin(hb[lv[p]], P);
+            if (!(w > 0.0)) continue;
+            double Ts[2];
+            for (int k = 0; k < 2; k++) {
+                /* T(s) = per T_loop + T[index of s - per P] */
+                const double lim = a[p] + (k ? 0.5 : -0.5) * w, per = floor(lim / P);
+                Ts[k] = per * Tl + T[arc_index(a, n, lim - per * P)];
+            }
+            /* |turn| under 1e-9: a straight part whose collinear vertices left rounding noise */
+            const double turn = Ts[1] - Ts[0];
+            kappa[lv[p]] = fabs(turn) > 1e-9 ? turn / w : 0.0;
+        }
+        /* features smaller than a quad: R_p < hb_p / 2 (|kappa_p| hb_p > 2: no chord of
+         * that size follows them); every vertex whose window reaches one is not sized
+         * either (its window's turn is mostly the feature's), kappa <- 0. T becomes the
+         * count of such vertices at positions <= s, extended periodically the same way */
+        int tot = 0;
+        for (int p = 0; p < n; p++) {
+            tot += fabs(kappa[lv[p]]) * hb[lv[p]] > 2.0;
+            T[p] = tot;
+        }
+        for (int p = 0; p < n && tot > 0; p++) {
+            const double w = fmin(hb[lv[p]], P);
+            double Cs[2];
+            for (int k = 0; k < 2; k++) {
+                const double lim = a[p] + (k ? 0.5 : -0.5) * w, per = floor(lim / P);
+                Cs[k] = per * tot + T[arc_index(a, n, lim - per * P)];
+            }
+            /* the count over positions in (lo, hi]; the vertex itself by its own test */
+            small[s + p] = Cs[1] - Cs[0] > 0.5 || fabs(kappa[lv[p]]) * hb[lv[p]] > 2.0;
+        }
+        for (int p = 0; p < n && tot > 0; p++)
+            if (small[s + p]) kappa[lv[p]] = 0.0;
+    }
+    free(pos);
+    free(cum);
+    free(small);
+    return GLPGP_OK;
+}
+
+/* The chord length at boundary vertex i under the cap c:
+ * h_i(c) = min(hb_i, max(floor_h, c R_i)), R_i = 1 / |kappa_i|. */
+static double chord_h(double hb, double kappa, double c, double floor_h)
+{
+    return kappa != 0.0 ? fmin(hb, fmax(floor_h, c / fabs(kappa))) : hb;
+}
+
+/* Predicted chord area error at the caps c[0] (convex parts) and c[1]
+ * (concave parts) (HUGE_VAL: none), split by sign:
+ *   err[0] = sum_{e: kappa_e > 0} a(h_e, kappa_e) |e|    (convex arcs: the quads miss it),
+ *   err[1] = sum_{e: kappa_e < 0} a(h_e, |kappa_e|) |e|  (concave: the quads cover a hole's cap),
+ * kappa_e, h_e the means over the edge's ends. */
+static void chord_error(const glpgp_mesh *m, const double *hb, const double *kappa, const double c[2],
+                        double floor_h, double err[2])
+{
+    err[0] = err[1] = 0.0;
+    for (int l = 0; l < m->nloops; l++) {
+        const int s = m->loop_start[l], e = m->loop_start[l + 1];
+        for (int p = s; p < e; p++) {
+            const int a = m->loop_vertices[p], b = m->loop_vertices[p + 1 < e ? p + 1 : s];
+            const double k = 0.5 * (kappa[a] + kappa[b]);
+            if (k == 0.0) continue;
+            const int sg = k < 0.0;
+            const double he = 0.5 * (chord_h(hb[a], kappa[a], c[sg], floor_h) + chord_h(hb[b], kappa[b], c[sg], floor_h));
+            const double len = hypot(m->xy[2 * b] - m->xy[2 * a], m->xy[2 * b + 1] - m->xy[2 * a + 1]);
+            err[sg] += len * chord_area_rate(he, fabs(k));
+        }
+    }
+}
+
+/* The chord caps of the graded field size (2 nv): the boundary vertices'
+ * sizes lowered where the chords of the boundary quads would cut too much
+ * area or too deep (see the top, step 5). Returns in *ncap the number of
+ * values lowered (0: size unchanged). */
+static glpgp_status chord_cap(const glpgp_mesh *m, const int *ptr, const int *adj, const glpgp_options *o, double h,
+                              double *size, int *ncap)
+{
+    const int nv = m->nv, nb = m->loop_start[m->nloops];
+    const double floor_h = o->size_min * h, A = m->area;
+    double *hb = NULL, *kappa = NULL, *capv = NULL, *slope = NULL;
+    *ncap = 0;
+    if (nb == 0 || !(A > 0.0)) return GLPGP_OK;
+    GLPGP_CHECK(glpgp_malloc((size_t)nv, sizeof(double), &hb));
+    glpgp_status st = glpgp_malloc((size_t)nv, sizeof(double), &kappa);
+    if (st == GLPGP_OK) st = glpgp_malloc((size_t)nv, sizeof(double), &capv);
+    if (st == GLPGP_OK) st = glpgp_malloc((size_t)nv, sizeof(double), &slope);
+    if (st != GLPGP_OK) goto done;
+    /* hb_i: the chord along the boundary, the larger of the two oscillators' sizes */
+    for (int p = 0; p < nb; p++) {
+        const int i = m->loop_vertices[p];
+        hb[i] = fmax(size[i], size[(size_t)nv + i]);
+    }
+    st = boundary_curvature(m, hb, kappa);
+    if (st != GLPGP_OK) goto done;
+    for (int i = 0; i < nv; i++) capv[i] = HUGE_VAL;
+    /* area: the check compares the net area. Side s (0: convex, lost; 1:
+     * concave, gained) needs capping when err_s - err_other > budget (the
+     * net) or err_s > 2 budget (either side alone beyond the check's
+     * tolerance: the model is not netted blindly); a side that needs it is
+     * brought to err_s <= budget (partial caps were measured to break the
+     * quads' structure and gain nothing), c_s <- the largest meeting that;
+     * a second pass for the other side, whose net may now exceed */
+    double c[2] = {HUGE_VAL, HUGE_VAL}, e0[2], err[2];
+    if (o->size_chord_area > 0.0) {
+        const double budget = o->size_chord_area * A;
+        chord_error(m, hb, kappa, c, floor_h, e0);
+        err[0] = e0[0];
+        err[1] = e0[1];
+        for (int pass = 0; pass < 2; pass++)
+            for (int sg = 0; sg < 2; sg++) {
+                if (c[sg] < HUGE_VAL || !(err[sg] > 2.0 * budget || err[sg] - err[1 - sg] > budget)) continue;
+                double chi = 0.0, cc[2] = {c[0], c[1]}, e[2];
+                for (int p = 0; p < nb; p++) {
+                    const int i = m->loop_vertices[p];
+                    if (kappa[i] != 0.0 && (kappa[i] < 0.0) == sg) chi = fmax(chi, hb[i] * fabs(kappa[i]));
+                }
+                double clo = CHORD_C_MIN;
+                cc[sg] = clo;
+                chord_error(m, hb, kappa, cc, floor_h, e);
+                if (e[sg] <= budget && clo < chi) {
+                    /* bisection: err(clo) <= budget < err(chi), err non-decreasing in c */
+                    for (int it = 0; it < 60 && chi - clo > 1e-6 * chi; it++) {
+                        cc[sg] = 0.5 * (clo + chi);
+                        chord_error(m, hb, kappa, cc, floor_h, e);
+                        if (e[sg] <= budget) clo = cc[sg];
+                        else chi = cc[sg];
+                    }
+                }
+                c[sg] = clo;
+                chord_error(m, hb, kappa, c, floor_h, err);
+            }
+        if (c[0] < HUGE_VAL || c[1] < HUGE_VAL)
+            glpgp_log(GLPGP_LOG_DEBUG,
+                      "local size: boundary chords would cut %.3g%% / add %.3g%% of the area (budget %.3g%% net): "
+                      "sizes capped at %.3g / %.3g x the radius of curvature, predicted %.3g%% / %.3g%%",
+                      100.0 * e0[0] / A, 100.0 * e0[1] / A, 100.0 * o->size_chord_area, c[0], c[1],
+                      100.0 * err[0] / A, 100.0 * err[1] / A);
+    }
+    /* caps: h_i(c), and the sagitta s(h_i) <= d = size_chord_depth h */
+    const double d = o->size_chord_depth * h;
+    for (int p = 0; p < nb; p++) {
+        const int i = m->loop_vertices[p];
+        if (kappa[i] == 0.0) continue;
+        double cap = chord_h(hb[i], kappa[i], c[kappa[i] < 0.0], floor_h);
+        if (d > 0.0) cap = fmin(cap, fmax(floor_h, chord_max_for_depth(1.0 / fabs(kappa[i]), d)));
+        if (cap < hb[i]) {
+            capv[i] = cap;
+            (*ncap)++;
+        }
+    }
+    if (*ncap > 0) {
+        /* the cap reaches about R into the domain: from c R at the boundary to h at distance R,
+         * slope_i = (h - cap_i) / R_i, at most g (the cap field then grades like the rest) */
+        for (int i = 0; i < nv; i++) slope[i] = o->size_grading;
+        for (int p = 0; p < nb; p++) {
+            const int i = m->loop_vertices[p];
+            if (capv[i] < HUGE_VAL) slope[i] = fmin(o->size_grading, (h - capv[i]) * fabs(kappa[i]));
+        }
+        st = grade(m, ptr, adj, o->size_grading, capv, slope);
+        for (int i = 0; i < nv && st == GLPGP_OK; i++)
+            for (int k = 0; k < 2; k++)
+                if (capv[i] < size[(size_t)k * nv + i]) size[(size_t)k * nv + i] = capv[i];
+    }
+done:
+    free(hb);
+    free(kappa);
+    free(capv);
+    free(slope);
+    GLPGP_CHECK(st);
     return GLPGP_OK;
 }
 
@@ -350,7 +657,13 @@ static glpgp_status size_feature(const glpgp_mesh *m, const glpgp_options *o, do
         }
     }
     GLPGP_CHECK(vertex_graph(m, &ptr, &adj));
-    for (int k = 0; k < 2 && st == GLPGP_OK; k++) st = grade(m, ptr, adj, o->size_grading, size + (size_t)k * nv);
+    for (int k = 0; k < 2 && st == GLPGP_OK; k++) st = grade(m, ptr, adj, o->size_grading, size + (size_t)k * nv, NULL);
+    if (st == GLPGP_OK && (o->size_chord_area > 0.0 || o->size_chord_depth > 0.0)) {
+        /* step 5: the chord caps, min(graded, capped): both grow at most g per unit length
+         * along mesh edges, so the result does too (no second gradation) */
+        int ncap = 0;
+        st = chord_cap(m, ptr, adj, o, h, size, &ncap);
+    }
     free(ptr);
     free(adj);
     GLPGP_CHECK(st);

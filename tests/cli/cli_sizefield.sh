@@ -43,8 +43,18 @@ run_fail "size file, negative size" 1 "neg.txt:1: sizes must be positive" solve 
     --quiet --size-field neg.txt
 one_error_line "size file, negative size"
 
-# uniform field: default (auto) = none, bit for bit
-run_ok "disk, none" solve shape:disk:3000 --backend reference -o d_none.vtk --size-field none
-run_ok "disk, default" solve shape:disk:3000 --backend reference -o d_auto.vtk
+# uniform field: default (auto) = none, bit for bit, on a domain without thin
+# walls whose chords are within the budget (h = 0.16: the disk's chords lose
+# h^2 / 6 = 0.43% of its area, under --size-chord-area 0.5%; the input fine
+# enough for h / 4, so not refined)
+run_ok "disk, none" solve shape:disk:6000 --size 0.16 --backend reference -o d_none.vtk --size-field none
+run_ok "disk, default" solve shape:disk:6000 --size 0.16 --backend reference -o d_auto.vtk
 cmp -s d_none.vtk d_auto.vtk || fail "disk: default (auto) and none differ on a domain without thin walls"
+# at its default size (0.22: 0.8%) the chord budget makes the size local
+run_ok "disk, default size" solve shape:disk:3000 --backend reference -o d_def.vtk
+run_ok "disk, default size, no chord budget" solve shape:disk:3000 --backend reference -o d_def0.vtk \
+    --size-chord-area 0 --size-chord-depth 0
+run_ok "disk, default size, none" solve shape:disk:3000 --backend reference -o d_defn.vtk --size-field none
+cmp -s d_def0.vtk d_defn.vtk || fail "disk: auto without the chord budget and none differ"
+cmp -s d_def.vtk d_defn.vtk && fail "disk at its default size: the chord budget changed nothing"
 finish

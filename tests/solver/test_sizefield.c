@@ -20,7 +20,14 @@
  *    arithmetic bit for bit);
  *  - with Gmsh, the I-beam of tests/quads/hard_domains.h (web 0.25 h thick),
  *    refined: inside the web the size stays under the graded profile that
- *    gives N periods across. */
+ *    gives N periods across;
+ *  - the chord budget (size_chord_area, size_chord_depth): domains with only
+ *    straight edges (square, L-shape) get exactly the sizes without it (iso
+ *    and auto with a guiding field), and so does a plate whose holes are
+ *    smaller than a quad (with Gmsh); the unit disk at its default size gets
+ *    boundary sizes of about sqrt(6 budget) (chords losing h^2 / 6 of its
+ *    area) and, with `--field cross` and `--field boundary`, a quad mesh that
+ *    is valid (area within 1%) as extracted, the repair not touching it. */
 #define _DEFAULT_SOURCE /* mkstemps */
 #include "testutil.h"
 #include "../quads/hard_domains.h"
@@ -412,6 +419,145 @@ static void test_ibeam(void)
     glpgp_mesh_destroy(&m);
 }
 
+/* iso and auto (guiding field along x) sizes of m with and without the chord budget. */
+static void chord_sizes(const glpgp_mesh *m, int field, int chord, double h, double *s)
+{
+    glpgp_options o;
+    glpgp_options_default(&o);
+    o.size_field = field;
+    if (!chord) o.size_chord_area = o.size_chord_depth = 0.0;
+    double *u = NULL;
+    if (field == GLPGP_SIZE_AUTO) {
+        u = malloc(sizeof(double) * 2 * m->nv);
+        for (int i = 0; i < m->nv; i++) {
+            u[2 * i] = 1.0;
+            u[2 * i + 1] = 0.0;
+        }
+    }
+    CHECK_OK(glpgp_size_compute(m, &o, h, u, s, NULL));
+    free(u);
+}
+
+static void test_chord_straight(void)
+{
+    const char *names[2] = {"square", "lshape"};
+    for (int k = 0; k < 2; k++) {
+        glpgp_mesh *m = NULL;
+        CHECK_OK(glpgp_mesh_generate(names[k], 3000, &m));
+        if (!m) continue;
+        double *a = malloc(sizeof(double) * 2 * m->nv), *b = malloc(sizeof(double) * 2 * m->nv);
+        const int fields[2] = {GLPGP_SIZE_ISO, GLPGP_SIZE_AUTO};
+        /* h = 0.3: the L's arm (0.5 wide) is thinner than 2 periods, so the field is not uniform */
+        for (int f = 0; f < 2; f++) {
+            chord_sizes(m, fields[f], 1, 0.3, a);
+            chord_sizes(m, fields[f], 0, 0.3, b);
+            int diff = 0;
+            for (int i = 0; i < 2 * m->nv; i++) diff += a[i] != b[i];
+            printf("chord budget, %s (%s): %d of %d sizes differ\n", names[k], f ? "auto" : "iso", diff, 2 * m->nv);
+            CHECK(diff == 0);
+        }
+        free(a);
+        free(b);
+        glpgp_mesh_destroy(&m);
+    }
+}
+
+/* The perforated plate of tests/quads/hard_domains.h (25 holes of radius
+ * 0.12 h, with Gmsh): holes smaller than a quad are left to the repair, so
+ * the chord budget changes no size. */
+static void test_chord_small_holes(void)
+{
+    if (!glpgp_have_gmsh()) {
+        printf("chord budget, perforated: skipped (no Gmsh)\n");
+        return;
+    }
+    hd_poly p;
+    CHECK(hd_build("perforated", 1.0 / 6, &p));
+    char path[] = "/tmp/glpgp_perf_XXXXXX.poly";
+    int fd = mkstemps(path, 5);
+    CHECK(fd >= 0);
+    close(fd);
+    CHECK(hd_write_poly(&p, path));
+    hd_free(&p);
+    glpgp_polygons *P = NULL;
+    CHECK_OK(glpgp_polygons_read(path, &P));
+    unlink(path);
+    glpgp_mesh *m = NULL;
+    if (P) CHECK_OK(glpgp_mesh_polygons(P, 1.0 / 6, 6, &m));
+    glpgp_polygons_destroy(&P);
+    if (!m) return;
+    double *a = malloc(sizeof(double) * 2 * m->nv), *b = malloc(sizeof(double) * 2 * m->nv);
+    chord_sizes(m, GLPGP_SIZE_ISO, 1, 1.0, a);
+    chord_sizes(m, GLPGP_SIZE_ISO, 0, 1.0, b);
+    int diff = 0;
+    for (int i = 0; i < 2 * m->nv; i++) diff += a[i] != b[i];
+    printf("chord budget, perforated (%d loops): %d of %d sizes differ\n", m->nloops, diff, 2 * m->nv);
+    CHECK(m->nloops == 26 && diff == 0);
+    free(a);
+    free(b);
+    glpgp_mesh_destroy(&m);
+}
+
+static void test_chord_disk(void)
+{
+    glpgp_mesh *m = NULL;
+    CHECK_OK(glpgp_mesh_generate("disk", 8000, &m));
+    if (!m) return;
+    glpgp_options o;
+    glpgp_options_default(&o);
+    const double h = glpgp_default_size(m, &o);
+    /* sizes: below without the budget everywhere, and on the boundary the chord
+     * whose area error h^2 / 6 (unit disk: sum h^2 / (12 R) |e| over 2 pi, over pi)
+     * meets the budget, within the polygon's approximation */
+    double *a = malloc(sizeof(double) * 2 * m->nv), *b = malloc(sizeof(double) * 2 * m->nv);
+    chord_sizes(m, GLPGP_SIZE_ISO, 1, h, a);
+    chord_sizes(m, GLPGP_SIZE_ISO, 0, h, b);
+    const double hb = sqrt(6.0 * o.size_chord_area);
+    double bmin = HUGE_VAL, bmax = 0.0;
+    int above = 0;
+    for (int i = 0; i < m->nv; i++) {
+        above += a[i] > b[i];
+        if (m->on_boundary[i]) {
+            bmin = fmin(bmin, a[i]);
+            bmax = fmax(bmax, a[i]);
+        }
+    }
+    printf("chord budget, disk h = %.4f: boundary sizes %.4f .. %.4f (sqrt(6 budget) = %.4f), %d above\n", h, bmin,
+           bmax, hb, above);
+    CHECK(above == 0 && bmax < h && bmax <= 1.02 * hb && bmin >= 0.9 * hb);
+    free(a);
+    free(b);
+    /* the quads: valid as extracted, the repair not run */
+    const int fields[2] = {GLPGP_FIELD_CROSS, GLPGP_FIELD_BOUNDARY};
+    for (int f = 0; f < 2; f++) {
+        glpgp_backend *be = NULL;
+        glpgp_result *r = NULL;
+        glpgp_quadmesh *q = NULL;
+        glpgp_options os;
+        glpgp_options_default(&os);
+        os.field = fields[f];
+        CHECK_OK(glpgp_backend_create_reference(&be));
+        CHECK_OK(glpgp_solve(m, be, &os, &r));
+        double hq = h;
+        if (r) CHECK_OK(glpgp_quads_build(m, r, NULL, &q, &hq));
+        if (q) {
+            glpgp_quad_quality qq;
+            CHECK_OK(glpgp_quads_quality(q, m, hq, &qq));
+            printf("chord budget, disk %s quads: %d faces, %d irregular, SJ min %.3f, area %.4f, Hausdorff %.3f h, "
+                   "repair rounds %d\n",
+                   f ? "boundary" : "cross", qq.faces, qq.irregular, qq.sj_min, qq.area_ratio, qq.hausdorff,
+                   qq.repair.rounds);
+            CHECK(qq.invalid == 0 && qq.others == 0 && fabs(qq.area_ratio - 1.0) <= 0.01);
+            CHECK(qq.repair.rounds == 0 && qq.repair.removed_faces == 0);
+        }
+        CHECK(q != NULL);
+        glpgp_quadmesh_destroy(&q);
+        glpgp_result_destroy(&r);
+        glpgp_backend_destroy(&be);
+    }
+    glpgp_mesh_destroy(&m);
+}
+
 int main(void)
 {
     glpgp_log_set_callback(NULL, NULL);
@@ -424,5 +570,8 @@ int main(void)
     test_file();
     test_function();
     test_ibeam();
+    test_chord_straight();
+    test_chord_small_holes();
+    test_chord_disk();
     TEST_DONE();
 }

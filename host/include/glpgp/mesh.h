@@ -41,6 +41,12 @@ static inline int glpgp_part_counts_tri(const glpgp_mesh_part *p, const int *tri
     return g >= p->first && g < p->first + p->nv_owned;
 }
 
+/* A boundary vertex where the boundary turns by more than this many degrees is
+ * a domain corner: kept as a quad-mesh vertex by the extraction and the
+ * repair, checked as one by the quality check, and not counted as curvature
+ * by the size field's chord budget. One value for all of them. */
+#define GLPGP_CORNER_DEG 40.0
+
 typedef struct glpgp_mesh {
     int nv;            /* vertices */
     int nt;            /* triangles */

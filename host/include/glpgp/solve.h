@@ -112,6 +112,13 @@ typedef struct glpgp_options {
                              factor, (0, tr_shrink] [0.1] */
     double tr_good;       /* rho above this with a step on the boundary ... (tr_poor, 1) [0.75] */
     double tr_grow;       /* ... multiplies the radius by this, > 1 [2] */
+    int tr_resolve;       /* a step cut by the region (boundary or negative curvature) whose
+                             full step fails (rho < tr_accept) or is poor (rho <
+                             tr_resolve_rho) is solved again, up to this many times, in the
+                             region shrunk by tr_resolve_shrink, on the same Hessian (no new
+                             assembly); then backtracking along d; >= 0, 0: off [3] */
+    double tr_resolve_shrink; /* ... (0, 1) [0.7] */
+    double tr_resolve_rho;    /* ... [tr_accept, tr_poor] [0.1] */
     int tr_precond;       /* trust region, with precond AMG: the Steihaug-Toint CG's
                              preconditioner and norm, GLPGP_PRECOND_JACOBI (block Jacobi)
                              or _AMG (the symmetric multigrid cycle of glpgp_amg_apply_spd on
@@ -154,6 +161,14 @@ typedef struct glpgp_options {
     double size_min;      /* smallest local size as a fraction of h, in (0, 1] [0.05]: cusps and
                              wedge tips (feature size -> 0) stop there; the repair meshes what
                              is thinner */
+    double size_chord_area; /* boundary chords: auto / iso / function sizes are capped at
+                             c R (R: the boundary's radius of curvature) near curved parts
+                             when the chords' predicted area error (lost on convex arcs net
+                             of gained on concave ones) exceeds this fraction F of the
+                             domain's area, or one side alone 2 F; that side's c the largest
+                             bringing it within F; 0: off [0.005] */
+    double size_chord_depth; /* ... and where a chord's sagitta would exceed this fraction of
+                             h, the size is capped so that it does not; 0: off [0.125] */
     double size_resolution; /* a triangle's longest edge should be <= its local h / this:
                              glpgp_size_refine refines to it, glpgp_solve warns below it
                              (and fails below GLPGP_SIZE_MIN_EDGES), >= 2 [4] */
@@ -305,6 +320,8 @@ typedef struct glpgp_newton_step_info {
                         (FCG met p.Ap <= 0 or its cap, or rho < tr_poor) */
     int lookahead_step;     /* trust region: the step taken is the Newton step beyond the region */
     int lookahead_rejected; /* trust region: look-ahead Newton steps given up (rho < tr_poor) */
+    int resolves;    /* trust region: region subproblems solved again in a smaller region
+                        (o->tr_resolve) */
 } glpgp_newton_step_info;
 
 /* One Newton step at x. Line search: assemble (H_E + H~_P(x)), solve it by
@@ -316,8 +333,9 @@ typedef struct glpgp_newton_step_info {
  * Hessian, glpgp_amg_apply_spd: Steihaug-Toint needs a fixed SPD
  * preconditioner, the K-cycle is not one; with s->amg and s->inside, the
  * region inactive, first the K-cycle FCG inexact Newton step, kept when its
- * full step has rho >= tr_poor), take the trial point x (+) a d (polar update, retract_zabs) with a = 1 or
- * backtracked until the actual decrease is at least tr_accept of the
+ * full step has rho >= tr_poor), take the trial point x (+) a d (polar update, retract_zabs) with a = 1
+ * (a step cut by the region whose full step fails or is poor is solved again in a smaller
+ * region on the same Hessian, up to o->tr_resolve times) or backtracked until the actual decrease is at least tr_accept of the
  * predicted one, update the radius. Needs QUAD assembled and
  * s->g = grad(E+P)(x) with F = (E+P)(x) and gn = |g| (and, for the trust
  * region, s->noise). */
