@@ -29,7 +29,11 @@
  * For a pentagon the preferred crossing edge is the one opposite T: the
  * hexagon's diagonal m - T then splits it into two quads and gives T its
  * fourth edge, so the line that ended at T is continued through the strip
- * and no irregular vertex is left at all.
+ * and no irregular vertex is left at all. A pentagon without a T vertex
+ * (around a +1/4 cross-field singularity: corners of valence 3 / 4 / 3 seen
+ * from the crossed edge) is instead split into three quads around one
+ * valence-3 centre joined to the midpoint (centre_first: whichever leaves
+ * fewer irregular vertices).
  *
  * Paths are shortest paths (Dijkstra over (face, entry edge) states) with
  * costs: 1 per quad cut (more when its halves get thinner than h/2),
@@ -186,6 +190,21 @@ static int qdp_emit(const qdp *D, const int *p, int i, int j, int *out, int w)
     return qdp_emit(D, p, b, j, out, w);
 }
 
+/* The hexagon p[0..6) as three quads (p[o+2i], p[o+2i+1], p[o+2i+2], X)
+ * around a new centre X = (x, y) added to s: out[0 .. 12), *nq = 3. */
+static glpgp_status centre_quads(psoup *s, const int *p, int o, double x, double y, int *out, int *nq)
+{
+    int X;
+    glpgp_status st = soup_vertex(s, x, y, &X);
+    if (st != GLPGP_OK) return st;
+    for (int i = 0; i < 3; i++) {
+        for (int k = 0; k < 3; k++) out[4 * i + k] = p[(o + 2 * i + k) % 6];
+        out[4 * i + 3] = X;
+    }
+    *nq = 3;
+    return GLPGP_OK;
+}
+
 /* A split of the even polygon p[0..n) (n >= 4) into quads: *nq quads in
  * out[0 .. 4 nq), new vertices (a hexagon's centre) added to s. pref >= 0:
  * the hexagon diagonal (pref, pref + 3) is taken when its quads reach 0.3
@@ -209,16 +228,8 @@ static glpgp_status split_even(psoup *s, const int *p, int n, int pref, int cent
     if (n == 6 && pref >= 0 && centre) {
         double x = 0.0, y = 0.0, c = glpgp_hex_centre_split_at(s->xy, p, pref % 2, &x, &y);
         if (c >= 0.3) {
-            int X;
-            glpgp_status st = soup_vertex(s, x, y, &X);
-            if (st != GLPGP_OK) return st;
-            for (int i = 0; i < 3; i++) {
-                for (int k = 0; k < 3; k++) out[4 * i + k] = p[(pref + 2 * i + k) % 6];
-                out[4 * i + 3] = X;
-            }
-            *nq = 3;
             *sj = c;
-            return GLPGP_OK;
+            return centre_quads(s, p, pref % 2, x, y, out, nq);
         }
     }
     if (n == 6 && pref >= 0) {
@@ -254,15 +265,8 @@ static glpgp_status split_even(psoup *s, const int *p, int n, int pref, int cent
         int o = 0;
         double x = 0.0, y = 0.0, c = glpgp_hex_centre_split(s->xy, p, &o, &x, &y);
         if (c > best + 0.05) {
-            int X;
-            glpgp_status st = soup_vertex(s, x, y, &X);
-            if (st != GLPGP_OK) return st;
-            for (int i = 0; i < 3; i++) {
-                for (int k = 0; k < 3; k++) out[4 * i + k] = p[(o + 2 * i + k) % 6];
-                out[4 * i + 3] = X;
-            }
-            *nq = 3;
             *sj = c;
+            return centre_quads(s, p, o, x, y, out, nq);
         }
     }
     return GLPGP_OK;
