@@ -29,7 +29,11 @@
  * For a pentagon the preferred crossing edge is the one opposite T: the
  * hexagon's diagonal m - T then splits it into two quads and gives T its
  * fourth edge, so the line that ended at T is continued through the strip
- * and no irregular vertex is left at all.
+ * and no irregular vertex is left at all. A pentagon without a T vertex
+ * (around a +1/4 cross-field singularity: corners of valence 3 / 4 / 3 seen
+ * from the crossed edge) is instead split into three quads around one
+ * valence-3 centre joined to the midpoint (centre_first: whichever leaves
+ * fewer irregular vertices).
  *
  * Paths are shortest paths (Dijkstra over (face, entry edge) states) with
  * costs: 1 per quad cut (more when its halves get thinner than h/2),
@@ -186,12 +190,31 @@ static int qdp_emit(const qdp *D, const int *p, int i, int j, int *out, int w)
     return qdp_emit(D, p, b, j, out, w);
 }
 
+/* The hexagon p[0..6) as three quads (p[o+2i], p[o+2i+1], p[o+2i+2], X)
+ * around a new centre X = (x, y) added to s: out[0 .. 12), *nq = 3. */
+static glpgp_status centre_quads(psoup *s, const int *p, int o, double x, double y, int *out, int *nq)
+{
+    int X;
+    glpgp_status st = soup_vertex(s, x, y, &X);
+    if (st != GLPGP_OK) return st;
+    for (int i = 0; i < 3; i++) {
+        for (int k = 0; k < 3; k++) out[4 * i + k] = p[(o + 2 * i + k) % 6];
+        out[4 * i + 3] = X;
+    }
+    *nq = 3;
+    return GLPGP_OK;
+}
+
 /* A split of the even polygon p[0..n) (n >= 4) into quads: *nq quads in
  * out[0 .. 4 nq), new vertices (a hexagon's centre) added to s. pref >= 0:
  * the hexagon diagonal (pref, pref + 3) is taken when its quads reach 0.3
- * (it gives the T vertex of a pentagon its fourth edge). Returns the
- * minimum scaled Jacobian of the result (-inf: no split). */
-static glpgp_status split_even(psoup *s, const int *p, int n, int pref, int *out, int *nq, double *sj)
+ * (it gives the T vertex of a pentagon its fourth edge); with centre = 1
+ * (centre_first: a pentagon around a +1/4 cross-field singularity, no T
+ * vertex) the three quads around a centre joined to pref, pref + 2 and
+ * pref + 4 are tried first, under the same 0.3. Returns the minimum scaled
+ * Jacobian of the result (-inf: no split). */
+static glpgp_status split_even(psoup *s, const int *p, int n, int pref, int centre, int *out, int *nq,
+                               double *sj)
 {
     *nq = 0;
     *sj = -INFINITY;
@@ -202,6 +225,13 @@ static glpgp_status split_even(psoup *s, const int *p, int n, int pref, int *out
         return GLPGP_OK;
     }
     if (n < 4 || n > QMAXN || n % 2) return GLPGP_OK;
+    if (n == 6 && pref >= 0 && centre) {
+        double x = 0.0, y = 0.0, c = glpgp_hex_centre_split_at(s->xy, p, pref % 2, &x, &y);
+        if (c >= 0.3) {
+            *sj = c;
+            return centre_quads(s, p, pref % 2, x, y, out, nq);
+        }
+    }
     if (n == 6 && pref >= 0) {
         int qa[4], qb[4];
         for (int k = 0; k < 4; k++) {
@@ -235,15 +265,8 @@ static glpgp_status split_even(psoup *s, const int *p, int n, int pref, int *out
         int o = 0;
         double x = 0.0, y = 0.0, c = glpgp_hex_centre_split(s->xy, p, &o, &x, &y);
         if (c > best + 0.05) {
-            int X;
-            glpgp_status st = soup_vertex(s, x, y, &X);
-            if (st != GLPGP_OK) return st;
-            for (int i = 0; i < 3; i++) {
-                for (int k = 0; k < 3; k++) out[4 * i + k] = p[(o + 2 * i + k) % 6];
-                out[4 * i + 3] = X;
-            }
-            *nq = 3;
             *sj = c;
+            return centre_quads(s, p, o, x, y, out, nq);
         }
     }
     return GLPGP_OK;
@@ -270,6 +293,7 @@ static int cmp_hedge(const void *pa, const void *pb)
  * or non-manifold edge. */
 typedef struct adjacency {
     int *adj, *adji, *val;
+    int nv;  /* vertices when built (val, bnd cover 0 .. nv) */
     int *sf; /* face of each corner slot fs[f] + i */
     unsigned char *bnd;
 } adjacency;
@@ -327,7 +351,35 @@ static glpgp_status adj_build(const psoup *s, adjacency *A)
         k = e;
     }
     free(H);
+    A->nv = s->nv;
     return GLPGP_OK;
+}
+
+/* Change in the number of irregular vertices when vertex v gets one more
+ * edge: interior 4 -> 5 is +1, 3 -> 4 is -1; a boundary vertex counts +1
+ * (end_cost's rule); a vertex newer than A (a midpoint) 0. */
+static int gain_irr(const adjacency *A, int v)
+{
+    if (v < 0 || v >= A->nv) return 0;
+    if (A->bnd[v]) return 1;
+    return (A->val[v] + 1 != 4) - (A->val[v] != 4);
+}
+
+/* Hexagon p[0..6) = an odd pentagon with the midpoint p[pref] of the
+ * crossed edge: 1 when the centre split (X joined to p[pref], p[pref+2],
+ * p[pref+4]; X of valence 3) leaves fewer irregular vertices than the
+ * diagonal p[pref] - p[pref+3]. A dislocation's pentagon has its T vertex
+ * (valence 3) at pref + 3 and keeps the diagonal; a pentagon around a +1/4
+ * cross-field singularity (three corners of valence 3 / 4 / 3 seen from the
+ * crossed edge, e.g. the singularity half a period from the boundary) gets
+ * the centre: one valence-3 vertex at the singularity instead of a 3-5-3
+ * row. */
+static int centre_first(const adjacency *A, const int *p, int pref)
+{
+    if (pref < 0) return 0;
+    int diag = gain_irr(A, p[(pref + 3) % 6]);
+    int centre = 1 + gain_irr(A, p[(pref + 2) % 6]) + gain_irr(A, p[(pref + 4) % 6]);
+    return centre < diag;
 }
 
 /* ---- shortest strip ----------------------------------------------------- */
@@ -371,7 +423,10 @@ static glpgp_status end_cost(const psoup *s, const adjacency *A, int f, int i, d
     }
     T.nv = n + 1;
     double sj;
-    st = split_even(&T, p, n + 1, n + 1 == 6 ? i + 1 : -1, out, &nq, &sj);
+    int pref = n + 1 == 6 ? i + 1 : -1, gp[6];
+    if (pref >= 0)
+        for (int k = 0; k < 6; k++) gp[k] = gid[k];
+    st = split_even(&T, p, n + 1, pref, pref >= 0 && centre_first(A, gp, pref), out, &nq, &sj);
     if (st == GLPGP_OK && nq > 0 && sj >= MIN_SJ) {
         /* new edges per corner: quad sides that are not polygon sides (each
          * is seen from its two quads) */
@@ -593,7 +648,7 @@ typedef glpgp_quad_closing pair_stats;
 /* Apply the strip P[0..len): new midpoints, the faces rewritten (old ones
  * deleted, new ones appended). Nothing is changed when a new quad would
  * have a scaled Jacobian below MIN_SJ (*ok = 0; the caller restores *ps). */
-static glpgp_status apply_strip(psoup *s, const pstep *P, int len, int *ok, pair_stats *ps)
+static glpgp_status apply_strip(psoup *s, const adjacency *A, const pstep *P, int len, int *ok, pair_stats *ps)
 {
     glpgp_status st = GLPGP_OK;
     *ok = 0;
@@ -625,7 +680,8 @@ static glpgp_status apply_strip(psoup *s, const pstep *P, int len, int *ok, pair
             if (n == 6) pref = e + 1; /* the midpoint's position in p */
             double sj;
             if (n > QMAXN) goto done;
-            GLPGP_CHECK_GOTO(st, split_even(s, p, n, pref, out, &nq, &sj), done);
+            GLPGP_CHECK_GOTO(st, split_even(s, p, n, pref, n == 6 && centre_first(A, p, pref), out, &nq, &sj),
+                             done);
             if (nq == 0) goto done;
             worst = fmin(worst, sj);
             if (s->fn[f] % 2) ps->closed_polygons++;
@@ -724,7 +780,7 @@ static glpgp_status merge_triangle(psoup *s, unsigned char *used, const int *t_i
         if (ng % 2) {
             int outq[4 * QMAXN], nq = 0, nv0 = s->nv;
             double sj;
-            st = split_even(s, pm, n, -1, outq, &nq, &sj);
+            st = split_even(s, pm, n, -1, 0, outq, &nq, &sj);
             if (st != GLPGP_OK) return st;
             s->nv = nv0; /* evaluation only */
             if (nq > 0 && sj > best_even) {
@@ -745,7 +801,7 @@ static glpgp_status merge_triangle(psoup *s, unsigned char *used, const int *t_i
     if (ge >= 0) {
         int outq[4 * QMAXN], nq = 0;
         double sj;
-        st = split_even(s, be, nbe, -1, outq, &nq, &sj);
+        st = split_even(s, be, nbe, -1, 0, outq, &nq, &sj);
         for (int k = 0; k < nq && st == GLPGP_OK; k++) st = soup_face(s, outq + 4 * k, 4, NULL);
         if (st != GLPGP_OK) return st;
         ps->closed_polygons += 1 + (s->fn[f_old] % 2);
@@ -874,7 +930,7 @@ glpgp_status glpgp_quadmesh_close_polygons(const glpgp_quadmesh *q, glpgp_quadme
         int p[QMAXN], outq[4 * QMAXN], nq = 0, nv0 = s.nv;
         double sj;
         memcpy(p, s.fv + s.fs[f], (size_t)n * sizeof(int));
-        GLPGP_CHECK_GOTO(st, split_even(&s, p, n, -1, outq, &nq, &sj), done);
+        GLPGP_CHECK_GOTO(st, split_even(&s, p, n, -1, 0, outq, &nq, &sj), done);
         if (nq == 0 || !(sj >= MIN_SJ)) {
             s.nv = nv0;
             continue;
@@ -983,7 +1039,7 @@ glpgp_status glpgp_quadmesh_close_polygons(const glpgp_quadmesh *q, glpgp_quadme
             }
             pair_stats save = ps;
             int ok = 0;
-            GLPGP_CHECK_GOTO(st, apply_strip(&s, path, len, &ok, &ps), done);
+            GLPGP_CHECK_GOTO(st, apply_strip(&s, &A, path, len, &ok, &ps), done);
             if (!ok) {
                 ps = save;
                 failed[f] = 1;

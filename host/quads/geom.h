@@ -18,4 +18,9 @@ double glpgp_poly_min_sj(const double *xy, const int *v, int n);
  * smallest corner scaled Jacobian of the three quads and sets *o, *x, *y. */
 double glpgp_hex_centre_split(const double *xy, const int *hx, int *o, double *x, double *y);
 
+/* The same with the orientation o (0 or 1) given: X joined to hx[o],
+ * hx[o+2], hx[o+4]. Returns the smallest corner scaled Jacobian and sets
+ * *x, *y. */
+double glpgp_hex_centre_split_at(const double *xy, const int *hx, int o, double *x, double *y);
+
 #endif

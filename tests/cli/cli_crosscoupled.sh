@@ -15,6 +15,12 @@
 #    cross_coupled cell array) and gives the same quad mesh counts;
 #  - `--cross-size on` (disk, h = 0.15): valid, at most 8 irregular interior
 #    vertices, the 4 singularities each with one, min scaled Jacobian >= 0.7;
+#  - `--cross-size on` at the disk's default size (shape:disk:8000, the
+#    singularities half a period from the boundary: their pentagons close as
+#    three quads around one valence-3 vertex, quads/close.c): valid, all
+#    quads, at most 4 irregular interior vertices, none away from the
+#    singularities, and against `--field boundary` at the same size fewer
+#    irregular vertices and a higher minimum scaled Jacobian;
 #  - OpenCL (when a device is there): the same coupled solve, the same
 #    Newton steps and frame windings as the reference.
 # Usage: bash cli_crosscoupled.sh <path-to-glpgp> <data-dir>
@@ -88,6 +94,24 @@ iv = q["irregular_vertices"]
 assert iv["interior"] <= 8 and iv["interior_near_cross"] >= 4, iv
 assert q["cross_singularities"]["with_irregular_vertex"] == 4, q["cross_singularities"]
 assert q["scaled_jacobian"]["min"] >= 0.7, q["scaled_jacobian"]
+PY
+
+# the disk at its default size: the ideal cross mesh (a valence-3 vertex at
+# each singularity, nothing else), better than the boundary field's
+run_ok "default-size disk, cross size" solve shape:disk:8000 --field cross --cross-size on \
+    --backend reference --quads d.obj --stats d.json
+run_ok "default-size disk, boundary" solve shape:disk:8000 --backend reference --quads db.obj --stats db.json
+python3 - d.json db.json <<'PY' || fail "default-size disk: cross vs boundary"
+import json, sys
+d, b = (json.load(open(p)) for p in sys.argv[1:3])
+q, qb = d["quads"], b["quads"]
+assert q["valid"] is True and q["quads"] == q["faces"] and q["other_faces"] == 0, q
+iv, ivb = q["irregular_vertices"], qb["irregular_vertices"]
+assert iv["total"] <= 4 and iv["interior_far_cross"] == 0, iv
+assert q["cross_singularities"]["with_irregular_vertex"] == 4, q["cross_singularities"]
+assert qb["valid"] is True, qb["invalid_reasons"]
+assert 100.0 * iv["total"] / q["quads"] < 100.0 * ivb["total"] / qb["quads"], (iv, q["quads"], ivb, qb["quads"])
+assert q["scaled_jacobian"]["min"] > qb["scaled_jacobian"]["min"], (q["scaled_jacobian"], qb["scaled_jacobian"])
 PY
 
 # OpenCL: the same coupled solve (kernels/backend_coupled.cl), the same Newton count
