@@ -987,19 +987,8 @@ static glpgp_status m_mesh_recv(glpgp_mesh **out)
     glpgp_status st = GLPGP_OK;
     glpgp_mesh *m = NULL;
     const int nv = hdr[0], nt = hdr[1];
-    GLPGP_CHECK(glpgp_calloc(1, sizeof *m, &m));
-    m->nv = nv;
-    m->nt = nt;
-    GLPGP_CHECK_GOTO(st, glpgp_calloc(1, sizeof *m->part, &m->part), fail);
+    GLPGP_CHECK(glpgp_mesh_part_create(nv, nt, hdr[6] != 0, &m));
     glpgp_mesh_part *pt = m->part;
-    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)2 * nv, sizeof(double), &m->xy), fail);
-    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)3 * (nt > 0 ? nt : 1), sizeof(int), &m->tri), fail);
-    GLPGP_CHECK_GOTO(st, glpgp_calloc(1, sizeof(int), &m->loop_start), fail); /* nloops = 0 */
-    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)nv, 1, &m->on_boundary), fail);
-    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)2 * nv, sizeof(double), &m->normal_prev), fail);
-    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)2 * nv, sizeof(double), &m->normal_next), fail);
-    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)nv, sizeof(int), &pt->gid), fail);
-    if (hdr[6]) GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)2 * nv, sizeof(double), &pt->size), fail);
     int rc = MPI_Recv(m->xy, 2 * nv, MPI_DOUBLE, 0, TAG_MESH, cw, MPI_STATUS_IGNORE);
     if (rc == MPI_SUCCESS) rc = MPI_Recv(m->tri, 3 * nt, MPI_INT, 0, TAG_MESH, cw, MPI_STATUS_IGNORE);
     if (rc == MPI_SUCCESS) rc = MPI_Recv(m->on_boundary, nv, MPI_UNSIGNED_CHAR, 0, TAG_MESH, cw, MPI_STATUS_IGNORE);

@@ -1,6 +1,6 @@
 /* backends/petsc_glue.c: the module side of backends/petsc_module.h, compiled
  * into glpgp_petsc.so only: the few core functions backends/petsc.c calls
- * (error record, log, checked allocation, mesh destruction) as forwarders
+ * (error record, log, checked allocation, part creation and destruction) as forwarders
  * to the table the loader (backends/petsc_load.c) hands over (allocation:
  * its own, the same C library), so the module needs no glpgp
  * symbol from the program that loads it and its errors and messages land in
@@ -37,6 +37,11 @@ glpgp_status glpgp_error_set(const char *file, int line, glpgp_status st, const 
 void glpgp_error_push_trace(const char *file, int line) { g_host->push_trace(file, line); }
 
 void glpgp_mesh_destroy(glpgp_mesh **m) { g_host->mesh_destroy(m); }
+
+glpgp_status glpgp_mesh_part_create(int nv, int nt, int sized, glpgp_mesh **out)
+{
+    return g_host->mesh_part_create(nv, nt, sized, out);
+}
 
 void glpgp_log(glpgp_log_level level, const char *fmt, ...)
 {

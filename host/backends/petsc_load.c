@@ -32,7 +32,7 @@ static void host_log(glpgp_log_level level, const char *msg) { glpgp_log(level, 
 static const glpgp_petsc_host g_host = {GLPGP_PETSC_ABI,        sizeof(glpgp_system),   sizeof(glpgp_backend),
                                         sizeof(glpgp_backend_ops), sizeof(glpgp_mesh),    sizeof(glpgp_mesh_part),
                                         glpgp_error_set,        glpgp_error_push_trace, host_log,
-                                        glpgp_mesh_destroy};
+                                        glpgp_mesh_part_create, glpgp_mesh_destroy};
 
 int glpgp_have_petsc(void)
 {

@@ -13,16 +13,17 @@
 
 #include "glpgp/backend.h"
 
-#define GLPGP_PETSC_ABI 2
+#define GLPGP_PETSC_ABI 3
 #define GLPGP_PETSC_ENTRY "glpgp_petsc_module_entry"
 
-/* glpgp -> module (the loader's table: error record, log, mesh_destroy) */
+/* glpgp -> module (the loader's table: error record, log, part create / destroy) */
 typedef struct glpgp_petsc_host {
     int abi;
     size_t sizeof_system, sizeof_backend, sizeof_ops, sizeof_mesh, sizeof_part;
     glpgp_status (*error_set)(const char *file, int line, glpgp_status st, const char *fmt, ...);
     void (*push_trace)(const char *file, int line);
     void (*log_msg)(glpgp_log_level level, const char *msg);
+    glpgp_status (*mesh_part_create)(int nv, int nt, int sized, glpgp_mesh **out); /* a part to receive */
     void (*mesh_destroy)(glpgp_mesh **m); /* a received part that failed half-way */
 } glpgp_petsc_host;
 

@@ -121,19 +121,8 @@ glpgp_status glpgp_mesh_extract_part(const glpgp_mesh *m, int P, int q, const do
         if (g >= lo && g < hi) loc[g] = g - lo;
         else if (loc[g] == -2) loc[g] = nvl++;
     }
-    GLPGP_CHECK_GOTO(st, glpgp_calloc(1, sizeof *o, &o), fail);
-    o->nv = nvl;
-    o->nt = ntl;
-    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)2 * nvl, sizeof(double), &o->xy), fail);
-    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)3 * (ntl > 0 ? ntl : 1), sizeof(int), &o->tri), fail);
-    GLPGP_CHECK_GOTO(st, glpgp_calloc(1, sizeof(int), &o->loop_start), fail); /* nloops = 0 */
-    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)nvl, 1, &o->on_boundary), fail);
-    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)2 * nvl, sizeof(double), &o->normal_prev), fail);
-    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)2 * nvl, sizeof(double), &o->normal_next), fail);
-    GLPGP_CHECK_GOTO(st, glpgp_calloc(1, sizeof *o->part, &o->part), fail);
+    GLPGP_CHECK_GOTO(st, glpgp_mesh_part_create(nvl, ntl, size != NULL, &o), fail);
     glpgp_mesh_part *pt = o->part;
-    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)nvl, sizeof(int), &pt->gid), fail);
-    if (size) GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)2 * nvl, sizeof(double), &pt->size), fail);
     /* per local vertex i of global g: the whole mesh's data at g */
     for (int g = 0; g < nv; g++) {
         const int i = loc[g];
@@ -169,6 +158,31 @@ glpgp_status glpgp_mesh_extract_part(const glpgp_mesh *m, int P, int q, const do
     return GLPGP_OK;
 fail:
     free(loc);
+    glpgp_mesh_destroy(&o);
+    return st;
+}
+
+glpgp_status glpgp_mesh_part_create(int nv, int nt, int sized, glpgp_mesh **out)
+{
+    *out = NULL;
+    if (nv < 0 || nt < 0) return GLPGP_FAIL(GLPGP_ERR_ARG, "a part of %d vertices and %d triangles", nv, nt);
+    glpgp_status st = GLPGP_OK;
+    glpgp_mesh *o = NULL;
+    GLPGP_CHECK(glpgp_calloc(1, sizeof *o, &o));
+    o->nv = nv;
+    o->nt = nt;
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)2 * (nv > 0 ? nv : 1), sizeof(double), &o->xy), fail);
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)3 * (nt > 0 ? nt : 1), sizeof(int), &o->tri), fail);
+    GLPGP_CHECK_GOTO(st, glpgp_calloc(1, sizeof(int), &o->loop_start), fail); /* nloops = 0 */
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)(nv > 0 ? nv : 1), 1, &o->on_boundary), fail);
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)2 * (nv > 0 ? nv : 1), sizeof(double), &o->normal_prev), fail);
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)2 * (nv > 0 ? nv : 1), sizeof(double), &o->normal_next), fail);
+    GLPGP_CHECK_GOTO(st, glpgp_calloc(1, sizeof *o->part, &o->part), fail);
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)(nv > 0 ? nv : 1), sizeof(int), &o->part->gid), fail);
+    if (sized) GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)2 * (nv > 0 ? nv : 1), sizeof(double), &o->part->size), fail);
+    *out = o;
+    return GLPGP_OK;
+fail:
     glpgp_mesh_destroy(&o);
     return st;
 }

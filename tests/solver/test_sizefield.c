@@ -370,26 +370,39 @@ static void test_function(void)
     glpgp_mesh_destroy(&m);
 }
 
-static void test_ibeam(void)
+/* the hard domain `name` of tests/quads/hard_domains.h at quad size h,
+ * meshed by Gmsh through a .poly file (6 triangle edges per h); NULL (a
+ * failed CHECK) when it cannot be built */
+static glpgp_mesh *hard_mesh(const char *name, double h)
 {
-    if (!glpgp_have_gmsh()) {
-        printf("ibeam: skipped (no Gmsh)\n");
-        return;
-    }
     hd_poly p;
-    CHECK(hd_build("ibeam", 1.0 / 12, &p));
-    char path[] = "/tmp/glpgp_ibeam_XXXXXX.poly";
+    CHECK(hd_build(name, h, &p));
+    char path[] = "/tmp/glpgp_hard_XXXXXX.poly";
     int fd = mkstemps(path, 5);
     CHECK(fd >= 0);
+    if (fd < 0) {
+        hd_free(&p);
+        return NULL;
+    }
     close(fd);
     CHECK(hd_write_poly(&p, path));
     hd_free(&p);
     glpgp_polygons *P = NULL;
     CHECK_OK(glpgp_polygons_read(path, &P));
     unlink(path);
-    glpgp_mesh *m = NULL, *r = NULL;
-    if (P) CHECK_OK(glpgp_mesh_polygons(P, 1.0 / 12, 6, &m));
+    glpgp_mesh *m = NULL;
+    if (P) CHECK_OK(glpgp_mesh_polygons(P, h, 6, &m));
     glpgp_polygons_destroy(&P);
+    return m;
+}
+
+static void test_ibeam(void)
+{
+    if (!glpgp_have_gmsh()) {
+        printf("ibeam: skipped (no Gmsh)\n");
+        return;
+    }
+    glpgp_mesh *m = hard_mesh("ibeam", 1.0 / 12), *r = NULL;
     if (!m) return;
     glpgp_options o;
     glpgp_options_default(&o);
@@ -471,20 +484,7 @@ static void test_chord_small_holes(void)
         printf("chord budget, perforated: skipped (no Gmsh)\n");
         return;
     }
-    hd_poly p;
-    CHECK(hd_build("perforated", 1.0 / 6, &p));
-    char path[] = "/tmp/glpgp_perf_XXXXXX.poly";
-    int fd = mkstemps(path, 5);
-    CHECK(fd >= 0);
-    close(fd);
-    CHECK(hd_write_poly(&p, path));
-    hd_free(&p);
-    glpgp_polygons *P = NULL;
-    CHECK_OK(glpgp_polygons_read(path, &P));
-    unlink(path);
-    glpgp_mesh *m = NULL;
-    if (P) CHECK_OK(glpgp_mesh_polygons(P, 1.0 / 6, 6, &m));
-    glpgp_polygons_destroy(&P);
+    glpgp_mesh *m = hard_mesh("perforated", 1.0 / 6);
     if (!m) return;
     double *a = malloc(sizeof(double) * 2 * m->nv), *b = malloc(sizeof(double) * 2 * m->nv);
     chord_sizes(m, GLPGP_SIZE_ISO, 1, 1.0, a);

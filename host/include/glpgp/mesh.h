@@ -105,6 +105,12 @@ glpgp_status glpgp_mesh_renumber(const glpgp_mesh *m, const int *new_of_old, glp
  * center, size_opt: copied into the part. */
 glpgp_status glpgp_mesh_extract_part(const glpgp_mesh *m, int P, int q, const double *size, const double center[2],
                                      double size_opt, glpgp_mesh **out);
+/* *out <- an empty part of nv local vertices and nt triangles: xy, tri,
+ * on_boundary, normal_prev/next, part->gid (and part->size when sized)
+ * allocated, no loops (nloops = 0), the rest zero; filled by
+ * glpgp_mesh_extract_part or by a rank receiving its part. Free:
+ * glpgp_mesh_destroy. */
+glpgp_status glpgp_mesh_part_create(int nv, int nt, int sized, glpgp_mesh **out);
 
 #ifdef __cplusplus
 }
