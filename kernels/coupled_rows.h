@@ -105,13 +105,7 @@ GLPGP_FN int glpgp_crow_asm_newton(int i, int hess, double inv4e2, GLPGP_GLOBAL 
                                    GLPGP_GLOBAL double *newton, GLPGP_GLOBAL double *dinv)
 {
     const int k0 = rowptr[i], k1 = rowptr[i + 1];
-    for (int k = k0; k < k1; k++) {
-        GLPGP_GLOBAL double *blk = newton + 4 * (long)k;
-        blk[0] = 0.0;
-        blk[1] = 0.0;
-        blk[2] = 0.0;
-        blk[3] = 0.0;
-    }
+    glpgp_row_newton_zero(k0, k1, newton);
     if (!dir[i] && inv4e2 > 0.0) {
         for (int p = vptr[i]; p < vptr[i + 1]; p++) {
             const int t = vtri[p] / 3, a = vtri[p] % 3;

@@ -164,6 +164,19 @@ GLPGP_FN void glpgp_row_asm_quad(int i, int kind, double h, int sized, GLPGP_GLO
     }
 }
 
+/* NEWTON_k <- 0 for the slots k0 .. k1 of a row (the penalty sums start at
+ * 0, as m = 0.0 per slot). Shared by the plain and the coupled rows. */
+GLPGP_FN void glpgp_row_newton_zero(int k0, int k1, GLPGP_GLOBAL double *newton)
+{
+    for (int k = k0; k < k1; k++) {
+        GLPGP_GLOBAL double *blk = newton + 4 * (long)k;
+        blk[0] = 0.0;
+        blk[1] = 0.0;
+        blk[2] = 0.0;
+        blk[3] = 0.0;
+    }
+}
+
 /* The end of a NEWTON row i (slots k0 .. k1, the penalty sums already in
  * newton): NEWTON_k <- QUAD_k + penalty sum, a Dirichlet row / column -> I
  * or 0; DINV_i <- the inverse of the diagonal block (0 and returns 1 when
@@ -231,14 +244,7 @@ GLPGP_FN int glpgp_row_asm_newton(int i, int hess, double inv4e2, GLPGP_GLOBAL c
                                   GLPGP_GLOBAL double *dinv)
 {
     const int k0 = rowptr[i], k1 = rowptr[i + 1];
-    /* NEWTON_k <- 0 (the penalty sums start at 0, as m = 0.0 per slot) */
-    for (int k = k0; k < k1; k++) {
-        GLPGP_GLOBAL double *blk = newton + 4 * (long)k;
-        blk[0] = 0.0;
-        blk[1] = 0.0;
-        blk[2] = 0.0;
-        blk[3] = 0.0;
-    }
+    glpgp_row_newton_zero(k0, k1, newton);
     if (!dir[i] && inv4e2 > 0.0) {
         /* NEWTON_k += d2P_t/dX_a dX_b for the corners (t,a) of i, b = 0..2 */
         for (int p = vptr[i]; p < vptr[i + 1]; p++) {

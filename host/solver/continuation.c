@@ -24,6 +24,39 @@ typedef struct osc_work {
     glpgp_amg *amg; /* multigrid preconditioner of the current oscillator (NULL: Jacobi) */
 } osc_work;
 
+/* w <- the driver's vectors on backend b (set up): x, g, d, xt, work of n
+ * unknowns, host (n doubles) and scratch (ns doubles); the rest of w zero.
+ * Free: osc_work_free (also after a failure part-way). */
+static glpgp_status osc_work_create(osc_work *w, glpgp_backend *b, const glpgp_options *o, size_t n, size_t ns)
+{
+    memset(w, 0, sizeof *w);
+    w->b = b;
+    w->o = o;
+    GLPGP_CHECK(b->ops->vec_create(b, n, &w->x));
+    GLPGP_CHECK(b->ops->vec_create(b, n, &w->g));
+    GLPGP_CHECK(b->ops->vec_create(b, n, &w->d));
+    GLPGP_CHECK(b->ops->vec_create(b, n, &w->xt));
+    GLPGP_CHECK(b->ops->vec_create(b, n, &w->work));
+    GLPGP_CHECK(glpgp_malloc(n, sizeof(double), &w->host));
+    GLPGP_CHECK(glpgp_malloc(ns, sizeof(double), &w->scratch));
+    return GLPGP_OK;
+}
+
+static void osc_work_free(osc_work *w)
+{
+    glpgp_amg_destroy(&w->amg);
+    if (w->b && w->b->ops) {
+        w->b->ops->vec_destroy(w->b, &w->x);
+        w->b->ops->vec_destroy(w->b, &w->g);
+        w->b->ops->vec_destroy(w->b, &w->d);
+        w->b->ops->vec_destroy(w->b, &w->xt);
+        w->b->ops->vec_destroy(w->b, &w->work);
+    }
+    free(w->host);
+    free(w->scratch);
+    w->host = w->scratch = NULL;
+}
+
 static int cmp_double(const void *a, const void *b)
 {
     double x = *(const double *)a, y = *(const double *)b;
@@ -252,15 +285,7 @@ static glpgp_status solve_coupled(const glpgp_mesh *m, glpgp_backend *b, const g
     memset(&co, 0, sizeof co);
     GLPGP_CHECK(glpgp_coupled_create(m, r->field, &cp));
     GLPGP_CHECK_GOTO(st, b->ops->setup(b, cp->sys), done);
-    w.b = b;
-    w.o = o;
-    GLPGP_CHECK_GOTO(st, b->ops->vec_create(b, n4, &w.x), done);
-    GLPGP_CHECK_GOTO(st, b->ops->vec_create(b, n4, &w.g), done);
-    GLPGP_CHECK_GOTO(st, b->ops->vec_create(b, n4, &w.d), done);
-    GLPGP_CHECK_GOTO(st, b->ops->vec_create(b, n4, &w.xt), done);
-    GLPGP_CHECK_GOTO(st, b->ops->vec_create(b, n4, &w.work), done);
-    GLPGP_CHECK_GOTO(st, glpgp_malloc(n4, sizeof(double), &w.host), done);
-    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)2 * nv, sizeof(double), &w.scratch), done);
+    GLPGP_CHECK_GOTO(st, osc_work_create(&w, b, o, n4, (size_t)2 * nv), done);
     GLPGP_CHECK_GOTO(st, glpgp_malloc(n4, sizeof(double), &co.z), done);
     GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)2 * nv, 1, &co.dirichlet), done);
     GLPGP_CHECK_GOTO(st, glpgp_malloc(n4, sizeof(double), &wn), done);
@@ -316,14 +341,7 @@ static glpgp_status solve_coupled(const glpgp_mesh *m, glpgp_backend *b, const g
     glpgp_log(GLPGP_LOG_INFO, "coupled u+v: frame windings u +%d/-%d, v +%d/-%d (%d triangles)", r->osc[0].plus,
               r->osc[0].minus, r->osc[1].plus, r->osc[1].minus, nt);
 done:
-    glpgp_amg_destroy(&w.amg);
-    b->ops->vec_destroy(b, &w.x);
-    b->ops->vec_destroy(b, &w.g);
-    b->ops->vec_destroy(b, &w.d);
-    b->ops->vec_destroy(b, &w.xt);
-    b->ops->vec_destroy(b, &w.work);
-    free(w.host);
-    free(w.scratch);
+    osc_work_free(&w);
     free(co.z);
     free(co.dirichlet);
     free(wn);
@@ -384,16 +402,8 @@ glpgp_status glpgp_solve(const glpgp_mesh *m, glpgp_backend *b, const glpgp_opti
      * warning); a part: checked on the whole mesh before it was split */
     if (!m->part) GLPGP_CHECK_GOTO(st, glpgp_size_check_mesh(m, o, h), fail);
     GLPGP_CHECK_GOTO(st, b->ops->setup(b, sys), fail);
-    w.b = b;
-    w.o = o;
     const size_t n2 = (size_t)2 * nv;
-    GLPGP_CHECK_GOTO(st, b->ops->vec_create(b, n2, &w.x), fail);
-    GLPGP_CHECK_GOTO(st, b->ops->vec_create(b, n2, &w.g), fail);
-    GLPGP_CHECK_GOTO(st, b->ops->vec_create(b, n2, &w.d), fail);
-    GLPGP_CHECK_GOTO(st, b->ops->vec_create(b, n2, &w.xt), fail);
-    GLPGP_CHECK_GOTO(st, b->ops->vec_create(b, n2, &w.work), fail);
-    GLPGP_CHECK_GOTO(st, glpgp_malloc(n2, sizeof(double), &w.host), fail);
-    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)nv, sizeof(double), &w.scratch), fail);
+    GLPGP_CHECK_GOTO(st, osc_work_create(&w, b, o, n2, (size_t)nv), fail);
     GLPGP_CHECK_GOTO(st, glpgp_malloc(n2, sizeof(double), &wv), fail);
     r->seconds_setup = glpgp_now() - t0;
 
@@ -450,16 +460,7 @@ glpgp_status glpgp_solve(const glpgp_mesh *m, glpgp_backend *b, const glpgp_opti
 fail:
     glpgp_result_destroy(&r);
 cleanup:
-    glpgp_amg_destroy(&w.amg);
-    if (b->ops) {
-        b->ops->vec_destroy(b, &w.x);
-        b->ops->vec_destroy(b, &w.g);
-        b->ops->vec_destroy(b, &w.d);
-        b->ops->vec_destroy(b, &w.xt);
-        b->ops->vec_destroy(b, &w.work);
-    }
-    free(w.host);
-    free(w.scratch);
+    osc_work_free(&w);
     free(wv);
     free(size);
     glpgp_system_destroy(&sys);
