@@ -38,7 +38,9 @@ fi
 
 # LeakSanitizer: PoCL/LLVM are not linked in this build (no OpenCL); the
 # image modules' libraries (OpenImageIO, Gmsh) keep process-lifetime caches
-export LSAN_OPTIONS="suppressions=$ROOT/tests/lsan.supp:print_suppressions=0"
+# intercept_tls_get_addr=0: see tests/CMakeLists.txt (LeakSanitizer tracer crash)
+export LSAN_OPTIONS="suppressions=$ROOT/tests/lsan.supp:print_suppressions=0:intercept_tls_get_addr=0"
+export ASAN_OPTIONS="${ASAN_OPTIONS:+$ASAN_OPTIONS:}intercept_tls_get_addr=0"
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
 # the harnesses' scratch files (and the writers' fsync) on tmpfs when there is one
 if [ -z "${TMPDIR:-}" ] && [ -d /dev/shm ] && [ -w /dev/shm ]; then export TMPDIR=/dev/shm; fi
