@@ -501,9 +501,9 @@ void glpgp_opts_add_solver(glpgp_opts *t, glpgp_options *o)
     glpgp_opt_double(t, "--size-chord-area", &o->size_chord_area, 0.0, 0, 1.0, 1, "F",
                      "curved boundaries: when the boundary quads' chords would cut\n"
                      "(convex arcs) net of what they add (holes) more than F of the\n"
-                     "domain's area, or either alone 2 F, the size near those parts\n"
-                     "is capped at c x the radius of curvature (c the largest that\n"
-                     "brings them within F); 0: off");
+                     "domain's area (arcs of few chords per turn not netted), the\n"
+                     "size near those parts is capped at c x the radius of curvature\n"
+                     "(c the largest that brings them within F); 0: off");
     glpgp_opt_double(t, "--size-chord-depth", &o->size_chord_depth, 0.0, 0, 1.0, 1, "F",
                      "curved boundaries: a chord's depth (sagitta) stays below F h\n"
                      "(the size is capped where it would not); 0: off");

@@ -40,12 +40,18 @@
  *      larger oscillator's, the chord along the boundary):
  *        L = sum_{convex e} a(h_e, kappa_e) |e| (lost),  G = the same over
  *        concave edges (gained: holes);
- *      the quality check compares the net area L - G. With B =
+ *      the quality check compares the net area L - G. Only arcs of many
+ *      chords per turn (h_e |kappa_e| <= 1/2: R >= 2 h, sagitta <= h / 16)
+ *      follow the local size closely enough to be netted: S_n, O_n the parts
+ *      of S, O there (few chords per turn, as on a hole of radius about h,
+ *      were measured to come out far from the prediction). With B =
  *      size_chord_area x area, side S (L or G, O the other) needs capping
- *      when S - O > B (the net) or S > 2 B (one side alone beyond the
- *      check's tolerance: the model, measured 1.4x under the disk's real
- *      error, is not netted blindly). Otherwise the sizes stay exactly as
- *      they are. A side that needs it gets its boundary sizes capped at
+ *      when S - O_n > B (the net), S - S_n > B (what does not net, alone)
+ *      or 1.4 S - O_n > 2 B (S at the model's measured under-prediction --
+ *      the disk's real error is 1.4x the predicted -- beyond the check's
+ *      tolerance 2 B). Otherwise the sizes stay exactly as they are (the
+ *      motor lamination: its outer circle and its bore, R = 4.5 h and
+ *      2.2 h, net out). A side that needs it gets its boundary sizes capped at
  *      h_i(c) = min(h_i, max(size_min h, c R_i)) with the largest c giving
  *      S <= B (bisection: L, G are non-decreasing in c; c >= 1/16, 100
  *      chords per turn, where B cannot be met; capping only down to the
@@ -342,6 +348,22 @@ static glpgp_status grade(const glpgp_mesh *m, const int *ptr, const int *adj, d
  * where the budget asks for less the sizes stop there. */
 #define CHORD_C_MIN 0.0625
 
+/* Arcs whose chord turns at most this (h |kappa| <= 1/2: R >= 2 h, at least
+ * 4 pi chords per turn, sagitta <= h / 16, a quarter of the check's
+ * Hausdorff h / 4) follow the local size closely enough for their error to
+ * be netted against the other side's. Fewer chords per turn are not: the
+ * annulus of data/ (hole R = 1.2 h, turn 0.83) is predicted to gain 1.03%
+ * at the hole and lose 1.02% outside, but its uncapped quads put as many
+ * chords on the hole as on the outer circle and lose 1.2% net. Measured
+ * window: the motor lamination's bore (R = 2.2 h, 0.45) must be netted,
+ * that hole must not (bench/results/chord.md). */
+#define CHORD_NET_TURN 0.5
+
+/* The model under-predicts the real chord error: the disk at its default
+ * size loses 1.15% where 0.80% is predicted (the extraction's boundary chords
+ * are uneven). */
+#define CHORD_UNDER 1.4
+
 /* Area between an arc of radius R = 1 / kappa and its chord of length h,
  * per unit of arc length: the chord spans theta = 2 asin(h / 2R) (h >= 2R:
  * theta = pi, the whole arc), the segment's area is R^2 (theta - sin theta) / 2
@@ -476,11 +498,13 @@ static double chord_h(double hb, double kappa, double c, double floor_h)
  * (concave parts) (HUGE_VAL: none), split by sign:
  *   err[0] = sum_{e: kappa_e > 0} a(h_e, kappa_e) |e|    (convex arcs: the quads miss it),
  *   err[1] = sum_{e: kappa_e < 0} a(h_e, |kappa_e|) |e|  (concave: the quads cover a hole's cap),
- * kappa_e, h_e the means over the edge's ends. */
+ * kappa_e, h_e the means over the edge's ends; net[0], net[1] the same sums
+ * over the edges whose chord turns at most CHORD_NET_TURN (h_e |kappa_e|:
+ * arcs of many chords per turn, whose error may be netted). */
 static void chord_error(const glpgp_mesh *m, const double *hb, const double *kappa, const double c[2],
-                        double floor_h, double err[2])
+                        double floor_h, double err[2], double net[2])
 {
-    err[0] = err[1] = 0.0;
+    err[0] = err[1] = net[0] = net[1] = 0.0;
     for (int l = 0; l < m->nloops; l++) {
         const int s = m->loop_start[l], e = m->loop_start[l + 1];
         for (int p = s; p < e; p++) {
@@ -490,7 +514,9 @@ static void chord_error(const glpgp_mesh *m, const double *hb, const double *kap
             const int sg = k < 0.0;
             const double he = 0.5 * (chord_h(hb[a], kappa[a], c[sg], floor_h) + chord_h(hb[b], kappa[b], c[sg], floor_h));
             const double len = hypot(m->xy[2 * b] - m->xy[2 * a], m->xy[2 * b + 1] - m->xy[2 * a + 1]);
-            err[sg] += len * chord_area_rate(he, fabs(k));
+            const double de = len * chord_area_rate(he, fabs(k));
+            err[sg] += de;
+            if (he * fabs(k) <= CHORD_NET_TURN) net[sg] += de;
         }
     }
 }
@@ -520,22 +546,29 @@ static glpgp_status chord_cap(const glpgp_mesh *m, const int *ptr, const int *ad
     st = boundary_curvature(m, hb, kappa);
     if (st != GLPGP_OK) goto done;
     for (int i = 0; i < nv; i++) capv[i] = HUGE_VAL;
-    /* area: the check compares the net area. Side s (0: convex, lost; 1:
-     * concave, gained) needs capping when err_s - err_other > budget (the
-     * net) or err_s > 2 budget (either side alone beyond the check's
-     * tolerance: the model is not netted blindly); a side that needs it is
-     * brought to err_s <= budget (partial caps were measured to break the
-     * quads' structure and gain nothing), c_s <- the largest meeting that;
-     * a second pass for the other side, whose net may now exceed */
-    double c[2] = {HUGE_VAL, HUGE_VAL}, e0[2], err[2];
+    /* area: the check compares the net area. With S = err_s (side s; 0:
+     * convex, lost; 1: concave, gained), S_n its part on arcs of many chords
+     * per turn (nettable) and O_n the other side's, side s needs capping when
+     *   S - O_n > budget                 (the predicted net, netting only what nets),
+     *   S - S_n > budget                 (what does not net meets the budget alone), or
+     *   CHORD_UNDER S - O_n > 2 budget   (S at the model's measured under-prediction
+     *                                     would fail the check's tolerance, 2 budget);
+     * a side that needs it is brought to S <= budget (partial caps were
+     * measured to break the quads' structure and gain nothing), c_s <- the
+     * largest meeting that; a second pass for the other side, whose net may
+     * now exceed */
+    double c[2] = {HUGE_VAL, HUGE_VAL}, e0[2], err[2], net[2], en[2];
     if (o->size_chord_area > 0.0) {
         const double budget = o->size_chord_area * A;
-        chord_error(m, hb, kappa, c, floor_h, e0);
-        err[0] = e0[0];
-        err[1] = e0[1];
+        chord_error(m, hb, kappa, c, floor_h, err, net);
+        e0[0] = err[0];
+        e0[1] = err[1];
         for (int pass = 0; pass < 2; pass++)
             for (int sg = 0; sg < 2; sg++) {
-                if (c[sg] < HUGE_VAL || !(err[sg] > 2.0 * budget || err[sg] - err[1 - sg] > budget)) continue;
+                const double S = err[sg], Sn = net[sg], On = net[1 - sg];
+                if (c[sg] < HUGE_VAL ||
+                    !(S - On > budget || S - Sn > budget || CHORD_UNDER * S - On > 2.0 * budget))
+                    continue;
                 double chi = 0.0, cc[2] = {c[0], c[1]}, e[2];
                 for (int p = 0; p < nb; p++) {
                     const int i = m->loop_vertices[p];
@@ -543,18 +576,18 @@ static glpgp_status chord_cap(const glpgp_mesh *m, const int *ptr, const int *ad
                 }
                 double clo = CHORD_C_MIN;
                 cc[sg] = clo;
-                chord_error(m, hb, kappa, cc, floor_h, e);
+                chord_error(m, hb, kappa, cc, floor_h, e, en);
                 if (e[sg] <= budget && clo < chi) {
                     /* bisection: err(clo) <= budget < err(chi), err non-decreasing in c */
                     for (int it = 0; it < 60 && chi - clo > 1e-6 * chi; it++) {
                         cc[sg] = 0.5 * (clo + chi);
-                        chord_error(m, hb, kappa, cc, floor_h, e);
+                        chord_error(m, hb, kappa, cc, floor_h, e, en);
                         if (e[sg] <= budget) clo = cc[sg];
                         else chi = cc[sg];
                     }
                 }
                 c[sg] = clo;
-                chord_error(m, hb, kappa, c, floor_h, err);
+                chord_error(m, hb, kappa, c, floor_h, err, net);
             }
         if (c[0] < HUGE_VAL || c[1] < HUGE_VAL)
             glpgp_log(GLPGP_LOG_DEBUG,

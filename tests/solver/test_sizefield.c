@@ -27,7 +27,11 @@
  *    smaller than a quad (with Gmsh); the unit disk at its default size gets
  *    boundary sizes of about sqrt(6 budget) (chords losing h^2 / 6 of its
  *    area) and, with `--field cross` and `--field boundary`, a quad mesh that
- *    is valid (area within 1%) as extracted, the repair not touching it. */
+ *    is valid (area within 1%) as extracted, the repair not touching it;
+ *    chords that net out (the motor lamination of hard_domains.h, with Gmsh:
+ *    outer circle and bore of many chords per turn) leave the solve's quads
+ *    as without the budget, valid and unrepaired, while the annulus' small
+ *    hole (R = 1.1 h, few chords per turn) is not netted: both loops capped. */
 #define _DEFAULT_SOURCE /* mkstemps */
 #include "testutil.h"
 #include "../quads/hard_domains.h"
@@ -432,23 +436,29 @@ static void test_ibeam(void)
     glpgp_mesh_destroy(&m);
 }
 
-/* iso and auto (guiding field along x) sizes of m with and without the chord budget. */
-static void chord_sizes(const glpgp_mesh *m, int field, int chord, double h, double *s)
+/* iso and auto sizes of m with and without the chord budget; auto's guiding
+ * field u (2 per vertex), NULL: along x. */
+static void chord_sizes_u(const glpgp_mesh *m, int field, int chord, double h, const double *gu, double *s)
 {
     glpgp_options o;
     glpgp_options_default(&o);
     o.size_field = field;
     if (!chord) o.size_chord_area = o.size_chord_depth = 0.0;
     double *u = NULL;
-    if (field == GLPGP_SIZE_AUTO) {
+    if (field == GLPGP_SIZE_AUTO && !gu) {
         u = malloc(sizeof(double) * 2 * m->nv);
         for (int i = 0; i < m->nv; i++) {
             u[2 * i] = 1.0;
             u[2 * i + 1] = 0.0;
         }
     }
-    CHECK_OK(glpgp_size_compute(m, &o, h, u, s, NULL));
+    CHECK_OK(glpgp_size_compute(m, &o, h, gu ? gu : u, s, NULL));
     free(u);
+}
+
+static void chord_sizes(const glpgp_mesh *m, int field, int chord, double h, double *s)
+{
+    chord_sizes_u(m, field, chord, h, NULL, s);
 }
 
 static void test_chord_straight(void)
@@ -558,6 +568,83 @@ static void test_chord_disk(void)
     glpgp_mesh_destroy(&m);
 }
 
+/* Chords that net out: the motor lamination of tests/quads/hard_domains.h
+ * (with Gmsh; h = 1, 6 edges per h, refined as the CLI does). Its outer
+ * circle (R = 4.5 h) loses about as much area as its bore (R = 2.2 h) gains,
+ * both arcs of many chords per turn, so the budget leaves the solve's sizes
+ * alone: the same quads, valid as extracted (the previous trigger, either
+ * side alone over twice the budget, capped the outer circle: 93 quads with
+ * 18 irregular vertices against 40 and 0). The annulus at its default
+ * size: the hole (R = 1.1 h) has few chords per turn and is not netted
+ * against the outer circle (its uncapped quads lose 1.2% of the area), so
+ * both loops get capped sizes. */
+static void test_chord_netted(void)
+{
+    if (!glpgp_have_gmsh()) {
+        printf("chord budget, motor: skipped (no Gmsh)\n");
+    } else {
+        glpgp_mesh *m = hard_mesh("motor", 1.0 / 6), *r = NULL;
+        if (m) {
+            glpgp_options o;
+            glpgp_options_default(&o);
+            o.size = 1.0;
+            o.newton_max = 30; /* as bench/size_compare.sh */
+            CHECK_OK(glpgp_size_refine(m, &o, 1.0, &r, NULL));
+            const glpgp_mesh *mm = r ? r : m;
+            glpgp_quad_quality qq[2];
+            memset(qq, 0, sizeof qq);
+            for (int k = 0; k < 2; k++) {
+                /* k = 0: the default budget; 1: none */
+                if (k) o.size_chord_area = o.size_chord_depth = 0.0;
+                glpgp_backend *be = NULL;
+                glpgp_result *res = NULL;
+                glpgp_quadmesh *q = NULL;
+                CHECK_OK(glpgp_backend_create_reference(&be));
+                CHECK_OK(glpgp_solve(mm, be, &o, &res));
+                double hq = 1.0;
+                if (res) CHECK_OK(glpgp_quads_build(mm, res, NULL, &q, &hq));
+                if (q) CHECK_OK(glpgp_quads_quality(q, mm, hq, &qq[k]));
+                CHECK(q != NULL);
+                glpgp_quadmesh_destroy(&q);
+                glpgp_result_destroy(&res);
+                glpgp_backend_destroy(&be);
+            }
+            printf("chord budget, motor quads: %d faces, %d irregular, SJ min %.3f, area %.4f, Hausdorff %.3f h, "
+                   "repair rounds %d (without the budget: %d faces, %d irregular)\n",
+                   qq[0].faces, qq[0].irregular, qq[0].sj_min, qq[0].area_ratio, qq[0].hausdorff, qq[0].repair.rounds,
+                   qq[1].faces, qq[1].irregular);
+            CHECK(qq[0].invalid == 0 && qq[0].others == 0 && fabs(qq[0].area_ratio - 1.0) <= 0.01);
+            CHECK(qq[0].repair.removed_faces == 0);
+            /* the same quads as without the budget */
+            CHECK(qq[0].faces == qq[1].faces && qq[0].irregular == qq[1].irregular &&
+                  qq[0].area_ratio == qq[1].area_ratio);
+            glpgp_mesh_destroy(&r);
+            glpgp_mesh_destroy(&m);
+        }
+    }
+    glpgp_mesh *m = NULL;
+    CHECK_OK(glpgp_mesh_generate("annulus", 5000, &m));
+    if (!m) return;
+    glpgp_options o;
+    glpgp_options_default(&o);
+    const double h = glpgp_default_size(m, &o);
+    double *a = malloc(sizeof(double) * 2 * m->nv), *b = malloc(sizeof(double) * 2 * m->nv);
+    chord_sizes(m, GLPGP_SIZE_ISO, 1, h, a);
+    chord_sizes(m, GLPGP_SIZE_ISO, 0, h, b);
+    int capped[2] = {0, 0};
+    for (int l = 0; l < m->nloops && l < 2; l++)
+        for (int p = m->loop_start[l]; p < m->loop_start[l + 1]; p++) {
+            const int i = m->loop_vertices[p];
+            capped[l] += a[i] < b[i];
+        }
+    printf("chord budget, annulus h = %.4f (hole R = %.2f h): %d / %d boundary sizes capped on the two loops\n", h,
+           0.3 / h, capped[0], capped[1]);
+    CHECK(m->nloops == 2 && capped[0] > 0 && capped[1] > 0);
+    free(a);
+    free(b);
+    glpgp_mesh_destroy(&m);
+}
+
 int main(void)
 {
     glpgp_log_set_callback(NULL, NULL);
@@ -573,5 +660,6 @@ int main(void)
     test_chord_straight();
     test_chord_small_holes();
     test_chord_disk();
+    test_chord_netted();
     TEST_DONE();
 }

@@ -164,9 +164,11 @@ typedef struct glpgp_options {
     double size_chord_area; /* boundary chords: auto / iso / function sizes are capped at
                              c R (R: the boundary's radius of curvature) near curved parts
                              when the chords' predicted area error (lost on convex arcs net
-                             of gained on concave ones) exceeds this fraction F of the
-                             domain's area, or one side alone 2 F; that side's c the largest
-                             bringing it within F; 0: off [0.005] */
+                             of gained on concave ones, netting only arcs of >= 4 pi chords
+                             per turn) exceeds this fraction F of the domain's area, or a
+                             side's part that does not net F, or a side at 1.4x its
+                             prediction 2 F net; that side's c the largest bringing it
+                             within F; 0: off [0.005] */
     double size_chord_depth; /* ... and where a chord's sagitta would exceed this fraction of
                              h, the size is capped so that it does not; 0: off [0.125] */
     double size_resolution; /* a triangle's longest edge should be <= its local h / this:
