@@ -422,7 +422,7 @@ glpgp_status glpgp_solve(const glpgp_mesh *m, glpgp_backend *b, const glpgp_opti
     } else {
         GLPGP_CHECK_GOTO(st, glpgp_size_compute(m, o, h, r->field, size, &uniform), fail);
     }
-    if (o->field == GLPGP_FIELD_CROSS && o->cross_size && r->cross) {
+    if (o->field == GLPGP_FIELD_CROSS && o->cross_size != GLPGP_CROSS_SIZE_OFF && r->cross) {
         /* --cross-size: the cross field's conformal size, the smaller of the two, both oscillators */
         double *cs = NULL;
         GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)nv, sizeof(double), &cs), fail);
