@@ -161,12 +161,6 @@ void glpgp_coupled_windings(const glpgp_mesh *m, const double *u, const double *
     }
 }
 
-static int cmp_double(const void *a, const void *b)
-{
-    const double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
 glpgp_status glpgp_cross_conformal_size(const glpgp_mesh *m, glpgp_backend *b, const glpgp_options *o,
                                         const double *w, double h, double *size, long *cg_iterations)
 {
@@ -232,7 +226,7 @@ glpgp_status glpgp_cross_conformal_size(const glpgp_mesh *m, glpgp_backend *b, c
     const int automode = o->cross_size == GLPGP_CROSS_SIZE_AUTO;
     const double q = automode ? o->cross_size_quantile : 1.0, lo = automode ? -log(o->cross_size_ratio) : -HUGE_VAL;
     for (int i = 0; i < nv; i++) l[i] = f[2 * i];
-    qsort(l, (size_t)nv, sizeof(double), cmp_double);
+    qsort(l, (size_t)nv, sizeof(double), glpgp_cmp_double);
     const double mx = l[(int)lround(q * (nv - 1))]; /* phi_q */
     memset(l, 0, (size_t)nv * sizeof(double));
     for (int t = 0; t < nt; t++)
