@@ -107,6 +107,7 @@ run_ok "default-size disk, boundary" solve shape:disk:8000 --backend reference -
 python3 - d.json db.json <<'PY' || fail "default-size disk: cross vs boundary"
 import json, sys
 d, b = (json.load(open(p)) for p in sys.argv[1:3])
+assert d["options"]["cross_size"] == "auto", d["options"]
 q, qb = d["quads"], b["quads"]
 assert q["valid"] is True and q["quads"] == q["faces"] and q["other_faces"] == 0, q
 iv, ivb = q["irregular_vertices"], qb["irregular_vertices"]
