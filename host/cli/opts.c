@@ -429,10 +429,10 @@ static const char *const k_globals[] = {"trust-region", "line-search", NULL};
 static const int k_global_vals[] = {GLPGP_GLOBAL_TRUST_REGION, GLPGP_GLOBAL_LINE_SEARCH};
 static const char *const k_preconds[] = {"jacobi", "amg", NULL};
 static const int k_precond_vals[] = {GLPGP_PRECOND_JACOBI, GLPGP_PRECOND_AMG};
-static const char *const k_onoff[] = {"off", "on", NULL};
-static const int k_onoff_vals[] = {0, 1};
 static const char *const k_couplings[] = {"auto", "off", "on", NULL};
 static const int k_coupling_vals[] = {GLPGP_COUPLING_AUTO, GLPGP_COUPLING_OFF, GLPGP_COUPLING_ON};
+static const char *const k_cross_sizes[] = {"off", "on", "auto", NULL};
+static const int k_cross_size_vals[] = {GLPGP_CROSS_SIZE_OFF, GLPGP_CROSS_SIZE_ON, GLPGP_CROSS_SIZE_AUTO};
 static const char *const k_inits[] = {"naive", "one", NULL};
 static const int k_init_vals[] = {GLPGP_INIT_NAIVE, GLPGP_INIT_ONE};
 
@@ -516,11 +516,18 @@ void glpgp_opts_add_solver(glpgp_opts *t, glpgp_options *o)
                      "--field cross: last eps, as a multiple of the mean edge length");
     glpgp_opt_double(t, "--cross-rtol", &o->cross_rtol, 0.0, 1, 1.0, 1, "F",
                      "--field cross: each eps level stops when |g| <= F |g0|");
-    glpgp_opt_choice(t, "--cross-size", &o->cross_size, k_onoff, k_onoff_vals,
+    glpgp_opt_choice(t, "--cross-size", &o->cross_size, k_cross_sizes, k_cross_size_vals,
                      "--field cross: local size from the cross field (its conformal\n"
                      "scale, which makes the quads' grid integrable away from the\n"
                      "singularities: fewer dislocations), the smaller of it and\n"
-                     "--size-field's");
+                     "--size-field's; on: fully conformal (largest size h); auto: h at\n"
+                     "the --cross-size-quantile of the conformal scale, at least\n"
+                     "h / --cross-size-ratio");
+    glpgp_opt_double(t, "--cross-size-quantile", &o->cross_size_quantile, 0.0, 1, 1.0, 0, "F",
+                     "--cross-size auto: the conformal scale's quantile over the vertices\n"
+                     "that gets size h (larger scales are capped at h)");
+    glpgp_opt_double(t, "--cross-size-ratio", &o->cross_size_ratio, 1.0, 0, HUGE_VAL, 1, "C",
+                     "--cross-size auto: the size stays at least h / C");
     glpgp_opt_choice(t, "--cross-coupling", &o->cross_coupling, k_couplings, k_coupling_vals,
                      "--field cross with singularities: solve u and v coupled across the\n"
                      "cross field's cuts (auto: when it has cuts and the backend can,\n"

@@ -47,6 +47,11 @@ static void stats_body(FILE *f, const glpgp_mesh *m, const glpgp_options *o, con
         glpgp_json_num(w, "cross_eps0", o->cross_eps0);
         glpgp_json_num(w, "cross_eps_min", o->cross_eps_min);
         glpgp_json_num(w, "cross_rtol", o->cross_rtol);
+        glpgp_json_str(w, "cross_size", o->cross_size == GLPGP_CROSS_SIZE_AUTO ? "auto"
+                                        : o->cross_size == GLPGP_CROSS_SIZE_ON ? "on"
+                                                                                : "off");
+        glpgp_json_num(w, "cross_size_quantile", o->cross_size_quantile);
+        glpgp_json_num(w, "cross_size_ratio", o->cross_size_ratio);
         if (o->has_center) {
             glpgp_json_array(w, "center");
             glpgp_json_num(w, NULL, o->center[0]);

@@ -57,17 +57,11 @@ static void osc_work_free(osc_work *w)
     w->host = w->scratch = NULL;
 }
 
-static int cmp_double(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
 /* median |z| of z (2*nv; scratch: nv doubles) */
 static double zabs_median(const double *z, int nv, double *scratch)
 {
     for (int i = 0; i < nv; i++) scratch[i] = hypot(z[2 * i], z[2 * i + 1]);
-    qsort(scratch, (size_t)nv, sizeof(double), cmp_double);
+    qsort(scratch, (size_t)nv, sizeof(double), glpgp_cmp_double);
     return nv % 2 ? scratch[nv / 2] : 0.5 * (scratch[nv / 2 - 1] + scratch[nv / 2]);
 }
 
@@ -422,7 +416,7 @@ glpgp_status glpgp_solve(const glpgp_mesh *m, glpgp_backend *b, const glpgp_opti
     } else {
         GLPGP_CHECK_GOTO(st, glpgp_size_compute(m, o, h, r->field, size, &uniform), fail);
     }
-    if (o->field == GLPGP_FIELD_CROSS && o->cross_size && r->cross) {
+    if (o->field == GLPGP_FIELD_CROSS && o->cross_size != GLPGP_CROSS_SIZE_OFF && r->cross) {
         /* --cross-size: the cross field's conformal size, the smaller of the two, both oscillators */
         double *cs = NULL;
         GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)nv, sizeof(double), &cs), fail);

@@ -218,10 +218,17 @@ glpgp_status glpgp_cross_conformal_size(const glpgp_mesh *m, glpgp_backend *b, c
         goto done;
     }
     GLPGP_CHECK_GOTO(st, op->vec_read(b, d, f), done);
-    /* s_i = h exp(phi_i - max phi), at least size_min h and what the mesh
-     * resolves, min(h, size_resolution l_i) (l_i: longest edge at i) */
-    double mx = -HUGE_VAL;
-    for (int i = 0; i < nv; i++) mx = fmax(mx, f[2 * i]);
+    /* s_i = h clamp(exp(phi_i - phi_q), 1/c, 1): on, q = 1 (phi_q = max phi)
+     * and c = inf; auto, q and c from the options (the conformal scale kept
+     * where it is within a factor c below its q-quantile, h above it). Then at
+     * least size_min h and what the mesh resolves, min(h, size_resolution
+     * l_i) (l_i: longest edge at i) */
+    const int automode = o->cross_size == GLPGP_CROSS_SIZE_AUTO;
+    const double q = automode ? o->cross_size_quantile : 1.0, lo = automode ? -log(o->cross_size_ratio) : -HUGE_VAL;
+    for (int i = 0; i < nv; i++) l[i] = f[2 * i];
+    qsort(l, (size_t)nv, sizeof(double), glpgp_cmp_double);
+    const double mx = l[(int)lround(q * (nv - 1))]; /* phi_q */
+    memset(l, 0, (size_t)nv * sizeof(double));
     for (int t = 0; t < nt; t++)
         for (int a = 0; a < 3; a++) {
             const int i = m->tri[3 * t + a], j = m->tri[3 * t + (a + 1) % 3];
@@ -230,7 +237,7 @@ glpgp_status glpgp_cross_conformal_size(const glpgp_mesh *m, glpgp_backend *b, c
             l[j] = fmax(l[j], e);
         }
     for (int i = 0; i < nv; i++) {
-        const double s = h * exp(f[2 * i] - mx);
+        const double s = h * exp(fmin(0.0, fmax(lo, f[2 * i] - mx)));
         size[i] = fmax(s, fmax(o->size_min * h, fmin(h, o->size_resolution * l[i])));
     }
 done:

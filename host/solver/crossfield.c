@@ -124,12 +124,6 @@ static int uf_find(int *p, int i)
     return i;
 }
 
-static int cmp_double(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
 glpgp_status glpgp_cross_analyze(const glpgp_mesh *m, glpgp_cross_result *c)
 {
     glpgp_status st = GLPGP_OK;
@@ -146,7 +140,7 @@ glpgp_status glpgp_cross_analyze(const glpgp_mesh *m, glpgp_cross_result *c)
     /* median |w| */
     GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)nv, sizeof(double), &s), done);
     for (int i = 0; i < nv; i++) s[i] = hypot(c->w[2 * i], c->w[2 * i + 1]);
-    qsort(s, (size_t)nv, sizeof(double), cmp_double);
+    qsort(s, (size_t)nv, sizeof(double), glpgp_cmp_double);
     c->zabs_median = nv % 2 ? s[nv / 2] : 0.5 * (s[nv / 2 - 1] + s[nv / 2]);
     if (plus + minus == 0) goto done;
     /* merge singular triangles of one sign that share a vertex (union-find;

@@ -13,12 +13,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-static int cmp_double(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
 static glpgp_status reduce(glpgp_backend *b, double *v, int n, int op)
 {
     if (!b->ops->reduce)
@@ -83,7 +77,7 @@ glpgp_status glpgp_dist_zabs_stats(glpgp_backend *b, const glpgp_mesh *m, const 
     double *s = NULL;
     GLPGP_CHECK(glpgp_malloc((size_t)(n > 0 ? n : 1), sizeof(double), &s));
     for (int i = 0; i < n; i++) s[i] = hypot(z[2 * i], z[2 * i + 1]);
-    qsort(s, (size_t)n, sizeof(double), cmp_double);
+    qsort(s, (size_t)n, sizeof(double), glpgp_cmp_double);
     double N = n;
     glpgp_status st = reduce(b, &N, 1, GLPGP_REDUCE_SUM);
     /* the ranks of result.c: min, s[(N-1) 0.1], median (mean of the middle two for even N) */

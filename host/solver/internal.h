@@ -64,6 +64,9 @@ int glpgp_amg_try_update(glpgp_amg *a, const glpgp_vec *x, const char *what);
 /* the same with glpgp_amg_update_spd (the trust region's multigrid region) */
 int glpgp_amg_try_update_spd(glpgp_amg *a, const glpgp_vec *x, const char *what);
 
+/* qsort comparator: doubles in ascending order (solver/result.c) */
+int glpgp_cmp_double(const void *a, const void *b);
+
 /* ---- one rank's part of a distributed mesh (m->part; solver/distributed.c):
  * global values through the backend's reduce op, the same on every rank ---- */
 /* *n <- the number of owned vertices with flag set, over all ranks */

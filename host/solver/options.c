@@ -23,7 +23,9 @@ void glpgp_options_default(glpgp_options *o)
     o->cross_eps_min = 2.5;
     o->cross_rtol = 1e-3;
     o->cross_coupling = GLPGP_COUPLING_AUTO;
-    o->cross_size = 0;
+    o->cross_size = GLPGP_CROSS_SIZE_AUTO;
+    o->cross_size_quantile = 0.9;
+    o->cross_size_ratio = 1.4;
     o->newton_rtol = 1e-6;
     o->intermediate_rtol = 1e-3;
     o->newton_max = 50;
@@ -95,8 +97,12 @@ glpgp_status glpgp_options_check(const glpgp_options *o)
     if (!OPEN01(o->cross_rtol)) return GLPGP_FAIL(GLPGP_ERR_ARG, "cross-rtol must be in (0,1)");
     if (o->cross_coupling < GLPGP_COUPLING_AUTO || o->cross_coupling > GLPGP_COUPLING_ON)
         return GLPGP_FAIL(GLPGP_ERR_ARG, "cross_coupling must be auto, off or on, got %d", o->cross_coupling);
-    if (o->cross_size != 0 && o->cross_size != 1)
-        return GLPGP_FAIL(GLPGP_ERR_ARG, "cross_size must be 0 or 1, got %d", o->cross_size);
+    if (o->cross_size < GLPGP_CROSS_SIZE_OFF || o->cross_size > GLPGP_CROSS_SIZE_AUTO)
+        return GLPGP_FAIL(GLPGP_ERR_ARG, "cross_size must be off, on or auto, got %d", o->cross_size);
+    if (!(o->cross_size_quantile > 0.0 && o->cross_size_quantile <= 1.0))
+        return GLPGP_FAIL(GLPGP_ERR_ARG, "cross-size-quantile must be in (0,1], got %g", o->cross_size_quantile);
+    if (!(o->cross_size_ratio >= 1.0))
+        return GLPGP_FAIL(GLPGP_ERR_ARG, "cross-size-ratio must be >= 1, got %g", o->cross_size_ratio);
     if (!OPEN01(o->eps_ratio))
         return GLPGP_FAIL(GLPGP_ERR_ARG, "eps ratio must be in (0,1), got %g", o->eps_ratio);
     if (!(o->eps_merge >= 1.0)) return GLPGP_FAIL(GLPGP_ERR_ARG, "eps_merge must be >= 1");

@@ -3,6 +3,7 @@
 #include "glpgp/result.h"
 #include "glpgp/cross.h"
 #include "glpgp/phase.h"
+#include "internal.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -59,7 +60,8 @@ void glpgp_singularities(const glpgp_mesh *m, const double *z, signed char *sing
     *minus = q;
 }
 
-static int cmp_double(const void *a, const void *b)
+/* qsort comparator: doubles ascending (solver/internal.h) */
+int glpgp_cmp_double(const void *a, const void *b)
 {
     double x = *(const double *)a, y = *(const double *)b;
     return (x > y) - (x < y);
@@ -73,7 +75,7 @@ glpgp_status glpgp_osc_summarize(const glpgp_mesh *m, glpgp_osc_result *o)
     glpgp_singularities(m, o->z, o->singular, &o->plus, &o->minus);
     /* min, 10th percentile and median of |z| */
     for (int i = 0; i < nv; i++) s[i] = hypot(o->z[2 * i], o->z[2 * i + 1]);
-    qsort(s, (size_t)nv, sizeof(double), cmp_double);
+    qsort(s, (size_t)nv, sizeof(double), glpgp_cmp_double);
     o->zabs_min = s[0];
     o->zabs_p10 = s[(size_t)((nv - 1) * 0.1)];
     o->zabs_median = nv % 2 ? s[nv / 2] : 0.5 * (s[nv / 2 - 1] + s[nv / 2]);

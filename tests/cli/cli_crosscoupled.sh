@@ -5,22 +5,22 @@
 #    the stats, one Newton count in the summary), converges, and its quads
 #    are valid and all quads, with an interior vertex of valence 3 within
 #    h of each of the 4 cross-field singularities;
-#  - against `--field boundary` at the same size: a higher minimum scaled
-#    Jacobian; the irregular counts of coupled, `--cross-coupling off` and
-#    boundary are printed, not asserted (with the quad clean-up the
-#    uncoupled and boundary fields' dislocation pairs go, the coupled
-#    solve's lone dislocations stay: 32, 28, 24 here);
+#  - against `--field boundary` at the same size (the default `--cross-size
+#    auto`, issue 14's target): fewer irregular vertices per 100 quads and a
+#    higher minimum scaled Jacobian; the irregular count of `--cross-coupling
+#    off` is printed, not asserted;
 #  - `--cross-coupling off` solves them apart ("coupled": false), as before;
 #  - `extract` of the saved coupled result reads its matching back (the
 #    cross_coupled cell array) and gives the same quad mesh counts;
 #  - `--cross-size on` (disk, h = 0.15): valid, at most 8 irregular interior
 #    vertices, the 4 singularities each with one, min scaled Jacobian >= 0.7;
-#  - `--cross-size on` at the disk's default size (shape:disk:8000, the
-#    singularities half a period from the boundary: their pentagons close as
-#    three quads around one valence-3 vertex, quads/close.c): valid, all
-#    quads, at most 4 irregular interior vertices, none away from the
-#    singularities, and against `--field boundary` at the same size fewer
-#    irregular vertices and a higher minimum scaled Jacobian;
+#  - plain `--field cross` (`--cross-size auto`) at the disk's default size
+#    (shape:disk:8000, the singularities half a period from the boundary:
+#    their pentagons close as three quads around one valence-3 vertex,
+#    quads/close.c): valid, all quads, at most 4 irregular vertices, none
+#    away from the singularities, and against `--field boundary` at the same
+#    size fewer irregular vertices and a higher minimum scaled Jacobian
+#    (`--cross-size off` gives 20 there, 16 of them dislocations);
 #  - OpenCL (when a device is there): the same coupled solve, the same
 #    Newton steps and frame windings as the reference.
 # Usage: bash cli_crosscoupled.sh <path-to-glpgp> <data-dir>
@@ -46,6 +46,8 @@ iv, ivb = q["irregular_vertices"]["interior"], qb["irregular_vertices"]["interio
 ivo = o["quads"]["irregular_vertices"]["interior"]
 sj, sjb = q["scaled_jacobian"]["min"], qb["scaled_jacobian"]["min"]
 assert sj > sjb, ("min scaled Jacobian, coupled vs boundary", sj, sjb)
+ivt, ivbt = q["irregular_vertices"]["total"], qb["irregular_vertices"]["total"]
+assert ivt / q["quads"] < ivbt / qb["quads"], ("irregular per quad, cross vs boundary", ivt, q["quads"], ivbt, qb["quads"])
 # valence of every interior vertex of the OBJ quads
 v, f = [], []
 for line in open(sys.argv[4]):
@@ -97,13 +99,15 @@ assert q["scaled_jacobian"]["min"] >= 0.7, q["scaled_jacobian"]
 PY
 
 # the disk at its default size: the ideal cross mesh (a valence-3 vertex at
-# each singularity, nothing else), better than the boundary field's
-run_ok "default-size disk, cross size" solve shape:disk:8000 --field cross --cross-size on \
+# each singularity, nothing else) with the default --cross-size auto, better
+# than the boundary field's
+run_ok "default-size disk, cross" solve shape:disk:8000 --field cross \
     --backend reference --quads d.obj --stats d.json
 run_ok "default-size disk, boundary" solve shape:disk:8000 --backend reference --quads db.obj --stats db.json
 python3 - d.json db.json <<'PY' || fail "default-size disk: cross vs boundary"
 import json, sys
 d, b = (json.load(open(p)) for p in sys.argv[1:3])
+assert d["options"]["cross_size"] == "auto", d["options"]
 q, qb = d["quads"], b["quads"]
 assert q["valid"] is True and q["quads"] == q["faces"] and q["other_faces"] == 0, q
 iv, ivb = q["irregular_vertices"], qb["irregular_vertices"]

@@ -275,7 +275,15 @@ static void test_fd(void)
 
 /* glpgp_cross_conformal_size on theta = a y (harmonic, no singularity):
  * phi = a x + c, so log s = a x + const (exact for P1 up to the Neumann
- * solve's discretisation: theta is linear, grad phi constant). */
+ * solve's discretisation: theta is linear, grad phi constant). --cross-size
+ * on: the largest size is h; auto: log s = clamp(a (x - x_q), -log c, 0),
+ * x_q the q-quantile of x over the vertices (phi is increasing in x). */
+static int cmp_dbl(const void *a, const void *b)
+{
+    const double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
 static void test_conformal_size(void)
 {
     glpgp_mesh *m = NULL;
@@ -296,6 +304,7 @@ static void test_conformal_size(void)
     CHECK_OK(glpgp_backend_create_reference(&b));
     CHECK_OK(b->ops->setup(b, sys));
     long cg = 0;
+    o.cross_size = GLPGP_CROSS_SIZE_ON;
     CHECK_OK(glpgp_cross_conformal_size(m, b, &o, w, 1.0, sz, &cg));
     /* log s_i - a x_i is constant; the largest size is h = 1 */
     double lo = HUGE_VAL, hi = -HUGE_VAL, smax = 0.0;
@@ -309,6 +318,26 @@ static void test_conformal_size(void)
     CHECK(hi - lo <= 1e-6);
     CHECK_CLOSE(smax, 1.0, 1e-12, 0.0);
     CHECK(cg > 0);
+    /* auto: s = clamp(e^{a (x - x_q)}, 1/c, 1); the disk's range e^{2a} = 1.8 > c */
+    o.cross_size = GLPGP_CROSS_SIZE_AUTO;
+    CHECK_OK(glpgp_cross_conformal_size(m, b, &o, w, 1.0, sz, &cg));
+    double *xs = malloc((size_t)nv * sizeof(double));
+    for (int i = 0; i < nv; i++) xs[i] = m->xy[2 * i];
+    qsort(xs, (size_t)nv, sizeof(double), cmp_dbl);
+    const double xq = xs[(int)lround(o.cross_size_quantile * (nv - 1))];
+    double err = 0.0;
+    int at_h = 0, at_lo = 0;
+    for (int i = 0; i < nv; i++) {
+        const double e = fmin(0.0, fmax(-log(o.cross_size_ratio), a * (m->xy[2 * i] - xq)));
+        err = fmax(err, fabs(log(sz[i]) - e));
+        at_h += sz[i] >= 1.0 - 1e-12;
+        at_lo += sz[i] <= 1.0 / o.cross_size_ratio + 1e-12;
+    }
+    printf("conformal size, auto: |log s - clamp| <= %.3g, %d of %d vertices at h, %d at h / %g\n", err, at_h, nv,
+           at_lo, o.cross_size_ratio);
+    CHECK(err <= 1e-5);
+    CHECK(at_h >= (int)(0.1 * nv) - 1 && at_lo > 0);
+    free(xs);
     glpgp_backend_destroy(&b);
     glpgp_system_destroy(&sys);
     free(w);

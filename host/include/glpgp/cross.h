@@ -174,9 +174,12 @@ void glpgp_coupled_windings(const glpgp_mesh *m, const double *u, const double *
  * int |grad phi - R grad theta|^2, theta = arg(w)/4 per triangle, R the turn
  * by -90 degrees (so that U / s and V / s are curl-free where theta is
  * harmonic), by one linear solve on backend b (set up for m; its field,
- * Dirichlet set and matrices are overwritten); size (nv) <- h exp(phi -
- * max phi), at least size_min h and min(h, size_resolution x the longest
- * edge at the vertex). *cg_iterations is increased by its CG iterations. */
+ * Dirichlet set and matrices are overwritten); size (nv) <- h clamp(exp(phi
+ * - phi_q), 1/c, 1), phi_q the q-quantile of phi over the vertices: q = 1,
+ * c = inf unless o->cross_size is GLPGP_CROSS_SIZE_AUTO (then q =
+ * o->cross_size_quantile, c = o->cross_size_ratio); at least size_min h and
+ * min(h, size_resolution x the longest edge at the vertex). *cg_iterations is
+ * increased by its CG iterations. */
 glpgp_status glpgp_cross_conformal_size(const glpgp_mesh *m, glpgp_backend *b, const struct glpgp_options *o,
                                         const double *w, double h, double *size, long *cg_iterations);
 

@@ -30,6 +30,14 @@ enum glpgp_cross_coupling {
     GLPGP_COUPLING_OFF = 1,  /* never: u and v solved apart (they see the cuts) */
     GLPGP_COUPLING_ON = 2    /* coupled when there are cuts; a backend that cannot is an error */
 };
+/* --field cross: the local size from the cross field's conformal factor phi
+ * (glpgp_cross_conformal_size), s = h clamp(e^{phi - phi_q}, 1/c, 1), phi_q the
+ * q-quantile of phi over the vertices; the smaller of it and the size field's. */
+enum glpgp_cross_size {
+    GLPGP_CROSS_SIZE_OFF = 0, /* the size field's alone */
+    GLPGP_CROSS_SIZE_ON = 1,  /* q = 1 (largest size h), no ratio bound: fully conformal */
+    GLPGP_CROSS_SIZE_AUTO = 2 /* q = cross_size_quantile, c = cross_size_ratio (host/README.md) */
+};
 enum glpgp_init { GLPGP_INIT_NAIVE = 0, GLPGP_INIT_ONE = 1 };
 /* How a Newton step is made safe: a trust region around the exact-Hessian
  * model (Steihaug-Toint CG), or the line search of the modified Newton. */
@@ -86,8 +94,11 @@ typedef struct glpgp_options {
     double cross_rtol;    /* every cross level stops when |g| <= this |g_0| (the singularities
                              are placed long before; later steps are slow vortex drift) [1e-3] */
     int cross_coupling;   /* GLPGP_COUPLING_* [AUTO] */
-    int cross_size;       /* 1: local size from the cross field (glpgp_cross_conformal_size),
-                             the smaller of it and the size field's, for both oscillators [0] */
+    int cross_size;       /* GLPGP_CROSS_SIZE_*: local size from the cross field
+                             (glpgp_cross_conformal_size), the smaller of it and the size
+                             field's, for both oscillators [AUTO] */
+    double cross_size_quantile; /* AUTO: phi's quantile that gets size h, in (0, 1] [0.9] */
+    double cross_size_ratio;    /* AUTO: the size stays >= h / this, >= 1 [1.4] */
 
     /* Newton */
     double newton_rtol;   /* stop the last level when |g| <= rtol |g_0| [1e-6] */
