@@ -80,8 +80,7 @@ static void build(glpgp_opts *t, solve_cli *c)
     glpgp_opt_int(t, "--gather-max", &c->gather_max, 1, 0x7fffffffL, "N",
                   "--backend petsc on several ranks: most vertices whose result\n"
                   "is gathered to rank 0 (--out .vtu/.vtk/.obj, --quads, --image\n"
-                  "need it; above: an error before the solve, use --out FILE.pvtu)\n"
-                  "(default 67108864)");
+                  "need it; above: an error before the solve, use --out FILE.pvtu)");
     glpgp_opt_string(t, "--stats", &c->stats, "FILE", "statistics as JSON");
     glpgp_opt_string(t, "--quads", &c->quads, "FILE",
                      "extract the quad mesh (.obj/.vtu/.vtk/.msh) and add its quality\n"
