@@ -19,7 +19,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-static const char *const k_result_exts[] = {".vtk", ".vtu", ".obj", NULL};
+static const char *const k_result_exts[] = {".vtk", ".vtu", ".obj", ".pvtu", NULL};
 static const char *const k_quad_exts[] = {".obj", ".vtk", ".vtu", ".msh", NULL};
 static const char *const k_json_exts[] = {".json", NULL};
 
@@ -34,7 +34,14 @@ typedef struct solve_cli {
     glpgp_render_options ro;
     glpgp_mask_options mo;
     double size_box[4];  /* --size-image-box */
+    int gather_max;      /* --gather-max: most vertices gathered to rank 0 (distributed PETSc runs) */
+    int pieces;          /* --out *.pvtu: one .vtu piece per rank and the index */
+    int gather;          /* distributed: the whole result is gathered to rank 0 (set on every rank) */
 } solve_cli;
+
+/* Default of --gather-max: 2^26 vertices (1 GiB per gathered z array, 16
+ * bytes a vertex; MPI's int counts stop at 2 GiB, 134M vertices). */
+#define GATHER_MAX_DEFAULT (1 << 26)
 
 static void build(glpgp_opts *t, solve_cli *c)
 {
@@ -47,6 +54,7 @@ static void build(glpgp_opts *t, solve_cli *c)
     c->device = -1;
     c->verbosity = 1;
     c->allow_invalid = 0;
+    c->gather_max = GATHER_MAX_DEFAULT;
     glpgp_opts_init(t, "solve", "glpgp solve INPUT [options]",
                     "INPUT is a triangle mesh of a planar domain (.obj, or Gmsh .msh 2.2/4.1 ASCII),\n"
                     "shape:NAME[:N], a built-in domain with about N vertices (default 20000;\n"
@@ -63,8 +71,16 @@ static void build(glpgp_opts *t, solve_cli *c)
     glpgp_opts_group(t, "Output");
     glpgp_opt *p = glpgp_opt_string(t, "--out", &c->out, "FILE",
                                     "result: .vtu (binary VTK XML, compressed when built with\n"
-                                    "zlib), .vtk (legacy ASCII VTK) or .obj (texture coordinates)");
+                                    "zlib), .vtk (legacy ASCII VTK), .obj (texture coordinates)\n"
+                                    "or, with --backend petsc, .pvtu: every MPI rank writes its\n"
+                                    "vertices and triangles as FILE_pK.vtu (K = rank; .vtu arrays\n"
+                                    "+ global_id, vtkGhostType) and rank 0 the index FILE.pvtu\n"
+                                    "(the whole result is then not gathered to rank 0)");
     p->alias = "-o";
+    glpgp_opt_int(t, "--gather-max", &c->gather_max, 1, 0x7fffffffL, "N",
+                  "--backend petsc on several ranks: most vertices whose result\n"
+                  "is gathered to rank 0 (--out .vtu/.vtk/.obj, --quads, --image\n"
+                  "need it; above: an error before the solve, use --out FILE.pvtu)");
     glpgp_opt_string(t, "--stats", &c->stats, "FILE", "statistics as JSON");
     glpgp_opt_string(t, "--quads", &c->quads, "FILE",
                      "extract the quad mesh (.obj/.vtu/.vtk/.msh) and add its quality\n"
@@ -98,6 +114,18 @@ static int check(solve_cli *c, const char *input)
         return glpgp_cli_usage_error(sub, "--image names the same file as another output: '%s'", c->image);
     int rc;
     if (c->out && (rc = glpgp_cli_check_output(sub, "--out", c->out, k_result_exts)) >= 0) return rc;
+    c->pieces = c->out && glpgp_has_ext(c->out, ".pvtu");
+    if (c->pieces) {
+        char piece[4096];
+        if (c->backend != GLPGP_BACKEND_PETSC)
+            return glpgp_cli_usage_error(sub, "--out %s: .pvtu (a piece per MPI rank) needs --backend petsc", c->out);
+        const char *base = strrchr(c->out, '/') ? strrchr(c->out, '/') + 1 : c->out;
+        if (strpbrk(base, "\"&<>'") || glpgp_pvtu_piece_path(c->out, 999999, piece, sizeof piece) != GLPGP_OK) {
+            glpgp_error_clear();
+            return glpgp_cli_usage_error(sub, "--out %s: a .pvtu name must be shorter than 4 KiB and hold no \" & < > '",
+                                         c->out);
+        }
+    }
     if (c->stats && (rc = glpgp_cli_check_output(sub, "--stats", c->stats, NULL)) >= 0) return rc;
     if (c->quads && (rc = glpgp_cli_check_output(sub, "--quads", c->quads, k_quad_exts)) >= 0) return rc;
     if (c->image) {
@@ -159,6 +187,7 @@ static void print_summary(const solve_cli *c, const char *input, const glpgp_mes
 }
 
 static int solve_ranks(solve_cli *c, const char *input);
+static int distributed(const solve_cli *c);
 
 /* *mp <- m renumbered for P ranks: rank r owns the vertices [r nv / P,
  * (r+1) nv / P) of the backend's rows, filled with the part r of a
@@ -238,11 +267,15 @@ int glpgp_cmd_solve(int argc, char **argv)
 static int solve_ranks(solve_cli *c, const char *input)
 {
     const int rank = glpgp_petsc_rank();
+    /* distributed: whether rank 0 needs the whole result (decided alike on every rank) */
+    c->gather = (c->out && !c->pieces) || c->quads || c->image;
     if (rank != 0) {
         if (!freopen("/dev/null", "w", stdout) || !freopen("/dev/null", "w", stderr)) {
             /* nothing to do: the output of this rank is lost either way */
         }
-        c->out = c->stats = c->quads = c->image = NULL;
+        /* a distributed .pvtu: this rank writes its piece */
+        if (!(c->pieces && distributed(c))) c->out = NULL;
+        c->stats = c->quads = c->image = NULL;
     }
     int rc = solve_main(c, input);
     /* the same exit code everywhere (a rank that failed alone: all fail) */
@@ -353,6 +386,12 @@ static glpgp_status split_prepare(const solve_cli *c, const glpgp_mesh *mp, doub
 {
     *size = NULL;
     const double h = c->o.size > 0.0 ? c->o.size : glpgp_default_size(mp, &c->o);
+    if (c->gather && mp->nv > c->gather_max)
+        return GLPGP_FAIL(GLPGP_ERR_LIMIT,
+                          "%d vertices: above --gather-max %d for gathering the result to rank 0 (needed by "
+                          "--out .vtu/.vtk/.obj, --quads, --image): write --out FILE.pvtu (a piece per rank) "
+                          "or raise --gather-max",
+                          mp->nv, c->gather_max);
     /* the local resolution of the whole mesh (glpgp_solve skips it on a part) */
     GLPGP_CHECK(glpgp_options_check_mesh(&c->o, mp));
     GLPGP_CHECK(glpgp_size_check_mesh(mp, &c->o, h));
@@ -435,6 +474,27 @@ static glpgp_status gather_result(const glpgp_result *rl, const glpgp_mesh *pm, 
     return GLPGP_OK;
 }
 
+/* Distributed --out FILE.pvtu: every rank's verdict on its files (ok: its
+ * output set prepared), gathered to rank 0 (okv: P doubles there, NULL
+ * elsewhere), which names the first rank that failed. Returns the verdict
+ * agreed by all ranks (1: every rank commits). Every rank calls it. */
+static int pieces_verdict(int ok, const char *pvtu, double *okv)
+{
+    const double mine = ok ? 1.0 : 0.0;
+    glpgp_petsc_gather(&mine, 1, okv);
+    if (glpgp_petsc_rank() == 0 && ok)
+        for (int q = 1; q < glpgp_petsc_size(); q++)
+            if (okv[q] == 0.0) {
+                char piece[4096];
+                if (glpgp_pvtu_piece_path(pvtu, q, piece, sizeof piece) != GLPGP_OK) piece[0] = '\0';
+                GLPGP_FAIL(GLPGP_ERR_IO, "MPI rank %d could not write its piece '%s' (no output was written)", q,
+                           piece);
+                ok = 0;
+                break;
+            }
+    return glpgp_petsc_all_ok(ok);
+}
+
 static int solve_main(solve_cli *cc, const char *input)
 {
     solve_cli c = *cc;
@@ -453,7 +513,8 @@ static int solve_main(solve_cli *cc, const char *input)
     glpgp_mesh *mp = NULL;      /* the renumbered mesh the ranks solve (NULL: m) */
     glpgp_mesh *part = NULL;    /* distributed: this rank's part of mp */
     int *new_of_old = NULL;
-    double *rank_info = NULL, *split_size = NULL;
+    double *rank_info = NULL, *split_size = NULL, *okv = NULL;
+    int verdict_pending = 0;    /* distributed .pvtu: this rank still owes pieces_verdict */
     double center[2] = {0.0, 0.0};
     char why[1024] = "";
     glpgp_size_image *simg = NULL; /* --size-field IMAGE */
@@ -523,22 +584,50 @@ static int solve_main(solve_cli *cc, const char *input)
                           k, ri[0], ri[1], ri[2], ri[3] / 1048576.0);
             }
         if (dist) {
-            /* the whole result on rank 0 (outputs, summary); the others are done */
-            glpgp_result *rw = NULL;
-            const glpgp_status gst = gather_result(r, part, root ? m->nv : 0, root ? m->nt : 0, &rw);
-            if (!glpgp_petsc_all_ok(gst == GLPGP_OK)) goto fail;
+            /* --out FILE.pvtu: every rank's piece from its part, rank 0's
+             * with the index (written under temporary names; committed by
+             * every rank once all agree) */
+            glpgp_status pst = GLPGP_OK;
+            if (c.pieces) {
+                pst = glpgp_output_set_create(&outs);
+                if (pst == GLPGP_OK && root) pst = glpgp_malloc((size_t)nranks, sizeof(double), &okv);
+                if (pst == GLPGP_OK)
+                    pst = glpgp_output_set_result_piece(outs, part, &c.o, r, c.out, glpgp_petsc_rank());
+                if (pst == GLPGP_OK && root) pst = glpgp_output_set_pvtu(outs, r, c.out, nranks);
+            }
+            /* the whole result on rank 0 when an output needs it */
+            if (c.gather) {
+                glpgp_result *rw = NULL;
+                const glpgp_status gst = gather_result(r, part, root ? m->nv : 0, root ? m->nt : 0, &rw);
+                if (!glpgp_petsc_all_ok(gst == GLPGP_OK)) goto fail;
+                if (root) {
+                    glpgp_result_destroy(&r);
+                    r = rw;
+                }
+            }
             glpgp_mesh_destroy(&part);
-            if (!root) {
+            verdict_pending = c.pieces;
+            if (!root) { /* its piece committed with the others, then done */
+                if (c.pieces) {
+                    if (pst == GLPGP_OK) pst = glpgp_output_set_prepare(outs);
+                    verdict_pending = 0;
+                    if (!pieces_verdict(pst == GLPGP_OK, c.out, NULL)) goto fail;
+                    const glpgp_status cst = glpgp_output_set_commit(outs);
+                    if (!glpgp_petsc_all_ok(cst == GLPGP_OK)) goto fail;
+                }
                 rc = 0;
                 goto done;
             }
-            glpgp_result_destroy(&r);
-            r = rw;
+            if (pst != GLPGP_OK) goto fail;
         }
     } else if (sst != GLPGP_OK) {
         goto fail;
     }
-    if (new_of_old) {
+    /* a distributed run that gathered nothing: r is rank 0's part of the
+     * result, its counts and |z| statistics the global ones (the summary,
+     * the statistics and the pieces need no more) */
+    const int whole = !dist || c.gather;
+    if (new_of_old && whole) {
         /* back to the input's vertex order; a gathered result: its
          * singular triangles and |z| statistics on the whole mesh (the
          * parts' global ones, recomputed) */
@@ -565,8 +654,12 @@ static int solve_main(solve_cli *cc, const char *input)
 
     /* outputs: one set, committed together (all or nothing: a failure leaves
      * every existing file as it was and no temporary behind) */
-    if (glpgp_output_set_create(&outs) != GLPGP_OK) goto fail;
-    if (c.out && glpgp_output_set_result(outs, m, &c.o, r, c.out) != GLPGP_OK) goto fail;
+    if (!outs && glpgp_output_set_create(&outs) != GLPGP_OK) goto fail;
+    if (c.out && c.pieces && !dist) { /* .pvtu of one piece: the whole mesh, on rank 0 */
+        if (glpgp_output_set_result_piece(outs, m, &c.o, r, c.out, 0) != GLPGP_OK) goto fail;
+        if (glpgp_output_set_pvtu(outs, r, c.out, 1) != GLPGP_OK) goto fail;
+    }
+    if (c.out && !c.pieces && glpgp_output_set_result(outs, m, &c.o, r, c.out) != GLPGP_OK) goto fail;
     if (c.quads && invalid_rc < 0 && glpgp_output_set_quads(outs, q, c.quads) != GLPGP_OK) goto fail;
     if (c.stats) {
         glpgp_stats_extra x = {input, c.out, t_read, c.quads ? &qq : NULL, nranks, rank_info};
@@ -577,7 +670,19 @@ static int solve_main(solve_cli *cc, const char *input)
         if (glpgp_output_set_reserve(outs, c.image, &tmp) != GLPGP_OK) goto fail;
         if (glpgp_image_write(tmp, im) != GLPGP_OK) goto fail;
     }
-    if (glpgp_output_set_commit(outs) != GLPGP_OK) goto fail;
+    if (verdict_pending) { /* distributed .pvtu: all ranks' files complete, then all commit */
+        const glpgp_status pst = glpgp_output_set_prepare(outs);
+        verdict_pending = 0;
+        if (!pieces_verdict(pst == GLPGP_OK, c.out, okv)) goto fail;
+        const glpgp_status cst = glpgp_output_set_commit(outs);
+        if (!glpgp_petsc_all_ok(cst == GLPGP_OK)) {
+            if (cst == GLPGP_OK)
+                GLPGP_FAIL(GLPGP_ERR_IO, "another MPI rank could not rename its piece of '%s' into place", c.out);
+            goto fail;
+        }
+    } else if (glpgp_output_set_commit(outs) != GLPGP_OK) {
+        goto fail;
+    }
 
     if (c.o.method == GLPGP_METHOD_GL && (r->osc[0].zabs_median < 0.5 || r->osc[1].zabs_median < 0.5))
         glpgp_log(GLPGP_LOG_WARNING,
@@ -589,6 +694,7 @@ static int solve_main(solve_cli *cc, const char *input)
     goto done;
 fail:
     if (dist && !announced) glpgp_petsc_all_ok(0); /* the other ranks wait for rank 0's verdict */
+    if (verdict_pending) pieces_verdict(0, c.out, okv); /* ... or for the verdict on the pieces */
     rc = glpgp_cli_fail();
 done:
     glpgp_output_set_destroy(&outs);
@@ -603,5 +709,6 @@ done:
     free(split_size);
     free(new_of_old);
     free(rank_info);
+    free(okv);
     return rc;
 }

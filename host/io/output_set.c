@@ -46,6 +46,7 @@ struct glpgp_output_set {
     out_file **files;
     size_t n, cap;
     int committed;
+    int prepared;    /* glpgp_output_set_prepare done: the temporaries are complete */
 };
 
 /* ---- process-wide registry of live files (read by signal handlers) ------ */
@@ -237,7 +238,7 @@ static glpgp_status add_file(glpgp_output_set *s, const char *path, int reserved
     *res = NULL;
     if (!s) return GLPGP_FAIL(GLPGP_ERR_ARG, "no output set");
     if (!path || !*path) return GLPGP_FAIL(GLPGP_ERR_ARG, "empty output path");
-    if (s->committed) return GLPGP_FAIL(GLPGP_ERR_ARG, "output set already committed");
+    if (s->committed || s->prepared) return GLPGP_FAIL(GLPGP_ERR_ARG, "output set already committed or prepared");
     for (size_t i = 0; i < s->n; i++)
         if (!strcmp(s->files[i]->dest, path))
             return GLPGP_FAIL(GLPGP_ERR_ARG, "'%s' is named twice among the outputs", path);
@@ -332,14 +333,10 @@ static void undo_all(glpgp_output_set *s)
     }
 }
 
-glpgp_status glpgp_output_set_commit(glpgp_output_set *s)
+/* Step 1 of a commit: every temporary complete on disk (see below). */
+static glpgp_status complete_temps(glpgp_output_set *s)
 {
-    if (!s) return GLPGP_FAIL(GLPGP_ERR_ARG, "no output set");
-    if (s->committed) return GLPGP_FAIL(GLPGP_ERR_ARG, "output set already committed");
-    s->committed = 1;
-    glpgp_status st = GLPGP_OK;
     struct stat sb;
-
     /* 1. every temporary complete on disk: flush, keep the mode of a replaced
      *    regular file, fsync, close */
     for (size_t i = 0; i < s->n; i++) {
@@ -356,11 +353,32 @@ glpgp_status glpgp_output_set_commit(glpgp_output_set *s)
     }
     for (size_t i = 0; i < s->n; i++) {
         out_file *of = s->files[i];
-        if (of->err) {
-            st = GLPGP_FAIL(GLPGP_ERR_IO, "cannot write '%s': %s", of->dest, strerror(of->err));
-            goto fail;
-        }
+        if (of->err) return GLPGP_FAIL(GLPGP_ERR_IO, "cannot write '%s': %s", of->dest, strerror(of->err));
     }
+    return GLPGP_OK;
+}
+
+glpgp_status glpgp_output_set_prepare(glpgp_output_set *s)
+{
+    if (!s) return GLPGP_FAIL(GLPGP_ERR_ARG, "no output set");
+    if (s->committed || s->prepared) return GLPGP_FAIL(GLPGP_ERR_ARG, "output set already prepared or committed");
+    s->prepared = 1;
+    glpgp_status st = complete_temps(s);
+    if (st != GLPGP_OK) {
+        s->committed = 1; /* nothing more to do with it */
+        undo_all(s);
+    }
+    return st;
+}
+
+glpgp_status glpgp_output_set_commit(glpgp_output_set *s)
+{
+    if (!s) return GLPGP_FAIL(GLPGP_ERR_ARG, "no output set");
+    if (s->committed) return GLPGP_FAIL(GLPGP_ERR_ARG, "output set already committed");
+    s->committed = 1;
+    glpgp_status st = GLPGP_OK;
+    struct stat sb;
+    if (!s->prepared) GLPGP_CHECK_GOTO(st, complete_temps(s), fail);
 
     /* 2. hard-link backups of the destinations that exist */
     for (size_t i = 0; i < s->n; i++) {

@@ -129,6 +129,8 @@ typedef struct res_ctx {
     const glpgp_mesh *m;
     const glpgp_result *r;
     int k; /* oscillator */
+    const int *gid;   /* piece: global id of each point (NULL: the point's index) */
+    int nv_owned;     /* piece: points >= nv_owned are ghosts (vtkGhostType 1) */
 } res_ctx;
 
 static void fill_points(const void *c, size_t first, size_t n, void *out)
@@ -231,6 +233,18 @@ static void fill_coupled(const void *c, size_t first, size_t n, void *out)
     signed char *o = out;
     for (size_t t = 0; t < n; t++) o[t] = (signed char)coupled_match(x->m, x->r, (int)(first + t));
 }
+static void fill_gid(const void *c, size_t first, size_t n, void *out)
+{
+    const res_ctx *x = c;
+    long long *o = out;
+    for (size_t i = 0; i < n; i++) o[i] = x->gid ? x->gid[first + i] : (long long)(first + i);
+}
+static void fill_ghost(const void *c, size_t first, size_t n, void *out)
+{
+    const res_ctx *x = c;
+    unsigned char *o = out;
+    for (size_t i = 0; i < n; i++) o[i] = first + i >= (size_t)x->nv_owned; /* 1: DUPLICATEPOINT */
+}
 static void fill_h(const void *c, size_t first, size_t n, void *out)
 {
     const res_ctx *x = c;
@@ -239,15 +253,15 @@ static void fill_h(const void *c, size_t first, size_t n, void *out)
     *(double *)out = x->r->size;
 }
 
-static glpgp_status vtu_result(FILE *f, const glpgp_mesh *m, const glpgp_options *o, const glpgp_result *r,
-                               int level)
+/* The arrays of a result file (ctx[0..1]: the producers' contexts, one per
+ * oscillator) into a[] (room for 26), their count returned. piece: a part's
+ * piece, with the point arrays global_id (Int64) and vtkGhostType (UInt8,
+ * 1 = a ghost point: VTK's DUPLICATEPOINT) added. */
+static int result_arrays(const res_ctx ctx[2], const glpgp_result *r, size_t nv, size_t nt, int piece, vtu_array *a)
 {
     static const char *const zn[2] = {"z_u", "z_v"}, *const tn[2] = {"theta_u", "theta_v"},
                              *const an[2] = {"zabs_u", "zabs_v"}, *const dn[2] = {"dirichlet_u", "dirichlet_v"},
                              *const fn[2] = {"field_u", "field_v"}, *const sn[2] = {"singular_u", "singular_v"};
-    res_ctx ctx[2] = {{m, r, 0}, {m, r, 1}};
-    const size_t nv = (size_t)m->nv, nt = (size_t)m->nt;
-    vtu_array a[24];
     int na = 0;
 #define ARR(sec, nm, ty, es, nc, cnt, fl, cx) \
     a[na++] = (vtu_array){(sec), (nm), (ty), (es), (nc), (cnt), (fl), (cx)}
@@ -259,6 +273,10 @@ static glpgp_status vtu_result(FILE *f, const glpgp_mesh *m, const glpgp_options
         if (r->osc[k].dirichlet) ARR(VTU_POINTDATA, dn[k], "Int8", 1, 1, nv, fill_dirichlet, &ctx[k]);
     if (r->field)
         for (int k = 0; k < 2; k++) ARR(VTU_POINTDATA, fn[k], "Float64", 8, 3, nv, fill_field, &ctx[k]);
+    if (piece) {
+        ARR(VTU_POINTDATA, "global_id", "Int64", 8, 1, nv, fill_gid, &ctx[0]);
+        ARR(VTU_POINTDATA, "vtkGhostType", "UInt8", 1, 1, nv, fill_ghost, &ctx[0]);
+    }
     if (r->osc[0].singular || r->osc[1].singular)
         for (int k = 0; k < 2; k++) ARR(VTU_CELLDATA, sn[k], "Int8", 1, 1, nt, fill_singular, &ctx[k]);
     if (r->cross) {
@@ -272,6 +290,19 @@ static glpgp_status vtu_result(FILE *f, const glpgp_mesh *m, const glpgp_options
     ARR(VTU_CELLS, "offsets", "Int32", 4, 1, nt, fill_offsets, &ctx[0]);
     ARR(VTU_CELLS, "types", "UInt8", 1, 1, nt, fill_types, &ctx[0]);
 #undef ARR
+    return na;
+}
+
+/* The .vtu of mesh m and result r; piece: a piece of a parallel file (its
+ * points' global ids gid, NULL: the point's index; points >= nv_owned are
+ * ghosts). */
+static glpgp_status vtu_result(FILE *f, const glpgp_mesh *m, const glpgp_options *o, const glpgp_result *r,
+                               int level, int piece, const int *gid, int nv_owned)
+{
+    res_ctx ctx[2] = {{m, r, 0, gid, nv_owned}, {m, r, 1, gid, nv_owned}};
+    const size_t nv = (size_t)m->nv, nt = (size_t)m->nt;
+    vtu_array a[26];
+    const int na = result_arrays(ctx, r, nv, nt, piece, a);
     char comment[256];
     if (o)
         snprintf(comment, sizeof comment, "glpgp %s result: method %s, energy %s, h %.17g", GLPGP_VERSION,
@@ -324,6 +355,12 @@ static int result_format(const char *path)
                                          : FMT_NONE;
 }
 
+/* level -1: the default compression (zlib level 1 when built with zlib) */
+static int default_level(int level)
+{
+    return level < 0 ? (glpgp_io_have_zlib() ? GLPGP_VTU_DEFAULT_LEVEL : 0) : level;
+}
+
 /* Add the result file in format fmt (level: .vtu compression) to s. */
 static glpgp_status add_result(glpgp_output_set *s, const glpgp_mesh *m, const glpgp_options *opts,
                                const glpgp_result *r, const char *path, int fmt, int level)
@@ -339,7 +376,7 @@ static glpgp_status add_result(glpgp_output_set *s, const glpgp_mesh *m, const g
     else if (fmt == FMT_OBJ)
         obj_body(f, m, r);
     else
-        GLPGP_CHECK(vtu_result(f, m, opts, r, level < 0 ? (glpgp_io_have_zlib() ? GLPGP_VTU_DEFAULT_LEVEL : 0) : level));
+        GLPGP_CHECK(vtu_result(f, m, opts, r, default_level(level), 0, NULL, 0));
     return GLPGP_OK;
 }
 
@@ -384,4 +421,174 @@ glpgp_status glpgp_write_result(const glpgp_mesh *m, const glpgp_options *opts, 
                                 const char *path)
 {
     return write_one(m, opts, r, path, result_format(path), -1);
+}
+
+/* ---- parallel VTK XML: one .vtu piece per rank and the .pvtu index -------- */
+
+glpgp_status glpgp_pvtu_piece_path(const char *pvtu, int k, char *buf, size_t n)
+{
+    if (!pvtu || !glpgp_has_ext(pvtu, ".pvtu"))
+        return GLPGP_FAIL(GLPGP_ERR_ARG, "'%s' is no .pvtu path", pvtu ? pvtu : "(null)");
+    const int w = snprintf(buf, n, "%.*s_p%d.vtu", (int)(strlen(pvtu) - 5), pvtu, k);
+    if (w < 0 || (size_t)w >= n) return GLPGP_FAIL(GLPGP_ERR_LIMIT, "output path too long: '%s'", pvtu);
+    return GLPGP_OK;
+}
+
+/* The piece of part m (result r of its local vertices and triangles):
+ * points = the owned vertices (same order), then the ghosts that the
+ * counted triangles touch (same order); cells = the triangles the part
+ * counts (glpgp_part_counts_tri: those whose lowest global vertex it owns,
+ * so every triangle is in exactly one piece). *pm, *pr, *gid: the piece's
+ * mesh (xy, tri, nv, nt only: free pm->xy, pm->tri), result and global ids. */
+static glpgp_status extract_piece(const glpgp_mesh *m, const glpgp_result *r, glpgp_mesh *pm, glpgp_result **pr,
+                                  int **gid)
+{
+    const glpgp_mesh_part *p = m->part;
+    glpgp_status st = GLPGP_OK;
+    int *map = NULL, np = p->nv_owned, nc = 0;
+    memset(pm, 0, sizeof *pm);
+    *pr = NULL;
+    *gid = NULL;
+    if (r->cross) return GLPGP_FAIL(GLPGP_ERR_ARG, "a cross-field result has no parallel pieces");
+    GLPGP_CHECK(glpgp_malloc((size_t)m->nv, sizeof *map, &map));
+    /* map[i]: the piece's point of local vertex i (-1: not in the piece) */
+    for (int i = 0; i < m->nv; i++) map[i] = i < p->nv_owned ? i : -1;
+    for (int t = 0; t < m->nt; t++) {
+        if (!glpgp_part_counts_tri(p, m->tri, t)) continue;
+        nc++;
+        for (int a = 0; a < 3; a++)
+            if (map[m->tri[3 * t + a]] == -1) map[m->tri[3 * t + a]] = -2; /* a ghost the piece needs */
+    }
+    for (int i = p->nv_owned; i < m->nv; i++)
+        if (map[i] == -2) map[i] = np++;
+    if (nc == 0) {
+        st = GLPGP_FAIL(GLPGP_ERR_ARG, "a part with no triangle of its own");
+        goto fail;
+    }
+    pm->nv = np;
+    pm->nt = nc;
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)2 * np, sizeof(double), &pm->xy), fail);
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)3 * nc, sizeof(int), &pm->tri), fail);
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)np, sizeof(int), gid), fail);
+    GLPGP_CHECK_GOTO(st, glpgp_result_create(np, nc, pr), fail);
+    glpgp_result *q = *pr, keep = *q;
+    *q = *r; /* h, flags, statistics; the arrays below */
+    q->nv = np;
+    q->nt = nc;
+    q->field = keep.field;
+    for (int k = 0; k < 2; k++) {
+        q->osc[k].z = keep.osc[k].z;
+        q->osc[k].dirichlet = keep.osc[k].dirichlet;
+        q->osc[k].singular = keep.osc[k].singular;
+    }
+    for (int i = 0; i < m->nv; i++) {
+        const int j = map[i];
+        if (j < 0) continue;
+        /* point j <- local vertex i */
+        (*gid)[j] = p->gid[i];
+        memcpy(pm->xy + 2 * j, m->xy + 2 * i, 2 * sizeof(double));
+        if (r->field) memcpy(q->field + 2 * j, r->field + 2 * i, 2 * sizeof(double));
+        for (int k = 0; k < 2; k++) {
+            memcpy(q->osc[k].z + 2 * j, r->osc[k].z + 2 * i, 2 * sizeof(double));
+            if (r->osc[k].dirichlet) q->osc[k].dirichlet[j] = r->osc[k].dirichlet[i];
+        }
+    }
+    for (int t = 0, c = 0; t < m->nt; t++) {
+        if (!glpgp_part_counts_tri(p, m->tri, t)) continue;
+        for (int a = 0; a < 3; a++) pm->tri[3 * c + a] = map[m->tri[3 * t + a]];
+        for (int k = 0; k < 2; k++)
+            if (r->osc[k].singular) q->osc[k].singular[c] = r->osc[k].singular[t];
+        c++;
+    }
+    /* the arrays the result has not: absent in the piece too (the same
+     * arrays in every piece and the index) */
+    if (!r->field) {
+        free(q->field);
+        q->field = NULL;
+    }
+    for (int k = 0; k < 2; k++) {
+        if (!r->osc[k].dirichlet) {
+            free(q->osc[k].dirichlet);
+            q->osc[k].dirichlet = NULL;
+        }
+        if (!r->osc[k].singular) {
+            free(q->osc[k].singular);
+            q->osc[k].singular = NULL;
+        }
+    }
+    free(map);
+    return GLPGP_OK;
+fail:
+    free(map);
+    free(pm->xy);
+    free(pm->tri);
+    memset(pm, 0, sizeof *pm);
+    free(*gid);
+    *gid = NULL;
+    glpgp_result_destroy(pr);
+    return st;
+}
+
+glpgp_status glpgp_output_set_result_piece(glpgp_output_set *s, const glpgp_mesh *m, const glpgp_options *opts,
+                                           const glpgp_result *r, const char *pvtu, int rank)
+{
+    char path[4096];
+    FILE *f;
+    GLPGP_CHECK(check_result(m, r));
+    GLPGP_CHECK(glpgp_pvtu_piece_path(pvtu, rank, path, sizeof path));
+    if (!m->part) { /* the whole mesh: one piece, every point owned */
+        GLPGP_CHECK(glpgp_output_set_open(s, path, &f));
+        return vtu_result(f, m, opts, r, default_level(-1), 1, NULL, m->nv);
+    }
+    glpgp_mesh pm;
+    glpgp_result *pr = NULL;
+    int *gid = NULL;
+    GLPGP_CHECK(extract_piece(m, r, &pm, &pr, &gid));
+    glpgp_status st = glpgp_output_set_open(s, path, &f);
+    if (st == GLPGP_OK) st = vtu_result(f, &pm, opts, pr, default_level(-1), 1, gid, m->part->nv_owned);
+    free(pm.xy);
+    free(pm.tri);
+    free(gid);
+    glpgp_result_destroy(&pr);
+    return st;
+}
+
+glpgp_status glpgp_output_set_pvtu(glpgp_output_set *s, const glpgp_result *r, const char *pvtu, int npieces)
+{
+    static const char *const tag[VTU_NSECTIONS] = {NULL, "PPointData", "PCellData", "PPoints", NULL};
+    FILE *f;
+    char piece[4096];
+    if (!r || npieces < 1) return GLPGP_FAIL(GLPGP_ERR_ARG, "no result or no piece for '%s'", pvtu);
+    GLPGP_CHECK(glpgp_pvtu_piece_path(pvtu, 0, piece, sizeof piece)); /* checks the name */
+    const char *slash = strrchr(pvtu, '/'), *base = slash ? slash + 1 : pvtu;
+    if (strpbrk(base, "\"&<>'"))
+        return GLPGP_FAIL(GLPGP_ERR_ARG, "'%s': a .pvtu name cannot hold \" & < > '", pvtu);
+    res_ctx ctx[2] = {{NULL, r, 0, NULL, 0}, {NULL, r, 1, NULL, 0}};
+    vtu_array a[26];
+    const int na = result_arrays(ctx, r, 0, 0, 1, a);
+    GLPGP_CHECK(glpgp_output_set_open(s, pvtu, &f));
+    const unsigned one = 1;
+    fprintf(f, "<?xml version=\"1.0\"?>\n<!-- glpgp %s result in %d pieces, h %.17g -->\n", GLPGP_VERSION,
+            npieces, r->size);
+    fprintf(f, "<VTKFile type=\"PUnstructuredGrid\" version=\"1.0\" byte_order=\"%s\" header_type=\"UInt64\">\n",
+            *(const unsigned char *)&one ? "LittleEndian" : "BigEndian");
+    fprintf(f, "  <PUnstructuredGrid GhostLevel=\"0\">\n");
+    for (int sec = VTU_POINTDATA; sec <= VTU_POINTS; sec++) { /* (cells: in the pieces only) */
+        fprintf(f, "    <%s>\n", tag[sec]);
+        for (int i = 0; i < na; i++) {
+            if (a[i].section != sec) continue;
+            fprintf(f, "      <PDataArray type=\"%s\"", a[i].type);
+            if (a[i].name) fprintf(f, " Name=\"%s\"", a[i].name);
+            if (a[i].ncomp != 1) fprintf(f, " NumberOfComponents=\"%d\"", a[i].ncomp);
+            fprintf(f, "/>\n");
+        }
+        fprintf(f, "    </%s>\n", tag[sec]);
+    }
+    /* the pieces beside the index: Source relative to its directory */
+    for (int k = 0; k < npieces; k++) {
+        GLPGP_CHECK(glpgp_pvtu_piece_path(base, k, piece, sizeof piece));
+        fprintf(f, "    <Piece Source=\"%s\"/>\n", piece);
+    }
+    fprintf(f, "  </PUnstructuredGrid>\n</VTKFile>\n");
+    return GLPGP_OK;
 }

@@ -24,7 +24,18 @@
 #  - 2 ranks write the result in the input's vertex order: the annulus's
 #    VTK points and cells are the reference's, line for line;
 #  - a missing input file under mpirun -n 2: non-zero exit within the
-#    timeout (no hang), exactly one "glpgp: error:" line.
+#    timeout (no hang), exactly one "glpgp: error:" line;
+#  - --out FILE.pvtu: 2 ranks write FILE_p0.vtu, FILE_p1.vtu and the index
+#    (read back with Python's xml + zlib): every global vertex owned exactly
+#    once, the ghosts owned elsewhere, the cells' count the triangle count,
+#    the triangles (by coordinates) those of the 1-rank gathered .vtu, z and
+#    the field at every point within 1e-8 of it (and exactly the 2-rank
+#    gathered .vtu's); 1 rank: one piece, exactly the gathered .vtu's values;
+#    a piece that cannot be written (its name taken by a directory) on rank
+#    1: every rank exits non-zero, one error line naming the rank, no file
+#    of the set left; --gather-max below the vertex count: --out .vtu fails
+#    before the solve with one line, --out .pvtu runs; .pvtu without
+#    --backend petsc: a usage error.
 # Skipped (exit 77) without PETSc in the build or without mpirun.
 . "$(dirname "$0")/lib.sh" "$@"
 
@@ -179,5 +190,124 @@ n=$(grep -c '^glpgp: ' bad.err)
 [ "$n" = 1 ] && grep -q '^glpgp: error: .*missing.msh' bad.err ||
     fail "missing input: expected one 'glpgp: error:' line, got $n: $(head -c 400 bad.err)"
 [ ! -e never.vtk ] || fail "missing input: wrote never.vtk"
+
+
+# ---- --out FILE.pvtu: a .vtu piece per rank and the index -------------------
+# read_vtu.py: the arrays of a glpgp .vtu (appended raw data, UInt64 headers, zlib blocks)
+cat >read_vtu.py <<'EOF'
+import struct, zlib
+import xml.etree.ElementTree as ET
+
+def read_vtu(path):
+    data = open(path, "rb").read()
+    head, _, tail = data.partition(b'<AppendedData encoding="raw">')
+    app = tail[tail.index(b"_") + 1:]
+    root = ET.fromstring(head.decode().rstrip() + "</VTKFile>")
+    zl = root.get("compressor") is not None
+    fmt = {"Float64": "d", "Int32": "i", "Int64": "q", "Int8": "b", "UInt8": "B"}
+    piece = root.find("UnstructuredGrid/Piece")
+    out = {"npoints": int(piece.get("NumberOfPoints")), "ncells": int(piece.get("NumberOfCells"))}
+    for da in root.iter("DataArray"):
+        off = int(da.get("offset"))
+        if zl:  # [nblocks, block size, last size, compressed sizes], then the blocks
+            nb = struct.unpack_from("<Q", app, off)[0]
+            sizes = struct.unpack_from("<%dQ" % nb, app, off + 24)
+            p, raw = off + 24 + 8 * nb, b""
+            for c in sizes:
+                raw += zlib.decompress(app[p:p + c])
+                p += c
+        else:
+            n = struct.unpack_from("<Q", app, off)[0]
+            raw = app[off + 8:off + 8 + n]
+        f = fmt[da.get("type")]
+        out[da.get("Name")] = struct.unpack("<%d%s" % (len(raw) // struct.calcsize(f), f), raw)
+    return out
+EOF
+mkdir -p pv
+mpi pv1g 1 solve shape:disk:2500 --backend petsc --precond jacobi -o pv/g1.vtu
+mpi pv2g 2 solve shape:disk:2500 --backend petsc --precond jacobi -o pv/g2.vtu
+mpi pv2 2 solve shape:disk:2500 --backend petsc --precond jacobi -o pv/d2.pvtu --stats pv/d2.json
+mpi pv1 1 solve shape:disk:2500 --backend petsc --precond jacobi -o pv/d1.pvtu
+[ "$(ls pv | sort | tr '\n' ' ')" = "d1.pvtu d1_p0.vtu d2.json d2.pvtu d2_p0.vtu d2_p1.vtu g1.vtu g2.vtu " ] ||
+    fail "pvtu: files written: $(ls pv | tr '\n' ' ')"
+if [ -f pv/d2.pvtu ] && [ -f pv/d1.pvtu ] && [ -f pv/g1.vtu ] && [ -f pv/g2.vtu ]; then
+    python3 - pv <<'EOF' || fail "pvtu: the pieces do not make the gathered result"
+import json, sys, xml.etree.ElementTree as ET
+sys.path.insert(0, ".")
+from read_vtu import read_vtu
+d = sys.argv[1]
+
+def pieces(name):
+    root = ET.parse(f"{d}/{name}.pvtu").getroot()
+    src = [p.get("Source") for p in root.iter("Piece")]
+    return [read_vtu(f"{d}/{s}") for s in src], src, root
+
+def tris(v):  # the triangles as sets of point coordinates
+    c = v["connectivity"]
+    return {frozenset(xy(v, c[3 * t + a]) for a in range(3)) for t in range(v["ncells"])}
+
+xy = lambda v, i: (v["Points"][3 * i], v["Points"][3 * i + 1])
+stats = json.load(open(f"{d}/d2.json"))
+g1, g2 = read_vtu(f"{d}/g1.vtu"), read_vtu(f"{d}/g2.vtu")
+nv, nt = stats["vertices"], stats["triangles"]
+assert (g1["npoints"], g1["ncells"]) == (nv, nt)
+at1 = {xy(g1, i): i for i in range(nv)}
+at2 = {xy(g2, i): i for i in range(nv)}
+for name, nparts in (("d2", 2), ("d1", 1)):
+    ps, src, root = pieces(name)
+    assert src == [f"{name}_p{k}.vtu" for k in range(nparts)], src
+    names = {a.get("Name") for a in root.iter("PDataArray")}
+    assert {"z_u", "z_v", "field_u", "global_id", "vtkGhostType", "singular_u"} <= names, names
+    owned, ghosts, cells = {}, [], set()
+    for p in ps:
+        gid, gh = p["global_id"], p["vtkGhostType"]
+        for j in range(p["npoints"]):
+            if gh[j] == 0:
+                assert gid[j] not in owned, f"{name}: vertex {gid[j]} owned twice"
+                owned[gid[j]] = xy(p, j)
+            else:
+                ghosts.append((gid[j], xy(p, j)))
+        cells |= tris(p)
+        # the values at every point (owned and ghost): the gathered results'
+        for j in range(p["npoints"]):
+            i1, i2 = at1[xy(p, j)], at2[xy(p, j)]
+            for a, nc in (("z_u", 2), ("z_v", 2), ("field_u", 3)):
+                for c in range(nc):
+                    assert abs(p[a][nc * j + c] - g1[a][nc * i1 + c]) <= 1e-8, (name, a, j)
+                    same = g2[a][nc * i2 + c] if nparts == 2 else g1[a][nc * i1 + c]
+                    assert p[a][nc * j + c] == same, (name, a, j)
+            for a in ("dirichlet_u", "dirichlet_v"):
+                assert p[a][j] == g1[a][i1], (name, a, j)
+    assert sorted(owned) == list(range(nv)), f"{name}: owned ids are not 0..{nv - 1}"
+    assert all(owned[g] == c for g, c in ghosts), f"{name}: a ghost point is not its owner's"
+    assert sum(p["ncells"] for p in ps) == nt, (name, [p["ncells"] for p in ps], nt)
+    assert cells == tris(g1), f"{name}: the pieces' triangles are not the mesh's"
+EOF
+fi
+# a piece that cannot be written (rank 1's name is a directory): every rank
+# fails, one error line naming the rank, no file of the set left (mpirun
+# adds its own lines: only glpgp's are counted)
+mkdir -p pvbad/bad_p1.vtu
+runs=$((runs + 1))
+timeout 240 "${MPIRUN[@]}" -n 2 "$GLPGP" solve shape:disk:2500 --backend petsc --precond jacobi -o pvbad/bad.pvtu \
+    --stats pvbad/bad.json --quiet >pvbad.out 2>err.txt </dev/null
+rc=$?
+[ "$rc" -ne 0 ] && [ "$rc" -ne 124 ] || fail "pvtu, unwritable piece: exit $rc"
+[ "$(grep -c '^glpgp: ' err.txt)" = 1 ] || fail "pvtu, unwritable piece: expected one glpgp line: $(head -c 400 err.txt)"
+expect_err "rank 1 .*bad_p1.vtu" "pvtu, unwritable piece"
+[ "$(ls -A pvbad)" = bad_p1.vtu ] || fail "pvtu, unwritable piece: left $(ls -A pvbad | tr '\n' ' ')"
+# the gather limit: --out .vtu above it fails before the solve; .pvtu gathers nothing
+runs=$((runs + 1))
+timeout 240 "${MPIRUN[@]}" -n 2 "$GLPGP" solve shape:disk:2500 --backend petsc --precond jacobi --gather-max 1000 \
+    -o pv/over.vtu --quiet >/dev/null 2>err.txt </dev/null
+rc=$?
+[ "$rc" -ne 0 ] && [ "$rc" -ne 124 ] || fail "--gather-max: exit $rc"
+[ "$(grep -c '^glpgp: ' err.txt)" = 1 ] || fail "--gather-max: expected one glpgp line: $(head -c 400 err.txt)"
+expect_err "gather-max 1000" "--gather-max"
+[ ! -e pv/over.vtu ] || fail "--gather-max: wrote pv/over.vtu"
+mpi pvmax 2 solve shape:disk:2500 --backend petsc --precond jacobi --gather-max 1000 -o pv/max.pvtu
+[ -f pv/max.pvtu ] && [ -f pv/max_p1.vtu ] || fail "--gather-max with .pvtu: no pieces"
+run_fail ".pvtu without petsc" 2 "needs --backend petsc" solve shape:disk:500 --backend reference -o x.pvtu
+one_error_line ".pvtu without petsc"
 
 finish

@@ -99,6 +99,13 @@ glpgp_status glpgp_output_set_reserve(glpgp_output_set *s, const char *path,
  * committed once; later calls return GLPGP_ERR_ARG. */
 glpgp_status glpgp_output_set_commit(glpgp_output_set *s);
 
+/* The first half of a commit, for files committed together across
+ * processes (MPI ranks: every rank prepares, they agree, every rank
+ * commits): flush, fsync and close every stream and report write errors
+ * (GLPGP_ERR_IO, the set then undone like a failed commit). The commit that
+ * follows only replaces the destinations. At most once, before the commit. */
+glpgp_status glpgp_output_set_prepare(glpgp_output_set *s);
+
 /* Remove every uncommitted temporary, free the set, *s = NULL (NULL ok). */
 void glpgp_output_set_destroy(glpgp_output_set **s);
 
@@ -268,6 +275,35 @@ glpgp_status glpgp_output_set_result(glpgp_output_set *s, const glpgp_mesh *m,
 glpgp_status glpgp_output_set_stats(glpgp_output_set *s, const glpgp_mesh *m,
                                     const glpgp_options *opts, const glpgp_result *r,
                                     const char *path, const glpgp_stats_extra *extra);
+
+/* ---- parallel result: .vtu pieces and the .pvtu index (MPI runs) -------- */
+
+/* The name of piece k of a parallel result: "OUT.pvtu" -> "OUT_pk.vtu" into
+ * buf (n bytes). GLPGP_ERR_ARG: pvtu does not end in .pvtu; GLPGP_ERR_LIMIT:
+ * buf too small. */
+glpgp_status glpgp_pvtu_piece_path(const char *pvtu, int k, char *buf, size_t n);
+
+/* Add this rank's piece of the parallel result pvtu (piece `rank`, named by
+ * glpgp_pvtu_piece_path) to s: a .vtu with the arrays of glpgp_write_vtu
+ * (default compression) plus the point arrays global_id (Int64, the vertex
+ * of the renumbered whole mesh) and vtkGhostType (UInt8: 0 owned, 1 a ghost
+ * point). m is a part (m->part set, result r of its local vertices and
+ * triangles): points = its owned vertices, then the ghosts its triangles
+ * touch; cells = the triangles whose lowest global vertex it owns
+ * (glpgp_part_counts_tri), so that the pieces of all ranks hold every
+ * vertex owned exactly once and every triangle once. m without a part: the
+ * whole mesh as one piece (global id = index, all owned). A cross-field
+ * result (r->cross) of a part: GLPGP_ERR_ARG. */
+glpgp_status glpgp_output_set_result_piece(glpgp_output_set *s, const glpgp_mesh *m,
+                                           const glpgp_options *opts, const glpgp_result *r,
+                                           const char *pvtu, int rank);
+
+/* Add the .pvtu index of npieces pieces (pieces 0 .. npieces-1, referenced
+ * by their names relative to the index's directory) to s. r: a result with
+ * the same arrays as the pieces (any rank's: only which arrays exist and h
+ * are read). GLPGP_ERR_ARG: a name holding " & < > ' or not ending in .pvtu. */
+glpgp_status glpgp_output_set_pvtu(glpgp_output_set *s, const glpgp_result *r, const char *pvtu,
+                                   int npieces);
 
 /* ---- triangle meshes --------------------------------------------------- */
 
