@@ -506,16 +506,17 @@ static int solve_main(solve_cli *cc, const char *input)
     if (c.backend == GLPGP_BACKEND_PETSC && glpgp_petsc_size() > 1 && c.o.field != GLPGP_FIELD_FILE &&
         c.o.field != GLPGP_FIELD_CROSS && c.o.size_field != GLPGP_SIZE_FILE && (root || !dist))
         if (partition_mesh(m, glpgp_petsc_size(), &mp, &new_of_old) != GLPGP_OK) goto fail;
-    /* one process: the vertices renumbered for memory locality (reverse
-     * Cuthill-McKee, unless --input-order): mesh generators such as Gmsh's
-     * Delaunay number them almost at random (median |i - j| over the edges
-     * of a 107k-vertex CAD part: 17k), every matrix row then gathers its
-     * neighbours from all over the vectors; that part's whole solve took
-     * 1.5x the CPU time, with either preconditioner (host/README.md). Triangles keep their
-     * order, so the result is the same up to rounding (sums over a row's
-     * columns and dot products run in another order, and the multigrid
-     * aggregates differ); it comes back in the input's order. */
-    if (c.backend != GLPGP_BACKEND_PETSC && !c.input_order && c.o.field != GLPGP_FIELD_FILE &&
+    /* one process (any backend, PETSc on one rank too): the vertices
+     * renumbered for memory locality (reverse Cuthill-McKee, unless
+     * --input-order): mesh generators such as Gmsh's Delaunay number them
+     * almost at random (median |i - j| over the edges of a 107k-vertex CAD
+     * part: 17k), and every matrix row then gathers its neighbours from all
+     * over the vectors (that part's whole solve: 1.2-1.5x the CPU time,
+     * either preconditioner, host/README.md). Triangles keep their order:
+     * the result is the same up to rounding (a row's columns and the dot
+     * products are summed in another order, the multigrid aggregates
+     * differ); it comes back in the input's order. */
+    if (!new_of_old && !dist && !c.input_order && c.o.field != GLPGP_FIELD_FILE &&
         c.o.field != GLPGP_FIELD_CROSS && c.o.size_field != GLPGP_SIZE_FILE)
         if (locality_order(m, &mp, &new_of_old) != GLPGP_OK) goto fail;
     if (dist && root) {

@@ -138,7 +138,9 @@ static void test_penalty_psd(void)
 }
 
 /* glpgp_pen_hess_row (the three blocks (a,0..2) of a triangle at once, used by the
- * NEWTON assembly) must give glpgp_pen_hess's blocks bit for bit, every variant,
+ * NEWTON assembly) and glpgp_pen_hess_tri (all nine, the reference assembly) must
+ * give glpgp_pen_hess's blocks bit for bit, glpgp_pen_grad_tri glpgp_pen_grad's
+ * and glpgp_pen_energy's, every variant,
  * including z in vortex cores (|z_q|^2 < 1/2), z = 0 and a negative area. */
 static void test_penalty_row_bitwise(void)
 {
@@ -152,8 +154,11 @@ static void test_penalty_row_bitwise(void)
         const double area = (trial % 2 ? 1.0 : -1.0) * (0.01 + tu_rand()), inv4e2 = 0.1 + 10.0 * tu_rand();
         for (int hess = GLPGP_HESS_PAPER; hess <= GLPGP_HESS_MIXED; hess++)
             for (int a = 0; a < 3; a++) {
-                double row[9];
+                double row[9], tri[27];
                 glpgp_pen_hess_row(hess, area, inv4e2, zr, zi, a, row);
+                /* the whole triangle at once (reference assembly): the same bits */
+                glpgp_pen_hess_tri(hess, area, inv4e2, zr, zi, tri);
+                CHECK(memcmp(row, tri + 9 * a, sizeof row) == 0);
                 for (int b = 0; b < 3; b++) {
                     double blk[4];
                     glpgp_pen_hess(hess, area, inv4e2, zr, zi, a, b, blk);
@@ -163,6 +168,18 @@ static void test_penalty_row_bitwise(void)
                     CHECK(memcmp(&blk[3], &row[3 * b + 2], sizeof(double)) == 0);
                 }
             }
+        /* the three corner gradients and the energy at once (reference
+         * gradient): glpgp_pen_grad's and glpgp_pen_energy's bits */
+        double g3[6], e3;
+        glpgp_pen_grad_tri(area, inv4e2, zr, zi, g3, &e3);
+        for (int a = 0; a < 3; a++) {
+            double gr, gi;
+            glpgp_pen_grad(area, inv4e2, zr, zi, a, &gr, &gi);
+            CHECK(memcmp(&gr, &g3[2 * a], sizeof gr) == 0);
+            CHECK(memcmp(&gi, &g3[2 * a + 1], sizeof gi) == 0);
+        }
+        const double e1 = glpgp_pen_energy(area, inv4e2, zr, zi);
+        CHECK(memcmp(&e1, &e3, sizeof e1) == 0);
     }
 }
 
