@@ -360,38 +360,4 @@ GLPGP_FN void glpgp_pen_hess_row(int hess, double area, double inv4e2, const dou
     for (int k = 0; k < 9; k++) m[k] = c * s[k];
 }
 
-/* All nine penalty Hessian blocks of one triangle at once: m[9a + 3b ..] =
- * block (a,b) as glpgp_pen_hess_row(hess, .., a, ..) stores it in m[3b ..],
- * with exactly its arithmetic (the quadrature values z_q, M_q once per
- * triangle instead of once per corner), so the two agree bit for bit. For a
- * loop over triangles that scatters each block to its slot (the reference
- * backend's assembly: each slot still receives its triangles in increasing
- * order, hence the gather's sums). */
-GLPGP_FN void glpgp_pen_hess_tri(int hess, double area, double inv4e2, const double *zr,
-                                 const double *zi, double *m)
-{
-    double s[27];
-    for (int k = 0; k < 27; k++) s[k] = 0.0;
-    for (int q = 0; q < 6; q++) {
-        double l[3];
-        double w = glpgp_quad4(q, &l[0], &l[1], &l[2]);
-        double x = l[0] * zr[0] + l[1] * zr[1] + l[2] * zr[2];
-        double y = l[0] * zi[0] + l[1] * zi[1] + l[2] * zi[2];
-        double h00, h01, h11;
-        glpgp_pen_hess_point(hess, x, y, &h00, &h01, &h11);
-        for (int a = 0; a < 3; a++) {
-            const double wa = w * l[a];
-            for (int b = 0; b < 3; b++) {
-                /* f = w l_a l_b, the same product order as glpgp_pen_hess_row */
-                const double f = wa * l[b];
-                s[9 * a + 3 * b] += f * h00;
-                s[9 * a + 3 * b + 1] += f * h01;
-                s[9 * a + 3 * b + 2] += f * h11;
-            }
-        }
-    }
-    double c = 4.0 * area * inv4e2;
-    for (int k = 0; k < 27; k++) m[k] = c * s[k];
-}
-
 #endif

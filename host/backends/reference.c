@@ -178,48 +178,11 @@ static glpgp_status ref_assemble_newton(glpgp_backend *b, const glpgp_vec *xv, d
                 bad < 0)
                 bad = i;
     } else {
-        /* the values of glpgp_row_asm_newton (the OpenCL kernel's rows), bit
-         * for bit, with each triangle's quadrature evaluated once instead of
-         * once per corner: NEWTON <- 0; per triangle t in increasing order,
-         * its nine penalty blocks (glpgp_pen_hess_tri) added to their slots
-         * (a slot receives its triangles in increasing t, one block each:
-         * the gather's order); then per row QUAD + sum, Dirichlet -> I / 0,
-         * DINV. */
-        double *nw = r->newton;
-        const unsigned char *dir = r->dir;
-        glpgp_row_newton_zero(0, (int)sys->nnzb, nw);
-        if (inv4e2 > 0.0)
-            for (int t = 0; t < m->nt; t++) {
-                const int *v = m->tri + 3 * (size_t)t;
-                if (dir[v[0]] && dir[v[1]] && dir[v[2]]) continue;
-                double x[3], y[3], zr[3], zi[3], hm[27];
-                glpgp_tri_load(m->xy, m->tri, t, x, y);
-                glpgp_tri_vals(m->tri, xv->a, t, zr, zi);
-                glpgp_pen_hess_tri(hess, glpgp_tri_area(x, y), inv4e2, zr, zi, hm);
-                for (int a = 0; a < 3; a++) {
-                    const int i = v[a];
-                    if (dir[i]) continue;
-                    const int k0 = sys->rowptr[i], k1 = sys->rowptr[i + 1];
-                    for (int bb = 0; bb < 3; bb++) {
-                        const int j = v[bb];
-                        if (dir[j]) continue; /* overwritten by the row's finish */
-                        int k = k0;
-                        while (k < k1 && sys->col[k] != j) k++;
-                        if (k == k1) continue; /* not in the pattern: cannot happen */
-                        const double *hb = hm + 9 * a + 3 * bb;
-                        double *blk = nw + 4 * (size_t)k;
-                        blk[0] += hb[0];
-                        blk[1] += hb[1];
-                        blk[2] += hb[1];
-                        blk[3] += hb[2];
-                    }
-                }
-            }
-        for (int i = 0; i < sys->nv; i++)
-            if (glpgp_row_newton_finish(i, sys->rowptr[i], sys->rowptr[i + 1], sys->col, sys->diag, dir, r->quad,
-                                        nw, r->dinv) &&
-                bad < 0)
-                bad = i;
+    for (int i = 0; i < sys->nv; i++)
+        if (glpgp_row_asm_newton(i, hess, inv4e2, m->xy, m->tri, xv->a, sys->rowptr, sys->col, sys->diag,
+                                 sys->vptr, sys->vtri, r->dir, r->quad, r->newton, r->dinv) &&
+            bad < 0)
+            bad = i;
     }
     if (bad >= 0) return GLPGP_FAIL(GLPGP_ERR_NUMERIC, "singular diagonal block at vertex %d", bad);
     return GLPGP_OK;
