@@ -243,6 +243,36 @@ GLPGP_FN void glpgp_pen_grad(double area, double inv4e2, const double *zr, const
     *gi = 4.0 * area * inv4e2 * si;
 }
 
+/* Penalty gradient at the three corners and the penalty energy of one
+ * triangle at once: (g[2a], g[2a+1]) as glpgp_pen_grad(.., a, ..) stores it,
+ * *e as glpgp_pen_energy returns it, with exactly their arithmetic (the
+ * quadrature values once per triangle instead of once per corner), so the
+ * values agree bit for bit. For a loop over triangles that scatters each
+ * corner's gradient to its vertex in increasing triangle order (the
+ * reference backend's gradient: the sums of the per-vertex gather). */
+GLPGP_FN void glpgp_pen_grad_tri(double area, double inv4e2, const double *zr, const double *zi, double *g,
+                                 double *e)
+{
+    double sr[3] = {0.0, 0.0, 0.0}, si[3] = {0.0, 0.0, 0.0}, en = 0.0;
+    for (int q = 0; q < 6; q++) {
+        double l[3];
+        double w = glpgp_quad4(q, &l[0], &l[1], &l[2]);
+        double x = l[0] * zr[0] + l[1] * zr[1] + l[2] * zr[2];
+        double y = l[0] * zi[0] + l[1] * zi[1] + l[2] * zi[2];
+        double s = x * x + y * y - 1.0;
+        en += w * s * s;
+        for (int a = 0; a < 3; a++) {
+            sr[a] += w * s * x * l[a];
+            si[a] += w * s * y * l[a];
+        }
+    }
+    for (int a = 0; a < 3; a++) {
+        g[2 * a] = 4.0 * area * inv4e2 * sr[a];
+        g[2 * a + 1] = 4.0 * area * inv4e2 * si[a];
+    }
+    *e = area * inv4e2 * en;
+}
+
 /* The 2x2 matrix M_q / 4 of variant `hess` (see the top) at the quadrature
  * value z_q = (x, y): (*h00, *h01 = *h10, *h11). */
 GLPGP_FN void glpgp_pen_hess_point(int hess, double x, double y, double *h00, double *h01, double *h11)

@@ -25,6 +25,7 @@ static void ref_destroy(glpgp_backend *b)
     free(r->quad);
     free(r->newton);
     free(r->dinv);
+    free(r->pgrad);
     glpgp_ref_amg_free(r);
     free(r);
     b->impl = NULL;
@@ -41,6 +42,7 @@ static glpgp_status ref_setup(glpgp_backend *b, const glpgp_system *sys)
     glpgp_free(&r->quad);
     glpgp_free(&r->newton);
     glpgp_free(&r->dinv);
+    glpgp_free(&r->pgrad);
     glpgp_ref_amg_free(r); /* a hierarchy belongs to one system */
     r->sys = sys;
     b->sys = sys;
@@ -51,6 +53,7 @@ static glpgp_status ref_setup(glpgp_backend *b, const glpgp_system *sys)
     GLPGP_CHECK(glpgp_calloc((size_t)4 * sys->nnzb, sizeof(double), &r->quad));
     GLPGP_CHECK(glpgp_calloc((size_t)4 * sys->nnzb, sizeof(double), &r->newton));
     GLPGP_CHECK(glpgp_calloc((size_t)4 * sys->nv, sizeof(double), &r->dinv));
+    GLPGP_CHECK(glpgp_calloc((size_t)2 * sys->nv, sizeof(double), &r->pgrad));
     return GLPGP_OK;
 }
 
@@ -210,10 +213,48 @@ static glpgp_status ref_gradient(glpgp_backend *b, const glpgp_vec *xv, double i
         for (int i = 0; i < sys->nv; i++)
             glpgp_crow_gradient(i, inv4e2, m->xy, m->tri, sys->cconj, xv->a, sys->rowptr, sys->col, r->quad,
                                 sys->vptr, sys->vtri, r->dir, g->a, &e);
-    else
-    for (int i = 0; i < sys->nv; i++)
-        glpgp_row_gradient(i, inv4e2, m->xy, m->tri, xv->a, sys->rowptr, sys->col, r->quad, sys->vptr, sys->vtri,
-                           r->dir, g->a, &e);
+    else {
+        /* the values of glpgp_row_gradient (the OpenCL kernel's rows) and of
+         * penalty_sum, bit for bit, with each triangle's quadrature evaluated
+         * once instead of once per corner plus once for the energy: per
+         * triangle in increasing order, the three corner gradients added to
+         * their vertices (the gather's order) and P_t to P
+         * (glpgp_pen_grad_tri); then per row QUAD x + that sum */
+        double p = 0.0, *pg = r->pgrad;
+        if (inv4e2 > 0.0) {
+            for (size_t k = 0; k < (size_t)2 * sys->nv; k++) pg[k] = 0.0;
+            for (int t = 0; t < m->nt; t++) {
+                const int *v = m->tri + 3 * (size_t)t;
+                double x[3], y[3], zr[3], zi[3], gt[6], et;
+                glpgp_tri_load(m->xy, m->tri, t, x, y);
+                glpgp_tri_vals(m->tri, xv->a, t, zr, zi);
+                glpgp_pen_grad_tri(glpgp_tri_area(x, y), inv4e2, zr, zi, gt, &et);
+                p += et;
+                for (int a = 0; a < 3; a++) {
+                    pg[2 * v[a]] += gt[2 * a];
+                    pg[2 * v[a] + 1] += gt[2 * a + 1];
+                }
+            }
+        }
+        for (int i = 0; i < sys->nv; i++) {
+            /* g_i <- (QUAD x)_i + grad_i P (0 when Dirichlet);  e += x_i . (QUAD x)_i */
+            double y0, y1;
+            glpgp_row_spmv(i, sys->rowptr, sys->col, r->quad, xv->a, &y0, &y1);
+            glpgp_row_dot_acc(i, xv->a, y0, y1, &e);
+            if (r->dir[i]) {
+                y0 = 0.0;
+                y1 = 0.0;
+            } else if (inv4e2 > 0.0) {
+                y0 += pg[2 * i];
+                y1 += pg[2 * i + 1];
+            }
+            g->a[2 * i] = y0;
+            g->a[2 * i + 1] = y1;
+        }
+        r->s[GLPGP_S_E] = 0.5 * e;
+        r->s[GLPGP_S_P] = p;
+        return GLPGP_OK;
+    }
     r->s[GLPGP_S_E] = 0.5 * e;
     r->s[GLPGP_S_P] = penalty_sum(sys, xv->a, inv4e2);
     return GLPGP_OK;

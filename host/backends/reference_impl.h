@@ -24,6 +24,7 @@ typedef struct ref_impl {
     int sized;                 /* assemble with size[] instead of h */
     double *quad, *newton;     /* 4*nnzb */
     double *dinv;              /* 4*nv */
+    double *pgrad;             /* 2*nv: penalty gradient sums of the triangle-loop gradient */
     int kind;
     double h;
     double s[GLPGP_NSLOTS];

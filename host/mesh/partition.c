@@ -1,6 +1,7 @@
 /* mesh/partition.c: vertex partitions for distributed solves (glpgp/mesh.h):
  * recursive coordinate bisection into parts of prescribed sizes, and the
- * renumbering of a mesh so that each part's vertices are contiguous.
+ * renumbering of a mesh so that each part's vertices are contiguous; the
+ * reverse Cuthill-McKee order (memory locality of one process's solve).
  * Deterministic: the same mesh gives the same partition in every process
  * (sorts break coordinate ties by vertex index); one rank's part of a
  * renumbered mesh: its vertices, one layer of ghosts, its triangles. */
@@ -64,6 +65,93 @@ glpgp_status glpgp_mesh_partition(const glpgp_mesh *m, int nparts, const int *si
     rcb(m->xy, v, m->nv, size, 0, nparts, part);
     free(v);
     return GLPGP_OK;
+}
+
+/* BFS of the component of s (vertices not yet in order[0 .. *n)), neighbours by
+ * increasing (degree, index), appended to order[*n ..] and marked in seen;
+ * returns the last vertex reached (on the deepest level). Adjacency (ptr, adj). */
+static int rcm_bfs(const int *ptr, const int *adj, int s, int *order, int *n, unsigned char *seen)
+{
+    int head = *n;
+    order[(*n)++] = s;
+    seen[s] = 1;
+    while (head < *n) {
+        const int u = order[head++], first = *n;
+        for (int k = ptr[u]; k < ptr[u + 1]; k++) {
+            const int w = adj[k];
+            if (seen[w]) continue;
+            seen[w] = 1;
+            /* insertion by (degree, index): rows are short */
+            int q = (*n)++;
+            const int dw = ptr[w + 1] - ptr[w];
+            while (q > first) {
+                const int v = order[q - 1], dv = ptr[v + 1] - ptr[v];
+                if (dv < dw || (dv == dw && v < w)) break;
+                order[q] = v;
+                q--;
+            }
+            order[q] = w;
+        }
+    }
+    return order[*n - 1];
+}
+
+glpgp_status glpgp_mesh_rcm_order(const glpgp_mesh *m, int *new_of_old)
+{
+    const int nv = m->nv, nt = m->nt;
+    glpgp_status st = GLPGP_OK;
+    int *ptr = NULL, *adj = NULL, *order = NULL, *mark = NULL, *tptr = NULL, *tlist = NULL;
+    unsigned char *seen = NULL;
+    GLPGP_CHECK_GOTO(st, glpgp_calloc((size_t)nv + 1, sizeof(int), &tptr), done);
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)3 * nt + 1, sizeof(int), &tlist), done);
+    GLPGP_CHECK_GOTO(st, glpgp_calloc((size_t)nv + 1, sizeof(int), &ptr), done);
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)6 * nt + 1, sizeof(int), &adj), done);
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)nv + 1, sizeof(int), &order), done);
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)nv + 1, sizeof(int), &mark), done);
+    GLPGP_CHECK_GOTO(st, glpgp_calloc((size_t)nv + 1, 1, &seen), done);
+    /* vertex -> triangles, then the vertex graph (each edge once per side) */
+    for (long k = 0; k < 3L * nt; k++) tptr[m->tri[k] + 1]++;
+    for (int i = 0; i < nv; i++) tptr[i + 1] += tptr[i];
+    for (long k = 0; k < 3L * nt; k++) tlist[tptr[m->tri[k]]++] = (int)(k / 3);
+    for (int i = nv; i > 0; i--) tptr[i] = tptr[i - 1];
+    tptr[0] = 0;
+    for (int i = 0; i < nv; i++) mark[i] = -1;
+    for (int i = 0; i < nv; i++) {
+        ptr[i + 1] = ptr[i];
+        for (int p = tptr[i]; p < tptr[i + 1]; p++)
+            for (int a = 0; a < 3; a++) {
+                const int j = m->tri[3 * (size_t)tlist[p] + a];
+                if (j == i || mark[j] == i) continue;
+                mark[j] = i;
+                adj[ptr[i + 1]++] = j;
+            }
+    }
+    /* per component: a pseudo-peripheral start (the last vertex of a BFS,
+     * twice), then the Cuthill-McKee BFS */
+    int n = 0;
+    for (int s0 = 0; s0 < nv; s0++) {
+        if (seen[s0]) continue;
+        int s = s0;
+        for (int sweep = 0; sweep < 2; sweep++) {
+            const int n0 = n;
+            const int far = rcm_bfs(ptr, adj, s, order, &n, seen);
+            for (int k = n0; k < n; k++) seen[order[k]] = 0;
+            n = n0;
+            s = far;
+        }
+        rcm_bfs(ptr, adj, s, order, &n, seen);
+    }
+    /* reversed: new number of order[k] = nv - 1 - k */
+    for (int k = 0; k < nv; k++) new_of_old[order[k]] = nv - 1 - k;
+done:
+    free(ptr);
+    free(adj);
+    free(order);
+    free(mark);
+    free(tptr);
+    free(tlist);
+    free(seen);
+    return st;
 }
 
 glpgp_status glpgp_mesh_renumber(const glpgp_mesh *m, const int *new_of_old, glpgp_mesh **out)

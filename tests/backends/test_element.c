@@ -138,7 +138,9 @@ static void test_penalty_psd(void)
 }
 
 /* glpgp_pen_hess_row (the three blocks (a,0..2) of a triangle at once, used by the
- * NEWTON assembly) must give glpgp_pen_hess's blocks bit for bit, every variant,
+ * NEWTON assembly) must give glpgp_pen_hess's blocks bit for bit, and
+ * glpgp_pen_grad_tri (the reference gradient) glpgp_pen_grad's and
+ * glpgp_pen_energy's, every variant,
  * including z in vortex cores (|z_q|^2 < 1/2), z = 0 and a negative area. */
 static void test_penalty_row_bitwise(void)
 {
@@ -163,6 +165,18 @@ static void test_penalty_row_bitwise(void)
                     CHECK(memcmp(&blk[3], &row[3 * b + 2], sizeof(double)) == 0);
                 }
             }
+        /* the three corner gradients and the energy at once (reference
+         * gradient): glpgp_pen_grad's and glpgp_pen_energy's bits */
+        double g3[6], e3;
+        glpgp_pen_grad_tri(area, inv4e2, zr, zi, g3, &e3);
+        for (int a = 0; a < 3; a++) {
+            double gr, gi;
+            glpgp_pen_grad(area, inv4e2, zr, zi, a, &gr, &gi);
+            CHECK(memcmp(&gr, &g3[2 * a], sizeof gr) == 0);
+            CHECK(memcmp(&gi, &g3[2 * a + 1], sizeof gi) == 0);
+        }
+        const double e1 = glpgp_pen_energy(area, inv4e2, zr, zi);
+        CHECK(memcmp(&e1, &e3, sizeof e1) == 0);
     }
 }
 

@@ -3,7 +3,8 @@
  * same parts on a second call, compact parts (few cut edges against a
  * partition by vertex index on a mesh numbered in random order), and a
  * renumbered mesh that is the same mesh (area, boundary loops, the
- * coordinates of every triangle's corners); the parts of a distributed solve
+ * coordinates of every triangle's corners); glpgp_mesh_rcm_order: a
+ * deterministic permutation with small index gaps along the edges; the parts of a distributed solve
  * (glpgp_mesh_extract_part): owned vertices first with consecutive global
  * ids, increasing ghosts outside the owned range, every triangle touching
  * an owned vertex and no other, each triangle counted by exactly one part,
@@ -74,6 +75,35 @@ int main(void)
     if (back) {
         CHECK(!memcmp(back->xy, m->xy, sizeof(double) * 2 * nv));
         CHECK(!memcmp(back->tri, m->tri, sizeof(int) * 3 * m->nt));
+    }
+
+    /* reverse Cuthill-McKee order of the random numbering: a permutation,
+     * deterministic, and the edges' index gaps far smaller (median over the
+     * triangle sides, against the random numbering's) */
+    {
+        int *rcm = malloc(sizeof(int) * nv), *rcm2 = malloc(sizeof(int) * nv), *seen = calloc((size_t)nv, sizeof(int));
+        CHECK_OK(glpgp_mesh_rcm_order(shuf, rcm));
+        CHECK_OK(glpgp_mesh_rcm_order(shuf, rcm2));
+        CHECK(!memcmp(rcm, rcm2, sizeof(int) * nv));
+        int okperm = 1;
+        for (int i = 0; i < nv; i++) {
+            if (rcm[i] < 0 || rcm[i] >= nv || seen[rcm[i]]) okperm = 0;
+            else seen[rcm[i]] = 1;
+        }
+        CHECK(okperm);
+        long far_rcm = 0, far_rand = 0; /* sides with |i - j| > nv / 20 */
+        for (int t = 0; t < shuf->nt && okperm; t++)
+            for (int a = 0; a < 3; a++) {
+                const int i = shuf->tri[3 * t + a], j = shuf->tri[3 * t + (a + 1) % 3];
+                far_rand += abs(i - j) > nv / 20;
+                far_rcm += abs(rcm[i] - rcm[j]) > nv / 20;
+            }
+        printf("triangle sides with |i - j| > nv/20: random numbering %ld, reverse Cuthill-McKee %ld\n", far_rand,
+               far_rcm);
+        CHECK(far_rcm * 100 < far_rand);
+        free(rcm);
+        free(rcm2);
+        free(seen);
     }
 
     /* the parts of 3 ranks of the renumbered mesh shuf */

@@ -95,6 +95,13 @@ void glpgp_mesh_destroy(glpgp_mesh **m);
  * each set split across the longer side of its bounding box. Deterministic
  * (ties broken by vertex index): every process computes the same parts. */
 glpgp_status glpgp_mesh_partition(const glpgp_mesh *m, int nparts, const int *size, int *part);
+/* new_of_old[i] <- the reverse Cuthill-McKee number of vertex i (a
+ * permutation of 0 .. nv-1): breadth-first from a pseudo-peripheral vertex
+ * of each connected component, neighbours by increasing degree (ties by
+ * index), the whole order reversed. Neighbours then get nearby numbers
+ * (small bandwidth): matrix rows gather their columns from a few cache
+ * lines. Deterministic. */
+glpgp_status glpgp_mesh_rcm_order(const glpgp_mesh *m, int *new_of_old);
 /* *out <- m with vertex i renumbered new_of_old[i] (a permutation of
  * 0 .. nv-1); triangles keep their order and corner order. */
 glpgp_status glpgp_mesh_renumber(const glpgp_mesh *m, const int *new_of_old, glpgp_mesh **out);
