@@ -209,17 +209,28 @@ GLPGP_FN double glpgp_quad4(int q, double *l0, double *l1, double *l2)
     return q < 3 ? w1 : (1.0 / 3.0 - w1);
 }
 
+/* Quadrature point q of the penalty's rule (glpgp_quad4) in one triangle:
+ * barycentrics l[0..2], z_q = (*x, *y) interpolated from the corners and
+ * *s = |z_q|^2 - 1; returns the weight w_q. One copy of the arithmetic for
+ * the energy and gradients below, so their values agree bit for bit. */
+GLPGP_FN double glpgp_pen_point(int q, const double *zr, const double *zi, double *l, double *x, double *y,
+                                double *s)
+{
+    double w = glpgp_quad4(q, &l[0], &l[1], &l[2]);
+    *x = l[0] * zr[0] + l[1] * zr[1] + l[2] * zr[2];
+    *y = l[0] * zi[0] + l[1] * zi[1] + l[2] * zi[2];
+    *s = *x * *x + *y * *y - 1.0;
+    return w;
+}
+
 /* Penalty energy of one triangle: A/(4 eps^2) sum_q w_q (|z_q|^2 - 1)^2.
  * area = triangle area, inv4e2 = 1/(4 eps^2), zr/zi the corner values. */
 GLPGP_FN double glpgp_pen_energy(double area, double inv4e2, const double *zr, const double *zi)
 {
     double e = 0.0;
     for (int q = 0; q < 6; q++) {
-        double l[3];
-        double w = glpgp_quad4(q, &l[0], &l[1], &l[2]);
-        double x = l[0] * zr[0] + l[1] * zr[1] + l[2] * zr[2];
-        double y = l[0] * zi[0] + l[1] * zi[1] + l[2] * zi[2];
-        double s = x * x + y * y - 1.0;
+        double l[3], x, y, s;
+        double w = glpgp_pen_point(q, zr, zi, l, &x, &y, &s);
         e += w * s * s;
     }
     return area * inv4e2 * e;
@@ -231,11 +242,8 @@ GLPGP_FN void glpgp_pen_grad(double area, double inv4e2, const double *zr, const
 {
     double sr = 0.0, si = 0.0;
     for (int q = 0; q < 6; q++) {
-        double l[3];
-        double w = glpgp_quad4(q, &l[0], &l[1], &l[2]);
-        double x = l[0] * zr[0] + l[1] * zr[1] + l[2] * zr[2];
-        double y = l[0] * zi[0] + l[1] * zi[1] + l[2] * zi[2];
-        double s = x * x + y * y - 1.0;
+        double l[3], x, y, s;
+        double w = glpgp_pen_point(q, zr, zi, l, &x, &y, &s);
         sr += w * s * x * l[a];
         si += w * s * y * l[a];
     }
@@ -255,11 +263,8 @@ GLPGP_FN void glpgp_pen_grad_tri(double area, double inv4e2, const double *zr, c
 {
     double sr[3] = {0.0, 0.0, 0.0}, si[3] = {0.0, 0.0, 0.0}, en = 0.0;
     for (int q = 0; q < 6; q++) {
-        double l[3];
-        double w = glpgp_quad4(q, &l[0], &l[1], &l[2]);
-        double x = l[0] * zr[0] + l[1] * zr[1] + l[2] * zr[2];
-        double y = l[0] * zi[0] + l[1] * zi[1] + l[2] * zi[2];
-        double s = x * x + y * y - 1.0;
+        double l[3], x, y, s;
+        double w = glpgp_pen_point(q, zr, zi, l, &x, &y, &s);
         en += w * s * s;
         for (int a = 0; a < 3; a++) {
             sr[a] += w * s * x * l[a];
@@ -310,10 +315,8 @@ GLPGP_FN void glpgp_pen_hess(int hess, double area, double inv4e2, const double 
 {
     double m0 = 0.0, m1 = 0.0, m2 = 0.0, m3 = 0.0;
     for (int q = 0; q < 6; q++) {
-        double l[3];
-        double w = glpgp_quad4(q, &l[0], &l[1], &l[2]);
-        double x = l[0] * zr[0] + l[1] * zr[1] + l[2] * zr[2];
-        double y = l[0] * zi[0] + l[1] * zi[1] + l[2] * zi[2];
+        double l[3], x, y, s2;
+        double w = glpgp_pen_point(q, zr, zi, l, &x, &y, &s2); /* s2 unused here */
         double f = w * l[a] * l[b];
         double h00, h01, h11;
         glpgp_pen_hess_point(hess, x, y, &h00, &h01, &h11);
@@ -341,10 +344,8 @@ GLPGP_FN void glpgp_pen_hess_row(int hess, double area, double inv4e2, const dou
     double s[9];
     for (int k = 0; k < 9; k++) s[k] = 0.0;
     for (int q = 0; q < 6; q++) {
-        double l[3];
-        double w = glpgp_quad4(q, &l[0], &l[1], &l[2]);
-        double x = l[0] * zr[0] + l[1] * zr[1] + l[2] * zr[2];
-        double y = l[0] * zi[0] + l[1] * zi[1] + l[2] * zi[2];
+        double l[3], x, y, s2;
+        double w = glpgp_pen_point(q, zr, zi, l, &x, &y, &s2); /* s2 unused here */
         double h00, h01, h11;
         glpgp_pen_hess_point(hess, x, y, &h00, &h01, &h11);
         const double wa = w * l[a];
