@@ -604,7 +604,10 @@ static int solve_main(solve_cli *cc, const char *input)
         int owned = 0, ghosts = 0;
         glpgp_petsc_backend_info(b, &owned, &ghosts);
         const double mine[GLPGP_RANK_INFO_N] = {owned, ghosts, r->seconds_total, glpgp_petsc_max_rss()};
-        if (glpgp_malloc((size_t)nranks * GLPGP_RANK_INFO_N, sizeof(double), &rank_info) != GLPGP_OK) goto fail;
+        /* an allocation failure on one rank is every rank's (collective
+         * verdict), so no rank waits in the gather alone */
+        const glpgp_status ast = glpgp_malloc((size_t)nranks * GLPGP_RANK_INFO_N, sizeof(double), &rank_info);
+        if (!glpgp_petsc_all_ok(ast == GLPGP_OK)) goto fail;
         glpgp_petsc_gather(mine, GLPGP_RANK_INFO_N, rank_info);
         if (root && c.verbosity > 0)
             for (int k = 0; k < nranks; k++) {
