@@ -1,6 +1,7 @@
 /* testutil.h: the one header of the C tests: every public glpgp header, the
  * check macros (a failed check prints file:line and the expression, the test
- * exits 1 at TEST_DONE) and a deterministic random generator. */
+ * exits 1 at TEST_DONE), a deterministic random generator and the solve ->
+ * quads -> quality pipeline of the quad tests. */
 #ifndef GLPGP_TESTUTIL_H
 #define GLPGP_TESTUTIL_H
 
@@ -73,6 +74,26 @@ static inline double tu_rand(void)
     tu_rng ^= tu_rng << 25;
     tu_rng ^= tu_rng >> 27;
     return (double)((tu_rng * 2685821657736338717ULL) >> 11) * (1.0 / 9007199254740992.0);
+}
+
+/* The quad tests' pipeline on the reference backend: m solved with o, its
+ * quads extracted at the period h and measured into *qq. Returns 1 when a
+ * quad mesh came out (then *qq is set), 0 otherwise (a failed step is a
+ * failed check). */
+static inline int tu_solve_quads(const glpgp_mesh *m, const glpgp_options *o, double h, glpgp_quad_quality *qq)
+{
+    glpgp_backend *be = NULL;
+    glpgp_result *r = NULL;
+    glpgp_quadmesh *q = NULL;
+    CHECK_OK(glpgp_backend_create_reference(&be));
+    if (be) CHECK_OK(glpgp_solve(m, be, o, &r));
+    if (r) CHECK_OK(glpgp_quads_build(m, r, NULL, &q, &h));
+    if (q) CHECK_OK(glpgp_quads_quality(q, m, h, qq));
+    const int made = q != NULL;
+    glpgp_quadmesh_destroy(&q);
+    glpgp_result_destroy(&r);
+    glpgp_backend_destroy(&be);
+    return made;
 }
 
 #endif

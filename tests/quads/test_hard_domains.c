@@ -57,9 +57,6 @@ static void check_valid(const glpgp_quad_quality *qq, const char *what)
 /* Solve at h = 1, extract with the defaults, report. */
 static void pipeline(const glpgp_mesh *m0, const char *what, int size_field, int *valid, int *irregular, int *quads)
 {
-    glpgp_backend *b = NULL;
-    glpgp_result *r = NULL;
-    CHECK_OK(glpgp_backend_create_reference(&b));
     glpgp_options o;
     glpgp_options_default(&o);
     o.size = 1.0;
@@ -71,13 +68,8 @@ static void pipeline(const glpgp_mesh *m0, const char *what, int size_field, int
     glpgp_refine_info ri;
     CHECK_OK(glpgp_size_refine(m0, &o, o.size, &mr, &ri));
     const glpgp_mesh *m = mr ? mr : m0;
-    CHECK_OK(glpgp_solve(m, b, &o, &r));
-    glpgp_quadmesh *q = NULL;
-    double h = 1.0;
-    if (r) CHECK_OK(glpgp_quads_build(m, r, NULL, &q, &h));
-    if (q) {
-        glpgp_quad_quality qq;
-        CHECK_OK(glpgp_quads_quality(q, m, h, &qq));
+    glpgp_quad_quality qq;
+    if (tu_solve_quads(m, &o, 1.0, &qq)) {
         printf("%-22s %6d vertices: %4d quads, irregular %4d, SJ min %.3f, area %.4f, Hausdorff %.3f h, "
                "repair: %d faces removed, %d quads made%s\n",
                what, m->nv, qq.quads, qq.irregular, qq.sj_min, qq.area_ratio, qq.hausdorff, qq.repair.removed_faces,
@@ -87,9 +79,6 @@ static void pipeline(const glpgp_mesh *m0, const char *what, int size_field, int
         *irregular += qq.irregular;
         *quads += qq.quads;
     }
-    glpgp_quadmesh_destroy(&q);
-    glpgp_result_destroy(&r);
-    glpgp_backend_destroy(&b);
     glpgp_mesh_destroy(&mr);
 }
 

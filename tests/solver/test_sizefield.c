@@ -461,6 +461,16 @@ static void chord_sizes(const glpgp_mesh *m, int field, int chord, double h, dou
     chord_sizes_u(m, field, chord, h, NULL, s);
 }
 
+/* The iso sizes of m at h with the chord budget (*a) and without (*b),
+ * allocated here (2 nv each; the caller frees). */
+static void chord_pair(const glpgp_mesh *m, double h, double **a, double **b)
+{
+    *a = malloc(sizeof(double) * 2 * m->nv);
+    *b = malloc(sizeof(double) * 2 * m->nv);
+    chord_sizes(m, GLPGP_SIZE_ISO, 1, h, *a);
+    chord_sizes(m, GLPGP_SIZE_ISO, 0, h, *b);
+}
+
 static void test_chord_straight(void)
 {
     const char *names[2] = {"square", "lshape"};
@@ -496,9 +506,8 @@ static void test_chord_small_holes(void)
     }
     glpgp_mesh *m = hard_mesh("perforated", 1.0 / 6);
     if (!m) return;
-    double *a = malloc(sizeof(double) * 2 * m->nv), *b = malloc(sizeof(double) * 2 * m->nv);
-    chord_sizes(m, GLPGP_SIZE_ISO, 1, 1.0, a);
-    chord_sizes(m, GLPGP_SIZE_ISO, 0, 1.0, b);
+    double *a = NULL, *b = NULL;
+    chord_pair(m, 1.0, &a, &b);
     int diff = 0;
     for (int i = 0; i < 2 * m->nv; i++) diff += a[i] != b[i];
     printf("chord budget, perforated (%d loops): %d of %d sizes differ\n", m->nloops, diff, 2 * m->nv);
@@ -519,9 +528,8 @@ static void test_chord_disk(void)
     /* sizes: below without the budget everywhere, and on the boundary the chord
      * whose area error h^2 / 6 (unit disk: sum h^2 / (12 R) |e| over 2 pi, over pi)
      * meets the budget, within the polygon's approximation */
-    double *a = malloc(sizeof(double) * 2 * m->nv), *b = malloc(sizeof(double) * 2 * m->nv);
-    chord_sizes(m, GLPGP_SIZE_ISO, 1, h, a);
-    chord_sizes(m, GLPGP_SIZE_ISO, 0, h, b);
+    double *a = NULL, *b = NULL;
+    chord_pair(m, h, &a, &b);
     const double hb = sqrt(6.0 * o.size_chord_area);
     double bmin = HUGE_VAL, bmax = 0.0;
     int above = 0;
@@ -540,19 +548,12 @@ static void test_chord_disk(void)
     /* the quads: valid as extracted, the repair not run */
     const int fields[2] = {GLPGP_FIELD_CROSS, GLPGP_FIELD_BOUNDARY};
     for (int f = 0; f < 2; f++) {
-        glpgp_backend *be = NULL;
-        glpgp_result *r = NULL;
-        glpgp_quadmesh *q = NULL;
         glpgp_options os;
         glpgp_options_default(&os);
         os.field = fields[f];
-        CHECK_OK(glpgp_backend_create_reference(&be));
-        CHECK_OK(glpgp_solve(m, be, &os, &r));
-        double hq = h;
-        if (r) CHECK_OK(glpgp_quads_build(m, r, NULL, &q, &hq));
-        if (q) {
-            glpgp_quad_quality qq;
-            CHECK_OK(glpgp_quads_quality(q, m, hq, &qq));
+        glpgp_quad_quality qq;
+        const int made = tu_solve_quads(m, &os, h, &qq);
+        if (made) {
             printf("chord budget, disk %s quads: %d faces, %d irregular, SJ min %.3f, area %.4f, Hausdorff %.3f h, "
                    "repair rounds %d\n",
                    f ? "boundary" : "cross", qq.faces, qq.irregular, qq.sj_min, qq.area_ratio, qq.hausdorff,
@@ -560,10 +561,7 @@ static void test_chord_disk(void)
             CHECK(qq.invalid == 0 && qq.others == 0 && fabs(qq.area_ratio - 1.0) <= 0.01);
             CHECK(qq.repair.rounds == 0 && qq.repair.removed_faces == 0);
         }
-        CHECK(q != NULL);
-        glpgp_quadmesh_destroy(&q);
-        glpgp_result_destroy(&r);
-        glpgp_backend_destroy(&be);
+        CHECK(made);
     }
     glpgp_mesh_destroy(&m);
 }
@@ -596,18 +594,7 @@ static void test_chord_netted(void)
             for (int k = 0; k < 2; k++) {
                 /* k = 0: the default budget; 1: none */
                 if (k) o.size_chord_area = o.size_chord_depth = 0.0;
-                glpgp_backend *be = NULL;
-                glpgp_result *res = NULL;
-                glpgp_quadmesh *q = NULL;
-                CHECK_OK(glpgp_backend_create_reference(&be));
-                CHECK_OK(glpgp_solve(mm, be, &o, &res));
-                double hq = 1.0;
-                if (res) CHECK_OK(glpgp_quads_build(mm, res, NULL, &q, &hq));
-                if (q) CHECK_OK(glpgp_quads_quality(q, mm, hq, &qq[k]));
-                CHECK(q != NULL);
-                glpgp_quadmesh_destroy(&q);
-                glpgp_result_destroy(&res);
-                glpgp_backend_destroy(&be);
+                CHECK(tu_solve_quads(mm, &o, 1.0, &qq[k]));
             }
             printf("chord budget, motor quads: %d faces, %d irregular, SJ min %.3f, area %.4f, Hausdorff %.3f h, "
                    "repair rounds %d (without the budget: %d faces, %d irregular)\n",
@@ -628,9 +615,8 @@ static void test_chord_netted(void)
     glpgp_options o;
     glpgp_options_default(&o);
     const double h = glpgp_default_size(m, &o);
-    double *a = malloc(sizeof(double) * 2 * m->nv), *b = malloc(sizeof(double) * 2 * m->nv);
-    chord_sizes(m, GLPGP_SIZE_ISO, 1, h, a);
-    chord_sizes(m, GLPGP_SIZE_ISO, 0, h, b);
+    double *a = NULL, *b = NULL;
+    chord_pair(m, h, &a, &b);
     int capped[2] = {0, 0};
     for (int l = 0; l < m->nloops && l < 2; l++)
         for (int p = m->loop_start[l]; p < m->loop_start[l + 1]; p++) {
