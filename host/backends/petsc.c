@@ -98,6 +98,10 @@ typedef struct pimpl {
     KSP ksp;
     Vec nn;                     /* the Newton iterate of the last assemble_newton with penalty */
     int nn_valid;
+    long quad_gen;              /* assemble_quadratic calls so far (a new QUAD: field, oscillator) */
+    double newton_inv4e2;       /* 1/(4 eps^2) of the last assemble_newton */
+    long ksp_gen;               /* the (quad_gen, newton_inv4e2) the KSP's hierarchy was built for */
+    double ksp_inv4e2;
     int precond;
     double s[GLPGP_NSLOTS];
 } pimpl;
@@ -496,6 +500,7 @@ static glpgp_status p_assemble_quadratic(glpgp_backend *b, int kind, double h)
     const glpgp_mesh *m = sys->mesh;
     /* QUAD <- gather of the element entries into each owned block slot */
     double *quad = QUAD(p);
+    p->quad_gen++;
     for (int i = p->lo; i < p->hi; i++)
         glpgp_row_asm_quad(i, kind, h, p->sized, p->size_, m->xy, m->tri, p->wbuf, sys->rowptr, sys->cptr,
                            sys->contrib, quad);
@@ -526,6 +531,7 @@ static glpgp_status p_assemble_newton(glpgp_backend *b, const glpgp_vec *xv, dou
         bad = all[0];
     }
     p->A_dirty = 1;
+    p->newton_inv4e2 = inv4e2;
     /* the near null space of the next linear solve: the iterate, when this is a GL Newton matrix */
     p->nn_valid = inv4e2 > 0.0;
     if (p->nn_valid) {
@@ -810,7 +816,18 @@ static glpgp_status p_linear_solve(glpgp_backend *b, const glpgp_vec *rhs, glpgp
     *relres = 0.0;
     *reason = 0;
     if (p->A_dirty || !p->A) GLPGP_CHECK(newton_to_mat(p));
+    /* GAMG's hierarchy: built anew for each new system (a new QUAD, a new
+     * eps level: its aggregates and prolongator from the current near null
+     * space [z, iz]), reused within an eps level, where z moves little:
+     * only the Galerkin products are recomputed (-pc_gamg_reuse_interpolation
+     * below). shape:square:100000, one rank, line search: 32.4 -> 28.9 s with
+     * the reuse over the whole run (bench/results/petsc_gamg.md) */
+    if (p->ksp && p->precond == GLPGP_PRECOND_AMG &&
+        (p->ksp_gen != p->quad_gen || p->ksp_inv4e2 != p->newton_inv4e2))
+        KSPDestroy(&p->ksp);
     if (!p->ksp) {
+        p->ksp_gen = p->quad_gen;
+        p->ksp_inv4e2 = p->newton_inv4e2;
         PCHK(KSPCreate(PETSC_COMM_WORLD, &p->ksp));
         PCHK(KSPSetType(p->ksp, KSPCG));
         PCHK(KSPSetNormType(p->ksp, KSP_NORM_UNPRECONDITIONED));
@@ -822,15 +839,15 @@ static glpgp_status p_linear_solve(glpgp_backend *b, const glpgp_vec *rhs, glpgp
          * system (CG stopped with DIVERGED_INDEFINITE_PC after 3 iterations
          * on shape:disk:3000); damped point-block Jacobi is SPD for these
          * matrices. Defaults only: $PETSC_OPTIONS wins. */
-        /* GAMG keeps the prolongator of its first setup by default, that is
-         * the near null space of the first system (the naive solve: none);
-         * rebuilding it per Newton step uses the current [z, iz] (shape:
-         * square:40000, line search: 661 CG iterations against 898, about
-         * the same time) */
+        /* the prolongator kept for the KSP's life (one eps level, above):
+         * rebuilt per Newton step it costs its setup again (shape:square:
+         * 100000: 15.3 of 32.4 s in PCSetUp); kept for the whole run, the
+         * naive solve's (no near null space) served every level (square
+         * 40000: 898 CG iterations against 661) */
         static const char *const defaults[][2] = {{"-mg_levels_ksp_type", "richardson"},
                                                   {"-mg_levels_pc_type", "pbjacobi"},
                                                   {"-mg_levels_ksp_richardson_scale", "0.6"},
-                                                  {"-pc_gamg_reuse_interpolation", "false"}};
+                                                  {"-pc_gamg_reuse_interpolation", "true"}};
         for (size_t k = 0; k < sizeof defaults / sizeof defaults[0]; k++) {
             PetscBool set = PETSC_FALSE;
             PCHK(PetscOptionsHasName(NULL, NULL, defaults[k][0], &set));

@@ -27,7 +27,6 @@ typedef struct solve_cli {
     glpgp_options o;
     int backend, device, verbosity;
     int no_refine;
-    int input_order;     /* --input-order: solve in the input's vertex numbering */
     glpgp_refine_info refined;
     const char *out, *stats, *quads, *image;
     glpgp_quad_options qo;
@@ -68,11 +67,11 @@ static void build(glpgp_opts *t, solve_cli *c)
                    "than the local h / 4 (auto, iso, IMAGE) the local size is limited\n"
                    "to what they resolve (a warning) instead of refining them\n"
                    "(longest-edge bisection)");
-    glpgp_opt_flag(t, "--input-order", &c->input_order, 1,
+    glpgp_opt_flag(t, "--input-order", &c->o.vertex_order, GLPGP_ORDER_INPUT,
                    "solve in the input's vertex numbering (default: renumbered in\n"
                    "reverse Cuthill-McKee order for memory locality, the result\n"
                    "written back in the input's order; not with per-vertex input\n"
-                   "files or --field cross)");
+                   "files, whose lines follow the input's numbering)");
     glpgp_opts_add_backend(t, &c->backend, &c->device);
     glpgp_opts_group(t, "Output");
     glpgp_opt *p = glpgp_opt_string(t, "--out", &c->out, "FILE",
@@ -222,36 +221,6 @@ done:
     return st;
 }
 
-/* *mp <- m renumbered in reverse Cuthill-McKee order (glpgp_mesh_rcm_order) */
-static glpgp_status locality_order(const glpgp_mesh *m, glpgp_mesh **mp, int **new_of_old)
-{
-    *mp = NULL;
-    GLPGP_CHECK(glpgp_malloc((size_t)m->nv, sizeof(int), new_of_old));
-    GLPGP_CHECK(glpgp_mesh_rcm_order(m, *new_of_old));
-    return glpgp_mesh_renumber(m, *new_of_old, mp);
-}
-
-/* the per-vertex arrays of r back to the input order: a[i] <- a'[new(i)] */
-static glpgp_status unpermute_result(glpgp_result *r, int nv, const int *new_of_old)
-{
-    double *t = NULL;
-    GLPGP_CHECK(glpgp_malloc((size_t)2 * nv, sizeof *t, &t));
-    double *vec[3] = {r->field, r->osc[0].z, r->osc[1].z};
-    for (int k = 0; k < 3; k++) {
-        memcpy(t, vec[k], (size_t)2 * nv * sizeof *t);
-        for (int i = 0; i < nv; i++) {
-            vec[k][2 * i] = t[2 * new_of_old[i]];
-            vec[k][2 * i + 1] = t[2 * new_of_old[i] + 1];
-        }
-    }
-    unsigned char *f = (unsigned char *)t;
-    for (int k = 0; k < 2; k++) {
-        memcpy(f, r->osc[k].dirichlet, (size_t)nv);
-        for (int i = 0; i < nv; i++) r->osc[k].dirichlet[i] = f[new_of_old[i]];
-    }
-    free(t);
-    return GLPGP_OK;
-}
 static int solve_main(solve_cli *c, const char *input);
 
 int glpgp_cmd_solve(int argc, char **argv)
@@ -567,19 +536,9 @@ static int solve_main(solve_cli *cc, const char *input)
     if (c.backend == GLPGP_BACKEND_PETSC && glpgp_petsc_size() > 1 && c.o.field != GLPGP_FIELD_FILE &&
         c.o.field != GLPGP_FIELD_CROSS && c.o.size_field != GLPGP_SIZE_FILE && (root || !dist))
         if (partition_mesh(m, glpgp_petsc_size(), &mp, &new_of_old) != GLPGP_OK) goto fail;
-    /* one process (any backend, PETSc on one rank too): the vertices
-     * renumbered for memory locality (reverse Cuthill-McKee, unless
-     * --input-order): mesh generators such as Gmsh's Delaunay number them
-     * almost at random (median |i - j| over the edges of a 107k-vertex CAD
-     * part: 17k), and every matrix row then gathers its neighbours from all
-     * over the vectors (that part's whole solve: 1.2-1.5x the CPU time,
-     * either preconditioner, host/README.md). Triangles keep their order:
-     * the result is the same up to rounding (a row's columns and the dot
-     * products are summed in another order, the multigrid aggregates
-     * differ); it comes back in the input's order. */
-    if (!new_of_old && !dist && !c.input_order && c.o.field != GLPGP_FIELD_FILE &&
-        c.o.field != GLPGP_FIELD_CROSS && c.o.size_field != GLPGP_SIZE_FILE)
-        if (locality_order(m, &mp, &new_of_old) != GLPGP_OK) goto fail;
+    /* otherwise glpgp_solve renumbers the vertices for memory locality
+     * (--input-order: not); a mesh split for its ranks keeps that order */
+    if (new_of_old) c.o.vertex_order = GLPGP_ORDER_INPUT;
     if (dist && root) {
         /* rank 0: the whole-mesh work, the verdict, the parts; then only
          * the input mesh m stays whole here (for the outputs) */
@@ -663,7 +622,7 @@ static int solve_main(solve_cli *cc, const char *input)
         /* back to the input's vertex order; a gathered result: its
          * singular triangles and |z| statistics on the whole mesh (the
          * parts' global ones, recomputed) */
-        if (unpermute_result(r, m->nv, new_of_old) != GLPGP_OK) goto fail;
+        if (glpgp_result_permute_vertices(r, new_of_old) != GLPGP_OK) goto fail;
         if (dist)
             for (int k = 0; k < 2; k++)
                 if (glpgp_osc_summarize(m, &r->osc[k]) != GLPGP_OK) goto fail;

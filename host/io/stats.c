@@ -52,6 +52,7 @@ static void stats_body(FILE *f, const glpgp_mesh *m, const glpgp_options *o, con
                                                                                 : "off");
         glpgp_json_num(w, "cross_size_quantile", o->cross_size_quantile);
         glpgp_json_num(w, "cross_size_ratio", o->cross_size_ratio);
+        glpgp_json_str(w, "vertex_order", o->vertex_order == GLPGP_ORDER_INPUT ? "input" : "rcm");
         if (o->has_center) {
             glpgp_json_array(w, "center");
             glpgp_json_num(w, NULL, o->center[0]);
@@ -196,6 +197,7 @@ static void stats_body(FILE *f, const glpgp_mesh *m, const glpgp_options *o, con
             glpgp_json_int(w, "backtracked", ls->backtracked);
             glpgp_json_num(w, "rtol", ls->rtol);
             glpgp_json_bool(w, "capped", ls->capped);
+            glpgp_json_bool(w, "at_noise", ls->at_noise);
             glpgp_json_close(w);
         }
         glpgp_json_close(w);

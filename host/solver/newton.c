@@ -475,6 +475,7 @@ glpgp_status glpgp_newton_level(glpgp_backend *b, const glpgp_options *o, glpgp_
     ls->newton = 0;
     ls->cg = 0;
     ls->capped = 0;
+    ls->at_noise = 0;
     for (int it = 0;; it++) {
         /* g <- grad(E + P)(x) (zero on Dirichlet vertices); F = E + P */
         GLPGP_CHECK(op->gradient(b, ns->x, inv4e2, ns->g));
@@ -524,7 +525,10 @@ glpgp_status glpgp_newton_level(glpgp_backend *b, const glpgp_options *o, glpgp_
         /* no descent possible at this precision (the line search failed, or
          * the trust-region model promises less than the rounding level of F):
          * level done */
-        if (!info.accepted || (tr && info.at_noise)) break;
+        if (!info.accepted || (tr && info.at_noise)) {
+            ls->at_noise = 1;
+            break;
+        }
     }
     return GLPGP_OK;
 }

@@ -14,6 +14,7 @@ void glpgp_options_default(glpgp_options *o)
     o->hess = GLPGP_HESS_MIXED;
     o->field = GLPGP_FIELD_BOUNDARY;
     o->init = GLPGP_INIT_NAIVE;
+    o->vertex_order = GLPGP_ORDER_RCM;
     o->eps0 = 0.5;
     o->eps_ratio = 0.5;
     o->eps_min = 2.5;
@@ -99,6 +100,8 @@ glpgp_status glpgp_options_check(const glpgp_options *o)
         return GLPGP_FAIL(GLPGP_ERR_ARG, "cross_coupling must be auto, off or on, got %d", o->cross_coupling);
     if (o->cross_size < GLPGP_CROSS_SIZE_OFF || o->cross_size > GLPGP_CROSS_SIZE_AUTO)
         return GLPGP_FAIL(GLPGP_ERR_ARG, "cross_size must be off, on or auto, got %d", o->cross_size);
+    if (o->vertex_order != GLPGP_ORDER_RCM && o->vertex_order != GLPGP_ORDER_INPUT)
+        return GLPGP_FAIL(GLPGP_ERR_ARG, "unknown vertex order %d", o->vertex_order);
     if (!(o->cross_size_quantile > 0.0 && o->cross_size_quantile <= 1.0))
         return GLPGP_FAIL(GLPGP_ERR_ARG, "cross-size-quantile must be in (0,1], got %g", o->cross_size_quantile);
     if (!(o->cross_size_ratio >= 1.0))

@@ -7,6 +7,7 @@
 
 #include <math.h>
 #include <stdlib.h>
+#include <string.h>
 
 glpgp_status glpgp_result_create(int nv, int nt, glpgp_result **out)
 {
@@ -80,5 +81,29 @@ glpgp_status glpgp_osc_summarize(const glpgp_mesh *m, glpgp_osc_result *o)
     o->zabs_p10 = s[(size_t)((nv - 1) * 0.1)];
     o->zabs_median = nv % 2 ? s[nv / 2] : 0.5 * (s[nv / 2 - 1] + s[nv / 2]);
     free(s);
+    return GLPGP_OK;
+}
+
+/* every per-vertex array: a[i] <- a'[new(i)] through one scratch copy */
+glpgp_status glpgp_result_permute_vertices(glpgp_result *r, const int *new_of_old)
+{
+    const int nv = r->nv;
+    double *t = NULL;
+    GLPGP_CHECK(glpgp_malloc((size_t)2 * nv, sizeof *t, &t));
+    double *vec[4] = {r->field, r->osc[0].z, r->osc[1].z, r->cross ? r->cross->w : NULL};
+    for (int k = 0; k < 4; k++) {
+        if (!vec[k]) continue;
+        memcpy(t, vec[k], (size_t)2 * nv * sizeof *t);
+        for (int i = 0; i < nv; i++) {
+            vec[k][2 * i] = t[2 * new_of_old[i]];
+            vec[k][2 * i + 1] = t[2 * new_of_old[i] + 1];
+        }
+    }
+    unsigned char *f = (unsigned char *)t;
+    for (int k = 0; k < 2; k++) {
+        memcpy(f, r->osc[k].dirichlet, (size_t)nv);
+        for (int i = 0; i < nv; i++) r->osc[k].dirichlet[i] = f[new_of_old[i]];
+    }
+    free(t);
     return GLPGP_OK;
 }

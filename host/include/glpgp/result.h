@@ -25,6 +25,10 @@ typedef struct glpgp_level_stats {
     int fallbacks;       /* Newton steps redone with a safer Hessian */
     int backtracked;     /* trust-region steps shortened along d (ratio test failed at full length) */
     int capped;          /* the level stopped at newton_max with |g| above its tolerance */
+    int at_noise;        /* the level stopped with |g| above its tolerance because no step
+                            decreases E + P measurably any more (the line search found none,
+                            or the trust-region model promises less than F's rounding
+                            level): converged as far as double precision resolves */
     double rtol;         /* the level's tolerance |g| <= rtol |g0| */
     int cg_capped;       /* Newton linear solves stopped by the CG cap (cg_max) */
 } glpgp_level_stats;
@@ -71,6 +75,13 @@ void glpgp_result_destroy(glpgp_result **r);
  * *plus, *minus (glpgp/phase.h conventions). */
 void glpgp_singularities(const glpgp_mesh *m, const double *z, signed char *sing, int *plus,
                          int *minus);
+
+/* Bring a result computed on a renumbered mesh (vertex i of the input was
+ * vertex new_of_old[i] there, glpgp_mesh_renumber) back to the input's
+ * numbering: a[i] <- a'[new_of_old[i]] for every per-vertex array (field, z,
+ * Dirichlet flags, the cross field's w); per-triangle arrays and counts are
+ * unchanged (triangles keep their order). */
+glpgp_status glpgp_result_permute_vertices(glpgp_result *r, const int *new_of_old);
 
 /* Recompute o->singular, plus, minus and the |z| statistics from o->z. */
 glpgp_status glpgp_osc_summarize(const glpgp_mesh *m, glpgp_osc_result *o);
