@@ -100,8 +100,10 @@ typedef struct pimpl {
     int nn_valid;
     long quad_gen;              /* assemble_quadratic calls so far (a new QUAD: field, oscillator) */
     double newton_inv4e2;       /* 1/(4 eps^2) of the last assemble_newton */
-    long ksp_gen;               /* the (quad_gen, newton_inv4e2) the KSP's hierarchy was built for */
+    long ksp_gen;               /* the (quad_gen, newton_inv4e2, nn_valid) the KSP's hierarchy was built for */
     double ksp_inv4e2;
+    int ksp_nn;
+    int rebuild;                /* -glpgp_gamg_rebuild: 1 step, 2 level, 3 oscillator (0: not read yet) */
     int precond;
     double s[GLPGP_NSLOTS];
 } pimpl;
@@ -818,16 +820,29 @@ static glpgp_status p_linear_solve(glpgp_backend *b, const glpgp_vec *rhs, glpgp
     if (p->A_dirty || !p->A) GLPGP_CHECK(newton_to_mat(p));
     /* GAMG's hierarchy: built anew for each new system (a new QUAD, a new
      * eps level: its aggregates and prolongator from the current near null
-     * space [z, iz]), reused within an eps level, where z moves little:
+     * space [z, iz]) and reused within an eps level, where z moves little:
      * only the Galerkin products are recomputed (-pc_gamg_reuse_interpolation
-     * below). shape:square:100000, one rank, line search: 32.4 -> 28.9 s with
-     * the reuse over the whole run (bench/results/petsc_gamg.md) */
+     * below). -glpgp_gamg_rebuild step|level|oscillator ($PETSC_OPTIONS)
+     * rebuilds it every linear solve (before), per eps level (default) or
+     * once per oscillator's GL levels. shape:square:100000, one rank, line
+     * search: 32.4 s, 537 CG (step) -> 21.9 s, 212 CG (level)
+     * (bench/results/petsc_gamg.md) */
+    if (!p->rebuild) {
+        char mode[32] = "level";
+        PetscBool set = PETSC_FALSE;
+        PCHK(PetscOptionsGetString(NULL, NULL, "-glpgp_gamg_rebuild", mode, sizeof mode, &set));
+        p->rebuild = !strcmp(mode, "step") ? 1 : !strcmp(mode, "level") ? 2 : !strcmp(mode, "oscillator") ? 3 : -1;
+        if (p->rebuild < 0)
+            return GLPGP_FAIL(GLPGP_ERR_ARG, "-glpgp_gamg_rebuild '%s': expected step, level or oscillator", mode);
+    }
     if (p->ksp && p->precond == GLPGP_PRECOND_AMG &&
-        (p->ksp_gen != p->quad_gen || p->ksp_inv4e2 != p->newton_inv4e2))
+        (p->rebuild == 1 || p->ksp_gen != p->quad_gen || p->ksp_nn != p->nn_valid ||
+         (p->rebuild == 2 && p->ksp_inv4e2 != p->newton_inv4e2)))
         KSPDestroy(&p->ksp);
     if (!p->ksp) {
         p->ksp_gen = p->quad_gen;
         p->ksp_inv4e2 = p->newton_inv4e2;
+        p->ksp_nn = p->nn_valid;
         PCHK(KSPCreate(PETSC_COMM_WORLD, &p->ksp));
         PCHK(KSPSetType(p->ksp, KSPCG));
         PCHK(KSPSetNormType(p->ksp, KSP_NORM_UNPRECONDITIONED));
