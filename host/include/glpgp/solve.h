@@ -329,7 +329,8 @@ typedef struct glpgp_newton_state {
 
 typedef struct glpgp_newton_step_info {
     int cg;          /* CG iterations (all attempts) */
-    int at_noise;    /* trust region: the predicted decrease was below the rounding level */
+    int at_noise;    /* the model decrease (trust region: of the trial step; line search: of
+                        the full Newton step) was below F's rounding level: the level is done */
     double rho;      /* trust region: actual / predicted decrease */
     double step;     /* trust region: ||d||_M of the step tried */
     double radius;   /* trust region: the radius after the step */
