@@ -9,10 +9,9 @@
 #include <stdlib.h>
 #include <string.h>
 
-void glpgp_mesh_destroy(glpgp_mesh **m)
+void glpgp_mesh_release_arrays(glpgp_mesh *p)
 {
-    if (!m || !*m) return;
-    glpgp_mesh *p = *m;
+    if (!p) return;
     free(p->xy);
     free(p->tri);
     free(p->loop_start);
@@ -25,7 +24,17 @@ void glpgp_mesh_destroy(glpgp_mesh **m)
         free(p->part->size);
         free(p->part);
     }
-    free(p);
+    p->xy = p->normal_prev = p->normal_next = NULL;
+    p->tri = p->loop_start = p->loop_vertices = NULL;
+    p->on_boundary = NULL;
+    p->part = NULL;
+}
+
+void glpgp_mesh_destroy(glpgp_mesh **m)
+{
+    if (!m || !*m) return;
+    glpgp_mesh_release_arrays(*m);
+    free(*m);
     *m = NULL;
 }
 

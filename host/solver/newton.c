@@ -2,7 +2,8 @@
  * once against the backend table. g = grad(E + P_eps)(x) (zero on Dirichlet
  * vertices), F = E + P_eps.
  *
- * Trust region (o->globalization = GLPGP_GLOBAL_TRUST_REGION, the default):
+ * Trust region (o->globalization = GLPGP_GLOBAL_TRUST_REGION; AUTO, the default,
+ * picks it unless the backend's multigrid is its own linear solver):
  *   H = H_E + exact penalty Hessian at x (indefinite in vortex states);
  *   d ~ argmin g.d + 1/2 d.H d over ||d||_M <= radius by Steihaug-Toint CG
  *     (solver/steihaug.c, inexact-Newton tolerance); M = block Jacobi, or,
@@ -461,11 +462,22 @@ done:
     return st;
 }
 
+int glpgp_globalization_of(const glpgp_backend *b, const glpgp_options *o)
+{
+    if (o->globalization != GLPGP_GLOBAL_AUTO) return o->globalization;
+    /* a backend whose multigrid is its linear solver (PETSc's KSPCG + GAMG)
+     * has no glpgp multigrid for the trust region's Steihaug CG, which would
+     * run block Jacobi (hundreds of iterations per step at 1M vertices); the
+     * line search solves every Newton step with it */
+    const int own_solver_only = o->precond == GLPGP_PRECOND_AMG && !glpgp_amg_supported(b) && b->ops->linear_solve;
+    return own_solver_only ? GLPGP_GLOBAL_LINE_SEARCH : GLPGP_GLOBAL_TRUST_REGION;
+}
+
 glpgp_status glpgp_newton_step(glpgp_backend *b, const glpgp_options *o, glpgp_newton_state *ns,
                                double inv4e2, double F, double gn, glpgp_newton_step_info *info)
 {
     memset(info, 0, sizeof *info);
-    if (o->globalization == GLPGP_GLOBAL_TRUST_REGION) return tr_step(b, o, ns, inv4e2, F, gn, info);
+    if (glpgp_globalization_of(b, o) == GLPGP_GLOBAL_TRUST_REGION) return tr_step(b, o, ns, inv4e2, F, gn, info);
     return ls_step(b, o, ns, inv4e2, F, gn, info);
 }
 
@@ -474,7 +486,7 @@ glpgp_status glpgp_newton_level(glpgp_backend *b, const glpgp_options *o, glpgp_
 {
     const glpgp_backend_ops *op = b->ops;
     const double inv4e2 = 1.0 / (4.0 * eps * eps);
-    const int tr = o->globalization == GLPGP_GLOBAL_TRUST_REGION;
+    const int tr = glpgp_globalization_of(b, o) == GLPGP_GLOBAL_TRUST_REGION;
     double s[GLPGP_NSLOTS];
     ns->grad0 = 0.0;
     ns->near = 0;

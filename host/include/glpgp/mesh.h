@@ -87,6 +87,12 @@ typedef struct glpgp_mesh {
  * Messages name the offending triangle/edge/vertex (0-based). */
 glpgp_status glpgp_mesh_create(int nv, const double *xy, int nt, const int *tri, glpgp_mesh **out);
 void glpgp_mesh_destroy(glpgp_mesh **m);
+/* Free m's arrays (coordinates, triangles, boundary loops, flags, normals,
+ * a part's ids and sizes), keeping its counts and scalars (nv, nt, nloops,
+ * area, bbox, mean_edge, orientation_fixed) for reports: afterwards m may
+ * only be read for those or destroyed. For a process that handed the mesh
+ * on (rank 0 of a distributed run once the parts are sent). */
+void glpgp_mesh_release_arrays(glpgp_mesh *m);
 
 /* ---- partitions (mesh/partition.c) ---- */
 
