@@ -50,6 +50,7 @@
 
 #include <float.h>
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -514,7 +515,17 @@ glpgp_status glpgp_newton_level(glpgp_backend *b, const glpgp_options *o, glpgp_
         ns->noise = 64.0 * DBL_EPSILON * (fabs(F) + s[GLPGP_S_DOT2]);
         if (it == 0) {
             ls->grad0 = ns->grad0 = gn;
-            ns->inside = 0; /* the multigrid waits for an interior step on each level */
+            /* ns->inside carries over from the previous eps level: a level
+             * that ended on a Newton step (the region inactive) starts with
+             * the multigrid candidate, one NEWTON assembly instead of the
+             * Steihaug step's two (projected for the hierarchy, then exact);
+             * a rejected candidate falls back to the Steihaug step. Same
+             * Newton steps and final energies (one more step on the 250k
+             * square), measured alternately on an idle machine (solve s):
+             * shape:square:1000000 OpenCL 29.0, 28.1 -> 27.3, 26.6, reference
+             * 40.4 -> 37.6; shape:disk:64000 --size 0.07734642 13.9 -> 11.8;
+             * the 107k motor part 19.6, 20.0 -> 21.4, 19.9 (noise); square
+             * 250k 17 -> 18 Newton, 5.9 -> 6.3 s (host/README.md) */
         }
         ls->grad = gn;
         ls->energy = F;
@@ -530,17 +541,21 @@ glpgp_status glpgp_newton_level(glpgp_backend *b, const glpgp_options *o, glpgp_
         ls->backtracked += info.accepted && info.alpha < 1.0;
         ls->cg_capped += info.cg_capped;
         ls->newton++;
-        if (tr)
+        if (tr) {
+            /* |d|: the Steihaug step's length in its preconditioner's norm
+             * (a multigrid step's is not computed: "-") */
+            char dn[32] = "-";
+            if (!info.amg_step) snprintf(dn, sizeof dn, "%.3g", info.step);
             glpgp_log(GLPGP_LOG_INFO,
-                      "  %s eps=%.4g newton %3d  |g|=%.3e  E+P=%.10g  cg=%d  |d|=%.3g  a=%.3g  rho=%.3g  "
+                      "  %s eps=%.4g newton %3d  |g|=%.3e  E+P=%.10g  cg=%d  |d|=%s  a=%.3g  rho=%.3g  "
                       "radius=%.3g  re-solved %d  %s%s",
-                      glpgp_osc_name(k), eps, it + 1, gn, info.energy, info.cg, info.step, info.alpha,
+                      glpgp_osc_name(k), eps, it + 1, gn, info.energy, info.cg, dn, info.alpha,
                       info.rho, info.radius, info.resolves,
                       info.amg_step         ? "multigrid"
                       : info.lookahead_step ? "look-ahead"
                                             : glpgp_trcg_reason_name((glpgp_trcg_reason)info.reason),
                       info.at_noise ? "  (at the rounding level)" : "");
-        else
+        } else
             glpgp_log(GLPGP_LOG_INFO, "  %s eps=%.4g newton %3d  |g|=%.3e  E+P=%.10g  cg=%d  step=%g%s",
                       glpgp_osc_name(k), eps, it + 1, gn, info.energy, info.cg, info.alpha,
                       info.at_noise ? "  (at the rounding level)" : "");
