@@ -548,12 +548,13 @@ glpgp_status glpgp_newton_level(glpgp_backend *b, const glpgp_options *o, glpgp_
             if (!info.amg_step) snprintf(dn, sizeof dn, "%.3g", info.step);
             glpgp_log(GLPGP_LOG_INFO,
                       "  %s eps=%.4g newton %3d  |g|=%.3e  E+P=%.10g  cg=%d  |d|=%s  a=%.3g  rho=%.3g  "
-                      "radius=%.3g  re-solved %d  %s%s",
+                      "radius=%.3g  re-solved %d  %s%s%s",
                       glpgp_osc_name(k), eps, it + 1, gn, info.energy, info.cg, dn, info.alpha,
                       info.rho, info.radius, info.resolves,
                       info.amg_step         ? "multigrid"
                       : info.lookahead_step ? "look-ahead"
                                             : glpgp_trcg_reason_name((glpgp_trcg_reason)info.reason),
+                      info.amg_rejected ? "  (multigrid step rejected)" : "",
                       info.at_noise ? "  (at the rounding level)" : "");
         } else
             glpgp_log(GLPGP_LOG_INFO, "  %s eps=%.4g newton %3d  |g|=%.3e  E+P=%.10g  cg=%d  step=%g%s",
