@@ -888,6 +888,11 @@ static glpgp_status p_linear_solve(glpgp_backend *b, const glpgp_vec *rhs, glpgp
     if (why > 0) *reason = 0;
     else if (why == KSP_DIVERGED_ITS) *reason = 1;
     else *reason = 2;
+    /* a breakdown (KSP_DIVERGED_INDEFINITE_MAT or _PC: GAMG built from an
+     * indefinite Newton matrix is itself indefinite) is routine: the driver
+     * falls back to a safer Hessian; logged with --verbose only */
+    if (why < 0 && why != KSP_DIVERGED_ITS)
+        glpgp_log(GLPGP_LOG_DEBUG, "PETSc KSP stopped after %d iterations: %s", (int)it, KSPConvergedReasons[why]);
     return GLPGP_OK;
 }
 

@@ -454,8 +454,7 @@ void glpgp_opts_add_solver(glpgp_opts *t, glpgp_options *o)
     glpgp_opt_choice(t, "--globalization", &o->globalization, k_globals, k_global_vals,
                      "Newton step: trust region on the exact Hessian (Steihaug CG,\n"
                      "polar trial points), or the line search of the modified Newton;\n"
-                     "auto: the trust region, the line search on --backend petsc with\n"
-                     "--precond amg (GAMG then solves every Newton step)");
+                     "auto: the trust region on every backend today (README)");
     glpgp_opt_choice(t, "--tr-precond", &o->tr_precond, k_preconds, k_precond_vals,
                      "with --precond amg: preconditioner and norm of the trust region's\n"
                      "Steihaug CG: 2x2-block Jacobi, or a symmetric multigrid W-cycle\n"

@@ -377,9 +377,6 @@ static glpgp_status solve_mesh(const glpgp_mesh *m, glpgp_backend *b, const glpg
         ojac.precond = GLPGP_PRECOND_JACOBI;
         o = &ojac;
     }
-    if (o->globalization == GLPGP_GLOBAL_AUTO && glpgp_globalization_of(b, o) == GLPGP_GLOBAL_LINE_SEARCH)
-        glpgp_log(GLPGP_LOG_INFO, "Newton steps: line search (--globalization auto: the %s backend's multigrid "
-                  "is its linear solver)", b->ops->name);
     double h = o->size > 0.0 ? o->size : glpgp_default_size(m, o);
 
     GLPGP_CHECK(glpgp_result_create(nv, nt, &r));

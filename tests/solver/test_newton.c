@@ -276,9 +276,8 @@ static void test_schedule_and_options(void)
     glpgp_error_clear();
     o.globalization = GLPGP_GLOBAL_LINE_SEARCH;
     CHECK_OK(glpgp_options_check(&o));
-    /* auto (the default): the trust region on a backend with glpgp's
-     * multigrid (or with Jacobi); explicit choices pass through (the PETSc
-     * backend's line search: tests/cli/cli_petsc.sh) */
+    /* auto (the default): the trust region (the PETSc backend's:
+     * tests/cli/cli_petsc.sh); explicit choices pass through */
     glpgp_options_default(&o);
     CHECK(o.globalization == GLPGP_GLOBAL_AUTO);
     glpgp_backend *b = NULL;

@@ -46,9 +46,8 @@ enum glpgp_vertex_order { GLPGP_ORDER_RCM = 0, GLPGP_ORDER_INPUT = 1 };
 enum glpgp_globalization {
     GLPGP_GLOBAL_TRUST_REGION = 0,
     GLPGP_GLOBAL_LINE_SEARCH = 1,
-    GLPGP_GLOBAL_AUTO = 2 /* the trust region, except where the backend's only multigrid is its own
-                             linear solver (PETSc's GAMG): the line search, which puts it into every
-                             Newton step (the trust region would run block-Jacobi Steihaug CG) */
+    GLPGP_GLOBAL_AUTO = 2 /* the backend's best measured choice: the trust region on every backend
+                             today (glpgp_globalization_of, solver/newton.c) */
 };
 /* Preconditioner of the Newton (and naive PGP, guiding field) systems. */
 enum glpgp_precond {
@@ -421,7 +420,7 @@ typedef struct glpgp_amg_info {
 /* Whether backend b implements the multigrid ops (amg_setup etc.). */
 int glpgp_amg_supported(const glpgp_backend *b);
 /* The globalization Newton uses on backend b: o->globalization, with AUTO
- * resolved (GLPGP_GLOBAL_TRUST_REGION or GLPGP_GLOBAL_LINE_SEARCH). */
+ * resolved (today GLPGP_GLOBAL_TRUST_REGION on every backend). */
 int glpgp_globalization_of(const glpgp_backend *b, const glpgp_options *o);
 
 /* Build the hierarchy structure for b's system (b->ops->setup done) and the
