@@ -7,12 +7,24 @@
 
 #include <errno.h>
 #include <math.h>
+#include <signal.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 static int g_verbosity = 1;
+/* the exit code of a failure already reported on stderr (0: none yet), read
+ * by the signal handler (main.c) */
+static volatile sig_atomic_t g_reported;
+
+int glpgp_cli_reported(int code)
+{
+    g_reported = code;
+    return code;
+}
+
+int glpgp_cli_reported_code(void) { return g_reported; }
 
 static void log_to_stderr(glpgp_log_level level, const char *msg, void *user)
 {
@@ -39,7 +51,7 @@ int glpgp_cli_fail(void)
     if (*glpgp_error_detail()) fprintf(stderr, "%s\n", glpgp_error_detail());
     if (g_verbosity >= 2 && *glpgp_error_trace()) fputs(glpgp_error_trace(), stderr);
     glpgp_error_clear();
-    return GLPGP_EXIT_FAIL;
+    return glpgp_cli_reported(GLPGP_EXIT_FAIL);
 }
 
 int glpgp_cli_usage_error(const char *sub, const char *fmt, ...)
@@ -53,7 +65,7 @@ int glpgp_cli_usage_error(const char *sub, const char *fmt, ...)
         fprintf(stderr, "\nTry 'glpgp %s --help' for the options.\n", sub);
     else
         fputs("\nTry 'glpgp --help'.\n", stderr);
-    return GLPGP_EXIT_USAGE;
+    return glpgp_cli_reported(GLPGP_EXIT_USAGE);
 }
 
 int glpgp_cli_double(const char *s, double *out)
@@ -89,5 +101,5 @@ int glpgp_cli_quads_verdict(const struct glpgp_quad_quality *qq, unsigned ignore
 int glpgp_cli_invalid(const char *why, const char *what)
 {
     fprintf(stderr, "glpgp: error: the quad mesh is invalid (%s)%s%s\n", why, *what ? ": " : "", what);
-    return GLPGP_EXIT_INVALID;
+    return glpgp_cli_reported(GLPGP_EXIT_INVALID);
 }

@@ -21,6 +21,13 @@ int glpgp_cli_verbosity(void);
 /* Print the recorded library error as one line "glpgp: error: MESSAGE" (and,
  * with --verbose, its trace), clear it, return GLPGP_EXIT_FAIL. */
 int glpgp_cli_fail(void);
+/* Record that the run's failure (exit code `code`) has been reported on
+ * stderr and return code: a SIGINT/SIGTERM after it (mpirun ending the
+ * other ranks of a failed run) exits with that code and no further line.
+ * glpgp_cli_fail, glpgp_cli_usage_error and glpgp_cli_invalid call it. */
+int glpgp_cli_reported(int code);
+/* The code recorded by glpgp_cli_reported, 0 when none (async-signal-safe). */
+int glpgp_cli_reported_code(void);
 
 /* Print "glpgp: usage error: ..." and the hint to `glpgp SUB --help` (or
  * `glpgp --help` when sub is NULL); return GLPGP_EXIT_USAGE. */

@@ -511,7 +511,7 @@ static int solve_main(solve_cli *cc, const char *input)
         /* rank 0 reads, checks, refines and splits the input: its verdict,
          * then this rank's part */
         announced = 1;
-        if (!glpgp_petsc_all_ok(1)) return GLPGP_EXIT_FAIL; /* rank 0 reported it */
+        if (!glpgp_petsc_all_ok(1)) return glpgp_cli_reported(GLPGP_EXIT_FAIL); /* rank 0 reported it */
         if (glpgp_petsc_mesh_recv(&part) != GLPGP_OK) goto fail;
         c.o.size = part->part->size_opt; /* rank 0's (set by the refinement) */
     } else {

@@ -69,10 +69,15 @@ static const command *find(const char *name)
 }
 
 /* SIGINT / SIGTERM: remove the temporary outputs of the run (async-signal-
- * safe: unlink/rename only), say so in one line, exit 130 / 143. */
+ * safe: unlink/rename only), say so in one line, exit 130 / 143. After a
+ * failure was reported (glpgp_cli_reported: e.g. rank 0 of a failed MPI run,
+ * which mpirun may end once another rank has exited) it exits with that
+ * failure's code and no second line. */
 static void on_signal(int sig)
 {
     glpgp_output_signal_cleanup();
+    const int reported = glpgp_cli_reported_code();
+    if (reported) _exit(reported);
     static const char msg_int[] = "glpgp: interrupted (SIGINT): no output written\n";
     static const char msg_term[] = "glpgp: terminated (SIGTERM): no output written\n";
     if (sig == SIGINT)
