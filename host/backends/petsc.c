@@ -104,11 +104,6 @@ typedef struct pimpl {
     double ksp_inv4e2;
     int ksp_nn;
     int rebuild;                /* -glpgp_gamg_rebuild: 1 step, 2 level, 3 oscillator (0: not read yet) */
-    Mat Pm;                     /* the trust region's preconditioner matrix (projected Hessian) */
-    PC tpc;                     /* GAMG on Pm (tr_precond), rebuilt like the KSP's */
-    long tpc_gen;
-    double tpc_inv4e2;
-    int tpc_on;                 /* cg_precond / cg_update apply tpc instead of DINV */
     int precond;
     double s[GLPGP_NSLOTS];
 } pimpl;
@@ -250,8 +245,6 @@ static void p_free_system(pimpl *p)
     if (p->sc) VecScatterDestroy(&p->sc);
     if (p->A) MatDestroy(&p->A);
     if (p->ksp) KSPDestroy(&p->ksp);
-    if (p->tpc) PCDestroy(&p->tpc);
-    if (p->Pm) MatDestroy(&p->Pm);
     if (p->nn) VecDestroy(&p->nn);
     p->wbuf = p->size_ = p->quadb = p->newtonb = p->dinvb = NULL;
     p->dir = NULL;
@@ -625,30 +618,9 @@ static glpgp_status p_spmv(glpgp_backend *b, int matrix, const glpgp_vec *x, glp
     return spmv_rows(p, matrix == GLPGP_MAT_QUAD ? QUAD(p) : NEWT(p), 0, y, 0, NULL);
 }
 
-/* z <- B r (the trust region's GAMG, tr_precond);  s[rz] <- r.z;  s[RR] <- r.r */
-static glpgp_status tpc_apply(pimpl *p, const glpgp_vec *r, glpgp_vec *z, int rz)
-{
-    PCHK(PCApply(p->tpc, r->v, z->v));
-    const PetscScalar *ra, *za;
-    PCHK(VecGetArrayRead(r->v, &ra));
-    PCHK(VecGetArrayRead(z->v, &za));
-    double s[2] = {0.0, 0.0};
-    for (int i = 0; i < 2 * (p->hi - p->lo); i++) {
-        s[0] += ra[i] * za[i];
-        s[1] += ra[i] * ra[i];
-    }
-    PCHK(VecRestoreArrayRead(z->v, &za));
-    PCHK(VecRestoreArrayRead(r->v, &ra));
-    GLPGP_CHECK(reduce_sum(p, s, 2));
-    p->s[rz] = s[0];
-    p->s[GLPGP_S_RR] = s[1];
-    return GLPGP_OK;
-}
-
 static glpgp_status p_cg_precond(glpgp_backend *b, const glpgp_vec *r, glpgp_vec *z, int rz)
 {
     pimpl *p = PI(b);
-    if (p->tpc_on) return tpc_apply(p, r, z, rz);
     /* z <- DINV r;  s[rz] <- r.z;  s[RR] <- r.r */
     const PetscScalar *ra;
     PetscScalar *za;
@@ -686,12 +658,6 @@ static glpgp_status p_cg_update(glpgp_backend *b, glpgp_vec *x, glpgp_vec *r, co
     /* alpha = (r.z) / (p.Ap);  x <- x + alpha p;  r <- r - alpha q;
      * z <- DINV r;  s[rz_new] <- r.z;  s[RR] <- r.r */
     const double alpha = glpgp_cg_alpha(p->s, rz);
-    if (p->tpc_on) {
-        /* x <- x + alpha p;  r <- r - alpha q;  then z <- B r and its scalars */
-        PCHK(VecAXPY(x->v, alpha, pv->v));
-        PCHK(VecAXPY(r->v, -alpha, q->v));
-        return tpc_apply(p, r, z, rz_new);
-    }
     PetscScalar *xa, *ra, *za;
     const PetscScalar *pa, *qa;
     PCHK(VecGetArray(x->v, &xa));
@@ -734,14 +700,12 @@ static glpgp_status p_cg_direction(glpgp_backend *b, glpgp_vec *pv, const glpgp_
 
 /* ---- linear solve: KSP on NEWTON ------------------------------------------ */
 
-/* *M <- NEWTON (owned rows, global columns), created and preallocated once
- * (M: &p->A, the linear solves' matrix, or &p->Pm, the trust region's
- * preconditioner matrix) */
-static glpgp_status newton_to_mat_into(pimpl *p, Mat *M)
+/* A <- NEWTON (owned rows, global columns), created and preallocated once */
+static glpgp_status newton_to_mat(pimpl *p)
 {
     const glpgp_system *sys = p->sys;
     const int nown = p->hi - p->lo;
-    if (!*M) {
+    if (!p->A) {
         /* AIJ with block size 2 (GAMG wants AIJ), preallocated per block row:
          * diagonal-part and off-diagonal-part block counts */
         PetscInt *dn = NULL, *on = NULL;
@@ -757,13 +721,13 @@ static glpgp_status newton_to_mat_into(pimpl *p, Mat *M)
                 if (j >= p->lo && j < p->hi) dn[i - p->lo]++;
                 else on[i - p->lo]++;
             }
-        PetscErrorCode pe = MatCreate(PETSC_COMM_WORLD, M);
-        if (!pe) pe = MatSetSizes(*M, 2 * nown, 2 * nown, PETSC_DETERMINE, PETSC_DETERMINE);
-        if (!pe) pe = MatSetType(*M, MATAIJ);
-        if (!pe) pe = MatSetBlockSize(*M, 2);
-        if (!pe) pe = MatXAIJSetPreallocation(*M, 2, dn, on, NULL, NULL);
-        if (!pe) pe = MatSetOption(*M, MAT_NO_OFF_PROC_ENTRIES, PETSC_TRUE);
-        if (!pe) pe = MatSetOption(*M, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE);
+        PetscErrorCode pe = MatCreate(PETSC_COMM_WORLD, &p->A);
+        if (!pe) pe = MatSetSizes(p->A, 2 * nown, 2 * nown, PETSC_DETERMINE, PETSC_DETERMINE);
+        if (!pe) pe = MatSetType(p->A, MATAIJ);
+        if (!pe) pe = MatSetBlockSize(p->A, 2);
+        if (!pe) pe = MatXAIJSetPreallocation(p->A, 2, dn, on, NULL, NULL);
+        if (!pe) pe = MatSetOption(p->A, MAT_NO_OFF_PROC_ENTRIES, PETSC_TRUE);
+        if (!pe) pe = MatSetOption(p->A, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE);
         free(dn);
         free(on);
         if (pe) return GLPGP_FAIL(GLPGP_ERR_NUMERIC, "PETSc error %d creating the Newton matrix", (int)pe);
@@ -794,25 +758,22 @@ static glpgp_status newton_to_mat_into(pimpl *p, Mat *M)
             vals[2 * nc + 2 * c + 1] = blk[3];
         }
         PetscInt row = p->vstart + (i - p->lo);
-        pe = MatSetValuesBlocked(*M, 1, &row, nc, cols, vals, INSERT_VALUES);
+        pe = MatSetValuesBlocked(p->A, 1, &row, nc, cols, vals, INSERT_VALUES);
     }
     free(vals);
     free(cols);
     if (pe) return GLPGP_FAIL(GLPGP_ERR_NUMERIC, "PETSc error %d setting the Newton matrix", (int)pe);
-    PCHK(MatAssemblyBegin(*M, MAT_FINAL_ASSEMBLY));
-    PCHK(MatAssemblyEnd(*M, MAT_FINAL_ASSEMBLY));
-    if (M == &p->A) p->A_dirty = 0;
+    PCHK(MatAssemblyBegin(p->A, MAT_FINAL_ASSEMBLY));
+    PCHK(MatAssemblyEnd(p->A, MAT_FINAL_ASSEMBLY));
+    p->A_dirty = 0;
     return GLPGP_OK;
 }
 
-static glpgp_status newton_to_mat(pimpl *p) { return newton_to_mat_into(p, &p->A); }
-
-/* near null space [z, iz] of the iterate (zero at Dirichlet vertices), or
- * none, attached to M (p->A or p->Pm) */
-static glpgp_status set_near_null_on(pimpl *p, Mat M)
+/* near null space [z, iz] of the iterate (zero at Dirichlet vertices), or none */
+static glpgp_status set_near_null(pimpl *p)
 {
     if (!p->nn_valid) {
-        PCHK(MatSetNearNullSpace(M, NULL));
+        PCHK(MatSetNearNullSpace(p->A, NULL));
         return GLPGP_OK;
     }
     Vec v[2];
@@ -842,61 +803,10 @@ static glpgp_status set_near_null_on(pimpl *p, Mat M)
         PCHK(VecScale(v[1], 1.0 / n0));
         PCHK(MatNullSpaceCreate(PETSC_COMM_WORLD, PETSC_FALSE, 2, v, &ns));
     }
-    PCHK(MatSetNearNullSpace(M, ns));
+    PCHK(MatSetNearNullSpace(p->A, ns));
     if (ns) MatNullSpaceDestroy(&ns);
     VecDestroy(&v[0]);
     VecDestroy(&v[1]);
-    return GLPGP_OK;
-}
-
-static glpgp_status set_near_null(pimpl *p) { return set_near_null_on(p, p->A); }
-
-/* glpgp's GAMG defaults (see p_linear_solve), unless $PETSC_OPTIONS sets them */
-static glpgp_status gamg_defaults(void)
-{
-    static const char *const defaults[][2] = {{"-mg_levels_ksp_type", "richardson"},
-                                              {"-mg_levels_pc_type", "pbjacobi"},
-                                              {"-mg_levels_ksp_richardson_scale", "0.6"},
-                                              {"-pc_gamg_reuse_interpolation", "true"}};
-    for (size_t k = 0; k < sizeof defaults / sizeof defaults[0]; k++) {
-        PetscBool set = PETSC_FALSE;
-        PCHK(PetscOptionsHasName(NULL, NULL, defaults[k][0], &set));
-        if (!set) PCHK(PetscOptionsSetValue(NULL, defaults[k][0], defaults[k][1]));
-    }
-    return GLPGP_OK;
-}
-
-/* The trust region's multigrid norm (op tr_precond): mode 1 copies NEWTON
- * (the projected Hessian, assembled by the driver) into Pm and sets up GAMG
- * on it with the near null space [z, iz]: a fresh hierarchy per eps level
- * and new QUAD (as the KSP's), the Galerkin products updated within the
- * level (-pc_gamg_reuse_interpolation, set for the KSP); mode 2 / 0 turn
- * its use in cg_precond / cg_update on / off. GAMG's V-cycle with the
- * symmetric Richardson + point-block Jacobi smoother on an SPD matrix is SPD;
- * a Steihaug run that meets r.z <= 0 falls back to block Jacobi (driver). */
-static glpgp_status p_tr_precond(glpgp_backend *b, int mode)
-{
-    pimpl *p = PI(b);
-    if (mode != 1) {
-        p->tpc_on = mode == 2 && p->tpc;
-        return GLPGP_OK;
-    }
-    p->tpc_on = 0;
-    GLPGP_CHECK(newton_to_mat_into(p, &p->Pm));
-    if (p->tpc && (p->tpc_gen != p->quad_gen || p->tpc_inv4e2 != p->newton_inv4e2)) PCDestroy(&p->tpc);
-    GLPGP_CHECK(set_near_null_on(p, p->Pm));
-    if (!p->tpc) {
-        p->tpc_gen = p->quad_gen;
-        p->tpc_inv4e2 = p->newton_inv4e2;
-        PCHK(PCCreate(PETSC_COMM_WORLD, &p->tpc));
-        PCHK(PCSetType(p->tpc, PCGAMG));
-        PCHK(PCSetOperators(p->tpc, p->Pm, p->Pm));
-        GLPGP_CHECK(gamg_defaults());
-        PCHK(PCSetFromOptions(p->tpc)); /* $PETSC_OPTIONS */
-    } else {
-        PCHK(PCSetOperators(p->tpc, p->Pm, p->Pm));
-    }
-    PCHK(PCSetUp(p->tpc));
     return GLPGP_OK;
 }
 
@@ -949,7 +859,15 @@ static glpgp_status p_linear_solve(glpgp_backend *b, const glpgp_vec *rhs, glpgp
          * 100000: 15.3 of 32.4 s in PCSetUp); kept for the whole run, the
          * naive solve's (no near null space) served every level (square
          * 40000: 898 CG iterations against 661) */
-        GLPGP_CHECK(gamg_defaults());
+        static const char *const defaults[][2] = {{"-mg_levels_ksp_type", "richardson"},
+                                                  {"-mg_levels_pc_type", "pbjacobi"},
+                                                  {"-mg_levels_ksp_richardson_scale", "0.6"},
+                                                  {"-pc_gamg_reuse_interpolation", "true"}};
+        for (size_t k = 0; k < sizeof defaults / sizeof defaults[0]; k++) {
+            PetscBool set = PETSC_FALSE;
+            PCHK(PetscOptionsHasName(NULL, NULL, defaults[k][0], &set));
+            if (!set) PCHK(PetscOptionsSetValue(NULL, defaults[k][0], defaults[k][1]));
+        }
         PCHK(KSPSetFromOptions(p->ksp)); /* $PETSC_OPTIONS */
     }
     if (p->precond == GLPGP_PRECOND_AMG) GLPGP_CHECK(set_near_null(p));
@@ -1017,7 +935,6 @@ static const glpgp_backend_ops petsc_ops = {
     .cg_update = p_cg_update,
     .cg_direction = p_cg_direction,
     .linear_solve = p_linear_solve,
-    .tr_precond = p_tr_precond,
     .reduce = p_reduce,
 };
 
@@ -1045,7 +962,6 @@ static glpgp_status m_create(int precond, glpgp_backend **out)
     if (precond == GLPGP_PRECOND_JACOBI) {
         petsc_ops_jacobi = petsc_ops;
         petsc_ops_jacobi.linear_solve = NULL;
-        petsc_ops_jacobi.tr_precond = NULL;
         b->ops = &petsc_ops_jacobi;
     } else {
         b->ops = &petsc_ops;

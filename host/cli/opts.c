@@ -458,7 +458,7 @@ void glpgp_opts_add_solver(glpgp_opts *t, glpgp_options *o)
     glpgp_opt_choice(t, "--tr-precond", &o->tr_precond, k_preconds, k_precond_vals,
                      "with --precond amg: preconditioner and norm of the trust region's\n"
                      "Steihaug CG: 2x2-block Jacobi, or a symmetric multigrid W-cycle\n"
-                     "built on the projected Hessian (--backend petsc: GAMG's)");
+                     "built on the projected Hessian");
     glpgp_opt c = {0};
     c.name = "--field";
     c.kind = GLPGP_OPT_CUSTOM;

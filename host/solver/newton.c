@@ -214,10 +214,7 @@ static glpgp_status tr_direction(glpgp_backend *b, const glpgp_options *o, glpgp
     const glpgp_backend_ops *op = b->ops;
     int reuse = tm->set;
     int hess = reuse ? tm->hess : tr_hessian(o);
-    /* the multigrid region: glpgp's hierarchy (ns->amg) or the backend's
-     * (op tr_precond: PETSc's GAMG on the projected Hessian) */
-    const int backend_mg = ns->amg == NULL && op->tr_precond != NULL;
-    int mg = reuse ? tm->mg : (ns->amg != NULL || backend_mg) && o->tr_precond == GLPGP_PRECOND_AMG;
+    int mg = reuse ? tm->mg : ns->amg != NULL && o->tr_precond == GLPGP_PRECOND_AMG;
     for (;;) {
         const int psd = hess == GLPGP_HESS_PROJECTED || hess == GLPGP_HESS_PAPER;
         if (reuse) {
@@ -225,9 +222,7 @@ static glpgp_status tr_direction(glpgp_backend *b, const glpgp_options *o, glpgp
         } else if (mg) {
             /* hierarchy from H_proj >= H (values, frames from x, SPD coarse inverse) */
             GLPGP_CHECK(op->assemble_newton(b, ns->x, inv4e2, psd ? hess : GLPGP_HESS_PROJECTED));
-            if (backend_mg) {
-                GLPGP_CHECK(op->tr_precond(b, 1));
-            } else if (!glpgp_amg_try_update_spd(ns->amg, ns->x, "trust-region step")) {
+            if (!glpgp_amg_try_update_spd(ns->amg, ns->x, "trust-region step")) {
                 ns->amg = NULL;
                 mg = 0;
             }
@@ -240,11 +235,7 @@ static glpgp_status tr_direction(glpgp_backend *b, const glpgp_options *o, glpgp
         tm->mg = mg;
         /* d ~ argmin m(d) = F + g.d + 1/2 d.H d  subject to ||d||_M <= radius */
         GLPGP_CHECK(op->axpby(b, -1.0, ns->g, 0.0, ns->xt)); /* xt <- -g (rhs) */
-        /* the backend's multigrid: its cg_precond / cg_update apply it during this run */
-        if (mg && backend_mg) GLPGP_CHECK(op->tr_precond(b, 2));
-        const glpgp_status tst = glpgp_trcg(b, mg ? ns->amg : NULL, ns->xt, ns->d, ns->radius, eta, o->cg_max, xb, ti);
-        if (mg && backend_mg) GLPGP_CHECK(op->tr_precond(b, 0));
-        GLPGP_CHECK(tst);
+        GLPGP_CHECK(glpgp_trcg(b, mg ? ns->amg : NULL, ns->xt, ns->d, ns->radius, eta, o->cg_max, xb, ti));
         info->cg += ti->iterations;
         info->cg_capped += ti->reason == GLPGP_TRCG_MAXIT;
         if (ti->reason != GLPGP_TRCG_PRECOND) return GLPGP_OK;

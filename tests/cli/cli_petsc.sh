@@ -122,8 +122,7 @@ fi
 
 # the default preconditioner with the trust region, 2 ranks: KSPCG + GAMG
 # solves the guiding field and the naive PGP systems and the trust region's
-# multigrid candidate steps, Steihaug CG preconditioned by GAMG on the
-# projected Hessian the region's steps (the
+# multigrid candidate steps, block-Jacobi Steihaug CG the region's steps (the
 # uniform size: with the chord budget's local size on this disk the two end
 # in neighbouring minima, a singularity pair apart): energies within 1e-6
 # (measured 2e-9 relative on this disk)
@@ -132,11 +131,6 @@ run_ok "disk reference default" solve shape:disk:2500 --backend reference --size
 mpi amg 2 solve shape:disk:2500 --backend petsc --globalization trust-region --size-chord-area 0 \
     --size-chord-depth 0 --stats p2_amg.json
 [ -f p2_amg.json ] && compare p2_amg.json ref_amg.json "disk, 2 ranks, GAMG (trust region)" 1e-6
-# the trust region's block-Jacobi region (--tr-precond jacobi) instead of
-# GAMG's on the projected Hessian (op tr_precond): the same state
-mpi trjac 2 solve shape:disk:2500 --backend petsc --tr-precond jacobi --size-chord-area 0 \
-    --size-chord-depth 0 --stats p2_trjac.json
-[ -f p2_trjac.json ] && compare p2_trjac.json ref_amg.json "disk, 2 ranks, GAMG, block-Jacobi region" 1e-6
 # GAMG in every Newton step (line search): inexact steps (eta up to 1e-2)
 # with another preconditioner take another path and end in a neighbouring
 # minimum (measured 5e-5 relative on this disk; the reference's Jacobi and

@@ -246,15 +246,6 @@ typedef struct glpgp_backend_ops {
     glpgp_status (*linear_solve)(glpgp_backend *b, const glpgp_vec *rhs, glpgp_vec *x, double rtol,
                                  int maxit, int *iterations, double *relres, int *reason);
 
-    /* ---- the trust region's multigrid norm on a backend with linear_solve
-     * (optional, NULL: block Jacobi): mode 1 builds (or updates) the
-     * backend's multigrid preconditioner B from the current NEWTON (the
-     * driver has assembled the projected Hessian, so B is SPD); mode 2 makes
-     * cg_precond and cg_update apply B instead of DINV (z <- B r, the same
-     * scalars); mode 0 restores DINV. The driver turns it on around one
-     * Steihaug run only. */
-    glpgp_status (*tr_precond)(glpgp_backend *b, int mode);
-
     /* ---- distributed meshes (optional, NULL: one process): the driver's
      * reductions of host values over the ranks of a mesh that is one rank's
      * part (glpgp_mesh.part): v[0 .. n) <- the sum (GLPGP_REDUCE_SUM, the
