@@ -425,8 +425,8 @@ static const char *const k_energies[] = {"p1", "transport", NULL};
 static const int k_energy_vals[] = {GLPGP_ELEM_P1, GLPGP_ELEM_TRANSPORT};
 static const char *const k_newtons[] = {"mixed", "projected", "paper", NULL};
 static const int k_newton_vals[] = {GLPGP_HESS_MIXED, GLPGP_HESS_PROJECTED, GLPGP_HESS_PAPER};
-static const char *const k_globals[] = {"auto", "trust-region", "line-search", NULL};
-static const int k_global_vals[] = {GLPGP_GLOBAL_AUTO, GLPGP_GLOBAL_TRUST_REGION, GLPGP_GLOBAL_LINE_SEARCH};
+static const char *const k_globals[] = {"trust-region", "line-search", NULL};
+static const int k_global_vals[] = {GLPGP_GLOBAL_TRUST_REGION, GLPGP_GLOBAL_LINE_SEARCH};
 static const char *const k_preconds[] = {"jacobi", "amg", NULL};
 static const int k_precond_vals[] = {GLPGP_PRECOND_JACOBI, GLPGP_PRECOND_AMG};
 static const char *const k_couplings[] = {"auto", "off", "on", NULL};
@@ -453,8 +453,7 @@ void glpgp_opts_add_solver(glpgp_opts *t, glpgp_options *o)
                      "everywhere), projected (PSD) everywhere, or the paper's eq. 8");
     glpgp_opt_choice(t, "--globalization", &o->globalization, k_globals, k_global_vals,
                      "Newton step: trust region on the exact Hessian (Steihaug CG,\n"
-                     "polar trial points), or the line search of the modified Newton;\n"
-                     "auto: the trust region on every backend today (README)");
+                     "polar trial points), or the line search of the modified Newton");
     glpgp_opt_choice(t, "--tr-precond", &o->tr_precond, k_preconds, k_precond_vals,
                      "with --precond amg: preconditioner and norm of the trust region's\n"
                      "Steihaug CG: 2x2-block Jacobi, or a symmetric multigrid W-cycle\n"

@@ -39,9 +39,8 @@ static void stats_body(FILE *f, const glpgp_mesh *m, const glpgp_options *o, con
         glpgp_json_num(w, "eps0", o->eps0);
         glpgp_json_num(w, "eps_ratio", o->eps_ratio);
         glpgp_json_num(w, "eps_min", o->eps_min);
-        glpgp_json_str(w, "globalization", o->globalization == GLPGP_GLOBAL_AUTO           ? "auto"
-                                           : o->globalization == GLPGP_GLOBAL_LINE_SEARCH ? "line-search"
-                                                                                          : "trust-region");
+        glpgp_json_str(w, "globalization",
+                       o->globalization == GLPGP_GLOBAL_LINE_SEARCH ? "line-search" : "trust-region");
         glpgp_json_num(w, "newton_rtol", o->newton_rtol);
         glpgp_json_int(w, "newton_max", o->newton_max);
         glpgp_json_num(w, "cg_rtol", o->cg_rtol);

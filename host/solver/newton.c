@@ -2,8 +2,9 @@
  * once against the backend table. g = grad(E + P_eps)(x) (zero on Dirichlet
  * vertices), F = E + P_eps.
  *
- * Trust region (o->globalization = GLPGP_GLOBAL_TRUST_REGION; AUTO, the default,
- * picks it unless the backend's multigrid is its own linear solver):
+ * Trust region (o->globalization = GLPGP_GLOBAL_TRUST_REGION, the default, on
+ * every backend; the PETSc backend's line search against it: README, "Many
+ * ranks"):
  *   H = H_E + exact penalty Hessian at x (indefinite in vortex states);
  *   d ~ argmin g.d + 1/2 d.H d over ||d||_M <= radius by Steihaug-Toint CG
  *     (solver/steihaug.c, inexact-Newton tolerance); M = block Jacobi, or,
@@ -473,26 +474,11 @@ done:
     return st;
 }
 
-int glpgp_globalization_of(const glpgp_backend *b, const glpgp_options *o)
-{
-    if (o->globalization != GLPGP_GLOBAL_AUTO) return o->globalization;
-    /* the trust region everywhere. On a backend whose multigrid is its
-     * linear solver (PETSc's KSPCG + GAMG) the line search puts GAMG into
-     * every step, the trust region into its candidate steps only (block
-     * Jacobi in the Steihaug region); measured, 2 ranks, solve s / Newton:
-     * shape:square:1000000 115 / 20 (line search) against 129 / 26, but
-     * shape:disk:64000 --size 0.07734642 34.7 / 179 with 3 levels at the
-     * cap and v in another state (+8/-7, E_v 305.6) against 13.7 / 75, all
-     * converged, the reference backend's state (+7/-7, E_v 302.64) */
-    (void)b;
-    return GLPGP_GLOBAL_TRUST_REGION;
-}
-
 glpgp_status glpgp_newton_step(glpgp_backend *b, const glpgp_options *o, glpgp_newton_state *ns,
                                double inv4e2, double F, double gn, glpgp_newton_step_info *info)
 {
     memset(info, 0, sizeof *info);
-    if (glpgp_globalization_of(b, o) == GLPGP_GLOBAL_TRUST_REGION) return tr_step(b, o, ns, inv4e2, F, gn, info);
+    if (o->globalization == GLPGP_GLOBAL_TRUST_REGION) return tr_step(b, o, ns, inv4e2, F, gn, info);
     return ls_step(b, o, ns, inv4e2, F, gn, info);
 }
 
@@ -501,7 +487,7 @@ glpgp_status glpgp_newton_level(glpgp_backend *b, const glpgp_options *o, glpgp_
 {
     const glpgp_backend_ops *op = b->ops;
     const double inv4e2 = 1.0 / (4.0 * eps * eps);
-    const int tr = glpgp_globalization_of(b, o) == GLPGP_GLOBAL_TRUST_REGION;
+    const int tr = o->globalization == GLPGP_GLOBAL_TRUST_REGION;
     double s[GLPGP_NSLOTS];
     ns->grad0 = 0.0;
     ns->near = 0;

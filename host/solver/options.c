@@ -36,7 +36,7 @@ void glpgp_options_default(glpgp_options *o)
     o->max_backtracks = 40;
     o->forcing = 0.1;
     o->forcing_max = 1e-2;
-    o->globalization = GLPGP_GLOBAL_AUTO;
+    o->globalization = GLPGP_GLOBAL_TRUST_REGION;
     o->tr_accept = 1e-4;
     o->tr_poor = 0.25;
     o->tr_shrink = 0.5;
@@ -124,8 +124,7 @@ glpgp_status glpgp_options_check(const glpgp_options *o)
         return GLPGP_FAIL(GLPGP_ERR_ARG, "tr_lookahead must be 0 or 1, got %d", o->tr_lookahead);
     if (o->tr_precond != GLPGP_PRECOND_JACOBI && o->tr_precond != GLPGP_PRECOND_AMG)
         return GLPGP_FAIL(GLPGP_ERR_ARG, "unknown trust-region preconditioner %d", o->tr_precond);
-    if (o->globalization != GLPGP_GLOBAL_TRUST_REGION && o->globalization != GLPGP_GLOBAL_LINE_SEARCH &&
-        o->globalization != GLPGP_GLOBAL_AUTO)
+    if (o->globalization != GLPGP_GLOBAL_TRUST_REGION && o->globalization != GLPGP_GLOBAL_LINE_SEARCH)
         return GLPGP_FAIL(GLPGP_ERR_ARG, "unknown Newton globalization %d", o->globalization);
     if (!(o->tr_accept >= 0.0 && o->tr_accept < o->tr_poor) || !(o->tr_poor < o->tr_good) ||
         !(o->tr_good < 1.0) || !OPEN01(o->tr_shrink) ||

@@ -276,20 +276,6 @@ static void test_schedule_and_options(void)
     glpgp_error_clear();
     o.globalization = GLPGP_GLOBAL_LINE_SEARCH;
     CHECK_OK(glpgp_options_check(&o));
-    /* auto (the default): the trust region (the PETSc backend's:
-     * tests/cli/cli_petsc.sh); explicit choices pass through */
-    glpgp_options_default(&o);
-    CHECK(o.globalization == GLPGP_GLOBAL_AUTO);
-    glpgp_backend *b = NULL;
-    CHECK_OK(glpgp_backend_create_reference(&b));
-    if (b) {
-        CHECK(glpgp_globalization_of(b, &o) == GLPGP_GLOBAL_TRUST_REGION);
-        o.precond = GLPGP_PRECOND_JACOBI;
-        CHECK(glpgp_globalization_of(b, &o) == GLPGP_GLOBAL_TRUST_REGION);
-        o.globalization = GLPGP_GLOBAL_LINE_SEARCH;
-        CHECK(glpgp_globalization_of(b, &o) == GLPGP_GLOBAL_LINE_SEARCH);
-    }
-    glpgp_backend_destroy(&b);
 }
 
 int main(int argc, char **argv)

@@ -43,12 +43,7 @@ enum glpgp_init { GLPGP_INIT_NAIVE = 0, GLPGP_INIT_ONE = 1 };
 enum glpgp_vertex_order { GLPGP_ORDER_RCM = 0, GLPGP_ORDER_INPUT = 1 };
 /* How a Newton step is made safe: a trust region around the exact-Hessian
  * model (Steihaug-Toint CG), or the line search of the modified Newton. */
-enum glpgp_globalization {
-    GLPGP_GLOBAL_TRUST_REGION = 0,
-    GLPGP_GLOBAL_LINE_SEARCH = 1,
-    GLPGP_GLOBAL_AUTO = 2 /* the backend's best measured choice: the trust region on every backend
-                             today (glpgp_globalization_of, solver/newton.c) */
-};
+enum glpgp_globalization { GLPGP_GLOBAL_TRUST_REGION = 0, GLPGP_GLOBAL_LINE_SEARCH = 1 };
 /* Preconditioner of the Newton (and naive PGP, guiding field) systems. */
 enum glpgp_precond {
     GLPGP_PRECOND_JACOBI = 0, /* 2x2-block Jacobi, CG (solver/cg.c) */
@@ -121,7 +116,7 @@ typedef struct glpgp_options {
     int max_backtracks;   /* line search halvings before the step is given up [40] */
     double forcing;       /* inexact Newton: CG tolerance eta = forcing |g| / |g_0| ... [0.1] */
     double forcing_max;   /* ... clamped to [cg_rtol, forcing_max] [1e-2] */
-    int globalization;    /* GLPGP_GLOBAL_* [AUTO] (glpgp_globalization_of) */
+    int globalization;    /* GLPGP_GLOBAL_* [TRUST_REGION] */
     /* trust region (radius in the norm ||d||_M = sqrt(d.M d) of the region's
      * preconditioner: block Jacobi, or the multigrid of tr_precond):
      * rho = (actual decrease of E + P) / (decrease predicted by the model) */
@@ -419,9 +414,6 @@ typedef struct glpgp_amg_info {
 
 /* Whether backend b implements the multigrid ops (amg_setup etc.). */
 int glpgp_amg_supported(const glpgp_backend *b);
-/* The globalization Newton uses on backend b: o->globalization, with AUTO
- * resolved (today GLPGP_GLOBAL_TRUST_REGION on every backend). */
-int glpgp_globalization_of(const glpgp_backend *b, const glpgp_options *o);
 
 /* Build the hierarchy structure for b's system (b->ops->setup done) and the
  * Dirichlet flags dir (nv; NULL: none) and upload it. Options: o->amg_*.
