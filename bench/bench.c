@@ -55,6 +55,7 @@ typedef struct bopts {
     const char *json, *compare, *against, *plot;
     int precond;           /* --precond: -1 not given, else 0 jacobi, 1 amg, 2 both */
     int sizes_given, with_4m, steps;
+    int kcycle_min;        /* --amg-kcycle-min (-1: auto) */
 } bopts;
 
 static void usage(FILE *f)
@@ -90,6 +91,8 @@ static void usage(FILE *f)
             "                           default size, on both backends (--no-opencl / --no-reference)\n"
             "  --with-4m                with --precond: add 4M vertices to the ladder (slow)\n"
             "  --newton-steps N         with --precond: Newton steps per case (default 3)\n"
+            "  --amg-kcycle-min N|auto  with --precond: K-cycle on levels of >= N nodes, a plain visit below\n"
+            "                           (0: every level; auto: 0, or 2000 on a launch-bound GPU; default auto)\n"
             "  -h, --help               this text\n");
 }
 
@@ -126,6 +129,7 @@ static glpgp_status parse_args(int argc, char **argv, bopts *o, int *help)
     o->device = -1;
     o->precond = -1;
     o->steps = 3;
+    o->kcycle_min = -1;
     const long defsizes[] = {16000, 64000, 256000, 1000000};
     int sizes_given = 0, repeat_given = 0, stream_given = 0, reps_given = 0, mt_given = 0;
     *help = 0;
@@ -226,6 +230,12 @@ static glpgp_status parse_args(int argc, char **argv, bopts *o, int *help)
             NEEDV();
             if (!parse_long(v, &lv) || lv < 1 || lv > 20) return GLPGP_FAIL(GLPGP_ERR_ARG, "--newton-steps: expected 1..20");
             o->steps = (int)lv;
+        } else if (!strcmp(a, "--amg-kcycle-min")) {
+            NEEDV();
+            if (!strcmp(v, "auto")) o->kcycle_min = -1;
+            else if (!parse_long(v, &lv) || lv < 0 || lv > 100000000)
+                return GLPGP_FAIL(GLPGP_ERR_ARG, "--amg-kcycle-min: expected a node count or auto");
+            else o->kcycle_min = (int)lv;
         } else if (!strcmp(a, "--smoke")) {
             o->smoke = 1;
         } else if (!strcmp(a, "--json")) {
@@ -380,6 +390,12 @@ typedef struct clbuild {
     char device[512];
     double create_cold_s, first_ops_cold_s, create_warm_s, first_ops_warm_s;
     char cache_dir[256];
+    /* the OpenCL device's own bandwidth through the backend's ops (best of
+     * stream_reps on two vectors of stream_n doubles): copy moves 16 bytes per
+     * double, axpby (y <- a x + c y) 24 like STREAM's triad; NAN if not run */
+    double dev_copy_gbs, dev_axpby_gbs;
+    size_t dev_bytes;
+    int dev_reps;
 } clbuild;
 
 /* Bytes one SpMV / one CG iteration must move (see bench/README.md). */
@@ -679,6 +695,57 @@ done:
     return st;
 }
 
+/* The device's bandwidth through the ops table: y <- x (clEnqueueCopyBuffer)
+ * and y <- a x + c y (the backend's axpby kernel) on two vectors of
+ * o->stream_n doubles, best of o->stream_reps. On PoCL this is the host's
+ * memory again (compare STREAM); on a GPU it is the card's, the figure the
+ * CG iteration's GB/s is measured against. A tiny system is set up first
+ * because the scalar slots live in the backend's setup. */
+static glpgp_status cl_device_bw(const bopts *o, glpgp_system *sys, clbuild *cb)
+{
+    glpgp_status st = GLPGP_OK;
+    glpgp_backend *b = NULL;
+    glpgp_vec *x = NULL, *y = NULL;
+    double *w = NULL;
+    const size_t n = o->stream_n;
+    GLPGP_CHECK(create_backend(1, o, &b));
+    const glpgp_backend_ops *op = b->ops;
+    GLPGP_CHECK_GOTO(st, op->setup(b, sys), done);
+    GLPGP_CHECK_GOTO(st, glpgp_calloc(n, sizeof(double), &w), done);
+    for (size_t i = 0; i < n; i++) w[i] = 1.0 + 1e-9 * (double)(i % 1000);
+    GLPGP_CHECK_GOTO(st, op->vec_create(b, n, &x), done);
+    GLPGP_CHECK_GOTO(st, op->vec_create(b, n, &y), done);
+    GLPGP_CHECK_GOTO(st, op->vec_write(b, x, w), done);
+    GLPGP_CHECK_GOTO(st, op->vec_write(b, y, w), done);
+    double best_copy = INFINITY, best_axpby = INFINITY;
+    for (int r = 0; r <= o->stream_reps; r++) { /* r = 0 warms up */
+        GLPGP_CHECK_GOTO(st, sync_b(b), done);
+        double t0 = bench_now();
+        GLPGP_CHECK_GOTO(st, op->copy(b, y, x), done); /* y <- x */
+        GLPGP_CHECK_GOTO(st, sync_b(b), done);
+        double t1 = bench_now();
+        GLPGP_CHECK_GOTO(st, op->axpby(b, 0.5, x, 0.5, y), done); /* y <- x/2 + y/2 (y stays bounded) */
+        GLPGP_CHECK_GOTO(st, sync_b(b), done);
+        double t2 = bench_now();
+        if (r > 0) {
+            if (t1 - t0 < best_copy) best_copy = t1 - t0;
+            if (t2 - t1 < best_axpby) best_axpby = t2 - t1;
+        }
+    }
+    cb->dev_copy_gbs = 16.0 * (double)n / best_copy * 1e-9;
+    cb->dev_axpby_gbs = 24.0 * (double)n / best_axpby * 1e-9;
+    cb->dev_bytes = n * sizeof(double);
+    cb->dev_reps = o->stream_reps;
+done:
+    if (b) {
+        op->vec_destroy(b, &x);
+        op->vec_destroy(b, &y);
+    }
+    glpgp_backend_destroy(&b);
+    free(w);
+    return st;
+}
+
 static void cl_build_probe(const bopts *o, clbuild *cb)
 {
     glpgp_mesh *m = NULL;
@@ -690,6 +757,12 @@ static void cl_build_probe(const bopts *o, clbuild *cb)
     if (st == GLPGP_OK)
         st = cl_first_ops(o, m, sys, &cb->create_cold_s, &cb->first_ops_cold_s, cb->device, sizeof cb->device);
     if (st == GLPGP_OK) st = cl_first_ops(o, m, sys, &cb->create_warm_s, &cb->first_ops_warm_s, NULL, 0);
+    cb->dev_copy_gbs = cb->dev_axpby_gbs = NAN;
+    if (st == GLPGP_OK && cl_device_bw(o, sys, cb) != GLPGP_OK) { /* a figure missing, not a failure */
+        fprintf(stderr, "glpgp-bench: OpenCL device bandwidth skipped: %s\n", glpgp_error_message());
+        cb->dev_copy_gbs = cb->dev_axpby_gbs = NAN;
+        glpgp_error_clear();
+    }
     if (st == GLPGP_OK) {
         cb->ok = 1;
     } else {
@@ -1011,6 +1084,11 @@ static void write_json(FILE *f, const bopts *o, const machine *mc, const bench_s
         jnum(f, cb->create_warm_s);
         fprintf(f, ", \"first_launch_cached_s\": ");
         jnum(f, cb->first_ops_warm_s);
+        fprintf(f, ", \"device_array_bytes\": %zu, \"device_reps\": %d, \"device_copy_gbs\": ", cb->dev_bytes,
+                cb->dev_reps);
+        jnum(f, cb->dev_copy_gbs);
+        fprintf(f, ", \"device_axpby_gbs\": ");
+        jnum(f, cb->dev_axpby_gbs);
     }
     fprintf(f, "},\n  \"cholmod\": {\"built\": %s},\n", bench_have_cholmod() ? "true" : "false");
     fprintf(f, "  \"sizes\": [");
@@ -1034,6 +1112,8 @@ static void write_json(FILE *f, const bopts *o, const machine *mc, const bench_s
         jnum(f, s->system_s);
         fprintf(f, ",\n     \"cg_bandwidth_ratio\": ");
         jnum(f, s->cl.ran ? ratio(s->cl.cg_gbs, triad) : NAN);
+        fprintf(f, ", \"cg_device_bandwidth_ratio\": ");
+        jnum(f, s->cl.ran && cb->ok ? ratio(s->cl.cg_gbs, cb->dev_axpby_gbs) : NAN);
         fprintf(f, ", \"cg_speedup_vs_reference\": ");
         jnum(f, (s->cl.ran && s->ref.ran) ? ratio(s->ref.cg_iter.med, s->cl.cg_iter.med) : NAN);
         fprintf(f, ", \"spmv_speedup_vs_reference\": ");
@@ -1124,7 +1204,11 @@ static void write_markdown(FILE *f, const bopts *o, const machine *mc, const ben
                 ftime(a, sizeof a, cb->create_cold_s), ftime(b2, sizeof b2, cb->first_ops_cold_s),
                 ftime(c3, sizeof c3, cb->create_warm_s), ftime(d4, sizeof d4, cb->first_ops_warm_s),
                 cb->cache_dir[0] ? " (fresh POCL_CACHE_DIR)" : " (existing PoCL cache: cold figure may be cached)");
-    else
+    if (cb->ok && isfinite(cb->dev_axpby_gbs))
+        fprintf(f, "- OpenCL device bandwidth (2 x %.0f MiB, best of %d): copy %.1f GB/s, axpby (y <- a x + c y) "
+                   "%.1f GB/s\n",
+                cb->dev_bytes / 1048576.0, cb->dev_reps, cb->dev_copy_gbs, cb->dev_axpby_gbs);
+    if (!cb->ok)
         fprintf(f, "- OpenCL: skipped (%s)\n", cb->note[0] ? cb->note : "not available");
     fprintf(f, "- kernel times: wall clock only (the OpenCL backend exposes no profiling events); every timed "
                "call ends with a blocking scalar read\n");
@@ -1178,13 +1262,15 @@ static void write_markdown(FILE *f, const bopts *o, const machine *mc, const ben
         if (!sr[i].cl.ran && sr[i].cl.note[0] && cb->ok)
             fprintf(f, "- OpenCL, %d vertices: %s\n", sr[i].nv, sr[i].cl.note);
 
-    fprintf(f, "\n| vertices | blocks | cg_bandwidth_ratio | cg_speedup_vs_reference | GL speedup | peak RSS | OpenCL "
-               "device bytes | CHOLMOD analyse / factor / solve | PCG / Cholesky (ref, OpenCL) |\n"
-               "|---|---|---|---|---|---|---|---|---|\n");
+    fprintf(f, "\n| vertices | blocks | cg_bandwidth_ratio | CG / device axpby | cg_speedup_vs_reference | GL speedup "
+               "| peak RSS | OpenCL device bytes | CHOLMOD analyse / factor / solve | PCG / Cholesky (ref, OpenCL) |\n"
+               "|---|---|---|---|---|---|---|---|---|---|\n");
     for (int i = 0; i < ns; i++) {
         const sres *s = &sr[i];
         fprintf(f, "| %d | %ld |", s->nv, s->nnzb);
         if (s->cl.ran) fprintf(f, " %.2f |", s->cl.cg_gbs / bs->triad_gbs);
+        else fprintf(f, " - |");
+        if (s->cl.ran && isfinite(cb->dev_axpby_gbs)) fprintf(f, " %.2f |", s->cl.cg_gbs / cb->dev_axpby_gbs);
         else fprintf(f, " - |");
         if (s->cl.ran && s->ref.ran) fprintf(f, " %.2f |", ratio(s->ref.cg_iter.med, s->cl.cg_iter.med));
         else fprintf(f, " - |");
@@ -1457,6 +1543,7 @@ int main(int argc, char **argv)
         if (po.nsizes > 16) po.nsizes = 16;
         po.with_4m = o.with_4m;
         po.steps = o.steps;
+        po.kcycle_min = o.kcycle_min;
         po.shape = o.shape;
         po.no_opencl = o.no_opencl;
         po.no_reference = o.no_reference;

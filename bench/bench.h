@@ -30,6 +30,7 @@ typedef struct bench_precond_opts {
     int no_opencl, no_reference;
     int device;
     const char *json;     /* NULL: no JSON */
+    int kcycle_min;       /* glpgp_options.amg_kcycle_min (-1: by the backend) */
 } bench_precond_opts;
 
 /* Run the ladder, print Markdown, write JSON; returns the exit code. */

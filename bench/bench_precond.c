@@ -40,6 +40,7 @@ typedef struct pc_step {
     double setup_s, solve_s, assemble_s, bytes, relres, alpha;
     int reason;
     long sync_setup, sync_solve; /* host round trips counted by the drivers (b->n_sync) */
+    long launch_setup, launch_solve; /* OpenCL kernel launches (b->n_launch; 0 on the reference) */
 } pc_step;
 
 typedef struct pc_case {
@@ -54,6 +55,7 @@ typedef struct pc_case {
     int nsteps[2];
     glpgp_amg_info info;
     double bytes_amg_it; /* model, per flexible-CG iteration */
+    int kmin;            /* K-cycle on levels of >= kmin nodes (resolved amg_kcycle_min) */
 } pc_case;
 
 static double b_spmv(double nv, double nnzb) { return 36.0 * nnzb + 4.0 * (nv + 1) + 32.0 * nv; }
@@ -104,7 +106,7 @@ static glpgp_status energy_at(glpgp_backend *b, const glpgp_vec *x, double inv4e
 /* The Newton steps of one case with one preconditioner (pc 0: Jacobi, 1: multigrid). */
 static glpgp_status run_case(const glpgp_mesh *m, const glpgp_system *sys, const double *w,
                              const unsigned char *dir, const double *x0, pc_case *cs, int pc, int steps,
-                             int device)
+                             int device, int kcycle_min)
 {
     glpgp_status st = GLPGP_OK;
     glpgp_backend *b = NULL;
@@ -114,8 +116,11 @@ static glpgp_status run_case(const glpgp_mesh *m, const glpgp_system *sys, const
     glpgp_options o;
     glpgp_options_default(&o);
     o.precond = pc ? GLPGP_PRECOND_AMG : GLPGP_PRECOND_JACOBI;
+    o.amg_kcycle_min = kcycle_min;
     const double eps = 0.5 * cs->h, inv4e2 = 1.0 / (4.0 * eps * eps);
     GLPGP_CHECK(make_backend(cs->opencl, device, &b));
+    o.amg_kcycle_min = glpgp_amg_kcycle_min(b, &o); /* resolved: the byte model reads it */
+    if (pc) cs->kmin = o.amg_kcycle_min;
     const glpgp_backend_ops *op = b->ops;
     GLPGP_CHECK_GOTO(st, op->setup(b, sys), done);
     glpgp_vec **vs[] = {&x, &g, &rhs, &d, &xt, &wk};
@@ -141,10 +146,12 @@ static glpgp_status run_case(const glpgp_mesh *m, const glpgp_system *sys, const
         double t1 = bench_now();
         s->assemble_s = t1 - t0;
         /* setup: the multigrid values of this step */
-        long ns0 = b->n_sync;
+        long ns0 = b->n_sync, nl0 = b->n_launch;
         if (a) GLPGP_CHECK_GOTO(st, glpgp_amg_update(a, x), done);
         s->sync_setup = b->n_sync - ns0;
+        s->launch_setup = b->n_launch - nl0;
         ns0 = b->n_sync;
+        nl0 = b->n_launch;
         GLPGP_CHECK_GOTO(st, sync_be(b), done);
         double t2 = bench_now();
         s->setup_s = t2 - t1;
@@ -154,6 +161,7 @@ static glpgp_status run_case(const glpgp_mesh *m, const glpgp_system *sys, const
         GLPGP_CHECK_GOTO(st, sync_be(b), done);
         s->solve_s = bench_now() - t2;
         s->sync_solve = b->n_sync - ns0;
+        s->launch_solve = b->n_launch - nl0;
         s->cg = ci.iterations;
         s->relres = ci.relres;
         s->reason = (int)ci.reason;
@@ -200,21 +208,24 @@ static void print_case(const pc_case *c, const int want[2])
     printf("\n### %d vertices, h = %.4g (%s), %s\n\n", c->nv, c->h, c->hdefault ? "default size" : "10 mean edges",
            c->opencl ? "OpenCL" : "reference");
     if (c->ran[1])
-        printf("multigrid: %d levels (%d -> %d nodes), operator complexity %.3f, structure %.3f s\n\n",
+        printf("multigrid: %d levels (%d -> %d nodes), operator complexity %.3f, structure %.3f s, "
+               "K-cycle on levels of >= %d nodes\n\n",
                c->info.nlevels, c->info.n[0], c->info.n[c->info.nlevels - 1], c->info.operator_complexity,
-               c->info.seconds_structure);
-    printf("| step | precond | CG it | setup s | solve s | ms/it | GB moved | step length | host round trips setup / solve |\n"
-           "|---|---|---|---|---|---|---|---|---|\n");
+               c->info.seconds_structure, c->kmin);
+    printf("| step | precond | CG it | setup s | solve s | ms/it | GB moved | step length | host round trips setup / solve "
+           "| kernel launches setup / per it |\n"
+           "|---|---|---|---|---|---|---|---|---|---|\n");
     for (int k = 0; k < PC_MAX_STEPS; k++)
         for (int pc = 0; pc < 2; pc++) {
             if (!want[pc] || !c->ran[pc] || k >= c->nsteps[pc]) continue;
             const pc_step *s = &c->st[pc][k];
-            printf("| %d | %s | %d | %.3f | %.3f | %.3f | %.2f | %g | %ld / %ld |\n", k + 1, pc ? "amg" : "jacobi", s->cg,
-                   s->setup_s, s->solve_s, s->cg ? 1e3 * s->solve_s / s->cg : 0.0, s->bytes * 1e-9, s->alpha,
-                   s->sync_setup, s->sync_solve);
+            printf("| %d | %s | %d | %.3f | %.3f | %.3f | %.2f | %g | %ld / %ld | %ld / %.1f |\n", k + 1,
+                   pc ? "amg" : "jacobi", s->cg, s->setup_s, s->solve_s, s->cg ? 1e3 * s->solve_s / s->cg : 0.0,
+                   s->bytes * 1e-9, s->alpha, s->sync_setup, s->sync_solve, s->launch_setup,
+                   s->cg ? (double)s->launch_solve / s->cg : 0.0);
         }
     for (int pc = 0; pc < 2; pc++)
-        if (want[pc] && !c->ran[pc]) printf("| - | %s | %s | | | | | |\n", pc ? "amg" : "jacobi", c->note[pc]);
+        if (want[pc] && !c->ran[pc]) printf("| - | %s | %s | | | | | | |\n", pc ? "amg" : "jacobi", c->note[pc]);
     if (c->ran[0] && c->ran[1] && c->nsteps[0] && c->nsteps[1]) {
         const double tj = (sum_field(c, 0, 1) + sum_field(c, 0, 2)) / c->nsteps[0];
         const double ta = (sum_field(c, 1, 1) + sum_field(c, 1, 2)) / c->nsteps[1];
@@ -231,8 +242,8 @@ static void json_case(FILE *f, const pc_case *c, int first)
             c->nv, c->nnzb, c->h, c->hdefault ? "default" : "10_mean_edges", c->opencl ? "opencl" : "reference");
     if (c->ran[1])
         fprintf(f, ", \"amg_levels\": %d, \"amg_operator_complexity\": %.4f, \"amg_structure_s\": %.4f, "
-                   "\"amg_bytes_per_iteration\": %.6g",
-                c->info.nlevels, c->info.operator_complexity, c->info.seconds_structure, c->bytes_amg_it);
+                   "\"amg_bytes_per_iteration\": %.6g, \"amg_kcycle_min\": %d",
+                c->info.nlevels, c->info.operator_complexity, c->info.seconds_structure, c->bytes_amg_it, c->kmin);
     for (int pc = 0; pc < 2; pc++) {
         const char *name = pc ? "amg" : "jacobi";
         if (!c->ran[pc]) {
@@ -247,9 +258,11 @@ static void json_case(FILE *f, const pc_case *c, int first)
         for (int k = 0; k < n; k++) {
             const pc_step *s = &c->st[pc][k];
             fprintf(f, "%s{\"cg\": %d, \"setup_s\": %.6f, \"solve_s\": %.6f, \"ms_per_it\": %.6f, \"bytes\": %.6g, "
-                       "\"assemble_s\": %.6f, \"relres\": %.3g, \"alpha\": %g, \"syncs_setup\": %ld, \"syncs_solve\": %ld}",
+                       "\"assemble_s\": %.6f, \"relres\": %.3g, \"alpha\": %g, \"syncs_setup\": %ld, \"syncs_solve\": %ld, "
+                       "\"launches_setup\": %ld, \"launches_solve\": %ld}",
                     k ? ", " : "", s->cg, s->setup_s, s->solve_s, s->cg ? 1e3 * s->solve_s / s->cg : 0.0, s->bytes,
-                    s->assemble_s, s->relres, s->alpha, s->sync_setup, s->sync_solve);
+                    s->assemble_s, s->relres, s->alpha, s->sync_setup, s->sync_solve, s->launch_setup,
+                    s->launch_solve);
         }
         fprintf(f, "]}");
     }
@@ -294,7 +307,7 @@ int bench_precond_run(const bench_precond_opts *po)
                 if (be == 0 ? po->no_opencl : po->no_reference) continue;
                 wc->opencl = be == 0;
                 for (int pc = 0; pc < 2; pc++)
-                    if (want[pc]) (void)run_case(m, sys, w, dir, x0, wc, pc, 1, po->device);
+                    if (want[pc]) (void)run_case(m, sys, w, dir, x0, wc, pc, 1, po->device, po->kcycle_min);
             }
         }
         glpgp_error_clear();
@@ -352,7 +365,7 @@ int bench_precond_run(const bench_precond_opts *po)
                     if (!want[pc]) continue;
                     fprintf(stderr, "glpgp-bench: %d vertices, h = %.4g, %s, %s\n", m->nv, h,
                             cs->opencl ? "OpenCL" : "reference", pc ? "multigrid" : "Jacobi");
-                    if (run_case(m, sys, w, dir, x0, cs, pc, po->steps, po->device) != GLPGP_OK) {
+                    if (run_case(m, sys, w, dir, x0, cs, pc, po->steps, po->device, po->kcycle_min) != GLPGP_OK) {
                         snprintf(cs->note[pc], sizeof cs->note[pc], "failed: %s", glpgp_error_message());
                         for (char *p = cs->note[pc]; *p; p++)
                             if (*p == '\n' || *p == '|') *p = ' ';

@@ -712,6 +712,9 @@ static glpgp_status prepare(cc *c)
     /* guiding field (boundary-aligned, on the reference backend) and its Dirichlet set */
     glpgp_options_default(&c->so);
     c->so.size = t->h;
+    /* one cycle on both sides: the OpenCL backend's (a GPU keeps the K-cycle
+     * to the large levels, glpgp_amg_kcycle_min) */
+    c->so.amg_kcycle_min = glpgp_amg_kcycle_min(c->S[0].b, &c->so);
     c->so.energy = opt->energy;
     long fit = 0;
     GLPGP_CHECK(glpgp_field_compute(m, c->S[1].b, &c->so, c->field, &fit));

@@ -203,6 +203,7 @@ typedef struct cl_impl {
                             this many nodes run in one launch (GLPGP_CL_AMG_FUSE;
                             0: never) */
     cl_uint align;       /* CL_DEVICE_MEM_BASE_ADDR_ALIGN in bytes (sub-buffers) */
+    long *launches;      /* the backend's n_launch: kernel launches enqueued */
 } cl_impl;
 
 #define IMPL(b) ((cl_impl *)(b)->impl)
@@ -308,6 +309,7 @@ static glpgp_status run(cl_impl *c, int kid, size_t n, size_t *groups)
     cl_kernel k = c->k[kid];
     ARG(k, 0, s.n);
     ARG(k, 1, s.chunk);
+    c->launches[0]++;
     GLPGP_CL_WHAT(clEnqueueNDRangeKernel(c->q, k, 1, NULL, &s.global, &s.local, 0, NULL, NULL),
                   kernel_names[kid]);
     if (groups) *groups = s.groups;
@@ -331,6 +333,7 @@ static glpgp_status finalize(cl_impl *c, size_t np0, size_t np1, double scale0, 
     ARG(k, 7, s0);
     ARG(k, 8, s1);
     size_t g = c->wg, l = c->wg;
+    c->launches[0]++;
     GLPGP_CL_WHAT(clEnqueueNDRangeKernel(c->q, k, 1, NULL, &g, &l, 0, NULL, NULL), "glpgp_finalize");
     return GLPGP_OK;
 }
@@ -1126,6 +1129,7 @@ static glpgp_status amg_run_w(cl_impl *c, int kid, size_t n, size_t work, size_t
     cl_kernel k = c->k[kid];
     ARG(k, 0, s.n);
     ARG(k, 1, s.chunk);
+    c->launches[0]++;
     GLPGP_CL_WHAT(clEnqueueNDRangeKernel(c->q, k, 1, NULL, &s.global, &s.local, 0, NULL, NULL),
                   kernel_names[kid]);
     if (groups) *groups = s.groups;
@@ -1177,6 +1181,7 @@ static glpgp_status amg_finalize(cl_impl *c, size_t np, int mask, int slot)
     ARG(k, 4, a->t);
     ARG(k, 5, sl);
     size_t g = c->wg, l = c->wg;
+    c->launches[0]++;
     GLPGP_CL_WHAT(clEnqueueNDRangeKernel(c->q, k, 1, NULL, &g, &l, 0, NULL, NULL), "glpgp_amg_finalize");
     return GLPGP_OK;
 }
@@ -1732,6 +1737,7 @@ static glpgp_status cl_amg_coarse_correction(glpgp_backend *b, int lc, const glp
     ARG(k, 10, rhs->m);
     ARG(k, 11, e->m);
     size_t one = 1;
+    c->launches[0]++;
     GLPGP_CL_WHAT(clEnqueueNDRangeKernel(c->q, k, 1, NULL, &one, &one, 0, NULL, NULL), "glpgp_amg_bottom");
     *done = 1;
     return GLPGP_OK;
@@ -1793,6 +1799,7 @@ glpgp_status glpgp_backend_create_opencl(const glpgp_cl_options *opt, glpgp_back
     *out = NULL;
     GLPGP_CHECK(glpgp_calloc(1, sizeof *b, &b));
     glpgp_status st = glpgp_calloc(1, sizeof(cl_impl), &b->impl);
+    if (st == GLPGP_OK) ((cl_impl *)b->impl)->launches = &b->n_launch;
     if (st != GLPGP_OK) {
         free(b);
         return st;
@@ -1804,6 +1811,7 @@ glpgp_status glpgp_backend_create_opencl(const glpgp_cl_options *opt, glpgp_back
         glpgp_backend_destroy(&b);
         return st;
     }
+    b->launch_bound = !IMPL(b)->cpu; /* GPU launch shape: a few us of host time per launch */
     *out = b;
     return GLPGP_OK;
 }

@@ -62,6 +62,7 @@
 #include "glpgp/util.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -114,6 +115,12 @@ struct glpgp_amg {
 };
 
 /* whether the coarse correction on level c (0 < c < L-1) is a K-cycle */
+int glpgp_amg_kcycle_min(const glpgp_backend *b, const glpgp_options *o)
+{
+    if (o->amg_kcycle_min >= 0) return o->amg_kcycle_min;
+    return b && b->launch_bound ? GLPGP_AMG_KCYCLE_MIN_LAUNCH_BOUND : 0;
+}
+
 static int kcycle_level(const glpgp_amg *a, int c)
 {
     return a->cycle == GLPGP_AMG_KCYCLE && a->lev[c].n >= a->kmin;
@@ -558,7 +565,7 @@ glpgp_status glpgp_amg_create(glpgp_backend *b, const glpgp_options *o, const un
     a->cycle = o->amg_cycle;
     a->pre = o->amg_pre;
     a->post = o->amg_post;
-    a->kmin = o->amg_kcycle_min;
+    a->kmin = glpgp_amg_kcycle_min(b, o);
     a->check = o->amg_check;
     a->maxit = o->amg_maxit < o->cg_max ? o->amg_maxit : o->cg_max;
     a->has_phase = w != NULL && h > 0.0;
@@ -1151,10 +1158,13 @@ glpgp_amg *glpgp_amg_try_create(glpgp_backend *b, const glpgp_options *o, const 
         return NULL;
     }
     const glpgp_amg_info *in = &a->info;
+    char kc[64] = "";
+    if (a->cycle == GLPGP_AMG_KCYCLE && a->kmin > 0)
+        snprintf(kc, sizeof kc, ", K-cycle on levels of >= %d nodes", a->kmin);
     glpgp_log(GLPGP_LOG_DEBUG,
-              "%s: multigrid %d levels, %d -> %d nodes, operator complexity %.3f, structure %.3f s",
+              "%s: multigrid %d levels, %d -> %d nodes, operator complexity %.3f, structure %.3f s%s",
               what, in->nlevels, in->n[0], in->n[in->nlevels - 1], in->operator_complexity,
-              in->seconds_structure);
+              in->seconds_structure, kc);
     return a;
 }
 

@@ -56,7 +56,7 @@ void glpgp_options_default(glpgp_options *o)
     o->amg_coarse = 48;
     o->amg_max_levels = 20;
     o->amg_cycle = GLPGP_AMG_KCYCLE;
-    o->amg_kcycle_min = 0;
+    o->amg_kcycle_min = -1; /* by the backend: glpgp_amg_kcycle_min */
     o->amg_pre = 1;
     o->amg_post = 1;
     o->amg_weight = 1.5;
@@ -145,8 +145,9 @@ glpgp_status glpgp_options_check(const glpgp_options *o)
     if (o->amg_max_levels < 2 || o->amg_max_levels > GLPGP_AMG_MAX_LEVELS)
         return GLPGP_FAIL(GLPGP_ERR_ARG, "amg_max_levels must be in [2, %d], got %d",
                           GLPGP_AMG_MAX_LEVELS, o->amg_max_levels);
-    if (o->amg_kcycle_min < 0)
-        return GLPGP_FAIL(GLPGP_ERR_ARG, "amg_kcycle_min must be >= 0, got %d", o->amg_kcycle_min);
+    if (o->amg_kcycle_min < -1)
+        return GLPGP_FAIL(GLPGP_ERR_ARG, "amg_kcycle_min must be >= 0 or -1 (by the backend), got %d",
+                          o->amg_kcycle_min);
     if (o->amg_cycle != GLPGP_AMG_KCYCLE && o->amg_cycle != GLPGP_AMG_VCYCLE)
         return GLPGP_FAIL(GLPGP_ERR_ARG, "unknown multigrid cycle %d", o->amg_cycle);
     if (o->amg_pre < 0 || o->amg_pre > 8 || o->amg_post < 1 || o->amg_post > 8)

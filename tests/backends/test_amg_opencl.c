@@ -18,7 +18,10 @@
  *    reference backend's on random vectors and is symmetric on OpenCL;
  *  - solve: a whole GL solve with --precond amg on OpenCL and on the
  *    reference (the default trust region, multigrid region included): same
- *    Newton counts and singularities, z within 1e-6.
+ *    Newton counts and singularities, z within 1e-6;
+ *  - launch-bound: the GPU launch shape keeps the K-cycle to the levels of
+ *    at least GLPGP_AMG_KCYCLE_MIN_LAUNCH_BOUND nodes: >= 2.5x fewer kernel
+ *    launches per FCG iteration, <= 15% more iterations (counts, no times).
  * Exit 77 when no OpenCL device can be used. */
 #include "glpgp/backends.h"
 #include "glpgp/io.h"
@@ -179,10 +182,12 @@ static void test_hierarchy(void)
 /* mean CG iterations of the first `steps` projected-Hessian Newton steps on
  * the first eps level from z = the normalised naive PGP solution, disk of n
  * vertices, size h, OpenCL backend */
-static double newton_cg_mean(glpgp_backend *b, long n, double h, int steps)
+static double newton_cg_mean_k(glpgp_backend *b, long n, double h, int steps, int kmin, double *launches_per_it)
 {
     fixture f;
     fixture_init(&f, b, n, h);
+    f.o.amg_kcycle_min = kmin;
+    long launches = 0;
     const int nv = f.m->nv;
     const size_t n2 = (size_t)2 * nv;
     const glpgp_backend_ops *op = f.b->ops;
@@ -217,7 +222,9 @@ static double newton_cg_mean(glpgp_backend *b, long n, double h, int steps)
             CHECK_OK(glpgp_amg_update(a, v[0]));
             CHECK_OK(op->gradient(f.b, v[0], inv4e2, v[1]));
             CHECK_OK(op->axpby(f.b, -1.0, v[1], 0.0, v[3]));
+            const long l0 = f.b->n_launch;
             CHECK_OK(glpgp_fcg(a, v[3], v[2], 1e-6, 1000, &ci));
+            launches += f.b->n_launch - l0;
             CHECK(ci.reason == GLPGP_CG_CONVERGED);
             cg += ci.iterations;
             CHECK_OK(op->axpby(f.b, 1.0, v[2], 1.0, v[0]));
@@ -227,7 +234,63 @@ static double newton_cg_mean(glpgp_backend *b, long n, double h, int steps)
     for (int k = 0; k < 4; k++) op->vec_destroy(f.b, &v[k]);
     free(hx);
     fixture_free(&f);
+    if (launches_per_it) *launches_per_it = cg ? (double)launches / cg : 0.0;
     return (double)cg / steps;
+}
+
+/* CG iterations per Newton step with the default K-cycle threshold */
+static double newton_cg_mean(glpgp_backend *b, long n, double h, int steps)
+{
+    return newton_cg_mean_k(b, n, h, steps, -1, NULL);
+}
+
+/* an OpenCL backend in launch shape `shape` (GLPGP_CL_SHAPE), or NULL */
+static glpgp_backend *opencl_shape(const char *shape)
+{
+    const char *old = getenv("GLPGP_CL_SHAPE");
+    char *keep = old ? strdup(old) : NULL;
+    setenv("GLPGP_CL_SHAPE", shape, 1);
+    glpgp_backend *b = opencl();
+    if (keep) setenv("GLPGP_CL_SHAPE", keep, 1);
+    else unsetenv("GLPGP_CL_SHAPE");
+    free(keep);
+    return b;
+}
+
+/* launch-bound: in the GPU launch shape (forced on any device) the backend
+ * is launch-bound and the K-cycle stops at GLPGP_AMG_KCYCLE_MIN_LAUNCH_BOUND
+ * nodes; on a 64k disk (7 levels) an FCG iteration then enqueues at most
+ * 1/2.5 of the full K-cycle's kernel launches, for at most 15% (+1) more CG
+ * iterations per Newton step. The CPU launch shape is not launch-bound (its
+ * small levels run fused: glpgp_amg_kcycle_min stays 0). */
+static void test_launch_bound(void)
+{
+    glpgp_backend *cpu = opencl_shape("cpu");
+    glpgp_backend *g1 = opencl_shape("gpu"), *g2 = opencl_shape("gpu");
+    glpgp_options o;
+    glpgp_options_default(&o);
+    if (cpu) {
+        CHECK(!cpu->launch_bound);
+        CHECK(glpgp_amg_kcycle_min(cpu, &o) == 0);
+    }
+    glpgp_backend_destroy(&cpu);
+    if (!g1 || !g2) {
+        glpgp_backend_destroy(&g1);
+        glpgp_backend_destroy(&g2);
+        return;
+    }
+    CHECK(g1->launch_bound);
+    CHECK(glpgp_amg_kcycle_min(g1, &o) == GLPGP_AMG_KCYCLE_MIN_LAUNCH_BOUND);
+    o.amg_kcycle_min = 7;
+    CHECK(glpgp_amg_kcycle_min(g1, &o) == 7); /* an explicit threshold wins */
+    double la = 0.0, lf = 0.0;
+    const double ca = newton_cg_mean_k(g1, 64000, 0.15, 3, -1, &la); /* takes g1 */
+    const double cf = newton_cg_mean_k(g2, 64000, 0.15, 3, 0, &lf);  /* takes g2 */
+    printf("launch-bound (GPU shape, 64k disk): K-cycle from %d nodes %.1f CG it/step, %.0f launches/it; "
+           "on every level %.1f CG it/step, %.0f launches/it\n",
+           GLPGP_AMG_KCYCLE_MIN_LAUNCH_BOUND, ca, la, cf, lf);
+    CHECK(la > 0.0 && 2.5 * la <= lf);
+    CHECK(ca <= 1.15 * cf + 1.0);
 }
 
 static void test_refine(void)
@@ -347,6 +410,7 @@ static void test_solve(void)
     o.precond = GLPGP_PRECOND_AMG;
     o.newton_rtol = 1e-8;
     o.cg_rtol = 1e-10;
+    if (bc) o.amg_kcycle_min = glpgp_amg_kcycle_min(bc, &o); /* the same cycle on both (a GPU's) */
     glpgp_result *rc = NULL, *rr = NULL;
     if (bc && m) {
         CHECK_OK(glpgp_solve(m, bc, &o, &rc));
@@ -382,5 +446,6 @@ int main(void)
     test_refine();
     test_spd();
     test_solve();
+    test_launch_bound();
     TEST_DONE();
 }

@@ -114,6 +114,7 @@ static void solve_compare(const glpgp_mesh *m, glpgp_backend *bc)
     o.field = GLPGP_FIELD_CROSS;
     o.cross_coupling = GLPGP_COUPLING_ON;
     o.cg_rtol = 1e-10;
+    o.amg_kcycle_min = glpgp_amg_kcycle_min(bc, &o); /* one cycle on both (a GPU keeps fewer K levels) */
     CHECK_OK(glpgp_backend_create_reference(&b[1]));
     for (int k = 0; k < 2; k++) CHECK_OK(glpgp_solve(m, b[k], &o, &r[k]));
     if (r[0] && r[1]) {

@@ -22,6 +22,7 @@ static int compare(const char *what, const glpgp_mesh *m, glpgp_options *o)
         return 77;
     }
     CHECK_OK(glpgp_backend_create_reference(&br));
+    o->amg_kcycle_min = glpgp_amg_kcycle_min(bc, o); /* one cycle on both (a GPU keeps fewer K levels) */
     glpgp_result *rc = NULL, *rr = NULL;
     CHECK_OK(glpgp_solve(m, bc, o, &rc));
     CHECK_OK(glpgp_solve(m, br, o, &rr));

@@ -260,8 +260,14 @@ struct glpgp_backend {
     const glpgp_backend_ops *ops;
     void *impl;               /* backend-private state */
     const glpgp_system *sys;  /* set by setup */
-    /* counters for stats and benchmarks (incremented by the drivers) */
-    long n_spmv, n_cg_iter, n_sync;
+    /* counters for stats and benchmarks (incremented by the drivers; n_launch,
+     * device kernel launches, by the OpenCL backend: on a GPU each costs a few
+     * microseconds of host time however small the kernel) */
+    long n_spmv, n_cg_iter, n_sync, n_launch;
+    /* 1: a kernel launch costs microseconds of host time whatever its size (the
+     * OpenCL backend's GPU launch shape): the multigrid then keeps its K-cycle
+     * to the large levels (glpgp_amg_kcycle_min); set by the backend */
+    int launch_bound;
 };
 
 /* Destroy any backend (NULL-safe, sets *b = NULL). */

@@ -159,7 +159,8 @@ typedef struct glpgp_options {
     int amg_cycle;        /* GLPGP_AMG_KCYCLE or _VCYCLE [KCYCLE] */
     int amg_kcycle_min;   /* with KCYCLE: levels with fewer nodes than this get a plain
                              visit (V) instead, fewer small operations per cycle for a
-                             device with launch latency; >= 0 [0: K-cycle on every level] */
+                             device with launch latency; >= 0, or -1: by the backend
+                             (glpgp_amg_kcycle_min) [-1] */
     int amg_pre;          /* l1-Jacobi sweeps before the coarse correction, 0 .. 8 [1] */
     int amg_post;         /* l1-Jacobi sweeps after the coarse correction, 1 .. 8 [1] */
     double amg_weight;    /* l1-Jacobi weight, in (0, 2) (convergent for any SPD matrix) [1.5] */
@@ -414,6 +415,20 @@ typedef struct glpgp_amg_info {
 
 /* Whether backend b implements the multigrid ops (amg_setup etc.). */
 int glpgp_amg_supported(const glpgp_backend *b);
+
+/* Levels with at least this many nodes get the K-cycle's two Krylov steps,
+ * smaller ones a plain visit, on a backend whose kernel launches cost
+ * microseconds of host time (b->launch_bound: an OpenCL GPU). The K-cycle
+ * visits level l 2^l times, ~10 launches each: 2170 launches per cycle at 1M
+ * vertices (9 levels), 12.9 ms per iteration on an H200 against 0.2 ms for a
+ * Jacobi-CG iteration; from 2000 nodes down a plain visit cuts the launches
+ * 4x at the same iteration counts to within one (host/README.md). */
+#define GLPGP_AMG_KCYCLE_MIN_LAUNCH_BOUND 2000
+
+/* The K-cycle threshold in effect: o->amg_kcycle_min where >= 0, else (-1,
+ * the default) 0 (K-cycle on every level) on a backend with cheap launches
+ * and GLPGP_AMG_KCYCLE_MIN_LAUNCH_BOUND on a launch-bound one. */
+int glpgp_amg_kcycle_min(const glpgp_backend *b, const glpgp_options *o);
 
 /* Build the hierarchy structure for b's system (b->ops->setup done) and the
  * Dirichlet flags dir (nv; NULL: none) and upload it. Options: o->amg_*.
