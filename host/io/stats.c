@@ -217,6 +217,11 @@ static void stats_body(FILE *f, const glpgp_mesh *m, const glpgp_options *o, con
     glpgp_json_num(w, "v", ov->seconds);
     glpgp_json_num(w, "total", r->seconds_total);
     glpgp_json_close(w);
+    /* what a GPU pays per call whatever the work (bench/results/gpu_h200) */
+    glpgp_json_object(w, "device_calls");
+    glpgp_json_int(w, "host_round_trips", r->host_round_trips);
+    glpgp_json_int(w, "kernel_launches", r->kernel_launches);
+    glpgp_json_close(w);
 
     if (x && x->ranks > 0 && x->rank_info) {
         glpgp_json_int(w, "ranks", x->ranks);

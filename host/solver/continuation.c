@@ -475,9 +475,23 @@ cleanup:
  * host/README.md). Triangles keep their order: the result is the same up to
  * rounding (rows and dot products are summed in another order, the
  * multigrid's aggregates differ); it comes back in m's order. */
+static glpgp_status solve_ordered(const glpgp_mesh *m, glpgp_backend *b, const glpgp_options *o,
+                                  glpgp_result **out);
+
 glpgp_status glpgp_solve(const glpgp_mesh *m, glpgp_backend *b, const glpgp_options *o, glpgp_result **out)
 {
     *out = NULL;
+    const long s0 = b->n_sync, l0 = b->n_launch;
+    GLPGP_CHECK(solve_ordered(m, b, o, out));
+    (*out)->host_round_trips = b->n_sync - s0;
+    (*out)->kernel_launches = b->n_launch - l0;
+    return GLPGP_OK;
+}
+
+/* glpgp_solve: in the input's numbering, or renumbered and back */
+static glpgp_status solve_ordered(const glpgp_mesh *m, glpgp_backend *b, const glpgp_options *o,
+                                  glpgp_result **out)
+{
     GLPGP_CHECK(glpgp_options_check_mesh(o, m));
     if (o->vertex_order == GLPGP_ORDER_INPUT || m->part || o->field == GLPGP_FIELD_FILE ||
         o->field == GLPGP_FIELD_CROSS || o->size_field == GLPGP_SIZE_FILE || m->nv < 2)

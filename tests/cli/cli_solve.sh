@@ -31,6 +31,11 @@ for o in ("u", "v"):
 assert set(d["seconds"]) >= {"setup", "field", "u", "v", "total"}
 assert set(d["mesh"]) >= {"area", "mean_edge", "boundary_loops"}
 assert d["newton_iterations"]["total"] == d["newton_iterations"]["u"] + d["newton_iterations"]["v"]
+dc = d["device_calls"]
+if d["backend"] == "reference":  # the drivers read scalars; no kernels
+    assert dc["kernel_launches"] == 0 and dc["host_round_trips"] > 0, dc
+else:
+    assert dc["kernel_launches"] > dc["host_round_trips"] > 0, dc
 EOF
 }
 
@@ -93,6 +98,14 @@ ok_run "solve shape:annulus" solve shape:annulus:1500 --size 0.4 --backend refer
 json_ok a.json "$(grep -o '"vertices": [0-9]*' a.json | grep -o '[0-9]*$')"
 grep -q '"energy": "transport"' a.json || fail "a.json does not record --energy transport"
 grep -q '"boundary_loops": 2' a.json || fail "a.json: annulus should have 2 boundary loops"
+
+# ---- an OpenCL run counts its kernel launches --------------------------------
+if "$GLPGP" devices 2>/dev/null | grep -q "fp64 yes"; then
+    ok_run "solve opencl stats" solve shape:disk:1500 --size 0.4 --backend opencl --stats o.json --quiet
+    json_ok o.json "$(grep -o '"vertices": [0-9]*' o.json | grep -o '[0-9]*$')"
+else
+    echo "note: no OpenCL fp64 device, the OpenCL stats check skipped"
+fi
 
 # ---- backend auto: at most one warning line --------------------------------
 ok_run "solve --backend auto" solve shape:square:500 --size 0.3 --backend auto --quiet

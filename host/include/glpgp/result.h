@@ -57,6 +57,8 @@ typedef struct glpgp_result {
     const char *backend;       /* backend name (static string) */
     double seconds_setup, seconds_field, seconds_total;
     long field_cg_iterations;
+    long host_round_trips;     /* blocking scalar reads the drivers made (b->n_sync) */
+    long kernel_launches;      /* device kernels enqueued (b->n_launch; 0 without OpenCL) */
     struct glpgp_cross_result *cross; /* the cross field of --field cross (glpgp/cross.h), else NULL */
     int coupled;               /* 1: osc[0], osc[1] were solved coupled across the cuts of the
                                   representatives `field` (glpgp/cross.h): z stays per vertex in
