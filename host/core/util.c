@@ -12,6 +12,48 @@ double glpgp_now(void)
     return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
+double glpgp_select_double(double *a, size_t n, size_t k)
+{
+    size_t lo = 0, hi = n - 1; /* the answer's index stays in [lo, hi] */
+    while (hi > lo) {
+        /* pivot: median of a[lo], a[mid], a[hi] (sorted in place, so that
+         * a[lo] <= p <= a[hi] bound the scans below) */
+        const size_t mid = lo + (hi - lo) / 2;
+        double t;
+#define GLPGP_SWAP_D(x, y) (t = (x), (x) = (y), (y) = t)
+        if (a[mid] < a[lo]) GLPGP_SWAP_D(a[mid], a[lo]);
+        if (a[hi] < a[lo]) GLPGP_SWAP_D(a[hi], a[lo]);
+        if (a[hi] < a[mid]) GLPGP_SWAP_D(a[hi], a[mid]);
+        if (hi - lo < 3) break; /* three or fewer: sorted now */
+        const double p = a[mid];
+        /* Hoare partition of a[lo+1 .. hi-1]: i stops at >= p, j at <= p */
+        size_t i = lo, j = hi;
+        for (;;) {
+            do i++; while (a[i] < p);
+            do j--; while (a[j] > p);
+            if (i >= j) break;
+            GLPGP_SWAP_D(a[i], a[j]);
+        }
+#undef GLPGP_SWAP_D
+        /* a[lo .. j] <= p <= a[j+1 .. hi] */
+        if (k <= j) hi = j;
+        else lo = j + 1;
+    }
+    return a[k];
+}
+
+double glpgp_median_double(double *a, size_t n)
+{
+    const size_t h = n / 2;
+    const double upper = glpgp_select_double(a, n, h);
+    if (n % 2) return upper;
+    /* even: the largest of a[0 .. h), all <= a[h] after the selection */
+    double lower = a[0];
+    for (size_t i = 1; i < h; i++)
+        if (a[i] > lower) lower = a[i];
+    return 0.5 * (lower + upper);
+}
+
 int glpgp_has_ext(const char *path, const char *ext)
 {
     size_t n = strlen(path), k = strlen(ext);

@@ -61,8 +61,7 @@ static void osc_work_free(osc_work *w)
 static double zabs_median(const double *z, int nv, double *scratch)
 {
     for (int i = 0; i < nv; i++) scratch[i] = hypot(z[2 * i], z[2 * i + 1]);
-    qsort(scratch, (size_t)nv, sizeof(double), glpgp_cmp_double);
-    return nv % 2 ? scratch[nv / 2] : 0.5 * (scratch[nv / 2 - 1] + scratch[nv / 2]);
+    return glpgp_median_double(scratch, (size_t)nv);
 }
 
 /* *out <- median |z| of the mesh m (a part: over all ranks) */

@@ -20,6 +20,7 @@
 
 #include "glpgp/cross.h"
 #include "glpgp/phase.h"
+#include "glpgp/util.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -226,8 +227,7 @@ glpgp_status glpgp_cross_conformal_size(const glpgp_mesh *m, glpgp_backend *b, c
     const int automode = o->cross_size == GLPGP_CROSS_SIZE_AUTO;
     const double q = automode ? o->cross_size_quantile : 1.0, lo = automode ? -log(o->cross_size_ratio) : -HUGE_VAL;
     for (int i = 0; i < nv; i++) l[i] = f[2 * i];
-    qsort(l, (size_t)nv, sizeof(double), glpgp_cmp_double);
-    const double mx = l[(int)lround(q * (nv - 1))]; /* phi_q */
+    const double mx = glpgp_select_double(l, (size_t)nv, (size_t)lround(q * (nv - 1))); /* phi_q */
     memset(l, 0, (size_t)nv * sizeof(double));
     for (int t = 0; t < nt; t++)
         for (int a = 0; a < 3; a++) {

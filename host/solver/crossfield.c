@@ -140,8 +140,7 @@ glpgp_status glpgp_cross_analyze(const glpgp_mesh *m, glpgp_cross_result *c)
     /* median |w| */
     GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)nv, sizeof(double), &s), done);
     for (int i = 0; i < nv; i++) s[i] = hypot(c->w[2 * i], c->w[2 * i + 1]);
-    qsort(s, (size_t)nv, sizeof(double), glpgp_cmp_double);
-    c->zabs_median = nv % 2 ? s[nv / 2] : 0.5 * (s[nv / 2 - 1] + s[nv / 2]);
+    c->zabs_median = glpgp_median_double(s, (size_t)nv);
     if (plus + minus == 0) goto done;
     /* merge singular triangles of one sign that share a vertex (union-find;
      * vs[v] = the last singular triangle of each sign seen at vertex v) */

@@ -4,6 +4,7 @@
 #include "glpgp/cross.h"
 #include "glpgp/phase.h"
 #include "internal.h"
+#include "glpgp/util.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -75,11 +76,14 @@ glpgp_status glpgp_osc_summarize(const glpgp_mesh *m, glpgp_osc_result *o)
     GLPGP_CHECK(glpgp_malloc((size_t)nv, sizeof(double), &s));
     glpgp_singularities(m, o->z, o->singular, &o->plus, &o->minus);
     /* min, 10th percentile and median of |z| */
-    for (int i = 0; i < nv; i++) s[i] = hypot(o->z[2 * i], o->z[2 * i + 1]);
-    qsort(s, (size_t)nv, sizeof(double), glpgp_cmp_double);
-    o->zabs_min = s[0];
-    o->zabs_p10 = s[(size_t)((nv - 1) * 0.1)];
-    o->zabs_median = nv % 2 ? s[nv / 2] : 0.5 * (s[nv / 2 - 1] + s[nv / 2]);
+    double mn = INFINITY;
+    for (int i = 0; i < nv; i++) {
+        s[i] = hypot(o->z[2 * i], o->z[2 * i + 1]);
+        if (s[i] < mn) mn = s[i];
+    }
+    o->zabs_min = mn;
+    o->zabs_p10 = glpgp_select_double(s, (size_t)nv, (size_t)((nv - 1) * 0.1));
+    o->zabs_median = glpgp_median_double(s, (size_t)nv);
     free(s);
     return GLPGP_OK;
 }

@@ -1,6 +1,6 @@
 /* glpgp/util.h: small helpers every layer uses: a monotonic clock,
- * case-insensitive file-extension tests, and where the dlopen'd modules are
- * looked for. Layer: core. */
+ * case-insensitive file-extension tests, order statistics without sorting,
+ * and where the dlopen'd modules are looked for. Layer: core. */
 #ifndef GLPGP_UTIL_H
 #define GLPGP_UTIL_H
 
@@ -16,6 +16,16 @@ double glpgp_now(void);
 /* Whether path ends with ext (lower-case, with the dot: ".png"), ignoring
  * the case of path. */
 int glpgp_has_ext(const char *path, const char *ext);
+
+/* The k-th smallest of a[0 .. n) (0 <= k < n; no NaN), by quickselect in
+ * O(n) on average: a is permuted so that a[k] holds it, a[i] <= a[k] for
+ * i < k and a[i] >= a[k] for i > k. The value is exactly the sorted array's
+ * a[k] (a median of a million |z| in ~10 ms instead of a ~100 ms qsort). */
+double glpgp_select_double(double *a, size_t n, size_t k);
+
+/* The median of a[0 .. n) (n >= 1; the mean of the middle two for even n),
+ * the same value as from the sorted array; a is permuted. */
+double glpgp_median_double(double *a, size_t n);
 
 /* The directories glpgp's modules (glpgp_oiio.so, glpgp_gmsh.so,
  * glpgp_petsc.so) are looked for in, in order: $GLPGP_MODULE_DIR alone when
