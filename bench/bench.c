@@ -75,7 +75,7 @@ static void usage(FILE *f)
             "  --solve-repeat N         whole GL solve repeats (default 1)\n"
             "  --max-cholmod-vertices N CHOLMOD only up to N vertices (default 2000000; 0 = no limit)\n"
             "  --no-opencl, --no-reference, --no-cholmod   leave a column out\n"
-            "  --device N               OpenCL device index (as `glpgp devices`; default: GLPGP_DEVICE or first fp64)\n"
+            "  --device N               OpenCL device index (as `glpgp devices`; default: GLPGP_DEVICE, first fp64 GPU, first fp64)\n"
             "  --keep-pocl-cache        keep POCL_CACHE_DIR (default: a fresh temporary directory, so the\n"
             "                           first program build is cold and the later ones are cached)\n"
             "  --smoke                  tiny run (2000,4000 vertices, 1 repeat, 8 MiB STREAM) that still\n"

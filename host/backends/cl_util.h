@@ -50,6 +50,10 @@ glpgp_status glpgp_cl_devices(glpgp_cl_device **out, int *n);
  * extensions or a non-zero CL_DEVICE_DOUBLE_FP_CONFIG). */
 int glpgp_cl_has_fp64(cl_device_id d);
 
+/* The device chosen when none is asked for: the first GPU or accelerator
+ * with fp64, else the first device with fp64; -1 if none has fp64. */
+int glpgp_cl_auto_device(const glpgp_cl_device *devs, int n);
+
 /* String device/platform info into buf (always NUL-terminated; "?" on error). */
 void glpgp_cl_device_str(cl_device_id d, cl_device_info what, char *buf, size_t len);
 void glpgp_cl_platform_str(cl_platform_id p, cl_platform_info what, char *buf, size_t len);

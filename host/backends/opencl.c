@@ -20,7 +20,7 @@
  *
  * Device choice: glpgp_cl_options.device (global index over all platforms,
  * as listed by `glpgp devices`), else the environment variable GLPGP_DEVICE,
- * else the first device with fp64.
+ * else the first GPU (or accelerator) with fp64, else the first device with fp64.
  *
  * Launch shape (from the device type, see kernels/backend_common.cl):
  *   - CPU devices: GLPGP_CL_WORKITEMS (default 128) work-items of local size
@@ -508,11 +508,8 @@ static glpgp_status pick_device(const glpgp_cl_options *opt, glpgp_cl_device *de
         *idx = want;
         return GLPGP_OK;
     }
-    for (int i = 0; i < n; i++)
-        if (glpgp_cl_has_fp64(devs[i].device)) {
-            *idx = i;
-            return GLPGP_OK;
-        }
+    *idx = glpgp_cl_auto_device(devs, n); /* the first fp64 GPU, else the first fp64 device */
+    if (*idx >= 0) return GLPGP_OK;
     if (n == 0) return GLPGP_FAIL(GLPGP_ERR_OPENCL, "OpenCL platforms exist but expose no device");
     return GLPGP_FAIL(GLPGP_ERR_UNSUPPORTED,
                       "none of the %d OpenCL devices supports double precision (cl_khr_fp64), which "

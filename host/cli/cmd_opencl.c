@@ -29,7 +29,9 @@ int glpgp_cmd_devices(int argc, char **argv)
     glpgp_opts_init(&t, "devices", "glpgp devices",
                     "List the OpenCL platforms and devices: global index (for --device N and the\n"
                     "GLPGP_DEVICE environment variable), name, vendor, version, compute units,\n"
-                    "global memory, double precision support and type. Exit 1 if no platform.\n");
+                    "global memory, double precision support and type; \"(default)\" marks the\n"
+                    "device used without --device or GLPGP_DEVICE (the first GPU with double\n"
+                    "precision, else the first device with it). Exit 1 if no platform.\n");
     glpgp_opts_add_verbosity(&t, &verbosity);
     const char *none = NULL;
     int npos = 0;
@@ -47,7 +49,7 @@ int glpgp_cmd_devices(int argc, char **argv)
             printf("platform %d: %s | %s | %s\n", last_plat, d->platform, d->platform_vendor,
                    d->platform_version);
         }
-        printf("  device %d: %s\n", i, d->name);
+        printf("  device %d: %s%s\n", i, d->name, d->is_default ? " (default)" : "");
         printf("      vendor %s | %s | %u compute units | %.2f GiB global memory | fp64 %s | %s\n",
                d->vendor, d->version, d->compute_units,
                (double)d->global_mem / (1024.0 * 1024.0 * 1024.0), d->fp64 ? "yes" : "no", d->type);
@@ -103,7 +105,7 @@ int glpgp_cmd_crosscheck(int argc, char **argv)
     o->def = "bounding-box diagonal / 20";
     glpgp_opt_choice(&t, "--energy", &co.energy, energies, energy_vals, "discretisation of the quadratic energy");
     o = glpgp_opt_int(&t, "--device", &co.device, 0, INT_MAX, "N", "OpenCL device index as listed by 'glpgp devices'");
-    o->def = "$GLPGP_DEVICE or the first fp64 device";
+    o->def = "$GLPGP_DEVICE, else the first fp64 GPU, else the first fp64 device";
     glpgp_opt_double(&t, "--tol-scale", &co.tol_scale, 0.0, 1, HUGE_VAL, 0, "F", "multiply every tolerance by F");
     glpgp_opt_flag(&t, "--no-solve", &no_solve, 1, "skip the whole GL solve stage");
     glpgp_opt_choice(&t, "--precond", &co.precond, preconds, precond_vals,

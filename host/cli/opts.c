@@ -562,7 +562,7 @@ void glpgp_opts_add_backend(glpgp_opts *t, int *kind, int *device)
     glpgp_opt *d = glpgp_opt_int(t, "--device", device, 0, INT_MAX, "N",
                                  "OpenCL device index as listed by 'glpgp devices'; with\n"
                                  "--device, an unusable OpenCL backend is an error");
-    d->def = "$GLPGP_DEVICE or the first fp64 device";
+    d->def = "$GLPGP_DEVICE, else the first fp64 GPU, else the first fp64 device";
 }
 
 void glpgp_opts_add_quads(glpgp_opts *t, glpgp_quad_options *q, int *given, int *allow_invalid)

@@ -103,6 +103,12 @@ grep -q '"boundary_loops": 2' a.json || fail "a.json: annulus should have 2 boun
 if "$GLPGP" devices 2>/dev/null | grep -q "fp64 yes"; then
     ok_run "solve opencl stats" solve shape:disk:1500 --size 0.4 --backend opencl --stats o.json --quiet
     json_ok o.json "$(grep -o '"vertices": [0-9]*' o.json | grep -o '[0-9]*$')"
+    # `devices` marks one default, and a solve without --device / GLPGP_DEVICE uses it
+    "$GLPGP" devices >dev.txt 2>&1
+    [ "$(grep -c '(default)$' dev.txt)" -eq 1 ] || fail "devices does not mark exactly one default: $(cat dev.txt)"
+    def=$(grep '(default)$' dev.txt | grep -oE 'device [0-9]+' | grep -oE '[0-9]+')
+    (unset GLPGP_DEVICE; "$GLPGP" solve shape:disk:500 --size 0.4 --backend opencl --verbose >/dev/null 2>dv.txt)
+    grep -q "OpenCL device $def:" dv.txt || fail "solve did not use the default device $def: $(grep -i 'opencl device' dv.txt)"
 else
     echo "note: no OpenCL fp64 device, the OpenCL stats check skipped"
 fi

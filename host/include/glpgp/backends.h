@@ -18,7 +18,8 @@ glpgp_status glpgp_backend_create_reference(glpgp_backend **out);
 
 /* OpenCL backend options. */
 typedef struct glpgp_cl_options {
-    int device;        /* global device index as listed by `glpgp devices`; -1: GLPGP_DEVICE env or first with fp64 */
+    int device;        /* global device index as listed by `glpgp devices`; -1: GLPGP_DEVICE env, else the
+                          first GPU with fp64, else the first device with fp64 */
     int verbose;       /* log the chosen device (GLPGP_LOG_INFO) */
 } glpgp_cl_options;
 /* Create the OpenCL backend (GLPGP_ERR_OPENCL / GLPGP_ERR_UNSUPPORTED with a
@@ -103,6 +104,8 @@ typedef struct glpgp_device_info {
     unsigned long long global_mem; /* bytes */
     int fp64;
     const char *type;     /* "GPU", "CPU", "accelerator", "other" */
+    int is_default;       /* the device used when none is asked for (no --device, no
+                             GLPGP_DEVICE): the first fp64 GPU, else the first fp64 device */
 } glpgp_device_info;
 
 /* Every device of every platform (*out: malloc'ed, free() it). No OpenCL in
@@ -167,8 +170,8 @@ typedef struct glpgp_crosscheck_options {
     const glpgp_mesh *mesh;  /* the mesh (borrowed; required) */
     double size;             /* target quad size h; <= 0: glpgp_default_size [0] */
     int energy;              /* GLPGP_ELEM_P1 or GLPGP_ELEM_TRANSPORT [P1] */
-    int device;              /* OpenCL device index (glpgp devices); -1: GLPGP_DEVICE env or
-                              * the first device with fp64 [-1] */
+    int device;              /* OpenCL device index (glpgp devices); -1: GLPGP_DEVICE env, else
+                              * the first GPU with fp64, else the first device with fp64 [-1] */
     double tol_scale;        /* every tolerance times this, > 0 [1] */
     int solve;               /* also run the whole GL solve on both backends [1] */
     unsigned long long seed; /* random z and r [12345] */
