@@ -223,7 +223,9 @@ GLPGP_KERNEL void glpgp_amg_kcombine(int n, int chunk, __global const double *t,
  * glpgp_amg_bottom runs the whole coarse correction of level lb and of every
  * level below it in ONE work-item: the sequence of solver/amg.c's
  * coarse_correction / cycle (pre and post l1-Jacobi sweeps, restriction,
- * K-cycle with its registers in t, plain visits, dense coarse solve), each
+ * K-cycle with its registers in t, plain visits, dense coarse solve; with
+ * sym = 1 the symmetric cycle's: W-visits instead of K-cycles, the host
+ * passing max(pre, post) as both sweep counts), each
  * step the same amg_rows.h body the per-op kernels call, dot products as one
  * sequential sum (the order of a one-work-group per-op launch and of the C
  * reference). So its result is bit-identical to the per-op path on those
@@ -299,7 +301,7 @@ void glpgp_amg_bt_axpby(__global double *dp, __global const double *t, int len, 
 
 GLPGP_KERNEL void glpgp_amg_bottom(int lb, int L, int pre, int post, int m, int cinv, __global const int *tab,
                                    __global const int *ip, __global double *dp, __global double *t,
-                                   __global const double *rhs, __global double *out)
+                                   __global const double *rhs, __global double *out, int sym)
 {
     if (get_global_id(0) != 0) return;
     enum { CC = 0, CY = 1 };
@@ -333,6 +335,33 @@ GLPGP_KERNEL void glpgp_amg_bottom(int lb, int L, int pre, int post, int m, int 
                     kind = CY;
                     continue;
                 }
+                ret = 1;
+            } else if (sym) {
+                /* the symmetric cycle's W-visit (solver/amg.c):
+                 * e = B b; w = A e; r2 = b - w; d = B r2; e <- e + d */
+                const int S = GLPGP_AMG_ROWS_KSLOT(lev), n2 = 2 * GLPGP_BT(q, GLPGP_AMG_BT_N);
+                const int w = GLPGP_BT(q, GLPGP_AMG_BT_W), r2 = GLPGP_BT(q, GLPGP_AMG_BT_R2);
+                const int d = GLPGP_BT(q, GLPGP_AMG_BT_D);
+                if (pc_cc[lev] == 0) {
+                    pc_cc[lev] = 1;
+                    cy_r[lev] = b;
+                    cy_out[lev] = e;
+                    pc_cy[lev] = 0;
+                    kind = CY;
+                    continue;
+                }
+                if (pc_cc[lev] == 1) {
+                    glpgp_amg_bt_spmv_dots(q, tab, ip, dp, t, e, w, -1, -1, S);
+                    glpgp_amg_bt_axpby(dp, t, n2, -1, -1, 1.0, b, -1, -1, 0.0, r2);
+                    glpgp_amg_bt_axpby(dp, t, n2, -1, -1, -1.0, w, -1, -1, 1.0, r2);
+                    pc_cc[lev] = 2;
+                    cy_r[lev] = r2;
+                    cy_out[lev] = d;
+                    pc_cy[lev] = 0;
+                    kind = CY;
+                    continue;
+                }
+                glpgp_amg_bt_axpby(dp, t, n2, -1, -1, 1.0, d, -1, -1, 1.0, e);
                 ret = 1;
             } else {
                 /* K-cycle: v = B b; w = A v; r2 = b - (v.b / v.w) w; d = B r2;

@@ -1710,8 +1710,8 @@ static glpgp_status cl_amg_kcombine(glpgp_backend *b, const glpgp_vec *v, const 
     return amg_run(c, K_AMG_KCOMBINE, e->n, NULL);
 }
 
-static glpgp_status cl_amg_coarse_correction(glpgp_backend *b, int lc, const glpgp_vec *rhs, glpgp_vec *e,
-                                             int *done)
+static glpgp_status cl_amg_coarse_correction(glpgp_backend *b, int lc, int sym, const glpgp_vec *rhs,
+                                             glpgp_vec *e, int *done)
 {
     cl_impl *c = IMPL(b);
     *done = 0;
@@ -1720,7 +1720,10 @@ static glpgp_status cl_amg_coarse_correction(glpgp_backend *b, int lc, const glp
     if (lc != a->lb || a->lb >= a->L) return GLPGP_OK; /* the driver runs this level */
     /* e <- coarse correction of levels lb .. L-1, one work-item (glpgp_amg_bottom) */
     cl_kernel k = c->k[K_AMG_BOTTOM];
-    const cl_int lb = a->lb, L = a->L, pre = a->pre, post = a->post, m = a->m, ci = a->cinv_off;
+    /* the symmetric cycle: max(pre, post) sweeps on both sides, W-visits */
+    const cl_int nu = a->pre > a->post ? a->pre : a->post;
+    const cl_int lb = a->lb, L = a->L, pre = sym ? nu : a->pre, post = sym ? nu : a->post, m = a->m,
+                 ci = a->cinv_off, sy = sym != 0;
     ARG(k, 0, lb);
     ARG(k, 1, L);
     ARG(k, 2, pre);
@@ -1733,6 +1736,7 @@ static glpgp_status cl_amg_coarse_correction(glpgp_backend *b, int lc, const glp
     ARG(k, 9, a->t);
     ARG(k, 10, rhs->m);
     ARG(k, 11, e->m);
+    ARG(k, 12, sy);
     size_t one = 1;
     c->launches[0]++;
     GLPGP_CL_WHAT(clEnqueueNDRangeKernel(c->q, k, 1, NULL, &one, &one, 0, NULL, NULL), "glpgp_amg_bottom");

@@ -107,9 +107,6 @@ struct glpgp_amg {
     int *perm_r, *perm_c;
     glpgp_vec *r, *z, *p, *q;  /* flexible CG */
     int has_phase;
-    int layout_sym;            /* the layout's cycle is a symmetric V-cycle (pre = post, no
-                                  K-cycle level): the backend's coarse corrections serve
-                                  glpgp_amg_apply_spd too */
     int warned;                /* the Jacobi fallback of glpgp_linear_solve was logged */
     glpgp_amg_info info;
 };
@@ -621,11 +618,7 @@ glpgp_status glpgp_amg_create(glpgp_backend *b, const glpgp_options *o, const un
     lay.weight = o->amg_weight;
     lay.pre = a->pre;
     lay.post = a->post;
-    a->layout_sym = a->pre == a->post;
-    for (int l = 1; l + 1 < L; l++) {
-        lay.kcycle[l] = (unsigned char)kcycle_level(a, l);
-        if (lay.kcycle[l]) a->layout_sym = 0;
-    }
+    for (int l = 1; l + 1 < L; l++) lay.kcycle[l] = (unsigned char)kcycle_level(a, l);
     for (int l = 0; l < L; l++) {
         amg_level *lv = &a->lev[l];
         glpgp_amg_level *d = &lay.lev[l];
@@ -944,10 +937,10 @@ static glpgp_status coarse_correction(glpgp_amg *a, int c, int sym)
     glpgp_backend *b = a->b;
     const glpgp_backend_ops *op = b->ops;
     amg_level *lv = &a->lev[c];
-    if (op->amg_coarse_correction && (!sym || a->layout_sym)) {
+    if (op->amg_coarse_correction) {
         /* the backend may run this level and all below itself (same sequence) */
         int done = 0;
-        GLPGP_CHECK(op->amg_coarse_correction(b, c, lv->b, lv->e, &done));
+        GLPGP_CHECK(op->amg_coarse_correction(b, c, sym, lv->b, lv->e, &done));
         if (done) return GLPGP_OK;
     }
     if (c == a->L - 1) return op->amg_coarse_solve(b, lv->b, lv->e);

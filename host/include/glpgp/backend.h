@@ -208,10 +208,12 @@ typedef struct glpgp_backend_ops {
      *   (level-c vectors), computed entirely inside the backend with the
      *   sequence of solver/amg.c's coarse_correction (the layout's pre, post
      *   and kcycle; the same ops, in the same order, registers t included);
-     *   *done <- 0 when the backend leaves level c to the driver (nothing is
-     *   done then). For devices where a launch costs more than a small
-     *   level's work (the OpenCL CPU shape runs the small levels in one
-     *   work-item). */
+     *   sym = 1: the symmetric cycle of glpgp_amg_apply_spd instead
+     *   (max(pre, post) sweeps before and after, a W-visit where the layout
+     *   has a K-cycle); *done <- 0 when the backend leaves level c to the
+     *   driver (nothing is done then). For devices where a launch costs more
+     *   than a small level's work (the OpenCL CPU shape runs the small levels
+     *   in one work-item). */
     glpgp_status (*amg_setup)(glpgp_backend *b, const glpgp_amg_layout *lay);
     glpgp_status (*amg_values)(glpgp_backend *b, const glpgp_vec *const *frames);
     glpgp_status (*amg_coarse_read)(glpgp_backend *b, double *dense);
@@ -231,8 +233,8 @@ typedef struct glpgp_backend_ops {
     glpgp_status (*amg_kcombine)(glpgp_backend *b, const glpgp_vec *v, const glpgp_vec *d,
                                  glpgp_vec *e, int slot);
     glpgp_status (*amg_get_scalars)(glpgp_backend *b, double *out, int n);
-    glpgp_status (*amg_coarse_correction)(glpgp_backend *b, int c, const glpgp_vec *rhs, glpgp_vec *e,
-                                          int *done);
+    glpgp_status (*amg_coarse_correction)(glpgp_backend *b, int c, int sym, const glpgp_vec *rhs,
+                                          glpgp_vec *e, int *done);
 
     /* ---- whole linear solve (optional, NULL: the drivers' CG / multigrid):
      * x <- NEWTON^-1 rhs from x = 0 by the backend's own Krylov solver and
