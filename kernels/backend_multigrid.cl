@@ -315,6 +315,15 @@ GLPGP_KERNEL void glpgp_amg_bottom(int lb, int L, int pre, int post, int m, int 
     }
     int lev = lb, kind = CC;
     pc_cc[lb] = 0;
+    /* coarse_correction(lev) calls cycle(lev) on r into out, resuming at pc */
+#define GLPGP_BT_CALL_CYCLE(pc, r, out)                                                            \
+    do {                                                                                           \
+        pc_cc[lev] = (pc);                                                                         \
+        cy_r[lev] = (r);                                                                           \
+        cy_out[lev] = (out);                                                                       \
+        pc_cy[lev] = 0;                                                                            \
+        kind = CY;                                                                                 \
+    } while (0)
     for (;;) {
         const int q = lev - lb;
         if (kind == CC) {
@@ -328,11 +337,7 @@ GLPGP_KERNEL void glpgp_amg_bottom(int lb, int L, int pre, int post, int m, int 
             } else if (!GLPGP_BT(q, GLPGP_AMG_BT_K)) {
                 /* one plain visit: e <- cycle(b) */
                 if (pc_cc[lev] == 0) {
-                    pc_cc[lev] = 1;
-                    cy_r[lev] = b;
-                    cy_out[lev] = e;
-                    pc_cy[lev] = 0;
-                    kind = CY;
+                    GLPGP_BT_CALL_CYCLE(1, b, e);
                     continue;
                 }
                 ret = 1;
@@ -343,22 +348,14 @@ GLPGP_KERNEL void glpgp_amg_bottom(int lb, int L, int pre, int post, int m, int 
                 const int w = GLPGP_BT(q, GLPGP_AMG_BT_W), r2 = GLPGP_BT(q, GLPGP_AMG_BT_R2);
                 const int d = GLPGP_BT(q, GLPGP_AMG_BT_D);
                 if (pc_cc[lev] == 0) {
-                    pc_cc[lev] = 1;
-                    cy_r[lev] = b;
-                    cy_out[lev] = e;
-                    pc_cy[lev] = 0;
-                    kind = CY;
+                    GLPGP_BT_CALL_CYCLE(1, b, e);
                     continue;
                 }
                 if (pc_cc[lev] == 1) {
                     glpgp_amg_bt_spmv_dots(q, tab, ip, dp, t, e, w, -1, -1, S);
                     glpgp_amg_bt_axpby(dp, t, n2, -1, -1, 1.0, b, -1, -1, 0.0, r2);
                     glpgp_amg_bt_axpby(dp, t, n2, -1, -1, -1.0, w, -1, -1, 1.0, r2);
-                    pc_cc[lev] = 2;
-                    cy_r[lev] = r2;
-                    cy_out[lev] = d;
-                    pc_cy[lev] = 0;
-                    kind = CY;
+                    GLPGP_BT_CALL_CYCLE(2, r2, d);
                     continue;
                 }
                 glpgp_amg_bt_axpby(dp, t, n2, -1, -1, 1.0, d, -1, -1, 1.0, e);
@@ -371,22 +368,14 @@ GLPGP_KERNEL void glpgp_amg_bottom(int lb, int L, int pre, int post, int m, int 
                 const int r2 = GLPGP_BT(q, GLPGP_AMG_BT_R2), d = GLPGP_BT(q, GLPGP_AMG_BT_D);
                 const int wd = GLPGP_BT(q, GLPGP_AMG_BT_WD);
                 if (pc_cc[lev] == 0) {
-                    pc_cc[lev] = 1;
-                    cy_r[lev] = b;
-                    cy_out[lev] = v;
-                    pc_cy[lev] = 0;
-                    kind = CY;
+                    GLPGP_BT_CALL_CYCLE(1, b, v);
                     continue;
                 }
                 if (pc_cc[lev] == 1) {
                     glpgp_amg_bt_spmv_dots(q, tab, ip, dp, t, v, w, b, -1, S);
                     glpgp_amg_bt_axpby(dp, t, n2, -1, -1, 1.0, b, -1, -1, 0.0, r2);
                     glpgp_amg_bt_axpby(dp, t, n2, S + 1, S, -1.0, w, -1, -1, 1.0, r2);
-                    pc_cc[lev] = 2;
-                    cy_r[lev] = r2;
-                    cy_out[lev] = d;
-                    pc_cy[lev] = 0;
-                    kind = CY;
+                    GLPGP_BT_CALL_CYCLE(2, r2, d);
                     continue;
                 }
                 glpgp_amg_bt_spmv_dots(q, tab, ip, dp, t, d, wd, w, r2, S + 2);
@@ -442,6 +431,7 @@ GLPGP_KERNEL void glpgp_amg_bottom(int lb, int L, int pre, int post, int m, int 
             kind = CC; /* back into coarse_correction(lev) */
         }
     }
+#undef GLPGP_BT_CALL_CYCLE
     /* out <- e_lb */
     {
         const int n2 = 2 * GLPGP_BT(0, GLPGP_AMG_BT_N), e = GLPGP_BT(0, GLPGP_AMG_BT_E);
