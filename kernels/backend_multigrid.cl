@@ -251,16 +251,22 @@ void glpgp_amg_bt_smooth(int q, __global const int *tab, __global const int *ip,
         glpgp_amg_row_smooth(i, x >= 0, rowptr, col, A, minv, dp + r, dp + (x >= 0 ? x : r), dp + y);
 }
 
-/* rc <- P^T (r - A x) on table row q (x < 0: P^T r) */
+/* rc <- P^T (r - A x) on table row q (x < 0: P^T r), in row order: rc <- 0,
+ * then each row adds into its aggregate (the same sums as the per-op
+ * gather, bit for bit: members in increasing order from 0; the gather with
+ * x read its rows aggregate by aggregate, scattered over the level, and was
+ * the costliest step of a CAD solve's fused levels) */
 void glpgp_amg_bt_restrict(int q, __global const int *tab, __global const int *ip, __global double *dp, int r,
                            int x, int rc)
 {
-    const int nc = GLPGP_BT(q, GLPGP_AMG_BT_NC);
+    const int n = GLPGP_BT(q, GLPGP_AMG_BT_N), nc = GLPGP_BT(q, GLPGP_AMG_BT_NC);
     __global const int *rowptr = ip + GLPGP_BT(q, GLPGP_AMG_BT_ROWPTR), *col = ip + GLPGP_BT(q, GLPGP_AMG_BT_COL);
-    __global const int *aptr = ip + GLPGP_BT(q, GLPGP_AMG_BT_APTR), *amem = ip + GLPGP_BT(q, GLPGP_AMG_BT_AMEM);
+    __global const int *agg = ip + GLPGP_BT(q, GLPGP_AMG_BT_AGG);
     __global const double *A = dp + GLPGP_BT(q, GLPGP_AMG_BT_VAL), *c = dp + GLPGP_BT(q, GLPGP_AMG_BT_C);
-    for (int J = 0; J < nc; J++)
-        glpgp_amg_agg_restrict(J, aptr, amem, c, x >= 0, rowptr, col, A, dp + r, dp + (x >= 0 ? x : r), dp + rc);
+    for (int J = 0; J < 2 * nc; J++) dp[rc + J] = 0.0;
+    for (int i = 0; i < n; i++)
+        glpgp_amg_row_restrict_scatter(i, agg, c, x >= 0, rowptr, col, A, dp + r, dp + (x >= 0 ? x : r),
+                                       dp + rc);
 }
 
 /* x <- x + P ec on table row q */
