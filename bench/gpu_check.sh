@@ -9,9 +9,13 @@
 # run cut short still leaves what it measured. bench/results/gpu_h200/ holds
 # the first such run and how to read it.
 #
-# Usage: bash bench/gpu_check.sh [BUILD_DIR [OUTDIR]]
+# Usage: bash bench/gpu_check.sh [--smoke] [BUILD_DIR [OUTDIR]]
+#   --smoke:   the same steps on small sizes (seconds, any OpenCL device; ctest
+#              runs it through tests/cli/cli_bench.sh so the script cannot rot
+#              between GPU loans)
 #   BUILD_DIR: holds glpgp and bench/glpgp-bench (default: build)
 #   OUTDIR:    default: gpu-check-<date>
+# Exit status: 0 when every step succeeded, 1 otherwise (the log names it).
 # Environment: GLPGP_DEVICE picks the device (default: the first GPU listed
 # by `glpgp devices`, else the first fp64 device).
 #
@@ -21,6 +25,11 @@
 # registers it through OCL_ICD_VENDORS, a directory of its own that lists
 # that library alone.
 set -u
+SMOKE=0
+if [ "${1:-}" = --smoke ]; then
+    SMOKE=1
+    shift
+fi
 BUILD=${1:-build}
 OUT=${2:-gpu-check-$(date +%Y%m%d-%H%M%S)}
 SRC=$(cd "$(dirname "$0")/.." && pwd)
@@ -41,9 +50,19 @@ step() { # CAP NAME STDOUT_FILE|- COMMAND...: run with a time cap, report rc and
     t0=$(date +%s%N)
     if [ "$to" = - ]; then timeout "$cap" "$@"; else timeout "$cap" "$@" >"$to"; fi
     local rc=$?
+    [ $rc -eq 0 ] || FAILED="$FAILED $name"
     echo "=== $name rc=$rc wall_ms=$((($(date +%s%N) - t0) / 1000000))"
     return $rc
 }
+
+FAILED=""
+# sizes: the loan's, or seconds-long ones for --smoke
+if [ $SMOKE -eq 1 ]; then
+    DISK=shape:disk:4000 LADDER=4000,8000 PC=8000 SQ1=shape:square:20000 SQ4=shape:square:40000
+else
+    DISK=shape:disk:20000 LADDER=64000,256000,1000000,4000000 PC=1000000
+    SQ1=shape:square:1000000 SQ4=shape:square:4000000
+fi
 
 command -v nvidia-smi >/dev/null 2>&1 &&
     nvidia-smi --query-gpu=name,driver_version,memory.total,clocks.max.sm,clocks.max.mem --format=csv
@@ -70,19 +89,22 @@ if [ -z "${GLPGP_DEVICE:-}" ]; then
 fi
 echo "GLPGP_DEVICE=${GLPGP_DEVICE:-default}"
 
-step 60 crosscheck-disk - "$G" crosscheck shape:disk:20000 --quiet
+step 60 crosscheck-disk - "$G" crosscheck "$DISK" --quiet
 step 60 crosscheck-plate - "$G" crosscheck "$SRC/data/plate_holes.msh" --quiet
-step 60 bench-ladder "$OUT/bench_ladder.md" "$B" --sizes 64000,256000,1000000,4000000 --repeat 2 \
+step 60 bench-ladder "$OUT/bench_ladder.md" "$B" --sizes "$LADDER" --repeat 2 \
     --no-reference --no-cholmod --max-solve-vertices-opencl 1 --json "$OUT/bench_ladder.json"
 grep -E "device bandwidth|^\| [0-9]+ \| [0-9]+ \|" "$OUT/bench_ladder.md"
 for k in 0 auto; do
-    step 60 "precond-1m-kcycle-$k" "$OUT/precond_1m_k$k.md" "$B" --precond both --sizes 1000000 --no-reference \
+    step 60 "precond-1m-kcycle-$k" "$OUT/precond_1m_k$k.md" "$B" --precond both --sizes "$PC" --no-reference \
         --newton-steps 2 --amg-kcycle-min "$k" --json "$OUT/precond_1m_k$k.json"
     grep -E "^per Newton step|^multigrid:" "$OUT/precond_1m_k$k.md"
 done
-step 40 solve-square1m-amg - "$G" solve shape:square:1000000 --quiet --stats "$OUT/square1m_amg.json"
-step 40 solve-square1m-jacobi - "$G" solve shape:square:1000000 --precond jacobi --quiet \
-    --stats "$OUT/square1m_jacobi.json"
-step 60 solve-square4m-amg - "$G" solve shape:square:4000000 --quiet --stats "$OUT/square4m_amg.json"
+step 40 solve-square1m-amg - "$G" solve "$SQ1" --quiet --stats "$OUT/square1m_amg.json"
+step 40 solve-square1m-jacobi - "$G" solve "$SQ1" --precond jacobi --quiet --stats "$OUT/square1m_jacobi.json"
+step 60 solve-square4m-amg - "$G" solve "$SQ4" --quiet --stats "$OUT/square4m_amg.json"
 echo
+if [ -n "$FAILED" ]; then
+    echo "gpu_check: FAILED steps:$FAILED; results in $OUT"
+    exit 1
+fi
 echo "gpu_check: done; results in $OUT"

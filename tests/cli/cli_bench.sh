@@ -1,6 +1,9 @@
 # tests/cli_bench.sh: ctest smoke test of the benchmark harness: runs
 # glpgp-bench --smoke --json (seconds), checks that the JSON parses and has
-# the documented keys, and exercises --compare on it. No timing asserts.
+# the documented keys, and exercises --compare on it; with an OpenCL device,
+# runs bench/gpu_check.sh --smoke (the GPU check's every step on small sizes,
+# so that the script a GPU loan depends on keeps working) and checks its
+# files. No timing asserts.
 # Usage: bash tests/cli_bench.sh <path-to-glpgp-binary> <data-dir>
 # Exit 77 (skip) when the bench binary was not built.
 set -euo pipefail
@@ -56,6 +59,8 @@ for s in d["sizes"]:
     if have_cl:
         assert s["opencl"]["ran"], "OpenCL path did not run: %s" % s["opencl"]["note"]
         assert s["cg_bandwidth_ratio"] > 0 and s["cg_speedup_vs_reference"] > 0
+        assert s["cg_device_bandwidth_ratio"] > 0
+        assert d["opencl"]["device_axpby_gbs"] > 0 and d["opencl"]["device_copy_gbs"] > 0
     else:
         assert s["cg_bandwidth_ratio"] is None
     if d["cholmod"]["built"]:
@@ -73,4 +78,35 @@ fi
 # bad option: non-zero exit with a message
 if "$bench" --sizes nonsense > /dev/null 2> bad.txt; then fail "bad --sizes accepted"; fi
 grep -q 'sizes' bad.txt || fail "no message for a bad --sizes"
+
+# the GPU check's script, on small sizes (any OpenCL device)
+src=$(cd "${2:?}/.." && pwd)
+if [ -f "$src/bench/gpu_check.sh" ] && "$glpgp" devices 2>/dev/null | grep -q "fp64 yes"; then
+    build=$(cd "$(dirname "$glpgp")" && pwd)
+    bash "$src/bench/gpu_check.sh" --smoke "$build" gc > gc.txt 2>&1 || {
+        tail -n 30 gc.txt >&2
+        fail "bench/gpu_check.sh --smoke failed"
+    }
+    for f in log.txt devices.txt bench_ladder.md bench_ladder.json precond_1m_k0.json precond_1m_kauto.json \
+        square1m_amg.json square1m_jacobi.json square4m_amg.json; do
+        [ -s "gc/$f" ] || fail "gpu_check.sh --smoke left no gc/$f"
+    done
+    python3 - gc << 'EOF' || fail "gpu_check.sh --smoke: JSON check failed"
+import json, os, sys
+d = sys.argv[1]
+k0 = json.load(open(os.path.join(d, "precond_1m_k0.json")))
+ka = json.load(open(os.path.join(d, "precond_1m_kauto.json")))
+c0 = [c for c in k0["precond_ladder"] if c.get("amg")]
+ca = [c for c in ka["precond_ladder"] if c.get("amg")]
+assert c0 and ca, "no multigrid case"
+assert all(c["amg_kcycle_min"] == 0 for c in c0), "--amg-kcycle-min 0 not applied"
+assert all(c["amg"]["per_step"][0]["launches_solve"] > 0 for c in c0 + ca), "no launches counted"
+for f in ("square1m_amg.json", "square1m_jacobi.json", "square4m_amg.json"):
+    s = json.load(open(os.path.join(d, f)))
+    assert s["converged"]["all"] and s["device_calls"]["kernel_launches"] > 0, f
+print("cli_bench: gpu_check.sh --smoke ok")
+EOF
+else
+    echo "cli_bench: no OpenCL fp64 device: gpu_check.sh --smoke skipped"
+fi
 echo "cli_bench: ok"
