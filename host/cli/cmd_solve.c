@@ -151,11 +151,15 @@ static int check(solve_cli *c, const char *input)
 }
 
 static void print_summary(const solve_cli *c, const char *input, const glpgp_mesh *m, const glpgp_result *r,
-                          double t_all, double t_read, const glpgp_quad_quality *qq, int quads_written)
+                          const char *device, double t_all, double t_read, const glpgp_quad_quality *qq,
+                          int quads_written)
 {
     const glpgp_osc_result *u = &r->osc[0], *v = &r->osc[1];
-    printf("glpgp: %s: %d vertices, %d triangles, h = %.6g, backend %s\n", input, m->nv, m->nt, r->size,
-           r->backend ? r->backend : "?");
+    /* "device N: NAME" of the OpenCL info, without its launch-shape details */
+    int dl = device ? (int)strcspn(device, "(") : 0;
+    while (dl > 0 && device[dl - 1] == ' ') dl--;
+    printf("glpgp: %s: %d vertices, %d triangles, h = %.6g, backend %s%s%.*s%s\n", input, m->nv, m->nt, r->size,
+           r->backend ? r->backend : "?", dl ? " (" : "", dl, dl ? device : "", dl ? ")" : "");
     printf("  singularities  u: +%d -%d   v: +%d -%d\n", u->plus, u->minus, v->plus, v->minus);
     if (r->cross) { /* --field cross: the cross field's singularities, index sum vs Poincare-Hopf */
         int np = 0, nm = 0;
@@ -487,6 +491,8 @@ static int solve_main(solve_cli *cc, const char *input)
     double t0 = glpgp_now();
     glpgp_mesh *m = NULL;
     glpgp_backend *b = NULL;
+    char device_buf[512];
+    const char *device = NULL; /* the OpenCL device (summary, stats), NULL on other backends */
     glpgp_result *r = NULL;
     glpgp_quadmesh *q = NULL;
     glpgp_image *im = NULL;
@@ -561,6 +567,7 @@ static int solve_main(solve_cli *cc, const char *input)
         }
     }
     glpgp_status sst = glpgp_solve(dist ? part : mp ? mp : m, b, &c.o, &r);
+    if (glpgp_cl_backend_info(b, device_buf, sizeof device_buf) >= 0) device = device_buf;
     if (c.backend == GLPGP_BACKEND_PETSC) {
         /* every rank: the same verdict (a rank that failed alone fails all,
          * no rank waits in a collective the others never reach) */
@@ -663,7 +670,7 @@ static int solve_main(solve_cli *cc, const char *input)
     if (c.out && !c.pieces && glpgp_output_set_result(outs, m, &c.o, r, c.out) != GLPGP_OK) goto fail;
     if (c.quads && invalid_rc < 0 && glpgp_output_set_quads(outs, q, c.quads) != GLPGP_OK) goto fail;
     if (c.stats) {
-        glpgp_stats_extra x = {input, c.out, t_read, c.quads ? &qq : NULL, nranks, rank_info};
+        glpgp_stats_extra x = {input, c.out, t_read, c.quads ? &qq : NULL, nranks, rank_info, device};
         if (glpgp_output_set_stats(outs, m, &c.o, r, c.stats, &x) != GLPGP_OK) goto fail;
     }
     if (c.image) { /* the picture is written under the set's temporary name */
@@ -690,7 +697,7 @@ static int solve_main(solve_cli *cc, const char *input)
                   "median |z| < 0.5: the oscillators collapsed towards z = 0 (h = %g is %.1f mean edges; "
                   "P1 needs about 10 per period): raise --size or refine the mesh",
                   r->size, r->size / m->mean_edge);
-    print_summary(&c, input, m, r, glpgp_now() - t0, t_read, &qq, invalid_rc < 0);
+    print_summary(&c, input, m, r, device, glpgp_now() - t0, t_read, &qq, invalid_rc < 0);
     rc = invalid_rc < 0 ? 0 : glpgp_cli_invalid(why, "not written (--allow-invalid writes it anyway)");
     goto done;
 fail:

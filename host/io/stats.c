@@ -31,6 +31,7 @@ static void stats_body(FILE *f, const glpgp_mesh *m, const glpgp_options *o, con
         glpgp_json_null(w, "newton");
     }
     glpgp_json_str(w, "backend", r->backend);
+    glpgp_json_str(w, "device", x ? x->device : NULL);
     if (o) {
         glpgp_json_str(w, "field", field_name(o->field));
         glpgp_json_str(w, "field_file", o->field == GLPGP_FIELD_FILE ? o->field_file : NULL);

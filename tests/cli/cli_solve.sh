@@ -34,8 +34,10 @@ assert d["newton_iterations"]["total"] == d["newton_iterations"]["u"] + d["newto
 dc = d["device_calls"]
 if d["backend"] == "reference":  # the drivers read scalars; no kernels
     assert dc["kernel_launches"] == 0 and dc["host_round_trips"] > 0, dc
+    assert d["device"] is None, d["device"]
 else:
     assert dc["kernel_launches"] > dc["host_round_trips"] > 0, dc
+    assert d["device"].startswith("device "), d["device"]
 EOF
 }
 

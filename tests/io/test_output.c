@@ -415,7 +415,7 @@ static void test_json(const char *dir, const glpgp_mesh *m, const glpgp_result *
     o.method = GLPGP_METHOD_GL;
     o.field = GLPGP_FIELD_FILE;
     o.field_file = "dir/field \"U\".txt";
-    glpgp_stats_extra x = {"in\\put\t.obj", NULL, 0.25, NULL, 0, NULL};
+    glpgp_stats_extra x = {"in\\put\t.obj", NULL, 0.25, NULL, 0, NULL, "device 0: \"gpu\"\\x"};
     CHECK(glpgp_write_stats_json(m, &o, r, path, &x) == GLPGP_OK);
     char *buf = read_all(path);
     CHECK(buf != NULL);
@@ -424,7 +424,7 @@ static void test_json(const char *dir, const glpgp_mesh *m, const glpgp_result *
     static const char *const keys[] = {
         "\"version\"", "\"input\": \"in\\\\put\\t.obj\"", "\"vertices\": 9", "\"triangles\": 8",
         "\"size\": 0.5", "\"method\": \"gl\"", "\"energy\"", "\"newton\"",
-        "\"backend\": \"ref\\\"x\\\\y\\n\"", "\"field\": \"file\"",
+        "\"backend\": \"ref\\\"x\\\\y\\n\"", "\"device\": \"device 0: \\\"gpu\\\"\\\\x\"", "\"field\": \"file\"",
         "\"field_file\": \"dir/field \\\"U\\\".txt\"", "\"singularities\"", "\"plus\": 1",
         "\"minus\": 2", "\"zabs\"", "\"min\": null", "\"p10\"", "\"median\"",
         "\"newton_iterations\"", "\"total\": 17", "\"cg_iterations\"", "\"total\": 1111",
@@ -518,11 +518,12 @@ static void test_stats_quads(const char *dir, const glpgp_mesh *m, const glpgp_r
     qq.h = 1e-300;
     qq.hausdorff = -1;
     qq.singular[0] = qq.singular[1] = -1;
-    glpgp_stats_extra x = {"in.obj", "out.vtu", 0.5, &qq, 0, NULL};
+    glpgp_stats_extra x = {"in.obj", "out.vtu", 0.5, &qq, 0, NULL, NULL};
     CHECK_OK(glpgp_write_stats_json(m, NULL, r, path, &x));
     char *text = read_all(path);
     CHECK(text && json_valid(text));
     if (!text) return;
+    CHECK(strstr(text, "\"device\": null") != NULL); /* no device given */
     const char *q = strstr(text, "\"quads\": {");
     CHECK(q != NULL && strstr(q + 1, "\"quads\": {") == NULL);
     if (q) {

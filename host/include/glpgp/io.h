@@ -225,6 +225,7 @@ typedef struct glpgp_stats_extra {
      * rank's solve, max_rss in bytes) */
     int ranks;
     const double *rank_info;
+    const char *device;  /* the OpenCL device and launch shape (glpgp_cl_backend_info; NULL: null) */
 } glpgp_stats_extra;
 #define GLPGP_RANK_INFO_N 4
 
