@@ -662,7 +662,8 @@ static glpgp_status cl_setup(glpgp_backend *b, const glpgp_system *sys)
     if (need > (double)c->global_mem)
         return GLPGP_FAIL(GLPGP_ERR_NOMEM,
                           "OpenCL backend needs about %.0f MiB of device memory for %zu vertices; device %d (%s) "
-                          "has %.0f MiB of global memory",
+                          "has %.0f MiB of global memory (choose another with --device N, see glpgp devices, "
+                          "or --backend reference)",
                           need / mib, nv, c->index, c->name, (double)c->global_mem / mib);
     if (c->type & CL_DEVICE_TYPE_CPU) {
         /* PoCL does not enforce its advertised limits: check the host's free RAM */
@@ -675,7 +676,8 @@ static glpgp_status cl_setup(glpgp_backend *b, const glpgp_system *sys)
     } else if ((double)32.0 * nnzb > (double)c->max_alloc) {
         return GLPGP_FAIL(GLPGP_ERR_NOMEM,
                           "OpenCL backend needs a %.0f MiB matrix buffer for %zu vertices; device %d (%s) allows "
-                          "at most %.0f MiB per buffer",
+                          "at most %.0f MiB per buffer (choose another with --device N, see glpgp devices, or "
+                          "--backend reference)",
                           32.0 * nnzb / mib, nv, c->index, c->name, (double)c->max_alloc / mib);
     }
 
