@@ -155,9 +155,14 @@ static void print_summary(const solve_cli *c, const char *input, const glpgp_mes
                           int quads_written)
 {
     const glpgp_osc_result *u = &r->osc[0], *v = &r->osc[1];
-    /* "device N: NAME" of the OpenCL info, without its launch-shape details */
-    int dl = device ? (int)strcspn(device, "(") : 0;
-    while (dl > 0 && device[dl - 1] == ' ') dl--;
+    /* "device N: NAME" of the OpenCL info, without its launch-shape details
+     * (names have parentheses of their own: "Intel(R) Xeon(R)") */
+    int dl = 0;
+    if (device) {
+        const char *cut = strstr(device, " (cpu shape");
+        if (!cut) cut = strstr(device, " (gpu shape");
+        dl = cut ? (int)(cut - device) : (int)strlen(device);
+    }
     printf("glpgp: %s: %d vertices, %d triangles, h = %.6g, backend %s%s%.*s%s\n", input, m->nv, m->nt, r->size,
            r->backend ? r->backend : "?", dl ? " (" : "", dl, dl ? device : "", dl ? ")" : "");
     printf("  singularities  u: +%d -%d   v: +%d -%d\n", u->plus, u->minus, v->plus, v->minus);

@@ -12,6 +12,13 @@ double glpgp_now(void)
     return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
+static void swap_d(double *x, double *y)
+{
+    const double t = *x;
+    *x = *y;
+    *y = t;
+}
+
 double glpgp_select_double(double *a, size_t n, size_t k)
 {
     size_t lo = 0, hi = n - 1; /* the answer's index stays in [lo, hi] */
@@ -19,11 +26,9 @@ double glpgp_select_double(double *a, size_t n, size_t k)
         /* pivot: median of a[lo], a[mid], a[hi] (sorted in place, so that
          * a[lo] <= p <= a[hi] bound the scans below) */
         const size_t mid = lo + (hi - lo) / 2;
-        double t;
-#define GLPGP_SWAP_D(x, y) (t = (x), (x) = (y), (y) = t)
-        if (a[mid] < a[lo]) GLPGP_SWAP_D(a[mid], a[lo]);
-        if (a[hi] < a[lo]) GLPGP_SWAP_D(a[hi], a[lo]);
-        if (a[hi] < a[mid]) GLPGP_SWAP_D(a[hi], a[mid]);
+        if (a[mid] < a[lo]) swap_d(&a[mid], &a[lo]);
+        if (a[hi] < a[lo]) swap_d(&a[hi], &a[lo]);
+        if (a[hi] < a[mid]) swap_d(&a[hi], &a[mid]);
         if (hi - lo < 3) break; /* three or fewer: sorted now */
         const double p = a[mid];
         /* Hoare partition of a[lo+1 .. hi-1]: i stops at >= p, j at <= p */
@@ -32,9 +37,8 @@ double glpgp_select_double(double *a, size_t n, size_t k)
             do i++; while (a[i] < p);
             do j--; while (a[j] > p);
             if (i >= j) break;
-            GLPGP_SWAP_D(a[i], a[j]);
+            swap_d(&a[i], &a[j]);
         }
-#undef GLPGP_SWAP_D
         /* a[lo .. j] <= p <= a[j+1 .. hi] */
         if (k <= j) hi = j;
         else lo = j + 1;

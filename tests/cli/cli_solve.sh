@@ -111,6 +111,10 @@ if "$GLPGP" devices 2>/dev/null | grep -q "fp64 yes"; then
     def=$(grep '(default)$' dev.txt | grep -oE 'device [0-9]+' | grep -oE '[0-9]+')
     (unset GLPGP_DEVICE; "$GLPGP" solve shape:disk:500 --size 0.4 --backend opencl --verbose >/dev/null 2>dv.txt)
     grep -q "OpenCL device $def:" dv.txt || fail "solve did not use the default device $def: $(grep -i 'opencl device' dv.txt)"
+    # the summary names that device in full (names have parentheses of their own: "Intel(R)")
+    name=$(grep '(default)$' dev.txt | sed -e 's/^  device [0-9]*: //' -e 's/ (default)$//')
+    (unset GLPGP_DEVICE; "$GLPGP" solve shape:disk:500 --size 0.4 --backend opencl --quiet >sum.txt 2>&1)
+    grep -qF "backend opencl (device $def: $name)" sum.txt || fail "summary does not name the device: $(head -1 sum.txt)"
 else
     echo "note: no OpenCL fp64 device, the OpenCL stats check skipped"
 fi
