@@ -56,6 +56,7 @@ typedef struct bopts {
     int precond;           /* --precond: -1 not given, else 0 jacobi, 1 amg, 2 both */
     int sizes_given, with_4m, steps;
     int kcycle_min;        /* --amg-kcycle-min (-1: auto) */
+    int oscillators;       /* --oscillators: GLPGP_OSC_* of the whole GL solves */
 } bopts;
 
 static void usage(FILE *f)
@@ -73,6 +74,9 @@ static void usage(FILE *f)
             "  --max-solve-vertices-opencl N  same for OpenCL (default 0 = no limit)\n"
             "  --full-solve             whole GL solve at every size on both paths (both limits 0)\n"
             "  --solve-repeat N         whole GL solve repeats (default 1)\n"
+            "  --oscillators M          whole GL solves: sequential (default: each backend's own figure,\n"
+            "                           comparable with earlier JSON), concurrent or auto (glpgp solve's\n"
+            "                           default: u and v at the same time, v on a clone of the backend)\n"
             "  --max-cholmod-vertices N CHOLMOD only up to N vertices (default 2000000; 0 = no limit)\n"
             "  --no-opencl, --no-reference, --no-cholmod   leave a column out\n"
             "  --device N               OpenCL device index (as `glpgp devices`; default: GLPGP_DEVICE, first fp64 GPU, first fp64)\n"
@@ -126,6 +130,7 @@ static glpgp_status parse_args(int argc, char **argv, bopts *o, int *help)
     o->max_solve_cl = 0;
     o->max_cholmod = 2000000;
     o->solve_repeat = 1;
+    o->oscillators = GLPGP_OSC_SEQUENTIAL;
     o->device = -1;
     o->precond = -1;
     o->steps = 3;
@@ -230,6 +235,12 @@ static glpgp_status parse_args(int argc, char **argv, bopts *o, int *help)
             NEEDV();
             if (!parse_long(v, &lv) || lv < 1 || lv > 20) return GLPGP_FAIL(GLPGP_ERR_ARG, "--newton-steps: expected 1..20");
             o->steps = (int)lv;
+        } else if (!strcmp(a, "--oscillators")) {
+            NEEDV();
+            if (!strcmp(v, "sequential")) o->oscillators = GLPGP_OSC_SEQUENTIAL;
+            else if (!strcmp(v, "concurrent")) o->oscillators = GLPGP_OSC_CONCURRENT;
+            else if (!strcmp(v, "auto")) o->oscillators = GLPGP_OSC_AUTO;
+            else return GLPGP_FAIL(GLPGP_ERR_ARG, "--oscillators: '%s' is not sequential, concurrent or auto", v);
         } else if (!strcmp(a, "--amg-kcycle-min")) {
             NEEDV();
             if (!strcmp(v, "auto")) o->kcycle_min = -1;
@@ -624,6 +635,7 @@ static glpgp_status bench_gl(int opencl, const bopts *o, const sdata *sd, const 
         glpgp_options so;
         glpgp_options_default(&so);
         so.size = sr->h;
+        so.oscillators = o->oscillators;
         double t0 = bench_now();
         glpgp_status st = glpgp_solve(sd->mesh, b, &so, &res);
         double dt = bench_now() - t0;
@@ -1058,9 +1070,10 @@ static void write_json(FILE *f, const bopts *o, const machine *mc, const bench_s
     jstr(f, o->shape);
     fprintf(f, ", \"repeat\": %d, \"min_time_s\": %g, \"smoke\": %s, \"h_mean_edges\": 10, \"eps_h\": 0.5, "
                "\"hessian\": \"projected\", \"cg_block\": %d, \"max_solve_vertices\": %ld, "
-               "\"max_solve_vertices_opencl\": %ld, \"solve_repeat\": %d},\n",
+               "\"max_solve_vertices_opencl\": %ld, \"solve_repeat\": %d, \"oscillators\": \"%s\"},\n",
             o->repeat, o->min_time, o->smoke ? "true" : "false", CG_BLOCK, o->max_solve_ref, o->max_solve_cl,
-            o->solve_repeat);
+            o->solve_repeat,
+            o->oscillators == GLPGP_OSC_SEQUENTIAL ? "sequential" : o->oscillators == GLPGP_OSC_CONCURRENT ? "concurrent" : "auto");
     fprintf(f, "  \"stream\": {\"threads\": %d, \"array_bytes\": %zu, \"reps\": %d, \"copy_gbs\": ", bs->threads,
             bs->array_bytes, bs->reps);
     jnum(f, bs->copy_gbs);

@@ -4,7 +4,7 @@
 # cross-checks on a generated disk and on data/plate_holes.msh, the device's
 # bandwidth and the per-operation ladder, Jacobi against multigrid per Newton
 # step with the K-cycle on every level and with the launch-bound default, and
-# whole solves of the 1M and 4M squares. Every step has its own time cap;
+# whole solves of the 1M and 4M squares (1M also with u and v concurrent). Every step has its own time cap;
 # everything is written to OUTDIR (log.txt, *.md, *.json) as it goes, so a
 # run cut short still leaves what it measured. bench/results/gpu_h200/ holds
 # the first such run and how to read it.
@@ -100,6 +100,10 @@ for k in 0 auto; do
     grep -E "^per Newton step|^multigrid:" "$OUT/precond_1m_k$k.md"
 done
 step 40 solve-square1m-amg - "$G" solve "$SQ1" --quiet --stats "$OUT/square1m_amg.json"
+# u and v at the same time (two command queues from two host threads): not
+# measured on a GPU yet, so auto keeps them sequential there
+step 40 solve-square1m-amg-concurrent - "$G" solve "$SQ1" --oscillators concurrent --quiet \
+    --stats "$OUT/square1m_amg_concurrent.json"
 step 40 solve-square1m-jacobi - "$G" solve "$SQ1" --precond jacobi --quiet --stats "$OUT/square1m_jacobi.json"
 step 60 solve-square4m-amg - "$G" solve "$SQ4" --quiet --stats "$OUT/square4m_amg.json"
 echo

@@ -330,10 +330,21 @@ static glpgp_status ref_cg_direction(glpgp_backend *b, glpgp_vec *p, const glpgp
     return GLPGP_OK;
 }
 
+/* a second reference backend with b's ops (a test may have replaced some) */
+static glpgp_status ref_clone(glpgp_backend *b, glpgp_backend **out)
+{
+    GLPGP_CHECK(glpgp_backend_create_reference(out));
+    (*out)->ops = b->ops;
+    (*out)->launch_bound = b->launch_bound;
+    (*out)->overlap = b->overlap;
+    return GLPGP_OK;
+}
+
 static const glpgp_backend_ops ref_ops = {
     .name = "reference",
     .coupled_systems = 1,
     .destroy = ref_destroy,
+    .clone = ref_clone,
     .setup = ref_setup,
     .vec_create = ref_vec_create,
     .vec_destroy = ref_vec_destroy,
@@ -368,6 +379,7 @@ glpgp_status glpgp_backend_create_reference(glpgp_backend **out)
         return st;
     }
     b->ops = &ref_ops;
+    b->overlap = GLPGP_OVERLAP_ALWAYS; /* single-threaded */
     *out = b;
     return GLPGP_OK;
 }

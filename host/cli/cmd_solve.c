@@ -190,7 +190,8 @@ static void print_summary(const solve_cli *c, const char *input, const glpgp_mes
     if (c->refined.rounds)
         printf("  refined        %d -> %d vertices, %d -> %d triangles (%d rounds: too coarse for the local h)\n",
                c->refined.nv0, c->refined.nv, c->refined.nt0, c->refined.nt, c->refined.rounds);
-    printf("  time           %.3f s (read %.3f s, solve %.3f s)\n", t_all, t_read, r->seconds_total);
+    printf("  time           %.3f s (read %.3f s, solve %.3f s%s)\n", t_all, t_read, r->seconds_total,
+           r->concurrent ? "; u and v concurrently" : "");
     if (c->out) printf("  wrote          %s\n", c->out);
     if (c->stats) printf("  wrote          %s\n", c->stats);
     if (c->quads) {

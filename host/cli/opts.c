@@ -433,6 +433,8 @@ static const char *const k_couplings[] = {"auto", "off", "on", NULL};
 static const int k_coupling_vals[] = {GLPGP_COUPLING_AUTO, GLPGP_COUPLING_OFF, GLPGP_COUPLING_ON};
 static const char *const k_cross_sizes[] = {"off", "on", "auto", NULL};
 static const int k_cross_size_vals[] = {GLPGP_CROSS_SIZE_OFF, GLPGP_CROSS_SIZE_ON, GLPGP_CROSS_SIZE_AUTO};
+static const char *const k_oscs[] = {"auto", "concurrent", "sequential", NULL};
+static const int k_osc_vals[] = {GLPGP_OSC_AUTO, GLPGP_OSC_CONCURRENT, GLPGP_OSC_SEQUENTIAL};
 static const char *const k_inits[] = {"naive", "one", NULL};
 static const int k_init_vals[] = {GLPGP_INIT_NAIVE, GLPGP_INIT_ONE};
 
@@ -546,6 +548,11 @@ void glpgp_opts_add_solver(glpgp_opts *t, glpgp_options *o)
                      "preconditioner of the linear solves: 2x2-block Jacobi CG, or\n"
                      "aggregation multigrid (K-cycle, flexible CG; falls back to\n"
                      "Jacobi with one warning on a backend without it)");
+    glpgp_opt_choice(t, "--oscillators", &o->oscillators, k_oscs, k_osc_vals,
+                     "u and v at the same time (v on a second copy of the backend\n"
+                     "in a second thread; the same result bit for bit) or one after\n"
+                     "the other; auto: concurrent with two or more processors and\n"
+                     "the memory for the copy (not with --backend petsc)");
 }
 
 static const char *const k_backends[] = {"auto", "opencl", "reference", "petsc", NULL};

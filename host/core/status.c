@@ -92,6 +92,33 @@ void glpgp_error_clear(void)
     e->detail[0] = '\0';
 }
 
+/* the copy holds the record's texts whole */
+_Static_assert(sizeof(((glpgp_error_copy *)0)->msg) == sizeof g_err.msg &&
+                   sizeof(((glpgp_error_copy *)0)->trace) == sizeof g_err.trace &&
+                   sizeof(((glpgp_error_copy *)0)->detail) == sizeof g_err.detail,
+               "glpgp_error_copy and the error record differ");
+
+void glpgp_error_save(glpgp_error_copy *out)
+{
+    const error_record *e = &g_err;
+    out->st = e->st;
+    memcpy(out->msg, e->msg, sizeof out->msg);
+    memcpy(out->trace, e->trace, sizeof out->trace);
+    memcpy(out->detail, e->detail, sizeof out->detail);
+}
+
+glpgp_status glpgp_error_restore(const glpgp_error_copy *in)
+{
+    error_record *e = &g_err;
+    e->st = in->st;
+    memcpy(e->msg, in->msg, sizeof e->msg);
+    memcpy(e->trace, in->trace, sizeof e->trace);
+    memcpy(e->detail, in->detail, sizeof e->detail);
+    e->msg[sizeof e->msg - 1] = e->trace[sizeof e->trace - 1] = e->detail[sizeof e->detail - 1] = '\0';
+    e->tlen = strlen(e->trace);
+    return e->st;
+}
+
 /* ---- log ----------------------------------------------------------------- */
 
 static glpgp_log_fn g_log_fn;

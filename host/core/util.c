@@ -1,9 +1,30 @@
-/* core/util.c: monotonic clock and extension tests (glpgp/util.h). */
+/* core/util.c: monotonic clock, extension tests, order statistics and the
+ * host's memory and processors (glpgp/util.h). */
 #include "glpgp/util.h"
 
 #include <ctype.h>
+#include <stdio.h>
 #include <string.h>
 #include <time.h>
+#include <unistd.h>
+
+unsigned long long glpgp_mem_available(void)
+{
+    FILE *f = fopen("/proc/meminfo", "r");
+    if (!f) return 0;
+    char line[256];
+    unsigned long long kb = 0;
+    while (fgets(line, sizeof line, f))
+        if (sscanf(line, "MemAvailable: %llu kB", &kb) == 1) break;
+    fclose(f);
+    return kb * 1024ull;
+}
+
+int glpgp_cpu_count(void)
+{
+    long n = sysconf(_SC_NPROCESSORS_ONLN);
+    return n < 1 ? 1 : n > 1 << 20 ? 1 << 20 : (int)n;
+}
 
 double glpgp_now(void)
 {

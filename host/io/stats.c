@@ -56,6 +56,9 @@ static void stats_body(FILE *f, const glpgp_mesh *m, const glpgp_options *o, con
         glpgp_json_num(w, "cross_size_quantile", o->cross_size_quantile);
         glpgp_json_num(w, "cross_size_ratio", o->cross_size_ratio);
         glpgp_json_str(w, "vertex_order", o->vertex_order == GLPGP_ORDER_INPUT ? "input" : "rcm");
+        glpgp_json_str(w, "oscillators", o->oscillators == GLPGP_OSC_SEQUENTIAL   ? "sequential"
+                                         : o->oscillators == GLPGP_OSC_CONCURRENT ? "concurrent"
+                                                                                  : "auto");
         if (o->has_center) {
             glpgp_json_array(w, "center");
             glpgp_json_num(w, NULL, o->center[0]);
@@ -223,6 +226,9 @@ static void stats_body(FILE *f, const glpgp_mesh *m, const glpgp_options *o, con
     glpgp_json_int(w, "host_round_trips", r->host_round_trips);
     glpgp_json_int(w, "kernel_launches", r->kernel_launches);
     glpgp_json_close(w);
+    /* u and v: one after the other, at the same time (glpgp_options.oscillators) or
+     * one coupled system */
+    glpgp_json_str(w, "oscillators", r->coupled ? "coupled" : r->concurrent ? "concurrent" : "sequential");
 
     if (x && x->ranks > 0 && x->rank_info) {
         glpgp_json_int(w, "ranks", x->ranks);

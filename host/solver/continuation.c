@@ -13,6 +13,8 @@
 #include "glpgp/util.h"
 
 #include <math.h>
+#include <pthread.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -235,6 +237,103 @@ static glpgp_status solve_oscillator(const glpgp_mesh *m, osc_work *w, int k, co
     return GLPGP_OK;
 }
 
+/* ---- concurrent oscillators ---------------------------------------------
+ * u and v are independent solves with the same field, mesh and schedule: v
+ * runs on a clone of the backend (its own queue and buffers, ops->clone) in a
+ * second host thread while u runs on b. The result is the sequential one bit
+ * for bit (nothing is shared that either writes). What it buys: a CPU device
+ * whose multigrid runs its small levels on one core (the fused coarse
+ * correction, backends/opencl.c) or a single-threaded backend (reference)
+ * leaves the other core idle half the time; a GPU overlaps one thread's
+ * kernel launches and host work with the other's. */
+
+/* v's solve in the second thread: the clone, its setup and vectors, the
+ * oscillator; the outcome, the error record and the clone's counters. */
+typedef struct osc_job {
+    const glpgp_mesh *m;
+    glpgp_backend *parent;
+    const glpgp_system *sys;
+    const glpgp_options *o;
+    int k;
+    const double *wv, *size;
+    glpgp_osc_result *r;
+    double h;
+    const double *eps;
+    int nlev;
+    int ready;          /* the clone was set up and solved k (outcome st); 0: not
+                           started (st: why), the caller solves k on b */
+    glpgp_status st;
+    glpgp_error_copy err;
+    long n_spmv, n_cg_iter, n_sync, n_launch;
+} osc_job;
+
+static void *osc_job_run(void *arg)
+{
+    osc_job *j = arg;
+    glpgp_backend *c = NULL;
+    osc_work w;
+    memset(&w, 0, sizeof w);
+    glpgp_error_clear();
+    const size_t nv = (size_t)j->m->nv;
+    glpgp_status st = j->parent->ops->clone(j->parent, &c);
+    if (st == GLPGP_OK) st = c->ops->setup(c, j->sys);
+    if (st == GLPGP_OK) st = osc_work_create(&w, c, j->o, 2 * nv, nv);
+    if (st == GLPGP_OK) {
+        j->ready = 1;
+        st = solve_oscillator(j->m, &w, j->k, j->wv, j->size, j->r, j->h, j->eps, j->nlev, NULL);
+    }
+    j->st = st;
+    if (st != GLPGP_OK) glpgp_error_save(&j->err);
+    osc_work_free(&w);
+    if (c) {
+        j->n_spmv = c->n_spmv;
+        j->n_cg_iter = c->n_cg_iter;
+        j->n_sync = c->n_sync;
+        j->n_launch = c->n_launch;
+    }
+    glpgp_backend_destroy(&c);
+    glpgp_error_clear();
+    return NULL;
+}
+
+/* Whether the oscillators run concurrently (o->oscillators): auto when the
+ * backend can be cloned and expects a gain (b->overlap: always on the
+ * single-threaded reference backend, with the multigrid on the OpenCL CPU
+ * shape, not on a GPU until measured), the host has two processors or more and, for a
+ * host-memory backend, room for a second copy of one oscillator's data in
+ * half the available memory (the estimate below, with the multigrid; 1290
+ * MiB at 1M vertices, measured 1460); a GPU backend checks its device at the
+ * clone's setup. Why not: a warning when asked for, a debug line in auto. */
+static int want_concurrent(const glpgp_mesh *m, const glpgp_backend *b, const glpgp_options *o,
+                           const glpgp_system *sys)
+{
+    if (o->oscillators == GLPGP_OSC_SEQUENTIAL) return 0;
+    const int asked = o->oscillators == GLPGP_OSC_CONCURRENT;
+    char why[256] = "";
+    const double mib = 1024.0 * 1024.0;
+    /* one oscillator's copy: two 2x2-block matrices and ~20 vectors of 2 nv
+     * doubles, the multigrid at half that again, the pattern and gather maps */
+    const double need = 1.5 * 8.0 * (8.0 * (double)sys->nnzb + 40.0 * m->nv) +
+                        4.0 * (2.0 * (double)sys->nnzb + 15.0 * m->nt + 3.0 * m->nv);
+    const unsigned long long avail = glpgp_mem_available();
+    if (m->part || !b->ops->clone)
+        snprintf(why, sizeof why, "the %s backend runs one oscillator at a time", b->ops->name);
+    else if (!asked && b->overlap == GLPGP_OVERLAP_NEVER)
+        snprintf(why, sizeof why, "not measured to pay on this backend (--oscillators concurrent tries it)");
+    else if (!asked && b->overlap == GLPGP_OVERLAP_AMG && o->precond != GLPGP_PRECOND_AMG)
+        snprintf(why, sizeof why, "Jacobi-CG keeps every core busy (two at once measured 12%% slower)");
+    else if (!asked && glpgp_cpu_count() < 2)
+        snprintf(why, sizeof why, "one processor");
+    else if (!asked && !b->launch_bound && avail > 0 && 2.0 * need > (double)avail)
+        snprintf(why, sizeof why, "a second copy needs about %.0f MiB, auto takes it from no more than half "
+                 "of the %.0f MiB available", need / mib, (double)avail / mib);
+    if (why[0]) {
+        glpgp_log(asked ? GLPGP_LOG_WARNING : GLPGP_LOG_DEBUG, "u and v solved one after the other: %s", why);
+        return 0;
+    }
+    return 1;
+}
+
 /* Whether --field cross solves the coupled pair: --cross-coupling on, or
  * auto (default) when the representatives have cuts (the cross field has
  * singularities); auto falls back to the uncoupled oscillators, with one
@@ -397,7 +496,7 @@ static glpgp_status solve_mesh(const glpgp_mesh *m, glpgp_backend *b, const glpg
     GLPGP_CHECK_GOTO(st, b->ops->setup(b, sys), fail);
     const size_t n2 = (size_t)2 * nv;
     GLPGP_CHECK_GOTO(st, osc_work_create(&w, b, o, n2, (size_t)nv), fail);
-    GLPGP_CHECK_GOTO(st, glpgp_malloc(n2, sizeof(double), &wv), fail);
+    GLPGP_CHECK_GOTO(st, glpgp_malloc(2 * n2, sizeof(double), &wv), fail); /* W for u, then for v */
     r->seconds_setup = glpgp_now() - t0;
 
     /* guiding field U */
@@ -437,16 +536,51 @@ static glpgp_status solve_mesh(const glpgp_mesh *m, glpgp_backend *b, const glpg
         r->seconds_total = glpgp_now() - t0;
         goto cleanup;
     }
-    for (int k = 0; k < 2; k++) {
-        /* W = U (k = 0) or V = U rotated by +90 degrees (k = 1) */
+    /* W = U (k = 0) or V = U rotated by +90 degrees (k = 1) */
+    for (int k = 0; k < 2; k++)
         for (int i = 0; i < nv; i++) {
             double ux = r->field[2 * i], uy = r->field[2 * i + 1];
-            wv[2 * i] = k == 0 ? ux : -uy;
-            wv[2 * i + 1] = k == 0 ? uy : ux;
+            wv[n2 * k + 2 * i] = k == 0 ? ux : -uy;
+            wv[n2 * k + 2 * i + 1] = k == 0 ? uy : ux;
         }
-        GLPGP_CHECK_GOTO(st, solve_oscillator(m, &w, k, wv, uniform ? NULL : size + (size_t)k * nv, &r->osc[k], h,
-                                              eps, nlev, NULL),
-                         fail);
+    {
+        osc_job job = {.m = m, .parent = b, .sys = sys, .o = o, .k = 1, .wv = wv + n2,
+                       .size = uniform ? NULL : size + (size_t)nv, .r = &r->osc[1], .h = h, .eps = eps,
+                       .nlev = nlev};
+        pthread_t th;
+        int started = want_concurrent(m, b, o, sys) && pthread_create(&th, NULL, osc_job_run, &job) == 0;
+        st = solve_oscillator(m, &w, 0, wv, uniform ? NULL : size, &r->osc[0], h, eps, nlev, NULL);
+        if (started) {
+            glpgp_error_copy mine;
+            if (st != GLPGP_OK) glpgp_error_save(&mine); /* u's error wins; v's thread is waited for */
+            pthread_join(th, NULL);
+            b->n_spmv += job.n_spmv;
+            b->n_cg_iter += job.n_cg_iter;
+            b->n_sync += job.n_sync;
+            b->n_launch += job.n_launch;
+            if (st != GLPGP_OK) {
+                glpgp_error_restore(&mine);
+                glpgp_error_push_trace(__FILE__, __LINE__);
+                goto fail;
+            }
+            if (job.ready && job.st != GLPGP_OK) {
+                st = glpgp_error_restore(&job.err);
+                glpgp_error_push_trace(__FILE__, __LINE__);
+                goto fail;
+            }
+            if (!job.ready)
+                glpgp_log(o->oscillators == GLPGP_OSC_CONCURRENT ? GLPGP_LOG_WARNING : GLPGP_LOG_INFO,
+                          "v solved after u: its backend copy failed (%s)", job.err.msg);
+            r->concurrent = job.ready;
+            started = job.ready;
+        } else if (st != GLPGP_OK) {
+            glpgp_error_push_trace(__FILE__, __LINE__);
+            goto fail;
+        }
+        if (!started)
+            GLPGP_CHECK_GOTO(st, solve_oscillator(m, &w, 1, wv + n2, uniform ? NULL : size + (size_t)nv, &r->osc[1], h,
+                                                  eps, nlev, NULL),
+                             fail);
     }
     r->seconds_total = glpgp_now() - t0;
     goto cleanup;

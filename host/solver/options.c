@@ -15,6 +15,7 @@ void glpgp_options_default(glpgp_options *o)
     o->field = GLPGP_FIELD_BOUNDARY;
     o->init = GLPGP_INIT_NAIVE;
     o->vertex_order = GLPGP_ORDER_RCM;
+    o->oscillators = GLPGP_OSC_AUTO;
     o->eps0 = 0.5;
     o->eps_ratio = 0.5;
     o->eps_min = 2.5;
@@ -102,6 +103,9 @@ glpgp_status glpgp_options_check(const glpgp_options *o)
         return GLPGP_FAIL(GLPGP_ERR_ARG, "cross_size must be off, on or auto, got %d", o->cross_size);
     if (o->vertex_order != GLPGP_ORDER_RCM && o->vertex_order != GLPGP_ORDER_INPUT)
         return GLPGP_FAIL(GLPGP_ERR_ARG, "unknown vertex order %d", o->vertex_order);
+    if (o->oscillators != GLPGP_OSC_AUTO && o->oscillators != GLPGP_OSC_SEQUENTIAL &&
+        o->oscillators != GLPGP_OSC_CONCURRENT)
+        return GLPGP_FAIL(GLPGP_ERR_ARG, "unknown oscillators mode %d", o->oscillators);
     if (!(o->cross_size_quantile > 0.0 && o->cross_size_quantile <= 1.0))
         return GLPGP_FAIL(GLPGP_ERR_ARG, "cross-size-quantile must be in (0,1], got %g", o->cross_size_quantile);
     if (!(o->cross_size_ratio >= 1.0))

@@ -4,8 +4,11 @@
  * oscillator whose levels hit the Newton cap, see below; up to a global phase
  * for an oscillator without Dirichlet vertices), singularity counts
  * and Newton iteration counts exactly (the two paths differ only in the
- * summation order of reductions, ~1e-15 relative). Skipped (77) when
- * no OpenCL device is available. */
+ * summation order of reductions, ~1e-15 relative). And u and v solved
+ * concurrently on OpenCL (v on a clone of the backend: the same context and
+ * program, its own queue, kernels and buffers, in a second thread) against
+ * one after the other: the same result bit for bit, the same kernel launch
+ * and round-trip counts. Skipped (77) when no OpenCL device is available. */
 #include "glpgp/solve.h"
 #include "testutil.h"
 
@@ -72,6 +75,36 @@ static int compare(const char *what, const glpgp_mesh *m, glpgp_options *o)
     return 0;
 }
 
+static void concurrent_identical(const char *what, const glpgp_mesh *m)
+{
+    glpgp_backend *b = NULL;
+    glpgp_cl_options co = {-1, 0};
+    CHECK_OK(glpgp_backend_create_opencl(&co, &b));
+    if (!b) return;
+    glpgp_options o;
+    glpgp_options_default(&o);
+    glpgp_result *r[2] = {NULL, NULL};
+    for (int c = 0; c < 2; c++) {
+        o.oscillators = c ? GLPGP_OSC_CONCURRENT : GLPGP_OSC_SEQUENTIAL;
+        CHECK_OK(glpgp_solve(m, b, &o, &r[c]));
+    }
+    if (r[0] && r[1]) {
+        printf("%s: concurrent %.3f s, sequential %.3f s; launches %ld / %ld, round trips %ld / %ld\n", what,
+               r[1]->seconds_total, r[0]->seconds_total, r[1]->kernel_launches, r[0]->kernel_launches,
+               r[1]->host_round_trips, r[0]->host_round_trips);
+        CHECK(r[1]->concurrent == 1 && r[0]->concurrent == 0);
+        for (int k = 0; k < 2; k++) {
+            CHECK(!memcmp(r[0]->osc[k].z, r[1]->osc[k].z, sizeof(double) * 2 * (size_t)m->nv));
+            CHECK(r[0]->osc[k].cg_iterations == r[1]->osc[k].cg_iterations);
+            CHECK(r[0]->osc[k].energy == r[1]->osc[k].energy);
+        }
+        CHECK(r[0]->kernel_launches == r[1]->kernel_launches && r[0]->kernel_launches > 0);
+        CHECK(r[0]->host_round_trips == r[1]->host_round_trips);
+    }
+    for (int c = 0; c < 2; c++) glpgp_result_destroy(&r[c]);
+    glpgp_backend_destroy(&b);
+}
+
 int main(void)
 {
     /* converged tightly, so both paths reach the same minimiser (at the default
@@ -95,6 +128,7 @@ int main(void)
     o.cg_rtol = 1e-10;
     CHECK_OK(glpgp_mesh_read(path, &m));
     if (m) compare("plate_holes", m, &o);
+    if (m) concurrent_identical("plate_holes concurrent", m);
     glpgp_mesh_destroy(&m);
     TEST_DONE();
 }

@@ -5,8 +5,9 @@
 # reference backend writes a VTK (all arrays, right counts), a textured OBJ
 # (one vt per corner) and a statistics JSON that parses (python3, when
 # available) with consistent keys; overwriting existing outputs; built-in
-# shape: inputs; at most one warning line with --backend auto; no temporary
-# files left behind.
+# shape: inputs; --oscillators concurrent and sequential write the same file
+# and say which ran; at most one warning line with --backend auto; no
+# temporary files left behind.
 . "$(dirname "$0")/lib.sh" "$@"
 
 ok_run() { run_ok "$@"; }
@@ -118,6 +119,22 @@ if "$GLPGP" devices 2>/dev/null | grep -q "fp64 yes"; then
 else
     echo "note: no OpenCL fp64 device, the OpenCL stats check skipped"
 fi
+
+# ---- --oscillators: u and v at the same time give the same result -------------
+for be in reference opencl; do
+    if [ "$be" = opencl ] && ! "$GLPGP" devices 2>/dev/null | grep -q "fp64 yes"; then continue; fi
+    for m in concurrent sequential; do
+        ok_run "solve --oscillators $m ($be)" solve shape:disk:3000 --backend "$be" --oscillators "$m" \
+            --out "osc_$m.vtu" --stats "osc_$m.json"
+        cp out.txt "osc_$m.txt"
+    done
+    cmp -s osc_concurrent.vtu osc_sequential.vtu || fail "$be: --oscillators concurrent and sequential results differ"
+    grep -q "u and v concurrently" osc_concurrent.txt || fail "$be: the summary does not say u and v ran concurrently"
+    ! grep -q "concurrently" osc_sequential.txt || fail "$be: a sequential run says concurrently"
+    grep -q '"oscillators": "concurrent"' osc_concurrent.json || fail "$be: stats do not record the concurrent run"
+    grep -q '"oscillators": "sequential"' osc_sequential.json || fail "$be: stats do not record the sequential run"
+done
+run_fail "--oscillators foo" 2 "oscillators" solve shape:disk:500 --oscillators foo
 
 # ---- backend auto: at most one warning line --------------------------------
 ok_run "solve --backend auto" solve shape:square:500 --size 0.3 --backend auto --quiet

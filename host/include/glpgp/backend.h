@@ -107,6 +107,12 @@ typedef struct glpgp_backend_ops {
      * solver/coupled.c); 0: setup refuses it */
     int coupled_systems;
     void (*destroy)(glpgp_backend *b); /* frees b->impl, not b */
+    /* Optional (NULL: none). *out <- a new backend with b's ops, on b's device,
+     * not set up, sharing nothing the drivers write (its own queue, buffers,
+     * scalars and counters): one host thread may drive it while another
+     * drives b (glpgp_solve's concurrent oscillators). Read-only objects
+     * (an OpenCL context and program) may be shared. */
+    glpgp_status (*clone)(glpgp_backend *b, glpgp_backend **out);
 
     /* Upload the mesh layout (coordinates, triangles, pattern, gather maps;
      * a coupled system's matching, system.h). Called again for another
@@ -270,6 +276,18 @@ struct glpgp_backend {
      * OpenCL backend's GPU launch shape): the multigrid then keeps its K-cycle
      * to the large levels (glpgp_amg_kcycle_min); set by the backend */
     int launch_bound;
+    /* what glpgp_solve's auto mode (glpgp_options.oscillators) expects from
+     * running the second oscillator on a clone beside this backend: set by
+     * the backend, copied by clone */
+    int overlap;
+};
+
+enum {
+    GLPGP_OVERLAP_NEVER = 0,  /* not measured to pay (the GPU launch shape, PETSc) */
+    GLPGP_OVERLAP_ALWAYS = 1, /* a single-threaded backend (reference): up to 2x */
+    GLPGP_OVERLAP_AMG = 2     /* with the multigrid only: the OpenCL CPU shape, whose fused
+                                 small levels run on one core; its Jacobi-CG keeps every core
+                                 busy (two at once measured 12% slower) */
 };
 
 /* Destroy any backend (NULL-safe, sets *b = NULL). */

@@ -59,6 +59,8 @@ typedef struct glpgp_result {
     long field_cg_iterations;
     long host_round_trips;     /* blocking scalar reads the drivers made (b->n_sync) */
     long kernel_launches;      /* device kernels enqueued (b->n_launch; 0 without OpenCL) */
+    int concurrent;            /* 1: u and v were solved at the same time, v on a clone of the
+                                  backend in a second host thread (glpgp_options.oscillators) */
     struct glpgp_cross_result *cross; /* the cross field of --field cross (glpgp/cross.h), else NULL */
     int coupled;               /* 1: osc[0], osc[1] were solved coupled across the cuts of the
                                   representatives `field` (glpgp/cross.h): z stays per vertex in

@@ -39,6 +39,15 @@ enum glpgp_cross_size {
     GLPGP_CROSS_SIZE_AUTO = 2 /* q = cross_size_quantile, c = cross_size_ratio (host/README.md) */
 };
 enum glpgp_init { GLPGP_INIT_NAIVE = 0, GLPGP_INIT_ONE = 1 };
+/* How the two oscillators of a solve share the machine (glpgp_options.oscillators). */
+enum glpgp_oscillators {
+    GLPGP_OSC_AUTO = 0,       /* concurrent when the backend can be cloned, the host has two
+                                 or more cores and the memory for a second copy */
+    GLPGP_OSC_SEQUENTIAL = 1, /* u, then v, on the one backend */
+    GLPGP_OSC_CONCURRENT = 2  /* v on a clone of the backend in a second host thread while u
+                                 runs; a backend or host that cannot: sequential, one warning */
+};
+
 /* Vertex numbering of the solve (glpgp_options.vertex_order). */
 enum glpgp_vertex_order { GLPGP_ORDER_RCM = 0, GLPGP_ORDER_INPUT = 1 };
 /* How a Newton step is made safe: a trust region around the exact-Hessian
@@ -82,6 +91,8 @@ typedef struct glpgp_options {
     int vertex_order;     /* GLPGP_ORDER_RCM: glpgp_solve renumbers the vertices for
                              memory locality (reverse Cuthill-McKee) and returns the
                              result in m's order; GLPGP_ORDER_INPUT: m's numbering [RCM] */
+    int oscillators;      /* GLPGP_OSC_*: u and v one after the other or at the same time
+                             (independent solves: the same result bit for bit) [AUTO] */
 
     /* eps continuation */
     double eps0;          /* first eps as a multiple of h [0.5] */

@@ -54,6 +54,18 @@ const char *glpgp_error_detail(void);
 const char *glpgp_error_trace(void);
 void glpgp_error_clear(void);
 
+/* An error record carried from one thread to another: a worker thread saves
+ * its record before it ends, the thread that joins it restores the record as
+ * its own (replacing the one it had) and returns its status. */
+typedef struct glpgp_error_copy {
+    glpgp_status st;
+    char msg[1024];
+    char trace[2048];
+    char detail[8192];
+} glpgp_error_copy;
+void glpgp_error_save(glpgp_error_copy *out);
+glpgp_status glpgp_error_restore(const glpgp_error_copy *in);
+
 /* return GLPGP_FAIL(GLPGP_ERR_MESH, "triangle %d is degenerate", t); */
 #define GLPGP_FAIL(st, ...) glpgp_error_set(__FILE__, __LINE__, (st), __VA_ARGS__)
 
@@ -91,7 +103,9 @@ typedef enum glpgp_log_level {
 
 typedef void (*glpgp_log_fn)(glpgp_log_level level, const char *message, void *user);
 
-/* Install fn (NULL: silence). Returns nothing; the previous callback is dropped. */
+/* Install fn (NULL: silence). Returns nothing; the previous callback is dropped.
+ * fn may be called from two threads at once (glpgp_solve runs the oscillators
+ * concurrently, glpgp_options.oscillators): one whole message per call. */
 void glpgp_log_set_callback(glpgp_log_fn fn, void *user);
 /* Whether a callback is installed (lets callers skip expensive formatting). */
 int glpgp_log_enabled(void);

@@ -27,6 +27,11 @@ double glpgp_select_double(double *a, size_t n, size_t k);
  * the same value as from the sorted array; a is permuted. */
 double glpgp_median_double(double *a, size_t n);
 
+/* The host's available memory in bytes (MemAvailable of /proc/meminfo; 0
+ * when unknown) and its online processors (at least 1). */
+unsigned long long glpgp_mem_available(void);
+int glpgp_cpu_count(void);
+
 /* The directories glpgp's modules (glpgp_oiio.so, glpgp_gmsh.so,
  * glpgp_petsc.so) are looked for in, in order: $GLPGP_MODULE_DIR alone when
  * set (from_env = 1); else <directory of the executable>/<its relative
