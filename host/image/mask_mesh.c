@@ -281,6 +281,71 @@ static glpgp_status mesh_in_child(const glpgp_gmsh_api *api, const glpgp_polygon
     return st;
 }
 
+/* Gmsh joins three consecutive boundary points of a nearly straight run into
+ * one triangle (an ear: its middle point in no other triangle) where the
+ * domain is thinner than the points' spacing: at a NACA 0012's sharp trailing
+ * edge (points 2e-4 apart, 1e-5 to 1e-4 from the other side) the angle at the
+ * middle point was 179.998 degrees, area 1.3e-12, and glpgp_mesh_create
+ * refused the mesh as degenerate. An ear whose angle at its middle point
+ * exceeds GLPGP_EAR_MAX_DEG is cut off: the boundary takes its chord (moved
+ * by the ear's height, at most 0.44% of the chord), the middle point is
+ * dropped; repeated while the cut makes new such ears. xy, tri are compacted
+ * in place; returns the number of ears cut, *moved the largest height. */
+#define GLPGP_EAR_MAX_DEG 179.5
+static int cut_flat_ears(int *nv, double *xy, int *nt, int *tri, int *count, int *newid, double *moved)
+{
+    const double cmin = cos(GLPGP_EAR_MAX_DEG * GLPGP_PI / 180.0); /* cos of the angle: below this, cut */
+    int cut = 0, changed = 1;
+    *moved = 0.0;
+    memset(count, 0, sizeof(int) * (size_t)*nv);
+    for (int k = 0; k < 3 * *nt; k++) count[tri[k]]++;
+    while (changed) {
+        changed = 0;
+        for (int t = 0; t < *nt; t++) {
+            int *v = tri + 3 * t;
+            if (v[0] < 0) continue; /* cut before */
+            for (int j = 0; j < 3; j++) {
+                const int b = v[j], a = v[(j + 2) % 3], c = v[(j + 1) % 3];
+                if (count[b] != 1 || count[a] < 2 || count[c] < 2) continue;
+                const double ax = xy[2 * a] - xy[2 * b], ay = xy[2 * a + 1] - xy[2 * b + 1];
+                const double cx = xy[2 * c] - xy[2 * b], cy = xy[2 * c + 1] - xy[2 * b + 1];
+                const double la = hypot(ax, ay), lc = hypot(cx, cy);
+                if (!(la > 0 && lc > 0) || !((ax * cx + ay * cy) / (la * lc) < cmin)) continue;
+                /* height of b over the chord a-c */
+                const double ch = hypot(cx - ax, cy - ay);
+                const double hgt = ch > 0 ? fabs(ax * cy - ay * cx) / ch : 0.0;
+                if (hgt > *moved) *moved = hgt;
+                count[a]--;
+                count[b]--;
+                count[c]--;
+                v[0] = v[1] = v[2] = -1;
+                cut++;
+                changed = 1;
+                break;
+            }
+        }
+    }
+    if (!cut) return 0;
+    int m = 0;
+    for (int i = 0; i < *nv; i++) {
+        newid[i] = count[i] > 0 ? m : -1;
+        if (count[i] > 0) {
+            xy[2 * m] = xy[2 * i];
+            xy[2 * m + 1] = xy[2 * i + 1];
+            m++;
+        }
+    }
+    int q = 0;
+    for (int t = 0; t < *nt; t++) {
+        if (tri[3 * t] < 0) continue;
+        for (int j = 0; j < 3; j++) tri[3 * q + j] = newid[tri[3 * t + j]];
+        q++;
+    }
+    *nv = m;
+    *nt = q;
+    return cut;
+}
+
 glpgp_status glpgp_mesh_polygons_timeout(const glpgp_polygons *p, double hm, int algorithm,
                                          double timeout, glpgp_mesh **out)
 {
@@ -344,7 +409,18 @@ glpgp_status glpgp_mesh_polygons_timeout(const glpgp_polygons *p, double hm, int
         xy[2 * i] = b[0] + xy[2 * i] * L;
         xy[2 * i + 1] = b[1] + xy[2 * i + 1] * L;
     }
-    st = glpgp_mesh_create(nv, xy, nt, tri, out);
+    int *work = NULL;
+    st = glpgp_malloc(2 * (size_t)nv + 1, sizeof(int), &work);
+    if (st == GLPGP_OK) {
+        double moved = 0.0;
+        const int ears = cut_flat_ears(&nv, xy, &nt, tri, work, work + nv, &moved);
+        if (ears > 0)
+            glpgp_log(GLPGP_LOG_INFO, "Gmsh joined three consecutive boundary points into %d flat triangle%s "
+                      "(angle above %g degrees): cut off, the boundary moved by at most %.3g",
+                      ears, ears == 1 ? "" : "s", GLPGP_EAR_MAX_DEG, moved);
+        free(work);
+        st = glpgp_mesh_create(nv, xy, nt, tri, out);
+    }
     if (st != GLPGP_OK) glpgp_error_push_trace(__FILE__, __LINE__);
     free(xy);
     free(tri);

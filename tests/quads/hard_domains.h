@@ -34,8 +34,14 @@
  *           wide and 1.2 H deep between teeth, filleted slot bottoms
  * fillet    L-shape with a fillet (radius 1.2 H) at the re-entrant corner
  *           and spline-rounded outer corners (polylines)
- * crack     square with a crack: a notch 0.01 H wide and 2.5 H long */
-#define HD_NAMES "slot strip smallhole wedge20 cusp graded perforated ibeam motor fillet crack"
+ * crack     square with a crack: a notch 0.01 H wide and 2.5 H long
+ * airfoil   NACA 0012 (chord 3 H) at 4 degrees of attack in a circular far
+ *           field (radius 8 H, sizes 12 e there), its sides as a CAD export
+ *           gives them: 300 points each, cosine-spaced whatever e (8e-5 H
+ *           apart at the sharp trailing edge, where Gmsh joined three of them
+ *           into one flat triangle of 179.99 degrees: cut off by
+ *           glpgp_mesh_polygons) */
+#define HD_NAMES "slot strip smallhole wedge20 cusp graded perforated ibeam motor fillet crack airfoil"
 
 typedef struct hd_poly {
     int n, cap_l;      /* loops */
@@ -198,6 +204,23 @@ static int hd_build(const char *name, double e, hd_poly *p)
         for (int i = 0; i < k; i++) {
             double t = 0.5 * (1 - cos(HD_PI * i / k));
             hd_point(p, 3 * t, -3 * hd_naca(t), e);
+        }
+        hd_end(p);
+    } else if (!strcmp(name, "airfoil")) {
+        hd_begin(p);
+        for (int i = 0; i < 96; i++) {
+            double a = 2 * HD_PI * i / 96;
+            hd_point(p, 1.5 + 8 * cos(a), 8 * sin(a), 12 * e);
+        }
+        hd_end(p);
+        /* clockwise (a hole): upper side from the trailing edge, lower side back */
+        const int k = 300;
+        const double ca = cos(4 * HD_PI / 180), sa = sin(4 * HD_PI / 180);
+        hd_begin(p);
+        for (int i = 0; i < 2 * k; i++) {
+            double t = i < k ? 0.5 * (1 + cos(HD_PI * i / k)) : 0.5 * (1 - cos(HD_PI * (i - k) / k));
+            double x = 3 * t, y = (i < k ? 3 : -3) * hd_naca(t);
+            hd_point(p, x * ca + y * sa, -x * sa + y * ca, e);
         }
         hd_end(p);
     } else if (!strcmp(name, "perforated")) {

@@ -4,7 +4,9 @@
  * a 20-degree wedge, a crescent with a 0.5-degree spike (cusps), an airfoil
  * in a graded far field (edge ratio 40), a perforated plate, an I-beam with
  * a thin web, a lamination with slots between teeth, fillets, a crack 0.01 H
- * wide) meshed by
+ * wide, an airfoil exported with 300 points a side in a circular far field,
+ * whose sharp trailing edge made Gmsh join three boundary points into a flat
+ * triangle) meshed by
  * Gmsh from .poly files (the reader is used too), solved on the reference
  * backend at H = 1 with 12 and 6 mean edges per H (the graded one's far
  * field is coarser than h at 6: the default size field refines it first) and
@@ -128,7 +130,7 @@ int main(void)
 
     /* the failure classes at 12 and 6 mean edges per H */
     static const char *names[] = {"slot", "strip", "smallhole", "wedge20", "cusp", "graded",
-                                  "perforated", "ibeam", "motor", "fillet", "crack"};
+                                  "perforated", "ibeam", "motor", "fillet", "crack", "airfoil"};
     const int edges[2] = {12, 6};
     for (int s = 0; s < 2; s++) {
         int valid = 0, irr = 0, nq = 0, runs = 0;
