@@ -1874,7 +1874,8 @@ glpgp_status glpgp_backend_create_opencl(const glpgp_cl_options *opt, glpgp_back
     }
     b->launch_bound = !IMPL(b)->cpu; /* GPU launch shape: a few us of host time per launch */
     /* the CPU shape's fused multigrid levels run on one core (a clone beside it
-     * pays, 2 cores: 1.2-1.3x on a 107k CAD part); the GPU shape: not measured */
+     * pays, 2 cores: 1.25x on a 107k CAD part, nothing at 1M); the GPU shape:
+     * not measured */
     b->overlap = IMPL(b)->cpu ? GLPGP_OVERLAP_AMG : GLPGP_OVERLAP_NEVER;
     *out = b;
     return GLPGP_OK;

@@ -298,8 +298,8 @@ static void *osc_job_run(void *arg)
 
 /* Whether the oscillators run concurrently (o->oscillators): auto when the
  * backend can be cloned and expects a gain (b->overlap: always on the
- * single-threaded reference backend, with the multigrid on the OpenCL CPU
- * shape, not on a GPU until measured), the host has two processors or more and, for a
+ * single-threaded reference backend, with the multigrid up to 500k vertices
+ * on the OpenCL CPU shape, not on a GPU until measured), the host has two processors or more and, for a
  * host-memory backend, room for a second copy of one oscillator's data in
  * half the available memory (the estimate below, with the multigrid; 1290
  * MiB at 1M vertices, measured 1460); a GPU backend checks its device at the
@@ -321,7 +321,10 @@ static int want_concurrent(const glpgp_mesh *m, const glpgp_backend *b, const gl
     else if (!asked && b->overlap == GLPGP_OVERLAP_NEVER)
         snprintf(why, sizeof why, "not measured to pay on this backend (--oscillators concurrent tries it)");
     else if (!asked && b->overlap == GLPGP_OVERLAP_AMG && o->precond != GLPGP_PRECOND_AMG)
-        snprintf(why, sizeof why, "Jacobi-CG keeps every core busy (two at once measured 12%% slower)");
+        snprintf(why, sizeof why, "Jacobi-CG keeps every core busy (two at once measured 0.67-1.0x)");
+    else if (!asked && b->overlap == GLPGP_OVERLAP_AMG && m->nv > GLPGP_OVERLAP_AMG_MAX_VERTICES)
+        snprintf(why, sizeof why, "above %d vertices the multigrid's per-op levels keep every core busy "
+                 "(1M: 0.99x)", GLPGP_OVERLAP_AMG_MAX_VERTICES);
     else if (!asked && glpgp_cpu_count() < 2)
         snprintf(why, sizeof why, "one processor");
     else if (!asked && !b->launch_bound && avail > 0 && 2.0 * need > (double)avail)

@@ -3,7 +3,8 @@
 # the documented keys, and exercises --compare on it; with an OpenCL device,
 # runs bench/gpu_check.sh --smoke (the GPU check's every step on small sizes,
 # so that the script a GPU loan depends on keeps working) and checks its
-# files. No timing asserts.
+# files; runs bench/oscillators.sh --quick (same result both ways). No timing
+# asserts.
 # Usage: bash tests/cli_bench.sh <path-to-glpgp-binary> <data-dir>
 # Exit 77 (skip) when the bench binary was not built.
 set -euo pipefail
@@ -88,7 +89,7 @@ if [ -f "$src/bench/gpu_check.sh" ] && "$glpgp" devices 2>/dev/null | grep -q "f
         fail "bench/gpu_check.sh --smoke failed"
     }
     for f in log.txt devices.txt bench_ladder.md bench_ladder.json precond_1m_k0.json precond_1m_kauto.json \
-        square1m_amg.json square1m_jacobi.json square4m_amg.json; do
+        square1m_amg.json square1m_amg_concurrent.json square1m_jacobi.json square4m_amg.json; do
         [ -s "gc/$f" ] || fail "gpu_check.sh --smoke left no gc/$f"
     done
     python3 - gc << 'EOF' || fail "gpu_check.sh --smoke: JSON check failed"
@@ -104,9 +105,23 @@ assert all(c["amg"]["per_step"][0]["launches_solve"] > 0 for c in c0 + ca), "no 
 for f in ("square1m_amg.json", "square1m_jacobi.json", "square4m_amg.json"):
     s = json.load(open(os.path.join(d, f)))
     assert s["converged"]["all"] and s["device_calls"]["kernel_launches"] > 0, f
+assert json.load(open(os.path.join(d, "square1m_amg_concurrent.json")))["oscillators"] == "concurrent"
 print("cli_bench: gpu_check.sh --smoke ok")
 EOF
 else
     echo "cli_bench: no OpenCL fp64 device: gpu_check.sh --smoke skipped"
+fi
+
+# bench/oscillators.sh --quick: u and v sequential and concurrent give the same
+# file (its exit status), on the reference backend and OpenCL when present
+if [ -f "$src/bench/oscillators.sh" ] && [ -x /usr/bin/time ]; then
+    build=$(cd "$(dirname "$glpgp")" && pwd)
+    bash "$src/bench/oscillators.sh" "$build" --quick > osc.md 2>&1 || {
+        cat osc.md >&2
+        fail "bench/oscillators.sh --quick failed"
+    }
+    grep -q "| disk4k | reference |.*| yes |" osc.md || fail "bench/oscillators.sh --quick: no reference row: $(cat osc.md)"
+else
+    echo "cli_bench: /usr/bin/time missing: oscillators.sh --quick skipped"
 fi
 echo "cli_bench: ok"

@@ -285,10 +285,14 @@ struct glpgp_backend {
 enum {
     GLPGP_OVERLAP_NEVER = 0,  /* not measured to pay (the GPU launch shape, PETSc) */
     GLPGP_OVERLAP_ALWAYS = 1, /* a single-threaded backend (reference): up to 2x */
-    GLPGP_OVERLAP_AMG = 2     /* with the multigrid only: the OpenCL CPU shape, whose fused
-                                 small levels run on one core; its Jacobi-CG keeps every core
-                                 busy (two at once measured 12% slower) */
+    GLPGP_OVERLAP_AMG = 2     /* with the multigrid and up to GLPGP_OVERLAP_AMG_MAX_VERTICES
+                                 only: the OpenCL CPU shape, whose fused small levels run on
+                                 one core (2 cores, bench/results/oscillators.md: 1.25x at
+                                 107k vertices, 1.18x at 64k, 1.06x at 250k, 0.99x at 1M, where
+                                 the per-op levels dominate); its Jacobi-CG keeps every core
+                                 busy (two at once: 0.67-1.0x) */
 };
+#define GLPGP_OVERLAP_AMG_MAX_VERTICES 500000
 
 /* Destroy any backend (NULL-safe, sets *b = NULL). */
 void glpgp_backend_destroy(glpgp_backend **b);
