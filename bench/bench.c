@@ -49,7 +49,7 @@ typedef struct bopts {
     long max_cholmod;      /* CHOLMOD up to this many vertices (0: no limit) */
     int solve_repeat;      /* whole GL solve repeats */
     int smoke;
-    int no_opencl, no_reference, no_cholmod;
+    int no_opencl, no_reference, no_cholmod, no_petsc;
     int device;
     int keep_cache;        /* do not point POCL_CACHE_DIR at a fresh directory */
     const char *json, *compare, *against, *plot;
@@ -79,6 +79,9 @@ static void usage(FILE *f)
             "                           default: u and v at the same time, v on a clone of the backend)\n"
             "  --max-cholmod-vertices N CHOLMOD only up to N vertices (default 2000000; 0 = no limit)\n"
             "  --no-opencl, --no-reference, --no-cholmod   leave a column out\n"
+            "  --no-petsc               with --precond: leave the PETSc GAMG anchor out (it runs when\n"
+            "                           glpgp has its PETSc module; CHOLMOD, the other anchor, when built\n"
+            "                           with it, up to --max-cholmod-vertices)\n"
             "  --device N               OpenCL device index (as `glpgp devices`; default: GLPGP_DEVICE, first fp64 GPU, first fp64)\n"
             "  --keep-pocl-cache        keep POCL_CACHE_DIR (default: a fresh temporary directory, so the\n"
             "                           first program build is cold and the later ones are cached)\n"
@@ -217,6 +220,8 @@ static glpgp_status parse_args(int argc, char **argv, bopts *o, int *help)
             o->no_reference = 1;
         } else if (!strcmp(a, "--no-cholmod")) {
             o->no_cholmod = 1;
+        } else if (!strcmp(a, "--no-petsc")) {
+            o->no_petsc = 1;
         } else if (!strcmp(a, "--device")) {
             NEEDV();
             if (!parse_long(v, &lv) || lv > 1000) return GLPGP_FAIL(GLPGP_ERR_ARG, "--device: expected an index");
@@ -1557,6 +1562,9 @@ int main(int argc, char **argv)
         po.with_4m = o.with_4m;
         po.steps = o.steps;
         po.kcycle_min = o.kcycle_min;
+        po.no_petsc = o.no_petsc;
+        po.no_cholmod = o.no_cholmod;
+        po.max_cholmod = o.max_cholmod;
         po.shape = o.shape;
         po.no_opencl = o.no_opencl;
         po.no_reference = o.no_reference;

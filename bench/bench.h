@@ -31,6 +31,9 @@ typedef struct bench_precond_opts {
     int device;
     const char *json;     /* NULL: no JSON */
     int kcycle_min;       /* glpgp_options.amg_kcycle_min (-1: by the backend) */
+    int no_petsc;         /* leave the PETSc GAMG anchor out */
+    int no_cholmod;       /* leave the CHOLMOD anchor out */
+    long max_cholmod;     /* CHOLMOD anchor up to this many vertices (0: no limit) */
 } bench_precond_opts;
 
 /* Run the ladder, print Markdown, write JSON; returns the exit code. */

@@ -11,6 +11,16 @@
  * and the ratio of Jacobi to multigrid time. Markdown on stdout, JSON with
  * --json (iterations vs vertices in "precond_ladder").
  *
+ * Anchors (issue 12), on the reference backend's case of each size and h (the
+ * OpenCL case's with --no-reference), each left out with a note when its
+ * library is absent (--no-petsc, --no-cholmod leave them out): PETSc GAMG
+ * (the PETSc backend, one process: KSPCG + PCGAMG with the near null space
+ * [z, iz] of the current iterate, its own Newton steps from the same start,
+ * the hierarchy built in the first step's solve and reused after, as the
+ * solver does within an eps level: "solve s" includes PCSetUp), and CHOLMOD
+ * on every Newton system of the Jacobi run (analysis, factorisation, solve;
+ * its difference to the CG solution).
+ *
  * The Newton steps: the bench's state (bench.c): field W = (1, 0) with its
  * Dirichlet set, z = exp(i theta), theta = 2 pi x / h + a smooth
  * perturbation, eps = 0.5 h; each step assembles NEWTON (o->hess, mixed),
@@ -34,6 +44,8 @@
 #include <string.h>
 
 #define PC_MAX_STEPS 20
+#define PC_N 3 /* 0: Jacobi, 1: multigrid, 2: PETSc GAMG (an anchor) */
+static const char *const pc_name[PC_N] = {"jacobi", "amg", "gamg"};
 
 typedef struct pc_step {
     int cg;
@@ -49,10 +61,15 @@ typedef struct pc_case {
     double h;
     int hdefault;        /* 1: h = the default size, 0: 10 mean edges */
     int opencl;
-    int ran[2];          /* [0] Jacobi, [1] multigrid */
-    char note[2][200];
-    pc_step st[2][PC_MAX_STEPS];
-    int nsteps[2];
+    int ran[PC_N];       /* [0] Jacobi, [1] multigrid, [2] PETSc GAMG */
+    char note[PC_N][200];
+    pc_step st[PC_N][PC_MAX_STEPS];
+    int nsteps[PC_N];
+    int anchors;         /* this case runs the anchors (GAMG, CHOLMOD) */
+    int want_cholmod;    /* CHOLMOD on the Jacobi run's systems */
+    bench_cholmod ch[PC_MAX_STEPS];
+    int nch;             /* CHOLMOD runs recorded */
+    char ch_note[200];   /* why CHOLMOD did not run */
     glpgp_amg_info info;
     double bytes_amg_it; /* model, per flexible-CG iteration */
     int kmin;            /* K-cycle on levels of >= kmin nodes (resolved amg_kcycle_min) */
@@ -80,8 +97,9 @@ static double amg_bytes_per_it(const glpgp_amg_info *in, const glpgp_options *o)
     return bytes;
 }
 
-static glpgp_status make_backend(int opencl, int device, glpgp_backend **b)
+static glpgp_status make_backend(int opencl, int pc, int device, glpgp_backend **b)
 {
+    if (pc == 2) return glpgp_backend_create_petsc(GLPGP_PRECOND_AMG, b); /* the GAMG anchor */
     if (!opencl) return glpgp_backend_create_reference(b);
     glpgp_cl_options co = {device, 0};
     return glpgp_backend_create_opencl(&co, b);
@@ -103,7 +121,9 @@ static glpgp_status energy_at(glpgp_backend *b, const glpgp_vec *x, double inv4e
     return GLPGP_OK;
 }
 
-/* The Newton steps of one case with one preconditioner (pc 0: Jacobi, 1: multigrid). */
+/* The Newton steps of one case with one preconditioner (pc 0: Jacobi, 1:
+ * multigrid, 2: PETSc GAMG on the PETSc backend); with cs->want_cholmod and
+ * pc 0, CHOLMOD on each step's system too. */
 static glpgp_status run_case(const glpgp_mesh *m, const glpgp_system *sys, const double *w,
                              const unsigned char *dir, const double *x0, pc_case *cs, int pc, int steps,
                              int device, int kcycle_min)
@@ -112,23 +132,31 @@ static glpgp_status run_case(const glpgp_mesh *m, const glpgp_system *sys, const
     glpgp_backend *b = NULL;
     glpgp_amg *a = NULL;
     glpgp_vec *x = NULL, *g = NULL, *rhs = NULL, *d = NULL, *xt = NULL, *wk = NULL;
+    double *hv = NULL, *hr = NULL, *hd = NULL; /* CHOLMOD: NEWTON values, rhs, CG solution */
     const size_t n2 = (size_t)2 * m->nv;
     glpgp_options o;
     glpgp_options_default(&o);
     o.precond = pc ? GLPGP_PRECOND_AMG : GLPGP_PRECOND_JACOBI;
     o.amg_kcycle_min = kcycle_min;
     const double eps = 0.5 * cs->h, inv4e2 = 1.0 / (4.0 * eps * eps);
-    GLPGP_CHECK(make_backend(cs->opencl, device, &b));
+    const int chol = pc == 0 && cs->want_cholmod;
+    GLPGP_CHECK(make_backend(cs->opencl, pc, device, &b));
     o.amg_kcycle_min = glpgp_amg_kcycle_min(b, &o); /* resolved: the byte model reads it */
-    if (pc) cs->kmin = o.amg_kcycle_min;
+    if (pc == 1) cs->kmin = o.amg_kcycle_min;
     const glpgp_backend_ops *op = b->ops;
-    GLPGP_CHECK_GOTO(st, op->setup(b, sys), done);
     glpgp_vec **vs[] = {&x, &g, &rhs, &d, &xt, &wk};
+    GLPGP_CHECK_GOTO(st, op->setup(b, sys), done);
     for (size_t k = 0; k < sizeof vs / sizeof vs[0]; k++) GLPGP_CHECK_GOTO(st, op->vec_create(b, n2, vs[k]), done);
+    if (chol) {
+        cs->nch = 0;
+        GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)4 * sys->nnzb, sizeof(double), &hv), done);
+        GLPGP_CHECK_GOTO(st, glpgp_malloc(n2, sizeof(double), &hr), done);
+        GLPGP_CHECK_GOTO(st, glpgp_malloc(n2, sizeof(double), &hd), done);
+    }
     GLPGP_CHECK_GOTO(st, op->set_field(b, w, dir), done);
     GLPGP_CHECK_GOTO(st, op->assemble_quadratic(b, GLPGP_ELEM_P1, cs->h), done);
     GLPGP_CHECK_GOTO(st, op->vec_write(b, x, x0), done);
-    if (pc) {
+    if (pc == 1) {
         GLPGP_CHECK_GOTO(st, glpgp_amg_create(b, &o, dir, w, cs->h, &a), done);
         glpgp_amg_get_info(a, &cs->info);
         cs->bytes_amg_it = amg_bytes_per_it(&cs->info, &o);
@@ -165,7 +193,15 @@ static glpgp_status run_case(const glpgp_mesh *m, const glpgp_system *sys, const
         s->cg = ci.iterations;
         s->relres = ci.relres;
         s->reason = (int)ci.reason;
-        s->bytes = ci.iterations * (a ? cs->bytes_amg_it : b_cg(m->nv, (double)sys->nnzb));
+        s->bytes = pc == 2 ? 0.0 : ci.iterations * (a ? cs->bytes_amg_it : b_cg(m->nv, (double)sys->nnzb));
+        if (chol && k < PC_MAX_STEPS) {
+            /* the same system by CHOLMOD (NEWTON read back; its time is not the step's) */
+            GLPGP_CHECK_GOTO(st, glpgp_probe_matrix(b, GLPGP_MAT_NEWTON, hv), done);
+            GLPGP_CHECK_GOTO(st, op->vec_read(b, rhs, hr), done);
+            GLPGP_CHECK_GOTO(st, op->vec_read(b, d, hd), done);
+            GLPGP_CHECK_GOTO(st, bench_cholmod_run(sys, hv, hr, hd, &cs->ch[k]), done);
+            cs->nch = k + 1;
+        }
         /* x <- x + alpha d, alpha halved until E + P decreases */
         double alpha = 1.0, Ft = F;
         int ok = 0;
@@ -190,6 +226,9 @@ done:
     if (b)
         for (size_t k = 0; k < sizeof vs / sizeof vs[0]; k++) op->vec_destroy(b, vs[k]);
     glpgp_backend_destroy(&b);
+    free(hv);
+    free(hr);
+    free(hd);
     return st;
 }
 
@@ -203,7 +242,7 @@ static double sum_field(const pc_case *c, int pc, int which)
     return s;
 }
 
-static void print_case(const pc_case *c, const int want[2])
+static void print_case(const pc_case *c, const int want[PC_N])
 {
     printf("\n### %d vertices, h = %.4g (%s), %s\n\n", c->nv, c->h, c->hdefault ? "default size" : "10 mean edges",
            c->opencl ? "OpenCL" : "reference");
@@ -216,16 +255,22 @@ static void print_case(const pc_case *c, const int want[2])
            "| kernel launches setup / per it |\n"
            "|---|---|---|---|---|---|---|---|---|---|\n");
     for (int k = 0; k < PC_MAX_STEPS; k++)
-        for (int pc = 0; pc < 2; pc++) {
+        for (int pc = 0; pc < PC_N; pc++) {
             if (!want[pc] || !c->ran[pc] || k >= c->nsteps[pc]) continue;
             const pc_step *s = &c->st[pc][k];
+            if (pc == 2) { /* PETSc's own: no byte model, no counted round trips or launches */
+                printf("| %d | PETSc GAMG (anchor) | %d | - | %.3f | %.3f | - | %g | - | - |\n", k + 1, s->cg,
+                       s->solve_s, s->cg ? 1e3 * s->solve_s / s->cg : 0.0, s->alpha);
+                continue;
+            }
             printf("| %d | %s | %d | %.3f | %.3f | %.3f | %.2f | %g | %ld / %ld | %ld / %.1f |\n", k + 1,
-                   pc ? "amg" : "jacobi", s->cg, s->setup_s, s->solve_s, s->cg ? 1e3 * s->solve_s / s->cg : 0.0,
+                   pc_name[pc], s->cg, s->setup_s, s->solve_s, s->cg ? 1e3 * s->solve_s / s->cg : 0.0,
                    s->bytes * 1e-9, s->alpha, s->sync_setup, s->sync_solve, s->launch_setup,
                    s->cg ? (double)s->launch_solve / s->cg : 0.0);
         }
-    for (int pc = 0; pc < 2; pc++)
-        if (want[pc] && !c->ran[pc]) printf("| - | %s | %s | | | | | | |\n", pc ? "amg" : "jacobi", c->note[pc]);
+    for (int pc = 0; pc < PC_N; pc++)
+        if (want[pc] && !c->ran[pc] && (pc < 2 || c->anchors))
+            printf("| - | %s | %s | | | | | | | |\n", pc == 2 ? "PETSc GAMG (anchor)" : pc_name[pc], c->note[pc]);
     if (c->ran[0] && c->ran[1] && c->nsteps[0] && c->nsteps[1]) {
         const double tj = (sum_field(c, 0, 1) + sum_field(c, 0, 2)) / c->nsteps[0];
         const double ta = (sum_field(c, 1, 1) + sum_field(c, 1, 2)) / c->nsteps[1];
@@ -233,6 +278,23 @@ static void print_case(const pc_case *c, const int want[2])
                "Jacobi / multigrid time %.2f\n",
                sum_field(c, 0, 0) / c->nsteps[0], tj, sum_field(c, 1, 0) / c->nsteps[1], ta,
                sum_field(c, 1, 1) / c->nsteps[1], ta > 0 ? tj / ta : 0.0);
+    }
+    if (c->ran[2] && c->nsteps[2])
+        printf("PETSc GAMG (anchor, [z, iz], its own steps from the same start; the first solve includes PCSetUp): "
+               "%.1f CG it, %.3f s per Newton step\n",
+               sum_field(c, 2, 0) / c->nsteps[2], (sum_field(c, 2, 1) + sum_field(c, 2, 2)) / c->nsteps[2]);
+    if (c->anchors && c->want_cholmod && c->nch > 0) {
+        printf("CHOLMOD (anchor, on the Jacobi run's systems):");
+        for (int k = 0; k < c->nch; k++) {
+            const bench_cholmod *h = &c->ch[k];
+            if (h->ok)
+                printf(" step %d: analyze %.3f + factorize %.3f + solve %.3f s, |x - x_cg| / |x| %.1e%s", k + 1,
+                       h->analyze_s, h->factorize_s, h->solve_s, h->rel_diff_vs_cg, k + 1 < c->nch ? ";" : "\n");
+            else
+                printf(" step %d: %s%s", k + 1, h->note, k + 1 < c->nch ? ";" : "\n");
+        }
+    } else if (c->anchors && c->ch_note[0]) {
+        printf("CHOLMOD (anchor): %s\n", c->ch_note);
     }
 }
 
@@ -244,8 +306,9 @@ static void json_case(FILE *f, const pc_case *c, int first)
         fprintf(f, ", \"amg_levels\": %d, \"amg_operator_complexity\": %.4f, \"amg_structure_s\": %.4f, "
                    "\"amg_bytes_per_iteration\": %.6g, \"amg_kcycle_min\": %d",
                 c->info.nlevels, c->info.operator_complexity, c->info.seconds_structure, c->bytes_amg_it, c->kmin);
-    for (int pc = 0; pc < 2; pc++) {
-        const char *name = pc ? "amg" : "jacobi";
+    for (int pc = 0; pc < PC_N; pc++) {
+        const char *name = pc_name[pc];
+        if (pc == 2 && !c->anchors) continue;
         if (!c->ran[pc]) {
             fprintf(f, ", \"%s\": null", name);
             continue;
@@ -266,12 +329,44 @@ static void json_case(FILE *f, const pc_case *c, int first)
         }
         fprintf(f, "]}");
     }
+    if (c->anchors) {
+        fprintf(f, ", \"cholmod\": ");
+        if (!c->want_cholmod || c->nch == 0) {
+            fprintf(f, "null");
+        } else {
+            fprintf(f, "[");
+            for (int k = 0; k < c->nch; k++) {
+                const bench_cholmod *h = &c->ch[k];
+                fprintf(f, "%s{\"ok\": %s, \"analyze_s\": %.6f, \"factorize_s\": %.6f, \"solve_s\": %.6f, "
+                           "\"factor_nnz\": %.6g, \"rel_diff_vs_cg\": %.3g, \"peak_bytes\": %.6g}",
+                        k ? ", " : "", h->ok ? "true" : "false", h->analyze_s, h->factorize_s, h->solve_s,
+                        h->factor_nnz, h->rel_diff_vs_cg, h->peak_bytes);
+            }
+            fprintf(f, "]");
+        }
+    }
     fprintf(f, "}");
 }
 
 int bench_precond_run(const bench_precond_opts *po)
 {
-    int want[2] = {po->which != 1, po->which != 0}; /* which: 0 jacobi, 1 amg, 2 both */
+    /* which: 0 jacobi, 1 amg, 2 both; the GAMG anchor when PETSc is there */
+    int want[PC_N] = {po->which != 1, po->which != 0, !po->no_petsc};
+    char gamg_note[200] = "";
+    if (po->no_petsc)
+        snprintf(gamg_note, sizeof gamg_note, "left out (--no-petsc)");
+    else if (!glpgp_have_petsc())
+        snprintf(gamg_note, sizeof gamg_note, "skipped: this glpgp has no PETSc module (Debian petsc-dev)");
+    else if (glpgp_petsc_init() != GLPGP_OK) {
+        snprintf(gamg_note, sizeof gamg_note, "skipped: %s", glpgp_error_message());
+        glpgp_error_clear();
+    }
+    if (gamg_note[0]) {
+        want[2] = 0;
+        fprintf(stderr, "glpgp-bench: PETSc GAMG anchor %s\n", gamg_note);
+    }
+    if (!po->no_cholmod && !bench_have_cholmod())
+        fprintf(stderr, "glpgp-bench: CHOLMOD anchor skipped: not built with it (Debian libsuitesparse-dev)\n");
     long sizes[16];
     int ns = 0;
     if (po->nsizes > 0) {
@@ -306,7 +401,7 @@ int bench_precond_run(const bench_precond_opts *po)
             for (int be = 0; be < 2; be++) {
                 if (be == 0 ? po->no_opencl : po->no_reference) continue;
                 wc->opencl = be == 0;
-                for (int pc = 0; pc < 2; pc++)
+                for (int pc = 0; pc < 2; pc++) /* not the anchors */
                     if (want[pc]) (void)run_case(m, sys, w, dir, x0, wc, pc, 1, po->device, po->kcycle_min);
             }
         }
@@ -361,10 +456,23 @@ int bench_precond_run(const bench_precond_opts *po)
                 cs->h = h;
                 cs->hdefault = hc;
                 cs->opencl = be == 0;
-                for (int pc = 0; pc < 2; pc++) {
-                    if (!want[pc]) continue;
+                /* the anchors once per size and h: with the reference case (the
+                 * OpenCL one with --no-reference) */
+                cs->anchors = be == 1 || po->no_reference;
+                cs->want_cholmod = cs->anchors && !po->no_cholmod && bench_have_cholmod() &&
+                                   (po->max_cholmod <= 0 || m->nv <= po->max_cholmod) && want[0];
+                if (cs->anchors && !cs->want_cholmod)
+                    snprintf(cs->ch_note, sizeof cs->ch_note, "%s",
+                             po->no_cholmod            ? "left out (--no-cholmod)"
+                             : !bench_have_cholmod()   ? "skipped: not built with it (Debian libsuitesparse-dev)"
+                             : !want[0]                ? "runs on the Jacobi run's systems (--precond both or jacobi)"
+                                                       : "skipped: above --max-cholmod-vertices");
+                if (cs->anchors && !want[2]) snprintf(cs->note[2], sizeof cs->note[2], "%s", gamg_note);
+                for (int pc = 0; pc < PC_N; pc++) {
+                    if (!want[pc] || (pc == 2 && !cs->anchors)) continue;
                     fprintf(stderr, "glpgp-bench: %d vertices, h = %.4g, %s, %s\n", m->nv, h,
-                            cs->opencl ? "OpenCL" : "reference", pc ? "multigrid" : "Jacobi");
+                            pc == 2 ? "PETSc" : cs->opencl ? "OpenCL" : "reference",
+                            pc == 2 ? "GAMG (anchor)" : pc ? "multigrid" : "Jacobi");
                     if (run_case(m, sys, w, dir, x0, cs, pc, po->steps, po->device, po->kcycle_min) != GLPGP_OK) {
                         snprintf(cs->note[pc], sizeof cs->note[pc], "failed: %s", glpgp_error_message());
                         for (char *p = cs->note[pc]; *p; p++)
@@ -374,7 +482,10 @@ int bench_precond_run(const bench_precond_opts *po)
                         cs->ran[pc] = 0;
                     }
                 }
-                print_case(cs, want);
+                {
+                    int shown[PC_N] = {want[0], want[1], 1};
+                    print_case(cs, shown);
+                }
                 fflush(stdout);
             }
         }
@@ -387,17 +498,35 @@ int bench_precond_run(const bench_precond_opts *po)
     }
     /* iterations vs vertices */
     printf("\n## CG iterations per Newton step vs vertices\n\n| vertices | h case | backend | Jacobi | multigrid | "
-           "Jacobi s/step | multigrid s/step | ratio |\n|---|---|---|---|---|---|---|---|\n");
+           "Jacobi s/step | multigrid s/step | ratio | PETSc GAMG it (s/step) | CHOLMOD s/step |\n"
+           "|---|---|---|---|---|---|---|---|---|---|\n");
     for (int i = 0; i < nc; i++) {
         const pc_case *c = &cases[i];
-        double it[2] = {0, 0}, t[2] = {0, 0};
-        for (int pc = 0; pc < 2; pc++)
+        double it[PC_N] = {0, 0, 0}, t[PC_N] = {0, 0, 0};
+        for (int pc = 0; pc < PC_N; pc++)
             if (c->ran[pc] && c->nsteps[pc]) {
                 it[pc] = sum_field(c, pc, 0) / c->nsteps[pc];
                 t[pc] = (sum_field(c, pc, 1) + sum_field(c, pc, 2)) / c->nsteps[pc];
             }
-        printf("| %d | %s | %s | %.1f | %.1f | %.3f | %.3f | %.2f |\n", c->nv, c->hdefault ? "default" : "10 edges",
-               c->opencl ? "OpenCL" : "reference", it[0], it[1], t[0], t[1], t[1] > 0 && t[0] > 0 ? t[0] / t[1] : 0.0);
+        char ga[64] = "", ch[64] = "";
+        if (c->anchors && c->ran[2]) snprintf(ga, sizeof ga, "%.1f (%.3f)", it[2], t[2]);
+        else if (c->anchors) snprintf(ga, sizeof ga, "-");
+        if (c->anchors && c->nch > 0) {
+            double sum = 0.0;
+            int ok = 0;
+            for (int k = 0; k < c->nch; k++)
+                if (c->ch[k].ok) {
+                    sum += c->ch[k].analyze_s + c->ch[k].factorize_s + c->ch[k].solve_s;
+                    ok++;
+                }
+            if (ok) snprintf(ch, sizeof ch, "%.3f", sum / ok);
+            else snprintf(ch, sizeof ch, "failed");
+        } else if (c->anchors) {
+            snprintf(ch, sizeof ch, "-");
+        }
+        printf("| %d | %s | %s | %.1f | %.1f | %.3f | %.3f | %.2f | %s | %s |\n", c->nv,
+               c->hdefault ? "default" : "10 edges", c->opencl ? "OpenCL" : "reference", it[0], it[1], t[0], t[1],
+               t[1] > 0 && t[0] > 0 ? t[0] / t[1] : 0.0, ga, ch);
     }
     if (po->json) {
         FILE *f = fopen(po->json, "w");
@@ -415,5 +544,6 @@ int bench_precond_run(const bench_precond_opts *po)
         }
     }
     free(cases);
+    glpgp_petsc_finalize(); /* when the GAMG anchor initialised it */
     return rc;
 }

@@ -1,6 +1,8 @@
 # tests/cli_bench.sh: ctest smoke test of the benchmark harness: runs
 # glpgp-bench --smoke --json (seconds), checks that the JSON parses and has
-# the documented keys, and exercises --compare on it; with an OpenCL device,
+# the documented keys, and exercises --compare on it; runs the
+# preconditioner ladder on a tiny disk and checks its anchors (PETSc GAMG and
+# CHOLMOD when present, null otherwise); with an OpenCL device,
 # runs bench/gpu_check.sh --smoke (the GPU check's every step on small sizes,
 # so that the script a GPU loan depends on keeps working) and checks its
 # files; runs bench/oscillators.sh --quick (same result both ways). No timing
@@ -68,6 +70,35 @@ for s in d["sizes"]:
         assert s["cholmod"]["ok"], "CHOLMOD failed: %s" % s["cholmod"]["note"]
 print("cli_bench: JSON ok (%d sizes, OpenCL %s, CHOLMOD %s)" % (
     len(d["sizes"]), "yes" if have_cl else "skipped", "yes" if d["cholmod"]["built"] else "skipped"))
+EOF
+
+# the preconditioner ladder with its anchors (PETSc GAMG, CHOLMOD), tiny
+"$bench" --precond both --sizes 3000 --newton-steps 1 --no-opencl --json pc.json > pc.md 2> pc_err.txt || {
+    cat pc.md pc_err.txt >&2
+    fail "glpgp-bench --precond both exited non-zero"
+}
+have_petsc=0
+"$glpgp" --version | grep -q "PETSc: yes" && have_petsc=1
+python3 - pc.json out.json "$have_petsc" << 'EOF' || fail "--precond JSON check failed"
+import json, sys
+d = json.load(open(sys.argv[1]))
+chol = json.load(open(sys.argv[2]))["cholmod"]["built"]
+petsc = sys.argv[3] == "1"
+cases = d["precond_ladder"]
+assert len(cases) == 2, "one size, two h: %d cases" % len(cases)
+for c in cases:
+    assert c["jacobi"]["mean_cg"] > c["amg"]["mean_cg"] > 0, (c["jacobi"]["mean_cg"], c["amg"]["mean_cg"])
+    assert "gamg" in c and "cholmod" in c, "the reference case carries the anchors"
+    if petsc:
+        assert c["gamg"] and 0 < c["gamg"]["mean_cg"] < c["jacobi"]["mean_cg"], c["gamg"]
+    else:
+        assert c["gamg"] is None
+    if chol:
+        assert c["cholmod"] and all(x["ok"] and x["rel_diff_vs_cg"] < 1e-5 for x in c["cholmod"]), c["cholmod"]
+    else:
+        assert c["cholmod"] is None
+print("cli_bench: --precond anchors ok (PETSc GAMG %s, CHOLMOD %s)" % (
+    "yes" if petsc else "skipped", "yes" if chol else "skipped"))
 EOF
 
 # --compare of a file with itself: every ratio is 1
