@@ -24,6 +24,8 @@ typedef struct osc_work {
     glpgp_vec *x, *g, *d, *xt, *work;
     double *host, *scratch;
     glpgp_amg *amg; /* multigrid preconditioner of the current oscillator (NULL: Jacobi) */
+    int *stop;      /* concurrent oscillators: 0, or 1 + the oscillator that failed first
+                       (the other's Newton levels then end at their next step) */
 } osc_work;
 
 /* w <- the driver's vectors on backend b (set up): x, g, d, xt, work of n
@@ -165,7 +167,7 @@ static glpgp_status solve_oscillator(const glpgp_mesh *m, osc_work *w, int k, co
         GLPGP_CHECK(op->vec_write(b, w->x, w->host));
         r->nlevels = nlevels;
         glpgp_newton_state ns = {.x = w->x, .g = w->g, .d = w->d, .xt = w->xt, .work = w->work,
-                                 .amg = w->amg};
+                                 .amg = w->amg, .stop = w->stop};
         for (int l = 0; l < nlevels; l++) {
             glpgp_level_stats *ls = &r->level[l];
             glpgp_log(GLPGP_LOG_INFO, "%s: level %d/%d, eps = %.4g", glpgp_osc_name(k), l + 1,
@@ -262,6 +264,7 @@ typedef struct osc_job {
     int nlev;
     int ready;          /* the clone was set up and solved k (outcome st); 0: not
                            started (st: why), the caller solves k on b */
+    int *stop;          /* shared with the caller's osc_work (osc_work.stop) */
     glpgp_status st;
     glpgp_error_copy err;
     long n_spmv, n_cg_iter, n_sync, n_launch;
@@ -280,7 +283,11 @@ static void *osc_job_run(void *arg)
     if (st == GLPGP_OK) st = osc_work_create(&w, c, j->o, 2 * nv, nv);
     if (st == GLPGP_OK) {
         j->ready = 1;
+        w.stop = j->stop;
         st = solve_oscillator(j->m, &w, j->k, j->wv, j->size, j->r, j->h, j->eps, j->nlev, NULL);
+        int none = 0; /* the first failure stops the other oscillator */
+        if (st != GLPGP_OK)
+            __atomic_compare_exchange_n(j->stop, &none, 1 + j->k, 0, __ATOMIC_RELAXED, __ATOMIC_RELAXED);
     }
     j->st = st;
     if (st != GLPGP_OK) glpgp_error_save(&j->err);
@@ -551,23 +558,27 @@ static glpgp_status solve_mesh(const glpgp_mesh *m, glpgp_backend *b, const glpg
                        .size = uniform ? NULL : size + (size_t)nv, .r = &r->osc[1], .h = h, .eps = eps,
                        .nlev = nlev};
         pthread_t th;
+        int stop = 0; /* 1 + the oscillator that failed first */
+        job.stop = &stop;
         int started = want_concurrent(m, b, o, sys) && pthread_create(&th, NULL, osc_job_run, &job) == 0;
+        w.stop = started ? &stop : NULL;
         st = solve_oscillator(m, &w, 0, wv, uniform ? NULL : size, &r->osc[0], h, eps, nlev, NULL);
+        w.stop = NULL;
         if (started) {
-            glpgp_error_copy mine;
-            if (st != GLPGP_OK) glpgp_error_save(&mine); /* u's error wins; v's thread is waited for */
+            if (st != GLPGP_OK) { /* stop v at its next Newton step; the first failure is reported */
+                int none = 0;
+                __atomic_compare_exchange_n(&stop, &none, 1, 0, __ATOMIC_RELAXED, __ATOMIC_RELAXED);
+            }
             pthread_join(th, NULL);
             b->n_spmv += job.n_spmv;
             b->n_cg_iter += job.n_cg_iter;
             b->n_sync += job.n_sync;
             b->n_launch += job.n_launch;
-            if (st != GLPGP_OK) {
-                glpgp_error_restore(&mine);
-                glpgp_error_push_trace(__FILE__, __LINE__);
-                goto fail;
-            }
-            if (job.ready && job.st != GLPGP_OK) {
-                st = glpgp_error_restore(&job.err);
+            if (st != GLPGP_OK || (job.ready && job.st != GLPGP_OK)) {
+                /* this thread's record is u's; v's replaces it when v failed
+                 * first (u then only stopped) or alone */
+                if (job.ready && job.st != GLPGP_OK && (st == GLPGP_OK || stop == 2))
+                    st = glpgp_error_restore(&job.err);
                 glpgp_error_push_trace(__FILE__, __LINE__);
                 goto fail;
             }

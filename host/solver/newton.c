@@ -530,6 +530,8 @@ glpgp_status glpgp_newton_level(glpgp_backend *b, const glpgp_options *o, glpgp_
         ls->grad = gn;
         ls->energy = F;
         if (gn <= rtol * ls->grad0 || gn == 0.0) break;
+        if (ns->stop && __atomic_load_n(ns->stop, __ATOMIC_RELAXED))
+            return GLPGP_FAIL(GLPGP_ERR_NUMERIC, "%s: stopped (the other oscillator failed)", glpgp_osc_name(k));
         if (it >= o->newton_max) {
             ls->capped = 1;
             break;

@@ -6,6 +6,9 @@
  *  - worker error: v's clone fails in its quadratic assembly while u
  *    succeeds: glpgp_solve returns v's status and message in the calling
  *    thread, no result;
+ *  - u fails first (its energy): u's error is returned and v stops at its next
+ *    Newton step (far fewer gradient evaluations on the clone than a whole
+ *    v solve makes);
  *  - clone failure: a clone that cannot be made (out of memory): v is solved
  *    after u on the backend itself, the same result, r->concurrent = 0, one
  *    warning when concurrency was asked for, none in auto;
@@ -30,9 +33,28 @@ static void count_warnings(glpgp_log_level level, const char *msg, void *user)
     }
 }
 
-/* ops of the parent (clone: make_clone) and of its clones (assembly fails) */
-static glpgp_backend_ops parent_ops, failing_ops;
-static int clone_mode; /* 0: a working clone, 1: its assembly fails, 2: no clone (NOMEM) */
+/* ops of the parent (clone: make_clone) and of its clones (assembly fails);
+ * u_fails: the parent's energy fails, the clone counts its gradients */
+static glpgp_backend_ops parent_ops, failing_ops, u_fails_ops, counting_ops;
+static int clone_mode; /* 0: a working clone, 1: its assembly fails, 2: no clone (NOMEM),
+                          3: a counting clone */
+static atomic_int gradients;
+static glpgp_status (*ref_gradient)(glpgp_backend *, const glpgp_vec *, double, glpgp_vec *);
+
+static glpgp_status counting_gradient(glpgp_backend *b, const glpgp_vec *x, double inv4e2, glpgp_vec *g)
+{
+    atomic_fetch_add(&gradients, 1);
+    return ref_gradient(b, x, inv4e2, g);
+}
+
+static glpgp_status failing_energy(glpgp_backend *b, const glpgp_vec *x, double inv4e2, glpgp_vec *work)
+{
+    (void)b;
+    (void)x;
+    (void)inv4e2;
+    (void)work;
+    return GLPGP_FAIL(GLPGP_ERR_NUMERIC, "injected failure of the first oscillator");
+}
 
 static glpgp_status failing_assembly(glpgp_backend *b, int kind, double h)
 {
@@ -50,6 +72,7 @@ static glpgp_status make_clone(glpgp_backend *b, glpgp_backend **out)
     if (clone_mode == 2) return GLPGP_FAIL(GLPGP_ERR_NOMEM, "injected: no memory for a clone");
     GLPGP_CHECK(glpgp_backend_create_reference(out));
     if (clone_mode == 1) (*out)->ops = &failing_ops;
+    if (clone_mode == 3) (*out)->ops = &counting_ops;
     return GLPGP_OK;
 }
 
@@ -126,6 +149,30 @@ static void test_worker_error(const glpgp_mesh *m)
     glpgp_result_destroy(&r);
 }
 
+static void test_u_fails(const glpgp_mesh *m)
+{
+    /* a whole v solve on a counting clone: its gradient evaluations */
+    clone_mode = 3;
+    glpgp_status st;
+    atomic_store(&gradients, 0);
+    glpgp_result *r = solve(m, &parent_ops, GLPGP_OSC_CONCURRENT, &st);
+    const int whole = atomic_load(&gradients);
+    CHECK(st == GLPGP_OK && r && r->concurrent);
+    glpgp_result_destroy(&r);
+    /* u fails at its first energy: v stops at its next Newton step */
+    atomic_store(&gradients, 0);
+    glpgp_error_clear();
+    r = solve(m, &u_fails_ops, GLPGP_OSC_CONCURRENT, &st);
+    const int stopped = atomic_load(&gradients);
+    printf("u fails first: status %d, message '%s'; v's gradients %d (a whole v solve: %d)\n", (int)st,
+           glpgp_error_message(), stopped, whole);
+    CHECK(st == GLPGP_ERR_NUMERIC && r == NULL);
+    CHECK(strstr(glpgp_error_message(), "injected failure of the first oscillator") != NULL);
+    CHECK(whole > 10 && stopped < whole / 2);
+    glpgp_error_clear();
+    glpgp_result_destroy(&r);
+}
+
 static void test_clone_failure(const glpgp_mesh *m, const glpgp_result *ref)
 {
     clone_mode = 2;
@@ -180,6 +227,11 @@ int main(int argc, char **argv)
     parent_ops.clone = make_clone;
     failing_ops = *b->ops;
     failing_ops.assemble_quadratic = failing_assembly;
+    u_fails_ops = parent_ops;
+    u_fails_ops.energy = failing_energy;
+    counting_ops = *b->ops;
+    ref_gradient = b->ops->gradient;
+    counting_ops.gradient = counting_gradient;
     glpgp_backend_destroy(&b);
     /* a disk at 10 mean edges per period: vortices in u and v */
     glpgp_mesh *m = NULL;
@@ -190,6 +242,7 @@ int main(int argc, char **argv)
     CHECK(st == GLPGP_OK && ref);
     if (!*only || !strcmp(only, "identical")) test_identical(m);
     if (!*only || !strcmp(only, "worker")) test_worker_error(m);
+    if (!*only || !strcmp(only, "ufails")) test_u_fails(m);
     if (ref && (!*only || !strcmp(only, "clone"))) test_clone_failure(m, ref);
     if (ref && (!*only || !strcmp(only, "noclone"))) test_no_clone(m, ref);
     glpgp_result_destroy(&ref);
