@@ -288,9 +288,9 @@ enum {
     GLPGP_OVERLAP_AMG = 2     /* with the multigrid and up to GLPGP_OVERLAP_AMG_MAX_VERTICES
                                  only: the OpenCL CPU shape, whose fused small levels run on
                                  one core (2 cores, bench/results/oscillators.md: 1.25x at
-                                 107k vertices, 1.18x at 64k, 1.06x at 250k, 0.99x at 1M, where
-                                 the per-op levels dominate); its Jacobi-CG keeps every core
-                                 busy (two at once: 0.67-1.0x) */
+                                 107k vertices, 1.2x at 64k, 1.0-1.06x at 250k, 1.0x at 1M,
+                                 where the per-op levels dominate); its Jacobi-CG keeps every
+                                 core busy (two at once: 0.67-1.0x) */
 };
 #define GLPGP_OVERLAP_AMG_MAX_VERTICES 500000
 
