@@ -58,15 +58,18 @@
 const char *glpgp_osc_name(int k) { return k == 0 ? "u" : k == 1 ? "v" : k == 3 ? "coupled u+v" : "cross"; }
 
 /* Inexact-Newton tolerance of the linear solve at |g| = gn: eta = forcing
- * |g| / |g_0|, but no tighter than the level's target needs -- with a linear
- * residual r of 0.1 target, g + H d = r leaves |g_new| <= 0.1 target +
- * O(|d|^2), so a tighter solve only oversolves the last steps of a level --
- * within [cg_rtol, forcing_max]. Measured (default options, 2 cores, the same
- * Newton counts, energies within 3e-9 relative): CG iterations 1344 -> 1171
- * on the 107k motor part (14.6 s), 1414 -> 1254 on the 64k vortex disk
- * (9.2 -> 8.6 s), 121 -> 109 on the 1M square (27 -> 25.2 s), 17687 -> 14745
- * with --precond jacobi on the motor (27.8 -> 21.8 s). With 0.5 target the
- * 1M square needed two more Newton steps. */
+ * |g| / |g_0|, but no tighter than the level's target (ns->target, set on
+ * the last eps level only) needs -- with a linear residual r of 0.1 target,
+ * g + H d = r leaves |g_new| <= 0.1 target + O(|d|^2), so a tighter solve
+ * only oversolves the level's last steps -- within [cg_rtol, forcing_max].
+ * Measured (default options, 2 cores, the same Newton counts and energies):
+ * CG iterations 1344 -> 1281 on the 107k motor part, 1414 -> 1310 on the 64k
+ * vortex disk, 119 -> 104 on the 250k square, 17687 -> 16282 with --precond
+ * jacobi on the motor. On every level (11-17% fewer CG) it changed the
+ * vortex states of radial-field solves: the annulus at h = 0.13 ended with
+ * v's energy 142.49 instead of 138.39 (47 instead of 77 Newton steps), the
+ * 20k disk at h = 0.05 978.46 instead of 975.15: rejected. With 0.5 target
+ * the 1M square needed two more Newton steps. */
 static double newton_eta(const glpgp_options *o, const glpgp_newton_state *ns, double gn)
 {
     double eta = o->forcing * gn / ns->grad0;
@@ -530,7 +533,10 @@ glpgp_status glpgp_newton_level(glpgp_backend *b, const glpgp_options *o, glpgp_
         ns->noise = 64.0 * DBL_EPSILON * (fabs(F) + s[GLPGP_S_DOT2]);
         if (it == 0) {
             ls->grad0 = ns->grad0 = gn;
-            ns->target = rtol * gn;
+            /* the floor of newton_eta on the last level only (rtol = newton_rtol):
+             * on the levels before it the looser last steps moved vortex states
+             * (radial annulus: v's energy 138.39 -> 142.49) */
+            ns->target = rtol <= o->newton_rtol ? rtol * gn : 0.0;
             /* ns->inside carries over from the previous eps level: a level
              * that ended on a Newton step (the region inactive) starts with
              * the multigrid candidate, one NEWTON assembly instead of the

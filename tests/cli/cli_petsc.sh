@@ -29,7 +29,7 @@
 #    (read back with Python's xml + zlib): every global vertex owned exactly
 #    once, the ghosts owned elsewhere, the cells' count the triangle count,
 #    the triangles (by coordinates) those of the 1-rank gathered .vtu, z and
-#    the field at every point within 1e-8 of it (and exactly the 2-rank
+#    the field at every point within 1e-6 of it (and exactly the 2-rank
 #    gathered .vtu's); 1 rank: one piece, exactly the gathered .vtu's values;
 #    a piece that cannot be written (its name taken by a directory) on rank
 #    1: every rank exits non-zero, one error line naming the rank, no file
@@ -291,11 +291,14 @@ for name, nparts in (("d2", 2), ("d1", 1)):
                 ghosts.append((gid[j], xy(p, j)))
         cells |= tris(p)
         # the values at every point (owned and ghost): the gathered results'
+        # (bit for bit on the same ranks; one rank against two within 1e-6:
+        # the reductions differ in order and each eps level stops at its
+        # Newton tolerance, the last one at 1e-6 |g0|: 3e-8 seen on z_v)
         for j in range(p["npoints"]):
             i1, i2 = at1[xy(p, j)], at2[xy(p, j)]
             for a, nc in (("z_u", 2), ("z_v", 2), ("field_u", 3)):
                 for c in range(nc):
-                    assert abs(p[a][nc * j + c] - g1[a][nc * i1 + c]) <= 1e-8, (name, a, j)
+                    assert abs(p[a][nc * j + c] - g1[a][nc * i1 + c]) <= 1e-6, (name, a, j)
                     same = g2[a][nc * i2 + c] if nparts == 2 else g1[a][nc * i1 + c]
                     assert p[a][nc * j + c] == same, (name, a, j)
             for a in ("dirichlet_u", "dirichlet_v"):

@@ -337,9 +337,9 @@ typedef struct glpgp_newton_state {
     struct glpgp_amg *amg; /* multigrid preconditioner (borrowed; NULL: Jacobi) */
     int inside;      /* trust region: the region was inactive at the last step (set by the
                         step, cleared at each level start): the multigrid may try */
-    double target;   /* the level's gradient target rtol |g_0| (set by the level loop; 0:
-                        none): the inexact-Newton tolerance needs no more than
-                        0.1 target / |g| (solver/newton.c, newton_eta) */
+    double target;   /* the level's gradient target rtol |g_0| (set by the level loop on
+                        the last eps level; 0: none): the inexact-Newton tolerance needs
+                        no more than 0.1 target / |g| (solver/newton.c, newton_eta) */
     const int *stop; /* NULL, or a flag another thread may set (read atomically before
                         each step): non-zero ends the level with an error at once (the
                         other oscillator of a concurrent solve failed) */
