@@ -150,51 +150,97 @@ static void test_compare(void)
     glpgp_mesh_destroy(&m);
 }
 
+/* What the single-step tests share: a 3000-vertex disk on the reference
+ * backend, W = (1, 0) with the Dirichlet flags given, QUAD at h, the Newton
+ * state's vectors and host arrays z, dir of the mesh's size. */
+typedef struct step_fix {
+    glpgp_mesh *m;
+    glpgp_system *sys;
+    glpgp_backend *b;
+    glpgp_vec *x, *g, *d, *xt, *work;
+    double *w, *z;
+    unsigned char *dir;
+    size_t n2;
+} step_fix;
+
+/* f <- the disk and backend set up, w = (1, 0), z = 0, dir = 0 (0: failed) */
+static int step_fix_create(step_fix *f)
+{
+    memset(f, 0, sizeof *f);
+    CHECK_OK(glpgp_mesh_generate("disk", 3000, &f->m));
+    if (!f->m) return 0;
+    CHECK_OK(glpgp_system_create(f->m, &f->sys));
+    CHECK_OK(glpgp_backend_create_reference(&f->b));
+    if (!f->sys || !f->b) return 0;
+    CHECK_OK(f->b->ops->setup(f->b, f->sys));
+    f->n2 = (size_t)2 * f->m->nv;
+    f->w = calloc(f->n2, sizeof(double));
+    f->z = calloc(f->n2, sizeof(double));
+    f->dir = calloc((size_t)f->m->nv, 1);
+    for (int i = 0; i < f->m->nv; i++) f->w[2 * i] = 1.0;
+    glpgp_vec **vs[] = {&f->x, &f->g, &f->d, &f->xt, &f->work};
+    for (size_t k = 0; k < sizeof vs / sizeof vs[0]; k++) CHECK_OK(f->b->ops->vec_create(f->b, f->n2, vs[k]));
+    return 1;
+}
+
+/* W and the Dirichlet flags f->dir to the backend, QUAD at h */
+static void step_fix_field(step_fix *f, double h)
+{
+    CHECK_OK(f->b->ops->set_field(f->b, f->w, f->dir));
+    CHECK_OK(f->b->ops->assemble_quadratic(f->b, GLPGP_ELEM_P1, h));
+}
+
+/* g <- grad(E + P)(x); returns |g|, *F <- E + P */
+static double step_fix_gradient(step_fix *f, double inv4e2, double *F)
+{
+    double s[GLPGP_NSLOTS];
+    CHECK_OK(f->b->ops->gradient(f->b, f->x, inv4e2, f->g));
+    CHECK_OK(f->b->ops->dot(f->b, f->g, f->g, GLPGP_S_DOT));
+    CHECK_OK(f->b->ops->get_scalars(f->b, s, GLPGP_NSLOTS));
+    if (F) *F = s[GLPGP_S_E] + s[GLPGP_S_P];
+    return sqrt(s[GLPGP_S_DOT]);
+}
+
+static void step_fix_destroy(step_fix *f)
+{
+    if (f->b) {
+        glpgp_vec **vs[] = {&f->x, &f->g, &f->d, &f->xt, &f->work};
+        for (size_t k = 0; k < sizeof vs / sizeof vs[0]; k++) f->b->ops->vec_destroy(f->b, vs[k]);
+    }
+    free(f->w);
+    free(f->z);
+    free(f->dir);
+    glpgp_backend_destroy(&f->b);
+    glpgp_system_destroy(&f->sys);
+    glpgp_mesh_destroy(&f->m);
+}
+
 static void test_indefinite_step(void)
 {
-    glpgp_mesh *m = NULL;
-    glpgp_system *sys = NULL;
-    glpgp_backend *b = NULL;
-    CHECK_OK(glpgp_mesh_generate("disk", 3000, &m));
-    if (!m) return;
-    CHECK_OK(glpgp_system_create(m, &sys));
-    CHECK_OK(glpgp_backend_create_reference(&b));
-    CHECK_OK(b->ops->setup(b, sys));
-    const int nv = m->nv;
-    const size_t n2 = (size_t)2 * nv;
-    double *w = calloc(n2, sizeof(double)), *z = calloc(n2, sizeof(double));
-    unsigned char *dir = calloc((size_t)nv, 1);
+    step_fix f;
+    if (!step_fix_create(&f)) {
+        step_fix_destroy(&f);
+        return;
+    }
+    const glpgp_mesh *m = f.m;
     unsigned rng = 12345u;
-    for (int i = 0; i < nv; i++) {
-        w[2 * i] = 1.0;
-        for (int c = 0; c < 2; c++) {
-            rng = rng * 1664525u + 1013904223u;
-            z[2 * i + c] = 0.05 * ((double)(rng >> 8) / (double)(1u << 24) - 0.5);
-        }
+    for (size_t i = 0; i < f.n2; i++) {
+        rng = rng * 1664525u + 1013904223u;
+        f.z[i] = 0.05 * ((double)(rng >> 8) / (double)(1u << 24) - 0.5);
     }
     const double h = 10.0 * m->mean_edge, eps = 2.0 * m->mean_edge, inv4e2 = 1.0 / (4.0 * eps * eps);
-    CHECK_OK(b->ops->set_field(b, w, dir)); /* no Dirichlet vertex */
-    CHECK_OK(b->ops->assemble_quadratic(b, GLPGP_ELEM_P1, h));
-    glpgp_vec *x = NULL, *g = NULL, *d = NULL, *xt = NULL, *work = NULL;
-    CHECK_OK(b->ops->vec_create(b, n2, &x));
-    CHECK_OK(b->ops->vec_create(b, n2, &g));
-    CHECK_OK(b->ops->vec_create(b, n2, &d));
-    CHECK_OK(b->ops->vec_create(b, n2, &xt));
-    CHECK_OK(b->ops->vec_create(b, n2, &work));
+    step_fix_field(&f, h); /* no Dirichlet vertex */
     glpgp_options o;
     glpgp_options_default(&o);
     for (int c = 0; c < 2; c++) {
         const double radius = c == 0 ? 0.5 : 0.0; /* a region, then none yet */
-        double s[GLPGP_NSLOTS];
-        CHECK_OK(b->ops->vec_write(b, x, z));
-        CHECK_OK(b->ops->gradient(b, x, inv4e2, g));
-        CHECK_OK(b->ops->dot(b, g, g, GLPGP_S_DOT));
-        CHECK_OK(b->ops->get_scalars(b, s, GLPGP_NSLOTS));
-        const double F = s[GLPGP_S_E] + s[GLPGP_S_P], gn = sqrt(s[GLPGP_S_DOT]);
-        glpgp_newton_state ns = {.x = x, .g = g, .d = d, .xt = xt, .work = work, .grad0 = gn,
+        double F;
+        CHECK_OK(f.b->ops->vec_write(f.b, f.x, f.z));
+        const double gn = step_fix_gradient(&f, inv4e2, &F);
+        glpgp_newton_state ns = {.x = f.x, .g = f.g, .d = f.d, .xt = f.xt, .work = f.work, .grad0 = gn,
                                  .radius = radius, .noise = 64.0 * DBL_EPSILON * fabs(F)};
         glpgp_newton_step_info info;
-        CHECK_OK(glpgp_newton_step(b, &o, &ns, inv4e2, F, gn, &info));
+        CHECK_OK(glpgp_newton_step(f.b, &o, &ns, inv4e2, F, gn, &info));
         printf("indefinite step (radius %g): |d|_M = %.4g, reason %d, alpha %g, rho %.3g, E+P %.6g -> %.6g, "
                "new radius %.4g, cg %d\n",
                radius, info.step, info.reason, info.alpha, info.rho, F, info.energy, info.radius, info.cg);
@@ -209,17 +255,7 @@ static void test_indefinite_step(void)
             CHECK(info.radius > 0.0);   /* and the first region was set */
         }
     }
-    b->ops->vec_destroy(b, &x);
-    b->ops->vec_destroy(b, &g);
-    b->ops->vec_destroy(b, &d);
-    b->ops->vec_destroy(b, &xt);
-    b->ops->vec_destroy(b, &work);
-    free(w);
-    free(z);
-    free(dir);
-    glpgp_backend_destroy(&b);
-    glpgp_system_destroy(&sys);
-    glpgp_mesh_destroy(&m);
+    step_fix_destroy(&f);
 }
 
 static void test_schedule_and_options(void)
@@ -285,98 +321,65 @@ static void test_schedule_and_options(void)
 
 static void test_eta_floor(void)
 {
-    glpgp_mesh *m = NULL;
-    glpgp_system *sys = NULL;
-    glpgp_backend *b = NULL;
-    CHECK_OK(glpgp_mesh_generate("disk", 3000, &m));
-    if (!m) return;
-    CHECK_OK(glpgp_system_create(m, &sys));
-    CHECK_OK(glpgp_backend_create_reference(&b));
-    CHECK_OK(b->ops->setup(b, sys));
-    const int nv = m->nv;
-    const size_t n2 = (size_t)2 * nv;
-    double *w = calloc(n2, sizeof(double)), *z = calloc(n2, sizeof(double));
-    unsigned char *dir = calloc((size_t)nv, 1);
-    const double h = 10.0 * m->mean_edge, eps = 0.5 * h, inv4e2 = 1.0 / (4.0 * eps * eps);
-    for (int i = 0; i < nv; i++) { /* W = (1, 0), z = the plane wave exp(2 pi i x / h) */
-        w[2 * i] = 1.0;
-        z[2 * i] = cos(2.0 * GLPGP_PI * m->xy[2 * i] / h);
-        z[2 * i + 1] = sin(2.0 * GLPGP_PI * m->xy[2 * i] / h);
+    step_fix f;
+    if (!step_fix_create(&f)) {
+        step_fix_destroy(&f);
+        return;
     }
-    glpgp_dirichlet_set(m, w, dir);
-    CHECK_OK(b->ops->set_field(b, w, dir));
-    CHECK_OK(b->ops->assemble_quadratic(b, GLPGP_ELEM_P1, h));
-    glpgp_vec *x = NULL, *g = NULL, *d = NULL, *xt = NULL, *work = NULL;
-    CHECK_OK(b->ops->vec_create(b, n2, &x));
-    CHECK_OK(b->ops->vec_create(b, n2, &g));
-    CHECK_OK(b->ops->vec_create(b, n2, &d));
-    CHECK_OK(b->ops->vec_create(b, n2, &xt));
-    CHECK_OK(b->ops->vec_create(b, n2, &work));
+    const glpgp_mesh *m = f.m;
+    const double h = 10.0 * m->mean_edge, eps = 0.5 * h, inv4e2 = 1.0 / (4.0 * eps * eps);
+    for (int i = 0; i < m->nv; i++) { /* z = the plane wave exp(2 pi i x / h) along W = (1, 0) */
+        f.z[2 * i] = cos(2.0 * GLPGP_PI * m->xy[2 * i] / h);
+        f.z[2 * i + 1] = sin(2.0 * GLPGP_PI * m->xy[2 * i] / h);
+    }
+    glpgp_dirichlet_set(m, f.w, f.dir);
+    step_fix_field(&f, h);
     glpgp_options o;
     glpgp_options_default(&o);
     o.globalization = GLPGP_GLOBAL_LINE_SEARCH; /* full steps near the minimiser */
     /* the minimiser at this eps, then a small perturbation of it */
-    CHECK_OK(b->ops->vec_write(b, x, z));
+    CHECK_OK(f.b->ops->vec_write(f.b, f.x, f.z));
     {
-        glpgp_newton_state ls = {.x = x, .g = g, .d = d, .xt = xt, .work = work};
+        glpgp_newton_state ls = {.x = f.x, .g = f.g, .d = f.d, .xt = f.xt, .work = f.work};
         for (int it = 0; it < 40; it++) {
-            double s[GLPGP_NSLOTS];
-            CHECK_OK(b->ops->gradient(b, x, inv4e2, g));
-            CHECK_OK(b->ops->dot(b, g, g, GLPGP_S_DOT));
-            CHECK_OK(b->ops->get_scalars(b, s, GLPGP_NSLOTS));
-            const double gn = sqrt(s[GLPGP_S_DOT]);
+            double F;
+            const double gn = step_fix_gradient(&f, inv4e2, &F);
             if (it == 0) ls.grad0 = gn;
             if (gn <= 1e-9 * ls.grad0) break;
             glpgp_newton_step_info info;
-            CHECK_OK(glpgp_newton_step(b, &o, &ls, inv4e2, s[GLPGP_S_E] + s[GLPGP_S_P], gn, &info));
+            CHECK_OK(glpgp_newton_step(f.b, &o, &ls, inv4e2, F, gn, &info));
             if (!info.accepted) break;
         }
     }
-    CHECK_OK(b->ops->vec_read(b, x, z));
+    CHECK_OK(f.b->ops->vec_read(f.b, f.x, f.z));
     unsigned rng = 777u;
-    for (size_t i = 0; i < n2; i++) {
-        if (dir[i / 2]) continue;
+    for (size_t i = 0; i < f.n2; i++) {
+        if (f.dir[i / 2]) continue;
         rng = rng * 1664525u + 1013904223u;
-        z[i] += 1e-3 * ((double)(rng >> 8) / (double)(1u << 24) - 0.5);
+        f.z[i] += 1e-3 * ((double)(rng >> 8) / (double)(1u << 24) - 0.5);
     }
     int cg[2] = {0, 0};
     double gn0 = 0.0, gnew[2] = {0.0, 0.0};
     for (int c = 0; c < 2; c++) {
-        double s[GLPGP_NSLOTS];
-        CHECK_OK(b->ops->vec_write(b, x, z));
-        CHECK_OK(b->ops->gradient(b, x, inv4e2, g));
-        CHECK_OK(b->ops->dot(b, g, g, GLPGP_S_DOT));
-        CHECK_OK(b->ops->get_scalars(b, s, GLPGP_NSLOTS));
-        const double F = s[GLPGP_S_E] + s[GLPGP_S_P], gn = sqrt(s[GLPGP_S_DOT]);
+        double F;
+        CHECK_OK(f.b->ops->vec_write(f.b, f.x, f.z));
+        const double gn = step_fix_gradient(&f, inv4e2, &F);
         gn0 = gn;
         /* deep into a level: |g| / |g_0| = 1e-6; c = 1: the level's target is 1e-2 |g| */
-        glpgp_newton_state ns = {.x = x, .g = g, .d = d, .xt = xt, .work = work, .grad0 = 1e6 * gn,
+        glpgp_newton_state ns = {.x = f.x, .g = f.g, .d = f.d, .xt = f.xt, .work = f.work, .grad0 = 1e6 * gn,
                                  .target = c ? 1e-2 * gn : 0.0};
         glpgp_newton_step_info info;
-        CHECK_OK(glpgp_newton_step(b, &o, &ns, inv4e2, F, gn, &info));
+        CHECK_OK(glpgp_newton_step(f.b, &o, &ns, inv4e2, F, gn, &info));
         CHECK(info.accepted);
         cg[c] = info.cg;
-        CHECK_OK(b->ops->gradient(b, x, inv4e2, g));
-        CHECK_OK(b->ops->dot(b, g, g, GLPGP_S_DOT));
-        CHECK_OK(b->ops->get_scalars(b, s, GLPGP_NSLOTS));
-        gnew[c] = sqrt(s[GLPGP_S_DOT]);
+        gnew[c] = step_fix_gradient(&f, inv4e2, NULL);
     }
     printf("eta floor: |g| %.3g; CG %d without a target, %d with the target 1e-2 |g|; new |g| %.3g and %.3g\n", gn0,
            cg[0], cg[1], gnew[0], gnew[1]);
     CHECK(cg[1] > 0 && 2 * cg[1] < cg[0]); /* no oversolving */
     CHECK(gnew[1] <= 1e-2 * gn0);          /* and the target is still met */
     CHECK(gnew[0] <= 1e-2 * gn0);
-    b->ops->vec_destroy(b, &x);
-    b->ops->vec_destroy(b, &g);
-    b->ops->vec_destroy(b, &d);
-    b->ops->vec_destroy(b, &xt);
-    b->ops->vec_destroy(b, &work);
-    free(w);
-    free(z);
-    free(dir);
-    glpgp_backend_destroy(&b);
-    glpgp_system_destroy(&sys);
-    glpgp_mesh_destroy(&m);
+    step_fix_destroy(&f);
 }
 
 int main(int argc, char **argv)
