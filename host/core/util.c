@@ -67,6 +67,15 @@ double glpgp_select_double(double *a, size_t n, size_t k)
     return a[k];
 }
 
+int glpgp_uf_find(int *parent, int i)
+{
+    while (parent[i] != i) {
+        parent[i] = parent[parent[i]]; /* path halving */
+        i = parent[i];
+    }
+    return i;
+}
+
 double glpgp_median_double(double *a, size_t n)
 {
     const size_t h = n / 2;

@@ -166,12 +166,15 @@ glpgp_status glpgp_simplify_closed(double *xy, int *np, double tol)
 
 /* ---- marching squares ------------------------------------------------------ */
 
+/* signed area about the loop's first point (no cancellation far from the
+ * origin: .poly inputs keep their CAD coordinates) */
 static double loop_area(const double *xy, int n)
 {
-    double a = 0;
+    if (n < 1) return 0;
+    double a = 0, x0 = xy[0], y0 = xy[1];
     for (int i = 0; i < n; i++) {
         int j = (i + 1) % n;
-        a += xy[2 * i] * xy[2 * j + 1] - xy[2 * j] * xy[2 * i + 1];
+        a += (xy[2 * i] - x0) * (xy[2 * j + 1] - y0) - (xy[2 * j] - x0) * (xy[2 * i + 1] - y0);
     }
     return 0.5 * a;
 }

@@ -1,8 +1,9 @@
 /* io/mesh_io.c: triangle-mesh readers (Wavefront OBJ; Gmsh MSH 2.2 / 4.1
  * ASCII through the shared parser of msh_read.c) and writers (OBJ, MSH 4.1,
  * through the output set), glpgp/io.h. Readers are one pass over a
- * text_reader, check planarity, drop unused vertices and hand the triangles
- * to glpgp_mesh_create for validation. */
+ * text_reader, drop unused vertices, take the coordinate plane the mesh
+ * lies in, weld unwelded pieces and hand the triangles to
+ * glpgp_mesh_create for validation. */
 #include "glpgp/io.h"
 #include "glpgp/util.h"
 
@@ -41,7 +42,106 @@ static glpgp_status raw_add_tri(raw_mesh *r, int a, int b, int c)
     return GLPGP_OK;
 }
 
-/* Planarity check, removal of unused vertices, then glpgp_mesh_create. */
+/* Welding of unwelded meshes. Exports from CAD and mesh tools often repeat a
+ * vertex per triangle or per surface patch (STL-derived OBJ files, MSH files
+ * with nodes per entity): read as they are, each triangle or patch is a
+ * domain of its own, its seams boundaries (a soup of 3585 triangles was
+ * refined to 610k vertices and solved for 6 minutes as 3585 domains).
+ * Vertices with equal coordinates are merged when they lie in different
+ * pieces (connected components, through shared vertex indices) of the mesh
+ * as read; coincident vertices of one piece stay apart: the two lips of a
+ * crack (a slit meshed with doubled vertices) are such a pair. In each group
+ * of coincident vertices, every vertex of another piece than the group's
+ * first (lowest index) is merged into the first.
+ *
+ * Input: xy[2 nv], tri[3 nt] (indices < nv). Output: *nmerged, and when it
+ * is > 0, xy compacted in place (kept vertices in their order) and tri
+ * renumbered; *nv updated; *pieces_before / *pieces_after the counts of
+ * pieces. */
+static int cmp_xy_index(const void *a, const void *b, const double *xy)
+{
+    int i = *(const int *)a, j = *(const int *)b;
+    double xi = xy[2 * i], xj = xy[2 * j], yi = xy[2 * i + 1], yj = xy[2 * j + 1];
+    if (xi != xj) return xi < xj ? -1 : 1;
+    if (yi != yj) return yi < yj ? -1 : 1;
+    return (i > j) - (i < j);
+}
+
+/* qsort has no context argument in C11: the coordinates are passed through a
+ * thread-local pointer, set only around the call */
+static _Thread_local const double *sort_xy;
+static int cmp_sort_xy(const void *a, const void *b) { return cmp_xy_index(a, b, sort_xy); }
+
+static int count_pieces(int nv, int nt, const int *tri, int *parent)
+{
+    for (int v = 0; v < nv; v++) parent[v] = v;
+    for (int t = 0; t < nt; t++)
+        for (int k = 1; k < 3; k++) {
+            int a = glpgp_uf_find(parent, tri[3 * t]), b = glpgp_uf_find(parent, tri[3 * t + k]);
+            if (a != b) parent[b] = a;
+        }
+    int n = 0;
+    for (int v = 0; v < nv; v++) n += glpgp_uf_find(parent, v) == v;
+    return n;
+}
+
+static glpgp_status weld(int *nv, double *xy, int nt, int *tri, int *nmerged, int *pieces_before,
+                         int *pieces_after)
+{
+    glpgp_status st = GLPGP_OK;
+    int *piece = NULL, *order = NULL, *to = NULL;
+    const int n = *nv;
+    *nmerged = 0;
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)n, sizeof *piece, &piece), done);
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)n, sizeof *order, &order), done);
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)n, sizeof *to, &to), done);
+    *pieces_before = *pieces_after = count_pieces(n, nt, tri, piece);
+    if (*pieces_before == 1) goto done; /* one piece: nothing to weld */
+    for (int v = 0; v < n; v++) {
+        piece[v] = glpgp_uf_find(piece, v);
+        order[v] = v;
+        to[v] = v;
+    }
+    sort_xy = xy;
+    qsort(order, (size_t)n, sizeof *order, cmp_sort_xy);
+    sort_xy = NULL;
+    int merged = 0;
+    for (int i = 0; i < n;) {
+        int j = i + 1;
+        while (j < n && xy[2 * order[j]] == xy[2 * order[i]] && xy[2 * order[j] + 1] == xy[2 * order[i] + 1]) j++;
+        const int first = order[i]; /* lowest index of the group */
+        for (int k = i + 1; k < j; k++)
+            if (piece[order[k]] != piece[first]) {
+                to[order[k]] = first;
+                merged++;
+            }
+        i = j;
+    }
+    if (merged) {
+        /* new numbers: kept vertices in their order; merged ones take their
+         * target's */
+        int m = 0;
+        for (int v = 0; v < n; v++)
+            if (to[v] == v) {
+                xy[2 * m] = xy[2 * v];
+                xy[2 * m + 1] = xy[2 * v + 1];
+                order[v] = m++;
+            }
+        for (int v = 0; v < n; v++) order[v] = order[to[v]];
+        for (long i = 0; i < 3L * nt; i++) tri[i] = order[tri[i]];
+        *nv = m;
+        *pieces_after = count_pieces(m, nt, tri, piece);
+    }
+    *nmerged = merged;
+done:
+    free(piece);
+    free(order);
+    free(to);
+    return st;
+}
+
+/* Removal of unused vertices, the plane (z = const, or y or x = const),
+ * welding, then glpgp_mesh_create. */
 static glpgp_status finish(const char *path, raw_mesh *r, glpgp_mesh **out)
 {
     glpgp_status st = GLPGP_OK;
@@ -65,19 +165,41 @@ static glpgp_status finish(const char *path, raw_mesh *r, glpgp_mesh **out)
         zmin = fmin(zmin, p[2]);
         zmax = fmax(zmax, p[2]);
     }
-    double size = fmax(xmax - xmin, ymax - ymin);
-    if (zmax - zmin > 1e-9 * size) {
-        st = GLPGP_FAIL(GLPGP_ERR_MESH, "%s: mesh is not planar: z varies from %.17g to %.17g", path,
-                        zmin, zmax);
-        goto done;
+    /* the plane: z = const, else y = const or x = const (a part drawn in a
+     * side view), solved in its two varying coordinates */
+    const double dx = xmax - xmin, dy = ymax - ymin, dz = zmax - zmin;
+    const double size = fmax(dx, fmax(dy, dz));
+    int cx = 0, cy = 1; /* the coordinates taken as x and y */
+    if (dz > 1e-9 * size) {
+        if (dy <= 1e-9 * size)
+            cy = 2;
+        else if (dx <= 1e-9 * size) {
+            cx = 1;
+            cy = 2;
+        } else {
+            st = GLPGP_FAIL(GLPGP_ERR_MESH,
+                            "%s: mesh is not planar in a coordinate plane: x, y and z vary (by %.6g, %.6g, "
+                            "%.6g); a tilted plane must be rotated into z = const first",
+                            path, dx, dy, dz);
+            goto done;
+        }
+        glpgp_log(GLPGP_LOG_INFO, "%s: the mesh lies in the plane %c = %.9g: solved in its (%c, %c) coordinates", path,
+                  cx == 0 && cy == 2 ? 'y' : 'x', cx == 0 && cy == 2 ? ymin : xmin, "xyz"[cx], "xyz"[cy]);
     }
     GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)nv * 2, sizeof *xy, &xy), done);
     for (size_t v = 0; v < r->nv; v++) {
         if (map[v] < 0) continue;
-        xy[2 * map[v]] = r->xyz[3 * v];
-        xy[2 * map[v] + 1] = r->xyz[3 * v + 1];
+        xy[2 * map[v]] = r->xyz[3 * v + cx];
+        xy[2 * map[v] + 1] = r->xyz[3 * v + cy];
     }
     for (size_t i = 0; i < 3 * r->nt; i++) r->tri[i] = map[r->tri[i]];
+    int merged = 0, before = 0, after = 0;
+    GLPGP_CHECK_GOTO(st, weld(&nv, xy, (int)r->nt, r->tri, &merged, &before, &after), done);
+    if (merged)
+        glpgp_log(GLPGP_LOG_WARNING,
+                  "%s: %d vertices repeat the coordinates of a vertex of another piece of the mesh (an "
+                  "unwelded mesh): merged, %d pieces -> %d",
+                  path, merged, before, after);
     if ((st = glpgp_mesh_create(nv, xy, (int)r->nt, r->tri, out)) != GLPGP_OK)
         io_name_error(path, st); /* "FILE: the mesh folds over itself ..." */
 done:
@@ -240,16 +362,40 @@ static glpgp_status read_msh(const char *path, raw_mesh *r)
     r->nv = r->cap_v = (size_t)d.nv;
     d.xyz = NULL;
     glpgp_status st = GLPGP_OK;
-    if (d.ntri > 0) GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)d.ntri * 3, sizeof(int), &r->tri), done);
-    r->cap_t = (size_t)d.ntri;
+    const size_t ntri = (size_t)d.ntri + 2 * (size_t)d.nquad;
+    if (ntri > (size_t)GLPGP_IO_MAX_ITEMS) {
+        st = GLPGP_FAIL(GLPGP_ERR_LIMIT, "%s: more than %ld triangles", path, (long)GLPGP_IO_MAX_ITEMS);
+        goto done;
+    }
+    if (ntri > 0) GLPGP_CHECK_GOTO(st, glpgp_malloc(ntri * 3, sizeof(int), &r->tri), done);
+    r->cap_t = ntri;
     for (long f = 0; f < d.nf; f++) {
         const int *c = d.corner + 4 * f;
-        if (c[3] >= 0) continue;
-        int *t = r->tri + 3 * r->nt++;
-        t[0] = c[0];
-        t[1] = c[1];
-        t[2] = c[2];
+        int *t = r->tri + 3 * r->nt;
+        if (c[3] < 0) {
+            t[0] = c[0];
+            t[1] = c[1];
+            t[2] = c[2];
+            r->nt++;
+            continue;
+        }
+        /* a quadrangle: two triangles over the diagonal whose two halves
+         * turn the way the quadrangle does (a non-convex one has one such
+         * diagonal): (c0 c1 c2)(c0 c2 c3) or (c0 c1 c3)(c1 c2 c3) */
+        const double *x = r->xyz;
+#define CR(a, b, q) ((x[3 * (b)] - x[3 * (a)]) * (x[3 * (q) + 1] - x[3 * (a) + 1]) - \
+                     (x[3 * (b) + 1] - x[3 * (a) + 1]) * (x[3 * (q)] - x[3 * (a)]))
+        const double area = CR(c[0], c[1], c[2]) + CR(c[0], c[2], c[3]); /* twice the signed area */
+        const int d02 = CR(c[0], c[1], c[2]) * area > 0 && CR(c[0], c[2], c[3]) * area > 0;
+#undef CR
+        const int split[2][6] = {{0, 1, 2, 0, 2, 3}, {0, 1, 3, 1, 2, 3}};
+        for (int k = 0; k < 6; k++) t[k] = c[split[!d02][k]];
+        r->nt += 2;
     }
+    if (d.nquad > 0) glpgp_log(GLPGP_LOG_INFO, "%s: %ld quadrangles, each split in two triangles", path, d.nquad);
+    if (d.nhigh > 0)
+        glpgp_log(GLPGP_LOG_INFO, "%s: %ld second- or higher-order elements: their corner nodes are used (straight edges)",
+                  path, d.nhigh);
 done:
     msh_free(&d);
     return st;

@@ -253,8 +253,36 @@ static glpgp_status nodes41(parser *p)
     return expect_end(p, "Nodes");
 }
 
-/* Node count of the element types kept (2 triangle, 3 quadrangle), else 0. */
-static int kept_corners(long long type) { return type == 2 ? 3 : type == 3 ? 4 : 0; }
+/* The element types kept: triangles and quadrangles of any order Gmsh
+ * writes (2: 3-node triangle; 9, 20-25: 6- to 21-node; 3: 4-node quadrangle;
+ * 10, 16, 36, 37: 9-, 8-, 16-, 25-node). Returns the corner count (3, 4;
+ * 0 for a type not kept) and in *nodes the element's node count. Gmsh lists
+ * an element's corners first: glpgp (P1, straight edges) keeps them and reads
+ * past the edge and face nodes of curved elements. */
+static int kept_corners(long long type, int *nodes)
+{
+    static const struct {
+        int type, corners, nodes;
+    } kept[] = {{2, 3, 3},   {9, 3, 6},   {20, 3, 9},  {21, 3, 10}, {22, 3, 12}, {23, 3, 15}, {24, 3, 15},
+                {25, 3, 21}, {3, 4, 4},   {10, 4, 9},  {16, 4, 8},  {36, 4, 16}, {37, 4, 25}};
+    for (size_t i = 0; i < sizeof kept / sizeof kept[0]; i++)
+        if (kept[i].type == type) {
+            *nodes = kept[i].nodes;
+            return kept[i].corners;
+        }
+    *nodes = 0;
+    return 0;
+}
+
+/* Read the element's nn node tags from s (corners into v[0 .. k)), then the
+ * line's end; 0 when malformed. */
+static int parse_nodes(char *s, int k, int nn, long long *v)
+{
+    long long tmp;
+    for (int i = 0; i < nn; i++)
+        if (!text_parse_ll(&s, i < k ? &v[i] : &tmp)) return 0;
+    return text_at_end(s);
+}
 
 /* $Elements of MSH 2.2: "n", then "id type ntags tag... node..." lines. */
 static glpgp_status elements22(parser *p)
@@ -271,16 +299,16 @@ static glpgp_status elements22(parser *p)
         if (!text_parse_ll(&s, &id) || !text_parse_ll(&s, &type) || !text_parse_ll(&s, &ntags) || ntags < 0)
             return text_error(&p->tr, GLPGP_ERR_FORMAT, 0,
                               "malformed element line (expected: id type ntags tags... nodes...)");
-        int k = kept_corners(type);
+        int nn, k = kept_corners(type, &nn);
         if (!k) continue;
         for (long long t = 0; t < ntags; t++)
             if (!text_parse_ll(&s, &tmp)) return text_error(&p->tr, GLPGP_ERR_FORMAT, 0, "malformed element tags");
-        for (int c = 0; c < k; c++)
-            if (!text_parse_ll(&s, &nodes[c]))
-                return text_error(&p->tr, GLPGP_ERR_FORMAT, 0, "%s needs %d node tags",
-                                  k == 3 ? "triangle" : "quadrangle", k);
+        for (int c = 0; c < nn; c++)
+            if (!text_parse_ll(&s, c < k ? &nodes[c] : &tmp))
+                return text_error(&p->tr, GLPGP_ERR_FORMAT, 0, "element type %lld needs %d node tags", type, nn);
         if (!text_at_end(s)) return text_error(&p->tr, GLPGP_ERR_FORMAT, 0, "extra data after the element's nodes");
         GLPGP_CHECK(add_face(p, k, nodes));
+        if (nn > k) p->d->nhigh++;
     }
     return expect_end(p, "Elements");
 }
@@ -312,16 +340,18 @@ static glpgp_status elements41(parser *p)
         if (n > nelem - seen)
             return text_error(&p->tr, GLPGP_ERR_FORMAT, 0,
                               "element blocks hold more elements than the $Elements header says (%lld)", nelem);
-        const int k = kept_corners(bh[2]);
+        int nn;
+        const int k = kept_corners(bh[2], &nn);
         if (k) GLPGP_CHECK(glpgp_grow(&p->d->corner, &p->cap_f, (size_t)p->d->nf + reserve_hint(p, n), 4 * sizeof(int)));
         for (long long i = 0; i < n; i++) {
             long long v[5];
             GLPGP_CHECK(sec_line(p, "Elements", &s));
             if (!k) continue;
-            if (!parse_lls(s, k + 1, v))
-                return text_error(&p->tr, GLPGP_ERR_FORMAT, 0, "malformed %s (expected: tag %s)",
-                                  k == 3 ? "triangle" : "quadrangle", k == 3 ? "n1 n2 n3" : "n1 n2 n3 n4");
+            if (!text_parse_ll(&s, &v[0]) || !parse_nodes(s, k, nn, v + 1))
+                return text_error(&p->tr, GLPGP_ERR_FORMAT, 0, "malformed element of type %lld (expected: tag and %d nodes)",
+                                  bh[2], nn);
             GLPGP_CHECK(add_face(p, k, v + 1));
+            if (nn > k) p->d->nhigh++;
         }
         seen += n;
     }

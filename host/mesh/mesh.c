@@ -217,12 +217,16 @@ done:
 }
 
 /* Signed area of a closed polygon given by vertex indices. */
+/* Signed area of a closed loop (shoelace), taken about the loop's first
+ * vertex: with absolute coordinates the terms x_a y_b of a part placed far
+ * from the origin (CAD drawings at (1e5, -5e4)) cancel to a rounding error
+ * larger than the area's tolerance. A = 1/2 sum (p_a - p_0) x (p_b - p_0) */
 static double loop_area(const double *xy, const int *v, int n)
 {
-    double s = 0.0;
+    double s = 0.0, x0 = xy[2 * v[0]], y0 = xy[2 * v[0] + 1];
     for (int i = 0; i < n; i++) {
         int a = v[i], b = v[(i + 1) % n];
-        s += xy[2 * a] * xy[2 * b + 1] - xy[2 * b] * xy[2 * a + 1];
+        s += (xy[2 * a] - x0) * (xy[2 * b + 1] - y0) - (xy[2 * b] - x0) * (xy[2 * a + 1] - y0);
     }
     return 0.5 * s;
 }

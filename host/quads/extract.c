@@ -105,6 +105,7 @@
 #include "glpgp/cross.h"
 #include "glpgp/phase.h"
 #include "glpgp/solve.h"
+#include "glpgp/util.h"
 #include "geom.h"
 
 #include <math.h>
@@ -553,15 +554,6 @@ static glpgp_status build_arrangement(builder *B)
 
 /* ---- graph simplification ---------------------------------------------- */
 
-static int uf_find(int *p, int i)
-{
-    while (p[i] != i) {
-        p[i] = p[p[i]];
-        i = p[i];
-    }
-    return i;
-}
-
 /* Node priority when merging: fixed corner > boundary > other. */
 static int node_rank(const qnode *n) { return 2 * n->fixed + n->bnd; }
 
@@ -592,7 +584,7 @@ static glpgp_status merge_nodes(graph *g, int *parent)
     GLPGP_CHECK_GOTO(st, glpgp_calloc((size_t)2 * g->nn, sizeof(double), &sx), done);
     for (int i = 0; i < g->nn; i++) best[i] = -1;
     for (int i = 0; i < g->nn; i++) {
-        int rp = uf_find(parent, i);
+        int rp = glpgp_uf_find(parent, i);
         int rk = node_rank(&g->node[i]);
         if (best[rp] < 0 || rk > node_rank(&g->node[best[rp]])) {
             best[rp] = i;
@@ -606,7 +598,7 @@ static glpgp_status merge_nodes(graph *g, int *parent)
         }
     }
     for (int i = 0; i < g->nn; i++) {
-        if (parent[i] != i || uf_find(parent, i) != i) continue;
+        if (parent[i] != i || glpgp_uf_find(parent, i) != i) continue;
         qnode nb = g->node[best[i]];
         nb.x = sx[2 * i] / cnt[i];
         nb.y = sx[2 * i + 1] / cnt[i];
@@ -621,8 +613,8 @@ static glpgp_status merge_nodes(graph *g, int *parent)
     for (int e = 0; e < g->ne; e++) {
         qedge E = g->edge[e];
         if (E.flags & QE_DEL) continue;
-        E.a = uf_find(parent, E.a);
-        E.b = uf_find(parent, E.b);
+        E.a = glpgp_uf_find(parent, E.a);
+        E.b = glpgp_uf_find(parent, E.b);
         if (E.a == E.b) continue;
         g->edge[w++] = E;
     }
@@ -888,7 +880,7 @@ static glpgp_status cleanup_round(graph *g, const pmap *p, double h, int *change
          * which is harmless since merging is idempotent */
         if (a > b) continue;
         if (len >= 0.2 * h) continue;
-        int ra = uf_find(parent, a), rb = uf_find(parent, b);
+        int ra = glpgp_uf_find(parent, a), rb = glpgp_uf_find(parent, b);
         if (ra != rb && fx[ra] && fx[rb]) continue; /* would merge two domain corners */
         /* merge the whole chain, interior nodes included: when a and b are
          * already in one set (merged through other short sides of the same
@@ -899,7 +891,7 @@ static glpgp_status cleanup_round(graph *g, const pmap *p, double h, int *change
         n = 0;
         for (;;) {
             int d = he_dest(g, c);
-            int rd = uf_find(parent, d), r = uf_find(parent, a);
+            int rd = glpgp_uf_find(parent, d), r = glpgp_uf_find(parent, a);
             if (rd != r) {
                 parent[rd] = r;
                 fx[r] = (unsigned char)(fx[r] | fx[rd]);
@@ -1086,7 +1078,7 @@ glpgp_status glpgp_quads_extract(const glpgp_mesh *m, const glpgp_result *r, glp
     for (int e = 0; e < g->ne; e++) {
         const qnode *a = &g->node[g->edge[e].a], *b = &g->node[g->edge[e].b];
         if (hypot(a->x - b->x, a->y - b->y) < 1e-6 * h) {
-            int ra = uf_find(parent, g->edge[e].a), rb = uf_find(parent, g->edge[e].b);
+            int ra = glpgp_uf_find(parent, g->edge[e].a), rb = glpgp_uf_find(parent, g->edge[e].b);
             if (ra != rb) parent[rb] = ra;
         }
     }

@@ -115,15 +115,6 @@ static void tri_zero(const glpgp_mesh *m, const double *w, int t, double *px, do
     *py = l0 * m->xy[2 * v[0] + 1] + l1 * m->xy[2 * v[1] + 1] + l2 * m->xy[2 * v[2] + 1];
 }
 
-static int uf_find(int *p, int i)
-{
-    while (p[i] != i) {
-        p[i] = p[p[i]];
-        i = p[i];
-    }
-    return i;
-}
-
 glpgp_status glpgp_cross_analyze(const glpgp_mesh *m, glpgp_cross_result *c)
 {
     glpgp_status st = GLPGP_OK;
@@ -154,7 +145,7 @@ glpgp_status glpgp_cross_analyze(const glpgp_mesh *m, glpgp_cross_result *c)
         for (int a = 0; a < 3; a++) {
             int *slot = &vs[2 * m->tri[3 * t + a] + sg];
             if (*slot >= 0) {
-                int ra = uf_find(parent, *slot), rb = uf_find(parent, t);
+                int ra = glpgp_uf_find(parent, *slot), rb = glpgp_uf_find(parent, t);
                 if (ra != rb) parent[ra < rb ? rb : ra] = ra < rb ? ra : rb;
             }
             *slot = t;
@@ -165,14 +156,14 @@ glpgp_status glpgp_cross_analyze(const glpgp_mesh *m, glpgp_cross_result *c)
     int n = 0;
     for (int t = 0; t < nt; t++) {
         root_id[t] = -1;
-        if (c->winding[t] && uf_find(parent, t) == t) root_id[t] = n++;
+        if (c->winding[t] && glpgp_uf_find(parent, t) == t) root_id[t] = n++;
     }
     GLPGP_CHECK_GOTO(st, glpgp_calloc((size_t)n, sizeof *c->sing, &c->sing), done);
     GLPGP_CHECK_GOTO(st, glpgp_calloc((size_t)2 * n, sizeof(double), &acc), done);
     c->nsing = n;
     for (int t = 0; t < nt; t++) {
         if (!c->winding[t]) continue;
-        const int k = root_id[uf_find(parent, t)];
+        const int k = root_id[glpgp_uf_find(parent, t)];
         glpgp_cross_sing *q = &c->sing[k];
         double px, py;
         tri_zero(m, c->w, t, &px, &py);

@@ -11,7 +11,12 @@
  *    coordinates, unknown nodes, stray $End lines, element blocks that
  *    disagree with the header, lines over the limit, NUL bytes;
  *  - OBJ: non-finite coordinates, a face using a vertex twice, a face index
- *    beyond the vertices (reported on its line), huge indices. */
+ *    beyond the vertices (reported on its line), huge indices;
+ *  - second- and higher-order elements (their corners), quadrangles (two
+ *    triangles each, also non-convex ones), a 6-node triangle a node short;
+ *  - unwelded meshes: a triangle soup and two patches with doubled seam
+ *    nodes (OBJ, MSH 4.1) are welded into one piece; the doubled lips of a
+ *    crack inside one piece stay apart. */
 #include "testutil.h"
 
 #include <errno.h>
@@ -285,6 +290,100 @@ static void malformed_obj(void)
     obj_expect("overidx.obj", "v 0 0\nv 1 0\nv 0 1\nf 1 2 99999999999999999999\n", GLPGP_ERR_FORMAT, NULL, __LINE__);
 }
 
+/* Read path (expected to succeed) and check its counts. */
+static void read_expect(const char *name, int nv, int nt, int nloops, double area, int line)
+{
+    glpgp_mesh *m = NULL;
+    glpgp_status st = glpgp_mesh_read(P(name), &m);
+    if (st != GLPGP_OK || !m) {
+        fprintf(stderr, "line %d: %s: %s\n", line, name, glpgp_error_message());
+        tu_failures++;
+        return;
+    }
+    if (m->nv != nv || m->nt != nt || m->nloops != nloops || fabs(m->area - area) > 1e-12) {
+        fprintf(stderr, "line %d: %s: nv %d nt %d loops %d area %g, expected %d %d %d %g\n", line, name, m->nv,
+                m->nt, m->nloops, m->area, nv, nt, nloops, area);
+        tu_failures++;
+    }
+    glpgp_mesh_destroy(&m);
+}
+
+static void welding(void)
+{
+    /* a 2 x 2 square of 8 triangles, every triangle with its own three
+     * vertices: one piece of 9 vertices after welding */
+    char soup[4096] = "# triangle soup\n";
+    int nf = 0;
+    for (int j = 0; j < 2; j++)
+        for (int i = 0; i < 2; i++) {
+            const int q[2][3][2] = {{{0, 0}, {1, 0}, {1, 1}}, {{0, 0}, {1, 1}, {0, 1}}};
+            for (int k = 0; k < 2; k++) {
+                for (int c = 0; c < 3; c++)
+                    snprintf(soup + strlen(soup), sizeof soup - strlen(soup), "v %d %d 0\n", i + q[k][c][0],
+                             j + q[k][c][1]);
+                nf++;
+            }
+        }
+    for (int f = 0; f < nf; f++)
+        snprintf(soup + strlen(soup), sizeof soup - strlen(soup), "f %d %d %d\n", 3 * f + 1, 3 * f + 2, 3 * f + 3);
+    put(P("soup.obj"), soup, 0);
+    read_expect("soup.obj", 9, 8, 1, 4.0, __LINE__);
+
+    /* two unit squares meshed apart, the seam x = 1 doubled (MSH 4.1, one
+     * entity each): one piece, 6 vertices, one loop */
+    const char *two = "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n"
+                      "$Nodes\n2 8 1 8\n"
+                      "2 1 0 4\n1\n2\n3\n4\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n"
+                      "2 2 0 4\n5\n6\n7\n8\n1 0 0\n2 0 0\n2 1 0\n1 1 0\n$EndNodes\n"
+                      "$Elements\n2 4 1 4\n2 1 2 2\n1 1 2 3\n2 1 3 4\n2 2 2 2\n3 5 6 7\n4 5 7 8\n"
+                      "$EndElements\n";
+    put(P("patches.msh"), two, 0);
+    read_expect("patches.msh", 6, 4, 1, 2.0, __LINE__);
+
+    /* a crack: the square [0,2]^2 slit from (1,0) up to (1,1), the slit's
+     * foot doubled (vertices 5 and 6) inside one piece: kept apart, one loop
+     * running up and down the slit */
+    const char *crack = "v 0 0\nv 2 0\nv 2 2\nv 0 2\nv 1 0\nv 1 0\nv 1 1\n"
+                        "f 1 5 7\nf 1 7 4\nf 4 7 3\nf 6 2 7\nf 7 2 3\n";
+    put(P("crack.obj"), crack, 0);
+    read_expect("crack.obj", 7, 5, 1, 4.0, __LINE__);
+}
+
+/* Element kinds other than 3-node triangles: second- and higher-order
+ * elements give their corners; quadrangles are split in two triangles over
+ * a diagonal inside them. */
+static void element_kinds(void)
+{
+    /* MSH 4.1: the unit square as two 6-node triangles (type 9) */
+    const char *p2 = "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n"
+                     "$Nodes\n1 9 1 9\n2 1 0 9\n1\n2\n3\n4\n5\n6\n7\n8\n9\n"
+                     "0 0 0\n1 0 0\n1 1 0\n0 1 0\n0.5 0 0\n1 0.5 0\n0.5 1 0\n0 0.5 0\n0.5 0.5 0\n$EndNodes\n"
+                     "$Elements\n1 2 1 2\n2 1 9 2\n1 1 2 3 5 6 9\n2 1 3 4 9 7 8\n$EndElements\n";
+    put(P("p2.msh"), p2, 0);
+    read_expect("p2.msh", 4, 2, 1, 1.0, __LINE__);
+    /* MSH 2.2: one 9-node quadrangle (type 10) */
+    const char *q9 = "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n"
+                     "$Nodes\n9\n1 0 0 0\n2 1 0 0\n3 1 1 0\n4 0 1 0\n5 0.5 0 0\n6 1 0.5 0\n7 0.5 1 0\n"
+                     "8 0 0.5 0\n9 0.5 0.5 0\n$EndNodes\n"
+                     "$Elements\n1\n1 10 2 0 1 1 2 3 4 5 6 7 8 9\n$EndElements\n";
+    put(P("q9.msh"), q9, 0);
+    read_expect("q9.msh", 4, 2, 1, 1.0, __LINE__);
+    /* a non-convex quadrangle (reflex corner 4 at (0.5, 1)): only the
+     * diagonal 2-4 lies inside it */
+    const char *dart = "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n"
+                       "$Nodes\n4\n1 0 0 0\n2 2 1 0\n3 0 2 0\n4 0.5 1 0\n$EndNodes\n"
+                       "$Elements\n1\n1 3 2 0 1 1 2 3 4\n$EndElements\n";
+    put(P("dart.msh"), dart, 0);
+    read_expect("dart.msh", 4, 2, 1, 1.5, __LINE__);
+    /* a node short: an error, not a crash */
+    const char *short9 = "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n"
+                         "$Nodes\n1 3 1 3\n2 1 0 3\n1\n2\n3\n0 0 0\n1 0 0\n0 1 0\n$EndNodes\n"
+                         "$Elements\n1 1 1 1\n2 1 9 1\n1 1 2 3 1 2\n$EndElements\n";
+    put(P("short9.msh"), short9, 0);
+    glpgp_mesh *m = NULL;
+    CHECK(glpgp_mesh_read(P("short9.msh"), &m) == GLPGP_ERR_FORMAT && !m);
+}
+
 int main(void)
 {
     const char *base = getenv("TMPDIR");
@@ -297,6 +396,10 @@ int main(void)
     malformed_msh();
     pipes();
     malformed_obj();
+    welding();
+    element_kinds();
+    const char *made[] = {"soup.obj", "patches.msh", "crack.obj", "p2.msh", "q9.msh", "dart.msh", "short9.msh"};
+    for (size_t k = 0; k < sizeof made / sizeof *made; k++) unlink(P(made[k]));
     rmdir(g_dir);
     TEST_DONE();
 }

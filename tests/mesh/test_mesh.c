@@ -1,6 +1,7 @@
 /* test_mesh.c: tests for glpgp_mesh_create (validation, orientation repair,
  * boundary loops and normals) and the mesh readers/writers (OBJ, MSH 2.2/4.1,
- * error cases, the meshes in data/, write/read round trips). */
+ * error cases, the meshes in data/, write/read round trips, a part far from
+ * the origin). */
 #include "testutil.h"
 
 #include <dirent.h>
@@ -28,9 +29,10 @@ static double loop_area(const glpgp_mesh *m, int l)
 {
     int s = m->loop_start[l], n = m->loop_start[l + 1] - s;
     double a = 0.0;
+    const double *o = m->xy + 2 * m->loop_vertices[s]; /* about the first vertex: no cancellation */
     for (int i = 0; i < n; i++) {
         const double *p = m->xy + 2 * m->loop_vertices[s + i], *q = m->xy + 2 * m->loop_vertices[s + (i + 1) % n];
-        a += p[0] * q[1] - q[0] * p[1];
+        a += (p[0] - o[0]) * (q[1] - o[1]) - (q[0] - o[0]) * (p[1] - o[1]);
     }
     return 0.5 * a;
 }
@@ -314,6 +316,20 @@ static void test_obj(void)
 
     p = write_file("bumpy.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0.001\nv 0 1 0\nf 1 2 3 4\n", 0);
     m = read_expect(p, GLPGP_ERR_MESH, "not planar", __LINE__);
+    /* A part drawn in a side view (y = 5, or x = -2): solved in (x, z) or
+     * (y, z), the same unit square. */
+    p = write_file("xz.obj", "v 0 5 0\nv 1 5 0\nv 1 5 1\nv 0 5 1\nf 1 2 3 4\n", 0);
+    m = read_expect(p, GLPGP_OK, NULL, __LINE__);
+    if (m) {
+        CHECK(m->nv == 4 && m->nt == 2 && fabs(m->area - 1.0) < 1e-15 && m->bbox[0] == 0 && m->bbox[3] == 1);
+        glpgp_mesh_destroy(&m);
+    }
+    p = write_file("yz.obj", "v -2 0 0\nv -2 1 0\nv -2 1 1\nv -2 0 1\nf 1 2 3 4\n", 0);
+    m = read_expect(p, GLPGP_OK, NULL, __LINE__);
+    if (m) {
+        CHECK(m->nv == 4 && fabs(m->area - 1.0) < 1e-15);
+        glpgp_mesh_destroy(&m);
+    }
     /* Tiny z noise (below 1e-9 of the size) is accepted. */
     p = write_file("flatish.obj", "v 0 0 0\nv 1 0 1e-12\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n", 0);
     m = read_expect(p, GLPGP_OK, NULL, __LINE__);
@@ -355,7 +371,7 @@ static void test_msh(void)
                       "$Nodes\n6\n10 0 0 0\n20 1 0 0\n30 1 1 0\n40 0 1 0\n55 0.5 0.5 0\n99 5 5 0\n$EndNodes\n"
                       "$Elements\n8\n1 15 2 0 1 10\n2 1 2 0 1 10 20\n3 2 2 1 1 10 20 55\n"
                       "4 2 2 1 1 20 30 55\n5 2 2 1 1 30 40 55\n6 2 0 40 10 55\n7 1 2 0 1 20 30\n"
-                      "8 3 2 0 1 10 20 30 40\n$EndElements\n";
+                      "8 15 2 0 1 99\n$EndElements\n";
     const char *p = write_file("sq22.msh", m22, 0);
     glpgp_mesh *m = read_expect(p, GLPGP_OK, NULL, __LINE__);
     if (m) {
@@ -400,7 +416,7 @@ static void test_msh(void)
     m = read_expect(p, GLPGP_ERR_FORMAT, "trunc.msh:", __LINE__);
     p = write_file("bumpy.msh", "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n3\n1 0 0 0\n2 1 0 0\n3 0 1 1\n$EndNodes\n"
                                 "$Elements\n1\n1 2 0 1 2 3\n$EndElements\n", 0);
-    m = read_expect(p, GLPGP_ERR_MESH, "not planar: z varies from 0 to 1", __LINE__);
+    m = read_expect(p, GLPGP_ERR_MESH, "not planar in a coordinate plane: x, y and z vary (by 1, 1, 1)", __LINE__);
     p = write_file("notri.msh", "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n2\n1 0 0 0\n2 1 0 0\n$EndNodes\n"
                                 "$Elements\n1\n1 1 0 1 2\n$EndElements\n", 0);
     m = read_expect(p, GLPGP_ERR_MESH, "no triangles", __LINE__);
@@ -491,6 +507,38 @@ static void test_roundtrip(void)
     glpgp_mesh_destroy(&m);
 }
 
+/* A part drawn far from the origin (CAD coordinates): the annulus moved by
+ * offsets up to 2e6 is accepted with the same area and loops. The boundary's
+ * shoelace sum over absolute coordinates cancelled to errors far above the
+ * overlap test's tolerance ("the mesh overlaps itself: its triangles cover
+ * 34.9125 but its boundary encloses 34.9125" at (1e5, -5e4)). */
+static void test_far_from_origin(void)
+{
+    glpgp_mesh *m0 = NULL;
+    CHECK(glpgp_mesh_generate("annulus", 4000, &m0) == GLPGP_OK);
+    if (!m0) return;
+    const double off[][2] = {{1e5, -5e4}, {3e5, 7e5}, {-1e6, 2e6}, {12345.678, -98765.4321}};
+    double *xy = malloc(2 * (size_t)m0->nv * sizeof *xy);
+    CHECK(xy != NULL);
+    for (size_t k = 0; xy && k < sizeof off / sizeof off[0]; k++) {
+        for (int v = 0; v < m0->nv; v++) {
+            xy[2 * v] = m0->xy[2 * v] + off[k][0];
+            xy[2 * v + 1] = m0->xy[2 * v + 1] + off[k][1];
+        }
+        glpgp_mesh *m = NULL;
+        glpgp_status st = glpgp_mesh_create(m0->nv, xy, m0->nt, m0->tri, &m);
+        if (st != GLPGP_OK) fprintf(stderr, "offset (%g, %g): %s\n", off[k][0], off[k][1], glpgp_error_message());
+        CHECK(st == GLPGP_OK && m);
+        if (!m) continue;
+        CHECK(m->nloops == m0->nloops);
+        CHECK(fabs(m->area - m0->area) <= 1e-9 * m0->area);
+        check_invariants(m);
+        glpgp_mesh_destroy(&m);
+    }
+    free(xy);
+    glpgp_mesh_destroy(&m0);
+}
+
 static void remove_tmp_dir(void)
 {
     DIR *d = opendir(g_tmp);
@@ -521,6 +569,7 @@ int main(void)
     test_msh();
     test_data();
     test_roundtrip();
+    test_far_from_origin();
     remove_tmp_dir();
     TEST_DONE();
 }

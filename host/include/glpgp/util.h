@@ -1,6 +1,6 @@
 /* glpgp/util.h: small helpers every layer uses: a monotonic clock,
  * case-insensitive file-extension tests, order statistics without sorting,
- * and where the dlopen'd modules are looked for. Layer: core. */
+ * union-find, and where the dlopen'd modules are looked for. Layer: core. */
 #ifndef GLPGP_UTIL_H
 #define GLPGP_UTIL_H
 
@@ -26,6 +26,11 @@ double glpgp_select_double(double *a, size_t n, size_t k);
 /* The median of a[0 .. n) (n >= 1; the mean of the middle two for even n),
  * the same value as from the sorted array; a is permuted. */
 double glpgp_median_double(double *a, size_t n);
+
+/* Union-find: the root of i's set in the forest parent[] (parent[r] == r
+ * at a root; start with parent[i] = i), halving the path on the way. Union:
+ * parent[glpgp_uf_find(p, a)] = glpgp_uf_find(p, b). */
+int glpgp_uf_find(int *parent, int i);
 
 /* The host's available memory in bytes (MemAvailable of /proc/meminfo; 0
  * when unknown) and its online processors (at least 1). */
