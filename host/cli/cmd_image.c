@@ -101,12 +101,14 @@ int glpgp_cmd_mesh(int argc, char **argv)
     glpgp_mask_options mo;
     glpgp_mask_options_default(&mo);
     glpgp_opts t;
-    glpgp_opts_init(&t, sub, "glpgp mesh {MASK.png,...|DOMAIN.poly} -o DOMAIN.{msh,obj} [options]",
+    glpgp_opts_init(&t, sub, "glpgp mesh {MASK.png,...|DOMAIN.poly|MESH.obj|MESH.msh} -o DOMAIN.{msh,obj} [options]",
                     "Triangle mesh of the domain drawn in a mask image: the mask is thresholded,\n"
                     "its boundary traced at sub-pixel precision (marching squares), holes kept,\n"
                     "specks dropped, simplified, and meshed with Gmsh. Or of the polygons of a\n"
                     "Triangle .poly file (closed loops of segments, holes by nesting; the first\n"
-                    "vertex attribute, when > 0, is the local mesh size: graded meshes).\n");
+                    "vertex attribute, when > 0, is the local mesh size: graded meshes). Or a\n"
+                    "remesh of a triangle mesh (.obj, .msh) inside its boundary points: for CAD\n"
+                    "exports (STL-like fans of slivers) that are poor input for the solver.\n");
     glpgp_opt *o = glpgp_opt_string(&t, "--out", &out, "FILE", "mesh file, .msh or .obj");
     o->alias = "-o";
     glpgp_opts_add_mask(&t, &mo);
@@ -119,10 +121,11 @@ int glpgp_cmd_mesh(int argc, char **argv)
     int rc = glpgp_opts_parse(&t, argc, argv, &in, 1, &npos);
     if (rc >= 0) return rc;
     glpgp_cli_set_verbosity(verbosity);
-    if (!in) return glpgp_cli_usage_error(sub, "missing MASK image or .poly file");
+    if (!in) return glpgp_cli_usage_error(sub, "missing MASK image, .poly file or mesh");
     if (!out) return glpgp_cli_usage_error(sub, "missing -o DOMAIN.msh");
     if ((rc = glpgp_cli_check_output(sub, "--out", out, exts)) >= 0) return rc;
-    if (!glpgp_cli_need_images(!glpgp_is_poly_path(in), 1)) return GLPGP_EXIT_FAIL;
+    const int polygons = glpgp_is_poly_path(in) || glpgp_has_ext(in, ".obj") || glpgp_has_ext(in, ".msh");
+    if (!glpgp_cli_need_images(!polygons, 1)) return GLPGP_EXIT_FAIL;
     glpgp_error_clear();
     glpgp_mesh *m = NULL;
     glpgp_mask_info inf;

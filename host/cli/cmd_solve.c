@@ -15,6 +15,7 @@
 #include "glpgp/solve.h"
 #include "glpgp/util.h"
 
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -294,15 +295,57 @@ static int prepare(solve_cli *c, const char *input, glpgp_mesh **pm, glpgp_size_
         return rc;
     }
     /* the input is refined for the local size (auto / iso, refinement on,
-     * no per-vertex field file): h may be down to half a mean edge here (a
-     * graded input whose far field is coarser than h); the refined mesh is
-     * checked against the full rule below */
+     * no per-vertex field file): h may be below 2 mean edges here (a graded
+     * input whose far field is coarser than h, a CAD export's fan of
+     * slivers; the refinement's own limits bound the work); the refined mesh
+     * is checked against the full rule below */
     const int refine = !c->no_refine && c->o.field != GLPGP_FIELD_FILE &&
                        (c->o.size_field == GLPGP_SIZE_AUTO || c->o.size_field == GLPGP_SIZE_ISO ||
                         c->o.size_field == GLPGP_SIZE_FUNC);
+    /* slivers (a CAD export's fans): one warning naming the remedy */
+    {
+        double amin;
+        int nsliver;
+        glpgp_mesh_angles(m, GLPGP_SLIVER_DEG, &amin, &nsliver);
+        if (nsliver > 0 && nsliver >= 0.01 * m->nt)
+            glpgp_log(GLPGP_LOG_WARNING,
+                      "%s: %d of %d triangles have an angle below %g degrees (smallest %.3g): the solution is "
+                      "inaccurate on such slivers and refinement keeps them thin; remesh the domain first: glpgp "
+                      "mesh %s -o NEW.msh",
+                      input, nsliver, m->nt, GLPGP_SLIVER_DEG, amin, input);
+    }
+    /* a mesh too coarse for the default size (diameter / 20): the default
+     * raised to 10 mean edges would leave a handful of quads (an STL-style
+     * fan of a disk: h = 6.8 for a diameter of 2); refined for diameter / 20
+     * instead */
+    if (refine && !(c->o.size > 0.0)) {
+        const double dx = m->bbox[2] - m->bbox[0], dy = m->bbox[3] - m->bbox[1], diag = sqrt(dx * dx + dy * dy);
+        if (glpgp_default_size(m, &c->o) > diag / GLPGP_SIZE_DEFAULT_MIN_QUADS) {
+            c->o.size = diag / c->o.size_diag_div;
+            glpgp_log(GLPGP_LOG_INFO,
+                      "the input is too coarse for the default size (mean edge %.3g): h = diameter / %g = %.4g, "
+                      "the mesh refined for it",
+                      m->mean_edge, c->o.size_diag_div, c->o.size);
+        }
+    }
     glpgp_status chk;
-    if (refine && c->o.size > 0.0 && c->o.size >= 0.5 * m->mean_edge &&
-        c->o.size < GLPGP_SIZE_MIN_EDGES * m->mean_edge) {
+    /* below 2 mean edges the mesh is refined to edges of h / R (R =
+     * size_resolution) at least: 2.31 area / (h / R)^2 triangles (equilateral),
+     * refused before any work above --max-elements (the refinement's own
+     * limits would stop it only after seconds and gigabytes) */
+    const double max_tri = c->mo.max_triangles > 0 ? (double)c->mo.max_triangles : (double)GLPGP_DEFAULT_MAX_ELEMENTS;
+    const double l_ref = c->o.size / c->o.size_resolution;
+    if (refine && c->o.size > 0.0 && c->o.size < GLPGP_SIZE_MIN_EDGES * m->mean_edge &&
+        !(2.31 * m->area / (l_ref * l_ref) <= max_tri)) {
+        rc = glpgp_cli_usage_error("solve",
+                                   "--size: size h = %g is %.3g mean edge lengths of the mesh: refined for it, the "
+                                   "mesh would have about %.3g triangles, more than --max-elements %.0f",
+                                   c->o.size, c->o.size / m->mean_edge, 2.31 * m->area / (l_ref * l_ref), max_tri);
+        glpgp_mesh_destroy(&m);
+        glpgp_size_image_destroy(psimg);
+        return rc;
+    }
+    if (refine && c->o.size > 0.0 && c->o.size < GLPGP_SIZE_MIN_EDGES * m->mean_edge) {
         glpgp_options big = c->o;
         big.size = GLPGP_SIZE_MIN_EDGES * m->mean_edge; /* the other rules (diameter, options) */
         chk = glpgp_options_check_mesh(&big, m);

@@ -15,6 +15,8 @@
  * For the tests, GLPGP_TEST_GMSH_FAULT=abort|segv|exit|garbage|hang in the
  * environment makes the child fail that way instead of meshing. */
 #include "glpgp/image.h"
+#include "glpgp/io.h"
+#include "glpgp/util.h"
 #include "module.h"
 
 #include <errno.h>
@@ -466,8 +468,17 @@ glpgp_status glpgp_mask_mesh(const char *path, const glpgp_mask_options *opt, gl
     glpgp_image *im = NULL;
     float *v = NULL;
     glpgp_polygons *p = NULL;
-    if (glpgp_is_poly_path(path)) { /* a polygon file: no image, no contours */
-        GLPGP_CHECK(glpgp_polygons_read(path, &p));
+    const int from_mesh = glpgp_has_ext(path, ".obj") || glpgp_has_ext(path, ".msh");
+    if (glpgp_is_poly_path(path) || from_mesh) { /* polygons: no image, no contours */
+        if (from_mesh) {
+            /* a triangle mesh (a CAD export's slivers): its boundary loops */
+            glpgp_mesh *in = NULL;
+            GLPGP_CHECK(glpgp_mesh_read(path, &in));
+            st = glpgp_polygons_from_mesh(in, &p);
+            glpgp_mesh_destroy(&in);
+            GLPGP_CHECK(st);
+        } else
+            GLPGP_CHECK(glpgp_polygons_read(path, &p));
         double t1 = now_s();
         inf.seconds_read = t1 - t0;
         double hm = o.mesh_size > 0 ? o.mesh_size : glpgp_mask_default_mesh_size(p, o.quad_size);

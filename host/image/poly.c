@@ -85,6 +85,84 @@ static glpgp_status header(ptok *t, const char *what, double *v, int min, int ma
 
 static int is_count(double x, long max) { return x >= 0 && x <= max && x == floor(x); }
 
+/* Signed area of the closed loop xy[0 .. 2n), about its first point (no
+ * cancellation for parts far from the origin). */
+static double loop_area(const double *xy, int n)
+{
+    double A = 0;
+    for (int i = 0; i < n; i++) {
+        const double *a = xy + 2 * i, *b = xy + 2 * ((i + 1) % n);
+        A += 0.5 * ((a[0] - xy[0]) * (b[1] - xy[1]) - (b[0] - xy[0]) * (a[1] - xy[1]));
+    }
+    return A;
+}
+
+/* Nesting and orientation of the loops of P (n, start, xy, size set): the
+ * parent of each hole (the smallest loop containing it), outer loops (even
+ * depth) turned counter-clockwise and holes clockwise (size[] with them),
+ * area[], total_area, nouter, nholes. */
+static glpgp_status polygons_orient(glpgp_polygons *P)
+{
+    const int nl = P->n;
+    int *depth = NULL;
+    GLPGP_CHECK(glpgp_calloc((size_t)nl, sizeof(int), &depth));
+    P->nouter = P->nholes = 0;
+    /* nesting: depth = number of loops containing a vertex of the loop */
+    for (int l = 0; l < nl; l++) {
+        const double *p = P->xy + 2 * P->start[l];
+        double bestA = INFINITY;
+        P->parent[l] = -1;
+        for (int o = 0; o < nl; o++) {
+            if (o == l) continue;
+            int in = 0, s = P->start[o], n = P->start[o + 1] - s;
+            for (int i = 0, j = n - 1; i < n; j = i++) {
+                const double *a = P->xy + 2 * (s + i), *b = P->xy + 2 * (s + j);
+                if ((a[1] > p[1]) != (b[1] > p[1]) && p[0] < (b[0] - a[0]) * (p[1] - a[1]) / (b[1] - a[1]) + a[0])
+                    in = !in;
+            }
+            if (!in) continue;
+            depth[l]++;
+            double A = loop_area(P->xy + 2 * s, n);
+            if (fabs(A) < bestA) {
+                bestA = fabs(A);
+                P->parent[l] = o;
+            }
+        }
+    }
+    /* orientation: outer loops (even depth) counter-clockwise, holes clockwise */
+    P->total_area = 0;
+    for (int l = 0; l < nl; l++) {
+        int s = P->start[l], n = P->start[l + 1] - s;
+        double A = loop_area(P->xy + 2 * s, n);
+        int hole_l = depth[l] % 2;
+        if ((A < 0) != hole_l) {
+            for (int i = 0; i < n / 2; i++)
+                for (int c = 0; c < 2; c++) {
+                    double tmp = P->xy[2 * (s + i) + c];
+                    P->xy[2 * (s + i) + c] = P->xy[2 * (s + n - 1 - i) + c];
+                    P->xy[2 * (s + n - 1 - i) + c] = tmp;
+                }
+            if (P->size)
+                for (int i = 0; i < n / 2; i++) {
+                    double tmp = P->size[s + i];
+                    P->size[s + i] = P->size[s + n - 1 - i];
+                    P->size[s + n - 1 - i] = tmp;
+                }
+            A = -A;
+        }
+        P->area[l] = A;
+        P->total_area += A;
+        if (hole_l)
+            P->nholes++;
+        else {
+            P->nouter++;
+            P->parent[l] = -1;
+        }
+    }
+    free(depth);
+    return GLPGP_OK;
+}
+
 glpgp_status glpgp_polygons_read(const char *path, glpgp_polygons **out)
 {
     *out = NULL;
@@ -95,7 +173,7 @@ glpgp_status glpgp_polygons_read(const char *path, glpgp_polygons **out)
     if (!t.f) return GLPGP_FAIL(GLPGP_ERR_IO, "cannot open '%s': %s", path, strerror(errno));
     glpgp_status st = GLPGP_OK;
     double *vxy = NULL, *vsize = NULL;
-    int *seg = NULL, *deg = NULL, *adj = NULL, *vloop = NULL, *order = NULL, *depth = NULL;
+    int *seg = NULL, *deg = NULL, *adj = NULL, *vloop = NULL, *order = NULL;
     double *hole = NULL;
     glpgp_polygons *P = NULL;
     double v[64];
@@ -202,7 +280,6 @@ glpgp_status glpgp_polygons_read(const char *path, glpgp_polygons **out)
     GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)w, sizeof(double), &P->size), done);
     GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)nl, sizeof(double), &P->area), done);
     GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)nl, sizeof(int), &P->parent), done);
-    GLPGP_CHECK_GOTO(st, glpgp_calloc((size_t)nl, sizeof(int), &depth), done);
     int any_size = 0;
     for (int j = 0; j < w; j++) {
         P->xy[2 * j] = vxy[2 * order[j]];
@@ -214,66 +291,7 @@ glpgp_status glpgp_polygons_read(const char *path, glpgp_polygons **out)
         free(P->size);
         P->size = NULL;
     }
-    /* nesting: depth = number of loops containing a vertex of the loop */
-    for (int l = 0; l < nl; l++) {
-        const double *p = P->xy + 2 * P->start[l];
-        double bestA = INFINITY;
-        P->parent[l] = -1;
-        for (int o = 0; o < nl; o++) {
-            if (o == l) continue;
-            int in = 0, s = P->start[o], n = P->start[o + 1] - s;
-            for (int i = 0, j = n - 1; i < n; j = i++) {
-                const double *a = P->xy + 2 * (s + i), *b = P->xy + 2 * (s + j);
-                if ((a[1] > p[1]) != (b[1] > p[1]) && p[0] < (b[0] - a[0]) * (p[1] - a[1]) / (b[1] - a[1]) + a[0])
-                    in = !in;
-            }
-            if (!in) continue;
-            depth[l]++;
-            double A = 0;
-            for (int i = 0; i < n; i++) {
-                const double *a = P->xy + 2 * (s + i), *b = P->xy + 2 * (s + (i + 1) % n);
-                A += 0.5 * (a[0] * b[1] - b[0] * a[1]);
-            }
-            if (fabs(A) < bestA) {
-                bestA = fabs(A);
-                P->parent[l] = o;
-            }
-        }
-    }
-    /* orientation: outer loops (even depth) counter-clockwise, holes clockwise */
-    P->total_area = 0;
-    for (int l = 0; l < nl; l++) {
-        int s = P->start[l], n = P->start[l + 1] - s;
-        double A = 0;
-        for (int i = 0; i < n; i++) {
-            const double *a = P->xy + 2 * (s + i), *b = P->xy + 2 * (s + (i + 1) % n);
-            A += 0.5 * (a[0] * b[1] - b[0] * a[1]);
-        }
-        int hole_l = depth[l] % 2;
-        if ((A < 0) != hole_l) {
-            for (int i = 0; i < n / 2; i++)
-                for (int c = 0; c < 2; c++) {
-                    double tmp = P->xy[2 * (s + i) + c];
-                    P->xy[2 * (s + i) + c] = P->xy[2 * (s + n - 1 - i) + c];
-                    P->xy[2 * (s + n - 1 - i) + c] = tmp;
-                }
-            if (P->size)
-                for (int i = 0; i < n / 2; i++) {
-                    double tmp = P->size[s + i];
-                    P->size[s + i] = P->size[s + n - 1 - i];
-                    P->size[s + n - 1 - i] = tmp;
-                }
-            A = -A;
-        }
-        P->area[l] = A;
-        P->total_area += A;
-        if (hole_l)
-            P->nholes++;
-        else {
-            P->nouter++;
-            P->parent[l] = -1;
-        }
-    }
+    GLPGP_CHECK_GOTO(st, polygons_orient(P), done);
     /* hole points must be outside the domain (even-odd) */
     for (int i = 0; i < nholes; i++) {
         const double *p = hole + 2 * i;
@@ -308,8 +326,32 @@ done:
     free(adj);
     free(vloop);
     free(order);
-    free(depth);
     free(hole);
+    glpgp_polygons_destroy(&P);
+    return st;
+}
+
+glpgp_status glpgp_polygons_from_mesh(const glpgp_mesh *m, glpgp_polygons **out)
+{
+    *out = NULL;
+    glpgp_polygons *P = NULL;
+    glpgp_status st = GLPGP_OK;
+    const int nl = m->nloops, np = m->loop_start[nl];
+    GLPGP_CHECK(glpgp_calloc(1, sizeof *P, &P));
+    P->n = nl;
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)nl + 1, sizeof(int), &P->start), done);
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)2 * np, sizeof(double), &P->xy), done);
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)nl, sizeof(double), &P->area), done);
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)nl, sizeof(int), &P->parent), done);
+    for (int l = 0; l <= nl; l++) P->start[l] = m->loop_start[l];
+    for (int i = 0; i < np; i++) {
+        P->xy[2 * i] = m->xy[2 * m->loop_vertices[i]];
+        P->xy[2 * i + 1] = m->xy[2 * m->loop_vertices[i] + 1];
+    }
+    GLPGP_CHECK_GOTO(st, polygons_orient(P), done);
+    *out = P;
+    P = NULL;
+done:
     glpgp_polygons_destroy(&P);
     return st;
 }

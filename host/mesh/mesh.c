@@ -463,3 +463,24 @@ fail:
     glpgp_mesh_destroy(&m);
     return st;
 }
+
+void glpgp_mesh_angles(const glpgp_mesh *m, double sliver_deg, double *min_angle, int *nslivers)
+{
+    double amin = 180.0;
+    int n = 0;
+    for (int t = 0; t < m->nt; t++) {
+        double tmin = 180.0;
+        for (int k = 0; k < 3; k++) {
+            const double *a = m->xy + 2 * m->tri[3 * t + k], *b = m->xy + 2 * m->tri[3 * t + (k + 1) % 3],
+                         *c = m->xy + 2 * m->tri[3 * t + (k + 2) % 3];
+            const double ux = b[0] - a[0], uy = b[1] - a[1], vx = c[0] - a[0], vy = c[1] - a[1];
+            /* angle at a = atan2(|u x v|, u . v) */
+            const double ang = atan2(fabs(ux * vy - uy * vx), ux * vx + uy * vy) * (180.0 / 3.14159265358979323846);
+            if (ang < tmin) tmin = ang;
+        }
+        if (tmin < amin) amin = tmin;
+        n += tmin < sliver_deg;
+    }
+    *min_angle = amin;
+    *nslivers = n;
+}

@@ -6,8 +6,9 @@
 # (one vt per corner) and a statistics JSON that parses (python3, when
 # available) with consistent keys; overwriting existing outputs; built-in
 # shape: inputs; --oscillators concurrent and sequential write the same file
-# and say which ran; at most one warning line with --backend auto; no
-# temporary files left behind.
+# and say which ran; an STL-style fan of slivers (a warning naming `glpgp
+# mesh`, the default h), unwelded (welded, same h), remeshed (no slivers); at
+# most one warning line with --backend auto; no temporary files left behind.
 . "$(dirname "$0")/lib.sh" "$@"
 
 ok_run() { run_ok "$@"; }
@@ -135,6 +136,30 @@ for be in reference opencl; do
     grep -q '"oscillators": "sequential"' osc_sequential.json || fail "$be: stats do not record the sequential run"
 done
 run_fail "--oscillators foo" 2 "oscillators" solve shape:disk:500 --oscillators foo
+
+# ---- CAD exports: an STL-style fan of slivers, unwelded -------------------------
+# a 48-gon of radius 1 fanned from its first corner (every triangle a sliver,
+# no interior vertex): solve warns and names the remedy, takes h = diameter /
+# 20 (not 10 of its long mean edges, beyond the domain) and refines for it
+awk 'BEGIN { n = 48; pi = atan2(0, -1);
+             for (i = 0; i < n; i++) printf "v %.17g %.17g 0\n", cos(2 * pi * i / n), sin(2 * pi * i / n);
+             for (i = 2; i < n; i++) printf "f 1 %d %d\n", i, i + 1 }' >fan.obj
+ok_run "solve fan of slivers" solve fan.obj --backend reference --newton-max 5
+expect_err "warning: .*46 of 46 triangles have an angle below 5 degrees.*glpgp mesh fan.obj -o" "solve fan: sliver warning"
+expect_out "h = 0\.1414" "solve fan: default h = diameter / 20"
+# the same fan with a vertex per triangle: welded (one warning), same mesh
+awk '/^v/ { v[++n] = $0 } /^f/ { print v[$2]; print v[$3]; print v[$4]; k++; f[k] = sprintf("f %d %d %d", 3*k-2, 3*k-1, 3*k) }
+     END { for (i = 1; i <= k; i++) print f[i] }' fan.obj >soup.obj
+ok_run "solve unwelded fan" solve soup.obj --backend reference --newton-max 5
+expect_err "warning: soup.obj: 90 vertices repeat the coordinates .* 46 pieces -> 1" "solve soup: welded"
+expect_out "h = 0\.1414" "solve soup: the welded fan's h"
+if "$GLPGP" mesh fan.obj -o fan_re.msh --size 0.3 --quiet 2>mesh_err.txt; then
+    ok_run "solve remeshed fan" solve fan_re.msh --backend reference --size 0.3 --newton-max 5
+    ! grep -q "below 5 degrees" err.txt || fail "the remeshed fan still has slivers"
+else
+    grep -q "built without Gmsh" mesh_err.txt || fail "mesh fan.obj failed: $(head -c 300 mesh_err.txt)"
+    echo "note: built without Gmsh: the remesh check skipped"
+fi
 
 # ---- backend auto: at most one warning line --------------------------------
 ok_run "solve --backend auto" solve shape:square:500 --size 0.3 --backend auto --quiet

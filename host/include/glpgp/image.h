@@ -242,6 +242,11 @@ void glpgp_polygons_destroy(glpgp_polygons **p);
  * GLPGP_ERR_IO (unreadable), GLPGP_ERR_FORMAT (one message with the line). */
 glpgp_status glpgp_polygons_read(const char *path, glpgp_polygons **out);
 
+/* The boundary loops of the triangle mesh m as polygons (every boundary
+ * vertex a point; nesting and orientation as glpgp_polygons_read gives
+ * them, no sizes): what `glpgp mesh INPUT.obj|.msh` remeshes. */
+glpgp_status glpgp_polygons_from_mesh(const glpgp_mesh *m, glpgp_polygons **out);
+
 /* Whether path ends in .poly (case-insensitive). */
 int glpgp_is_poly_path(const char *path);
 
@@ -350,8 +355,10 @@ glpgp_status glpgp_mesh_polygons_timeout(const glpgp_polygons *p, double mesh_si
 
 /* Read the mask image at path, extract its contours and mesh them (see the
  * option struct for the defaults and limits). A path ending in .poly is read
- * with glpgp_polygons_read instead (no OpenImageIO needed; the contour options
- * do not apply; the default mesh size is computed the same way). The
+ * with glpgp_polygons_read instead, one ending in .obj or .msh with
+ * glpgp_mesh_read and glpgp_polygons_from_mesh (a remesh of the domain it
+ * covers, inside its boundary points) (no OpenImageIO needed; the contour
+ * options do not apply; the default mesh size is computed the same way). The
  * Douglas-Peucker tolerance actually used is max(o->contour.tolerance,
  * mesh_size / 20 in pixels): the boundary needs no detail finer than the mesh;
  * the simplification keeps the topology (glpgp_polygons_simplify). Limits

@@ -108,6 +108,12 @@ glpgp_status glpgp_mesh_partition(const glpgp_mesh *m, int nparts, const int *si
  * (small bandwidth): matrix rows gather their columns from a few cache
  * lines. Deterministic. */
 glpgp_status glpgp_mesh_rcm_order(const glpgp_mesh *m, int *new_of_old);
+
+/* Triangle shape: *min_angle the smallest corner angle of m in degrees,
+ * *nslivers the triangles with a corner below sliver_deg degrees (CAD
+ * exports triangulate a face as a fan of such slivers; P1 on them is
+ * inaccurate and longest-edge refinement keeps them thin). */
+void glpgp_mesh_angles(const glpgp_mesh *m, double sliver_deg, double *min_angle, int *nslivers);
 /* *out <- m with vertex i renumbered new_of_old[i] (a permutation of
  * 0 .. nv-1); triangles keep their order and corner order. */
 glpgp_status glpgp_mesh_renumber(const glpgp_mesh *m, const int *new_of_old, glpgp_mesh **out);

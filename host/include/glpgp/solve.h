@@ -221,6 +221,13 @@ glpgp_status glpgp_options_check(const glpgp_options *o);
  * GLPGP_ERR_ARG with a message naming the ratio otherwise. */
 #define GLPGP_SIZE_MIN_EDGES 2.0
 #define GLPGP_SIZE_MAX_DIAG 100.0
+/* `glpgp solve` with refinement: a default size above diameter / this (the
+ * raise to 10 mean edges on a coarse input) is replaced by diameter / 20 and
+ * the mesh refined for it */
+#define GLPGP_SIZE_DEFAULT_MIN_QUADS 5.0
+/* triangles with a corner below this many degrees are slivers (a warning
+ * when they are 1% of the input or more) */
+#define GLPGP_SLIVER_DEG 5.0
 glpgp_status glpgp_options_check_mesh(const glpgp_options *o, const glpgp_mesh *m);
 
 /* ---- local size (solver/sizefield.c) ----
