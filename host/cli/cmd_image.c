@@ -1,6 +1,7 @@
 /* cli/cmd_image.c: the picture and image-domain commands:
  *   glpgp render RESULT.vtk -o OUT.png   picture of a finished solve;
- *   glpgp mesh MASK.png -o DOMAIN.msh    triangle mesh of a mask image (Gmsh);
+ *   glpgp mesh MASK.png|D.poly|M.obj -o DOMAIN.msh   triangle mesh of a mask image, a polygon
+ *                                         file, or a remesh of a triangle mesh (Gmsh);
  *   glpgp figure INPUT -o OUT.png        naive PGP and GL side by side. */
 #include "commands.h"
 

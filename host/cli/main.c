@@ -30,7 +30,7 @@ static const command k_commands[] = {
     {"quality", glpgp_cmd_quality, "MESH.msh [--size H]", "quality report of a quad mesh made elsewhere"},
     {"render", glpgp_cmd_render, "RESULT.vtk -o OUT.png", "picture of a result (grid texture, ...)"},
     {"figure", glpgp_cmd_figure, "INPUT -o OUT.png", "naive PGP and GL-PGP side by side"},
-    {"mesh", glpgp_cmd_mesh, "MASK.png -o DOMAIN.msh", "triangle mesh of a mask image (Gmsh)"},
+    {"mesh", glpgp_cmd_mesh, "IN -o DOMAIN.msh", "triangle mesh of a mask image, .poly or mesh (Gmsh)"},
     {"devices", glpgp_cmd_devices, "", "list OpenCL platforms and devices"},
     {"crosscheck", glpgp_cmd_crosscheck, "INPUT [options]", "compare the OpenCL and reference paths stage by stage"},
     {NULL, NULL, NULL, NULL}};
