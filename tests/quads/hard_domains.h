@@ -40,8 +40,12 @@
  *           gives them: 300 points each, cosine-spaced whatever e (8e-5 H
  *           apart at the sharp trailing edge, where Gmsh joined three of them
  *           into one flat triangle of 179.99 degrees: cut off by
- *           glpgp_mesh_polygons) */
-#define HD_NAMES "slot strip smallhole wedge20 cusp graded perforated ibeam motor fillet crack airfoil"
+ *           glpgp_mesh_polygons)
+ * gasket    rounded rectangle 10 x 4 H, ten bolt holes of radius 0.4 H 0.15 H
+ *           from its long sides (thin ligaments), a central hole
+ * lamination disk of radius 5 H with a bore and 16 round holes of radius
+ *           0.35 H near the rim (holes smaller than H all around) */
+#define HD_NAMES "slot strip smallhole wedge20 cusp graded perforated ibeam motor fillet crack airfoil gasket lamination"
 
 typedef struct hd_poly {
     int n, cap_l;      /* loops */
@@ -280,6 +284,35 @@ static int hd_build(const char *name, double e, hd_poly *p)
     } else if (!strcmp(name, "crack")) {
         double c[] = {0, 0, 5, 0, 5, 5, 0, 5, 0, 2.505, 2.5, 2.505, 2.5, 2.495, 0, 2.495};
         hd_polygon(p, c, 8, e);
+    } else if (!strcmp(name, "gasket")) {
+        /* rounded rectangle 10 x 4 (corner radius 0.5), ten bolt holes of
+         * radius 0.4 whose ligaments to the long sides are 0.15 wide, a
+         * central hole of radius 1 */
+        const double r = 0.5;
+        hd_begin(p);
+        hd_point(p, r, 0, e);
+        hd_line_to(p, 10 - r, 0, e);
+        hd_arc(p, 10 - r, r, r, -HD_PI / 2, 0, fmin(e, 0.1));
+        hd_line_to(p, 10, 4 - r, e);
+        hd_arc(p, 10 - r, 4 - r, r, 0, HD_PI / 2, fmin(e, 0.1));
+        hd_line_to(p, r, 4, e);
+        hd_arc(p, r, 4 - r, r, HD_PI / 2, HD_PI, fmin(e, 0.1));
+        hd_line_to(p, 0, r, e);
+        hd_arc(p, r, r, r, HD_PI, 1.5 * HD_PI, fmin(e, 0.1));
+        p->np--;
+        hd_end(p);
+        for (int i = 0; i < 5; i++) {
+            hd_circle(p, 1 + 2 * i, 0.55, 0.4, fmin(e, 0.05));
+            hd_circle(p, 1 + 2 * i, 3.45, 0.4, fmin(e, 0.05));
+        }
+        hd_circle(p, 5, 2, 1.0, e);
+    } else if (!strcmp(name, "lamination")) {
+        /* a rotor lamination: disk of radius 5, a bore of radius 1.2, 16 round
+         * holes of radius 0.35 (smaller than H) on the circle of radius 3.6 */
+        hd_circle(p, 0, 0, 5, e);
+        hd_circle(p, 0, 0, 1.2, e);
+        for (int i = 0; i < 16; i++)
+            hd_circle(p, 3.6 * cos(2 * HD_PI * i / 16), 3.6 * sin(2 * HD_PI * i / 16), 0.35, fmin(e, 0.06));
     } else {
         return 0;
     }

@@ -6,7 +6,8 @@
  * a thin web, a lamination with slots between teeth, fillets, a crack 0.01 H
  * wide, an airfoil exported with 300 points a side in a circular far field,
  * whose sharp trailing edge made Gmsh join three boundary points into a flat
- * triangle) meshed by
+ * triangle, a gasket with bolt holes 0.15 H from its sides, a lamination with
+ * 16 holes smaller than H) meshed by
  * Gmsh from .poly files (the reader is used too), solved on the reference
  * backend at H = 1 with 12 and 6 mean edges per H (the graded one's far
  * field is coarser than h at 6: the default size field refines it first) and
@@ -130,7 +131,8 @@ int main(void)
 
     /* the failure classes at 12 and 6 mean edges per H */
     static const char *names[] = {"slot", "strip", "smallhole", "wedge20", "cusp", "graded",
-                                  "perforated", "ibeam", "motor", "fillet", "crack", "airfoil"};
+                                  "perforated", "ibeam", "motor", "fillet", "crack", "airfoil", "gasket",
+                                  "lamination"};
     const int edges[2] = {12, 6};
     for (int s = 0; s < 2; s++) {
         int valid = 0, irr = 0, nq = 0, runs = 0;
