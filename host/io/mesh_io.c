@@ -23,12 +23,21 @@ typedef struct raw_mesh {
     size_t nv, cap_v;
     int *tri;
     size_t nt, cap_t;
+    /* OBJ faces of more than 3 corners, triangulated once the plane is known
+     * (finish): corners poly[pstart[k] .. pstart[k + 1]), the file line */
+    int *poly;
+    size_t npc, cap_pc;
+    long *pstart, *pline;
+    size_t npoly, cap_ps, cap_pl;
 } raw_mesh;
 
 static void raw_free(raw_mesh *r)
 {
     free(r->xyz);
     free(r->tri);
+    free(r->poly);
+    free(r->pstart);
+    free(r->pline);
     memset(r, 0, sizeof *r);
 }
 
@@ -140,17 +149,94 @@ done:
     return st;
 }
 
+/* Largest polygon face that is ear-clipped (O(n^2) or worse); larger faces
+ * must be convex (fanned). */
+#define OBJ_EARCLIP_MAX 2000
+
+/* Triangles of polygon face k (corners c[0 .. n), raw indices) in the plane
+ * (cx, cy) of the coordinates: ear clipping of the simple polygon, in the
+ * face's own orientation (a tip whose corner is straight is never cut:
+ * CAD faces carry points along their straight edges, which a fan from such
+ * a point would turn into flat triangles); above OBJ_EARCLIP_MAX corners a
+ * strictly convex face is fanned. */
+static glpgp_status triangulate_face(const char *path, raw_mesh *r, size_t k, int cx, int cy)
+{
+    const int *c = r->poly + r->pstart[k];
+    const int n = (int)(r->pstart[k + 1] - r->pstart[k]);
+    const long line = r->pline[k];
+    const double *X = r->xyz;
+#define PX(i) X[3 * (size_t)(i) + cx]
+#define PY(i) X[3 * (size_t)(i) + cy]
+#define CROSS(a, b, q) ((PX(b) - PX(a)) * (PY(q) - PY(a)) - (PY(b) - PY(a)) * (PX(q) - PX(a)))
+    double area2 = 0.0; /* twice the signed area, about the first corner */
+    for (int i = 1; i + 1 < n; i++) area2 += CROSS(c[0], c[i], c[i + 1]);
+    if (!(area2 != 0.0))
+        return GLPGP_FAIL(GLPGP_ERR_MESH, "%s:%ld: the face of %d corners encloses no area", path, line, n);
+    const double sgn = area2 > 0 ? 1.0 : -1.0;
+    if (n > OBJ_EARCLIP_MAX) {
+        for (int i = 0; i < n; i++)
+            if (!(sgn * CROSS(c[i], c[(i + 1) % n], c[(i + 2) % n]) > 0))
+                return GLPGP_FAIL(GLPGP_ERR_LIMIT,
+                                  "%s:%ld: a face of %d corners that is not strictly convex (faces above %d corners "
+                                  "must be; split it into triangles)",
+                                  path, line, n, OBJ_EARCLIP_MAX);
+        for (int i = 1; i + 1 < n; i++) GLPGP_CHECK(raw_add_tri(r, c[0], c[i], c[i + 1]));
+        return GLPGP_OK;
+    }
+    int *v = malloc(sizeof(int) * (size_t)n);
+    if (!v) return GLPGP_FAIL(GLPGP_ERR_NOMEM, "out of memory triangulating a face of %d corners", n);
+    memcpy(v, c, sizeof(int) * (size_t)n);
+    int m = n, k0 = 0, misses = 0;
+    glpgp_status st = GLPGP_OK;
+    while (m > 3 && st == GLPGP_OK) {
+        if (misses > m) {
+            st = GLPGP_FAIL(GLPGP_ERR_MESH, "%s:%ld: the face of %d corners is not a simple polygon (its sides cross)",
+                            path, line, n);
+            break;
+        }
+        const int i0 = (k0 + m - 1) % m, i1 = k0 % m, i2 = (k0 + 1) % m;
+        const int a = v[i0], b = v[i1], q = v[i2];
+        int ear = sgn * CROSS(a, b, q) > 0; /* a convex, not straight, corner */
+        /* no other corner inside or on the triangle a b q */
+        for (int j = 0; j < m && ear; j++) {
+            const int p = v[j];
+            if (j == i0 || j == i1 || j == i2 || p == a || p == b || p == q) continue;
+            if (sgn * CROSS(a, b, p) >= 0 && sgn * CROSS(b, q, p) >= 0 && sgn * CROSS(q, a, p) >= 0) ear = 0;
+        }
+        if (!ear) {
+            k0 = i2;
+            misses++;
+            continue;
+        }
+        st = raw_add_tri(r, a, b, q); /* the face's own orientation */
+        memmove(v + i1, v + i1 + 1, sizeof(int) * (size_t)(m - i1 - 1));
+        m--;
+        k0 = i1 < m ? i1 : 0;
+        misses = 0;
+    }
+    if (st == GLPGP_OK && m == 3) {
+        if (sgn * CROSS(v[0], v[1], v[2]) > 0) st = raw_add_tri(r, v[0], v[1], v[2]);
+        else st = GLPGP_FAIL(GLPGP_ERR_MESH, "%s:%ld: the face of %d corners is not a simple polygon", path, line, n);
+    }
+#undef PX
+#undef PY
+#undef CROSS
+    free(v);
+    return st;
+}
+
 /* Removal of unused vertices, the plane (z = const, or y or x = const),
- * welding, then glpgp_mesh_create. */
+ * triangulation of polygon faces, welding, then glpgp_mesh_create. */
 static glpgp_status finish(const char *path, raw_mesh *r, glpgp_mesh **out)
 {
     glpgp_status st = GLPGP_OK;
     int *map = NULL;
     double *xy = NULL;
-    if (r->nt == 0) return GLPGP_FAIL(GLPGP_ERR_MESH, "%s: no triangles", path);
+    if (r->nt == 0 && r->npoly == 0) return GLPGP_FAIL(GLPGP_ERR_MESH, "%s: no triangles", path);
     GLPGP_CHECK_GOTO(st, glpgp_malloc(r->nv, sizeof *map, &map), done);
     for (size_t v = 0; v < r->nv; v++) map[v] = -1;
     for (size_t i = 0; i < 3 * r->nt; i++) map[r->tri[i]] = 0;
+    for (size_t i = 0; i < r->npc; i++) map[r->poly[i]] = 0;
     double xmin = HUGE_VAL, xmax = -HUGE_VAL, ymin = HUGE_VAL, ymax = -HUGE_VAL;
     double zmin = HUGE_VAL, zmax = -HUGE_VAL;
     int nv = 0;
@@ -185,6 +271,11 @@ static glpgp_status finish(const char *path, raw_mesh *r, glpgp_mesh **out)
         }
         glpgp_log(GLPGP_LOG_INFO, "%s: the mesh lies in the plane %c = %.9g: solved in its (%c, %c) coordinates", path,
                   cx == 0 && cy == 2 ? 'y' : 'x', cx == 0 && cy == 2 ? ymin : xmin, "xyz"[cx], "xyz"[cy]);
+    }
+    for (size_t k = 0; k < r->npoly; k++) GLPGP_CHECK_GOTO(st, triangulate_face(path, r, k, cx, cy), done);
+    if (r->nt > (size_t)GLPGP_IO_MAX_ITEMS) {
+        st = GLPGP_FAIL(GLPGP_ERR_LIMIT, "%s: more than %ld triangles", path, (long)GLPGP_IO_MAX_ITEMS);
+        goto done;
     }
     GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)nv * 2, sizeof *xy, &xy), done);
     for (size_t v = 0; v < r->nv; v++) {
@@ -319,18 +410,26 @@ static glpgp_status read_obj(text_reader *tr, raw_mesh *r)
                     st = text_error(tr, GLPGP_ERR_FORMAT, 0, "face uses vertex %lld more than once", corners[i] + 1);
                     goto done;
                 }
-            /* fan triangulation (c0, ci, ci+1) */
-            for (size_t i = 1; i + 1 < n; i++) {
-                long long a = corners[0], b = corners[i], c = corners[i + 1];
-                if (a > GLPGP_IO_MAX_ITEMS || b > GLPGP_IO_MAX_ITEMS || c > GLPGP_IO_MAX_ITEMS) {
+            for (size_t i = 0; i < n; i++)
+                if (corners[i] > GLPGP_IO_MAX_ITEMS) {
                     st = text_error(tr, GLPGP_ERR_FORMAT, 0, "face index out of range");
                     goto done;
                 }
-                if (r->nt >= (size_t)GLPGP_IO_MAX_ITEMS) {
-                    st = text_error(tr, GLPGP_ERR_LIMIT, 0, "more than %ld triangles", (long)GLPGP_IO_MAX_ITEMS);
-                    goto done;
-                }
-                GLPGP_CHECK_GOTO(st, raw_add_tri(r, (int)a, (int)b, (int)c), done);
+            if (r->nt + r->npc >= (size_t)GLPGP_IO_MAX_ITEMS) {
+                st = text_error(tr, GLPGP_ERR_LIMIT, 0, "more than %ld triangles", (long)GLPGP_IO_MAX_ITEMS);
+                goto done;
+            }
+            if (n == 3) {
+                GLPGP_CHECK_GOTO(st, raw_add_tri(r, (int)corners[0], (int)corners[1], (int)corners[2]), done);
+            } else { /* a polygon: triangulated in finish, in the mesh's plane */
+                GLPGP_CHECK_GOTO(st, glpgp_grow(&r->poly, &r->cap_pc, r->npc + n, sizeof(int)), done);
+                for (size_t i = 0; i < n; i++) r->poly[r->npc + i] = (int)corners[i];
+                GLPGP_CHECK_GOTO(st, glpgp_grow(&r->pstart, &r->cap_ps, r->npoly + 2, sizeof(long)), done);
+                GLPGP_CHECK_GOTO(st, glpgp_grow(&r->pline, &r->cap_pl, r->npoly + 1, sizeof(long)), done);
+                r->pstart[r->npoly] = (long)r->npc;
+                r->pline[r->npoly] = tr->line;
+                r->npc += n;
+                r->pstart[++r->npoly] = (long)r->npc;
             }
         } else if ((kl == 2 && (!strncmp(kw, "vt", 2) || !strncmp(kw, "vn", 2) || !strncmp(kw, "vp", 2))) ||
                    (kl == 1 && (kw[0] == 'o' || kw[0] == 'g' || kw[0] == 's' || kw[0] == 'l' || kw[0] == 'p')) ||

@@ -14,6 +14,9 @@
  *    beyond the vertices (reported on its line), huge indices;
  *  - second- and higher-order elements (their corners), quadrangles (two
  *    triangles each, also non-convex ones), a 6-node triangle a node short;
+ *  - OBJ polygon faces (an L from its reflex side, a rectangle with a point
+ *    on a side, clockwise in the plane y = 3): ear-clipped; crossing sides:
+ *    an error;
  *  - unwelded meshes: a triangle soup and two patches with doubled seam
  *    nodes (OBJ, MSH 4.1) are welded into one piece; the doubled lips of a
  *    crack inside one piece stay apart. */
@@ -384,6 +387,31 @@ static void element_kinds(void)
     CHECK(glpgp_mesh_read(P("short9.msh"), &m) == GLPGP_ERR_FORMAT && !m);
 }
 
+/* OBJ polygon faces: ear-clipped in the mesh's plane, whatever corner they
+ * start from (a fan from the first corner would fold or flatten them). */
+static void polygon_faces(void)
+{
+    /* an L as one face, listed from the reflex corner's neighbour (2, 1):
+     * the fan from it runs outside the L */
+    const char *l = "v 2 1 0\nv 1 1 0\nv 1 2 0\nv 0 2 0\nv 0 0 0\nv 2 0 0\nf 1 2 3 4 5 6\n";
+    put(P("lface.obj"), l, 0);
+    read_expect("lface.obj", 6, 4, 1, 3.0, __LINE__);
+    /* a rectangle with a point on its bottom side, listed from a corner next
+     * to it: the fan's first triangle is flat */
+    const char *r = "v 0 0\nv 1 0\nv 2 0\nv 2 1\nv 0 1\nf 1 2 3 4 5\n";
+    put(P("rface.obj"), r, 0);
+    read_expect("rface.obj", 5, 3, 1, 2.0, __LINE__);
+    /* the L clockwise, in the plane y = 3 */
+    const char *lcw = "v 2 3 1\nv 2 3 0\nv 0 3 0\nv 0 3 2\nv 1 3 2\nv 1 3 1\nf 1 2 3 4 5 6\n";
+    put(P("lcw.obj"), lcw, 0);
+    read_expect("lcw.obj", 6, 4, 1, 3.0, __LINE__);
+    /* a face whose sides cross: an error, nothing returned */
+    const char *bow = "v 0 0\nv 2 1\nv 2 0\nv 0 2\nf 1 2 3 4\n";
+    put(P("bow.obj"), bow, 0);
+    glpgp_mesh *m = NULL;
+    CHECK(glpgp_mesh_read(P("bow.obj"), &m) != GLPGP_OK && !m);
+}
+
 int main(void)
 {
     const char *base = getenv("TMPDIR");
@@ -398,7 +426,9 @@ int main(void)
     malformed_obj();
     welding();
     element_kinds();
-    const char *made[] = {"soup.obj", "patches.msh", "crack.obj", "p2.msh", "q9.msh", "dart.msh", "short9.msh"};
+    polygon_faces();
+    const char *made[] = {"soup.obj", "patches.msh", "crack.obj", "p2.msh", "q9.msh", "dart.msh", "short9.msh",
+                          "lface.obj", "rface.obj", "lcw.obj", "bow.obj"};
     for (size_t k = 0; k < sizeof made / sizeof *made; k++) unlink(P(made[k]));
     rmdir(g_dir);
     TEST_DONE();
