@@ -68,6 +68,10 @@ static void build(glpgp_opts *t, solve_cli *c)
                    "than the local h / 4 (auto, iso, IMAGE) the local size is limited\n"
                    "to what they resolve (a warning) instead of refining them\n"
                    "(longest-edge bisection)");
+    glpgp_opt_flag(t, "--remesh", &c->mo.remesh, 1,
+                   "mesh a .obj/.msh input again with Gmsh inside its boundary\n"
+                   "points first (as 'glpgp mesh INPUT' does; --mesh-size, default\n"
+                   "h / 8): for CAD exports whose triangles are fans of slivers");
     glpgp_opt_flag(t, "--input-order", &c->o.vertex_order, GLPGP_ORDER_INPUT,
                    "solve in the input's vertex numbering (default: renumbered in\n"
                    "reverse Cuthill-McKee order for memory locality, the result\n"
@@ -310,8 +314,8 @@ static int prepare(solve_cli *c, const char *input, glpgp_mesh **pm, glpgp_size_
         if (nsliver > 0 && nsliver >= 0.01 * m->nt)
             glpgp_log(GLPGP_LOG_WARNING,
                       "%s: %d of %d triangles have an angle below %g degrees (smallest %.3g): the solution is "
-                      "inaccurate on such slivers and refinement keeps them thin; remesh the domain first: glpgp "
-                      "mesh %s -o NEW.msh",
+                      "inaccurate on such slivers and refinement keeps them thin; remesh the domain first "
+                      "(--remesh, or glpgp mesh %s -o NEW.msh)",
                       input, nsliver, m->nt, GLPGP_SLIVER_DEG, amin, input);
     }
     /* a mesh too coarse for the default size (diameter / 20): the default

@@ -64,14 +64,18 @@ int glpgp_cli_load_input(const char *cmd, const char *input, const glpgp_mask_op
         if (glpgp_mesh_generate(name, nverts, m) != GLPGP_OK) return glpgp_cli_fail();
         return -1;
     }
-    if (glpgp_is_image_path(input) || glpgp_is_poly_path(input)) {
-        if (!glpgp_cli_need_images(!glpgp_is_poly_path(input), 1)) return GLPGP_EXIT_FAIL;
+    const int remesh = mo->remesh && (glpgp_has_ext(input, ".obj") || glpgp_has_ext(input, ".msh"));
+    if (glpgp_is_image_path(input) || glpgp_is_poly_path(input) || remesh) {
+        if (!glpgp_cli_need_images(!glpgp_is_poly_path(input) && !remesh, 1)) return GLPGP_EXIT_FAIL;
         glpgp_mask_info inf;
         if (glpgp_mask_mesh(input, mo, m, &inf) != GLPGP_OK) return glpgp_cli_fail();
         if (is_mask) *is_mask = 1;
-        glpgp_log(GLPGP_LOG_INFO, "%s: %d x %d mask -> %d vertices, %d triangles (%d hole%s, mesh size %.4g, %.2f s)",
-                  input, inf.width, inf.height, (*m)->nv, (*m)->nt, inf.nholes, inf.nholes == 1 ? "" : "s",
-                  inf.mesh_size, inf.seconds_read + inf.seconds_contour + inf.seconds_mesh);
+        char what[64];
+        if (inf.width > 0) snprintf(what, sizeof what, "%d x %d mask", inf.width, inf.height);
+        else snprintf(what, sizeof what, "%s", remesh ? "remeshed" : "polygons");
+        glpgp_log(GLPGP_LOG_INFO, "%s: %s -> %d vertices, %d triangles (%d hole%s, mesh size %.4g, %.2f s)", input,
+                  what, (*m)->nv, (*m)->nt, inf.nholes, inf.nholes == 1 ? "" : "s", inf.mesh_size,
+                  inf.seconds_read + inf.seconds_contour + inf.seconds_mesh);
         return -1;
     }
     if (glpgp_mesh_read(input, m) != GLPGP_OK) return glpgp_cli_fail();

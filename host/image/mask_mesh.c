@@ -51,6 +51,7 @@ void glpgp_mask_options_default(glpgp_mask_options *o)
     o->max_triangles = GLPGP_DEFAULT_MAX_ELEMENTS;
     o->max_pixels = GLPGP_DEFAULT_MAX_PIXELS;
     o->timeout = 0;
+    o->remesh = 0;
 }
 
 double glpgp_mask_default_mesh_size(const glpgp_polygons *p, double quad_size)

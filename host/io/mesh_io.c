@@ -29,6 +29,7 @@ typedef struct raw_mesh {
     size_t npc, cap_pc;
     long *pstart, *pline;
     size_t npoly, cap_ps, cap_pl;
+    long long ear_work; /* corner tests of the ear clipping so far (bounded) */
 } raw_mesh;
 
 static void raw_free(raw_mesh *r)
@@ -149,9 +150,12 @@ done:
     return st;
 }
 
-/* Largest polygon face that is ear-clipped (O(n^2) or worse); larger faces
- * must be convex (fanned). */
+/* Largest polygon face that is ear-clipped (O(n^2), O(n^3) at worst);
+ * larger faces must be convex (fanned). The corner tests of all faces
+ * together are bounded too (a second at most), so that no file of
+ * pathological faces runs unbounded. */
 #define OBJ_EARCLIP_MAX 2000
+#define OBJ_EARCLIP_WORK 2000000000LL
 
 /* Triangles of polygon face k (corners c[0 .. n), raw indices) in the plane
  * (cx, cy) of the coordinates: ear clipping of the simple polygon, in the
@@ -198,6 +202,12 @@ static glpgp_status triangulate_face(const char *path, raw_mesh *r, size_t k, in
         const int a = v[i0], b = v[i1], q = v[i2];
         int ear = sgn * CROSS(a, b, q) > 0; /* a convex, not straight, corner */
         /* no other corner inside or on the triangle a b q */
+        r->ear_work += m;
+        if (r->ear_work > OBJ_EARCLIP_WORK) {
+            st = GLPGP_FAIL(GLPGP_ERR_LIMIT, "%s:%ld: the polygon faces are too complex to triangulate (over %lld "
+                            "corner tests); split them into triangles", path, line, OBJ_EARCLIP_WORK);
+            break;
+        }
         for (int j = 0; j < m && ear; j++) {
             const int p = v[j];
             if (j == i0 || j == i1 || j == i2 || p == a || p == b || p == q) continue;

@@ -7,7 +7,8 @@
 # available) with consistent keys; overwriting existing outputs; built-in
 # shape: inputs; --oscillators concurrent and sequential write the same file
 # and say which ran; an STL-style fan of slivers (a warning naming `glpgp
-# mesh`, the default h), unwelded (welded, same h), remeshed (no slivers); at
+# mesh`, the default h), unwelded (welded, same h), remeshed by `glpgp mesh`
+# and by `solve --remesh` (no slivers); at
 # most one warning line with --backend auto; no temporary files left behind.
 . "$(dirname "$0")/lib.sh" "$@"
 
@@ -145,7 +146,7 @@ awk 'BEGIN { n = 48; pi = atan2(0, -1);
              for (i = 0; i < n; i++) printf "v %.17g %.17g 0\n", cos(2 * pi * i / n), sin(2 * pi * i / n);
              for (i = 2; i < n; i++) printf "f 1 %d %d\n", i, i + 1 }' >fan.obj
 ok_run "solve fan of slivers" solve fan.obj --backend reference --newton-max 5
-expect_err "warning: .*46 of 46 triangles have an angle below 5 degrees.*glpgp mesh fan.obj -o" "solve fan: sliver warning"
+expect_err "warning: .*46 of 46 triangles have an angle below 5 degrees.*--remesh, or glpgp mesh fan.obj -o" "solve fan: sliver warning"
 expect_out "h = 0\.1414" "solve fan: default h = diameter / 20"
 # the same fan with a vertex per triangle: welded (one warning), same mesh
 awk '/^v/ { v[++n] = $0 } /^f/ { print v[$2]; print v[$3]; print v[$4]; k++; f[k] = sprintf("f %d %d %d", 3*k-2, 3*k-1, 3*k) }
@@ -156,6 +157,9 @@ expect_out "h = 0\.1414" "solve soup: the welded fan's h"
 if "$GLPGP" mesh fan.obj -o fan_re.msh --size 0.3 --quiet 2>mesh_err.txt; then
     ok_run "solve remeshed fan" solve fan_re.msh --backend reference --size 0.3 --newton-max 5
     ! grep -q "below 5 degrees" err.txt || fail "the remeshed fan still has slivers"
+    ok_run "solve --remesh fan" solve fan.obj --remesh --backend reference --size 0.3 --newton-max 5
+    expect_err "fan.obj: remeshed -> [0-9]+ vertices" "solve --remesh: says it remeshed"
+    ! grep -q "below 5 degrees" err.txt || fail "solve --remesh: still slivers"
 else
     grep -q "built without Gmsh" mesh_err.txt || fail "mesh fan.obj failed: $(head -c 300 mesh_err.txt)"
     echo "note: built without Gmsh: the remesh check skipped"

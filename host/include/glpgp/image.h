@@ -298,6 +298,8 @@ typedef struct glpgp_mask_options {
     long long max_pixels; /* refuse images with more pixels, read from the header before
                              any pixel is [GLPGP_DEFAULT_MAX_PIXELS] */
     double timeout;    /* seconds the Gmsh process may run (<= 0: no limit) [0] */
+    int remesh;        /* the CLI's input loading (solve --remesh): a triangle mesh file
+                          is meshed again inside its boundary points like a .poly [0] */
 } glpgp_mask_options;
 
 /* Triangles Gmsh makes per area / mesh_size^2 once the mesh is fine
