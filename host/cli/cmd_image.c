@@ -125,7 +125,8 @@ int glpgp_cmd_mesh(int argc, char **argv)
     if (!in) return glpgp_cli_usage_error(sub, "missing MASK image, .poly file or mesh");
     if (!out) return glpgp_cli_usage_error(sub, "missing -o DOMAIN.msh");
     if ((rc = glpgp_cli_check_output(sub, "--out", out, exts)) >= 0) return rc;
-    const int polygons = glpgp_is_poly_path(in) || glpgp_has_ext(in, ".obj") || glpgp_has_ext(in, ".msh");
+    const int polygons = glpgp_is_poly_path(in) || glpgp_has_ext(in, ".obj") || glpgp_has_ext(in, ".msh") ||
+                         glpgp_has_ext(in, ".stl");
     if (!glpgp_cli_need_images(!polygons, 1)) return GLPGP_EXIT_FAIL;
     glpgp_error_clear();
     glpgp_mesh *m = NULL;

@@ -57,7 +57,7 @@ static void build(glpgp_opts *t, solve_cli *c)
     c->allow_invalid = 0;
     c->gather_max = GATHER_MAX_DEFAULT;
     glpgp_opts_init(t, "solve", "glpgp solve INPUT [options]",
-                    "INPUT is a triangle mesh of a planar domain (.obj, or Gmsh .msh 2.2/4.1 ASCII),\n"
+                    "INPUT is a triangle mesh of a planar domain (.obj, .stl, or Gmsh .msh 2.2/4.1 ASCII),\n"
                     "shape:NAME[:N], a built-in domain with about N vertices (default 20000;\n"
                     "NAME is one of square, disk, annulus, lshape), or a mask image (.png, .tif,\n"
                     ".exr, ...), meshed first (see 'Mask image input').\n");
@@ -69,7 +69,7 @@ static void build(glpgp_opts *t, solve_cli *c)
                    "to what they resolve (a warning) instead of refining them\n"
                    "(longest-edge bisection)");
     glpgp_opt_flag(t, "--remesh", &c->mo.remesh, 1,
-                   "mesh a .obj/.msh input again with Gmsh inside its boundary\n"
+                   "mesh a .obj/.msh/.stl input again with Gmsh inside its boundary\n"
                    "points first (as 'glpgp mesh INPUT' does; --mesh-size, default\n"
                    "h / 8): for CAD exports whose triangles are fans of slivers");
     glpgp_opt_flag(t, "--input-order", &c->o.vertex_order, GLPGP_ORDER_INPUT,

@@ -64,7 +64,7 @@ int glpgp_cli_load_input(const char *cmd, const char *input, const glpgp_mask_op
         if (glpgp_mesh_generate(name, nverts, m) != GLPGP_OK) return glpgp_cli_fail();
         return -1;
     }
-    const int remesh = mo->remesh && (glpgp_has_ext(input, ".obj") || glpgp_has_ext(input, ".msh"));
+    const int remesh = mo->remesh && (glpgp_has_ext(input, ".obj") || glpgp_has_ext(input, ".msh") || glpgp_has_ext(input, ".stl"));
     if (glpgp_is_image_path(input) || glpgp_is_poly_path(input) || remesh) {
         if (!glpgp_cli_need_images(!glpgp_is_poly_path(input) && !remesh, 1)) return GLPGP_EXIT_FAIL;
         glpgp_mask_info inf;

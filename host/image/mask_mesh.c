@@ -469,7 +469,7 @@ glpgp_status glpgp_mask_mesh(const char *path, const glpgp_mask_options *opt, gl
     glpgp_image *im = NULL;
     float *v = NULL;
     glpgp_polygons *p = NULL;
-    const int from_mesh = glpgp_has_ext(path, ".obj") || glpgp_has_ext(path, ".msh");
+    const int from_mesh = glpgp_has_ext(path, ".obj") || glpgp_has_ext(path, ".msh") || glpgp_has_ext(path, ".stl");
     if (glpgp_is_poly_path(path) || from_mesh) { /* polygons: no image, no contours */
         if (from_mesh) {
             /* a triangle mesh (a CAD export's slivers): its boundary loops */

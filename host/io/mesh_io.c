@@ -13,8 +13,11 @@
 #include <ctype.h>
 #include <errno.h>
 #include <math.h>
+#include <stdint.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 /* ---- raw (unvalidated) mesh: 3D points and triangles --------------------- */
 
@@ -30,6 +33,7 @@ typedef struct raw_mesh {
     long *pstart, *pline;
     size_t npoly, cap_ps, cap_pl;
     long long ear_work; /* corner tests of the ear clipping so far (bounded) */
+    int soup;           /* STL: no shared vertices by design (welding is not news) */
 } raw_mesh;
 
 static void raw_free(raw_mesh *r)
@@ -296,7 +300,10 @@ static glpgp_status finish(const char *path, raw_mesh *r, glpgp_mesh **out)
     for (size_t i = 0; i < 3 * r->nt; i++) r->tri[i] = map[r->tri[i]];
     int merged = 0, before = 0, after = 0;
     GLPGP_CHECK_GOTO(st, weld(&nv, xy, (int)r->nt, r->tri, &merged, &before, &after), done);
-    if (merged)
+    if (merged && r->soup)
+        glpgp_log(GLPGP_LOG_INFO, "%s: %d STL vertices welded into %d, %d pieces -> %d", path, merged + nv, nv,
+                  before, after);
+    else if (merged)
         glpgp_log(GLPGP_LOG_WARNING,
                   "%s: %d vertices repeat the coordinates of a vertex of another piece of the mesh (an "
                   "unwelded mesh): merged, %d pieces -> %d",
@@ -460,6 +467,145 @@ done:
     return st;
 }
 
+/* ---- STL: triangle soups, ASCII or binary ------------------------------------ */
+
+/* A vertex of an STL triangle (each triangle brings its own three; finish
+ * welds them). */
+static glpgp_status stl_vertex(raw_mesh *r, const double *x)
+{
+    if (r->nv >= (size_t)GLPGP_IO_MAX_ITEMS)
+        return GLPGP_FAIL(GLPGP_ERR_LIMIT, "more than %ld STL vertices", (long)GLPGP_IO_MAX_ITEMS);
+    GLPGP_CHECK(glpgp_grow(&r->xyz, &r->cap_v, r->nv + 1, 3 * sizeof(double)));
+    memcpy(r->xyz + 3 * r->nv++, x, 3 * sizeof(double));
+    return GLPGP_OK;
+}
+
+/* Binary STL after its 80-byte header: a uint32 count (little-endian) and
+ * 50 bytes per triangle (normal, three float32 vertices, uint16); the count
+ * must match the file's size when it is known (a regular file). */
+static glpgp_status read_stl_binary(const char *path, FILE *f, long long size, raw_mesh *r)
+{
+    unsigned char b[50];
+    if (fread(b, 1, 4, f) != 4) return GLPGP_FAIL(GLPGP_ERR_FORMAT, "%s: binary STL without a triangle count", path);
+    const unsigned long long n = b[0] | (unsigned long long)b[1] << 8 | (unsigned long long)b[2] << 16 |
+                                 (unsigned long long)b[3] << 24;
+    if (size >= 0 && (unsigned long long)(size - 84) != 50ULL * n)
+        return GLPGP_FAIL(GLPGP_ERR_FORMAT,
+                          "%s: binary STL of %lld bytes says %llu triangles (%llu bytes expected)", path, size, n,
+                          84ULL + 50ULL * n);
+    if (n > (unsigned long long)GLPGP_IO_MAX_ITEMS / 3)
+        return GLPGP_FAIL(GLPGP_ERR_LIMIT, "%s: %llu triangles, more than %ld", path, n, (long)GLPGP_IO_MAX_ITEMS / 3);
+    for (unsigned long long t = 0; t < n; t++) {
+        if (fread(b, 1, 50, f) != 50)
+            return GLPGP_FAIL(GLPGP_ERR_FORMAT, "%s: binary STL ends after %llu of %llu triangles", path, t, n);
+        for (int k = 0; k < 3; k++) {
+            double x[3];
+            for (int c = 0; c < 3; c++) {
+                const unsigned char *q = b + 12 + 12 * k + 4 * c;
+                const uint32_t u = q[0] | (uint32_t)q[1] << 8 | (uint32_t)q[2] << 16 | (uint32_t)q[3] << 24;
+                float v;
+                memcpy(&v, &u, sizeof v);
+                if (!isfinite(v))
+                    return GLPGP_FAIL(GLPGP_ERR_FORMAT, "%s: triangle %llu has a non-finite coordinate", path, t + 1);
+                x[c] = v;
+            }
+            GLPGP_CHECK(stl_vertex(r, x));
+        }
+        GLPGP_CHECK(raw_add_tri(r, (int)(r->nv - 3), (int)(r->nv - 2), (int)(r->nv - 1)));
+    }
+    return GLPGP_OK;
+}
+
+/* ASCII STL: solid, then facets (facet normal, outer loop, three vertex
+ * lines, endloop, endfacet), endsolid; several solids are read one after
+ * the other. */
+static glpgp_status read_stl_ascii(text_reader *tr, raw_mesh *r)
+{
+    char *s;
+    int in_loop = 0, nvl = 0;
+    for (;;) {
+        GLPGP_CHECK(text_next_line(tr, &s));
+        if (!s) break;
+        s = text_skip_ws(s);
+        if (*s == '\0') continue;
+        char *kw = s;
+        while (*s && !isspace((unsigned char)*s)) s++;
+        const size_t kl = (size_t)(s - kw);
+#define KW(w) (kl == sizeof(w) - 1 && !strncmp(kw, w, kl))
+        if (KW("vertex")) {
+            double x[3];
+            if (!in_loop) return text_error(tr, GLPGP_ERR_FORMAT, 0, "vertex outside an 'outer loop'");
+            if (!text_parse_double(&s, &x[0]) || !text_parse_double(&s, &x[1]) || !text_parse_double(&s, &x[2]) ||
+                !text_at_end(s))
+                return text_error(tr, GLPGP_ERR_FORMAT, 0, "malformed vertex line (expected: vertex x y z, finite)");
+            if (++nvl > 3) return text_error(tr, GLPGP_ERR_FORMAT, 0, "a facet with more than 3 vertices");
+            GLPGP_CHECK(stl_vertex(r, x));
+        } else if (KW("outer")) {
+            if (in_loop) return text_error(tr, GLPGP_ERR_FORMAT, 0, "'outer loop' inside a loop");
+            in_loop = 1;
+            nvl = 0;
+        } else if (KW("endloop")) {
+            if (!in_loop || nvl != 3)
+                return text_error(tr, GLPGP_ERR_FORMAT, 0, "a facet with %d vertices (3 expected)", nvl);
+            in_loop = 0;
+            GLPGP_CHECK(raw_add_tri(r, (int)(r->nv - 3), (int)(r->nv - 2), (int)(r->nv - 1)));
+        } else if (KW("solid") || KW("endsolid") || KW("facet") || KW("endfacet")) {
+            continue; /* names and normals are not needed */
+        } else {
+            return text_error(tr, GLPGP_ERR_FORMAT, 0, "unknown STL keyword '%.*s'", (int)(kl > 40 ? 40 : kl), kw);
+        }
+#undef KW
+    }
+    if (in_loop) return text_error(tr, GLPGP_ERR_FORMAT, 0, "the file ends inside a facet");
+    return GLPGP_OK;
+}
+
+/* STL: binary when the size is 84 + 50 n for the count n of its header, or
+ * when it does not start with "solid"; ASCII otherwise. */
+static glpgp_status read_stl(const char *path, raw_mesh *r)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f) return GLPGP_FAIL(GLPGP_ERR_IO, "cannot open '%s': %s", path, strerror(errno));
+    struct stat sb;
+    long long size = (fstat(fileno(f), &sb) == 0 && S_ISREG(sb.st_mode)) ? (long long)sb.st_size : -1;
+    if (size < 0 && fstat(fileno(f), &sb) == 0 && S_ISDIR(sb.st_mode)) {
+        fclose(f);
+        return GLPGP_FAIL(GLPGP_ERR_IO, "cannot read '%s': is a directory", path);
+    }
+    unsigned char head[84];
+    size_t got = fread(head, 1, sizeof head, f);
+    int ascii = 0;
+    size_t i = 0;
+    while (i < got && isspace(head[i])) i++;
+    if (got - i >= 5 && !memcmp(head + i, "solid", 5)) {
+        ascii = 1;
+        if (got == sizeof head && size >= 84) {
+            const unsigned long long n = head[80] | (unsigned long long)head[81] << 8 |
+                                         (unsigned long long)head[82] << 16 | (unsigned long long)head[83] << 24;
+            if ((unsigned long long)(size - 84) == 50ULL * n) ascii = 0; /* a binary file named "solid ..." */
+        }
+    }
+    glpgp_status st;
+    if (!ascii) {
+        if (got < 80) {
+            fclose(f);
+            return GLPGP_FAIL(GLPGP_ERR_FORMAT, "%s: neither an ASCII STL (\"solid\") nor a binary one (%zu bytes)",
+                              path, got);
+        }
+        /* back to the count after the 80-byte header */
+        st = fseek(f, 80, SEEK_SET) == 0 ? read_stl_binary(path, f, size, r)
+                                          : GLPGP_FAIL(GLPGP_ERR_IO, "%s: cannot seek in a binary STL", path);
+        fclose(f);
+        return st;
+    }
+    fclose(f);
+    text_reader tr;
+    GLPGP_CHECK(text_open(&tr, path));
+    st = read_stl_ascii(&tr, r);
+    text_close(&tr);
+    return st;
+}
+
 /* ---- MSH: triangles of the shared parser ------------------------------------ */
 
 static glpgp_status read_msh(const char *path, raw_mesh *r)
@@ -514,7 +660,7 @@ done:
 
 static int mesh_kind(const char *path)
 {
-    return glpgp_has_ext(path, ".obj") ? 1 : glpgp_has_ext(path, ".msh") ? 2 : 0;
+    return glpgp_has_ext(path, ".obj") ? 1 : glpgp_has_ext(path, ".msh") ? 2 : glpgp_has_ext(path, ".stl") ? 3 : 0;
 }
 
 /* Lower-case extension of path (without the dot) into ext; "" when none. */
@@ -541,7 +687,7 @@ glpgp_status glpgp_mesh_read(const char *path, glpgp_mesh **out)
     if (!kind) {
         char ext[16];
         path_ext(path, ext, sizeof ext);
-        return GLPGP_FAIL(GLPGP_ERR_ARG, "%s: unknown mesh file extension '%s' (supported: .obj, .msh)", path, ext);
+        return GLPGP_FAIL(GLPGP_ERR_ARG, "%s: unknown mesh file extension '%s' (supported: .obj, .msh, .stl)", path, ext);
     }
     if (kind == 1) {
         text_reader tr;
@@ -549,8 +695,11 @@ glpgp_status glpgp_mesh_read(const char *path, glpgp_mesh **out)
         st = read_obj(&tr, &r);
         text_close(&tr);
         if (st != GLPGP_OK) glpgp_error_push_trace(__FILE__, __LINE__);
-    } else {
+    } else if (kind == 2) {
         st = read_msh(path, &r);
+    } else {
+        st = read_stl(path, &r);
+        r.soup = 1;
     }
     if (st == GLPGP_OK) GLPGP_CHECK_GOTO(st, finish(path, &r, out), done);
 done:
@@ -587,7 +736,7 @@ glpgp_status glpgp_output_set_mesh(glpgp_output_set *s, const glpgp_mesh *m, con
     if (!kind) {
         char ext[16];
         path_ext(path, ext, sizeof ext);
-        return GLPGP_FAIL(GLPGP_ERR_ARG, "%s: unknown mesh file extension '%s' (supported: .obj, .msh)", path, ext);
+        return GLPGP_FAIL(GLPGP_ERR_ARG, "%s: unknown mesh file extension '%s' (supported: .obj, .msh, .stl)", path, ext);
     }
     FILE *f;
     GLPGP_CHECK(glpgp_output_set_open(s, path, &f));

@@ -17,6 +17,9 @@
  *  - OBJ polygon faces (an L from its reflex side, a rectangle with a point
  *    on a side, clockwise in the plane y = 3): ear-clipped; crossing sides:
  *    an error;
+ *  - STL, ASCII and binary (one whose header starts with "solid"): welded; a
+ *    count beyond the bytes, a facet of 2 vertices, a stray keyword, NaN:
+ *    errors with the line, bounded memory;
  *  - unwelded meshes: a triangle soup and two patches with doubled seam
  *    nodes (OBJ, MSH 4.1) are welded into one piece; the doubled lips of a
  *    crack inside one piece stay apart. */
@@ -25,6 +28,7 @@
 #include <errno.h>
 #include <fcntl.h>
 #include <signal.h>
+#include <stdint.h>
 #include <string.h>
 #include <sys/resource.h>
 #include <sys/stat.h>
@@ -385,6 +389,7 @@ static void element_kinds(void)
     put(P("short9.msh"), short9, 0);
     glpgp_mesh *m = NULL;
     CHECK(glpgp_mesh_read(P("short9.msh"), &m) == GLPGP_ERR_FORMAT && !m);
+    glpgp_error_clear(); /* the next failures record their own messages */
 }
 
 /* OBJ polygon faces: ear-clipped in the mesh's plane, whatever corner they
@@ -410,6 +415,56 @@ static void polygon_faces(void)
     put(P("bow.obj"), bow, 0);
     glpgp_mesh *m = NULL;
     CHECK(glpgp_mesh_read(P("bow.obj"), &m) != GLPGP_OK && !m);
+    glpgp_error_clear();
+}
+
+/* Binary STL bytes: 80-byte header, count, triangles of (normal, 3 x 3
+ * float32 vertices, uint16), little-endian. */
+static size_t stl_bin(unsigned char *b, const char *hdr, unsigned count, const float (*tri)[9], int ntri)
+{
+    memset(b, ' ', 80);
+    memcpy(b, hdr, strlen(hdr));
+    for (int k = 0; k < 4; k++) b[80 + k] = (unsigned char)(count >> (8 * k));
+    size_t n = 84;
+    for (int t = 0; t < ntri; t++) {
+        float rec[12] = {0, 0, 1};
+        memcpy(rec + 3, tri[t], sizeof(float) * 9);
+        for (int i = 0; i < 12; i++) {
+            uint32_t u;
+            memcpy(&u, &rec[i], 4);
+            for (int k = 0; k < 4; k++) b[n++] = (unsigned char)(u >> (8 * k));
+        }
+        b[n++] = 0;
+        b[n++] = 0;
+    }
+    return n;
+}
+
+/* STL: the unit square's two triangles as ASCII and binary (one binary
+ * header starting with "solid"): welded into 4 vertices; a count beyond the
+ * bytes, a facet of 2 vertices, a stray keyword: errors, bounded memory. */
+static void stl(void)
+{
+    const char *a = "solid sq\n facet normal 0 0 1\n  outer loop\n   vertex 0 0 0\n   vertex 1 0 0\n"
+                    "   vertex 1 1 0\n  endloop\n endfacet\n facet normal 0 0 1\n  outer loop\n   vertex 0 0 0\n"
+                    "   vertex 1 1 0\n   vertex 0 1 0\n  endloop\n endfacet\nendsolid sq\n";
+    put(P("sq_a.stl"), a, 0);
+    read_expect("sq_a.stl", 4, 2, 1, 1.0, __LINE__);
+    static const float sq[2][9] = {{0, 0, 0, 1, 0, 0, 1, 1, 0}, {0, 0, 0, 1, 1, 0, 0, 1, 0}};
+    unsigned char b[84 + 2 * 50];
+    size_t n = stl_bin(b, "solid but binary", 2, sq, 2);
+    put(P("sq_b.stl"), (const char *)b, n);
+    read_expect("sq_b.stl", 4, 2, 1, 1.0, __LINE__);
+    /* a count of 2^31 in a 184-byte file: refused before any allocation */
+    n = stl_bin(b, "binary", 0x80000000u, sq, 2);
+    put(P("huge.stl"), (const char *)b, n);
+    CHECK(read_in_child(P("huge.stl"), 0, GLPGP_ERR_FORMAT, GLPGP_ERR_LIMIT, "triangles") == 0);
+    obj_expect("two.stl", "solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nendloop\n",
+               GLPGP_ERR_FORMAT, "two.stl:6: a facet with 2 vertices", __LINE__);
+    obj_expect("kw.stl", "solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvortex 1 0 0\n", GLPGP_ERR_FORMAT,
+               "kw.stl:5: unknown STL keyword 'vortex'", __LINE__);
+    obj_expect("nanv.stl", "solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 nan 0\n", GLPGP_ERR_FORMAT,
+               "nanv.stl:4:", __LINE__);
 }
 
 int main(void)
@@ -427,7 +482,8 @@ int main(void)
     welding();
     element_kinds();
     polygon_faces();
-    const char *made[] = {"soup.obj", "patches.msh", "crack.obj", "p2.msh", "q9.msh", "dart.msh", "short9.msh",
+    stl();
+    const char *made[] = {"sq_a.stl", "sq_b.stl", "huge.stl", "soup.obj", "patches.msh", "crack.obj", "p2.msh", "q9.msh", "dart.msh", "short9.msh",
                           "lface.obj", "rface.obj", "lcw.obj", "bow.obj"};
     for (size_t k = 0; k < sizeof made / sizeof *made; k++) unlink(P(made[k]));
     rmdir(g_dir);

@@ -357,7 +357,7 @@ static void test_obj(void)
     m = read_expect(p, GLPGP_ERR_MESH, "non-manifold", __LINE__);
 
     m = read_expect(tmp_path("does_not_exist.obj"), GLPGP_ERR_IO, "No such file", __LINE__);
-    m = read_expect(tmp_path("mesh.stl"), GLPGP_ERR_ARG, ".obj", __LINE__);
+    m = read_expect(tmp_path("mesh.ply"), GLPGP_ERR_ARG, ".stl", __LINE__);
     m = read_expect(tmp_path("mesh"), GLPGP_ERR_ARG, ".msh", __LINE__);
     (void)m;
 }
