@@ -1,9 +1,10 @@
 /* fuzz_mesh_file.h: the body shared by the triangle-mesh reader harnesses
- * (fuzz_obj.c, fuzz_msh.c): the input written as a file with extension ext,
- * read by glpgp_mesh_read (reader + glpgp_mesh_create's validation).
- * Properties: a failure returns no mesh and one error line; an accepted mesh
- * has >= 3 vertices and >= 1 triangle, finite coordinates, indices in range,
- * and survives a write / read round trip with the same counts. */
+ * (fuzz_obj.c, fuzz_msh.c, fuzz_stl.c): the input written as a file with
+ * extension ext, read by glpgp_mesh_read (reader + glpgp_mesh_create's
+ * validation). Properties: a failure returns no mesh and one error line; an
+ * accepted mesh has >= 3 vertices and >= 1 triangle, finite coordinates,
+ * indices in range, and survives a write / read round trip (as back_ext:
+ * STL is read only) with the same counts. */
 #ifndef GLPGP_FUZZ_MESH_FILE_H
 #define GLPGP_FUZZ_MESH_FILE_H
 
@@ -13,7 +14,7 @@
 
 #include <math.h>
 
-static int fuzz_mesh_file(const char *ext, const uint8_t *data, size_t size)
+static int fuzz_mesh_file(const char *ext, const char *back_ext, const uint8_t *data, size_t size)
 {
     glpgp_error_clear();
     const char *path = fuzz_write_file(0, ext, data, size);
@@ -28,7 +29,7 @@ static int fuzz_mesh_file(const char *ext, const uint8_t *data, size_t size)
     for (int i = 0; i < 2 * m->nv; i++) FUZZ_ASSERT(isfinite(m->xy[i]));
     for (int k = 0; k < 3 * m->nt; k++) FUZZ_ASSERT(m->tri[k] >= 0 && m->tri[k] < m->nv);
     /* round trip */
-    const char *back = fuzz_write_file(1, ext, NULL, 0);
+    const char *back = fuzz_write_file(1, back_ext, NULL, 0);
     glpgp_mesh *m2 = NULL;
     FUZZ_ASSERT(glpgp_mesh_write(m, back) == GLPGP_OK);
     FUZZ_ASSERT(glpgp_mesh_read(back, &m2) == GLPGP_OK);
