@@ -30,10 +30,12 @@ fi
 
 if [ ! -x "$BUILD/tests/fuzz/fuzz_${HARNESSES[0]}" ]; then
     echo "==> configuring and building $BUILD (clang, libFuzzer, ASan + UBSan)"
+    # the logs inside BUILD_DIR (ignored by git), never beside the sources
+    mkdir -p "$BUILD"
     CC=${CC:-clang} CXX=${CXX:-clang++} cmake -S . -B "$BUILD" -DGLPGP_FUZZ=ON \
         -DCMAKE_BUILD_TYPE=RelWithDebInfo -DGLPGP_WITH_OPENCL=OFF -DGLPGP_BUILD_BENCH=OFF \
-        >"$BUILD.configure.log" 2>&1 || { cat "$BUILD.configure.log"; exit 1; }
-    cmake --build "$BUILD" -j2 >"$BUILD.build.log" 2>&1 || { tail -30 "$BUILD.build.log"; exit 1; }
+        >"$BUILD/configure.log" 2>&1 || { cat "$BUILD/configure.log"; exit 1; }
+    cmake --build "$BUILD" -j2 >"$BUILD/build.log" 2>&1 || { tail -30 "$BUILD/build.log"; exit 1; }
 fi
 
 # LeakSanitizer: PoCL/LLVM are not linked in this build (no OpenCL); the
