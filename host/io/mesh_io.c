@@ -239,8 +239,81 @@ static glpgp_status triangulate_face(const char *path, raw_mesh *r, size_t k, in
     return st;
 }
 
-/* Removal of unused vertices, the plane (z = const, or y or x = const),
- * triangulation of polygon faces, welding, then glpgp_mesh_create. */
+/* A 3D triangle mesh (a CAD part's whole surface, e.g. the STL of an
+ * extruded lamination): keep the triangles of its largest face in a
+ * coordinate plane, those whose three corners have exactly the same z (or y,
+ * or x), grouped by that value, the group of the largest area winning (ties:
+ * z before y before x, then the lower value). 0 when no triangle lies in
+ * such a plane. */
+typedef struct face_tri {
+    int axis;
+    double val, area;
+} face_tri;
+
+static int cmp_face_tri(const void *a, const void *b)
+{
+    const face_tri *p = a, *q = b;
+    if (p->axis != q->axis) return q->axis - p->axis; /* z, y, x */
+    return (p->val > q->val) - (p->val < q->val);
+}
+
+static glpgp_status select_face(const char *path, raw_mesh *r, int *found)
+{
+    *found = 0;
+    face_tri *ft = NULL;
+    GLPGP_CHECK(glpgp_malloc(r->nt + 1, sizeof *ft, &ft));
+    size_t n = 0;
+    const double *X = r->xyz;
+    for (size_t t = 0; t < r->nt; t++) {
+        const int *v = r->tri + 3 * t;
+        for (int a = 2; a >= 0; a--) {
+            if (!(X[3 * v[0] + a] == X[3 * v[1] + a] && X[3 * v[0] + a] == X[3 * v[2] + a])) continue;
+            const int i = (a + 1) % 3, j = (a + 2) % 3;
+            const double *p = X + 3 * v[0], *q = X + 3 * v[1], *o = X + 3 * v[2];
+            ft[n].axis = a;
+            ft[n].val = p[a];
+            ft[n].area = 0.5 * fabs((q[i] - p[i]) * (o[j] - p[j]) - (q[j] - p[j]) * (o[i] - p[i]));
+            n++;
+            break;
+        }
+    }
+    qsort(ft, n, sizeof *ft, cmp_face_tri);
+    int best_axis = -1;
+    double best_val = 0.0, best_area = 0.0;
+    for (size_t k = 0; k < n;) {
+        size_t l = k;
+        double sum = 0.0;
+        while (l < n && ft[l].axis == ft[k].axis && ft[l].val == ft[k].val) sum += ft[l++].area;
+        if (sum > best_area * (1.0 + 1e-9)) { /* equal areas up to rounding: the first wins */
+            best_area = sum;
+            best_axis = ft[k].axis;
+            best_val = ft[k].val;
+        }
+        k = l;
+    }
+    free(ft);
+    if (best_axis < 0) return GLPGP_OK;
+    size_t w = 0;
+    for (size_t t = 0; t < r->nt; t++) {
+        const int *v = r->tri + 3 * t;
+        if (X[3 * v[0] + best_axis] == best_val && X[3 * v[1] + best_axis] == best_val &&
+            X[3 * v[2] + best_axis] == best_val) {
+            memmove(r->tri + 3 * w, v, 3 * sizeof(int));
+            w++;
+        }
+    }
+    glpgp_log(GLPGP_LOG_WARNING,
+              "%s: a 3D mesh (x, y and z vary): solving its largest face in a coordinate plane, %c = %.9g (%zu of "
+              "%zu triangles, area %.6g)",
+              path, "xyz"[best_axis], best_val, w, r->nt, best_area);
+    r->nt = w;
+    *found = 1;
+    return GLPGP_OK;
+}
+
+/* Removal of unused vertices, the plane (z = const, or y or x = const; of a
+ * 3D mesh its largest face in one), triangulation of polygon faces, welding,
+ * then glpgp_mesh_create. */
 static glpgp_status finish(const char *path, raw_mesh *r, glpgp_mesh **out)
 {
     glpgp_status st = GLPGP_OK;
@@ -248,6 +321,8 @@ static glpgp_status finish(const char *path, raw_mesh *r, glpgp_mesh **out)
     double *xy = NULL;
     if (r->nt == 0 && r->npoly == 0) return GLPGP_FAIL(GLPGP_ERR_MESH, "%s: no triangles", path);
     GLPGP_CHECK_GOTO(st, glpgp_malloc(r->nv, sizeof *map, &map), done);
+    int face_tried = 0;
+again:
     for (size_t v = 0; v < r->nv; v++) map[v] = -1;
     for (size_t i = 0; i < 3 * r->nt; i++) map[r->tri[i]] = 0;
     for (size_t i = 0; i < r->npc; i++) map[r->poly[i]] = 0;
@@ -277,9 +352,14 @@ static glpgp_status finish(const char *path, raw_mesh *r, glpgp_mesh **out)
             cx = 1;
             cy = 2;
         } else {
+            int found = 0;
+            if (!face_tried && r->npoly == 0) GLPGP_CHECK_GOTO(st, select_face(path, r, &found), done);
+            face_tried = 1;
+            if (found) goto again;
             st = GLPGP_FAIL(GLPGP_ERR_MESH,
                             "%s: mesh is not planar in a coordinate plane: x, y and z vary (by %.6g, %.6g, "
-                            "%.6g); a tilted plane must be rotated into z = const first",
+                            "%.6g), and no face of it lies in one; a tilted plane must be rotated into z = const "
+                            "first",
                             path, dx, dy, dz);
             goto done;
         }

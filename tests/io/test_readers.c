@@ -20,6 +20,8 @@
  *  - STL, ASCII and binary (one whose header starts with "solid"): welded; a
  *    count beyond the bytes, a facet of 2 vertices, a stray keyword, NaN:
  *    errors with the line, bounded memory;
+ *  - a 3D surface: its largest face in a coordinate plane (a box's bottom,
+ *    or its side x = 0 when that is larger); none: an error;
  *  - unwelded meshes: a triangle soup and two patches with doubled seam
  *    nodes (OBJ, MSH 4.1) are welded into one piece; the doubled lips of a
  *    crack inside one piece stay apart. */
@@ -467,6 +469,41 @@ static void stl(void)
                "nanv.stl:4:", __LINE__);
 }
 
+/* A box [0, a] x [0, b] x [0, c] as 12 STL facets (its whole surface). */
+static void box_stl(const char *name, double a, double b, double c)
+{
+    const double X[8][3] = {{0, 0, 0}, {a, 0, 0}, {a, b, 0}, {0, b, 0}, {0, 0, c}, {a, 0, c}, {a, b, c}, {0, b, c}};
+    const int F[12][3] = {{0, 2, 1}, {0, 3, 2}, {4, 5, 6}, {4, 6, 7}, {0, 1, 5}, {0, 5, 4},
+                          {1, 2, 6}, {1, 6, 5}, {2, 3, 7}, {2, 7, 6}, {3, 0, 4}, {3, 4, 7}};
+    char text[4096] = "solid box\n";
+    for (int f = 0; f < 12; f++) {
+        snprintf(text + strlen(text), sizeof text - strlen(text), "facet normal 0 0 0\nouter loop\n");
+        for (int k = 0; k < 3; k++)
+            snprintf(text + strlen(text), sizeof text - strlen(text), "vertex %g %g %g\n", X[F[f][k]][0],
+                     X[F[f][k]][1], X[F[f][k]][2]);
+        snprintf(text + strlen(text), sizeof text - strlen(text), "endloop\nendfacet\n");
+    }
+    strcat(text, "endsolid box\n");
+    put(P(name), text, 0);
+}
+
+/* A 3D surface (a CAD part's STL): its largest face in a coordinate plane
+ * is solved: the box 2 x 1 x 0.5 gives its bottom (z = 0, area 2), the box
+ * 0.2 x 3 x 2 its side x = 0 (area 6); a tetrahedron with no such face is
+ * an error. */
+static void three_d(void)
+{
+    box_stl("flat.stl", 2, 1, 0.5);
+    read_expect("flat.stl", 4, 2, 1, 2.0, __LINE__);
+    box_stl("tall.stl", 0.2, 3, 2);
+    read_expect("tall.stl", 4, 2, 1, 6.0, __LINE__);
+    put(P("tet.obj"), "v 0 0 0\nv 1 0 0.1\nv 0 1 0.2\nv 0.3 0.3 1\nf 1 2 3\nf 1 2 4\nf 2 3 4\nf 3 1 4\n", 0);
+    glpgp_mesh *m = NULL;
+    CHECK(glpgp_mesh_read(P("tet.obj"), &m) == GLPGP_ERR_MESH && !m);
+    CHECK(strstr(glpgp_error_message(), "no face of it lies in one") != NULL);
+    glpgp_error_clear();
+}
+
 int main(void)
 {
     const char *base = getenv("TMPDIR");
@@ -483,7 +520,8 @@ int main(void)
     element_kinds();
     polygon_faces();
     stl();
-    const char *made[] = {"sq_a.stl", "sq_b.stl", "huge.stl", "soup.obj", "patches.msh", "crack.obj", "p2.msh", "q9.msh", "dart.msh", "short9.msh",
+    three_d();
+    const char *made[] = {"flat.stl", "tall.stl", "tet.obj", "sq_a.stl", "sq_b.stl", "huge.stl", "soup.obj", "patches.msh", "crack.obj", "p2.msh", "q9.msh", "dart.msh", "short9.msh",
                           "lface.obj", "rface.obj", "lcw.obj", "bow.obj"};
     for (size_t k = 0; k < sizeof made / sizeof *made; k++) unlink(P(made[k]));
     rmdir(g_dir);
