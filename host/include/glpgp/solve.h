@@ -225,6 +225,10 @@ glpgp_status glpgp_options_check(const glpgp_options *o);
  * raise to 10 mean edges on a coarse input) is replaced by diameter / 20 and
  * the mesh refined for it */
 #define GLPGP_SIZE_DEFAULT_MIN_QUADS 5.0
+/* --size-field auto / iso: boundary loops shorter than this many h (holes of
+ * radius below 0.72 h) let the rays of the rest of the boundary pass: they
+ * make no walls (solver/sizefield.c, step 1) */
+#define GLPGP_SIZE_SMALL_LOOP 4.5
 /* triangles with a corner below this many degrees are slivers (a warning
  * when they are 1% of the input or more) */
 #define GLPGP_SLIVER_DEG 5.0
