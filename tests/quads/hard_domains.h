@@ -44,8 +44,14 @@
  * gasket    rounded rectangle 10 x 4 H, ten bolt holes of radius 0.4 H 0.15 H
  *           from its long sides (thin ligaments), a central hole
  * lamination disk of radius 5 H with a bore and 16 round holes of radius
- *           0.35 H near the rim (holes smaller than H all around) */
-#define HD_NAMES "slot strip smallhole wedge20 cusp graded perforated ibeam motor fillet crack airfoil gasket lamination"
+ *           0.35 H near the rim (holes smaller than H all around)
+ * comb      twelve teeth 0.2 H wide, 3 H long, 0.6 H apart on a base
+ * star      twelve spikes between radii 1 and 3 H (tips of about 12 degrees)
+ * keyhole   a disk of radius 3 H whose hole of radius 1 H opens to the rim by
+ *           a slot 0.3 H wide */
+#define HD_NAMES \
+    "slot strip smallhole wedge20 cusp graded perforated ibeam motor fillet crack airfoil gasket lamination comb " \
+    "star keyhole"
 
 typedef struct hd_poly {
     int n, cap_l;      /* loops */
@@ -313,6 +319,41 @@ static int hd_build(const char *name, double e, hd_poly *p)
         hd_circle(p, 0, 0, 1.2, e);
         for (int i = 0; i < 16; i++)
             hd_circle(p, 3.6 * cos(2 * HD_PI * i / 16), 3.6 * sin(2 * HD_PI * i / 16), 0.35, fmin(e, 0.06));
+    } else if (!strcmp(name, "comb")) {
+        /* a base 9.8 x 1 with twelve teeth 0.2 wide and 3 long, 0.6 apart */
+        double c[2 * 52];
+        int n = 0;
+        c[n++] = 0, c[n++] = 0, c[n++] = 9.8, c[n++] = 0, c[n++] = 9.8, c[n++] = 4, c[n++] = 9.6, c[n++] = 4;
+        c[n++] = 9.6, c[n++] = 1;
+        double x = 9.6;
+        for (int i = 0; i < 11; i++) {
+            x -= 0.6;
+            c[n++] = x, c[n++] = 1, c[n++] = x, c[n++] = 4, c[n++] = x - 0.2, c[n++] = 4, c[n++] = x - 0.2, c[n++] = 1;
+            x -= 0.2;
+        }
+        c[n++] = 0, c[n++] = 1;
+        hd_polygon(p, c, n / 2, fmin(e, 0.05));
+    } else if (!strcmp(name, "star")) {
+        /* twelve spikes between radii 1 and 3 (tips of about 12 degrees) */
+        double c[2 * 24];
+        for (int i = 0; i < 24; i++) {
+            const double r = i % 2 ? 1.0 : 3.0, a = 2 * HD_PI * i / 24;
+            c[2 * i] = r * cos(a);
+            c[2 * i + 1] = r * sin(a);
+        }
+        hd_polygon(p, c, 24, e);
+    } else if (!strcmp(name, "keyhole")) {
+        /* a disk of radius 3 with a hole of radius 1 joined to the outside by
+         * a slot 0.3 wide: one loop */
+        const double a0 = asin(0.15 / 3), a1 = asin(0.15 / 1);
+        hd_begin(p);
+        hd_point(p, 3 * cos(a0), 3 * sin(a0), e);
+        hd_arc(p, 0, 0, 3, a0, 2 * HD_PI - a0, e);
+        hd_line_to(p, cos(-a1), sin(-a1), fmin(e, 0.05));
+        hd_arc(p, 0, 0, 1, 2 * HD_PI - a1, a1, fmin(e, 0.1));
+        hd_line_to(p, 3 * cos(a0), 3 * sin(a0), fmin(e, 0.05));
+        p->np--;
+        hd_end(p);
     } else {
         return 0;
     }
