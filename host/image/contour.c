@@ -166,9 +166,7 @@ glpgp_status glpgp_simplify_closed(double *xy, int *np, double tol)
 
 /* ---- marching squares ------------------------------------------------------ */
 
-/* signed area about the loop's first point (no cancellation far from the
- * origin: .poly inputs keep their CAD coordinates) */
-static double loop_area(const double *xy, int n)
+double glpgp_polygon_area(const double *xy, int n)
 {
     if (n < 1) return 0;
     double a = 0, x0 = xy[0], y0 = xy[1];
@@ -371,7 +369,7 @@ glpgp_status glpgp_contours(const float *v, int w, int h, const glpgp_contour_op
         }
         int n = (int)(loops.n / 2 - first);
         double *xy = loops.a + 2 * first;
-        double a = loop_area(xy, n);
+        double a = glpgp_polygon_area(xy, n);
         if (fabs(a) < o.min_area || n < 3) { /* speck (or filled-in small hole) */
             loops.n = 2 * first;
             continue;
@@ -392,7 +390,7 @@ glpgp_status glpgp_contours(const float *v, int w, int h, const glpgp_contour_op
     if (loops.n) memcpy(P->xy, loops.a, loops.n * sizeof(double));
     double total = 0;
     for (int l = 0; l < nl; l++) {
-        P->area[l] = loop_area(P->xy + 2 * P->start[l], P->start[l + 1] - P->start[l]);
+        P->area[l] = glpgp_polygon_area(P->xy + 2 * P->start[l], P->start[l + 1] - P->start[l]);
         total += P->area[l];
     }
     if (total < 0) { /* make the domain lie on the left */
@@ -743,8 +741,8 @@ glpgp_status glpgp_polygons_simplify(glpgp_polygons *p, double tol, double min_d
             memmove(p->xy + 2 * (size_t)w, raw + 2 * (size_t)rstart[l], 2 * (size_t)n * sizeof(double));
             GLPGP_CHECK_GOTO(st, glpgp_simplify_closed(p->xy + 2 * (size_t)w, &n, ltol[l]), done);
             p->start[l] = w;
-            double a0 = loop_area(raw + 2 * (size_t)rstart[l], rstart[l + 1] - rstart[l]);
-            double a1 = loop_area(p->xy + 2 * (size_t)w, n);
+            double a0 = glpgp_polygon_area(raw + 2 * (size_t)rstart[l], rstart[l + 1] - rstart[l]);
+            double a1 = glpgp_polygon_area(p->xy + 2 * (size_t)w, n);
             /* a loop must keep 3 points, its orientation and most of its area */
             bad[l] = n < 3 || !(a0 * a1 > 0) || !(fabs(a1) >= 0.5 * fabs(a0));
             w += n;
@@ -780,7 +778,7 @@ glpgp_status glpgp_polygons_simplify(glpgp_polygons *p, double tol, double min_d
     }
     p->total_area = 0;
     for (int l = 0; l < nl; l++) {
-        p->area[l] = loop_area(p->xy + 2 * (size_t)p->start[l], p->start[l + 1] - p->start[l]);
+        p->area[l] = glpgp_polygon_area(p->xy + 2 * (size_t)p->start[l], p->start[l + 1] - p->start[l]);
         p->total_area += p->area[l];
     }
 done:

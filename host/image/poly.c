@@ -85,18 +85,6 @@ static glpgp_status header(ptok *t, const char *what, double *v, int min, int ma
 
 static int is_count(double x, long max) { return x >= 0 && x <= max && x == floor(x); }
 
-/* Signed area of the closed loop xy[0 .. 2n), about its first point (no
- * cancellation for parts far from the origin). */
-static double loop_area(const double *xy, int n)
-{
-    double A = 0;
-    for (int i = 0; i < n; i++) {
-        const double *a = xy + 2 * i, *b = xy + 2 * ((i + 1) % n);
-        A += 0.5 * ((a[0] - xy[0]) * (b[1] - xy[1]) - (b[0] - xy[0]) * (a[1] - xy[1]));
-    }
-    return A;
-}
-
 /* Nesting and orientation of the loops of P (n, start, xy, size set): the
  * parent of each hole (the smallest loop containing it), outer loops (even
  * depth) turned counter-clockwise and holes clockwise (size[] with them),
@@ -122,7 +110,7 @@ static glpgp_status polygons_orient(glpgp_polygons *P)
             }
             if (!in) continue;
             depth[l]++;
-            double A = loop_area(P->xy + 2 * s, n);
+            double A = glpgp_polygon_area(P->xy + 2 * s, n);
             if (fabs(A) < bestA) {
                 bestA = fabs(A);
                 P->parent[l] = o;
@@ -133,7 +121,7 @@ static glpgp_status polygons_orient(glpgp_polygons *P)
     P->total_area = 0;
     for (int l = 0; l < nl; l++) {
         int s = P->start[l], n = P->start[l + 1] - s;
-        double A = loop_area(P->xy + 2 * s, n);
+        double A = glpgp_polygon_area(P->xy + 2 * s, n);
         int hole_l = depth[l] % 2;
         if ((A < 0) != hole_l) {
             for (int i = 0; i < n / 2; i++)

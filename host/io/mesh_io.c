@@ -72,19 +72,18 @@ static glpgp_status raw_add_tri(raw_mesh *r, int a, int b, int c)
  * is > 0, xy compacted in place (kept vertices in their order) and tri
  * renumbered; *nv updated; *pieces_before / *pieces_after the counts of
  * pieces. */
-static int cmp_xy_index(const void *a, const void *b, const double *xy)
-{
-    int i = *(const int *)a, j = *(const int *)b;
-    double xi = xy[2 * i], xj = xy[2 * j], yi = xy[2 * i + 1], yj = xy[2 * j + 1];
-    if (xi != xj) return xi < xj ? -1 : 1;
-    if (yi != yj) return yi < yj ? -1 : 1;
-    return (i > j) - (i < j);
-}
+typedef struct xy_index {
+    double x, y;
+    int i;
+} xy_index;
 
-/* qsort has no context argument in C11: the coordinates are passed through a
- * thread-local pointer, set only around the call */
-static _Thread_local const double *sort_xy;
-static int cmp_sort_xy(const void *a, const void *b) { return cmp_xy_index(a, b, sort_xy); }
+static int cmp_xy_index(const void *a, const void *b)
+{
+    const xy_index *p = a, *q = b;
+    if (p->x != q->x) return p->x < q->x ? -1 : 1;
+    if (p->y != q->y) return p->y < q->y ? -1 : 1;
+    return (p->i > q->i) - (p->i < q->i);
+}
 
 static int count_pieces(int nv, int nt, const int *tri, int *parent)
 {
@@ -103,30 +102,30 @@ static glpgp_status weld(int *nv, double *xy, int nt, int *tri, int *nmerged, in
                          int *pieces_after)
 {
     glpgp_status st = GLPGP_OK;
-    int *piece = NULL, *order = NULL, *to = NULL;
+    int *piece = NULL, *renum = NULL, *to = NULL;
+    xy_index *srt = NULL;
     const int n = *nv;
     *nmerged = 0;
     GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)n, sizeof *piece, &piece), done);
-    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)n, sizeof *order, &order), done);
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)n, sizeof *renum, &renum), done);
     GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)n, sizeof *to, &to), done);
     *pieces_before = *pieces_after = count_pieces(n, nt, tri, piece);
     if (*pieces_before == 1) goto done; /* one piece: nothing to weld */
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)n, sizeof *srt, &srt), done);
     for (int v = 0; v < n; v++) {
         piece[v] = glpgp_uf_find(piece, v);
-        order[v] = v;
+        srt[v] = (xy_index){xy[2 * v], xy[2 * v + 1], v};
         to[v] = v;
     }
-    sort_xy = xy;
-    qsort(order, (size_t)n, sizeof *order, cmp_sort_xy);
-    sort_xy = NULL;
+    qsort(srt, (size_t)n, sizeof *srt, cmp_xy_index);
     int merged = 0;
     for (int i = 0; i < n;) {
         int j = i + 1;
-        while (j < n && xy[2 * order[j]] == xy[2 * order[i]] && xy[2 * order[j] + 1] == xy[2 * order[i] + 1]) j++;
-        const int first = order[i]; /* lowest index of the group */
+        while (j < n && srt[j].x == srt[i].x && srt[j].y == srt[i].y) j++;
+        const int first = srt[i].i; /* lowest index of the group */
         for (int k = i + 1; k < j; k++)
-            if (piece[order[k]] != piece[first]) {
-                to[order[k]] = first;
+            if (piece[srt[k].i] != piece[first]) {
+                to[srt[k].i] = first;
                 merged++;
             }
         i = j;
@@ -139,18 +138,19 @@ static glpgp_status weld(int *nv, double *xy, int nt, int *tri, int *nmerged, in
             if (to[v] == v) {
                 xy[2 * m] = xy[2 * v];
                 xy[2 * m + 1] = xy[2 * v + 1];
-                order[v] = m++;
+                renum[v] = m++;
             }
-        for (int v = 0; v < n; v++) order[v] = order[to[v]];
-        for (long i = 0; i < 3L * nt; i++) tri[i] = order[tri[i]];
+        for (int v = 0; v < n; v++) renum[v] = renum[to[v]];
+        for (long i = 0; i < 3L * nt; i++) tri[i] = renum[tri[i]];
         *nv = m;
         *pieces_after = count_pieces(m, nt, tri, piece);
     }
     *nmerged = merged;
 done:
     free(piece);
-    free(order);
+    free(renum);
     free(to);
+    free(srt);
     return st;
 }
 
@@ -311,6 +311,30 @@ static glpgp_status select_face(const char *path, raw_mesh *r, int *found)
     return GLPGP_OK;
 }
 
+/* map[v] <- the number of raw vertex v among those the triangles and
+ * polygon faces use (-1: unused), lo / hi their coordinate ranges; returns
+ * how many are used. */
+static int used_vertices(const raw_mesh *r, int *map, double lo[3], double hi[3])
+{
+    for (size_t v = 0; v < r->nv; v++) map[v] = -1;
+    for (size_t i = 0; i < 3 * r->nt; i++) map[r->tri[i]] = 0;
+    for (size_t i = 0; i < r->npc; i++) map[r->poly[i]] = 0;
+    for (int c = 0; c < 3; c++) {
+        lo[c] = HUGE_VAL;
+        hi[c] = -HUGE_VAL;
+    }
+    int nv = 0;
+    for (size_t v = 0; v < r->nv; v++) {
+        if (map[v] < 0) continue;
+        map[v] = nv++;
+        for (int c = 0; c < 3; c++) {
+            lo[c] = fmin(lo[c], r->xyz[3 * v + c]);
+            hi[c] = fmax(hi[c], r->xyz[3 * v + c]);
+        }
+    }
+    return nv;
+}
+
 /* Removal of unused vertices, the plane (z = const, or y or x = const; of a
  * 3D mesh its largest face in one), triangulation of polygon faces, welding,
  * then glpgp_mesh_create. */
@@ -321,50 +345,39 @@ static glpgp_status finish(const char *path, raw_mesh *r, glpgp_mesh **out)
     double *xy = NULL;
     if (r->nt == 0 && r->npoly == 0) return GLPGP_FAIL(GLPGP_ERR_MESH, "%s: no triangles", path);
     GLPGP_CHECK_GOTO(st, glpgp_malloc(r->nv, sizeof *map, &map), done);
-    int face_tried = 0;
-again:
-    for (size_t v = 0; v < r->nv; v++) map[v] = -1;
-    for (size_t i = 0; i < 3 * r->nt; i++) map[r->tri[i]] = 0;
-    for (size_t i = 0; i < r->npc; i++) map[r->poly[i]] = 0;
-    double xmin = HUGE_VAL, xmax = -HUGE_VAL, ymin = HUGE_VAL, ymax = -HUGE_VAL;
-    double zmin = HUGE_VAL, zmax = -HUGE_VAL;
-    int nv = 0;
-    for (size_t v = 0; v < r->nv; v++) {
-        if (map[v] < 0) continue;
-        map[v] = nv++;
-        const double *p = r->xyz + 3 * v;
-        xmin = fmin(xmin, p[0]);
-        xmax = fmax(xmax, p[0]);
-        ymin = fmin(ymin, p[1]);
-        ymax = fmax(ymax, p[1]);
-        zmin = fmin(zmin, p[2]);
-        zmax = fmax(zmax, p[2]);
-    }
+    double lo[3], hi[3], d[3];
+    int nv = used_vertices(r, map, lo, hi);
+    for (int c = 0; c < 3; c++) d[c] = hi[c] - lo[c];
     /* the plane: z = const, else y = const or x = const (a part drawn in a
-     * side view), solved in its two varying coordinates */
-    const double dx = xmax - xmin, dy = ymax - ymin, dz = zmax - zmin;
-    const double size = fmax(dx, fmax(dy, dz));
+     * side view), solved in its two varying coordinates; of a 3D surface
+     * (triangles only) its largest face in one of them */
+    double size = fmax(d[0], fmax(d[1], d[2]));
+    if (d[0] > 1e-9 * size && d[1] > 1e-9 * size && d[2] > 1e-9 * size && r->npoly == 0) {
+        int found = 0;
+        GLPGP_CHECK_GOTO(st, select_face(path, r, &found), done);
+        if (found) {
+            nv = used_vertices(r, map, lo, hi);
+            for (int c = 0; c < 3; c++) d[c] = hi[c] - lo[c];
+            size = fmax(d[0], fmax(d[1], d[2]));
+        }
+    }
     int cx = 0, cy = 1; /* the coordinates taken as x and y */
-    if (dz > 1e-9 * size) {
-        if (dy <= 1e-9 * size)
+    if (d[2] > 1e-9 * size) {
+        if (d[1] <= 1e-9 * size)
             cy = 2;
-        else if (dx <= 1e-9 * size) {
+        else if (d[0] <= 1e-9 * size) {
             cx = 1;
             cy = 2;
         } else {
-            int found = 0;
-            if (!face_tried && r->npoly == 0) GLPGP_CHECK_GOTO(st, select_face(path, r, &found), done);
-            face_tried = 1;
-            if (found) goto again;
             st = GLPGP_FAIL(GLPGP_ERR_MESH,
                             "%s: mesh is not planar in a coordinate plane: x, y and z vary (by %.6g, %.6g, "
                             "%.6g), and no face of it lies in one; a tilted plane must be rotated into z = const "
                             "first",
-                            path, dx, dy, dz);
+                            path, d[0], d[1], d[2]);
             goto done;
         }
         glpgp_log(GLPGP_LOG_INFO, "%s: the mesh lies in the plane %c = %.9g: solved in its (%c, %c) coordinates", path,
-                  cx == 0 && cy == 2 ? 'y' : 'x', cx == 0 && cy == 2 ? ymin : xmin, "xyz"[cx], "xyz"[cy]);
+                  "xyz"[3 - cx - cy], lo[3 - cx - cy], "xyz"[cx], "xyz"[cy]);
     }
     for (size_t k = 0; k < r->npoly; k++) GLPGP_CHECK_GOTO(st, triangulate_face(path, r, k, cx, cy), done);
     if (r->nt > (size_t)GLPGP_IO_MAX_ITEMS) {
@@ -647,8 +660,9 @@ static glpgp_status read_stl(const char *path, raw_mesh *r)
     FILE *f = fopen(path, "rb");
     if (!f) return GLPGP_FAIL(GLPGP_ERR_IO, "cannot open '%s': %s", path, strerror(errno));
     struct stat sb;
-    long long size = (fstat(fileno(f), &sb) == 0 && S_ISREG(sb.st_mode)) ? (long long)sb.st_size : -1;
-    if (size < 0 && fstat(fileno(f), &sb) == 0 && S_ISDIR(sb.st_mode)) {
+    const int known = fstat(fileno(f), &sb) == 0;
+    const long long size = known && S_ISREG(sb.st_mode) ? (long long)sb.st_size : -1;
+    if (known && S_ISDIR(sb.st_mode)) {
         fclose(f);
         return GLPGP_FAIL(GLPGP_ERR_IO, "cannot read '%s': is a directory", path);
     }

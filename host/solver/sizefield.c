@@ -669,20 +669,14 @@ static glpgp_status size_feature(const glpgp_mesh *m, const glpgp_options *o, do
      * below 0.72 h): the rays of the rest of the boundary pass through them,
      * so a rim or a wall next to a row of small holes is not sized by them
      * (their own edges still seed: a ligament seen from the hole) */
-    {
-        int any = 0;
-        for (int l = 0; l < m->nloops && !any; l++) any = loop_perimeter(m, l) < GLPGP_SIZE_SMALL_LOOP * h;
-        if (any) {
-            st = glpgp_calloc((size_t)be.n + 1, 1, &be.small);
-            if (st != GLPGP_OK) {
-                bedges_free(&be);
-                return st;
-            }
-            for (int l = 0, k = 0; l < m->nloops; l++) {
-                const int small = loop_perimeter(m, l) < GLPGP_SIZE_SMALL_LOOP * h;
-                for (int p = m->loop_start[l]; p < m->loop_start[l + 1]; p++, k++) be.small[k] = (unsigned char)small;
-            }
+    for (int l = 0; l < m->nloops; l++) {
+        if (!(loop_perimeter(m, l) < GLPGP_SIZE_SMALL_LOOP * h)) continue;
+        if (!be.small && (st = glpgp_calloc((size_t)be.n + 1, 1, &be.small)) != GLPGP_OK) {
+            bedges_free(&be);
+            return st;
         }
+        /* boundary edge k is loop position k (bedges_build) */
+        for (int p = m->loop_start[l]; p < m->loop_start[l + 1]; p++) be.small[p] = 1;
     }
     for (int e = 0; e < be.n; e++) {
         const int a = be.v[2 * e], b = be.v[2 * e + 1];

@@ -16,15 +16,9 @@
 
 static double min_angle_deg(const glpgp_mesh *m)
 {
-    double amin = 180.0;
-    for (int t = 0; t < m->nt; t++)
-        for (int k = 0; k < 3; k++) {
-            const double *a = m->xy + 2 * m->tri[3 * t + k], *b = m->xy + 2 * m->tri[3 * t + (k + 1) % 3],
-                         *c = m->xy + 2 * m->tri[3 * t + (k + 2) % 3];
-            double ux = b[0] - a[0], uy = b[1] - a[1], vx = c[0] - a[0], vy = c[1] - a[1];
-            double ang = atan2(fabs(ux * vy - uy * vx), ux * vx + uy * vy) * 180.0 / PI_D;
-            if (ang < amin) amin = ang;
-        }
+    double amin;
+    int nsliver;
+    glpgp_mesh_angles(m, 0.0, &amin, &nsliver);
     return amin;
 }
 

@@ -247,6 +247,11 @@ glpgp_status glpgp_polygons_read(const char *path, glpgp_polygons **out);
  * them, no sizes): what `glpgp mesh INPUT.obj|.msh` remeshes. */
 glpgp_status glpgp_polygons_from_mesh(const glpgp_mesh *m, glpgp_polygons **out);
 
+/* Signed area of the closed polygon xy[0 .. 2n) (counter-clockwise > 0),
+ * taken about its first point (no cancellation for parts far from the
+ * origin); 0 for n < 1. */
+double glpgp_polygon_area(const double *xy, int n);
+
 /* Whether path ends in .poly (case-insensitive). */
 int glpgp_is_poly_path(const char *path);
 
