@@ -95,7 +95,7 @@ step 60 bench-ladder "$OUT/bench_ladder.md" "$B" --sizes "$LADDER" --repeat 2 \
     --no-reference --no-cholmod --max-solve-vertices-opencl 1 --json "$OUT/bench_ladder.json"
 grep -E "device bandwidth|^\| [0-9]+ \| [0-9]+ \|" "$OUT/bench_ladder.md"
 for k in 0 auto; do
-    step 60 "precond-1m-kcycle-$k" "$OUT/precond_1m_k$k.md" "$B" --precond both --sizes "$PC" --no-reference \
+    step 60 "precond-1m-kcycle-$k" "$OUT/precond_1m_k$k.md" "$B" --precond both --sizes "$PC" --no-reference --no-cholmod --no-petsc \
         --newton-steps 2 --amg-kcycle-min "$k" --json "$OUT/precond_1m_k$k.json"
     grep -E "^per Newton step|^multigrid:" "$OUT/precond_1m_k$k.md"
 done
