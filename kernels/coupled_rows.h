@@ -1,5 +1,5 @@
 /* coupled_rows.h: the per-row bodies of the coupled cross-field solve
- * (issue 14, item 3; solver/coupled.c, host/README.md "Coupled oscillators
+ * (issue 14, item 3; solver/coupled.c, docs/numerics.md "Coupled oscillators
  * across the cuts"), written once for the C reference backend and the
  * OpenCL kernels of kernels/backend_coupled.cl (compiled as C11 and as
  * OpenCL C, like rows.h).

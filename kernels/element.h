@@ -18,7 +18,7 @@
  *   exactly 1/2 int_T |grad z - i w_T z|^2, so H_T stays Hermitian PSD. The
  *   field w(x) = 2 pi W / s(x) is no longer a gradient (curl w != 0 where s
  *   varies across W), so no plane wave has E = 0: the GL minimiser puts what
- *   is not integrable into singularities (host/README.md, "Local size").
+ *   is not integrable into singularities (docs/numerics.md, "Local size").
  *   Local eps: the GL energy E + 1/(4 eps^2) int (|z|^2-1)^2 is invariant
  *   under x -> x / h only when eps scales with the period, so with a local
  *   period h_T the penalty length should be eps_T = eps h_T / h. Per

@@ -549,9 +549,9 @@ static long polygon_problems(const glpgp_polygons *p, double min_dist, unsigned 
             }
             if (problem) {
                 if (is_cross) { /* the crossing point: a0 + t (a1 - a0), t = o3 / (o3 - o4) */
-                    double o3 = orient(b0, b1, a0), o4 = orient(b0, b1, a1), t = o3 / (o3 - o4);
-                    px = a0[0] + t * (a1[0] - a0[0]);
-                    py = a0[1] + t * (a1[1] - a0[1]);
+                    double o3 = orient(b0, b1, a0), o4 = orient(b0, b1, a1), tc = o3 / (o3 - o4);
+                    px = a0[0] + tc * (a1[0] - a0[0]);
+                    py = a0[1] + tc * (a1[1] - a0[1]);
                 } else { /* the endpoint closest to the other segment */
                     const double *cand[4] = {b0, b1, a0, a1};
                     const double *s0[4] = {a0, a0, b0, b0}, *s1[4] = {a1, a1, b1, b1};

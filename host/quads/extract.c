@@ -912,15 +912,15 @@ static glpgp_status cleanup_round(graph *g, const pmap *p, double h, int *change
     if (nchg == 0) {
         for (int f = 0; f < p->nf; f++) {
             if (p->outer[f]) continue;
-            int h = p->face_he[f], nc = 0, guard = 0;
-            int c = h;
+            int f0 = p->face_he[f], nc = 0, guard = 0;
+            int c = f0;
             do {
                 if (corner[he_orig(g, c)]) nc++;
                 c = face_next(g, p, c);
-            } while (c != h && ++guard < p->nh);
+            } while (c != f0 && ++guard < p->nh);
             if (nc <= 2) {
                 /* find a side (maximal run between corners) without boundary edges */
-                int start = h;
+                int start = f0;
                 guard = 0;
                 while (!corner[he_orig(g, start)] && ++guard < p->nh) start = face_next(g, p, start);
                 c = start;
@@ -947,7 +947,7 @@ static glpgp_status cleanup_round(graph *g, const pmap *p, double h, int *change
                 /* boundary side with intermediate nodes? */
                 int best = -1;
                 double bestd = 0.0;
-                int start = h;
+                int start = f0;
                 guard = 0;
                 while (!corner[he_orig(g, start)] && ++guard < p->nh) start = face_next(g, p, start);
                 c = start;

@@ -1,6 +1,6 @@
 /* solver/amg.c: the aggregation multigrid preconditioner of the Newton
  * systems and the flexible CG that uses it, written once against the backend
- * table (glpgp/backend.h, ops amg_*). Design (host/README.md, "Multigrid
+ * table (glpgp/backend.h, ops amg_*). Design (docs/numerics.md, "Multigrid
  * preconditioner", has the reasoning and the measurements):
  *
  * Near-null space. Along the phase mode dz = i alpha z the Newton matrix A is
@@ -54,7 +54,7 @@
  * one plain visit). The coefficients of those steps stay in the backend's
  * scalar registers (amg_kcombine): no host round trip inside a cycle.
  * Unsmoothed aggregation needs the K-cycle: V-cycle counts grow with the
- * number of levels (host/README.md has the counts). The preconditioner is
+ * number of levels (docs/numerics.md has the counts). The preconditioner is
  * not a fixed linear operator, so the outer iteration is flexible CG
  * (FCG(1)): one extra dot product per iteration compared with CG. */
 #include "internal.h"

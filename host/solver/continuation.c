@@ -619,7 +619,7 @@ cleanup:
  * at random (median |i - j| over the edges of a 107k-vertex CAD part: 17k):
  * every matrix row then gathers its neighbours from all over the vectors
  * (that part's whole solve: 1.2-1.5x the CPU, either preconditioner,
- * host/README.md). Triangles keep their order: the result is the same up to
+ * docs/numerics.md). Triangles keep their order: the result is the same up to
  * rounding (rows and dot products are summed in another order, the
  * multigrid's aggregates differ); it comes back in m's order. */
 static glpgp_status solve_ordered(const glpgp_mesh *m, glpgp_backend *b, const glpgp_options *o,

@@ -1,5 +1,5 @@
 /* solver/coupled.c: the two oscillators carried across the cross field's
- * branch cuts (issue 14, item 3; glpgp/cross.h, host/README.md "Coupled
+ * branch cuts (issue 14, item 3; glpgp/cross.h, docs/numerics.md "Coupled
  * oscillators"): the per-corner matching of a representative field U, the
  * coupled system on 2 nv nodes (a "virtual mesh" of 2 nt triangles: the frame
  * oscillators u and v of every mesh triangle, with per-corner conjugation

@@ -547,7 +547,7 @@ glpgp_status glpgp_newton_level(glpgp_backend *b, const glpgp_options *o, glpgp_
              * shape:square:1000000 OpenCL 29.0, 28.1 -> 27.3, 26.6, reference
              * 40.4 -> 37.6; shape:disk:64000 --size 0.07734642 13.9 -> 11.8;
              * the 107k motor part 19.6, 20.0 -> 21.4, 19.9 (noise); square
-             * 250k 17 -> 18 Newton, 5.9 -> 6.3 s (host/README.md) */
+             * 250k 17 -> 18 Newton, 5.9 -> 6.3 s (docs/numerics.md) */
         }
         ls->grad = gn;
         ls->energy = F;

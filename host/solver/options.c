@@ -53,7 +53,7 @@ void glpgp_options_default(glpgp_options *o)
     o->cg_rtol = 1e-8;
     o->cg_max = 20000;
     o->cg_check = 10;
-    o->precond = GLPGP_PRECOND_AMG; /* measured faster: host/README.md, "Multigrid measured" */
+    o->precond = GLPGP_PRECOND_AMG; /* measured faster: bench/results/history.md, "Multigrid measured" */
     o->amg_coarse = 48;
     o->amg_max_levels = 20;
     o->amg_cycle = GLPGP_AMG_KCYCLE;
@@ -211,7 +211,7 @@ double glpgp_default_size(const glpgp_mesh *m, const glpgp_options *o)
         o = &d;
     }
     /* diameter / 20, raised to 10 mean edges when the mesh is too coarse for it
-     * (P1 needs about 10 vertices per period, see host/README.md) */
+     * (P1 needs about 10 vertices per period, see docs/numerics.md) */
     double dx = m->bbox[2] - m->bbox[0], dy = m->bbox[3] - m->bbox[1];
     return fmax(sqrt(dx * dx + dy * dy) / o->size_diag_div, o->size_min_edges * m->mean_edge);
 }

@@ -1,6 +1,6 @@
 /* solver/sizefield.c: the local target size h(x) of each oscillator, the
  * local resolution check of the input mesh and its refinement
- * (glpgp/solve.h; design and measurements in host/README.md, "Local size").
+ * (glpgp/solve.h; design and measurements in docs/numerics.md, "Local size").
  *
  * auto (GLPGP_SIZE_AUTO, anisotropic) and iso (GLPGP_SIZE_ISO): local feature
  * size from the boundary.

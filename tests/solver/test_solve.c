@@ -99,7 +99,7 @@ static void test_manufactured(void)
 {
     /* P1 on a plane wave has a pollution (phase) error growing like w^3 dx^2 L:
      * at h = 0.1 the asymptotic order needs ~1000 vertices per period (see
-     * host/README.md), so the order is checked on a long wavelength. */
+     * docs/numerics.md), so the order is checked on a long wavelength. */
     double e1 = manufactured(40, 0.5), e2 = manufactured(80, 0.5), e3 = manufactured(160, 0.5);
     double o1 = log2(e1 / e2), o2 = log2(e2 / e3);
     printf("manufactured: observed orders %.3f, %.3f\n", o1, o2);
@@ -135,7 +135,7 @@ static void test_square(void)
     glpgp_mesh *m = NULL;
     /* h = 0.2 on ~100 x 100 vertices: ~20 vertices per period. At 10 per
      * period P1's wavelength error (periods ~7% too long) can make GL settle on
-     * L/h - 1 periods, see host/README.md. */
+     * L/h - 1 periods, see docs/numerics.md. */
     CHECK_OK(glpgp_mesh_generate("square", 10000, &m));
     if (!m) return;
     /* Dirichlet sets: U = (1,0) everywhere; left/right sides and all 4 corners

@@ -45,7 +45,7 @@ enum glpgp_matrix { GLPGP_MAT_QUAD = 0, GLPGP_MAT_NEWTON = 1 };
 
 /* ---- multilevel (aggregation AMG) preconditioner: data layout ------------
  * The hierarchy (built on the host by solver/amg.c, design in its header and
- * host/README.md) has levels l = 0 .. L-1; level 0 is NEWTON on the system's
+ * docs/numerics.md) has levels l = 0 .. L-1; level 0 is NEWTON on the system's
  * pattern, level L-1 the coarsest. Every level is a 2x2-block CSR matrix A_l
  * on n_l nodes. Node i of level l < L-1 belongs to at most one aggregate
  * agg[i] (a node of level l+1); the prolongation P_l maps the 2 unknowns of

@@ -16,7 +16,7 @@
  * quarter units (index4 = 4 * index).
  *
  * Poincare-Hopf with corners (glpgp_cross_expected_index4, derived in
- * host/README.md "Cross fields"): for a planar domain whose boundary loops
+ * docs/numerics.md "Cross fields"): for a planar domain whose boundary loops
  * turn by +-2 pi,
  *     sum of interior indices = chi - sum over corners c of (2 - n_c) / 4,
  *     chi = (outer loops) - (holes),  n_c = round(interior angle / (pi/2)),
@@ -123,7 +123,7 @@ int glpgp_cross_eps_schedule(const glpgp_mesh *m, const struct glpgp_options *o,
                              double eps[GLPGP_CROSS_MAX_LEVELS]);
 
 /* ---- coupled oscillators across the branch cuts (issue 14, item 3;
- * solver/coupled.c, host/README.md "Coupled oscillators") -----------------
+ * solver/coupled.c, docs/numerics.md "Coupled oscillators") -----------------
  * Vertex i has the representative U_i (glpgp_cross_to_vector) and two nodes,
  * 2i (z_u, along U_i) and 2i + 1 (z_v, along V_i = U_i rotated by +90 deg).
  * Triangle t's frame is its corner 0's representative; corner a has the
@@ -170,7 +170,7 @@ void glpgp_coupled_windings(const glpgp_mesh *m, const double *u, const double *
                             signed char *sing, int *plus, int *minus);
 
 /* Conformal size field of the cross field w (2*nv) for target size h
- * (--cross-size, host/README.md "Coupled oscillators"): phi minimising
+ * (--cross-size, docs/numerics.md "Coupled oscillators"): phi minimising
  * int |grad phi - R grad theta|^2, theta = arg(w)/4 per triangle, R the turn
  * by -90 degrees (so that U / s and V / s are curl-free where theta is
  * harmonic), by one linear solve on backend b (set up for m; its field,

@@ -36,7 +36,7 @@ enum glpgp_cross_coupling {
 enum glpgp_cross_size {
     GLPGP_CROSS_SIZE_OFF = 0, /* the size field's alone */
     GLPGP_CROSS_SIZE_ON = 1,  /* q = 1 (largest size h), no ratio bound: fully conformal */
-    GLPGP_CROSS_SIZE_AUTO = 2 /* q = cross_size_quantile, c = cross_size_ratio (host/README.md) */
+    GLPGP_CROSS_SIZE_AUTO = 2 /* q = cross_size_quantile, c = cross_size_ratio (docs/numerics.md) */
 };
 enum glpgp_init { GLPGP_INIT_NAIVE = 0, GLPGP_INIT_ONE = 1 };
 /* How the two oscillators of a solve share the machine (glpgp_options.oscillators). */
@@ -58,7 +58,7 @@ enum glpgp_precond {
     GLPGP_PRECOND_JACOBI = 0, /* 2x2-block Jacobi, CG (solver/cg.c) */
     GLPGP_PRECOND_AMG = 1     /* aggregation multigrid, flexible CG (solver/amg.c) */
 };
-/* Local target size h(x) (solver/sizefield.c, host/README.md "Local size"). */
+/* Local target size h(x) (solver/sizefield.c, docs/numerics.md "Local size"). */
 enum glpgp_size_mode {
     GLPGP_SIZE_NONE = 0, /* h everywhere (today's uniform size) */
     GLPGP_SIZE_AUTO = 1, /* local feature size from the boundary, per oscillator along its W */
@@ -300,7 +300,7 @@ glpgp_status glpgp_size_refine(const glpgp_mesh *m, const glpgp_options *o, doub
  * distributed mesh (m->part), with per-vertex input files (field or size
  * FILE, whose lines follow m's numbering) and with the cross field (whose
  * coupled solve's cuts and frames follow the numbering): the same result up to rounding,
- * 1.2-1.5x less CPU on randomly numbered meshes (host/README.md). Progress: glpgp_log at GLPGP_LOG_INFO; a level that
+ * 1.2-1.5x less CPU on randomly numbered meshes (docs/numerics.md). Progress: glpgp_log at GLPGP_LOG_INFO; a level that
  * stops at the Newton cap is flagged (level[].capped, capped_levels) and
  * logged as a warning. */
 glpgp_status glpgp_solve(const glpgp_mesh *m, glpgp_backend *b, const glpgp_options *o,
@@ -425,7 +425,7 @@ glpgp_status glpgp_cg(glpgp_backend *b, const glpgp_vec *rhs, glpgp_vec *x, doub
  * the prolongation maps each aggregate's 2 coarse unknowns to the current
  * oscillator's frame (so [z, iz] is reproduced exactly), A_c = P^T A P,
  * l1-Jacobi smoothers and a dense inverse of the coarsest matrix. Applied as
- * a K-cycle inside flexible CG (glpgp_fcg). Design: host/README.md. */
+ * a K-cycle inside flexible CG (glpgp_fcg). Design: docs/numerics.md. */
 typedef struct glpgp_amg glpgp_amg;
 
 /* Hierarchy facts for logs, tests and the benchmark. */
@@ -450,7 +450,7 @@ int glpgp_amg_supported(const glpgp_backend *b);
  * visits level l 2^l times, ~10 launches each: 2170 launches per cycle at 1M
  * vertices (9 levels), 12.9 ms per iteration on an H200 against 0.2 ms for a
  * Jacobi-CG iteration; from 2000 nodes down a plain visit cuts the launches
- * 4x at the same iteration counts to within one (host/README.md). */
+ * 4x at the same iteration counts to within one (docs/numerics.md). */
 #define GLPGP_AMG_KCYCLE_MIN_LAUNCH_BOUND 2000
 
 /* The K-cycle threshold in effect: o->amg_kcycle_min where >= 0, else (-1,
