@@ -96,4 +96,73 @@ static inline int tu_solve_quads(const glpgp_mesh *m, const glpgp_options *o, do
     return made;
 }
 
+/* Structured grid mesh of [0, Lx] x [0, Ly] with nx x ny cells, two triangles
+ * each: x coordinates through xmap (NULL: uniform; xmap maps [0,1] onto
+ * itself), interior vertices moved by up to jitter / 2 cells at random
+ * (tu_rand), diagonals all the same way (alternate 0) or alternating
+ * (alternate 1). A mesh that cannot be made is a failed check (NULL). */
+typedef struct tu_grid {
+    int nx, ny;
+    double Lx, Ly, jitter;
+    double (*xmap)(double);
+    int alternate;
+} tu_grid;
+static inline glpgp_mesh *tu_grid_mesh(tu_grid g)
+{
+    const int nx = g.nx, ny = g.ny, nv = (nx + 1) * (ny + 1), nt = 2 * nx * ny;
+    double *xy = (double *)malloc(sizeof(double) * 2 * nv);
+    int *tri = (int *)malloc(sizeof(int) * 3 * nt);
+    glpgp_mesh *m = NULL;
+    if (!xy || !tri) {
+        CHECK(!"tu_grid_mesh: out of memory");
+        free(xy), free(tri);
+        return NULL;
+    }
+    for (int j = 0; j <= ny; j++)
+        for (int i = 0; i <= nx; i++) {
+            const double s = (double)i / nx;
+            double dx = 0, dy = 0;
+            if (g.jitter > 0 && i > 0 && i < nx && j > 0 && j < ny) {
+                dx = g.jitter * (tu_rand() - 0.5) * g.Lx / nx;
+                dy = g.jitter * (tu_rand() - 0.5) * g.Ly / ny;
+            }
+            xy[2 * (j * (nx + 1) + i)] = g.Lx * (g.xmap ? g.xmap(s) : s) + dx;
+            xy[2 * (j * (nx + 1) + i) + 1] = g.Ly * j / ny + dy;
+        }
+    for (int j = 0, t = 0; j < ny; j++)
+        for (int i = 0; i < nx; i++, t += 2) {
+            const int v0 = j * (nx + 1) + i, v1 = v0 + 1, v2 = v0 + nx + 1, v3 = v2 + 1;
+            const int a[6] = {v0, v1, v3, v0, v3, v2}, c[6] = {v0, v1, v2, v1, v3, v2};
+            const int *use = g.alternate && (i + j) % 2 ? c : a;
+            for (int k = 0; k < 6; k++) tri[3 * t + k] = use[k];
+        }
+    CHECK_OK(glpgp_mesh_create(nv, xy, nt, tri, &m));
+    free(xy);
+    free(tri);
+    return m;
+}
+
+/* A temporary directory for a test's files (mkdtemp; removed by the test
+ * itself or left in TMPDIR) and paths inside it: tu_tmp_path returns one of
+ * 8 rotating buffers, so up to 8 paths can be in use at once. */
+static char tu_tmp_dir[256];
+static inline int tu_tmp_init(const char *name)
+{
+    const char *base = getenv("TMPDIR");
+    snprintf(tu_tmp_dir, sizeof tu_tmp_dir, "%s/glpgp_%s.XXXXXX", base && *base ? base : "/tmp", name);
+    if (!mkdtemp(tu_tmp_dir)) {
+        perror("mkdtemp");
+        return 0;
+    }
+    return 1;
+}
+static inline const char *tu_tmp_path(const char *file)
+{
+    static char buf[8][512];
+    static int k;
+    k = (k + 1) % 8;
+    snprintf(buf[k], sizeof buf[k], "%s/%s", tu_tmp_dir, file);
+    return buf[k];
+}
+
 #endif

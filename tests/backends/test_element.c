@@ -9,40 +9,6 @@
 
 #include <string.h>
 
-/* structured n x n grid on [0,L]^2, jittered interior vertices */
-static glpgp_mesh *grid_mesh(int n, double L, double jitter)
-{
-    int nv = (n + 1) * (n + 1), nt = 2 * n * n;
-    double *xy = malloc(sizeof(double) * 2 * nv);
-    int *tri = malloc(sizeof(int) * 3 * nt);
-    for (int j = 0; j <= n; j++)
-        for (int i = 0; i <= n; i++) {
-            double dx = 0, dy = 0;
-            if (i > 0 && i < n && j > 0 && j < n) {
-                dx = jitter * (tu_rand() - 0.5) * L / n;
-                dy = jitter * (tu_rand() - 0.5) * L / n;
-            }
-            xy[2 * (j * (n + 1) + i)] = L * i / n + dx;
-            xy[2 * (j * (n + 1) + i) + 1] = L * j / n + dy;
-        }
-    int t = 0;
-    for (int j = 0; j < n; j++)
-        for (int i = 0; i < n; i++) {
-            int v0 = j * (n + 1) + i, v1 = v0 + 1, v2 = v0 + n + 1, v3 = v2 + 1;
-            int a[6] = {v0, v1, v3, v0, v3, v2};
-            memcpy(tri + 3 * t, a, sizeof a);
-            t += 2;
-        }
-    glpgp_mesh *m = NULL;
-    if (glpgp_mesh_create(nv, xy, nt, tri, &m) != GLPGP_OK) {
-        fprintf(stderr, "mesh: %s\n", glpgp_error_message());
-        exit(1);
-    }
-    free(xy);
-    free(tri);
-    return m;
-}
-
 static void test_reference_triangle(void)
 {
     /* T = (0,0),(1,0),(0,1): A = 1/2, g0 = (-1,-1), g1 = (1,0), g2 = (0,1). */
@@ -183,7 +149,8 @@ static void test_penalty_row_bitwise(void)
 /* E(exp(+i w.x)) must be small and E(exp(-i w.x)) large (the sign check). */
 static void test_sign(void)
 {
-    glpgp_mesh *m = grid_mesh(100, 1.0, 0.0); /* h = 0.1 -> 10 vertices per period */
+    /* h = 0.1 -> 10 vertices per period */
+    glpgp_mesh *m = tu_grid_mesh((tu_grid){.nx = 100, .ny = 100, .Lx = 1.0, .Ly = 1.0, .jitter = 0.0});
     glpgp_system *sys = NULL;
     glpgp_backend *b = NULL;
     CHECK_OK(glpgp_system_create(m, &sys));
@@ -232,7 +199,7 @@ static void test_sign(void)
 /* gradient = FD of energy; NEWTON (exact variant, no Dirichlet) = FD of gradient */
 static void test_fd(int kind, int sized)
 {
-    glpgp_mesh *m = grid_mesh(8, 1.0, 0.6);
+    glpgp_mesh *m = tu_grid_mesh((tu_grid){.nx = 8, .ny = 8, .Lx = 1.0, .Ly = 1.0, .jitter = 0.6});
     glpgp_system *sys = NULL;
     glpgp_backend *b = NULL;
     CHECK_OK(glpgp_system_create(m, &sys));
@@ -487,7 +454,7 @@ static void test_sized_element(void)
 /* singularity detection on analytic fields */
 static void test_winding(void)
 {
-    glpgp_mesh *m = grid_mesh(20, 1.0, 0.3);
+    glpgp_mesh *m = tu_grid_mesh((tu_grid){.nx = 20, .ny = 20, .Lx = 1.0, .Ly = 1.0, .jitter = 0.3});
     int nv = m->nv, plus, minus;
     double *z = malloc(sizeof(double) * 2 * nv);
     const double px = 0.513, py = 0.487;

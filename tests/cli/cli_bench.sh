@@ -104,6 +104,8 @@ EOF
 # --compare of a file with itself: every ratio is 1
 "$bench" --compare out.json --against out.json > cmp.md || fail "--compare --against exited non-zero"
 grep -q '| new / old |' cmp.md || fail "--compare printed no table"
+nrat=$(grep -cE '^\| [^|]+ \| [^|]+ \| [^|]+ \| [0-9.]+ \|$' cmp.md)
+[ "$nrat" -ge 5 ] || fail "--compare printed only $nrat ratio rows"
 if grep -E '^\| [^|]+ \| [^|]+ \| [^|]+ \| [0-9.]+ \|$' cmp.md | grep -vq '| 1.000 |$'; then
     fail "--compare of a file with itself gave a ratio other than 1"
 fi

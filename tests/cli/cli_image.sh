@@ -9,28 +9,8 @@
 # input: unreadable image, empty mask, all-inside mask (exit 1), missing -o,
 # unknown --image-kind, unwritable image type (exit 2).
 # Skips (77) when glpgp was built without OpenImageIO or Gmsh.
-set -u
+. "$(dirname "$0")/lib.sh" "$@"
 
-GLPGP=${1:?usage: cli_image.sh <glpgp> <data-dir>}
-[ -x "$GLPGP" ] || { echo "glpgp binary '$GLPGP' not found"; exit 1; }
-GLPGP=$(cd "$(dirname "$GLPGP")" && pwd)/$(basename "$GLPGP")
-T=$(mktemp -d "${TMPDIR:-/tmp}/glpgp_cli_image.XXXXXX")
-trap 'rm -rf "$T"' EXIT
-cd "$T" || exit 1
-
-fails=0
-fail() { echo "FAIL: $*"; fails=$((fails + 1)); }
-run() { # EXPECTED-RC DESCRIPTION ARGS...
-    local want=$1 what=$2
-    shift 2
-    "$GLPGP" "$@" >out.txt 2>err.txt </dev/null
-    local rc=$?
-    [ "$rc" -eq "$want" ] || fail "$what: exit $rc (want $want): $(head -c 600 err.txt)"
-    return 0
-}
-no_tmp() {
-    if ls -A | grep -q '\.tmp'; then fail "$1: temporary file left: $(ls -A | grep '\.tmp')"; fi
-}
 # pgm NAME W H AWK-EXPR(i, j -> 0/1): plain PGM, 255 = inside
 pgm() {
     awk -v W="$2" -v H="$3" "BEGIN { print \"P2\"; print W, H; print 255;
@@ -46,10 +26,7 @@ pgm full.pgm 16 16 '1'
 echo "not an image" >garbage.png
 
 "$GLPGP" mesh disk.pgm -o probe.msh >out.txt 2>err.txt
-if grep -q "built without" err.txt; then
-    echo "skipped: $(head -1 err.txt)"
-    exit 77
-fi
+grep -q "built without" err.txt && skip "$(head -1 err.txt)"
 
 # ---- mesh ---------------------------------------------------------------------
 run 0 "mesh disk" mesh disk.pgm -o disk.msh --pixel-size 0.03125 --mesh-size 0.1
@@ -106,9 +83,4 @@ run 1 "render missing result" render nosuch.vtk -o x.png
 run 1 "render into missing dir" render r.vtk -o nodir/x.png
 no_tmp "errors"
 
-if [ "$fails" -ne 0 ]; then
-    echo "cli_image: $fails failure(s)"
-    exit 1
-fi
-echo "cli_image: all checks passed"
-exit 0
+finish

@@ -16,27 +16,9 @@
 #    the loader's reason.
 # The image parts skip themselves when glpgp was built without OpenImageIO or
 # Gmsh (the first two checks always run).
-set -u
-
-GLPGP=${1:?usage: cli_modules.sh <glpgp> <data-dir>}
-[ -x "$GLPGP" ] || { echo "glpgp binary '$GLPGP' not found"; exit 1; }
-GLPGP=$(cd "$(dirname "$GLPGP")" && pwd)/$(basename "$GLPGP")
-T=$(mktemp -d "${TMPDIR:-/tmp}/glpgp_cli_modules.XXXXXX")
-trap 'rm -rf "$T"' EXIT
-cd "$T" || exit 1
+. "$(dirname "$0")/lib.sh" "$@"
 unset GLPGP_MODULE_DIR
 
-fails=0
-fail() { echo "FAIL: $*"; fails=$((fails + 1)); }
-# run EXPECTED-RC DESCRIPTION ARGS...: stdout in out.txt, stderr in err.txt
-run() {
-    local want=$1 what=$2
-    shift 2
-    "$GLPGP" "$@" >out.txt 2>err.txt </dev/null
-    local rc=$?
-    [ "$rc" -eq "$want" ] || fail "$what: exit $rc (want $want): $(head -c 600 err.txt)"
-    return 0
-}
 # loaded DESCRIPTION ARGS...: run glpgp under LD_DEBUG=files; the objects it
 # mapped (one path per line) go to maps.txt
 loaded() {
@@ -75,12 +57,8 @@ grep -Eq "$HEAVY" maps.txt && fail "solve loaded: $(grep -E "$HEAVY" maps.txt | 
 
 "$GLPGP" --version >version.txt
 if ! grep -q "OpenImageIO: yes" version.txt || ! grep -q "Gmsh: yes" version.txt; then
-    echo "skipped (image parts): $(cat version.txt)"
-    if [ "$fails" -ne 0 ]; then
-        echo "cli_modules: $fails failure(s)"
-        exit 1
-    fi
-    exit 77
+    [ "$fails" -ne 0 ] && finish
+    skip "(image parts) $(cat version.txt)"
 fi
 
 # ---- positive control: the modules load when needed ---------------------------
@@ -124,9 +102,4 @@ grep -q "$T/broken/glpgp_oiio.so" err.txt || fail "broken module: path not named
 grep -q "cannot load" err.txt || fail "broken module: $(cat err.txt)"
 unset GLPGP_MODULE_DIR
 
-if [ "$fails" -ne 0 ]; then
-    echo "cli_modules: $fails failure(s)"
-    exit 1
-fi
-echo "cli_modules: all checks passed"
-exit 0
+finish

@@ -12,6 +12,8 @@
 #                              "glpgp: usage error: ..." line plus its "Try" hint
 #   no_tmp WHAT                no temporary file (*.tmp*) left in T
 #   fail MESSAGE               record a failure
+#   skip REASON                end the test as skipped (exit 77: ctest reports it)
+#   need_opencl_fp64           skip unless `glpgp devices` lists an fp64 device
 #   finish                     print the summary and exit 1 if anything failed
 set -u
 GLPGP=${1:?usage: $0 <glpgp> <data-dir>}
@@ -79,6 +81,16 @@ one_error_line() {
 
 no_tmp() {
     if ls -A | grep -q '\.tmp'; then fail "$1: temporary file left: $(ls -A | grep '\.tmp')"; fi
+}
+
+skip() {
+    echo "skipped: $*"
+    exit 77
+}
+
+need_opencl_fp64() {
+    "$GLPGP" devices >devices.txt 2>&1 || skip "no OpenCL device: $(head -c 200 devices.txt)"
+    grep -q "fp64 yes" devices.txt || skip "no OpenCL device with fp64"
 }
 
 finish() {

@@ -19,6 +19,7 @@
 #include "testutil.h"
 
 #include <dirent.h>
+#include <math.h>
 #include <string.h>
 #include <unistd.h>
 
@@ -113,13 +114,34 @@ int main(void)
         glpgp_image_destroy(&im);
     }
 
-    /* every kind renders */
+    /* every kind renders: the requested size, a picture that is not one
+     * colour, and a different picture from every other kind */
+    double sums[GLPGP_IMAGE_THETA + 1][4];
     for (int k = 0; k <= GLPGP_IMAGE_THETA; k++) {
         glpgp_render_options ok = o;
         ok.kind = k;
         ok.size = 128;
         CHECK_OK(glpgp_render(m, r, &ok, &im));
-        CHECK(im && im->w == 128);
+        CHECK(im && im->w == 128 && im->h == 128); /* the unit square: square picture */
+        int colours = 0;
+        float first[4] = {im->px[0], im->px[1], im->px[2], im->px[3]};
+        for (int c = 0; c < 4; c++) sums[k][c] = 0;
+        for (size_t i = 0; i < (size_t)im->w * im->h; i++) {
+            const float *p = im->px + 4 * i;
+            int other = 0;
+            for (int c = 0; c < 4; c++) {
+                sums[k][c] += p[c] * (double)((i * 2654435761u) % 97 + 1); /* position-weighted */
+                other |= fabsf(p[c] - first[c]) > 0.05f;
+            }
+            colours += other;
+        }
+        printf("kind %s: %d of %d pixels differ from the corner\n", glpgp_image_kind_name(k), colours, im->w * im->h);
+        CHECK(colours > im->w * im->h / 20);
+        for (int j = 0; j < k; j++) {
+            double d = 0;
+            for (int c = 0; c < 4; c++) d += fabs(sums[k][c] - sums[j][c]);
+            CHECK(d > 1.0);
+        }
         glpgp_image_destroy(&im);
         CHECK(glpgp_image_kind_parse(glpgp_image_kind_name(k)) == k);
     }

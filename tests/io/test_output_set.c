@@ -28,17 +28,6 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-static char g_dir[256];
-
-static const char *P(const char *name)
-{
-    static char buf[8][512];
-    static int k;
-    k = (k + 1) % 8;
-    snprintf(buf[k], sizeof buf[k], "%s/%s", g_dir, name);
-    return buf[k];
-}
-
 static void put_file(const char *path, const char *text)
 {
     FILE *f = fopen(path, "w");
@@ -85,22 +74,22 @@ static void test_commit_and_abort(void)
 {
     glpgp_output_set *s = NULL;
     FILE *f;
-    put_file(P("a.txt"), "old a\n");
-    chmod(P("a.txt"), 0640);
+    put_file(tu_tmp_path("a.txt"), "old a\n");
+    chmod(tu_tmp_path("a.txt"), 0640);
     CHECK_OK(glpgp_output_set_create(&s));
-    CHECK_OK(glpgp_output_set_open(s, P("a.txt"), &f));
+    CHECK_OK(glpgp_output_set_open(s, tu_tmp_path("a.txt"), &f));
     fputs("new a\n", f);
-    CHECK_OK(glpgp_output_set_open(s, P("b.json"), &f));
+    CHECK_OK(glpgp_output_set_open(s, tu_tmp_path("b.json"), &f));
     fputs("new b\n", f);
     const char *tmp = NULL;
-    CHECK_OK(glpgp_output_set_reserve(s, P("c.png"), &tmp));
+    CHECK_OK(glpgp_output_set_reserve(s, tu_tmp_path("c.png"), &tmp));
     CHECK(tmp && strstr(tmp, ".tmp.") && strcmp(tmp + strlen(tmp) - 4, ".png") == 0);
     put_file(tmp, "picture\n"); /* an external writer fills the reserved name */
-    CHECK(count_tmp(g_dir) == 3);
-    CHECK(strcmp(content(P("a.txt")), "old a\n") == 0); /* nothing replaced before the commit */
+    CHECK(count_tmp(tu_tmp_dir) == 3);
+    CHECK(strcmp(content(tu_tmp_path("a.txt")), "old a\n") == 0); /* nothing replaced before the commit */
     /* the same path twice, an empty path */
     glpgp_error_clear();
-    CHECK(glpgp_output_set_open(s, P("a.txt"), &f) == GLPGP_ERR_ARG);
+    CHECK(glpgp_output_set_open(s, tu_tmp_path("a.txt"), &f) == GLPGP_ERR_ARG);
     CHECK(glpgp_output_set_open(s, "", &f) == GLPGP_ERR_ARG);
     glpgp_error_clear();
     CHECK_OK(glpgp_output_set_commit(s));
@@ -109,38 +98,38 @@ static void test_commit_and_abort(void)
     glpgp_output_set_destroy(&s);
     CHECK(s == NULL);
     glpgp_output_set_destroy(&s);
-    CHECK(strcmp(content(P("a.txt")), "new a\n") == 0);
-    CHECK(strcmp(content(P("b.json")), "new b\n") == 0);
-    CHECK(strcmp(content(P("c.png")), "picture\n") == 0);
+    CHECK(strcmp(content(tu_tmp_path("a.txt")), "new a\n") == 0);
+    CHECK(strcmp(content(tu_tmp_path("b.json")), "new b\n") == 0);
+    CHECK(strcmp(content(tu_tmp_path("c.png")), "picture\n") == 0);
     struct stat sb;
-    CHECK(stat(P("a.txt"), &sb) == 0 && (sb.st_mode & 0777) == 0640);
-    CHECK(count_tmp(g_dir) == 0);
+    CHECK(stat(tu_tmp_path("a.txt"), &sb) == 0 && (sb.st_mode & 0777) == 0640);
+    CHECK(count_tmp(tu_tmp_dir) == 0);
 
     /* abort: the old files stay, the temporaries go */
     CHECK_OK(glpgp_output_set_create(&s));
-    CHECK_OK(glpgp_output_set_open(s, P("a.txt"), &f));
+    CHECK_OK(glpgp_output_set_open(s, tu_tmp_path("a.txt"), &f));
     fputs("half written", f);
-    CHECK_OK(glpgp_output_set_open(s, P("new.txt"), &f));
-    CHECK(count_tmp(g_dir) == 2);
+    CHECK_OK(glpgp_output_set_open(s, tu_tmp_path("new.txt"), &f));
+    CHECK(count_tmp(tu_tmp_dir) == 2);
     glpgp_output_set_destroy(&s);
-    CHECK(strcmp(content(P("a.txt")), "new a\n") == 0);
-    CHECK(access(P("new.txt"), F_OK) != 0);
-    CHECK(count_tmp(g_dir) == 0);
+    CHECK(strcmp(content(tu_tmp_path("a.txt")), "new a\n") == 0);
+    CHECK(access(tu_tmp_path("new.txt"), F_OK) != 0);
+    CHECK(count_tmp(tu_tmp_dir) == 0);
 
     /* atomic file = set of one */
     glpgp_atomic_file af;
-    CHECK_OK(glpgp_atomic_open(&af, P("a.txt")));
+    CHECK_OK(glpgp_atomic_open(&af, tu_tmp_path("a.txt")));
     CHECK(af.f && af.tmp && strstr(af.tmp, ".tmp."));
     fputs("atomic\n", af.f);
     CHECK_OK(glpgp_atomic_commit(&af));
     CHECK(af.f == NULL && af.tmp == NULL && af.set == NULL);
-    CHECK(strcmp(content(P("a.txt")), "atomic\n") == 0);
+    CHECK(strcmp(content(tu_tmp_path("a.txt")), "atomic\n") == 0);
     CHECK(glpgp_atomic_commit(&af) == GLPGP_ERR_ARG);
     glpgp_error_clear();
     glpgp_atomic_abort(&af);
-    remove(P("a.txt"));
-    remove(P("b.json"));
-    remove(P("c.png"));
+    remove(tu_tmp_path("a.txt"));
+    remove(tu_tmp_path("b.json"));
+    remove(tu_tmp_path("c.png"));
 }
 
 /* Set of d1/a (exists: "old") and d2/b (new); `sabotage` runs between the
@@ -150,13 +139,13 @@ static void rollback_case(const char *label, void (*sabotage)(void), void (*repa
 {
     glpgp_output_set *s = NULL;
     FILE *f;
-    mkdir(P("d1"), 0755);
-    mkdir(P("d2"), 0755);
-    put_file(P("d1/a.vtk"), "old");
+    mkdir(tu_tmp_path("d1"), 0755);
+    mkdir(tu_tmp_path("d2"), 0755);
+    put_file(tu_tmp_path("d1/a.vtk"), "old");
     CHECK_OK(glpgp_output_set_create(&s));
-    CHECK_OK(glpgp_output_set_open(s, P("d1/a.vtk"), &f));
+    CHECK_OK(glpgp_output_set_open(s, tu_tmp_path("d1/a.vtk"), &f));
     fputs("new", f);
-    CHECK_OK(glpgp_output_set_open(s, P("d2/b.json"), &f));
+    CHECK_OK(glpgp_output_set_open(s, tu_tmp_path("d2/b.json"), &f));
     fputs("new", f);
     *skipped = 0;
     sabotage();
@@ -172,44 +161,44 @@ static void rollback_case(const char *label, void (*sabotage)(void), void (*repa
         } else {
             printf("%s: %s\n", label, glpgp_error_message());
         }
-        CHECK(strcmp(content(P("d1/a.vtk")), "old") == 0);
-        CHECK(count_tmp(P("d1")) == 0);
+        CHECK(strcmp(content(tu_tmp_path("d1/a.vtk")), "old") == 0);
+        CHECK(count_tmp(tu_tmp_path("d1")) == 0);
     }
     glpgp_error_clear();
     glpgp_output_set_destroy(&s);
     repair();
-    rm_rf(P("d1"));
-    rm_rf(P("d2"));
-    rm_rf(P("d2x"));
+    rm_rf(tu_tmp_path("d1"));
+    rm_rf(tu_tmp_path("d2"));
+    rm_rf(tu_tmp_path("d2x"));
 }
 
 static int g_skip_flag;
 static void move_d2(void)
 {
-    CHECK(rename(P("d2"), P("d2x")) == 0);
+    CHECK(rename(tu_tmp_path("d2"), tu_tmp_path("d2x")) == 0);
 }
 static void no_repair(void) {}
-static void d2_dir_dest(void) { CHECK(mkdir(P("d2/b.json"), 0755) == 0); }
+static void d2_dir_dest(void) { CHECK(mkdir(tu_tmp_path("d2/b.json"), 0755) == 0); }
 static void d2_readonly(void)
 {
-    chmod(P("d2"), 0555);
+    chmod(tu_tmp_path("d2"), 0555);
     /* root ignores permissions: then try the immutable attribute */
-    int fd = open(P("d2/probe"), O_WRONLY | O_CREAT, 0644);
+    int fd = open(tu_tmp_path("d2/probe"), O_WRONLY | O_CREAT, 0644);
     if (fd >= 0) {
         close(fd);
-        unlink(P("d2/probe"));
+        unlink(tu_tmp_path("d2/probe"));
         char cmd[600];
-        snprintf(cmd, sizeof cmd, "chattr +i '%s' 2>/dev/null", P("d2"));
+        snprintf(cmd, sizeof cmd, "chattr +i '%s' 2>/dev/null", tu_tmp_path("d2"));
         if (system(cmd) != 0) g_skip_flag = 1;
     }
 }
 static void d2_repair(void)
 {
     char cmd[600];
-    snprintf(cmd, sizeof cmd, "chattr -i '%s' 2>/dev/null", P("d2"));
+    snprintf(cmd, sizeof cmd, "chattr -i '%s' 2>/dev/null", tu_tmp_path("d2"));
     if (system(cmd) != 0) { /* not immutable: nothing to undo */
     }
-    chmod(P("d2"), 0755);
+    chmod(tu_tmp_path("d2"), 0755);
 }
 
 static void test_rollback(void)
@@ -271,13 +260,13 @@ static int efbig_child(void)
     struct rlimit rl = {64 * 1024, 64 * 1024};
     signal(SIGXFSZ, SIG_IGN);
     if (setrlimit(RLIMIT_FSIZE, &rl) != 0) return 77;
-    return child_write_fails(g_dir, 1 << 20, "File too large");
+    return child_write_fails(tu_tmp_dir, 1 << 20, "File too large");
 }
 
 static int enospc_child(void)
 {
     char mnt[600];
-    snprintf(mnt, sizeof mnt, "%s/small", g_dir);
+    snprintf(mnt, sizeof mnt, "%s/small", tu_tmp_dir);
     if (unshare(CLONE_NEWNS) != 0 && unshare(CLONE_NEWUSER | CLONE_NEWNS) != 0) return 77;
     if (mount("none", "/", "none", MS_REC | MS_PRIVATE, NULL) != 0) return 77; /* type ignored */
     if (mount("glpgp_test", mnt, "tmpfs", 0, "size=64k") != 0) return 77;
@@ -289,12 +278,12 @@ static void test_errno_kept(void)
     int rc = run_child(efbig_child);
     CHECK(rc == 0 || rc == 77);
     printf("write error under RLIMIT_FSIZE: %s\n", rc == 0 ? "File too large, rolled back" : rc == 77 ? "skipped" : "FAILED");
-    mkdir(P("small"), 0755);
+    mkdir(tu_tmp_path("small"), 0755);
     rc = run_child(enospc_child);
     CHECK(rc == 0 || rc == 77);
     printf("full tmpfs: %s\n", rc == 0 ? "No space left on device, rolled back" : rc == 77 ? "skipped (no mount namespace)" : "FAILED");
-    rmdir(P("small"));
-    remove(P("a.json"));
+    rmdir(tu_tmp_path("small"));
+    remove(tu_tmp_path("a.json"));
 }
 
 /* SIGTERM in the middle of writing: the handler removes the temporaries. */
@@ -309,25 +298,25 @@ static int signal_child(void)
     signal(SIGTERM, on_term);
     glpgp_output_set *s = NULL;
     FILE *f;
-    if (glpgp_output_set_create(&s) != GLPGP_OK || glpgp_output_set_open(s, P("sig1.vtk"), &f) != GLPGP_OK ||
-        glpgp_output_set_open(s, P("sig2.json"), &f) != GLPGP_OK)
+    if (glpgp_output_set_create(&s) != GLPGP_OK || glpgp_output_set_open(s, tu_tmp_path("sig1.vtk"), &f) != GLPGP_OK ||
+        glpgp_output_set_open(s, tu_tmp_path("sig2.json"), &f) != GLPGP_OK)
         return 2;
     fputs("partial", f);
     fflush(f);
-    if (count_tmp(g_dir) != 2) return 3;
+    if (count_tmp(tu_tmp_dir) != 2) return 3;
     kill(getpid(), SIGTERM);
     return 4; /* not reached */
 }
 
 static void test_signal_cleanup(void)
 {
-    put_file(P("sig1.vtk"), "old");
+    put_file(tu_tmp_path("sig1.vtk"), "old");
     int rc = run_child(signal_child);
     CHECK(rc == 128 + SIGTERM);
-    CHECK(count_tmp(g_dir) == 0);
-    CHECK(strcmp(content(P("sig1.vtk")), "old") == 0);
-    CHECK(access(P("sig2.json"), F_OK) != 0);
-    remove(P("sig1.vtk"));
+    CHECK(count_tmp(tu_tmp_dir) == 0);
+    CHECK(strcmp(content(tu_tmp_path("sig1.vtk")), "old") == 0);
+    CHECK(access(tu_tmp_path("sig2.json"), F_OK) != 0);
+    remove(tu_tmp_path("sig1.vtk"));
 }
 
 static void test_bad_destinations(void)
@@ -335,34 +324,29 @@ static void test_bad_destinations(void)
     glpgp_output_set *s = NULL;
     FILE *f;
     CHECK_OK(glpgp_output_set_create(&s));
-    mkdir(P("isdir.vtk"), 0755);
+    mkdir(tu_tmp_path("isdir.vtk"), 0755);
     glpgp_error_clear();
-    CHECK(glpgp_output_set_open(s, P("isdir.vtk"), &f) == GLPGP_ERR_IO);
+    CHECK(glpgp_output_set_open(s, tu_tmp_path("isdir.vtk"), &f) == GLPGP_ERR_IO);
     CHECK(strstr(glpgp_error_message(), "directory") != NULL);
     glpgp_error_clear();
-    CHECK(glpgp_output_set_open(s, P("missing/x.vtk"), &f) == GLPGP_ERR_IO);
+    CHECK(glpgp_output_set_open(s, tu_tmp_path("missing/x.vtk"), &f) == GLPGP_ERR_IO);
     CHECK(strstr(glpgp_error_message(), "No such file or directory") != NULL);
     glpgp_error_clear();
     CHECK_OK(glpgp_output_set_commit(s)); /* an empty set commits */
     glpgp_output_set_destroy(&s);
-    rmdir(P("isdir.vtk"));
-    CHECK(count_tmp(g_dir) == 0);
+    rmdir(tu_tmp_path("isdir.vtk"));
+    CHECK(count_tmp(tu_tmp_dir) == 0);
 }
 
 int main(void)
 {
-    const char *base = getenv("TMPDIR");
-    snprintf(g_dir, sizeof g_dir, "%s/glpgp_test_oset_XXXXXX", base && *base ? base : "/tmp");
-    if (!mkdtemp(g_dir)) {
-        perror("mkdtemp");
-        return 1;
-    }
+    if (!tu_tmp_init("test_oset")) return 1;
     test_commit_and_abort();
     test_rollback();
     test_errno_kept();
     test_signal_cleanup();
     test_bad_destinations();
-    CHECK(count_tmp(g_dir) == 0);
-    rm_rf(g_dir);
+    CHECK(count_tmp(tu_tmp_dir) == 0);
+    rm_rf(tu_tmp_dir);
     TEST_DONE();
 }

@@ -48,17 +48,6 @@
 #define TU_ASAN 0
 #endif
 
-static char g_dir[256];
-
-static const char *P(const char *name)
-{
-    static char buf[8][512];
-    static int k;
-    k = (k + 1) % 8;
-    snprintf(buf[k], sizeof buf[k], "%s/%s", g_dir, name);
-    return buf[k];
-}
-
 static void put(const char *path, const char *text, size_t n)
 {
     FILE *f = fopen(path, "wb");
@@ -103,7 +92,7 @@ static int read_in_child(const char *path, int quads, glpgp_status want1, glpgp_
 
 static void bad(const char *name, const char *text, const char *needle, int line)
 {
-    const char *p = P(name);
+    const char *p = tu_tmp_path(name);
     put(p, text, 0);
     for (int quads = 0; quads < 2; quads++) {
         int rc = read_in_child(p, quads, GLPGP_ERR_FORMAT, GLPGP_ERR_LIMIT, needle);
@@ -127,16 +116,16 @@ static void malformed_msh(void)
     /* the 163-byte file: 3 nodes with tags up to 1e8 (no max-tag-sized array) */
     const char *small = FMT41 "$Nodes\n1 3 1 100000000\n2 1 0 3\n1\n50000000\n100000000\n0 0 0\n1 0 0\n0 1 0\n"
                               "$EndNodes\n$Elements\n1 1 1 1\n2 1 2 1\n1 1 50000000 100000000\n$EndElements\n";
-    put(P("small.msh"), small, 0);
-    CHECK(read_in_child(P("small.msh"), 0, GLPGP_OK, GLPGP_OK, NULL) == 0);
-    CHECK(read_in_child(P("small.msh"), 1, GLPGP_OK, GLPGP_OK, NULL) == 0);
+    put(tu_tmp_path("small.msh"), small, 0);
+    CHECK(read_in_child(tu_tmp_path("small.msh"), 0, GLPGP_OK, GLPGP_OK, NULL) == 0);
+    CHECK(read_in_child(tu_tmp_path("small.msh"), 1, GLPGP_OK, GLPGP_OK, NULL) == 0);
     /* tags near 2^62 work too */
     const char *bigtags = FMT22 "$Nodes\n3\n4611686018427387904 0 0 0\n7 1 0 0\n4611686018427387000 0 1 0\n$EndNodes\n"
                                 "$Elements\n1\n1 2 0 4611686018427387904 7 4611686018427387000\n$EndElements\n";
-    put(P("bigtags.msh"), bigtags, 0);
-    CHECK(read_in_child(P("bigtags.msh"), 0, GLPGP_OK, GLPGP_OK, NULL) == 0);
-    unlink(P("small.msh"));
-    unlink(P("bigtags.msh"));
+    put(tu_tmp_path("bigtags.msh"), bigtags, 0);
+    CHECK(read_in_child(tu_tmp_path("bigtags.msh"), 0, GLPGP_OK, GLPGP_OK, NULL) == 0);
+    unlink(tu_tmp_path("small.msh"));
+    unlink(tu_tmp_path("bigtags.msh"));
 
     bad("blocks61.msh", FMT41 "$Nodes\n1 3 1 3\n0 1 0 2305843009213693952\n1\n2\n3\n0 0 0\n1 0 0\n0 1 0\n$EndNodes\n",
         "more nodes than", __LINE__);
@@ -172,9 +161,9 @@ static void malformed_msh(void)
         char nulmsh[64] = FMT22 "$Nodes\n1\n1 0";
         size_t n = strlen(nulmsh);
         memcpy(nulmsh + n, "\0 0 0\n", 6);
-        put(P("nulbyte.msh"), nulmsh, n + 6);
-        CHECK(read_in_child(P("nulbyte.msh"), 0, GLPGP_ERR_FORMAT, GLPGP_ERR_FORMAT, "NUL") == 0);
-        unlink(P("nulbyte.msh"));
+        put(tu_tmp_path("nulbyte.msh"), nulmsh, n + 6);
+        CHECK(read_in_child(tu_tmp_path("nulbyte.msh"), 0, GLPGP_ERR_FORMAT, GLPGP_ERR_FORMAT, "NUL") == 0);
+        unlink(tu_tmp_path("nulbyte.msh"));
     }
     /* a line over GLPGP_IO_MAX_LINE */
     size_t n = (size_t)GLPGP_IO_MAX_LINE + 100;
@@ -184,9 +173,9 @@ static void malformed_msh(void)
         size_t k = strlen(longl);
         memset(longl + k, 'x', n);
         strcpy(longl + k + n, "\n$EndComments\n");
-        put(P("longline.msh"), longl, 0);
-        CHECK(read_in_child(P("longline.msh"), 0, GLPGP_ERR_LIMIT, GLPGP_ERR_LIMIT, "longer than") == 0);
-        unlink(P("longline.msh"));
+        put(tu_tmp_path("longline.msh"), longl, 0);
+        CHECK(read_in_child(tu_tmp_path("longline.msh"), 0, GLPGP_ERR_LIMIT, GLPGP_ERR_LIMIT, "longer than") == 0);
+        unlink(tu_tmp_path("longline.msh"));
         free(longl);
     }
 }
@@ -216,7 +205,7 @@ static pid_t feed(int fd, const char *text)
 static void pipes(void)
 {
     /* FIFO with a .msh name: the triangle reader dispatches by extension */
-    const char *fifo = P("pipe.msh");
+    const char *fifo = tu_tmp_path("pipe.msh");
     CHECK(mkfifo(fifo, 0600) == 0);
     fflush(NULL);
     pid_t pid = fork();
@@ -254,11 +243,11 @@ static void pipes(void)
     waitpid(pid, &status, 0);
 
     /* the same from a regular file gives the same faces */
-    put(P("sq22.msh"), sq22, 0);
-    CHECK_OK(glpgp_quads_read_msh(P("sq22.msh"), &q));
+    put(tu_tmp_path("sq22.msh"), sq22, 0);
+    CHECK_OK(glpgp_quads_read_msh(tu_tmp_path("sq22.msh"), &q));
     CHECK(q && q->nv == 4 && q->nf == 2);
     glpgp_quadmesh_destroy(&q);
-    unlink(P("sq22.msh"));
+    unlink(tu_tmp_path("sq22.msh"));
 
     /* a lying count from a pipe (size unknown) still fails cleanly */
     CHECK(pipe(fds) == 0);
@@ -274,7 +263,7 @@ static void pipes(void)
 
 static void obj_expect(const char *name, const char *text, glpgp_status want, const char *needle, int line)
 {
-    const char *p = P(name);
+    const char *p = tu_tmp_path(name);
     put(p, text, 0);
     int rc = read_in_child(p, 0, want, want, needle);
     if (rc) {
@@ -303,7 +292,7 @@ static void malformed_obj(void)
 static void read_expect(const char *name, int nv, int nt, int nloops, double area, int line)
 {
     glpgp_mesh *m = NULL;
-    glpgp_status st = glpgp_mesh_read(P(name), &m);
+    glpgp_status st = glpgp_mesh_read(tu_tmp_path(name), &m);
     if (st != GLPGP_OK || !m) {
         fprintf(stderr, "line %d: %s: %s\n", line, name, glpgp_error_message());
         tu_failures++;
@@ -335,7 +324,7 @@ static void welding(void)
         }
     for (int f = 0; f < nf; f++)
         snprintf(soup + strlen(soup), sizeof soup - strlen(soup), "f %d %d %d\n", 3 * f + 1, 3 * f + 2, 3 * f + 3);
-    put(P("soup.obj"), soup, 0);
+    put(tu_tmp_path("soup.obj"), soup, 0);
     read_expect("soup.obj", 9, 8, 1, 4.0, __LINE__);
 
     /* two unit squares meshed apart, the seam x = 1 doubled (MSH 4.1, one
@@ -346,7 +335,7 @@ static void welding(void)
                       "2 2 0 4\n5\n6\n7\n8\n1 0 0\n2 0 0\n2 1 0\n1 1 0\n$EndNodes\n"
                       "$Elements\n2 4 1 4\n2 1 2 2\n1 1 2 3\n2 1 3 4\n2 2 2 2\n3 5 6 7\n4 5 7 8\n"
                       "$EndElements\n";
-    put(P("patches.msh"), two, 0);
+    put(tu_tmp_path("patches.msh"), two, 0);
     read_expect("patches.msh", 6, 4, 1, 2.0, __LINE__);
 
     /* a crack: the square [0,2]^2 slit from (1,0) up to (1,1), the slit's
@@ -354,7 +343,7 @@ static void welding(void)
      * running up and down the slit */
     const char *crack = "v 0 0\nv 2 0\nv 2 2\nv 0 2\nv 1 0\nv 1 0\nv 1 1\n"
                         "f 1 5 7\nf 1 7 4\nf 4 7 3\nf 6 2 7\nf 7 2 3\n";
-    put(P("crack.obj"), crack, 0);
+    put(tu_tmp_path("crack.obj"), crack, 0);
     read_expect("crack.obj", 7, 5, 1, 4.0, __LINE__);
 }
 
@@ -368,29 +357,29 @@ static void element_kinds(void)
                      "$Nodes\n1 9 1 9\n2 1 0 9\n1\n2\n3\n4\n5\n6\n7\n8\n9\n"
                      "0 0 0\n1 0 0\n1 1 0\n0 1 0\n0.5 0 0\n1 0.5 0\n0.5 1 0\n0 0.5 0\n0.5 0.5 0\n$EndNodes\n"
                      "$Elements\n1 2 1 2\n2 1 9 2\n1 1 2 3 5 6 9\n2 1 3 4 9 7 8\n$EndElements\n";
-    put(P("p2.msh"), p2, 0);
+    put(tu_tmp_path("p2.msh"), p2, 0);
     read_expect("p2.msh", 4, 2, 1, 1.0, __LINE__);
     /* MSH 2.2: one 9-node quadrangle (type 10) */
     const char *q9 = "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n"
                      "$Nodes\n9\n1 0 0 0\n2 1 0 0\n3 1 1 0\n4 0 1 0\n5 0.5 0 0\n6 1 0.5 0\n7 0.5 1 0\n"
                      "8 0 0.5 0\n9 0.5 0.5 0\n$EndNodes\n"
                      "$Elements\n1\n1 10 2 0 1 1 2 3 4 5 6 7 8 9\n$EndElements\n";
-    put(P("q9.msh"), q9, 0);
+    put(tu_tmp_path("q9.msh"), q9, 0);
     read_expect("q9.msh", 4, 2, 1, 1.0, __LINE__);
     /* a non-convex quadrangle (reflex corner 4 at (0.5, 1)): only the
      * diagonal 2-4 lies inside it */
     const char *dart = "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n"
                        "$Nodes\n4\n1 0 0 0\n2 2 1 0\n3 0 2 0\n4 0.5 1 0\n$EndNodes\n"
                        "$Elements\n1\n1 3 2 0 1 1 2 3 4\n$EndElements\n";
-    put(P("dart.msh"), dart, 0);
+    put(tu_tmp_path("dart.msh"), dart, 0);
     read_expect("dart.msh", 4, 2, 1, 1.5, __LINE__);
     /* a node short: an error, not a crash */
     const char *short9 = "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n"
                          "$Nodes\n1 3 1 3\n2 1 0 3\n1\n2\n3\n0 0 0\n1 0 0\n0 1 0\n$EndNodes\n"
                          "$Elements\n1 1 1 1\n2 1 9 1\n1 1 2 3 1 2\n$EndElements\n";
-    put(P("short9.msh"), short9, 0);
+    put(tu_tmp_path("short9.msh"), short9, 0);
     glpgp_mesh *m = NULL;
-    CHECK(glpgp_mesh_read(P("short9.msh"), &m) == GLPGP_ERR_FORMAT && !m);
+    CHECK(glpgp_mesh_read(tu_tmp_path("short9.msh"), &m) == GLPGP_ERR_FORMAT && !m);
     glpgp_error_clear(); /* the next failures record their own messages */
 }
 
@@ -401,22 +390,22 @@ static void polygon_faces(void)
     /* an L as one face, listed from the reflex corner's neighbour (2, 1):
      * the fan from it runs outside the L */
     const char *l = "v 2 1 0\nv 1 1 0\nv 1 2 0\nv 0 2 0\nv 0 0 0\nv 2 0 0\nf 1 2 3 4 5 6\n";
-    put(P("lface.obj"), l, 0);
+    put(tu_tmp_path("lface.obj"), l, 0);
     read_expect("lface.obj", 6, 4, 1, 3.0, __LINE__);
     /* a rectangle with a point on its bottom side, listed from a corner next
      * to it: the fan's first triangle is flat */
     const char *r = "v 0 0\nv 1 0\nv 2 0\nv 2 1\nv 0 1\nf 1 2 3 4 5\n";
-    put(P("rface.obj"), r, 0);
+    put(tu_tmp_path("rface.obj"), r, 0);
     read_expect("rface.obj", 5, 3, 1, 2.0, __LINE__);
     /* the L clockwise, in the plane y = 3 */
     const char *lcw = "v 2 3 1\nv 2 3 0\nv 0 3 0\nv 0 3 2\nv 1 3 2\nv 1 3 1\nf 1 2 3 4 5 6\n";
-    put(P("lcw.obj"), lcw, 0);
+    put(tu_tmp_path("lcw.obj"), lcw, 0);
     read_expect("lcw.obj", 6, 4, 1, 3.0, __LINE__);
     /* a face whose sides cross: an error, nothing returned */
     const char *bow = "v 0 0\nv 2 1\nv 2 0\nv 0 2\nf 1 2 3 4\n";
-    put(P("bow.obj"), bow, 0);
+    put(tu_tmp_path("bow.obj"), bow, 0);
     glpgp_mesh *m = NULL;
-    CHECK(glpgp_mesh_read(P("bow.obj"), &m) != GLPGP_OK && !m);
+    CHECK(glpgp_mesh_read(tu_tmp_path("bow.obj"), &m) != GLPGP_OK && !m);
     glpgp_error_clear();
 }
 
@@ -450,17 +439,17 @@ static void stl(void)
     const char *a = "solid sq\n facet normal 0 0 1\n  outer loop\n   vertex 0 0 0\n   vertex 1 0 0\n"
                     "   vertex 1 1 0\n  endloop\n endfacet\n facet normal 0 0 1\n  outer loop\n   vertex 0 0 0\n"
                     "   vertex 1 1 0\n   vertex 0 1 0\n  endloop\n endfacet\nendsolid sq\n";
-    put(P("sq_a.stl"), a, 0);
+    put(tu_tmp_path("sq_a.stl"), a, 0);
     read_expect("sq_a.stl", 4, 2, 1, 1.0, __LINE__);
     static const float sq[2][9] = {{0, 0, 0, 1, 0, 0, 1, 1, 0}, {0, 0, 0, 1, 1, 0, 0, 1, 0}};
     unsigned char b[84 + 2 * 50];
     size_t n = stl_bin(b, "solid but binary", 2, sq, 2);
-    put(P("sq_b.stl"), (const char *)b, n);
+    put(tu_tmp_path("sq_b.stl"), (const char *)b, n);
     read_expect("sq_b.stl", 4, 2, 1, 1.0, __LINE__);
     /* a count of 2^31 in a 184-byte file: refused before any allocation */
     n = stl_bin(b, "binary", 0x80000000u, sq, 2);
-    put(P("huge.stl"), (const char *)b, n);
-    CHECK(read_in_child(P("huge.stl"), 0, GLPGP_ERR_FORMAT, GLPGP_ERR_LIMIT, "triangles") == 0);
+    put(tu_tmp_path("huge.stl"), (const char *)b, n);
+    CHECK(read_in_child(tu_tmp_path("huge.stl"), 0, GLPGP_ERR_FORMAT, GLPGP_ERR_LIMIT, "triangles") == 0);
     obj_expect("two.stl", "solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nendloop\n",
                GLPGP_ERR_FORMAT, "two.stl:6: a facet with 2 vertices", __LINE__);
     obj_expect("kw.stl", "solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvortex 1 0 0\n", GLPGP_ERR_FORMAT,
@@ -484,7 +473,7 @@ static void box_stl(const char *name, double a, double b, double c)
         snprintf(text + strlen(text), sizeof text - strlen(text), "endloop\nendfacet\n");
     }
     strcat(text, "endsolid box\n");
-    put(P(name), text, 0);
+    put(tu_tmp_path(name), text, 0);
 }
 
 /* A 3D surface (a CAD part's STL): its largest face in a coordinate plane
@@ -497,21 +486,16 @@ static void three_d(void)
     read_expect("flat.stl", 4, 2, 1, 2.0, __LINE__);
     box_stl("tall.stl", 0.2, 3, 2);
     read_expect("tall.stl", 4, 2, 1, 6.0, __LINE__);
-    put(P("tet.obj"), "v 0 0 0\nv 1 0 0.1\nv 0 1 0.2\nv 0.3 0.3 1\nf 1 2 3\nf 1 2 4\nf 2 3 4\nf 3 1 4\n", 0);
+    put(tu_tmp_path("tet.obj"), "v 0 0 0\nv 1 0 0.1\nv 0 1 0.2\nv 0.3 0.3 1\nf 1 2 3\nf 1 2 4\nf 2 3 4\nf 3 1 4\n", 0);
     glpgp_mesh *m = NULL;
-    CHECK(glpgp_mesh_read(P("tet.obj"), &m) == GLPGP_ERR_MESH && !m);
+    CHECK(glpgp_mesh_read(tu_tmp_path("tet.obj"), &m) == GLPGP_ERR_MESH && !m);
     CHECK(strstr(glpgp_error_message(), "no face of it lies in one") != NULL);
     glpgp_error_clear();
 }
 
 int main(void)
 {
-    const char *base = getenv("TMPDIR");
-    snprintf(g_dir, sizeof g_dir, "%s/glpgp_test_readers_XXXXXX", base && *base ? base : "/tmp");
-    if (!mkdtemp(g_dir)) {
-        perror("mkdtemp");
-        return 1;
-    }
+    if (!tu_tmp_init("test_readers")) return 1;
     signal(SIGPIPE, SIG_IGN);
     malformed_msh();
     pipes();
@@ -523,7 +507,7 @@ int main(void)
     three_d();
     const char *made[] = {"flat.stl", "tall.stl", "tet.obj", "sq_a.stl", "sq_b.stl", "huge.stl", "soup.obj", "patches.msh", "crack.obj", "p2.msh", "q9.msh", "dart.msh", "short9.msh",
                           "lface.obj", "rface.obj", "lcw.obj", "bow.obj"};
-    for (size_t k = 0; k < sizeof made / sizeof *made; k++) unlink(P(made[k]));
-    rmdir(g_dir);
+    for (size_t k = 0; k < sizeof made / sizeof *made; k++) unlink(tu_tmp_path(made[k]));
+    rmdir(tu_tmp_dir);
     TEST_DONE();
 }

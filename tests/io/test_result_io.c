@@ -12,17 +12,6 @@
 #include <string.h>
 #include <unistd.h>
 
-static char g_dir[256];
-
-static const char *P(const char *name)
-{
-    static char buf[8][512];
-    static int k;
-    k = (k + 1) % 8;
-    snprintf(buf[k], sizeof buf[k], "%s/%s", g_dir, name);
-    return buf[k];
-}
-
 static void compare(const glpgp_mesh *m, const glpgp_result *r, const glpgp_mesh *m2, const glpgp_result *r2,
                     int exact_h)
 {
@@ -70,7 +59,7 @@ static void round_trips(void)
     } cases[] = {{"r.vtk", -2}, {"r_raw.vtu", 0}, {"r_z1.vtu", 1}, {"r_z9.vtu", 9}, {"r_def.vtu", -2}};
     long size_raw = 0, size_z = 0;
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
-        const char *p = P(cases[i].name);
+        const char *p = tu_tmp_path(cases[i].name);
         if (cases[i].level == -2)
             CHECK_OK(glpgp_write_result(m, &o, r, p));
         else
@@ -101,8 +90,8 @@ static void round_trips(void)
     double h = r->size;
     CHECK_OK(glpgp_quads_build(m, r, NULL, &q, &h));
     if (q) {
-        CHECK_OK(glpgp_quads_write(q, P("q.vtu")));
-        FILE *f = fopen(P("q.vtu"), "rb");
+        CHECK_OK(glpgp_quads_write(q, tu_tmp_path("q.vtu")));
+        FILE *f = fopen(tu_tmp_path("q.vtu"), "rb");
         char head[4096] = {0};
         size_t n = f ? fread(head, 1, sizeof head - 1, f) : 0;
         if (f) fclose(f);
@@ -113,7 +102,7 @@ static void round_trips(void)
         CHECK(strstr(head, "Name=\"scaled_jacobian\"") && strstr(head, "Name=\"valence\"") &&
               strstr(head, "Name=\"corners\"") && strstr(head, "Name=\"types\""));
         CHECK(glpgp_quads_path_supported("q.vtu"));
-        unlink(P("q.vtu"));
+        unlink(tu_tmp_path("q.vtu"));
         glpgp_quadmesh_destroy(&q);
     }
     glpgp_result_destroy(&r);
@@ -125,7 +114,7 @@ static void round_trips(void)
 
 static void put(const char *name, const void *data, size_t n)
 {
-    FILE *f = fopen(P(name), "wb");
+    FILE *f = fopen(tu_tmp_path(name), "wb");
     if (!f) {
         tu_failures++;
         return;
@@ -140,7 +129,7 @@ static void expect_bad(const char *name, const char *text, const char *needle, i
     glpgp_mesh *m = (glpgp_mesh *)&m;
     glpgp_result *r = (glpgp_result *)&r;
     glpgp_error_clear();
-    glpgp_status st = glpgp_read_result(P(name), &m, &r);
+    glpgp_status st = glpgp_read_result(tu_tmp_path(name), &m, &r);
     if ((st != GLPGP_ERR_FORMAT && st != GLPGP_ERR_LIMIT) || m || r ||
         (needle && !strstr(glpgp_error_message(), needle))) {
         fprintf(stderr, "%s:%d: %s: expected a format error containing '%s', got %d: %s\n", __FILE__, line, name,
@@ -152,7 +141,7 @@ static void expect_bad(const char *name, const char *text, const char *needle, i
         glpgp_mesh_destroy(&m);
     }
     glpgp_error_clear();
-    unlink(P(name));
+    unlink(tu_tmp_path(name));
 }
 
 #define HDR "# vtk DataFile Version 3.0\nglpgp result: h 0.5\nASCII\nDATASET UNSTRUCTURED_GRID\n"
@@ -168,7 +157,7 @@ static void malformed_legacy(void)
     put("good.vtk", good, strlen(good));
     glpgp_mesh *m = NULL;
     glpgp_result *r = NULL;
-    CHECK_OK(glpgp_read_result(P("good.vtk"), &m, &r));
+    CHECK_OK(glpgp_read_result(tu_tmp_path("good.vtk"), &m, &r));
     CHECK(r && r->size == 0.5 && m && m->nv == 3);
     glpgp_result_destroy(&r);
     glpgp_mesh_destroy(&m);
@@ -196,7 +185,7 @@ static void malformed_legacy(void)
     expect_bad("notvtk.vtk", "hello\n", "not a VTK file", __LINE__);
     expect_bad("types.vtk", HDR PTS "CELLS 1 4\n3 0 1 2\nCELL_TYPES 1\n9\n", "type", __LINE__);
     expect_bad("nul.vtk", HDR "POINTS 3 double\n0 0 0\n1 0\x01 0\n", NULL, __LINE__);
-    unlink(P("good.vtk"));
+    unlink(tu_tmp_path("good.vtk"));
 }
 
 static void malformed_vtu(void)
@@ -210,14 +199,14 @@ static void malformed_vtu(void)
     for (int i = 0; i < m->nv; i++) r->osc[0].z[2 * i] = r->osc[1].z[2 * i] = 1.0;
     r->size = 0.5;
     for (int level = 0; level <= (glpgp_io_have_zlib() ? 1 : 0); level++) {
-        CHECK_OK(glpgp_write_vtu(m, NULL, r, P("base.vtu"), level));
-        FILE *f = fopen(P("base.vtu"), "rb");
+        CHECK_OK(glpgp_write_vtu(m, NULL, r, tu_tmp_path("base.vtu"), level));
+        FILE *f = fopen(tu_tmp_path("base.vtu"), "rb");
         static char buf[1 << 20];
         size_t n = f ? fread(buf, 1, sizeof buf, f) : 0;
         if (f) fclose(f);
         glpgp_mesh *m2 = NULL;
         glpgp_result *r2 = NULL;
-        CHECK_OK(glpgp_read_result(P("base.vtu"), &m2, &r2));
+        CHECK_OK(glpgp_read_result(tu_tmp_path("base.vtu"), &m2, &r2));
         CHECK(m2 && r2 && r2->size == 0.5);
         glpgp_result_destroy(&r2);
         glpgp_mesh_destroy(&m2);
@@ -252,7 +241,7 @@ static void malformed_vtu(void)
             glpgp_mesh *m3 = NULL;
             glpgp_result *r3 = NULL;
             glpgp_error_clear();
-            glpgp_status st = glpgp_read_result(P(nm), &m3, &r3);
+            glpgp_status st = glpgp_read_result(tu_tmp_path(nm), &m3, &r3);
             if ((st != GLPGP_ERR_FORMAT && st != GLPGP_ERR_LIMIT) || m3 || r3 ||
                 (damage[d].needle && !strstr(glpgp_error_message(), damage[d].needle))) {
                 fprintf(stderr, "%s (level %d): expected a format error, got %d: %s\n", nm, level, (int)st,
@@ -260,7 +249,7 @@ static void malformed_vtu(void)
                 tu_failures++;
             }
             glpgp_error_clear();
-            unlink(P(nm));
+            unlink(tu_tmp_path(nm));
         }
         /* truncated data: every cut of the appended section fails cleanly */
         const char *data = strstr(buf, "<AppendedData");
@@ -271,7 +260,7 @@ static void malformed_vtu(void)
             put(nm, buf, cut);
             glpgp_mesh *m3 = NULL;
             glpgp_result *r3 = NULL;
-            glpgp_status st = glpgp_read_result(P(nm), &m3, &r3);
+            glpgp_status st = glpgp_read_result(tu_tmp_path(nm), &m3, &r3);
             if (st != GLPGP_ERR_FORMAT || m3 || r3) bad++;
             glpgp_error_clear();
             glpgp_result_destroy(&r3);
@@ -288,7 +277,7 @@ static void malformed_vtu(void)
             put(nm, cp, n);
             glpgp_mesh *m3 = NULL;
             glpgp_result *r3 = NULL;
-            CHECK(glpgp_read_result(P(nm), &m3, &r3) == GLPGP_ERR_FORMAT && !m3 && !r3);
+            CHECK(glpgp_read_result(tu_tmp_path(nm), &m3, &r3) == GLPGP_ERR_FORMAT && !m3 && !r3);
             glpgp_error_clear();
         }
         /* a non-finite z value in raw data */
@@ -306,26 +295,24 @@ static void malformed_vtu(void)
             put(nm, cp, n);
             glpgp_mesh *m3 = NULL;
             glpgp_result *r3 = NULL;
-            CHECK(glpgp_read_result(P(nm), &m3, &r3) == GLPGP_ERR_FORMAT && !m3 && !r3);
+            CHECK(glpgp_read_result(tu_tmp_path(nm), &m3, &r3) == GLPGP_ERR_FORMAT && !m3 && !r3);
             CHECK(strstr(glpgp_error_message(), "not finite") != NULL);
             glpgp_error_clear();
         }
-        unlink(P("base.vtu"));
+        unlink(tu_tmp_path("base.vtu"));
     }
-    unlink(P("cut_0.vtu"));
-    unlink(P("cut_1.vtu"));
-    unlink(P("hdr_0.vtu"));
-    unlink(P("hdr_1.vtu"));
-    unlink(P("inf.vtu"));
+    unlink(tu_tmp_path("cut_0.vtu"));
+    unlink(tu_tmp_path("cut_1.vtu"));
+    unlink(tu_tmp_path("hdr_0.vtu"));
+    unlink(tu_tmp_path("hdr_1.vtu"));
+    unlink(tu_tmp_path("inf.vtu"));
     glpgp_result_destroy(&r);
     glpgp_mesh_destroy(&m);
 }
 
 int main(void)
 {
-    const char *base = getenv("TMPDIR");
-    snprintf(g_dir, sizeof g_dir, "%s/glpgp_rio_XXXXXX", base && *base ? base : "/tmp");
-    if (!mkdtemp(g_dir)) return 1;
+    if (!tu_tmp_init("rio")) return 1;
     round_trips();
     malformed_legacy();
     malformed_vtu();
@@ -333,8 +320,8 @@ int main(void)
     glpgp_result *r = NULL;
     CHECK(glpgp_read_result_vtk("/nonexistent/x.vtk", &m, &r) == GLPGP_ERR_IO && !m && !r);
     glpgp_error_clear();
-    CHECK(glpgp_read_result(g_dir, &m, &r) == GLPGP_ERR_IO && !m && !r); /* a directory */
+    CHECK(glpgp_read_result(tu_tmp_dir, &m, &r) == GLPGP_ERR_IO && !m && !r); /* a directory */
     glpgp_error_clear();
-    rmdir(g_dir);
+    rmdir(tu_tmp_dir);
     TEST_DONE();
 }

@@ -39,32 +39,6 @@
 #include <string.h>
 #include <unistd.h>
 
-/* nx x ny grid on [0,Lx] x [0,Ly]; x coordinates through xmap (NULL: uniform). */
-static glpgp_mesh *grid(int nx, int ny, double Lx, double Ly, double (*xmap)(double))
-{
-    int nv = (nx + 1) * (ny + 1), nt = 2 * nx * ny;
-    double *xy = malloc(sizeof(double) * 2 * nv);
-    int *tri = malloc(sizeof(int) * 3 * nt);
-    for (int j = 0; j <= ny; j++)
-        for (int i = 0; i <= nx; i++) {
-            double s = (double)i / nx;
-            xy[2 * (j * (nx + 1) + i)] = Lx * (xmap ? xmap(s) : s);
-            xy[2 * (j * (nx + 1) + i) + 1] = Ly * j / ny;
-        }
-    int t = 0;
-    for (int j = 0; j < ny; j++)
-        for (int i = 0; i < nx; i++) {
-            int v0 = j * (nx + 1) + i, v1 = v0 + 1, v2 = v0 + nx + 1, v3 = v2 + 1;
-            int a[6] = {v0, v1, v3, v0, v3, v2};
-            memcpy(tri + 3 * t, a, sizeof a);
-            t += 2;
-        }
-    glpgp_mesh *m = NULL;
-    CHECK_OK(glpgp_mesh_create(nv, xy, nt, tri, &m));
-    free(xy);
-    free(tri);
-    return m;
-}
 
 static double mesh_area(const glpgp_mesh *m)
 {
@@ -94,7 +68,7 @@ static void test_strip(void)
 {
     const double h = 1.0, w = 0.12;
     /* edge 0.0075: R x diagonal = 4 x 0.0106 < w / 2, the mesh limit inactive */
-    glpgp_mesh *m = grid(400, 16, 3.0, w, NULL);
+    glpgp_mesh *m = tu_grid_mesh((tu_grid){.nx = 400, .ny = 16, .Lx = 3.0, .Ly = w, .xmap = NULL});
     if (!m) return;
     glpgp_options o;
     glpgp_options_default(&o);
@@ -142,7 +116,8 @@ static void test_strip(void)
 static void test_coarse_and_refine(void)
 {
     const double h = 1.0, w = 0.12;
-    glpgp_mesh *m = grid(60, 2, 3.0, w, NULL); /* edges 0.05 / 0.06: too coarse for h = 0.06 */
+    /* edges 0.05 / 0.06: too coarse for h = 0.06 */
+    glpgp_mesh *m = tu_grid_mesh((tu_grid){.nx = 60, .ny = 2, .Lx = 3.0, .Ly = w, .xmap = NULL});
     if (!m) return;
     glpgp_options o;
     glpgp_options_default(&o);
@@ -212,7 +187,7 @@ static double graded_x(double s)
 static void test_graded(void)
 {
     /* 40 columns on [0, 8]: x edges from 0.019 (left) to 0.74 (right), h = 1 */
-    glpgp_mesh *m = grid(40, 4, 8.0, 2.0, graded_x);
+    glpgp_mesh *m = tu_grid_mesh((tu_grid){.nx = 40, .ny = 4, .Lx = 8.0, .Ly = 2.0, .xmap = graded_x});
     if (!m) return;
     glpgp_options o;
     glpgp_options_default(&o);
@@ -328,7 +303,7 @@ static double one_fn(void *ctx, double x, double y)
 static void test_function(void)
 {
     const double h = 1.0;
-    glpgp_mesh *m = grid(400, 16, 3.0, 0.12, NULL);
+    glpgp_mesh *m = tu_grid_mesh((tu_grid){.nx = 400, .ny = 16, .Lx = 3.0, .Ly = 0.12, .xmap = NULL});
     if (!m) return;
     glpgp_options o;
     glpgp_options_default(&o);

@@ -16,36 +16,12 @@
 
 #include <string.h>
 
-/* structured grid [0,1]^2, n x n cells, alternating diagonals */
-static glpgp_mesh *grid(int n)
-{
-    int nv = (n + 1) * (n + 1), nt = 2 * n * n;
-    double *xy = malloc(sizeof(double) * 2 * nv);
-    int *tri = malloc(sizeof(int) * 3 * nt), t = 0;
-    for (int j = 0; j <= n; j++)
-        for (int i = 0; i <= n; i++) {
-            xy[2 * (j * (n + 1) + i)] = (double)i / n;
-            xy[2 * (j * (n + 1) + i) + 1] = (double)j / n;
-        }
-    for (int j = 0; j < n; j++)
-        for (int i = 0; i < n; i++) {
-            int v0 = j * (n + 1) + i, v1 = v0 + 1, v2 = v0 + n + 1, v3 = v2 + 1;
-            int a[6] = {v0, v1, v3, v0, v3, v2}, c[6] = {v0, v1, v2, v1, v3, v2};
-            memcpy(tri + 3 * t, (i + j) % 2 ? c : a, sizeof a);
-            t += 2;
-        }
-    glpgp_mesh *m = NULL;
-    CHECK_OK(glpgp_mesh_create(nv, xy, nt, tri, &m));
-    free(xy);
-    free(tri);
-    return m;
-}
 
 /* naive PGP with W = (1,0) and z = exp(2 i pi x / h) on the whole boundary;
  * returns the lumped L2 error against the plane wave. */
 static double manufactured(int n, double h)
 {
-    glpgp_mesh *m = grid(n);
+    glpgp_mesh *m = tu_grid_mesh((tu_grid){.nx = n, .ny = n, .Lx = 1, .Ly = 1, .alternate = 1});
     glpgp_system *sys = NULL;
     glpgp_backend *b = NULL;
     CHECK_OK(glpgp_system_create(m, &sys));
