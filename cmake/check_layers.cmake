@@ -3,7 +3,9 @@
 #  - every host source file sits in a layer folder (or host/include/glpgp);
 #  - a file of layer L includes only public headers <glpgp/X.h> owned by L or
 #    by a layer below L, and private headers of its own folder;
-#  - a public header of layer L includes only public headers of L or below.
+#  - a public header of layer L includes only public headers of L or below;
+#  - both `#include "glpgp/X.h"` and `#include <glpgp/X.h>` count.
+# The libraries' symbols are checked after the build by check_symbols.cmake.
 # Fails (FATAL_ERROR, listing every violation) on any breach.
 cmake_minimum_required(VERSION 3.18)
 set(LAYERS core mesh solver backends quads io image cli)
@@ -44,9 +46,9 @@ foreach(f ${files})
     continue()
   endif()
   list(FIND LAYERS ${layer} rank)
-  file(STRINGS ${SOURCE_DIR}/host/${f} incs REGEX "^[ \t]*#[ \t]*include[ \t]*\"")
+  file(STRINGS ${SOURCE_DIR}/host/${f} incs REGEX "^[ \t]*#[ \t]*include[ \t]*(\"|<glpgp/)")
   foreach(line ${incs})
-    string(REGEX REPLACE "^[ \t]*#[ \t]*include[ \t]*\"([^\"]+)\".*" "\\1" inc "${line}")
+    string(REGEX REPLACE "^[ \t]*#[ \t]*include[ \t]*[\"<]([^\">]+)[\">].*" "\\1" inc "${line}")
     if(inc MATCHES "^glpgp/([^/]+)\\.h$")
       set(h ${CMAKE_MATCH_1})
       if(NOT DEFINED OWNER_${h})
