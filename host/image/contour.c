@@ -222,6 +222,248 @@ static glpgp_status new_point(ms_ctx *c, int I0, int J0, double f0, int pad0, in
     return GLPGP_OK;
 }
 
+/* Fail on a mask with no pixel inside, or with every pixel inside (no boundary). */
+static glpgp_status check_mask_coverage(const ms_ctx *c, const glpgp_contour_options *o)
+{
+    size_t ninside = 0, npx = (size_t)c->w * (size_t)c->h;
+    for (int j = 1; j <= c->h; j++)
+        for (int i = 1; i <= c->w; i++) {
+            int pad;
+            if (sample(c, i, j, &pad) >= 0) ninside++;
+        }
+    if (ninside == 0)
+        return GLPGP_FAIL(GLPGP_ERR_ARG,
+                          "empty mask: no pixel is inside the domain (inside = value %s %g); "
+                          "check --threshold or --invert",
+                          o->invert ? "<" : ">=", o->threshold);
+    if (ninside == npx)
+        return GLPGP_FAIL(GLPGP_ERR_ARG,
+                          "every pixel of the %d x %d mask is inside the domain (inside = value "
+                          "%s %g), so it has no boundary in the image; the domain must be "
+                          "surrounded by outside pixels (check --threshold or --invert)",
+                          c->w, c->h, o->invert ? "<" : ">=", o->threshold);
+    return GLPGP_OK;
+}
+
+/* The rows of samples the marching squares keep while they walk the cells:
+ * the values and padding flags of sample rows J and J+1, and the crossing
+ * point already made on each horizontal edge of rows J (hid_a) and J+1
+ * (hid_b) and on each vertical edge of the current cell row (vid). */
+typedef struct ms_rows {
+    double *f0, *f1;
+    unsigned char *p0, *p1;
+    int *hid_a, *hid_b, *vid;
+} ms_rows;
+
+static void ms_rows_free(ms_rows *r)
+{
+    free(r->f0), free(r->f1), free(r->p0), free(r->p1);
+    free(r->hid_a), free(r->hid_b), free(r->vid);
+}
+
+static glpgp_status ms_rows_alloc(ms_rows *r, int w)
+{
+    memset(r, 0, sizeof *r);
+    GLPGP_CHECK(glpgp_malloc((size_t)w + 2, sizeof(double), &r->f0));
+    GLPGP_CHECK(glpgp_malloc((size_t)w + 2, sizeof(double), &r->f1));
+    GLPGP_CHECK(glpgp_malloc((size_t)w + 2, 1, &r->p0));
+    GLPGP_CHECK(glpgp_malloc((size_t)w + 2, 1, &r->p1));
+    GLPGP_CHECK(glpgp_malloc((size_t)w + 2, sizeof(int), &r->hid_a));
+    GLPGP_CHECK(glpgp_malloc((size_t)w + 2, sizeof(int), &r->hid_b));
+    GLPGP_CHECK(glpgp_malloc((size_t)w + 3, sizeof(int), &r->vid));
+    for (int i = 0; i < w + 2; i++) r->hid_a[i] = -1;
+    return GLPGP_OK;
+}
+
+/* Cell (I, J) with corners c0 (I,J), c1 (I+1,J), c2 (I+1,J+1), c3 (I,J+1),
+ * edge k joining corner k and k+1 (mod 4): make the crossing points on its
+ * edges (shared with the neighbouring cells through the rows' ids) and link
+ * each in->out edge to the out->in edge that continues the contour. */
+static glpgp_status march_cell(ms_ctx *c, ms_rows *r, int I, int J)
+{
+    double f[4] = {r->f0[I], r->f0[I + 1], r->f1[I + 1], r->f1[I]};
+    int in[4], mask = 0;
+    for (int k = 0; k < 4; k++) {
+        in[k] = f[k] >= 0;
+        mask |= in[k] << k;
+    }
+    if (mask == 0 || mask == 15) return GLPGP_OK;
+    int pad[4] = {r->p0[I], r->p0[I + 1], r->p1[I + 1], r->p1[I]};
+    static const int cI[4] = {0, 1, 1, 0}, cJ[4] = {0, 0, 1, 1};
+    int eid[4] = {-1, -1, -1, -1};
+    for (int k = 0; k < 4; k++) {
+        int k1 = (k + 1) & 3;
+        if (in[k] == in[k1]) continue;
+        int *slot = k == 0 ? &r->hid_a[I] : k == 1 ? &r->vid[I + 1] : k == 2 ? &r->hid_b[I] : &r->vid[I];
+        if (*slot < 0)
+            GLPGP_CHECK(new_point(c, I + cI[k], J + cJ[k], f[k], pad[k], I + cI[k1], J + cJ[k1], f[k1],
+                                  pad[k1], slot));
+        eid[k] = *slot;
+    }
+    /* in->out edges k (in[k] && !in[k+1]) link to an out->in edge */
+    int saddle = mask == 5 || mask == 10;
+    int centre_in = saddle && (f[0] + f[1] + f[2] + f[3]) >= 0;
+    for (int k = 0; k < 4; k++) {
+        int k1 = (k + 1) & 3;
+        if (!(in[k] && !in[k1])) continue;
+        int target = -1;
+        if (!saddle) {
+            for (int q = 0; q < 4; q++)
+                if (!in[q] && in[(q + 1) & 3]) target = q;
+        } else {
+            target = centre_in ? (k + 1) & 3 : (k + 3) & 3;
+        }
+        if (target < 0 || eid[k] < 0 || eid[target] < 0)
+            return GLPGP_FAIL(GLPGP_ERR_NUMERIC, "marching squares: inconsistent cell");
+        c->next.a[eid[k]] = eid[target];
+    }
+    return GLPGP_OK;
+}
+
+/* Marching squares over the cells (I, J), I in [0, w], J in [0, h], of the
+ * padded sample grid: c->pts gets every crossing point, c->next its successor
+ * along the contour (inside on the left). */
+static glpgp_status march(ms_ctx *c)
+{
+    ms_rows r;
+    glpgp_status st = ms_rows_alloc(&r, c->w);
+    if (st != GLPGP_OK) {
+        ms_rows_free(&r);
+        return st;
+    }
+    for (int I = 0; I <= c->w + 1; I++) {
+        int pad;
+        r.f0[I] = sample(c, I, 0, &pad);
+        r.p0[I] = (unsigned char)pad;
+    }
+    for (int J = 0; J <= c->h && st == GLPGP_OK; J++) {
+        for (int I = 0; I <= c->w + 1; I++) {
+            int pad;
+            r.f1[I] = sample(c, I, J + 1, &pad);
+            r.p1[I] = (unsigned char)pad;
+            r.hid_b[I] = -1;
+            r.vid[I] = -1;
+        }
+        for (int I = 0; I <= c->w && st == GLPGP_OK; I++) st = march_cell(c, &r, I, J);
+        /* next cell row */
+        double *tf = r.f0;
+        r.f0 = r.f1, r.f1 = tf;
+        unsigned char *tp = r.p0;
+        r.p0 = r.p1, r.p1 = tp;
+        int *th = r.hid_a;
+        r.hid_a = r.hid_b, r.hid_b = th;
+    }
+    if (st != GLPGP_OK) glpgp_error_push_trace(__FILE__, __LINE__);
+    ms_rows_free(&r);
+    return st;
+}
+
+/* Follow the links into closed loops, in pixel coordinates with y up
+ * (loops: x, y pairs back to back; lstart: the first point of each loop and
+ * the end), dropping loops of area below min_area square pixels. */
+static glpgp_status link_loops(const ms_ctx *c, double min_area, dbuf *loops, ibuf *lstart)
+{
+    int npts = (int)(c->pts.n / 2);
+    unsigned char *seen = NULL;
+    GLPGP_CHECK(glpgp_calloc((size_t)npts + 1, 1, &seen));
+    glpgp_status st = GLPGP_OK;
+    for (int p0 = 0; p0 < npts && st == GLPGP_OK; p0++) {
+        if (seen[p0]) continue;
+        size_t first = loops->n / 2;
+        for (int p = p0; !seen[p];) {
+            seen[p] = 1;
+            double I = c->pts.a[2 * p], J = c->pts.a[2 * p + 1];
+            GLPGP_CHECK_GOTO(st, dbuf_push2(loops, I - 0.5, (double)c->h - J + 0.5), done);
+            p = c->next.a[p];
+            if (p < 0) {
+                st = GLPGP_FAIL(GLPGP_ERR_NUMERIC, "marching squares: open contour");
+                goto done;
+            }
+        }
+        int n = (int)(loops->n / 2 - first);
+        if (fabs(glpgp_polygon_area(loops->a + 2 * first, n)) < min_area || n < 3) {
+            loops->n = 2 * first; /* speck (or filled-in small hole) */
+            continue;
+        }
+        /* simplified at the end, all loops together (glpgp_polygons_simplify) */
+        GLPGP_CHECK_GOTO(st, ibuf_push(lstart, (int)first), done);
+    }
+    GLPGP_CHECK_GOTO(st, ibuf_push(lstart, (int)(loops->n / 2)), done);
+done:
+    free(seen);
+    return st;
+}
+
+/* Orient every loop so the domain lies on its left (outer loops counter-
+ * clockwise) and give each hole the smallest outer loop containing it. */
+static void orient_and_nest(glpgp_polygons *P)
+{
+    const int nl = P->n;
+    double total = 0;
+    for (int l = 0; l < nl; l++) {
+        P->area[l] = glpgp_polygon_area(P->xy + 2 * P->start[l], P->start[l + 1] - P->start[l]);
+        total += P->area[l];
+    }
+    if (total < 0) {
+        for (int l = 0; l < nl; l++) {
+            double *xy = P->xy + 2 * P->start[l];
+            int n = P->start[l + 1] - P->start[l];
+            for (int i = 0, k = n - 1; i < k; i++, k--) {
+                double tx = xy[2 * i], ty = xy[2 * i + 1];
+                xy[2 * i] = xy[2 * k], xy[2 * i + 1] = xy[2 * k + 1];
+                xy[2 * k] = tx, xy[2 * k + 1] = ty;
+            }
+            P->area[l] = -P->area[l];
+        }
+    }
+    P->nouter = P->nholes = 0;
+    for (int l = 0; l < nl; l++) {
+        P->parent[l] = -1;
+        if (P->area[l] > 0) {
+            P->nouter++;
+            continue;
+        }
+        P->nholes++;
+        const double *hp = P->xy + 2 * P->start[l];
+        double best = INFINITY;
+        for (int q = 0; q < nl; q++) {
+            if (!(P->area[q] > 0) || P->area[q] >= best) continue;
+            if (point_in_loop(P->xy + 2 * P->start[q], P->start[q + 1] - P->start[q], hp[0], hp[1])) {
+                best = P->area[q];
+                P->parent[l] = q;
+            }
+        }
+    }
+}
+
+/* The polygons of the loops, oriented and nested, in physical units. */
+static glpgp_status polygons_of_loops(const dbuf *loops, const ibuf *lstart, double s, glpgp_polygons **out)
+{
+    int nl = (int)lstart->n - 1;
+    glpgp_polygons *P = NULL;
+    glpgp_status st = GLPGP_OK;
+    GLPGP_CHECK(glpgp_calloc(1, sizeof *P, &P));
+    P->n = nl;
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)nl + 1, sizeof(int), &P->start), fail);
+    GLPGP_CHECK_GOTO(st, glpgp_malloc(loops->n + 1, sizeof(double), &P->xy), fail);
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)nl + 1, sizeof(double), &P->area), fail);
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)nl + 1, sizeof(int), &P->parent), fail);
+    memcpy(P->start, lstart->a, ((size_t)nl + 1) * sizeof(int));
+    if (loops->n) memcpy(P->xy, loops->a, loops->n * sizeof(double));
+    orient_and_nest(P);
+    for (size_t i = 0; i < loops->n; i++) P->xy[i] *= s;
+    P->total_area = 0;
+    for (int l = 0; l < nl; l++) {
+        P->area[l] *= s * s;
+        P->total_area += P->area[l];
+    }
+    *out = P;
+    return GLPGP_OK;
+fail:
+    glpgp_polygons_destroy(&P);
+    return st;
+}
+
 glpgp_status glpgp_contours(const float *v, int w, int h, const glpgp_contour_options *opt,
                             glpgp_polygons **out)
 {
@@ -243,228 +485,39 @@ glpgp_status glpgp_contours(const float *v, int w, int h, const glpgp_contour_op
     c.h = h;
     c.thr = o.threshold;
     c.invert = o.invert;
-
-    /* empty / full masks */
-    size_t ninside = 0, npx = (size_t)w * (size_t)h;
-    for (int j = 1; j <= h; j++)
-        for (int i = 1; i <= w; i++) {
-            int pad;
-            if (sample(&c, i, j, &pad) >= 0) ninside++;
-        }
-    if (ninside == 0)
-        return GLPGP_FAIL(GLPGP_ERR_ARG,
-                          "empty mask: no pixel is inside the domain (inside = value %s %g); "
-                          "check --threshold or --invert",
-                          o.invert ? "<" : ">=", o.threshold);
-    if (ninside == npx)
-        return GLPGP_FAIL(GLPGP_ERR_ARG,
-                          "every pixel of the %d x %d mask is inside the domain (inside = value "
-                          "%s %g), so it has no boundary in the image; the domain must be "
-                          "surrounded by outside pixels (check --threshold or --invert)",
-                          w, h, o.invert ? "<" : ">=", o.threshold);
+    GLPGP_CHECK(check_mask_coverage(&c, &o));
 
     glpgp_status st = GLPGP_OK;
-    int *hid_a = NULL, *hid_b = NULL, *vid = NULL;
     glpgp_polygons *P = NULL;
     dbuf loops = {0};
     ibuf lstart = {0};
-    unsigned char *seen = NULL;
-    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)w + 2, sizeof(int), &hid_a), done);
-    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)w + 2, sizeof(int), &hid_b), done);
-    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)w + 3, sizeof(int), &vid), done);
-    for (int i = 0; i < w + 2; i++) hid_a[i] = -1;
-
-    /* Cells (I, J), I in [0, w], J in [0, h]; corners c0 (I,J), c1 (I+1,J),
-     * c2 (I+1,J+1), c3 (I,J+1); edge k joins corner k and k+1 (mod 4). */
-    double *frow0 = NULL, *frow1 = NULL;
-    unsigned char *prow0 = NULL, *prow1 = NULL;
-    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)w + 2, sizeof(double), &frow0), done2);
-    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)w + 2, sizeof(double), &frow1), done2);
-    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)w + 2, 1, &prow0), done2);
-    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)w + 2, 1, &prow1), done2);
-    for (int I = 0; I <= w + 1; I++) {
-        int pad;
-        frow0[I] = sample(&c, I, 0, &pad);
-        prow0[I] = (unsigned char)pad;
-    }
-    for (int J = 0; J <= h; J++) {
-        for (int I = 0; I <= w + 1; I++) {
-            int pad;
-            frow1[I] = sample(&c, I, J + 1, &pad);
-            prow1[I] = (unsigned char)pad;
-            hid_b[I] = -1;
-            vid[I] = -1;
-        }
-        for (int I = 0; I <= w; I++) {
-            double f[4] = {frow0[I], frow0[I + 1], frow1[I + 1], frow1[I]};
-            int in[4];
-            int mask = 0;
-            for (int k = 0; k < 4; k++) {
-                in[k] = f[k] >= 0;
-                mask |= in[k] << k;
-            }
-            if (mask == 0 || mask == 15) continue;
-            int pad[4] = {prow0[I], prow0[I + 1], prow1[I + 1], prow1[I]};
-            static const int cI[4] = {0, 1, 1, 0}, cJ[4] = {0, 0, 1, 1};
-            int eid[4] = {-1, -1, -1, -1};
-            for (int k = 0; k < 4; k++) {
-                int k1 = (k + 1) & 3;
-                if (in[k] == in[k1]) continue;
-                int *slot = k == 0 ? &hid_a[I] : k == 1 ? &vid[I + 1] : k == 2 ? &hid_b[I] : &vid[I];
-                if (*slot < 0)
-                    GLPGP_CHECK_GOTO(st,
-                                     new_point(&c, I + cI[k], J + cJ[k], f[k], pad[k], I + cI[k1],
-                                               J + cJ[k1], f[k1], pad[k1], slot),
-                                     done2);
-                eid[k] = *slot;
-            }
-            /* in->out edges k (in[k] && !in[k+1]) link to an out->in edge */
-            int saddle = mask == 5 || mask == 10;
-            int centre_in = saddle && (f[0] + f[1] + f[2] + f[3]) >= 0;
-            for (int k = 0; k < 4; k++) {
-                int k1 = (k + 1) & 3;
-                if (!(in[k] && !in[k1])) continue;
-                int target = -1;
-                if (!saddle) {
-                    for (int q = 0; q < 4; q++)
-                        if (!in[q] && in[(q + 1) & 3]) target = q;
-                } else {
-                    target = centre_in ? (k + 1) & 3 : (k + 3) & 3;
-                }
-                if (target < 0 || eid[k] < 0 || eid[target] < 0) {
-                    st = GLPGP_FAIL(GLPGP_ERR_NUMERIC, "marching squares: inconsistent cell");
-                    goto done2;
-                }
-                c.next.a[eid[k]] = eid[target];
-            }
-        }
-        /* next cell row */
-        double *tf = frow0;
-        frow0 = frow1;
-        frow1 = tf;
-        unsigned char *tp = prow0;
-        prow0 = prow1;
-        prow1 = tp;
-        int *th = hid_a;
-        hid_a = hid_b;
-        hid_b = th;
-    }
-
-    /* link the crossings into loops (pixel coordinates, y up) */
-    int npts = (int)(c.pts.n / 2);
-    GLPGP_CHECK_GOTO(st, glpgp_calloc((size_t)npts + 1, 1, &seen), done2);
-    for (int p0 = 0; p0 < npts; p0++) {
-        if (seen[p0]) continue;
-        size_t first = loops.n / 2;
-        int p = p0;
-        while (!seen[p]) {
-            seen[p] = 1;
-            double I = c.pts.a[2 * p], J = c.pts.a[2 * p + 1];
-            GLPGP_CHECK_GOTO(st, dbuf_push2(&loops, I - 0.5, (double)h - J + 0.5), done2);
-            p = c.next.a[p];
-            if (p < 0) {
-                st = GLPGP_FAIL(GLPGP_ERR_NUMERIC, "marching squares: open contour");
-                goto done2;
-            }
-        }
-        int n = (int)(loops.n / 2 - first);
-        double *xy = loops.a + 2 * first;
-        double a = glpgp_polygon_area(xy, n);
-        if (fabs(a) < o.min_area || n < 3) { /* speck (or filled-in small hole) */
-            loops.n = 2 * first;
-            continue;
-        }
-        /* simplified at the end, all loops together (glpgp_polygons_simplify) */
-        GLPGP_CHECK_GOTO(st, ibuf_push(&lstart, (int)first), done2);
-    }
-    GLPGP_CHECK_GOTO(st, ibuf_push(&lstart, (int)(loops.n / 2)), done2);
-
-    int nl = (int)lstart.n - 1;
-    GLPGP_CHECK_GOTO(st, glpgp_calloc(1, sizeof *P, &P), done2);
-    P->n = nl;
-    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)nl + 1, sizeof(int), &P->start), done2);
-    GLPGP_CHECK_GOTO(st, glpgp_malloc(loops.n + 1, sizeof(double), &P->xy), done2);
-    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)nl + 1, sizeof(double), &P->area), done2);
-    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)nl + 1, sizeof(int), &P->parent), done2);
-    memcpy(P->start, lstart.a, ((size_t)nl + 1) * sizeof(int));
-    if (loops.n) memcpy(P->xy, loops.a, loops.n * sizeof(double));
-    double total = 0;
-    for (int l = 0; l < nl; l++) {
-        P->area[l] = glpgp_polygon_area(P->xy + 2 * P->start[l], P->start[l + 1] - P->start[l]);
-        total += P->area[l];
-    }
-    if (total < 0) { /* make the domain lie on the left */
-        for (int l = 0; l < nl; l++) {
-            double *xy = P->xy + 2 * P->start[l];
-            int n = P->start[l + 1] - P->start[l];
-            for (int i = 0, k = n - 1; i < k; i++, k--) {
-                double tx = xy[2 * i], ty = xy[2 * i + 1];
-                xy[2 * i] = xy[2 * k], xy[2 * i + 1] = xy[2 * k + 1];
-                xy[2 * k] = tx, xy[2 * k + 1] = ty;
-            }
-            P->area[l] = -P->area[l];
-        }
-    }
-    /* holes -> smallest outer loop containing them */
-    P->nouter = P->nholes = 0;
-    for (int l = 0; l < nl; l++) {
-        P->parent[l] = -1;
-        if (P->area[l] > 0) {
-            P->nouter++;
-            continue;
-        }
-        P->nholes++;
-        const double *hp = P->xy + 2 * P->start[l];
-        double best = INFINITY;
-        for (int q = 0; q < nl; q++) {
-            if (!(P->area[q] > 0) || P->area[q] >= best) continue;
-            if (point_in_loop(P->xy + 2 * P->start[q], P->start[q + 1] - P->start[q], hp[0], hp[1])) {
-                best = P->area[q];
-                P->parent[l] = q;
-            }
-        }
-    }
-    /* physical units */
-    double s = o.pixel_size;
-    for (size_t i = 0; i < loops.n; i++) P->xy[i] *= s;
-    P->total_area = 0;
-    for (int l = 0; l < nl; l++) {
-        P->area[l] *= s * s;
-        P->total_area += P->area[l];
-    }
+    GLPGP_CHECK_GOTO(st, march(&c), done);
+    GLPGP_CHECK_GOTO(st, link_loops(&c, o.min_area, &loops, &lstart), done);
+    GLPGP_CHECK_GOTO(st, polygons_of_loops(&loops, &lstart, o.pixel_size, &P), done);
     if (P->nouter == 0) {
-        st = GLPGP_FAIL(GLPGP_ERR_ARG,
-                        "the mask has no region of at least %g square pixels (only specks)",
+        st = GLPGP_FAIL(GLPGP_ERR_ARG, "the mask has no region of at least %g square pixels (only specks)",
                         o.min_area);
-        goto done2;
+        goto done;
     }
-    for (int l = 0; l < nl; l++)
+    for (int l = 0; l < P->n; l++)
         if (P->area[l] < 0 && P->parent[l] < 0) {
             st = GLPGP_FAIL(GLPGP_ERR_NUMERIC, "contour: hole %d lies in no outer boundary", l);
-            goto done2;
+            goto done;
         }
     /* Douglas-Peucker without changing the topology (a loop that would cross
      * or touch another is simplified less) */
     if (o.tolerance > 0)
-        GLPGP_CHECK_GOTO(st, glpgp_polygons_simplify(P, o.tolerance * s, GLPGP_CONTOUR_MIN_DIST * s), done2);
+        GLPGP_CHECK_GOTO(st, glpgp_polygons_simplify(P, o.tolerance * o.pixel_size,
+                                                     GLPGP_CONTOUR_MIN_DIST * o.pixel_size),
+                         done);
     *out = P;
     P = NULL;
-
-done2:
-    free(frow0);
-    free(frow1);
-    free(prow0);
-    free(prow1);
 done:
     glpgp_polygons_destroy(&P);
-    free(seen);
     free(loops.a);
     free(lstart.a);
     free(c.pts.a);
     free(c.next.a);
-    free(hid_a);
-    free(hid_b);
-    free(vid);
     return st;
 }
 
