@@ -257,6 +257,13 @@ glpgp_status glpgp_write_stats_json(const glpgp_mesh *m, const glpgp_options *op
                                     const glpgp_result *r, const char *path,
                                     const glpgp_stats_extra *extra);
 
+/* The same statistics (and, below, the quad report) as a malloc'ed
+ * NUL-terminated JSON string in *out (free() it): what the Python binding
+ * returns as Result.stats / QuadMesh.report. */
+glpgp_status glpgp_stats_json_text(const glpgp_mesh *m, const glpgp_options *opts, const glpgp_result *r,
+                                   const glpgp_stats_extra *extra, char **out);
+glpgp_status glpgp_quads_json_text(const glpgp_quad_quality *qq, char **out);
+
 /* Write the result with the writer chosen by the extension of path
  * (case-insensitive): ".vtk" -> legacy VTK, ".vtu" -> glpgp_write_vtu
  * (default level), ".obj" -> glpgp_write_obj_textured; anything else ->
