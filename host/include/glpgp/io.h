@@ -326,6 +326,17 @@ glpgp_status glpgp_output_set_pvtu(glpgp_output_set *s, const glpgp_result *r, c
  * renumbering). Limits: see the top of this header. */
 glpgp_status glpgp_mesh_read(const char *path, glpgp_mesh **out);
 
+/* A mesh from arrays, as a reader would make it of a file with these
+ * vertices and triangles (the Python binding's glpgp.Mesh): x holds nv
+ * points of dim = 2 or 3 coordinates, tri 3 nt vertex indices. Unused
+ * vertices are dropped, 3D points take the readers' coordinate plane (z,
+ * y or x = const; of a 3D surface its largest face in one, with a
+ * warning), unwelded pieces are welded, then glpgp_mesh_create validates.
+ * name names it in messages. Non-finite coordinates, indices outside
+ * [0, nv): GLPGP_ERR_MESH. */
+glpgp_status glpgp_mesh_from_arrays(const char *name, int nv, const double *x, int dim, int nt, const int *tri,
+                                    glpgp_mesh **out);
+
 /* Write the triangles as OBJ or MSH 4.1 (by extension), atomically. */
 glpgp_status glpgp_mesh_write(const glpgp_mesh *m, const char *path);
 glpgp_status glpgp_output_set_mesh(glpgp_output_set *s, const glpgp_mesh *m, const char *path);
