@@ -66,6 +66,23 @@ foreach(f ${files})
   endforeach()
 endforeach()
 
+# python/src (the extension, on top like the CLI): public headers <glpgp/X.h>
+# and its own folder's headers only, never a layer's private header
+file(GLOB pyfiles RELATIVE ${SOURCE_DIR}/python/src ${SOURCE_DIR}/python/src/*.c ${SOURCE_DIR}/python/src/*.h)
+foreach(f ${pyfiles})
+  file(STRINGS ${SOURCE_DIR}/python/src/${f} incs REGEX "^[ \t]*#[ \t]*include[ \t]*\"")
+  foreach(line ${incs})
+    string(REGEX REPLACE "^[ \t]*#[ \t]*include[ \t]*\"([^\"]+)\".*" "\\1" inc "${line}")
+    if(inc MATCHES "^glpgp/([^/]+)\\.h$")
+      if(NOT DEFINED OWNER_${CMAKE_MATCH_1})
+        list(APPEND errors "python/src/${f}: includes unknown public header ${inc}")
+      endif()
+    elseif(inc MATCHES "/" OR NOT EXISTS ${SOURCE_DIR}/python/src/${inc})
+      list(APPEND errors "python/src/${f}: includes '${inc}' (only <glpgp/X.h> and python/src headers)")
+    endif()
+  endforeach()
+endforeach()
+
 list(LENGTH errors n)
 if(n GREATER 0)
   string(REPLACE ";" "\n  " msg "${errors}")

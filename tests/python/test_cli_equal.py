@@ -54,13 +54,14 @@ def test_reference_default(tmp_path, cli):
     assert r.refined is not None and r.mesh.n_vertices > 2923
 
 
-def test_reference_file_and_options(tmp_path, cli, data):
-    src = os.path.join(data, "plate_holes.msh")
+def test_reference_file_and_options(tmp_path, cli):
+    src = str(tmp_path / "annulus.msh")
+    glpgp.shape("annulus", 3000).write(src)
     compare(tmp_path, cli, src,
-            ["--backend", "reference", "--size", "0.15", "--precond", "jacobi", "--globalization", "line-search",
-             "--oscillators", "concurrent", "--newton-rtol", "1e-5", "--center", "0.5,0.25", "--field", "radial"],
-            dict(backend="reference", size=0.15, precond="jacobi", globalization="line-search",
-                 oscillators="concurrent", newton_rtol=1e-5, center=(0.5, 0.25), field="radial"))
+            ["--backend", "reference", "--size", "0.15", "--tr-precond", "jacobi", "--globalization", "line-search",
+             "--oscillators", "concurrent", "--newton-rtol", "1e-5", "--center", "0.001,-0.002", "--field", "radial"],
+            dict(backend="reference", size=0.15, tr_precond="jacobi", globalization="line-search",
+                 oscillators="concurrent", newton_rtol=1e-5, center=(0.001, -0.002), field="radial"))
 
 
 def test_reference_field_file(tmp_path, cli):

@@ -14,7 +14,7 @@ import pytest
 
 import glpgp
 
-MESH = dict(name="disk", n=20000)
+MESH = dict(name="disk", n=8000)
 
 
 @pytest.fixture(scope="module")
