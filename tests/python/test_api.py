@@ -4,6 +4,7 @@ option tables behind the keyword arguments (names, defaults and checks of the
 CLI), exceptions (InputError is a ValueError, FileError an OSError, carrying
 the library's one-line message: the CLI's error line for the same input),
 results, quads, writers, meshio interop, docstrings and the .pyi stub."""
+import ast
 import inspect
 import json
 import os
@@ -312,6 +313,17 @@ def test_docstrings_and_stub():
                     assert getattr(member, "__doc__", None), "%s.%s" % (name, attr)
     stub = os.path.join(os.path.dirname(glpgp.__file__), "__init__.pyi")
     text = open(stub).read()
+    ast.parse(text)
     for name in glpgp.__all__:
         if not name.startswith("__"):
             assert ("def %s(" % name) in text or ("class %s(" % name) in text or ("class %s:" % name) in text, name
+
+
+def test_petsc_backend():
+    """--backend petsc on one rank (MPI started in this process on demand)"""
+    if not glpgp.build_info()["petsc"]:
+        pytest.skip("built without PETSc")
+    m = glpgp.shape("square", 400)
+    r = glpgp.solve(m, backend="petsc", size_field="none", size=0.3)
+    ref = glpgp.solve(m, **SQ)
+    assert r.backend == "petsc" and np.abs(r.z_u - ref.z_u).max() < 1e-6
