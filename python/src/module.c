@@ -105,6 +105,17 @@ static PyObject *py_shutdown(PyObject *self, PyObject *unused)
     Py_RETURN_NONE;
 }
 
+/* _set_logging(on): the library's messages to the logger (the default) or
+ * nowhere (for the tests: no Python code runs from inside a solve) */
+static PyObject *py_set_logging(PyObject *self, PyObject *on)
+{
+    (void)self;
+    const int t = PyObject_IsTrue(on);
+    if (t < 0) return NULL;
+    glpgp_log_set_callback(t && g_log_live ? log_to_python : NULL, NULL);
+    Py_RETURN_NONE;
+}
+
 /* ---- Ctrl-C ------------------------------------------------------------------------- */
 
 void pg_cancel_init(pg_cancel *c)
@@ -478,6 +489,7 @@ static PyMethodDef k_methods[] = {
     {"build_info", py_build_info, METH_NOARGS, NULL},
     {"_options", py_options, METH_O, NULL},
     {"_shutdown", py_shutdown, METH_NOARGS, NULL},
+    {"_set_logging", py_set_logging, METH_O, NULL},
     {NULL, NULL, 0, NULL}};
 
 static struct PyModuleDef k_module = {PyModuleDef_HEAD_INIT, "glpgp._glpgp",

@@ -41,8 +41,12 @@ def test_ctrl_c_stops_the_solve(tmp_path, full_time, how, osc):
         time.sleep(10 * total)  # not reached: the interrupt comes during the solve
     elapsed = time.perf_counter() - t0
     timer.join()
-    assert elapsed < delay + 0.5 * total, (elapsed, delay, total)
+    # the solve did not complete: nothing was written (r.write comes after it)
     assert os.listdir(tmp_path) == []
     # nothing left behind: the library works on, with the same result
+    t1 = time.perf_counter()
     again = glpgp.solve(m, backend="reference", oscillators=osc)
+    full = max(total, time.perf_counter() - t1)
     assert np.array_equal(again.z_u, ref.z_u)
+    # stopped at a Newton step soon after the signal, well before a whole solve's time
+    assert elapsed < delay + 0.6 * full, (elapsed, delay, full)
