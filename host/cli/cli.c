@@ -2,6 +2,7 @@
  * shared by the CLI commands (cli.h). */
 #include "cli.h"
 
+#include "glpgp/optdesc.h"
 #include "glpgp/quads.h"
 #include "glpgp/status.h"
 
@@ -68,27 +69,9 @@ int glpgp_cli_usage_error(const char *sub, const char *fmt, ...)
     return glpgp_cli_reported(GLPGP_EXIT_USAGE);
 }
 
-int glpgp_cli_double(const char *s, double *out)
-{
-    if (!s || !*s) return 0;
-    char *end = NULL;
-    errno = 0;
-    double v = strtod(s, &end);
-    if (end == s || *end != '\0' || errno == ERANGE || !isfinite(v)) return 0;
-    *out = v;
-    return 1;
-}
+int glpgp_cli_double(const char *s, double *out) { return glpgp_parse_double(s, out); }
 
-int glpgp_cli_long(const char *s, long lo, long hi, long *out)
-{
-    if (!s || !*s) return 0;
-    char *end = NULL;
-    errno = 0;
-    long v = strtol(s, &end, 10);
-    if (end == s || *end != '\0' || errno == ERANGE || v < lo || v > hi) return 0;
-    *out = v;
-    return 1;
-}
+int glpgp_cli_long(const char *s, long lo, long hi, long *out) { return glpgp_parse_long(s, lo, hi, out); }
 
 int glpgp_cli_quads_verdict(const struct glpgp_quad_quality *qq, unsigned ignore, int allow, char *why, size_t n)
 {

@@ -72,11 +72,7 @@ static void build(glpgp_opts *t, solve_cli *c)
                    "mesh a .obj/.msh/.stl input again with Gmsh inside its boundary\n"
                    "points first (as 'glpgp mesh INPUT' does; --mesh-size, default\n"
                    "h / 8): for CAD exports whose triangles are fans of slivers");
-    glpgp_opt_flag(t, "--input-order", &c->o.vertex_order, GLPGP_ORDER_INPUT,
-                   "solve in the input's vertex numbering (default: renumbered in\n"
-                   "reverse Cuthill-McKee order for memory locality, the result\n"
-                   "written back in the input's order; not with per-vertex input\n"
-                   "files, whose lines follow the input's numbering)");
+    glpgp_opts_add_desc(t, glpgp_optdesc_find(glpgp_solve_option_table(), "input-order"), &c->o);
     glpgp_opts_add_backend(t, &c->backend, &c->device);
     glpgp_opts_group(t, "Output");
     glpgp_opt *p = glpgp_opt_string(t, "--out", &c->out, "FILE",
@@ -298,105 +294,24 @@ static int prepare(solve_cli *c, const char *input, glpgp_mesh **pm, glpgp_size_
         glpgp_mesh_destroy(&m);
         return rc;
     }
-    /* the input is refined for the local size (auto / iso, refinement on,
-     * no per-vertex field file): h may be below 2 mean edges here (a graded
-     * input whose far field is coarser than h, a CAD export's fan of
-     * slivers; the refinement's own limits bound the work); the refined mesh
-     * is checked against the full rule below */
-    const int refine = !c->no_refine && c->o.field != GLPGP_FIELD_FILE &&
-                       (c->o.size_field == GLPGP_SIZE_AUTO || c->o.size_field == GLPGP_SIZE_ISO ||
-                        c->o.size_field == GLPGP_SIZE_FUNC);
-    /* slivers (a CAD export's fans): one warning naming the remedy */
-    {
-        double amin;
-        int nsliver;
-        glpgp_mesh_angles(m, GLPGP_SLIVER_DEG, &amin, &nsliver);
-        if (nsliver > 0 && nsliver >= 0.01 * m->nt)
-            glpgp_log(GLPGP_LOG_WARNING,
-                      "%s: %d of %d triangles have an angle below %g degrees (smallest %.3g): the solution is "
-                      "inaccurate on such slivers and refinement keeps them thin; remesh the domain first "
-                      "(--remesh, or glpgp mesh %s -o NEW.msh)",
-                      input, nsliver, m->nt, GLPGP_SLIVER_DEG, amin, input);
-    }
-    /* a mesh too coarse for the default size (diameter / 20): the default
-     * raised to 10 mean edges would leave a handful of quads (an STL-style
-     * fan of a disk: h = 6.8 for a diameter of 2); refined for diameter / 20
-     * instead */
-    if (refine && !(c->o.size > 0.0)) {
-        const double dx = m->bbox[2] - m->bbox[0], dy = m->bbox[3] - m->bbox[1], diag = sqrt(dx * dx + dy * dy);
-        if (glpgp_default_size(m, &c->o) > diag / GLPGP_SIZE_DEFAULT_MIN_QUADS) {
-            c->o.size = diag / c->o.size_diag_div;
-            glpgp_log(GLPGP_LOG_INFO,
-                      "the input is too coarse for the default size (mean edge %.3g): h = diameter / %g = %.4g, "
-                      "the mesh refined for it",
-                      m->mean_edge, c->o.size_diag_div, c->o.size);
-        }
-    }
-    glpgp_status chk;
-    /* below 2 mean edges the mesh is refined to edges of h / R (R =
-     * size_resolution) at least: 2.31 area / (h / R)^2 triangles (equilateral),
-     * refused before any work above --max-elements (the refinement's own
-     * limits would stop it only after seconds and gigabytes) */
+    /* the same preparation as every front end: slivers, the default size
+     * of a coarse input, the size checks, the refinement */
     const double max_tri = c->mo.max_triangles > 0 ? (double)c->mo.max_triangles : (double)GLPGP_DEFAULT_MAX_ELEMENTS;
-    const double l_ref = c->o.size / c->o.size_resolution;
-    if (refine && c->o.size > 0.0 && c->o.size < GLPGP_SIZE_MIN_EDGES * m->mean_edge &&
-        !(2.31 * m->area / (l_ref * l_ref) <= max_tri)) {
-        rc = glpgp_cli_usage_error("solve",
-                                   "--size: size h = %g is %.3g mean edge lengths of the mesh: refined for it, the "
-                                   "mesh would have about %.3g triangles, more than --max-elements %.0f",
-                                   c->o.size, c->o.size / m->mean_edge, 2.31 * m->area / (l_ref * l_ref), max_tri);
-        glpgp_mesh_destroy(&m);
-        glpgp_size_image_destroy(psimg);
-        return rc;
-    }
-    if (refine && c->o.size > 0.0 && c->o.size < GLPGP_SIZE_MIN_EDGES * m->mean_edge) {
-        glpgp_options big = c->o;
-        big.size = GLPGP_SIZE_MIN_EDGES * m->mean_edge; /* the other rules (diameter, options) */
-        chk = glpgp_options_check_mesh(&big, m);
-    } else {
-        chk = glpgp_options_check_mesh(&c->o, m);
-    }
-    if (chk != GLPGP_OK) {
+    glpgp_prepare_info pi;
+    glpgp_mesh *mr = NULL;
+    if (glpgp_solve_prepare(m, &c->o, input, max_tri, !c->no_refine, &mr, &pi) != GLPGP_OK) {
+        c->refined = pi.refined;
+        if (!pi.usage) goto fail;
         rc = glpgp_cli_usage_error("solve", "--size: %s", glpgp_error_message());
         glpgp_error_clear();
         glpgp_mesh_destroy(&m);
         glpgp_size_image_destroy(psimg);
         return rc;
     }
-    if (c->o.field == GLPGP_FIELD_FILE) {
-        /* read the field file now: a bad one fails before the backend starts
-         * (the solve reads it again) */
-        double *u = NULL;
-        long cg = 0;
-        glpgp_status st = glpgp_malloc(2 * (size_t)m->nv, sizeof *u, &u);
-        if (st == GLPGP_OK) st = glpgp_field_compute(m, NULL, &c->o, u, &cg);
-        free(u);
-        if (st != GLPGP_OK) goto fail;
-    }
-
-    /* triangles coarser than the local size: refined (longest-edge
-     * bisection), the size h fixed from the input mesh first */
-    memset(&c->refined, 0, sizeof c->refined);
-    /* a guiding field read from a file belongs to the input's vertices: no
-     * refinement then (the size field stays limited to what the mesh resolves) */
-    if (refine) {
-        const double h = c->o.size > 0.0 ? c->o.size : glpgp_default_size(m, &c->o);
-        glpgp_mesh *mr = NULL;
-        if (glpgp_size_refine(m, &c->o, h, &mr, &c->refined) != GLPGP_OK) goto fail;
-        if (mr) {
-            glpgp_log(GLPGP_LOG_INFO, "refined the input for the local size: %d -> %d vertices in %d rounds",
-                      c->refined.nv0, c->refined.nv, c->refined.rounds);
-            glpgp_mesh_destroy(&m);
-            m = mr;
-            c->o.size = h;
-            if (c->mo.max_triangles > 0 && m->nt > c->mo.max_triangles) {
-                GLPGP_FAIL(GLPGP_ERR_LIMIT, "the refined mesh has %d triangles, above --max-elements %ld", m->nt,
-                           c->mo.max_triangles);
-                goto fail;
-            }
-        }
-        /* the full rule (h >= 2 mean edges) on the mesh that is solved */
-        if (glpgp_options_check_mesh(&c->o, m) != GLPGP_OK) goto fail;
+    c->refined = pi.refined;
+    if (mr) {
+        glpgp_mesh_destroy(&m);
+        m = mr;
     }
     *pm = m;
     return -1;

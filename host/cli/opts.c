@@ -102,20 +102,66 @@ glpgp_opt *glpgp_opt_choice(glpgp_opts *t, const char *name, int *dest, const ch
     return glpgp_opts_add(t, o);
 }
 
-/* ---- values ------------------------------------------------------------------ */
+static const glpgp_opt_kind k_cli_kind[] = {[GLPGP_OPTK_FLAG] = GLPGP_OPT_FLAG, [GLPGP_OPTK_INT] = GLPGP_OPT_INT,
+                                          [GLPGP_OPTK_DOUBLE] = GLPGP_OPT_DOUBLE,
+                                          [GLPGP_OPTK_CHOICE] = GLPGP_OPT_CHOICE,
+                                          [GLPGP_OPTK_TEXT] = GLPGP_OPT_CUSTOM};
 
-static int choice_value(const glpgp_opt *o, int k) { return o->values ? o->values[k] : k; }
-
-static void join_names(const char *const *names, const char *sep, char *buf, size_t len)
+glpgp_opt *glpgp_opts_add_desc(glpgp_opts *t, const glpgp_optdesc *d, void *obj)
 {
-    size_t n = 0;
-    buf[0] = '\0';
-    for (int k = 0; names[k]; k++) {
-        int w = snprintf(buf + n, len - n, "%s%s", k ? sep : "", names[k]);
-        if (w < 0 || (size_t)w >= len - n) break;
-        n += (size_t)w;
+    glpgp_opt o = {0};
+    o.kind = k_cli_kind[d->kind];
+    o.dest = d->kind == GLPGP_OPTK_TEXT ? obj : (char *)obj + d->offset;
+    o.lo = d->lo;
+    o.hi = d->hi;
+    o.lo_open = d->lo_open;
+    o.hi_open = d->hi_open;
+    o.ival = d->ival;
+    o.names = d->names;
+    o.values = d->values;
+    o.meta = d->meta;
+    o.help = d->help;
+    o.def = d->def;
+    if (d->kind == GLPGP_OPTK_FLAG && !o.def) o.def = "";
+    o.desc = d;
+    o.obj = obj;
+    glpgp_opt *p = glpgp_opts_add(t, o);
+    snprintf(p->namebuf, sizeof p->namebuf, "--%s", d->name);
+    p->name = p->namebuf;
+    return p;
+}
+
+void glpgp_opts_add_table(glpgp_opts *t, const glpgp_optdesc *table, void *obj)
+{
+    for (const glpgp_optdesc *d = table; d->name; d++) {
+        if (!d->group) continue;
+        if (strcmp(t->group, d->group) != 0) glpgp_opts_group(t, d->group);
+        glpgp_opts_add_desc(t, d, obj);
     }
 }
+
+/* ---- values: parsed and checked by the library (glpgp/optdesc.h) ------------- */
+
+static const glpgp_optkind k_desc_kind[] = {
+    [GLPGP_OPT_FLAG] = GLPGP_OPTK_FLAG, [GLPGP_OPT_INT] = GLPGP_OPTK_INT, [GLPGP_OPT_DOUBLE] = GLPGP_OPTK_DOUBLE,
+    [GLPGP_OPT_CHOICE] = GLPGP_OPTK_CHOICE};
+
+/* The descriptor of o (FLAG, INT, DOUBLE, CHOICE, or one from a library
+ * table) and the struct it sets, in *obj. */
+static glpgp_optdesc as_desc(const glpgp_opt *o, void **obj)
+{
+    if (o->desc) {
+        *obj = o->obj;
+        return *o->desc;
+    }
+    glpgp_optdesc d = {.name = o->name, .kind = k_desc_kind[o->kind], .offset = 0, .lo = o->lo, .hi = o->hi,
+                       .lo_open = o->lo_open, .hi_open = o->hi_open, .ival = o->ival, .names = o->names,
+                       .values = o->values, .def = o->def};
+    *obj = o->dest;
+    return d;
+}
+
+static int has_desc(const glpgp_opt *o) { return o->desc || (o->kind != GLPGP_OPT_STRING && o->kind != GLPGP_OPT_CUSTOM); }
 
 /* The default of o as text (from *dest, before parsing). */
 static void capture_default(glpgp_opt *o)
@@ -125,93 +171,31 @@ static void capture_default(glpgp_opt *o)
         return;
     }
     o->defbuf[0] = '\0';
-    switch (o->kind) {
-    case GLPGP_OPT_INT: snprintf(o->defbuf, sizeof o->defbuf, "%d", *(int *)o->dest); break;
-    case GLPGP_OPT_DOUBLE: snprintf(o->defbuf, sizeof o->defbuf, "%g", *(double *)o->dest); break;
-    case GLPGP_OPT_STRING: {
+    if (o->kind == GLPGP_OPT_STRING) {
         const char *s = *(const char **)o->dest;
         if (s) snprintf(o->defbuf, sizeof o->defbuf, "%s", s);
-        break;
+    } else if (has_desc(o)) {
+        void *obj;
+        glpgp_optdesc d = as_desc(o, &obj);
+        glpgp_optdesc_default(&d, obj, o->defbuf, sizeof o->defbuf);
     }
-    case GLPGP_OPT_CHOICE:
-        for (int k = 0; o->names[k]; k++)
-            if (choice_value(o, k) == *(int *)o->dest) snprintf(o->defbuf, sizeof o->defbuf, "%s", o->names[k]);
-        break;
-    default: break;
-    }
-}
-
-/* Text describing the accepted range of a number ("a positive number", ...). */
-static void describe_range(const glpgp_opt *o, char *buf, size_t len)
-{
-    const char *what = o->kind == GLPGP_OPT_INT ? "an integer" : "a number";
-    int lo_inf = o->lo == -HUGE_VAL, hi_inf = o->hi == HUGE_VAL;
-    if (o->kind == GLPGP_OPT_INT) {
-        lo_inf = o->lo <= (double)INT_MIN;
-        hi_inf = o->hi >= (double)INT_MAX;
-    }
-    if (lo_inf && hi_inf)
-        snprintf(buf, len, "%s", what);
-    else if (hi_inf && o->lo == 0.0 && o->lo_open && o->kind == GLPGP_OPT_DOUBLE)
-        snprintf(buf, len, "a positive number");
-    else if (hi_inf)
-        snprintf(buf, len, "%s %s %g", what, o->lo_open ? ">" : ">=", o->lo);
-    else if (lo_inf)
-        snprintf(buf, len, "%s %s %g", what, o->hi_open ? "<" : "<=", o->hi);
-    else
-        snprintf(buf, len, "%s in %c%g, %g%c", what, o->lo_open ? '(' : '[', o->lo, o->hi,
-                 o->hi_open ? ')' : ']');
 }
 
 /* Store value v into o. Returns -1, or the usage-error exit code. */
 static int apply(glpgp_opts *t, glpgp_opt *o, const char *v)
 {
-    char range[96];
-    switch (o->kind) {
-    case GLPGP_OPT_FLAG: *(int *)o->dest = o->ival; break;
-    case GLPGP_OPT_INT: {
-        long l;
-        long lo = o->lo <= (double)LONG_MIN ? LONG_MIN : (long)o->lo;
-        long hi = o->hi >= (double)LONG_MAX ? LONG_MAX : (long)o->hi;
-        if (!glpgp_cli_long(v, lo, hi, &l)) {
-            describe_range(o, range, sizeof range);
-            return glpgp_cli_usage_error(t->cmd, "%s: '%s' is not %s", o->name, v, range);
-        }
-        *(int *)o->dest = (int)l;
-        break;
-    }
-    case GLPGP_OPT_DOUBLE: {
-        double d;
-        int ok = glpgp_cli_double(v, &d);
-        if (ok) ok = o->lo_open ? d > o->lo : d >= o->lo;
-        if (ok) ok = o->hi_open ? d < o->hi : d <= o->hi;
-        if (!ok) {
-            describe_range(o, range, sizeof range);
-            return glpgp_cli_usage_error(t->cmd, "%s: '%s' is not %s", o->name, v, range);
-        }
-        *(double *)o->dest = d;
-        break;
-    }
-    case GLPGP_OPT_STRING:
+    if (o->kind == GLPGP_OPT_STRING) {
         if (!*v) return glpgp_cli_usage_error(t->cmd, "%s: empty value", o->name);
         *(const char **)o->dest = v;
-        break;
-    case GLPGP_OPT_CHOICE: {
-        for (int k = 0; o->names[k]; k++)
-            if (!strcmp(v, o->names[k])) {
-                *(int *)o->dest = choice_value(o, k);
-                if (o->seen) *o->seen = 1;
-                return -1;
-            }
-        char names[256];
-        join_names(o->names, ", ", names, sizeof names);
-        return glpgp_cli_usage_error(t->cmd, "%s: '%s' is not one of %s", o->name, v, names);
-    }
-    case GLPGP_OPT_CUSTOM: {
+    } else if (!has_desc(o)) {
         const char *why = o->parse(v, o->dest);
         if (why) return glpgp_cli_usage_error(t->cmd, "%s: '%s' %s", o->name, v, why);
-        break;
-    }
+    } else {
+        char why[320];
+        void *obj;
+        glpgp_optdesc d = as_desc(o, &obj);
+        if (glpgp_optdesc_set(&d, obj, v, why, sizeof why))
+            return glpgp_cli_usage_error(t->cmd, "%s: '%s' %s", o->name, v, why);
     }
     if (o->seen) *o->seen = 1;
     return -1;
@@ -283,8 +267,10 @@ void glpgp_opts_usage(glpgp_opts *t, FILE *f)
         }
         char left[160], meta[128];
         meta[0] = '\0';
-        if (o->kind == GLPGP_OPT_CHOICE && !o->meta)
-            join_names(o->names, "|", meta, sizeof meta);
+        if (o->kind == GLPGP_OPT_CHOICE && !o->meta) {
+            const glpgp_optdesc d = {.kind = GLPGP_OPTK_CHOICE, .names = o->names};
+            glpgp_optdesc_choices(&d, "|", meta, sizeof meta);
+        }
         else if (o->meta)
             snprintf(meta, sizeof meta, "%s", o->meta);
         snprintf(left, sizeof left, "  %s%s%s%s%s", o->name, o->alias ? ", " : "", o->alias ? o->alias : "",
@@ -331,60 +317,6 @@ void glpgp_opts_add_verbosity(glpgp_opts *t, int *v)
     glpgp_opt_flag(t, "--verbose", v, 2, "debug progress on stderr, and error traces");
 }
 
-static const char *parse_center(const char *v, void *dest)
-{
-    glpgp_options *o = dest;
-    const char *comma = strchr(v, ',');
-    char xs[128];
-    size_t n = comma ? (size_t)(comma - v) : 0;
-    if (!comma || n >= sizeof xs) return "is not X,Y (two numbers)";
-    memcpy(xs, v, n);
-    xs[n] = '\0';
-    if (!glpgp_cli_double(xs, &o->center[0]) || !glpgp_cli_double(comma + 1, &o->center[1]))
-        return "is not X,Y (two numbers)";
-    o->has_center = 1;
-    return NULL;
-}
-
-static const char *parse_field(const char *v, void *dest)
-{
-    glpgp_options *o = dest;
-    if (!*v) return "is empty";
-    if (!strcmp(v, "boundary")) {
-        o->field = GLPGP_FIELD_BOUNDARY;
-    } else if (!strcmp(v, "radial")) {
-        o->field = GLPGP_FIELD_RADIAL;
-    } else if (!strcmp(v, "cross")) {
-        o->field = GLPGP_FIELD_CROSS;
-    } else {
-        o->field = GLPGP_FIELD_FILE;
-        o->field_file = v;
-    }
-    return NULL;
-}
-
-static const char *parse_size_field(const char *v, void *dest)
-{
-    glpgp_options *o = dest;
-    if (!*v) return "is empty";
-    if (!strcmp(v, "auto")) {
-        o->size_field = GLPGP_SIZE_AUTO;
-    } else if (!strcmp(v, "iso")) {
-        o->size_field = GLPGP_SIZE_ISO;
-    } else if (!strcmp(v, "none")) {
-        o->size_field = GLPGP_SIZE_NONE;
-    } else if (glpgp_is_image_path(v)) {
-        /* a grey-level image: the command reads it once the domain is known
-         * (glpgp_cli_size_image sets size_fn) */
-        o->size_field = GLPGP_SIZE_FUNC;
-        o->size_file = v;
-    } else {
-        o->size_field = GLPGP_SIZE_FILE;
-        o->size_file = v;
-    }
-    return NULL;
-}
-
 static const char *parse_box(const char *v, void *dest)
 {
     double *box = dest, b[4];
@@ -419,141 +351,9 @@ void glpgp_opts_add_size_image(glpgp_opts *t, double box[4])
     glpgp_opts_add(t, c);
 }
 
-static const char *const k_methods[] = {"gl", "pgp", NULL};
-static const int k_method_vals[] = {GLPGP_METHOD_GL, GLPGP_METHOD_PGP};
-static const char *const k_energies[] = {"p1", "transport", NULL};
-static const int k_energy_vals[] = {GLPGP_ELEM_P1, GLPGP_ELEM_TRANSPORT};
-static const char *const k_newtons[] = {"mixed", "projected", "paper", NULL};
-static const int k_newton_vals[] = {GLPGP_HESS_MIXED, GLPGP_HESS_PROJECTED, GLPGP_HESS_PAPER};
-static const char *const k_globals[] = {"trust-region", "line-search", NULL};
-static const int k_global_vals[] = {GLPGP_GLOBAL_TRUST_REGION, GLPGP_GLOBAL_LINE_SEARCH};
-static const char *const k_preconds[] = {"jacobi", "amg", NULL};
-static const int k_precond_vals[] = {GLPGP_PRECOND_JACOBI, GLPGP_PRECOND_AMG};
-static const char *const k_couplings[] = {"auto", "off", "on", NULL};
-static const int k_coupling_vals[] = {GLPGP_COUPLING_AUTO, GLPGP_COUPLING_OFF, GLPGP_COUPLING_ON};
-static const char *const k_cross_sizes[] = {"off", "on", "auto", NULL};
-static const int k_cross_size_vals[] = {GLPGP_CROSS_SIZE_OFF, GLPGP_CROSS_SIZE_ON, GLPGP_CROSS_SIZE_AUTO};
-static const char *const k_oscs[] = {"auto", "concurrent", "sequential", NULL};
-static const int k_osc_vals[] = {GLPGP_OSC_AUTO, GLPGP_OSC_CONCURRENT, GLPGP_OSC_SEQUENTIAL};
-static const char *const k_inits[] = {"naive", "one", NULL};
-static const int k_init_vals[] = {GLPGP_INIT_NAIVE, GLPGP_INIT_ONE};
-
 void glpgp_opts_add_solver(glpgp_opts *t, glpgp_options *o)
 {
-    glpgp_opts_group(t, "Parametrization");
-    glpgp_opt *p = glpgp_opt_double(t, "--size", &o->size, 0.0, 1, HUGE_VAL, 0, "H",
-                                    "target quad size h, the period of the oscillators");
-    p->def = "bounding-box diagonal / 20, at least 10 mean edges";
-    glpgp_opt_choice(t, "--method", &o->method, k_methods, k_method_vals,
-                     "Ginzburg-Landau continuation or naive PGP (one linear solve)");
-    glpgp_opt_choice(t, "--energy", &o->energy, k_energies, k_energy_vals,
-                     "discretisation of the quadratic energy: P1 finite elements or\n"
-                     "the edge-transport (cotan) form of the original PGP");
-    glpgp_opt_choice(t, "--newton", &o->hess, k_newtons, k_newton_vals,
-                     "penalty Hessian used by Newton: exact where |z|^2 >= 1/2 and\n"
-                     "projected in vortex cores (the trust region uses the exact one\n"
-                     "everywhere), projected (PSD) everywhere, or the paper's eq. 8");
-    glpgp_opt_choice(t, "--globalization", &o->globalization, k_globals, k_global_vals,
-                     "Newton step: trust region on the exact Hessian (Steihaug CG,\n"
-                     "polar trial points), or the line search of the modified Newton");
-    glpgp_opt_choice(t, "--tr-precond", &o->tr_precond, k_preconds, k_precond_vals,
-                     "with --precond amg: preconditioner and norm of the trust region's\n"
-                     "Steihaug CG: 2x2-block Jacobi, or a symmetric multigrid W-cycle\n"
-                     "built on the projected Hessian");
-    glpgp_opt c = {0};
-    c.name = "--field";
-    c.kind = GLPGP_OPT_CUSTOM;
-    c.dest = o;
-    c.parse = parse_field;
-    c.meta = "boundary|radial|cross|FILE";
-    c.help = "guiding field U: smooth field aligned with the boundary, radial\n"
-             "about --center, from the Ginzburg-Landau cross field (see\n"
-             "--cross-eps0), or one \"ux uy\" line per vertex from FILE";
-    c.def = "boundary";
-    glpgp_opts_add(t, c);
-    c.name = "--center";
-    c.parse = parse_center;
-    c.meta = "X,Y";
-    c.help = "centre of the radial field";
-    c.def = "area centroid";
-    glpgp_opts_add(t, c);
-    glpgp_opt_choice(t, "--init", &o->init, k_inits, k_init_vals,
-                     "initial guess of the GL continuation: the normalised naive PGP\n"
-                     "solution, or z = 1");
-    c.name = "--size-field";
-    c.parse = parse_size_field;
-    c.meta = "auto|iso|none|FILE|IMAGE";
-    c.help = "local size h(x) <= h: auto shrinks it where the domain (a wall,\n"
-             "strip, web) is thinner than --size-across periods, per\n"
-             "oscillator along its direction, and refines the input there;\n"
-             "iso: the same for both; none: h everywhere (the input as it\n"
-             "is); FILE: one \"h\" or \"h_u h_v\" line per vertex; IMAGE (.png,\n"
-             ".tif, .exr, ...): auto, further limited to the grey level times\n"
-             "h (black: --size-min h, white: h) over --size-image-box";
-    c.def = "auto";
-    glpgp_opts_add(t, c);
-    glpgp_opt_double(t, "--size-grading", &o->size_grading, 0.0, 1, HUGE_VAL, 0, "G",
-                     "local size grows at most G per unit length:\n"
-                     "h(x) <= h(y) + G |x - y| along mesh edges");
-    glpgp_opt_double(t, "--size-across", &o->size_across, 1.0, 0, HUGE_VAL, 0, "N",
-                     "periods (quads) across the thinnest features");
-    glpgp_opt_double(t, "--size-min", &o->size_min, 0.0, 1, 1.0, 0, "F",
-                     "smallest local size, as a fraction of h (cusps and wedge tips\n"
-                     "stop there; black in a --size-field IMAGE)");
-    glpgp_opt_double(t, "--size-chord-area", &o->size_chord_area, 0.0, 0, 1.0, 1, "F",
-                     "curved boundaries: when the boundary quads' chords would cut\n"
-                     "(convex arcs) net of what they add (holes) more than F of the\n"
-                     "domain's area (arcs of few chords per turn not netted), the\n"
-                     "size near those parts is capped at c x the radius of curvature\n"
-                     "(c the largest that brings them within F); 0: off");
-    glpgp_opt_double(t, "--size-chord-depth", &o->size_chord_depth, 0.0, 0, 1.0, 1, "F",
-                     "curved boundaries: a chord's depth (sagitta) stays below F h\n"
-                     "(the size is capped where it would not); 0: off");
-
-    glpgp_opts_group(t, "Continuation and solvers");
-    glpgp_opt_double(t, "--eps0", &o->eps0, 0.0, 1, HUGE_VAL, 0, "F", "first eps, as a multiple of h");
-    glpgp_opt_double(t, "--cross-eps0", &o->cross_eps0, 0.0, 1, HUGE_VAL, 0, "F",
-                     "--field cross: first eps, as a multiple of the bounding-box diagonal");
-    glpgp_opt_double(t, "--cross-eps-min", &o->cross_eps_min, 0.0, 1, HUGE_VAL, 0, "F",
-                     "--field cross: last eps, as a multiple of the mean edge length");
-    glpgp_opt_double(t, "--cross-rtol", &o->cross_rtol, 0.0, 1, 1.0, 1, "F",
-                     "--field cross: each eps level stops when |g| <= F |g0|");
-    glpgp_opt_choice(t, "--cross-size", &o->cross_size, k_cross_sizes, k_cross_size_vals,
-                     "--field cross: local size from the cross field (its conformal\n"
-                     "scale, which makes the quads' grid integrable away from the\n"
-                     "singularities: fewer dislocations), the smaller of it and\n"
-                     "--size-field's; on: fully conformal (largest size h); auto: h at\n"
-                     "the --cross-size-quantile of the conformal scale, at least\n"
-                     "h / --cross-size-ratio");
-    glpgp_opt_double(t, "--cross-size-quantile", &o->cross_size_quantile, 0.0, 1, 1.0, 0, "F",
-                     "--cross-size auto: the conformal scale's quantile over the vertices\n"
-                     "that gets size h (larger scales are capped at h)");
-    glpgp_opt_double(t, "--cross-size-ratio", &o->cross_size_ratio, 1.0, 0, HUGE_VAL, 1, "C",
-                     "--cross-size auto: the size stays at least h / C");
-    glpgp_opt_choice(t, "--cross-coupling", &o->cross_coupling, k_couplings, k_coupling_vals,
-                     "--field cross with singularities: solve u and v coupled across the\n"
-                     "cross field's cuts (auto: when it has cuts and the backend can,\n"
-                     "on: an error where the backend cannot), or apart (off)");
-    glpgp_opt_double(t, "--eps-ratio", &o->eps_ratio, 0.0, 1, 1.0, 1, "F", "eps_{k+1} = F eps_k");
-    glpgp_opt_double(t, "--eps-min", &o->eps_min, 0.0, 1, HUGE_VAL, 0, "F",
-                     "last eps, as a multiple of the mean edge length");
-    glpgp_opt_double(t, "--newton-rtol", &o->newton_rtol, 0.0, 1, 1.0, 1, "F",
-                     "the last level stops when |g| <= F |g0|");
-    glpgp_opt_int(t, "--newton-max", &o->newton_max, 1, INT_MAX, "N", "Newton iterations per eps level");
-    glpgp_opt_double(t, "--cg-rtol", &o->cg_rtol, 0.0, 1, 1.0, 1, "F", "CG stops when |r| <= F |b|");
-    glpgp_opt_int(t, "--cg-max", &o->cg_max, 1, INT_MAX, "N", "CG iteration cap");
-    glpgp_opt_int(t, "--cg-check", &o->cg_check, 1, INT_MAX, "N",
-                  "read the CG residual back every N iterations");
-    glpgp_opt_choice(t, "--precond", &o->precond, k_preconds, k_precond_vals,
-                     "preconditioner of the linear solves: 2x2-block Jacobi CG, or\n"
-                     "aggregation multigrid (K-cycle, flexible CG; falls back to\n"
-                     "Jacobi with one warning on a backend without it)");
-    glpgp_opt_choice(t, "--oscillators", &o->oscillators, k_oscs, k_osc_vals,
-                     "u and v at the same time (v on a second copy of the backend\n"
-                     "in a second thread; the same result bit for bit) or one after\n"
-                     "the other; auto: concurrent where measured to pay (reference\n"
-                     "backend; multigrid on an OpenCL CPU device up to 500k vertices)\n"
-                     "with two or more processors and memory for the copy");
+    glpgp_opts_add_table(t, glpgp_solve_option_table(), o);
 }
 
 static const char *const k_backends[] = {"auto", "opencl", "reference", "petsc", NULL};
@@ -575,56 +375,17 @@ void glpgp_opts_add_backend(glpgp_opts *t, int *kind, int *device)
 
 void glpgp_opts_add_quads(glpgp_opts *t, glpgp_quad_options *q, int *given, int *allow_invalid)
 {
-    glpgp_opt *o = glpgp_opt_flag(t, "--keep-polygons", &q->keep_polygons, 1,
-                                  "keep the faces left around dislocations as polygons\n"
-                                  "(default: join them pairwise or to the boundary by strips\n"
-                                  "of quads cut in two: all quads, same size)");
-    o->seen = given;
-    o = glpgp_opt_int(t, "--smooth", &q->smooth, 0, 100000, "N",
-                      "smoothing sweeps around the new vertices and the faces with\n"
-                      "scaled Jacobian < 0.5 (0: off; a move is kept only if no nearby\n"
-                      "corner gets worse)");
-    o->seen = given;
-    o = glpgp_opt_flag(t, "--all-quads", &q->all_quads, 1,
-                       "refine every face into quads (centroid + edge midpoints):\n"
-                       "half the element size");
-    o->seen = given;
-    o = glpgp_opt_flag(t, "--no-repair", &q->repair, 0,
-                       "do not re-mesh the regions where the extracted mesh is invalid\n"
-                       "(default: remove the bad faces and their neighbours and fill the\n"
-                       "hole with quads)");
-    o->seen = given;
-    o = glpgp_opt_flag(t, "--no-cleanup", &q->cleanup, 0,
-                       "keep the irregular vertices the repair and the strips leave\n"
-                       "(default: doublet removal, diagonal collapse and edge rotation\n"
-                       "where they lower the irregular vertices and keep the quality)");
-    o->seen = given;
-    o = glpgp_opt_flag(t, "--allow-invalid", allow_invalid, 1,
-                       "write an invalid quad mesh anyway, with a warning (default: not\n"
-                       "written, exit code 3)");
+    for (const glpgp_optdesc *d = glpgp_quad_option_table(); d->name; d++) glpgp_opts_add_desc(t, d, q)->seen = given;
+    glpgp_opt *o = glpgp_opt_flag(t, "--allow-invalid", allow_invalid, 1,
+                                  "write an invalid quad mesh anyway, with a warning (default: not\n"
+                                  "written, exit code 3)");
     o->seen = given;
 }
 
-static const char *const k_kinds[] = {"grid", "checker", "zabs", "field", "theta", "cross", NULL};
-static const int k_kind_vals[] = {GLPGP_IMAGE_GRID, GLPGP_IMAGE_CHECKER, GLPGP_IMAGE_ZABS,
-                                  GLPGP_IMAGE_FIELD, GLPGP_IMAGE_THETA, GLPGP_IMAGE_CROSS};
-static const char *const k_backgrounds[] = {"white", "transparent", NULL};
-
 void glpgp_opts_add_picture(glpgp_opts *t, glpgp_render_options *r, int line_width)
 {
-    glpgp_opt_int(t, "--image-size", &r->size, 16, 32768, "N", "pixels on the long side");
-    glpgp_opt_choice(t, "--image-kind", &r->kind, k_kinds, k_kind_vals,
-                     "grid (unit grid of theta_u, theta_v: the paper's Fig. 4),\n"
-                     "checker, zabs (heat map of min |z_u|, |z_v|), field (arrows of\n"
-                     "the guiding field U), theta (red = theta_u, green = theta_v),\n"
-                     "cross (the cross field of a --field cross result, singularities\n"
-                     "marked: +1/4 red, -1/4 blue)");
-    glpgp_opt_choice(t, "--background", &r->transparent, k_backgrounds, NULL, "picture background");
-    if (line_width) {
-        glpgp_opt *o = glpgp_opt_double(t, "--line-width", &r->line_width, 0.0, 1, 100.0, 0, "W",
-                                        "grid line width in pixels");
-        o->def = "max(1, 1.5 N / 1024)";
-    }
+    for (const glpgp_optdesc *d = glpgp_render_option_table(); d->name; d++)
+        if (line_width || strcmp(d->name, "line-width") != 0) glpgp_opts_add_desc(t, d, r);
 }
 
 static const char *const k_algorithms[] = {"frontal", "delaunay", NULL};

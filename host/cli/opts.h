@@ -12,6 +12,7 @@
 #define GLPGP_CLI_OPTS_H
 
 #include "glpgp/backends.h"
+#include "glpgp/optdesc.h"
 #include "glpgp/image.h"
 #include "glpgp/quads.h"
 #include "glpgp/solve.h"
@@ -44,6 +45,9 @@ typedef struct glpgp_opt {
     int *seen;                 /* set to 1 when the option is given (may be NULL) */
     char defbuf[128];           /* internal: the default, captured before parsing */
     const char *group;         /* internal: title of its group */
+    const glpgp_optdesc *desc; /* internal: the library's descriptor (glpgp_opts_add_desc), or NULL */
+    void *obj;                 /* internal: the struct desc describes */
+    char namebuf[64];          /* internal: "--" + desc->name */
 } glpgp_opt;
 
 #define GLPGP_OPTS_MAX 96
@@ -65,6 +69,12 @@ void glpgp_opts_init(glpgp_opts *t, const char *cmd, const char *usage, const ch
 void glpgp_opts_group(glpgp_opts *t, const char *title);
 /* Add one option (copied). Returns a pointer to the stored entry. */
 glpgp_opt *glpgp_opts_add(glpgp_opts *t, glpgp_opt o);
+
+/* Add the option of a library table (glpgp/optdesc.h) setting a member of
+ * obj, and every option of a table whose group is not NULL (each under its
+ * group). Values are parsed and checked by the library (glpgp_optdesc_set). */
+glpgp_opt *glpgp_opts_add_desc(glpgp_opts *t, const glpgp_optdesc *d, void *obj);
+void glpgp_opts_add_table(glpgp_opts *t, const glpgp_optdesc *table, void *obj);
 
 /* Shorthands. */
 glpgp_opt *glpgp_opt_flag(glpgp_opts *t, const char *name, int *dest, int value, const char *help);

@@ -2,11 +2,16 @@
  * (glpgp/util.h: glpgp_module_dirs_get, glpgp_module_find), one search for
  * the image modules (image/module.c) and the PETSc backend module
  * (backends/petsc_load.c): $GLPGP_MODULE_DIR alone when set; otherwise
- * <directory of the executable>/GLPGP_MODULE_EXE_REL, then
+ * <directory of the executable>/GLPGP_MODULE_EXE_REL, then, when glpgp's
+ * code is in a shared object other than the executable (the Python
+ * extension, glpgp/_glpgp*.so), <its directory>/modules, then
  * GLPGP_MODULE_INSTALL_DIR, then GLPGP_MODULE_BUILD_DIR (compile
  * definitions from host/CMakeLists.txt). */
+#define _GNU_SOURCE /* dladdr */
 #include "glpgp/util.h"
 
+#include <dlfcn.h>
+#include <limits.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -49,6 +54,19 @@ void glpgp_module_dirs_get(glpgp_module_dirs *d)
             }
             char dir[GLPGP_MODULE_PATH_LEN];
             if (snprintf(dir, sizeof dir, "%s/%s", exe, rel) < (int)sizeof dir) add_dir(d, dir);
+        }
+    }
+    /* the shared object that holds this code, when it is not the executable:
+     * the Python package keeps its modules beside its extension */
+    Dl_info info;
+    char obj[PATH_MAX], self[PATH_MAX];
+    if (dladdr((void *)glpgp_module_dirs_get, &info) && info.dli_fname && realpath(info.dli_fname, obj) &&
+        (!realpath("/proc/self/exe", self) || strcmp(obj, self) != 0)) {
+        char *slash = strrchr(obj, '/');
+        char dir[GLPGP_MODULE_PATH_LEN];
+        if (slash) {
+            *slash = '\0';
+            if (snprintf(dir, sizeof dir, "%s/modules", obj) < (int)sizeof dir) add_dir(d, dir);
         }
     }
 #ifdef GLPGP_MODULE_INSTALL_DIR

@@ -33,6 +33,7 @@ const char *glpgp_status_name(glpgp_status st)
     case GLPGP_ERR_OPENCL: return "OpenCL error";
     case GLPGP_ERR_UNSUPPORTED: return "unsupported";
     case GLPGP_ERR_LIMIT: return "resource limit";
+    case GLPGP_ERR_CANCELLED: return "cancelled";
     }
     return "unknown error";
 }

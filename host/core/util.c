@@ -96,3 +96,14 @@ int glpgp_has_ext(const char *path, const char *ext)
         if (tolower((unsigned char)path[n - k + i]) != ext[i]) return 0;
     return 1;
 }
+
+int glpgp_is_image_path(const char *path)
+{
+    static const char *const ext[] = {".png", ".tif", ".tiff", ".exr", ".jpg", ".jpeg", ".bmp",
+                                      ".pgm", ".ppm", ".pnm", ".tga", ".gif", ".webp", ".hdr",
+                                      NULL};
+    if (!path) return 0;
+    for (int k = 0; ext[k]; k++)
+        if (glpgp_has_ext(path, ext[k])) return 1;
+    return 0;
+}

@@ -46,17 +46,6 @@ void glpgp_image_destroy(glpgp_image **im)
     *im = NULL;
 }
 
-int glpgp_is_image_path(const char *path)
-{
-    static const char *const ext[] = {".png", ".tif", ".tiff", ".exr", ".jpg", ".jpeg", ".bmp",
-                                      ".pgm", ".ppm", ".pnm", ".tga", ".gif", ".webp", ".hdr",
-                                      NULL};
-    if (!path) return 0;
-    for (int k = 0; ext[k]; k++)
-        if (glpgp_has_ext(path, ext[k])) return 1;
-    return 0;
-}
-
 glpgp_status glpgp_image_read_limited(const char *path, long long max_pixels, glpgp_image **out)
 {
     if (!path || !out) return GLPGP_FAIL(GLPGP_ERR_ARG, "glpgp_image_read: NULL argument");

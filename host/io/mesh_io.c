@@ -801,6 +801,38 @@ done:
     return st;
 }
 
+glpgp_status glpgp_mesh_from_arrays(const char *name, int nv, const double *x, int dim, int nt, const int *tri,
+                                    glpgp_mesh **out)
+{
+    *out = NULL;
+    if (!name) name = "mesh";
+    if (dim != 2 && dim != 3) return GLPGP_FAIL(GLPGP_ERR_ARG, "%s: vertices must have 2 or 3 coordinates, not %d", name, dim);
+    if (nv < 0 || nt < 0 || nv > GLPGP_IO_MAX_ITEMS || nt > GLPGP_IO_MAX_ITEMS)
+        return GLPGP_FAIL(GLPGP_ERR_LIMIT, "%s: %d vertices, %d triangles: more than %ld", name, nv, nt,
+                          (long)GLPGP_IO_MAX_ITEMS);
+    for (long i = 0; i < (long)dim * nv; i++)
+        if (!isfinite(x[i]))
+            return GLPGP_FAIL(GLPGP_ERR_MESH, "%s: vertex %ld has a coordinate that is not finite", name, i / dim);
+    for (long i = 0; i < 3L * nt; i++)
+        if (tri[i] < 0 || tri[i] >= nv)
+            return GLPGP_FAIL(GLPGP_ERR_MESH, "%s: triangle %ld uses vertex %d, not in [0, %d)", name, i / 3, tri[i],
+                              nv);
+    raw_mesh r;
+    memset(&r, 0, sizeof r);
+    glpgp_status st = glpgp_malloc((size_t)nv * 3 + 1, sizeof(double), &r.xyz);
+    if (st == GLPGP_OK) st = glpgp_malloc((size_t)nt * 3 + 1, sizeof(int), &r.tri);
+    if (st == GLPGP_OK) {
+        for (int v = 0; v < nv; v++)
+            for (int c = 0; c < 3; c++) r.xyz[3 * v + c] = c < dim ? x[(size_t)dim * v + c] : 0.0;
+        memcpy(r.tri, tri, sizeof(int) * 3 * (size_t)nt);
+        r.nv = r.cap_v = (size_t)nv;
+        r.nt = r.cap_t = (size_t)nt;
+        st = finish(name, &r, out);
+    }
+    raw_free(&r);
+    return st;
+}
+
 static void write_obj(FILE *f, const glpgp_mesh *m)
 {
     fprintf(f, "# glpgp mesh: %d vertices, %d triangles\n", m->nv, m->nt);

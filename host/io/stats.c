@@ -6,6 +6,9 @@
 
 #include "names.h"
 
+#include <stdio.h>
+#include <stdlib.h>
+
 static void stats_body(FILE *f, const glpgp_mesh *m, const glpgp_options *o, const glpgp_result *r,
                        const glpgp_stats_extra *x)
 {
@@ -270,4 +273,40 @@ glpgp_status glpgp_write_stats_json(const glpgp_mesh *m, const glpgp_options *op
     glpgp_output_set_destroy(&s);
     if (st != GLPGP_OK) glpgp_error_push_trace(__FILE__, __LINE__);
     return st;
+}
+
+/* the statistics as a string: the same writer on a memory stream */
+glpgp_status glpgp_stats_json_text(const glpgp_mesh *m, const glpgp_options *opts, const glpgp_result *r,
+                                   const glpgp_stats_extra *extra, char **out)
+{
+    *out = NULL;
+    if (!m || !r) return GLPGP_FAIL(GLPGP_ERR_ARG, "no mesh or no result to write");
+    size_t len = 0;
+    FILE *f = open_memstream(out, &len);
+    if (!f) return GLPGP_FAIL(GLPGP_ERR_NOMEM, "out of memory (statistics text)");
+    stats_body(f, m, opts, r, extra);
+    if (fclose(f) != 0 || !*out) {
+        free(*out);
+        *out = NULL;
+        return GLPGP_FAIL(GLPGP_ERR_NOMEM, "out of memory (statistics text)");
+    }
+    return GLPGP_OK;
+}
+
+glpgp_status glpgp_quads_json_text(const glpgp_quad_quality *qq, char **out)
+{
+    *out = NULL;
+    size_t len = 0;
+    FILE *f = open_memstream(out, &len);
+    if (!f) return GLPGP_FAIL(GLPGP_ERR_NOMEM, "out of memory (quality report text)");
+    glpgp_json w;
+    glpgp_json_init(&w, f);
+    glpgp_quads_json(&w, NULL, qq);
+    glpgp_json_finish(&w);
+    if (fclose(f) != 0 || !*out) {
+        free(*out);
+        *out = NULL;
+        return GLPGP_FAIL(GLPGP_ERR_NOMEM, "out of memory (quality report text)");
+    }
+    return GLPGP_OK;
 }

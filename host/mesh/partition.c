@@ -10,22 +10,23 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* qsort context (C11 qsort has none: one static per call chain; the
- * partition is computed single-threaded) */
-static const double *g_xy;
-static int g_axis;
+/* a vertex and its coordinate along the axis being split: sorted as records
+ * (no qsort context, so no static: safe from two threads) */
+typedef struct axis_rec {
+    double c;
+    int i;
+} axis_rec;
 
 static int cmp_axis(const void *a, const void *b)
 {
-    const int i = *(const int *)a, j = *(const int *)b;
-    const double x = g_xy[2 * i + g_axis], y = g_xy[2 * j + g_axis];
-    if (x < y) return -1;
-    if (x > y) return 1;
-    return (i > j) - (i < j);
+    const axis_rec *p = a, *q = b;
+    if (p->c < q->c) return -1;
+    if (p->c > q->c) return 1;
+    return (p->i > q->i) - (p->i < q->i);
 }
 
 /* parts [p0, p1) get the vertices v[0 .. n) (n = sum of their sizes) */
-static void rcb(const double *xy, int *v, int n, const int *size, int p0, int p1, int *part)
+static void rcb(const double *xy, int *v, int n, const int *size, int p0, int p1, int *part, axis_rec *rec)
 {
     if (p1 - p0 == 1) {
         for (int k = 0; k < n; k++) part[v[k]] = p0;
@@ -42,11 +43,12 @@ static void rcb(const double *xy, int *v, int n, const int *size, int p0, int p1
             if (c < lo[d]) lo[d] = c;
             if (c > hi[d]) hi[d] = c;
         }
-    g_xy = xy;
-    g_axis = hi[1] - lo[1] > hi[0] - lo[0] ? 1 : 0;
-    qsort(v, (size_t)n, sizeof *v, cmp_axis);
-    rcb(xy, v, nleft, size, p0, pm, part);
-    rcb(xy, v + nleft, n - nleft, size, pm, p1, part);
+    const int axis = hi[1] - lo[1] > hi[0] - lo[0] ? 1 : 0;
+    for (int k = 0; k < n; k++) rec[k] = (axis_rec){xy[2 * v[k] + axis], v[k]};
+    qsort(rec, (size_t)n, sizeof *rec, cmp_axis);
+    for (int k = 0; k < n; k++) v[k] = rec[k].i;
+    rcb(xy, v, nleft, size, p0, pm, part, rec);
+    rcb(xy, v + nleft, n - nleft, size, pm, p1, part, rec);
 }
 
 glpgp_status glpgp_mesh_partition(const glpgp_mesh *m, int nparts, const int *size, int *part)
@@ -60,11 +62,16 @@ glpgp_status glpgp_mesh_partition(const glpgp_mesh *m, int nparts, const int *si
     if (total != m->nv)
         return GLPGP_FAIL(GLPGP_ERR_ARG, "partition: part sizes sum to %ld, the mesh has %d vertices", total, m->nv);
     int *v = NULL;
-    GLPGP_CHECK(glpgp_malloc((size_t)m->nv, sizeof *v, &v));
-    for (int i = 0; i < m->nv; i++) v[i] = i;
-    rcb(m->xy, v, m->nv, size, 0, nparts, part);
+    axis_rec *rec = NULL;
+    glpgp_status st = glpgp_malloc((size_t)m->nv, sizeof *v, &v);
+    if (st == GLPGP_OK) st = glpgp_malloc((size_t)m->nv, sizeof *rec, &rec);
+    if (st == GLPGP_OK) {
+        for (int i = 0; i < m->nv; i++) v[i] = i;
+        rcb(m->xy, v, m->nv, size, 0, nparts, part, rec);
+    }
+    free(rec);
     free(v);
-    return GLPGP_OK;
+    return st;
 }
 
 /* BFS of the component of s (vertices not yet in order[0 .. *n)), neighbours by

@@ -721,13 +721,16 @@ static void pmap_free(pmap *p)
     memset(p, 0, sizeof *p);
 }
 
-static const graph *g_sort_graph;
-static double *g_sort_ang;
-static int cmp_he_angle(const void *pa, const void *pb)
+/* Sort the half-edges h[0 .. n) by ang[h], stable (insertion: a vertex has
+ * a handful of edges; no qsort context, so no static) */
+static void sort_he_angle(int *h, int n, const double *ang)
 {
-    int a = *(const int *)pa, b = *(const int *)pb;
-    double x = g_sort_ang[a], y = g_sort_ang[b];
-    return (x > y) - (x < y);
+    for (int i = 1; i < n; i++) {
+        const int x = h[i];
+        int j = i;
+        for (; j > 0 && ang[h[j - 1]] > ang[x]; j--) h[j] = h[j - 1];
+        h[j] = x;
+    }
 }
 
 static int he_orig(const graph *g, int h) { return h & 1 ? g->edge[h >> 1].b : g->edge[h >> 1].a; }
@@ -767,11 +770,9 @@ static glpgp_status pmap_build(const graph *g, pmap *p)
     for (int i = 0; i < g->nn; i++) p->rot_start[i + 1] = p->rot_start[i] + p->deg[i];
     for (int i = 0; i < g->nn; i++) fill[i] = p->rot_start[i];
     for (int h = 0; h < nh; h++) p->rot[fill[he_orig(g, h)]++] = h;
-    g_sort_graph = g;
-    g_sort_ang = ang;
     for (int i = 0; i < g->nn; i++) {
         int s = p->rot_start[i], n = p->rot_start[i + 1] - s;
-        if (n > 1) qsort(p->rot + s, (size_t)n, sizeof(int), cmp_he_angle);
+        if (n > 1) sort_he_angle(p->rot + s, n, ang);
     }
     for (int q = 0; q < nh; q++) p->rot_pos[p->rot[q]] = q;
     for (int h = 0; h < nh; h++) p->face[h] = -1;

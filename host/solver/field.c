@@ -136,6 +136,20 @@ done:
     return st;
 }
 
+/* the field given in memory (glpgp_options.field_values), normalised like a file's lines */
+static glpgp_status field_array(const glpgp_mesh *m, const glpgp_options *o, double *u)
+{
+    for (int i = 0; i < m->nv; i++) {
+        const double ux = o->field_values[2 * i], uy = o->field_values[2 * i + 1], n = hypot(ux, uy);
+        if (!(n > 0.0) || !isfinite(n))
+            return GLPGP_FAIL(GLPGP_ERR_ARG, "%s: vertex %d: the field is %s", o->field_file ? o->field_file : "field",
+                              i, isfinite(n) ? "a zero vector" : "not finite");
+        u[2 * i] = ux / n;
+        u[2 * i + 1] = uy / n;
+    }
+    return GLPGP_OK;
+}
+
 /* c <- the area centroid of m */
 static void centroid(const glpgp_mesh *m, double c[2])
 {
@@ -177,7 +191,7 @@ static void field_radial(const glpgp_mesh *m, const glpgp_options *o, double *u)
 glpgp_status glpgp_field_compute(const glpgp_mesh *m, glpgp_backend *b, const glpgp_options *o,
                                  double *u, long *cg_iterations)
 {
-    if (o->field == GLPGP_FIELD_FILE) return field_file(m, o->field_file, u);
+    if (o->field == GLPGP_FIELD_FILE) return o->field_values ? field_array(m, o, u) : field_file(m, o->field_file, u);
     if (o->field == GLPGP_FIELD_CROSS) return glpgp_cross_guiding_field(m, b, o, NULL, u, cg_iterations);
     if (o->field == GLPGP_FIELD_RADIAL) {
         field_radial(m, o, u);

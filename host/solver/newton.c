@@ -554,6 +554,9 @@ glpgp_status glpgp_newton_level(glpgp_backend *b, const glpgp_options *o, glpgp_
         if (gn <= rtol * ls->grad0 || gn == 0.0) break;
         if (ns->stop && __atomic_load_n(ns->stop, __ATOMIC_RELAXED))
             return GLPGP_FAIL(GLPGP_ERR_NUMERIC, "%s: stopped (the other oscillator failed)", glpgp_osc_name(k));
+        if (o->cancel && o->cancel(o->cancel_ctx))
+            return GLPGP_FAIL(GLPGP_ERR_CANCELLED, "%s: cancelled at eps=%g, Newton step %d", glpgp_osc_name(k), eps,
+                              it + 1);
         if (it >= o->newton_max) {
             ls->capped = 1;
             break;

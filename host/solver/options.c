@@ -89,7 +89,7 @@ glpgp_status glpgp_options_check(const glpgp_options *o)
         return GLPGP_FAIL(GLPGP_ERR_ARG, "unknown energy %d", o->energy);
     if (o->hess < GLPGP_HESS_PAPER || o->hess > GLPGP_HESS_MIXED)
         return GLPGP_FAIL(GLPGP_ERR_ARG, "unknown Newton Hessian %d", o->hess);
-    if (o->field == GLPGP_FIELD_FILE && (!o->field_file || !*o->field_file))
+    if (o->field == GLPGP_FIELD_FILE && !o->field_values && (!o->field_file || !*o->field_file))
         return GLPGP_FAIL(GLPGP_ERR_ARG, "field from a file needs a file name");
     if (!(o->eps0 > 0.0) || !(o->eps_min > 0.0) || !isfinite(o->eps0) || !isfinite(o->eps_min))
         return GLPGP_FAIL(GLPGP_ERR_ARG, "eps0 and eps-min must be positive");

@@ -5,8 +5,10 @@
 #    writes a valid quad mesh, and fails with one line on a bad input;
 #  - every command line of its ```sh blocks runs: `glpgp ...` lines here (each
 #    must exit 0; a command whose optional library this build lacks must say
-#    "built without"), the set-up lines (.ci/run, ctest, cmake) are the ones the
-#    CI script runs; any other line fails the test (a README command nothing runs).
+#    "built without"), `python3 -c ...` lines with the built Python package, the
+#    set-up lines (.ci/run, ctest, cmake) are the ones the CI script runs; any
+#    other line fails the test (a README command nothing runs);
+#  - every ```python block runs with the built package (data/ beside it).
 . "$(dirname "$0")/lib.sh" "$@"
 SRC=$(cd "$DATA/.." && pwd)
 README=$SRC/README.md
@@ -31,6 +33,24 @@ else
     fail "example binary $EXAMPLE not built"
 fi
 
+# ---- the Python package as built (skipped when it is not) ------------------------
+PYDIR=$(dirname "$GLPGP")/python
+PY=""
+if [ -f "$PYDIR/interpreter" ] && ls "$PYDIR"/glpgp/_glpgp*.so >/dev/null 2>&1; then
+    PY=$(cat "$PYDIR/interpreter")
+else
+    echo "(the Python package is not built: README's Python lines are not run)"
+fi
+if [ -n "$PY" ]; then
+    ln -s "$DATA" data
+    awk '/^```python$/{f=1; k++; next} /^```$/{f=0} f{print > ("readme_py_" k ".py")}' "$README"
+    for f in readme_py_*.py; do
+        [ -e "$f" ] || { fail "README has no python block"; break; }
+        runs=$((runs + 1))
+        PYTHONPATH="$PYDIR" "$PY" "$f" >out.txt 2>err.txt </dev/null || fail "README's $f: $(tail -c 400 err.txt)"
+    done
+fi
+
 # ---- the shell commands ----------------------------------------------------------
 awk '/^```sh$/{f=1; next} /^```$/{f=0} f' "$README" >readme_sh.txt
 [ -s readme_sh.txt ] || fail "README has no sh block"
@@ -43,6 +63,16 @@ while IFS= read -r line; do
         key=${line#bash .ci/run }
         [ "$key" = --demo ] && key='run_demo$'
         grep -q -- "$key" "$SRC/.ci/run" || fail "README line '$line' is not what .ci/run runs"
+        ;;
+    "python3 -c "*)
+        n=$((n + 1))
+        if [ -n "$PY" ]; then
+            code=${line#python3 -c }
+            code=${code#\"}
+            code=${code%\"}
+            PYTHONPATH="$PYDIR" "$PY" -c "$code" >out.txt 2>err.txt </dev/null ||
+                fail "README command '$line': $(tail -c 300 err.txt)"
+        fi
         ;;
     "glpgp "* | "build/glpgp "*)
         n=$((n + 1))

@@ -13,7 +13,10 @@
 #  - P/bin/glpgp --version runs and reports the installed version;
 #  - with OpenImageIO and Gmsh built: P/bin/glpgp mesh MASK loads its modules
 #    from P/<libdir>/glpgp (LD_DEBUG=files shows the paths), also after P is
-#    moved elsewhere (the lookup is relative to the executable).
+#    moved elsewhere (the lookup is relative to the executable);
+#  - with the Python package built ($GLPGP_PYTHON names its interpreter):
+#    P/<its install dir>/glpgp imports from there alone, solves, and loads
+#    the OpenImageIO module from its own glpgp/modules, also after P is moved.
 set -u
 
 CMAKE=${1:?usage: install_consumer.sh <cmake> <build-dir> <consumer-dir> [cmake args]}
@@ -87,6 +90,42 @@ ls "$LIBDIR"/glpgp/glpgp_oiio.* "$LIBDIR"/glpgp/glpgp_gmsh.* >/dev/null 2>&1 ||
     for j in 1 2 3 4 5 6 7 8; do echo "0 255 255 255 255 255 255 255 255 0"; done
     echo "0 0 0 0 0 0 0 0 0 0"
 } >"$T/mask.pgm"
+# python_from PREFIX: the installed package imports from PREFIX, solves, and
+# renders a picture with the OpenImageIO module of PREFIX
+python_from() {
+    local pre=$1
+    [ -n "${GLPGP_PYTHON:-}" ] || return 0
+    local ext pkg
+    ext=$(find "$pre" -name '_glpgp*.so' | head -1)
+    if [ -z "$ext" ]; then
+        fail "python from $pre: the package was not installed (no _glpgp*.so under $pre)"
+        return
+    fi
+    pkg=$(dirname "$(dirname "$ext")")
+    [ -e "$(dirname "$ext")/modules/glpgp_oiio.so" ] || fail "python from $pre: no glpgp/modules/glpgp_oiio.so"
+    rm -f "$T"/ld.* "$T/py.png"
+    (cd "$T" && LD_DEBUG=files LD_DEBUG_OUTPUT="$T/ld" PYTHONPATH="$pkg" "$GLPGP_PYTHON" -c "
+import glpgp, sys
+assert glpgp.__file__.startswith('$pre'), glpgp.__file__
+r = glpgp.solve(glpgp.shape('square', 400), backend='reference', size_field='none', size=0.3)
+assert r.stats['singularities']['u'] == {'plus': 0, 'minus': 0}
+glpgp.render(r, 'py.png', size=64)
+print('python package ok:', glpgp.__file__)
+" >"$T/py.txt" 2>&1)
+    local rc=$?
+    [ "$rc" -eq 0 ] || fail "python from $pre: exit $rc: $(tail -c 800 "$T/py.txt")"
+    [ -s "$T/py.png" ] || fail "python from $pre: no picture"
+    cat "$T"/ld.* 2>/dev/null | sed -n 's/.*file=\([^ ]*glpgp_oiio\.[^ ]*\) .*/\1/p' | sort -u >"$T/mods.txt"
+    while read -r m; do
+        case "$m" in
+        "$pre"/*) ;;
+        *) fail "python from $pre: module loaded from outside the prefix: $m" ;;
+        esac
+    done <"$T/mods.txt"
+    [ -s "$T/mods.txt" ] || fail "python from $pre: the OpenImageIO module was not loaded"
+    cat "$T/py.txt"
+}
+
 # mesh_from PREFIX: run PREFIX/bin/glpgp mesh; both modules must come from PREFIX
 mesh_from() {
     local pre=$1
@@ -106,6 +145,8 @@ mesh_from() {
     done <"$T/mods.txt"
 }
 mesh_from "$P"
+python_from "$P"
 mv "$P" "$T/moved"
 mesh_from "$T/moved"
+python_from "$T/moved"
 finish

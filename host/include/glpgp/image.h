@@ -27,8 +27,10 @@
 
 #include "glpgp/io.h" /* GLPGP_DEFAULT_MAX_ELEMENTS */
 #include "glpgp/mesh.h"
+#include "glpgp/optdesc.h"
 #include "glpgp/result.h"
 #include "glpgp/status.h"
+#include "glpgp/util.h" /* glpgp_is_image_path */
 
 #ifdef __cplusplus
 extern "C" {
@@ -89,10 +91,7 @@ int glpgp_image_path_writable(const char *path);
 glpgp_status glpgp_image_create(int w, int h, int nc, glpgp_image **out);
 void glpgp_image_destroy(glpgp_image **im);
 
-/* Whether path ends in an image extension glpgp treats as a mask/picture
- * (.png .tif .tiff .exr .jpg .jpeg .bmp .pgm .ppm .pnm .tga .gif .webp .hdr),
- * case-insensitive. Independent of OpenImageIO being built in. */
-int glpgp_is_image_path(const char *path);
+/* glpgp_is_image_path: glpgp/util.h (core). */
 
 
 /* ---- user size field from a grey-level image (image/size_image.c) -------- */
@@ -141,6 +140,12 @@ typedef struct glpgp_render_options {
 } glpgp_render_options;
 
 void glpgp_render_options_default(glpgp_render_options *o);
+
+/* The user-settable members of glpgp_render_options, one descriptor each
+ * (glpgp/optdesc.h; image/render_options.c): --image-size, --image-kind,
+ * --background, --line-width (Python: size, kind, background, line_width;
+ * group NULL: the command places them). */
+const glpgp_optdesc *glpgp_render_option_table(void);
 
 /* Kind from its name ("grid", "checker", "zabs", "field", "theta", "cross"); -1 if unknown. */
 int glpgp_image_kind_parse(const char *name);

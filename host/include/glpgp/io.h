@@ -257,6 +257,13 @@ glpgp_status glpgp_write_stats_json(const glpgp_mesh *m, const glpgp_options *op
                                     const glpgp_result *r, const char *path,
                                     const glpgp_stats_extra *extra);
 
+/* The same statistics (and, below, the quad report) as a malloc'ed
+ * NUL-terminated JSON string in *out (free() it): what the Python binding
+ * returns as Result.stats / QuadMesh.report. */
+glpgp_status glpgp_stats_json_text(const glpgp_mesh *m, const glpgp_options *opts, const glpgp_result *r,
+                                   const glpgp_stats_extra *extra, char **out);
+glpgp_status glpgp_quads_json_text(const glpgp_quad_quality *qq, char **out);
+
 /* Write the result with the writer chosen by the extension of path
  * (case-insensitive): ".vtk" -> legacy VTK, ".vtu" -> glpgp_write_vtu
  * (default level), ".obj" -> glpgp_write_obj_textured; anything else ->
@@ -318,6 +325,17 @@ glpgp_status glpgp_output_set_pvtu(glpgp_output_set *s, const glpgp_result *r, c
  * types other than 2 are skipped. Unused vertices are dropped silently (with
  * renumbering). Limits: see the top of this header. */
 glpgp_status glpgp_mesh_read(const char *path, glpgp_mesh **out);
+
+/* A mesh from arrays, as a reader would make it of a file with these
+ * vertices and triangles (the Python binding's glpgp.Mesh): x holds nv
+ * points of dim = 2 or 3 coordinates, tri 3 nt vertex indices. Unused
+ * vertices are dropped, 3D points take the readers' coordinate plane (z,
+ * y or x = const; of a 3D surface its largest face in one, with a
+ * warning), unwelded pieces are welded, then glpgp_mesh_create validates.
+ * name names it in messages. Non-finite coordinates, indices outside
+ * [0, nv): GLPGP_ERR_MESH. */
+glpgp_status glpgp_mesh_from_arrays(const char *name, int nv, const double *x, int dim, int nt, const int *tri,
+                                    glpgp_mesh **out);
 
 /* Write the triangles as OBJ or MSH 4.1 (by extension), atomically. */
 glpgp_status glpgp_mesh_write(const glpgp_mesh *m, const char *path);

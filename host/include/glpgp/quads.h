@@ -10,6 +10,7 @@
 #include <stdio.h>
 
 #include "glpgp/mesh.h"
+#include "glpgp/optdesc.h"
 #include "glpgp/result.h"
 
 #ifdef __cplusplus
@@ -158,6 +159,12 @@ typedef struct glpgp_quad_options {
 
 /* The defaults: strips on, 20 smoothing sweeps, smooth_below 0.5, repair on, clean-up on, no refinement. */
 void glpgp_quad_options_default(glpgp_quad_options *o);
+
+/* The user-settable members of glpgp_quad_options, one descriptor each
+ * (glpgp/optdesc.h; quads/options.c): --keep-polygons, --smooth,
+ * --all-quads, --no-repair, --no-cleanup (group NULL: the command places
+ * them). */
+const glpgp_optdesc *glpgp_quad_option_table(void);
 
 /* Extraction + closing of the polygons + smoothing + repair + clean-up
  * (glpgp_quadmesh_cleanup, its result kept only when it is as valid as the

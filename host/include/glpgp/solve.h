@@ -12,6 +12,7 @@
 
 #include "glpgp/backend.h"
 #include "glpgp/kinds.h" /* GLPGP_ELEM_* and GLPGP_HESS_* */
+#include "glpgp/optdesc.h"
 #include "glpgp/result.h"
 
 #ifdef __cplusplus
@@ -85,6 +86,9 @@ typedef struct glpgp_options {
     int hess;             /* GLPGP_HESS_MIXED, _PROJECTED or _PAPER [MIXED] */
     int field;            /* GLPGP_FIELD_* [BOUNDARY] */
     const char *field_file; /* for GLPGP_FIELD_FILE: one "ux uy" line per vertex [NULL] */
+    const double *field_values; /* for GLPGP_FIELD_FILE: the field in memory instead of the file, 2 nv
+                             values (ux, uy per vertex of the solved mesh, normalised here; field_file
+                             then only names it in messages and the statistics) [NULL] */
     int has_center;       /* radial field centre given (else: area centroid) [0] */
     double center[2];
     int init;             /* initial guess of GL: GLPGP_INIT_NAIVE or ONE [NAIVE] */
@@ -206,10 +210,26 @@ typedef struct glpgp_options {
     /* default h (glpgp_default_size) */
     double size_diag_div; /* h = bounding-box diagonal / this ... [20] */
     double size_min_edges;/* ... raised to this many mean edges [10] */
+
+    /* cancellation: polled before every Newton step by each thread running
+     * the solve (both oscillators' threads, the cross field's); a non-zero
+     * return ends the solve with GLPGP_ERR_CANCELLED and no result. NULL:
+     * never [NULL]. The Python binding polls Ctrl-C (its signals) here. */
+    int (*cancel)(void *ctx);
+    void *cancel_ctx;     /* its argument [NULL] */
 } glpgp_options;
 
 /* Fill the documented defaults. */
 void glpgp_options_default(glpgp_options *o);
+
+/* The user-settable members of glpgp_options, one descriptor each
+ * (glpgp/optdesc.h; solver/option_table.c): the options of `glpgp solve`'s
+ * groups "Parametrization" and "Continuation and solvers", then
+ * "input-order" (group NULL: the command places it). --field, --center and
+ * --size-field are TEXT options: a FILE or IMAGE name is kept, not copied
+ * (it must outlive the solve); an IMAGE size field needs size_fn set by the
+ * caller. The CLI's parser and the Python keyword arguments read it. */
+const glpgp_optdesc *glpgp_solve_option_table(void);
 
 /* Check the values (ranges as documented; GLPGP_ERR_ARG naming the member). */
 glpgp_status glpgp_options_check(const glpgp_options *o);
@@ -291,6 +311,27 @@ typedef struct glpgp_refine_info {
 } glpgp_refine_info;
 glpgp_status glpgp_size_refine(const glpgp_mesh *m, const glpgp_options *o, double h, glpgp_mesh **out,
                                glpgp_refine_info *info);
+
+/* What a front end does between reading a domain m and glpgp_solve, the
+ * same for the CLI's `glpgp solve` and Python's glpgp.solve (name: the
+ * input's name in messages; refine_ok: 0 for --no-refine): one warning when
+ * 1% or more of the triangles are slivers; with refinement (refine_ok, a
+ * size field auto / iso / function, no field file) a default size above
+ * diameter / GLPGP_SIZE_DEFAULT_MIN_QUADS becomes diameter / size_diag_div
+ * (o->size set); the size checked against the mesh
+ * (glpgp_options_check_mesh; below 2 mean edges with refinement: against
+ * max_triangles for the refined mesh, > 0, else no limit); a field file
+ * read once; the triangles too coarse for the local size refined
+ * (glpgp_size_refine; o->size then set to h). *refined <- the refined mesh
+ * to solve instead of m (free it with glpgp_mesh_destroy), or NULL: solve m.
+ * On failure info->usage tells whether it is about the option values (the
+ * CLI's usage error, "--size: MESSAGE") rather than the input. */
+typedef struct glpgp_prepare_info {
+    glpgp_refine_info refined; /* rounds 0: not refined */
+    int usage;                 /* the failure concerns the size or another option value */
+} glpgp_prepare_info;
+glpgp_status glpgp_solve_prepare(const glpgp_mesh *m, glpgp_options *o, const char *name, double max_triangles,
+                                 int refine_ok, glpgp_mesh **refined, glpgp_prepare_info *info);
 
 /* Run the whole pipeline on mesh m with backend b (already created; setup is
  * done here). On success *out holds the result (free with

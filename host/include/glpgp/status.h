@@ -22,7 +22,8 @@ typedef enum glpgp_status {
     GLPGP_ERR_NUMERIC,    /* solver breakdown (NaN, negative curvature, ...) */
     GLPGP_ERR_OPENCL,     /* OpenCL platform/device/runtime failure */
     GLPGP_ERR_UNSUPPORTED,/* feature not available in this build/device */
-    GLPGP_ERR_LIMIT       /* input above a documented resource limit */
+    GLPGP_ERR_LIMIT,      /* input above a documented resource limit */
+    GLPGP_ERR_CANCELLED   /* stopped by the caller (glpgp_options.cancel: Ctrl-C in Python) */
 } glpgp_status;
 
 /* Human-readable name of a status ("mesh error", ...). Never NULL. */

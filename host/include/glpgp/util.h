@@ -17,6 +17,11 @@ double glpgp_now(void);
  * the case of path. */
 int glpgp_has_ext(const char *path, const char *ext);
 
+/* Whether path ends in an image extension glpgp treats as a mask/picture
+ * (.png .tif .tiff .exr .jpg .jpeg .bmp .pgm .ppm .pnm .tga .gif .webp .hdr),
+ * case-insensitive. Independent of OpenImageIO being built in. */
+int glpgp_is_image_path(const char *path);
+
 /* The k-th smallest of a[0 .. n) (0 <= k < n; no NaN), by quickselect in
  * O(n) on average: a is permuted so that a[k] holds it, a[i] <= a[k] for
  * i < k and a[i] >= a[k] for i > k. The value is exactly the sorted array's
@@ -40,8 +45,10 @@ int glpgp_cpu_count(void);
 /* The directories glpgp's modules (glpgp_oiio.so, glpgp_gmsh.so,
  * glpgp_petsc.so) are looked for in, in order: $GLPGP_MODULE_DIR alone when
  * set (from_env = 1); else <directory of the executable>/<its relative
- * install path>, the configured install directory, the build tree. */
-#define GLPGP_MODULE_MAX_DIRS 4
+ * install path>, <directory of the shared object holding glpgp>/modules
+ * when that is not the executable (the Python extension), the configured
+ * install directory, the build tree. */
+#define GLPGP_MODULE_MAX_DIRS 5
 #define GLPGP_MODULE_PATH_LEN 4096
 typedef struct glpgp_module_dirs {
     int n;

@@ -1,0 +1,122 @@
+/* solver/prepare.c: what `glpgp solve` (and the Python glpgp.solve) does
+ * between reading a domain and glpgp_solve (glpgp_solve_prepare,
+ * glpgp/solve.h): the sliver warning, the default size of a too coarse
+ * input, the size checks against the mesh and --max-elements, an early read
+ * of a field file, and the refinement of the triangles too coarse for the
+ * local size. One copy, so that every front end solves the same mesh with
+ * the same options. */
+#include "glpgp/solve.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* one warning naming the remedy when 1% or more of the triangles are slivers */
+static void warn_slivers(const glpgp_mesh *m, const char *name)
+{
+    double amin;
+    int nsliver;
+    glpgp_mesh_angles(m, GLPGP_SLIVER_DEG, &amin, &nsliver);
+    if (nsliver > 0 && nsliver >= 0.01 * m->nt)
+        glpgp_log(GLPGP_LOG_WARNING,
+                  "%s: %d of %d triangles have an angle below %g degrees (smallest %.3g): the solution is "
+                  "inaccurate on such slivers and refinement keeps them thin; remesh the domain first "
+                  "(--remesh, or glpgp mesh %s -o NEW.msh)",
+                  name, nsliver, m->nt, GLPGP_SLIVER_DEG, amin, name);
+}
+
+/* The checks on the options and sizes before any work: the refinement's
+ * size against max_triangles, h against the mesh. */
+static glpgp_status check_sizes(const glpgp_mesh *m, const glpgp_options *o, int refine, double max_triangles)
+{
+    /* below 2 mean edges the mesh is refined to edges of h / R (R =
+     * size_resolution) at least: 2.31 area / (h / R)^2 triangles
+     * (equilateral), refused before any work above max_triangles (the
+     * refinement's own limits would stop it only after seconds and
+     * gigabytes) */
+    const double l_ref = o->size / o->size_resolution;
+    const int below = refine && o->size > 0.0 && o->size < GLPGP_SIZE_MIN_EDGES * m->mean_edge;
+    if (below && max_triangles > 0 && !(2.31 * m->area / (l_ref * l_ref) <= max_triangles))
+        return GLPGP_FAIL(GLPGP_ERR_ARG,
+                          "size h = %g is %.3g mean edge lengths of the mesh: refined for it, the mesh would "
+                          "have about %.3g triangles, more than --max-elements %.0f",
+                          o->size, o->size / m->mean_edge, 2.31 * m->area / (l_ref * l_ref), max_triangles);
+    if (below) {
+        glpgp_options big = *o;
+        big.size = GLPGP_SIZE_MIN_EDGES * m->mean_edge; /* the other rules (diameter, options) */
+        return glpgp_options_check_mesh(&big, m);
+    }
+    return glpgp_options_check_mesh(o, m);
+}
+
+/* a field file read now: a bad one fails before the backend starts (the
+ * solve reads it again) */
+static glpgp_status check_field(const glpgp_mesh *m, const glpgp_options *o)
+{
+    if (o->field != GLPGP_FIELD_FILE) return GLPGP_OK;
+    double *u = NULL;
+    long cg = 0;
+    glpgp_status st = glpgp_malloc(2 * (size_t)m->nv, sizeof *u, &u);
+    if (st == GLPGP_OK) st = glpgp_field_compute(m, NULL, o, u, &cg);
+    free(u);
+    return st;
+}
+
+glpgp_status glpgp_solve_prepare(const glpgp_mesh *m, glpgp_options *o, const char *name, double max_triangles,
+                                 int refine_ok, glpgp_mesh **refined, glpgp_prepare_info *info)
+{
+    *refined = NULL;
+    memset(info, 0, sizeof *info);
+    if (!name) name = "mesh";
+    /* the input is refined for the local size (auto / iso / function,
+     * refinement on, no per-vertex field): h may be below 2 mean edges here
+     * (a graded input whose far field is coarser than h, a CAD export's fan
+     * of slivers; the refinement's own limits bound the work); the refined
+     * mesh is checked against the full rule below */
+    const int refine = refine_ok && o->field != GLPGP_FIELD_FILE &&
+                       (o->size_field == GLPGP_SIZE_AUTO || o->size_field == GLPGP_SIZE_ISO ||
+                        o->size_field == GLPGP_SIZE_FUNC);
+    warn_slivers(m, name);
+    /* a mesh too coarse for the default size (diameter / 20): the default
+     * raised to 10 mean edges would leave a handful of quads (an STL-style
+     * fan of a disk: h = 6.8 for a diameter of 2); refined for diameter / 20
+     * instead */
+    if (refine && !(o->size > 0.0)) {
+        const double dx = m->bbox[2] - m->bbox[0], dy = m->bbox[3] - m->bbox[1], diag = sqrt(dx * dx + dy * dy);
+        if (glpgp_default_size(m, o) > diag / GLPGP_SIZE_DEFAULT_MIN_QUADS) {
+            o->size = diag / o->size_diag_div;
+            glpgp_log(GLPGP_LOG_INFO,
+                      "the input is too coarse for the default size (mean edge %.3g): h = diameter / %g = %.4g, "
+                      "the mesh refined for it",
+                      m->mean_edge, o->size_diag_div, o->size);
+        }
+    }
+    if (check_sizes(m, o, refine, max_triangles) != GLPGP_OK) {
+        info->usage = 1;
+        return glpgp_error_status();
+    }
+    GLPGP_CHECK(check_field(m, o));
+    if (!refine) return GLPGP_OK;
+    /* triangles coarser than the local size: refined (longest-edge
+     * bisection), the size h fixed from the input mesh first */
+    const double h = o->size > 0.0 ? o->size : glpgp_default_size(m, o);
+    glpgp_mesh *mr = NULL;
+    GLPGP_CHECK(glpgp_size_refine(m, o, h, &mr, &info->refined));
+    glpgp_status st = GLPGP_OK;
+    if (mr) {
+        glpgp_log(GLPGP_LOG_INFO, "refined the input for the local size: %d -> %d vertices in %d rounds",
+                  info->refined.nv0, info->refined.nv, info->refined.rounds);
+        o->size = h;
+        if (max_triangles > 0 && mr->nt > max_triangles)
+            st = GLPGP_FAIL(GLPGP_ERR_LIMIT, "the refined mesh has %d triangles, above --max-elements %ld", mr->nt,
+                            (long)max_triangles);
+    }
+    /* the full rule (h >= 2 mean edges) on the mesh that is solved */
+    if (st == GLPGP_OK) st = glpgp_options_check_mesh(o, mr ? mr : m);
+    if (st != GLPGP_OK) {
+        glpgp_mesh_destroy(&mr);
+        return st;
+    }
+    *refined = mr;
+    return GLPGP_OK;
+}
