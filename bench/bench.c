@@ -546,9 +546,7 @@ static glpgp_status op_newton_step(bctx *c)
 static glpgp_status create_backend(int opencl, const bopts *o, glpgp_backend **b)
 {
     if (!opencl) return glpgp_backend_create_reference(b);
-    glpgp_cl_options co;
-    co.device = o->device;
-    co.verbose = 0;
+    glpgp_cl_options co = {o->device, 0, NULL};
     return glpgp_backend_create_opencl(&co, b);
 }
 

@@ -101,7 +101,7 @@ static glpgp_status make_backend(int opencl, int pc, int device, glpgp_backend *
 {
     if (pc == 2) return glpgp_backend_create_petsc(GLPGP_PRECOND_AMG, b); /* the GAMG anchor */
     if (!opencl) return glpgp_backend_create_reference(b);
-    glpgp_cl_options co = {device, 0};
+    glpgp_cl_options co = {device, 0, NULL};
     return glpgp_backend_create_opencl(&co, b);
 }
 

@@ -317,6 +317,24 @@ static glpgp_status stage_spmv(cc *c)
     return GLPGP_OK;
 }
 
+/* The trust region's trial point x (+) a d (ops->trial_point: polar
+ * outside vortex cores, straight inside, blended between; its own sin and
+ * cos) at z, d = r, for a short and a long step: the same bits. */
+static glpgp_status stage_trial(cc *c)
+{
+    if (!c->S[0].b->ops->trial_point || !c->S[1].b->ops->trial_point) return GLPGP_OK;
+    BOTH(o->vec_write(b, v[VX], c->z));
+    BOTH(o->vec_write(b, v[VD], c->r));
+    const double steps[2] = {0.7, 3.0};
+    for (int k = 0; k < 2; k++) {
+        BOTH(o->trial_point(b, v[VX], v[VD], steps[k], 0.8, v[VY]));
+        BOTH(o->vec_read(b, v[VY], c->h[s]));
+        GLPGP_CHECK(cmp(c, k ? "trial point x (+) 3 d" : "trial point x (+) 0.7 d", c->h[0], c->h[1], c->n2, 0.0,
+                        0.0, 0.0));
+    }
+    return GLPGP_OK;
+}
+
 /* The fused CG ops one at a time on the projected NEWTON, right-hand side r:
  * precond, then 3 x (spmv_dot, update, direction); each quantity's values over
  * the 3 steps form one row. */
@@ -582,7 +600,7 @@ static glpgp_status stage_gl_solve(cc *c)
     glpgp_backend *sb[2] = {NULL, NULL};
     glpgp_result *res[2] = {NULL, NULL};
     glpgp_options so = c->so;
-    glpgp_cl_options clo = {c->opt->device, 0};
+    glpgp_cl_options clo = {c->opt->device, 0, NULL};
     char name[48];
     so.newton_rtol = 1e-8;
     so.cg_rtol = 1e-10;
@@ -632,7 +650,7 @@ static glpgp_status stage_cross_solve(cc *c)
     glpgp_backend *sb[2] = {NULL, NULL};
     glpgp_cross_result *cr[2] = {NULL, NULL};
     glpgp_options so = c->so;
-    glpgp_cl_options clo = {c->opt->device, 0};
+    glpgp_cl_options clo = {c->opt->device, 0, NULL};
     char name[64];
     so.cg_rtol = 1e-10;
     /* the line-search Newton: the trust region's accept / reject decisions
@@ -684,7 +702,7 @@ static glpgp_status prepare(cc *c)
     const glpgp_crosscheck_options *opt = c->opt;
     const glpgp_mesh *m = c->m;
     glpgp_crosscheck *t = c->t;
-    glpgp_cl_options clo = {opt->device, 0};
+    glpgp_cl_options clo = {opt->device, 0, NULL};
     GLPGP_CHECK(glpgp_system_create(m, &c->sys));
     c->n2 = (size_t)2 * m->nv;
     c->nm = (size_t)4 * c->sys->nnzb;
@@ -760,6 +778,7 @@ glpgp_status glpgp_crosscheck_create(const glpgp_crosscheck_options *opt, glpgp_
     GLPGP_CHECK_GOTO(st, stage_newton(&c), done);
     GLPGP_CHECK_GOTO(st, stage_gradient(&c), done);
     GLPGP_CHECK_GOTO(st, stage_spmv(&c), done);
+    GLPGP_CHECK_GOTO(st, stage_trial(&c), done);
     GLPGP_CHECK_GOTO(st, stage_cg_steps(&c), done);
     GLPGP_CHECK_GOTO(st, stage_cg_solve(&c), done);
     GLPGP_CHECK_GOTO(st, stage_amg(&c), done);

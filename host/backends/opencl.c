@@ -56,6 +56,8 @@ int glpgp_cl_backend_info(const glpgp_backend *b, char *buf, size_t len)
     return -1;
 }
 
+void glpgp_cl_backend_log(const glpgp_backend *b) { (void)b; }
+
 #else /* GLPGP_HAVE_OPENCL */
 
 #include <dirent.h>
@@ -114,6 +116,8 @@ enum {
     K_CASM_NEWTON,
     K_CGRADIENT,
     K_CPEN_ENERGY,
+    /* Newton driver (backend_newton.cl) */
+    K_TRIAL_POINT,
     K_COUNT
 };
 static const char *const kernel_names[K_COUNT] = {
@@ -126,6 +130,7 @@ static const char *const kernel_names[K_COUNT] = {
     "glpgp_amg_spmv_dots", "glpgp_amg_dots",   "glpgp_amg_axpby",   "glpgp_amg_kcombine",
     "glpgp_amg_bottom", "glpgp_amg_residual",
     "glpgp_casm_quad", "glpgp_casm_newton", "glpgp_cgradient", "glpgp_cpen_energy_part",
+    "glpgp_trial_point",
 };
 
 struct glpgp_vec {
@@ -206,12 +211,27 @@ typedef struct cl_impl {
                             0: never) */
     cl_uint align;       /* CL_DEVICE_MEM_BASE_ADDR_ALIGN in bytes (sub-buffers) */
     long *launches;      /* the backend's n_launch: kernel launches enqueued */
+    glpgp_backend *owner;/* the backend this is the implementation of (its phase accounts) */
+    int bad_pending;     /* an assembly's singular-block flag not yet read (sync_read) */
+    int prof;            /* GLPGP_CL_PROFILE=1: per-kernel device times (launch) */
+    const int *stop;     /* glpgp_cl_options.stop (creation only) */
+    double prof_ns[K_COUNT];
+    long prof_n[K_COUNT];
     double need;         /* device memory estimate of the system set up (bytes) */
     double other_need;   /* a clone: device memory its parent holds (its estimate, with
                             room for the multigrid), counted at setup */
 } cl_impl;
 
 #define IMPL(b) ((cl_impl *)(b)->impl)
+
+/* A blocking OpenCL call: its time is the host's wait on the device, booked
+ * to the owner's current phase (glpgp_backend_waited). */
+#define CL_WAIT(c, call)                                                                                   \
+    do {                                                                                                   \
+        const double t_wait_ = now_seconds();                                                              \
+        GLPGP_CL(call);                                                                                    \
+        if ((c)->owner) glpgp_backend_waited((c)->owner, now_seconds() - t_wait_);                         \
+    } while (0)
 
 /* clSetKernelArg of an lvalue. */
 #define ARG(kern, i, v) GLPGP_CL(clSetKernelArg((kern), (i), sizeof(v), &(v)))
@@ -230,6 +250,7 @@ static void release_mem(cl_mem *m)
 }
 
 static void amg_free(cl_impl *c);
+static void log_profile(const cl_impl *c);
 
 /* Release the buffers of the system set up last (and its multigrid hierarchy). */
 static void release_system(cl_impl *c)
@@ -250,6 +271,7 @@ static void cl_destroy(glpgp_backend *b)
     cl_impl *c = IMPL(b);
     if (!c) return;
     if (c->q) clFinish(c->q);
+    if (c->prof) log_profile(c);
     release_system(c);
     for (int i = 0; i < K_COUNT; i++)
         if (c->k[i]) clReleaseKernel(c->k[i]);
@@ -306,6 +328,55 @@ static glpgp_status ensure_part(cl_impl *c, size_t groups)
     return GLPGP_OK;
 }
 
+/* Enqueue kernel kid (its arguments set) on global / local work-items,
+ * counted in the backend's launches. With GLPGP_CL_PROFILE=1 (c->prof) each
+ * launch is waited for and its device time added to the kernel's account
+ * (logged when the backend is destroyed): a diagnosis, not for timing runs. */
+static glpgp_status launch(cl_impl *c, int kid, size_t global, size_t local)
+{
+    c->launches[0]++;
+    cl_event ev = NULL;
+    GLPGP_CL_WHAT(clEnqueueNDRangeKernel(c->q, c->k[kid], 1, NULL, &global, &local, 0, NULL, c->prof ? &ev : NULL),
+                  kernel_names[kid]);
+    if (ev) {
+        cl_ulong t0 = 0, t1 = 0;
+        cl_int err = clWaitForEvents(1, &ev);
+        if (err == CL_SUCCESS) err = clGetEventProfilingInfo(ev, CL_PROFILING_COMMAND_START, sizeof t0, &t0, NULL);
+        if (err == CL_SUCCESS) err = clGetEventProfilingInfo(ev, CL_PROFILING_COMMAND_END, sizeof t1, &t1, NULL);
+        clReleaseEvent(ev);
+        GLPGP_CL_WHAT(err, kernel_names[kid]);
+        c->prof_ns[kid] += (double)(t1 - t0);
+        c->prof_n[kid]++;
+    }
+    return GLPGP_OK;
+}
+
+/* The kernel accounts of GLPGP_CL_PROFILE, one log line per kernel launched,
+ * the costliest first. */
+static void log_profile(const cl_impl *c)
+{
+    int order[K_COUNT];
+    double total = 0.0;
+    for (int i = 0; i < K_COUNT; i++) {
+        order[i] = i;
+        total += c->prof_ns[i];
+    }
+    for (int i = 1; i < K_COUNT; i++)
+        for (int j = i; j > 0 && c->prof_ns[order[j]] > c->prof_ns[order[j - 1]]; j--) {
+            const int t = order[j];
+            order[j] = order[j - 1];
+            order[j - 1] = t;
+        }
+    glpgp_log(GLPGP_LOG_INFO, "OpenCL profile (GLPGP_CL_PROFILE): %.3f s of device time in kernels", 1e-9 * total);
+    for (int i = 0; i < K_COUNT; i++) {
+        const int k = order[i];
+        if (c->prof_n[k] == 0) continue;
+        glpgp_log(GLPGP_LOG_INFO, "  %-24s %8ld launches %9.3f s %5.1f%% %9.1f us each", kernel_names[k], c->prof_n[k],
+                  1e-9 * c->prof_ns[k], total > 0.0 ? 100.0 * c->prof_ns[k] / total : 0.0,
+                  1e-3 * c->prof_ns[k] / (double)c->prof_n[k]);
+    }
+}
+
 /* Enqueue kernel kid over n indices; arguments 0 and 1 are (n, chunk), the
  * others must be set. *groups (optional) receives the work-group count. */
 static glpgp_status run(cl_impl *c, int kid, size_t n, size_t *groups)
@@ -314,9 +385,7 @@ static glpgp_status run(cl_impl *c, int kid, size_t n, size_t *groups)
     cl_kernel k = c->k[kid];
     ARG(k, 0, s.n);
     ARG(k, 1, s.chunk);
-    c->launches[0]++;
-    GLPGP_CL_WHAT(clEnqueueNDRangeKernel(c->q, k, 1, NULL, &s.global, &s.local, 0, NULL, NULL),
-                  kernel_names[kid]);
+    GLPGP_CHECK(launch(c, kid, s.global, s.local));
     if (groups) *groups = s.groups;
     return GLPGP_OK;
 }
@@ -337,10 +406,7 @@ static glpgp_status finalize(cl_impl *c, size_t np0, size_t np1, double scale0, 
     ARG(k, 6, c->s);
     ARG(k, 7, s0);
     ARG(k, 8, s1);
-    size_t g = c->wg, l = c->wg;
-    c->launches[0]++;
-    GLPGP_CL_WHAT(clEnqueueNDRangeKernel(c->q, k, 1, NULL, &g, &l, 0, NULL, NULL), "glpgp_finalize");
-    return GLPGP_OK;
+    return launch(c, K_FINALIZE, c->wg, c->wg);
 }
 
 /* Groups a reduction over n indices produces; grows the partial buffer. */
@@ -396,7 +462,8 @@ static int cl_file_filter(const struct dirent *d)
 }
 
 /* Headers read from GLPGP_KERNEL_DIR before its .cl files, in program order. */
-static const char *const kernel_dir_headers[] = {"element.h", "rows.h", "amg_rows.h", "coupled_rows.h"};
+static const char *const kernel_dir_headers[] = {"element.h", "rows.h", "amg_rows.h", "coupled_rows.h",
+                                                  "newton_rows.h"};
 #define N_KERNEL_DIR_HEADERS ((int)(sizeof kernel_dir_headers / sizeof kernel_dir_headers[0]))
 
 /* The embedded glpgp/kinds.h, then dir/element.h, dir/rows.h, dir/amg_rows.h
@@ -444,6 +511,8 @@ done:
     return st;
 }
 
+static glpgp_status warm_up(cl_impl *c);
+
 static glpgp_status build_program(cl_impl *c)
 {
     static const char header[] = "#pragma OPENCL EXTENSION cl_khr_fp64 : enable\n"
@@ -479,8 +548,53 @@ static glpgp_status build_program(cl_impl *c)
     }
     for (int i = 0; i < K_COUNT; i++)
         GLPGP_CL_WHAT((c->k[i] = clCreateKernel(c->prog, kernel_names[i], &err), err), kernel_names[i]);
+    GLPGP_CHECK(warm_up(c));
     c->build_seconds = now_seconds() - t0;
     return GLPGP_OK;
+}
+
+/* Launch every kernel once on no work (n = 0, every buffer argument a small
+ * zeroed buffer), so that a device that compiles a kernel at its first
+ * launch (PoCL: per local size) does it now, as part of the program build,
+ * and not in the first numerical phase that launches it (a cold cache: about
+ * 0.3 s per kernel). Arguments are set by size: a buffer where one fits,
+ * else an int 0 (the fused coarse correction's level count 1: a coarsest
+ * level of order 0). */
+static glpgp_status warm_up(cl_impl *c)
+{
+    cl_int err;
+    cl_mem dummy = NULL;
+    GLPGP_CL((dummy = clCreateBuffer(c->ctx, CL_MEM_READ_WRITE, 65536, NULL, &err), err));
+    const cl_int zero = 0;
+    glpgp_status st = GLPGP_OK;
+    err = clEnqueueFillBuffer(c->q, dummy, &zero, sizeof zero, 0, 65536, 0, NULL, NULL);
+    for (int kid = 0; kid < K_COUNT && err == CL_SUCCESS; kid++) {
+        if (c->stop && __atomic_load_n(c->stop, __ATOMIC_RELAXED)) {
+            st = GLPGP_FAIL(GLPGP_ERR_ARG, "stopped");
+            break;
+        }
+        if (kid == K_AMG_BOTTOM && !c->cpu) continue; /* one work-item: the CPU shape's only */
+        /* the coupled cross-field kernels: compiled at their first use (most runs have none) */
+        if (kid == K_CASM_QUAD || kid == K_CASM_NEWTON || kid == K_CGRADIENT || kid == K_CPEN_ENERGY) continue;
+        cl_kernel k = c->k[kid];
+        cl_uint nargs = 0;
+        err = clGetKernelInfo(k, CL_KERNEL_NUM_ARGS, sizeof nargs, &nargs, NULL);
+        for (cl_uint a = 0; a < nargs && err == CL_SUCCESS; a++) {
+            const cl_int v = kid == K_AMG_BOTTOM && a == 1 ? 1 : 0;
+            err = clSetKernelArg(k, a, sizeof dummy, &dummy);
+            if (err == CL_INVALID_ARG_SIZE) err = clSetKernelArg(k, a, sizeof v, &v);
+        }
+        size_t g = c->wg, l = c->wg;
+        if (err == CL_SUCCESS) err = clEnqueueNDRangeKernel(c->q, k, 1, NULL, &g, &l, 0, NULL, NULL);
+        if (err != CL_SUCCESS)
+            st = GLPGP_FAIL(GLPGP_ERR_OPENCL, "OpenCL: the first launch of %s failed with %s", kernel_names[kid],
+                            glpgp_cl_error_name(err));
+    }
+    if (st == GLPGP_OK && err == CL_SUCCESS) err = clFinish(c->q);
+    if (st == GLPGP_OK && err != CL_SUCCESS)
+        st = GLPGP_FAIL(GLPGP_ERR_OPENCL, "OpenCL: kernel warm-up failed with %s", glpgp_cl_error_name(err));
+    clReleaseMemObject(dummy);
+    return st;
 }
 
 /* ---- device choice ----------------------------------------------------- */
@@ -520,6 +634,17 @@ static glpgp_status pick_device(const glpgp_cl_options *opt, glpgp_cl_device *de
                       "none of the %d OpenCL devices supports double precision (cl_khr_fp64), which "
                       "glpgp needs (install pocl-opencl-icd for the CPU)",
                       n);
+}
+
+static void log_device(const cl_impl *c)
+{
+    glpgp_log(GLPGP_LOG_INFO, "OpenCL device %d: %s, %s launch shape (%s), program built in %.2f s", c->index, c->name,
+              c->cpu ? "cpu" : "gpu", c->cpu ? "chunked work-items, local size 1" : "one row per work-item",
+              c->build_seconds);
+    if (c->cpu)
+        glpgp_log(GLPGP_LOG_INFO, "OpenCL cpu shape: up to %zu work-items", c->nwi);
+    else
+        glpgp_log(GLPGP_LOG_INFO, "OpenCL gpu shape: local size %zu", c->wg);
 }
 
 static glpgp_status init_device(cl_impl *c, const glpgp_cl_options *opt)
@@ -588,20 +713,16 @@ static glpgp_status init_device(cl_impl *c, const glpgp_cl_options *opt)
     c->verbose = opt ? opt->verbose : 0;
     const char *cor = getenv("GLPGP_CL_CORRUPT");
     c->corrupt = cor && strcmp(cor, "1") == 0;
+    c->stop = opt ? opt->stop : NULL;
+    const char *prof = getenv("GLPGP_CL_PROFILE");
+    c->prof = prof && strcmp(prof, "1") == 0;
 
     cl_int err;
     cl_context_properties props[] = {CL_CONTEXT_PLATFORM, (cl_context_properties)plat, 0};
     GLPGP_CL((c->ctx = clCreateContext(props, 1, &c->dev, NULL, NULL, &err), err));
-    GLPGP_CL((c->q = clCreateCommandQueue(c->ctx, c->dev, 0, &err), err));
+    GLPGP_CL((c->q = clCreateCommandQueue(c->ctx, c->dev, c->prof ? CL_QUEUE_PROFILING_ENABLE : 0, &err), err));
     GLPGP_CHECK(build_program(c));
-    if (opt && opt->verbose)
-        glpgp_log(GLPGP_LOG_INFO, "OpenCL device %d: %s, %s launch shape (%s), program built in %.2f s", c->index,
-                  c->name, c->cpu ? "cpu" : "gpu",
-                  c->cpu ? "chunked work-items, local size 1" : "one row per work-item", c->build_seconds);
-    if (opt && opt->verbose && c->cpu)
-        glpgp_log(GLPGP_LOG_INFO, "OpenCL cpu shape: up to %zu work-items", c->nwi);
-    else if (opt && opt->verbose)
-        glpgp_log(GLPGP_LOG_INFO, "OpenCL gpu shape: local size %zu", c->wg);
+    if (opt && opt->verbose) log_device(c);
     return GLPGP_OK;
 }
 
@@ -708,7 +829,7 @@ static glpgp_status cl_setup(glpgp_backend *b, const glpgp_system *sys)
     cl_int err;
     GLPGP_CL((c->bad = clCreateBuffer(c->ctx, CL_MEM_READ_WRITE, sizeof(cl_int), NULL, &err), err));
     GLPGP_CHECK(ensure_part(c, ngr));
-    GLPGP_CL(clFinish(c->q));
+    CL_WAIT(c, clFinish(c->q));
     return GLPGP_OK;
 }
 
@@ -743,14 +864,37 @@ static void cl_vec_destroy(glpgp_backend *b, glpgp_vec **v)
 static glpgp_status cl_vec_write(glpgp_backend *b, glpgp_vec *v, const double *host)
 {
     if (v->n == 0) return GLPGP_OK;
-    GLPGP_CL(clEnqueueWriteBuffer(IMPL(b)->q, v->m, CL_TRUE, 0, v->n * sizeof(double), host, 0, NULL, NULL));
+    cl_impl *c = IMPL(b);
+    CL_WAIT(c, clEnqueueWriteBuffer(c->q, v->m, CL_TRUE, 0, v->n * sizeof(double), host, 0, NULL, NULL));
+    return GLPGP_OK;
+}
+
+/* host <- bytes of buf at byte offset off, blocking (the host's one way to
+ * wait for the device). The singular-block flag of an assembly not checked
+ * yet (cl_assemble_newton) is read in the same round trip: a non-blocking
+ * read queued first is done when the blocking one returns (in-order queue). */
+static glpgp_status sync_read(cl_impl *c, cl_mem buf, size_t off, size_t bytes, void *host)
+{
+    cl_int bad = INT_MAX;
+    const int check = c->bad_pending;
+    if (check) GLPGP_CL(clEnqueueReadBuffer(c->q, c->bad, CL_FALSE, 0, sizeof bad, &bad, 0, NULL, NULL));
+    CL_WAIT(c, clEnqueueReadBuffer(c->q, buf, CL_TRUE, off, bytes, host, 0, NULL, NULL));
+    c->bad_pending = 0;
+    if (check && bad != INT_MAX)
+        return GLPGP_FAIL(GLPGP_ERR_NUMERIC, "singular diagonal block at vertex %d", (int)bad);
     return GLPGP_OK;
 }
 
 static glpgp_status cl_vec_read(glpgp_backend *b, const glpgp_vec *v, double *host)
 {
     if (v->n == 0) return GLPGP_OK;
-    GLPGP_CL(clEnqueueReadBuffer(IMPL(b)->q, v->m, CL_TRUE, 0, v->n * sizeof(double), host, 0, NULL, NULL));
+    return sync_read(IMPL(b), v->m, 0, v->n * sizeof(double), host);
+}
+
+static glpgp_status cl_finish(glpgp_backend *b)
+{
+    cl_impl *c = IMPL(b);
+    CL_WAIT(c, clFinish(c->q));
     return GLPGP_OK;
 }
 
@@ -798,8 +942,7 @@ static glpgp_status cl_get_scalars(glpgp_backend *b, double *out, int n)
 {
     if (n <= 0) return GLPGP_OK;
     if (n > GLPGP_NSLOTS) n = GLPGP_NSLOTS;
-    GLPGP_CL(clEnqueueReadBuffer(IMPL(b)->q, IMPL(b)->s, CL_TRUE, 0, (size_t)n * sizeof(double), out, 0, NULL, NULL));
-    return GLPGP_OK;
+    return sync_read(IMPL(b), IMPL(b)->s, 0, (size_t)n * sizeof(double), out);
 }
 
 /* ---- mesh operations --------------------------------------------------------- */
@@ -808,8 +951,8 @@ static glpgp_status cl_set_field(glpgp_backend *b, const double *w, const unsign
 {
     cl_impl *c = IMPL(b);
     const size_t nv = (size_t)c->sys->nv;
-    GLPGP_CL(clEnqueueWriteBuffer(c->q, c->w, CL_TRUE, 0, 2 * nv * sizeof(double), w, 0, NULL, NULL));
-    GLPGP_CL(clEnqueueWriteBuffer(c->q, c->dir, CL_TRUE, 0, nv, dir, 0, NULL, NULL));
+    GLPGP_CL(clEnqueueWriteBuffer(c->q, c->w, CL_FALSE, 0, 2 * nv * sizeof(double), w, 0, NULL, NULL));
+    CL_WAIT(c, clEnqueueWriteBuffer(c->q, c->dir, CL_TRUE, 0, nv, dir, 0, NULL, NULL));
     c->sized = 0;
     return GLPGP_OK;
 }
@@ -819,8 +962,8 @@ static glpgp_status cl_set_size(glpgp_backend *b, const double *size)
     cl_impl *c = IMPL(b);
     c->sized = size != NULL;
     if (size)
-        GLPGP_CL(clEnqueueWriteBuffer(c->q, c->size, CL_TRUE, 0, (size_t)c->sys->nv * sizeof(double), size, 0,
-                                      NULL, NULL));
+        CL_WAIT(c, clEnqueueWriteBuffer(c->q, c->size, CL_TRUE, 0, (size_t)c->sys->nv * sizeof(double), size, 0,
+                                        NULL, NULL));
     return GLPGP_OK;
 }
 
@@ -866,7 +1009,8 @@ static glpgp_status cl_assemble_newton(glpgp_backend *b, const glpgp_vec *x, dou
     cl_impl *c = IMPL(b);
     /* NEWTON <- QUAD + penalty Hessian (Dirichlet -> identity); DINV <- diag blocks^-1 */
     const cl_int none = INT_MAX;
-    GLPGP_CL(clEnqueueFillBuffer(c->q, c->bad, &none, sizeof none, 0, sizeof none, 0, NULL, NULL));
+    /* the flag is reset unless an earlier assembly's is still to be read */
+    if (!c->bad_pending) GLPGP_CL(clEnqueueFillBuffer(c->q, c->bad, &none, sizeof none, 0, sizeof none, 0, NULL, NULL));
     cl_int hs = hess;
     /* coupled: the penalty at the frame values, pulled back (the matching cconj) */
     const int kid = c->cconj ? K_CASM_NEWTON : K_ASM_NEWTON;
@@ -889,9 +1033,9 @@ static glpgp_status cl_assemble_newton(glpgp_backend *b, const glpgp_vec *x, dou
     ARG(k, a++, c->dinv);
     ARG(k, a++, c->bad);
     GLPGP_CHECK(run(c, kid, (size_t)c->sys->nv, NULL));
-    cl_int bad = none;
-    GLPGP_CL(clEnqueueReadBuffer(c->q, c->bad, CL_TRUE, 0, sizeof bad, &bad, 0, NULL, NULL));
-    if (bad != none) return GLPGP_FAIL(GLPGP_ERR_NUMERIC, "singular diagonal block at vertex %d", (int)bad);
+    /* a singular diagonal block is reported by the next read back
+     * (sync_read): no host round trip per assembly */
+    c->bad_pending = 1;
     return GLPGP_OK;
 }
 
@@ -993,6 +1137,20 @@ static glpgp_status cl_spmv(glpgp_backend *b, int matrix, const glpgp_vec *x, gl
     ARG(k, 6, y->m);
     GLPGP_CHECK(run(c, K_SPMV, (size_t)c->sys->nv, NULL));
     return GLPGP_OK;
+}
+
+static glpgp_status cl_trial_point(glpgp_backend *b, const glpgp_vec *x, const glpgp_vec *d, double a, double r1,
+                                   glpgp_vec *xt)
+{
+    cl_impl *c = IMPL(b);
+    /* xt <- x (+) a d per vertex (kernels/newton_rows.h) */
+    cl_kernel k = c->k[K_TRIAL_POINT];
+    ARG(k, 2, x->m);
+    ARG(k, 3, d->m);
+    ARG(k, 4, a);
+    ARG(k, 5, r1);
+    ARG(k, 6, xt->m);
+    return run(c, K_TRIAL_POINT, (size_t)c->sys->nv, NULL);
 }
 
 /* ---- fused Jacobi-PCG -------------------------------------------------------- */
@@ -1126,9 +1284,7 @@ static glpgp_status amg_run_w(cl_impl *c, int kid, size_t n, size_t work, size_t
     cl_kernel k = c->k[kid];
     ARG(k, 0, s.n);
     ARG(k, 1, s.chunk);
-    c->launches[0]++;
-    GLPGP_CL_WHAT(clEnqueueNDRangeKernel(c->q, k, 1, NULL, &s.global, &s.local, 0, NULL, NULL),
-                  kernel_names[kid]);
+    GLPGP_CHECK(launch(c, kid, s.global, s.local));
     if (groups) *groups = s.groups;
     return GLPGP_OK;
 }
@@ -1177,10 +1333,7 @@ static glpgp_status amg_finalize(cl_impl *c, size_t np, int mask, int slot)
     ARG(k, 3, mk);
     ARG(k, 4, a->t);
     ARG(k, 5, sl);
-    size_t g = c->wg, l = c->wg;
-    c->launches[0]++;
-    GLPGP_CL_WHAT(clEnqueueNDRangeKernel(c->q, k, 1, NULL, &g, &l, 0, NULL, NULL), "glpgp_amg_finalize");
-    return GLPGP_OK;
+    return launch(c, K_AMG_FINALIZE, c->wg, c->wg);
 }
 
 static glpgp_status amg_check_slot(int slot, int n, const char *what)
@@ -1491,8 +1644,7 @@ static glpgp_status cl_amg_coarse_read(glpgp_backend *b, double *dense)
     cl_amg *a = c->amg;
     const cl_amg_level *v = &a->lev[a->L - 1];
     const int m = a->m;
-    GLPGP_CL(clEnqueueReadBuffer(c->q, v->val, CL_TRUE, 0, (size_t)4 * v->nnzb * sizeof(double), a->cval, 0, NULL,
-                                 NULL));
+    GLPGP_CHECK(sync_read(c, v->val, 0, (size_t)4 * v->nnzb * sizeof(double), a->cval));
     memset(dense, 0, (size_t)m * m * sizeof(double));
     /* dense[2I + p][2J + q] <- A[K](p, q) for every block K = (I, J) */
     for (int I = 0; I < v->n; I++)
@@ -1510,8 +1662,8 @@ static glpgp_status cl_amg_coarse_set(glpgp_backend *b, const double *inv)
     cl_impl *c = IMPL(b);
     GLPGP_CHECK(amg_ready(c, "amg_coarse_set"));
     cl_amg *a = c->amg;
-    GLPGP_CL(clEnqueueWriteBuffer(c->q, a->cinv, CL_TRUE, 0, (size_t)a->m * a->m * sizeof(double), inv, 0, NULL,
-                                  NULL));
+    CL_WAIT(c, clEnqueueWriteBuffer(c->q, a->cinv, CL_TRUE, 0, (size_t)a->m * a->m * sizeof(double), inv, 0,
+                                    NULL, NULL));
     return GLPGP_OK;
 }
 
@@ -1737,9 +1889,7 @@ static glpgp_status cl_amg_coarse_correction(glpgp_backend *b, int lc, int sym, 
     ARG(k, 10, rhs->m);
     ARG(k, 11, e->m);
     ARG(k, 12, sy);
-    size_t one = 1;
-    c->launches[0]++;
-    GLPGP_CL_WHAT(clEnqueueNDRangeKernel(c->q, k, 1, NULL, &one, &one, 0, NULL, NULL), "glpgp_amg_bottom");
+    GLPGP_CHECK(launch(c, K_AMG_BOTTOM, 1, 1));
     *done = 1;
     return GLPGP_OK;
 }
@@ -1750,8 +1900,7 @@ static glpgp_status cl_amg_get_scalars(glpgp_backend *b, double *out, int n)
     GLPGP_CHECK(amg_ready(c, "amg_get_scalars"));
     if (n <= 0) return GLPGP_OK;
     if (n > GLPGP_AMG_NSLOTS) n = GLPGP_AMG_NSLOTS;
-    GLPGP_CL(clEnqueueReadBuffer(c->q, c->amg->t, CL_TRUE, 0, (size_t)n * sizeof(double), out, 0, NULL, NULL));
-    return GLPGP_OK;
+    return sync_read(c, c->amg->t, 0, (size_t)n * sizeof(double), out);
 }
 
 static glpgp_status cl_clone(glpgp_backend *b, glpgp_backend **out);
@@ -1795,6 +1944,8 @@ static const glpgp_backend_ops cl_ops = {
     .amg_kcombine = cl_amg_kcombine,
     .amg_get_scalars = cl_amg_get_scalars,
     .amg_coarse_correction = cl_amg_coarse_correction,
+    .finish = cl_finish,
+    .trial_point = cl_trial_point,
 };
 
 /* d <- a second backend's state on c's device: c's configuration, context
@@ -1824,7 +1975,8 @@ static glpgp_status clone_device(cl_impl *d, const cl_impl *c)
     GLPGP_CL(clRetainProgram(c->prog));
     d->prog = c->prog;
     cl_int err;
-    GLPGP_CL((d->q = clCreateCommandQueue(d->ctx, d->dev, 0, &err), err));
+    d->prof = c->prof;
+    GLPGP_CL((d->q = clCreateCommandQueue(d->ctx, d->dev, d->prof ? CL_QUEUE_PROFILING_ENABLE : 0, &err), err));
     for (int i = 0; i < K_COUNT; i++)
         GLPGP_CL_WHAT((d->k[i] = clCreateKernel(d->prog, kernel_names[i], &err), err), kernel_names[i]);
     return GLPGP_OK;
@@ -1844,6 +1996,7 @@ static glpgp_status cl_clone(glpgp_backend *b, glpgp_backend **out)
     nb->launch_bound = b->launch_bound;
     nb->overlap = b->overlap;
     IMPL(nb)->launches = &nb->n_launch;
+    IMPL(nb)->owner = nb;
     st = clone_device(IMPL(nb), IMPL(b));
     if (st != GLPGP_OK) {
         glpgp_error_push_trace(__FILE__, __LINE__);
@@ -1860,7 +2013,10 @@ glpgp_status glpgp_backend_create_opencl(const glpgp_cl_options *opt, glpgp_back
     *out = NULL;
     GLPGP_CHECK(glpgp_calloc(1, sizeof *b, &b));
     glpgp_status st = glpgp_calloc(1, sizeof(cl_impl), &b->impl);
-    if (st == GLPGP_OK) ((cl_impl *)b->impl)->launches = &b->n_launch;
+    if (st == GLPGP_OK) {
+        ((cl_impl *)b->impl)->launches = &b->n_launch;
+        ((cl_impl *)b->impl)->owner = b;
+    }
     if (st != GLPGP_OK) {
         free(b);
         return st;
@@ -1879,6 +2035,11 @@ glpgp_status glpgp_backend_create_opencl(const glpgp_cl_options *opt, glpgp_back
     b->overlap = IMPL(b)->cpu ? GLPGP_OVERLAP_AMG : GLPGP_OVERLAP_NEVER;
     *out = b;
     return GLPGP_OK;
+}
+
+void glpgp_cl_backend_log(const glpgp_backend *b)
+{
+    if (b && b->ops == &cl_ops && b->impl) log_device((const cl_impl *)b->impl);
 }
 
 int glpgp_cl_backend_info(const glpgp_backend *b, char *buf, size_t len)

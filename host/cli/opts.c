@@ -554,6 +554,10 @@ void glpgp_opts_add_solver(glpgp_opts *t, glpgp_options *o)
                      "the other; auto: concurrent where measured to pay (reference\n"
                      "backend; multigrid on an OpenCL CPU device up to 500k vertices)\n"
                      "with two or more processors and memory for the copy");
+    glpgp_opt_flag(t, "--phase-sync", &o->phase_sync, 1,
+                   "wait for the device at the end of every timed phase, so that\n"
+                   "each phase's time in the summary and the statistics includes\n"
+                   "its device work (one more host round trip per phase)");
 }
 
 static const char *const k_backends[] = {"auto", "opencl", "reference", "petsc", NULL};

@@ -108,6 +108,7 @@ struct glpgp_amg {
     glpgp_vec *r, *z, *p, *q;  /* flexible CG */
     int has_phase;
     int warned;                /* the Jacobi fallback of glpgp_linear_solve was logged */
+    int sync;                  /* glpgp_options.phase_sync */
     glpgp_amg_info info;
 };
 
@@ -566,6 +567,7 @@ glpgp_status glpgp_amg_create(glpgp_backend *b, const glpgp_options *o, const un
     a->check = o->amg_check;
     a->maxit = o->amg_maxit < o->cg_max ? o->amg_maxit : o->cg_max;
     a->has_phase = w != NULL && h > 0.0;
+    a->sync = o->phase_sync;
 
     /* level 0: the system; graph without Dirichlet vertices */
     amg_level *l0 = &a->lev[0];
@@ -882,7 +884,18 @@ static glpgp_status spd_inverse(int m, const double *A, double *inv, double *S)
 
 /* glpgp_amg_update (spd = 0) and glpgp_amg_update_spd (spd = 1: the coarse
  * operator is symmetric PSD, see spd_inverse) */
+static glpgp_status update_run(glpgp_amg *a, const glpgp_vec *x, int spd);
+
+/* timed as the per-step numeric setup (glpgp/timers.h) */
 static glpgp_status update(glpgp_amg *a, const glpgp_vec *x, int spd)
+{
+    const int prev = glpgp_timer_enter(a->b, GLPGP_TM_NUMERIC);
+    const glpgp_status st = update_run(a, x, spd);
+    glpgp_tm_leave(a->b, a->sync, prev);
+    return st;
+}
+
+static glpgp_status update_run(glpgp_amg *a, const glpgp_vec *x, int spd)
 {
     glpgp_backend *b = a->b;
     const glpgp_backend_ops *op = b->ops;
@@ -1101,12 +1114,28 @@ glpgp_status glpgp_fcg(glpgp_amg *a, const glpgp_vec *rhs, glpgp_vec *x, double 
                        glpgp_cg_info *info)
 {
     int nonfinite;
-    return fcg_run(a, rhs, x, rtol, maxit, info, &nonfinite);
+    const int prev = glpgp_timer_enter(a->b, GLPGP_TM_LINEAR);
+    const glpgp_status st = fcg_run(a, rhs, x, rtol, maxit, info, &nonfinite);
+    glpgp_timer_leave(a->b, prev);
+    return st;
 }
 
+static glpgp_status linear_solve(glpgp_backend *b, glpgp_amg *a, const glpgp_vec *rhs, glpgp_vec *x, double rtol,
+                                 int maxit, int check, glpgp_cg_info *info);
+
+/* timed as a linear solve (glpgp/timers.h) */
 glpgp_status glpgp_linear_solve(glpgp_backend *b, glpgp_amg *a, const glpgp_vec *rhs,
                                 glpgp_vec *x, double rtol, int maxit, int check,
                                 glpgp_cg_info *info)
+{
+    const int prev = glpgp_timer_enter(b, GLPGP_TM_LINEAR);
+    const glpgp_status st = linear_solve(b, a, rhs, x, rtol, maxit, check, info);
+    glpgp_timer_leave(b, prev);
+    return st;
+}
+
+static glpgp_status linear_solve(glpgp_backend *b, glpgp_amg *a, const glpgp_vec *rhs, glpgp_vec *x, double rtol,
+                                 int maxit, int check, glpgp_cg_info *info)
 {
     if (b->ops->linear_solve) {
         /* the backend's own solver (PETSc: KSP); the reason values are glpgp_cg_reason's */
@@ -1144,7 +1173,10 @@ glpgp_amg *glpgp_amg_try_create(glpgp_backend *b, const glpgp_options *o, const 
     glpgp_amg *a = NULL;
     if (o->precond != GLPGP_PRECOND_AMG) return NULL;
     if (b->ops->linear_solve) return NULL; /* the backend's own solver preconditions */
-    if (glpgp_amg_create(b, o, dir, w, h, &a) != GLPGP_OK) {
+    const int prev = glpgp_timer_enter(b, GLPGP_TM_STRUCTURE);
+    const glpgp_status st = glpgp_amg_create(b, o, dir, w, h, &a);
+    glpgp_tm_leave(b, o->phase_sync, prev);
+    if (st != GLPGP_OK) {
         glpgp_log(GLPGP_LOG_WARNING, "%s: multigrid setup failed (%s); using Jacobi-PCG", what,
                   glpgp_error_message());
         glpgp_error_clear();

@@ -1,8 +1,11 @@
 /* solver/backend.c: what the backend table needs beside its implementations:
- * destruction of any backend (glpgp/backend.h). */
+ * destruction of any backend and the phase accounts every backend carries
+ * (glpgp/backend.h, glpgp/timers.h). */
 #include "glpgp/backend.h"
+#include "glpgp/util.h"
 
 #include <stdlib.h>
+#include <string.h>
 
 void glpgp_backend_destroy(glpgp_backend **pb)
 {
@@ -10,4 +13,47 @@ void glpgp_backend_destroy(glpgp_backend **pb)
     if ((*pb)->ops && (*pb)->ops->destroy) (*pb)->ops->destroy(*pb);
     free(*pb);
     *pb = NULL;
+}
+
+void glpgp_timer_reset(glpgp_backend *b)
+{
+    memset(&b->tm, 0, sizeof b->tm);
+    b->tm_cur = GLPGP_TM_OTHER;
+    b->tm_mark = glpgp_now();
+}
+
+/* book the time since the mark to the current phase */
+static void book(glpgp_backend *b)
+{
+    const double t = glpgp_now();
+    if (b->tm_mark > 0.0 && b->tm_cur >= 0 && b->tm_cur < GLPGP_TM_COUNT) b->tm.s[b->tm_cur] += t - b->tm_mark;
+    b->tm_mark = t;
+}
+
+int glpgp_timer_enter(glpgp_backend *b, int id)
+{
+    const int prev = b->tm_cur;
+    /* the fields' own solves stay theirs; their multigrid structure is the structure's */
+    if ((prev == GLPGP_TM_FIELD || prev == GLPGP_TM_SIZE) && id != GLPGP_TM_STRUCTURE) return prev;
+    book(b);
+    b->tm_cur = id;
+    return prev;
+}
+
+void glpgp_timer_leave(glpgp_backend *b, int prev)
+{
+    if (prev == b->tm_cur) return;
+    book(b);
+    b->tm_cur = prev;
+}
+
+void glpgp_backend_waited(glpgp_backend *b, double seconds)
+{
+    if (b->tm_cur >= 0 && b->tm_cur < GLPGP_TM_COUNT) b->tm.wait[b->tm_cur] += seconds;
+}
+
+void glpgp_timer_read(glpgp_backend *b, glpgp_timers *t)
+{
+    book(b);
+    *t = b->tm;
 }

@@ -7,8 +7,21 @@
 
 #include <math.h>
 
+static glpgp_status cg_run(glpgp_backend *b, const glpgp_vec *rhs, glpgp_vec *x, double rtol, int maxit, int check,
+                           glpgp_cg_info *info);
+
+/* timed as a linear solve (glpgp/timers.h) */
 glpgp_status glpgp_cg(glpgp_backend *b, const glpgp_vec *rhs, glpgp_vec *x, double rtol,
                       int maxit, int check, glpgp_cg_info *info)
+{
+    const int prev = glpgp_timer_enter(b, GLPGP_TM_LINEAR);
+    const glpgp_status st = cg_run(b, rhs, x, rtol, maxit, check, info);
+    glpgp_timer_leave(b, prev);
+    return st;
+}
+
+static glpgp_status cg_run(glpgp_backend *b, const glpgp_vec *rhs, glpgp_vec *x, double rtol, int maxit, int check,
+                           glpgp_cg_info *info)
 {
     const glpgp_backend_ops *o = b->ops;
     const size_t n = (size_t)2 * b->sys->nv;

@@ -55,6 +55,21 @@
 #include <stdlib.h>
 #include <string.h>
 
+void glpgp_tm_leave(glpgp_backend *b, int sync, int prev)
+{
+    if (sync && b->ops->finish && prev != b->tm_cur) (void)b->ops->finish(b); /* a failure shows at the next call */
+    glpgp_timer_leave(b, prev);
+}
+
+/* NEWTON <- the Hessian hess at x (ops->assemble_newton), timed as assembly */
+static glpgp_status assemble(glpgp_backend *b, const glpgp_options *o, const glpgp_vec *x, double inv4e2, int hess)
+{
+    const int prev = glpgp_timer_enter(b, GLPGP_TM_ASSEMBLY);
+    const glpgp_status st = b->ops->assemble_newton(b, x, inv4e2, hess);
+    glpgp_tm_leave(b, o->phase_sync, prev);
+    return st;
+}
+
 const char *glpgp_osc_name(int k) { return k == 0 ? "u" : k == 1 ? "v" : k == 3 ? "coupled u+v" : "cross"; }
 
 /* Inexact-Newton tolerance of the linear solve at |g| = gn: eta = forcing
@@ -93,7 +108,7 @@ static glpgp_status ls_step(glpgp_backend *b, const glpgp_options *o, glpgp_newt
     const int tried_exact = hess != o->hess;
     double slope = 0.0;
     for (;;) {
-        GLPGP_CHECK(op->assemble_newton(b, ns->x, inv4e2, hess));
+        GLPGP_CHECK(assemble(b, o, ns->x, inv4e2, hess));
         /* multigrid: values from the new matrix, frames from x */
         if (ns->amg && !glpgp_amg_try_update(ns->amg, ns->x, "Newton step")) ns->amg = NULL;
         GLPGP_CHECK(op->axpby(b, -1.0, ns->g, 0.0, ns->xt)); /* xt <- -g (rhs) */
@@ -167,12 +182,15 @@ typedef struct trial_host {
  * meet the quartic penalty), z_i + a d_i below half of it (vortex cores,
  * where the phase is undefined), blended linearly between; straight also
  * where 1 + Re w <= 0. It agrees with x + a d to first order in d. Computed
- * on the host from the copies in h and written to the device (one vector
- * write per trial point; the backend table has no op for it). */
+ * by the backend (ops->trial_point: kernels/newton_rows.h, no host round
+ * trip), or, by a backend without that op, on the host from the copies in h
+ * and written to the device (one vector write per trial point). */
 static glpgp_status trial_point(glpgp_backend *b, const glpgp_options *o, glpgp_newton_state *ns,
                                 const trial_host *h, double a)
 {
     const glpgp_backend_ops *op = b->ops;
+    if (o->retract_zabs > 0.0 && op->trial_point) /* on the device: kernels/newton_rows.h */
+        return op->trial_point(b, ns->x, ns->d, a, o->retract_zabs, ns->xt);
     if (!h) {
         GLPGP_CHECK(op->copy(b, ns->xt, ns->x));
         return op->axpby(b, a, ns->d, 1.0, ns->xt); /* xt <- x + a d */
@@ -241,14 +259,14 @@ static glpgp_status tr_direction(glpgp_backend *b, const glpgp_options *o, glpgp
             /* re-solve: the matrix and the region of the last call */
         } else if (mg) {
             /* hierarchy from H_proj >= H (values, frames from x, SPD coarse inverse) */
-            GLPGP_CHECK(op->assemble_newton(b, ns->x, inv4e2, psd ? hess : GLPGP_HESS_PROJECTED));
+            GLPGP_CHECK(assemble(b, o, ns->x, inv4e2, psd ? hess : GLPGP_HESS_PROJECTED));
             if (!glpgp_amg_try_update_spd(ns->amg, ns->x, "trust-region step")) {
                 ns->amg = NULL;
                 mg = 0;
             }
-            if (mg && !psd) GLPGP_CHECK(op->assemble_newton(b, ns->x, inv4e2, hess));
+            if (mg && !psd) GLPGP_CHECK(assemble(b, o, ns->x, inv4e2, hess));
         }
-        if (!mg && !reuse) GLPGP_CHECK(op->assemble_newton(b, ns->x, inv4e2, hess));
+        if (!mg && !reuse) GLPGP_CHECK(assemble(b, o, ns->x, inv4e2, hess));
         reuse = 0;
         tm->set = 1;
         tm->hess = hess;
@@ -284,7 +302,7 @@ static glpgp_status tr_amg_direction(glpgp_backend *b, const glpgp_options *o, g
 {
     const glpgp_backend_ops *op = b->ops;
     *ok = 0;
-    GLPGP_CHECK(op->assemble_newton(b, ns->x, inv4e2, tr_hessian(o)));
+    GLPGP_CHECK(assemble(b, o, ns->x, inv4e2, tr_hessian(o)));
     /* multigrid: values from the new matrix, frames from x */
     if (ns->amg && !glpgp_amg_try_update(ns->amg, ns->x, "Newton step")) {
         ns->amg = NULL;
@@ -317,8 +335,8 @@ static glpgp_status tr_step(glpgp_backend *b, const glpgp_options *o, glpgp_newt
     glpgp_status st = GLPGP_OK;
     trial_host th = {NULL, NULL, NULL}, *h = NULL;
     const double eta = newton_eta(o, ns, gn);
-    /* polar trial points: x (and each d) read back once */
-    if (o->retract_zabs > 0.0) {
+    /* polar trial points without the backend's op: x (and each d) read back once */
+    if (o->retract_zabs > 0.0 && !op->trial_point) {
         const size_t n2 = (size_t)2 * b->sys->nv;
         GLPGP_CHECK_GOTO(st, glpgp_malloc(n2, sizeof(double), &th.x), done);
         GLPGP_CHECK_GOTO(st, glpgp_malloc(n2, sizeof(double), &th.d), done);
@@ -500,8 +518,22 @@ glpgp_status glpgp_newton_step(glpgp_backend *b, const glpgp_options *o, glpgp_n
     return ls_step(b, o, ns, inv4e2, F, gn, info);
 }
 
+static glpgp_status newton_level(glpgp_backend *b, const glpgp_options *o, glpgp_newton_state *ns, int k,
+                                 double eps, double rtol, glpgp_level_stats *ls);
+
+/* the level's own work (gradients, energies, trial points) is timed as
+ * energies; assembly, multigrid values and linear solves as theirs */
 glpgp_status glpgp_newton_level(glpgp_backend *b, const glpgp_options *o, glpgp_newton_state *ns,
                                 int k, double eps, double rtol, glpgp_level_stats *ls)
+{
+    const int prev = glpgp_timer_enter(b, GLPGP_TM_ENERGY);
+    const glpgp_status st = newton_level(b, o, ns, k, eps, rtol, ls);
+    glpgp_timer_leave(b, prev);
+    return st;
+}
+
+static glpgp_status newton_level(glpgp_backend *b, const glpgp_options *o, glpgp_newton_state *ns, int k,
+                                 double eps, double rtol, glpgp_level_stats *ls)
 {
     const glpgp_backend_ops *op = b->ops;
     const double inv4e2 = 1.0 / (4.0 * eps * eps);

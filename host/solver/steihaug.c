@@ -140,8 +140,21 @@ const char *glpgp_trcg_reason_name(glpgp_trcg_reason r)
     return "?";
 }
 
+static glpgp_status trcg_run(glpgp_backend *b, glpgp_amg *mg, const glpgp_vec *rhs, glpgp_vec *x, double radius,
+                             double rtol, int maxit, glpgp_vec *xb, glpgp_trcg_info *info);
+
+/* timed as a linear solve (glpgp/timers.h) */
 glpgp_status glpgp_trcg(glpgp_backend *b, glpgp_amg *mg, const glpgp_vec *rhs, glpgp_vec *x,
                         double radius, double rtol, int maxit, glpgp_vec *xb, glpgp_trcg_info *info)
+{
+    const int prev = glpgp_timer_enter(b, GLPGP_TM_LINEAR);
+    const glpgp_status st = trcg_run(b, mg, rhs, x, radius, rtol, maxit, xb, info);
+    glpgp_timer_leave(b, prev);
+    return st;
+}
+
+static glpgp_status trcg_run(glpgp_backend *b, glpgp_amg *mg, const glpgp_vec *rhs, glpgp_vec *x, double radius,
+                             double rtol, int maxit, glpgp_vec *xb, glpgp_trcg_info *info)
 {
     const pcg pc = {b, mg};
     const glpgp_backend_ops *o = b->ops;

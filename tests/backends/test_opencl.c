@@ -158,7 +158,7 @@ static void remove_file(const char *dir, const char *name)
 static void test_device_errors(void)
 {
     glpgp_backend *b = NULL;
-    glpgp_cl_options o = {99, 0};
+    glpgp_cl_options o = {99, 0, NULL};
     CHECK(glpgp_backend_create_opencl(&o, &b) == GLPGP_ERR_ARG && b == NULL);
     CHECK(strstr(glpgp_error_message(), "no such OpenCL device") != NULL);
     glpgp_error_clear();
@@ -227,7 +227,7 @@ static void test_device_errors(void)
 int main(void)
 {
     glpgp_backend *b = NULL;
-    glpgp_cl_options o = {-1, 0};
+    glpgp_cl_options o = {-1, 0, NULL};
     if (!glpgp_have_opencl() || glpgp_backend_create_opencl(&o, &b) != GLPGP_OK) {
         /* the engine reports the same: no OpenCL -> UNSUPPORTED / OPENCL, no rows */
         char why[512];

@@ -21,6 +21,7 @@
 #define GLPGP_BACKEND_H
 
 #include "glpgp/system.h"
+#include "glpgp/timers.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -260,6 +261,18 @@ typedef struct glpgp_backend_ops {
      * same bits on every rank), maximum or minimum over the ranks; every
      * rank calls it alike. */
     glpgp_status (*reduce)(glpgp_backend *b, double *v, int n, int op);
+
+    /* ---- optional (NULL: the drivers do without) ----
+     * finish: block until every operation enqueued so far is done (the
+     *   phase accounts of glpgp_options.phase_sync; a synchronous backend
+     *   leaves it NULL).
+     * trial_point: the trust region's trial point xt <- x (+) a d, per vertex
+     *   glpgp_polar_point of kernels/newton_rows.h with retract radius r1
+     *   (a polar update outside vortex cores, the straight one inside); NULL:
+     *   the driver computes it on the host from copies of x and d. */
+    glpgp_status (*finish)(glpgp_backend *b);
+    glpgp_status (*trial_point)(glpgp_backend *b, const glpgp_vec *x, const glpgp_vec *d, double a,
+                                double r1, glpgp_vec *xt);
 } glpgp_backend_ops;
 
 enum { GLPGP_REDUCE_SUM = 0, GLPGP_REDUCE_MAX = 1, GLPGP_REDUCE_MIN = 2 };
@@ -280,6 +293,12 @@ struct glpgp_backend {
      * running the second oscillator on a clone beside this backend: set by
      * the backend, copied by clone */
     int overlap;
+    /* where the time goes (glpgp/timers.h): the phase accounts, the phase
+     * being timed and since when (glpgp_timer_enter / _leave below); the
+     * backend adds its blocking waits to the current phase (glpgp_backend_waited) */
+    glpgp_timers tm;
+    int tm_cur;
+    double tm_mark;
 };
 
 enum {
@@ -296,6 +315,23 @@ enum {
 
 /* Destroy any backend (NULL-safe, sets *b = NULL). */
 void glpgp_backend_destroy(glpgp_backend **b);
+
+/* ---- phase accounts (glpgp/timers.h; solver/backend.c) ----
+ * reset: every account to 0, the current phase GLPGP_TM_OTHER from now.
+ * enter: the time since the last mark is booked to the current phase, which
+ *   becomes id; returns the previous one for leave. Inside the guiding field
+ *   or the size field (their own solves) only the structure phase is booked
+ *   apart: enter then keeps the current phase.
+ * leave: the time since the last mark is booked to the current phase, which
+ *   becomes prev.
+ * waited: seconds the host just spent blocked on the device, added to the
+ *   current phase's wait (by the backends' blocking calls).
+ * read: *t <- the accounts, the current phase's time so far included. */
+void glpgp_timer_reset(glpgp_backend *b);
+int glpgp_timer_enter(glpgp_backend *b, int id);
+void glpgp_timer_leave(glpgp_backend *b, int prev);
+void glpgp_backend_waited(glpgp_backend *b, double seconds);
+void glpgp_timer_read(glpgp_backend *b, glpgp_timers *t);
 
 #ifdef __cplusplus
 }

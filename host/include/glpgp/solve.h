@@ -93,6 +93,10 @@ typedef struct glpgp_options {
                              result in m's order; GLPGP_ORDER_INPUT: m's numbering [RCM] */
     int oscillators;      /* GLPGP_OSC_*: u and v one after the other or at the same time
                              (independent solves: the same result bit for bit) [AUTO] */
+    int phase_sync;       /* 1: the drivers wait for the device at the end of every timed
+                             phase (glpgp/timers.h), so that each phase's time includes its
+                             device work (one more host round trip per phase); 0: a phase
+                             books only what the host did and waited for during it [0] */
 
     /* eps continuation */
     double eps0;          /* first eps as a multiple of h [0.5] */
