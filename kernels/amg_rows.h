@@ -182,27 +182,29 @@ GLPGP_FN void glpgp_amg_load_block(GLPGP_GLOBAL const double *A, long k, double 
 /* ---- per aggregate (hierarchy values) ------------------------------------- */
 
 /* Frame of node i: f_i = a_i frame_i  (a_i = amp[i] when has_amp, else 1;
- * frame_i = (fr[2i], fr[2i+1]) when has_frame, else 1). */
+ * frame_i = (fr[2i], fr[2i+1]) when has_frame, else 1); 0 when has_dir and
+ * dir[i] (a Dirichlet vertex of level 0: on no coarse level). */
 GLPGP_FN void glpgp_amg_frame(int i, int has_amp, GLPGP_GLOBAL const double *amp, int has_frame,
-                              GLPGP_GLOBAL const double *fr, double *fx, double *fy)
+                              GLPGP_GLOBAL const double *fr, int has_dir, GLPGP_GLOBAL const unsigned char *dir,
+                              double *fx, double *fy)
 {
-    const double am = has_amp ? amp[i] : 1.0;
+    const double am = has_dir && dir[i] ? 0.0 : has_amp ? amp[i] : 1.0;
     *fx = has_frame ? am * fr[2 * i] : am;
     *fy = has_frame ? am * fr[2 * i + 1] : 0.0;
 }
 
 /* Aggregate J of level l (members amem[aptr[J] .. aptr[J+1])):
  *   s_J = sqrt(sum_{i in J} |f_i|^2);  amp_next[J] <- s_J;  c_i <- f_i / s_J;
- * J is dead (amp_next[J] <- 0, c_i <- 0) when s_J is 0 or not finite. Nodes in
- * no aggregate keep c = 0 (never written). */
+ * J is dead (amp_next[J] <- 0, c_i <- 0) when s_J is 0 or not finite. */
 GLPGP_FN void glpgp_amg_agg_weights(int J, GLPGP_GLOBAL const int *aptr, GLPGP_GLOBAL const int *amem,
                                     int has_amp, GLPGP_GLOBAL const double *amp, int has_frame,
-                                    GLPGP_GLOBAL const double *fr, GLPGP_GLOBAL double *c,
+                                    GLPGP_GLOBAL const double *fr, int has_dir,
+                                    GLPGP_GLOBAL const unsigned char *dir, GLPGP_GLOBAL double *c,
                                     GLPGP_GLOBAL double *amp_next)
 {
     double ss = 0.0, fx, fy;
     for (int p = aptr[J]; p < aptr[J + 1]; p++) {
-        glpgp_amg_frame(amem[p], has_amp, amp, has_frame, fr, &fx, &fy);
+        glpgp_amg_frame(amem[p], has_amp, amp, has_frame, fr, has_dir, dir, &fx, &fy);
         ss += fx * fx + fy * fy;
     }
     const double s = sqrt(ss);
@@ -210,7 +212,7 @@ GLPGP_FN void glpgp_amg_agg_weights(int J, GLPGP_GLOBAL const int *aptr, GLPGP_G
     amp_next[J] = dead ? 0.0 : s;
     for (int p = aptr[J]; p < aptr[J + 1]; p++) {
         const int i = amem[p];
-        glpgp_amg_frame(i, has_amp, amp, has_frame, fr, &fx, &fy);
+        glpgp_amg_frame(i, has_amp, amp, has_frame, fr, has_dir, dir, &fx, &fy);
         c[2 * i] = dead ? 0.0 : fx / s;
         c[2 * i + 1] = dead ? 0.0 : fy / s;
     }

@@ -83,11 +83,12 @@ GLPGP_KERNEL void glpgp_amg_finalize(__global const double *part, int np, int st
  * (glpgp_amg_agg_weights). */
 GLPGP_KERNEL void glpgp_amg_weights(int n, int chunk, __global const int *aptr, __global const int *amem,
                                     int has_amp, __global const double *amp, int has_frame,
-                                    __global const double *fr, __global double *c,
-                                    __global double *amp_next)
+                                    __global const double *fr, int has_dir, __global const uchar *dir,
+                                    __global double *c, __global double *amp_next)
 {
     GLPGP_RANGE(lo, hi, n, chunk);
-    for (int J = lo; J < hi; J++) glpgp_amg_agg_weights(J, aptr, amem, has_amp, amp, has_frame, fr, c, amp_next);
+    for (int J = lo; J < hi; J++)
+        glpgp_amg_agg_weights(J, aptr, amem, has_amp, amp, has_frame, fr, has_dir, dir, c, amp_next);
 }
 
 /* Coarse rows [lo, hi) of A_{l+1} = P^T A_l P (glpgp_amg_galerkin_row); with

@@ -154,6 +154,8 @@ typedef struct cl_amg_level {
 } cl_amg_level;
 
 typedef struct cl_amg {
+    glpgp_amg_layout lay;/* the layout it was set up from (its key and parameters; the
+                            array pointers are the caller's and not used after setup) */
     int L;
     double weight;
     cl_amg_level lev[GLPGP_AMG_MAX_LEVELS];
@@ -1426,11 +1428,13 @@ static glpgp_status cl_amg_setup(glpgp_backend *b, const glpgp_amg_layout *lay)
         return GLPGP_FAIL(GLPGP_ERR_ARG, "amg_setup: smoother weight %g not in (0, 2)", lay->weight);
     if (lay->pre < 0 || lay->pre > 64 || lay->post < 0 || lay->post > 64)
         return GLPGP_FAIL(GLPGP_ERR_ARG, "amg_setup: %d / %d smoother sweeps", lay->pre, lay->post);
+    if (c->amg && glpgp_amg_layout_same(&c->amg->lay, lay)) return GLPGP_OK; /* holds it already */
     amg_free(c);
     GLPGP_CHECK(glpgp_calloc(1, sizeof(cl_amg), &c->amg));
     cl_amg *a = c->amg;
     glpgp_status st = GLPGP_OK;
     int *srow = NULL, *tab = NULL, *ihost = NULL;
+    a->lay = *lay;
     a->L = lay->nlevels;
     a->weight = lay->weight;
     a->pre = lay->pre;
@@ -1605,14 +1609,17 @@ static glpgp_status cl_amg_values(glpgp_backend *b, const glpgp_vec *const *fram
         const cl_int has_amp = l > 0, has_frame = frames[l] != NULL;
         cl_mem amp = l > 0 ? v->amp : v->c; /* not read on level 0 */
         cl_mem fr = frames[l] ? frames[l]->m : v->c;
+        const cl_int has_dir = l == 0;
         ARG(k, 2, v->aptr);
         ARG(k, 3, v->amem);
         ARG(k, 4, has_amp);
         ARG(k, 5, amp);
         ARG(k, 6, has_frame);
         ARG(k, 7, fr);
-        ARG(k, 8, v->c);
-        ARG(k, 9, w->amp);
+        ARG(k, 8, has_dir);
+        ARG(k, 9, c->dir);
+        ARG(k, 10, v->c);
+        ARG(k, 11, w->amp);
         GLPGP_CHECK(amg_run_w(c, K_AMG_WEIGHTS, (size_t)v->nc, (size_t)v->n, NULL));
         /* A_{l+1} <- P^T A_l P (Galerkin rows), M_{l+1}^-1 unless coarsest */
         k = c->k[K_AMG_GALERKIN];

@@ -33,6 +33,7 @@ typedef struct ref_level {
 } ref_level;
 
 struct ref_amg {
+    glpgp_amg_layout lay; /* the layout it was set up from (key and parameters) */
     int L;
     double weight; /* smoother weight */
     ref_level lev[GLPGP_AMG_MAX_LEVELS];
@@ -85,10 +86,12 @@ glpgp_status glpgp_ref_amg_setup(glpgp_backend *b, const glpgp_amg_layout *lay)
         return GLPGP_FAIL(GLPGP_ERR_ARG, "amg_setup: %d levels", lay->nlevels);
     if (lay->lev[0].n != sys->nv || lay->lev[0].nnzb != sys->nnzb)
         return GLPGP_FAIL(GLPGP_ERR_ARG, "amg_setup: level 0 is not the system");
+    if (r->amg && glpgp_amg_layout_same(&r->amg->lay, lay)) return GLPGP_OK; /* holds it already */
     glpgp_ref_amg_free(r);
     GLPGP_CHECK(glpgp_calloc(1, sizeof(struct ref_amg), &r->amg));
     struct ref_amg *a = r->amg;
     glpgp_status st = GLPGP_OK;
+    a->lay = *lay;
     a->L = lay->nlevels;
     a->weight = lay->weight;
     if (!(a->weight > 0.0 && a->weight < 2.0)) {
@@ -159,7 +162,7 @@ glpgp_status glpgp_ref_amg_values(glpgp_backend *b, const glpgp_vec *const *fram
          * when none);  s_J = sqrt(sum_{i in J} |f_i|^2);  c_i = f_i / s_J
          * (nodes in no aggregate keep c = 0 from amg_setup) */
         for (int J = 0; J < v->nc; J++)
-            glpgp_amg_agg_weights(J, v->aptr, v->amem, l > 0, v->amp, fr != NULL, fr, v->c, w->amp);
+            glpgp_amg_agg_weights(J, v->aptr, v->amem, l > 0, v->amp, fr != NULL, fr, l == 0, r->dir, v->c, w->amp);
         /* A_{l+1}[K] = sum over the mapped level-l slots k = (i, j) of
          * P_i^T A_l[k] P_j (gather, increasing k); dead coarse node:
          * identity diagonal block */

@@ -57,7 +57,7 @@
  * number of levels (host/README.md has the counts). The preconditioner is
  * not a fixed linear operator, so the outer iteration is flexible CG
  * (FCG(1)): one extra dot product per iteration compared with CG. */
-#include "internal.h"
+#include "amg_internal.h"
 
 #include "glpgp/util.h"
 
@@ -66,31 +66,10 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* ---- host-side structure ------------------------------------------------ */
-
-/* A weighted graph in CSR form (no self loops). */
-typedef struct wgraph {
-    int n;
-    int *ptr, *adj;
-    double *wt;
-} wgraph;
-
-static void wgraph_free(wgraph *g)
-{
-    free(g->ptr);
-    free(g->adj);
-    free(g->wt);
-    memset(g, 0, sizeof *g);
-}
+/* ---- one instance of the hierarchy on a backend ---------------------- */
 
 typedef struct amg_level {
     int n;
-    long nnzb;
-    int *rowptr, *col, *diag;  /* levels >= 1 (level 0: the system's) */
-    wgraph g;                  /* aggregation graph of this level */
-    int *agg, *aptr, *amem;    /* transfer to l+1 */
-    int *gptr, *gsrc;
-    double *pos, *wsum;        /* 2n: centroid, summed field (plane-wave frames) */
     /* device vectors (2n doubles): K-cycle and smoothing work */
     glpgp_vec *b, *e, *v, *w, *r2, *d, *wd, *tmp;
     glpgp_vec *phase;          /* plane-wave frame of this level (NULL: none) */
@@ -98,6 +77,8 @@ typedef struct amg_level {
 
 struct glpgp_amg {
     glpgp_backend *b;
+    const glpgp_amg_structure *s; /* the structure: b->amg_shared, or own */
+    glpgp_amg_structure *own;  /* built for this instance alone (no shared one fits) */
     int cycle, pre, post, check, maxit;
     int kmin;                  /* levels below this many nodes: V-cycle */
     int L;
@@ -112,6 +93,7 @@ struct glpgp_amg {
     glpgp_amg_info info;
 };
 
+
 /* whether the coarse correction on level c (0 < c < L-1) is a K-cycle */
 int glpgp_amg_kcycle_min(const glpgp_backend *b, const glpgp_options *o)
 {
@@ -124,382 +106,58 @@ static int kcycle_level(const glpgp_amg *a, int c)
     return a->cycle == GLPGP_AMG_KCYCLE && a->lev[c].n >= a->kmin;
 }
 
-/* Dirichlet-free vertex graph of the system: edges of the block pattern
- * between free vertices, weight 1. */
-static glpgp_status fine_graph(const glpgp_system *sys, const unsigned char *dir, wgraph *g)
+/* The plane-wave frames of the quadratic problems: node i of level l in
+ * aggregate J gets exp(i (2 pi / h) W_J . (x_i - x_J)), W_J the normalised
+ * sum of the field over J's fine vertices, x_J its centroid; uploaded as
+ * a->lev[l].phase. */
+static glpgp_status wave_frames(glpgp_amg *a, const double *w, double h)
 {
-    g->n = sys->nv;
-    GLPGP_CHECK(glpgp_malloc((size_t)sys->nv + 1, sizeof(int), &g->ptr));
-    GLPGP_CHECK(glpgp_malloc((size_t)(sys->nnzb ? sys->nnzb : 1), sizeof(int), &g->adj));
-    GLPGP_CHECK(glpgp_malloc((size_t)(sys->nnzb ? sys->nnzb : 1), sizeof(double), &g->wt));
-    long e = 0;
-    g->ptr[0] = 0;
-    for (int i = 0; i < sys->nv; i++) {
-        if (!(dir && dir[i]))
-            for (int k = sys->rowptr[i]; k < sys->rowptr[i + 1]; k++) {
-                int j = sys->col[k];
-                if (j == i || (dir && dir[j])) continue;
-                g->adj[e] = j;
-                g->wt[e] = 1.0;
-                e++;
-            }
-        g->ptr[i + 1] = (int)e;
-    }
-    return GLPGP_OK;
-}
-
-/* One pass of pairwise matching on g restricted to the active nodes
- * (act[i] != 0): repeatedly take the unmatched node with the fewest unmatched
- * neighbours and pair it with its strongest unmatched neighbour (ties: fewer
- * unmatched neighbours, then smaller index), or leave it alone. grp[i] <- the
- * pair's index (-1 for inactive nodes); returns the number of groups.
- * Degrees only decrease, so a bucket list per degree gives O(edges). */
-static glpgp_status pair_pass(const wgraph *g, const unsigned char *act, int *grp, int *ngroups)
-{
-    const int n = g->n;
-    int *deg = NULL, *head = NULL, *next = NULL, *prev = NULL;
-    unsigned char *done = NULL;
-    glpgp_status st = GLPGP_OK;
-    int maxdeg = 0, ng = 0;
-    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)n + 1, sizeof(int), &deg), out);
-    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)n + 1, sizeof(int), &next), out);
-    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)n + 1, sizeof(int), &prev), out);
-    GLPGP_CHECK_GOTO(st, glpgp_calloc((size_t)n + 1, 1, &done), out);
-    for (int i = 0; i < n; i++) {
-        grp[i] = -1;
-        deg[i] = 0;
-        if (!act[i]) {
-            done[i] = 1;
-            continue;
-        }
-        for (int k = g->ptr[i]; k < g->ptr[i + 1]; k++) deg[i] += act[g->adj[k]] != 0;
-        if (deg[i] > maxdeg) maxdeg = deg[i];
-    }
-    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)maxdeg + 1, sizeof(int), &head), out);
-    for (int d = 0; d <= maxdeg; d++) head[d] = -1;
-    /* bucket lists, nodes inserted in decreasing index so that each bucket
-     * starts with its smallest index */
-    for (int i = n - 1; i >= 0; i--) {
-        if (done[i]) continue;
-        prev[i] = -1;
-        next[i] = head[deg[i]];
-        if (head[deg[i]] >= 0) prev[head[deg[i]]] = i;
-        head[deg[i]] = i;
-    }
-#define UNLINK(i)                                            \
-    do {                                                     \
-        if (prev[i] >= 0) next[prev[i]] = next[i];           \
-        else head[deg[i]] = next[i];                         \
-        if (next[i] >= 0) prev[next[i]] = prev[i];           \
-    } while (0)
-    int cur = 0;
-    for (;;) {
-        while (cur <= maxdeg && head[cur] < 0) cur++;
-        if (cur > maxdeg) break;
-        int i = head[cur];
-        UNLINK(i);
-        done[i] = 1;
-        int best = -1;
-        double bw = 0.0;
-        for (int k = g->ptr[i]; k < g->ptr[i + 1]; k++) {
-            int j = g->adj[k];
-            if (done[j]) continue;
-            if (best < 0 || g->wt[k] > bw || (g->wt[k] == bw && (deg[j] < deg[best] ||
-                                                                 (deg[j] == deg[best] && j < best)))) {
-                best = j;
-                bw = g->wt[k];
-            }
-        }
-        grp[i] = ng;
-        if (best >= 0) {
-            UNLINK(best);
-            done[best] = 1;
-            grp[best] = ng;
-        }
-        ng++;
-        /* the unmatched neighbours of i and best lose one unmatched neighbour */
-        for (int s = 0; s < 2; s++) {
-            int u = s ? best : i;
-            if (u < 0) continue;
-            for (int k = g->ptr[u]; k < g->ptr[u + 1]; k++) {
-                int j = g->adj[k];
-                if (done[j]) continue;
-                UNLINK(j);
-                deg[j]--;
-                prev[j] = -1;
-                next[j] = head[deg[j]];
-                if (head[deg[j]] >= 0) prev[head[deg[j]]] = j;
-                head[deg[j]] = j;
-                if (deg[j] < cur) cur = deg[j];
-            }
-        }
-    }
-#undef UNLINK
-    *ngroups = ng;
-out:
-    free(deg);
-    free(head);
-    free(next);
-    free(prev);
-    free(done);
-    return st;
-}
-
-/* Quotient graph of g under map (node -> group in [0, nc), -1: dropped):
- * edge (I, J), I != J, weight = sum of the weights of the edges between
- * them; adjacency sorted. */
-static glpgp_status quotient(const wgraph *g, const int *map, int nc, wgraph *c)
-{
-    glpgp_status st = GLPGP_OK;
-    int *mptr = NULL, *mem = NULL, *mark = NULL, *slot = NULL;
-    c->n = nc;
-    GLPGP_CHECK_GOTO(st, glpgp_calloc((size_t)nc + 1, sizeof(int), &mptr), out);
-    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)g->n + 1, sizeof(int), &mem), out);
-    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)nc + 1, sizeof(int), &mark), out);
-    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)nc + 1, sizeof(int), &slot), out);
-    for (int i = 0; i < g->n; i++)
-        if (map[i] >= 0) mptr[map[i] + 1]++;
-    for (int J = 0; J < nc; J++) mptr[J + 1] += mptr[J];
-    for (int i = 0; i < g->n; i++)
-        if (map[i] >= 0) mem[mptr[map[i]]++] = i;
-    for (int J = nc; J > 0; J--) mptr[J] = mptr[J - 1];
-    mptr[0] = 0;
-    /* count, then fill */
-    for (int J = 0; J < nc; J++) mark[J] = -1;
-    GLPGP_CHECK_GOTO(st, glpgp_calloc((size_t)nc + 1, sizeof(int), &c->ptr), out);
-    for (int I = 0; I < nc; I++) {
-        int cnt = 0;
-        for (int p = mptr[I]; p < mptr[I + 1]; p++) {
-            int i = mem[p];
-            for (int k = g->ptr[i]; k < g->ptr[i + 1]; k++) {
-                int J = map[g->adj[k]];
-                if (J < 0 || J == I || mark[J] == I) continue;
-                mark[J] = I;
-                cnt++;
-            }
-        }
-        c->ptr[I + 1] = c->ptr[I] + cnt;
-    }
-    size_t ne = (size_t)c->ptr[nc];
-    GLPGP_CHECK_GOTO(st, glpgp_malloc(ne ? ne : 1, sizeof(int), &c->adj), out);
-    GLPGP_CHECK_GOTO(st, glpgp_calloc(ne ? ne : 1, sizeof(double), &c->wt), out);
-    for (int J = 0; J < nc; J++) mark[J] = -1;
-    for (int I = 0; I < nc; I++) {
-        int e = c->ptr[I];
-        for (int p = mptr[I]; p < mptr[I + 1]; p++) {
-            int i = mem[p];
-            for (int k = g->ptr[i]; k < g->ptr[i + 1]; k++) {
-                int J = map[g->adj[k]];
-                if (J < 0 || J == I) continue;
-                if (mark[J] != I) {
-                    mark[J] = I;
-                    slot[J] = e;
-                    c->adj[e] = J;
-                    c->wt[e] = 0.0;
-                    e++;
-                }
-                c->wt[slot[J]] += g->wt[k];
-            }
-        }
-        /* sort the row by J (insertion sort: rows are short) */
-        for (int a = c->ptr[I] + 1; a < c->ptr[I + 1]; a++) {
-            int ja = c->adj[a];
-            double wa = c->wt[a];
-            int bpos = a - 1;
-            while (bpos >= c->ptr[I] && c->adj[bpos] > ja) {
-                c->adj[bpos + 1] = c->adj[bpos];
-                c->wt[bpos + 1] = c->wt[bpos];
-                bpos--;
-            }
-            c->adj[bpos + 1] = ja;
-            c->wt[bpos + 1] = wa;
-        }
-    }
-out:
-    free(mptr);
-    free(mem);
-    free(mark);
-    free(slot);
-    return st;
-}
-
-/* Aggregates of level lv (two pairing passes on its graph; Dirichlet /
- * inactive nodes get -1): lv->agg and the returned count. When the level is
- * small enough (n_active <= coarse) every active node is its own aggregate
- * (the next level is then the coarsest and solves the level exactly). */
-static glpgp_status aggregate(amg_level *lv, const unsigned char *act, int coarse, int *nc)
-{
-    glpgp_status st = GLPGP_OK;
-    const int n = lv->n;
-    int *g1 = NULL, *g2 = NULL;
-    unsigned char *act1 = NULL;
-    wgraph q;
-    memset(&q, 0, sizeof q);
-    GLPGP_CHECK(glpgp_malloc((size_t)n + 1, sizeof(int), &lv->agg));
-    int nact = 0;
-    for (int i = 0; i < n; i++) nact += act[i] != 0;
-    if (nact <= coarse) {
-        int k = 0;
-        for (int i = 0; i < n; i++) lv->agg[i] = act[i] ? k++ : -1;
-        *nc = k;
-        return GLPGP_OK;
-    }
-    int n1 = 0, n2 = 0;
-    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)n + 1, sizeof(int), &g1), out);
-    GLPGP_CHECK_GOTO(st, pair_pass(&lv->g, act, g1, &n1), out);
-    GLPGP_CHECK_GOTO(st, quotient(&lv->g, g1, n1, &q), out);
-    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)n1 + 1, 1, &act1), out);
-    memset(act1, 1, (size_t)n1 + 1);
-    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)n1 + 1, sizeof(int), &g2), out);
-    GLPGP_CHECK_GOTO(st, pair_pass(&q, act1, g2, &n2), out);
-    for (int i = 0; i < n; i++) lv->agg[i] = g1[i] >= 0 ? g2[g1[i]] : -1;
-    /* number the aggregates by their first member, so that the coarse levels
-     * keep the locality of the fine ordering */
-    for (int J = 0; J < n2; J++) g2[J] = -1;
-    int next = 0;
-    for (int i = 0; i < n; i++) {
-        int J = lv->agg[i];
-        if (J < 0) continue;
-        if (g2[J] < 0) g2[J] = next++;
-        lv->agg[i] = g2[J];
-    }
-    *nc = n2;
-out:
-    free(g1);
-    free(g2);
-    free(act1);
-    wgraph_free(&q);
-    return st;
-}
-
-/* Members of each aggregate (aptr/amem, increasing), the next level's
- * pattern (quotient graph + diagonal, sorted) and graph, the Galerkin map
- * from the pattern (rowptr/col) of lv, and the centroids / field sums. */
-static glpgp_status build_transfer(amg_level *lv, const int *rowptr, const int *col, int nc,
-                                   amg_level *nx)
-{
-    glpgp_status st = GLPGP_OK;
-    int *pos = NULL;
-    long *cnt = NULL;
-    const int n = lv->n;
-    nx->n = nc;
-    GLPGP_CHECK(glpgp_calloc((size_t)nc + 1, sizeof(int), &lv->aptr));
-    GLPGP_CHECK(glpgp_malloc((size_t)n + 1, sizeof(int), &lv->amem));
-    for (int i = 0; i < n; i++)
-        if (lv->agg[i] >= 0) lv->aptr[lv->agg[i] + 1]++;
-    for (int J = 0; J < nc; J++) lv->aptr[J + 1] += lv->aptr[J];
-    {
-        int *fill = NULL;
-        GLPGP_CHECK(glpgp_malloc((size_t)nc + 1, sizeof(int), &fill));
-        memcpy(fill, lv->aptr, (size_t)nc * sizeof(int));
-        for (int i = 0; i < n; i++)
-            if (lv->agg[i] >= 0) lv->amem[fill[lv->agg[i]]++] = i;
-        free(fill);
-    }
-    /* next level's graph and pattern: quotient + diagonal */
-    GLPGP_CHECK(quotient(&lv->g, lv->agg, nc, &nx->g));
-    nx->nnzb = (long)nx->g.ptr[nc] + nc;
-    GLPGP_CHECK(glpgp_malloc((size_t)nc + 1, sizeof(int), &nx->rowptr));
-    GLPGP_CHECK(glpgp_malloc((size_t)nx->nnzb + 1, sizeof(int), &nx->col));
-    GLPGP_CHECK(glpgp_malloc((size_t)nc + 1, sizeof(int), &nx->diag));
-    {
-        long e = 0;
-        nx->rowptr[0] = 0;
-        for (int I = 0; I < nc; I++) {
-            int placed = 0;
-            for (int k = nx->g.ptr[I]; k < nx->g.ptr[I + 1]; k++) {
-                int J = nx->g.adj[k];
-                if (!placed && J > I) {
-                    nx->diag[I] = (int)e;
-                    nx->col[e++] = I;
-                    placed = 1;
-                }
-                nx->col[e++] = J;
-            }
-            if (!placed) {
-                nx->diag[I] = (int)e;
-                nx->col[e++] = I;
-            }
-            nx->rowptr[I + 1] = (int)e;
-        }
-    }
-    /* Galerkin map: coarse slot K = (I, J) <- level-l slots k = (i, j) with
-     * agg(i) = I, agg(j) = J, listed by increasing k */
-    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)nc + 1, sizeof(int), &pos), out);
-    GLPGP_CHECK_GOTO(st, glpgp_calloc((size_t)nx->nnzb + 1, sizeof(long), &cnt), out);
-    for (int J = 0; J < nc; J++) pos[J] = -1;
-    long total = 0;
-    for (int pass = 0; pass < 2; pass++) {
-        if (pass == 1) {
-            GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)nx->nnzb + 1, sizeof(int), &lv->gptr), out);
-            GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)(total ? total : 1), sizeof(int), &lv->gsrc), out);
-            lv->gptr[0] = 0;
-            for (long K = 0; K < nx->nnzb; K++) lv->gptr[K + 1] = lv->gptr[K] + (int)cnt[K];
-            for (long K = 0; K < nx->nnzb; K++) cnt[K] = lv->gptr[K];
-        }
-        for (int I = 0; I < nc; I++) {
-            for (int K = nx->rowptr[I]; K < nx->rowptr[I + 1]; K++) pos[nx->col[K]] = K;
-            for (int p = lv->aptr[I]; p < lv->aptr[I + 1]; p++) {
-                int i = lv->amem[p];
-                for (int k = rowptr[i]; k < rowptr[i + 1]; k++) {
-                    int J = lv->agg[col[k]];
-                    if (J < 0) continue;
-                    int K = pos[J];
-                    if (K < 0) {
-                        st = GLPGP_FAIL(GLPGP_ERR_NUMERIC, "multigrid: Galerkin map misses a block");
-                        goto out;
-                    }
-                    if (pass == 0) {
-                        cnt[K]++;
-                        total++;
-                    } else {
-                        lv->gsrc[cnt[K]++] = k;
-                    }
-                }
-            }
-            for (int K = nx->rowptr[I]; K < nx->rowptr[I + 1]; K++) pos[nx->col[K]] = -1;
-        }
-    }
-    /* centroids and field sums (plane-wave frames) */
-    if (lv->pos) {
-        GLPGP_CHECK_GOTO(st, glpgp_calloc((size_t)2 * nc + 1, sizeof(double), &nx->pos), out);
-        GLPGP_CHECK_GOTO(st, glpgp_calloc((size_t)2 * nc + 1, sizeof(double), &nx->wsum), out);
-        for (int J = 0; J < nc; J++) {
-            int c = lv->aptr[J + 1] - lv->aptr[J];
-            for (int p = lv->aptr[J]; p < lv->aptr[J + 1]; p++) {
-                int i = lv->amem[p];
-                nx->pos[2 * J] += lv->pos[2 * i] / c;
-                nx->pos[2 * J + 1] += lv->pos[2 * i + 1] / c;
-                nx->wsum[2 * J] += lv->wsum[2 * i];
-                nx->wsum[2 * J + 1] += lv->wsum[2 * i + 1];
-            }
-        }
-    }
-out:
-    free(pos);
-    free(cnt);
-    return st;
-}
-
-/* Plane-wave frame of level l: node i of aggregate J gets
- * exp(i (2 pi / h) W_J . (x_i - x_J)), W_J the normalised field sum of J,
- * x_J its centroid. */
-static void wave_phase(const amg_level *lv, const amg_level *nx, double h, double *ph)
-{
+    const glpgp_amg_structure *s = a->s;
+    glpgp_backend *b = a->b;
     const double k = 2.0 * GLPGP_PI / h;
-    for (int i = 0; i < lv->n; i++) {
-        int J = lv->agg[i];
-        ph[2 * i] = 1.0;
-        ph[2 * i + 1] = 0.0;
-        if (J < 0) continue;
-        double wx = nx->wsum[2 * J], wy = nx->wsum[2 * J + 1], wn = hypot(wx, wy);
-        if (!(wn > 0.0)) continue;
-        const double dx = lv->pos[2 * i] - nx->pos[2 * J], dy = lv->pos[2 * i + 1] - nx->pos[2 * J + 1];
-        const double a = k * (wx * dx + wy * dy) / wn;
-        ph[2 * i] = cos(a);
-        ph[2 * i + 1] = sin(a);
+    double *cur = NULL, *nxt = NULL, *ph = NULL;
+    glpgp_status st = GLPGP_OK;
+    const size_t n0 = (size_t)2 * s->lev[0].n;
+    GLPGP_CHECK_GOTO(st, glpgp_malloc(n0, sizeof(double), &cur), out);
+    GLPGP_CHECK_GOTO(st, glpgp_malloc(n0, sizeof(double), &nxt), out);
+    GLPGP_CHECK_GOTO(st, glpgp_malloc(n0, sizeof(double), &ph), out);
+    memcpy(cur, w, n0 * sizeof(double));
+    for (int l = 0; l + 1 < a->L; l++) {
+        const amg_slevel *lv = &s->lev[l], *nx = &s->lev[l + 1];
+        /* field sums of the aggregates */
+        for (int J = 0; J < nx->n; J++) {
+            double sx = 0.0, sy = 0.0;
+            for (int p = lv->aptr[J]; p < lv->aptr[J + 1]; p++) {
+                sx += cur[2 * lv->amem[p]];
+                sy += cur[2 * lv->amem[p] + 1];
+            }
+            nxt[2 * J] = sx;
+            nxt[2 * J + 1] = sy;
+        }
+        for (int i = 0; i < lv->n; i++) {
+            const int J = lv->agg[i];
+            const double wx = nxt[2 * J], wy = nxt[2 * J + 1], wn = hypot(wx, wy);
+            ph[2 * i] = 1.0;
+            ph[2 * i + 1] = 0.0;
+            if (!(wn > 0.0)) continue;
+            const double dx = lv->pos[2 * i] - nx->pos[2 * J], dy = lv->pos[2 * i + 1] - nx->pos[2 * J + 1];
+            const double t = k * (wx * dx + wy * dy) / wn;
+            ph[2 * i] = cos(t);
+            ph[2 * i + 1] = sin(t);
+        }
+        GLPGP_CHECK_GOTO(st, b->ops->vec_create(b, (size_t)2 * lv->n, &a->lev[l].phase), out);
+        GLPGP_CHECK_GOTO(st, b->ops->vec_write(b, a->lev[l].phase, ph), out);
+        double *t = cur;
+        cur = nxt;
+        nxt = t;
     }
+out:
+    free(cur);
+    free(nxt);
+    free(ph);
+    return st;
 }
+
 
 int glpgp_amg_supported(const glpgp_backend *b)
 {
@@ -517,17 +175,6 @@ void glpgp_amg_destroy(glpgp_amg **pa)
     const glpgp_backend_ops *o = b->ops;
     for (int l = 0; l < GLPGP_AMG_MAX_LEVELS; l++) {
         amg_level *v = &a->lev[l];
-        free(v->rowptr);
-        free(v->col);
-        free(v->diag);
-        wgraph_free(&v->g);
-        free(v->agg);
-        free(v->aptr);
-        free(v->amem);
-        free(v->gptr);
-        free(v->gsrc);
-        free(v->pos);
-        free(v->wsum);
         glpgp_vec **vs[] = {&v->b, &v->e, &v->v, &v->w, &v->r2, &v->d, &v->wd, &v->tmp, &v->phase};
         for (size_t k = 0; k < sizeof vs / sizeof vs[0]; k++) o->vec_destroy(b, vs[k]);
     }
@@ -540,24 +187,77 @@ void glpgp_amg_destroy(glpgp_amg **pa)
     free(a->work);
     free(a->perm_r);
     free(a->perm_c);
+    glpgp_amg_structure_destroy(&a->own);
     free(a);
     *pa = NULL;
+}
+
+/* Upload the structure (amg_setup; a backend that holds it already, key
+ * s, keeps it) and create the device work vectors. */
+static glpgp_status instantiate(glpgp_amg *a, const glpgp_options *o)
+{
+    glpgp_backend *b = a->b;
+    const glpgp_backend_ops *op = b->ops;
+    const glpgp_amg_structure *s = a->s;
+    const glpgp_system *sys = b->sys;
+    glpgp_amg_layout lay;
+    memset(&lay, 0, sizeof lay);
+    lay.nlevels = a->L;
+    lay.weight = o->amg_weight;
+    lay.pre = a->pre;
+    lay.post = a->post;
+    lay.key = s;
+    for (int l = 1; l + 1 < a->L; l++) lay.kcycle[l] = (unsigned char)kcycle_level(a, l);
+    for (int l = 0; l < a->L; l++) {
+        const amg_slevel *lv = &s->lev[l];
+        glpgp_amg_level *d = &lay.lev[l];
+        d->n = lv->n;
+        d->nnzb = lv->nnzb;
+        d->rowptr = l ? lv->rowptr : NULL;
+        d->col = l ? lv->col : sys->col;
+        d->diag = l ? lv->diag : sys->diag;
+        if (l + 1 < a->L) {
+            d->agg = lv->agg;
+            d->aptr = lv->aptr;
+            d->amem = lv->amem;
+            d->gptr = lv->gptr;
+            d->gsrc = lv->gsrc;
+        }
+    }
+    GLPGP_CHECK(op->amg_setup(b, &lay));
+    for (int l = 0; l < a->L; l++) {
+        amg_level *lv = &a->lev[l];
+        const size_t n2 = (size_t)2 * lv->n;
+        if (l + 1 < a->L) GLPGP_CHECK(op->vec_create(b, n2, &lv->tmp));
+        if (l >= 1) {
+            GLPGP_CHECK(op->vec_create(b, n2, &lv->b));
+            GLPGP_CHECK(op->vec_create(b, n2, &lv->e));
+        }
+        if (l >= 1 && l + 1 < a->L && kcycle_level(a, l)) {
+            glpgp_vec **vs[] = {&lv->v, &lv->w, &lv->r2, &lv->d, &lv->wd};
+            for (size_t k = 0; k < sizeof vs / sizeof vs[0]; k++) GLPGP_CHECK(op->vec_create(b, n2, vs[k]));
+        }
+    }
+    const size_t n0 = (size_t)2 * sys->nv;
+    GLPGP_CHECK(op->vec_create(b, n0, &a->r));
+    GLPGP_CHECK(op->vec_create(b, n0, &a->z));
+    GLPGP_CHECK(op->vec_create(b, n0, &a->p));
+    GLPGP_CHECK(op->vec_create(b, n0, &a->q));
+    return GLPGP_OK;
 }
 
 glpgp_status glpgp_amg_create(glpgp_backend *b, const glpgp_options *o, const unsigned char *dir,
                               const double *w, double h, glpgp_amg **out)
 {
+    (void)dir; /* the frames vanish at the backend's own Dirichlet flags (set_field) */
     *out = NULL;
     const glpgp_system *sys = b->sys;
     if (!sys) return GLPGP_FAIL(GLPGP_ERR_ARG, "multigrid: backend not set up");
     if (!glpgp_amg_supported(b))
         return GLPGP_FAIL(GLPGP_ERR_UNSUPPORTED, "the %s backend has no multigrid ops", b->ops->name);
     const double t0 = glpgp_now();
-    const glpgp_backend_ops *op = b->ops;
     glpgp_status st = GLPGP_OK;
     glpgp_amg *a = NULL;
-    unsigned char *act = NULL;
-    double *host = NULL;
     GLPGP_CHECK(glpgp_calloc(1, sizeof *a, &a));
     a->b = b;
     a->cycle = o->amg_cycle;
@@ -568,111 +268,21 @@ glpgp_status glpgp_amg_create(glpgp_backend *b, const glpgp_options *o, const un
     a->maxit = o->amg_maxit < o->cg_max ? o->amg_maxit : o->cg_max;
     a->has_phase = w != NULL && h > 0.0;
     a->sync = o->phase_sync;
-
-    /* level 0: the system; graph without Dirichlet vertices */
-    amg_level *l0 = &a->lev[0];
-    l0->n = sys->nv;
-    l0->nnzb = sys->nnzb;
-    GLPGP_CHECK_GOTO(st, fine_graph(sys, dir, &l0->g), fail);
-    if (a->has_phase) {
-        GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)2 * sys->nv, sizeof(double), &l0->pos), fail);
-        GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)2 * sys->nv, sizeof(double), &l0->wsum), fail);
-        memcpy(l0->pos, sys->mesh->xy, (size_t)2 * sys->nv * sizeof(double));
-        memcpy(l0->wsum, w, (size_t)2 * sys->nv * sizeof(double));
+    /* the structure: the one shared for this system, else this instance's own */
+    const glpgp_amg_structure *sh = b->amg_shared;
+    if (sh && sh->sys == sys && sh->coarse == o->amg_coarse && sh->max_levels == o->amg_max_levels) {
+        a->s = sh;
+    } else {
+        GLPGP_CHECK_GOTO(st, glpgp_amg_structure_create(sys, o, &a->own), fail);
+        a->s = a->own;
     }
-    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)sys->nv + 1, 1, &act), fail);
-    for (int i = 0; i < sys->nv; i++) act[i] = !(dir && dir[i]);
-
-    /* coarsen: level l -> l+1 until the coarsest is small enough */
-    int L = 1;
-    for (;;) {
-        amg_level *lv = &a->lev[L - 1], *nx = &a->lev[L];
-        int nc = 0;
-        GLPGP_CHECK_GOTO(st, aggregate(lv, act, o->amg_coarse, &nc), fail);
-        const int *rp = L == 1 ? sys->rowptr : lv->rowptr, *cl = L == 1 ? sys->col : lv->col;
-        GLPGP_CHECK_GOTO(st, build_transfer(lv, rp, cl, nc, nx), fail);
-        L++;
-        if (nc == 0) {
-            st = GLPGP_FAIL(GLPGP_ERR_NUMERIC, "multigrid: no free vertex to coarsen");
-            goto fail;
-        }
-        if (nc <= o->amg_coarse) break;
-        if (L == o->amg_max_levels || nc > 0.9 * lv->n) {
-            /* coarsening stalled or the level cap: the coarsest level must
-             * still be small enough for the dense inverse */
-            if (nc > 1024) {
-                st = GLPGP_FAIL(GLPGP_ERR_NUMERIC, "multigrid: coarsening stopped at %d nodes", nc);
-                goto fail;
-            }
-            break;
-        }
-        free(act);
-        act = NULL;
-        GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)nc + 1, 1, &act), fail);
-        memset(act, 1, (size_t)nc + 1);
-    }
-    a->L = L;
-
-    /* upload the structure */
-    glpgp_amg_layout lay;
-    memset(&lay, 0, sizeof lay);
-    lay.nlevels = L;
-    lay.weight = o->amg_weight;
-    lay.pre = a->pre;
-    lay.post = a->post;
-    for (int l = 1; l + 1 < L; l++) lay.kcycle[l] = (unsigned char)kcycle_level(a, l);
-    for (int l = 0; l < L; l++) {
-        amg_level *lv = &a->lev[l];
-        glpgp_amg_level *d = &lay.lev[l];
-        d->n = lv->n;
-        d->nnzb = lv->nnzb;
-        d->rowptr = l ? lv->rowptr : NULL;
-        d->col = l ? lv->col : sys->col;
-        d->diag = l ? lv->diag : sys->diag;
-        if (l + 1 < L) {
-            d->agg = lv->agg;
-            d->aptr = lv->aptr;
-            d->amem = lv->amem;
-            d->gptr = lv->gptr;
-            d->gsrc = lv->gsrc;
-        }
-    }
-    GLPGP_CHECK_GOTO(st, op->amg_setup(b, &lay), fail);
-
-    /* device work vectors */
-    for (int l = 0; l < L; l++) {
-        amg_level *lv = &a->lev[l];
-        const size_t n2 = (size_t)2 * lv->n;
-        if (l + 1 < L) GLPGP_CHECK_GOTO(st, op->vec_create(b, n2, &lv->tmp), fail);
-        if (l >= 1) {
-            GLPGP_CHECK_GOTO(st, op->vec_create(b, n2, &lv->b), fail);
-            GLPGP_CHECK_GOTO(st, op->vec_create(b, n2, &lv->e), fail);
-        }
-        if (l >= 1 && l + 1 < L && kcycle_level(a, l)) {
-            glpgp_vec **vs[] = {&lv->v, &lv->w, &lv->r2, &lv->d, &lv->wd};
-            for (size_t k = 0; k < sizeof vs / sizeof vs[0]; k++)
-                GLPGP_CHECK_GOTO(st, op->vec_create(b, n2, vs[k]), fail);
-        }
-    }
-    const size_t n0 = (size_t)2 * sys->nv;
-    GLPGP_CHECK_GOTO(st, op->vec_create(b, n0, &a->r), fail);
-    GLPGP_CHECK_GOTO(st, op->vec_create(b, n0, &a->z), fail);
-    GLPGP_CHECK_GOTO(st, op->vec_create(b, n0, &a->p), fail);
-    GLPGP_CHECK_GOTO(st, op->vec_create(b, n0, &a->q), fail);
-
-    /* plane-wave frames (quadratic problems) */
-    if (a->has_phase) {
-        GLPGP_CHECK_GOTO(st, glpgp_malloc(n0, sizeof(double), &host), fail);
-        for (int l = 0; l + 1 < L; l++) {
-            amg_level *lv = &a->lev[l];
-            wave_phase(lv, &a->lev[l + 1], h, host);
-            GLPGP_CHECK_GOTO(st, op->vec_create(b, (size_t)2 * lv->n, &lv->phase), fail);
-            GLPGP_CHECK_GOTO(st, op->vec_write(b, lv->phase, host), fail);
-        }
-    }
+    a->L = a->s->L;
+    for (int l = 0; l < a->L; l++) a->lev[l].n = a->s->lev[l].n;
+    GLPGP_CHECK_GOTO(st, instantiate(a, o), fail);
+    if (a->has_phase) GLPGP_CHECK_GOTO(st, wave_frames(a, w, h), fail);
 
     /* coarse solve buffers */
-    a->m = 2 * a->lev[L - 1].n;
+    a->m = 2 * a->lev[a->L - 1].n;
     const size_t mm = (size_t)a->m * a->m;
     GLPGP_CHECK_GOTO(st, glpgp_malloc(mm, sizeof(double), &a->dense), fail);
     GLPGP_CHECK_GOTO(st, glpgp_malloc(mm, sizeof(double), &a->inv), fail);
@@ -682,27 +292,22 @@ glpgp_status glpgp_amg_create(glpgp_backend *b, const glpgp_options *o, const un
 
     /* facts */
     glpgp_amg_info *in = &a->info;
-    in->nlevels = L;
-    double oc = 0.0, gc = 0.0;
-    for (int l = 0; l < L; l++) {
-        in->n[l] = a->lev[l].n;
-        in->nnzb[l] = a->lev[l].nnzb;
-        oc += (double)a->lev[l].nnzb;
-        gc += a->lev[l].n;
+    in->nlevels = a->L;
+    for (int l = 0; l < a->L; l++) {
+        in->n[l] = a->s->lev[l].n;
+        in->nnzb[l] = a->s->lev[l].nnzb;
     }
-    in->operator_complexity = oc / (double)sys->nnzb;
-    in->grid_complexity = gc / sys->nv;
+    in->operator_complexity = a->s->operator_complexity;
+    in->grid_complexity = a->s->grid_complexity;
+    in->shared = a->own == NULL;
     in->seconds_structure = glpgp_now() - t0;
-    free(act);
-    free(host);
     *out = a;
     return GLPGP_OK;
 fail:
-    free(act);
-    free(host);
     glpgp_amg_destroy(&a);
     return st;
 }
+
 
 void glpgp_amg_get_info(const glpgp_amg *a, glpgp_amg_info *info) { *info = a->info; }
 
@@ -1187,9 +792,9 @@ glpgp_amg *glpgp_amg_try_create(glpgp_backend *b, const glpgp_options *o, const 
     if (a->cycle == GLPGP_AMG_KCYCLE && a->kmin > 0)
         snprintf(kc, sizeof kc, ", K-cycle on levels of >= %d nodes", a->kmin);
     glpgp_log(GLPGP_LOG_DEBUG,
-              "%s: multigrid %d levels, %d -> %d nodes, operator complexity %.3f, structure %.3f s%s",
+              "%s: multigrid %d levels, %d -> %d nodes, operator complexity %.3f, %s %.3f s%s",
               what, in->nlevels, in->n[0], in->n[in->nlevels - 1], in->operator_complexity,
-              in->seconds_structure, kc);
+              in->shared ? "shared structure, instance" : "structure", in->seconds_structure, kc);
     return a;
 }
 

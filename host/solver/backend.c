@@ -57,3 +57,13 @@ void glpgp_timer_read(glpgp_backend *b, glpgp_timers *t)
     book(b);
     *t = b->tm;
 }
+
+int glpgp_amg_layout_same(const glpgp_amg_layout *a, const glpgp_amg_layout *b)
+{
+    if (!a->key || a->key != b->key || a->nlevels != b->nlevels || a->weight != b->weight || a->pre != b->pre ||
+        a->post != b->post)
+        return 0;
+    for (int l = 0; l < a->nlevels; l++)
+        if (a->lev[l].n != b->lev[l].n || a->lev[l].nnzb != b->lev[l].nnzb || a->kcycle[l] != b->kcycle[l]) return 0;
+    return 1;
+}

@@ -7,7 +7,7 @@
  * naive solution (or z = 1), with one restart from z = 1 of a level that
  * collapses (median |z| < collapse_zabs). Levels stopped by the Newton cap are
  * flagged and warned about. */
-#include "internal.h"
+#include "amg_internal.h"
 
 #include "glpgp/cross.h"
 #include "glpgp/util.h"
@@ -246,10 +246,11 @@ static glpgp_status solve_oscillator(const glpgp_mesh *m, osc_work *w, int k, co
         glpgp_amg_info ai;
         glpgp_amg_get_info(w->amg, &ai);
         glpgp_log(GLPGP_LOG_INFO,
-                  "%s: multigrid %d levels (%d -> %d nodes), operator complexity %.3f; setup %.3f s "
+                  "%s: multigrid %d levels (%d -> %d nodes), operator complexity %.3f; %s %.3f s "
                   "once + %.3f s in %d updates (%.1f ms each, coarsest inverse %.1f ms)",
                   glpgp_osc_name(k), ai.nlevels, ai.n[0], ai.n[ai.nlevels - 1],
-                  ai.operator_complexity, ai.seconds_structure, ai.seconds_values, ai.updates,
+                  ai.operator_complexity, ai.shared ? "instance of the shared structure" : "setup",
+                  ai.seconds_structure, ai.seconds_values, ai.updates,
                   ai.updates ? 1e3 * ai.seconds_values / ai.updates : 0.0,
                   ai.updates ? 1e3 * ai.seconds_coarse / ai.updates : 0.0);
         glpgp_amg_destroy(&w->amg);
@@ -302,6 +303,7 @@ static void *osc_job_run(void *arg)
     const size_t nv = (size_t)j->m->nv;
     glpgp_status st = j->parent->ops->clone(j->parent, &c);
     if (st == GLPGP_OK) {
+        c->amg_shared = j->parent->amg_shared; /* the multigrid structure: built once */
         glpgp_timer_reset(c);
         const int prev = glpgp_timer_enter(c, GLPGP_TM_UPLOAD);
         st = c->ops->setup(c, j->sys);
@@ -497,6 +499,7 @@ static glpgp_status solve_mesh(const glpgp_mesh *m, glpgp_backend *b, const glpg
     glpgp_status st = GLPGP_OK;
     glpgp_result *r = NULL;
     glpgp_system *sys = NULL;
+    glpgp_amg_structure *amgs = NULL;
     osc_work w;
     double *wv = NULL, *size = NULL;
     int uniform = 1;
@@ -549,6 +552,19 @@ static glpgp_status solve_mesh(const glpgp_mesh *m, glpgp_backend *b, const glpg
     if (st == GLPGP_OK) st = osc_work_create(&w, b, o, n2, (size_t)nv);
     glpgp_tm_leave(b, o->phase_sync, prev);
     if (st != GLPGP_OK) goto fail;
+    /* the multigrid structure, once for the guiding field, u and v */
+    if (o->precond == GLPGP_PRECOND_AMG && glpgp_amg_supported(b) && !b->ops->linear_solve) {
+        prev = glpgp_timer_enter(b, GLPGP_TM_STRUCTURE);
+        if (glpgp_amg_structure_create(sys, o, &amgs) == GLPGP_OK) {
+            glpgp_log(GLPGP_LOG_DEBUG, "multigrid structure: %d levels, %d -> %d nodes, operator complexity %.3f, "
+                      "%.3f s (shared by the guiding field, u and v)", amgs->L, amgs->lev[0].n,
+                      amgs->lev[amgs->L - 1].n, amgs->operator_complexity, amgs->seconds);
+            b->amg_shared = amgs;
+        } else { /* each hierarchy tries its own (and warns) */
+            glpgp_error_clear();
+        }
+        glpgp_timer_leave(b, prev);
+    }
     GLPGP_CHECK_GOTO(st, glpgp_malloc(2 * n2, sizeof(double), &wv), fail); /* W for u, then for v */
     r->seconds_setup = glpgp_now() - t0;
 
@@ -653,6 +669,8 @@ cleanup:
     osc_work_free(&w);
     free(wv);
     free(size);
+    if (b->amg_shared == amgs) b->amg_shared = NULL;
+    glpgp_amg_structure_destroy(&amgs);
     glpgp_system_destroy(&sys);
     *out = r;
     return st;

@@ -86,6 +86,10 @@ typedef struct glpgp_amg_layout {
      * level c (0 < c < L-1) is a K-cycle (0: one plain visit) */
     int pre, post;
     unsigned char kcycle[GLPGP_AMG_MAX_LEVELS];
+    /* the structure this layout comes from (NULL: none): a backend that holds
+     * the hierarchy of the same key, weight, sweeps and K-cycle levels keeps
+     * it (no upload: the guiding field, u and v share one structure) */
+    const void *key;
 } glpgp_amg_layout;
 
 /* AMG scalar registers: a device array of GLPGP_AMG_NSLOTS doubles, separate
@@ -179,10 +183,11 @@ typedef struct glpgp_backend_ops {
      * amg_setup:   upload the hierarchy structure (replaces any previous one).
      * amg_values:  per Newton step, from NEWTON (assembled) and the frame
      *   vectors frames[0 .. L-2] (level-l vectors or NULL), for l = 0 .. L-2:
-     *     f_l  = frames[0]                                   (l = 0)
+     *     f_l  = frames[0] (1 when NULL), 0 at the vertices the Dirichlet
+     *            flags of the last set_field mark             (l = 0)
      *     f_lJ = a_lJ (frames[l]_J, or 1 when NULL)          (l >= 1, complex)
      *     s_J  = sqrt(sum_{i in J} |f_li|^2),  a_{l+1,J} = s_J,
-     *     c_i  = f_li / s_agg(i)  (0 when s = 0: J is dead, or agg(i) = -1),
+     *     c_i  = f_li / s_agg(i)  (0 when s = 0: J is dead),
      *     A_{l+1} = P_l^T A_l P_l through the Galerkin map; the diagonal block
      *       of a dead coarse node is the identity;
      *     M_l^-1  = w times the inverse of the l1 block diagonal
@@ -299,6 +304,10 @@ struct glpgp_backend {
     glpgp_timers tm;
     int tm_cur;
     double tm_mark;
+    /* the multigrid structure of the system being solved, built once by
+     * glpgp_solve and used by every glpgp_amg_create on it (borrowed; NULL:
+     * none, each hierarchy builds its own) */
+    const struct glpgp_amg_structure *amg_shared;
 };
 
 enum {
@@ -312,6 +321,11 @@ enum {
                                  core busy (two at once: 0.67-1.0x) */
 };
 #define GLPGP_OVERLAP_AMG_MAX_VERTICES 500000
+
+/* 1 when two layouts have the same non-NULL key, levels (nodes and blocks),
+ * weight, sweeps and K-cycle levels: a backend holding a's hierarchy may
+ * keep it for b (solver/backend.c). */
+int glpgp_amg_layout_same(const glpgp_amg_layout *a, const glpgp_amg_layout *b);
 
 /* Destroy any backend (NULL-safe, sets *b = NULL). */
 void glpgp_backend_destroy(glpgp_backend **b);

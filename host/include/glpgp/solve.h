@@ -439,11 +439,25 @@ typedef struct glpgp_amg_info {
     long nnzb[GLPGP_AMG_MAX_LEVELS];  /* 2x2 blocks per level */
     double operator_complexity;       /* sum_l nnzb_l / nnzb_0 */
     double grid_complexity;           /* sum_l n_l / n_0 */
-    double seconds_structure;         /* glpgp_amg_create */
+    double seconds_structure;         /* glpgp_amg_create (the structure's construction when not shared) */
+    int shared;                       /* 1: the structure was the system's shared one
+                                         (glpgp_backend.amg_shared), built once */
     double seconds_values;            /* all glpgp_amg_update calls */
     double seconds_coarse;            /* of which the coarsest inverse on the host */
     int updates;                      /* glpgp_amg_update calls */
 } glpgp_amg_info;
+
+/* The hierarchy's structure for one system: aggregates of every level
+ * (every vertex aggregated: the Dirichlet sets of the guiding field, u and v
+ * enter only the values), coarse patterns and Galerkin maps, built once
+ * with o->amg_coarse and o->amg_max_levels and shared read-only by every
+ * glpgp_amg_create on a backend set up for that system whose
+ * glpgp_backend.amg_shared points to it (glpgp_solve does this for the
+ * guiding field, u, v and a concurrent v's backend clone). */
+typedef struct glpgp_amg_structure glpgp_amg_structure;
+glpgp_status glpgp_amg_structure_create(const glpgp_system *sys, const glpgp_options *o,
+                                        glpgp_amg_structure **out);
+void glpgp_amg_structure_destroy(glpgp_amg_structure **s);
 
 /* Whether backend b implements the multigrid ops (amg_setup etc.). */
 int glpgp_amg_supported(const glpgp_backend *b);
@@ -462,8 +476,12 @@ int glpgp_amg_supported(const glpgp_backend *b);
  * and GLPGP_AMG_KCYCLE_MIN_LAUNCH_BOUND on a launch-bound one. */
 int glpgp_amg_kcycle_min(const glpgp_backend *b, const glpgp_options *o);
 
-/* Build the hierarchy structure for b's system (b->ops->setup done) and the
- * Dirichlet flags dir (nv; NULL: none) and upload it. Options: o->amg_*.
+/* The hierarchy for b's system (b->ops->setup done): its structure (the
+ * shared one, b->amg_shared, when it was built for this system with the
+ * same o->amg_coarse and o->amg_max_levels; else built here), uploaded
+ * unless the backend holds it already. The frames vanish at the Dirichlet
+ * flags of the backend's last set_field (dir: those flags, kept for the
+ * callers; not read). Options: o->amg_*.
  * w (2*nv unit field, may be NULL) and h: the plane-wave frames
  * exp(i (2 pi / h) W . (x_i - x_J)) used by glpgp_amg_update(a, NULL) for the
  * quadratic problems (naive PGP); w NULL or h <= 0: constant frames (the
