@@ -116,6 +116,21 @@ GLPGP_KERNEL void glpgp_amg_l1(int n, int chunk, __global const int *rowptr, __g
     for (int i = lo; i < hi; i++) glpgp_amg_l1_row(i, rowptr, diag, A, w, minv);
 }
 
+/* The coarse solve operator from the coarsest level (n nodes): dense
+ * expansion and its LU (spd = 0) or SPD (spd = 1) generalised inverse into
+ * inv, by ONE work-group (kernels/amg_dense.h; W, I: its work arrays);
+ * t[slot] <- the status (0, or 1: not finite). */
+GLPGP_KERNEL void glpgp_amg_coarse_invert(int n, int spd, __global const int *rowptr, __global const int *col,
+                                          __global const double *val, __global double *inv, __global double *W,
+                                          __global int *I, __global double *t, int slot)
+{
+    __local double bv[GLPGP_WG];
+    __local long bi[GLPGP_WG];
+    const int st = glpgp_dense_coarse_invert((int)get_local_id(0), GLPGP_WG, n, rowptr, col, val, spd, inv, W, I, bv,
+                                             bi);
+    if (get_local_id(0) == 0) t[slot] = (double)st;
+}
+
 /* ---- the cycle ----------------------------------------------------------- */
 
 /* Rows [lo, hi):  y_i <- x_i + M_i^-1 (r_i - (A x)_i)  (has_x = 0: M_i^-1 r_i). */

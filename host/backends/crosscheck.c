@@ -431,8 +431,8 @@ static void cc_fill(unsigned long long *seed, double *x, size_t n)
  * 0: amg_dots, amg_axpby with register coefficients, amg_kcombine; one whole
  * cycle B r (glpgp_amg_apply; the OpenCL CPU shape runs its small levels in
  * the fused kernel) and a flexible-CG solve NEWTON d = -g. Hierarchy values
- * share kernels/amg_rows.h (bit-identical in practice): rtol 1e-12; the dense
- * coarse inverse is computed on the host from the coarsest matrix: 1e-8; the
+ * share kernels/amg_rows.h (bit-identical in practice): rtol 1e-12; so does
+ * the dense coarse inverse (kernels/amg_dense.h, on each backend); the
  * cycle (K-cycle coefficients from dot products) 1e-10; the solve 1e-6. */
 static glpgp_status stage_amg(cc *c)
 {
@@ -516,7 +516,7 @@ static glpgp_status stage_amg(cc *c)
             if (st != GLPGP_OK) goto done;
             BOTH_GOTO(o->amg_coarse_solve(b, LV(1), LV(2)));
             BOTH_GOTO(o->vec_read(b, LV(2), c->h[s]));
-            GLPGP_CHECK_GOTO(st, cmp(c, "multigrid coarse solve C r", c->h[0], c->h[1], n, 1e-8, 1e-8, 0.0), done);
+            GLPGP_CHECK_GOTO(st, cmp(c, "multigrid coarse solve C r", c->h[0], c->h[1], n, 1e-12, 1e-14, 0.0), done);
         } else {
             /* y <- M^-1 r;  then y <- x + M^-1 (r - A x) */
             BOTH_GOTO(o->amg_smooth(b, l, LV(1), NULL, LV(2)));

@@ -69,6 +69,7 @@ void glpgp_cl_backend_log(const glpgp_backend *b) { (void)b; }
 
 #include "glpgp/util.h"
 
+#include "amg_dense.h" /* GLPGP_DENSE_W, _I (the coarse inverse's work arrays) */
 #include "amg_rows.h" /* GLPGP_AMG_BT_* (the fused kernel's level table) */
 
 /* the register layout the kernels assume (kernels/amg_rows.h) */
@@ -111,6 +112,7 @@ enum {
     K_AMG_KCOMBINE,
     K_AMG_BOTTOM,
     K_AMG_RESIDUAL,
+    K_AMG_COARSE_INVERT,
     /* coupled cross-field system (backend_coupled.cl) */
     K_CASM_QUAD,
     K_CASM_NEWTON,
@@ -128,7 +130,7 @@ static const char *const kernel_names[K_COUNT] = {
     "glpgp_amg_finalize", "glpgp_amg_weights", "glpgp_amg_galerkin", "glpgp_amg_l1",
     "glpgp_amg_smooth",   "glpgp_amg_restrict", "glpgp_amg_prolong", "glpgp_amg_dense",
     "glpgp_amg_spmv_dots", "glpgp_amg_dots",   "glpgp_amg_axpby",   "glpgp_amg_kcombine",
-    "glpgp_amg_bottom", "glpgp_amg_residual",
+    "glpgp_amg_bottom", "glpgp_amg_residual", "glpgp_amg_coarse_invert",
     "glpgp_casm_quad", "glpgp_casm_newton", "glpgp_cgradient", "glpgp_cpen_energy_part",
     "glpgp_trial_point",
 };
@@ -163,6 +165,7 @@ typedef struct cl_amg {
     int *crowptr, *ccol; /* host copy of the coarsest pattern (amg_coarse_read) */
     double *cval;        /* host buffer for its values */
     cl_mem cinv;         /* m*m */
+    cl_mem dw, di;       /* work of the coarse inverse (kernels/amg_dense.h) */
     cl_mem t;            /* GLPGP_AMG_NSLOTS registers */
     cl_mem resid;        /* 2 n_0 doubles: the residual of the two-pass restriction */
     cl_mem part;         /* 3 * pstride partials */
@@ -465,7 +468,7 @@ static int cl_file_filter(const struct dirent *d)
 
 /* Headers read from GLPGP_KERNEL_DIR before its .cl files, in program order. */
 static const char *const kernel_dir_headers[] = {"element.h", "rows.h", "amg_rows.h", "coupled_rows.h",
-                                                  "newton_rows.h"};
+                                                  "newton_rows.h", "amg_dense.h"};
 #define N_KERNEL_DIR_HEADERS ((int)(sizeof kernel_dir_headers / sizeof kernel_dir_headers[0]))
 
 /* The embedded glpgp/kinds.h, then dir/element.h, dir/rows.h, dir/amg_rows.h
@@ -1248,6 +1251,8 @@ static void amg_free(cl_impl *c)
         for (size_t k = 0; k < sizeof ms / sizeof ms[0]; k++) release_mem(ms[k]);
     }
     release_mem(&a->cinv);
+    release_mem(&a->dw);
+    release_mem(&a->di);
     release_mem(&a->t);
     release_mem(&a->resid);
     release_mem(&a->part);
@@ -1545,6 +1550,8 @@ static glpgp_status cl_amg_setup(glpgp_backend *b, const glpgp_amg_layout *lay)
         else
             GLPGP_CHECK_GOTO(st, upload(c, &a->cinv, NULL, (size_t)a->m * a->m * sizeof(double)), fail);
     }
+    GLPGP_CHECK_GOTO(st, upload(c, &a->dw, NULL, (size_t)GLPGP_DENSE_W(a->m) * sizeof(double)), fail);
+    GLPGP_CHECK_GOTO(st, upload(c, &a->di, NULL, ((size_t)GLPGP_DENSE_I(a->m) + 1) * sizeof(int)), fail);
     GLPGP_CHECK_GOTO(st, upload(c, &a->t, NULL, GLPGP_AMG_NSLOTS * sizeof(double)), fail);
     GLPGP_CHECK_GOTO(st, upload(c, &a->resid, NULL, (size_t)2 * lay->lev[0].n * sizeof(double)), fail);
     {
@@ -1664,14 +1671,26 @@ static glpgp_status cl_amg_coarse_read(glpgp_backend *b, double *dense)
     return GLPGP_OK;
 }
 
-static glpgp_status cl_amg_coarse_set(glpgp_backend *b, const double *inv)
+static glpgp_status cl_amg_coarse_invert(glpgp_backend *b, int spd)
 {
     cl_impl *c = IMPL(b);
-    GLPGP_CHECK(amg_ready(c, "amg_coarse_set"));
+    GLPGP_CHECK(amg_ready(c, "amg_coarse_invert"));
     cl_amg *a = c->amg;
-    CL_WAIT(c, clEnqueueWriteBuffer(c->q, a->cinv, CL_TRUE, 0, (size_t)a->m * a->m * sizeof(double), inv, 0,
-                                    NULL, NULL));
-    return GLPGP_OK;
+    const cl_amg_level *v = &a->lev[a->L - 1];
+    /* C <- the coarse operator, one work-group (kernels/amg_dense.h) */
+    cl_kernel k = c->k[K_AMG_COARSE_INVERT];
+    const cl_int n = v->n, sp = spd != 0, slot = GLPGP_AMG_SLOT_STATUS;
+    ARG(k, 0, n);
+    ARG(k, 1, sp);
+    ARG(k, 2, v->rowptr);
+    ARG(k, 3, v->col);
+    ARG(k, 4, v->val);
+    ARG(k, 5, a->cinv);
+    ARG(k, 6, a->dw);
+    ARG(k, 7, a->di);
+    ARG(k, 8, a->t);
+    ARG(k, 9, slot);
+    return launch(c, K_AMG_COARSE_INVERT, c->wg, c->wg);
 }
 
 static glpgp_status cl_amg_smooth(glpgp_backend *b, int l, const glpgp_vec *r, const glpgp_vec *x, glpgp_vec *y)
@@ -1940,7 +1959,7 @@ static const glpgp_backend_ops cl_ops = {
     .amg_setup = cl_amg_setup,
     .amg_values = cl_amg_values,
     .amg_coarse_read = cl_amg_coarse_read,
-    .amg_coarse_set = cl_amg_coarse_set,
+    .amg_coarse_invert = cl_amg_coarse_invert,
     .amg_smooth = cl_amg_smooth,
     .amg_restrict = cl_amg_restrict,
     .amg_prolong = cl_amg_prolong,

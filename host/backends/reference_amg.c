@@ -8,6 +8,7 @@
  * cycle itself is driven by solver/amg.c through these ops. Every loop is a
  * gather (one output row, aggregate or coarse row per iteration, no
  * scatter). Dot products are one sequential sum (glpgp_range_dot). */
+#include "amg_dense.h"
 #include "amg_rows.h"
 #include "reference_impl.h"
 
@@ -39,6 +40,8 @@ struct ref_amg {
     ref_level lev[GLPGP_AMG_MAX_LEVELS];
     int m;        /* order of the coarse operator, 2 n_{L-1} */
     double *cinv; /* m*m, row-major */
+    double *dw;   /* GLPGP_DENSE_W(m): work of amg_coarse_invert (kernels/amg_dense.h) */
+    int *di;      /* GLPGP_DENSE_I(m) */
     double t[GLPGP_AMG_NSLOTS];
 };
 
@@ -65,6 +68,8 @@ void glpgp_ref_amg_free(ref_impl *r)
         free(v->amp);
     }
     free(a->cinv);
+    free(a->dw);
+    free(a->di);
     free(a);
     r->amg = NULL;
 }
@@ -135,6 +140,8 @@ glpgp_status glpgp_ref_amg_setup(glpgp_backend *b, const glpgp_amg_layout *lay)
     }
     a->m = 2 * a->lev[a->L - 1].n;
     GLPGP_CHECK_GOTO(st, glpgp_calloc((size_t)a->m * a->m, sizeof(double), &a->cinv), fail);
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)GLPGP_DENSE_W(a->m), sizeof(double), &a->dw), fail);
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)GLPGP_DENSE_I(a->m) + 1, sizeof(int), &a->di), fail);
     return GLPGP_OK;
 fail:
     glpgp_ref_amg_free(r);
@@ -193,10 +200,15 @@ glpgp_status glpgp_ref_amg_coarse_read(glpgp_backend *b, double *dense)
     return GLPGP_OK;
 }
 
-glpgp_status glpgp_ref_amg_coarse_set(glpgp_backend *b, const double *inv)
+glpgp_status glpgp_ref_amg_coarse_invert(glpgp_backend *b, int spd)
 {
     struct ref_amg *a = AMG(b);
-    memcpy(a->cinv, inv, (size_t)a->m * a->m * sizeof(double));
+    if (!a) return GLPGP_FAIL(GLPGP_ERR_ARG, "amg_coarse_invert before amg_setup");
+    const ref_level *v = &a->lev[a->L - 1];
+    /* the dense coarsest matrix and its inverse (kernels/amg_dense.h, one worker) */
+    a->t[GLPGP_AMG_SLOT_STATUS] = glpgp_dense_coarse_invert(0, 1, v->n, v->rowptr, v->col,
+                                                            level_val(IMPL(b), a->L - 1), spd, a->cinv, a->dw, a->di,
+                                                            NULL, NULL);
     return GLPGP_OK;
 }
 

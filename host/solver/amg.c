@@ -83,9 +83,6 @@ struct glpgp_amg {
     int kmin;                  /* levels below this many nodes: V-cycle */
     int L;
     amg_level lev[GLPGP_AMG_MAX_LEVELS];
-    int m;                     /* coarse order 2 n_{L-1} */
-    double *dense, *inv, *work;/* m*m each (work: LU) */
-    int *perm_r, *perm_c;
     glpgp_vec *r, *z, *p, *q;  /* flexible CG */
     int has_phase;
     int warned;                /* the Jacobi fallback of glpgp_linear_solve was logged */
@@ -162,7 +159,7 @@ out:
 int glpgp_amg_supported(const glpgp_backend *b)
 {
     const glpgp_backend_ops *o = b->ops;
-    return o->amg_setup && o->amg_values && o->amg_coarse_read && o->amg_coarse_set &&
+    return o->amg_setup && o->amg_values && o->amg_coarse_invert &&
            o->amg_smooth && o->amg_restrict && o->amg_prolong && o->amg_coarse_solve &&
            o->amg_spmv_dots && o->amg_dots && o->amg_axpby && o->amg_kcombine && o->amg_get_scalars;
 }
@@ -182,11 +179,6 @@ void glpgp_amg_destroy(glpgp_amg **pa)
     o->vec_destroy(b, &a->z);
     o->vec_destroy(b, &a->p);
     o->vec_destroy(b, &a->q);
-    free(a->dense);
-    free(a->inv);
-    free(a->work);
-    free(a->perm_r);
-    free(a->perm_c);
     glpgp_amg_structure_destroy(&a->own);
     free(a);
     *pa = NULL;
@@ -281,15 +273,6 @@ glpgp_status glpgp_amg_create(glpgp_backend *b, const glpgp_options *o, const un
     GLPGP_CHECK_GOTO(st, instantiate(a, o), fail);
     if (a->has_phase) GLPGP_CHECK_GOTO(st, wave_frames(a, w, h), fail);
 
-    /* coarse solve buffers */
-    a->m = 2 * a->lev[a->L - 1].n;
-    const size_t mm = (size_t)a->m * a->m;
-    GLPGP_CHECK_GOTO(st, glpgp_malloc(mm, sizeof(double), &a->dense), fail);
-    GLPGP_CHECK_GOTO(st, glpgp_malloc(mm, sizeof(double), &a->inv), fail);
-    GLPGP_CHECK_GOTO(st, glpgp_malloc(mm, sizeof(double), &a->work), fail);
-    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)a->m, sizeof(int), &a->perm_r), fail);
-    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)a->m, sizeof(int), &a->perm_c), fail);
-
     /* facts */
     glpgp_amg_info *in = &a->info;
     in->nlevels = a->L;
@@ -310,182 +293,6 @@ fail:
 
 
 void glpgp_amg_get_info(const glpgp_amg *a, glpgp_amg_info *info) { *info = a->info; }
-
-/* Swap rows (rows = 1) or columns (rows = 0) a and b of the dense row-major
- * m x m matrix M, and entries a and b of the permutation p (may be NULL). */
-static void dense_swap(double *M, int m, int a, int b, int rows, int *p)
-{
-    for (int k = 0; k < m; k++) {
-        double *x = rows ? M + (size_t)a * m + k : M + (size_t)k * m + a;
-        double *y = rows ? M + (size_t)b * m + k : M + (size_t)k * m + b;
-        const double t = *x;
-        *x = *y;
-        *y = t;
-    }
-    if (p) {
-        const int t = p[a];
-        p[a] = p[b];
-        p[b] = t;
-    }
-}
-
-/* inv <- a generalised inverse of the m x m matrix A (row-major) by LU with
- * complete pivoting: P A Q = L U; pivots below 1e-12 |u_11| end the
- * elimination (rank r), the solution components beyond r are set to 0.
- * lu, pr, pc: work (m*m, m, m). Fails on non-finite entries. */
-static glpgp_status dense_inverse(int m, const double *A, double *inv, double *lu, int *pr, int *pc)
-{
-    memcpy(lu, A, (size_t)m * m * sizeof(double));
-    for (int i = 0; i < m; i++) {
-        pr[i] = i;
-        pc[i] = i;
-    }
-    for (size_t k = 0; k < (size_t)m * m; k++)
-        if (!isfinite(lu[k]))
-            return GLPGP_FAIL(GLPGP_ERR_NUMERIC, "multigrid: coarsest matrix is not finite");
-    int r = 0;
-    double piv0 = 0.0;
-    for (int k = 0; k < m; k++) {
-        /* pivot: the largest |entry| of the remaining block */
-        int bi = k, bj = k;
-        double bv = -1.0;
-        for (int i = k; i < m; i++)
-            for (int j = k; j < m; j++) {
-                double v = fabs(lu[(size_t)i * m + j]);
-                if (v > bv) {
-                    bv = v;
-                    bi = i;
-                    bj = j;
-                }
-            }
-        if (k == 0) piv0 = bv;
-        if (!(bv > 1e-12 * piv0) || bv == 0.0) break;
-        if (bi != k) dense_swap(lu, m, k, bi, 1, pr);
-        if (bj != k) dense_swap(lu, m, k, bj, 0, pc);
-        /* eliminate below the pivot: l_ik = a_ik / a_kk;  a_ij -= l_ik a_kj */
-        const double pk = lu[(size_t)k * m + k];
-        for (int i = k + 1; i < m; i++) {
-            double *ri = lu + (size_t)i * m;
-            const double *rk = lu + (size_t)k * m;
-            double l = ri[k] / pk;
-            ri[k] = l;
-            if (l != 0.0)
-                for (int j = k + 1; j < m; j++) ri[j] -= l * rk[j];
-        }
-        r = k + 1;
-    }
-    /* column c of the inverse: solve A x = e_c:  L y = P e_c,  U x' = y
-     * (first r components),  x = Q x' */
-    double *y = NULL;
-    GLPGP_CHECK(glpgp_malloc((size_t)m + 1, sizeof(double), &y));
-    for (int c = 0; c < m; c++) {
-        for (int i = 0; i < m; i++) y[i] = pr[i] == c ? 1.0 : 0.0;
-        for (int i = 0; i < r; i++) {
-            const double *ri = lu + (size_t)i * m;
-            double s = y[i];
-            for (int j = 0; j < i; j++) s -= ri[j] * y[j];
-            y[i] = s;
-        }
-        for (int i = r; i < m; i++) y[i] = 0.0;
-        for (int i = r - 1; i >= 0; i--) {
-            const double *ri = lu + (size_t)i * m;
-            double s = y[i];
-            for (int j = i + 1; j < r; j++) s -= ri[j] * y[j];
-            y[i] = s / ri[i];
-        }
-        for (int i = 0; i < m; i++) inv[(size_t)pc[i] * m + c] = y[i];
-    }
-    free(y);
-    return GLPGP_OK;
-}
-
-/* inv <- a symmetric positive semi-definite generalised inverse of the
- * m x m matrix A (row-major), for the symmetric cycle's coarse solve: with
- * A_s = (A + A^T)/2, symmetric pivoted LDL^T (the largest remaining |d| on
- * the diagonal first: P A_s P^T = L D L^T, stable for the positive
- * semi-definite coarse matrices of the projected Hessian; pivots below
- * 1e-12 of the first end it at rank r), then
- *   inv = P^T [L11^-T |D|^-1 L11^-1, 0; 0, 0] P
- * (the components beyond r set to 0, as dense_inverse does). Symmetric by
- * construction (entry (j, i) is written as entry (i, j)) and positive
- * semi-definite whatever the signs of D; for a nonsingular PSD A it is A^-1.
- * O(m^3) like dense_inverse. S: m*m work (overwritten). Fails on non-finite
- * entries. */
-static glpgp_status spd_inverse(int m, const double *A, double *inv, double *S)
-{
-    int *perm = NULL;
-    for (size_t k = 0; k < (size_t)m * m; k++)
-        if (!isfinite(A[k])) return GLPGP_FAIL(GLPGP_ERR_NUMERIC, "multigrid: coarsest matrix is not finite");
-    GLPGP_CHECK(glpgp_malloc((size_t)m + 1, sizeof(int), &perm));
-    for (int i = 0; i < m; i++) {
-        perm[i] = i;
-        for (int j = 0; j < m; j++) S[(size_t)i * m + j] = 0.5 * (A[(size_t)i * m + j] + A[(size_t)j * m + i]);
-    }
-    /* P A_s P^T = L D L^T: l_ik in S's lower part (i > k), d_k on its diagonal */
-    int r = 0;
-    double piv0 = 0.0;
-    for (int k = 0; k < m; k++) {
-        int bj = k;
-        for (int j = k + 1; j < m; j++)
-            if (fabs(S[(size_t)j * m + j]) > fabs(S[(size_t)bj * m + bj])) bj = j;
-        const double bv = fabs(S[(size_t)bj * m + bj]);
-        if (k == 0) piv0 = bv;
-        if (!(bv > 1e-12 * piv0) || bv == 0.0) break;
-        if (bj != k) { /* symmetric swap of rows and columns k, bj */
-            dense_swap(S, m, k, bj, 1, NULL);
-            dense_swap(S, m, k, bj, 0, perm);
-        }
-        /* d = s_kk;  l_ik = s_ik / d;  s_ij -= l_ik d l_jk  (i, j > k, lower part) */
-        const double d = S[(size_t)k * m + k];
-        for (int i = k + 1; i < m; i++) S[(size_t)i * m + k] /= d;
-        for (int i = k + 1; i < m; i++) {
-            const double lid = S[(size_t)i * m + k] * d;
-            if (lid == 0.0) continue;
-            for (int j = k + 1; j <= i; j++) S[(size_t)i * m + j] -= lid * S[(size_t)j * m + k];
-        }
-        /* keep the trailing block symmetric for the next pivot search and swaps */
-        for (int i = k + 1; i < m; i++)
-            for (int j = k + 1; j < i; j++) S[(size_t)j * m + i] = S[(size_t)i * m + j];
-        r = k + 1;
-    }
-    /* X = L11^-1 (unit lower triangular, r x r) into inv's lower part:
-     * column c: x_c = c, x_i = -sum_{c <= j < i} l_ij x_j */
-    for (size_t k = 0; k < (size_t)m * m; k++) inv[k] = 0.0;
-    for (int c = 0; c < r; c++) {
-        inv[(size_t)c * m + c] = 1.0;
-        for (int i = c + 1; i < r; i++) {
-            double sum = 0.0;
-            for (int j = c; j < i; j++) sum += S[(size_t)i * m + j] * inv[(size_t)j * m + c];
-            inv[(size_t)i * m + c] = -sum;
-        }
-    }
-    /* C = X^T |D|^-1 X (r x r, symmetric):  C_ij = sum_{k >= max(i,j)} x_ki x_kj / |d_k|;
-     * built in S's upper part (i <= j; S's strict lower part, L, is no longer
-     * needed after X), then scattered to inv through the permutation */
-    double *dinv = NULL;
-    glpgp_status st = glpgp_malloc((size_t)m + 1, sizeof(double), &dinv);
-    if (st != GLPGP_OK) {
-        free(perm);
-        return st;
-    }
-    for (int k = 0; k < r; k++) dinv[k] = 1.0 / fabs(S[(size_t)k * m + k]);
-    for (int i = 0; i < r; i++)
-        for (int j = i; j < r; j++) {
-            double sum = 0.0;
-            for (int k = j; k < r; k++) sum += inv[(size_t)k * m + i] * inv[(size_t)k * m + j] * dinv[k];
-            S[(size_t)i * m + j] = sum;
-        }
-    for (size_t k = 0; k < (size_t)m * m; k++) inv[k] = 0.0;
-    for (int i = 0; i < r; i++)
-        for (int j = i; j < r; j++) {
-            const double v = S[(size_t)i * m + j];
-            inv[(size_t)perm[i] * m + perm[j]] = v;
-            inv[(size_t)perm[j] * m + perm[i]] = v;
-        }
-    free(dinv);
-    free(perm);
-    return GLPGP_OK;
-}
 
 /* glpgp_amg_update (spd = 0) and glpgp_amg_update_spd (spd = 1: the coarse
  * operator is symmetric PSD, see spd_inverse) */
@@ -515,13 +322,9 @@ static glpgp_status update_run(glpgp_amg *a, const glpgp_vec *x, int spd)
         for (int l = 0; l + 1 < a->L; l++) frames[l] = a->lev[l].phase;
     GLPGP_CHECK(op->amg_values(b, frames));
     const double t1 = glpgp_now();
-    GLPGP_CHECK(op->amg_coarse_read(b, a->dense));
-    b->n_sync++;
-    if (spd)
-        GLPGP_CHECK(spd_inverse(a->m, a->dense, a->inv, a->work));
-    else
-        GLPGP_CHECK(dense_inverse(a->m, a->dense, a->inv, a->work, a->perm_r, a->perm_c));
-    GLPGP_CHECK(op->amg_coarse_set(b, a->inv));
+    /* the coarse operator on the backend (a non-finite coarsest matrix shows
+     * in t[GLPGP_AMG_SLOT_STATUS] at the solvers' first read: no round trip) */
+    GLPGP_CHECK(op->amg_coarse_invert(b, spd));
     const double t2 = glpgp_now();
     a->info.seconds_values += t2 - t0;
     a->info.seconds_coarse += t2 - t1;
@@ -668,6 +471,11 @@ static glpgp_status fcg_run(glpgp_amg *a, const glpgp_vec *rhs, glpgp_vec *x, do
     GLPGP_CHECK(op->amg_dots(b, r, r, NULL, T_RR));
     GLPGP_CHECK(op->amg_get_scalars(b, t, T_N));
     b->n_sync++;
+    if (t[GLPGP_AMG_SLOT_STATUS] != 0.0) { /* the coarsest matrix was not finite: no preconditioner */
+        *nonfinite = 1;
+        info->reason = GLPGP_CG_BREAKDOWN;
+        return GLPGP_OK;
+    }
     const double bnorm = sqrt(t[T_RR]);
     if (!isfinite(bnorm)) return GLPGP_FAIL(GLPGP_ERR_NUMERIC, "CG right-hand side is not finite");
     if (bnorm == 0.0) return GLPGP_OK;

@@ -10,6 +10,9 @@
 void glpgp_backend_destroy(glpgp_backend **pb)
 {
     if (!pb || !*pb) return;
+    glpgp_backend *b = *pb;
+    for (int k = 0; k < GLPGP_SCRATCH_VECTORS; k++)
+        if (b->scratch[k] && b->ops && b->ops->vec_destroy) b->ops->vec_destroy(b, &b->scratch[k]);
     if ((*pb)->ops && (*pb)->ops->destroy) (*pb)->ops->destroy(*pb);
     free(*pb);
     *pb = NULL;
@@ -66,4 +69,16 @@ int glpgp_amg_layout_same(const glpgp_amg_layout *a, const glpgp_amg_layout *b)
     for (int l = 0; l < a->nlevels; l++)
         if (a->lev[l].n != b->lev[l].n || a->lev[l].nnzb != b->lev[l].nnzb || a->kcycle[l] != b->kcycle[l]) return 0;
     return 1;
+}
+
+glpgp_status glpgp_backend_scratch(glpgp_backend *b, int k, size_t n, glpgp_vec **v)
+{
+    if (k < 0 || k >= GLPGP_SCRATCH_VECTORS) return GLPGP_FAIL(GLPGP_ERR_ARG, "scratch vector %d", k);
+    if (b->scratch[k] && b->scratch_n[k] != n) b->ops->vec_destroy(b, &b->scratch[k]);
+    if (!b->scratch[k]) {
+        GLPGP_CHECK(b->ops->vec_create(b, n, &b->scratch[k]));
+        b->scratch_n[k] = n;
+    }
+    *v = b->scratch[k];
+    return GLPGP_OK;
 }

@@ -33,10 +33,10 @@ static glpgp_status cg_run(glpgp_backend *b, const glpgp_vec *rhs, glpgp_vec *x,
     info->relres = 0.0;
     info->reason = GLPGP_CG_CONVERGED;
     if (check < 1) check = 1;
-    GLPGP_CHECK_GOTO(st, o->vec_create(b, n, &r), done);
-    GLPGP_CHECK_GOTO(st, o->vec_create(b, n, &z), done);
-    GLPGP_CHECK_GOTO(st, o->vec_create(b, n, &p), done);
-    GLPGP_CHECK_GOTO(st, o->vec_create(b, n, &q), done);
+    GLPGP_CHECK_GOTO(st, glpgp_backend_scratch(b, 0, n, &r), done);
+    GLPGP_CHECK_GOTO(st, glpgp_backend_scratch(b, 1, n, &z), done);
+    GLPGP_CHECK_GOTO(st, glpgp_backend_scratch(b, 2, n, &p), done);
+    GLPGP_CHECK_GOTO(st, glpgp_backend_scratch(b, 3, n, &q), done);
 
     /* x <- 0;  r <- b;  z <- D^-1 r;  p <- z */
     GLPGP_CHECK_GOTO(st, o->axpby(b, 0.0, x, 0.0, x), done);
@@ -84,9 +84,5 @@ static glpgp_status cg_run(glpgp_backend *b, const glpgp_vec *rhs, glpgp_vec *x,
     info->relres = rel;
 done:
     info->iterations = k;
-    o->vec_destroy(b, &r);
-    o->vec_destroy(b, &z);
-    o->vec_destroy(b, &p);
-    o->vec_destroy(b, &q);
     return st;
 }

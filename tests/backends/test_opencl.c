@@ -202,6 +202,12 @@ static void test_device_errors(void)
         CHECK(strstr(glpgp_error_message(), "newton_rows.h") != NULL);
         glpgp_error_clear();
         write_file(dir, "newton_rows.h", "/* empty */\n");
+        /* amg_dense.h missing: the same */
+        st = glpgp_backend_create_opencl(&o, &b);
+        CHECK(st == GLPGP_ERR_IO && b == NULL);
+        CHECK(strstr(glpgp_error_message(), "amg_dense.h") != NULL);
+        glpgp_error_clear();
+        write_file(dir, "amg_dense.h", "/* empty */\n");
         st = glpgp_backend_create_opencl(&o, &b);
         CHECK(st == GLPGP_ERR_OPENCL && b == NULL);
         CHECK(strstr(glpgp_error_message(), "build log") != NULL);
@@ -214,6 +220,7 @@ static void test_device_errors(void)
         remove_file(dir, "rows.h");
         remove_file(dir, "amg_rows.h");
         remove_file(dir, "newton_rows.h");
+        remove_file(dir, "amg_dense.h");
         rmdir(dir);
     }
     /* the source kernel directory (next to GLPGP_DATA) builds */

@@ -54,7 +54,7 @@ enum glpgp_matrix { GLPGP_MAT_QUAD = 0, GLPGP_MAT_NEWTON = 1 };
  * weight acting as the 2x2 block [[cr, -ci], [ci, cr]] (a scaled rotation).
  * The structure is uploaded once per hierarchy (amg_setup); the values (c,
  * A_l = P^T A_{l-1} P, smoothers, coarse solve) are rebuilt on the device
- * per Newton step (amg_values, amg_coarse_set). */
+ * per Newton step (amg_values, amg_coarse_invert: no host round trip). */
 #define GLPGP_AMG_MAX_LEVELS 24
 
 /* Structure of level l (host arrays; the backend copies what it needs). */
@@ -98,6 +98,9 @@ typedef struct glpgp_amg_layout {
  * the K-cycle on level l. */
 #define GLPGP_AMG_NSLOTS (8 + 8 * GLPGP_AMG_MAX_LEVELS)
 #define GLPGP_AMG_KSLOT(l) (8 + 8 * (l))
+/* the status of the last amg_coarse_invert (0: fine, 1: the coarsest matrix
+ * is not finite), among the outer solvers' registers and used by none */
+#define GLPGP_AMG_SLOT_STATUS 7
 
 /* A coefficient computed on the device: sign * t[num] / t[den], or 0 when
  * t[den] is 0 or the ratio is not finite; num < 0: the constant sign. */
@@ -194,10 +197,14 @@ typedef struct glpgp_backend_ops {
      *       A_l,ii + (sum_{j != i} ||A_l,ij||_2) I  (0 where singular);
      *       since that diagonal bounds A from above, the sweep converges for
      *       any SPD A_l when w < 2.
-     * amg_coarse_read: the coarsest A_{L-1} as a dense row-major matrix of
+     * amg_coarse_invert: the coarse solve operator C from the coarsest
+     *   A_{L-1} (of the last amg_values), on the backend: spd = 0 the LU
+     *   generalised inverse, spd = 1 the symmetric positive semi-definite
+     *   one (kernels/amg_dense.h, bit-identical on every backend);
+     *   t[GLPGP_AMG_SLOT_STATUS] <- 0, or 1 when A_{L-1} is not finite (the
+     *   drivers read it with their first scalars: no round trip here).
+     * amg_coarse_read (optional, diagnostics): the coarsest A_{L-1} as a dense row-major matrix of
      *   order m = 2 n_{L-1} (host array of m*m doubles; synchronises).
-     * amg_coarse_set: upload C (m*m, row-major), the coarse solve operator
-     *   (an inverse of A_{L-1} computed on the host).
      * amg_smooth:  y <- x + M_l^-1 (r - A_l x)   (x NULL: y <- M_l^-1 r)
      * amg_restrict: rc <- P_l^T (r - A_l x)       (x NULL: rc <- P_l^T r)
      * amg_prolong: x <- x + P_l ec
@@ -228,8 +235,8 @@ typedef struct glpgp_backend_ops {
      *   in one work-item). */
     glpgp_status (*amg_setup)(glpgp_backend *b, const glpgp_amg_layout *lay);
     glpgp_status (*amg_values)(glpgp_backend *b, const glpgp_vec *const *frames);
+    glpgp_status (*amg_coarse_invert)(glpgp_backend *b, int spd);
     glpgp_status (*amg_coarse_read)(glpgp_backend *b, double *dense);
-    glpgp_status (*amg_coarse_set)(glpgp_backend *b, const double *inv);
     glpgp_status (*amg_smooth)(glpgp_backend *b, int l, const glpgp_vec *r, const glpgp_vec *x,
                                glpgp_vec *y);
     glpgp_status (*amg_restrict)(glpgp_backend *b, int l, const glpgp_vec *r, const glpgp_vec *x,
@@ -282,6 +289,8 @@ typedef struct glpgp_backend_ops {
 
 enum { GLPGP_REDUCE_SUM = 0, GLPGP_REDUCE_MAX = 1, GLPGP_REDUCE_MIN = 2 };
 
+#define GLPGP_SCRATCH_VECTORS 8
+
 struct glpgp_backend {
     const glpgp_backend_ops *ops;
     void *impl;               /* backend-private state */
@@ -308,6 +317,10 @@ struct glpgp_backend {
      * glpgp_solve and used by every glpgp_amg_create on it (borrowed; NULL:
      * none, each hierarchy builds its own) */
     const struct glpgp_amg_structure *amg_shared;
+    /* the drivers' scratch vectors (glpgp_backend_scratch), kept between calls:
+     * a linear solve creates none of its own */
+    glpgp_vec *scratch[GLPGP_SCRATCH_VECTORS];
+    size_t scratch_n[GLPGP_SCRATCH_VECTORS];
 };
 
 enum {
@@ -321,6 +334,12 @@ enum {
                                  core busy (two at once: 0.67-1.0x) */
 };
 #define GLPGP_OVERLAP_AMG_MAX_VERTICES 500000
+
+/* *v <- b's scratch vector k (0 .. GLPGP_SCRATCH_VECTORS - 1) of n doubles,
+ * created at its first use or when n changes; its contents are undefined.
+ * CG uses 0 .. 3, the trust region's CG 4 .. 7. Freed by
+ * glpgp_backend_destroy. */
+glpgp_status glpgp_backend_scratch(glpgp_backend *b, int k, size_t n, glpgp_vec **v);
 
 /* 1 when two layouts have the same non-NULL key, levels (nodes and blocks),
  * weight, sweeps and K-cycle levels: a backend holding a's hierarchy may
