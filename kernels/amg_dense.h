@@ -163,6 +163,7 @@ GLPGP_FN int glpgp_dense_lu_inverse(int t, int nt, int m, GLPGP_GLOBAL const dou
         if (pi != k) glpgp_dense_swap(t, nt, m, lu, k, pi, 1);
         GLPGP_SYNC();
         if (pj != k) glpgp_dense_swap(t, nt, m, lu, k, pj, 0);
+        GLPGP_SYNC(); /* a phase of its own (see glpgp_dense_spd_inverse) */
         if (go && t == 0) {
             int sw = pr[k];
             pr[k] = pr[pi];
@@ -237,9 +238,13 @@ GLPGP_FN int glpgp_dense_spd_inverse(int t, int nt, int m, GLPGP_GLOBAL const do
         if (k == 0) piv0 = v;
         if (!(v > 1e-12 * piv0) || v == 0.0) go = 0;
         const int bj = go ? (int)q : k;
-        if (bj != k) glpgp_dense_swap(t, nt, m, S, k, bj, 1); /* symmetric swap of rows and columns k, bj */
+        /* symmetric swap of rows and columns k, bj; every phase ends at a
+         * barrier (PoCL's work-group loops lost a column swap's writes when
+         * the permutation update shared its phase) */
+        if (bj != k) glpgp_dense_swap(t, nt, m, S, k, bj, 1);
         GLPGP_SYNC();
         if (bj != k) glpgp_dense_swap(t, nt, m, S, k, bj, 0);
+        GLPGP_SYNC();
         if (bj != k && t == 0) {
             const int sw = perm[k];
             perm[k] = perm[bj];

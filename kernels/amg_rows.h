@@ -365,6 +365,103 @@ GLPGP_FN void glpgp_amg_row_restrict_scatter(int i, GLPGP_GLOBAL const int *agg,
     rc[2 * J + 1] = acc[1];
 }
 
+/* ---- fused cycle steps (a level visit in fewer passes) ------------------- */
+
+/* (y0, y1) <- M_j^-1 r_j: the pre-smoother from zero of row j, the bits
+ * glpgp_amg_row_smooth (has_x = 0) stores. */
+GLPGP_FN void glpgp_amg_presmooth_val(int j, GLPGP_GLOBAL const double *minv, GLPGP_GLOBAL const double *r, double *y0,
+                                      double *y1)
+{
+    double m[4], o[2];
+    glpgp_amg_load_block(minv, j, m);
+    glpgp_amg_smooth_row(m, r[2 * j], r[2 * j + 1], 0.0, 0.0, 0.0, 0.0, o);
+    *y0 = o[0];
+    *y1 = o[1];
+}
+
+/* Row i of the pre-smoothed residual: y_i <- M_i^-1 r_i and (t0, t1) <-
+ * r_i - (A y)_i, (A y)_i summed as glpgp_row_spmv with each y_j = M_j^-1 r_j
+ * formed on the fly (glpgp_amg_presmooth_val): the bits of the pre-smoother
+ * from zero followed by glpgp_amg_row_resid (has_x = 1), without writing y
+ * and reading it back. */
+GLPGP_FN void glpgp_amg_row_presmooth_resid(int i, GLPGP_GLOBAL const int *rowptr, GLPGP_GLOBAL const int *col,
+                                            GLPGP_GLOBAL const double *A, GLPGP_GLOBAL const double *minv,
+                                            GLPGP_GLOBAL const double *r, GLPGP_GLOBAL double *y, double *t0,
+                                            double *t1)
+{
+    double s0 = 0.0, s1 = 0.0, y0, y1;
+    for (int k = rowptr[i]; k < rowptr[i + 1]; k++) {
+        GLPGP_GLOBAL const double *blk = A + 4 * (long)k;
+        glpgp_amg_presmooth_val(col[k], minv, r, &y0, &y1);
+        s0 += blk[0] * y0 + blk[1] * y1;
+        s1 += blk[2] * y0 + blk[3] * y1;
+    }
+    *t0 = r[2 * i] - s0;
+    *t1 = r[2 * i + 1] - s1;
+    glpgp_amg_presmooth_val(i, minv, r, &y0, &y1);
+    y[2 * i] = y0;
+    y[2 * i + 1] = y1;
+}
+
+/* Aggregate J of a visit's first half, fused: for its members i (increasing)
+ * y_i <- M_i^-1 r_i and rc_J <- sum_i P_i^T (r_i - (A y)_i) -- the bits of
+ * the pre-smoother from zero, then glpgp_amg_agg_restrict with x = y. */
+GLPGP_FN void glpgp_amg_agg_presmooth_restrict(int J, GLPGP_GLOBAL const int *aptr, GLPGP_GLOBAL const int *amem,
+                                               GLPGP_GLOBAL const double *c, GLPGP_GLOBAL const int *rowptr,
+                                               GLPGP_GLOBAL const int *col, GLPGP_GLOBAL const double *A,
+                                               GLPGP_GLOBAL const double *minv, GLPGP_GLOBAL const double *r,
+                                               GLPGP_GLOBAL double *y, GLPGP_GLOBAL double *rc)
+{
+    double acc[2] = {0.0, 0.0};
+    for (int p = aptr[J]; p < aptr[J + 1]; p++) {
+        const int i = amem[p];
+        double t0, t1;
+        glpgp_amg_row_presmooth_resid(i, rowptr, col, A, minv, r, y, &t0, &t1);
+        glpgp_amg_restrict_add(c[2 * i], c[2 * i + 1], t0, t1, acc);
+    }
+    rc[2 * J] = acc[0];
+    rc[2 * J + 1] = acc[1];
+}
+
+/* (x0, x1) <- x_j + P_j ec_agg(j): the prolonged iterate of row j, the bits
+ * glpgp_amg_row_prolong stores. */
+GLPGP_FN void glpgp_amg_prolonged_val(int j, GLPGP_GLOBAL const int *agg, GLPGP_GLOBAL const double *c,
+                                      GLPGP_GLOBAL const double *ec, GLPGP_GLOBAL const double *x, double *x0,
+                                      double *x1)
+{
+    double v[2];
+    v[0] = x[2 * j];
+    v[1] = x[2 * j + 1];
+    const int J = agg[j];
+    if (J >= 0) glpgp_amg_prolong_add(c[2 * j], c[2 * j + 1], ec[2 * J], ec[2 * J + 1], v);
+    *x0 = v[0];
+    *x1 = v[1];
+}
+
+/* Row i of a visit's second half, fused: x' = x + P ec (prolongation),
+ * y_i <- x'_i + M_i^-1 (r_i - (A x')_i) (the first post-smoothing sweep),
+ * x'_j formed on the fly (glpgp_amg_prolonged_val): the bits of
+ * glpgp_amg_row_prolong then glpgp_amg_row_smooth, without storing x'. */
+GLPGP_FN void glpgp_amg_row_prolong_smooth(int i, GLPGP_GLOBAL const int *agg, GLPGP_GLOBAL const double *c,
+                                           GLPGP_GLOBAL const double *ec, GLPGP_GLOBAL const int *rowptr,
+                                           GLPGP_GLOBAL const int *col, GLPGP_GLOBAL const double *A,
+                                           GLPGP_GLOBAL const double *minv, GLPGP_GLOBAL const double *r,
+                                           GLPGP_GLOBAL const double *x, GLPGP_GLOBAL double *y)
+{
+    double s0 = 0.0, s1 = 0.0, x0, x1, m[4], o[2];
+    for (int k = rowptr[i]; k < rowptr[i + 1]; k++) {
+        GLPGP_GLOBAL const double *blk = A + 4 * (long)k;
+        glpgp_amg_prolonged_val(col[k], agg, c, ec, x, &x0, &x1);
+        s0 += blk[0] * x0 + blk[1] * x1;
+        s1 += blk[2] * x0 + blk[3] * x1;
+    }
+    glpgp_amg_prolonged_val(i, agg, c, ec, x, &x0, &x1);
+    glpgp_amg_load_block(minv, i, m);
+    glpgp_amg_smooth_row(m, r[2 * i], r[2 * i + 1], s0, s1, x0, x1, o);
+    y[2 * i] = o[0];
+    y[2 * i + 1] = o[1];
+}
+
 /* Prolongation row i:  x_i <- x_i + P_i ec_agg(i)  (agg(i) < 0: unchanged). */
 GLPGP_FN void glpgp_amg_row_prolong(int i, GLPGP_GLOBAL const int *agg, GLPGP_GLOBAL const double *c,
                                     GLPGP_GLOBAL const double *ec, GLPGP_GLOBAL double *x)

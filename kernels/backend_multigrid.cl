@@ -166,6 +166,47 @@ GLPGP_KERNEL void glpgp_amg_residual(int n, int chunk, __global const int *rowpt
     for (int i = lo; i < hi; i++) glpgp_amg_row_residual(i, rowptr, col, A, r, x, t);
 }
 
+/* Aggregates [lo, hi): y_i <- M_i^-1 r_i for their members and rc_J <- P^T
+ * (r - A y) (glpgp_amg_agg_presmooth_restrict: a visit's first half in one
+ * pass; the CPU launch shape). */
+GLPGP_KERNEL void glpgp_amg_presmooth_restrict(int n, int chunk, __global const int *aptr, __global const int *amem,
+                                               __global const double *c, __global const int *rowptr,
+                                               __global const int *col, __global const double *A,
+                                               __global const double *minv, __global const double *r,
+                                               __global double *y, __global double *rc)
+{
+    GLPGP_RANGE(lo, hi, n, chunk);
+    for (int J = lo; J < hi; J++) glpgp_amg_agg_presmooth_restrict(J, aptr, amem, c, rowptr, col, A, minv, r, y, rc);
+}
+
+/* Rows [lo, hi): y_i <- M_i^-1 r_i and t_i <- r_i - (A y)_i
+ * (glpgp_amg_row_presmooth_resid; the GPU launch shape, whose aggregates
+ * then gather t with glpgp_amg_restrict). */
+GLPGP_KERNEL void glpgp_amg_presmooth_resid(int n, int chunk, __global const int *rowptr, __global const int *col,
+                                            __global const double *A, __global const double *minv,
+                                            __global const double *r, __global double *y, __global double *t)
+{
+    GLPGP_RANGE(lo, hi, n, chunk);
+    for (int i = lo; i < hi; i++) {
+        double t0, t1;
+        glpgp_amg_row_presmooth_resid(i, rowptr, col, A, minv, r, y, &t0, &t1);
+        t[2 * i] = t0;
+        t[2 * i + 1] = t1;
+    }
+}
+
+/* Rows [lo, hi): y_i <- x'_i + M_i^-1 (r_i - (A x')_i), x' = x + P ec
+ * (glpgp_amg_row_prolong_smooth: a visit's second half in one pass). */
+GLPGP_KERNEL void glpgp_amg_prolong_smooth(int n, int chunk, __global const int *agg, __global const double *c,
+                                           __global const double *ec, __global const int *rowptr,
+                                           __global const int *col, __global const double *A,
+                                           __global const double *minv, __global const double *r,
+                                           __global const double *x, __global double *y)
+{
+    GLPGP_RANGE(lo, hi, n, chunk);
+    for (int i = lo; i < hi; i++) glpgp_amg_row_prolong_smooth(i, agg, c, ec, rowptr, col, A, minv, r, x, y);
+}
+
 /* Rows [lo, hi):  x_i <- x_i + P_i ec_agg(i). */
 GLPGP_KERNEL void glpgp_amg_prolong(int n, int chunk, __global const int *agg, __global const double *c,
                                     __global const double *ec, __global double *x)
@@ -283,6 +324,44 @@ void glpgp_amg_bt_restrict(int q, __global const int *tab, __global const int *i
     for (int i = 0; i < n; i++)
         glpgp_amg_row_restrict_scatter(i, agg, c, x >= 0, rowptr, col, A, dp + r, dp + (x >= 0 ? x : r),
                                        dp + rc);
+}
+
+/* y <- M^-1 r and rc <- P^T (r - A y) on table row q, in one pass in row
+ * order (glpgp_amg_row_presmooth_resid, each row's residual added to its
+ * aggregate: the gather's sums) */
+void glpgp_amg_bt_presmooth_restrict(int q, __global const int *tab, __global const int *ip, __global double *dp,
+                                     int r, int y, int rc)
+{
+    const int n = GLPGP_BT(q, GLPGP_AMG_BT_N), nc = GLPGP_BT(q, GLPGP_AMG_BT_NC);
+    __global const int *rowptr = ip + GLPGP_BT(q, GLPGP_AMG_BT_ROWPTR), *col = ip + GLPGP_BT(q, GLPGP_AMG_BT_COL);
+    __global const int *agg = ip + GLPGP_BT(q, GLPGP_AMG_BT_AGG);
+    __global const double *A = dp + GLPGP_BT(q, GLPGP_AMG_BT_VAL), *c = dp + GLPGP_BT(q, GLPGP_AMG_BT_C);
+    __global const double *minv = dp + GLPGP_BT(q, GLPGP_AMG_BT_MINV);
+    for (int J = 0; J < 2 * nc; J++) dp[rc + J] = 0.0;
+    for (int i = 0; i < n; i++) {
+        double t0, t1;
+        glpgp_amg_row_presmooth_resid(i, rowptr, col, A, minv, dp + r, dp + y, &t0, &t1);
+        const int J = agg[i];
+        if (J < 0) continue;
+        double acc[2];
+        acc[0] = dp[rc + 2 * J];
+        acc[1] = dp[rc + 2 * J + 1];
+        glpgp_amg_restrict_add(c[2 * i], c[2 * i + 1], t0, t1, acc);
+        dp[rc + 2 * J] = acc[0];
+        dp[rc + 2 * J + 1] = acc[1];
+    }
+}
+
+/* y <- x' + M^-1 (r - A x'), x' = x + P ec, on table row q (glpgp_amg_row_prolong_smooth) */
+void glpgp_amg_bt_prolong_smooth(int q, __global const int *tab, __global const int *ip, __global double *dp, int ec,
+                                 int x, int r, int y)
+{
+    const int n = GLPGP_BT(q, GLPGP_AMG_BT_N);
+    __global const int *rowptr = ip + GLPGP_BT(q, GLPGP_AMG_BT_ROWPTR), *col = ip + GLPGP_BT(q, GLPGP_AMG_BT_COL);
+    __global const int *agg = ip + GLPGP_BT(q, GLPGP_AMG_BT_AGG);
+    __global const double *A = dp + GLPGP_BT(q, GLPGP_AMG_BT_VAL), *c = dp + GLPGP_BT(q, GLPGP_AMG_BT_C);
+    __global const double *minv = dp + GLPGP_BT(q, GLPGP_AMG_BT_MINV);
+    for (int i = 0; i < n; i++) glpgp_amg_row_prolong_smooth(i, agg, c, dp + ec, rowptr, col, A, minv, dp + r, dp + x, dp + y);
 }
 
 /* x <- x + P ec on table row q */
@@ -423,7 +502,9 @@ GLPGP_KERNEL void glpgp_amg_bottom(int lb, int L, int pre, int post, int m, int 
             if (pc_cy[lev] == 0) {
                 const int writes = (pre > 0 ? pre : 1) + post;
                 int k = writes % 2, cur = buf[k];
-                if (pre > 0) {
+                if (pre == 1) {
+                    glpgp_amg_bt_presmooth_restrict(q, tab, ip, dp, r, cur, bnext);
+                } else if (pre > 0) {
                     glpgp_amg_bt_smooth(q, tab, ip, dp, r, -1, cur);
                     for (int s = 1; s < pre; s++) {
                         k ^= 1;
@@ -443,9 +524,16 @@ GLPGP_KERNEL void glpgp_amg_bottom(int lb, int L, int pre, int post, int m, int 
                 kind = CC;
                 continue;
             }
-            int k = cy_k[lev], cur = cy_cur[lev];
-            glpgp_amg_bt_prolong(q, tab, ip, dp, enext, cur);
-            for (int s = 0; s < post; s++) {
+            int k = cy_k[lev], cur = cy_cur[lev], s = 0;
+            if (post > 0) { /* the prolongation and the first post-sweep in one pass */
+                k ^= 1;
+                glpgp_amg_bt_prolong_smooth(q, tab, ip, dp, enext, cur, r, buf[k]);
+                cur = buf[k];
+                s = 1;
+            } else {
+                glpgp_amg_bt_prolong(q, tab, ip, dp, enext, cur);
+            }
+            for (; s < post; s++) {
                 k ^= 1;
                 glpgp_amg_bt_smooth(q, tab, ip, dp, r, cur, buf[k]);
                 cur = buf[k];

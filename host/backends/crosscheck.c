@@ -517,6 +517,13 @@ static glpgp_status stage_amg(cc *c)
             BOTH_GOTO(o->amg_coarse_solve(b, LV(1), LV(2)));
             BOTH_GOTO(o->vec_read(b, LV(2), c->h[s]));
             GLPGP_CHECK_GOTO(st, cmp(c, "multigrid coarse solve C r", c->h[0], c->h[1], n, 1e-12, 1e-14, 0.0), done);
+            /* the symmetric PSD coarse operator (glpgp_amg_update_spd: the trust region's) */
+            for (int s = 0; s < 2; s++) GLPGP_CHECK_GOTO(st, glpgp_amg_update_spd(a[s], c->S[s].v[VX]), done);
+            BOTH_GOTO(o->amg_coarse_solve(b, LV(1), LV(2)));
+            BOTH_GOTO(o->vec_read(b, LV(2), c->h[s]));
+            GLPGP_CHECK_GOTO(st, cmp(c, "multigrid coarse solve C r (SPD)", c->h[0], c->h[1], n, 1e-12, 1e-14, 0.0),
+                             done);
+            for (int s = 0; s < 2; s++) GLPGP_CHECK_GOTO(st, glpgp_amg_update(a[s], c->S[s].v[VX]), done);
         } else {
             /* y <- M^-1 r;  then y <- x + M^-1 (r - A x) */
             BOTH_GOTO(o->amg_smooth(b, l, LV(1), NULL, LV(2)));

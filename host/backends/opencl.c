@@ -113,6 +113,9 @@ enum {
     K_AMG_BOTTOM,
     K_AMG_RESIDUAL,
     K_AMG_COARSE_INVERT,
+    K_AMG_PRESMOOTH_RESTRICT,
+    K_AMG_PRESMOOTH_RESID,
+    K_AMG_PROLONG_SMOOTH,
     /* coupled cross-field system (backend_coupled.cl) */
     K_CASM_QUAD,
     K_CASM_NEWTON,
@@ -131,6 +134,7 @@ static const char *const kernel_names[K_COUNT] = {
     "glpgp_amg_smooth",   "glpgp_amg_restrict", "glpgp_amg_prolong", "glpgp_amg_dense",
     "glpgp_amg_spmv_dots", "glpgp_amg_dots",   "glpgp_amg_axpby",   "glpgp_amg_kcombine",
     "glpgp_amg_bottom", "glpgp_amg_residual", "glpgp_amg_coarse_invert",
+    "glpgp_amg_presmooth_restrict", "glpgp_amg_presmooth_resid", "glpgp_amg_prolong_smooth",
     "glpgp_casm_quad", "glpgp_casm_newton", "glpgp_cgradient", "glpgp_cpen_energy_part",
     "glpgp_trial_point",
 };
@@ -1749,6 +1753,75 @@ static glpgp_status cl_amg_restrict(glpgp_backend *b, int l, const glpgp_vec *r,
     return amg_run_w(c, K_AMG_RESTRICT, (size_t)v->nc, (size_t)v->n, NULL);
 }
 
+static glpgp_status cl_amg_presmooth_restrict(glpgp_backend *b, int l, const glpgp_vec *r, glpgp_vec *y,
+                                              glpgp_vec *rc)
+{
+    cl_impl *c = IMPL(b);
+    GLPGP_CHECK(amg_level_ok(c, l, 0, "amg_presmooth_restrict"));
+    const cl_amg_level *v = &c->amg->lev[l];
+    cl_mem rp = amg_rowptr(c, l), col = amg_col(c, l), A = amg_val(c, l);
+    if (c->cpu) {
+        /* one pass by aggregates: y and rc (glpgp_amg_agg_presmooth_restrict) */
+        cl_kernel k = c->k[K_AMG_PRESMOOTH_RESTRICT];
+        ARG(k, 2, v->aptr);
+        ARG(k, 3, v->amem);
+        ARG(k, 4, v->c);
+        ARG(k, 5, rp);
+        ARG(k, 6, col);
+        ARG(k, 7, A);
+        ARG(k, 8, v->minv);
+        ARG(k, 9, r->m);
+        ARG(k, 10, y->m);
+        ARG(k, 11, rc->m);
+        return amg_run_w(c, K_AMG_PRESMOOTH_RESTRICT, (size_t)v->nc, (size_t)v->n, NULL);
+    }
+    /* rows (y and the residual t), then the aggregates gather t */
+    cl_kernel k = c->k[K_AMG_PRESMOOTH_RESID];
+    ARG(k, 2, rp);
+    ARG(k, 3, col);
+    ARG(k, 4, A);
+    ARG(k, 5, v->minv);
+    ARG(k, 6, r->m);
+    ARG(k, 7, y->m);
+    ARG(k, 8, c->amg->resid);
+    GLPGP_CHECK(amg_run(c, K_AMG_PRESMOOTH_RESID, (size_t)v->n, NULL));
+    k = c->k[K_AMG_RESTRICT];
+    const cl_int has_x = 0;
+    ARG(k, 2, v->aptr);
+    ARG(k, 3, v->amem);
+    ARG(k, 4, v->c);
+    ARG(k, 5, has_x);
+    ARG(k, 6, rp);
+    ARG(k, 7, col);
+    ARG(k, 8, A);
+    ARG(k, 9, c->amg->resid);
+    ARG(k, 10, c->amg->resid);
+    ARG(k, 11, rc->m);
+    return amg_run_w(c, K_AMG_RESTRICT, (size_t)v->nc, (size_t)v->n, NULL);
+}
+
+static glpgp_status cl_amg_prolong_smooth(glpgp_backend *b, int l, const glpgp_vec *ec, const glpgp_vec *x,
+                                          const glpgp_vec *r, glpgp_vec *y)
+{
+    cl_impl *c = IMPL(b);
+    GLPGP_CHECK(amg_level_ok(c, l, 0, "amg_prolong_smooth"));
+    const cl_amg_level *v = &c->amg->lev[l];
+    /* y <- x' + M^-1 (r - A x'), x' = x + P ec (glpgp_amg_row_prolong_smooth) */
+    cl_kernel k = c->k[K_AMG_PROLONG_SMOOTH];
+    cl_mem rp = amg_rowptr(c, l), col = amg_col(c, l), A = amg_val(c, l);
+    ARG(k, 2, v->agg);
+    ARG(k, 3, v->c);
+    ARG(k, 4, ec->m);
+    ARG(k, 5, rp);
+    ARG(k, 6, col);
+    ARG(k, 7, A);
+    ARG(k, 8, v->minv);
+    ARG(k, 9, r->m);
+    ARG(k, 10, x->m);
+    ARG(k, 11, y->m);
+    return amg_run(c, K_AMG_PROLONG_SMOOTH, (size_t)v->n, NULL);
+}
+
 static glpgp_status cl_amg_prolong(glpgp_backend *b, int l, const glpgp_vec *ec, glpgp_vec *x)
 {
     cl_impl *c = IMPL(b);
@@ -1970,6 +2043,8 @@ static const glpgp_backend_ops cl_ops = {
     .amg_kcombine = cl_amg_kcombine,
     .amg_get_scalars = cl_amg_get_scalars,
     .amg_coarse_correction = cl_amg_coarse_correction,
+    .amg_presmooth_restrict = cl_amg_presmooth_restrict,
+    .amg_prolong_smooth = cl_amg_prolong_smooth,
     .finish = cl_finish,
     .trial_point = cl_trial_point,
 };

@@ -239,6 +239,39 @@ glpgp_status glpgp_ref_amg_restrict(glpgp_backend *b, int l, const glpgp_vec *r,
     return GLPGP_OK;
 }
 
+glpgp_status glpgp_ref_amg_presmooth_restrict(glpgp_backend *b, int l, const glpgp_vec *r, glpgp_vec *y,
+                                              glpgp_vec *rc)
+{
+    struct ref_amg *a = AMG(b);
+    const ref_level *v = &a->lev[l];
+    const double *A = level_val(IMPL(b), l);
+    /* rows in order: y_i and t_i = r_i - (A y)_i, t added to its aggregate
+     * (rc <- 0 first; members in increasing order: the gather's sums) */
+    for (int J = 0; J < 2 * v->nc; J++) rc->a[J] = 0.0;
+    for (int i = 0; i < v->n; i++) {
+        double t0, t1;
+        glpgp_amg_row_presmooth_resid(i, v->rowptr, v->col, A, v->minv, r->a, y->a, &t0, &t1);
+        const int J = v->agg[i];
+        if (J < 0) continue;
+        double acc[2] = {rc->a[2 * J], rc->a[2 * J + 1]};
+        glpgp_amg_restrict_add(v->c[2 * i], v->c[2 * i + 1], t0, t1, acc);
+        rc->a[2 * J] = acc[0];
+        rc->a[2 * J + 1] = acc[1];
+    }
+    return GLPGP_OK;
+}
+
+glpgp_status glpgp_ref_amg_prolong_smooth(glpgp_backend *b, int l, const glpgp_vec *ec, const glpgp_vec *x,
+                                          const glpgp_vec *r, glpgp_vec *y)
+{
+    struct ref_amg *a = AMG(b);
+    const ref_level *v = &a->lev[l];
+    const double *A = level_val(IMPL(b), l);
+    for (int i = 0; i < v->n; i++)
+        glpgp_amg_row_prolong_smooth(i, v->agg, v->c, ec->a, v->rowptr, v->col, A, v->minv, r->a, x->a, y->a);
+    return GLPGP_OK;
+}
+
 glpgp_status glpgp_ref_amg_prolong(glpgp_backend *b, int l, const glpgp_vec *ec, glpgp_vec *x)
 {
     struct ref_amg *a = AMG(b);

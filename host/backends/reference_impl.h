@@ -55,6 +55,10 @@ glpgp_status glpgp_ref_amg_axpby(glpgp_backend *b, glpgp_amg_coef a, const glpgp
 glpgp_status glpgp_ref_amg_kcombine(glpgp_backend *b, const glpgp_vec *v, const glpgp_vec *d,
                                     glpgp_vec *e, int slot);
 glpgp_status glpgp_ref_amg_get_scalars(glpgp_backend *b, double *out, int n);
+glpgp_status glpgp_ref_amg_presmooth_restrict(glpgp_backend *b, int l, const glpgp_vec *r, glpgp_vec *y,
+                                              glpgp_vec *rc);
+glpgp_status glpgp_ref_amg_prolong_smooth(glpgp_backend *b, int l, const glpgp_vec *ec, const glpgp_vec *x,
+                                          const glpgp_vec *r, glpgp_vec *y);
 
 /* The amg_* entries of the reference ops table. */
 #define GLPGP_REF_AMG_OPS                                                                          \
@@ -64,6 +68,7 @@ glpgp_status glpgp_ref_amg_get_scalars(glpgp_backend *b, double *out, int n);
     .amg_prolong = glpgp_ref_amg_prolong, .amg_coarse_solve = glpgp_ref_amg_coarse_solve,          \
     .amg_spmv_dots = glpgp_ref_amg_spmv_dots, .amg_dots = glpgp_ref_amg_dots,                      \
     .amg_axpby = glpgp_ref_amg_axpby, .amg_kcombine = glpgp_ref_amg_kcombine,                      \
-    .amg_get_scalars = glpgp_ref_amg_get_scalars,
+    .amg_get_scalars = glpgp_ref_amg_get_scalars, .amg_presmooth_restrict = glpgp_ref_amg_presmooth_restrict,      \
+    .amg_prolong_smooth = glpgp_ref_amg_prolong_smooth,
 
 #endif

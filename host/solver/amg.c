@@ -411,7 +411,10 @@ static glpgp_status cycle(glpgp_amg *a, int l, const glpgp_vec *r, glpgp_vec *ou
     const int writes = (pre > 0 ? pre : 1) + post;
     int k = writes % 2; /* buf[k] receives the first write */
     glpgp_vec *cur = buf[k];
-    if (pre > 0) {
+    if (pre == 1 && op->amg_presmooth_restrict) {
+        /* x <- M^-1 r;  b_{l+1} <- P^T (r - A x), in one pass */
+        GLPGP_CHECK(op->amg_presmooth_restrict(b, l, r, cur, a->lev[l + 1].b));
+    } else if (pre > 0) {
         /* x <- M^-1 r, then x <- x + M^-1 (r - A x) */
         GLPGP_CHECK(op->amg_smooth(b, l, r, NULL, cur));
         for (int s = 1; s < pre; s++) {
@@ -428,8 +431,17 @@ static glpgp_status cycle(glpgp_amg *a, int l, const glpgp_vec *r, glpgp_vec *ou
     }
     /* e_{l+1} ~ A_{l+1}^-1 b_{l+1};  x <- x + P e */
     GLPGP_CHECK(coarse_correction(a, l + 1, sym));
-    GLPGP_CHECK(op->amg_prolong(b, l, a->lev[l + 1].e, cur));
-    for (int s = 0; s < post; s++) {
+    int s = 0;
+    if (post > 0 && op->amg_prolong_smooth) {
+        /* x <- x + P e and the first post-sweep, in one pass */
+        k ^= 1;
+        GLPGP_CHECK(op->amg_prolong_smooth(b, l, a->lev[l + 1].e, cur, r, buf[k]));
+        cur = buf[k];
+        s = 1;
+    } else {
+        GLPGP_CHECK(op->amg_prolong(b, l, a->lev[l + 1].e, cur));
+    }
+    for (; s < post; s++) {
         k ^= 1;
         GLPGP_CHECK(op->amg_smooth(b, l, r, cur, buf[k]));
         cur = buf[k];

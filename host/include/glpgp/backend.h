@@ -254,6 +254,16 @@ typedef struct glpgp_backend_ops {
     glpgp_status (*amg_get_scalars)(glpgp_backend *b, double *out, int n);
     glpgp_status (*amg_coarse_correction)(glpgp_backend *b, int c, int sym, const glpgp_vec *rhs,
                                           glpgp_vec *e, int *done);
+    /* Fused halves of a level visit (optional, NULL: the driver calls the
+     * single ops; the same bits either way, kernels/amg_rows.h):
+     * amg_presmooth_restrict: y <- M_l^-1 r and rc <- P_l^T (r - A_l y), i.e.
+     *   amg_smooth (x NULL) then amg_restrict (x = y), l < L-1;
+     * amg_prolong_smooth: y <- x' + M_l^-1 (r - A_l x') with x' = x + P_l ec,
+     *   i.e. amg_prolong into a copy of x then amg_smooth; x is not changed. */
+    glpgp_status (*amg_presmooth_restrict)(glpgp_backend *b, int l, const glpgp_vec *r, glpgp_vec *y,
+                                           glpgp_vec *rc);
+    glpgp_status (*amg_prolong_smooth)(glpgp_backend *b, int l, const glpgp_vec *ec, const glpgp_vec *x,
+                                       const glpgp_vec *r, glpgp_vec *y);
 
     /* ---- whole linear solve (optional, NULL: the drivers' CG / multigrid):
      * x <- NEWTON^-1 rhs from x = 0 by the backend's own Krylov solver and
