@@ -103,11 +103,17 @@ GLPGP_FN void glpgp_dense_lu_pivot(int t, int nt, int m, int k, GLPGP_GLOBAL con
     const long w = m - k, tot = w * w;
     *bv = -1.0;
     *bq = -1;
+    long i = t / w, j = t % w; /* q = i w + j, advanced without a division per entry */
     for (long q = t; q < tot; q += nt) {
-        const double v = fabs(lu[(long)(k + q / w) * m + k + q % w]);
+        const double v = fabs(lu[(k + i) * m + k + j]);
         if (v > *bv) {
             *bv = v;
             *bq = q;
+        }
+        j += nt;
+        while (j >= w) {
+            j -= w;
+            i++;
         }
     }
 }

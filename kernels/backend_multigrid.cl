@@ -326,44 +326,6 @@ void glpgp_amg_bt_restrict(int q, __global const int *tab, __global const int *i
                                        dp + rc);
 }
 
-/* y <- M^-1 r and rc <- P^T (r - A y) on table row q, in one pass in row
- * order (glpgp_amg_row_presmooth_resid, each row's residual added to its
- * aggregate: the gather's sums) */
-void glpgp_amg_bt_presmooth_restrict(int q, __global const int *tab, __global const int *ip, __global double *dp,
-                                     int r, int y, int rc)
-{
-    const int n = GLPGP_BT(q, GLPGP_AMG_BT_N), nc = GLPGP_BT(q, GLPGP_AMG_BT_NC);
-    __global const int *rowptr = ip + GLPGP_BT(q, GLPGP_AMG_BT_ROWPTR), *col = ip + GLPGP_BT(q, GLPGP_AMG_BT_COL);
-    __global const int *agg = ip + GLPGP_BT(q, GLPGP_AMG_BT_AGG);
-    __global const double *A = dp + GLPGP_BT(q, GLPGP_AMG_BT_VAL), *c = dp + GLPGP_BT(q, GLPGP_AMG_BT_C);
-    __global const double *minv = dp + GLPGP_BT(q, GLPGP_AMG_BT_MINV);
-    for (int J = 0; J < 2 * nc; J++) dp[rc + J] = 0.0;
-    for (int i = 0; i < n; i++) {
-        double t0, t1;
-        glpgp_amg_row_presmooth_resid(i, rowptr, col, A, minv, dp + r, dp + y, &t0, &t1);
-        const int J = agg[i];
-        if (J < 0) continue;
-        double acc[2];
-        acc[0] = dp[rc + 2 * J];
-        acc[1] = dp[rc + 2 * J + 1];
-        glpgp_amg_restrict_add(c[2 * i], c[2 * i + 1], t0, t1, acc);
-        dp[rc + 2 * J] = acc[0];
-        dp[rc + 2 * J + 1] = acc[1];
-    }
-}
-
-/* y <- x' + M^-1 (r - A x'), x' = x + P ec, on table row q (glpgp_amg_row_prolong_smooth) */
-void glpgp_amg_bt_prolong_smooth(int q, __global const int *tab, __global const int *ip, __global double *dp, int ec,
-                                 int x, int r, int y)
-{
-    const int n = GLPGP_BT(q, GLPGP_AMG_BT_N);
-    __global const int *rowptr = ip + GLPGP_BT(q, GLPGP_AMG_BT_ROWPTR), *col = ip + GLPGP_BT(q, GLPGP_AMG_BT_COL);
-    __global const int *agg = ip + GLPGP_BT(q, GLPGP_AMG_BT_AGG);
-    __global const double *A = dp + GLPGP_BT(q, GLPGP_AMG_BT_VAL), *c = dp + GLPGP_BT(q, GLPGP_AMG_BT_C);
-    __global const double *minv = dp + GLPGP_BT(q, GLPGP_AMG_BT_MINV);
-    for (int i = 0; i < n; i++) glpgp_amg_row_prolong_smooth(i, agg, c, dp + ec, rowptr, col, A, minv, dp + r, dp + x, dp + y);
-}
-
 /* x <- x + P ec on table row q */
 void glpgp_amg_bt_prolong(int q, __global const int *tab, __global const int *ip, __global double *dp, int ec,
                           int x)
@@ -502,9 +464,7 @@ GLPGP_KERNEL void glpgp_amg_bottom(int lb, int L, int pre, int post, int m, int 
             if (pc_cy[lev] == 0) {
                 const int writes = (pre > 0 ? pre : 1) + post;
                 int k = writes % 2, cur = buf[k];
-                if (pre == 1) {
-                    glpgp_amg_bt_presmooth_restrict(q, tab, ip, dp, r, cur, bnext);
-                } else if (pre > 0) {
+                if (pre > 0) {
                     glpgp_amg_bt_smooth(q, tab, ip, dp, r, -1, cur);
                     for (int s = 1; s < pre; s++) {
                         k ^= 1;
@@ -524,16 +484,9 @@ GLPGP_KERNEL void glpgp_amg_bottom(int lb, int L, int pre, int post, int m, int 
                 kind = CC;
                 continue;
             }
-            int k = cy_k[lev], cur = cy_cur[lev], s = 0;
-            if (post > 0) { /* the prolongation and the first post-sweep in one pass */
-                k ^= 1;
-                glpgp_amg_bt_prolong_smooth(q, tab, ip, dp, enext, cur, r, buf[k]);
-                cur = buf[k];
-                s = 1;
-            } else {
-                glpgp_amg_bt_prolong(q, tab, ip, dp, enext, cur);
-            }
-            for (; s < post; s++) {
+            int k = cy_k[lev], cur = cy_cur[lev];
+            glpgp_amg_bt_prolong(q, tab, ip, dp, enext, cur);
+            for (int s = 0; s < post; s++) {
                 k ^= 1;
                 glpgp_amg_bt_smooth(q, tab, ip, dp, r, cur, buf[k]);
                 cur = buf[k];

@@ -546,6 +546,21 @@ static glpgp_status stage_amg(cc *c)
             BOTH_GOTO(o->vec_read(b, LV(2), c->h[s]));
             snprintf(name, sizeof name, "multigrid prolongation %d -> %d", l + 1, l);
             GLPGP_CHECK_GOTO(st, cmp(c, name, c->h[0], c->h[1], n, 1e-12, 1e-14, 0.0), done);
+            /* the fused visit halves (the GPU shape's): y <- M^-1 r with e' <- P^T (r - A y);
+             * then y <- x' + M^-1 (r - A x'), x' = x + P e */
+            if (c->S[0].b->ops->amg_presmooth_restrict && c->S[1].b->ops->amg_presmooth_restrict &&
+                c->S[0].b->ops->amg_prolong_smooth && c->S[1].b->ops->amg_prolong_smooth) {
+                BOTH_GOTO(o->amg_presmooth_restrict(b, l, LV(1), LV(2), LV(3)));
+                BOTH_GOTO(o->vec_read(b, LV(2), c->h[s]));
+                BOTH_GOTO(o->vec_read(b, LV(3), c->h[s] + n));
+                snprintf(name, sizeof name, "multigrid fused smoothing + restriction %d", l);
+                GLPGP_CHECK_GOTO(st, cmp(c, name, c->h[0], c->h[1], n + nc, 1e-12, 1e-14, 0.0), done);
+                BOTH_GOTO(o->vec_write(b, LV(3), he));
+                BOTH_GOTO(o->amg_prolong_smooth(b, l, LV(3), LV(0), LV(1), LV(2)));
+                BOTH_GOTO(o->vec_read(b, LV(2), c->h[s]));
+                snprintf(name, sizeof name, "multigrid fused prolongation + smoothing %d", l);
+                GLPGP_CHECK_GOTO(st, cmp(c, name, c->h[0], c->h[1], n, 1e-12, 1e-14, 0.0), done);
+            }
         }
         if (l == 0) {
             /* t[S] <- x.r, t[S+1] <- x.x;  y <- r;  y <- (t[S]/t[S+1]) x - 0.5 y;

@@ -730,6 +730,7 @@ static glpgp_status init_device(cl_impl *c, const glpgp_cl_options *opt)
     cl_context_properties props[] = {CL_CONTEXT_PLATFORM, (cl_context_properties)plat, 0};
     GLPGP_CL((c->ctx = clCreateContext(props, 1, &c->dev, NULL, NULL, &err), err));
     GLPGP_CL((c->q = clCreateCommandQueue(c->ctx, c->dev, c->prof ? CL_QUEUE_PROFILING_ENABLE : 0, &err), err));
+    if (c->stop && __atomic_load_n(c->stop, __ATOMIC_RELAXED)) return GLPGP_FAIL(GLPGP_ERR_ARG, "stopped");
     GLPGP_CHECK(build_program(c));
     if (opt && opt->verbose) log_device(c);
     return GLPGP_OK;

@@ -18,6 +18,8 @@
 #include <math.h>
 #include <pthread.h>
 #include <stdio.h>
+#include <time.h>
+#include <unistd.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -585,6 +587,7 @@ static int pieces_verdict(int ok, const char *pvtu, double *okv)
 typedef struct backend_job {
     int kind, device, verbose;
     int stop;             /* set when the input failed: the creation may end early */
+    int done;             /* set by the thread when it ends */
     glpgp_backend *b;
     glpgp_status st;
     glpgp_error_copy err; /* the thread's error record, for the caller */
@@ -602,6 +605,7 @@ static void *backend_job_run(void *arg)
     j->seconds = glpgp_now() - t0;
     if (j->st != GLPGP_OK) glpgp_error_save(&j->err);
     glpgp_error_clear();
+    __atomic_store_n(&j->done, 1, __ATOMIC_RELEASE);
     return NULL;
 }
 
@@ -628,6 +632,35 @@ static glpgp_status backend_job_join(backend_job *j, glpgp_backend **b, double *
     *b = j->b;
     j->b = NULL;
     return j->st == GLPGP_OK ? GLPGP_OK : glpgp_error_restore(&j->err);
+}
+
+/* The input failed while the backend was being created in its thread: the
+ * backend is not needed. The thread stops at its next check (before the
+ * program build, between first launches) but cannot leave the OpenCL
+ * runtime's initialisation early (PoCL: about 0.3 s); after 20 ms of waiting
+ * the command ends without it (_exit after flushing: no atexit handler may
+ * race with a thread inside the runtime). Returns rc otherwise. */
+static int backend_job_abandon(backend_job *j, int rc)
+{
+    __atomic_store_n(&j->stop, 1, __ATOMIC_RELAXED);
+    if (j->started) {
+        for (int k = 0; k < 20 && !__atomic_load_n(&j->done, __ATOMIC_ACQUIRE); k++) {
+            const struct timespec ms = {0, 1000000};
+            nanosleep(&ms, NULL);
+        }
+        if (!__atomic_load_n(&j->done, __ATOMIC_ACQUIRE)) {
+            fflush(stdout);
+            fflush(stderr);
+            _exit(rc);
+        }
+    }
+    glpgp_error_copy keep; /* the input's error, not the backend's */
+    glpgp_error_save(&keep);
+    glpgp_backend *b = NULL;
+    double w = 0.0;
+    if (backend_job_join(j, &b, &w) == GLPGP_OK) glpgp_backend_destroy(&b);
+    glpgp_error_restore(&keep);
+    return rc;
 }
 
 static int solve_main(solve_cli *cc, const char *input)
@@ -675,13 +708,7 @@ static int solve_main(solve_cli *cc, const char *input)
         if (c.backend != GLPGP_BACKEND_PETSC) backend_job_start(&bj, &c);
         if ((rc = prepare(&c, input, &m, &simg)) >= 0) {
             if (dist) glpgp_petsc_all_ok(0);
-            if (c.backend != GLPGP_BACKEND_PETSC) {
-                glpgp_error_copy keep; /* the input's error, not the backend's */
-                glpgp_error_save(&keep);
-                __atomic_store_n(&bj.stop, 1, __ATOMIC_RELAXED);
-                if (backend_job_join(&bj, &b, &t_build_wait) == GLPGP_OK) glpgp_backend_destroy(&b);
-                glpgp_error_restore(&keep);
-            }
+            if (c.backend != GLPGP_BACKEND_PETSC) rc = backend_job_abandon(&bj, rc);
             return rc;
         }
         t_read = glpgp_now() - t0;

@@ -87,6 +87,11 @@ struct glpgp_amg {
     int has_phase;
     int warned;                /* the Jacobi fallback of glpgp_linear_solve was logged */
     int sync;                  /* glpgp_options.phase_sync */
+    int fuse;                  /* the fused visit halves (amg_presmooth_restrict, amg_prolong_smooth):
+                                  where launches cost (b->launch_bound); elsewhere the single ops,
+                                  which compute each smoothed / prolonged value once where the fused
+                                  ones recompute it for every neighbour (reference: +44% of those
+                                  ops' instructions, a 20% slower hard-domain sweep) */
     glpgp_amg_info info;
 };
 
@@ -260,6 +265,7 @@ glpgp_status glpgp_amg_create(glpgp_backend *b, const glpgp_options *o, const un
     a->maxit = o->amg_maxit < o->cg_max ? o->amg_maxit : o->cg_max;
     a->has_phase = w != NULL && h > 0.0;
     a->sync = o->phase_sync;
+    a->fuse = b->launch_bound;
     /* the structure: the one shared for this system, else this instance's own */
     const glpgp_amg_structure *sh = b->amg_shared;
     if (sh && sh->sys == sys && sh->coarse == o->amg_coarse && sh->max_levels == o->amg_max_levels) {
@@ -411,7 +417,7 @@ static glpgp_status cycle(glpgp_amg *a, int l, const glpgp_vec *r, glpgp_vec *ou
     const int writes = (pre > 0 ? pre : 1) + post;
     int k = writes % 2; /* buf[k] receives the first write */
     glpgp_vec *cur = buf[k];
-    if (pre == 1 && op->amg_presmooth_restrict) {
+    if (pre == 1 && a->fuse && op->amg_presmooth_restrict) {
         /* x <- M^-1 r;  b_{l+1} <- P^T (r - A x), in one pass */
         GLPGP_CHECK(op->amg_presmooth_restrict(b, l, r, cur, a->lev[l + 1].b));
     } else if (pre > 0) {
@@ -432,7 +438,7 @@ static glpgp_status cycle(glpgp_amg *a, int l, const glpgp_vec *r, glpgp_vec *ou
     /* e_{l+1} ~ A_{l+1}^-1 b_{l+1};  x <- x + P e */
     GLPGP_CHECK(coarse_correction(a, l + 1, sym));
     int s = 0;
-    if (post > 0 && op->amg_prolong_smooth) {
+    if (post > 0 && a->fuse && op->amg_prolong_smooth) {
         /* x <- x + P e and the first post-sweep, in one pass */
         k ^= 1;
         GLPGP_CHECK(op->amg_prolong_smooth(b, l, a->lev[l + 1].e, cur, r, buf[k]));
