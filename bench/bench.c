@@ -1551,7 +1551,8 @@ static void profile_log(glpgp_log_level level, const char *msg, void *user)
 {
     (void)level;
     (void)user;
-    if (strncmp(msg, "OpenCL profile", 14) == 0 || strncmp(msg, "  glpgp_", 8) == 0) fprintf(stderr, "%s\n", msg);
+    if (strncmp(msg, "OpenCL profile", 14) == 0 || strncmp(msg, "  glpgp_", 8) == 0 || strncmp(msg, "    n >= ", 9) == 0)
+        fprintf(stderr, "%s\n", msg);
 }
 
 int main(int argc, char **argv)

@@ -144,6 +144,9 @@ struct glpgp_vec {
     cl_mem m;
 };
 
+/* GLPGP_CL_PROFILE's size classes: index counts below 4, 4^1, ..., 4^11 and above */
+#define PROF_CLASSES 13
+
 /* One level of the multigrid hierarchy on the device (amg_setup). Level 0
  * uses the system's pattern and NEWTON; the values of the levels >= 1, the
  * weights c, the amplitudes and the smoothers are rebuilt by amg_values. */
@@ -224,8 +227,9 @@ typedef struct cl_impl {
     int bad_pending;     /* an assembly's singular-block flag not yet read (sync_read) */
     int prof;            /* GLPGP_CL_PROFILE=1: per-kernel device times (launch) */
     const int *stop;     /* glpgp_cl_options.stop (creation only) */
-    double prof_ns[K_COUNT];
-    long prof_n[K_COUNT];
+    double prof_ns[K_COUNT][PROF_CLASSES]; /* by kernel and index count class (log4 of n) */
+    long prof_n[K_COUNT][PROF_CLASSES];
+    size_t prof_size;    /* the index count of the launch being enqueued (run, amg_run_w) */
     double need;         /* device memory estimate of the system set up (bytes) */
     double other_need;   /* a clone: device memory its parent holds (its estimate, with
                             room for the multigrid), counted at setup */
@@ -354,24 +358,30 @@ static glpgp_status launch(cl_impl *c, int kid, size_t global, size_t local)
         if (err == CL_SUCCESS) err = clGetEventProfilingInfo(ev, CL_PROFILING_COMMAND_END, sizeof t1, &t1, NULL);
         clReleaseEvent(ev);
         GLPGP_CL_WHAT(err, kernel_names[kid]);
-        c->prof_ns[kid] += (double)(t1 - t0);
-        c->prof_n[kid]++;
+        int cls = 0;
+        for (size_t n = c->prof_size; n >= 4 && cls + 1 < PROF_CLASSES; n /= 4) cls++;
+        c->prof_ns[kid][cls] += (double)(t1 - t0);
+        c->prof_n[kid][cls]++;
+        c->prof_size = 0;
     }
     return GLPGP_OK;
 }
 
 /* The kernel accounts of GLPGP_CL_PROFILE, one log line per kernel launched,
- * the costliest first. */
+ * the costliest first, then one per size class of it (indices per launch,
+ * 4^k .. 4^(k+1)) when it ran at several: which level of the multigrid. */
 static void log_profile(const cl_impl *c)
 {
     int order[K_COUNT];
-    double total = 0.0;
+    double total = 0.0, tk[K_COUNT];
     for (int i = 0; i < K_COUNT; i++) {
         order[i] = i;
-        total += c->prof_ns[i];
+        tk[i] = 0.0;
+        for (int q = 0; q < PROF_CLASSES; q++) tk[i] += c->prof_ns[i][q];
+        total += tk[i];
     }
     for (int i = 1; i < K_COUNT; i++)
-        for (int j = i; j > 0 && c->prof_ns[order[j]] > c->prof_ns[order[j - 1]]; j--) {
+        for (int j = i; j > 0 && tk[order[j]] > tk[order[j - 1]]; j--) {
             const int t = order[j];
             order[j] = order[j - 1];
             order[j - 1] = t;
@@ -379,10 +389,21 @@ static void log_profile(const cl_impl *c)
     glpgp_log(GLPGP_LOG_INFO, "OpenCL profile (GLPGP_CL_PROFILE): %.3f s of device time in kernels", 1e-9 * total);
     for (int i = 0; i < K_COUNT; i++) {
         const int k = order[i];
-        if (c->prof_n[k] == 0) continue;
-        glpgp_log(GLPGP_LOG_INFO, "  %-24s %8ld launches %9.3f s %5.1f%% %9.1f us each", kernel_names[k], c->prof_n[k],
-                  1e-9 * c->prof_ns[k], total > 0.0 ? 100.0 * c->prof_ns[k] / total : 0.0,
-                  1e-3 * c->prof_ns[k] / (double)c->prof_n[k]);
+        long nk = 0;
+        int classes = 0;
+        for (int q = 0; q < PROF_CLASSES; q++) {
+            nk += c->prof_n[k][q];
+            classes += c->prof_n[k][q] > 0;
+        }
+        if (nk == 0) continue;
+        glpgp_log(GLPGP_LOG_INFO, "  %-24s %8ld launches %9.3f s %5.1f%% %9.1f us each", kernel_names[k], nk,
+                  1e-9 * tk[k], total > 0.0 ? 100.0 * tk[k] / total : 0.0, 1e-3 * tk[k] / (double)nk);
+        for (int q = 0; classes > 1 && q < PROF_CLASSES; q++)
+            if (c->prof_n[k][q] > 0)
+                glpgp_log(GLPGP_LOG_INFO, "    n >= %-9ld        %8ld launches %9.3f s %5.1f%% %9.1f us each",
+                          q ? 1L << (2 * q) : 0L, c->prof_n[k][q], 1e-9 * c->prof_ns[k][q],
+                          total > 0.0 ? 100.0 * c->prof_ns[k][q] / total : 0.0,
+                          1e-3 * c->prof_ns[k][q] / (double)c->prof_n[k][q]);
     }
 }
 
@@ -394,6 +415,7 @@ static glpgp_status run(cl_impl *c, int kid, size_t n, size_t *groups)
     cl_kernel k = c->k[kid];
     ARG(k, 0, s.n);
     ARG(k, 1, s.chunk);
+    c->prof_size = n;
     GLPGP_CHECK(launch(c, kid, s.global, s.local));
     if (groups) *groups = s.groups;
     return GLPGP_OK;
@@ -1296,6 +1318,7 @@ static glpgp_status amg_run_w(cl_impl *c, int kid, size_t n, size_t work, size_t
     cl_kernel k = c->k[kid];
     ARG(k, 0, s.n);
     ARG(k, 1, s.chunk);
+    c->prof_size = work;
     GLPGP_CHECK(launch(c, kid, s.global, s.local));
     if (groups) *groups = s.groups;
     return GLPGP_OK;
@@ -1727,6 +1750,23 @@ static glpgp_status cl_amg_restrict(glpgp_backend *b, int l, const glpgp_vec *r,
      * t <- r - A x (rows in order), then rc_J <- sum_{i in J} P_i^T t_i */
     cl_mem rp = amg_rowptr(c, l), col = amg_col(c, l), A = amg_val(c, l);
     cl_mem rin = r->m;
+    if (x && l > 0 && c->cpu) {
+        /* the coarse levels' aggregates are consecutive rows (solver/amg_structure.c):
+         * one pass, each aggregate forming its rows' residuals (glpgp_amg_agg_restrict) */
+        cl_kernel k = c->k[K_AMG_RESTRICT];
+        const cl_int has_x = 1;
+        ARG(k, 2, v->aptr);
+        ARG(k, 3, v->amem);
+        ARG(k, 4, v->c);
+        ARG(k, 5, has_x);
+        ARG(k, 6, rp);
+        ARG(k, 7, col);
+        ARG(k, 8, A);
+        ARG(k, 9, r->m);
+        ARG(k, 10, x->m);
+        ARG(k, 11, rc->m);
+        return amg_run_w(c, K_AMG_RESTRICT, (size_t)v->nc, (size_t)v->n, NULL);
+    }
     if (x) {
         cl_kernel kr = c->k[K_AMG_RESIDUAL];
         ARG(kr, 2, rp);
