@@ -420,6 +420,27 @@ static void cc_fill(unsigned long long *seed, double *x, size_t n)
     for (size_t i = 0; i < n; i++) x[i] = cc_rand(seed) - 0.5;
 }
 
+/* The fused visit halves of level l (the GPU shape's; ops amg_presmooth_restrict,
+ * amg_prolong_smooth) on both sides: y <- M^-1 r with e' <- P^T (r - A y),
+ * then y <- x' + M^-1 (r - A x'), x' = x + P e (lv[s]: x, r, y of level l,
+ * e of level l+1; he: e's values; n, nc: the two levels' lengths). */
+static glpgp_status amg_fused_rows(cc *c, int l, glpgp_vec *lv[2][4], const double *he, size_t n, size_t nc)
+{
+    char name[64];
+    for (int s = 0; s < 2; s++)
+        if (!c->S[s].b->ops->amg_presmooth_restrict || !c->S[s].b->ops->amg_prolong_smooth) return GLPGP_OK;
+    BOTH(o->amg_presmooth_restrict(b, l, lv[s][1], lv[s][2], lv[s][3]));
+    BOTH(o->vec_read(b, lv[s][2], c->h[s]));
+    BOTH(o->vec_read(b, lv[s][3], c->h[s] + n));
+    snprintf(name, sizeof name, "multigrid fused smoothing + restriction %d", l);
+    GLPGP_CHECK(cmp(c, name, c->h[0], c->h[1], n + nc, 1e-12, 1e-14, 0.0));
+    BOTH(o->vec_write(b, lv[s][3], he));
+    BOTH(o->amg_prolong_smooth(b, l, lv[s][3], lv[s][0], lv[s][1], lv[s][2]));
+    BOTH(o->vec_read(b, lv[s][2], c->h[s]));
+    snprintf(name, sizeof name, "multigrid fused prolongation + smoothing %d", l);
+    return cmp(c, name, c->h[0], c->h[1], n, 1e-12, 1e-14, 0.0);
+}
+
 /* The multigrid ops (amg_* of the backend table) on the hierarchy of the
  * mixed NEWTON at z, built on each side by solver/amg.c (the same host
  * structure: aggregation is deterministic) with frames from z. Per level l,
@@ -546,21 +567,7 @@ static glpgp_status stage_amg(cc *c)
             BOTH_GOTO(o->vec_read(b, LV(2), c->h[s]));
             snprintf(name, sizeof name, "multigrid prolongation %d -> %d", l + 1, l);
             GLPGP_CHECK_GOTO(st, cmp(c, name, c->h[0], c->h[1], n, 1e-12, 1e-14, 0.0), done);
-            /* the fused visit halves (the GPU shape's): y <- M^-1 r with e' <- P^T (r - A y);
-             * then y <- x' + M^-1 (r - A x'), x' = x + P e */
-            if (c->S[0].b->ops->amg_presmooth_restrict && c->S[1].b->ops->amg_presmooth_restrict &&
-                c->S[0].b->ops->amg_prolong_smooth && c->S[1].b->ops->amg_prolong_smooth) {
-                BOTH_GOTO(o->amg_presmooth_restrict(b, l, LV(1), LV(2), LV(3)));
-                BOTH_GOTO(o->vec_read(b, LV(2), c->h[s]));
-                BOTH_GOTO(o->vec_read(b, LV(3), c->h[s] + n));
-                snprintf(name, sizeof name, "multigrid fused smoothing + restriction %d", l);
-                GLPGP_CHECK_GOTO(st, cmp(c, name, c->h[0], c->h[1], n + nc, 1e-12, 1e-14, 0.0), done);
-                BOTH_GOTO(o->vec_write(b, LV(3), he));
-                BOTH_GOTO(o->amg_prolong_smooth(b, l, LV(3), LV(0), LV(1), LV(2)));
-                BOTH_GOTO(o->vec_read(b, LV(2), c->h[s]));
-                snprintf(name, sizeof name, "multigrid fused prolongation + smoothing %d", l);
-                GLPGP_CHECK_GOTO(st, cmp(c, name, c->h[0], c->h[1], n, 1e-12, 1e-14, 0.0), done);
-            }
+            GLPGP_CHECK_GOTO(st, amg_fused_rows(c, l, lv, he, n, nc), done);
         }
         if (l == 0) {
             /* t[S] <- x.r, t[S+1] <- x.x;  y <- r;  y <- (t[S]/t[S+1]) x - 0.5 y;

@@ -290,8 +290,8 @@ typedef struct glpgp_backend_ops {
      *   leaves it NULL).
      * trial_point: the trust region's trial point xt <- x (+) a d, per vertex
      *   glpgp_polar_point of kernels/newton_rows.h with retract radius r1
-     *   (a polar update outside vortex cores, the straight one inside); NULL:
-     *   the driver computes it on the host from copies of x and d. */
+     *   (a polar update outside vortex cores, the straight one inside);
+     *   required for glpgp_options.retract_zabs > 0 (the default). */
     glpgp_status (*finish)(glpgp_backend *b);
     glpgp_status (*trial_point)(glpgp_backend *b, const glpgp_vec *x, const glpgp_vec *d, double a,
                                 double r1, glpgp_vec *xt);
