@@ -55,6 +55,7 @@ typedef struct bopts {
     const char *json, *compare, *against, *plot;
     int precond;           /* --precond: -1 not given, else 0 jacobi, 1 amg, 2 both */
     int sizes_given, with_4m, steps;
+    int hcases; /* --precond-h: bit 0 10 mean edges, bit 1 default (0: both) */
     int kcycle_min;        /* --amg-kcycle-min (-1: auto) */
     int oscillators;       /* --oscillators: GLPGP_OSC_* of the whole GL solves */
 } bopts;
@@ -97,6 +98,7 @@ static void usage(FILE *f)
             "                           at 64k, 256k, 1M vertices (or --sizes), h = 10 mean edges and the\n"
             "                           default size, on both backends (--no-opencl / --no-reference)\n"
             "  --with-4m                with --precond: add 4M vertices to the ladder (slow)\n"
+            "  --precond-h edges|default|both  with --precond: h = 10 mean edges, the default size, or both [both]\n"
             "  --newton-steps N         with --precond: Newton steps per case (default 3)\n"
             "  --amg-kcycle-min N|auto  with --precond: K-cycle on levels of >= N nodes, a plain visit below\n"
             "                           (0: every level; auto: 0, or 2000 on a launch-bound GPU; default auto)\n"
@@ -236,6 +238,12 @@ static glpgp_status parse_args(int argc, char **argv, bopts *o, int *help)
             else return GLPGP_FAIL(GLPGP_ERR_ARG, "--precond: '%s' is not jacobi, amg or both", v);
         } else if (!strcmp(a, "--with-4m")) {
             o->with_4m = 1;
+        } else if (!strcmp(a, "--precond-h")) {
+            NEEDV();
+            if (!strcmp(v, "edges")) o->hcases = 1;
+            else if (!strcmp(v, "default")) o->hcases = 2;
+            else if (!strcmp(v, "both")) o->hcases = 3;
+            else return GLPGP_FAIL(GLPGP_ERR_ARG, "--precond-h: '%s' is not edges, default or both", v);
         } else if (!strcmp(a, "--newton-steps")) {
             NEEDV();
             if (!parse_long(v, &lv) || lv < 1 || lv > 20) return GLPGP_FAIL(GLPGP_ERR_ARG, "--newton-steps: expected 1..20");
@@ -546,9 +554,7 @@ static glpgp_status op_newton_step(bctx *c)
 static glpgp_status create_backend(int opencl, const bopts *o, glpgp_backend **b)
 {
     if (!opencl) return glpgp_backend_create_reference(b);
-    glpgp_cl_options co;
-    co.device = o->device;
-    co.verbose = 0;
+    glpgp_cl_options co = {o->device, 0, NULL};
     return glpgp_backend_create_opencl(&co, b);
 }
 
@@ -1539,10 +1545,22 @@ static glpgp_status stream_isolated(int threads, size_t n, int reps, bench_strea
 
 /* ---- main -------------------------------------------------------------------------------- */
 
+/* the library's log lines on stderr: with GLPGP_CL_PROFILE=1 the OpenCL
+ * backend's per-kernel device times (logged when a backend is destroyed) */
+static void profile_log(glpgp_log_level level, const char *msg, void *user)
+{
+    (void)level;
+    (void)user;
+    if (strncmp(msg, "OpenCL profile", 14) == 0 || strncmp(msg, "  glpgp_", 8) == 0 || strncmp(msg, "    n >= ", 9) == 0)
+        fprintf(stderr, "%s\n", msg);
+}
+
 int main(int argc, char **argv)
 {
     bopts o;
     int help = 0;
+    const char *prof = getenv("GLPGP_CL_PROFILE");
+    if (prof && !strcmp(prof, "1")) glpgp_log_set_callback(profile_log, NULL);
     if (parse_args(argc, argv, &o, &help) != GLPGP_OK) {
         fprintf(stderr, "glpgp-bench: %s\n", glpgp_error_message());
         usage(stderr);
@@ -1560,6 +1578,7 @@ int main(int argc, char **argv)
         for (int k = 0; k < po.nsizes && k < 16; k++) po.sizes[k] = o.sizes[k];
         if (po.nsizes > 16) po.nsizes = 16;
         po.with_4m = o.with_4m;
+        po.hcases = o.hcases;
         po.steps = o.steps;
         po.kcycle_min = o.kcycle_min;
         po.no_petsc = o.no_petsc;

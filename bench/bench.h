@@ -34,6 +34,7 @@ typedef struct bench_precond_opts {
     int no_petsc;         /* leave the PETSc GAMG anchor out */
     int no_cholmod;       /* leave the CHOLMOD anchor out */
     long max_cholmod;     /* CHOLMOD anchor up to this many vertices (0: no limit) */
+    int hcases;           /* bit 0: h = 10 mean edges, bit 1: the default size (0: both) */
 } bench_precond_opts;
 
 /* Run the ladder, print Markdown, write JSON; returns the exit code. */

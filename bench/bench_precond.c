@@ -101,7 +101,7 @@ static glpgp_status make_backend(int opencl, int pc, int device, glpgp_backend *
 {
     if (pc == 2) return glpgp_backend_create_petsc(GLPGP_PRECOND_AMG, b); /* the GAMG anchor */
     if (!opencl) return glpgp_backend_create_reference(b);
-    glpgp_cl_options co = {device, 0};
+    glpgp_cl_options co = {device, 0, NULL};
     return glpgp_backend_create_opencl(&co, b);
 }
 
@@ -439,6 +439,7 @@ int bench_precond_run(const bench_precond_opts *po)
         for (int i = 0; i < m->nv; i++) w[2 * i] = 1.0;
         glpgp_dirichlet_set(m, w, dir);
         for (int hc = 0; hc < 2; hc++) {
+            if (po->hcases && !(po->hcases & (1 << hc))) continue;
             const double h = hc ? glpgp_default_size(m, NULL) : 10.0 * m->mean_edge;
             /* z = exp(i theta), theta = 2 pi x / h + a smooth perturbation (bench.c's state) */
             const double L = fmax(m->bbox[2] - m->bbox[0], m->bbox[3] - m->bbox[1]);

@@ -182,27 +182,29 @@ GLPGP_FN void glpgp_amg_load_block(GLPGP_GLOBAL const double *A, long k, double 
 /* ---- per aggregate (hierarchy values) ------------------------------------- */
 
 /* Frame of node i: f_i = a_i frame_i  (a_i = amp[i] when has_amp, else 1;
- * frame_i = (fr[2i], fr[2i+1]) when has_frame, else 1). */
+ * frame_i = (fr[2i], fr[2i+1]) when has_frame, else 1); 0 when has_dir and
+ * dir[i] (a Dirichlet vertex of level 0: on no coarse level). */
 GLPGP_FN void glpgp_amg_frame(int i, int has_amp, GLPGP_GLOBAL const double *amp, int has_frame,
-                              GLPGP_GLOBAL const double *fr, double *fx, double *fy)
+                              GLPGP_GLOBAL const double *fr, int has_dir, GLPGP_GLOBAL const unsigned char *dir,
+                              double *fx, double *fy)
 {
-    const double am = has_amp ? amp[i] : 1.0;
+    const double am = has_dir && dir[i] ? 0.0 : has_amp ? amp[i] : 1.0;
     *fx = has_frame ? am * fr[2 * i] : am;
     *fy = has_frame ? am * fr[2 * i + 1] : 0.0;
 }
 
 /* Aggregate J of level l (members amem[aptr[J] .. aptr[J+1])):
  *   s_J = sqrt(sum_{i in J} |f_i|^2);  amp_next[J] <- s_J;  c_i <- f_i / s_J;
- * J is dead (amp_next[J] <- 0, c_i <- 0) when s_J is 0 or not finite. Nodes in
- * no aggregate keep c = 0 (never written). */
+ * J is dead (amp_next[J] <- 0, c_i <- 0) when s_J is 0 or not finite. */
 GLPGP_FN void glpgp_amg_agg_weights(int J, GLPGP_GLOBAL const int *aptr, GLPGP_GLOBAL const int *amem,
                                     int has_amp, GLPGP_GLOBAL const double *amp, int has_frame,
-                                    GLPGP_GLOBAL const double *fr, GLPGP_GLOBAL double *c,
+                                    GLPGP_GLOBAL const double *fr, int has_dir,
+                                    GLPGP_GLOBAL const unsigned char *dir, GLPGP_GLOBAL double *c,
                                     GLPGP_GLOBAL double *amp_next)
 {
     double ss = 0.0, fx, fy;
     for (int p = aptr[J]; p < aptr[J + 1]; p++) {
-        glpgp_amg_frame(amem[p], has_amp, amp, has_frame, fr, &fx, &fy);
+        glpgp_amg_frame(amem[p], has_amp, amp, has_frame, fr, has_dir, dir, &fx, &fy);
         ss += fx * fx + fy * fy;
     }
     const double s = sqrt(ss);
@@ -210,7 +212,7 @@ GLPGP_FN void glpgp_amg_agg_weights(int J, GLPGP_GLOBAL const int *aptr, GLPGP_G
     amp_next[J] = dead ? 0.0 : s;
     for (int p = aptr[J]; p < aptr[J + 1]; p++) {
         const int i = amem[p];
-        glpgp_amg_frame(i, has_amp, amp, has_frame, fr, &fx, &fy);
+        glpgp_amg_frame(i, has_amp, amp, has_frame, fr, has_dir, dir, &fx, &fy);
         c[2 * i] = dead ? 0.0 : fx / s;
         c[2 * i + 1] = dead ? 0.0 : fy / s;
     }
@@ -361,6 +363,103 @@ GLPGP_FN void glpgp_amg_row_restrict_scatter(int i, GLPGP_GLOBAL const int *agg,
     glpgp_amg_restrict_add(c[2 * i], c[2 * i + 1], t0, t1, acc);
     rc[2 * J] = acc[0];
     rc[2 * J + 1] = acc[1];
+}
+
+/* ---- fused cycle steps (a level visit in fewer passes) ------------------- */
+
+/* (y0, y1) <- M_j^-1 r_j: the pre-smoother from zero of row j, the bits
+ * glpgp_amg_row_smooth (has_x = 0) stores. */
+GLPGP_FN void glpgp_amg_presmooth_val(int j, GLPGP_GLOBAL const double *minv, GLPGP_GLOBAL const double *r, double *y0,
+                                      double *y1)
+{
+    double m[4], o[2];
+    glpgp_amg_load_block(minv, j, m);
+    glpgp_amg_smooth_row(m, r[2 * j], r[2 * j + 1], 0.0, 0.0, 0.0, 0.0, o);
+    *y0 = o[0];
+    *y1 = o[1];
+}
+
+/* Row i of the pre-smoothed residual: y_i <- M_i^-1 r_i and (t0, t1) <-
+ * r_i - (A y)_i, (A y)_i summed as glpgp_row_spmv with each y_j = M_j^-1 r_j
+ * formed on the fly (glpgp_amg_presmooth_val): the bits of the pre-smoother
+ * from zero followed by glpgp_amg_row_resid (has_x = 1), without writing y
+ * and reading it back. */
+GLPGP_FN void glpgp_amg_row_presmooth_resid(int i, GLPGP_GLOBAL const int *rowptr, GLPGP_GLOBAL const int *col,
+                                            GLPGP_GLOBAL const double *A, GLPGP_GLOBAL const double *minv,
+                                            GLPGP_GLOBAL const double *r, GLPGP_GLOBAL double *y, double *t0,
+                                            double *t1)
+{
+    double s0 = 0.0, s1 = 0.0, y0, y1;
+    for (int k = rowptr[i]; k < rowptr[i + 1]; k++) {
+        GLPGP_GLOBAL const double *blk = A + 4 * (long)k;
+        glpgp_amg_presmooth_val(col[k], minv, r, &y0, &y1);
+        s0 += blk[0] * y0 + blk[1] * y1;
+        s1 += blk[2] * y0 + blk[3] * y1;
+    }
+    *t0 = r[2 * i] - s0;
+    *t1 = r[2 * i + 1] - s1;
+    glpgp_amg_presmooth_val(i, minv, r, &y0, &y1);
+    y[2 * i] = y0;
+    y[2 * i + 1] = y1;
+}
+
+/* Aggregate J of a visit's first half, fused: for its members i (increasing)
+ * y_i <- M_i^-1 r_i and rc_J <- sum_i P_i^T (r_i - (A y)_i) -- the bits of
+ * the pre-smoother from zero, then glpgp_amg_agg_restrict with x = y. */
+GLPGP_FN void glpgp_amg_agg_presmooth_restrict(int J, GLPGP_GLOBAL const int *aptr, GLPGP_GLOBAL const int *amem,
+                                               GLPGP_GLOBAL const double *c, GLPGP_GLOBAL const int *rowptr,
+                                               GLPGP_GLOBAL const int *col, GLPGP_GLOBAL const double *A,
+                                               GLPGP_GLOBAL const double *minv, GLPGP_GLOBAL const double *r,
+                                               GLPGP_GLOBAL double *y, GLPGP_GLOBAL double *rc)
+{
+    double acc[2] = {0.0, 0.0};
+    for (int p = aptr[J]; p < aptr[J + 1]; p++) {
+        const int i = amem[p];
+        double t0, t1;
+        glpgp_amg_row_presmooth_resid(i, rowptr, col, A, minv, r, y, &t0, &t1);
+        glpgp_amg_restrict_add(c[2 * i], c[2 * i + 1], t0, t1, acc);
+    }
+    rc[2 * J] = acc[0];
+    rc[2 * J + 1] = acc[1];
+}
+
+/* (x0, x1) <- x_j + P_j ec_agg(j): the prolonged iterate of row j, the bits
+ * glpgp_amg_row_prolong stores. */
+GLPGP_FN void glpgp_amg_prolonged_val(int j, GLPGP_GLOBAL const int *agg, GLPGP_GLOBAL const double *c,
+                                      GLPGP_GLOBAL const double *ec, GLPGP_GLOBAL const double *x, double *x0,
+                                      double *x1)
+{
+    double v[2];
+    v[0] = x[2 * j];
+    v[1] = x[2 * j + 1];
+    const int J = agg[j];
+    if (J >= 0) glpgp_amg_prolong_add(c[2 * j], c[2 * j + 1], ec[2 * J], ec[2 * J + 1], v);
+    *x0 = v[0];
+    *x1 = v[1];
+}
+
+/* Row i of a visit's second half, fused: x' = x + P ec (prolongation),
+ * y_i <- x'_i + M_i^-1 (r_i - (A x')_i) (the first post-smoothing sweep),
+ * x'_j formed on the fly (glpgp_amg_prolonged_val): the bits of
+ * glpgp_amg_row_prolong then glpgp_amg_row_smooth, without storing x'. */
+GLPGP_FN void glpgp_amg_row_prolong_smooth(int i, GLPGP_GLOBAL const int *agg, GLPGP_GLOBAL const double *c,
+                                           GLPGP_GLOBAL const double *ec, GLPGP_GLOBAL const int *rowptr,
+                                           GLPGP_GLOBAL const int *col, GLPGP_GLOBAL const double *A,
+                                           GLPGP_GLOBAL const double *minv, GLPGP_GLOBAL const double *r,
+                                           GLPGP_GLOBAL const double *x, GLPGP_GLOBAL double *y)
+{
+    double s0 = 0.0, s1 = 0.0, x0, x1, m[4], o[2];
+    for (int k = rowptr[i]; k < rowptr[i + 1]; k++) {
+        GLPGP_GLOBAL const double *blk = A + 4 * (long)k;
+        glpgp_amg_prolonged_val(col[k], agg, c, ec, x, &x0, &x1);
+        s0 += blk[0] * x0 + blk[1] * x1;
+        s1 += blk[2] * x0 + blk[3] * x1;
+    }
+    glpgp_amg_prolonged_val(i, agg, c, ec, x, &x0, &x1);
+    glpgp_amg_load_block(minv, i, m);
+    glpgp_amg_smooth_row(m, r[2 * i], r[2 * i + 1], s0, s1, x0, x1, o);
+    y[2 * i] = o[0];
+    y[2 * i + 1] = o[1];
 }
 
 /* Prolongation row i:  x_i <- x_i + P_i ec_agg(i)  (agg(i) < 0: unchanged). */

@@ -83,11 +83,12 @@ GLPGP_KERNEL void glpgp_amg_finalize(__global const double *part, int np, int st
  * (glpgp_amg_agg_weights). */
 GLPGP_KERNEL void glpgp_amg_weights(int n, int chunk, __global const int *aptr, __global const int *amem,
                                     int has_amp, __global const double *amp, int has_frame,
-                                    __global const double *fr, __global double *c,
-                                    __global double *amp_next)
+                                    __global const double *fr, int has_dir, __global const uchar *dir,
+                                    __global double *c, __global double *amp_next)
 {
     GLPGP_RANGE(lo, hi, n, chunk);
-    for (int J = lo; J < hi; J++) glpgp_amg_agg_weights(J, aptr, amem, has_amp, amp, has_frame, fr, c, amp_next);
+    for (int J = lo; J < hi; J++)
+        glpgp_amg_agg_weights(J, aptr, amem, has_amp, amp, has_frame, fr, has_dir, dir, c, amp_next);
 }
 
 /* Coarse rows [lo, hi) of A_{l+1} = P^T A_l P (glpgp_amg_galerkin_row); with
@@ -113,6 +114,21 @@ GLPGP_KERNEL void glpgp_amg_l1(int n, int chunk, __global const int *rowptr, __g
 {
     GLPGP_RANGE(lo, hi, n, chunk);
     for (int i = lo; i < hi; i++) glpgp_amg_l1_row(i, rowptr, diag, A, w, minv);
+}
+
+/* The coarse solve operator from the coarsest level (n nodes): dense
+ * expansion and its LU (spd = 0) or SPD (spd = 1) generalised inverse into
+ * inv, by ONE work-group (kernels/amg_dense.h; W, I: its work arrays);
+ * t[slot] <- the status (0, or 1: not finite). */
+GLPGP_KERNEL void glpgp_amg_coarse_invert(int n, int spd, __global const int *rowptr, __global const int *col,
+                                          __global const double *val, __global double *inv, __global double *W,
+                                          __global int *I, __global double *t, int slot)
+{
+    __local double bv[GLPGP_WG];
+    __local long bi[GLPGP_WG];
+    const int st = glpgp_dense_coarse_invert((int)get_local_id(0), GLPGP_WG, n, rowptr, col, val, spd, inv, W, I, bv,
+                                             bi);
+    if (get_local_id(0) == 0) t[slot] = (double)st;
 }
 
 /* ---- the cycle ----------------------------------------------------------- */
@@ -148,6 +164,47 @@ GLPGP_KERNEL void glpgp_amg_residual(int n, int chunk, __global const int *rowpt
 {
     GLPGP_RANGE(lo, hi, n, chunk);
     for (int i = lo; i < hi; i++) glpgp_amg_row_residual(i, rowptr, col, A, r, x, t);
+}
+
+/* Aggregates [lo, hi): y_i <- M_i^-1 r_i for their members and rc_J <- P^T
+ * (r - A y) (glpgp_amg_agg_presmooth_restrict: a visit's first half in one
+ * pass; the CPU launch shape). */
+GLPGP_KERNEL void glpgp_amg_presmooth_restrict(int n, int chunk, __global const int *aptr, __global const int *amem,
+                                               __global const double *c, __global const int *rowptr,
+                                               __global const int *col, __global const double *A,
+                                               __global const double *minv, __global const double *r,
+                                               __global double *y, __global double *rc)
+{
+    GLPGP_RANGE(lo, hi, n, chunk);
+    for (int J = lo; J < hi; J++) glpgp_amg_agg_presmooth_restrict(J, aptr, amem, c, rowptr, col, A, minv, r, y, rc);
+}
+
+/* Rows [lo, hi): y_i <- M_i^-1 r_i and t_i <- r_i - (A y)_i
+ * (glpgp_amg_row_presmooth_resid; the GPU launch shape, whose aggregates
+ * then gather t with glpgp_amg_restrict). */
+GLPGP_KERNEL void glpgp_amg_presmooth_resid(int n, int chunk, __global const int *rowptr, __global const int *col,
+                                            __global const double *A, __global const double *minv,
+                                            __global const double *r, __global double *y, __global double *t)
+{
+    GLPGP_RANGE(lo, hi, n, chunk);
+    for (int i = lo; i < hi; i++) {
+        double t0, t1;
+        glpgp_amg_row_presmooth_resid(i, rowptr, col, A, minv, r, y, &t0, &t1);
+        t[2 * i] = t0;
+        t[2 * i + 1] = t1;
+    }
+}
+
+/* Rows [lo, hi): y_i <- x'_i + M_i^-1 (r_i - (A x')_i), x' = x + P ec
+ * (glpgp_amg_row_prolong_smooth: a visit's second half in one pass). */
+GLPGP_KERNEL void glpgp_amg_prolong_smooth(int n, int chunk, __global const int *agg, __global const double *c,
+                                           __global const double *ec, __global const int *rowptr,
+                                           __global const int *col, __global const double *A,
+                                           __global const double *minv, __global const double *r,
+                                           __global const double *x, __global double *y)
+{
+    GLPGP_RANGE(lo, hi, n, chunk);
+    for (int i = lo; i < hi; i++) glpgp_amg_row_prolong_smooth(i, agg, c, ec, rowptr, col, A, minv, r, x, y);
 }
 
 /* Rows [lo, hi):  x_i <- x_i + P_i ec_agg(i). */

@@ -91,11 +91,14 @@ static double *amg_dense_prolong(glpgp_backend *b, int l, int nf, int nc)
  * level, P^T A_l P equals A_{l+1} to 1e-13 of its largest entry, P^T P = I
  * (orthonormal aggregate bases), and every free level-0 vertex / every coarser
  * node lies in exactly one aggregate (two nonzero columns: z and iz), no
- * Dirichlet vertex in any (the vortex vertex, with z = 0, may have fewer). */
+ * Dirichlet vertex in any (the vortex vertex, with z = 0, may have fewer);
+ * a dead coarse node (an aggregate of Dirichlet vertices only: a zero
+ * column pair of P) has an identity row in A_{l+1}. */
 static void amg_check_galerkin(const char *label, glpgp_backend *b, const glpgp_amg_info *in,
                                const unsigned char *dir, int vortex)
 {
     double *A = amg_dense_level(b, 0, in->n[0]);
+    unsigned char *dead = NULL; /* the dead nodes of level l >= 1 */
     for (int l = 0; l + 1 < in->nlevels; l++) {
         const int mf = 2 * in->n[l], mc = 2 * in->n[l + 1];
         double *P = amg_dense_prolong(b, l, in->n[l], in->n[l + 1]);
@@ -109,8 +112,21 @@ static void amg_check_galerkin(const char *label, glpgp_backend *b, const glpgp_
                 if (aik == 0.0) continue;
                 for (int j = 0; j < mc; j++) T[(size_t)i * mc + j] += aik * P[(size_t)k * mc + j];
             }
+        /* a dead coarse node (an aggregate of Dirichlet vertices only, or
+         * of dead nodes): a zero column pair of P, an identity row of A_c */
+        unsigned char *dead_c = calloc((size_t)in->n[l + 1] + 1, 1);
+        for (int I = 0; I < in->n[l + 1]; I++) {
+            int nzc = 0;
+            for (int k = 0; k < mf; k++) nzc += P[(size_t)k * mc + 2 * I] != 0.0 || P[(size_t)k * mc + 2 * I + 1] != 0.0;
+            dead_c[I] = nzc == 0;
+        }
+        int dead_bad = 0;
         for (int I = 0; I < mc; I++)
             for (int J = 0; J < mc; J++) {
+                if (dead_c[I / 2] || dead_c[J / 2]) {
+                    dead_bad += Ac[(size_t)I * mc + J] != (I == J ? 1.0 : 0.0);
+                    continue;
+                }
                 double g = 0.0, pp = 0.0;
                 for (int k = 0; k < mf; k++) {
                     g += P[(size_t)k * mc + I] * T[(size_t)k * mc + J];
@@ -120,15 +136,20 @@ static void amg_check_galerkin(const char *label, glpgp_backend *b, const glpgp_
                 dmax = fmax(dmax, fabs(g - Ac[(size_t)I * mc + J]));
                 ortho = fmax(ortho, fabs(pp - (I == J ? 1.0 : 0.0)));
             }
+        CHECK(dead_bad == 0);
+        /* every live node of level l in exactly one aggregate (two nonzero
+         * columns), a Dirichlet vertex / dead node in none */
         int bad = 0;
         for (int i = 0; i < in->n[l]; i++) {
             int nz = 0;
             for (int j = 0; j < mc; j++)
                 nz += P[(size_t)(2 * i) * mc + j] != 0.0 || P[(size_t)(2 * i + 1) * mc + j] != 0.0;
-            int dirichlet = l == 0 && dir[i];
+            int off = l == 0 ? dir[i] : dead[i];
             int at_vortex = l == 0 && i == vortex;
-            if (dirichlet ? nz != 0 : (!at_vortex && nz != 2)) bad++;
+            if (off ? nz != 0 : (!at_vortex && nz != 2)) bad++;
         }
+        free(dead);
+        dead = dead_c;
         printf("%s: level %d -> %d: max |P^T A P - A_c| = %.2e (max entry %.2e), "
                "max |P^T P - I| = %.2e, bad rows %d\n", label, l, l + 1, dmax, amax, ortho, bad);
         CHECK(amax > 0.0);
@@ -141,6 +162,7 @@ static void amg_check_galerkin(const char *label, glpgp_backend *b, const glpgp_
         A = Ac;
     }
     free(A);
+    free(dead);
 }
 
 #endif

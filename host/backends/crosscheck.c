@@ -317,6 +317,24 @@ static glpgp_status stage_spmv(cc *c)
     return GLPGP_OK;
 }
 
+/* The trust region's trial point x (+) a d (ops->trial_point: polar
+ * outside vortex cores, straight inside, blended between; its own sin and
+ * cos) at z, d = r, for a short and a long step: the same bits. */
+static glpgp_status stage_trial(cc *c)
+{
+    if (!c->S[0].b->ops->trial_point || !c->S[1].b->ops->trial_point) return GLPGP_OK;
+    BOTH(o->vec_write(b, v[VX], c->z));
+    BOTH(o->vec_write(b, v[VD], c->r));
+    const double steps[2] = {0.7, 3.0};
+    for (int k = 0; k < 2; k++) {
+        BOTH(o->trial_point(b, v[VX], v[VD], steps[k], 0.8, v[VY]));
+        BOTH(o->vec_read(b, v[VY], c->h[s]));
+        GLPGP_CHECK(cmp(c, k ? "trial point x (+) 3 d" : "trial point x (+) 0.7 d", c->h[0], c->h[1], c->n2, 0.0,
+                        0.0, 0.0));
+    }
+    return GLPGP_OK;
+}
+
 /* The fused CG ops one at a time on the projected NEWTON, right-hand side r:
  * precond, then 3 x (spmv_dot, update, direction); each quantity's values over
  * the 3 steps form one row. */
@@ -402,6 +420,27 @@ static void cc_fill(unsigned long long *seed, double *x, size_t n)
     for (size_t i = 0; i < n; i++) x[i] = cc_rand(seed) - 0.5;
 }
 
+/* The fused visit halves of level l (the GPU shape's; ops amg_presmooth_restrict,
+ * amg_prolong_smooth) on both sides: y <- M^-1 r with e' <- P^T (r - A y),
+ * then y <- x' + M^-1 (r - A x'), x' = x + P e (lv[s]: x, r, y of level l,
+ * e of level l+1; he: e's values; n, nc: the two levels' lengths). */
+static glpgp_status amg_fused_rows(cc *c, int l, glpgp_vec *lv[2][4], const double *he, size_t n, size_t nc)
+{
+    char name[64];
+    for (int s = 0; s < 2; s++)
+        if (!c->S[s].b->ops->amg_presmooth_restrict || !c->S[s].b->ops->amg_prolong_smooth) return GLPGP_OK;
+    BOTH(o->amg_presmooth_restrict(b, l, lv[s][1], lv[s][2], lv[s][3]));
+    BOTH(o->vec_read(b, lv[s][2], c->h[s]));
+    BOTH(o->vec_read(b, lv[s][3], c->h[s] + n));
+    snprintf(name, sizeof name, "multigrid fused smoothing + restriction %d", l);
+    GLPGP_CHECK(cmp(c, name, c->h[0], c->h[1], n + nc, 1e-12, 1e-14, 0.0));
+    BOTH(o->vec_write(b, lv[s][3], he));
+    BOTH(o->amg_prolong_smooth(b, l, lv[s][3], lv[s][0], lv[s][1], lv[s][2]));
+    BOTH(o->vec_read(b, lv[s][2], c->h[s]));
+    snprintf(name, sizeof name, "multigrid fused prolongation + smoothing %d", l);
+    return cmp(c, name, c->h[0], c->h[1], n, 1e-12, 1e-14, 0.0);
+}
+
 /* The multigrid ops (amg_* of the backend table) on the hierarchy of the
  * mixed NEWTON at z, built on each side by solver/amg.c (the same host
  * structure: aggregation is deterministic) with frames from z. Per level l,
@@ -413,8 +452,8 @@ static void cc_fill(unsigned long long *seed, double *x, size_t n)
  * 0: amg_dots, amg_axpby with register coefficients, amg_kcombine; one whole
  * cycle B r (glpgp_amg_apply; the OpenCL CPU shape runs its small levels in
  * the fused kernel) and a flexible-CG solve NEWTON d = -g. Hierarchy values
- * share kernels/amg_rows.h (bit-identical in practice): rtol 1e-12; the dense
- * coarse inverse is computed on the host from the coarsest matrix: 1e-8; the
+ * share kernels/amg_rows.h (bit-identical in practice): rtol 1e-12; so does
+ * the dense coarse inverse (kernels/amg_dense.h, on each backend); the
  * cycle (K-cycle coefficients from dot products) 1e-10; the solve 1e-6. */
 static glpgp_status stage_amg(cc *c)
 {
@@ -498,7 +537,14 @@ static glpgp_status stage_amg(cc *c)
             if (st != GLPGP_OK) goto done;
             BOTH_GOTO(o->amg_coarse_solve(b, LV(1), LV(2)));
             BOTH_GOTO(o->vec_read(b, LV(2), c->h[s]));
-            GLPGP_CHECK_GOTO(st, cmp(c, "multigrid coarse solve C r", c->h[0], c->h[1], n, 1e-8, 1e-8, 0.0), done);
+            GLPGP_CHECK_GOTO(st, cmp(c, "multigrid coarse solve C r", c->h[0], c->h[1], n, 1e-12, 1e-14, 0.0), done);
+            /* the symmetric PSD coarse operator (glpgp_amg_update_spd: the trust region's) */
+            for (int s = 0; s < 2; s++) GLPGP_CHECK_GOTO(st, glpgp_amg_update_spd(a[s], c->S[s].v[VX]), done);
+            BOTH_GOTO(o->amg_coarse_solve(b, LV(1), LV(2)));
+            BOTH_GOTO(o->vec_read(b, LV(2), c->h[s]));
+            GLPGP_CHECK_GOTO(st, cmp(c, "multigrid coarse solve C r (SPD)", c->h[0], c->h[1], n, 1e-12, 1e-14, 0.0),
+                             done);
+            for (int s = 0; s < 2; s++) GLPGP_CHECK_GOTO(st, glpgp_amg_update(a[s], c->S[s].v[VX]), done);
         } else {
             /* y <- M^-1 r;  then y <- x + M^-1 (r - A x) */
             BOTH_GOTO(o->amg_smooth(b, l, LV(1), NULL, LV(2)));
@@ -521,6 +567,7 @@ static glpgp_status stage_amg(cc *c)
             BOTH_GOTO(o->vec_read(b, LV(2), c->h[s]));
             snprintf(name, sizeof name, "multigrid prolongation %d -> %d", l + 1, l);
             GLPGP_CHECK_GOTO(st, cmp(c, name, c->h[0], c->h[1], n, 1e-12, 1e-14, 0.0), done);
+            GLPGP_CHECK_GOTO(st, amg_fused_rows(c, l, lv, he, n, nc), done);
         }
         if (l == 0) {
             /* t[S] <- x.r, t[S+1] <- x.x;  y <- r;  y <- (t[S]/t[S+1]) x - 0.5 y;
@@ -582,7 +629,7 @@ static glpgp_status stage_gl_solve(cc *c)
     glpgp_backend *sb[2] = {NULL, NULL};
     glpgp_result *res[2] = {NULL, NULL};
     glpgp_options so = c->so;
-    glpgp_cl_options clo = {c->opt->device, 0};
+    glpgp_cl_options clo = {c->opt->device, 0, NULL};
     char name[48];
     so.newton_rtol = 1e-8;
     so.cg_rtol = 1e-10;
@@ -632,7 +679,7 @@ static glpgp_status stage_cross_solve(cc *c)
     glpgp_backend *sb[2] = {NULL, NULL};
     glpgp_cross_result *cr[2] = {NULL, NULL};
     glpgp_options so = c->so;
-    glpgp_cl_options clo = {c->opt->device, 0};
+    glpgp_cl_options clo = {c->opt->device, 0, NULL};
     char name[64];
     so.cg_rtol = 1e-10;
     /* the line-search Newton: the trust region's accept / reject decisions
@@ -684,7 +731,7 @@ static glpgp_status prepare(cc *c)
     const glpgp_crosscheck_options *opt = c->opt;
     const glpgp_mesh *m = c->m;
     glpgp_crosscheck *t = c->t;
-    glpgp_cl_options clo = {opt->device, 0};
+    glpgp_cl_options clo = {opt->device, 0, NULL};
     GLPGP_CHECK(glpgp_system_create(m, &c->sys));
     c->n2 = (size_t)2 * m->nv;
     c->nm = (size_t)4 * c->sys->nnzb;
@@ -760,6 +807,7 @@ glpgp_status glpgp_crosscheck_create(const glpgp_crosscheck_options *opt, glpgp_
     GLPGP_CHECK_GOTO(st, stage_newton(&c), done);
     GLPGP_CHECK_GOTO(st, stage_gradient(&c), done);
     GLPGP_CHECK_GOTO(st, stage_spmv(&c), done);
+    GLPGP_CHECK_GOTO(st, stage_trial(&c), done);
     GLPGP_CHECK_GOTO(st, stage_cg_steps(&c), done);
     GLPGP_CHECK_GOTO(st, stage_cg_solve(&c), done);
     GLPGP_CHECK_GOTO(st, stage_amg(&c), done);

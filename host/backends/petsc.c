@@ -51,6 +51,7 @@
 #include "glpgp/backends.h"
 #include "glpgp/solve.h"
 #include "rows.h"
+#include "newton_rows.h"
 
 #include "petsc_module.h"
 
@@ -450,6 +451,25 @@ static glpgp_status p_axpby(glpgp_backend *b, double a, const glpgp_vec *x, doub
     PCHK(VecGetArray(y->v, &ya));
     for (PetscInt i = 0; i < n; i++) glpgp_entry_axpby((long)i, a, xa, c, ya);
     PCHK(VecRestoreArray(y->v, &ya));
+    PCHK(VecRestoreArrayRead(x->v, &xa));
+    return GLPGP_OK;
+}
+
+static glpgp_status p_trial_point(glpgp_backend *b, const glpgp_vec *x, const glpgp_vec *d, double a, double r1,
+                                  glpgp_vec *xt)
+{
+    (void)b;
+    /* xt <- x (+) a d on the owned vertices (kernels/newton_rows.h) */
+    PetscInt n;
+    PetscScalar *ta;
+    const PetscScalar *xa, *da;
+    PCHK(VecGetLocalSize(xt->v, &n));
+    PCHK(VecGetArrayRead(x->v, &xa));
+    PCHK(VecGetArrayRead(d->v, &da));
+    PCHK(VecGetArray(xt->v, &ta));
+    for (PetscInt i = 0; i < n / 2; i++) glpgp_row_trial_point((int)i, xa, da, a, r1, ta);
+    PCHK(VecRestoreArray(xt->v, &ta));
+    PCHK(VecRestoreArrayRead(d->v, &da));
     PCHK(VecRestoreArrayRead(x->v, &xa));
     return GLPGP_OK;
 }
@@ -936,6 +956,7 @@ static const glpgp_backend_ops petsc_ops = {
     .cg_direction = p_cg_direction,
     .linear_solve = p_linear_solve,
     .reduce = p_reduce,
+    .trial_point = p_trial_point,
 };
 
 /* --precond jacobi: no linear_solve op, so the drivers' own block-Jacobi CG

@@ -13,7 +13,7 @@
 
 #include "glpgp/backend.h"
 
-#define GLPGP_PETSC_ABI 3
+#define GLPGP_PETSC_ABI 4
 #define GLPGP_PETSC_ENTRY "glpgp_petsc_module_entry"
 
 /* glpgp -> module (the loader's table: error record, log, part create / destroy) */

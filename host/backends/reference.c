@@ -7,6 +7,7 @@
 #include "glpgp/backends.h"
 #include "rows.h"
 #include "coupled_rows.h"
+#include "newton_rows.h"
 
 #include "reference_impl.h"
 
@@ -331,6 +332,15 @@ static glpgp_status ref_cg_direction(glpgp_backend *b, glpgp_vec *p, const glpgp
 }
 
 /* a second reference backend with b's ops (a test may have replaced some) */
+static glpgp_status ref_trial_point(glpgp_backend *b, const glpgp_vec *x, const glpgp_vec *d, double a, double r1,
+                                    glpgp_vec *xt)
+{
+    /* xt <- x (+) a d per vertex (kernels/newton_rows.h) */
+    const int nv = IMPL(b)->sys->nv;
+    for (int i = 0; i < nv; i++) glpgp_row_trial_point(i, x->a, d->a, a, r1, xt->a);
+    return GLPGP_OK;
+}
+
 static glpgp_status ref_clone(glpgp_backend *b, glpgp_backend **out)
 {
     GLPGP_CHECK(glpgp_backend_create_reference(out));
@@ -366,6 +376,7 @@ static const glpgp_backend_ops ref_ops = {
     .cg_update = ref_cg_update,
     .cg_direction = ref_cg_direction,
     GLPGP_REF_AMG_OPS
+    .trial_point = ref_trial_point,
 };
 
 glpgp_status glpgp_backend_create_reference(glpgp_backend **out)

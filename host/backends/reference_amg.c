@@ -8,6 +8,7 @@
  * cycle itself is driven by solver/amg.c through these ops. Every loop is a
  * gather (one output row, aggregate or coarse row per iteration, no
  * scatter). Dot products are one sequential sum (glpgp_range_dot). */
+#include "amg_dense.h"
 #include "amg_rows.h"
 #include "reference_impl.h"
 
@@ -33,11 +34,14 @@ typedef struct ref_level {
 } ref_level;
 
 struct ref_amg {
+    glpgp_amg_layout lay; /* the layout it was set up from (key and parameters) */
     int L;
     double weight; /* smoother weight */
     ref_level lev[GLPGP_AMG_MAX_LEVELS];
     int m;        /* order of the coarse operator, 2 n_{L-1} */
     double *cinv; /* m*m, row-major */
+    double *dw;   /* GLPGP_DENSE_W(m): work of amg_coarse_invert (kernels/amg_dense.h) */
+    int *di;      /* GLPGP_DENSE_I(m) */
     double t[GLPGP_AMG_NSLOTS];
 };
 
@@ -64,6 +68,8 @@ void glpgp_ref_amg_free(ref_impl *r)
         free(v->amp);
     }
     free(a->cinv);
+    free(a->dw);
+    free(a->di);
     free(a);
     r->amg = NULL;
 }
@@ -85,10 +91,12 @@ glpgp_status glpgp_ref_amg_setup(glpgp_backend *b, const glpgp_amg_layout *lay)
         return GLPGP_FAIL(GLPGP_ERR_ARG, "amg_setup: %d levels", lay->nlevels);
     if (lay->lev[0].n != sys->nv || lay->lev[0].nnzb != sys->nnzb)
         return GLPGP_FAIL(GLPGP_ERR_ARG, "amg_setup: level 0 is not the system");
+    if (r->amg && glpgp_amg_layout_same(&r->amg->lay, lay)) return GLPGP_OK; /* holds it already */
     glpgp_ref_amg_free(r);
     GLPGP_CHECK(glpgp_calloc(1, sizeof(struct ref_amg), &r->amg));
     struct ref_amg *a = r->amg;
     glpgp_status st = GLPGP_OK;
+    a->lay = *lay;
     a->L = lay->nlevels;
     a->weight = lay->weight;
     if (!(a->weight > 0.0 && a->weight < 2.0)) {
@@ -132,6 +140,8 @@ glpgp_status glpgp_ref_amg_setup(glpgp_backend *b, const glpgp_amg_layout *lay)
     }
     a->m = 2 * a->lev[a->L - 1].n;
     GLPGP_CHECK_GOTO(st, glpgp_calloc((size_t)a->m * a->m, sizeof(double), &a->cinv), fail);
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)GLPGP_DENSE_W(a->m), sizeof(double), &a->dw), fail);
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)GLPGP_DENSE_I(a->m) + 1, sizeof(int), &a->di), fail);
     return GLPGP_OK;
 fail:
     glpgp_ref_amg_free(r);
@@ -159,7 +169,7 @@ glpgp_status glpgp_ref_amg_values(glpgp_backend *b, const glpgp_vec *const *fram
          * when none);  s_J = sqrt(sum_{i in J} |f_i|^2);  c_i = f_i / s_J
          * (nodes in no aggregate keep c = 0 from amg_setup) */
         for (int J = 0; J < v->nc; J++)
-            glpgp_amg_agg_weights(J, v->aptr, v->amem, l > 0, v->amp, fr != NULL, fr, v->c, w->amp);
+            glpgp_amg_agg_weights(J, v->aptr, v->amem, l > 0, v->amp, fr != NULL, fr, l == 0, r->dir, v->c, w->amp);
         /* A_{l+1}[K] = sum over the mapped level-l slots k = (i, j) of
          * P_i^T A_l[k] P_j (gather, increasing k); dead coarse node:
          * identity diagonal block */
@@ -190,10 +200,15 @@ glpgp_status glpgp_ref_amg_coarse_read(glpgp_backend *b, double *dense)
     return GLPGP_OK;
 }
 
-glpgp_status glpgp_ref_amg_coarse_set(glpgp_backend *b, const double *inv)
+glpgp_status glpgp_ref_amg_coarse_invert(glpgp_backend *b, int spd)
 {
     struct ref_amg *a = AMG(b);
-    memcpy(a->cinv, inv, (size_t)a->m * a->m * sizeof(double));
+    if (!a) return GLPGP_FAIL(GLPGP_ERR_ARG, "amg_coarse_invert before amg_setup");
+    const ref_level *v = &a->lev[a->L - 1];
+    /* the dense coarsest matrix and its inverse (kernels/amg_dense.h, one worker) */
+    a->t[GLPGP_AMG_SLOT_STATUS] = glpgp_dense_coarse_invert(0, 1, v->n, v->rowptr, v->col,
+                                                            level_val(IMPL(b), a->L - 1), spd, a->cinv, a->dw, a->di,
+                                                            NULL, NULL);
     return GLPGP_OK;
 }
 
@@ -221,6 +236,39 @@ glpgp_status glpgp_ref_amg_restrict(glpgp_backend *b, int l, const glpgp_vec *r,
     for (int i = 0; i < v->n; i++)
         glpgp_amg_row_restrict_scatter(i, v->agg, v->c, x != NULL, v->rowptr, v->col, A, r->a, x ? x->a : NULL,
                                        rc->a);
+    return GLPGP_OK;
+}
+
+glpgp_status glpgp_ref_amg_presmooth_restrict(glpgp_backend *b, int l, const glpgp_vec *r, glpgp_vec *y,
+                                              glpgp_vec *rc)
+{
+    struct ref_amg *a = AMG(b);
+    const ref_level *v = &a->lev[l];
+    const double *A = level_val(IMPL(b), l);
+    /* rows in order: y_i and t_i = r_i - (A y)_i, t added to its aggregate
+     * (rc <- 0 first; members in increasing order: the gather's sums) */
+    for (int J = 0; J < 2 * v->nc; J++) rc->a[J] = 0.0;
+    for (int i = 0; i < v->n; i++) {
+        double t0, t1;
+        glpgp_amg_row_presmooth_resid(i, v->rowptr, v->col, A, v->minv, r->a, y->a, &t0, &t1);
+        const int J = v->agg[i];
+        if (J < 0) continue;
+        double acc[2] = {rc->a[2 * J], rc->a[2 * J + 1]};
+        glpgp_amg_restrict_add(v->c[2 * i], v->c[2 * i + 1], t0, t1, acc);
+        rc->a[2 * J] = acc[0];
+        rc->a[2 * J + 1] = acc[1];
+    }
+    return GLPGP_OK;
+}
+
+glpgp_status glpgp_ref_amg_prolong_smooth(glpgp_backend *b, int l, const glpgp_vec *ec, const glpgp_vec *x,
+                                          const glpgp_vec *r, glpgp_vec *y)
+{
+    struct ref_amg *a = AMG(b);
+    const ref_level *v = &a->lev[l];
+    const double *A = level_val(IMPL(b), l);
+    for (int i = 0; i < v->n; i++)
+        glpgp_amg_row_prolong_smooth(i, v->agg, v->c, ec->a, v->rowptr, v->col, A, v->minv, r->a, x->a, y->a);
     return GLPGP_OK;
 }
 

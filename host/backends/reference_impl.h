@@ -39,7 +39,7 @@ void glpgp_ref_amg_free(ref_impl *r);
 glpgp_status glpgp_ref_amg_setup(glpgp_backend *b, const glpgp_amg_layout *lay);
 glpgp_status glpgp_ref_amg_values(glpgp_backend *b, const glpgp_vec *const *frames);
 glpgp_status glpgp_ref_amg_coarse_read(glpgp_backend *b, double *dense);
-glpgp_status glpgp_ref_amg_coarse_set(glpgp_backend *b, const double *inv);
+glpgp_status glpgp_ref_amg_coarse_invert(glpgp_backend *b, int spd);
 glpgp_status glpgp_ref_amg_smooth(glpgp_backend *b, int l, const glpgp_vec *r, const glpgp_vec *x,
                                   glpgp_vec *y);
 glpgp_status glpgp_ref_amg_restrict(glpgp_backend *b, int l, const glpgp_vec *r,
@@ -55,15 +55,20 @@ glpgp_status glpgp_ref_amg_axpby(glpgp_backend *b, glpgp_amg_coef a, const glpgp
 glpgp_status glpgp_ref_amg_kcombine(glpgp_backend *b, const glpgp_vec *v, const glpgp_vec *d,
                                     glpgp_vec *e, int slot);
 glpgp_status glpgp_ref_amg_get_scalars(glpgp_backend *b, double *out, int n);
+glpgp_status glpgp_ref_amg_presmooth_restrict(glpgp_backend *b, int l, const glpgp_vec *r, glpgp_vec *y,
+                                              glpgp_vec *rc);
+glpgp_status glpgp_ref_amg_prolong_smooth(glpgp_backend *b, int l, const glpgp_vec *ec, const glpgp_vec *x,
+                                          const glpgp_vec *r, glpgp_vec *y);
 
 /* The amg_* entries of the reference ops table. */
 #define GLPGP_REF_AMG_OPS                                                                          \
     .amg_setup = glpgp_ref_amg_setup, .amg_values = glpgp_ref_amg_values,                          \
-    .amg_coarse_read = glpgp_ref_amg_coarse_read, .amg_coarse_set = glpgp_ref_amg_coarse_set,      \
+    .amg_coarse_read = glpgp_ref_amg_coarse_read, .amg_coarse_invert = glpgp_ref_amg_coarse_invert,      \
     .amg_smooth = glpgp_ref_amg_smooth, .amg_restrict = glpgp_ref_amg_restrict,                    \
     .amg_prolong = glpgp_ref_amg_prolong, .amg_coarse_solve = glpgp_ref_amg_coarse_solve,          \
     .amg_spmv_dots = glpgp_ref_amg_spmv_dots, .amg_dots = glpgp_ref_amg_dots,                      \
     .amg_axpby = glpgp_ref_amg_axpby, .amg_kcombine = glpgp_ref_amg_kcombine,                      \
-    .amg_get_scalars = glpgp_ref_amg_get_scalars,
+    .amg_get_scalars = glpgp_ref_amg_get_scalars, .amg_presmooth_restrict = glpgp_ref_amg_presmooth_restrict,      \
+    .amg_prolong_smooth = glpgp_ref_amg_prolong_smooth,
 
 #endif

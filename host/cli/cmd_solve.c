@@ -16,7 +16,10 @@
 #include "glpgp/util.h"
 
 #include <math.h>
+#include <pthread.h>
 #include <stdio.h>
+#include <time.h>
+#include <unistd.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -38,6 +41,7 @@ typedef struct solve_cli {
     int gather_max;      /* --gather-max: most vertices gathered to rank 0 (distributed PETSc runs) */
     int pieces;          /* --out *.pvtu: one .vtu piece per rank and the index */
     int gather;          /* distributed: the whole result is gathered to rank 0 (set on every rank) */
+    double t_refine;     /* seconds of the refinement for the local size (prepare) */
 } solve_cli;
 
 /* Default of --gather-max: 2^26 vertices (1 GiB per gathered z array, 16
@@ -151,6 +155,42 @@ static int check(solve_cli *c, const char *input)
     return -1;
 }
 
+/* "  phases  read 1.09, program build 3.48 (in the background, waited 0.00),
+ * ... s" (phases of at least 1 ms, in the order of glpgp/timers.h, lines of
+ * about 100 columns), then what the solve waited on the device */
+static void print_phases(const glpgp_result *r)
+{
+    const glpgp_timers *t = &r->timers;
+    int col = printf("  phases       ");
+    int first = 1;
+    for (int i = 0; i < GLPGP_TM_COUNT; i++) {
+        if (!(t->s[i] >= 0.001)) continue;
+        char item[160];
+        if (i == GLPGP_TM_BUILD)
+            snprintf(item, sizeof item, "%s %.2f (waited %.2f)", glpgp_timer_label(i), t->s[i], t->wait[i]);
+        else
+            snprintf(item, sizeof item, "%s %.2f", glpgp_timer_label(i), t->s[i]);
+        if (!first && col + (int)strlen(item) + 2 > 100) {
+            printf(",\n               ");
+            col = 15;
+        } else if (!first) {
+            col += printf(",");
+        }
+        col += printf(" %s", item);
+        first = 0;
+    }
+    printf(" s\n");
+    double wait = 0.0, sum = 0.0;
+    for (int i = 0; i < GLPGP_TM_COUNT; i++)
+        if (glpgp_timer_in_solve(i)) {
+            wait += t->wait[i];
+            sum += t->s[i];
+        }
+    if (wait > 0.0)
+        printf("  device wait    %.3f s of the solve's phases' %.3f s%s (host work %.3f s, %.0f%%)\n", wait, sum,
+               r->concurrent ? ", both threads" : "", sum - wait, sum > 0.0 ? 100.0 * (sum - wait) / sum : 0.0);
+}
+
 static void print_summary(const solve_cli *c, const char *input, const glpgp_mesh *m, const glpgp_result *r,
                           const char *device, double t_all, double t_read, const glpgp_quad_quality *qq,
                           int quads_written)
@@ -193,6 +233,7 @@ static void print_summary(const solve_cli *c, const char *input, const glpgp_mes
                c->refined.nv0, c->refined.nv, c->refined.nt0, c->refined.nt, c->refined.rounds);
     printf("  time           %.3f s (read %.3f s, solve %.3f s%s)\n", t_all, t_read, r->seconds_total,
            r->concurrent ? "; u and v concurrently" : "");
+    print_phases(r);
     if (c->out) printf("  wrote          %s\n", c->out);
     if (c->stats) printf("  wrote          %s\n", c->stats);
     if (c->quads) {
@@ -309,6 +350,7 @@ static int prepare(solve_cli *c, const char *input, glpgp_mesh **pm, glpgp_size_
         return rc;
     }
     c->refined = pi.refined;
+    c->t_refine = pi.seconds_refine;
     if (mr) {
         glpgp_mesh_destroy(&m);
         m = mr;
@@ -452,6 +494,88 @@ static int pieces_verdict(int ok, const char *pvtu, double *okv)
     return glpgp_petsc_all_ok(ok);
 }
 
+/* The backend created in a second thread while the input is read (an OpenCL
+ * device's program build and first launches: about a second on a cold
+ * cache, booked as the program build, not to the first numerical phase). */
+typedef struct backend_job {
+    int kind, device, verbose;
+    int stop;             /* set when the input failed: the creation may end early */
+    int done;             /* set by the thread when it ends */
+    glpgp_backend *b;
+    glpgp_status st;
+    glpgp_error_copy err; /* the thread's error record, for the caller */
+    double seconds;       /* the creation */
+    pthread_t th;
+    int started;
+} backend_job;
+
+static void *backend_job_run(void *arg)
+{
+    backend_job *j = arg;
+    glpgp_error_clear();
+    const double t0 = glpgp_now();
+    j->st = glpgp_backend_select_stoppable((glpgp_backend_kind)j->kind, j->device, j->verbose, &j->stop, &j->b);
+    j->seconds = glpgp_now() - t0;
+    if (j->st != GLPGP_OK) glpgp_error_save(&j->err);
+    glpgp_error_clear();
+    __atomic_store_n(&j->done, 1, __ATOMIC_RELEASE);
+    return NULL;
+}
+
+/* Start the backend's creation in a thread (or, when no thread can be
+ * started, nothing: backend_job_join creates it then). */
+static void backend_job_start(backend_job *j, const solve_cli *c)
+{
+    memset(j, 0, sizeof *j);
+    j->kind = c->backend;
+    j->device = c->device;
+    j->verbose = 0; /* the device's lines come from the caller once it is used (glpgp_cl_backend_log) */
+    j->started = pthread_create(&j->th, NULL, backend_job_run, j) == 0;
+}
+
+/* The backend (*b) once created; *wait <- seconds this thread waited for it.
+ * A failure is the caller's error record. */
+static glpgp_status backend_job_join(backend_job *j, glpgp_backend **b, double *wait)
+{
+    const double t0 = glpgp_now();
+    if (j->started) pthread_join(j->th, NULL);
+    else backend_job_run(j);
+    j->started = 0;
+    *wait = glpgp_now() - t0;
+    *b = j->b;
+    j->b = NULL;
+    return j->st == GLPGP_OK ? GLPGP_OK : glpgp_error_restore(&j->err);
+}
+
+/* The input failed while the backend was being created in its thread: the
+ * backend is not needed. The thread stops at its next check (before the
+ * program build, between first launches) but cannot leave the OpenCL
+ * runtime's initialisation early (PoCL: about 0.3 s); after 20 ms of waiting
+ * the command ends without it (_exit after flushing: no atexit handler may
+ * race with a thread inside the runtime). Returns rc otherwise. */
+static int backend_job_abandon(backend_job *j, int rc)
+{
+    __atomic_store_n(&j->stop, 1, __ATOMIC_RELAXED);
+    if (j->started) {
+        for (int k = 0; k < 20 && !__atomic_load_n(&j->done, __ATOMIC_ACQUIRE); k++) {
+            const struct timespec ms = {0, 1000000};
+            nanosleep(&ms, NULL);
+        }
+        if (!__atomic_load_n(&j->done, __ATOMIC_ACQUIRE)) {
+            fflush(stdout);
+            fflush(stderr);
+            _exit(rc);
+        }
+    }
+    glpgp_error_copy keep; /* the input's error, not the backend's */
+    glpgp_error_save(&keep);
+    glpgp_backend *b = NULL;
+    double w = 0.0;
+    if (backend_job_join(j, &b, &w) == GLPGP_OK) glpgp_backend_destroy(&b);
+    glpgp_error_restore(&keep);
+    return rc;
+}
+
 static int solve_main(solve_cli *cc, const char *input)
 {
     solve_cli c = *cc;
@@ -479,7 +603,11 @@ static int solve_main(solve_cli *cc, const char *input)
     glpgp_size_image *simg = NULL; /* --size-field IMAGE */
     const int dist = distributed(&c), root = glpgp_petsc_rank() == 0;
     int announced = 0;          /* distributed: rank 0's verdict on the input sent */
-    double t_read = 0.0;
+    double t_read = 0.0, t_build_wait = 0.0, t_build = 0.0;
+    glpgp_timers cli_tm; /* the phases measured here (read, program build, outputs) */
+    memset(&cli_tm, 0, sizeof cli_tm);
+    backend_job bj;
+    memset(&bj, 0, sizeof bj);
     memset(&c.refined, 0, sizeof c.refined);
     if (dist && !root) {
         /* rank 0 reads, checks, refines and splits the input: its verdict,
@@ -489,19 +617,31 @@ static int solve_main(solve_cli *cc, const char *input)
         if (glpgp_petsc_mesh_recv(&part) != GLPGP_OK) goto fail;
         c.o.size = part->part->size_opt; /* rank 0's (set by the refinement) */
     } else {
+        /* the backend (program build) in a thread while the input is read */
+        if (c.backend != GLPGP_BACKEND_PETSC) backend_job_start(&bj, &c);
         if ((rc = prepare(&c, input, &m, &simg)) >= 0) {
             if (dist) glpgp_petsc_all_ok(0);
+            if (c.backend != GLPGP_BACKEND_PETSC) rc = backend_job_abandon(&bj, rc);
             return rc;
         }
         t_read = glpgp_now() - t0;
     }
+    cli_tm.s[GLPGP_TM_READ] = t_read - c.t_refine;
+    cli_tm.s[GLPGP_TM_REFINE] = c.t_refine;
     rc = GLPGP_EXIT_FAIL;
 
     if (c.backend == GLPGP_BACKEND_PETSC) {
+        const double tb = glpgp_now();
         if (glpgp_backend_create_petsc(c.o.precond, &b) != GLPGP_OK) goto fail;
-    } else if (glpgp_backend_select(c.backend, c.device, c.verbosity > 0, &b) != GLPGP_OK) {
-        goto fail;
+        t_build = t_build_wait = glpgp_now() - tb;
+    } else {
+        if (backend_job_join(&bj, &b, &t_build_wait) != GLPGP_OK) goto fail;
+        t_build = bj.seconds;
+        if (c.verbosity > 0) glpgp_cl_backend_log(b);
     }
+    /* program build: the backend's creation (in the background); its wait: what the run waited for it */
+    cli_tm.s[GLPGP_TM_BUILD] = t_build;
+    cli_tm.wait[GLPGP_TM_BUILD] = t_build_wait;
     /* several ranks: the vertices renumbered so that each rank's rows are
      * a compact region (recursive coordinate bisection); the result comes
      * back in the input's vertex order. Not with per-vertex input files
@@ -613,6 +753,7 @@ static int solve_main(solve_cli *cc, const char *input)
                 if (glpgp_osc_summarize(m, &r->osc[k]) != GLPGP_OK) goto fail;
     }
     /* everything computed before anything is written */
+    double tp = glpgp_now();
     if (c.quads) {
         double h = r->size;
         if (glpgp_quads_build(m, r, &c.qo, &q, &h) != GLPGP_OK) goto fail;
@@ -626,7 +767,10 @@ static int solve_main(solve_cli *cc, const char *input)
         invalid_rc = glpgp_cli_quads_verdict(&qq, c.qo.keep_polygons ? GLPGP_QUAD_BAD_NONQUAD : 0u,
                                              c.allow_invalid, why, sizeof why);
     }
+    cli_tm.s[GLPGP_TM_EXTRACT] = glpgp_now() - tp;
+    tp = glpgp_now();
     if (c.image && glpgp_render(m, r, &c.ro, &im) != GLPGP_OK) goto fail;
+    cli_tm.s[GLPGP_TM_IMAGE] = glpgp_now() - tp;
 
     /* outputs: one set, committed together (all or nothing: a failure leaves
      * every existing file as it was and no temporary behind) */
@@ -635,16 +779,25 @@ static int solve_main(solve_cli *cc, const char *input)
         if (glpgp_output_set_result_piece(outs, m, &c.o, r, c.out, 0) != GLPGP_OK) goto fail;
         if (glpgp_output_set_pvtu(outs, r, c.out, 1) != GLPGP_OK) goto fail;
     }
+    tp = glpgp_now();
     if (c.out && !c.pieces && glpgp_output_set_result(outs, m, &c.o, r, c.out) != GLPGP_OK) goto fail;
+    cli_tm.s[GLPGP_TM_OUT_RESULT] += glpgp_now() - tp;
+    tp = glpgp_now();
     if (c.quads && invalid_rc < 0 && glpgp_output_set_quads(outs, q, c.quads) != GLPGP_OK) goto fail;
-    if (c.stats) {
-        glpgp_stats_extra x = {input, c.out, t_read, c.quads ? &qq : NULL, nranks, rank_info, device};
-        if (glpgp_output_set_stats(outs, m, &c.o, r, c.stats, &x) != GLPGP_OK) goto fail;
-    }
+    cli_tm.s[GLPGP_TM_OUT_QUADS] = glpgp_now() - tp;
+    tp = glpgp_now();
     if (c.image) { /* the picture is written under the set's temporary name */
         const char *tmp = NULL;
         if (glpgp_output_set_reserve(outs, c.image, &tmp) != GLPGP_OK) goto fail;
         if (glpgp_image_write(tmp, im) != GLPGP_OK) goto fail;
+    }
+    cli_tm.s[GLPGP_TM_OUT_IMAGE] = glpgp_now() - tp;
+    /* the run's phases: the solve's and this command's (the statistics last:
+     * they report every phase before them) */
+    glpgp_timers_add(&r->timers, &cli_tm);
+    if (c.stats) {
+        glpgp_stats_extra x = {input, c.out, t_read, c.quads ? &qq : NULL, nranks, rank_info, device};
+        if (glpgp_output_set_stats(outs, m, &c.o, r, c.stats, &x) != GLPGP_OK) goto fail;
     }
     if (verdict_pending) { /* distributed .pvtu: all ranks' files complete, then all commit */
         const glpgp_status pst = glpgp_output_set_prepare(outs);
@@ -669,6 +822,15 @@ static int solve_main(solve_cli *cc, const char *input)
     rc = invalid_rc < 0 ? 0 : glpgp_cli_invalid(why, "not written (--allow-invalid writes it anyway)");
     goto done;
 fail:
+    if (bj.started) { /* a failure before the backend was needed: wait for its thread */
+        glpgp_error_copy keep;
+        glpgp_error_save(&keep);
+        __atomic_store_n(&bj.stop, 1, __ATOMIC_RELAXED);
+        glpgp_backend *bb = NULL;
+        double w = 0.0;
+        if (backend_job_join(&bj, &bb, &w) == GLPGP_OK) glpgp_backend_destroy(&bb);
+        glpgp_error_restore(&keep);
+    }
     if (dist && !announced) glpgp_petsc_all_ok(0); /* the other ranks wait for rank 0's verdict */
     if (verdict_pending) pieces_verdict(0, c.out, okv); /* ... or for the verdict on the pieces */
     rc = glpgp_cli_fail();

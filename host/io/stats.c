@@ -224,6 +224,33 @@ static void stats_body(FILE *f, const glpgp_mesh *m, const glpgp_options *o, con
     glpgp_json_num(w, "v", ov->seconds);
     glpgp_json_num(w, "total", r->seconds_total);
     glpgp_json_close(w);
+    /* where the time went, per phase (glpgp/timers.h): wall seconds (exclusive)
+     * and of them the host's wait on the device; program_build ran in the
+     * background while the input was read (its wait: what the run waited) */
+    {
+        const glpgp_timers *t = &r->timers;
+        double solve_wait = 0.0, solve_s = 0.0;
+        glpgp_json_object(w, "phases");
+        for (int i = 0; i < GLPGP_TM_COUNT; i++) {
+            glpgp_json_object(w, glpgp_timer_key(i));
+            glpgp_json_num(w, "seconds", t->s[i]);
+            glpgp_json_num(w, "wait", t->wait[i]);
+            glpgp_json_close(w);
+            if (glpgp_timer_in_solve(i)) {
+                solve_wait += t->wait[i];
+                solve_s += t->s[i];
+            }
+        }
+        glpgp_json_close(w);
+        /* the solve's phases summed (both threads with concurrent oscillators),
+         * split into host work and waiting on the device */
+        glpgp_json_object(w, "solve_split");
+        glpgp_json_num(w, "seconds", solve_s);
+        glpgp_json_num(w, "wait", solve_wait);
+        glpgp_json_num(w, "host", solve_s - solve_wait);
+        glpgp_json_num(w, "host_share", solve_s > 0.0 ? (solve_s - solve_wait) / solve_s : 0.0);
+        glpgp_json_close(w);
+    }
     /* what a GPU pays per call whatever the work (bench/results/gpu_h200) */
     glpgp_json_object(w, "device_calls");
     glpgp_json_int(w, "host_round_trips", r->host_round_trips);

@@ -57,7 +57,7 @@
  * number of levels (docs/numerics.md has the counts). The preconditioner is
  * not a fixed linear operator, so the outer iteration is flexible CG
  * (FCG(1)): one extra dot product per iteration compared with CG. */
-#include "internal.h"
+#include "amg_internal.h"
 
 #include "glpgp/util.h"
 
@@ -66,31 +66,10 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* ---- host-side structure ------------------------------------------------ */
-
-/* A weighted graph in CSR form (no self loops). */
-typedef struct wgraph {
-    int n;
-    int *ptr, *adj;
-    double *wt;
-} wgraph;
-
-static void wgraph_free(wgraph *g)
-{
-    free(g->ptr);
-    free(g->adj);
-    free(g->wt);
-    memset(g, 0, sizeof *g);
-}
+/* ---- one instance of the hierarchy on a backend ---------------------- */
 
 typedef struct amg_level {
     int n;
-    long nnzb;
-    int *rowptr, *col, *diag;  /* levels >= 1 (level 0: the system's) */
-    wgraph g;                  /* aggregation graph of this level */
-    int *agg, *aptr, *amem;    /* transfer to l+1 */
-    int *gptr, *gsrc;
-    double *pos, *wsum;        /* 2n: centroid, summed field (plane-wave frames) */
     /* device vectors (2n doubles): K-cycle and smoothing work */
     glpgp_vec *b, *e, *v, *w, *r2, *d, *wd, *tmp;
     glpgp_vec *phase;          /* plane-wave frame of this level (NULL: none) */
@@ -98,18 +77,24 @@ typedef struct amg_level {
 
 struct glpgp_amg {
     glpgp_backend *b;
+    const glpgp_amg_structure *s; /* the structure: b->amg_shared, or own */
+    glpgp_amg_structure *own;  /* built for this instance alone (no shared one fits) */
     int cycle, pre, post, check, maxit;
     int kmin;                  /* levels below this many nodes: V-cycle */
     int L;
     amg_level lev[GLPGP_AMG_MAX_LEVELS];
-    int m;                     /* coarse order 2 n_{L-1} */
-    double *dense, *inv, *work;/* m*m each (work: LU) */
-    int *perm_r, *perm_c;
     glpgp_vec *r, *z, *p, *q;  /* flexible CG */
     int has_phase;
     int warned;                /* the Jacobi fallback of glpgp_linear_solve was logged */
+    int sync;                  /* glpgp_options.phase_sync */
+    int fuse;                  /* the fused visit halves (amg_presmooth_restrict, amg_prolong_smooth):
+                                  where launches cost (b->launch_bound); elsewhere the single ops,
+                                  which compute each smoothed / prolonged value once where the fused
+                                  ones recompute it for every neighbour (reference: +44% of those
+                                  ops' instructions, a 20% slower hard-domain sweep) */
     glpgp_amg_info info;
 };
+
 
 /* whether the coarse correction on level c (0 < c < L-1) is a K-cycle */
 int glpgp_amg_kcycle_min(const glpgp_backend *b, const glpgp_options *o)
@@ -123,387 +108,63 @@ static int kcycle_level(const glpgp_amg *a, int c)
     return a->cycle == GLPGP_AMG_KCYCLE && a->lev[c].n >= a->kmin;
 }
 
-/* Dirichlet-free vertex graph of the system: edges of the block pattern
- * between free vertices, weight 1. */
-static glpgp_status fine_graph(const glpgp_system *sys, const unsigned char *dir, wgraph *g)
+/* The plane-wave frames of the quadratic problems: node i of level l in
+ * aggregate J gets exp(i (2 pi / h) W_J . (x_i - x_J)), W_J the normalised
+ * sum of the field over J's fine vertices, x_J its centroid; uploaded as
+ * a->lev[l].phase. */
+static glpgp_status wave_frames(glpgp_amg *a, const double *w, double h)
 {
-    g->n = sys->nv;
-    GLPGP_CHECK(glpgp_malloc((size_t)sys->nv + 1, sizeof(int), &g->ptr));
-    GLPGP_CHECK(glpgp_malloc((size_t)(sys->nnzb ? sys->nnzb : 1), sizeof(int), &g->adj));
-    GLPGP_CHECK(glpgp_malloc((size_t)(sys->nnzb ? sys->nnzb : 1), sizeof(double), &g->wt));
-    long e = 0;
-    g->ptr[0] = 0;
-    for (int i = 0; i < sys->nv; i++) {
-        if (!(dir && dir[i]))
-            for (int k = sys->rowptr[i]; k < sys->rowptr[i + 1]; k++) {
-                int j = sys->col[k];
-                if (j == i || (dir && dir[j])) continue;
-                g->adj[e] = j;
-                g->wt[e] = 1.0;
-                e++;
-            }
-        g->ptr[i + 1] = (int)e;
-    }
-    return GLPGP_OK;
-}
-
-/* One pass of pairwise matching on g restricted to the active nodes
- * (act[i] != 0): repeatedly take the unmatched node with the fewest unmatched
- * neighbours and pair it with its strongest unmatched neighbour (ties: fewer
- * unmatched neighbours, then smaller index), or leave it alone. grp[i] <- the
- * pair's index (-1 for inactive nodes); returns the number of groups.
- * Degrees only decrease, so a bucket list per degree gives O(edges). */
-static glpgp_status pair_pass(const wgraph *g, const unsigned char *act, int *grp, int *ngroups)
-{
-    const int n = g->n;
-    int *deg = NULL, *head = NULL, *next = NULL, *prev = NULL;
-    unsigned char *done = NULL;
-    glpgp_status st = GLPGP_OK;
-    int maxdeg = 0, ng = 0;
-    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)n + 1, sizeof(int), &deg), out);
-    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)n + 1, sizeof(int), &next), out);
-    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)n + 1, sizeof(int), &prev), out);
-    GLPGP_CHECK_GOTO(st, glpgp_calloc((size_t)n + 1, 1, &done), out);
-    for (int i = 0; i < n; i++) {
-        grp[i] = -1;
-        deg[i] = 0;
-        if (!act[i]) {
-            done[i] = 1;
-            continue;
-        }
-        for (int k = g->ptr[i]; k < g->ptr[i + 1]; k++) deg[i] += act[g->adj[k]] != 0;
-        if (deg[i] > maxdeg) maxdeg = deg[i];
-    }
-    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)maxdeg + 1, sizeof(int), &head), out);
-    for (int d = 0; d <= maxdeg; d++) head[d] = -1;
-    /* bucket lists, nodes inserted in decreasing index so that each bucket
-     * starts with its smallest index */
-    for (int i = n - 1; i >= 0; i--) {
-        if (done[i]) continue;
-        prev[i] = -1;
-        next[i] = head[deg[i]];
-        if (head[deg[i]] >= 0) prev[head[deg[i]]] = i;
-        head[deg[i]] = i;
-    }
-#define UNLINK(i)                                            \
-    do {                                                     \
-        if (prev[i] >= 0) next[prev[i]] = next[i];           \
-        else head[deg[i]] = next[i];                         \
-        if (next[i] >= 0) prev[next[i]] = prev[i];           \
-    } while (0)
-    int cur = 0;
-    for (;;) {
-        while (cur <= maxdeg && head[cur] < 0) cur++;
-        if (cur > maxdeg) break;
-        int i = head[cur];
-        UNLINK(i);
-        done[i] = 1;
-        int best = -1;
-        double bw = 0.0;
-        for (int k = g->ptr[i]; k < g->ptr[i + 1]; k++) {
-            int j = g->adj[k];
-            if (done[j]) continue;
-            if (best < 0 || g->wt[k] > bw || (g->wt[k] == bw && (deg[j] < deg[best] ||
-                                                                 (deg[j] == deg[best] && j < best)))) {
-                best = j;
-                bw = g->wt[k];
-            }
-        }
-        grp[i] = ng;
-        if (best >= 0) {
-            UNLINK(best);
-            done[best] = 1;
-            grp[best] = ng;
-        }
-        ng++;
-        /* the unmatched neighbours of i and best lose one unmatched neighbour */
-        for (int s = 0; s < 2; s++) {
-            int u = s ? best : i;
-            if (u < 0) continue;
-            for (int k = g->ptr[u]; k < g->ptr[u + 1]; k++) {
-                int j = g->adj[k];
-                if (done[j]) continue;
-                UNLINK(j);
-                deg[j]--;
-                prev[j] = -1;
-                next[j] = head[deg[j]];
-                if (head[deg[j]] >= 0) prev[head[deg[j]]] = j;
-                head[deg[j]] = j;
-                if (deg[j] < cur) cur = deg[j];
-            }
-        }
-    }
-#undef UNLINK
-    *ngroups = ng;
-out:
-    free(deg);
-    free(head);
-    free(next);
-    free(prev);
-    free(done);
-    return st;
-}
-
-/* Quotient graph of g under map (node -> group in [0, nc), -1: dropped):
- * edge (I, J), I != J, weight = sum of the weights of the edges between
- * them; adjacency sorted. */
-static glpgp_status quotient(const wgraph *g, const int *map, int nc, wgraph *c)
-{
-    glpgp_status st = GLPGP_OK;
-    int *mptr = NULL, *mem = NULL, *mark = NULL, *slot = NULL;
-    c->n = nc;
-    GLPGP_CHECK_GOTO(st, glpgp_calloc((size_t)nc + 1, sizeof(int), &mptr), out);
-    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)g->n + 1, sizeof(int), &mem), out);
-    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)nc + 1, sizeof(int), &mark), out);
-    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)nc + 1, sizeof(int), &slot), out);
-    for (int i = 0; i < g->n; i++)
-        if (map[i] >= 0) mptr[map[i] + 1]++;
-    for (int J = 0; J < nc; J++) mptr[J + 1] += mptr[J];
-    for (int i = 0; i < g->n; i++)
-        if (map[i] >= 0) mem[mptr[map[i]]++] = i;
-    for (int J = nc; J > 0; J--) mptr[J] = mptr[J - 1];
-    mptr[0] = 0;
-    /* count, then fill */
-    for (int J = 0; J < nc; J++) mark[J] = -1;
-    GLPGP_CHECK_GOTO(st, glpgp_calloc((size_t)nc + 1, sizeof(int), &c->ptr), out);
-    for (int I = 0; I < nc; I++) {
-        int cnt = 0;
-        for (int p = mptr[I]; p < mptr[I + 1]; p++) {
-            int i = mem[p];
-            for (int k = g->ptr[i]; k < g->ptr[i + 1]; k++) {
-                int J = map[g->adj[k]];
-                if (J < 0 || J == I || mark[J] == I) continue;
-                mark[J] = I;
-                cnt++;
-            }
-        }
-        c->ptr[I + 1] = c->ptr[I] + cnt;
-    }
-    size_t ne = (size_t)c->ptr[nc];
-    GLPGP_CHECK_GOTO(st, glpgp_malloc(ne ? ne : 1, sizeof(int), &c->adj), out);
-    GLPGP_CHECK_GOTO(st, glpgp_calloc(ne ? ne : 1, sizeof(double), &c->wt), out);
-    for (int J = 0; J < nc; J++) mark[J] = -1;
-    for (int I = 0; I < nc; I++) {
-        int e = c->ptr[I];
-        for (int p = mptr[I]; p < mptr[I + 1]; p++) {
-            int i = mem[p];
-            for (int k = g->ptr[i]; k < g->ptr[i + 1]; k++) {
-                int J = map[g->adj[k]];
-                if (J < 0 || J == I) continue;
-                if (mark[J] != I) {
-                    mark[J] = I;
-                    slot[J] = e;
-                    c->adj[e] = J;
-                    c->wt[e] = 0.0;
-                    e++;
-                }
-                c->wt[slot[J]] += g->wt[k];
-            }
-        }
-        /* sort the row by J (insertion sort: rows are short) */
-        for (int a = c->ptr[I] + 1; a < c->ptr[I + 1]; a++) {
-            int ja = c->adj[a];
-            double wa = c->wt[a];
-            int bpos = a - 1;
-            while (bpos >= c->ptr[I] && c->adj[bpos] > ja) {
-                c->adj[bpos + 1] = c->adj[bpos];
-                c->wt[bpos + 1] = c->wt[bpos];
-                bpos--;
-            }
-            c->adj[bpos + 1] = ja;
-            c->wt[bpos + 1] = wa;
-        }
-    }
-out:
-    free(mptr);
-    free(mem);
-    free(mark);
-    free(slot);
-    return st;
-}
-
-/* Aggregates of level lv (two pairing passes on its graph; Dirichlet /
- * inactive nodes get -1): lv->agg and the returned count. When the level is
- * small enough (n_active <= coarse) every active node is its own aggregate
- * (the next level is then the coarsest and solves the level exactly). */
-static glpgp_status aggregate(amg_level *lv, const unsigned char *act, int coarse, int *nc)
-{
-    glpgp_status st = GLPGP_OK;
-    const int n = lv->n;
-    int *g1 = NULL, *g2 = NULL;
-    unsigned char *act1 = NULL;
-    wgraph q;
-    memset(&q, 0, sizeof q);
-    GLPGP_CHECK(glpgp_malloc((size_t)n + 1, sizeof(int), &lv->agg));
-    int nact = 0;
-    for (int i = 0; i < n; i++) nact += act[i] != 0;
-    if (nact <= coarse) {
-        int k = 0;
-        for (int i = 0; i < n; i++) lv->agg[i] = act[i] ? k++ : -1;
-        *nc = k;
-        return GLPGP_OK;
-    }
-    int n1 = 0, n2 = 0;
-    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)n + 1, sizeof(int), &g1), out);
-    GLPGP_CHECK_GOTO(st, pair_pass(&lv->g, act, g1, &n1), out);
-    GLPGP_CHECK_GOTO(st, quotient(&lv->g, g1, n1, &q), out);
-    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)n1 + 1, 1, &act1), out);
-    memset(act1, 1, (size_t)n1 + 1);
-    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)n1 + 1, sizeof(int), &g2), out);
-    GLPGP_CHECK_GOTO(st, pair_pass(&q, act1, g2, &n2), out);
-    for (int i = 0; i < n; i++) lv->agg[i] = g1[i] >= 0 ? g2[g1[i]] : -1;
-    /* number the aggregates by their first member, so that the coarse levels
-     * keep the locality of the fine ordering */
-    for (int J = 0; J < n2; J++) g2[J] = -1;
-    int next = 0;
-    for (int i = 0; i < n; i++) {
-        int J = lv->agg[i];
-        if (J < 0) continue;
-        if (g2[J] < 0) g2[J] = next++;
-        lv->agg[i] = g2[J];
-    }
-    *nc = n2;
-out:
-    free(g1);
-    free(g2);
-    free(act1);
-    wgraph_free(&q);
-    return st;
-}
-
-/* Members of each aggregate (aptr/amem, increasing), the next level's
- * pattern (quotient graph + diagonal, sorted) and graph, the Galerkin map
- * from the pattern (rowptr/col) of lv, and the centroids / field sums. */
-static glpgp_status build_transfer(amg_level *lv, const int *rowptr, const int *col, int nc,
-                                   amg_level *nx)
-{
-    glpgp_status st = GLPGP_OK;
-    int *pos = NULL;
-    long *cnt = NULL;
-    const int n = lv->n;
-    nx->n = nc;
-    GLPGP_CHECK(glpgp_calloc((size_t)nc + 1, sizeof(int), &lv->aptr));
-    GLPGP_CHECK(glpgp_malloc((size_t)n + 1, sizeof(int), &lv->amem));
-    for (int i = 0; i < n; i++)
-        if (lv->agg[i] >= 0) lv->aptr[lv->agg[i] + 1]++;
-    for (int J = 0; J < nc; J++) lv->aptr[J + 1] += lv->aptr[J];
-    {
-        int *fill = NULL;
-        GLPGP_CHECK(glpgp_malloc((size_t)nc + 1, sizeof(int), &fill));
-        memcpy(fill, lv->aptr, (size_t)nc * sizeof(int));
-        for (int i = 0; i < n; i++)
-            if (lv->agg[i] >= 0) lv->amem[fill[lv->agg[i]]++] = i;
-        free(fill);
-    }
-    /* next level's graph and pattern: quotient + diagonal */
-    GLPGP_CHECK(quotient(&lv->g, lv->agg, nc, &nx->g));
-    nx->nnzb = (long)nx->g.ptr[nc] + nc;
-    GLPGP_CHECK(glpgp_malloc((size_t)nc + 1, sizeof(int), &nx->rowptr));
-    GLPGP_CHECK(glpgp_malloc((size_t)nx->nnzb + 1, sizeof(int), &nx->col));
-    GLPGP_CHECK(glpgp_malloc((size_t)nc + 1, sizeof(int), &nx->diag));
-    {
-        long e = 0;
-        nx->rowptr[0] = 0;
-        for (int I = 0; I < nc; I++) {
-            int placed = 0;
-            for (int k = nx->g.ptr[I]; k < nx->g.ptr[I + 1]; k++) {
-                int J = nx->g.adj[k];
-                if (!placed && J > I) {
-                    nx->diag[I] = (int)e;
-                    nx->col[e++] = I;
-                    placed = 1;
-                }
-                nx->col[e++] = J;
-            }
-            if (!placed) {
-                nx->diag[I] = (int)e;
-                nx->col[e++] = I;
-            }
-            nx->rowptr[I + 1] = (int)e;
-        }
-    }
-    /* Galerkin map: coarse slot K = (I, J) <- level-l slots k = (i, j) with
-     * agg(i) = I, agg(j) = J, listed by increasing k */
-    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)nc + 1, sizeof(int), &pos), out);
-    GLPGP_CHECK_GOTO(st, glpgp_calloc((size_t)nx->nnzb + 1, sizeof(long), &cnt), out);
-    for (int J = 0; J < nc; J++) pos[J] = -1;
-    long total = 0;
-    for (int pass = 0; pass < 2; pass++) {
-        if (pass == 1) {
-            GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)nx->nnzb + 1, sizeof(int), &lv->gptr), out);
-            GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)(total ? total : 1), sizeof(int), &lv->gsrc), out);
-            lv->gptr[0] = 0;
-            for (long K = 0; K < nx->nnzb; K++) lv->gptr[K + 1] = lv->gptr[K] + (int)cnt[K];
-            for (long K = 0; K < nx->nnzb; K++) cnt[K] = lv->gptr[K];
-        }
-        for (int I = 0; I < nc; I++) {
-            for (int K = nx->rowptr[I]; K < nx->rowptr[I + 1]; K++) pos[nx->col[K]] = K;
-            for (int p = lv->aptr[I]; p < lv->aptr[I + 1]; p++) {
-                int i = lv->amem[p];
-                for (int k = rowptr[i]; k < rowptr[i + 1]; k++) {
-                    int J = lv->agg[col[k]];
-                    if (J < 0) continue;
-                    int K = pos[J];
-                    if (K < 0) {
-                        st = GLPGP_FAIL(GLPGP_ERR_NUMERIC, "multigrid: Galerkin map misses a block");
-                        goto out;
-                    }
-                    if (pass == 0) {
-                        cnt[K]++;
-                        total++;
-                    } else {
-                        lv->gsrc[cnt[K]++] = k;
-                    }
-                }
-            }
-            for (int K = nx->rowptr[I]; K < nx->rowptr[I + 1]; K++) pos[nx->col[K]] = -1;
-        }
-    }
-    /* centroids and field sums (plane-wave frames) */
-    if (lv->pos) {
-        GLPGP_CHECK_GOTO(st, glpgp_calloc((size_t)2 * nc + 1, sizeof(double), &nx->pos), out);
-        GLPGP_CHECK_GOTO(st, glpgp_calloc((size_t)2 * nc + 1, sizeof(double), &nx->wsum), out);
-        for (int J = 0; J < nc; J++) {
-            int c = lv->aptr[J + 1] - lv->aptr[J];
-            for (int p = lv->aptr[J]; p < lv->aptr[J + 1]; p++) {
-                int i = lv->amem[p];
-                nx->pos[2 * J] += lv->pos[2 * i] / c;
-                nx->pos[2 * J + 1] += lv->pos[2 * i + 1] / c;
-                nx->wsum[2 * J] += lv->wsum[2 * i];
-                nx->wsum[2 * J + 1] += lv->wsum[2 * i + 1];
-            }
-        }
-    }
-out:
-    free(pos);
-    free(cnt);
-    return st;
-}
-
-/* Plane-wave frame of level l: node i of aggregate J gets
- * exp(i (2 pi / h) W_J . (x_i - x_J)), W_J the normalised field sum of J,
- * x_J its centroid. */
-static void wave_phase(const amg_level *lv, const amg_level *nx, double h, double *ph)
-{
+    const glpgp_amg_structure *s = a->s;
+    glpgp_backend *b = a->b;
     const double k = 2.0 * GLPGP_PI / h;
-    for (int i = 0; i < lv->n; i++) {
-        int J = lv->agg[i];
-        ph[2 * i] = 1.0;
-        ph[2 * i + 1] = 0.0;
-        if (J < 0) continue;
-        double wx = nx->wsum[2 * J], wy = nx->wsum[2 * J + 1], wn = hypot(wx, wy);
-        if (!(wn > 0.0)) continue;
-        const double dx = lv->pos[2 * i] - nx->pos[2 * J], dy = lv->pos[2 * i + 1] - nx->pos[2 * J + 1];
-        const double a = k * (wx * dx + wy * dy) / wn;
-        ph[2 * i] = cos(a);
-        ph[2 * i + 1] = sin(a);
+    double *cur = NULL, *nxt = NULL, *ph = NULL;
+    glpgp_status st = GLPGP_OK;
+    const size_t n0 = (size_t)2 * s->lev[0].n;
+    GLPGP_CHECK_GOTO(st, glpgp_malloc(n0, sizeof(double), &cur), out);
+    GLPGP_CHECK_GOTO(st, glpgp_malloc(n0, sizeof(double), &nxt), out);
+    GLPGP_CHECK_GOTO(st, glpgp_malloc(n0, sizeof(double), &ph), out);
+    memcpy(cur, w, n0 * sizeof(double));
+    for (int l = 0; l + 1 < a->L; l++) {
+        const amg_slevel *lv = &s->lev[l], *nx = &s->lev[l + 1];
+        /* field sums of the aggregates */
+        for (int J = 0; J < nx->n; J++) {
+            double sx = 0.0, sy = 0.0;
+            for (int p = lv->aptr[J]; p < lv->aptr[J + 1]; p++) {
+                sx += cur[2 * lv->amem[p]];
+                sy += cur[2 * lv->amem[p] + 1];
+            }
+            nxt[2 * J] = sx;
+            nxt[2 * J + 1] = sy;
+        }
+        for (int i = 0; i < lv->n; i++) {
+            const int J = lv->agg[i];
+            const double wx = nxt[2 * J], wy = nxt[2 * J + 1], wn = hypot(wx, wy);
+            ph[2 * i] = 1.0;
+            ph[2 * i + 1] = 0.0;
+            if (!(wn > 0.0)) continue;
+            const double dx = lv->pos[2 * i] - nx->pos[2 * J], dy = lv->pos[2 * i + 1] - nx->pos[2 * J + 1];
+            const double t = k * (wx * dx + wy * dy) / wn;
+            ph[2 * i] = cos(t);
+            ph[2 * i + 1] = sin(t);
+        }
+        GLPGP_CHECK_GOTO(st, b->ops->vec_create(b, (size_t)2 * lv->n, &a->lev[l].phase), out);
+        GLPGP_CHECK_GOTO(st, b->ops->vec_write(b, a->lev[l].phase, ph), out);
+        double *t = cur;
+        cur = nxt;
+        nxt = t;
     }
+out:
+    free(cur);
+    free(nxt);
+    free(ph);
+    return st;
 }
+
 
 int glpgp_amg_supported(const glpgp_backend *b)
 {
     const glpgp_backend_ops *o = b->ops;
-    return o->amg_setup && o->amg_values && o->amg_coarse_read && o->amg_coarse_set &&
+    return o->amg_setup && o->amg_values && o->amg_coarse_invert &&
            o->amg_smooth && o->amg_restrict && o->amg_prolong && o->amg_coarse_solve &&
            o->amg_spmv_dots && o->amg_dots && o->amg_axpby && o->amg_kcombine && o->amg_get_scalars;
 }
@@ -516,17 +177,6 @@ void glpgp_amg_destroy(glpgp_amg **pa)
     const glpgp_backend_ops *o = b->ops;
     for (int l = 0; l < GLPGP_AMG_MAX_LEVELS; l++) {
         amg_level *v = &a->lev[l];
-        free(v->rowptr);
-        free(v->col);
-        free(v->diag);
-        wgraph_free(&v->g);
-        free(v->agg);
-        free(v->aptr);
-        free(v->amem);
-        free(v->gptr);
-        free(v->gsrc);
-        free(v->pos);
-        free(v->wsum);
         glpgp_vec **vs[] = {&v->b, &v->e, &v->v, &v->w, &v->r2, &v->d, &v->wd, &v->tmp, &v->phase};
         for (size_t k = 0; k < sizeof vs / sizeof vs[0]; k++) o->vec_destroy(b, vs[k]);
     }
@@ -534,29 +184,77 @@ void glpgp_amg_destroy(glpgp_amg **pa)
     o->vec_destroy(b, &a->z);
     o->vec_destroy(b, &a->p);
     o->vec_destroy(b, &a->q);
-    free(a->dense);
-    free(a->inv);
-    free(a->work);
-    free(a->perm_r);
-    free(a->perm_c);
+    glpgp_amg_structure_destroy(&a->own);
     free(a);
     *pa = NULL;
+}
+
+/* Upload the structure (amg_setup; a backend that holds it already, key
+ * s, keeps it) and create the device work vectors. */
+static glpgp_status instantiate(glpgp_amg *a, const glpgp_options *o)
+{
+    glpgp_backend *b = a->b;
+    const glpgp_backend_ops *op = b->ops;
+    const glpgp_amg_structure *s = a->s;
+    const glpgp_system *sys = b->sys;
+    glpgp_amg_layout lay;
+    memset(&lay, 0, sizeof lay);
+    lay.nlevels = a->L;
+    lay.weight = o->amg_weight;
+    lay.pre = a->pre;
+    lay.post = a->post;
+    lay.key = s;
+    for (int l = 1; l + 1 < a->L; l++) lay.kcycle[l] = (unsigned char)kcycle_level(a, l);
+    for (int l = 0; l < a->L; l++) {
+        const amg_slevel *lv = &s->lev[l];
+        glpgp_amg_level *d = &lay.lev[l];
+        d->n = lv->n;
+        d->nnzb = lv->nnzb;
+        d->rowptr = l ? lv->rowptr : NULL;
+        d->col = l ? lv->col : sys->col;
+        d->diag = l ? lv->diag : sys->diag;
+        if (l + 1 < a->L) {
+            d->agg = lv->agg;
+            d->aptr = lv->aptr;
+            d->amem = lv->amem;
+            d->gptr = lv->gptr;
+            d->gsrc = lv->gsrc;
+        }
+    }
+    GLPGP_CHECK(op->amg_setup(b, &lay));
+    for (int l = 0; l < a->L; l++) {
+        amg_level *lv = &a->lev[l];
+        const size_t n2 = (size_t)2 * lv->n;
+        if (l + 1 < a->L) GLPGP_CHECK(op->vec_create(b, n2, &lv->tmp));
+        if (l >= 1) {
+            GLPGP_CHECK(op->vec_create(b, n2, &lv->b));
+            GLPGP_CHECK(op->vec_create(b, n2, &lv->e));
+        }
+        if (l >= 1 && l + 1 < a->L && kcycle_level(a, l)) {
+            glpgp_vec **vs[] = {&lv->v, &lv->w, &lv->r2, &lv->d, &lv->wd};
+            for (size_t k = 0; k < sizeof vs / sizeof vs[0]; k++) GLPGP_CHECK(op->vec_create(b, n2, vs[k]));
+        }
+    }
+    const size_t n0 = (size_t)2 * sys->nv;
+    GLPGP_CHECK(op->vec_create(b, n0, &a->r));
+    GLPGP_CHECK(op->vec_create(b, n0, &a->z));
+    GLPGP_CHECK(op->vec_create(b, n0, &a->p));
+    GLPGP_CHECK(op->vec_create(b, n0, &a->q));
+    return GLPGP_OK;
 }
 
 glpgp_status glpgp_amg_create(glpgp_backend *b, const glpgp_options *o, const unsigned char *dir,
                               const double *w, double h, glpgp_amg **out)
 {
+    (void)dir; /* the frames vanish at the backend's own Dirichlet flags (set_field) */
     *out = NULL;
     const glpgp_system *sys = b->sys;
     if (!sys) return GLPGP_FAIL(GLPGP_ERR_ARG, "multigrid: backend not set up");
     if (!glpgp_amg_supported(b))
         return GLPGP_FAIL(GLPGP_ERR_UNSUPPORTED, "the %s backend has no multigrid ops", b->ops->name);
     const double t0 = glpgp_now();
-    const glpgp_backend_ops *op = b->ops;
     glpgp_status st = GLPGP_OK;
     glpgp_amg *a = NULL;
-    unsigned char *act = NULL;
-    double *host = NULL;
     GLPGP_CHECK(glpgp_calloc(1, sizeof *a, &a));
     a->b = b;
     a->cycle = o->amg_cycle;
@@ -566,323 +264,56 @@ glpgp_status glpgp_amg_create(glpgp_backend *b, const glpgp_options *o, const un
     a->check = o->amg_check;
     a->maxit = o->amg_maxit < o->cg_max ? o->amg_maxit : o->cg_max;
     a->has_phase = w != NULL && h > 0.0;
-
-    /* level 0: the system; graph without Dirichlet vertices */
-    amg_level *l0 = &a->lev[0];
-    l0->n = sys->nv;
-    l0->nnzb = sys->nnzb;
-    GLPGP_CHECK_GOTO(st, fine_graph(sys, dir, &l0->g), fail);
-    if (a->has_phase) {
-        GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)2 * sys->nv, sizeof(double), &l0->pos), fail);
-        GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)2 * sys->nv, sizeof(double), &l0->wsum), fail);
-        memcpy(l0->pos, sys->mesh->xy, (size_t)2 * sys->nv * sizeof(double));
-        memcpy(l0->wsum, w, (size_t)2 * sys->nv * sizeof(double));
+    a->sync = o->phase_sync;
+    a->fuse = b->launch_bound;
+    /* the structure: the one shared for this system, else this instance's own */
+    const glpgp_amg_structure *sh = b->amg_shared;
+    if (sh && sh->sys == sys && sh->coarse == o->amg_coarse && sh->max_levels == o->amg_max_levels) {
+        a->s = sh;
+    } else {
+        GLPGP_CHECK_GOTO(st, glpgp_amg_structure_create(sys, o, &a->own), fail);
+        a->s = a->own;
     }
-    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)sys->nv + 1, 1, &act), fail);
-    for (int i = 0; i < sys->nv; i++) act[i] = !(dir && dir[i]);
-
-    /* coarsen: level l -> l+1 until the coarsest is small enough */
-    int L = 1;
-    for (;;) {
-        amg_level *lv = &a->lev[L - 1], *nx = &a->lev[L];
-        int nc = 0;
-        GLPGP_CHECK_GOTO(st, aggregate(lv, act, o->amg_coarse, &nc), fail);
-        const int *rp = L == 1 ? sys->rowptr : lv->rowptr, *cl = L == 1 ? sys->col : lv->col;
-        GLPGP_CHECK_GOTO(st, build_transfer(lv, rp, cl, nc, nx), fail);
-        L++;
-        if (nc == 0) {
-            st = GLPGP_FAIL(GLPGP_ERR_NUMERIC, "multigrid: no free vertex to coarsen");
-            goto fail;
-        }
-        if (nc <= o->amg_coarse) break;
-        if (L == o->amg_max_levels || nc > 0.9 * lv->n) {
-            /* coarsening stalled or the level cap: the coarsest level must
-             * still be small enough for the dense inverse */
-            if (nc > 1024) {
-                st = GLPGP_FAIL(GLPGP_ERR_NUMERIC, "multigrid: coarsening stopped at %d nodes", nc);
-                goto fail;
-            }
-            break;
-        }
-        free(act);
-        act = NULL;
-        GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)nc + 1, 1, &act), fail);
-        memset(act, 1, (size_t)nc + 1);
-    }
-    a->L = L;
-
-    /* upload the structure */
-    glpgp_amg_layout lay;
-    memset(&lay, 0, sizeof lay);
-    lay.nlevels = L;
-    lay.weight = o->amg_weight;
-    lay.pre = a->pre;
-    lay.post = a->post;
-    for (int l = 1; l + 1 < L; l++) lay.kcycle[l] = (unsigned char)kcycle_level(a, l);
-    for (int l = 0; l < L; l++) {
-        amg_level *lv = &a->lev[l];
-        glpgp_amg_level *d = &lay.lev[l];
-        d->n = lv->n;
-        d->nnzb = lv->nnzb;
-        d->rowptr = l ? lv->rowptr : NULL;
-        d->col = l ? lv->col : sys->col;
-        d->diag = l ? lv->diag : sys->diag;
-        if (l + 1 < L) {
-            d->agg = lv->agg;
-            d->aptr = lv->aptr;
-            d->amem = lv->amem;
-            d->gptr = lv->gptr;
-            d->gsrc = lv->gsrc;
-        }
-    }
-    GLPGP_CHECK_GOTO(st, op->amg_setup(b, &lay), fail);
-
-    /* device work vectors */
-    for (int l = 0; l < L; l++) {
-        amg_level *lv = &a->lev[l];
-        const size_t n2 = (size_t)2 * lv->n;
-        if (l + 1 < L) GLPGP_CHECK_GOTO(st, op->vec_create(b, n2, &lv->tmp), fail);
-        if (l >= 1) {
-            GLPGP_CHECK_GOTO(st, op->vec_create(b, n2, &lv->b), fail);
-            GLPGP_CHECK_GOTO(st, op->vec_create(b, n2, &lv->e), fail);
-        }
-        if (l >= 1 && l + 1 < L && kcycle_level(a, l)) {
-            glpgp_vec **vs[] = {&lv->v, &lv->w, &lv->r2, &lv->d, &lv->wd};
-            for (size_t k = 0; k < sizeof vs / sizeof vs[0]; k++)
-                GLPGP_CHECK_GOTO(st, op->vec_create(b, n2, vs[k]), fail);
-        }
-    }
-    const size_t n0 = (size_t)2 * sys->nv;
-    GLPGP_CHECK_GOTO(st, op->vec_create(b, n0, &a->r), fail);
-    GLPGP_CHECK_GOTO(st, op->vec_create(b, n0, &a->z), fail);
-    GLPGP_CHECK_GOTO(st, op->vec_create(b, n0, &a->p), fail);
-    GLPGP_CHECK_GOTO(st, op->vec_create(b, n0, &a->q), fail);
-
-    /* plane-wave frames (quadratic problems) */
-    if (a->has_phase) {
-        GLPGP_CHECK_GOTO(st, glpgp_malloc(n0, sizeof(double), &host), fail);
-        for (int l = 0; l + 1 < L; l++) {
-            amg_level *lv = &a->lev[l];
-            wave_phase(lv, &a->lev[l + 1], h, host);
-            GLPGP_CHECK_GOTO(st, op->vec_create(b, (size_t)2 * lv->n, &lv->phase), fail);
-            GLPGP_CHECK_GOTO(st, op->vec_write(b, lv->phase, host), fail);
-        }
-    }
-
-    /* coarse solve buffers */
-    a->m = 2 * a->lev[L - 1].n;
-    const size_t mm = (size_t)a->m * a->m;
-    GLPGP_CHECK_GOTO(st, glpgp_malloc(mm, sizeof(double), &a->dense), fail);
-    GLPGP_CHECK_GOTO(st, glpgp_malloc(mm, sizeof(double), &a->inv), fail);
-    GLPGP_CHECK_GOTO(st, glpgp_malloc(mm, sizeof(double), &a->work), fail);
-    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)a->m, sizeof(int), &a->perm_r), fail);
-    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)a->m, sizeof(int), &a->perm_c), fail);
+    a->L = a->s->L;
+    for (int l = 0; l < a->L; l++) a->lev[l].n = a->s->lev[l].n;
+    GLPGP_CHECK_GOTO(st, instantiate(a, o), fail);
+    if (a->has_phase) GLPGP_CHECK_GOTO(st, wave_frames(a, w, h), fail);
 
     /* facts */
     glpgp_amg_info *in = &a->info;
-    in->nlevels = L;
-    double oc = 0.0, gc = 0.0;
-    for (int l = 0; l < L; l++) {
-        in->n[l] = a->lev[l].n;
-        in->nnzb[l] = a->lev[l].nnzb;
-        oc += (double)a->lev[l].nnzb;
-        gc += a->lev[l].n;
+    in->nlevels = a->L;
+    for (int l = 0; l < a->L; l++) {
+        in->n[l] = a->s->lev[l].n;
+        in->nnzb[l] = a->s->lev[l].nnzb;
     }
-    in->operator_complexity = oc / (double)sys->nnzb;
-    in->grid_complexity = gc / sys->nv;
+    in->operator_complexity = a->s->operator_complexity;
+    in->grid_complexity = a->s->grid_complexity;
+    in->shared = a->own == NULL;
     in->seconds_structure = glpgp_now() - t0;
-    free(act);
-    free(host);
     *out = a;
     return GLPGP_OK;
 fail:
-    free(act);
-    free(host);
     glpgp_amg_destroy(&a);
     return st;
 }
 
+
 void glpgp_amg_get_info(const glpgp_amg *a, glpgp_amg_info *info) { *info = a->info; }
-
-/* Swap rows (rows = 1) or columns (rows = 0) a and b of the dense row-major
- * m x m matrix M, and entries a and b of the permutation p (may be NULL). */
-static void dense_swap(double *M, int m, int a, int b, int rows, int *p)
-{
-    for (int k = 0; k < m; k++) {
-        double *x = rows ? M + (size_t)a * m + k : M + (size_t)k * m + a;
-        double *y = rows ? M + (size_t)b * m + k : M + (size_t)k * m + b;
-        const double t = *x;
-        *x = *y;
-        *y = t;
-    }
-    if (p) {
-        const int t = p[a];
-        p[a] = p[b];
-        p[b] = t;
-    }
-}
-
-/* inv <- a generalised inverse of the m x m matrix A (row-major) by LU with
- * complete pivoting: P A Q = L U; pivots below 1e-12 |u_11| end the
- * elimination (rank r), the solution components beyond r are set to 0.
- * lu, pr, pc: work (m*m, m, m). Fails on non-finite entries. */
-static glpgp_status dense_inverse(int m, const double *A, double *inv, double *lu, int *pr, int *pc)
-{
-    memcpy(lu, A, (size_t)m * m * sizeof(double));
-    for (int i = 0; i < m; i++) {
-        pr[i] = i;
-        pc[i] = i;
-    }
-    for (size_t k = 0; k < (size_t)m * m; k++)
-        if (!isfinite(lu[k]))
-            return GLPGP_FAIL(GLPGP_ERR_NUMERIC, "multigrid: coarsest matrix is not finite");
-    int r = 0;
-    double piv0 = 0.0;
-    for (int k = 0; k < m; k++) {
-        /* pivot: the largest |entry| of the remaining block */
-        int bi = k, bj = k;
-        double bv = -1.0;
-        for (int i = k; i < m; i++)
-            for (int j = k; j < m; j++) {
-                double v = fabs(lu[(size_t)i * m + j]);
-                if (v > bv) {
-                    bv = v;
-                    bi = i;
-                    bj = j;
-                }
-            }
-        if (k == 0) piv0 = bv;
-        if (!(bv > 1e-12 * piv0) || bv == 0.0) break;
-        if (bi != k) dense_swap(lu, m, k, bi, 1, pr);
-        if (bj != k) dense_swap(lu, m, k, bj, 0, pc);
-        /* eliminate below the pivot: l_ik = a_ik / a_kk;  a_ij -= l_ik a_kj */
-        const double pk = lu[(size_t)k * m + k];
-        for (int i = k + 1; i < m; i++) {
-            double *ri = lu + (size_t)i * m;
-            const double *rk = lu + (size_t)k * m;
-            double l = ri[k] / pk;
-            ri[k] = l;
-            if (l != 0.0)
-                for (int j = k + 1; j < m; j++) ri[j] -= l * rk[j];
-        }
-        r = k + 1;
-    }
-    /* column c of the inverse: solve A x = e_c:  L y = P e_c,  U x' = y
-     * (first r components),  x = Q x' */
-    double *y = NULL;
-    GLPGP_CHECK(glpgp_malloc((size_t)m + 1, sizeof(double), &y));
-    for (int c = 0; c < m; c++) {
-        for (int i = 0; i < m; i++) y[i] = pr[i] == c ? 1.0 : 0.0;
-        for (int i = 0; i < r; i++) {
-            const double *ri = lu + (size_t)i * m;
-            double s = y[i];
-            for (int j = 0; j < i; j++) s -= ri[j] * y[j];
-            y[i] = s;
-        }
-        for (int i = r; i < m; i++) y[i] = 0.0;
-        for (int i = r - 1; i >= 0; i--) {
-            const double *ri = lu + (size_t)i * m;
-            double s = y[i];
-            for (int j = i + 1; j < r; j++) s -= ri[j] * y[j];
-            y[i] = s / ri[i];
-        }
-        for (int i = 0; i < m; i++) inv[(size_t)pc[i] * m + c] = y[i];
-    }
-    free(y);
-    return GLPGP_OK;
-}
-
-/* inv <- a symmetric positive semi-definite generalised inverse of the
- * m x m matrix A (row-major), for the symmetric cycle's coarse solve: with
- * A_s = (A + A^T)/2, symmetric pivoted LDL^T (the largest remaining |d| on
- * the diagonal first: P A_s P^T = L D L^T, stable for the positive
- * semi-definite coarse matrices of the projected Hessian; pivots below
- * 1e-12 of the first end it at rank r), then
- *   inv = P^T [L11^-T |D|^-1 L11^-1, 0; 0, 0] P
- * (the components beyond r set to 0, as dense_inverse does). Symmetric by
- * construction (entry (j, i) is written as entry (i, j)) and positive
- * semi-definite whatever the signs of D; for a nonsingular PSD A it is A^-1.
- * O(m^3) like dense_inverse. S: m*m work (overwritten). Fails on non-finite
- * entries. */
-static glpgp_status spd_inverse(int m, const double *A, double *inv, double *S)
-{
-    int *perm = NULL;
-    for (size_t k = 0; k < (size_t)m * m; k++)
-        if (!isfinite(A[k])) return GLPGP_FAIL(GLPGP_ERR_NUMERIC, "multigrid: coarsest matrix is not finite");
-    GLPGP_CHECK(glpgp_malloc((size_t)m + 1, sizeof(int), &perm));
-    for (int i = 0; i < m; i++) {
-        perm[i] = i;
-        for (int j = 0; j < m; j++) S[(size_t)i * m + j] = 0.5 * (A[(size_t)i * m + j] + A[(size_t)j * m + i]);
-    }
-    /* P A_s P^T = L D L^T: l_ik in S's lower part (i > k), d_k on its diagonal */
-    int r = 0;
-    double piv0 = 0.0;
-    for (int k = 0; k < m; k++) {
-        int bj = k;
-        for (int j = k + 1; j < m; j++)
-            if (fabs(S[(size_t)j * m + j]) > fabs(S[(size_t)bj * m + bj])) bj = j;
-        const double bv = fabs(S[(size_t)bj * m + bj]);
-        if (k == 0) piv0 = bv;
-        if (!(bv > 1e-12 * piv0) || bv == 0.0) break;
-        if (bj != k) { /* symmetric swap of rows and columns k, bj */
-            dense_swap(S, m, k, bj, 1, NULL);
-            dense_swap(S, m, k, bj, 0, perm);
-        }
-        /* d = s_kk;  l_ik = s_ik / d;  s_ij -= l_ik d l_jk  (i, j > k, lower part) */
-        const double d = S[(size_t)k * m + k];
-        for (int i = k + 1; i < m; i++) S[(size_t)i * m + k] /= d;
-        for (int i = k + 1; i < m; i++) {
-            const double lid = S[(size_t)i * m + k] * d;
-            if (lid == 0.0) continue;
-            for (int j = k + 1; j <= i; j++) S[(size_t)i * m + j] -= lid * S[(size_t)j * m + k];
-        }
-        /* keep the trailing block symmetric for the next pivot search and swaps */
-        for (int i = k + 1; i < m; i++)
-            for (int j = k + 1; j < i; j++) S[(size_t)j * m + i] = S[(size_t)i * m + j];
-        r = k + 1;
-    }
-    /* X = L11^-1 (unit lower triangular, r x r) into inv's lower part:
-     * column c: x_c = c, x_i = -sum_{c <= j < i} l_ij x_j */
-    for (size_t k = 0; k < (size_t)m * m; k++) inv[k] = 0.0;
-    for (int c = 0; c < r; c++) {
-        inv[(size_t)c * m + c] = 1.0;
-        for (int i = c + 1; i < r; i++) {
-            double sum = 0.0;
-            for (int j = c; j < i; j++) sum += S[(size_t)i * m + j] * inv[(size_t)j * m + c];
-            inv[(size_t)i * m + c] = -sum;
-        }
-    }
-    /* C = X^T |D|^-1 X (r x r, symmetric):  C_ij = sum_{k >= max(i,j)} x_ki x_kj / |d_k|;
-     * built in S's upper part (i <= j; S's strict lower part, L, is no longer
-     * needed after X), then scattered to inv through the permutation */
-    double *dinv = NULL;
-    glpgp_status st = glpgp_malloc((size_t)m + 1, sizeof(double), &dinv);
-    if (st != GLPGP_OK) {
-        free(perm);
-        return st;
-    }
-    for (int k = 0; k < r; k++) dinv[k] = 1.0 / fabs(S[(size_t)k * m + k]);
-    for (int i = 0; i < r; i++)
-        for (int j = i; j < r; j++) {
-            double sum = 0.0;
-            for (int k = j; k < r; k++) sum += inv[(size_t)k * m + i] * inv[(size_t)k * m + j] * dinv[k];
-            S[(size_t)i * m + j] = sum;
-        }
-    for (size_t k = 0; k < (size_t)m * m; k++) inv[k] = 0.0;
-    for (int i = 0; i < r; i++)
-        for (int j = i; j < r; j++) {
-            const double v = S[(size_t)i * m + j];
-            inv[(size_t)perm[i] * m + perm[j]] = v;
-            inv[(size_t)perm[j] * m + perm[i]] = v;
-        }
-    free(dinv);
-    free(perm);
-    return GLPGP_OK;
-}
 
 /* glpgp_amg_update (spd = 0) and glpgp_amg_update_spd (spd = 1: the coarse
  * operator is symmetric PSD, see spd_inverse) */
+static glpgp_status update_run(glpgp_amg *a, const glpgp_vec *x, int spd);
+
+/* timed as the per-step numeric setup (glpgp/timers.h) */
 static glpgp_status update(glpgp_amg *a, const glpgp_vec *x, int spd)
+{
+    const int prev = glpgp_timer_enter(a->b, GLPGP_TM_NUMERIC);
+    const glpgp_status st = update_run(a, x, spd);
+    glpgp_tm_leave(a->b, a->sync, prev);
+    return st;
+}
+
+static glpgp_status update_run(glpgp_amg *a, const glpgp_vec *x, int spd)
 {
     glpgp_backend *b = a->b;
     const glpgp_backend_ops *op = b->ops;
@@ -897,13 +328,9 @@ static glpgp_status update(glpgp_amg *a, const glpgp_vec *x, int spd)
         for (int l = 0; l + 1 < a->L; l++) frames[l] = a->lev[l].phase;
     GLPGP_CHECK(op->amg_values(b, frames));
     const double t1 = glpgp_now();
-    GLPGP_CHECK(op->amg_coarse_read(b, a->dense));
-    b->n_sync++;
-    if (spd)
-        GLPGP_CHECK(spd_inverse(a->m, a->dense, a->inv, a->work));
-    else
-        GLPGP_CHECK(dense_inverse(a->m, a->dense, a->inv, a->work, a->perm_r, a->perm_c));
-    GLPGP_CHECK(op->amg_coarse_set(b, a->inv));
+    /* the coarse operator on the backend (a non-finite coarsest matrix shows
+     * in t[GLPGP_AMG_SLOT_STATUS] at the solvers' first read: no round trip) */
+    GLPGP_CHECK(op->amg_coarse_invert(b, spd));
     const double t2 = glpgp_now();
     a->info.seconds_values += t2 - t0;
     a->info.seconds_coarse += t2 - t1;
@@ -990,7 +417,10 @@ static glpgp_status cycle(glpgp_amg *a, int l, const glpgp_vec *r, glpgp_vec *ou
     const int writes = (pre > 0 ? pre : 1) + post;
     int k = writes % 2; /* buf[k] receives the first write */
     glpgp_vec *cur = buf[k];
-    if (pre > 0) {
+    if (pre == 1 && a->fuse && op->amg_presmooth_restrict) {
+        /* x <- M^-1 r;  b_{l+1} <- P^T (r - A x), in one pass */
+        GLPGP_CHECK(op->amg_presmooth_restrict(b, l, r, cur, a->lev[l + 1].b));
+    } else if (pre > 0) {
         /* x <- M^-1 r, then x <- x + M^-1 (r - A x) */
         GLPGP_CHECK(op->amg_smooth(b, l, r, NULL, cur));
         for (int s = 1; s < pre; s++) {
@@ -1007,8 +437,17 @@ static glpgp_status cycle(glpgp_amg *a, int l, const glpgp_vec *r, glpgp_vec *ou
     }
     /* e_{l+1} ~ A_{l+1}^-1 b_{l+1};  x <- x + P e */
     GLPGP_CHECK(coarse_correction(a, l + 1, sym));
-    GLPGP_CHECK(op->amg_prolong(b, l, a->lev[l + 1].e, cur));
-    for (int s = 0; s < post; s++) {
+    int s = 0;
+    if (post > 0 && a->fuse && op->amg_prolong_smooth) {
+        /* x <- x + P e and the first post-sweep, in one pass */
+        k ^= 1;
+        GLPGP_CHECK(op->amg_prolong_smooth(b, l, a->lev[l + 1].e, cur, r, buf[k]));
+        cur = buf[k];
+        s = 1;
+    } else {
+        GLPGP_CHECK(op->amg_prolong(b, l, a->lev[l + 1].e, cur));
+    }
+    for (; s < post; s++) {
         k ^= 1;
         GLPGP_CHECK(op->amg_smooth(b, l, r, cur, buf[k]));
         cur = buf[k];
@@ -1050,6 +489,11 @@ static glpgp_status fcg_run(glpgp_amg *a, const glpgp_vec *rhs, glpgp_vec *x, do
     GLPGP_CHECK(op->amg_dots(b, r, r, NULL, T_RR));
     GLPGP_CHECK(op->amg_get_scalars(b, t, T_N));
     b->n_sync++;
+    if (t[GLPGP_AMG_SLOT_STATUS] != 0.0) { /* the coarsest matrix was not finite: no preconditioner */
+        *nonfinite = 1;
+        info->reason = GLPGP_CG_BREAKDOWN;
+        return GLPGP_OK;
+    }
     const double bnorm = sqrt(t[T_RR]);
     if (!isfinite(bnorm)) return GLPGP_FAIL(GLPGP_ERR_NUMERIC, "CG right-hand side is not finite");
     if (bnorm == 0.0) return GLPGP_OK;
@@ -1101,12 +545,28 @@ glpgp_status glpgp_fcg(glpgp_amg *a, const glpgp_vec *rhs, glpgp_vec *x, double 
                        glpgp_cg_info *info)
 {
     int nonfinite;
-    return fcg_run(a, rhs, x, rtol, maxit, info, &nonfinite);
+    const int prev = glpgp_timer_enter(a->b, GLPGP_TM_LINEAR);
+    const glpgp_status st = fcg_run(a, rhs, x, rtol, maxit, info, &nonfinite);
+    glpgp_timer_leave(a->b, prev);
+    return st;
 }
 
+static glpgp_status linear_solve(glpgp_backend *b, glpgp_amg *a, const glpgp_vec *rhs, glpgp_vec *x, double rtol,
+                                 int maxit, int check, glpgp_cg_info *info);
+
+/* timed as a linear solve (glpgp/timers.h) */
 glpgp_status glpgp_linear_solve(glpgp_backend *b, glpgp_amg *a, const glpgp_vec *rhs,
                                 glpgp_vec *x, double rtol, int maxit, int check,
                                 glpgp_cg_info *info)
+{
+    const int prev = glpgp_timer_enter(b, GLPGP_TM_LINEAR);
+    const glpgp_status st = linear_solve(b, a, rhs, x, rtol, maxit, check, info);
+    glpgp_timer_leave(b, prev);
+    return st;
+}
+
+static glpgp_status linear_solve(glpgp_backend *b, glpgp_amg *a, const glpgp_vec *rhs, glpgp_vec *x, double rtol,
+                                 int maxit, int check, glpgp_cg_info *info)
 {
     if (b->ops->linear_solve) {
         /* the backend's own solver (PETSc: KSP); the reason values are glpgp_cg_reason's */
@@ -1144,7 +604,10 @@ glpgp_amg *glpgp_amg_try_create(glpgp_backend *b, const glpgp_options *o, const 
     glpgp_amg *a = NULL;
     if (o->precond != GLPGP_PRECOND_AMG) return NULL;
     if (b->ops->linear_solve) return NULL; /* the backend's own solver preconditions */
-    if (glpgp_amg_create(b, o, dir, w, h, &a) != GLPGP_OK) {
+    const int prev = glpgp_timer_enter(b, GLPGP_TM_STRUCTURE);
+    const glpgp_status st = glpgp_amg_create(b, o, dir, w, h, &a);
+    glpgp_tm_leave(b, o->phase_sync, prev);
+    if (st != GLPGP_OK) {
         glpgp_log(GLPGP_LOG_WARNING, "%s: multigrid setup failed (%s); using Jacobi-PCG", what,
                   glpgp_error_message());
         glpgp_error_clear();
@@ -1155,9 +618,9 @@ glpgp_amg *glpgp_amg_try_create(glpgp_backend *b, const glpgp_options *o, const 
     if (a->cycle == GLPGP_AMG_KCYCLE && a->kmin > 0)
         snprintf(kc, sizeof kc, ", K-cycle on levels of >= %d nodes", a->kmin);
     glpgp_log(GLPGP_LOG_DEBUG,
-              "%s: multigrid %d levels, %d -> %d nodes, operator complexity %.3f, structure %.3f s%s",
+              "%s: multigrid %d levels, %d -> %d nodes, operator complexity %.3f, %s %.3f s%s",
               what, in->nlevels, in->n[0], in->n[in->nlevels - 1], in->operator_complexity,
-              in->seconds_structure, kc);
+              in->shared ? "shared structure, instance" : "structure", in->seconds_structure, kc);
     return a;
 }
 

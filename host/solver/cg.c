@@ -7,8 +7,21 @@
 
 #include <math.h>
 
+static glpgp_status cg_run(glpgp_backend *b, const glpgp_vec *rhs, glpgp_vec *x, double rtol, int maxit, int check,
+                           glpgp_cg_info *info);
+
+/* timed as a linear solve (glpgp/timers.h) */
 glpgp_status glpgp_cg(glpgp_backend *b, const glpgp_vec *rhs, glpgp_vec *x, double rtol,
                       int maxit, int check, glpgp_cg_info *info)
+{
+    const int prev = glpgp_timer_enter(b, GLPGP_TM_LINEAR);
+    const glpgp_status st = cg_run(b, rhs, x, rtol, maxit, check, info);
+    glpgp_timer_leave(b, prev);
+    return st;
+}
+
+static glpgp_status cg_run(glpgp_backend *b, const glpgp_vec *rhs, glpgp_vec *x, double rtol, int maxit, int check,
+                           glpgp_cg_info *info)
 {
     const glpgp_backend_ops *o = b->ops;
     const size_t n = (size_t)2 * b->sys->nv;
@@ -20,10 +33,10 @@ glpgp_status glpgp_cg(glpgp_backend *b, const glpgp_vec *rhs, glpgp_vec *x, doub
     info->relres = 0.0;
     info->reason = GLPGP_CG_CONVERGED;
     if (check < 1) check = 1;
-    GLPGP_CHECK_GOTO(st, o->vec_create(b, n, &r), done);
-    GLPGP_CHECK_GOTO(st, o->vec_create(b, n, &z), done);
-    GLPGP_CHECK_GOTO(st, o->vec_create(b, n, &p), done);
-    GLPGP_CHECK_GOTO(st, o->vec_create(b, n, &q), done);
+    GLPGP_CHECK_GOTO(st, glpgp_backend_scratch(b, 0, n, &r), done);
+    GLPGP_CHECK_GOTO(st, glpgp_backend_scratch(b, 1, n, &z), done);
+    GLPGP_CHECK_GOTO(st, glpgp_backend_scratch(b, 2, n, &p), done);
+    GLPGP_CHECK_GOTO(st, glpgp_backend_scratch(b, 3, n, &q), done);
 
     /* x <- 0;  r <- b;  z <- D^-1 r;  p <- z */
     GLPGP_CHECK_GOTO(st, o->axpby(b, 0.0, x, 0.0, x), done);
@@ -71,9 +84,5 @@ glpgp_status glpgp_cg(glpgp_backend *b, const glpgp_vec *rhs, glpgp_vec *x, doub
     info->relres = rel;
 done:
     info->iterations = k;
-    o->vec_destroy(b, &r);
-    o->vec_destroy(b, &z);
-    o->vec_destroy(b, &p);
-    o->vec_destroy(b, &q);
     return st;
 }

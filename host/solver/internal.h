@@ -6,6 +6,11 @@
 
 #include "glpgp/solve.h"
 
+/* Leave a timed phase (glpgp_timer_enter / _leave of glpgp/backend.h):
+ * with sync (glpgp_options.phase_sync) the device's work enqueued in it is
+ * waited for first (b->ops->finish), so that the phase's time includes it. */
+void glpgp_tm_leave(glpgp_backend *b, int sync, int prev);
+
 /* Name of oscillator k ("u", "v", or "cross" for k = 2: the cross field) for messages. */
 const char *glpgp_osc_name(int k);
 

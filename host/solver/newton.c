@@ -55,6 +55,21 @@
 #include <stdlib.h>
 #include <string.h>
 
+void glpgp_tm_leave(glpgp_backend *b, int sync, int prev)
+{
+    if (sync && b->ops->finish && prev != b->tm_cur) (void)b->ops->finish(b); /* a failure shows at the next call */
+    glpgp_timer_leave(b, prev);
+}
+
+/* NEWTON <- the Hessian hess at x (ops->assemble_newton), timed as assembly */
+static glpgp_status assemble(glpgp_backend *b, const glpgp_options *o, const glpgp_vec *x, double inv4e2, int hess)
+{
+    const int prev = glpgp_timer_enter(b, GLPGP_TM_ASSEMBLY);
+    const glpgp_status st = b->ops->assemble_newton(b, x, inv4e2, hess);
+    glpgp_tm_leave(b, o->phase_sync, prev);
+    return st;
+}
+
 const char *glpgp_osc_name(int k) { return k == 0 ? "u" : k == 1 ? "v" : k == 3 ? "coupled u+v" : "cross"; }
 
 /* Inexact-Newton tolerance of the linear solve at |g| = gn: eta = forcing
@@ -93,7 +108,7 @@ static glpgp_status ls_step(glpgp_backend *b, const glpgp_options *o, glpgp_newt
     const int tried_exact = hess != o->hess;
     double slope = 0.0;
     for (;;) {
-        GLPGP_CHECK(op->assemble_newton(b, ns->x, inv4e2, hess));
+        GLPGP_CHECK(assemble(b, o, ns->x, inv4e2, hess));
         /* multigrid: values from the new matrix, frames from x */
         if (ns->amg && !glpgp_amg_try_update(ns->amg, ns->x, "Newton step")) ns->amg = NULL;
         GLPGP_CHECK(op->axpby(b, -1.0, ns->g, 0.0, ns->xt)); /* xt <- -g (rhs) */
@@ -155,50 +170,26 @@ static glpgp_status ls_step(glpgp_backend *b, const glpgp_options *o, glpgp_newt
     return GLPGP_OK;
 }
 
-/* Host copies of x and d for the polar trial points (NULL: straight steps). */
-typedef struct trial_host {
-    double *x, *d, *xt;
-} trial_host;
-
 /* xt <- x (+) a d, the trust-region trial point (see glpgp_newton_step).
- * Straight (h == NULL): xt = x + a d on the device. Polar: per vertex with
- * w = a d_i / z_i, z_i (1 + Re w) e^{i Im w} where |z_i| >= retract_zabs
- * (a phase rotation stays a rotation: the straight step would lengthen z and
- * meet the quartic penalty), z_i + a d_i below half of it (vortex cores,
- * where the phase is undefined), blended linearly between; straight also
- * where 1 + Re w <= 0. It agrees with x + a d to first order in d. Computed
- * on the host from the copies in h and written to the device (one vector
- * write per trial point; the backend table has no op for it). */
-static glpgp_status trial_point(glpgp_backend *b, const glpgp_options *o, glpgp_newton_state *ns,
-                                const trial_host *h, double a)
+ * retract_zabs 0: straight, xt = x + a d. Else polar, by the backend
+ * (ops->trial_point, per vertex glpgp_polar_point of kernels/newton_rows.h:
+ * z_i (1 + Re w) e^{i Im w}, w = a d_i / z_i, where |z_i| >= retract_zabs --
+ * a phase rotation stays a rotation, where the straight step would lengthen
+ * z and meet the quartic penalty -- z_i + a d_i below half of it (vortex
+ * cores, where the phase is undefined), blended linearly between; straight
+ * also where 1 + Re w <= 0; first-order equal to x + a d). No host round
+ * trip. */
+static glpgp_status trial_point(glpgp_backend *b, const glpgp_options *o, glpgp_newton_state *ns, double a)
 {
     const glpgp_backend_ops *op = b->ops;
-    if (!h) {
-        GLPGP_CHECK(op->copy(b, ns->xt, ns->x));
-        return op->axpby(b, a, ns->d, 1.0, ns->xt); /* xt <- x + a d */
+    if (o->retract_zabs > 0.0) {
+        if (!op->trial_point)
+            return GLPGP_FAIL(GLPGP_ERR_UNSUPPORTED, "the %s backend has no trial_point op (polar trial points, "
+                                                     "retract_zabs > 0)", op->name);
+        return op->trial_point(b, ns->x, ns->d, a, o->retract_zabs, ns->xt);
     }
-    const int nv = b->sys->nv;
-    const double r1 = o->retract_zabs, r0 = 0.5 * r1;
-    for (int i = 0; i < nv; i++) {
-        const double zr = h->x[2 * i], zi = h->x[2 * i + 1], dr = a * h->d[2 * i], di = a * h->d[2 * i + 1];
-        const double m2 = zr * zr + zi * zi, m = sqrt(m2);
-        double xr = zr + dr, xi = zi + di; /* straight: z + a d */
-        const double t = m >= r1 ? 1.0 : m <= r0 ? 0.0 : (m - r0) / (r1 - r0);
-        if (t > 0.0) {
-            /* w = a d / z = a d conj(z) / |z|^2;  polar: z (1 + Re w) e^{i Im w} */
-            const double wr = (dr * zr + di * zi) / m2, wi = (di * zr - dr * zi) / m2;
-            const double amp = 1.0 + wr;
-            if (amp > 0.0) {
-                const double c = cos(wi), sn = sin(wi);
-                const double pr = amp * (zr * c - zi * sn), pi = amp * (zr * sn + zi * c);
-                xr = t * pr + (1.0 - t) * xr;
-                xi = t * pi + (1.0 - t) * xi;
-            }
-        }
-        h->xt[2 * i] = xr;
-        h->xt[2 * i + 1] = xi;
-    }
-    return op->vec_write(b, ns->xt, h->xt);
+    GLPGP_CHECK(op->copy(b, ns->xt, ns->x));
+    return op->axpby(b, a, ns->d, 1.0, ns->xt); /* xt <- x + a d */
 }
 
 /* Hessian the trust region uses: exact (the region handles its negative
@@ -241,14 +232,14 @@ static glpgp_status tr_direction(glpgp_backend *b, const glpgp_options *o, glpgp
             /* re-solve: the matrix and the region of the last call */
         } else if (mg) {
             /* hierarchy from H_proj >= H (values, frames from x, SPD coarse inverse) */
-            GLPGP_CHECK(op->assemble_newton(b, ns->x, inv4e2, psd ? hess : GLPGP_HESS_PROJECTED));
+            GLPGP_CHECK(assemble(b, o, ns->x, inv4e2, psd ? hess : GLPGP_HESS_PROJECTED));
             if (!glpgp_amg_try_update_spd(ns->amg, ns->x, "trust-region step")) {
                 ns->amg = NULL;
                 mg = 0;
             }
-            if (mg && !psd) GLPGP_CHECK(op->assemble_newton(b, ns->x, inv4e2, hess));
+            if (mg && !psd) GLPGP_CHECK(assemble(b, o, ns->x, inv4e2, hess));
         }
-        if (!mg && !reuse) GLPGP_CHECK(op->assemble_newton(b, ns->x, inv4e2, hess));
+        if (!mg && !reuse) GLPGP_CHECK(assemble(b, o, ns->x, inv4e2, hess));
         reuse = 0;
         tm->set = 1;
         tm->hess = hess;
@@ -284,7 +275,7 @@ static glpgp_status tr_amg_direction(glpgp_backend *b, const glpgp_options *o, g
 {
     const glpgp_backend_ops *op = b->ops;
     *ok = 0;
-    GLPGP_CHECK(op->assemble_newton(b, ns->x, inv4e2, tr_hessian(o)));
+    GLPGP_CHECK(assemble(b, o, ns->x, inv4e2, tr_hessian(o)));
     /* multigrid: values from the new matrix, frames from x */
     if (ns->amg && !glpgp_amg_try_update(ns->amg, ns->x, "Newton step")) {
         ns->amg = NULL;
@@ -315,18 +306,7 @@ static glpgp_status tr_step(glpgp_backend *b, const glpgp_options *o, glpgp_newt
     glpgp_trcg_info ti;
     memset(&ti, 0, sizeof ti);
     glpgp_status st = GLPGP_OK;
-    trial_host th = {NULL, NULL, NULL}, *h = NULL;
     const double eta = newton_eta(o, ns, gn);
-    /* polar trial points: x (and each d) read back once */
-    if (o->retract_zabs > 0.0) {
-        const size_t n2 = (size_t)2 * b->sys->nv;
-        GLPGP_CHECK_GOTO(st, glpgp_malloc(n2, sizeof(double), &th.x), done);
-        GLPGP_CHECK_GOTO(st, glpgp_malloc(n2, sizeof(double), &th.d), done);
-        GLPGP_CHECK_GOTO(st, glpgp_malloc(n2, sizeof(double), &th.xt), done);
-        GLPGP_CHECK_GOTO(st, op->vec_read(b, ns->x, th.x), done);
-        b->n_sync++;
-        h = &th;
-    }
     /* look-ahead (tr_lookahead): where the Steihaug path leaves the region,
      * CG goes on to the inexact Newton step, which is tried first and kept
      * when its full step has rho >= tr_poor; else the boundary point */
@@ -377,10 +357,6 @@ static glpgp_status tr_step(glpgp_backend *b, const glpgp_options *o, glpgp_newt
         gd = s[GLPGP_S_DOT];
         const double dhd = s[GLPGP_S_DOT2];
         step = multigrid ? 0.0 : ti.norm;
-        if (h) {
-            GLPGP_CHECK_GOTO(st, op->vec_read(b, ns->d, th.d), done);
-            b->n_sync++;
-        }
         /* trial points x (+) a d: the full step, then backtracking along d with
          * a from the minimiser of the quadratic through F, a g.d and F(x (+) a d),
          * clamped to [tr_shrink_min, tr_shrink] times the previous a.
@@ -410,7 +386,7 @@ static glpgp_status tr_step(glpgp_backend *b, const glpgp_options *o, glpgp_newt
                 double an = c > 0.0 ? -gd / (2.0 * c) : o->tr_shrink * a;
                 a = fmax(o->tr_shrink_min * a, fmin(o->tr_shrink * a, an));
             }
-            GLPGP_CHECK_GOTO(st, trial_point(b, o, ns, h, a), done);
+            GLPGP_CHECK_GOTO(st, trial_point(b, o, ns, a), done);
             GLPGP_CHECK_GOTO(st, op->energy(b, ns->xt, inv4e2, ns->work), done);
             GLPGP_CHECK_GOTO(st, op->get_scalars(b, s, GLPGP_NSLOTS), done);
             Fa = s[GLPGP_S_E] + s[GLPGP_S_P];
@@ -486,9 +462,6 @@ static glpgp_status tr_step(glpgp_backend *b, const glpgp_options *o, glpgp_newt
     if (take) GLPGP_CHECK_GOTO(st, op->copy(b, ns->x, ns->xt), done); /* x <- x (+) a d */
 done:
     op->vec_destroy(b, &xb);
-    free(th.x);
-    free(th.d);
-    free(th.xt);
     return st;
 }
 
@@ -500,8 +473,22 @@ glpgp_status glpgp_newton_step(glpgp_backend *b, const glpgp_options *o, glpgp_n
     return ls_step(b, o, ns, inv4e2, F, gn, info);
 }
 
+static glpgp_status newton_level(glpgp_backend *b, const glpgp_options *o, glpgp_newton_state *ns, int k,
+                                 double eps, double rtol, glpgp_level_stats *ls);
+
+/* the level's own work (gradients, energies, trial points) is timed as
+ * energies; assembly, multigrid values and linear solves as theirs */
 glpgp_status glpgp_newton_level(glpgp_backend *b, const glpgp_options *o, glpgp_newton_state *ns,
                                 int k, double eps, double rtol, glpgp_level_stats *ls)
+{
+    const int prev = glpgp_timer_enter(b, GLPGP_TM_ENERGY);
+    const glpgp_status st = newton_level(b, o, ns, k, eps, rtol, ls);
+    glpgp_timer_leave(b, prev);
+    return st;
+}
+
+static glpgp_status newton_level(glpgp_backend *b, const glpgp_options *o, glpgp_newton_state *ns, int k,
+                                 double eps, double rtol, glpgp_level_stats *ls)
 {
     const glpgp_backend_ops *op = b->ops;
     const double inv4e2 = 1.0 / (4.0 * eps * eps);

@@ -196,8 +196,12 @@ static const glpgp_optdesc k_table[] = {
         "u and v at the same time (v on a second copy of the backend\n"
         "in a second thread; the same result bit for bit) or one after\n"
         "the other; auto: concurrent where measured to pay (reference\n"
-        "backend; multigrid on an OpenCL CPU device up to 500k vertices)\n"
-        "with two or more processors and memory for the copy"),
+        "backend; multigrid on an OpenCL CPU device up to 500k vertices;\n"
+        "a GPU) with two or more processors and memory for the copy"),
+    {.name = "phase-sync", .kind = GLPGP_OPTK_FLAG, .offset = OFF(phase_sync), .ival = 1, .def = "",
+     .help = "wait for the device at the end of every timed phase, so that\n"
+             "each phase's time in the summary and the statistics includes\n"
+             "its device work (one more host round trip per phase)"},
 
     /* placed by the command (glpgp solve: after --remesh) */
     {.name = "input-order", .kind = GLPGP_OPTK_FLAG, .offset = OFF(vertex_order), .ival = GLPGP_ORDER_INPUT,

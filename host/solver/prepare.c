@@ -6,6 +6,7 @@
  * local size. One copy, so that every front end solves the same mesh with
  * the same options. */
 #include "glpgp/solve.h"
+#include "glpgp/util.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -101,7 +102,10 @@ glpgp_status glpgp_solve_prepare(const glpgp_mesh *m, glpgp_options *o, const ch
      * bisection), the size h fixed from the input mesh first */
     const double h = o->size > 0.0 ? o->size : glpgp_default_size(m, o);
     glpgp_mesh *mr = NULL;
-    GLPGP_CHECK(glpgp_size_refine(m, o, h, &mr, &info->refined));
+    const double t0 = glpgp_now();
+    const glpgp_status rst = glpgp_size_refine(m, o, h, &mr, &info->refined);
+    info->seconds_refine = glpgp_now() - t0;
+    GLPGP_CHECK(rst);
     glpgp_status st = GLPGP_OK;
     if (mr) {
         glpgp_log(GLPGP_LOG_INFO, "refined the input for the local size: %d -> %d vertices in %d rounds",

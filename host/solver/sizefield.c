@@ -338,7 +338,17 @@ static glpgp_status grade(const glpgp_mesh *m, const int *ptr, const int *adj, d
     heap_item *heap = NULL;
     size_t n = 0;
     GLPGP_CHECK(glpgp_malloc((size_t)m->nv + (size_t)ptr[m->nv] + 1, sizeof(heap_item), &heap));
-    for (int i = 0; i < m->nv; i++) heap_push(heap, &n, s[i], i);
+    /* one slope: a vertex at the largest size lowers no neighbour (s_i + g |e|
+     * > s_max >= s_j), so only the others start in the heap (a uniform
+     * field: none); the result, the graph distances, is the same in any
+     * order. Per-source slopes: every vertex (ties decide the slopes) */
+    double smax = HUGE_VAL;
+    if (!slope) {
+        smax = -HUGE_VAL;
+        for (int i = 0; i < m->nv; i++) smax = fmax(smax, s[i]);
+    }
+    for (int i = 0; i < m->nv; i++)
+        if (slope || s[i] < smax) heap_push(heap, &n, s[i], i);
     while (n > 0) {
         heap_item it = heap_pop(heap, &n);
         const int i = it.v;

@@ -50,6 +50,7 @@
 typedef struct pcg {
     glpgp_backend *b;
     glpgp_amg *mg;
+    int bad; /* the multigrid's coarse operator failed (t[GLPGP_AMG_SLOT_STATUS]) */
 } pcg;
 
 enum { T_RZ0 = 0, T_RZ1 = 2, T_PQ = 4, T_N = 8 };
@@ -97,7 +98,7 @@ static glpgp_status pc_direction(const pcg *c, glpgp_vec *p, const glpgp_vec *z,
 }
 
 /* read the scalars: *rr = r.r, *pq = p.Ap, *rzv = r.z of slot rz */
-static glpgp_status pc_scalars(const pcg *c, int rz, double *rr, double *pq, double *rzv)
+static glpgp_status pc_scalars(pcg *c, int rz, double *rr, double *pq, double *rzv)
 {
     glpgp_backend *b = c->b;
     if (!c->mg) {
@@ -112,6 +113,7 @@ static glpgp_status pc_scalars(const pcg *c, int rz, double *rr, double *pq, dou
         *rr = t[rz + 1];
         *pq = t[T_PQ];
         *rzv = t[rz];
+        c->bad = t[GLPGP_AMG_SLOT_STATUS] != 0.0;
     }
     b->n_sync++;
     return GLPGP_OK;
@@ -140,10 +142,23 @@ const char *glpgp_trcg_reason_name(glpgp_trcg_reason r)
     return "?";
 }
 
+static glpgp_status trcg_run(glpgp_backend *b, glpgp_amg *mg, const glpgp_vec *rhs, glpgp_vec *x, double radius,
+                             double rtol, int maxit, glpgp_vec *xb, glpgp_trcg_info *info);
+
+/* timed as a linear solve (glpgp/timers.h) */
 glpgp_status glpgp_trcg(glpgp_backend *b, glpgp_amg *mg, const glpgp_vec *rhs, glpgp_vec *x,
                         double radius, double rtol, int maxit, glpgp_vec *xb, glpgp_trcg_info *info)
 {
-    const pcg pc = {b, mg};
+    const int prev = glpgp_timer_enter(b, GLPGP_TM_LINEAR);
+    const glpgp_status st = trcg_run(b, mg, rhs, x, radius, rtol, maxit, xb, info);
+    glpgp_timer_leave(b, prev);
+    return st;
+}
+
+static glpgp_status trcg_run(glpgp_backend *b, glpgp_amg *mg, const glpgp_vec *rhs, glpgp_vec *x, double radius,
+                             double rtol, int maxit, glpgp_vec *xb, glpgp_trcg_info *info)
+{
+    pcg pc = {b, mg, 0};
     const glpgp_backend_ops *o = b->ops;
     const size_t n = (size_t)2 * b->sys->nv;
     int bounded = radius > 0.0 && isfinite(radius);
@@ -156,10 +171,10 @@ glpgp_status glpgp_trcg(glpgp_backend *b, glpgp_amg *mg, const glpgp_vec *rhs, g
     info->norm = 0.0;
     info->reason = GLPGP_TRCG_CONVERGED;
     info->crossed = 0;
-    GLPGP_CHECK_GOTO(st, o->vec_create(b, n, &r), done);
-    GLPGP_CHECK_GOTO(st, o->vec_create(b, n, &z), done);
-    GLPGP_CHECK_GOTO(st, o->vec_create(b, n, &p), done);
-    GLPGP_CHECK_GOTO(st, o->vec_create(b, n, &q), done);
+    GLPGP_CHECK_GOTO(st, glpgp_backend_scratch(b, 4, n, &r), done);
+    GLPGP_CHECK_GOTO(st, glpgp_backend_scratch(b, 5, n, &z), done);
+    GLPGP_CHECK_GOTO(st, glpgp_backend_scratch(b, 6, n, &p), done);
+    GLPGP_CHECK_GOTO(st, glpgp_backend_scratch(b, 7, n, &q), done);
 
     /* x <- 0;  r <- b;  z <- M^-1 r;  p <- z */
     GLPGP_CHECK_GOTO(st, o->axpby(b, 0.0, x, 0.0, x), done);
@@ -168,6 +183,10 @@ glpgp_status glpgp_trcg(glpgp_backend *b, glpgp_amg *mg, const glpgp_vec *rhs, g
     GLPGP_CHECK_GOTO(st, pc_precond(&pc, r, z, rz), done);
     GLPGP_CHECK_GOTO(st, o->copy(b, p, z), done);
     GLPGP_CHECK_GOTO(st, pc_scalars(&pc, rz, &rr, &pq, &rzv), done);
+    if (pc.bad) { /* no multigrid this step (a non-finite coarsest matrix): the caller's safer region */
+        info->reason = GLPGP_TRCG_PRECOND;
+        goto done;
+    }
     const double bnorm = sqrt(rr);
     if (!isfinite(bnorm) || !isfinite(rzv)) {
         st = GLPGP_FAIL(GLPGP_ERR_NUMERIC, "trust-region CG right-hand side is not finite");
@@ -258,9 +277,5 @@ glpgp_status glpgp_trcg(glpgp_backend *b, glpgp_amg *mg, const glpgp_vec *rhs, g
     info->norm = sqrt(dd);
 done:
     info->iterations = nspmv;
-    o->vec_destroy(b, &r);
-    o->vec_destroy(b, &z);
-    o->vec_destroy(b, &p);
-    o->vec_destroy(b, &q);
     return st;
 }

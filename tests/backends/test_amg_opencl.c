@@ -38,7 +38,7 @@
 static glpgp_backend *opencl(void)
 {
     glpgp_backend *b = NULL;
-    glpgp_cl_options co = {-1, 0};
+    glpgp_cl_options co = {-1, 0, NULL};
     if (glpgp_backend_create_opencl(&co, &b) != GLPGP_OK) {
         printf("skipped: no OpenCL device (%s)\n", glpgp_error_message());
         glpgp_error_clear();

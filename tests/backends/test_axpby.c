@@ -141,7 +141,7 @@ int main(void)
     if (!glpgp_have_opencl()) printf("OpenCL: not in this build, reference only\n");
     static const char *const shapes[] = {"cpu", "gpu"};
     for (int s = 0; s < 2 && glpgp_have_opencl(); s++) {
-        glpgp_cl_options co = {-1, 0};
+        glpgp_cl_options co = {-1, 0, NULL};
         setenv("GLPGP_CL_SHAPE", shapes[s], 1);
         if (glpgp_backend_create_opencl(&co, &b) != GLPGP_OK) {
             printf("OpenCL: no usable device (%s), reference only\n", glpgp_error_message());

@@ -158,7 +158,7 @@ static void remove_file(const char *dir, const char *name)
 static void test_device_errors(void)
 {
     glpgp_backend *b = NULL;
-    glpgp_cl_options o = {99, 0};
+    glpgp_cl_options o = {99, 0, NULL};
     CHECK(glpgp_backend_create_opencl(&o, &b) == GLPGP_ERR_ARG && b == NULL);
     CHECK(strstr(glpgp_error_message(), "no such OpenCL device") != NULL);
     glpgp_error_clear();
@@ -196,6 +196,18 @@ static void test_device_errors(void)
         CHECK(strstr(glpgp_error_message(), "coupled_rows.h") != NULL);
         glpgp_error_clear();
         write_file(dir, "coupled_rows.h", "/* empty */\n");
+        /* newton_rows.h missing: the same */
+        st = glpgp_backend_create_opencl(&o, &b);
+        CHECK(st == GLPGP_ERR_IO && b == NULL);
+        CHECK(strstr(glpgp_error_message(), "newton_rows.h") != NULL);
+        glpgp_error_clear();
+        write_file(dir, "newton_rows.h", "/* empty */\n");
+        /* amg_dense.h missing: the same */
+        st = glpgp_backend_create_opencl(&o, &b);
+        CHECK(st == GLPGP_ERR_IO && b == NULL);
+        CHECK(strstr(glpgp_error_message(), "amg_dense.h") != NULL);
+        glpgp_error_clear();
+        write_file(dir, "amg_dense.h", "/* empty */\n");
         st = glpgp_backend_create_opencl(&o, &b);
         CHECK(st == GLPGP_ERR_OPENCL && b == NULL);
         CHECK(strstr(glpgp_error_message(), "build log") != NULL);
@@ -207,6 +219,8 @@ static void test_device_errors(void)
         remove_file(dir, "coupled_rows.h");
         remove_file(dir, "rows.h");
         remove_file(dir, "amg_rows.h");
+        remove_file(dir, "newton_rows.h");
+        remove_file(dir, "amg_dense.h");
         rmdir(dir);
     }
     /* the source kernel directory (next to GLPGP_DATA) builds */
@@ -227,7 +241,7 @@ static void test_device_errors(void)
 int main(void)
 {
     glpgp_backend *b = NULL;
-    glpgp_cl_options o = {-1, 0};
+    glpgp_cl_options o = {-1, 0, NULL};
     if (!glpgp_have_opencl() || glpgp_backend_create_opencl(&o, &b) != GLPGP_OK) {
         /* the engine reports the same: no OpenCL -> UNSUPPORTED / OPENCL, no rows */
         char why[512];

@@ -10,7 +10,7 @@
 static int compare(const char *what, const glpgp_mesh *m, const glpgp_options *o, double tol0)
 {
     glpgp_backend *b[2] = {NULL, NULL};
-    glpgp_cl_options co = {-1, 0};
+    glpgp_cl_options co = {-1, 0, NULL};
     if (glpgp_backend_create_opencl(&co, &b[0]) != GLPGP_OK) {
         printf("skipped: no OpenCL device (%s)\n", glpgp_error_message());
         glpgp_error_clear();

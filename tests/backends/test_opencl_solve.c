@@ -18,7 +18,7 @@
 static int compare(const char *what, const glpgp_mesh *m, glpgp_options *o)
 {
     glpgp_backend *bc = NULL, *br = NULL;
-    glpgp_cl_options co = {-1, 0};
+    glpgp_cl_options co = {-1, 0, NULL};
     if (glpgp_backend_create_opencl(&co, &bc) != GLPGP_OK) {
         printf("skipped: no OpenCL device (%s)\n", glpgp_error_message());
         glpgp_error_clear();
@@ -78,7 +78,7 @@ static int compare(const char *what, const glpgp_mesh *m, glpgp_options *o)
 static void concurrent_identical(const char *what, const glpgp_mesh *m)
 {
     glpgp_backend *b = NULL;
-    glpgp_cl_options co = {-1, 0};
+    glpgp_cl_options co = {-1, 0, NULL};
     CHECK_OK(glpgp_backend_create_opencl(&co, &b));
     if (!b) return;
     glpgp_options o;

@@ -122,7 +122,8 @@ if [ -f "$src/bench/gpu_check.sh" ] && "$glpgp" devices 2>/dev/null | grep -q "f
         fail "bench/gpu_check.sh --smoke failed"
     }
     for f in log.txt devices.txt bench_ladder.md bench_ladder.json precond_1m_k0.json precond_1m_kauto.json \
-        square1m_amg.json square1m_amg_concurrent.json square1m_jacobi.json square4m_amg.json; do
+        square1m_amg.json square1m_amg_concurrent.json square1m_amg_sequential.json square1m_jacobi.json \
+        square4m_amg.json square4m_amg_phasesync.json square10m_amg.json profile_square1m.txt summary.md; do
         [ -s "gc/$f" ] || fail "gpu_check.sh --smoke left no gc/$f"
     done
     python3 - gc << 'EOF' || fail "gpu_check.sh --smoke: JSON check failed"
@@ -139,6 +140,17 @@ for f in ("square1m_amg.json", "square1m_jacobi.json", "square4m_amg.json"):
     s = json.load(open(os.path.join(d, f)))
     assert s["converged"]["all"] and s["device_calls"]["kernel_launches"] > 0, f
 assert json.load(open(os.path.join(d, "square1m_amg_concurrent.json")))["oscillators"] == "concurrent"
+# every whole solve reports its phases and the host's share of the solve
+for f in ("square1m_amg_sequential.json", "square4m_amg_phasesync.json", "square10m_amg.json"):
+    s = json.load(open(os.path.join(d, f)))
+    assert s["converged"]["all"], f
+    ph = s["phases"]
+    assert len([k for k in ph if ph[k]["seconds"] > 0]) >= 10, (f, ph)
+    assert ph["program_build"]["seconds"] > 0 and ph["linear_solves"]["seconds"] > 0, f
+    assert 0.0 < s["solve_split"]["host_share"] <= 1.0, (f, s["solve_split"])
+summ = open(os.path.join(d, "summary.md")).read()
+assert "| solve-square10m-amg | 0 |" in summ and "host share" in summ, summ
+assert "glpgp_amg" in open(os.path.join(d, "profile_square1m.txt")).read(), "no per-kernel profile"
 print("cli_bench: gpu_check.sh --smoke ok")
 EOF
 else

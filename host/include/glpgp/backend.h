@@ -21,6 +21,7 @@
 #define GLPGP_BACKEND_H
 
 #include "glpgp/system.h"
+#include "glpgp/timers.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -53,7 +54,7 @@ enum glpgp_matrix { GLPGP_MAT_QUAD = 0, GLPGP_MAT_NEWTON = 1 };
  * weight acting as the 2x2 block [[cr, -ci], [ci, cr]] (a scaled rotation).
  * The structure is uploaded once per hierarchy (amg_setup); the values (c,
  * A_l = P^T A_{l-1} P, smoothers, coarse solve) are rebuilt on the device
- * per Newton step (amg_values, amg_coarse_set). */
+ * per Newton step (amg_values, amg_coarse_invert: no host round trip). */
 #define GLPGP_AMG_MAX_LEVELS 24
 
 /* Structure of level l (host arrays; the backend copies what it needs). */
@@ -85,6 +86,10 @@ typedef struct glpgp_amg_layout {
      * level c (0 < c < L-1) is a K-cycle (0: one plain visit) */
     int pre, post;
     unsigned char kcycle[GLPGP_AMG_MAX_LEVELS];
+    /* the structure this layout comes from (NULL: none): a backend that holds
+     * the hierarchy of the same key, weight, sweeps and K-cycle levels keeps
+     * it (no upload: the guiding field, u and v share one structure) */
+    const void *key;
 } glpgp_amg_layout;
 
 /* AMG scalar registers: a device array of GLPGP_AMG_NSLOTS doubles, separate
@@ -93,6 +98,9 @@ typedef struct glpgp_amg_layout {
  * the K-cycle on level l. */
 #define GLPGP_AMG_NSLOTS (8 + 8 * GLPGP_AMG_MAX_LEVELS)
 #define GLPGP_AMG_KSLOT(l) (8 + 8 * (l))
+/* the status of the last amg_coarse_invert (0: fine, 1: the coarsest matrix
+ * is not finite), among the outer solvers' registers and used by none */
+#define GLPGP_AMG_SLOT_STATUS 7
 
 /* A coefficient computed on the device: sign * t[num] / t[den], or 0 when
  * t[den] is 0 or the ratio is not finite; num < 0: the constant sign. */
@@ -178,20 +186,25 @@ typedef struct glpgp_backend_ops {
      * amg_setup:   upload the hierarchy structure (replaces any previous one).
      * amg_values:  per Newton step, from NEWTON (assembled) and the frame
      *   vectors frames[0 .. L-2] (level-l vectors or NULL), for l = 0 .. L-2:
-     *     f_l  = frames[0]                                   (l = 0)
+     *     f_l  = frames[0] (1 when NULL), 0 at the vertices the Dirichlet
+     *            flags of the last set_field mark             (l = 0)
      *     f_lJ = a_lJ (frames[l]_J, or 1 when NULL)          (l >= 1, complex)
      *     s_J  = sqrt(sum_{i in J} |f_li|^2),  a_{l+1,J} = s_J,
-     *     c_i  = f_li / s_agg(i)  (0 when s = 0: J is dead, or agg(i) = -1),
+     *     c_i  = f_li / s_agg(i)  (0 when s = 0: J is dead),
      *     A_{l+1} = P_l^T A_l P_l through the Galerkin map; the diagonal block
      *       of a dead coarse node is the identity;
      *     M_l^-1  = w times the inverse of the l1 block diagonal
      *       A_l,ii + (sum_{j != i} ||A_l,ij||_2) I  (0 where singular);
      *       since that diagonal bounds A from above, the sweep converges for
      *       any SPD A_l when w < 2.
-     * amg_coarse_read: the coarsest A_{L-1} as a dense row-major matrix of
+     * amg_coarse_invert: the coarse solve operator C from the coarsest
+     *   A_{L-1} (of the last amg_values), on the backend: spd = 0 the LU
+     *   generalised inverse, spd = 1 the symmetric positive semi-definite
+     *   one (kernels/amg_dense.h, bit-identical on every backend);
+     *   t[GLPGP_AMG_SLOT_STATUS] <- 0, or 1 when A_{L-1} is not finite (the
+     *   drivers read it with their first scalars: no round trip here).
+     * amg_coarse_read (optional, diagnostics): the coarsest A_{L-1} as a dense row-major matrix of
      *   order m = 2 n_{L-1} (host array of m*m doubles; synchronises).
-     * amg_coarse_set: upload C (m*m, row-major), the coarse solve operator
-     *   (an inverse of A_{L-1} computed on the host).
      * amg_smooth:  y <- x + M_l^-1 (r - A_l x)   (x NULL: y <- M_l^-1 r)
      * amg_restrict: rc <- P_l^T (r - A_l x)       (x NULL: rc <- P_l^T r)
      * amg_prolong: x <- x + P_l ec
@@ -222,8 +235,8 @@ typedef struct glpgp_backend_ops {
      *   in one work-item). */
     glpgp_status (*amg_setup)(glpgp_backend *b, const glpgp_amg_layout *lay);
     glpgp_status (*amg_values)(glpgp_backend *b, const glpgp_vec *const *frames);
+    glpgp_status (*amg_coarse_invert)(glpgp_backend *b, int spd);
     glpgp_status (*amg_coarse_read)(glpgp_backend *b, double *dense);
-    glpgp_status (*amg_coarse_set)(glpgp_backend *b, const double *inv);
     glpgp_status (*amg_smooth)(glpgp_backend *b, int l, const glpgp_vec *r, const glpgp_vec *x,
                                glpgp_vec *y);
     glpgp_status (*amg_restrict)(glpgp_backend *b, int l, const glpgp_vec *r, const glpgp_vec *x,
@@ -241,6 +254,16 @@ typedef struct glpgp_backend_ops {
     glpgp_status (*amg_get_scalars)(glpgp_backend *b, double *out, int n);
     glpgp_status (*amg_coarse_correction)(glpgp_backend *b, int c, int sym, const glpgp_vec *rhs,
                                           glpgp_vec *e, int *done);
+    /* Fused halves of a level visit (optional, NULL: the driver calls the
+     * single ops; the same bits either way, kernels/amg_rows.h):
+     * amg_presmooth_restrict: y <- M_l^-1 r and rc <- P_l^T (r - A_l y), i.e.
+     *   amg_smooth (x NULL) then amg_restrict (x = y), l < L-1;
+     * amg_prolong_smooth: y <- x' + M_l^-1 (r - A_l x') with x' = x + P_l ec,
+     *   i.e. amg_prolong into a copy of x then amg_smooth; x is not changed. */
+    glpgp_status (*amg_presmooth_restrict)(glpgp_backend *b, int l, const glpgp_vec *r, glpgp_vec *y,
+                                           glpgp_vec *rc);
+    glpgp_status (*amg_prolong_smooth)(glpgp_backend *b, int l, const glpgp_vec *ec, const glpgp_vec *x,
+                                       const glpgp_vec *r, glpgp_vec *y);
 
     /* ---- whole linear solve (optional, NULL: the drivers' CG / multigrid):
      * x <- NEWTON^-1 rhs from x = 0 by the backend's own Krylov solver and
@@ -260,9 +283,23 @@ typedef struct glpgp_backend_ops {
      * same bits on every rank), maximum or minimum over the ranks; every
      * rank calls it alike. */
     glpgp_status (*reduce)(glpgp_backend *b, double *v, int n, int op);
+
+    /* ---- optional (NULL: the drivers do without) ----
+     * finish: block until every operation enqueued so far is done (the
+     *   phase accounts of glpgp_options.phase_sync; a synchronous backend
+     *   leaves it NULL).
+     * trial_point: the trust region's trial point xt <- x (+) a d, per vertex
+     *   glpgp_polar_point of kernels/newton_rows.h with retract radius r1
+     *   (a polar update outside vortex cores, the straight one inside);
+     *   required for glpgp_options.retract_zabs > 0 (the default). */
+    glpgp_status (*finish)(glpgp_backend *b);
+    glpgp_status (*trial_point)(glpgp_backend *b, const glpgp_vec *x, const glpgp_vec *d, double a,
+                                double r1, glpgp_vec *xt);
 } glpgp_backend_ops;
 
 enum { GLPGP_REDUCE_SUM = 0, GLPGP_REDUCE_MAX = 1, GLPGP_REDUCE_MIN = 2 };
+
+#define GLPGP_SCRATCH_VECTORS 8
 
 struct glpgp_backend {
     const glpgp_backend_ops *ops;
@@ -280,11 +317,26 @@ struct glpgp_backend {
      * running the second oscillator on a clone beside this backend: set by
      * the backend, copied by clone */
     int overlap;
+    /* where the time goes (glpgp/timers.h): the phase accounts, the phase
+     * being timed and since when (glpgp_timer_enter / _leave below); the
+     * backend adds its blocking waits to the current phase (glpgp_backend_waited) */
+    glpgp_timers tm;
+    int tm_cur;
+    double tm_mark;
+    /* the multigrid structure of the system being solved, built once by
+     * glpgp_solve and used by every glpgp_amg_create on it (borrowed; NULL:
+     * none, each hierarchy builds its own) */
+    const struct glpgp_amg_structure *amg_shared;
+    /* the drivers' scratch vectors (glpgp_backend_scratch), kept between calls:
+     * a linear solve creates none of its own */
+    glpgp_vec *scratch[GLPGP_SCRATCH_VECTORS];
+    size_t scratch_n[GLPGP_SCRATCH_VECTORS];
 };
 
 enum {
-    GLPGP_OVERLAP_NEVER = 0,  /* not measured to pay (the GPU launch shape, PETSc) */
-    GLPGP_OVERLAP_ALWAYS = 1, /* a single-threaded backend (reference): up to 2x */
+    GLPGP_OVERLAP_NEVER = 0,  /* not measured to pay (PETSc) */
+    GLPGP_OVERLAP_ALWAYS = 1, /* a single-threaded backend (reference): up to 2x; the OpenCL
+                                 GPU launch shape (H200, 1M square: 1.48x) */
     GLPGP_OVERLAP_AMG = 2     /* with the multigrid and up to GLPGP_OVERLAP_AMG_MAX_VERTICES
                                  only: the OpenCL CPU shape, whose fused small levels run on
                                  one core (2 cores, bench/results/oscillators.md: 1.25x at
@@ -294,8 +346,36 @@ enum {
 };
 #define GLPGP_OVERLAP_AMG_MAX_VERTICES 500000
 
+/* *v <- b's scratch vector k (0 .. GLPGP_SCRATCH_VECTORS - 1) of n doubles,
+ * created at its first use or when n changes; its contents are undefined.
+ * CG uses 0 .. 3, the trust region's CG 4 .. 7. Freed by
+ * glpgp_backend_destroy. */
+glpgp_status glpgp_backend_scratch(glpgp_backend *b, int k, size_t n, glpgp_vec **v);
+
+/* 1 when two layouts have the same non-NULL key, levels (nodes and blocks),
+ * weight, sweeps and K-cycle levels: a backend holding a's hierarchy may
+ * keep it for b (solver/backend.c). */
+int glpgp_amg_layout_same(const glpgp_amg_layout *a, const glpgp_amg_layout *b);
+
 /* Destroy any backend (NULL-safe, sets *b = NULL). */
 void glpgp_backend_destroy(glpgp_backend **b);
+
+/* ---- phase accounts (glpgp/timers.h; solver/backend.c) ----
+ * reset: every account to 0, the current phase GLPGP_TM_OTHER from now.
+ * enter: the time since the last mark is booked to the current phase, which
+ *   becomes id; returns the previous one for leave. Inside the guiding field
+ *   or the size field (their own solves) only the structure phase is booked
+ *   apart: enter then keeps the current phase.
+ * leave: the time since the last mark is booked to the current phase, which
+ *   becomes prev.
+ * waited: seconds the host just spent blocked on the device, added to the
+ *   current phase's wait (by the backends' blocking calls).
+ * read: *t <- the accounts, the current phase's time so far included. */
+void glpgp_timer_reset(glpgp_backend *b);
+int glpgp_timer_enter(glpgp_backend *b, int id);
+void glpgp_timer_leave(glpgp_backend *b, int prev);
+void glpgp_backend_waited(glpgp_backend *b, double seconds);
+void glpgp_timer_read(glpgp_backend *b, glpgp_timers *t);
 
 #ifdef __cplusplus
 }

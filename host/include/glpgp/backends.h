@@ -21,6 +21,10 @@ typedef struct glpgp_cl_options {
     int device;        /* global device index as listed by `glpgp devices`; -1: GLPGP_DEVICE env, else the
                           first GPU with fp64, else the first device with fp64 */
     int verbose;       /* log the chosen device (GLPGP_LOG_INFO) */
+    const int *stop;   /* NULL, or a flag another thread may set (atomically) while the backend is
+                          created in the background: the first launches of the kernels
+                          (warm-up after the program build) then end early and the creation
+                          fails with GLPGP_ERR_ARG "stopped" (the caller no longer needs it) */
 } glpgp_cl_options;
 /* Create the OpenCL backend (GLPGP_ERR_OPENCL / GLPGP_ERR_UNSUPPORTED with a
  * clear message when no platform/device/fp64 is available). */
@@ -46,6 +50,10 @@ int glpgp_backend_kind_parse(const char *name);
  * verbose: log the chosen OpenCL device. */
 glpgp_status glpgp_backend_select(glpgp_backend_kind kind, int device, int verbose,
                                   glpgp_backend **out);
+/* glpgp_backend_select with glpgp_cl_options.stop (NULL: the same): for a
+ * backend created in a thread while the caller reads its input. */
+glpgp_status glpgp_backend_select_stoppable(glpgp_backend_kind kind, int device, int verbose, const int *stop,
+                                            glpgp_backend **out);
 
 /* ---- PETSc backend (backends/petsc.c, a dlopen'd module glpgp_petsc.so) ----
  * Every rank runs the same driver (glpgp_solve); the backend distributes the
@@ -116,6 +124,10 @@ glpgp_status glpgp_devices_list(glpgp_device_info **out, int *n);
  * returns its device index, or -1 (buf: "none") if b is not an OpenCL
  * backend or the build has no OpenCL. */
 int glpgp_cl_backend_info(const glpgp_backend *b, char *buf, size_t len);
+/* The OpenCL backend's device lines (what glpgp_cl_options.verbose logs at
+ * creation: device, launch shape, program build seconds); nothing for
+ * another backend. */
+void glpgp_cl_backend_log(const glpgp_backend *b);
 
 /* Which matrix glpgp_probe_matrix reads: GLPGP_MAT_QUAD, GLPGP_MAT_NEWTON
  * (4*nnzb values, block-CSR order) or GLPGP_PROBE_DINV (4*nv values). */

@@ -7,6 +7,7 @@
 #define GLPGP_RESULT_H
 
 #include "glpgp/mesh.h"
+#include "glpgp/timers.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -59,6 +60,9 @@ typedef struct glpgp_result {
     long field_cg_iterations;
     long host_round_trips;     /* blocking scalar reads the drivers made (b->n_sync) */
     long kernel_launches;      /* device kernels enqueued (b->n_launch; 0 without OpenCL) */
+    glpgp_timers timers;       /* where the time went, per phase (glpgp/timers.h): the solve's
+                                  phases (with concurrent oscillators both threads' sums);
+                                  the command line adds its own (read, outputs) */
     int concurrent;            /* 1: u and v were solved at the same time, v on a clone of the
                                   backend in a second host thread (glpgp_options.oscillators) */
     struct glpgp_cross_result *cross; /* the cross field of --field cross (glpgp/cross.h), else NULL */

@@ -93,10 +93,16 @@ typedef struct glpgp_options {
     double center[2];
     int init;             /* initial guess of GL: GLPGP_INIT_NAIVE or ONE [NAIVE] */
     int vertex_order;     /* GLPGP_ORDER_RCM: glpgp_solve renumbers the vertices for
-                             memory locality (reverse Cuthill-McKee) and returns the
+                             memory locality (reverse Cuthill-McKee; an input whose edges
+                             span at most 3 sqrt(nv) indices on average is local already
+                             and keeps its order) and returns the
                              result in m's order; GLPGP_ORDER_INPUT: m's numbering [RCM] */
     int oscillators;      /* GLPGP_OSC_*: u and v one after the other or at the same time
                              (independent solves: the same result bit for bit) [AUTO] */
+    int phase_sync;       /* 1: the drivers wait for the device at the end of every timed
+                             phase (glpgp/timers.h), so that each phase's time includes its
+                             device work (one more host round trip per phase); 0: a phase
+                             books only what the host did and waited for during it [0] */
 
     /* eps continuation */
     double eps0;          /* first eps as a multiple of h [0.5] */
@@ -329,6 +335,7 @@ glpgp_status glpgp_size_refine(const glpgp_mesh *m, const glpgp_options *o, doub
 typedef struct glpgp_prepare_info {
     glpgp_refine_info refined; /* rounds 0: not refined */
     int usage;                 /* the failure concerns the size or another option value */
+    double seconds_refine;     /* the refinement's wall seconds (0: none) */
 } glpgp_prepare_info;
 glpgp_status glpgp_solve_prepare(const glpgp_mesh *m, glpgp_options *o, const char *name, double max_triangles,
                                  int refine_ok, glpgp_mesh **refined, glpgp_prepare_info *info);
@@ -476,11 +483,25 @@ typedef struct glpgp_amg_info {
     long nnzb[GLPGP_AMG_MAX_LEVELS];  /* 2x2 blocks per level */
     double operator_complexity;       /* sum_l nnzb_l / nnzb_0 */
     double grid_complexity;           /* sum_l n_l / n_0 */
-    double seconds_structure;         /* glpgp_amg_create */
+    double seconds_structure;         /* glpgp_amg_create (the structure's construction when not shared) */
+    int shared;                       /* 1: the structure was the system's shared one
+                                         (glpgp_backend.amg_shared), built once */
     double seconds_values;            /* all glpgp_amg_update calls */
     double seconds_coarse;            /* of which the coarsest inverse on the host */
     int updates;                      /* glpgp_amg_update calls */
 } glpgp_amg_info;
+
+/* The hierarchy's structure for one system: aggregates of every level
+ * (every vertex aggregated: the Dirichlet sets of the guiding field, u and v
+ * enter only the values), coarse patterns and Galerkin maps, built once
+ * with o->amg_coarse and o->amg_max_levels and shared read-only by every
+ * glpgp_amg_create on a backend set up for that system whose
+ * glpgp_backend.amg_shared points to it (glpgp_solve does this for the
+ * guiding field, u, v and a concurrent v's backend clone). */
+typedef struct glpgp_amg_structure glpgp_amg_structure;
+glpgp_status glpgp_amg_structure_create(const glpgp_system *sys, const glpgp_options *o,
+                                        glpgp_amg_structure **out);
+void glpgp_amg_structure_destroy(glpgp_amg_structure **s);
 
 /* Whether backend b implements the multigrid ops (amg_setup etc.). */
 int glpgp_amg_supported(const glpgp_backend *b);
@@ -499,8 +520,12 @@ int glpgp_amg_supported(const glpgp_backend *b);
  * and GLPGP_AMG_KCYCLE_MIN_LAUNCH_BOUND on a launch-bound one. */
 int glpgp_amg_kcycle_min(const glpgp_backend *b, const glpgp_options *o);
 
-/* Build the hierarchy structure for b's system (b->ops->setup done) and the
- * Dirichlet flags dir (nv; NULL: none) and upload it. Options: o->amg_*.
+/* The hierarchy for b's system (b->ops->setup done): its structure (the
+ * shared one, b->amg_shared, when it was built for this system with the
+ * same o->amg_coarse and o->amg_max_levels; else built here), uploaded
+ * unless the backend holds it already. The frames vanish at the Dirichlet
+ * flags of the backend's last set_field (dir: those flags, kept for the
+ * callers; not read). Options: o->amg_*.
  * w (2*nv unit field, may be NULL) and h: the plane-wave frames
  * exp(i (2 pi / h) W . (x_i - x_J)) used by glpgp_amg_update(a, NULL) for the
  * quadratic problems (naive PGP); w NULL or h <= 0: constant frames (the
