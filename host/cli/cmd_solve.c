@@ -303,7 +303,7 @@ static int prepare(solve_cli *c, const char *input, glpgp_mesh **pm, glpgp_size_
      * input whose far field is coarser than h, a CAD export's fan of
      * slivers; the refinement's own limits bound the work); the refined mesh
      * is checked against the full rule below */
-    const int refine = !c->no_refine && c->o.field != GLPGP_FIELD_FILE &&
+    const int refine = !c->no_refine && c->o.field != GLPGP_FIELD_FILE && !m->xyz &&
                        (c->o.size_field == GLPGP_SIZE_AUTO || c->o.size_field == GLPGP_SIZE_ISO ||
                         c->o.size_field == GLPGP_SIZE_FUNC);
     /* slivers (a CAD export's fans): one warning naming the remedy */

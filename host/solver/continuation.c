@@ -628,6 +628,7 @@ static glpgp_status solve_ordered(const glpgp_mesh *m, glpgp_backend *b, const g
 glpgp_status glpgp_solve(const glpgp_mesh *m, glpgp_backend *b, const glpgp_options *o, glpgp_result **out)
 {
     *out = NULL;
+    if (m->xyz) return GLPGP_FAIL(GLPGP_ERR_UNSUPPORTED, "surfaces are not solved yet");
     const long s0 = b->n_sync, l0 = b->n_launch;
     GLPGP_CHECK(solve_ordered(m, b, o, out));
     (*out)->host_round_trips = b->n_sync - s0;
