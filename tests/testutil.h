@@ -17,6 +17,7 @@
 #include "glpgp/solve.h"
 #include "glpgp/status.h"
 #include "glpgp/surface.h"
+#include "glpgp/surfsolve.h"
 #include "glpgp/system.h"
 #include "glpgp/util.h"
 #include "glpgp/version.h"

@@ -468,8 +468,10 @@ void glpgp_opts_add_solver(glpgp_opts *t, glpgp_options *o)
     c.meta = "boundary|radial|cross|FILE";
     c.help = "guiding field U: smooth field aligned with the boundary, radial\n"
              "about --center, from the Ginzburg-Landau cross field (see\n"
-             "--cross-eps0), or one \"ux uy\" line per vertex from FILE";
-    c.def = "boundary";
+             "--cross-eps0), or one \"ux uy\" line per vertex from FILE;\n"
+             "a surface: cross (default) or boundary (harmonic, aligned with\n"
+             "its boundary and sharp features)";
+    c.def = "boundary; surfaces: cross";
     glpgp_opts_add(t, c);
     c.name = "--center";
     c.parse = parse_center;
@@ -508,7 +510,12 @@ void glpgp_opts_add_solver(glpgp_opts *t, glpgp_options *o)
                      "(c the largest that brings them within F); 0: off");
     glpgp_opt_double(t, "--size-chord-depth", &o->size_chord_depth, 0.0, 0, 1.0, 1, "F",
                      "curved boundaries: a chord's depth (sagitta) stays below F h\n"
-                     "(the size is capped where it would not); 0: off");
+                     "(the size is capped where it would not); 0: off (on a surface: its\n"
+                     "curvature the same way)");
+    glpgp_opt_double(t, "--feature-angle", &o->feature_angle, 0.0, 0, 180.0, 0, "DEG",
+                     "a surface: interior edges whose triangles' normals differ by more\n"
+                     "than DEG degrees are sharp features, which the field and the\n"
+                     "quads follow like the boundary (180: none)");
 
     glpgp_opts_group(t, "Continuation and solvers");
     glpgp_opt_double(t, "--eps0", &o->eps0, 0.0, 1, HUGE_VAL, 0, "F", "first eps, as a multiple of h");

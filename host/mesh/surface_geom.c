@@ -216,34 +216,36 @@ void glpgp_surface_vertex_vector(const glpgp_mesh *m, int i, double c, double s,
 double glpgp_surface_vertex_angle(const glpgp_mesh *m, int i, const double *v)
 {
     const glpgp_surface *g = m->surf;
-    /* the corner whose plane holds most of v with v inside its sector: the
-     * sector's angle delta from the outgoing edge, theta + s delta */
+    /* per corner: v in its triangle's plane (qual: the share of |v|^2 there),
+     * its angle delta from the outgoing edge clamped into the sector [0, alpha]
+     * (out: by how much it was outside); the corner with the least out (1e-6
+     * ties: the most in-plane) gives theta + s delta */
     const double vv = dot3(v, v);
     if (!(vv > 0.0)) return 0.0;
     int k = g->vstart[i];
-    double best = -1.0, ang = 0.0, bestout = -1.0, angout = 0.0;
+    double best_out = HUGE_VAL, best_qual = -1.0, ang = 0.0;
     do {
         const int t = k / 3, a = k % 3, b = (a + 1) % 3;
         const double *q = g->txy + 6 * t, *E1 = g->tframe + 9 * t, *E2 = E1 + 3;
         const double x = dot3(v, E1), y = dot3(v, E2), qual = (x * x + y * y) / vv;
         const double beta = atan2(q[2 * b + 1] - q[2 * a + 1], q[2 * b] - q[2 * a]);
-        double d = principal(atan2(y, x) - beta);
-        if (d >= 0.0 && d <= g->corner[k]) {
-            if (qual > best) {
-                best = qual;
-                ang = g->eangle[k] + g->scale[i] * d;
-            }
-        } else if (qual > bestout) { /* outside every sector (a boundary fan): its nearer edge */
-            bestout = qual;
-            d = d < 0.0 && d < -0.5 * (2.0 * GLPGP_PI - g->corner[k]) ? g->corner[k] : d < 0.0 ? 0.0 : g->corner[k];
-            angout = g->eangle[k] + g->scale[i] * d;
+        double d = principal(atan2(y, x) - beta), out = 0.0;
+        const double al = g->corner[k];
+        if (d < 0.0 || d > al) { /* outside: the nearer sector edge */
+            const double e0 = fabs(d), e1 = fabs(principal(d - al));
+            out = e0 < e1 ? e0 : e1;
+            d = e0 < e1 ? 0.0 : al;
+        }
+        if (out < best_out - 1e-6 || (fabs(out - best_out) <= 1e-6 && qual > best_qual)) {
+            best_out = out;
+            best_qual = qual;
+            ang = g->eangle[k] + g->scale[i] * d;
         }
         const int hin = k - k % 3 + (k % 3 + 2) % 3;
         k = g->twin[hin];
     } while (k >= 0 && k != g->vstart[i]);
-    double r = best >= 0.0 ? ang : angout;
-    r = fmod(r, 2.0 * GLPGP_PI);
-    return r < 0.0 ? r + 2.0 * GLPGP_PI : r;
+    ang = fmod(ang, 2.0 * GLPGP_PI);
+    return ang < 0.0 ? ang + 2.0 * GLPGP_PI : ang;
 }
 
 int glpgp_surface_features(const glpgp_mesh *m, double feature_deg, unsigned char *flag)

@@ -565,7 +565,7 @@ glpgp_status glpgp_amg_create(glpgp_backend *b, const glpgp_options *o, const un
     a->kmin = glpgp_amg_kcycle_min(b, o);
     a->check = o->amg_check;
     a->maxit = o->amg_maxit < o->cg_max ? o->amg_maxit : o->cg_max;
-    a->has_phase = w != NULL && h > 0.0;
+    a->has_phase = w != NULL && h > 0.0 && sys->mesh->xy != NULL; /* a surface: no plane waves of a global x */
 
     /* level 0: the system; graph without Dirichlet vertices */
     amg_level *l0 = &a->lev[0];

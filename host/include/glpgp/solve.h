@@ -206,6 +206,12 @@ typedef struct glpgp_options {
     /* default h (glpgp_default_size) */
     double size_diag_div; /* h = bounding-box diagonal / this ... [20] */
     double size_min_edges;/* ... raised to this many mean edges [10] */
+
+    /* surfaces (glpgp/surfsolve.h) */
+    double feature_angle; /* an interior edge whose triangles' normals differ by more than this
+                             many degrees is a sharp feature: the cross field and the
+                             oscillators align with it as with the boundary; [0, 180]; 180:
+                             none [GLPGP_FEATURE_ANGLE_DEFAULT = 35] */
 } glpgp_options;
 
 /* Fill the documented defaults. */
