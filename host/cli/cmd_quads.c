@@ -64,6 +64,11 @@ int glpgp_cmd_extract(int argc, char **argv)
     glpgp_quad_quality qq;
     rc = GLPGP_EXIT_FAIL;
     if (glpgp_read_result(in, &m, &r) != GLPGP_OK) goto fail;
+    if (m->xyz) {
+        GLPGP_FAIL(GLPGP_ERR_UNSUPPORTED, "%s: a surface's result: quad extraction on surfaces is not implemented yet",
+                   in);
+        goto fail;
+    }
     if ((rc = glpgp_cli_check_elements(in, m->nt, "triangles", 0, max_elements)) >= 0) goto done;
     rc = GLPGP_EXIT_FAIL;
     if (size > 0) r->size = size;

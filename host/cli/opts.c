@@ -617,6 +617,23 @@ static const int k_kind_vals[] = {GLPGP_IMAGE_GRID, GLPGP_IMAGE_CHECKER, GLPGP_I
                                   GLPGP_IMAGE_FIELD, GLPGP_IMAGE_THETA, GLPGP_IMAGE_CROSS};
 static const char *const k_backgrounds[] = {"white", "transparent", NULL};
 
+static const char *parse_view(const char *v, void *dest)
+{
+    glpgp_render_options *r = dest;
+    const char *comma = strchr(v, ',');
+    char a[128];
+    const size_t n = comma ? (size_t)(comma - v) : 0;
+    if (!comma || n >= sizeof a) return "is not AZ,EL (two numbers, degrees)";
+    memcpy(a, v, n);
+    a[n] = '\0';
+    double az, el;
+    if (!glpgp_cli_double(a, &az) || !glpgp_cli_double(comma + 1, &el)) return "is not AZ,EL (two numbers, degrees)";
+    if (!(fabs(el) <= 90.0)) return "has an elevation outside [-90, 90] degrees";
+    r->azimuth = az;
+    r->elevation = el;
+    return NULL;
+}
+
 void glpgp_opts_add_picture(glpgp_opts *t, glpgp_render_options *r, int line_width)
 {
     glpgp_opt_int(t, "--image-size", &r->size, 16, 32768, "N", "pixels on the long side");
@@ -627,6 +644,17 @@ void glpgp_opts_add_picture(glpgp_opts *t, glpgp_render_options *r, int line_wid
                      "cross (the cross field of a --field cross result, singularities\n"
                      "marked: +1/4 red, -1/4 blue)");
     glpgp_opt_choice(t, "--background", &r->transparent, k_backgrounds, NULL, "picture background");
+    glpgp_opt c = {0};
+    c.name = "--view";
+    c.kind = GLPGP_OPT_CUSTOM;
+    c.dest = r;
+    c.parse = parse_view;
+    c.meta = "AZ,EL";
+    c.help = "a surface's picture: the camera's azimuth about z (from +x) and\n"
+             "elevation above the xy plane, degrees (an orthographic view fitted\n"
+             "to the surface, z-buffered and shaded)";
+    c.def = "35,25";
+    glpgp_opts_add(t, c);
     if (line_width) {
         glpgp_opt *o = glpgp_opt_double(t, "--line-width", &r->line_width, 0.0, 1, 100.0, 0, "W",
                                         "grid line width in pixels");
