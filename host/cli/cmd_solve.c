@@ -311,6 +311,12 @@ static int prepare(solve_cli *c, const char *input, glpgp_mesh **pm, glpgp_size_
     if (m->xyz) {
         /* a surface: the cross field unless --field says otherwise; no quads yet */
         if (!c->field_seen) c->o.field = GLPGP_FIELD_CROSS;
+        const double diag = glpgp_mesh_diagonal(m), hd = glpgp_default_size(m, &c->o);
+        if (!(c->o.size > 0.0) && hd > diag / GLPGP_SIZE_DEFAULT_MIN_QUADS)
+            glpgp_log(GLPGP_LOG_WARNING,
+                      "%s: the surface is too coarse for the default size (mean edge %.3g): h = 10 mean edges = "
+                      "%.4g gives a handful of quads; surfaces are not refined yet: give a finer mesh (or --size)",
+                      input, m->mean_edge, hd);
         if (c->quads) {
             glpgp_mesh_destroy(&m);
             return glpgp_cli_usage_error("solve", "--quads: quad extraction on surfaces is not implemented yet (the "

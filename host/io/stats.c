@@ -9,6 +9,25 @@
 
 #include <stdlib.h>
 
+/* A surface's members of "mesh" (glpgp/surface.h): its 3D box and topology. */
+static void stats_surface(glpgp_json *w, const glpgp_mesh *m, const glpgp_options *o)
+{
+    unsigned char *fl = malloc((size_t)3 * m->nt);
+    glpgp_json_array(w, "bbox3");
+    for (int i = 0; i < 6; i++) glpgp_json_num(w, NULL, m->bbox3[i]);
+    glpgp_json_close(w);
+    glpgp_json_object(w, "surface");
+    glpgp_json_int(w, "euler_characteristic", m->surf->euler);
+    glpgp_json_int(w, "genus", m->surf->genus);
+    glpgp_json_int(w, "components", m->surf->ncomponents);
+    glpgp_json_int(w, "edges", m->surf->nedges);
+    if (fl && o) glpgp_json_int(w, "feature_edges", glpgp_surface_features(m, o->feature_angle, fl));
+    if (o) glpgp_json_num(w, "feature_angle", o->feature_angle);
+    glpgp_json_num(w, "total_holonomy", glpgp_surface_total_holonomy(m));
+    glpgp_json_close(w);
+    free(fl);
+}
+
 static void stats_body(FILE *f, const glpgp_mesh *m, const glpgp_options *o, const glpgp_result *r,
                        const glpgp_stats_extra *x)
 {
@@ -86,22 +105,7 @@ static void stats_body(FILE *f, const glpgp_mesh *m, const glpgp_options *o, con
     for (int i = 0; i < 4; i++) glpgp_json_num(w, NULL, m->bbox[i]);
     glpgp_json_close(w);
     glpgp_json_int(w, "orientation_fixed", m->orientation_fixed);
-    if (m->surf) { /* a surface (glpgp/surface.h): its 3D box and topology */
-        unsigned char *fl = malloc((size_t)3 * m->nt);
-        glpgp_json_array(w, "bbox3");
-        for (int i = 0; i < 6; i++) glpgp_json_num(w, NULL, m->bbox3[i]);
-        glpgp_json_close(w);
-        glpgp_json_object(w, "surface");
-        glpgp_json_int(w, "euler_characteristic", m->surf->euler);
-        glpgp_json_int(w, "genus", m->surf->genus);
-        glpgp_json_int(w, "components", m->surf->ncomponents);
-        glpgp_json_int(w, "edges", m->surf->nedges);
-        if (fl && o) glpgp_json_int(w, "feature_edges", glpgp_surface_features(m, o->feature_angle, fl));
-        if (o) glpgp_json_num(w, "feature_angle", o->feature_angle);
-        glpgp_json_num(w, "total_holonomy", glpgp_surface_total_holonomy(m));
-        glpgp_json_close(w);
-        free(fl);
-    }
+    if (m->surf) stats_surface(w, m, o);
     glpgp_json_close(w);
 
     glpgp_json_object(w, "singularities");

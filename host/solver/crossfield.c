@@ -74,6 +74,7 @@ void glpgp_cross_boundary(const glpgp_mesh *m, double *w)
 
 int glpgp_cross_expected_index4(const glpgp_mesh *m)
 {
+    if (m->xyz) return glpgp_surface_expected_index4(m);
     int sum = 0;
     for (int l = 0; l < m->nloops; l++) {
         double turn = 0.0;
@@ -216,6 +217,7 @@ done:
 
 int glpgp_cross_to_vector(const glpgp_mesh *m, const double *w, double *u)
 {
+    if (m->xyz) return glpgp_surface_cross_to_vector(m, w, u); /* a surface: with its connection */
     const int nv = m->nv, nt = m->nt;
     int *deg = calloc((size_t)nv + 1, sizeof(int)), *adj = malloc((size_t)6 * nt * sizeof(int));
     int *queue = malloc((size_t)nv * sizeof(int));
@@ -366,6 +368,8 @@ glpgp_status glpgp_cross_solve(const glpgp_mesh *m, glpgp_backend *b, const glpg
     double *zero = NULL;
     const double t0 = glpgp_now();
     *out = NULL;
+    if (m->xyz)
+        return GLPGP_FAIL(GLPGP_ERR_ARG, "cross field of a surface: glpgp_surface_cross_solve (glpgp/surfsolve.h)");
     if (!b->sys || b->sys->mesh != m)
         return GLPGP_FAIL(GLPGP_ERR_ARG, "cross field: the backend is not set up for this mesh");
     GLPGP_CHECK(glpgp_cross_result_create(nv, m->nt, &c));

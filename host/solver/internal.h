@@ -131,7 +131,7 @@ glpgp_status glpgp_solve_coupled(const glpgp_mesh *m, glpgp_backend *b, const gl
 
 /* Inverse iteration towards the smallest eigenvector of NEWTON (assembled
  * without penalty and Dirichlet rows: QUAD) against the lumped mass
- * (surface_cross.c): from x, x <- NEWTON^-1 (M x) normalised in the M-norm,
+ * (surface_cross.c): from x, x <- NEWTON^-1 (M x) scaled to a mean |z|^2 of 1,
  * each solve to 1e-4 (the multigrid *amg, updated with x as its frames; set
  * to NULL when it fails), until the Rayleigh quotient x.QUAD x / x.M x
  * changes by less than 1e-3 or after maxsteps steps. mass: n (pairs of

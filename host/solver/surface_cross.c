@@ -294,20 +294,24 @@ glpgp_status glpgp_inverse_iteration(glpgp_backend *b, const glpgp_options *o, g
         glpgp_cg_info ci;
         GLPGP_CHECK(glpgp_linear_solve(b, *amg, rhs, y, 1e-4, o->cg_max, o->cg_check, &ci));
         *cg += ci.iterations;
-        /* x <- y / ||y||_M; lambda = y.QUAD y / y.M y */
+        /* x <- y scaled to a mean |z|^2 of 1 (||x||_M^2 = sum M); lambda = y.QUAD y / y.M y */
         GLPGP_CHECK(op->vec_read(b, y, host));
-        double mm = 0.0;
-        for (int i = 0; i < n; i++) mm += mass[i] * (host[2 * i] * host[2 * i] + host[2 * i + 1] * host[2 * i + 1]);
+        double mm = 0.0, ms = 0.0;
+        for (int i = 0; i < n; i++) {
+            mm += mass[i] * (host[2 * i] * host[2 * i] + host[2 * i + 1] * host[2 * i + 1]);
+            ms += mass[i];
+        }
         if (!(mm > 0.0) || !isfinite(mm)) break;
-        for (int i = 0; i < 2 * n; i++) host[i] /= sqrt(mm);
+        const double sc = sqrt(ms / mm);
+        for (int i = 0; i < 2 * n; i++) host[i] *= sc;
         GLPGP_CHECK(op->vec_write(b, x, host));
         GLPGP_CHECK(op->energy(b, x, 0.0, work));
-        double sc[GLPGP_NSLOTS];
-        GLPGP_CHECK(op->get_scalars(b, sc, GLPGP_NSLOTS));
-        const double lam = 2.0 * sc[GLPGP_S_E];
+        double sl[GLPGP_NSLOTS];
+        GLPGP_CHECK(op->get_scalars(b, sl, GLPGP_NSLOTS));
+        const double lam = 2.0 * sl[GLPGP_S_E] / ms;
         (*steps)++;
         glpgp_log(GLPGP_LOG_DEBUG, "inverse iteration %d: Rayleigh quotient %.6g, %d CG", k + 1, lam, ci.iterations);
-        if (fabs(lam - lam0) <= 1e-4 * fabs(lam)) break;
+        if (fabs(lam - lam0) <= 1e-3 * fabs(lam)) break;
         lam0 = lam;
     }
     return GLPGP_OK;
@@ -364,7 +368,7 @@ static glpgp_status surface_cross(const glpgp_mesh *m, glpgp_backend *b, const g
         long cg = 0;
         int steps = 0;
         GLPGP_CHECK_GOTO(st, op->assemble_newton(b, x, 0.0, o->hess), fail);
-        GLPGP_CHECK_GOTO(st, glpgp_inverse_iteration(b, o, &amg, x, d, xt, work, mass, nv, zero, 60, &cg, &steps), fail);
+        GLPGP_CHECK_GOTO(st, glpgp_inverse_iteration(b, o, &amg, x, d, xt, work, mass, nv, zero, 4, &cg, &steps), fail);
         c->cg_iterations += cg;
         glpgp_log(GLPGP_LOG_INFO, "cross: no fixed cross: initial guess by %d steps of inverse iteration (%ld CG)",
                   steps, cg);
