@@ -37,7 +37,8 @@ nu = d["newton_iterations"]["u"]
 r = {"name": sys.argv[3], "args": sys.argv[4], "vertices": d["vertices"], "triangles": d["triangles"],
      "size": d["size"], "newton_u": nu, "cg_u": d["cg_iterations"]["u"], "seconds_u": d["seconds"]["u"],
      "seconds_per_newton_u": d["seconds"]["u"] / nu if nu else None,
-     "cross_newton": c.get("newton_iterations"), "seconds_field": d["seconds"]["field"],
+     "cg_per_newton_u": d["cg_iterations"]["u"] / nu if nu else None,
+     "cross_newton": c.get("newton_iterations"), "cross_cg": c.get("cg_iterations"), "seconds_field": d["seconds"]["field"],
      "seconds_per_newton_cross": d["seconds"]["field"] / c["newton_iterations"] if c.get("newton_iterations") else None,
      "seconds_total": d["seconds"]["total"], "wall": float(wall), "max_rss_mib": int(rss) / 1024.0,
      "median_zabs": min(d["zabs"]["u"]["median"], d["zabs"]["v"]["median"])}
@@ -45,9 +46,9 @@ print(json.dumps(r))
 PY
 )
     rows+=("$row")
-    python3 -c "import json,sys; r=json.loads(sys.argv[1]); f=lambda x: '%.4f' % x if x else '-'; print('%-22s %8d %6d %7s %6s %7s %8.1f %7.0f %6.3f' % (r['name'], r['vertices'], r['newton_u'], f(r['seconds_per_newton_u']), r['cross_newton'] or '-', f(r['seconds_per_newton_cross']), r['wall'], r['max_rss_mib'], r['median_zabs']))" "$row"
+    python3 -c "import json,sys; r=json.loads(sys.argv[1]); f=lambda x: '%.4f' % x if x else '-'; print('%-22s %8d %6d %6d %7s %6s %6s %7s %8.1f %7.0f %6.3f' % (r['name'], r['vertices'], r['newton_u'], r['cg_u'], f(r['seconds_per_newton_u']), r['cross_newton'] or '-', r['cross_cg'] or '-', f(r['seconds_per_newton_cross']), r['wall'], r['max_rss_mib'], r['median_zabs']))" "$row"
 }
-printf '%-22s %8s %6s %7s %6s %7s %8s %7s %6s\n' case vertices newton s/newt cross s/newt wall_s rss_MiB zabs
+printf '%-22s %8s %6s %6s %7s %6s %6s %7s %8s %7s %6s\n' case vertices newton cg s/newt x_newt x_cg x_s/nwt wall_s rss_MiB zabs
 step="--init one --newton-max 6 --newton-rtol 1e-15 --cross-size off --size-field none"
 for rep in 1 2; do
     run "sphere, per step" shape:sphere:$N $step

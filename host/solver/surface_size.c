@@ -141,29 +141,61 @@ static glpgp_status grade(const glpgp_mesh *m, double g, double *s)
     return GLPGP_OK;
 }
 
-/* The curvature cap: R_i = 1 / the largest |normal curvature| 2 |n_i . (x_j - x_i)| / |x_j - x_i|^2
- * over i's edges that are no sharp feature; chord of sagitta d = depth h. */
-static void curvature_cap(const glpgp_mesh *m, const glpgp_surface_constraints *con, double depth, double h, double *s)
+/* The curvature cap: R_i = 1 / the largest normal curvature |(n_j - n_i) .
+ * e| / |e|^2 over the vertex's edges e = x_j - x_i, with the normals of the
+ * smooth sectors the edge lies in (each vertex's fan split at its feature
+ * edges, a sector's normal the angle-weighted mean of its triangles'): a
+ * crease between two flat faces is no curvature (the plain vertex normal,
+ * averaged across it, would make it one); chord of sagitta d = depth h. */
+static glpgp_status curvature_cap(const glpgp_mesh *m, const glpgp_surface_constraints *con, double depth, double h,
+                                  double *s)
 {
     const glpgp_surface *g = m->surf;
+    double *sn = NULL; /* 3 per corner: its sector's normal */
+    GLPGP_CHECK(glpgp_malloc((size_t)9 * m->nt, sizeof(double), &sn));
     for (int i = 0; i < m->nv; i++) {
-        double kmax = 0.0;
-        const double *n = g->vnormal + 3 * i, *xi = m->xyz + 3 * i;
-        int c = g->vstart[i];
-        do {
-            const int j = m->tri[c - c % 3 + (c % 3 + 1) % 3];
-            if (!con->feature[c]) {
-                const double *xj = m->xyz + 3 * j, l = dist3(xi, xj);
-                const double dn = n[0] * (xj[0] - xi[0]) + n[1] * (xj[1] - xi[1]) + n[2] * (xj[2] - xi[2]);
-                kmax = fmax(kmax, 2.0 * fabs(dn) / (l * l));
+        /* inside, start the walk at a feature edge where there is one (a sector's
+         * first corner); a boundary fan starts at its first corner anyway */
+        int c0 = g->vstart[i], c = c0;
+        if (!m->on_boundary[i]) do {
+            if (con->feature[c]) {
+                c0 = c;
+                break;
             }
             c = g->twin[c - c % 3 + (c % 3 + 2) % 3];
         } while (c >= 0 && c != g->vstart[i]);
-        const double d = depth * h;
-        if (!(kmax > 0.0) || !(d > 0.0)) continue;
-        const double R = 1.0 / kmax;
-        s[i] = fmin(s[i], d < R ? 2.0 * sqrt(2.0 * R * d - d * d) : 2.0 * R);
+        c = c0;
+        do { /* one sector: from c0 (or a feature edge) to the next feature edge */
+            double acc[3] = {0.0, 0.0, 0.0};
+            int k = c, n = 0;
+            do {
+                const double *N = g->tframe + 9 * (k / 3) + 6;
+                for (int e = 0; e < 3; e++) acc[e] += g->corner[k] * N[e];
+                n++;
+                k = g->twin[k - k % 3 + (k % 3 + 2) % 3];
+            } while (k >= 0 && k != c0 && !con->feature[k]);
+            const double an = sqrt(acc[0] * acc[0] + acc[1] * acc[1] + acc[2] * acc[2]);
+            for (int q = 0, kk = c; q < n; q++) {
+                for (int e = 0; e < 3; e++) sn[3 * kk + e] = acc[e] / an;
+                kk = g->twin[kk - kk % 3 + (kk % 3 + 2) % 3];
+            }
+            c = k;
+        } while (c >= 0 && c != c0);
     }
+    for (int t = 0; t < m->nt; t++)
+        for (int a = 0; a < 3; a++) {
+            const int ca = 3 * t + a, cb = 3 * t + (a + 1) % 3, i = m->tri[ca], j = m->tri[cb];
+            const double *xi = m->xyz + 3 * i, *xj = m->xyz + 3 * j, l = dist3(xi, xj);
+            double dn = 0.0;
+            for (int e = 0; e < 3; e++) dn += (sn[3 * cb + e] - sn[3 * ca + e]) * (xj[e] - xi[e]);
+            const double kap = fabs(dn) / (l * l), d = depth * h;
+            if (!(kap > 0.0) || !(d > 0.0)) continue;
+            const double R = 1.0 / kap, cap = d < R ? 2.0 * sqrt(2.0 * R * d - d * d) : 2.0 * R;
+            s[i] = fmin(s[i], cap);
+            s[j] = fmin(s[j], cap);
+        }
+    free(sn);
+    return GLPGP_OK;
 }
 
 /* The spacing of the constraint curves (maximal chains of vertices with
@@ -270,7 +302,7 @@ glpgp_status glpgp_surface_size(const glpgp_mesh *m, const glpgp_options *o, con
     if (o->size_field == GLPGP_SIZE_FILE) {
         GLPGP_CHECK(size_file(m, o->size_file, size));
     } else {
-        curvature_cap(m, con, o->size_chord_depth, h, size);
+        GLPGP_CHECK(curvature_cap(m, con, o->size_chord_depth, h, size));
         GLPGP_CHECK(feature_spacing(m, con, o->size_across, size));
         for (int i = 0; i < nv; i++) size[i] = fmax(size[i], o->size_min * h);
         GLPGP_CHECK(grade(m, o->size_grading, size));
