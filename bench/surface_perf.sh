@@ -13,13 +13,16 @@
 #  - a whole default solve of shape:sphere:BIG against shape:disk:BIG (default
 #    options: the planar boundary field, u and v apart) and shape:disk:BIG
 #    --field cross (coupled), total seconds.
-# Each pair runs twice, alternating (A B A B); prints a table, writes JSON.
+# Each pair runs REPS times (default 2), alternating (A B A B); prints a
+# table, writes JSON (and keeps each run's statistics in STATS_DIR if set).
 set -eu
 G=${1:-build/glpgp}
 OUT=${2:-surface_perf.json}
 BACKEND=${BACKEND:-opencl}
 N=${N:-100000}
 BIG=${BIG:-500000}
+REPS=${REPS:-2}
+STATS_DIR=${STATS_DIR:-}
 D=$(mktemp -d "${TMPDIR:-/tmp}/glpgp_surface_perf.XXXXXX")
 trap 'rm -rf "$D"' EXIT
 rows=()
@@ -27,6 +30,7 @@ run() { # name, args...
     local name=$1
     shift
     /usr/bin/time -f "%e %M" -o "$D/time" "$G" solve "$@" --backend "$BACKEND" --stats "$D/s.json" --quiet >/dev/null
+    [ -z "$STATS_DIR" ] || cp "$D/s.json" "$STATS_DIR/$(echo "$name $*" | tr -c 'A-Za-z0-9.\n' '_').json"
     local row
     row=$(python3 - "$D/s.json" "$D/time" "$name" "$*" <<'PY'
 import json, sys
@@ -50,12 +54,12 @@ PY
 }
 printf '%-22s %8s %6s %6s %7s %6s %6s %7s %8s %7s %6s\n' case vertices newton cg s/newt x_newt x_cg x_s/nwt wall_s rss_MiB zabs
 step="--init one --newton-max 6 --newton-rtol 1e-15 --cross-size off --size-field none"
-for rep in 1 2; do
+for rep in $(seq "$REPS"); do
     run "sphere, per step" shape:sphere:$N $step
     run "disk coupled, per step" shape:disk:$N --field cross --cross-coupling on $step
 done
 if [ "$BIG" != 0 ]; then
-    for rep in 1 2; do
+    for rep in $(seq "$REPS"); do
         run "sphere, whole" shape:sphere:$BIG
         run "disk, whole" shape:disk:$BIG
         run "disk cross, whole" shape:disk:$BIG --field cross

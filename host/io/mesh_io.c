@@ -300,6 +300,20 @@ static int used_vertices(const raw_mesh *r, int *map, double lo[3], double hi[3]
     return nv;
 }
 
+/* What the welding did (nothing when merged is 0): an info line for an STL
+ * soup (welding is what it needs), a warning for any other format. */
+static void weld_log(const char *path, const raw_mesh *r, int merged, int nv, int before, int after)
+{
+    if (merged && r->soup)
+        glpgp_log(GLPGP_LOG_INFO, "%s: %d STL vertices welded into %d, %d pieces -> %d", path, merged + nv, nv,
+                  before, after);
+    else if (merged)
+        glpgp_log(GLPGP_LOG_WARNING,
+                  "%s: %d vertices repeat the coordinates of a vertex of another piece of the mesh (an "
+                  "unwelded mesh): merged, %d pieces -> %d",
+                  path, merged, before, after);
+}
+
 /* Newell normal of polygon face k: the axis (0, 1, 2) of its largest
  * component, the face's plane is projected along it for the ear clipping. */
 static int face_axis(const raw_mesh *r, size_t k)
@@ -337,14 +351,7 @@ static glpgp_status finish_surface(const char *path, raw_mesh *r, int *map, int 
     for (size_t i = 0; i < 3 * r->nt; i++) r->tri[i] = map[r->tri[i]];
     int merged = 0, before = 0, after = 0;
     GLPGP_CHECK_GOTO(st, weld(&nv, xyz, 3, (int)r->nt, r->tri, &merged, &before, &after), done);
-    if (merged && r->soup)
-        glpgp_log(GLPGP_LOG_INFO, "%s: %d STL vertices welded into %d, %d pieces -> %d", path, merged + nv, nv,
-                  before, after);
-    else if (merged)
-        glpgp_log(GLPGP_LOG_WARNING,
-                  "%s: %d vertices repeat the coordinates of a vertex of another piece of the mesh (an "
-                  "unwelded mesh): merged, %d pieces -> %d",
-                  path, merged, before, after);
+    weld_log(path, r, merged, nv, before, after);
     if ((st = glpgp_mesh_create_surface(nv, xyz, (int)r->nt, r->tri, out)) != GLPGP_OK) io_name_error(path, st);
 done:
     free(xyz);
@@ -416,14 +423,7 @@ static glpgp_status finish(const char *path, raw_mesh *r, int flags, glpgp_mesh 
     for (size_t i = 0; i < 3 * r->nt; i++) r->tri[i] = map[r->tri[i]];
     int merged = 0, before = 0, after = 0;
     GLPGP_CHECK_GOTO(st, weld(&nv, xy, 2, (int)r->nt, r->tri, &merged, &before, &after), done);
-    if (merged && r->soup)
-        glpgp_log(GLPGP_LOG_INFO, "%s: %d STL vertices welded into %d, %d pieces -> %d", path, merged + nv, nv,
-                  before, after);
-    else if (merged)
-        glpgp_log(GLPGP_LOG_WARNING,
-                  "%s: %d vertices repeat the coordinates of a vertex of another piece of the mesh (an "
-                  "unwelded mesh): merged, %d pieces -> %d",
-                  path, merged, before, after);
+    weld_log(path, r, merged, nv, before, after);
     if ((st = glpgp_mesh_create(nv, xy, (int)r->nt, r->tri, out)) != GLPGP_OK)
         io_name_error(path, st); /* "FILE: the mesh folds over itself ..." */
 done:

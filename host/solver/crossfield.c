@@ -313,6 +313,15 @@ int glpgp_cross_eps_schedule(const glpgp_mesh *m, const glpgp_options *o,
     return n;
 }
 
+void glpgp_cross_log_done(const glpgp_cross_result *c)
+{
+    glpgp_log(GLPGP_LOG_INFO,
+              "cross: done in %.2f s: %d singularities (index sum %d/4, Poincare-Hopf %d/4), median |w| = %.4f, "
+              "%d Newton, %ld CG",
+              c->seconds, c->nsing, c->index4_sum, c->index4_expected, c->zabs_median, c->newton_iterations,
+              c->cg_iterations);
+}
+
 glpgp_status glpgp_cross_levels(const glpgp_mesh *m, glpgp_backend *b, const glpgp_options *o,
                                 glpgp_newton_state *ns, glpgp_cross_result *c)
 {
@@ -420,11 +429,7 @@ glpgp_status glpgp_cross_solve(const glpgp_mesh *m, glpgp_backend *b, const glpg
     GLPGP_CHECK_GOTO(st, op->vec_read(b, x, c->w), fail);
     GLPGP_CHECK_GOTO(st, glpgp_cross_analyze(m, c), fail);
     c->seconds = glpgp_now() - t0;
-    glpgp_log(GLPGP_LOG_INFO,
-              "cross: done in %.2f s: %d singularities (index sum %d/4, Poincare-Hopf %d/4), median |w| = %.4f, "
-              "%d Newton, %ld CG",
-              c->seconds, c->nsing, c->index4_sum, c->index4_expected, c->zabs_median, c->newton_iterations,
-              c->cg_iterations);
+    glpgp_cross_log_done(c);
     goto done;
 fail:
     glpgp_cross_result_destroy(&c);

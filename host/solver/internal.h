@@ -85,6 +85,8 @@ glpgp_status glpgp_dist_summarize(glpgp_backend *b, const glpgp_mesh *m, glpgp_o
  * a level starting at a critical point up to rounding is skipped. Fills
  * c's levels and counts. Shared by the planar and the surface cross field. */
 struct glpgp_cross_result;
+/* The INFO line of a finished cross field (crossfield.c). */
+void glpgp_cross_log_done(const struct glpgp_cross_result *c);
 glpgp_status glpgp_cross_levels(const glpgp_mesh *m, glpgp_backend *b, const glpgp_options *o,
                                 glpgp_newton_state *ns, struct glpgp_cross_result *c);
 

@@ -317,6 +317,29 @@ glpgp_status glpgp_inverse_iteration(glpgp_backend *b, const glpgp_options *o, g
     return GLPGP_OK;
 }
 
+/* Without a fixed cross the global rotation w -> exp(i c) w is an exact
+ * null direction of every Newton system: the cross of the vertex where the
+ * initial guess is largest (far from any singularity) is fixed to it, which
+ * picks one field of the family (the minimisers' energies, windings and
+ * singularities are the same up to that vertex) and leaves the systems
+ * definite. pin (nv) <- the new Dirichlet set; the backend and the
+ * multigrid are set for it (w host: the initial guess, before |w| = 1). */
+static glpgp_status pin_gauge(const glpgp_mesh *m, glpgp_backend *b, const glpgp_options *o, const double *w,
+                              const double *zero, unsigned char *pin, glpgp_amg **amg)
+{
+    int k = 0;
+    for (int i = 1; i < m->nv; i++)
+        if (hypot(w[2 * i], w[2 * i + 1]) > hypot(w[2 * k], w[2 * k + 1])) k = i;
+    memset(pin, 0, (size_t)m->nv);
+    pin[k] = 1;
+    GLPGP_CHECK(b->ops->set_field(b, zero, pin));
+    GLPGP_CHECK(b->ops->assemble_quadratic(b, GLPGP_ELEM_P1, 1.0));
+    glpgp_amg_destroy(amg);
+    *amg = glpgp_amg_try_create(b, o, pin, NULL, 0.0, "cross field");
+    glpgp_log(GLPGP_LOG_DEBUG, "cross: the global rotation fixed at vertex %d", k);
+    return GLPGP_OK;
+}
+
 /* |w| <- 1 (phase kept; w = 1 where it vanishes) */
 static void normalise(double *w, int nv)
 {
@@ -341,6 +364,7 @@ static glpgp_status surface_cross(const glpgp_mesh *m, glpgp_backend *b, const g
     glpgp_vec *x = NULL, *g = NULL, *d = NULL, *xt = NULL, *work = NULL;
     glpgp_amg *amg = NULL;
     double *zero = NULL, *mass = NULL;
+    unsigned char *pin = NULL;
     const double t0 = glpgp_now();
     *out = NULL;
     GLPGP_CHECK(glpgp_cross_result_create(nv, m->nt, &c));
@@ -374,6 +398,10 @@ static glpgp_status surface_cross(const glpgp_mesh *m, glpgp_backend *b, const g
                   steps, cg);
     }
     GLPGP_CHECK_GOTO(st, op->vec_read(b, x, c->w), fail);
+    if (con->nfixed == 0 && levels) {
+        GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)nv, 1, &pin), fail);
+        GLPGP_CHECK_GOTO(st, pin_gauge(m, b, o, c->w, zero, pin, &amg), fail);
+    }
     normalise(c->w, nv);
     GLPGP_CHECK_GOTO(st, op->vec_write(b, x, c->w), fail);
     if (levels) {
@@ -383,11 +411,7 @@ static glpgp_status surface_cross(const glpgp_mesh *m, glpgp_backend *b, const g
     }
     GLPGP_CHECK_GOTO(st, glpgp_cross_analyze(m, c), fail);
     c->seconds = glpgp_now() - t0;
-    glpgp_log(GLPGP_LOG_INFO,
-              "cross: done in %.2f s: %d singularities (index sum %d/4, Poincare-Hopf %d/4), median |w| = %.4f, "
-              "%d Newton, %ld CG",
-              c->seconds, c->nsing, c->index4_sum, c->index4_expected, c->zabs_median, c->newton_iterations,
-              c->cg_iterations);
+    glpgp_cross_log_done(c);
     goto done;
 fail:
     glpgp_cross_result_destroy(&c);
@@ -403,6 +427,7 @@ done:
     b->sys = NULL;
     free(zero);
     free(mass);
+    free(pin);
     *out = c;
     return st;
 }
