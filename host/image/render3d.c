@@ -1,7 +1,7 @@
 /* image/render3d.c: pictures of a surface's result (glpgp_render3d,
  * glpgp/image.h): an orthographic camera from (azimuth, elevation) fitted
  * to the surface, software rasterised with a z-buffer at 2 x 2 samples per
- * pixel, each sample's triangle and barycentrics kept; then every sample is
+ * pixel (1 above about 2048 x 2048 pixels), each sample's triangle and barycentrics kept; then every sample is
  * shaded (two-sided Lambert of the triangle's normal, smoothed towards the
  * vertex normals where the surface is smooth) and coloured by the kind: the
  * (theta_u, theta_v) grid of the paper's figures read per triangle through
@@ -19,12 +19,15 @@
 #include <stdlib.h>
 #include <string.h>
 
-#define SS 2 /* samples per pixel side */
+/* samples per pixel side: 2 up to this many pixels (about 2048 x 2048), 1
+ * above (the sample buffers take 20 bytes a sample) */
+#define SS_MAX_PIXELS 4200000.0
 
 typedef struct cam3 {
     double right[3], up[3], dir[3]; /* dir: from the surface towards the camera */
     double scale, ox, oy;           /* sample = (p . right - ox) scale, (oy - p . up) scale */
     int W, H;                       /* samples */
+    int ss;                         /* samples per pixel side */
 } cam3;
 
 static double dot3(const double *a, const double *b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
@@ -59,11 +62,11 @@ static void cam_setup(const glpgp_mesh *m, const glpgp_render_options *o, int ma
     int inner = o->size - 2 * margin;
     if (inner < 8) inner = 8;
     const double s = inner / span;
-    c->W = SS * ((int)ceil((x1 - x0) * s - 1e-9) + 2 * margin);
-    c->H = SS * ((int)ceil((y1 - y0) * s - 1e-9) + 2 * margin);
-    if (c->W < SS) c->W = SS;
-    if (c->H < SS) c->H = SS;
-    c->scale = SS * s;
+    const int pw = (int)ceil((x1 - x0) * s - 1e-9) + 2 * margin, ph = (int)ceil((y1 - y0) * s - 1e-9) + 2 * margin;
+    c->ss = (double)pw * ph <= SS_MAX_PIXELS ? 2 : 1;
+    c->W = c->ss * (pw > 1 ? pw : 1);
+    c->H = c->ss * (ph > 1 ? ph : 1);
+    c->scale = c->ss * s;
     c->ox = x0 - margin / s;
     c->oy = y1 + margin / s;
 }
@@ -256,11 +259,11 @@ static void overlays(const glpgp_mesh *m, const glpgp_result *r, const glpgp_ren
             double qa[3], qb[3];
             project(c, m->xyz + 3 * a, qa);
             project(c, m->xyz + 3 * b, qb);
-            const int n = 1 + (int)(hypot(qb[0] - qa[0], qb[1] - qa[1]) / SS * 2.0);
+            const int n = 1 + (int)(hypot(qb[0] - qa[0], qb[1] - qa[1]) / c->ss * 2.0);
             for (int s = 0; s <= n; s++) {
                 double p[3], q[3];
                 for (int e = 0; e < 3; e++) p[e] = m->xyz[3 * a + e] + (m->xyz[3 * b + e] - m->xyz[3 * a + e]) * s / n;
-                if (visible(c, g, p, tol, q)) disc(im, q[0] / SS, q[1] / SS, 0.5 * lw, dark);
+                if (visible(c, g, p, tol, q)) disc(im, q[0] / c->ss, q[1] / c->ss, 0.5 * lw, dark);
             }
         }
     if (!r->cross || !o->singular) return;
@@ -270,7 +273,7 @@ static void overlays(const glpgp_mesh *m, const glpgp_result *r, const glpgp_ren
         const double p[3] = {s->x, s->y, s->z};
         double q[3];
         if (visible(c, g, p, tol, q))
-            disc(im, q[0] / SS, q[1] / SS, rad * (abs(s->index4) > 1 ? 1.4 : 1.0), s->index4 > 0 ? red : blue);
+            disc(im, q[0] / c->ss, q[1] / c->ss, rad * (abs(s->index4) > 1 ? 1.4 : 1.0), s->index4 > 0 ? red : blue);
     }
 }
 
@@ -289,9 +292,9 @@ static glpgp_status resolve(const glpgp_mesh *m, const glpgp_result *r, const gl
         for (int i = 0; i < im->w; i++) {
             double acc[3] = {0.0, 0.0, 0.0};
             int n = 0;
-            for (int sj = 0; sj < SS; sj++)
-                for (int si = 0; si < SS; si++) {
-                    const size_t s = (size_t)(SS * j + sj) * (size_t)c->W + (size_t)(SS * i + si);
+            for (int sj = 0; sj < c->ss; sj++)
+                for (int si = 0; si < c->ss; si++) {
+                    const size_t s = (size_t)(c->ss * j + sj) * (size_t)c->W + (size_t)(c->ss * i + si);
                     const int t = g->tri[s];
                     if (t < 0) continue;
                     if (slot[t] < 0) { /* the triangle's phases, once */
@@ -301,7 +304,7 @@ static glpgp_status resolve(const glpgp_mesh *m, const glpgp_result *r, const gl
                     }
                     const double l1 = g->l1[s], l2 = g->l2[s], l0 = 1.0 - l1 - l2;
                     float col[3];
-                    sample_colour(o, &tp[slot[t]], l0, l1, l2, lw * SS, col);
+                    sample_colour(o, &tp[slot[t]], l0, l1, l2, lw * c->ss, col);
                     if (o->singular && o->kind != GLPGP_IMAGE_ZABS &&
                         ((r->osc[0].singular && r->osc[0].singular[t]) || (r->osc[1].singular && r->osc[1].singular[t])))
                         for (int k = 0; k < 3; k++) col[k] = (float)(0.25 * col[k] + 0.75 * red[k]);
@@ -310,7 +313,7 @@ static glpgp_status resolve(const glpgp_mesh *m, const glpgp_result *r, const gl
                     n++;
                 }
             float *p = im->px + 4 * ((size_t)j * (size_t)im->w + (size_t)i);
-            const double a = (double)n / (SS * SS), bg = o->transparent ? 0.0 : 1.0;
+            const double a = (double)n / (c->ss * c->ss), bg = o->transparent ? 0.0 : 1.0;
             for (int k = 0; k < 3; k++) p[k] = (float)(n ? (acc[k] / n) * a + bg * (1.0 - a) : bg);
             p[3] = (float)(o->transparent ? a : 1.0);
         }
@@ -354,7 +357,7 @@ glpgp_status glpgp_render3d(const glpgp_mesh *m, const glpgp_result *r, const gl
     GLPGP_CHECK_GOTO(st, glpgp_malloc(ns, sizeof(double), &g.depth), done);
     for (size_t s = 0; s < ns; s++) g.tri[s] = -1;
     raster(m, &c, &g);
-    GLPGP_CHECK_GOTO(st, glpgp_image_create(c.W / SS, c.H / SS, 4, &im), done);
+    GLPGP_CHECK_GOTO(st, glpgp_image_create(c.W / c.ss, c.H / c.ss, 4, &im), done);
     GLPGP_CHECK_GOTO(st, resolve(m, r, &o, &c, &g, lw, im), done);
     overlays(m, r, &o, &c, &g, lw, im);
     *out = im;
