@@ -16,6 +16,8 @@
 #include "glpgp/shapes.h"
 #include "glpgp/solve.h"
 #include "glpgp/status.h"
+#include "glpgp/surface.h"
+#include "glpgp/surfsolve.h"
 #include "glpgp/system.h"
 #include "glpgp/util.h"
 #include "glpgp/version.h"

@@ -10,6 +10,7 @@
 #include "glpgp/cross.h"
 #include "glpgp/result.h"
 #include "glpgp/solve.h"
+#include "glpgp/surfsolve.h"
 #include "glpgp/util.h"
 
 #include <math.h>
@@ -678,6 +679,7 @@ static glpgp_status stage_cross_solve(cc *c)
     glpgp_status st = GLPGP_OK;
     glpgp_backend *sb[2] = {NULL, NULL};
     glpgp_cross_result *cr[2] = {NULL, NULL};
+    glpgp_surface_constraints *con = NULL;
     glpgp_options so = c->so;
     glpgp_cl_options clo = {c->opt->device, 0, NULL};
     char name[64];
@@ -691,9 +693,14 @@ static glpgp_status stage_cross_solve(cc *c)
     GLPGP_CHECK_GOTO(st, glpgp_backend_create_opencl(&clo, &sb[0]), done);
     GLPGP_CHECK_GOTO(st, glpgp_backend_create_reference(&sb[1]), done);
     int np[2] = {0, 0}, nm[2] = {0, 0};
+    if (c->m->xyz) GLPGP_CHECK_GOTO(st, glpgp_surface_constraints_create(c->m, so.feature_angle, &con), done);
     for (int s = 0; s < 2; s++) {
-        GLPGP_CHECK_GOTO(st, sb[s]->ops->setup(sb[s], c->sys), done);
-        GLPGP_CHECK_GOTO(st, glpgp_cross_solve(c->m, sb[s], &so, &cr[s]), done);
+        if (c->m->xyz) { /* a surface's (sets the backend up itself) */
+            GLPGP_CHECK_GOTO(st, glpgp_surface_cross_solve(c->m, sb[s], &so, con, &cr[s]), done);
+        } else {
+            GLPGP_CHECK_GOTO(st, sb[s]->ops->setup(sb[s], c->sys), done);
+            GLPGP_CHECK_GOTO(st, glpgp_cross_solve(c->m, sb[s], &so, &cr[s]), done);
+        }
         for (int k = 0; k < cr[s]->nsing; k++) {
             if (cr[s]->sing[k].index4 > 0) np[s]++;
             else nm[s]++;
@@ -706,6 +713,7 @@ static glpgp_status stage_cross_solve(cc *c)
     GLPGP_CHECK_GOTO(st, cmp(c, "cross field energy", &fe[0], &fe[1], 1, 1e-7, 0.0, 0.0), done);
     GLPGP_CHECK_GOTO(st, cmp_counts(c, "cross field singularities", np[0], nm[0], np[1], nm[1]), done);
 done:
+    glpgp_surface_constraints_destroy(&con);
     for (int s = 0; s < 2; s++) {
         glpgp_cross_result_destroy(&cr[s]);
         glpgp_backend_destroy(&sb[s]);
@@ -732,7 +740,12 @@ static glpgp_status prepare(cc *c)
     const glpgp_mesh *m = c->m;
     glpgp_crosscheck *t = c->t;
     glpgp_cl_options clo = {opt->device, 0, NULL};
-    GLPGP_CHECK(glpgp_system_create(m, &c->sys));
+    /* a surface: the cross field's system (its rows turn each corner's value
+     * into the triangle's plane, kernels/coupled_rows.h) */
+    if (m->xyz)
+        GLPGP_CHECK(glpgp_surface_cross_system(m, &c->sys));
+    else
+        GLPGP_CHECK(glpgp_system_create(m, &c->sys));
     c->n2 = (size_t)2 * m->nv;
     c->nm = (size_t)4 * c->sys->nnzb;
     c->nbuf = c->nm > 12 * c->n2 ? c->nm : 12 * c->n2; /* matrices; CG steps: 4 vectors x 3 steps */
@@ -764,9 +777,19 @@ static glpgp_status prepare(cc *c)
     c->so.amg_kcycle_min = glpgp_amg_kcycle_min(c->S[0].b, &c->so);
     c->so.energy = opt->energy;
     long fit = 0;
-    GLPGP_CHECK(glpgp_field_compute(m, c->S[1].b, &c->so, c->field, &fit));
+    if (m->xyz) { /* a surface: a transported field, its boundary and creases fixed */
+        glpgp_surface_constraints *con = NULL;
+        GLPGP_CHECK(glpgp_surface_constraints_create(m, c->so.feature_angle, &con));
+        glpgp_surface_transport(m, 1, c->field);
+        memcpy(c->dir, con->fixed, (size_t)m->nv);
+        t->ndirichlet = con->nfixed;
+        glpgp_surface_constraints_destroy(&con);
+        c->so.field = GLPGP_FIELD_CROSS; /* the whole solve: a surface's default */
+    } else {
+        GLPGP_CHECK(glpgp_field_compute(m, c->S[1].b, &c->so, c->field, &fit));
+        t->ndirichlet = glpgp_dirichlet_set(m, c->field, c->dir);
+    }
     t->field_cg = fit;
-    t->ndirichlet = glpgp_dirichlet_set(m, c->field, c->dir);
     /* z_i = rho exp(i phi), rho in [0.3, 1.3], phi in [0, 2 pi); then r_i in [-1/2, 1/2)^2 */
     unsigned long long seed = opt->seed;
     for (int i = 0; i < m->nv; i++) {

@@ -207,6 +207,7 @@ typedef struct cl_impl {
     const glpgp_system *sys;
     cl_mem xy, tri, rowptr, col, diag, cptr, contrib, vptr, vtri; /* mesh + pattern */
     cl_mem cconj, cfield;  /* coupled cross-field system (sys->cconj): per-corner matching, else 0 */
+    cl_mem ctxy, crot;     /* a surface's triangle planes and corner rotations (sys->ctxy, crot), else 0 */
     cl_mem w, dir;                                                /* field */
     cl_mem size;                                                  /* nv target sizes */
     int sized;                                                    /* set_size given */
@@ -272,7 +273,7 @@ static void release_system(cl_impl *c)
     cl_mem *mems[] = {&c->xy,   &c->tri,  &c->rowptr, &c->col,    &c->diag, &c->cptr,
                       &c->contrib, &c->vptr, &c->vtri, &c->w,      &c->dir,  &c->quad,
                       &c->newton, &c->dinv, &c->s,      &c->part,   &c->bad,  &c->size,
-                      &c->cconj, &c->cfield};
+                      &c->cconj, &c->cfield, &c->ctxy, &c->crot};
     for (size_t i = 0; i < sizeof mems / sizeof mems[0]; i++) release_mem(mems[i]);
     c->pstride = 0;
     c->sized = 0;
@@ -802,7 +803,7 @@ static glpgp_status cl_setup(glpgp_backend *b, const glpgp_system *sys)
     size_t ngr = shape_for(c, 2 * nv > nt ? 2 * nv : nt).groups;
     double need = 4.0 * (3.0 * nt + (nv + 1) + nnzb + nv + (nnzb + 1) + 9.0 * nt + (nv + 1) + 3.0 * nt) +
                   8.0 * (2.0 * nv + 2.0 * nv + 1.0 * nv + 8.0 * nnzb + 4.0 * nv + 8.0 * 2.0 * nv + 2.0 * ngr + GLPGP_NSLOTS) +
-                  1.0 * nv;
+                  1.0 * nv + (sys->ctxy ? 48.0 * nt : 0.0) + (sys->crot ? 48.0 * nt : 0.0);
     const double mib = 1024.0 * 1024.0;
     if (c->other_need > 0.0 && c->other_need + 1.5 * need > (double)c->global_mem)
         return GLPGP_FAIL(GLPGP_ERR_NOMEM,
@@ -838,7 +839,7 @@ static glpgp_status cl_setup(glpgp_backend *b, const glpgp_system *sys)
     c->sys = sys;
     b->sys = sys;
     c->need = need;
-    GLPGP_CHECK(upload(c, &c->xy, m->xy, 2 * nv * sizeof(double)));
+    if (m->xy) GLPGP_CHECK(upload(c, &c->xy, m->xy, 2 * nv * sizeof(double))); /* a surface: none (ctxy) */
     GLPGP_CHECK(upload(c, &c->tri, m->tri, 3 * nt * sizeof(int)));
     GLPGP_CHECK(upload(c, &c->rowptr, sys->rowptr, (nv + 1) * sizeof(int)));
     GLPGP_CHECK(upload(c, &c->col, sys->col, nnzb * sizeof(int)));
@@ -850,6 +851,8 @@ static glpgp_status cl_setup(glpgp_backend *b, const glpgp_system *sys)
     if (sys->cconj) { /* coupled cross-field system: per-corner matching */
         GLPGP_CHECK(upload(c, &c->cconj, sys->cconj, 3 * nt));
         GLPGP_CHECK(upload(c, &c->cfield, sys->cfield, 6 * nt * sizeof(double)));
+        if (sys->ctxy) GLPGP_CHECK(upload(c, &c->ctxy, sys->ctxy, 6 * nt * sizeof(double)));
+        if (sys->crot) GLPGP_CHECK(upload(c, &c->crot, sys->crot, 6 * nt * sizeof(double)));
     }
     GLPGP_CHECK(upload(c, &c->w, NULL, 2 * nv * sizeof(double)));
     GLPGP_CHECK(upload(c, &c->dir, NULL, nv));
@@ -1012,9 +1015,11 @@ static glpgp_status cl_assemble_quadratic(glpgp_backend *b, int kind, double h)
     ARG(k, a++, kd);
     ARG(k, a++, h);
     ARG(k, a++, c->xy);
+    if (c->cconj) ARG(k, a++, c->ctxy);
     ARG(k, a++, c->tri);
     if (c->cconj) {
         ARG(k, a++, c->cconj);
+        ARG(k, a++, c->crot);
         ARG(k, a++, c->cfield);
     } else {
         ARG(k, a++, c->w);
@@ -1051,8 +1056,12 @@ static glpgp_status cl_assemble_newton(glpgp_backend *b, const glpgp_vec *x, dou
     ARG(k, a++, hs);
     ARG(k, a++, inv4e2);
     ARG(k, a++, c->xy);
+    if (c->cconj) ARG(k, a++, c->ctxy);
     ARG(k, a++, c->tri);
-    if (c->cconj) ARG(k, a++, c->cconj);
+    if (c->cconj) {
+        ARG(k, a++, c->cconj);
+        ARG(k, a++, c->crot);
+    }
     ARG(k, a++, x->m);
     ARG(k, a++, c->rowptr);
     ARG(k, a++, c->col);
@@ -1083,8 +1092,12 @@ static glpgp_status penalty_partials(cl_impl *c, const glpgp_vec *x, double inv4
     cl_uint a = 2;
     ARG(k, a++, inv4e2);
     ARG(k, a++, c->xy);
+    if (c->cconj) ARG(k, a++, c->ctxy);
     ARG(k, a++, c->tri);
-    if (c->cconj) ARG(k, a++, c->cconj);
+    if (c->cconj) {
+        ARG(k, a++, c->cconj);
+        ARG(k, a++, c->crot);
+    }
     ARG(k, a++, x->m);
     ARG(k, a++, c->part);
     ARG(k, a++, off);
@@ -1122,8 +1135,12 @@ static glpgp_status cl_gradient(glpgp_backend *b, const glpgp_vec *x, double inv
     cl_uint a = 2;
     ARG(k, a++, inv4e2);
     ARG(k, a++, c->xy);
+    if (c->cconj) ARG(k, a++, c->ctxy);
     ARG(k, a++, c->tri);
-    if (c->cconj) ARG(k, a++, c->cconj);
+    if (c->cconj) {
+        ARG(k, a++, c->cconj);
+        ARG(k, a++, c->crot);
+    }
     ARG(k, a++, x->m);
     ARG(k, a++, c->rowptr);
     ARG(k, a++, c->col);

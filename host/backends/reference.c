@@ -154,7 +154,7 @@ static glpgp_status ref_assemble_quadratic(glpgp_backend *b, int kind, double h)
      * (coupled cross-field system: pulled back through each corner's matching) */
     if (sys->cconj) {
         for (int i = 0; i < sys->nv; i++)
-            glpgp_crow_asm_quad(i, kind, h, r->sized, r->size, m->xy, m->tri, sys->cconj, sys->cfield,
+            glpgp_crow_asm_quad(i, kind, h, r->sized, r->size, m->xy, sys->ctxy, m->tri, sys->cconj, sys->crot, sys->cfield,
                                 sys->rowptr, sys->cptr, sys->contrib, r->quad);
         return GLPGP_OK;
     }
@@ -174,7 +174,7 @@ static glpgp_status ref_assemble_newton(glpgp_backend *b, const glpgp_vec *xv, d
      * DINV_i <- inverse of the 2x2 diagonal block */
     if (sys->cconj) {
         for (int i = 0; i < sys->nv; i++)
-            if (glpgp_crow_asm_newton(i, hess, inv4e2, m->xy, m->tri, sys->cconj, xv->a, sys->rowptr, sys->col,
+            if (glpgp_crow_asm_newton(i, hess, inv4e2, m->xy, sys->ctxy, m->tri, sys->cconj, sys->crot, xv->a, sys->rowptr, sys->col,
                                       sys->diag, sys->vptr, sys->vtri, r->dir, r->quad, r->newton, r->dinv) &&
                 bad < 0)
                 bad = i;
@@ -196,7 +196,7 @@ static double penalty_sum(const glpgp_system *sys, const double *z, double inv4e
     if (!(inv4e2 > 0.0)) return 0.0;
     if (sys->cconj) { /* coupled: at the frame values */
         for (int t = 0; t < sys->nt; t++)
-            p += glpgp_ctri_pen_energy(t, inv4e2, sys->mesh->xy, sys->mesh->tri, sys->cconj, z);
+            p += glpgp_ctri_pen_energy(t, inv4e2, sys->mesh->xy, sys->ctxy, sys->mesh->tri, sys->cconj, sys->crot, z);
         return p;
     }
     for (int t = 0; t < sys->nt; t++) p += glpgp_tri_pen_energy(t, inv4e2, sys->mesh->xy, sys->mesh->tri, z);
@@ -212,7 +212,7 @@ static glpgp_status ref_gradient(glpgp_backend *b, const glpgp_vec *xv, double i
     double e = 0.0;
     if (sys->cconj)
         for (int i = 0; i < sys->nv; i++)
-            glpgp_crow_gradient(i, inv4e2, m->xy, m->tri, sys->cconj, xv->a, sys->rowptr, sys->col, r->quad,
+            glpgp_crow_gradient(i, inv4e2, m->xy, sys->ctxy, m->tri, sys->cconj, sys->crot, xv->a, sys->rowptr, sys->col, r->quad,
                                 sys->vptr, sys->vtri, r->dir, g->a, &e);
     else {
         /* the values of glpgp_row_gradient (the OpenCL kernel's rows) and of

@@ -170,6 +170,9 @@ int glpgp_cmd_figure(int argc, char **argv)
                    "grid texture and the quad mesh (valence 3 blue, 5+ red) side by side");
     glpgp_opts_add_picture(&t, &ro, 1);
     glpgp_opts_add_solver(&t, &so);
+    int field_seen = 0;
+    for (int k = 0; k < t.n; k++)
+        if (t.opt[k].name && !strcmp(t.opt[k].name, "--field")) t.opt[k].seen = &field_seen;
     double size_box[4];
     glpgp_opts_add_size_image(&t, size_box);
     glpgp_opts_add_backend(&t, &backend, &device);
@@ -194,6 +197,12 @@ int glpgp_cmd_figure(int argc, char **argv)
     double t0 = glpgp_now();
     glpgp_size_image *simg = NULL; /* --size-field IMAGE */
     if ((rc = glpgp_cli_load_input(sub, in, &mo, &m, NULL)) >= 0) return rc;
+    if (m->xyz && fig1) {
+        rc = glpgp_cli_usage_error(sub, "--cross: the quad mesh of a surface is not implemented yet (without "
+                                        "--cross: naive PGP and GL-PGP side by side)");
+        goto done;
+    }
+    if (m->xyz && !field_seen) so.field = GLPGP_FIELD_CROSS; /* a surface's default */
     if ((rc = glpgp_cli_size_image(&so, m, size_box, &mo, &simg)) >= 0) goto done;
     rc = GLPGP_EXIT_FAIL;
     if (glpgp_backend_select(backend, device, verbosity > 0, &b) != GLPGP_OK) goto err;

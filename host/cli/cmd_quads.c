@@ -64,6 +64,11 @@ int glpgp_cmd_extract(int argc, char **argv)
     glpgp_quad_quality qq;
     rc = GLPGP_EXIT_FAIL;
     if (glpgp_read_result(in, &m, &r) != GLPGP_OK) goto fail;
+    if (m->xyz) {
+        GLPGP_FAIL(GLPGP_ERR_UNSUPPORTED, "%s: a surface's result: quad extraction on surfaces is not implemented yet",
+                   in);
+        goto fail;
+    }
     if ((rc = glpgp_cli_check_elements(in, m->nt, "triangles", 0, max_elements)) >= 0) goto done;
     rc = GLPGP_EXIT_FAIL;
     if (size > 0) r->size = size;
@@ -161,7 +166,7 @@ int glpgp_cmd_quality(int argc, char **argv)
     if (glpgp_quads_read_msh(in, &q) != GLPGP_OK) goto fail;
     if ((rc = glpgp_cli_check_elements(in, q->nf, "faces", 0, max_elements)) >= 0) goto done;
     rc = GLPGP_EXIT_FAIL;
-    if (domain && glpgp_mesh_read(domain, &dm) != GLPGP_OK) goto fail;
+    if (domain && glpgp_mesh_read_ex(domain, GLPGP_READ_PLANAR_FACE, &dm) != GLPGP_OK) goto fail;
     if (dm && (rc = glpgp_cli_check_elements(domain, dm->nt, "triangles", 0, max_elements)) >= 0) goto done;
     rc = GLPGP_EXIT_FAIL;
     {

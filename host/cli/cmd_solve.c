@@ -13,6 +13,7 @@
 #include "glpgp/cross.h"
 #include "glpgp/quads.h"
 #include "glpgp/solve.h"
+#include "glpgp/surface.h"
 #include "glpgp/util.h"
 
 #include <math.h>
@@ -40,6 +41,8 @@ typedef struct solve_cli {
     double size_box[4];  /* --size-image-box */
     int gather_max;      /* --gather-max: most vertices gathered to rank 0 (distributed PETSc runs) */
     int pieces;          /* --out *.pvtu: one .vtu piece per rank and the index */
+    int field_seen;      /* --field given (else a surface takes the cross field) */
+    int planar_face;     /* --planar-face: a 3D input's largest face in a coordinate plane */
     int gather;          /* distributed: the whole result is gathered to rank 0 (set on every rank) */
     double t_refine;     /* seconds of the refinement for the local size (prepare) */
 } solve_cli;
@@ -66,7 +69,13 @@ static void build(glpgp_opts *t, solve_cli *c)
                     "NAME is one of square, disk, annulus, lshape), or a mask image (.png, .tif,\n"
                     ".exr, ...), meshed first (see 'Mask image input').\n");
     glpgp_opts_add_solver(t, &c->o);
+    for (int k = 0; k < t->n; k++)
+        if (t->opt[k].name && !strcmp(t->opt[k].name, "--field")) t->opt[k].seen = &c->field_seen;
     glpgp_opts_add_size_image(t, c->size_box);
+    glpgp_opt_flag(t, "--planar-face", &c->planar_face, 1,
+                   "a 3D input (x, y and z vary): solve its largest face in a\n"
+                   "coordinate plane (an extruded CAD part's section) instead of the\n"
+                   "surface");
     glpgp_opt_flag(t, "--no-refine", &c->no_refine, 1,
                    "solve the input as it is: where its triangles are coarser\n"
                    "than the local h / 4 (auto, iso, IMAGE) the local size is limited\n"
@@ -228,6 +237,9 @@ static void print_summary(const solve_cli *c, const char *input, const glpgp_mes
     if (u->capped_levels + v->capped_levels)
         printf("  unconverged    %d eps level(s) stopped at the Newton cap (u %d, v %d)\n",
                u->capped_levels + v->capped_levels, u->capped_levels, v->capped_levels);
+    if (m->surf)
+        printf("  surface        chi %d, genus %d, %d boundary loop(s), %d component(s)\n", m->surf->euler,
+               m->surf->genus, m->nloops, m->surf->ncomponents);
     if (c->refined.rounds)
         printf("  refined        %d -> %d vertices, %d -> %d triangles (%d rounds: too coarse for the local h)\n",
                c->refined.nv0, c->refined.nv, c->refined.nt0, c->refined.nt, c->refined.rounds);
@@ -330,7 +342,24 @@ static int prepare(solve_cli *c, const char *input, glpgp_mesh **pm, glpgp_size_
     *pm = NULL;
     *psimg = NULL;
     c->mo.quad_size = c->o.size;
-    if ((rc = glpgp_cli_load_input("solve", input, &c->mo, &m, NULL)) >= 0) return rc;
+    if ((rc = glpgp_cli_load_input_ex("solve", input, &c->mo, c->planar_face ? GLPGP_READ_PLANAR_FACE : 0, &m,
+                                      NULL)) >= 0)
+        return rc;
+    if (m->xyz) {
+        /* a surface: the cross field unless --field says otherwise; no quads yet */
+        if (!c->field_seen) c->o.field = GLPGP_FIELD_CROSS;
+        const double diag = glpgp_mesh_diagonal(m), hd = glpgp_default_size(m, &c->o);
+        if (!(c->o.size > 0.0) && hd > diag / GLPGP_SIZE_DEFAULT_MIN_QUADS)
+            glpgp_log(GLPGP_LOG_WARNING,
+                      "%s: the surface is too coarse for the default size (mean edge %.3g): h = 10 mean edges = "
+                      "%.4g gives a handful of quads; surfaces are not refined yet: give a finer mesh (or --size)",
+                      input, m->mean_edge, hd);
+        if (c->quads) {
+            glpgp_mesh_destroy(&m);
+            return glpgp_cli_usage_error("solve", "--quads: quad extraction on surfaces is not implemented yet (the "
+                                                  "result's .vtu holds the parametrization)");
+        }
+    }
     if ((rc = glpgp_cli_size_image(&c->o, m, c->size_box, &c->mo, psimg)) >= 0) {
         glpgp_mesh_destroy(&m);
         return rc;

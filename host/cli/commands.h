@@ -37,6 +37,10 @@ int glpgp_cli_size_image(glpgp_options *o, const glpgp_mesh *m, const double box
  * shape:..., 1 otherwise). */
 int glpgp_cli_load_input(const char *cmd, const char *input, const glpgp_mask_options *mo,
                          glpgp_mesh **m, int *is_mask);
+/* glpgp_cli_load_input with glpgp_mesh_read_ex's flags for mesh files
+ * (GLPGP_READ_PLANAR_FACE). */
+int glpgp_cli_load_input_ex(const char *cmd, const char *input, const glpgp_mask_options *mo, int read_flags,
+                            glpgp_mesh **m, int *is_mask);
 
 /* --max-elements: -1 when count <= max (max <= 0: the default), else print
  * "glpgp: error: WHAT: [about ]COUNT ITEMS: more than the limit of MAX

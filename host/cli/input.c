@@ -1,6 +1,7 @@
 /* cli/input.c: the one INPUT loader of the CLI: a built-in shape
  * (shape:NAME[:N]), a mask image (meshed through the image layer) or a
- * triangle mesh file (.obj / .msh), for every command that takes a domain. */
+ * triangle mesh file (.obj / .msh / .stl / .ply / .off: a planar domain or a
+ * surface), for every command that takes a domain. */
 #include "commands.h"
 
 #include "cli.h"
@@ -47,6 +48,12 @@ int glpgp_cli_check_picture_size(const char *cmd, int size, int panels, long lon
 int glpgp_cli_load_input(const char *cmd, const char *input, const glpgp_mask_options *mo,
                          glpgp_mesh **m, int *is_mask)
 {
+    return glpgp_cli_load_input_ex(cmd, input, mo, 0, m, is_mask);
+}
+
+int glpgp_cli_load_input_ex(const char *cmd, const char *input, const glpgp_mask_options *mo, int read_flags,
+                            glpgp_mesh **m, int *is_mask)
+{
     *m = NULL;
     if (is_mask) *is_mask = 0;
     int rc;
@@ -78,7 +85,7 @@ int glpgp_cli_load_input(const char *cmd, const char *input, const glpgp_mask_op
                   inf.seconds_read + inf.seconds_contour + inf.seconds_mesh);
         return -1;
     }
-    if (glpgp_mesh_read(input, m) != GLPGP_OK) return glpgp_cli_fail();
+    if (glpgp_mesh_read_ex(input, read_flags, m) != GLPGP_OK) return glpgp_cli_fail();
     if ((rc = glpgp_cli_check_elements(input, (*m)->nt, "triangles", 0, mo->max_triangles)) >= 0) {
         glpgp_mesh_destroy(m);
         return rc;

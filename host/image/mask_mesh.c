@@ -474,7 +474,7 @@ glpgp_status glpgp_mask_mesh(const char *path, const glpgp_mask_options *opt, gl
         if (from_mesh) {
             /* a triangle mesh (a CAD export's slivers): its boundary loops */
             glpgp_mesh *in = NULL;
-            GLPGP_CHECK(glpgp_mesh_read(path, &in));
+            GLPGP_CHECK(glpgp_mesh_read_ex(path, GLPGP_READ_PLANAR_FACE, &in));
             st = glpgp_polygons_from_mesh(in, &p);
             glpgp_mesh_destroy(&in);
             GLPGP_CHECK(st);

@@ -24,6 +24,8 @@ void glpgp_render_options_default(glpgp_render_options *o)
     o->boundary = 1;
     o->singular = 1;
     o->margin = -1;
+    o->azimuth = 35.0;
+    o->elevation = 25.0;
 }
 
 static const char *const kind_names[] = {"grid", "checker", "zabs", "field", "theta", "cross", NULL};
@@ -120,6 +122,7 @@ glpgp_status glpgp_render(const glpgp_mesh *m, const glpgp_result *r, const glpg
 {
     if (!m || !r || !out) return GLPGP_FAIL(GLPGP_ERR_ARG, "glpgp_render: NULL argument");
     *out = NULL;
+    if (m->xyz) return glpgp_render3d(m, r, opt, out); /* a surface (image/render3d.c) */
     if (r->nv != m->nv || r->nt != m->nt)
         return GLPGP_FAIL(GLPGP_ERR_ARG, "render: result (%d vertices, %d triangles) does not match "
                                          "the mesh (%d, %d)", r->nv, r->nt, m->nv, m->nt);

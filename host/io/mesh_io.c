@@ -5,9 +5,11 @@
  * lies in, weld unwelded pieces and hand the triangles to
  * glpgp_mesh_create for validation. */
 #include "glpgp/io.h"
+#include "glpgp/surface.h"
 #include "glpgp/util.h"
 
 #include "msh.h"
+#include "raw_mesh.h"
 #include "text_reader.h"
 
 #include <ctype.h>
@@ -18,43 +20,6 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
-
-/* ---- raw (unvalidated) mesh: 3D points and triangles --------------------- */
-
-typedef struct raw_mesh {
-    double *xyz;
-    size_t nv, cap_v;
-    int *tri;
-    size_t nt, cap_t;
-    /* OBJ faces of more than 3 corners, triangulated once the plane is known
-     * (finish): corners poly[pstart[k] .. pstart[k + 1]), the file line */
-    int *poly;
-    size_t npc, cap_pc;
-    long *pstart, *pline;
-    size_t npoly, cap_ps, cap_pl;
-    long long ear_work; /* corner tests of the ear clipping so far (bounded) */
-    int soup;           /* STL: no shared vertices by design (welding is not news) */
-} raw_mesh;
-
-static void raw_free(raw_mesh *r)
-{
-    free(r->xyz);
-    free(r->tri);
-    free(r->poly);
-    free(r->pstart);
-    free(r->pline);
-    memset(r, 0, sizeof *r);
-}
-
-static glpgp_status raw_add_tri(raw_mesh *r, int a, int b, int c)
-{
-    GLPGP_CHECK(glpgp_grow(&r->tri, &r->cap_t, r->nt + 1, 3 * sizeof(int)));
-    int *t = r->tri + 3 * r->nt++;
-    t[0] = a;
-    t[1] = b;
-    t[2] = c;
-    return GLPGP_OK;
-}
 
 /* Welding of unwelded meshes. Exports from CAD and mesh tools often repeat a
  * vertex per triangle or per surface patch (STL-derived OBJ files, MSH files
@@ -73,7 +38,7 @@ static glpgp_status raw_add_tri(raw_mesh *r, int a, int b, int c)
  * renumbered; *nv updated; *pieces_before / *pieces_after the counts of
  * pieces. */
 typedef struct xy_index {
-    double x, y;
+    double x, y, z; /* z = 0 for planar coordinates: the 2D order */
     int i;
 } xy_index;
 
@@ -82,6 +47,7 @@ static int cmp_xy_index(const void *a, const void *b)
     const xy_index *p = a, *q = b;
     if (p->x != q->x) return p->x < q->x ? -1 : 1;
     if (p->y != q->y) return p->y < q->y ? -1 : 1;
+    if (p->z != q->z) return p->z < q->z ? -1 : 1;
     return (p->i > q->i) - (p->i < q->i);
 }
 
@@ -98,7 +64,7 @@ static int count_pieces(int nv, int nt, const int *tri, int *parent)
     return n;
 }
 
-static glpgp_status weld(int *nv, double *xy, int nt, int *tri, int *nmerged, int *pieces_before,
+static glpgp_status weld(int *nv, double *xy, int dim, int nt, int *tri, int *nmerged, int *pieces_before,
                          int *pieces_after)
 {
     glpgp_status st = GLPGP_OK;
@@ -114,14 +80,14 @@ static glpgp_status weld(int *nv, double *xy, int nt, int *tri, int *nmerged, in
     GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)n, sizeof *srt, &srt), done);
     for (int v = 0; v < n; v++) {
         piece[v] = glpgp_uf_find(piece, v);
-        srt[v] = (xy_index){xy[2 * v], xy[2 * v + 1], v};
+        srt[v] = (xy_index){xy[dim * v], xy[dim * v + 1], dim == 3 ? xy[3 * v + 2] : 0.0, v};
         to[v] = v;
     }
     qsort(srt, (size_t)n, sizeof *srt, cmp_xy_index);
     int merged = 0;
     for (int i = 0; i < n;) {
         int j = i + 1;
-        while (j < n && srt[j].x == srt[i].x && srt[j].y == srt[i].y) j++;
+        while (j < n && srt[j].x == srt[i].x && srt[j].y == srt[i].y && srt[j].z == srt[i].z) j++;
         const int first = srt[i].i; /* lowest index of the group */
         for (int k = i + 1; k < j; k++)
             if (piece[srt[k].i] != piece[first]) {
@@ -136,8 +102,7 @@ static glpgp_status weld(int *nv, double *xy, int nt, int *tri, int *nmerged, in
         int m = 0;
         for (int v = 0; v < n; v++)
             if (to[v] == v) {
-                xy[2 * m] = xy[2 * v];
-                xy[2 * m + 1] = xy[2 * v + 1];
+                for (int c = 0; c < dim; c++) xy[dim * m + c] = xy[dim * v + c];
                 renum[v] = m++;
             }
         for (int v = 0; v < n; v++) renum[v] = renum[to[v]];
@@ -335,10 +300,69 @@ static int used_vertices(const raw_mesh *r, int *map, double lo[3], double hi[3]
     return nv;
 }
 
-/* Removal of unused vertices, the plane (z = const, or y or x = const; of a
- * 3D mesh its largest face in one), triangulation of polygon faces, welding,
- * then glpgp_mesh_create. */
-static glpgp_status finish(const char *path, raw_mesh *r, glpgp_mesh **out)
+/* What the welding did (nothing when merged is 0): an info line for an STL
+ * soup (welding is what it needs), a warning for any other format. */
+static void weld_log(const char *path, const raw_mesh *r, int merged, int nv, int before, int after)
+{
+    if (merged && r->soup)
+        glpgp_log(GLPGP_LOG_INFO, "%s: %d STL vertices welded into %d, %d pieces -> %d", path, merged + nv, nv,
+                  before, after);
+    else if (merged)
+        glpgp_log(GLPGP_LOG_WARNING,
+                  "%s: %d vertices repeat the coordinates of a vertex of another piece of the mesh (an "
+                  "unwelded mesh): merged, %d pieces -> %d",
+                  path, merged, before, after);
+}
+
+/* Newell normal of polygon face k: the axis (0, 1, 2) of its largest
+ * component, the face's plane is projected along it for the ear clipping. */
+static int face_axis(const raw_mesh *r, size_t k)
+{
+    const int *c = r->poly + r->pstart[k];
+    const int n = (int)(r->pstart[k + 1] - r->pstart[k]);
+    double nn[3] = {0.0, 0.0, 0.0};
+    for (int i = 0; i < n; i++) {
+        const double *p = r->xyz + 3 * (size_t)c[i], *q = r->xyz + 3 * (size_t)c[(i + 1) % n];
+        nn[0] += (p[1] - q[1]) * (p[2] + q[2]);
+        nn[1] += (p[2] - q[2]) * (p[0] + q[0]);
+        nn[2] += (p[0] - q[0]) * (p[1] + q[1]);
+    }
+    const double a0 = fabs(nn[0]), a1 = fabs(nn[1]), a2 = fabs(nn[2]);
+    return a2 >= a1 && a2 >= a0 ? 2 : a1 >= a0 ? 1 : 0;
+}
+
+/* A 3D surface (glpgp/surface.h): polygon faces ear-clipped in the plane
+ * their normal is closest to (cyclic axes, so the face keeps its
+ * orientation), unused vertices dropped, pieces welded in 3D, then
+ * glpgp_mesh_create_surface. map[] from used_vertices. */
+static glpgp_status finish_surface(const char *path, raw_mesh *r, int *map, int nv, glpgp_mesh **out)
+{
+    glpgp_status st = GLPGP_OK;
+    double *xyz = NULL;
+    for (size_t k = 0; k < r->npoly; k++) {
+        const int ax = face_axis(r, k);
+        GLPGP_CHECK(triangulate_face(path, r, k, (ax + 1) % 3, (ax + 2) % 3));
+    }
+    if (r->nt > (size_t)GLPGP_IO_MAX_ITEMS)
+        return GLPGP_FAIL(GLPGP_ERR_LIMIT, "%s: more than %ld triangles", path, (long)GLPGP_IO_MAX_ITEMS);
+    GLPGP_CHECK(glpgp_malloc((size_t)nv * 3, sizeof *xyz, &xyz));
+    for (size_t v = 0; v < r->nv; v++)
+        if (map[v] >= 0) memcpy(xyz + 3 * map[v], r->xyz + 3 * v, 3 * sizeof(double));
+    for (size_t i = 0; i < 3 * r->nt; i++) r->tri[i] = map[r->tri[i]];
+    int merged = 0, before = 0, after = 0;
+    GLPGP_CHECK_GOTO(st, weld(&nv, xyz, 3, (int)r->nt, r->tri, &merged, &before, &after), done);
+    weld_log(path, r, merged, nv, before, after);
+    if ((st = glpgp_mesh_create_surface(nv, xyz, (int)r->nt, r->tri, out)) != GLPGP_OK) io_name_error(path, st);
+done:
+    free(xyz);
+    return st;
+}
+
+/* Removal of unused vertices, the plane (z = const, or y or x = const) or,
+ * when x, y and z vary, the surface (finish_surface; with
+ * GLPGP_READ_PLANAR_FACE its largest face in a coordinate plane instead),
+ * triangulation of polygon faces, welding, then glpgp_mesh_create. */
+static glpgp_status finish(const char *path, raw_mesh *r, int flags, glpgp_mesh **out)
 {
     glpgp_status st = GLPGP_OK;
     int *map = NULL;
@@ -349,10 +373,16 @@ static glpgp_status finish(const char *path, raw_mesh *r, glpgp_mesh **out)
     int nv = used_vertices(r, map, lo, hi);
     for (int c = 0; c < 3; c++) d[c] = hi[c] - lo[c];
     /* the plane: z = const, else y = const or x = const (a part drawn in a
-     * side view), solved in its two varying coordinates; of a 3D surface
-     * (triangles only) its largest face in one of them */
+     * side view), solved in its two varying coordinates; a 3D surface: the
+     * surface path, or (GLPGP_READ_PLANAR_FACE, triangles only) its largest
+     * face in one of them */
     double size = fmax(d[0], fmax(d[1], d[2]));
-    if (d[0] > 1e-9 * size && d[1] > 1e-9 * size && d[2] > 1e-9 * size && r->npoly == 0) {
+    const int three_d = d[0] > 1e-9 * size && d[1] > 1e-9 * size && d[2] > 1e-9 * size;
+    if (three_d && !(flags & GLPGP_READ_PLANAR_FACE)) {
+        st = finish_surface(path, r, map, nv, out);
+        goto done;
+    }
+    if (three_d && r->npoly == 0) {
         int found = 0;
         GLPGP_CHECK_GOTO(st, select_face(path, r, &found), done);
         if (found) {
@@ -392,15 +422,8 @@ static glpgp_status finish(const char *path, raw_mesh *r, glpgp_mesh **out)
     }
     for (size_t i = 0; i < 3 * r->nt; i++) r->tri[i] = map[r->tri[i]];
     int merged = 0, before = 0, after = 0;
-    GLPGP_CHECK_GOTO(st, weld(&nv, xy, (int)r->nt, r->tri, &merged, &before, &after), done);
-    if (merged && r->soup)
-        glpgp_log(GLPGP_LOG_INFO, "%s: %d STL vertices welded into %d, %d pieces -> %d", path, merged + nv, nv,
-                  before, after);
-    else if (merged)
-        glpgp_log(GLPGP_LOG_WARNING,
-                  "%s: %d vertices repeat the coordinates of a vertex of another piece of the mesh (an "
-                  "unwelded mesh): merged, %d pieces -> %d",
-                  path, merged, before, after);
+    GLPGP_CHECK_GOTO(st, weld(&nv, xy, 2, (int)r->nt, r->tri, &merged, &before, &after), done);
+    weld_log(path, r, merged, nv, before, after);
     if ((st = glpgp_mesh_create(nv, xy, (int)r->nt, r->tri, out)) != GLPGP_OK)
         io_name_error(path, st); /* "FILE: the mesh folds over itself ..." */
 done:
@@ -754,7 +777,12 @@ done:
 
 static int mesh_kind(const char *path)
 {
-    return glpgp_has_ext(path, ".obj") ? 1 : glpgp_has_ext(path, ".msh") ? 2 : glpgp_has_ext(path, ".stl") ? 3 : 0;
+    return glpgp_has_ext(path, ".obj")   ? 1
+           : glpgp_has_ext(path, ".msh") ? 2
+           : glpgp_has_ext(path, ".stl") ? 3
+           : glpgp_has_ext(path, ".ply") ? 4
+           : glpgp_has_ext(path, ".off") ? 5
+                                         : 0;
 }
 
 /* Lower-case extension of path (without the dot) into ext; "" when none. */
@@ -769,7 +797,9 @@ static void path_ext(const char *path, char *ext, size_t n)
     ext[i] = '\0';
 }
 
-glpgp_status glpgp_mesh_read(const char *path, glpgp_mesh **out)
+glpgp_status glpgp_mesh_read(const char *path, glpgp_mesh **out) { return glpgp_mesh_read_ex(path, 0, out); }
+
+glpgp_status glpgp_mesh_read_ex(const char *path, int flags, glpgp_mesh **out)
 {
     glpgp_status st = GLPGP_OK;
     raw_mesh r;
@@ -781,7 +811,8 @@ glpgp_status glpgp_mesh_read(const char *path, glpgp_mesh **out)
     if (!kind) {
         char ext[16];
         path_ext(path, ext, sizeof ext);
-        return GLPGP_FAIL(GLPGP_ERR_ARG, "%s: unknown mesh file extension '%s' (supported: .obj, .msh, .stl)", path, ext);
+        return GLPGP_FAIL(GLPGP_ERR_ARG,
+                          "%s: unknown mesh file extension '%s' (supported: .obj, .msh, .stl, .ply, .off)", path, ext);
     }
     if (kind == 1) {
         text_reader tr;
@@ -791,11 +822,15 @@ glpgp_status glpgp_mesh_read(const char *path, glpgp_mesh **out)
         if (st != GLPGP_OK) glpgp_error_push_trace(__FILE__, __LINE__);
     } else if (kind == 2) {
         st = read_msh(path, &r);
+    } else if (kind == 4) {
+        st = glpgp_read_ply(path, &r);
+    } else if (kind == 5) {
+        st = glpgp_read_off(path, &r);
     } else {
         st = read_stl(path, &r);
         r.soup = 1;
     }
-    if (st == GLPGP_OK) GLPGP_CHECK_GOTO(st, finish(path, &r, out), done);
+    if (st == GLPGP_OK) GLPGP_CHECK_GOTO(st, finish(path, &r, flags, out), done);
 done:
     raw_free(&r);
     return st;
@@ -836,7 +871,12 @@ glpgp_status glpgp_mesh_from_arrays(const char *name, int nv, const double *x, i
 static void write_obj(FILE *f, const glpgp_mesh *m)
 {
     fprintf(f, "# glpgp mesh: %d vertices, %d triangles\n", m->nv, m->nt);
-    for (int v = 0; v < m->nv; v++) fprintf(f, "v %.17g %.17g 0\n", m->xy[2 * v], m->xy[2 * v + 1]);
+    for (int v = 0; v < m->nv; v++) {
+        if (m->xyz)
+            fprintf(f, "v %.17g %.17g %.17g\n", m->xyz[3 * v], m->xyz[3 * v + 1], m->xyz[3 * v + 2]);
+        else
+            fprintf(f, "v %.17g %.17g 0\n", m->xy[2 * v], m->xy[2 * v + 1]);
+    }
     for (int t = 0; t < m->nt; t++)
         fprintf(f, "f %d %d %d\n", m->tri[3 * t] + 1, m->tri[3 * t + 1] + 1, m->tri[3 * t + 2] + 1);
 }
@@ -844,11 +884,20 @@ static void write_obj(FILE *f, const glpgp_mesh *m)
 static void write_msh(FILE *f, const glpgp_mesh *m)
 {
     fprintf(f, "$MeshFormat\n4.1 0 %d\n$EndMeshFormat\n", (int)sizeof(size_t));
-    fprintf(f, "$Entities\n0 0 1 0\n1 %.17g %.17g 0 %.17g %.17g 0 0 0\n$EndEntities\n", m->bbox[0], m->bbox[1],
-            m->bbox[2], m->bbox[3]);
+    if (m->xyz)
+        fprintf(f, "$Entities\n0 0 1 0\n1 %.17g %.17g %.17g %.17g %.17g %.17g 0 0\n$EndEntities\n", m->bbox3[0],
+                m->bbox3[1], m->bbox3[2], m->bbox3[3], m->bbox3[4], m->bbox3[5]);
+    else
+        fprintf(f, "$Entities\n0 0 1 0\n1 %.17g %.17g 0 %.17g %.17g 0 0 0\n$EndEntities\n", m->bbox[0], m->bbox[1],
+                m->bbox[2], m->bbox[3]);
     fprintf(f, "$Nodes\n1 %d 1 %d\n2 1 0 %d\n", m->nv, m->nv, m->nv);
     for (int v = 0; v < m->nv; v++) fprintf(f, "%d\n", v + 1);
-    for (int v = 0; v < m->nv; v++) fprintf(f, "%.17g %.17g 0\n", m->xy[2 * v], m->xy[2 * v + 1]);
+    for (int v = 0; v < m->nv; v++) {
+        if (m->xyz)
+            fprintf(f, "%.17g %.17g %.17g\n", m->xyz[3 * v], m->xyz[3 * v + 1], m->xyz[3 * v + 2]);
+        else
+            fprintf(f, "%.17g %.17g 0\n", m->xy[2 * v], m->xy[2 * v + 1]);
+    }
     fprintf(f, "$EndNodes\n$Elements\n1 %d 1 %d\n2 1 2 %d\n", m->nt, m->nt, m->nt);
     for (int t = 0; t < m->nt; t++)
         fprintf(f, "%d %d %d %d\n", t + 1, m->tri[3 * t] + 1, m->tri[3 * t + 1] + 1, m->tri[3 * t + 2] + 1);
@@ -859,10 +908,10 @@ glpgp_status glpgp_output_set_mesh(glpgp_output_set *s, const glpgp_mesh *m, con
 {
     if (!m || !path) return GLPGP_FAIL(GLPGP_ERR_ARG, "glpgp_mesh_write: NULL argument");
     int kind = mesh_kind(path);
-    if (!kind) {
+    if (!kind || kind >= 4) {
         char ext[16];
         path_ext(path, ext, sizeof ext);
-        return GLPGP_FAIL(GLPGP_ERR_ARG, "%s: unknown mesh file extension '%s' (supported: .obj, .msh, .stl)", path, ext);
+        return GLPGP_FAIL(GLPGP_ERR_ARG, "%s: cannot write meshes as '%s' (supported: .obj, .msh)", path, ext);
     }
     FILE *f;
     GLPGP_CHECK(glpgp_output_set_open(s, path, &f));

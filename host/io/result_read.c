@@ -5,6 +5,7 @@
  * mesh and the result. */
 #include "glpgp/io.h"
 #include "glpgp/cross.h"
+#include "glpgp/surface.h"
 
 #include "text_reader.h"
 #include "vtu.h"
@@ -19,7 +20,7 @@ typedef struct raw_result {
     double *xyz;       /* 3 * nv */
     long long *tri;    /* 3 * nt */
     double *z[2];      /* 2 * nv each */
-    double *field;     /* 2 * nv (U), may be NULL */
+    double *field;     /* 3 * nv (U as written: a 3D vector), may be NULL */
     double *dir[2];    /* nv each, may be NULL */
     double *cross;     /* 2 * nv (cross field w), may be NULL */
     int coupled;       /* a cross_coupled cell array was present (coupled solve) */
@@ -55,6 +56,8 @@ static glpgp_status assemble(const char *path, raw_result *w, glpgp_mesh **mout,
                           "write one with 'glpgp solve ... --out FILE.vtk'",
                           path);
     const int nv = (int)w->nv, nt = (int)w->nt;
+    int flat = 1; /* every z 0: a planar result, else a surface's */
+    for (int i = 0; i < nv; i++) flat &= w->xyz[3 * i + 2] == 0.0;
     GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)2 * nv, sizeof *xy, &xy), done);
     GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)3 * nt, sizeof *tri, &tri), done);
     for (int i = 0; i < nv; i++) {
@@ -69,7 +72,8 @@ static glpgp_status assemble(const char *path, raw_result *w, glpgp_mesh **mout,
         }
         tri[t] = (int)w->tri[t];
     }
-    if ((st = glpgp_mesh_create(nv, xy, nt, tri, &m)) != GLPGP_OK) {
+    if ((st = flat ? glpgp_mesh_create(nv, xy, nt, tri, &m) : glpgp_mesh_create_surface(nv, w->xyz, nt, tri, &m)) !=
+        GLPGP_OK) {
         io_name_error(path, st);
         goto done;
     }
@@ -81,7 +85,16 @@ static glpgp_status assemble(const char *path, raw_result *w, glpgp_mesh **mout,
     GLPGP_CHECK_GOTO(st, glpgp_result_create(nv, nt, &res), done);
     res->size = w->h;
     res->backend = "file";
-    if (w->field) memcpy(res->field, w->field, (size_t)2 * nv * sizeof(double));
+    for (int i = 0; i < nv && w->field; i++) {
+        if (m->surf) { /* the 3D vector's angle in the vertex's frame (the writer's inverse) */
+            const double a = glpgp_surface_vertex_angle(m, i, w->field + 3 * i);
+            res->field[2 * i] = cos(a);
+            res->field[2 * i + 1] = sin(a);
+        } else {
+            res->field[2 * i] = w->field[3 * i];
+            res->field[2 * i + 1] = w->field[3 * i + 1];
+        }
+    }
     for (int k = 0; k < 2; k++) {
         glpgp_osc_result *o = &res->osc[k];
         memcpy(o->z, w->z[k], (size_t)2 * nv * sizeof(double));
@@ -368,11 +381,7 @@ static glpgp_status read_legacy(text_reader *tr, raw_result *w)
             } else if (is_dir) {
                 w->dir[name[10] == 'v'] = tmp;
             } else if (is_field) {
-                for (long long i = 0; i < n; i++) { /* (x, y, 0) -> (x, y) in place */
-                    tmp[2 * i] = tmp[3 * i];
-                    tmp[2 * i + 1] = tmp[3 * i + 1];
-                }
-                w->field = tmp;
+                w->field = tmp; /* 3D vectors: to the plane or the vertices' frames in assemble */
             }
             tmp = NULL;
         } else {
@@ -448,10 +457,6 @@ static glpgp_status read_vtu(text_reader *tr, const char *first_line, raw_result
             GLPGP_CHECK(vtu_read_array(&v, a, (size_t)(2 * w->nv), &w->z[a == zv], NULL));
         } else if (a == fu) {
             GLPGP_CHECK(vtu_read_array(&v, a, (size_t)(3 * w->nv), &w->field, NULL));
-            for (long long k = 0; k < w->nv; k++) {
-                w->field[2 * k] = w->field[3 * k];
-                w->field[2 * k + 1] = w->field[3 * k + 1];
-            }
         } else {
             GLPGP_CHECK(vtu_read_array(&v, a, (size_t)w->nv, &w->dir[a == dv], NULL));
         }

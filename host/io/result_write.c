@@ -6,6 +6,8 @@
 #include "glpgp/cross.h"
 #include "glpgp/kinds.h"
 #include "glpgp/phase.h"
+#include "glpgp/surface.h"
+#include "glpgp/surfsolve.h"
 #include "glpgp/util.h"
 
 #include "names.h"
@@ -35,13 +37,36 @@ static double cross_alpha(const double *w)
     return a < 0.0 ? a + GLPGP_PI / 2.0 : a;
 }
 
+/* out <- the point of vertex i (z = 0 in the plane) */
+static void point3(const glpgp_mesh *m, size_t i, double *out)
+{
+    if (m->xyz) {
+        memcpy(out, m->xyz + 3 * i, 3 * sizeof(double));
+        return;
+    }
+    out[0] = m->xy[2 * i];
+    out[1] = m->xy[2 * i + 1];
+    out[2] = 0.0;
+}
+
+/* out <- the direction (c, s) of vertex i as a 3D vector: in the plane as it
+ * is, on a surface from the vertex's frame (glpgp_surface_vertex_vector). */
+static void vector3(const glpgp_mesh *m, size_t i, double c, double s, double *out)
+{
+    if (m->surf) {
+        glpgp_surface_vertex_vector(m, (int)i, c, s, out);
+        return;
+    }
+    out[0] = c;
+    out[1] = s;
+    out[2] = 0.0;
+}
+
 /* Matching of triangle t of a coupled result (glpgp/cross.h): r_1 + 4 r_2,
  * the quarter turns of corners 1 and 2 relative to corner 0's representative. */
 static int coupled_match(const glpgp_mesh *m, const glpgp_result *r, int t)
 {
-    const int *v = m->tri + 3 * t;
-    return glpgp_cross_turn(r->field + 2 * v[0], r->field + 2 * v[1]) +
-           4 * glpgp_cross_turn(r->field + 2 * v[0], r->field + 2 * v[2]);
+    return glpgp_coupled_corner_turn(m, r->field, t, 1) + 4 * glpgp_coupled_corner_turn(m, r->field, t, 2);
 }
 
 /* ---- legacy VTK ------------------------------------------------------- */
@@ -58,7 +83,12 @@ static void vtk_body(FILE *f, const glpgp_mesh *m, const glpgp_options *o, const
         fprintf(f, "glpgp %s result: h %.9g\n", GLPGP_VERSION, r->size);
     fprintf(f, "ASCII\nDATASET UNSTRUCTURED_GRID\n");
     fprintf(f, "POINTS %d double\n", nv);
-    for (int i = 0; i < nv; i++) fprintf(f, "%.17g %.17g 0\n", m->xy[2 * i], m->xy[2 * i + 1]);
+    for (int i = 0; i < nv; i++) {
+        if (m->xyz)
+            fprintf(f, "%.17g %.17g %.17g\n", m->xyz[3 * i], m->xyz[3 * i + 1], m->xyz[3 * i + 2]);
+        else
+            fprintf(f, "%.17g %.17g 0\n", m->xy[2 * i], m->xy[2 * i + 1]);
+    }
     fprintf(f, "CELLS %d %ld\n", nt, 4L * nt);
     for (int t = 0; t < nt; t++)
         fprintf(f, "3 %d %d %d\n", m->tri[3 * t], m->tri[3 * t + 1], m->tri[3 * t + 2]);
@@ -87,7 +117,17 @@ static void vtk_body(FILE *f, const glpgp_mesh *m, const glpgp_options *o, const
         fprintf(f, "SCALARS dirichlet_%s int 1\nLOOKUP_TABLE default\n", osc_name[k]);
         for (int i = 0; i < nv; i++) fputs(d[i] ? "1\n" : "0\n", f);
     }
-    if (r->field) {
+    if (r->field && m->surf) { /* a surface: the vertices' frames' directions in 3D */
+        const double *u = r->field;
+        for (int k = 0; k < 2; k++) {
+            fprintf(f, "VECTORS field_%s double\n", osc_name[k]);
+            for (int i = 0; i < nv; i++) {
+                double d[3];
+                vector3(m, (size_t)i, k ? -u[2 * i + 1] : u[2 * i], k ? u[2 * i] : u[2 * i + 1], d);
+                fprintf(f, "%.17g %.17g %.17g\n", d[0], d[1], d[2]);
+            }
+        }
+    } else if (r->field) {
         const double *u = r->field;
         fprintf(f, "VECTORS field_u double\n");
         for (int i = 0; i < nv; i++) fprintf(f, "%.17g %.17g 0\n", u[2 * i], u[2 * i + 1]);
@@ -101,6 +141,15 @@ static void vtk_body(FILE *f, const glpgp_mesh *m, const glpgp_options *o, const
         for (int i = 0; i < nv; i++) fprintf(f, "%.17g %.17g\n", w[2 * i], w[2 * i + 1]);
         fprintf(f, "SCALARS cross_alpha double 1\nLOOKUP_TABLE default\n");
         for (int i = 0; i < nv; i++) fprintf(f, "%.17g\n", cross_alpha(w + 2 * i));
+        if (m->surf) { /* the cross's direction alpha as a 3D vector */
+            fprintf(f, "VECTORS cross_dir double\n");
+            for (int i = 0; i < nv; i++) {
+                double d[3];
+                const double a = cross_alpha(w + 2 * i);
+                vector3(m, (size_t)i, cos(a), sin(a), d);
+                fprintf(f, "%.17g %.17g %.17g\n", d[0], d[1], d[2]);
+            }
+        }
     }
 
     int have_sing = r->osc[0].singular || r->osc[1].singular;
@@ -137,11 +186,7 @@ static void fill_points(const void *c, size_t first, size_t n, void *out)
 {
     const res_ctx *x = c;
     double *o = out;
-    for (size_t i = 0; i < n; i++) {
-        o[3 * i] = x->m->xy[2 * (first + i)];
-        o[3 * i + 1] = x->m->xy[2 * (first + i) + 1];
-        o[3 * i + 2] = 0.0;
-    }
+    for (size_t i = 0; i < n; i++) point3(x->m, first + i, o + 3 * i);
 }
 static void fill_conn(const void *c, size_t first, size_t n, void *out)
 {
@@ -191,6 +236,11 @@ static void fill_field(const void *c, size_t first, size_t n, void *out)
     const res_ctx *x = c;
     const double *u = x->r->field + 2 * first;
     double *o = out;
+    if (x->m && x->m->surf) { /* a surface: the vertices' frames' directions in 3D */
+        for (size_t i = 0; i < n; i++)
+            vector3(x->m, first + i, x->k ? -u[2 * i + 1] : u[2 * i], x->k ? u[2 * i] : u[2 * i + 1], o + 3 * i);
+        return;
+    }
     for (size_t i = 0; i < n; i++) {
         if (x->k == 0) { /* U */
             o[3 * i] = u[2 * i];
@@ -221,6 +271,15 @@ static void fill_cross_alpha(const void *c, size_t first, size_t n, void *out)
     const res_ctx *x = c;
     double *o = out;
     for (size_t i = 0; i < n; i++) o[i] = cross_alpha(x->r->cross->w + 2 * (first + i));
+}
+static void fill_cross_dir(const void *c, size_t first, size_t n, void *out)
+{
+    const res_ctx *x = c;
+    double *o = out;
+    for (size_t i = 0; i < n; i++) {
+        const double a = cross_alpha(x->r->cross->w + 2 * (first + i));
+        vector3(x->m, first + i, cos(a), sin(a), o + 3 * i);
+    }
 }
 static void fill_cross_index(const void *c, size_t first, size_t n, void *out)
 {
@@ -254,7 +313,7 @@ static void fill_h(const void *c, size_t first, size_t n, void *out)
 }
 
 /* The arrays of a result file (ctx[0..1]: the producers' contexts, one per
- * oscillator) into a[] (room for 26), their count returned. piece: a part's
+ * oscillator) into a[] (room for 28), their count returned. piece: a part's
  * piece, with the point arrays global_id (Int64) and vtkGhostType (UInt8,
  * 1 = a ghost point: VTK's DUPLICATEPOINT) added. */
 static int result_arrays(const res_ctx ctx[2], const glpgp_result *r, size_t nv, size_t nt, int piece, vtu_array *a)
@@ -282,6 +341,7 @@ static int result_arrays(const res_ctx ctx[2], const glpgp_result *r, size_t nv,
     if (r->cross) {
         ARR(VTU_POINTDATA, "cross_w", "Float64", 8, 2, nv, fill_cross_w, &ctx[0]);
         ARR(VTU_POINTDATA, "cross_alpha", "Float64", 8, 1, nv, fill_cross_alpha, &ctx[0]);
+        if (ctx[0].m && ctx[0].m->surf) ARR(VTU_POINTDATA, "cross_dir", "Float64", 8, 3, nv, fill_cross_dir, &ctx[0]);
         ARR(VTU_CELLDATA, "cross_index4", "Int8", 1, 1, nt, fill_cross_index, &ctx[0]);
     }
     if (r->coupled && r->field) ARR(VTU_CELLDATA, "cross_coupled", "Int8", 1, 1, nt, fill_coupled, &ctx[0]);
@@ -301,7 +361,7 @@ static glpgp_status vtu_result(FILE *f, const glpgp_mesh *m, const glpgp_options
 {
     res_ctx ctx[2] = {{m, r, 0, gid, nv_owned}, {m, r, 1, gid, nv_owned}};
     const size_t nv = (size_t)m->nv, nt = (size_t)m->nt;
-    vtu_array a[26];
+    vtu_array a[28];
     const int na = result_arrays(ctx, r, nv, nt, piece, a);
     char comment[256];
     if (o)
@@ -322,12 +382,29 @@ static void obj_body(FILE *f, const glpgp_mesh *m, const glpgp_result *r)
             m->nv, m->nt, r->size);
     fprintf(f, "# vt = (theta_u, theta_v) per triangle corner, unwrapped inside each triangle\n"
                "# (one period = one quad). View with a checker texture and REPEAT wrapping.\n");
-    for (int i = 0; i < m->nv; i++) fprintf(f, "v %.17g %.17g 0\n", m->xy[2 * i], m->xy[2 * i + 1]);
+    for (int i = 0; i < m->nv; i++) {
+        double p[3];
+        point3(m, (size_t)i, p);
+        if (m->xyz)
+            fprintf(f, "v %.17g %.17g %.17g\n", p[0], p[1], p[2]);
+        else
+            fprintf(f, "v %.17g %.17g 0\n", p[0], p[1]);
+    }
     for (int t = 0; t < m->nt; t++) {
         const int *c = m->tri + 3 * t;
-        /* per-triangle charts of theta_u and theta_v (unwrapped around corner 0) */
+        /* per-triangle charts of theta_u and theta_v (unwrapped around corner 0);
+         * a surface's coupled result through the triangle's matching */
         double thu[3], thv[3], cu[3], cv[3];
         for (int k = 0; k < 3; k++) {
+            if (m->surf && r->coupled && r->field) {
+                double fu[2], fv[2];
+                const int rk = glpgp_coupled_corner_turn(m, r->field, t, k);
+                glpgp_coupled_frame_value(rk, 0, zu + 2 * c[k], zv + 2 * c[k], fu);
+                glpgp_coupled_frame_value(rk, 1, zu + 2 * c[k], zv + 2 * c[k], fv);
+                thu[k] = glpgp_theta(fu[0], fu[1]);
+                thv[k] = glpgp_theta(fv[0], fv[1]);
+                continue;
+            }
             thu[k] = glpgp_theta(zu[2 * c[k]], zu[2 * c[k] + 1]);
             thv[k] = glpgp_theta(zv[2 * c[k]], zv[2 * c[k] + 1]);
         }
@@ -564,7 +641,7 @@ glpgp_status glpgp_output_set_pvtu(glpgp_output_set *s, const glpgp_result *r, c
     if (strpbrk(base, "\"&<>'"))
         return GLPGP_FAIL(GLPGP_ERR_ARG, "'%s': a .pvtu name cannot hold \" & < > '", pvtu);
     res_ctx ctx[2] = {{NULL, r, 0, NULL, 0}, {NULL, r, 1, NULL, 0}};
-    vtu_array a[26];
+    vtu_array a[28];
     const int na = result_arrays(ctx, r, 0, 0, 1, a);
     GLPGP_CHECK(glpgp_output_set_open(s, pvtu, &f));
     const unsigned one = 1;

@@ -2,12 +2,32 @@
  * one JSON emitter (json.c); the quad-mesh report joins it as the "quads"
  * member, so the file is written once. */
 #include "glpgp/io.h"
+#include "glpgp/surface.h"
 #include "glpgp/cross.h"
 
 #include "names.h"
 
 #include <stdio.h>
 #include <stdlib.h>
+
+/* A surface's members of "mesh" (glpgp/surface.h): its 3D box and topology. */
+static void stats_surface(glpgp_json *w, const glpgp_mesh *m, const glpgp_options *o)
+{
+    unsigned char *fl = malloc((size_t)3 * m->nt);
+    glpgp_json_array(w, "bbox3");
+    for (int i = 0; i < 6; i++) glpgp_json_num(w, NULL, m->bbox3[i]);
+    glpgp_json_close(w);
+    glpgp_json_object(w, "surface");
+    glpgp_json_int(w, "euler_characteristic", m->surf->euler);
+    glpgp_json_int(w, "genus", m->surf->genus);
+    glpgp_json_int(w, "components", m->surf->ncomponents);
+    glpgp_json_int(w, "edges", m->surf->nedges);
+    if (fl && o) glpgp_json_int(w, "feature_edges", glpgp_surface_features(m, o->feature_angle, fl));
+    if (o) glpgp_json_num(w, "feature_angle", o->feature_angle);
+    glpgp_json_num(w, "total_holonomy", glpgp_surface_total_holonomy(m));
+    glpgp_json_close(w);
+    free(fl);
+}
 
 static void stats_body(FILE *f, const glpgp_mesh *m, const glpgp_options *o, const glpgp_result *r,
                        const glpgp_stats_extra *x)
@@ -86,6 +106,7 @@ static void stats_body(FILE *f, const glpgp_mesh *m, const glpgp_options *o, con
     for (int i = 0; i < 4; i++) glpgp_json_num(w, NULL, m->bbox[i]);
     glpgp_json_close(w);
     glpgp_json_int(w, "orientation_fixed", m->orientation_fixed);
+    if (m->surf) stats_surface(w, m, o);
     glpgp_json_close(w);
 
     glpgp_json_object(w, "singularities");
@@ -113,6 +134,7 @@ static void stats_body(FILE *f, const glpgp_mesh *m, const glpgp_options *o, con
             glpgp_json_object(w, NULL);
             glpgp_json_num(w, "x", c->sing[k].x);
             glpgp_json_num(w, "y", c->sing[k].y);
+            if (m->xyz) glpgp_json_num(w, "z", c->sing[k].z);
             glpgp_json_num(w, "index", c->sing[k].index4 / 4.0);
             glpgp_json_int(w, "triangles", c->sing[k].ntri);
             glpgp_json_int(w, "triangle", c->sing[k].tri);

@@ -3,6 +3,7 @@
  * table is built with a counting sort on the smaller vertex of each edge, so
  * everything here is O(n) apart from rare high-degree vertices. */
 #include "glpgp/mesh.h"
+#include "glpgp/surface.h"
 
 #include <math.h>
 #include <stdint.h>
@@ -19,12 +20,14 @@ void glpgp_mesh_release_arrays(glpgp_mesh *p)
     free(p->on_boundary);
     free(p->normal_prev);
     free(p->normal_next);
+    free(p->xyz);
+    glpgp_surface_destroy(&p->surf);
     if (p->part) {
         free(p->part->gid);
         free(p->part->size);
         free(p->part);
     }
-    p->xy = p->normal_prev = p->normal_next = NULL;
+    p->xy = p->normal_prev = p->normal_next = p->xyz = NULL;
     p->tri = p->loop_start = p->loop_vertices = NULL;
     p->on_boundary = NULL;
     p->part = NULL;
@@ -468,6 +471,17 @@ void glpgp_mesh_angles(const glpgp_mesh *m, double sliver_deg, double *min_angle
 {
     double amin = 180.0;
     int n = 0;
+    if (m->surf) { /* a surface: its corner angles */
+        for (int t = 0; t < m->nt; t++) {
+            double tmin = 180.0;
+            for (int k = 0; k < 3; k++) tmin = fmin(tmin, m->surf->corner[3 * t + k] * (180.0 / 3.14159265358979323846));
+            amin = fmin(amin, tmin);
+            n += tmin < sliver_deg;
+        }
+        *min_angle = amin;
+        *nslivers = n;
+        return;
+    }
     for (int t = 0; t < m->nt; t++) {
         double tmin = 180.0;
         for (int k = 0; k < 3; k++) {

@@ -6,6 +6,7 @@
  * (sorts break coordinate ties by vertex index); one rank's part of a
  * renumbered mesh: its vertices, one layer of ghosts, its triangles. */
 #include "glpgp/mesh.h"
+#include "glpgp/surface.h"
 
 #include <stdlib.h>
 #include <string.h>
@@ -54,6 +55,7 @@ static void rcb(const double *xy, int *v, int n, const int *size, int p0, int p1
 glpgp_status glpgp_mesh_partition(const glpgp_mesh *m, int nparts, const int *size, int *part)
 {
     if (nparts < 1) return GLPGP_FAIL(GLPGP_ERR_ARG, "partition: %d parts", nparts);
+    if (m->xyz) return GLPGP_FAIL(GLPGP_ERR_UNSUPPORTED, "partition: a surface is not split over ranks yet");
     long total = 0;
     for (int p = 0; p < nparts; p++) {
         if (size[p] < 0) return GLPGP_FAIL(GLPGP_ERR_ARG, "partition: part %d has size %d", p, size[p]);
@@ -167,7 +169,8 @@ glpgp_status glpgp_mesh_renumber(const glpgp_mesh *m, const int *new_of_old, glp
     double *xy = NULL;
     int *tri = NULL;
     glpgp_status st = GLPGP_OK;
-    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)2 * m->nv, sizeof *xy, &xy), done);
+    const int dim = m->xyz ? 3 : 2; /* a surface: xyz, glpgp_mesh_create_surface */
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)dim * m->nv, sizeof *xy, &xy), done);
     GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)3 * m->nt, sizeof *tri, &tri), done);
     /* xy'[new(i)] <- xy[i];  tri'[t] <- new(tri[t]) (triangle order and corner order kept) */
     for (int i = 0; i < m->nv; i++) {
@@ -176,11 +179,13 @@ glpgp_status glpgp_mesh_renumber(const glpgp_mesh *m, const int *new_of_old, glp
             st = GLPGP_FAIL(GLPGP_ERR_ARG, "renumber: vertex %d -> %d out of range", i, j);
             goto done;
         }
-        xy[2 * j] = m->xy[2 * i];
-        xy[2 * j + 1] = m->xy[2 * i + 1];
+        for (int c = 0; c < dim; c++) xy[dim * j + c] = m->xyz ? m->xyz[3 * i + c] : m->xy[2 * i + c];
     }
     for (long k = 0; k < 3L * m->nt; k++) tri[k] = new_of_old[m->tri[k]];
-    GLPGP_CHECK_GOTO(st, glpgp_mesh_create(m->nv, xy, m->nt, tri, out), done);
+    if (m->xyz)
+        GLPGP_CHECK_GOTO(st, glpgp_mesh_create_surface(m->nv, xy, m->nt, tri, out), done);
+    else
+        GLPGP_CHECK_GOTO(st, glpgp_mesh_create(m->nv, xy, m->nt, tri, out), done);
 done:
     free(xy);
     free(tri);
@@ -192,6 +197,7 @@ glpgp_status glpgp_mesh_extract_part(const glpgp_mesh *m, int P, int q, const do
 {
     *out = NULL;
     if (P < 1 || q < 0 || q >= P) return GLPGP_FAIL(GLPGP_ERR_ARG, "part %d of %d", q, P);
+    if (m->xyz) return GLPGP_FAIL(GLPGP_ERR_UNSUPPORTED, "a surface is not split over ranks yet");
     const int nv = m->nv, nt = m->nt;
     const int lo = (int)((long long)nv * q / P), hi = (int)((long long)nv * (q + 1) / P);
     glpgp_status st = GLPGP_OK;

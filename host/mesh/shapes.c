@@ -4,6 +4,7 @@
  * spacing joined by a zipper triangulation. All O(n). */
 #include "glpgp/shapes.h"
 #include "glpgp/kinds.h"
+#include "glpgp/surface.h"
 
 #include <stdio.h>
 
@@ -13,7 +14,8 @@
 
 #define PI_ GLPGP_PI
 
-static const char *const k_shapes[] = {"square", "disk", "annulus", "lshape", NULL};
+static const char *const k_shapes[] = {"square", "disk", "annulus", "lshape", "sphere", "torus", "genus2",
+                                       "cube", "hemisphere", "halfcyl", "halfcyl_flat", NULL};
 
 const char *const *glpgp_mesh_shapes(void) { return k_shapes; }
 
@@ -39,7 +41,9 @@ glpgp_status glpgp_shape_parse(const char *spec, int allow_bare, char *name, siz
     memcpy(name, rest, n);
     name[n] = '\0';
     if (!glpgp_shape_known(name))
-        return GLPGP_FAIL(GLPGP_ERR_ARG, "unknown shape '%s' (available: square, disk, annulus, lshape)",
+        return GLPGP_FAIL(GLPGP_ERR_ARG,
+                          "unknown shape '%s' (available: square, disk, annulus, lshape; surfaces: sphere, torus, "
+                          "genus2, cube, hemisphere, halfcyl, halfcyl_flat)",
                           name);
     *nverts = GLPGP_SHAPE_DEFAULT_VERTICES;
     if (colon) {
@@ -223,6 +227,7 @@ glpgp_status glpgp_mesh_generate(const char *shape, long nverts, glpgp_mesh **ou
         return GLPGP_FAIL(GLPGP_ERR_ARG, "unknown shape '%s' (shapes: square, disk, annulus, lshape)", shape);
     if (nverts < 16) return GLPGP_FAIL(GLPGP_ERR_ARG, "nverts must be at least 16 (got %ld)", nverts);
     if (nverts > GLPGP_SHAPE_MAX_VERTICES) return GLPGP_FAIL(GLPGP_ERR_ARG, "nverts too large (%ld)", nverts);
+    if (glpgp_surface_shape_known(shape)) return glpgp_surface_generate(shape, nverts, out);
     switch (which) {
     case 0: { /* square: (N+1)^2 vertices */
         int N = (int)lround(sqrt((double)nverts)) - 1;

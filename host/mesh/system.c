@@ -124,6 +124,8 @@ void glpgp_system_destroy(glpgp_system **ps)
     free(s->vtri);
     free(s->cconj);
     free(s->cfield);
+    free(s->ctxy);
+    free(s->crot);
     free(s);
     *ps = NULL;
 }

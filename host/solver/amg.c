@@ -263,7 +263,7 @@ glpgp_status glpgp_amg_create(glpgp_backend *b, const glpgp_options *o, const un
     a->kmin = glpgp_amg_kcycle_min(b, o);
     a->check = o->amg_check;
     a->maxit = o->amg_maxit < o->cg_max ? o->amg_maxit : o->cg_max;
-    a->has_phase = w != NULL && h > 0.0;
+    a->has_phase = w != NULL && h > 0.0 && sys->mesh->xy != NULL; /* a surface: no plane waves of a global x */
     a->sync = o->phase_sync;
     a->fuse = b->launch_bound;
     /* the structure: the one shared for this system, else this instance's own */

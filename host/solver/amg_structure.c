@@ -509,8 +509,9 @@ glpgp_status glpgp_amg_structure_create(const glpgp_system *sys, const glpgp_opt
     GLPGP_CHECK_GOTO(st, coarsen(s, o), fail);
     GLPGP_CHECK_GOTO(st, renumber(s), fail);
     s->lev[0].nnzb = sys->nnzb;
-    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)2 * sys->nv + 1, sizeof(double), &s->lev[0].pos), fail);
-    memcpy(s->lev[0].pos, sys->mesh->xy, (size_t)2 * sys->nv * sizeof(double));
+    /* positions for the plane-wave frames (a surface has no plane: zeros, unused) */
+    GLPGP_CHECK_GOTO(st, glpgp_calloc((size_t)2 * sys->nv + 1, sizeof(double), &s->lev[0].pos), fail);
+    if (sys->mesh->xy) memcpy(s->lev[0].pos, sys->mesh->xy, (size_t)2 * sys->nv * sizeof(double));
     for (int l = 0; l + 1 < s->L; l++) GLPGP_CHECK_GOTO(st, build_transfer(s, l), fail);
     double oc = 0.0, gc = 0.0;
     for (int l = 0; l < s->L; l++) {

@@ -10,6 +10,7 @@
 #include "amg_internal.h"
 
 #include "glpgp/cross.h"
+#include "glpgp/surfsolve.h"
 #include "glpgp/util.h"
 
 #include <math.h>
@@ -18,20 +19,11 @@
 #include <stdlib.h>
 #include <string.h>
 
-typedef struct osc_work {
-    glpgp_backend *b;
-    const glpgp_options *o;
-    glpgp_vec *x, *g, *d, *xt, *work;
-    double *host, *scratch;
-    glpgp_amg *amg; /* multigrid preconditioner of the current oscillator (NULL: Jacobi) */
-    int *stop;      /* concurrent oscillators: 0, or 1 + the oscillator that failed first
-                       (the other's Newton levels then end at their next step) */
-} osc_work;
 
 /* w <- the driver's vectors on backend b (set up): x, g, d, xt, work of n
  * unknowns, host (n doubles) and scratch (ns doubles); the rest of w zero.
  * Free: osc_work_free (also after a failure part-way). */
-static glpgp_status osc_work_create(osc_work *w, glpgp_backend *b, const glpgp_options *o, size_t n, size_t ns)
+glpgp_status glpgp_osc_work_create(osc_work *w, glpgp_backend *b, const glpgp_options *o, size_t n, size_t ns)
 {
     memset(w, 0, sizeof *w);
     w->b = b;
@@ -46,7 +38,7 @@ static glpgp_status osc_work_create(osc_work *w, glpgp_backend *b, const glpgp_o
     return GLPGP_OK;
 }
 
-static void osc_work_free(osc_work *w)
+void glpgp_osc_work_free(osc_work *w)
 {
     glpgp_amg_destroy(&w->amg);
     if (w->b && w->b->ops) {
@@ -132,7 +124,7 @@ static glpgp_status naive_solve(osc_work *w, int k, glpgp_osc_result *r)
 /* One oscillator (k = 0, 1) on mesh m, or the coupled pair (k = 3) on the
  * coupled system's virtual mesh m with its Dirichlet set dir_given (then r
  * is not summarised: the caller splits it per vertex first). */
-static glpgp_status solve_oscillator(const glpgp_mesh *m, osc_work *w, int k, const double *hostw,
+glpgp_status glpgp_solve_oscillator(const glpgp_mesh *m, osc_work *w, int k, const double *hostw,
                                      const double *size, glpgp_osc_result *r, double h, const double *eps,
                                      int nlevels, const unsigned char *dir_given)
 {
@@ -165,7 +157,13 @@ static glpgp_status solve_oscillator(const glpgp_mesh *m, osc_work *w, int k, co
     }
     GLPGP_CHECK(op->vec_write(b, w->x, w->host));
     int need_naive = o->method == GLPGP_METHOD_PGP || (o->init == GLPGP_INIT_NAIVE && r->n_dirichlet > 0);
-    if (need_naive) GLPGP_CHECK(naive_solve(w, k, r));
+    if (w->init_free && r->n_dirichlet == 0 && (o->method == GLPGP_METHOD_PGP || o->init == GLPGP_INIT_NAIVE)) {
+        /* no Dirichlet node: the naive solution is 0; the caller's (a surface's eigenvector) */
+        GLPGP_CHECK(w->init_free(w, k, r));
+        need_naive = 1;
+    } else if (need_naive) {
+        GLPGP_CHECK(naive_solve(w, k, r));
+    }
     if (o->method == GLPGP_METHOD_GL) {
         /* initial guess: normalised naive solution (phase kept), or z = 1 */
         prev = glpgp_timer_enter(b, GLPGP_TM_SUMMARY);
@@ -307,20 +305,20 @@ static void *osc_job_run(void *arg)
         glpgp_timer_reset(c);
         const int prev = glpgp_timer_enter(c, GLPGP_TM_UPLOAD);
         st = c->ops->setup(c, j->sys);
-        if (st == GLPGP_OK) st = osc_work_create(&w, c, j->o, 2 * nv, nv);
+        if (st == GLPGP_OK) st = glpgp_osc_work_create(&w, c, j->o, 2 * nv, nv);
         glpgp_tm_leave(c, j->o->phase_sync, prev);
     }
     if (st == GLPGP_OK) {
         j->ready = 1;
         w.stop = j->stop;
-        st = solve_oscillator(j->m, &w, j->k, j->wv, j->size, j->r, j->h, j->eps, j->nlev, NULL);
+        st = glpgp_solve_oscillator(j->m, &w, j->k, j->wv, j->size, j->r, j->h, j->eps, j->nlev, NULL);
         int none = 0; /* the first failure stops the other oscillator */
         if (st != GLPGP_OK)
             __atomic_compare_exchange_n(j->stop, &none, 1 + j->k, 0, __ATOMIC_RELAXED, __ATOMIC_RELAXED);
     }
     j->st = st;
     if (st != GLPGP_OK) glpgp_error_save(&j->err);
-    osc_work_free(&w);
+    glpgp_osc_work_free(&w);
     if (c) {
         j->n_spmv = c->n_spmv;
         j->n_cg_iter = c->n_cg_iter;
@@ -395,15 +393,17 @@ static int use_coupling(const glpgp_mesh *m, glpgp_backend *b, const glpgp_optio
     return 1; /* on: a backend without coupled systems refuses it at setup */
 }
 
-/* The coupled pair (z_u, z_v) across the cross field's cuts (solver/coupled.c):
+/* The coupled pair (z_u, z_v) across the cross field's cuts (solver/coupled.c;
+ * declared in internal.h, the surface pipeline's too):
  * one GL solve on the 2 nv-node coupled system, then split per vertex into
  * r->osc[0] (z_u) and r->osc[1] (z_v), each in its vertex's own frame;
  * r->osc[0] carries the coupled solve's statistics (its Newton / CG counts,
  * levels, seconds and quadratic energy E_u + E_v), r->osc[1] none (zeros), so
  * sums over u and v stay right; their singular triangles are the frame
  * windings (glpgp_coupled_windings). */
-static glpgp_status solve_coupled(const glpgp_mesh *m, glpgp_backend *b, const glpgp_options *o, glpgp_result *r,
-                                  const double *size, double h, const double *eps, int nlev)
+glpgp_status glpgp_solve_coupled(const glpgp_mesh *m, glpgp_backend *b, const glpgp_options *o, glpgp_result *r,
+                                 const double *size, double h, const double *eps, int nlev, const unsigned char *dn_given,
+                                 glpgp_status (*init_free)(osc_work *w, int k, glpgp_osc_result *r), void *init_ctx)
 {
     glpgp_status st = GLPGP_OK;
     const int nv = m->nv, nt = m->nt;
@@ -421,7 +421,7 @@ static glpgp_status solve_coupled(const glpgp_mesh *m, glpgp_backend *b, const g
     GLPGP_CHECK(st);
     prev = glpgp_timer_enter(b, GLPGP_TM_UPLOAD);
     st = b->ops->setup(b, cp->sys);
-    if (st == GLPGP_OK) st = osc_work_create(&w, b, o, n4, (size_t)2 * nv);
+    if (st == GLPGP_OK) st = glpgp_osc_work_create(&w, b, o, n4, (size_t)2 * nv);
     glpgp_tm_leave(b, o->phase_sync, prev);
     if (st != GLPGP_OK) goto done;
     GLPGP_CHECK_GOTO(st, glpgp_malloc(n4, sizeof(double), &co.z), done);
@@ -430,10 +430,14 @@ static glpgp_status solve_coupled(const glpgp_mesh *m, glpgp_backend *b, const g
     GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)2 * nv, sizeof(double), &wu), done);
     GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)2 * nv, 1, &dn), done);
     GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)nv, 1, &du), done);
+    w.init_free = init_free;
+    w.init_ctx = init_ctx;
     /* node fields and Dirichlet sets: node (i, s) fixed where its own direction
-     * is normal to the boundary (the rule of glpgp_dirichlet_set per family) */
+     * is normal to the boundary (the rule of glpgp_dirichlet_set per family;
+     * a surface's: given) */
     glpgp_coupled_node_field(r->field, nv, wn);
-    for (int s = 0; s < 2; s++) {
+    if (dn_given) memcpy(dn, dn_given, (size_t)2 * nv);
+    for (int s = 0; s < 2 && !dn_given; s++) {
         for (int i = 0; i < nv; i++) {
             wu[2 * i] = wn[4 * i + 2 * s];
             wu[2 * i + 1] = wn[4 * i + 2 * s + 1];
@@ -450,7 +454,7 @@ static glpgp_status solve_coupled(const glpgp_mesh *m, glpgp_backend *b, const g
     }
     glpgp_log(GLPGP_LOG_INFO, "coupled u+v: %d nodes, %ld blocks across the cross field's cuts", 2 * nv,
               cp->sys->nnzb);
-    GLPGP_CHECK_GOTO(st, solve_oscillator(&cp->vm, &w, 3, wn, sn, &co, h, eps, nlev, dn), done);
+    GLPGP_CHECK_GOTO(st, glpgp_solve_oscillator(&cp->vm, &w, 3, wn, sn, &co, h, eps, nlev, dn), done);
     /* split per vertex; the statistics go to both */
     for (int s = 0; s < 2; s++) {
         glpgp_osc_result *os = &r->osc[s];
@@ -479,7 +483,7 @@ static glpgp_status solve_coupled(const glpgp_mesh *m, glpgp_backend *b, const g
     glpgp_log(GLPGP_LOG_INFO, "coupled u+v: frame windings u +%d/-%d, v +%d/-%d (%d triangles)", r->osc[0].plus,
               r->osc[0].minus, r->osc[1].plus, r->osc[1].minus, nt);
 done:
-    osc_work_free(&w);
+    glpgp_osc_work_free(&w);
     free(co.z);
     free(co.dirichlet);
     free(wn);
@@ -549,7 +553,7 @@ static glpgp_status solve_mesh(const glpgp_mesh *m, glpgp_backend *b, const glpg
     const size_t n2 = (size_t)2 * nv;
     prev = glpgp_timer_enter(b, GLPGP_TM_UPLOAD);
     st = b->ops->setup(b, sys);
-    if (st == GLPGP_OK) st = osc_work_create(&w, b, o, n2, (size_t)nv);
+    if (st == GLPGP_OK) st = glpgp_osc_work_create(&w, b, o, n2, (size_t)nv);
     glpgp_tm_leave(b, o->phase_sync, prev);
     if (st != GLPGP_OK) goto fail;
     /* the multigrid structure, once for the guiding field, u and v */
@@ -606,7 +610,8 @@ static glpgp_status solve_mesh(const glpgp_mesh *m, glpgp_backend *b, const glpg
     int nlev = glpgp_eps_schedule(m, o, h, eps);
 
     if (o->field == GLPGP_FIELD_CROSS && r->cross && use_coupling(m, b, o, r)) {
-        GLPGP_CHECK_GOTO(st, solve_coupled(m, b, o, r, uniform ? NULL : size, h, eps, nlev), fail);
+        GLPGP_CHECK_GOTO(st, glpgp_solve_coupled(m, b, o, r, uniform ? NULL : size, h, eps, nlev, NULL, NULL, NULL),
+                         fail);
         r->seconds_total = glpgp_now() - t0;
         goto cleanup;
     }
@@ -626,7 +631,7 @@ static glpgp_status solve_mesh(const glpgp_mesh *m, glpgp_backend *b, const glpg
         job.stop = &stop;
         int started = want_concurrent(m, b, o, sys) && pthread_create(&th, NULL, osc_job_run, &job) == 0;
         w.stop = started ? &stop : NULL;
-        st = solve_oscillator(m, &w, 0, wv, uniform ? NULL : size, &r->osc[0], h, eps, nlev, NULL);
+        st = glpgp_solve_oscillator(m, &w, 0, wv, uniform ? NULL : size, &r->osc[0], h, eps, nlev, NULL);
         w.stop = NULL;
         if (started) {
             if (st != GLPGP_OK) { /* stop v at its next Newton step; the first failure is reported */
@@ -657,7 +662,7 @@ static glpgp_status solve_mesh(const glpgp_mesh *m, glpgp_backend *b, const glpg
             goto fail;
         }
         if (!started)
-            GLPGP_CHECK_GOTO(st, solve_oscillator(m, &w, 1, wv + n2, uniform ? NULL : size + (size_t)nv, &r->osc[1], h,
+            GLPGP_CHECK_GOTO(st, glpgp_solve_oscillator(m, &w, 1, wv + n2, uniform ? NULL : size + (size_t)nv, &r->osc[1], h,
                                                   eps, nlev, NULL),
                              fail);
     }
@@ -666,7 +671,7 @@ static glpgp_status solve_mesh(const glpgp_mesh *m, glpgp_backend *b, const glpg
 fail:
     glpgp_result_destroy(&r);
 cleanup:
-    osc_work_free(&w);
+    glpgp_osc_work_free(&w);
     free(wv);
     free(size);
     if (b->amg_shared == amgs) b->amg_shared = NULL;
@@ -697,7 +702,10 @@ glpgp_status glpgp_solve(const glpgp_mesh *m, glpgp_backend *b, const glpgp_opti
     *out = NULL;
     const long s0 = b->n_sync, l0 = b->n_launch;
     glpgp_timer_reset(b);
-    GLPGP_CHECK(solve_ordered(m, b, o, out));
+    if (m->xyz) /* a surface (glpgp/surfsolve.h) */
+        GLPGP_CHECK(glpgp_solve_surface(m, b, o, out));
+    else
+        GLPGP_CHECK(solve_ordered(m, b, o, out));
     (*out)->host_round_trips = b->n_sync - s0;
     (*out)->kernel_launches = b->n_launch - l0;
     glpgp_timer_read(b, &(*out)->timers);

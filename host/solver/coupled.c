@@ -20,6 +20,7 @@
 
 #include "glpgp/cross.h"
 #include "glpgp/phase.h"
+#include "glpgp/surfsolve.h"
 #include "glpgp/util.h"
 
 #include <math.h>
@@ -32,6 +33,32 @@ int glpgp_cross_turn(const double *ua, const double *ub)
     const double c = ub[0] * ua[1] - ub[1] * ua[0], d = ub[0] * ua[0] + ub[1] * ua[1];
     const long r = lround(atan2(c, d) / (GLPGP_PI / 2.0));
     return (int)(((r % 4) + 4) % 4);
+}
+
+/* out <- U_a of corner a of triangle t in the frame the matching compares
+ * in: the plane's (u itself) or, on a surface, t's (turned by the corner's
+ * rotation phi). */
+static void corner_u(const glpgp_mesh *m, const double *u, int t, int a, double *out)
+{
+    const double *ua = u + 2 * m->tri[3 * t + a];
+    if (!m->surf) {
+        out[0] = ua[0];
+        out[1] = ua[1];
+        return;
+    }
+    const double c = cos(m->surf->rot[3 * t + a]), s = sin(m->surf->rot[3 * t + a]);
+    out[0] = c * ua[0] - s * ua[1];
+    out[1] = s * ua[0] + c * ua[1];
+}
+
+int glpgp_coupled_corner_turn(const glpgp_mesh *m, const double *u, int t, int a)
+{
+    if (a == 0) return 0;
+    if (!m->surf) return glpgp_cross_turn(u + 2 * m->tri[3 * t], u + 2 * m->tri[3 * t + a]);
+    double u0[2], ua[2];
+    corner_u(m, u, t, 0, u0);
+    corner_u(m, u, t, a, ua);
+    return glpgp_cross_turn(u0, ua);
 }
 
 void glpgp_cross_frame_map(int r, int k, int *family, int *conj)
@@ -74,7 +101,8 @@ glpgp_status glpgp_coupled_create(const glpgp_mesh *m, const double *u, glpgp_co
     GLPGP_CHECK(glpgp_calloc(1, sizeof *c, &c));
     c->nv = nv;
     c->nt = nt;
-    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)4 * nv, sizeof(double), &c->vm.xy), fail);
+    /* a surface: no plane (vm.xy NULL), each virtual triangle its own (ctxy) */
+    if (m->xy) GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)4 * nv, sizeof(double), &c->vm.xy), fail);
     GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)6 * nt, sizeof(int), &c->vm.tri), fail);
     GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)3 * nt, 1, &c->match), fail);
     GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)6 * nt, 1, &cconj), fail);
@@ -83,7 +111,7 @@ glpgp_status glpgp_coupled_create(const glpgp_mesh *m, const double *u, glpgp_co
      * system layout and the backends (no boundary data) */
     c->vm.nv = 2 * nv;
     c->vm.nt = 2 * nt;
-    for (int i = 0; i < nv; i++)
+    for (int i = 0; i < nv && m->xy; i++)
         for (int s = 0; s < 2; s++) {
             c->vm.xy[2 * (2 * i + s)] = m->xy[2 * i];
             c->vm.xy[2 * (2 * i + s) + 1] = m->xy[2 * i + 1];
@@ -95,7 +123,7 @@ glpgp_status glpgp_coupled_create(const glpgp_mesh *m, const double *u, glpgp_co
         const int *v = m->tri + 3 * t;
         for (int a = 0; a < 3; a++) {
             /* r_a: rot^{r_a}(U_a) ~ U_{corner 0} (the frame) */
-            const int r = a == 0 ? 0 : glpgp_cross_turn(u + 2 * v[0], u + 2 * v[a]);
+            const int r = glpgp_coupled_corner_turn(m, u, t, a);
             c->match[3 * t + a] = (unsigned char)r;
             for (int s = 0; s < 2; s++) {
                 int fam, cj;
@@ -104,7 +132,9 @@ glpgp_status glpgp_coupled_create(const glpgp_mesh *m, const double *u, glpgp_co
                 c->vm.tri[3 * tv + a] = 2 * v[a] + fam;
                 cconj[3 * tv + a] = (unsigned char)cj;
                 /* frame field of oscillator s at corner a: rot^{r_a + s}(U_a), exact rotations */
-                double wx = u[2 * v[a]], wy = u[2 * v[a] + 1];
+                double uc[2];
+                corner_u(m, u, t, a, uc);
+                double wx = uc[0], wy = uc[1];
                 for (int q = 0; q < ((r + s) & 3); q++) {
                     const double tx = -wy;
                     wy = wx;
@@ -118,8 +148,16 @@ glpgp_status glpgp_coupled_create(const glpgp_mesh *m, const double *u, glpgp_co
     GLPGP_CHECK_GOTO(st, glpgp_system_create(&c->vm, &c->sys), fail);
     c->sys->cconj = cconj;
     c->sys->cfield = cfield;
+    if (m->surf) { /* both oscillators of triangle t in t's plane */
+        GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)12 * nt, sizeof(double), &c->sys->ctxy), fail_sys);
+        for (int t = 0; t < nt; t++)
+            for (int s = 0; s < 2; s++) memcpy(c->sys->ctxy + 6 * (2 * t + s), m->surf->txy + 6 * t, 6 * sizeof(double));
+    }
     *out = c;
     return GLPGP_OK;
+fail_sys: /* cconj, cfield belong to the system now */
+    glpgp_coupled_destroy(&c);
+    return st;
 fail:
     free(cconj);
     free(cfield);
@@ -146,7 +184,7 @@ void glpgp_coupled_windings(const glpgp_mesh *m, const double *u, const double *
         const int *v = m->tri + 3 * t;
         double z[6];
         for (int a = 0; a < 3; a++) {
-            const int r = a == 0 ? 0 : glpgp_cross_turn(u + 2 * v[0], u + 2 * v[a]);
+            const int r = glpgp_coupled_corner_turn(m, u, t, a);
             glpgp_coupled_frame_value(r, k, zu + 2 * v[a], zv + 2 * v[a], z + 2 * a);
         }
         /* winding = sum of principal arg(z_b / z_a) over the edges / 2 pi */

@@ -13,6 +13,8 @@
 
 #include "glpgp/cross.h"
 #include "glpgp/phase.h"
+#include "glpgp/surface.h"
+#include "glpgp/surfsolve.h"
 #include "glpgp/util.h"
 
 #include <math.h>
@@ -72,6 +74,7 @@ void glpgp_cross_boundary(const glpgp_mesh *m, double *w)
 
 int glpgp_cross_expected_index4(const glpgp_mesh *m)
 {
+    if (m->xyz) return glpgp_surface_expected_index4(m);
     int sum = 0;
     for (int l = 0; l < m->nloops; l++) {
         double turn = 0.0;
@@ -93,17 +96,29 @@ int glpgp_cross_expected_index4(const glpgp_mesh *m)
 
 /* Zero of the linear interpolant of w on triangle t: barycentric (l1, l2)
  * from w0 + l1 (w1 - w0) + l2 (w2 - w0) = 0; the centroid when the zero is
- * outside the triangle or the system is singular. */
-static void tri_zero(const glpgp_mesh *m, const double *w, int t, double *px, double *py)
+ * outside the triangle or the system is singular. On a surface the corner
+ * values are turned into the triangle's frame first (exp(4 i rot)) and the
+ * point is in 3D (*pz; 0 in the plane). */
+static void tri_zero(const glpgp_mesh *m, const double *w, int t, double *px, double *py, double *pz)
 {
     const int *v = m->tri + 3 * t;
-    const double ar = w[2 * v[1]] - w[2 * v[0]], ai = w[2 * v[1] + 1] - w[2 * v[0] + 1];
-    const double br = w[2 * v[2]] - w[2 * v[0]], bi = w[2 * v[2] + 1] - w[2 * v[0] + 1];
+    double wr[3], wi[3];
+    for (int a = 0; a < 3; a++) {
+        wr[a] = w[2 * v[a]];
+        wi[a] = w[2 * v[a] + 1];
+        if (m->surf) {
+            const double ph = 4.0 * m->surf->rot[3 * t + a], c = cos(ph), sn = sin(ph), r = wr[a];
+            wr[a] = c * r - sn * wi[a];
+            wi[a] = sn * r + c * wi[a];
+        }
+    }
+    const double ar = wr[1] - wr[0], ai = wi[1] - wi[0];
+    const double br = wr[2] - wr[0], bi = wi[2] - wi[0];
     const double det = ar * bi - br * ai;
     double l1 = 1.0 / 3.0, l2 = 1.0 / 3.0;
     if (det != 0.0) {
         /* [ar br; ai bi] (l1, l2) = -(w0r, w0i) */
-        const double r0 = -w[2 * v[0]], r1 = -w[2 * v[0] + 1];
+        const double r0 = -wr[0], r1 = -wi[0];
         const double x1 = (r0 * bi - br * r1) / det, x2 = (ar * r1 - r0 * ai) / det;
         if (x1 >= -1e-9 && x2 >= -1e-9 && x1 + x2 <= 1.0 + 1e-9) {
             l1 = x1;
@@ -111,8 +126,16 @@ static void tri_zero(const glpgp_mesh *m, const double *w, int t, double *px, do
         }
     }
     const double l0 = 1.0 - l1 - l2;
+    if (m->xyz) {
+        const double *X = m->xyz;
+        *px = l0 * X[3 * v[0]] + l1 * X[3 * v[1]] + l2 * X[3 * v[2]];
+        *py = l0 * X[3 * v[0] + 1] + l1 * X[3 * v[1] + 1] + l2 * X[3 * v[2] + 1];
+        *pz = l0 * X[3 * v[0] + 2] + l1 * X[3 * v[1] + 2] + l2 * X[3 * v[2] + 2];
+        return;
+    }
     *px = l0 * m->xy[2 * v[0]] + l1 * m->xy[2 * v[1]] + l2 * m->xy[2 * v[2]];
     *py = l0 * m->xy[2 * v[0] + 1] + l1 * m->xy[2 * v[1] + 1] + l2 * m->xy[2 * v[2] + 1];
+    *pz = 0.0;
 }
 
 glpgp_status glpgp_cross_analyze(const glpgp_mesh *m, glpgp_cross_result *c)
@@ -122,12 +145,15 @@ glpgp_status glpgp_cross_analyze(const glpgp_mesh *m, glpgp_cross_result *c)
     int *parent = NULL, *vs = NULL, *root_id = NULL;
     double *acc = NULL, *s = NULL;
     int plus, minus;
-    glpgp_singularities(m, c->w, c->winding, &plus, &minus);
+    if (m->xyz) /* a surface: with the connection (glpgp/surfsolve.h) */
+        glpgp_surface_cross_windings(m, c->w, c->winding, &plus, &minus);
+    else
+        glpgp_singularities(m, c->w, c->winding, &plus, &minus);
     free(c->sing);
     c->sing = NULL;
     c->nsing = 0;
     c->index4_sum = plus - minus;
-    c->index4_expected = glpgp_cross_expected_index4(m);
+    c->index4_expected = m->xyz ? glpgp_surface_expected_index4(m) : glpgp_cross_expected_index4(m);
     /* median |w| */
     GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)nv, sizeof(double), &s), done);
     for (int i = 0; i < nv; i++) s[i] = hypot(c->w[2 * i], c->w[2 * i + 1]);
@@ -159,24 +185,26 @@ glpgp_status glpgp_cross_analyze(const glpgp_mesh *m, glpgp_cross_result *c)
         if (c->winding[t] && glpgp_uf_find(parent, t) == t) root_id[t] = n++;
     }
     GLPGP_CHECK_GOTO(st, glpgp_calloc((size_t)n, sizeof *c->sing, &c->sing), done);
-    GLPGP_CHECK_GOTO(st, glpgp_calloc((size_t)2 * n, sizeof(double), &acc), done);
+    GLPGP_CHECK_GOTO(st, glpgp_calloc((size_t)3 * n, sizeof(double), &acc), done);
     c->nsing = n;
     for (int t = 0; t < nt; t++) {
         if (!c->winding[t]) continue;
         const int k = root_id[glpgp_uf_find(parent, t)];
         glpgp_cross_sing *q = &c->sing[k];
-        double px, py;
-        tri_zero(m, c->w, t, &px, &py);
+        double px, py, pz;
+        tri_zero(m, c->w, t, &px, &py, &pz);
         if (q->ntri == 0) q->tri = t;
         q->ntri++;
         q->index4 += c->winding[t];
-        acc[2 * k] += px;
-        acc[2 * k + 1] += py;
+        acc[3 * k] += px;
+        acc[3 * k + 1] += py;
+        acc[3 * k + 2] += pz;
     }
     /* position: mean of the members' zeros */
     for (int k = 0; k < n; k++) {
-        c->sing[k].x = acc[2 * k] / c->sing[k].ntri;
-        c->sing[k].y = acc[2 * k + 1] / c->sing[k].ntri;
+        c->sing[k].x = acc[3 * k] / c->sing[k].ntri;
+        c->sing[k].y = acc[3 * k + 1] / c->sing[k].ntri;
+        c->sing[k].z = acc[3 * k + 2] / c->sing[k].ntri;
     }
 done:
     free(parent);
@@ -189,6 +217,7 @@ done:
 
 int glpgp_cross_to_vector(const glpgp_mesh *m, const double *w, double *u)
 {
+    if (m->xyz) return glpgp_surface_cross_to_vector(m, w, u); /* a surface: with its connection */
     const int nv = m->nv, nt = m->nt;
     int *deg = calloc((size_t)nv + 1, sizeof(int)), *adj = malloc((size_t)6 * nt * sizeof(int));
     int *queue = malloc((size_t)nv * sizeof(int));
@@ -272,7 +301,7 @@ done:
 int glpgp_cross_eps_schedule(const glpgp_mesh *m, const glpgp_options *o,
                              double eps[GLPGP_CROSS_MAX_LEVELS])
 {
-    const double diag = hypot(m->bbox[2] - m->bbox[0], m->bbox[3] - m->bbox[1]);
+    const double diag = glpgp_mesh_diagonal(m); /* 3D for a surface */
     /* eps_0 = cross_eps0 D;  eps_{k+1} = max(ratio eps_k, emin) while eps_k > merge emin */
     int n = 0;
     double e = o->cross_eps0 * diag, emin = o->cross_eps_min * m->mean_edge;
@@ -282,6 +311,57 @@ int glpgp_cross_eps_schedule(const glpgp_mesh *m, const glpgp_options *o,
         eps[n++] = e;
     }
     return n;
+}
+
+void glpgp_cross_log_done(const glpgp_cross_result *c)
+{
+    glpgp_log(GLPGP_LOG_INFO,
+              "cross: done in %.2f s: %d singularities (index sum %d/4, Poincare-Hopf %d/4), median |w| = %.4f, "
+              "%d Newton, %ld CG",
+              c->seconds, c->nsing, c->index4_sum, c->index4_expected, c->zabs_median, c->newton_iterations,
+              c->cg_iterations);
+}
+
+glpgp_status glpgp_cross_levels(const glpgp_mesh *m, glpgp_backend *b, const glpgp_options *o,
+                                glpgp_newton_state *ns, glpgp_cross_result *c)
+{
+    const glpgp_backend_ops *op = b->ops;
+    const int nv = b->sys->nv;
+    glpgp_vec *x = ns->x, *g = ns->g;
+    double eps[GLPGP_CROSS_MAX_LEVELS];
+    c->nlevels = glpgp_cross_eps_schedule(m, o, eps);
+    for (int l = 0; l < c->nlevels; l++) {
+        glpgp_level_stats *ls = &c->level[l];
+        const double rtol = o->cross_rtol;
+        glpgp_log(GLPGP_LOG_INFO, "cross: level %d/%d, eps = %.4g", l + 1, c->nlevels, eps[l]);
+        /* a level that starts at a critical point up to rounding (e.g. w = 1 on a
+         * domain with axis-aligned edges only) has nothing to do: the relative
+         * test would chase rounding noise to the Newton cap. The entries of g
+         * are O(1) (cotan weights, penalty (edge/eps)^2), so |g| <= 1e-10 sqrt(nv)
+         * is rounding. */
+        double sg[GLPGP_NSLOTS];
+        GLPGP_CHECK(op->gradient(b, x, 1.0 / (4.0 * eps[l] * eps[l]), g));
+        GLPGP_CHECK(op->dot(b, g, g, GLPGP_S_DOT));
+        GLPGP_CHECK(op->get_scalars(b, sg, GLPGP_NSLOTS));
+        if (sqrt(sg[GLPGP_S_DOT]) <= 1e-10 * sqrt((double)nv)) {
+            ls->eps = eps[l];
+            ls->rtol = rtol;
+            ls->grad0 = ls->grad = sqrt(sg[GLPGP_S_DOT]);
+            ls->energy = sg[GLPGP_S_E] + sg[GLPGP_S_P];
+            continue;
+        }
+        GLPGP_CHECK(glpgp_newton_level(b, o, ns, 2, eps[l], rtol, ls));
+        if (ls->capped) {
+            c->capped_levels++;
+            glpgp_log(GLPGP_LOG_WARNING,
+                      "cross: eps level %d/%d stopped at the Newton cap of %d steps with |g|/|g0| = %.2e "
+                      "(tolerance %.0e): not converged",
+                      l + 1, c->nlevels, o->newton_max, ls->grad0 > 0 ? ls->grad / ls->grad0 : 0.0, rtol);
+        }
+        c->newton_iterations += ls->newton;
+        c->cg_iterations += ls->cg;
+    }
+    return GLPGP_OK;
 }
 
 glpgp_status glpgp_cross_solve(const glpgp_mesh *m, glpgp_backend *b, const glpgp_options *o,
@@ -297,6 +377,8 @@ glpgp_status glpgp_cross_solve(const glpgp_mesh *m, glpgp_backend *b, const glpg
     double *zero = NULL;
     const double t0 = glpgp_now();
     *out = NULL;
+    if (m->xyz)
+        return GLPGP_FAIL(GLPGP_ERR_ARG, "cross field of a surface: glpgp_surface_cross_solve (glpgp/surfsolve.h)");
     if (!b->sys || b->sys->mesh != m)
         return GLPGP_FAIL(GLPGP_ERR_ARG, "cross field: the backend is not set up for this mesh");
     GLPGP_CHECK(glpgp_cross_result_create(nv, m->nt, &c));
@@ -342,48 +424,12 @@ glpgp_status glpgp_cross_solve(const glpgp_mesh *m, glpgp_backend *b, const glpg
               m->loop_start[m->nloops], ci.iterations);
 
     /* Ginzburg-Landau continuation: Newton levels at decreasing eps */
-    double eps[GLPGP_CROSS_MAX_LEVELS];
-    c->nlevels = glpgp_cross_eps_schedule(m, o, eps);
     glpgp_newton_state ns = {.x = x, .g = g, .d = d, .xt = xt, .work = work, .amg = amg};
-    for (int l = 0; l < c->nlevels; l++) {
-        glpgp_level_stats *ls = &c->level[l];
-        const double rtol = o->cross_rtol;
-        glpgp_log(GLPGP_LOG_INFO, "cross: level %d/%d, eps = %.4g", l + 1, c->nlevels, eps[l]);
-        /* a level that starts at a critical point up to rounding (e.g. w = 1 on a
-         * domain with axis-aligned edges only) has nothing to do: the relative
-         * test would chase rounding noise to the Newton cap. The entries of g
-         * are O(1) (cotan weights, penalty (edge/eps)^2), so |g| <= 1e-10 sqrt(nv)
-         * is rounding. */
-        double sg[GLPGP_NSLOTS];
-        GLPGP_CHECK_GOTO(st, op->gradient(b, x, 1.0 / (4.0 * eps[l] * eps[l]), g), fail);
-        GLPGP_CHECK_GOTO(st, op->dot(b, g, g, GLPGP_S_DOT), fail);
-        GLPGP_CHECK_GOTO(st, op->get_scalars(b, sg, GLPGP_NSLOTS), fail);
-        if (sqrt(sg[GLPGP_S_DOT]) <= 1e-10 * sqrt((double)nv)) {
-            ls->eps = eps[l];
-            ls->rtol = rtol;
-            ls->grad0 = ls->grad = sqrt(sg[GLPGP_S_DOT]);
-            ls->energy = sg[GLPGP_S_E] + sg[GLPGP_S_P];
-            continue;
-        }
-        GLPGP_CHECK_GOTO(st, glpgp_newton_level(b, o, &ns, 2, eps[l], rtol, ls), fail);
-        if (ls->capped) {
-            c->capped_levels++;
-            glpgp_log(GLPGP_LOG_WARNING,
-                      "cross: eps level %d/%d stopped at the Newton cap of %d steps with |g|/|g0| = %.2e "
-                      "(tolerance %.0e): not converged",
-                      l + 1, c->nlevels, o->newton_max, ls->grad0 > 0 ? ls->grad / ls->grad0 : 0.0, rtol);
-        }
-        c->newton_iterations += ls->newton;
-        c->cg_iterations += ls->cg;
-    }
+    GLPGP_CHECK_GOTO(st, glpgp_cross_levels(m, b, o, &ns, c), fail);
     GLPGP_CHECK_GOTO(st, op->vec_read(b, x, c->w), fail);
     GLPGP_CHECK_GOTO(st, glpgp_cross_analyze(m, c), fail);
     c->seconds = glpgp_now() - t0;
-    glpgp_log(GLPGP_LOG_INFO,
-              "cross: done in %.2f s: %d singularities (index sum %d/4, Poincare-Hopf %d/4), median |w| = %.4f, "
-              "%d Newton, %ld CG",
-              c->seconds, c->nsing, c->index4_sum, c->index4_expected, c->zabs_median, c->newton_iterations,
-              c->cg_iterations);
+    glpgp_cross_log_done(c);
     goto done;
 fail:
     glpgp_cross_result_destroy(&c);

@@ -7,6 +7,10 @@
 int glpgp_dirichlet_set(const glpgp_mesh *m, const double *w, unsigned char *dir)
 {
     int n = 0;
+    if (!m->normal_prev) { /* a surface: glpgp_surface_dirichlet */
+        for (int i = 0; i < m->nv; i++) dir[i] = 0;
+        return 0;
+    }
     for (int i = 0; i < m->nv; i++) {
         dir[i] = 0;
         if (!m->on_boundary[i]) continue;

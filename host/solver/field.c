@@ -191,6 +191,9 @@ static void field_radial(const glpgp_mesh *m, const glpgp_options *o, double *u)
 glpgp_status glpgp_field_compute(const glpgp_mesh *m, glpgp_backend *b, const glpgp_options *o,
                                  double *u, long *cg_iterations)
 {
+    if (m->xyz)
+        return GLPGP_FAIL(GLPGP_ERR_UNSUPPORTED, "the planar guiding fields do not apply to a surface "
+                                                 "(glpgp_solve_surface, glpgp/surfsolve.h)");
     if (o->field == GLPGP_FIELD_FILE) return o->field_values ? field_array(m, o, u) : field_file(m, o->field_file, u);
     if (o->field == GLPGP_FIELD_CROSS) return glpgp_cross_guiding_field(m, b, o, NULL, u, cg_iterations);
     if (o->field == GLPGP_FIELD_RADIAL) {

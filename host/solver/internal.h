@@ -84,6 +84,70 @@ glpgp_status glpgp_dist_zabs_stats(glpgp_backend *b, const glpgp_mesh *m, const 
  * counts and |z| statistics of the whole mesh */
 glpgp_status glpgp_dist_summarize(glpgp_backend *b, const glpgp_mesh *m, glpgp_osc_result *o);
 
+/* The cross field's Newton levels (crossfield.c): eps from cross_eps0 x the
+ * diagonal down to cross_eps_min mean edges, each to cross_rtol, from the
+ * state's x on backend b (set up with the cross system, its QUAD assembled);
+ * a level starting at a critical point up to rounding is skipped. Fills
+ * c's levels and counts. Shared by the planar and the surface cross field. */
+struct glpgp_cross_result;
+/* The INFO line of a finished cross field (crossfield.c). */
+void glpgp_cross_log_done(const struct glpgp_cross_result *c);
+glpgp_status glpgp_cross_levels(const glpgp_mesh *m, glpgp_backend *b, const glpgp_options *o,
+                                glpgp_newton_state *ns, struct glpgp_cross_result *c);
+
+/* ---- one oscillator's solve (continuation.c), shared with the surface
+ * pipeline (surface_solve.c) ---- */
+/* The driver's vectors and state of one oscillator solve on backend b. */
+typedef struct osc_work {
+    glpgp_backend *b;
+    const glpgp_options *o;
+    glpgp_vec *x, *g, *d, *xt, *work;
+    double *host, *scratch;
+    glpgp_amg *amg; /* multigrid preconditioner of the current oscillator (NULL: Jacobi) */
+    int *stop;      /* concurrent oscillators: 0, or 1 + the oscillator that failed first
+                       (the other's Newton levels then end at their next step) */
+    /* optional (NULL: none): the initial guess of an oscillator without Dirichlet
+     * nodes, for naive PGP and the GL init "naive" (the naive solve would give 0):
+     * x <- it, with QUAD assembled and w->amg created (a surface: the quadratic
+     * form's smallest eigenvector, surface_solve.c); ctx: its data */
+    glpgp_status (*init_free)(struct osc_work *w, int k, glpgp_osc_result *r);
+    void *init_ctx;
+} osc_work;
+/* w <- the driver's vectors on backend b (set up): x, g, d, xt, work of n
+ * unknowns, host (n doubles) and scratch (ns doubles); the rest zero. Free:
+ * glpgp_osc_work_free (also after a failure part-way). */
+glpgp_status glpgp_osc_work_create(osc_work *w, glpgp_backend *b, const glpgp_options *o, size_t n, size_t ns);
+void glpgp_osc_work_free(osc_work *w);
+/* One oscillator (k = 0, 1) on mesh m, or the coupled pair (k = 3) on a
+ * coupled system's virtual mesh m with its Dirichlet set dir_given: the
+ * field hostw, sizes (NULL: uniform h), naive PGP or the GL continuation over
+ * eps[0 .. nlevels) into r (with dir_given not summarised: the caller
+ * splits it per vertex first). */
+glpgp_status glpgp_solve_oscillator(const glpgp_mesh *m, osc_work *w, int k, const double *hostw,
+                                    const double *size, glpgp_osc_result *r, double h, const double *eps,
+                                    int nlevels, const unsigned char *dir_given);
+
+/* The coupled pair (z_u, z_v) of mesh m with representatives r->field
+ * (continuation.c): one GL solve on the coupled system, split per vertex into
+ * r->osc[0], r->osc[1] (statistics in osc[0]), frame windings, r->coupled.
+ * dn_given (2 nv, NULL: the planar boundary rule) the Dirichlet nodes;
+ * init_free, init_ctx: osc_work's (NULL: none). */
+glpgp_status glpgp_solve_coupled(const glpgp_mesh *m, glpgp_backend *b, const glpgp_options *o, glpgp_result *r,
+                                 const double *size, double h, const double *eps, int nlev, const unsigned char *dn_given,
+                                 glpgp_status (*init_free)(osc_work *w, int k, glpgp_osc_result *r), void *init_ctx);
+
+/* Inverse iteration towards the smallest eigenvector of NEWTON (assembled
+ * without penalty and Dirichlet rows: QUAD) against the lumped mass
+ * (surface_cross.c): from x, x <- NEWTON^-1 (M x) scaled to a mean |z|^2 of 1,
+ * each solve to 1e-4 (the multigrid *amg, updated with x as its frames; set
+ * to NULL when it fails), until the Rayleigh quotient x.QUAD x / x.M x
+ * changes by less than 1e-3 or after maxsteps steps. mass: n (pairs of
+ * unknowns); host: 2 n scratch. *cg += the CG iterations; returns the steps
+ * in *steps. */
+glpgp_status glpgp_inverse_iteration(glpgp_backend *b, const glpgp_options *o, glpgp_amg **amg, glpgp_vec *x,
+                                     glpgp_vec *y, glpgp_vec *rhs, glpgp_vec *work, const double *mass, int n,
+                                     double *host, int maxsteps, long *cg, int *steps);
+
 /* One INFO line about a non-uniform size field (solver/sizefield.c). */
 void glpgp_size_log(const glpgp_mesh *m, const double *size, double h);
 

@@ -126,10 +126,12 @@ static const glpgp_optdesc k_table[] = {
         "with --precond amg: preconditioner and norm of the trust region's\n"
         "Steihaug CG: 2x2-block Jacobi, or a symmetric multigrid W-cycle\n"
         "built on the projected Hessian"),
-    TXT("field", G1, parse_field, "boundary|radial|cross|FILE", "boundary",
+    TXT("field", G1, parse_field, "boundary|radial|cross|FILE", "boundary; surfaces: cross",
         "guiding field U: smooth field aligned with the boundary, radial\n"
         "about --center, from the Ginzburg-Landau cross field (see\n"
-        "--cross-eps0), or one \"ux uy\" line per vertex from FILE"),
+        "--cross-eps0), or one \"ux uy\" line per vertex from FILE;\n"
+        "a surface: cross (default) or boundary (harmonic, aligned with\n"
+        "its boundary and sharp features)"),
     TXT("center", G1, parse_center, "X,Y", "area centroid", "centre of the radial field"),
     CHO("init", G1, init, k_inits, k_init_vals,
         "initial guess of the GL continuation: the normalised naive PGP\n"
@@ -157,7 +159,12 @@ static const glpgp_optdesc k_table[] = {
         "(c the largest that brings them within F); 0: off"),
     DBL("size-chord-depth", G1, size_chord_depth, 0.0, 0, 1.0, 1, "F",
         "curved boundaries: a chord's depth (sagitta) stays below F h\n"
-        "(the size is capped where it would not); 0: off"),
+        "(the size is capped where it would not); 0: off (on a surface: its\n"
+        "curvature the same way)"),
+    DBL("feature-angle", G1, feature_angle, 0.0, 0, 180.0, 0, "DEG",
+        "a surface: interior edges whose triangles' normals differ by more\n"
+        "than DEG degrees are sharp features, which the field and the\n"
+        "quads follow like the boundary (180: none)"),
 
     DBL("eps0", G2, eps0, 0.0, 1, HUGE_VAL, 0, "F", "first eps, as a multiple of h"),
     DBL("cross-eps0", G2, cross_eps0, 0.0, 1, HUGE_VAL, 0, "F",
@@ -198,7 +205,7 @@ static const glpgp_optdesc k_table[] = {
         "the other; auto: concurrent where measured to pay (reference\n"
         "backend; multigrid on an OpenCL CPU device up to 500k vertices;\n"
         "a GPU) with two or more processors and memory for the copy"),
-    {.name = "phase-sync", .kind = GLPGP_OPTK_FLAG, .offset = OFF(phase_sync), .ival = 1, .def = "",
+    {.name = "phase-sync", .group = G2, .kind = GLPGP_OPTK_FLAG, .offset = OFF(phase_sync), .ival = 1, .def = "",
      .help = "wait for the device at the end of every timed phase, so that\n"
              "each phase's time in the summary and the statistics includes\n"
              "its device work (one more host round trip per phase)"},

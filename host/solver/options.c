@@ -1,6 +1,7 @@
 /* solver/options.c: the documented defaults and range checks of every solve
  * parameter, the default quad size and the eps schedule (glpgp/solve.h). */
 #include "glpgp/solve.h"
+#include "glpgp/surface.h"
 
 #include <math.h>
 #include <string.h>
@@ -75,6 +76,7 @@ void glpgp_options_default(glpgp_options *o)
     o->size_resolution = 4.0;
     o->size_diag_div = 20.0;
     o->size_min_edges = 10.0;
+    o->feature_angle = GLPGP_FEATURE_ANGLE_DEFAULT;
 }
 
 #define OPEN01(v) ((v) > 0.0 && (v) < 1.0)
@@ -182,6 +184,8 @@ glpgp_status glpgp_options_check(const glpgp_options *o)
                           o->size_resolution);
     if (!(o->size_diag_div > 0.0) || !(o->size_min_edges >= 0.0))
         return GLPGP_FAIL(GLPGP_ERR_ARG, "default-size parameters out of range");
+    if (!(o->feature_angle >= 0.0 && o->feature_angle <= 180.0))
+        return GLPGP_FAIL(GLPGP_ERR_ARG, "feature_angle must be in [0, 180] degrees, got %g", o->feature_angle);
     return GLPGP_OK;
 }
 
@@ -190,6 +194,7 @@ glpgp_status glpgp_options_check_mesh(const glpgp_options *o, const glpgp_mesh *
     GLPGP_CHECK(glpgp_options_check(o));
     double h = o->size > 0.0 ? o->size : glpgp_default_size(m, o);
     double dx = m->bbox[2] - m->bbox[0], dy = m->bbox[3] - m->bbox[1], diag = sqrt(dx * dx + dy * dy);
+    if (m->xyz) diag = glpgp_mesh_diagonal(m); /* a surface: the 3D box */
     if (!(h >= GLPGP_SIZE_MIN_EDGES * m->mean_edge))
         return GLPGP_FAIL(GLPGP_ERR_ARG,
                           "size h = %g is %.3g mean edge lengths of the mesh: at least %g are needed "
@@ -213,7 +218,8 @@ double glpgp_default_size(const glpgp_mesh *m, const glpgp_options *o)
     /* diameter / 20, raised to 10 mean edges when the mesh is too coarse for it
      * (P1 needs about 10 vertices per period, see docs/numerics.md) */
     double dx = m->bbox[2] - m->bbox[0], dy = m->bbox[3] - m->bbox[1];
-    return fmax(sqrt(dx * dx + dy * dy) / o->size_diag_div, o->size_min_edges * m->mean_edge);
+    const double diag = m->xyz ? glpgp_mesh_diagonal(m) : sqrt(dx * dx + dy * dy); /* a surface: the 3D box */
+    return fmax(diag / o->size_diag_div, o->size_min_edges * m->mean_edge);
 }
 
 int glpgp_eps_schedule(const glpgp_mesh *m, const glpgp_options *o, double h,

@@ -74,7 +74,7 @@ glpgp_status glpgp_solve_prepare(const glpgp_mesh *m, glpgp_options *o, const ch
      * (a graded input whose far field is coarser than h, a CAD export's fan
      * of slivers; the refinement's own limits bound the work); the refined
      * mesh is checked against the full rule below */
-    const int refine = refine_ok && o->field != GLPGP_FIELD_FILE &&
+    const int refine = refine_ok && o->field != GLPGP_FIELD_FILE && !m->xyz &&
                        (o->size_field == GLPGP_SIZE_AUTO || o->size_field == GLPGP_SIZE_ISO ||
                         o->size_field == GLPGP_SIZE_FUNC);
     warn_slivers(m, name);

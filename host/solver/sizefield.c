@@ -1124,6 +1124,11 @@ glpgp_status glpgp_size_refine(const glpgp_mesh *m, const glpgp_options *o, doub
     glpgp_status st = GLPGP_OK;
     glpgp_options oi = *o;
     glpgp_mesh *cur = NULL;
+    if (m->xyz) { /* a surface: not refined (yet): solved as it is */
+        *out = NULL;
+        if (info) memset(info, 0, sizeof *info);
+        return GLPGP_OK;
+    }
     double *size = NULL;
     unsigned char *need = NULL;
     *out = NULL;

@@ -1,10 +1,11 @@
 /* fuzz_mesh_file.h: the body shared by the triangle-mesh reader harnesses
- * (fuzz_obj.c, fuzz_msh.c, fuzz_stl.c): the input written as a file with
+ * (fuzz_obj.c, fuzz_msh.c, fuzz_stl.c, fuzz_ply.c, fuzz_off.c): the input written as a file with
  * extension ext, read by glpgp_mesh_read (reader + glpgp_mesh_create's
  * validation). Properties: a failure returns no mesh and one error line; an
- * accepted mesh has >= 3 vertices and >= 1 triangle, finite coordinates,
- * indices in range, and survives a write / read round trip (as back_ext:
- * STL is read only) with the same counts. */
+ * accepted mesh (planar, or a surface: glpgp/surface.h) has >= 3 vertices
+ * and >= 1 triangle, finite coordinates, indices in range, and survives a
+ * write / read round trip (as back_ext: STL, PLY and OFF are read only) with
+ * the same counts. */
 #ifndef GLPGP_FUZZ_MESH_FILE_H
 #define GLPGP_FUZZ_MESH_FILE_H
 
@@ -26,7 +27,8 @@ static int fuzz_mesh_file(const char *ext, const char *back_ext, const uint8_t *
         return 0;
     }
     FUZZ_ASSERT(m && m->nv >= 3 && m->nt >= 1);
-    for (int i = 0; i < 2 * m->nv; i++) FUZZ_ASSERT(isfinite(m->xy[i]));
+    FUZZ_ASSERT((m->xy != NULL) != (m->xyz != NULL) && (m->xyz != NULL) == (m->surf != NULL));
+    for (int i = 0; i < (m->xyz ? 3 : 2) * m->nv; i++) FUZZ_ASSERT(isfinite(m->xyz ? m->xyz[i] : m->xy[i]));
     for (int k = 0; k < 3 * m->nt; k++) FUZZ_ASSERT(m->tri[k] >= 0 && m->tri[k] < m->nv);
     /* round trip */
     const char *back = fuzz_write_file(1, back_ext, NULL, 0);

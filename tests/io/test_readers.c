@@ -476,21 +476,153 @@ static void box_stl(const char *name, double a, double b, double c)
     put(tu_tmp_path(name), text, 0);
 }
 
-/* A 3D surface (a CAD part's STL): its largest face in a coordinate plane
- * is solved: the box 2 x 1 x 0.5 gives its bottom (z = 0, area 2), the box
- * 0.2 x 3 x 2 its side x = 0 (area 6); a tetrahedron with no such face is
- * an error. */
+/* A 3D mesh (a CAD part's STL) is a surface now: the closed box of 8
+ * vertices, 12 triangles (chi 2, no loop, area 2 (ab + bc + ca)); with
+ * GLPGP_READ_PLANAR_FACE its largest face in a coordinate plane (the box
+ * 2 x 1 x 0.5 gives its bottom, z = 0, area 2; the box 0.2 x 3 x 2 its side
+ * x = 0, area 6), and a tetrahedron with no such face is an error there. */
+static void read_expect_flat(const char *name, int nv, int nt, int nloops, double area, int line)
+{
+    glpgp_mesh *m = NULL;
+    glpgp_status st = glpgp_mesh_read_ex(tu_tmp_path(name), GLPGP_READ_PLANAR_FACE, &m);
+    if (st != GLPGP_OK || !m || m->xyz || m->nv != nv || m->nt != nt || m->nloops != nloops ||
+        fabs(m->area - area) > 1e-12) {
+        fprintf(stderr, "line %d: %s: %s\n", line, name, st != GLPGP_OK ? glpgp_error_message() : "wrong mesh");
+        tu_failures++;
+    }
+    glpgp_mesh_destroy(&m);
+    glpgp_error_clear();
+}
+
 static void three_d(void)
 {
     box_stl("flat.stl", 2, 1, 0.5);
-    read_expect("flat.stl", 4, 2, 1, 2.0, __LINE__);
+    read_expect_flat("flat.stl", 4, 2, 1, 2.0, __LINE__);
     box_stl("tall.stl", 0.2, 3, 2);
-    read_expect("tall.stl", 4, 2, 1, 6.0, __LINE__);
-    put(tu_tmp_path("tet.obj"), "v 0 0 0\nv 1 0 0.1\nv 0 1 0.2\nv 0.3 0.3 1\nf 1 2 3\nf 1 2 4\nf 2 3 4\nf 3 1 4\n", 0);
+    read_expect_flat("tall.stl", 4, 2, 1, 6.0, __LINE__);
     glpgp_mesh *m = NULL;
-    CHECK(glpgp_mesh_read(tu_tmp_path("tet.obj"), &m) == GLPGP_ERR_MESH && !m);
+    CHECK_OK(glpgp_mesh_read(tu_tmp_path("flat.stl"), &m));
+    CHECK(m && glpgp_mesh_is_surface(m) && m->nv == 8 && m->nt == 12 && m->nloops == 0 && m->surf->euler == 2);
+    CHECK(m && fabs(m->area - 2.0 * (2 * 1 + 1 * 0.5 + 0.5 * 2)) < 1e-12);
+    glpgp_mesh_destroy(&m);
+    put(tu_tmp_path("tet.obj"), "v 0 0 0\nv 1 0 0.1\nv 0 1 0.2\nv 0.3 0.3 1\nf 1 3 2\nf 1 2 4\nf 2 3 4\nf 3 1 4\n", 0);
+    CHECK(glpgp_mesh_read_ex(tu_tmp_path("tet.obj"), GLPGP_READ_PLANAR_FACE, &m) == GLPGP_ERR_MESH && !m);
     CHECK(strstr(glpgp_error_message(), "no face of it lies in one") != NULL);
     glpgp_error_clear();
+    CHECK_OK(glpgp_mesh_read(tu_tmp_path("tet.obj"), &m));
+    CHECK(m && m->nt == 4 && m->surf->euler == 2);
+    glpgp_mesh_destroy(&m);
+    /* a tilted plane (no coordinate plane): a flat open surface */
+    put(tu_tmp_path("tilt.obj"), "v 0 0 0\nv 1 0 1\nv 1 1 1\nv 0 1 0\nf 1 2 3 4\n", 0);
+    CHECK_OK(glpgp_mesh_read(tu_tmp_path("tilt.obj"), &m));
+    CHECK(m && glpgp_mesh_is_surface(m) && m->nt == 2 && m->nloops == 1 && fabs(m->area - sqrt(2.0)) < 1e-12);
+    glpgp_mesh_destroy(&m);
+    /* the flipped face of a closed surface: one line naming it */
+    put(tu_tmp_path("flip.obj"), "v 0 0 0\nv 1 0 0.1\nv 0 1 0.2\nv 0.3 0.3 1\nf 1 3 2\nf 1 4 2\nf 2 3 4\nf 3 1 4\n", 0);
+    CHECK(glpgp_mesh_read(tu_tmp_path("flip.obj"), &m) == GLPGP_ERR_MESH && !m);
+    CHECK(strstr(glpgp_error_message(), "flip.obj") && strstr(glpgp_error_message(), "inconsistent orientation"));
+    glpgp_error_clear();
+}
+
+/* PLY (ASCII, binary little- and big-endian, with extra properties and
+ * elements to skip, a quad face) and OFF (comments, a colour after a
+ * face, counts on the OFF line): the same tetrahedron-with-a-quad (a
+ * square pyramid: 5 vertices, 4 triangles + 1 quad -> 6 triangles). */
+static void put_ply_bin(const char *name, int be)
+{
+    const float X[5][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0.5f, 0.5f, 1}};
+    const int F[5][4] = {{0, 3, 2, 1}, {0, 1, 4, -1}, {1, 2, 4, -1}, {2, 3, 4, -1}, {3, 0, 4, -1}};
+    char head[512];
+    snprintf(head, sizeof head,
+             "ply\nformat binary_%s_endian 1.0\ncomment made by test_readers\nelement vertex 5\nproperty float x\n"
+             "property float y\nproperty float z\nproperty uchar red\nelement face 5\nproperty list uchar int "
+             "vertex_indices\nproperty int flags\nend_header\n",
+             be ? "big" : "little");
+    FILE *f = fopen(name, "wb");
+    if (!f) {
+        tu_failures++;
+        return;
+    }
+    fputs(head, f);
+#define PUTN(ptr, n)                                                                                   \
+    do {                                                                                               \
+        unsigned char b_[8];                                                                           \
+        memcpy(b_, (ptr), (n));                                                                        \
+        for (int k_ = 0; k_ < (n); k_++) fputc(b_[be ? (n) - 1 - k_ : k_], f);                         \
+    } while (0)
+    for (int v = 0; v < 5; v++) {
+        for (int c = 0; c < 3; c++) PUTN(&X[v][c], 4);
+        fputc(200, f);
+    }
+    for (int q = 0; q < 5; q++) {
+        const unsigned char n = F[q][3] < 0 ? 3 : 4;
+        fputc(n, f);
+        for (int c = 0; c < n; c++) PUTN(&F[q][c], 4);
+        const int flags = 7;
+        PUTN(&flags, 4);
+    }
+#undef PUTN
+    fclose(f);
+}
+
+static void pyramid_expect(const char *name, int line)
+{
+    glpgp_mesh *m = NULL;
+    glpgp_status st = glpgp_mesh_read(tu_tmp_path(name), &m);
+    if (st != GLPGP_OK || !m || !glpgp_mesh_is_surface(m) || m->nv != 5 || m->nt != 6 || m->nloops != 0 ||
+        m->surf->euler != 2 || fabs(m->area - (1.0 + sqrt(5.0))) > 1e-7) {
+        fprintf(stderr, "line %d: %s: %s\n", line, name, st != GLPGP_OK ? glpgp_error_message() : "wrong mesh");
+        tu_failures++;
+    }
+    glpgp_mesh_destroy(&m);
+    glpgp_error_clear();
+}
+
+static void ply_off(void)
+{
+    put(tu_tmp_path("pyr.ply"),
+        "ply\nformat ascii 1.0\ncomment a square pyramid\nelement vertex 5\nproperty double x\nproperty double y\n"
+        "property double z\nproperty float nx\nelement face 5\nproperty list uchar int vertex_index\n"
+        "element edge 1\nproperty int vertex1\nproperty int vertex2\nend_header\n"
+        "0 0 0 9\n1 0 0 9\n1 1 0 9\n0 1 0 9\n0.5 0.5 1 9\n4 0 3 2 1\n3 0 1 4\n3 1 2 4\n3 2 3 4\n3 3 0 4\n0 1\n",
+        0);
+    pyramid_expect("pyr.ply", __LINE__);
+    put_ply_bin(tu_tmp_path("pyr_le.ply"), 0);
+    pyramid_expect("pyr_le.ply", __LINE__);
+    put_ply_bin(tu_tmp_path("pyr_be.ply"), 1);
+    pyramid_expect("pyr_be.ply", __LINE__);
+    put(tu_tmp_path("pyr.off"), "OFF 5 5 8\n# a square pyramid\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n0.5 0.5 1 # apex\n"
+                      "4 0 3 2 1 255 0 0\n3 0 1 4\n3 1 2 4\n3 2 3 4\n3 3 0 4\n", 0);
+    pyramid_expect("pyr.off", __LINE__);
+    put(tu_tmp_path("pyr2.off"), "COFF\n5 5 0\n0 0 0 1 1 1 1\n1 0 0 1 1 1 1\n1 1 0 1 1 1 1\n0 1 0 1 1 1 1\n0.5 0.5 1 1 1 1 1\n"
+                       "4 0 3 2 1\n3 0 1 4\n3 1 2 4\n3 2 3 4\n3 3 0 4\n", 0);
+    pyramid_expect("pyr2.off", __LINE__);
+    /* malformed: one line naming the problem each */
+    const char *bad[][2] = {
+        {"b1.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nelement face 1\n"
+                   "property list uchar int vertex_indices\nend_header\n0 0\n1 0\n0 1\n3 0 1 2\n"},
+        {"b2.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+                   "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 1\n0 1 1\n3 0 1 7\n"},
+        {"b3.ply", "ply\nformat binary_little_endian 1.0\nelement vertex 1000000\nproperty float x\nproperty float y\n"
+                   "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"},
+        {"b4.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+                   "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 1\n0 1 nan\n3 0 1 2\n"},
+        {"b1.off", "OFF\n3 1 0\n0 0 0\n1 0 1\n0 1 1\n3 0 1 3\n"},
+        {"b2.off", "OFF BINARY\n"},
+        {"b3.off", "OFF\n3 1000000000 0\n0 0 0\n"},
+        {"b4.off", "OFF\n3 1 0\n0 0 0\n1 0 1\n0 1 1\n3 0 1 1\n"},
+    };
+    for (size_t k = 0; k < sizeof bad / sizeof bad[0]; k++) {
+        glpgp_mesh *m = NULL;
+        put(tu_tmp_path(bad[k][0]), bad[k][1], 0);
+        glpgp_error_clear();
+        glpgp_status st = glpgp_mesh_read(tu_tmp_path(bad[k][0]), &m);
+        printf("%s: %s\n", bad[k][0], glpgp_error_message());
+        CHECK(st != GLPGP_OK && m == NULL);
+        CHECK(strstr(glpgp_error_message(), bad[k][0]) != NULL && !strchr(glpgp_error_message(), '\n'));
+        glpgp_mesh_destroy(&m);
+        glpgp_error_clear();
+    }
 }
 
 int main(void)
@@ -502,11 +634,14 @@ int main(void)
     malformed_obj();
     welding();
     element_kinds();
+    ply_off();
     polygon_faces();
     stl();
     three_d();
     const char *made[] = {"flat.stl", "tall.stl", "tet.obj", "sq_a.stl", "sq_b.stl", "huge.stl", "soup.obj", "patches.msh", "crack.obj", "p2.msh", "q9.msh", "dart.msh", "short9.msh",
-                          "lface.obj", "rface.obj", "lcw.obj", "bow.obj"};
+                          "lface.obj", "rface.obj", "lcw.obj", "bow.obj", "tilt.obj", "flip.obj", "pyr.ply",
+                          "pyr_le.ply", "pyr_be.ply", "pyr.off", "pyr2.off", "b1.ply", "b2.ply", "b3.ply", "b4.ply",
+                          "b1.off", "b2.off", "b3.off", "b4.off"};
     for (size_t k = 0; k < sizeof made / sizeof *made; k++) unlink(tu_tmp_path(made[k]));
     rmdir(tu_tmp_dir);
     TEST_DONE();

@@ -143,7 +143,8 @@ int main(void)
 {
     const char *const *shapes = glpgp_mesh_shapes();
     CHECK(shapes && shapes[0] && !strcmp(shapes[0], "square") && !strcmp(shapes[1], "disk") &&
-          !strcmp(shapes[2], "annulus") && !strcmp(shapes[3], "lshape") && shapes[4] == NULL);
+          !strcmp(shapes[2], "annulus") && !strcmp(shapes[3], "lshape") && !strcmp(shapes[4], "sphere") &&
+          !strcmp(shapes[10], "halfcyl_flat") && shapes[11] == NULL);
 
     const long sizes[] = {2000, 20000};
     for (int i = 0; i < 2; i++) {

@@ -13,7 +13,7 @@ import pytest
 import glpgp
 from conftest import run_cli
 
-TIMING = {"seconds", "output"}
+TIMING = {"seconds", "output", "phases", "solve_split"}
 
 
 def strip(stats):

@@ -40,6 +40,7 @@ struct glpgp_options;
 typedef struct glpgp_cross_sing {
     double x, y;  /* position: area-weighted mean of the triangles' zeros of the
                      linear interpolant of w (its centroid when it has none inside) */
+    double z;     /* a surface's: the point is (x, y, z) (glpgp/surfsolve.h); 0 in the plane */
     int index4;   /* index times 4: +1 = +1/4, -2 = -1/2 ... */
     int ntri;     /* singular triangles merged into it */
     int tri;      /* one of them (the first in triangle order) */

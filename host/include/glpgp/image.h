@@ -137,6 +137,9 @@ typedef struct glpgp_render_options {
                           with a red dot (they may be smaller than a pixel) (default 1;
                           not used by the zabs kind, where they show as dark spots) */
     int margin;        /* empty pixels around the domain (< 0: size / 64) */
+    double azimuth;    /* a surface's picture (glpgp_render3d): the camera's direction, degrees
+                          about z from the x axis [35] ... */
+    double elevation;  /* ... and above the xy plane, |elevation| <= 90 [25] */
 } glpgp_render_options;
 
 void glpgp_render_options_default(glpgp_render_options *o);
@@ -161,6 +164,17 @@ const char *glpgp_image_kind_name(int kind);
  * transparent). */
 glpgp_status glpgp_render(const glpgp_mesh *m, const glpgp_result *r, const glpgp_render_options *o,
                           glpgp_image **out);
+
+/* A surface's result (glpgp/surface.h; glpgp_render calls it for a mesh
+ * with xyz): an orthographic view from (o->azimuth, o->elevation) fitted to
+ * the surface (o->size pixels on the long side), z-buffered, 2 x 2 samples
+ * per pixel, shaded (two-sided, creases kept sharp), coloured by o->kind
+ * (grid, checker, zabs or theta; the phases of each triangle read through
+ * its matching), singular triangles red and the cross field's
+ * singularities as dots (+1/4 red, -1/4 blue) where visible, the boundary
+ * dark. GLPGP_ERR_ARG for the kinds field and cross. */
+glpgp_status glpgp_render3d(const glpgp_mesh *m, const glpgp_result *r, const glpgp_render_options *o,
+                            glpgp_image **out);
 
 /* n results on the same mesh side by side (each panel rendered with o), with
  * captions under each: labels[i] on the first line and the singularity

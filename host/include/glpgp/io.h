@@ -315,16 +315,29 @@ glpgp_status glpgp_output_set_pvtu(glpgp_output_set *s, const glpgp_result *r, c
 
 /* ---- triangle meshes --------------------------------------------------- */
 
-/* Read by extension: .obj or .msh (MSH 2.2 and 4.1 ASCII, 3-node triangles only).
+/* Read by extension: .obj, .msh (MSH 2.2 and 4.1 ASCII), .stl (ASCII or
+ * binary), .ply (Stanford PLY: ASCII, binary little- or big-endian; the
+ * vertex element's x, y, z and the face element's vertex_indices (or
+ * vertex_index) list, other elements and properties skipped) or .off
+ * (Object File Format, OFF / COFF / NOFF headers). A mesh in a coordinate
+ * plane (z, else y or x constant, relative tolerance 1e-9 of the bbox
+ * size) is a planar mesh (glpgp_mesh_create); one whose x, y and z all vary
+ * is a surface (glpgp_mesh_create_surface, glpgp/surface.h), or with
+ * GLPGP_READ_PLANAR_FACE (glpgp_mesh_read_ex) its largest face in a
+ * coordinate plane (a warning names it; none: GLPGP_ERR_MESH).
  * Rejects: missing/unreadable file (GLPGP_ERR_IO), malformed content
- * (GLPGP_ERR_FORMAT), no triangles, non-planar input (z not constant, relative
- * tolerance 1e-9 of the bbox size) and everything glpgp_mesh_create rejects
- * (GLPGP_ERR_MESH). OBJ: `v x y [z]`, `f` with a, a/b, a//c, a/b/c forms and
+ * (GLPGP_ERR_FORMAT), no triangles and everything the mesh constructors
+ * reject (GLPGP_ERR_MESH). OBJ: `v x y [z]`, `f` with a, a/b, a//c, a/b/c forms and
  * negative (relative) indices; polygons with more than 3 corners are
  * fan-triangulated; a face using a vertex twice is an error. MSH: element
  * types other than 2 are skipped. Unused vertices are dropped silently (with
  * renumbering). Limits: see the top of this header. */
 glpgp_status glpgp_mesh_read(const char *path, glpgp_mesh **out);
+/* glpgp_mesh_read with flags: GLPGP_READ_PLANAR_FACE (a 3D mesh: its
+ * largest face in a coordinate plane, the behaviour for planar commands:
+ * remeshing, the domain of a quad mesh's quality report). */
+#define GLPGP_READ_PLANAR_FACE 1
+glpgp_status glpgp_mesh_read_ex(const char *path, int flags, glpgp_mesh **out);
 
 /* A mesh from arrays, as a reader would make it of a file with these
  * vertices and triangles (the Python binding's glpgp.Mesh): x holds nv

@@ -1,7 +1,8 @@
 /* glpgp/mesh.h: planar triangle meshes: creation with validation (planarity
  * is checked by the readers in glpgp/io.h, here: indices, degenerate
  * triangles, non-manifold edges, orientation), boundary loops and outward
- * boundary normals. Built-in shapes: glpgp/shapes.h. Layer: mesh. */
+ * boundary normals. Built-in shapes: glpgp/shapes.h. Triangulated surfaces
+ * in 3D are glpgp_meshes too (xyz set, xy NULL): glpgp/surface.h. Layer: mesh. */
 #ifndef GLPGP_MESH_H
 #define GLPGP_MESH_H
 
@@ -47,10 +48,12 @@ static inline int glpgp_part_counts_tri(const glpgp_mesh_part *p, const int *tri
  * by the size field's chord budget. One value for all of them. */
 #define GLPGP_CORNER_DEG 40.0
 
+struct glpgp_surface; /* glpgp/surface.h */
+
 typedef struct glpgp_mesh {
     int nv;            /* vertices */
     int nt;            /* triangles */
-    double *xy;        /* 2*nv coordinates */
+    double *xy;        /* 2*nv coordinates (NULL for a surface) */
     int *tri;          /* 3*nt vertex indices, every triangle counter-clockwise */
 
     /* Boundary (derived by glpgp_mesh_create). Loops are stored back to back in
@@ -72,6 +75,12 @@ typedef struct glpgp_mesh {
     double mean_edge;   /* mean edge length */
     int orientation_fixed; /* number of triangles flipped to make the mesh consistently CCW */
     glpgp_mesh_part *part; /* one rank's part of a distributed mesh (owned), NULL: a whole mesh */
+    /* A triangulated surface in 3D (glpgp/surface.h; NULL for planar meshes):
+     * 3*nv coordinates, its frames and connection (owned), and its 3D
+     * bounding box xmin, ymin, zmin, xmax, ymax, zmax. */
+    double *xyz;
+    struct glpgp_surface *surf;
+    double bbox3[6];
 } glpgp_mesh;
 
 /* Build a mesh from raw arrays (copied). Validates and normalises:

@@ -21,7 +21,9 @@ extern "C" {
  *   "disk"    unit disk centred at the origin
  *   "annulus" radii 0.3 and 1.0 centred at the origin
  *   "lshape"  [0,1]^2 minus [0.5,1]^2
- * Triangles are well shaped (min angle >= 25 degrees). Deterministic. */
+ * Triangles are well shaped (min angle >= 25 degrees). Deterministic.
+ * Surfaces (glpgp_surface_generate, glpgp/surface.h): "sphere", "torus",
+ * "genus2", "cube", "hemisphere", "halfcyl", and "halfcyl_flat" (planar). */
 glpgp_status glpgp_mesh_generate(const char *shape, long nverts, glpgp_mesh **out);
 /* NULL-terminated list of shape names, for help texts. */
 const char *const *glpgp_mesh_shapes(void);

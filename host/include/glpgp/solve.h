@@ -223,6 +223,11 @@ typedef struct glpgp_options {
      * never [NULL]. The Python binding polls Ctrl-C (its signals) here. */
     int (*cancel)(void *ctx);
     void *cancel_ctx;     /* its argument [NULL] */
+    /* surfaces (glpgp/surfsolve.h) */
+    double feature_angle; /* an interior edge whose triangles' normals differ by more than this
+                             many degrees is a sharp feature: the cross field and the
+                             oscillators align with it as with the boundary; [0, 180]; 180:
+                             none [GLPGP_FEATURE_ANGLE_DEFAULT = 35] */
 } glpgp_options;
 
 /* Fill the documented defaults. */

@@ -36,6 +36,13 @@ typedef struct glpgp_system {
      * backends then assemble with kernels/coupled_rows.h. */
     unsigned char *cconj; /* 3 * nt or NULL */
     double *cfield;       /* 6 * nt or NULL */
+    /* A surface's system (solver/surface_solve.c; NULL otherwise, owned like
+     * cconj): ctxy[6t + 2a] the corner a of triangle t in the triangle's own
+     * plane (replacing the mesh's xy), crot[2(3t+a)] a unit complex that
+     * turns the node's (conjugated) value into the triangle's frame
+     * (kernels/coupled_rows.h); both only with cconj set. */
+    double *ctxy;         /* 6 * nt or NULL */
+    double *crot;         /* 6 * nt or NULL */
 } glpgp_system;
 
 /* Build the layout and maps for mesh m (borrowed). */

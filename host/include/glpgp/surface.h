@@ -1,0 +1,150 @@
+/* glpgp/surface.h: triangulated surfaces in 3D (issue 28): creation with
+ * validation as an oriented 2-manifold with or without boundary, topology
+ * (Euler characteristic, genus, boundary loops), and the discrete
+ * differential geometry the surface solve needs: per-vertex tangent frames,
+ * each triangle's own plane ("unfolded" corner coordinates), the rotation
+ * from a vertex's frame into each of its triangles' frames, the discrete
+ * Levi-Civita connection per half-edge and the holonomy per triangle.
+ * Derivations: host/README.md "Surfaces". Layer: mesh.
+ *
+ * A surface is a glpgp_mesh with xyz set (3 nv coordinates) and xy NULL;
+ * planar meshes have xyz NULL and none of this. Its boundary loops
+ * (nloops, loop_start, loop_vertices, on_boundary) are set as for a planar
+ * mesh, each loop walked with the surface on its left (seen from the side
+ * the normals point to); normal_prev / normal_next are NULL.
+ *
+ * Angles. Vertex i's tangent plane is modelled by its fan of corners: the
+ * corner angles alpha around i, in counter-clockwise order (about the
+ * normal), starting at a reference edge (the first corner's outgoing edge;
+ * on the boundary, the outgoing boundary edge), scaled by s_i = 2 pi /
+ * Theta_i at an interior vertex (Theta_i = sum of its corner angles: the
+ * cone is flattened to a plane) and s_i = 1 at a boundary vertex (its fan
+ * unfolded as it is, so boundary corners keep their angle, as in the
+ * plane). The direction of the half-edge i -> j has the angle theta_i(j) in
+ * i's frame (Knoeppel, Crane, Pinkall, Schroeder 2013). A tangent vector at
+ * i is the complex number of its angle in that frame.
+ *  - connection of half-edge h = (i -> j): rho_h = theta_j(i) + pi -
+ *    theta_i(j): a vector of angle a at i transported to j has angle
+ *    a + rho_h (the angle to the edge is kept);
+ *  - holonomy of triangle t: Omega_t = sum over its corners of
+ *    alpha_{t,v} (s_v - 1), congruent to the sum of rho over its three
+ *    half-edges mod 2 pi; sum over all triangles = sum over interior
+ *    vertices of (2 pi - Theta_v) = 2 pi chi - sum over boundary vertices
+ *    of (pi - Theta_v) (discrete Gauss-Bonnet, exact);
+ *  - rotation of corner (t, a): phi_{t,a} maps an angle in vertex
+ *    tri[3t+a]'s frame to triangle t's frame (the plane of txy): through
+ *    the corner's outgoing edge it is beta_out - theta_out, through its
+ *    incoming edge beta_in - theta_in; the two differ by alpha (1 - s_v)
+ *    (0 on a developable surface) and phi is their mean. */
+#ifndef GLPGP_SURFACE_H
+#define GLPGP_SURFACE_H
+
+#include "glpgp/mesh.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* Dihedral angle (degrees) above which an interior edge is a sharp feature
+ * (glpgp_options.feature_angle's default). */
+#define GLPGP_FEATURE_ANGLE_DEFAULT 35.0
+
+typedef struct glpgp_surface {
+    int nv, nt;
+    int nedges;         /* undirected edges */
+    int ncomponents;    /* connected components */
+    int euler;          /* chi = V - E + F */
+    int genus;          /* sum over components of (2 - chi_c - b_c) / 2 */
+    /* half-edge h = 3t + a runs from tri[3t+a] to tri[3t+(a+1)%3] */
+    int *twin;          /* 3 nt: the opposite half-edge, -1 on the boundary */
+    /* per vertex */
+    int *vstart;        /* nv: the first corner of its fan (counter-clockwise; on the boundary
+                           the corner whose outgoing half-edge is a boundary edge); the next
+                           corner is the twin of the current one's incoming half-edge */
+    double *vnormal;    /* 3 nv: unit normal (angle-weighted mean of its triangles') */
+    double *vtangent;   /* 3 nv: the frame's first axis e_i: its reference edge projected
+                           into the plane normal to vnormal, unit (f_i = n_i x e_i) */
+    double *angle_sum;  /* nv: Theta_i */
+    double *scale;      /* nv: s_i (2 pi / Theta_i inside, 1 on the boundary) */
+    /* per corner c = 3t + a (vertex tri[c]) */
+    double *corner;     /* 3 nt: the corner angle alpha */
+    double *eangle;     /* 3 nt: theta of the corner's outgoing half-edge c in its vertex's frame */
+    double *rot;        /* 3 nt: phi: vertex frame -> triangle frame (see the top) */
+    /* per half-edge */
+    double *conn;       /* 3 nt: rho_h */
+    double *dihedral;   /* 3 nt: angle between the normals of the edge's two triangles
+                           (radians, in [0, pi]; 0 on the boundary) */
+    /* per triangle */
+    double *txy;        /* 6 nt: corner a of t at (txy[6t+2a], txy[6t+2a+1]) in t's plane:
+                           corner 0 at the origin, corner 1 on the positive x axis,
+                           corner 2 above it (counter-clockwise) */
+    double *tframe;     /* 9 nt: the plane's x axis, y axis and normal (3D unit vectors) */
+    double *holonomy;   /* nt: Omega_t */
+} glpgp_surface;
+
+/* Build a surface mesh from raw arrays (copied): xyz (3 nv), tri (3 nt).
+ * Rejected with GLPGP_ERR_MESH and one line naming where:
+ *  - fewer than 3 vertices or 1 triangle, an index out of range, a
+ *    repeated vertex in a triangle, a non-finite coordinate, a vertex used
+ *    by no triangle;
+ *  - a degenerate triangle (area <= 1e-14 x the bounding-box diagonal^2);
+ *  - a non-manifold edge (three or more triangles) or vertex (its corners
+ *    form more than one fan: two sheets or cones touching at it);
+ *  - inconsistent orientation (two triangles traverse their shared edge in
+ *    the same direction; the surface is orientable: flip one of them), or a
+ *    non-orientable surface (Moebius strip: no consistent orientation).
+ * Then the topology (loops, Euler characteristic, genus) and the geometry
+ * of glpgp_surface (m->surf). m->area, mean_edge are 3D; bbox holds the x,
+ * y range and bbox3 the 3D box. */
+glpgp_status glpgp_mesh_create_surface(int nv, const double *xyz, int nt, const int *tri, glpgp_mesh **out);
+
+/* Free a surface's arrays (NULL-safe, sets *s = NULL); glpgp_mesh_destroy
+ * calls it. */
+void glpgp_surface_destroy(struct glpgp_surface **s);
+
+/* Whether m is a surface (xyz set). */
+static inline int glpgp_mesh_is_surface(const glpgp_mesh *m) { return m && m->xyz != NULL; }
+
+/* Length of the bounding-box diagonal (3D for a surface). */
+double glpgp_mesh_diagonal(const glpgp_mesh *m);
+
+/* The 3D unit vector of the tangent vector (c, s) (cos, sin of its angle)
+ * in vertex i's frame: in the corner of i whose fan sector [theta, theta +
+ * s_i alpha) holds the angle psi, the direction of its outgoing edge turned
+ * by (psi - theta) / s_i in its triangle's plane (continuous in the angle,
+ * an edge's direction at an edge's angle; outside a boundary vertex's fan
+ * the nearer sector edge's). out: 3 doubles. */
+void glpgp_surface_vertex_vector(const glpgp_mesh *m, int i, double c, double s, double *out);
+
+/* Angle in vertex i's frame of the 3D vector v (projected into the tangent
+ * plane; the inverse of glpgp_surface_vertex_vector up to rounding).
+ * 0 when v is normal to the surface. */
+double glpgp_surface_vertex_angle(const glpgp_mesh *m, int i, const double *v);
+
+/* Feature half-edges: flag[h] = 1 where the dihedral angle of an interior
+ * edge exceeds feature_deg degrees (both half-edges of it); boundary
+ * half-edges 0. Returns the number of undirected feature edges. flag: 3 nt. */
+int glpgp_surface_features(const glpgp_mesh *m, double feature_deg, unsigned char *flag);
+
+/* The sum over triangles of the holonomy (2 pi chi minus the boundary's
+ * turning sum(pi - Theta_v) over the boundary vertices; 4 pi on a sphere). */
+double glpgp_surface_total_holonomy(const glpgp_mesh *m);
+
+/* Surface shapes at about nverts vertices, deterministic (glpgp/shapes.h
+ * lists them with the planar ones): "sphere" (radius 1), "torus" (radii 1,
+ * 0.4), "genus2" (a closed surface of genus 2), "cube" (edge 1, sharp
+ * edges), "hemisphere" (open, radius 1), "halfcyl" (a rectangle of 2 pi x
+ * 2 rolled up into half a cylinder of radius 2: developable; its vertex
+ * columns lie on the cylinder's generators, so every strip between two is
+ * planar and the polyhedral surface is isometric to "halfcyl_flat"),
+ * "halfcyl_flat" (that polyhedron unrolled into the plane z = 0: the same
+ * triangles, a planar mesh). */
+glpgp_status glpgp_surface_generate(const char *shape, long nverts, glpgp_mesh **out);
+/* Whether name is a surface shape (including the planar twin halfcyl_flat). */
+int glpgp_surface_shape_known(const char *name);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif

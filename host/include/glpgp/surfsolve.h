@@ -1,0 +1,147 @@
+/* glpgp/surfsolve.h: the GL-PGP pipeline on a triangulated surface (issue
+ * 28; the mesh: glpgp/surface.h): sharp features and boundary constraints,
+ * the Ginzburg-Landau cross field with the discrete connection and its
+ * indices, the representatives U in the vertices' frames, the oscillator
+ * system coupled across each triangle's matching in the triangle's own
+ * plane, and the local size from curvature and feature spacing. glpgp_solve
+ * (glpgp/solve.h) takes this path for a surface. Derivations and
+ * measurements: host/README.md "Surfaces". Layer: solver.
+ *
+ * Every per-vertex angle and complex number is in that vertex's frame
+ * (glpgp/surface.h): the cross w_i = exp(4 i alpha_i), the representative
+ * U_i = (cos, sin) of a direction. A vertex quantity enters triangle t
+ * turned by the corner's rotation phi_{t,a}: a cross by exp(4 i phi), a
+ * direction by exp(i phi) (kernels/coupled_rows.h: crot, cfield). */
+#ifndef GLPGP_SURFSOLVE_H
+#define GLPGP_SURFSOLVE_H
+
+#include "glpgp/cross.h"
+#include "glpgp/solve.h"
+#include "glpgp/surface.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* Alignment constraints of a surface: its boundary edges and its sharp
+ * features (interior edges whose dihedral angle exceeds feature_angle).
+ * A vertex's cross is fixed (Dirichlet) where the constraint edges give it
+ * one: on the boundary from its two boundary edges, inside where exactly
+ * two feature edges meet (a crease passing through), as the mean of the two
+ * edges' crosses along the shorter arc, w = exp(i (4 a1 + d / 2)), d =
+ * principal(4 (a2 - a1)) (glpgp_cross_boundary's rule: exact where the
+ * edges turn by a multiple of 90 degrees). Vertices where one or three and
+ * more feature edges meet (a crease's end, a cube's corner) stay free: the
+ * cross field places the singularity a corner needs near them. */
+typedef struct glpgp_surface_constraints {
+    int nv, nt;
+    unsigned char *feature; /* 3 nt: half-edge on a sharp feature (both of an edge) */
+    int nfeatures;          /* undirected feature edges */
+    unsigned char *fixed;   /* nv: the cross is fixed */
+    int nfixed;
+    double *w0;             /* 2 nv: the fixed crosses (0 where free) */
+    int *cptr;              /* nv + 1: vertex i's constraint edges are */
+    double *cangle;         /*   cangle[cptr[i] .. cptr[i+1]): their angles in i's frame */
+} glpgp_surface_constraints;
+
+glpgp_status glpgp_surface_constraints_create(const glpgp_mesh *m, double feature_deg,
+                                              glpgp_surface_constraints **out);
+void glpgp_surface_constraints_destroy(glpgp_surface_constraints **c);
+
+/* mass (nv) <- each vertex's third of its triangles' areas (the lumped mass). */
+void glpgp_surface_lumped_mass(const glpgp_mesh *m, double *mass);
+
+/* Cross-field windings with the connection: index4 of triangle t = (sum over
+ * its half-edges h = (a -> b) of principal arg(w_b / (exp(4 i rho_h) w_a))
+ * + 4 Omega_t) / (2 pi), an integer by construction; each interior edge's
+ * two terms are exact negatives, so the sum over all triangles is the
+ * boundary's share plus 4 sum Omega_t / (2 pi): 4 chi on a closed surface
+ * (host/README.md "Surfaces"). wind (nt, may be NULL) <- -1, 0, +1 (a
+ * larger |index4| is clamped there but counted in full in *plus / *minus). */
+void glpgp_surface_cross_windings(const glpgp_mesh *m, const double *w, signed char *wind, int *plus, int *minus);
+
+/* Poincare-Hopf on a surface, in quarters: 4 chi - sum over the boundary
+ * vertices of k_v = round(tau_v / (pi/2)), tau_v = principal(pi - Theta_v)
+ * the boundary's turn at v (the planar corner terms; 4 chi on a closed
+ * surface whatever its features). */
+int glpgp_surface_expected_index4(const glpgp_mesh *m);
+
+/* A unit field transported along a breadth-first tree from each
+ * component's first vertex: z_j = z_i exp(i mult rho_{i->j}) (mult 4:
+ * crosses, 1: directions), z = 1 at the roots. Locally parallel; the
+ * holonomy collects where the tree's branches meet. z: 2 nv. */
+void glpgp_surface_transport(const glpgp_mesh *m, int mult, double *z);
+
+/* The cross field's system on the surface: the mesh's layout with, per
+ * corner, the triangle's own plane (ctxy) and the turn exp(4 i phi) of the
+ * vertex's cross into the triangle's frame (crot); no conjugation, zero
+ * frame field (the P1 element is then the connection Laplacian). */
+glpgp_status glpgp_surface_cross_system(const glpgp_mesh *m, glpgp_system **out);
+
+/* The Ginzburg-Landau cross field of a surface on backend b (set up here
+ * with glpgp_surface_cross_system; the caller sets b up again afterwards):
+ * the constraints' fixed crosses, harmonic inside (one linear solve), or
+ * without any fixed vertex (a closed surface without features) a few steps
+ * of inverse iteration towards the smallest eigenvector of the connection
+ * Laplacian from the transported field (the "globally optimal" field of
+ * Knoeppel et al.); |w| = 1; then the eps levels of the planar cross field
+ * (glpgp_cross_solve: cross_eps0 x the 3D diagonal down to cross_eps_min mean
+ * edges) and glpgp_cross_analyze (windings with the connection, the
+ * singularities' 3D positions, the expected sum). */
+glpgp_status glpgp_surface_cross_solve(const glpgp_mesh *m, glpgp_backend *b, const glpgp_options *o,
+                                       const glpgp_surface_constraints *con, glpgp_cross_result **out);
+
+/* The harmonic boundary-aligned cross field of a surface (--field
+ * boundary): the first part of glpgp_surface_cross_solve only (the fixed
+ * crosses extended harmonically, normalised; no Ginzburg-Landau levels).
+ * GLPGP_ERR_ARG when nothing is fixed (a closed surface without sharp
+ * features: use the cross field). */
+glpgp_status glpgp_surface_boundary_field(const glpgp_mesh *m, glpgp_backend *b, const glpgp_options *o,
+                                          const glpgp_surface_constraints *con, glpgp_cross_result **out);
+
+/* Representatives u (2 nv) of the crosses w: alpha_i = arg(w_i) / 4 + k pi/2,
+ * k chosen along a breadth-first walk closest to the neighbour's alpha
+ * transported (alpha_j + rho). Any choice is valid (the coupled solve is
+ * invariant); this one has few cuts. Returns the edges across which U
+ * turns (the matching is not the identity), -1 without memory. */
+int glpgp_surface_cross_to_vector(const glpgp_mesh *m, const double *w, double *u);
+
+/* Quarter turns r_a of corner a of triangle t of mesh m (planar or surface)
+ * with representatives u: rot^{r_a}(U_a) closest to U_{corner 0}, both in
+ * t's frame on a surface (turned by the corners' rotations), in the plane's
+ * on a planar mesh (glpgp_cross_turn). The coupled solve's matching. */
+int glpgp_coupled_corner_turn(const glpgp_mesh *m, const double *u, int t, int a);
+
+/* The Dirichlet nodes of the coupled oscillators on a surface: node
+ * (i, s) (dir[2i + s]) where its direction (U_i, or V_i for s = 1) is at
+ * least as normal as tangent to one of i's constraint edges
+ * (glpgp_dirichlet_set's rule, in i's frame). Returns their count. */
+int glpgp_surface_dirichlet(const glpgp_mesh *m, const glpgp_surface_constraints *con, const double *u,
+                            unsigned char *dir);
+
+/* Local size on a surface (size: 2 nv, u then v; *uniform set when every
+ * value is h): GLPGP_SIZE_NONE h; GLPGP_SIZE_FILE one "h" or "h_u h_v" line
+ * per vertex; GLPGP_SIZE_AUTO / ISO the smaller of (1) the curvature cap,
+ * 2 sqrt(2 R d - d^2) with d = size_chord_depth h (the chord's sagitta
+ * stays below d; R = 1 / the largest normal curvature over the vertex's
+ * non-feature edges) and (2) the feature spacing, the geodesic gap between
+ * two different constraint curves (boundary loops, creases) over
+ * size_across, then at least size_min h, graded by Dijkstra along the edges
+ * with slope size_grading. GLPGP_SIZE_FUNC: GLPGP_ERR_UNSUPPORTED. */
+glpgp_status glpgp_surface_size(const glpgp_mesh *m, const glpgp_options *o, const glpgp_surface_constraints *con,
+                                double h, double *size, int *uniform);
+
+/* The pipeline on a surface (glpgp_solve's, which calls it): constraints,
+ * the guiding field (cross, or the boundary-aligned harmonic one), its
+ * representatives, the local size, the coupled oscillators (naive PGP: the
+ * quadratic form's minimiser with the Dirichlet nodes, or without any its
+ * smallest eigenvector by inverse iteration; GL: the eps continuation from
+ * it), per-vertex results in each vertex's frame (r->coupled = 1). */
+glpgp_status glpgp_solve_surface(const glpgp_mesh *m, glpgp_backend *b, const glpgp_options *o,
+                                 glpgp_result **out);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif

@@ -1,0 +1,29 @@
+/* mesh/surface_internal.h: what the surface files of the mesh layer share
+ * (surface.c: validation and topology; surface_geom.c: frames and
+ * connection; surface_shapes.c: built-in surfaces). */
+#ifndef GLPGP_MESH_SURFACE_INTERNAL_H
+#define GLPGP_MESH_SURFACE_INTERNAL_H
+
+#include "glpgp/surface.h"
+
+/* n <- (b - a) x (c - a) (twice the area times the unit normal). */
+static inline void glpgp_tri_normal3(const double *a, const double *b, const double *c, double *n)
+{
+    const double u0 = b[0] - a[0], u1 = b[1] - a[1], u2 = b[2] - a[2];
+    const double v0 = c[0] - a[0], v1 = c[1] - a[1], v2 = c[2] - a[2];
+    n[0] = u1 * v2 - u2 * v1;
+    n[1] = u2 * v0 - u0 * v2;
+    n[2] = u0 * v1 - u1 * v0;
+}
+
+/* The boundary loops of surface m from next[v] (the end of the boundary
+ * half-edge leaving v, -1 when none): loop_start, loop_vertices,
+ * on_boundary, nloops, in increasing order of each loop's first vertex. */
+glpgp_status glpgp_surface_loops(glpgp_mesh *m, const int *next);
+
+/* The geometry of m->surf (normals, frames, angles, local coordinates,
+ * rotations, connection, holonomy, dihedral angles) and m->mean_edge, from
+ * the validated topology (twin, vstart). */
+glpgp_status glpgp_surface_geometry(glpgp_mesh *m);
+
+#endif

@@ -1,0 +1,324 @@
+/* solver/surface_size.c: the local size h(x) on a surface
+ * (glpgp_surface_size, glpgp/surfsolve.h): a per-vertex file, or the
+ * smaller of the curvature cap (the chord of a quad on a curved surface
+ * keeps its sagitta below size_chord_depth h, as the planar chord rule) and
+ * the spacing of the constraint curves (two creases or boundary loops
+ * closer than size_across periods: a chamfer, the rim of a thin plate),
+ * graded along the edges. */
+#include "internal.h"
+
+#include "glpgp/surfsolve.h"
+#include "glpgp/util.h"
+
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+static double dist3(const double *a, const double *b)
+{
+    return sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2]));
+}
+
+/* One "h" or "h_u h_v" line per vertex (as the planar size file). */
+static glpgp_status size_file(const glpgp_mesh *m, const char *path, double *size)
+{
+    FILE *f = fopen(path, "r");
+    if (!f) return GLPGP_FAIL(GLPGP_ERR_IO, "cannot open size file '%s': %s", path, strerror(errno));
+    char line[4096];
+    int i = 0, ln = 0;
+    glpgp_status st = GLPGP_OK;
+    while (st == GLPGP_OK && fgets(line, sizeof line, f)) {
+        ln++;
+        char *p = line;
+        while (*p == ' ' || *p == '\t') p++;
+        if (*p == '#' || *p == '\n' || *p == '\r' || !*p) continue;
+        double a, b;
+        char extra;
+        const int n = sscanf(p, "%lf %lf %c", &a, &b, &extra);
+        if (n == 1) b = a;
+        if ((n != 1 && n != 2) || !(a > 0.0) || !(b > 0.0) || !isfinite(a) || !isfinite(b))
+            st = GLPGP_FAIL(GLPGP_ERR_FORMAT, "%s:%d: expected one or two positive sizes", path, ln);
+        else if (i >= m->nv)
+            st = GLPGP_FAIL(GLPGP_ERR_FORMAT, "%s: more than %d size lines (one per vertex)", path, m->nv);
+        else {
+            size[i] = a;
+            size[m->nv + i] = b;
+            i++;
+        }
+    }
+    if (st == GLPGP_OK && i != m->nv) st = GLPGP_FAIL(GLPGP_ERR_FORMAT, "%s: %d size lines for %d vertices", path, i, m->nv);
+    fclose(f);
+    return st;
+}
+
+/* ---- a binary heap of (key, vertex) for Dijkstra ------------------------------ */
+
+typedef struct heap {
+    double *key;
+    int *v, n;
+} heap;
+
+static void heap_push(heap *q, double k, int v)
+{
+    int i = q->n++;
+    while (i > 0 && q->key[(i - 1) / 2] > k) {
+        q->key[i] = q->key[(i - 1) / 2];
+        q->v[i] = q->v[(i - 1) / 2];
+        i = (i - 1) / 2;
+    }
+    q->key[i] = k;
+    q->v[i] = v;
+}
+
+static int heap_pop(heap *q, double *k)
+{
+    const int top = q->v[0];
+    *k = q->key[0];
+    const double lk = q->key[--q->n];
+    const int lv = q->v[q->n];
+    int i = 0;
+    for (;;) {
+        int c = 2 * i + 1;
+        if (c >= q->n) break;
+        if (c + 1 < q->n && q->key[c + 1] < q->key[c]) c++;
+        if (q->key[c] >= lk) break;
+        q->key[i] = q->key[c];
+        q->v[i] = q->v[c];
+        i = c;
+    }
+    q->key[i] = lk;
+    q->v[i] = lv;
+    return top;
+}
+
+/* Each edge's endpoints to fn: the half-edges out of each corner, plus a
+ * boundary fan's incoming edge. */
+#define FOR_NEIGHBOURS(m, i, j, BODY)                                                                             \
+    do {                                                                                                         \
+        const glpgp_surface *fs_ = (m)->surf;                                                                    \
+        int c_ = fs_->vstart[i], last_ = c_;                                                                     \
+        do {                                                                                                     \
+            const int j = (m)->tri[c_ - c_ % 3 + (c_ % 3 + 1) % 3];                                              \
+            BODY;                                                                                                \
+            last_ = c_;                                                                                          \
+            c_ = fs_->twin[c_ - c_ % 3 + (c_ % 3 + 2) % 3];                                                      \
+        } while (c_ >= 0 && c_ != fs_->vstart[i]);                                                               \
+        if (c_ < 0) {                                                                                            \
+            const int j = (m)->tri[last_ - last_ % 3 + (last_ % 3 + 2) % 3];                                     \
+            BODY;                                                                                                \
+        }                                                                                                        \
+    } while (0)
+
+/* s_i <- min(s_i, min_j s_j + g |x_i - x_j|) over the mesh (Dijkstra). */
+static glpgp_status grade(const glpgp_mesh *m, double g, double *s)
+{
+    heap q;
+    const size_t cap = (size_t)3 * m->nt + (size_t)m->nv + 1;
+    q.n = 0;
+    GLPGP_CHECK(glpgp_malloc(cap, sizeof(double), &q.key));
+    glpgp_status st = glpgp_malloc(cap, sizeof(int), &q.v);
+    if (st != GLPGP_OK) {
+        free(q.key);
+        return st;
+    }
+    for (int i = 0; i < m->nv; i++) heap_push(&q, s[i], i);
+    while (q.n > 0) {
+        double k;
+        const int i = heap_pop(&q, &k);
+        if (k > s[i]) continue; /* stale */
+        FOR_NEIGHBOURS(m, i, j, {
+            const double c = s[i] + g * dist3(m->xyz + 3 * i, m->xyz + 3 * j);
+            if (c < s[j] && (size_t)q.n < cap) {
+                s[j] = c;
+                heap_push(&q, c, j);
+            }
+        });
+    }
+    free(q.key);
+    free(q.v);
+    return GLPGP_OK;
+}
+
+/* The curvature cap: R_i = 1 / the largest normal curvature |(n_j - n_i) .
+ * e| / |e|^2 over the vertex's edges e = x_j - x_i, with the normals of the
+ * smooth sectors the edge lies in (each vertex's fan split at its feature
+ * edges, a sector's normal the angle-weighted mean of its triangles'): a
+ * crease between two flat faces is no curvature (the plain vertex normal,
+ * averaged across it, would make it one); chord of sagitta d = depth h. */
+static glpgp_status curvature_cap(const glpgp_mesh *m, const glpgp_surface_constraints *con, double depth, double h,
+                                  double *s)
+{
+    const glpgp_surface *g = m->surf;
+    double *sn = NULL; /* 3 per corner: its sector's normal */
+    GLPGP_CHECK(glpgp_malloc((size_t)9 * m->nt, sizeof(double), &sn));
+    for (int i = 0; i < m->nv; i++) {
+        /* inside, start the walk at a feature edge where there is one (a sector's
+         * first corner); a boundary fan starts at its first corner anyway */
+        int c0 = g->vstart[i], c = c0;
+        if (!m->on_boundary[i]) do {
+            if (con->feature[c]) {
+                c0 = c;
+                break;
+            }
+            c = g->twin[c - c % 3 + (c % 3 + 2) % 3];
+        } while (c >= 0 && c != g->vstart[i]);
+        c = c0;
+        do { /* one sector: from c0 (or a feature edge) to the next feature edge */
+            double acc[3] = {0.0, 0.0, 0.0};
+            int k = c, n = 0;
+            do {
+                const double *N = g->tframe + 9 * (k / 3) + 6;
+                for (int e = 0; e < 3; e++) acc[e] += g->corner[k] * N[e];
+                n++;
+                k = g->twin[k - k % 3 + (k % 3 + 2) % 3];
+            } while (k >= 0 && k != c0 && !con->feature[k]);
+            const double an = sqrt(acc[0] * acc[0] + acc[1] * acc[1] + acc[2] * acc[2]);
+            for (int q = 0, kk = c; q < n; q++) {
+                for (int e = 0; e < 3; e++) sn[3 * kk + e] = acc[e] / an;
+                kk = g->twin[kk - kk % 3 + (kk % 3 + 2) % 3];
+            }
+            c = k;
+        } while (c >= 0 && c != c0);
+    }
+    for (int t = 0; t < m->nt; t++)
+        for (int a = 0; a < 3; a++) {
+            const int ca = 3 * t + a, cb = 3 * t + (a + 1) % 3, i = m->tri[ca], j = m->tri[cb];
+            const double *xi = m->xyz + 3 * i, *xj = m->xyz + 3 * j, l = dist3(xi, xj);
+            double dn = 0.0;
+            for (int e = 0; e < 3; e++) dn += (sn[3 * cb + e] - sn[3 * ca + e]) * (xj[e] - xi[e]);
+            const double kap = fabs(dn) / (l * l), d = depth * h;
+            if (!(kap > 0.0) || !(d > 0.0)) continue;
+            const double R = 1.0 / kap, cap = d < R ? 2.0 * sqrt(2.0 * R * d - d * d) : 2.0 * R;
+            s[i] = fmin(s[i], cap);
+            s[j] = fmin(s[j], cap);
+        }
+    free(sn);
+    return GLPGP_OK;
+}
+
+/* The spacing of the constraint curves (maximal chains of vertices with
+ * exactly two constraint edges; corners split them): a Dijkstra from every
+ * curve vertex labelled by its curve; where two fronts of different curves
+ * meet on an edge and the segment between their sources is within 60
+ * degrees of normal to both curves (two sides of a strip, not two curves
+ * meeting at a corner), the gap is that segment's length: sizes at most
+ * gap / across at both sources and at the edge. */
+static glpgp_status feature_spacing(const glpgp_mesh *m, const glpgp_surface_constraints *con, double across, double *s)
+{
+    const int nv = m->nv;
+    int *lab = NULL, *src = NULL;
+    double *d = NULL, *tan3 = NULL;
+    heap q = {NULL, NULL, 0};
+    glpgp_status st = GLPGP_OK;
+    const size_t cap = (size_t)3 * m->nt + (size_t)nv + 1;
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)nv, sizeof(int), &lab), done);
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)nv, sizeof(int), &src), done);
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)nv, sizeof(double), &d), done);
+    GLPGP_CHECK_GOTO(st, glpgp_calloc((size_t)6 * nv, sizeof(double), &tan3), done);
+    GLPGP_CHECK_GOTO(st, glpgp_malloc(cap, sizeof(double), &q.key), done);
+    GLPGP_CHECK_GOTO(st, glpgp_malloc(cap, sizeof(int), &q.v), done);
+    /* curve labels: union of constraint edges between two-edge vertices; tangents */
+    for (int i = 0; i < nv; i++) lab[i] = con->cptr[i + 1] - con->cptr[i] == 2 ? i : -1;
+    for (int h = 0; h < 3 * m->nt; h++) {
+        const int tw = m->surf->twin[h];
+        if (!(tw < 0 || (con->feature[h] && tw < h))) continue; /* each constraint edge once */
+        const int i = m->tri[h], j = m->tri[h - h % 3 + (h % 3 + 1) % 3];
+        const double l = dist3(m->xyz + 3 * i, m->xyz + 3 * j);
+        for (int e = 0; e < 2; e++) { /* the (at most two) unit edge directions of each end */
+            const int v = e ? j : i;
+            double *t = tan3 + 6 * v + (tan3[6 * v] == 0.0 && tan3[6 * v + 1] == 0.0 && tan3[6 * v + 2] == 0.0 ? 0 : 3);
+            for (int k = 0; k < 3; k++) t[k] = (m->xyz[3 * j + k] - m->xyz[3 * i + k]) / l;
+        }
+        if (lab[i] >= 0 && lab[j] >= 0) {
+            const int a = glpgp_uf_find(lab, i), b = glpgp_uf_find(lab, j);
+            if (a != b) lab[b] = a;
+        }
+    }
+    for (int i = 0; i < nv; i++) {
+        d[i] = HUGE_VAL;
+        src[i] = -1;
+        if (lab[i] >= 0) {
+            d[i] = 0.0;
+            src[i] = i;
+            heap_push(&q, 0.0, i);
+        }
+    }
+    for (int i = 0; i < nv; i++)
+        if (lab[i] >= 0) lab[i] = glpgp_uf_find(lab, i);
+    while (q.n > 0) {
+        double k;
+        const int i = heap_pop(&q, &k);
+        if (k > d[i]) continue;
+        FOR_NEIGHBOURS(m, i, j, {
+            const double c = d[i] + dist3(m->xyz + 3 * i, m->xyz + 3 * j);
+            if (c < d[j] && (size_t)q.n < cap) {
+                d[j] = c;
+                src[j] = src[i];
+                heap_push(&q, c, j);
+            }
+        });
+    }
+    for (int h = 0; h < 3 * m->nt; h++) {
+        const int i = m->tri[h], j = m->tri[h - h % 3 + (h % 3 + 1) % 3];
+        const int p = src[i], r = src[j];
+        if (p < 0 || r < 0 || lab[p] == lab[r]) continue;
+        const double *xp = m->xyz + 3 * p, *xr = m->xyz + 3 * r, gap = dist3(xp, xr);
+        if (!(gap > 0.0)) continue;
+        /* the segment within 60 degrees of normal to both curves' edges at its ends */
+        double c[4] = {0.0, 0.0, 0.0, 0.0};
+        for (int k = 0; k < 3; k++) {
+            const double dk = (xr[k] - xp[k]) / gap;
+            c[0] += dk * tan3[6 * p + k];
+            c[1] += dk * tan3[6 * p + 3 + k];
+            c[2] += dk * tan3[6 * r + k];
+            c[3] += dk * tan3[6 * r + 3 + k];
+        }
+        if (fabs(c[0]) > 0.5 || fabs(c[1]) > 0.5 || fabs(c[2]) > 0.5 || fabs(c[3]) > 0.5) continue;
+        const double v = gap / across;
+        s[p] = fmin(s[p], v);
+        s[r] = fmin(s[r], v);
+        s[i] = fmin(s[i], v);
+        s[j] = fmin(s[j], v);
+    }
+done:
+    free(lab);
+    free(src);
+    free(d);
+    free(tan3);
+    free(q.key);
+    free(q.v);
+    return st;
+}
+
+glpgp_status glpgp_surface_size(const glpgp_mesh *m, const glpgp_options *o, const glpgp_surface_constraints *con,
+                                double h, double *size, int *uniform)
+{
+    const int nv = m->nv;
+    *uniform = 1;
+    for (int i = 0; i < 2 * nv; i++) size[i] = h;
+    if (o->size_field == GLPGP_SIZE_NONE) return GLPGP_OK;
+    if (o->size_field == GLPGP_SIZE_FILE) {
+        GLPGP_CHECK(size_file(m, o->size_file, size));
+    } else {
+        GLPGP_CHECK(curvature_cap(m, con, o->size_chord_depth, h, size));
+        GLPGP_CHECK(feature_spacing(m, con, o->size_across, size));
+        for (int i = 0; i < nv; i++) size[i] = fmax(size[i], o->size_min * h);
+        GLPGP_CHECK(grade(m, o->size_grading, size));
+        memcpy(size + nv, size, (size_t)nv * sizeof(double));
+    }
+    /* what the mesh carries: at least min(h, size_resolution x the longest edge at the vertex) */
+    for (int t = 0; t < m->nt; t++)
+        for (int a = 0; a < 3; a++) {
+            const int i = m->tri[3 * t + a], j = m->tri[3 * t + (a + 1) % 3];
+            const double l = fmin(h, o->size_resolution * dist3(m->xyz + 3 * i, m->xyz + 3 * j));
+            for (int k = 0; k < 2; k++) {
+                size[k * nv + i] = fmax(size[k * nv + i], l);
+                size[k * nv + j] = fmax(size[k * nv + j], l);
+            }
+        }
+    for (int i = 0; i < 2 * nv; i++)
+        if (size[i] != h) *uniform = 0;
+    return GLPGP_OK;
+}

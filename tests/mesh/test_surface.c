@@ -1,0 +1,185 @@
+/* test_surface.c: surface meshes (glpgp/surface.h): the built-in surfaces'
+ * topology (chi, genus, boundary loops), the discrete connection's holonomy
+ * (sum = 4 pi on the sphere, 0 on the torus and on the developable half
+ * cylinder, 2 pi chi minus the boundary turning in general; each triangle's
+ * sum of rho congruent to its holonomy), the rotations into the triangles
+ * (both edges of a corner agree on a developable surface), vertex vectors
+ * and angles (round trip), feature edges of the cube, and the rejection of
+ * bad 3D inputs with one message naming the culprit. */
+#include "testutil.h"
+
+#include <string.h>
+
+static double principal(double a)
+{
+    double d = remainder(a, 2.0 * GLPGP_PI);
+    return d <= -GLPGP_PI ? d + 2.0 * GLPGP_PI : d;
+}
+
+static void check_shape(const char *name, long n, int chi, int genus, int loops, double hol)
+{
+    glpgp_mesh *m = NULL;
+    CHECK_OK(glpgp_mesh_generate(name, n, &m));
+    if (!m) return;
+    CHECK(glpgp_mesh_is_surface(m));
+    const glpgp_surface *s = m->surf;
+    printf("%s: %d vertices, %d triangles, chi %d, genus %d, %d loops, holonomy %.15g\n", name, m->nv, m->nt,
+           s->euler, s->genus, m->nloops, glpgp_surface_total_holonomy(m));
+    CHECK(s->euler == chi);
+    CHECK(s->genus == genus);
+    CHECK(m->nloops == loops);
+    if (!isnan(hol)) CHECK_CLOSE(glpgp_surface_total_holonomy(m), hol, 1e-9, 0.0);
+    /* Gauss-Bonnet: sum Omega = 2 pi chi - sum_boundary (pi - Theta) */
+    double turn = 0.0;
+    for (int v = 0; v < m->nv; v++)
+        if (m->on_boundary[v]) turn += GLPGP_PI - s->angle_sum[v];
+    CHECK_CLOSE(glpgp_surface_total_holonomy(m), 2.0 * GLPGP_PI * chi - turn, 1e-9, 0.0);
+    /* per triangle: rho sum = Omega mod 2 pi; vertex vectors round trip */
+    double worst = 0.0, rt = 0.0;
+    for (int t = 0; t < m->nt; t++) {
+        const double r = s->conn[3 * t] + s->conn[3 * t + 1] + s->conn[3 * t + 2];
+        worst = fmax(worst, fabs(principal(r - s->holonomy[t])));
+    }
+    CHECK(worst < 1e-12);
+    for (int v = 0; v < m->nv; v += 7) {
+        for (int k = 0; k < 4; k++) {
+            const double a = 0.3 + 1.5 * k;
+            double d[3];
+            glpgp_surface_vertex_vector(m, v, cos(a), sin(a), d);
+            CHECK_CLOSE(d[0] * d[0] + d[1] * d[1] + d[2] * d[2], 1.0, 1e-12, 0.0);
+            if (!m->on_boundary[v]) rt = fmax(rt, fabs(principal(glpgp_surface_vertex_angle(m, v, d) - a)));
+        }
+    }
+    printf("  max |rho sum - Omega| %.3g, vector round trip %.3g\n", worst, rt);
+    CHECK(rt < 1e-9);
+    glpgp_mesh_destroy(&m);
+}
+
+/* each corner's two edges give the same rotation on a developable surface */
+static void check_developable(void)
+{
+    glpgp_mesh *m = NULL, *f = NULL;
+    CHECK_OK(glpgp_mesh_generate("halfcyl", 2000, &m));
+    CHECK_OK(glpgp_mesh_generate("halfcyl_flat", 2000, &f));
+    if (!m || !f) return;
+    const glpgp_surface *s = m->surf;
+    CHECK(!glpgp_mesh_is_surface(f) && f->nv == m->nv && f->nt == m->nt);
+    double worst = 0.0, dt = 0.0;
+    for (int v = 0; v < m->nv; v++) worst = fmax(worst, fabs(s->scale[v] - 1.0));
+    for (int t = 0; t < m->nt; t++)
+        for (int a = 0; a < 3; a++) {
+            /* corner coordinates congruent to the planar twin's: edge lengths */
+            const int b = (a + 1) % 3, p = f->tri[3 * t + a], q = f->tri[3 * t + b];
+            const double *x = s->txy + 6 * t;
+            const double l3 = hypot(x[2 * b] - x[2 * a], x[2 * b + 1] - x[2 * a + 1]);
+            const double l2 = hypot(f->xy[2 * q] - f->xy[2 * p], f->xy[2 * q + 1] - f->xy[2 * p + 1]);
+            dt = fmax(dt, fabs(l3 - l2));
+        }
+    printf("halfcyl: max |scale - 1| %.3g, max edge length difference to the planar twin %.3g\n", worst, dt);
+    CHECK(worst < 1e-12);
+    CHECK(dt < 1e-13);
+    CHECK_CLOSE(glpgp_surface_total_holonomy(m), 0.0, 1e-12, 0.0);
+    glpgp_mesh_destroy(&m);
+    glpgp_mesh_destroy(&f);
+}
+
+static void check_features(void)
+{
+    glpgp_mesh *m = NULL;
+    CHECK_OK(glpgp_mesh_generate("cube", 600, &m));
+    if (!m) return;
+    unsigned char *fl = malloc((size_t)3 * m->nt);
+    const int n = glpgp_surface_features(m, GLPGP_FEATURE_ANGLE_DEFAULT, fl);
+    /* 12 cube edges of n segments each: n = sqrt((nv - 2) / 6) */
+    const int seg = (int)lround(sqrt((m->nv - 2) / 6.0));
+    printf("cube: %d feature edges (%d segments per cube edge)\n", n, seg);
+    CHECK(n == 12 * seg);
+    free(fl);
+    glpgp_mesh_destroy(&m);
+}
+
+static void bad(const char *what, const double *x, int nv, const int *t, int nt, const char *needle)
+{
+    glpgp_mesh *m = NULL;
+    glpgp_error_clear();
+    glpgp_status st = glpgp_mesh_create_surface(nv, x, nt, t, &m);
+    printf("%s: %s\n", what, glpgp_error_message());
+    CHECK(st == GLPGP_ERR_MESH && m == NULL);
+    CHECK(strstr(glpgp_error_message(), needle) != NULL);
+    glpgp_mesh_destroy(&m);
+    glpgp_error_clear();
+}
+
+static void check_bad_inputs(void)
+{
+    /* a tetrahedron (valid), and its variants */
+    const double tet[12] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1};
+    const int tt[12] = {0, 2, 1, 0, 1, 3, 1, 2, 3, 0, 3, 2};
+    glpgp_mesh *m = NULL;
+    CHECK_OK(glpgp_mesh_create_surface(4, tet, 4, tt, &m));
+    CHECK(m && m->surf->euler == 2 && m->nloops == 0);
+    glpgp_mesh_destroy(&m);
+    /* one face flipped */
+    const int flip[12] = {0, 2, 1, 0, 3, 1, 1, 2, 3, 0, 3, 2};
+    bad("flipped face", tet, 4, flip, 4, "inconsistent orientation");
+    /* three triangles on edge 0-1 */
+    const double fan[15] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 0, -1, 0.5};
+    const int fe[9] = {0, 1, 2, 1, 0, 3, 0, 1, 4};
+    bad("non-manifold edge", fan, 5, fe, 3, "non-manifold edge (0, 1)");
+    /* two triangles touching at vertex 0 only (a bowtie) */
+    const double bow[15] = {0, 0, 0, 1, 0, 0, 1, 1, 0, -1, 0, 0.2, -1, -1, 0};
+    const int bt[6] = {0, 1, 2, 0, 3, 4};
+    bad("bowtie", bow, 5, bt, 2, "non-manifold vertex 0");
+    /* two tetrahedra sharing a vertex: closed fans touching */
+    const double tt2[21] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, -1, 0, 0, 0, -1, 0, 0, 0, -1};
+    const int t2[24] = {0, 2, 1, 0, 1, 3, 1, 2, 3, 0, 3, 2, 0, 4, 5, 0, 6, 4, 4, 6, 5, 0, 5, 6};
+    bad("two cones at a vertex", tt2, 7, t2, 8, "non-manifold vertex 0");
+    /* degenerate: collinear */
+    const double col[9] = {0, 0, 0, 1, 1, 1, 2, 2, 2};
+    const int ct[3] = {0, 1, 2};
+    bad("degenerate", col, 3, ct, 1, "degenerate");
+    /* a Moebius strip: 6 quads around a half-twisted loop */
+    enum { K = 6 };
+    double mx[2 * K * 3];
+    int mt[6 * K];
+    for (int k = 0; k < K; k++) {
+        const double u = 2.0 * GLPGP_PI * k / K;
+        for (int s = 0; s < 2; s++) {
+            const double w = s ? 0.3 : -0.3;
+            double *p = mx + 3 * (2 * k + s);
+            p[0] = (1 + w * cos(u / 2)) * cos(u);
+            p[1] = (1 + w * cos(u / 2)) * sin(u);
+            p[2] = w * sin(u / 2);
+        }
+    }
+    for (int k = 0; k < K; k++) {
+        const int a = 2 * k, b = 2 * k + 1;
+        int c = 2 * ((k + 1) % K), d = c + 1;
+        if (k == K - 1) { /* the half twist: the strip's sides swap */
+            const int tmp = c;
+            c = d;
+            d = tmp;
+        }
+        mt[6 * k + 0] = a;
+        mt[6 * k + 1] = c;
+        mt[6 * k + 2] = d;
+        mt[6 * k + 3] = a;
+        mt[6 * k + 4] = d;
+        mt[6 * k + 5] = b;
+    }
+    bad("Moebius strip", mx, 2 * K, mt, 2 * K, "non-orientable");
+}
+
+int main(void)
+{
+    check_shape("sphere", 2000, 2, 0, 0, 4.0 * GLPGP_PI);
+    check_shape("torus", 2000, 0, 1, 0, 0.0);
+    check_shape("genus2", 2000, -2, 2, 0, -4.0 * GLPGP_PI);
+    check_shape("cube", 2000, 2, 0, 0, 4.0 * GLPGP_PI);
+    check_shape("hemisphere", 2000, 1, 0, 1, NAN);
+    check_shape("halfcyl", 2000, 1, 0, 1, 0.0);
+    check_developable();
+    check_features();
+    check_bad_inputs();
+    TEST_DONE();
+}
