@@ -862,7 +862,7 @@ glpgp_status glpgp_mesh_from_arrays(const char *name, int nv, const double *x, i
         memcpy(r.tri, tri, sizeof(int) * 3 * (size_t)nt);
         r.nv = r.cap_v = (size_t)nv;
         r.nt = r.cap_t = (size_t)nt;
-        st = finish(name, &r, out);
+        st = finish(name, &r, 0, out);
     }
     raw_free(&r);
     return st;

@@ -18,7 +18,7 @@
 
 static int open_cl(glpgp_backend **b)
 {
-    glpgp_cl_options co = {-1, 0};
+    glpgp_cl_options co = {-1, 0, NULL};
     if (glpgp_backend_create_opencl(&co, b) != GLPGP_OK) {
         printf("skipped: no OpenCL device (%s)\n", glpgp_error_message());
         glpgp_error_clear();
