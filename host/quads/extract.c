@@ -721,13 +721,18 @@ static void pmap_free(pmap *p)
     memset(p, 0, sizeof *p);
 }
 
-static const graph *g_sort_graph;
-static double *g_sort_ang;
+/* A half-edge with its angle at its origin: the rotation system is sorted as
+ * such records (no qsort context in a static: two extractions may run in
+ * parallel threads). Ties (coincident directions) keep the half-edge order. */
+typedef struct he_ang {
+    double ang;
+    int h;
+} he_ang;
 static int cmp_he_angle(const void *pa, const void *pb)
 {
-    int a = *(const int *)pa, b = *(const int *)pb;
-    double x = g_sort_ang[a], y = g_sort_ang[b];
-    return (x > y) - (x < y);
+    const he_ang *a = pa, *b = pb;
+    if (a->ang != b->ang) return (a->ang > b->ang) - (a->ang < b->ang);
+    return (a->h > b->h) - (a->h < b->h);
 }
 
 static int he_orig(const graph *g, int h) { return h & 1 ? g->edge[h >> 1].b : g->edge[h >> 1].a; }
@@ -750,6 +755,7 @@ static glpgp_status pmap_build(const graph *g, pmap *p)
     glpgp_status st = GLPGP_OK;
     double *ang = NULL;
     int *fill = NULL;
+    he_ang *rec = NULL;
     int nh = 2 * g->ne;
     p->nh = nh;
     GLPGP_CHECK_GOTO(st, glpgp_calloc((size_t)g->nn + 1, sizeof(int), &p->rot_start), fail);
@@ -759,6 +765,7 @@ static glpgp_status pmap_build(const graph *g, pmap *p)
     GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)nh + 1, sizeof(int), &p->face), fail);
     GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)nh + 1, sizeof(double), &ang), fail);
     GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)g->nn + 1, sizeof(int), &fill), fail);
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)nh + 1, sizeof *rec, &rec), fail);
     for (int h = 0; h < nh; h++) {
         int o = he_orig(g, h), d = he_dest(g, h);
         p->deg[o]++;
@@ -767,11 +774,12 @@ static glpgp_status pmap_build(const graph *g, pmap *p)
     for (int i = 0; i < g->nn; i++) p->rot_start[i + 1] = p->rot_start[i] + p->deg[i];
     for (int i = 0; i < g->nn; i++) fill[i] = p->rot_start[i];
     for (int h = 0; h < nh; h++) p->rot[fill[he_orig(g, h)]++] = h;
-    g_sort_graph = g;
-    g_sort_ang = ang;
     for (int i = 0; i < g->nn; i++) {
         int s = p->rot_start[i], n = p->rot_start[i + 1] - s;
-        if (n > 1) qsort(p->rot + s, (size_t)n, sizeof(int), cmp_he_angle);
+        if (n < 2) continue;
+        for (int k = 0; k < n; k++) rec[k] = (he_ang){ang[p->rot[s + k]], p->rot[s + k]};
+        qsort(rec, (size_t)n, sizeof *rec, cmp_he_angle);
+        for (int k = 0; k < n; k++) p->rot[s + k] = rec[k].h;
     }
     for (int q = 0; q < nh; q++) p->rot_pos[p->rot[q]] = q;
     for (int h = 0; h < nh; h++) p->face[h] = -1;
@@ -801,10 +809,12 @@ static glpgp_status pmap_build(const graph *g, pmap *p)
         if (g->edge[e].flags & QE_BND) p->outer[p->face[2 * e + 1]] = 1; /* b -> a: outside */
     free(ang);
     free(fill);
+    free(rec);
     return GLPGP_OK;
 fail:
     free(ang);
     free(fill);
+    free(rec);
     pmap_free(p);
     return st;
 }
