@@ -198,7 +198,11 @@ static void write_obj(FILE *f, const glpgp_quadmesh *q)
 {
     fprintf(f, "# glpgp %s quad mesh: %d vertices, %d faces\n", GLPGP_VERSION, q->nv, q->nf);
     for (int i = 0; i < q->nv; i++) fprintf(f, "v %.17g %.17g 0\n", q->xy[2 * i], q->xy[2 * i + 1]);
+    int group = -1;
     for (int fa = 0; fa < q->nf; fa++) {
+        int o = q->face_origin ? q->face_origin[fa] : -1;
+        if (o != group && o >= 0) fprintf(f, "g %s\n", glpgp_quad_origin_name(o));
+        group = o;
         fputc('f', f);
         for (int j = q->face_start[fa]; j < q->face_start[fa + 1]; j++)
             fprintf(f, " %d", q->face_vert[j] + 1);
@@ -227,6 +231,8 @@ static void write_vtk(FILE *f, const glpgp_quadmesh *q)
     for (int fa = 0; fa < q->nf; fa++) fprintf(f, "%d\n", q->face_start[fa + 1] - q->face_start[fa]);
     fprintf(f, "SCALARS scaled_jacobian double 1\nLOOKUP_TABLE default\n");
     for (int fa = 0; fa < q->nf; fa++) fprintf(f, "%.6g\n", glpgp_quad_face_sj(q, fa));
+    fprintf(f, "SCALARS origin int 1\nLOOKUP_TABLE default\n");
+    for (int fa = 0; fa < q->nf; fa++) fprintf(f, "%d\n", q->face_origin ? q->face_origin[fa] : 0);
 }
 
 static glpgp_status write_vtk_valence(FILE *f, const glpgp_quadmesh *q)
@@ -331,6 +337,12 @@ static void qfill_sj(const void *c, size_t first, size_t n, void *out)
     double *o = out;
     for (size_t i = 0; i < n; i++) o[i] = glpgp_quad_face_sj(q, (int)(first + i));
 }
+static void qfill_origin(const void *c, size_t first, size_t n, void *out)
+{
+    const glpgp_quadmesh *q = ((const q_ctx *)c)->q;
+    int *o = out;
+    for (size_t i = 0; i < n; i++) o[i] = q->face_origin ? q->face_origin[first + i] : 0;
+}
 static void qfill_valence(const void *c, size_t first, size_t n, void *out)
 {
     memcpy(out, ((const q_ctx *)c)->valence + first, n * sizeof(int));
@@ -346,6 +358,7 @@ static glpgp_status write_vtu(FILE *f, const glpgp_quadmesh *q)
         {VTU_POINTDATA, "valence", "Int32", 4, 1, nv, qfill_valence, &ctx},
         {VTU_CELLDATA, "corners", "Int32", 4, 1, nf, qfill_corners, &ctx},
         {VTU_CELLDATA, "scaled_jacobian", "Float64", 8, 1, nf, qfill_sj, &ctx},
+        {VTU_CELLDATA, "origin", "Int32", 4, 1, nf, qfill_origin, &ctx},
         {VTU_POINTS, "Points", "Float64", 8, 3, nv, qfill_points, &ctx},
         {VTU_CELLS, "connectivity", "Int32", 4, 1, (size_t)q->face_start[q->nf], qfill_conn, &ctx},
         {VTU_CELLS, "offsets", "Int32", 4, 1, nf, qfill_offsets, &ctx},

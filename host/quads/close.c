@@ -81,7 +81,15 @@ typedef struct psoup {
     int *fs, *fn; /* face start in fv, corner count; fn = 0: deleted */
     int nfv, cap_fv;
     int *fv;
+    unsigned char *fo;  /* per face: origin (GLPGP_QFACE_*) */
+    unsigned char cur;  /* origin given to the faces soup_face adds */
 } psoup;
+
+/* Origin of a face made from face f by the closing. */
+static unsigned char closed_origin(const psoup *s, int f)
+{
+    return s->fo[f] > GLPGP_QFACE_CLOSED ? s->fo[f] : GLPGP_QFACE_CLOSED;
+}
 
 static glpgp_status grow(void **p, int *cap, int need, size_t elem)
 {
@@ -115,10 +123,13 @@ static glpgp_status soup_face(psoup *s, const int *v, int n, int *id)
         int *a = realloc(s->fs, (size_t)c * sizeof(int));
         if (a) s->fs = a;
         int *b = a ? realloc(s->fn, (size_t)c * sizeof(int)) : NULL;
-        if (!b) return GLPGP_FAIL(GLPGP_ERR_NOMEM, "quad pairing: out of memory");
-        s->fn = b;
+        if (b) s->fn = b;
+        unsigned char *o = b ? realloc(s->fo, (size_t)c) : NULL;
+        if (!o) return GLPGP_FAIL(GLPGP_ERR_NOMEM, "quad pairing: out of memory");
+        s->fo = o;
         s->cap_f = c;
     }
+    s->fo[s->nf] = s->cur;
     memcpy(s->fv + s->nfv, v, (size_t)n * sizeof(int));
     s->fs[s->nf] = s->nfv;
     s->fn[s->nf] = n;
@@ -134,61 +145,11 @@ static void soup_free(psoup *s)
     free(s->fs);
     free(s->fn);
     free(s->fv);
+    free(s->fo);
     memset(s, 0, sizeof *s);
 }
 
 /* ---- splitting an even polygon into quads ---------------------------- */
-
-#define QMAXN 16 /* largest polygon split by the dynamic programme */
-
-/* best[i][j]: best minimum scaled Jacobian of a split of the sub-polygon
- * p[i], p[i+1], ..., p[j] (closed by the chord j -> i) into quads;
- * choice[i][j] = a * QMAXN + b for its quad (p[i], p[a], p[b], p[j]). */
-typedef struct qdp {
-    double best[QMAXN][QMAXN];
-    int choice[QMAXN][QMAXN];
-} qdp;
-
-static double qdp_solve(qdp *D, const double *xy, const int *p, int i, int j)
-{
-    if (j - i < 3) return INFINITY; /* an edge (j = i + 1): nothing to split */
-    if (D->choice[i][j] != -2) return D->best[i][j];
-    double best = -INFINITY;
-    int ch = -1;
-    /* the quad on chord (i, j): (i, a, b, j), with i..a, a..b, b..j of
-     * even length (odd vertex count difference) */
-    for (int a = i + 1; a < j - 1; a += 2)
-        for (int b = a + 1; b < j; b += 2) {
-            int q[4] = {p[i], p[a], p[b], p[j]};
-            double s = glpgp_poly_min_sj(xy, q, 4);
-            if (s <= best) continue;
-            s = fmin(s, qdp_solve(D, xy, p, i, a));
-            if (s <= best) continue;
-            s = fmin(s, qdp_solve(D, xy, p, a, b));
-            if (s <= best) continue;
-            s = fmin(s, qdp_solve(D, xy, p, b, j));
-            if (s > best) {
-                best = s;
-                ch = a * QMAXN + b;
-            }
-        }
-    D->best[i][j] = best;
-    D->choice[i][j] = ch;
-    return best;
-}
-
-static int qdp_emit(const qdp *D, const int *p, int i, int j, int *out, int w)
-{
-    if (j - i < 3) return w;
-    int a = D->choice[i][j] / QMAXN, b = D->choice[i][j] % QMAXN;
-    out[w++] = p[i];
-    out[w++] = p[a];
-    out[w++] = p[b];
-    out[w++] = p[j];
-    w = qdp_emit(D, p, i, a, out, w);
-    w = qdp_emit(D, p, a, b, out, w);
-    return qdp_emit(D, p, b, j, out, w);
-}
 
 /* The hexagon p[0..6) as three quads (p[o+2i], p[o+2i+1], p[o+2i+2], X)
  * around a new centre X = (x, y) added to s: out[0 .. 12), *nq = 3. */
@@ -224,7 +185,7 @@ static glpgp_status split_even(psoup *s, const int *p, int n, int pref, int cent
         *sj = glpgp_poly_min_sj(s->xy, p, 4);
         return GLPGP_OK;
     }
-    if (n < 4 || n > QMAXN || n % 2) return GLPGP_OK;
+    if (n < 4 || n > GLPGP_POLY_SPLIT_MAX || n % 2) return GLPGP_OK;
     if (n == 6 && pref >= 0 && centre) {
         double x = 0.0, y = 0.0, c = glpgp_hex_centre_split_at(s->xy, p, pref % 2, &x, &y);
         if (c >= 0.3) {
@@ -247,18 +208,8 @@ static glpgp_status split_even(psoup *s, const int *p, int n, int pref, int cent
             return GLPGP_OK;
         }
     }
-    qdp *D = malloc(sizeof *D);
-    if (!D) return GLPGP_FAIL(GLPGP_ERR_NOMEM, "quad pairing: out of memory");
-    /* try every rotation's chord (0, n-1) is the closing edge p[n-1] -> p[0],
-     * which must be a quad side: one DP covers all splits */
-    for (int i = 0; i < QMAXN; i++)
-        for (int j = 0; j < QMAXN; j++) D->choice[i][j] = -2;
-    double best = qdp_solve(D, s->xy, p, 0, n - 1);
-    if (best > -INFINITY) {
-        *nq = qdp_emit(D, p, 0, n - 1, out, 0) / 4;
-        *sj = best;
-    }
-    free(D);
+    double best = glpgp_poly_quad_split(s->xy, p, n, out, nq);
+    if (best > -INFINITY) *sj = best;
     if (n == 6 && best < 0.5) {
         /* three quads around a centre X joined to every other corner, when
          * clearly better */
@@ -399,12 +350,12 @@ static glpgp_status end_cost(const psoup *s, const adjacency *A, int f, int i, d
     *cost = INFINITY;
     int n = s->fn[f];
     const int *v = s->fv + s->fs[f];
-    if (n + 1 > QMAXN) return GLPGP_OK;
+    if (n + 1 > GLPGP_POLY_SPLIT_MAX) return GLPGP_OK;
     psoup T;
     memset(&T, 0, sizeof T);
     glpgp_status st = grow((void **)&T.xy, &T.cap_v, 2 * (n + 2), sizeof(double));
     if (st != GLPGP_OK) return st;
-    int p[QMAXN + 1], out[4 * QMAXN], nq = 0, gid[QMAXN + 2];
+    int p[GLPGP_POLY_SPLIT_MAX + 1], out[4 * GLPGP_POLY_SPLIT_MAX], nq = 0, gid[GLPGP_POLY_SPLIT_MAX + 2];
     /* local polygon: corners 0..n with the midpoint after corner i */
     for (int k = 0, w = 0; k < n; k++) {
         T.xy[2 * w] = s->xy[2 * v[k]];
@@ -430,7 +381,7 @@ static glpgp_status end_cost(const psoup *s, const adjacency *A, int f, int i, d
     if (st == GLPGP_OK && nq > 0 && sj >= MIN_SJ) {
         /* new edges per corner: quad sides that are not polygon sides (each
          * is seen from its two quads) */
-        int add[QMAXN + 2] = {0};
+        int add[GLPGP_POLY_SPLIT_MAX + 2] = {0};
         for (int q = 0; q < nq; q++)
             for (int k = 0; k < 4; k++) {
                 int a = out[4 * q + k], b = out[4 * q + (k + 1) % 4];
@@ -671,7 +622,7 @@ static glpgp_status apply_strip(psoup *s, const adjacency *A, const pstep *P, in
     for (int i = 0; i < len; i++) {
         int f = P[i].f;
         int min_ = i > 0 ? mid[i - 1] : -1, mout = mid[i];
-        int p[QMAXN + 4], out[4 * (QMAXN + 4)], nq = 0;
+        int p[GLPGP_POLY_SPLIT_MAX + 4], out[4 * (GLPGP_POLY_SPLIT_MAX + 4)], nq = 0;
         if (s->fn[f] != 4 || i == 0 || (i == last && !ends_on_boundary)) {
             /* an end face: one extra corner, then split the even polygon */
             int n = with_mids(s, f, P[i].in, min_, P[i].out, mout, p);
@@ -679,7 +630,7 @@ static glpgp_status apply_strip(psoup *s, const adjacency *A, const pstep *P, in
             int pref = -1;
             if (n == 6) pref = e + 1; /* the midpoint's position in p */
             double sj;
-            if (n > QMAXN) goto done;
+            if (n > GLPGP_POLY_SPLIT_MAX) goto done;
             GLPGP_CHECK_GOTO(st, split_even(s, p, n, pref, n == 6 && centre_first(A, p, pref), out, &nq, &sj),
                              done);
             if (nq == 0) goto done;
@@ -736,6 +687,7 @@ static glpgp_status apply_strip(psoup *s, const adjacency *A, const pstep *P, in
             for (int q = 0; q < nq; q++) worst = fmin(worst, glpgp_poly_min_sj(s->xy, out + 4 * q, 4));
             ps->strip_quads++;
         }
+        s->cur = closed_origin(s, f);
         for (int q = 0; q < nq; q++) GLPGP_CHECK_GOTO(st, soup_face(s, out + 4 * q, 4, NULL), done);
     }
     if (!(worst >= MIN_SJ)) {
@@ -767,18 +719,18 @@ static glpgp_status merge_triangle(psoup *s, unsigned char *used, const int *t_i
     *merged = 0;
     int t[3] = {t_in[0], t_in[1], t_in[2]}; /* t_in may point into s->fv, which may move */
     double best_even = 0.3, best_pent = 0.1;
-    int be[QMAXN], bp[5], nbe = 0, ge = -1, gp = -1;
+    int be[GLPGP_POLY_SPLIT_MAX], bp[5], nbe = 0, ge = -1, gp = -1;
     glpgp_status st = GLPGP_OK;
     for (int i = 0; i < 3; i++) {
         int g = nb[i], gi = nbi[i], ng = g >= 0 ? s->fn[g] : 0;
-        if (g < 0 || g == f_old || used[g] || ng + 1 > QMAXN || ng < 3) continue;
-        int pm[QMAXN], n = 0;
+        if (g < 0 || g == f_old || used[g] || ng + 1 > GLPGP_POLY_SPLIT_MAX || ng < 3) continue;
+        int pm[GLPGP_POLY_SPLIT_MAX], n = 0;
         pm[n++] = t[i];                                                    /* a */
         for (int k = 2; k < ng; k++) pm[n++] = s->fv[s->fs[g] + (gi + k) % ng]; /* g from a to b */
         pm[n++] = t[(i + 1) % 3];                                          /* b */
         pm[n++] = t[(i + 2) % 3];                                          /* c */
         if (ng % 2) {
-            int outq[4 * QMAXN], nq = 0, nv0 = s->nv;
+            int outq[4 * GLPGP_POLY_SPLIT_MAX], nq = 0, nv0 = s->nv;
             double sj;
             st = split_even(s, pm, n, -1, 0, outq, &nq, &sj);
             if (st != GLPGP_OK) return st;
@@ -799,9 +751,11 @@ static glpgp_status merge_triangle(psoup *s, unsigned char *used, const int *t_i
         }
     }
     if (ge >= 0) {
-        int outq[4 * QMAXN], nq = 0;
+        int outq[4 * GLPGP_POLY_SPLIT_MAX], nq = 0;
         double sj;
         st = split_even(s, be, nbe, -1, 0, outq, &nq, &sj);
+        unsigned char o1 = closed_origin(s, f_old), o2 = closed_origin(s, ge);
+        s->cur = o1 > o2 ? o1 : o2;
         for (int k = 0; k < nq && st == GLPGP_OK; k++) st = soup_face(s, outq + 4 * k, 4, NULL);
         if (st != GLPGP_OK) return st;
         ps->closed_polygons += 1 + (s->fn[f_old] % 2);
@@ -809,6 +763,8 @@ static glpgp_status merge_triangle(psoup *s, unsigned char *used, const int *t_i
         used[f_old] = used[ge] = 1;
         *merged = 1;
     } else if (gp >= 0) {
+        unsigned char o1 = closed_origin(s, f_old), o2 = closed_origin(s, gp);
+        s->cur = o1 > o2 ? o1 : o2;
         st = soup_face(s, bp, 5, NULL);
         if (st != GLPGP_OK) return st;
         s->fn[f_old] = s->fn[gp] = 0;
@@ -839,8 +795,10 @@ static glpgp_status soup_from_mesh(const glpgp_quadmesh *q, psoup *s)
     if (st != GLPGP_OK) return st;
     memcpy(s->xy, q->xy, 2 * (size_t)q->nv * sizeof(double));
     s->nv = q->nv;
-    for (int f = 0; f < q->nf && st == GLPGP_OK; f++)
+    for (int f = 0; f < q->nf && st == GLPGP_OK; f++) {
+        s->cur = q->face_origin ? q->face_origin[f] : GLPGP_QFACE_GRID;
         st = soup_face(s, q->face_vert + q->face_start[f], q->face_start[f + 1] - q->face_start[f], NULL);
+    }
     return st;
 }
 
@@ -857,11 +815,13 @@ static glpgp_status soup_to_mesh(const psoup *s, const glpgp_quadmesh *ref, cons
     q->xy = NULL;
     q->face_start = NULL;
     q->face_vert = NULL;
+    q->face_origin = NULL;
     st = glpgp_malloc((size_t)s->nv + 1, sizeof(int), &id);
     if (st == GLPGP_OK) st = glpgp_malloc((size_t)s->nf + 1, sizeof(int), &q->face_start);
     if (st == GLPGP_OK) st = glpgp_malloc((size_t)s->nfv + 1, sizeof(int), &q->face_vert);
     if (st == GLPGP_OK) st = glpgp_malloc((size_t)s->nv + 1, 2 * sizeof(double), &q->xy);
     if (st == GLPGP_OK) st = glpgp_calloc((size_t)s->nv + 1, 1, omark);
+    if (st == GLPGP_OK) st = glpgp_malloc((size_t)s->nf + 1, 1, &q->face_origin);
     if (st != GLPGP_OK) {
         glpgp_quadmesh_destroy(&q);
         free(id);
@@ -885,6 +845,7 @@ static glpgp_status soup_to_mesh(const psoup *s, const glpgp_quadmesh *ref, cons
             }
             q->face_vert[w++] = id[v];
         }
+        q->face_origin[q->nf] = s->fo[f];
         q->face_start[++q->nf] = w;
     }
     free(id);
@@ -926,8 +887,8 @@ glpgp_status glpgp_quadmesh_close_polygons(const glpgp_quadmesh *q, glpgp_quadme
     /* even polygons (hexagons, ...) need no partner: split them */
     for (int f = 0, nf0 = s.nf; f < nf0; f++) {
         int n = s.fn[f];
-        if (n < 6 || n % 2 || n > QMAXN) continue;
-        int p[QMAXN], outq[4 * QMAXN], nq = 0, nv0 = s.nv;
+        if (n < 6 || n % 2 || n > GLPGP_POLY_SPLIT_MAX) continue;
+        int p[GLPGP_POLY_SPLIT_MAX], outq[4 * GLPGP_POLY_SPLIT_MAX], nq = 0, nv0 = s.nv;
         double sj;
         memcpy(p, s.fv + s.fs[f], (size_t)n * sizeof(int));
         GLPGP_CHECK_GOTO(st, split_even(&s, p, n, -1, 0, outq, &nq, &sj), done);
@@ -935,6 +896,7 @@ glpgp_status glpgp_quadmesh_close_polygons(const glpgp_quadmesh *q, glpgp_quadme
             s.nv = nv0;
             continue;
         }
+        s.cur = closed_origin(&s, f);
         for (int k = 0; k < nq; k++) GLPGP_CHECK_GOTO(st, soup_face(&s, outq + 4 * k, 4, NULL), done);
         s.fn[f] = 0;
         ps.split_even++;
@@ -1012,7 +974,7 @@ glpgp_status glpgp_quadmesh_close_polygons(const glpgp_quadmesh *q, glpgp_quadme
                     GLPGP_CHECK_GOTO(st, end_cost(&s, &A, f, i, &S.ecost[s.fs[f] + i]), done);
         /* cheapest strips first */
         for (int f = 0; f < nf0; f++) {
-            if (s.fn[f] == 0 || s.fn[f] % 2 == 0 || s.fn[f] > QMAXN - 1) continue;
+            if (s.fn[f] == 0 || s.fn[f] % 2 == 0 || s.fn[f] > GLPGP_POLY_SPLIT_MAX - 1) continue;
             if (f < cap_failed && failed[f]) continue;
             int len;
             double cost;

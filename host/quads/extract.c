@@ -1270,6 +1270,7 @@ void glpgp_quadmesh_destroy(glpgp_quadmesh **q)
     free((*q)->xy);
     free((*q)->face_start);
     free((*q)->face_vert);
+    free((*q)->face_origin);
     free(*q);
     *q = NULL;
 }
@@ -1307,6 +1308,7 @@ glpgp_status glpgp_quadmesh_subdivide(const glpgp_quadmesh *q, glpgp_quadmesh **
     GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)q->nv + nc + q->nf, 2 * sizeof(double), &r->xy), done);
     GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)nc + 1, sizeof(int), &r->face_start), done);
     GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)nc, 4 * sizeof(int), &r->face_vert), done);
+    if (q->face_origin) GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)nc + 1, 1, &r->face_origin), done);
     memcpy(r->xy, q->xy, (size_t)q->nv * 2 * sizeof(double));
     r->nv = q->nv;
     for (int i = 0; i < nc;) {
@@ -1336,6 +1338,7 @@ glpgp_status glpgp_quadmesh_subdivide(const glpgp_quadmesh *q, glpgp_quadmesh **
             r->face_vert[w++] = side_mid[s + i];
             r->face_vert[w++] = c;
             r->face_vert[w++] = side_mid[s + (i + k - 1) % k];
+            if (r->face_origin) r->face_origin[r->nf] = q->face_origin[f];
             r->face_start[++r->nf] = w;
         }
     }

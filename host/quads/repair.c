@@ -1502,6 +1502,7 @@ static glpgp_quadmesh *qm_copy(const glpgp_quadmesh *q)
     glpgp_quadmesh *o = calloc(1, sizeof *o);
     if (!o) return NULL;
     *o = *q;
+    o->face_origin = NULL;
     o->xy = malloc(sizeof(double) * 2 * ((size_t)q->nv + 1));
     o->face_start = malloc(sizeof(int) * ((size_t)q->nf + 1));
     o->face_vert = malloc(sizeof(int) * ((size_t)q->face_start[q->nf] + 1));
@@ -1514,6 +1515,14 @@ static glpgp_quadmesh *qm_copy(const glpgp_quadmesh *q)
     memcpy(o->face_start, q->face_start, sizeof(int) * ((size_t)q->nf + 1));
     if (q->face_start[q->nf] > 0)
         memcpy(o->face_vert, q->face_vert, sizeof(int) * (size_t)q->face_start[q->nf]);
+    if (q->face_origin) {
+        o->face_origin = malloc((size_t)q->nf + 1);
+        if (!o->face_origin) {
+            glpgp_quadmesh_destroy(&o);
+            return NULL;
+        }
+        memcpy(o->face_origin, q->face_origin, (size_t)q->nf);
+    }
     return o;
 }
 

@@ -16,6 +16,30 @@
 extern "C" {
 #endif
 
+/* Where a face of a quad mesh comes from (glpgp_quadmesh.face_origin). A
+ * face made from others takes the highest origin among them and the step
+ * that made it. */
+enum {
+    GLPGP_QFACE_GRID = 0,     /* the parametrization's grid (the extraction) */
+    GLPGP_QFACE_CLOSED = 1,   /* a grid face cut or split by the closing (strips, pentagon splits) */
+    GLPGP_QFACE_PAVED = 2,    /* the repair's region mesher (quads grown from the region's boundary) */
+    GLPGP_QFACE_FALLBACK = 3  /* the repair's last resort (triangles split into quads) */
+};
+#define GLPGP_QFACE_KINDS 4
+
+/* One region the repair re-meshed (glpgp_quad_repair.region). */
+typedef struct glpgp_quad_region {
+    int faces_in;   /* faces removed (bad faces and their rings) */
+    int quads_out;  /* quads made in their place */
+    double sj_min;  /* smallest corner scaled Jacobian of the quads made (before the clean-up) */
+    double x, y;    /* centroid of the quads made */
+    int origin;     /* GLPGP_QFACE_PAVED or GLPGP_QFACE_FALLBACK: which mesher filled it */
+    int round;      /* repair round (0-based; -1: the whole domain) */
+} glpgp_quad_region;
+
+/* Regions listed in a repair report: the ones with the lowest sj_min. */
+#define GLPGP_QUAD_REGIONS_LISTED 48
+
 /* What glpgp_quadmesh_repair did. */
 typedef struct glpgp_quad_repair {
     int rounds;          /* repair rounds run (0: the mesh was valid) */
@@ -23,6 +47,13 @@ typedef struct glpgp_quad_repair {
     int regions;         /* regions re-meshed */
     int new_quads;       /* quads made in the regions */
     int snapped;         /* boundary vertices moved onto the domain boundary */
+    int paved_regions;   /* of the regions: filled by the region mesher */
+    int fallback_regions;/* of the regions: filled by the fallback (triangles split into quads) */
+    int whole_domain;    /* 0; 1: the local repair did not end valid and the whole domain was
+                          * meshed again (region mesher, else the fallback); 2: the fallback of
+                          * the input triangles themselves was needed */
+    int nlisted;         /* entries of region[] (at most GLPGP_QUAD_REGIONS_LISTED) */
+    glpgp_quad_region region[GLPGP_QUAD_REGIONS_LISTED];
 } glpgp_quad_repair;
 
 /* What glpgp_quadmesh_close_polygons and glpgp_quadmesh_smooth did. */
@@ -53,6 +84,7 @@ typedef struct glpgp_quadmesh {
     int nf;
     int *face_start;    /* nf + 1 */
     int *face_vert;     /* face_start[nf] */
+    unsigned char *face_origin; /* nf GLPGP_QFACE_* (NULL: every face from the grid, or unknown) */
     /* Extraction diagnostics (0 for meshes read from a file). */
     int singular_tris[2];     /* triangles skipped as singular for u / v (given by the result) */
     int inconsistent_tris[2]; /* triangles skipped because their chart did not close (rounding) */
