@@ -644,3 +644,56 @@ done:
     if (st != GLPGP_OK) glpgp_qcheck_free(c);
     return st;
 }
+
+/* ---- sharp corners ---------------------------------------------------------- */
+
+glpgp_status glpgp_qcheck_corner_bound(const glpgp_quadmesh *q, const glpgp_mesh *dm, double h, double *bound)
+{
+    for (int f = 0; f < q->nf; f++) bound[f] = 1.0;
+    if (!dm || q->nf == 0) return GLPGP_OK;
+    /* the domain's corners below 90 degrees: points and sin(alpha) */
+    double *pts = NULL, *box = NULL;
+    int n = 0, nb = dm->loop_start[dm->nloops], *cand = NULL, ncap = 0;
+    GLPGP_CHECK(glpgp_malloc((size_t)3 * nb + 3, sizeof(double), &pts));
+    for (int l = 0; l < dm->nloops; l++) {
+        int s = dm->loop_start[l], m = dm->loop_start[l + 1] - s;
+        for (int i = 0; i < m; i++) {
+            const double *a = dm->xy + 2 * dm->loop_vertices[s + (i + m - 1) % m], *b = dm->xy + 2 * dm->loop_vertices[s + i],
+                         *c = dm->xy + 2 * dm->loop_vertices[s + (i + 1) % m];
+            double ux = c[0] - b[0], uy = c[1] - b[1], vx = a[0] - b[0], vy = a[1] - b[1];
+            double al = atan2(ux * vy - uy * vx, ux * vx + uy * vy); /* interior angle, region on the left */
+            if (al < 0) al += 2 * 3.14159265358979323846;
+            if (al >= 0.5 * 3.14159265358979323846) continue;
+            pts[3 * n] = b[0];
+            pts[3 * n + 1] = b[1];
+            pts[3 * n + 2] = sin(al);
+            n++;
+        }
+    }
+    glpgp_status st = GLPGP_OK;
+    bgrid G;
+    memset(&G, 0, sizeof G);
+    if (n > 0) {
+        st = glpgp_malloc((size_t)4 * n, sizeof(double), &box);
+        for (int i = 0; i < n && st == GLPGP_OK; i++) {
+            box[4 * i] = box[4 * i + 2] = pts[3 * i];
+            box[4 * i + 1] = box[4 * i + 3] = pts[3 * i + 1];
+        }
+        if (st == GLPGP_OK) st = glpgp_bgrid_build(&G, box, n, h);
+        const double r = 1e-6 * h;
+        for (int f = 0; f < q->nf && st == GLPGP_OK; f++)
+            for (int k = q->face_start[f]; k < q->face_start[f + 1]; k++) {
+                const double *p = q->xy + 2 * q->face_vert[k];
+                int m = glpgp_bgrid_query(&G, p[0] - r, p[1] - r, p[0] + r, p[1] + r, &cand, &ncap);
+                for (int j = 0; j < m; j++) {
+                    const double *c = pts + 3 * cand[j];
+                    if (fabs(c[0] - p[0]) <= r && fabs(c[1] - p[1]) <= r) bound[f] = fmin(bound[f], c[2]);
+                }
+            }
+    }
+    glpgp_bgrid_free(&G);
+    free(pts);
+    free(box);
+    free(cand);
+    return st;
+}

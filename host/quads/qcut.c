@@ -861,13 +861,19 @@ static glpgp_status ring_quad(qc *c, const ivec *L, int *done)
         g[0] += P(c, p[t])[0] / 4;
         g[1] += P(c, p[t])[1] / 4;
     }
-    for (int tr = 1; tr <= 4 && !*done; tr++) {
-        double f = 0.2 * tr, xy[16];
+    double rm = 0.0;
+    for (int t = 0; t < 4; t++) rm += 0.25 * hypot(P(c, p[t])[0] - g[0], P(c, p[t])[1] - g[1]);
+    for (int tr = 1; tr <= 8 && !*done; tr++) {
+        /* the corners pulled towards the centroid: a scaled copy (tries 1-4)
+         * or all at one distance (5-8: a flat corner of the quad is not copied) */
+        double f = 0.2 * ((tr - 1) % 4 + 1), xy[16];
         for (int t = 0; t < 4; t++) {
             xy[2 * t] = P(c, p[t])[0];
             xy[2 * t + 1] = P(c, p[t])[1];
-            xy[8 + 2 * t] = g[0] + f * (xy[2 * t] - g[0]);
-            xy[9 + 2 * t] = g[1] + f * (xy[2 * t + 1] - g[1]);
+            double dx = xy[2 * t] - g[0], dy = xy[2 * t + 1] - g[1], d = hypot(dx, dy);
+            double s = tr <= 4 ? f : (d > 0 ? f * rm / d : 0.0);
+            xy[8 + 2 * t] = g[0] + s * dx;
+            xy[9 + 2 * t] = g[1] + s * dy;
         }
         static const int Q[5][4] = {{0, 1, 5, 4}, {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}, {4, 5, 6, 7}};
         double w = INFINITY;

@@ -668,6 +668,100 @@ done:
     return st;
 }
 
+/* ---- shape rounds --------------------------------------------------------------- */
+
+#define SJ_GOAL 0.3
+#define SHAPE_ROUNDS 2
+
+/* Quads below SJ_GOAL and below 0.9 of what their sharp domain corners
+ * allow (glpgp_qcheck_corner_bound) into flags (QF_FLAT); *npoor, and the
+ * smallest scaled Jacobian relative to that bound over all quads. */
+static glpgp_status poor_faces(const glpgp_quadmesh *q, const glpgp_mesh *m, double h, unsigned *flags, int *npoor,
+                               double *worst)
+{
+    double *bound = NULL;
+    GLPGP_CHECK(glpgp_malloc((size_t)q->nf + 1, sizeof(double), &bound));
+    glpgp_status st = glpgp_qcheck_corner_bound(q, m, h, bound);
+    *npoor = 0;
+    *worst = INFINITY;
+    for (int f = 0; f < q->nf && st == GLPGP_OK; f++) {
+        double sj = glpgp_quad_face_sj(q, f);
+        flags[f] = 0;
+        *worst = fmin(*worst, sj / bound[f]);
+        if (sj < SJ_GOAL && sj < 0.9 * bound[f]) {
+            flags[f] = QF_FLAT;
+            (*npoor)++;
+        }
+    }
+    free(bound);
+    return st;
+}
+
+/* Valid mesh, poorly shaped quads: they and a ring around them are meshed
+ * again, kept when the result is valid, has fewer poor quads and no worse
+ * a smallest relative scaled Jacobian. */
+static glpgp_status shape_rounds(glpgp_quadmesh **q, const glpgp_mesh *m, double h, int smooth, glpgp_quad_repair *rs)
+{
+    dbnd D;
+    qcheck ck;
+    memset(&ck, 0, sizeof ck);
+    unsigned char *inB = NULL, *mark = NULL;
+    glpgp_quadmesh *n = NULL;
+    glpgp_status st = glpgp_dbnd_build(&D, m, h);
+    for (int round = 0; round < SHAPE_ROUNDS && st == GLPGP_OK; round++) {
+        int np0 = 0, np1 = 0, valid = 0;
+        double w0 = 0.0, w1 = 0.0;
+        free(ck.flags);
+        ck.flags = NULL;
+        free(inB);
+        inB = NULL;
+        GLPGP_CHECK_GOTO(st, glpgp_calloc((size_t)(*q)->nf + 1, sizeof(unsigned), &ck.flags), done);
+        GLPGP_CHECK_GOTO(st, poor_faces(*q, m, h, ck.flags, &np0, &w0), done);
+        if (np0 == 0) break;
+        GLPGP_CHECK_GOTO(st, glpgp_calloc((size_t)(*q)->nf + 1, 1, &inB), done);
+        GLPGP_CHECK_GOTO(st, grow_bad(*q, &ck, round, inB), done); /* round + 1 rings */
+        glpgp_quad_repair trial = *rs;
+        free(mark);
+        mark = NULL;
+        st = repair_round(*q, m, &D, h, inB, REPAIR_ROUNDS + round, &trial, &n, &mark);
+        if (st == GLPGP_ERR_NUMERIC) {
+            glpgp_error_clear();
+            st = GLPGP_OK;
+            break;
+        }
+        if (st != GLPGP_OK) goto done;
+        n->closing = (*q)->closing;
+        GLPGP_CHECK_GOTO(st, finish_round(&n, mark, smooth, 0), done);
+        GLPGP_CHECK_GOTO(st, is_valid(n, m, h, 0, &valid), done);
+        if (valid) {
+            unsigned *f1 = NULL;
+            GLPGP_CHECK_GOTO(st, glpgp_calloc((size_t)n->nf + 1, sizeof(unsigned), &f1), done);
+            st = poor_faces(n, m, h, f1, &np1, &w1);
+            free(f1);
+            if (st != GLPGP_OK) goto done;
+        }
+        glpgp_log(GLPGP_LOG_DEBUG, "quad repair: shape round %d: %d poor quads (worst %.3f of its bound) -> %s%d (%.3f)",
+                  round, np0, w0, valid ? "" : "invalid, ", np1, w1);
+        if (!valid || np1 >= np0 || w1 < w0 - 1e-9) { /* not better: the next round takes a wider ring */
+            glpgp_quadmesh_destroy(&n);
+            continue;
+        }
+        for (int f = 0; f < (*q)->nf; f++) trial.removed_faces += inB[f];
+        trial.rounds++;
+        *rs = trial;
+        glpgp_quadmesh_destroy(q);
+        *q = n;
+        n = NULL;
+    }
+done:
+    glpgp_dbnd_free(&D);
+    free(ck.flags);
+    free(inB);
+    free(mark);
+    glpgp_quadmesh_destroy(&n);
+    return st;
+}
+
 glpgp_status glpgp_repair_rounds(const glpgp_quadmesh *q, const glpgp_mesh *m, double h, int smooth, int rounds,
                                  glpgp_quadmesh **out)
 {
@@ -691,6 +785,7 @@ glpgp_status glpgp_quadmesh_repair(const glpgp_quadmesh *qin, const glpgp_mesh *
     int valid = 0;
     glpgp_status st = is_valid(q, m, h, keep_polygons, &valid);
     if (st == GLPGP_OK && !valid) st = last_resort(&q, m, h, &rs);
+    if (st == GLPGP_OK && !keep_polygons) st = shape_rounds(&q, m, h, smooth, &rs);
     if (st == GLPGP_OK) {
         q->repair = rs;
         *out = q;
