@@ -626,6 +626,7 @@ static glpgp_status run_rounds(const glpgp_quadmesh *qin, const glpgp_mesh *m, d
     if (!q) return GLPGP_FAIL(GLPGP_ERR_NOMEM, "quad repair: out of memory");
     GLPGP_CHECK_GOTO(st, glpgp_dbnd_build(&D, m, h), done);
     GLPGP_CHECK_GOTO(st, snap_boundary(q, &D, h, &rs->snapped), done);
+    if (!keep_polygons) GLPGP_CHECK_GOTO(st, glpgp_quadmesh_chord_strips(q, m, h, &rs->chord_strips), done);
     for (int round = 0; round < rounds; round++) {
         glpgp_qcheck_free(&ck);
         GLPGP_CHECK_GOTO(st, check_faces(q, m, h, round, &ck), done);

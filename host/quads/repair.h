@@ -109,6 +109,15 @@ glpgp_status glpgp_trisplit_fill(const region *R, int O, int *gid, rbuild *B, in
  * even the last is rejected (a broken input: the report says why). */
 glpgp_status glpgp_quads_last_resort(const glpgp_mesh *m, double h, glpgp_quadmesh **out, int *level);
 
+/* ---- boundary chords (chords.c) ------------------------------------------------------ */
+
+/* An all-quad mesh whose boundary chords cut off more than 0.6% of the
+ * domain's area: strips of quads cut in two across the mesh between the
+ * boundary edges that lose the most, their ends moved onto the domain
+ * boundary (new grid lines). *nstrips: strips made. Other meshes are left
+ * alone. */
+glpgp_status glpgp_quadmesh_chord_strips(glpgp_quadmesh *q, const glpgp_mesh *m, double h, int *nstrips);
+
 /* ---- shared helpers (repair.c) ---------------------------------------------------- */
 
 /* The repair rounds alone (at most rounds, no last resort), smooth sweeps:

@@ -47,6 +47,7 @@ typedef struct glpgp_quad_repair {
     int regions;         /* regions re-meshed */
     int new_quads;       /* quads made in the regions */
     int snapped;         /* boundary vertices moved onto the domain boundary */
+    int chord_strips;    /* grid lines added between boundary chords that cut off too much area */
     int paved_regions;   /* of the regions: filled by the region mesher */
     int fallback_regions;/* of the regions: filled by the fallback (triangles split into quads) */
     int whole_domain;    /* 0; 1: the local repair did not end valid and the whole domain was
