@@ -375,6 +375,52 @@ static void note_region(glpgp_quad_repair *rs, const glpgp_quad_region *g)
     if (g->sj_min < rs->region[w].sj_min) rs->region[w] = *g;
 }
 
+/* Centroid, box and smallest scaled Jacobian of the faces of B from f0 on. */
+static void face_box(const rbuild *B, int f0, glpgp_quad_region *g)
+{
+    g->sj_min = INFINITY;
+    g->box[0] = g->box[1] = INFINITY;
+    g->box[2] = g->box[3] = -INFINITY;
+    double cx = 0.0, cy = 0.0;
+    int n = 0;
+    for (int f = f0; f + 1 < B->fs.n; f++) {
+        g->sj_min = fmin(g->sj_min, glpgp_poly_min_sj(B->xy.p, B->fv.p + B->fs.p[f], B->fs.p[f + 1] - B->fs.p[f]));
+        for (int s = B->fs.p[f]; s < B->fs.p[f + 1]; s++) {
+            const double *p = B->xy.p + 2 * B->fv.p[s];
+            cx += p[0];
+            cy += p[1];
+            n++;
+            g->box[0] = fmin(g->box[0], p[0]);
+            g->box[1] = fmin(g->box[1], p[1]);
+            g->box[2] = fmax(g->box[2], p[0]);
+            g->box[3] = fmax(g->box[3], p[1]);
+        }
+    }
+    g->x = n ? cx / n : 0.0;
+    g->y = n ? cy / n : 0.0;
+}
+
+/* The listed regions' sj_min from the repaired quads of q in their boxes. */
+static void final_region_sj(const glpgp_quadmesh *q, glpgp_quad_repair *rs)
+{
+    for (int i = 0; i < rs->nlisted; i++) {
+        glpgp_quad_region *g = &rs->region[i];
+        double m = INFINITY;
+        for (int f = 0; f < q->nf; f++) {
+            if (!q->face_origin || q->face_origin[f] < GLPGP_QFACE_PAVED) continue;
+            int s = q->face_start[f], k = q->face_start[f + 1] - s;
+            double cx = 0.0, cy = 0.0;
+            for (int t = 0; t < k; t++) {
+                cx += q->xy[2 * q->face_vert[s + t]] / k;
+                cy += q->xy[2 * q->face_vert[s + t] + 1] / k;
+            }
+            if (cx >= g->box[0] && cx <= g->box[2] && cy >= g->box[1] && cy <= g->box[3])
+                m = fmin(m, glpgp_poly_min_sj(q->xy, q->face_vert + s, k));
+        }
+        if (m < INFINITY) g->sj_min = m;
+    }
+}
+
 /* Mesh outer loop O of R (and its holes) with the cut mesher: its quads
  * into B (region point v is output vertex gid[v]). *ok: 0 when it failed
  * (nothing added). */
@@ -446,12 +492,19 @@ static glpgp_status cut_region(const region *R, int O, int *gid, rbuild *B, glpg
         }
     }
     double cx = 0.0, cy = 0.0;
+    g->box[0] = g->box[1] = INFINITY;
+    g->box[2] = g->box[3] = -INFINITY;
     for (int q = 0; q < quads.n / 4 && st == GLPGP_OK; q++) {
         int f[4];
         for (int t = 0; t < 4; t++) {
+            const double *p = xy.p + 2 * quads.p[4 * q + t];
             f[t] = lid[quads.p[4 * q + t]];
-            cx += 0.25 * xy.p[2 * quads.p[4 * q + t]];
-            cy += 0.25 * xy.p[2 * quads.p[4 * q + t] + 1];
+            cx += 0.25 * p[0];
+            cy += 0.25 * p[1];
+            g->box[0] = fmin(g->box[0], p[0]);
+            g->box[1] = fmin(g->box[1], p[1]);
+            g->box[2] = fmax(g->box[2], p[0]);
+            g->box[3] = fmax(g->box[3], p[1]);
         }
         st = glpgp_rbuild_face(B, f, 4, GLPGP_QFACE_PAVED);
     }
@@ -536,7 +589,7 @@ static glpgp_status repair_round(const glpgp_quadmesh *q, const glpgp_mesh *m, d
     for (int O = 0; O < R.nloops; O++) nreg += R.area[O] > 0;
     for (int O = 0; O < R.nloops && st == GLPGP_OK; O++) {
         if (R.area[O] <= 0) continue;
-        glpgp_quad_region g = {removed / (nreg > 0 ? nreg : 1), 0, INFINITY, 0.0, 0.0, GLPGP_QFACE_PAVED, round};
+        glpgp_quad_region g = {removed / (nreg > 0 ? nreg : 1), 0, INFINITY, 0.0, 0.0, {0, 0, 0, 0}, GLPGP_QFACE_PAVED, round};
         int ok = 0, f0 = B.fs.n;
         st = cut_region(&R, O, gid, &B, &g, &ok);
         if (st == GLPGP_OK && !ok) {
@@ -544,9 +597,7 @@ static glpgp_status repair_round(const glpgp_quadmesh *q, const glpgp_mesh *m, d
             st = glpgp_trisplit_fill(&R, O, gid, &B, GLPGP_QFACE_FALLBACK, &nq);
             g.origin = GLPGP_QFACE_FALLBACK;
             g.quads_out = nq;
-            g.sj_min = INFINITY;
-            for (int f = f0 > 0 ? f0 - 1 : 0; f + 1 < B.fs.n; f++)
-                g.sj_min = fmin(g.sj_min, glpgp_poly_min_sj(B.xy.p, B.fv.p + B.fs.p[f], B.fs.p[f + 1] - B.fs.p[f]));
+            face_box(&B, f0 > 0 ? f0 - 1 : 0, &g);
         }
         if (st == GLPGP_OK) note_region(rs, &g);
     }
@@ -603,8 +654,11 @@ static glpgp_status last_resort(glpgp_quadmesh **q, const glpgp_mesh *m, double 
                                                   : "from the input triangles, split into quads");
     rs->whole_domain = level >= 3 ? 2 : 1;
     rs->removed_faces += (*q)->nf;
-    glpgp_quad_region g = {(*q)->nf, w->nf, INFINITY, 0.0, 0.0, level == 1 ? GLPGP_QFACE_PAVED : GLPGP_QFACE_FALLBACK, -1};
+    glpgp_quad_region g = {(*q)->nf, w->nf, INFINITY, 0.0, 0.0, {0, 0, 0, 0}, level == 1 ? GLPGP_QFACE_PAVED : GLPGP_QFACE_FALLBACK, -1};
     for (int f = 0; f < w->nf; f++) g.sj_min = fmin(g.sj_min, glpgp_quad_face_sj(w, f));
+    memcpy(g.box, m->bbox, sizeof g.box);
+    g.x = 0.5 * (m->bbox[0] + m->bbox[2]);
+    g.y = 0.5 * (m->bbox[1] + m->bbox[3]);
     note_region(rs, &g);
     w->closing = (*q)->closing;
     glpgp_quadmesh_destroy(q);
@@ -671,10 +725,9 @@ done:
 
 /* ---- shape rounds --------------------------------------------------------------- */
 
-#define SJ_GOAL 0.3
 #define SHAPE_ROUNDS 2
 
-/* Quads below SJ_GOAL and below 0.9 of what their sharp domain corners
+/* Quads below GLPGP_QUAD_SJ_GOAL and below 0.9 of what their sharp domain corners
  * allow (glpgp_qcheck_corner_bound) into flags (QF_FLAT); *npoor, and the
  * smallest scaled Jacobian relative to that bound over all quads. */
 static glpgp_status poor_faces(const glpgp_quadmesh *q, const glpgp_mesh *m, double h, unsigned *flags, int *npoor,
@@ -689,7 +742,7 @@ static glpgp_status poor_faces(const glpgp_quadmesh *q, const glpgp_mesh *m, dou
         double sj = glpgp_quad_face_sj(q, f);
         flags[f] = 0;
         *worst = fmin(*worst, sj / bound[f]);
-        if (sj < SJ_GOAL && sj < 0.9 * bound[f]) {
+        if (sj < GLPGP_QUAD_SJ_GOAL && sj < 0.9 * bound[f]) {
             flags[f] = QF_FLAT;
             (*npoor)++;
         }
@@ -787,6 +840,7 @@ glpgp_status glpgp_quadmesh_repair(const glpgp_quadmesh *qin, const glpgp_mesh *
     glpgp_status st = is_valid(q, m, h, keep_polygons, &valid);
     if (st == GLPGP_OK && !valid) st = last_resort(&q, m, h, &rs);
     if (st == GLPGP_OK && !keep_polygons) st = shape_rounds(&q, m, h, smooth, &rs);
+    if (st == GLPGP_OK) final_region_sj(q, &rs);
     if (st == GLPGP_OK) {
         q->repair = rs;
         *out = q;

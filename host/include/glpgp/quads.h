@@ -31,8 +31,10 @@ enum {
 typedef struct glpgp_quad_region {
     int faces_in;   /* faces removed (bad faces and their rings) */
     int quads_out;  /* quads made in their place */
-    double sj_min;  /* smallest corner scaled Jacobian of the quads made (before the clean-up) */
+    double sj_min;  /* smallest corner scaled Jacobian of the repaired quads in box in the
+                     * repair's result (after its shape rounds, before the clean-up) */
     double x, y;    /* centroid of the quads made */
+    double box[4];  /* their bounding box: xmin, ymin, xmax, ymax */
     int origin;     /* GLPGP_QFACE_PAVED or GLPGP_QFACE_FALLBACK: which mesher filled it */
     int round;      /* repair round (0-based; -1: the whole domain) */
 } glpgp_quad_region;
@@ -203,6 +205,11 @@ glpgp_status glpgp_quads_build(const glpgp_mesh *m, const glpgp_result *r, const
                                glpgp_quadmesh **out, double *h);
 
 #define GLPGP_QUAD_MAXVAL 8 /* valence histogram bins 0..MAXVAL (last: >= MAXVAL) */
+/* The scaled Jacobian a finite-element user accepts (the repair's shape
+ * rounds re-mesh quads below it that no sharp domain corner limits). */
+#define GLPGP_QUAD_SJ_GOAL 0.3
+/* A result whose repaired share is above this is flagged "mostly repaired". */
+#define GLPGP_QUAD_MOSTLY_REPAIRED 0.5
 
 /* Quality report of a polygon mesh (see glpgp_quads_quality). */
 typedef struct glpgp_quad_quality {
@@ -214,6 +221,13 @@ typedef struct glpgp_quad_quality {
     int irregular_boundary;  /* boundary vertices with valence != ideal (from the boundary angle) */
     int irregular;           /* sum of both */
     double sj_min, sj_mean, sj_p01; /* scaled Jacobian of the quads (min over corners) */
+    double sj_min_corner;    /* min over the quads of their scaled Jacobian over what the domain's
+                              * sharp corners allow them (sin of the smallest interior angle
+                              * below 90 degrees of a domain corner among their vertices, else 1):
+                              * 1 = every quad as good as its corner allows */
+    int below_sj_goal;       /* quads below GLPGP_QUAD_SJ_GOAL and below 0.9 of that bound */
+    int quads_by_origin[GLPGP_QFACE_KINDS]; /* quads per face origin (all grid without origins) */
+    double repaired_share;   /* share of the quads that the repair made (origins repair, fallback) */
     int inverted;            /* faces with area <= 0 or a quad corner with scaled Jacobian < 0 */
     int degenerate;          /* faces with a repeated vertex, a zero-length edge or ~zero area */
     int edges, boundary_edges, nonmanifold_edges; /* nonmanifold: edges used by > 2 faces */
