@@ -5,7 +5,9 @@
  * other sign). A face is flagged when
  *  - it is not a quad; it is inverted (signed area <= 0, or a quad corner
  *    whose scaled Jacobian, sin of the corner angle, is < 0); degenerate
- *    (repeated vertex, edge < 1e-9 h, |area| < 1e-9 h^2);
+ *    (repeated vertex, an edge below 1e-9 of the face's longest, |area|
+ *    below 1e-12 of its square: relative to the face, so a valid fine mesh
+ *    is not degenerate at a large h);
  *  - one of its edges is used by more than two faces, or by two faces in
  *    the same direction (the two faces lie on the same side of it: a fold);
  *  - one of its corners sits at a pinched vertex (the faces around the
@@ -27,6 +29,7 @@
  * Neighbour queries use uniform grids of boxes (bgrid). */
 #include "check.h"
 #include "geom.h"
+#include "glpgp/util.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -256,20 +259,27 @@ glpgp_status glpgp_qcheck_run(const glpgp_quadmesh *q, const glpgp_mesh *dm, dou
         int s = q->face_start[f], k = q->face_start[f + 1] - s;
         const int *v = q->face_vert + s;
         if (k != 4) fl[f] |= QF_NONQUAD;
-        double area = 0.0, msj = INFINITY;
+        double area = 0.0, msj = INFINITY, lmax = 0.0;
+        for (int i = 0; i < k; i++) {
+            const double *a = q->xy + 2 * v[i], *b = q->xy + 2 * v[(i + 1) % k];
+            lmax = fmax(lmax, hypot(b[0] - a[0], b[1] - a[1]));
+        }
+        /* degenerate against the face's own size (a fine valid mesh, e.g. the
+         * input's triangles split, is not degenerate for a large h) */
         for (int i = 0; i < k; i++) {
             const double *a = q->xy + 2 * v[i], *b = q->xy + 2 * v[(i + 1) % k], *p = q->xy + 2 * v[(i + k - 1) % k];
             for (int j = i + 1; j < k; j++)
                 if (v[j] == v[i]) fl[f] |= QF_DEGENERATE;
             double e1x = b[0] - a[0], e1y = b[1] - a[1], e2x = p[0] - a[0], e2y = p[1] - a[1];
             double l1 = hypot(e1x, e1y), l2 = hypot(e2x, e2y);
-            if (l1 < 1e-9 * h) fl[f] |= QF_DEGENERATE;
-            area += 0.5 * (a[0] * b[1] - b[0] * a[1]);
+            if (!(l1 > 1e-9 * lmax) || l1 < 1e-15 * h) fl[f] |= QF_DEGENERATE;
+            area += 0.5 * ((a[0] - q->xy[2 * v[0]]) * (b[1] - q->xy[2 * v[0] + 1]) -
+                           (b[0] - q->xy[2 * v[0]]) * (a[1] - q->xy[2 * v[0] + 1]));
             double sj = (l1 > 0 && l2 > 0) ? orient * (e1x * e2y - e1y * e2x) / (l1 * l2) : 0.0;
             msj = fmin(msj, sj);
         }
         area *= orient;
-        if (k < 3 || fabs(area) < 1e-9 * h * h) fl[f] |= QF_DEGENERATE;
+        if (k < 3 || !(fabs(area) > 1e-12 * lmax * lmax)) fl[f] |= QF_DEGENERATE;
         if (area <= 0.0 || (k == 4 && msj < 0.0)) fl[f] |= QF_INVERTED;
         if (k == 4 && msj < 1e-3) fl[f] |= QF_FLAT;
     }
@@ -380,6 +390,7 @@ glpgp_status glpgp_qcheck_run(const glpgp_quadmesh *q, const glpgp_mesh *dm, dou
             k = j;
         }
         for (int e1 = 0; e1 < ne; e1++) {
+            if ((e1 & 32767) == 0) glpgp_progress_poll();
             int n = glpgp_bgrid_query(&GE, box[4 * e1], box[4 * e1 + 1], box[4 * e1 + 2], box[4 * e1 + 3], &cand, &ncap);
             if (n < 0) {
                 free(eface);

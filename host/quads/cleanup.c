@@ -514,6 +514,7 @@ glpgp_status glpgp_quadmesh_cleanup(const glpgp_quadmesh *q, glpgp_quadmesh **ou
     memset(&stats, 0, sizeof stats);
     stats.cost_before = total_cost(&c);
     for (int pass = 0; pass < CL_MAX_PASSES; pass++) {
+        glpgp_progress_poll();
         int changed = 0, done1 = 0;
         for (int v = 0; v < c.nv; v++) {
             GLPGP_CHECK_GOTO(st, try_doublet(&c, v, &done1), done);

@@ -63,6 +63,7 @@
 #include "glpgp/quads.h"
 #include "geom.h"
 #include "glpgp/status.h"
+#include "glpgp/util.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -945,6 +946,7 @@ glpgp_status glpgp_quadmesh_close_polygons(const glpgp_quadmesh *q, glpgp_quadme
     }
 
     for (int round = 0; round < MAX_ROUNDS; round++) {
+        glpgp_progress_poll();
         GLPGP_CHECK_GOTO(st, adj_build(&s, &A), done);
         int nf0 = s.nf, nodd = 0, progress = 0;
         {
@@ -1172,6 +1174,9 @@ glpgp_status glpgp_quads_build(const glpgp_mesh *m, const glpgp_result *r, const
     *out = NULL;
     glpgp_quadmesh *q = NULL, *c = NULL;
     unsigned char *mark = NULL;
+    glpgp_progress pr;
+    glpgp_progress_start(&pr, "quads");
+    glpgp_progress_set(&pr, "extracting the grid of %d triangles", m->nt);
     glpgp_status st = glpgp_quads_extract(m, r, &q);
     if (st == GLPGP_ERR_NUMERIC && o->repair) { /* no face: the repair meshes everything */
         glpgp_log(GLPGP_LOG_INFO, "quads: %s; the repair meshes the whole domain", glpgp_error_message());
@@ -1183,7 +1188,11 @@ glpgp_status glpgp_quads_build(const glpgp_mesh *m, const glpgp_result *r, const
             return st;
         }
     }
-    if (st != GLPGP_OK) return st;
+    if (st != GLPGP_OK) {
+        glpgp_progress_done(&pr, "no mesh");
+        return st;
+    }
+    glpgp_progress_tick(&pr, "%d faces extracted; closing the odd ones", q->nf);
     if (!o->keep_polygons && q->nf > 0) {
         st = glpgp_quadmesh_close_polygons(q, &c, &mark);
         if (st != GLPGP_OK) goto done;
@@ -1198,6 +1207,7 @@ glpgp_status glpgp_quads_build(const glpgp_mesh *m, const glpgp_result *r, const
         q->closing.smoothed_vertices = moved;
     }
     if (o->repair) {
+        glpgp_progress_tick(&pr, "%d faces; checking and repairing", q->nf);
         st = glpgp_quadmesh_repair(q, m, *h, o->smooth, o->keep_polygons, &c);
         if (st != GLPGP_OK) goto done;
         glpgp_quadmesh_destroy(&q);
@@ -1205,6 +1215,7 @@ glpgp_status glpgp_quads_build(const glpgp_mesh *m, const glpgp_result *r, const
         c = NULL;
     }
     if (o->cleanup && !o->keep_polygons) {
+        glpgp_progress_tick(&pr, "%d faces; clean-up", q->nf);
         st = glpgp_quadmesh_cleanup(q, &c);
         if (st != GLPGP_OK) goto done;
         if (c) {
@@ -1239,8 +1250,10 @@ glpgp_status glpgp_quads_build(const glpgp_mesh *m, const glpgp_result *r, const
         *h *= 0.5;
     }
     *out = q;
+    glpgp_progress_done(&pr, "%d faces", q->nf);
     q = NULL;
 done:
+    if (q) glpgp_progress_done(&pr, "stopped");
     free(mark);
     glpgp_quadmesh_destroy(&q);
     glpgp_quadmesh_destroy(&c);

@@ -486,6 +486,7 @@ static glpgp_status build_arrangement(builder *B)
         }
     /* chords and grid points, triangle by triangle */
     for (int t = 0; t < m->nt; t++) {
+        if ((t & 16383) == 0) glpgp_progress_poll();
         chord ch[2][3];
         int nch[2];
         for (int k = 0; k < 2; k++) {

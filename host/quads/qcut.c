@@ -41,6 +41,7 @@
 #include "qcut.h"
 #include "check.h"
 #include "geom.h"
+#include "glpgp/util.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -1050,7 +1051,8 @@ glpgp_status glpgp_qcut_mesh(dvec *xy, const qcut_region *R, double h, ivec *qua
     for (int i = 0; i < c.ns; i++) smin = fmin(smin, c.src[3 * i + 2]);
     c.budget = 64 + 4L * R->loop_start[R->nloops] + (long)fmin(1e7, 8.0 * fabs(area) / (smin * smin));
     if (st == GLPGP_OK) st = initial_pieces(&c, R);
-    while (st == GLPGP_OK && c.nstack > 0) {
+    for (long k = 0; st == GLPGP_OK && c.nstack > 0; k++) {
+        if ((k & 255) == 0) glpgp_progress_poll();
         qc_piece pc = c.stack[--c.nstack];
         st = pc.nh > 0 ? cut_hole(&c, &pc) : mesh_loop(&c, &pc);
         piece_free(&pc);

@@ -37,6 +37,7 @@
 #include "geom.h"
 #include "qcut.h"
 #include "glpgp/quads.h"
+#include "glpgp/util.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -591,6 +592,7 @@ static glpgp_status repair_round(const glpgp_quadmesh *q, const glpgp_mesh *m, d
         if (R.area[O] <= 0) continue;
         glpgp_quad_region g = {removed / (nreg > 0 ? nreg : 1), 0, INFINITY, 0.0, 0.0, {0, 0, 0, 0}, GLPGP_QFACE_PAVED, round};
         int ok = 0, f0 = B.fs.n;
+        glpgp_progress_poll();
         st = cut_region(&R, O, gid, &B, &g, &ok);
         if (st == GLPGP_OK && !ok) {
             int nq = 0;
@@ -682,6 +684,7 @@ static glpgp_status run_rounds(const glpgp_quadmesh *qin, const glpgp_mesh *m, d
     GLPGP_CHECK_GOTO(st, snap_boundary(q, &D, h, &rs->snapped), done);
     if (!keep_polygons) GLPGP_CHECK_GOTO(st, glpgp_quadmesh_chord_strips(q, m, h, &rs->chord_strips), done);
     for (int round = 0; round < rounds; round++) {
+        glpgp_progress_poll();
         glpgp_qcheck_free(&ck);
         GLPGP_CHECK_GOTO(st, check_faces(q, m, h, round, &ck), done);
         if (keep_polygons)
