@@ -23,7 +23,6 @@
 #include "glpgp/quads.h"
 
 #include <math.h>
-#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -305,7 +304,6 @@ glpgp_status glpgp_quadmesh_chord_strips(glpgp_quadmesh *q, const glpgp_mesh *m,
     if (q->nf == 0 || !(m->area > 0)) return GLPGP_OK;
     for (int f = 0; f < q->nf; f++)
         if (q->face_start[f + 1] - q->face_start[f] != 4 || q->face_start[f] != 4 * f) return GLPGP_OK;
-    glpgp_log(GLPGP_LOG_DEBUG, "quad chords: area %.6g of %.6g", mesh_area(q), m->area);
     dbnd D;
     GLPGP_CHECK(glpgp_dbnd_build(&D, m, h));
     glpgp_status st = GLPGP_OK;

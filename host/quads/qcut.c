@@ -44,7 +44,6 @@
 #include "glpgp/util.h"
 
 #include <math.h>
-#include <stdio.h>
 #include <string.h>
 
 #define QC_PI 3.14159265358979323846
@@ -783,12 +782,6 @@ static glpgp_status cut_hole(qc *c, qc_piece *pc)
         cut c1 = first[b], c2;
         first[b].cost = INFINITY;
         best_hole_cut(c, pc, c1.li, &c1, &c2);
-        if (getenv("QC_DEBUG")) {
-            const double *pa = P(c, pc->holes[c1.li].p[c1.i]), *pb = P(c, loop_of(pc, c1.lj)->p[c1.j]);
-            fprintf(stderr, "hole cut: hole %d (%d pts) -> loop %d: (%.3g,%.3g)-(%.3g,%.3g) cost %.3g k %d; second %s\n",
-                    c1.li, pc->holes[c1.li].n, c1.lj, pa[0], pa[1], pb[0], pb[1], c1.cost, c1.k,
-                    c2.cost < INFINITY ? "found" : "none");
-        }
         if (!(c2.cost < INFINITY)) continue;
         free(first);
         return join_hole(c, pc, &c1, &c2);
@@ -959,11 +952,6 @@ static glpgp_status kite_cut(qc *c, qc_piece *pc, int *done)
 static glpgp_status mesh_loop(qc *c, qc_piece *pc)
 {
     const ivec *L = &pc->outer;
-    if (getenv("QC_DEBUG")) {
-        fprintf(stderr, "piece n=%d:", L->n);
-        for (int t = 0; t < L->n; t++) fprintf(stderr, " (%.3g,%.3g)", P(c, L->p[t])[0], P(c, L->p[t])[1]);
-        fprintf(stderr, "\n");
-    }
     if (L->n % 2) return GLPGP_FAIL(GLPGP_ERR_NUMERIC, "quad cut mesher: a piece with %d points (odd)", L->n);
     if (L->n < 4) return GLPGP_FAIL(GLPGP_ERR_NUMERIC, "quad cut mesher: a piece with %d points", L->n);
     for (int guard = 0; guard < L->n; guard++) { /* sharp points first */
@@ -987,7 +975,6 @@ static glpgp_status mesh_loop(qc *c, qc_piece *pc)
     if (cu.cost < INFINITY && c->budget-- > 0 && !(s.sj > 0.2 && cu.cost > 6.0) && !(s.sj > 0.0 && cu.cost >= 40.0))
         return apply_cut(c, pc, &cu);
     if (s.sj > 0.0) {
-        if (getenv("QC_DEBUG")) fprintf(stderr, "fallback split sj %.3g (cut cost %.3g)\n", s.sj, cu.cost);
         GLPGP_CHECK(emit_split(c, L, &s));
         piece_free(pc);
         return GLPGP_OK;

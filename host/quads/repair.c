@@ -40,7 +40,6 @@
 #include "glpgp/util.h"
 
 #include <math.h>
-#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -454,17 +453,6 @@ static glpgp_status cut_region(const region *R, int O, int *gid, rbuild *B, glpg
     const int nfixed = map.n;
     qcut_stats qs;
     qcut_region QR = {ls.n - 1, ls.p, lv.p, ow.p};
-    if (st == GLPGP_OK && getenv("QC_DUMP")) { /* debugging: the region as loops */
-        FILE *f = fopen(getenv("QC_DUMP"), "a");
-        if (f) {
-            fprintf(f, "region %d %g\n", QR.nloops, R->h);
-            for (int L = 0; L < QR.nloops; L++) {
-                fprintf(f, "loop %d %d\n", ow.p[L], ls.p[L + 1] - ls.p[L]);
-                for (int i = ls.p[L]; i < ls.p[L + 1]; i++) fprintf(f, "%.17g %.17g\n", xy.p[2 * lv.p[i]], xy.p[2 * lv.p[i] + 1]);
-            }
-            fclose(f);
-        }
-    }
     if (st == GLPGP_OK) {
         st = glpgp_qcut_mesh(&xy, &QR, R->h, &quads, &qs);
         if (st == GLPGP_ERR_NUMERIC) { /* the fallback fill takes it */

@@ -23,103 +23,6 @@
 
 static char g_dir[64];
 
-/* Whether segments ab and cd cross (touching counts). */
-static int seg_hit(const double *a, const double *b, const double *c, const double *d)
-{
-    double d1 = (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
-    double d2 = (b[0] - a[0]) * (d[1] - a[1]) - (b[1] - a[1]) * (d[0] - a[0]);
-    double d3 = (d[0] - c[0]) * (a[1] - c[1]) - (d[1] - c[1]) * (a[0] - c[0]);
-    double d4 = (d[0] - c[0]) * (b[1] - c[1]) - (d[1] - c[1]) * (b[0] - c[0]);
-    return ((d1 >= 0) != (d2 >= 0)) && ((d3 >= 0) != (d4 >= 0));
-}
-
-/* The outer loop's corners: a star with spikes and slits; 0 when it crosses itself. */
-static int outer_loop(double *c, int *nc, double *rmin)
-{
-    int n = 6 + (int)(tu_rand() * 14), m = 0;
-    *rmin = 1e9;
-    for (int i = 0; i < n; i++) {
-        double a = 2 * PI_ * (i + 0.35 * tu_rand()) / n, r = 2.5 + 1.5 * tu_rand();
-        double a1 = 2 * PI_ * (i + 1) / n, x = r * cos(a), y = r * sin(a);
-        *rmin = fmin(*rmin, r);
-        c[2 * m] = x;
-        c[2 * m + 1] = y;
-        m++;
-        double u = tu_rand(), mx = 2.4 * cos(0.5 * (a + a1)), my = 2.4 * sin(0.5 * (a + a1));
-        double nx = cos(0.5 * (a + a1)), ny = sin(0.5 * (a + a1)), tx = -ny, ty = nx;
-        if (u < 0.12) { /* a spike out, 0.5 .. 10 degrees */
-            double L = 1.0 + tu_rand(), ang = (0.5 + 9.5 * tu_rand()) * PI_ / 180, w = 2 * L * tan(0.5 * ang);
-            double pts[6] = {mx - 0.5 * w * tx, my - 0.5 * w * ty, mx + L * nx, my + L * ny, mx + 0.5 * w * tx,
-                             my + 0.5 * w * ty};
-            memcpy(c + 2 * m, pts, sizeof pts);
-            m += 3;
-        } else if (u < 0.24) { /* a slit in, 0.005 .. 0.1 H wide */
-            double w = 0.005 + 0.095 * tu_rand(), D = 0.5 + 0.8 * tu_rand();
-            double pts[8] = {mx - 0.5 * w * tx, my - 0.5 * w * ty, mx - D * nx - 0.5 * w * tx, my - D * ny - 0.5 * w * ty,
-                             mx - D * nx + 0.5 * w * tx, my - D * ny + 0.5 * w * ty, mx + 0.5 * w * tx, my + 0.5 * w * ty};
-            memcpy(c + 2 * m, pts, sizeof pts);
-            m += 4;
-        }
-    }
-    for (int i = 0; i < m; i++)
-        for (int j = i + 2; j < m; j++) {
-            if (i == 0 && j == m - 1) continue;
-            if (seg_hit(c + 2 * i, c + 2 * ((i + 1) % m), c + 2 * j, c + 2 * ((j + 1) % m))) return 0;
-        }
-    *nc = m;
-    return 1;
-}
-
-/* Distance from p to the polygon's sides. */
-static double poly_dist(const double *c, int n, double x, double y)
-{
-    double d = 1e9;
-    for (int i = 0; i < n; i++) {
-        const double *a = c + 2 * i, *b = c + 2 * ((i + 1) % n);
-        double ex = b[0] - a[0], ey = b[1] - a[1], l2 = ex * ex + ey * ey;
-        double t = l2 > 0 ? ((x - a[0]) * ex + (y - a[1]) * ey) / l2 : 0;
-        t = t < 0 ? 0 : t > 1 ? 1 : t;
-        d = fmin(d, hypot(a[0] + t * ex - x, a[1] + t * ey - y));
-    }
-    return d;
-}
-
-static int inside(const double *c, int n, double x, double y)
-{
-    int in = 0;
-    for (int i = 0, j = n - 1; i < n; j = i++)
-        if ((c[2 * i + 1] > y) != (c[2 * j + 1] > y) &&
-            x < c[2 * j] + (y - c[2 * j + 1]) * (c[2 * i] - c[2 * j]) / (c[2 * i + 1] - c[2 * j + 1]))
-            in = !in;
-    return in;
-}
-
-static int random_domain(hd_poly *p, double e)
-{
-    double c[512], rmin;
-    int n = 0;
-    memset(p, 0, sizeof *p);
-    if (!outer_loop(c, &n, &rmin)) return 0;
-    hd_polygon(p, c, n, e);
-    static const double gaps[4] = {1e-3, 1e-2, 0.1, 0.5};
-    int nh = (int)(tu_rand() * 7), placed = 0;
-    double hx[8], hy[8], hr[8];
-    for (int t = 0; t < 60 && placed < nh; t++) {
-        double r = 0.02 + 0.78 * tu_rand() * tu_rand(), gap = gaps[(int)(tu_rand() * 4)];
-        double x = (2 * tu_rand() - 1) * rmin, y = (2 * tu_rand() - 1) * rmin;
-        if (!inside(c, n, x, y) || poly_dist(c, n, x, y) < r + gap) continue;
-        int ok = 1;
-        for (int k = 0; k < placed && ok; k++) ok = hypot(x - hx[k], y - hy[k]) > r + hr[k] + gap;
-        if (!ok) continue;
-        hx[placed] = x;
-        hy[placed] = y;
-        hr[placed] = r;
-        placed++;
-        hd_circle(p, x, y, r, fmin(e, 0.5 * r + 0.005));
-    }
-    return 1;
-}
-
 /* The connected pieces of m (one per polygon of a batch), in order of
  * their lowest x (the polygons are placed left to right). */
 static int split_pieces(const glpgp_mesh *m, glpgp_mesh **piece, int maxp)
@@ -286,7 +189,7 @@ int main(void)
             tu_rng = 0x9e3779b97f4a7c15ULL * (seed + 1);
             hd_poly p;
             T.tried++;
-            if (!random_domain(&p, e)) continue; /* crossing sides: not a polygon */
+            if (!hd_random(tu_rand, &p, e)) continue; /* crossing sides: not a polygon */
             seeds[n] = seed;
             hs[n] = 0.5 + 1.5 * tu_rand();
             turns[n] = 2 * PI_ * tu_rand();
