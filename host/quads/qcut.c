@@ -891,11 +891,67 @@ static glpgp_status ring_quad(qc *c, const ivec *L, int *done)
     return GLPGP_OK;
 }
 
+/* Candidate fourth corners X of the kite (tip t, a, X, b): where the normals
+ * to the sides at a and b meet (right angles at a and b), and points on the
+ * bisector at 0.8, 1 and 1.2 times the mean distance of a and b (when a and
+ * b are at different distances from the tip the normals meet far off).
+ * Returns how many (at most 4) into X[2 k]. */
+static int kite_points(const double *t, const double *a, const double *b, double *X)
+{
+    int n = 0;
+    double da[2] = {a[0] - t[0], a[1] - t[1]}, db[2] = {b[0] - t[0], b[1] - t[1]};
+    double na[2] = {-da[1], da[0]}, nb[2] = {db[1], -db[0]}; /* left of t->a, right of t->b */
+    double den = na[0] * nb[1] - na[1] * nb[0];
+    if (fabs(den) > 1e-300) {
+        double u = ((b[0] - a[0]) * nb[1] - (b[1] - a[1]) * nb[0]) / den;
+        if (u > 0.0) {
+            X[2 * n] = a[0] + u * na[0];
+            X[2 * n + 1] = a[1] + u * na[1];
+            n++;
+        }
+    }
+    double la = hypot(da[0], da[1]), lb = hypot(db[0], db[1]);
+    double bx = da[0] / la + db[0] / lb, by = da[1] / la + db[1] / lb, bl = hypot(bx, by);
+    if (!(bl > 1e-12)) return n;
+    for (int k = 0; k < 3; k++) {
+        double r = (0.8 + 0.2 * k) * 0.5 * (la + lb) / (0.5 * bl); /* past the chord a b */
+        X[2 * n] = t[0] + r * bx / bl;
+        X[2 * n + 1] = t[1] + r * by / bl;
+        n++;
+    }
+    return n;
+}
+
+/* Whether the kite (tip i of L, X at point Xi) can be cut off: convex, X
+ * inside, a X and X b crossing nothing, no angle below 20 degrees left at
+ * a, X, b. Returns the smallest scaled Jacobian at a, X, b (-1: not). */
+static double kite_fit(qc *c, qc_piece *pc, int i, int Xi)
+{
+    ivec *L = &pc->outer;
+    const int n = L->n, it = L->p[i], ia = L->p[(i + 1) % n], ib = L->p[(i + n - 1) % n];
+    const double *X = P(c, Xi);
+    int f[4] = {it, ia, Xi, ib};
+    if (!(glpgp_poly_min_sj(c->xy->p, f, 4) > 0.0)) return -1.0;
+    if (!glpgp_point_in_poly(c->xy->p, L->p, n, X, 0.0) || !visible(c, pc, ia, Xi) || !visible(c, pc, Xi, ib)) return -1.0;
+    L->p[i] = Xi;
+    int ok = 1;
+    for (int d = -1; d <= 1 && ok; d++) ok = loop_angle(c, L, (i + d + n) % n) * 180.0 / QC_PI > 20.0;
+    L->p[i] = it;
+    if (!ok) return -1.0;
+    int g[4] = {ia, Xi, ib, it}; /* corners a, X, b (the tip's is sin of its angle whatever X) */
+    double m = INFINITY;
+    for (int k = 0; k < 3; k++) {
+        const double *o = P(c, g[k]), *nx = P(c, g[k + 1]), *pv = P(c, g[(k + 3) % 4]);
+        double e1x = nx[0] - o[0], e1y = nx[1] - o[1], e2x = pv[0] - o[0], e2y = pv[1] - o[1];
+        m = fmin(m, (e1x * e2y - e1y * e2x) / (hypot(e1x, e1y) * hypot(e2x, e2y)));
+    }
+    return m;
+}
+
 /* A sharp point (angle below SHARP_DEG) of a loop of more than 4 points,
- * with its neighbours a and b, becomes a kite (tip, a, X, b), X where the
- * normals to the two sides at a and b meet (both corners there 90
- * degrees), when a X and X b cross nothing; the loop keeps its count with
- * X in place of the tip. *done: 1 when one was cut (pc then replaced). */
+ * with its neighbours a and b, becomes a kite (tip, a, X, b), X the best of
+ * kite_points; the loop keeps its count with X in place of the tip.
+ * *done: 1 when one was cut (pc then changed). */
 #define SHARP_DEG 50.0
 static glpgp_status kite_cut(qc *c, qc_piece *pc, int *done)
 {
@@ -904,42 +960,27 @@ static glpgp_status kite_cut(qc *c, qc_piece *pc, int *done)
     const int n = L->n;
     if (n <= 4) return GLPGP_OK;
     for (int i = 0; i < n; i++) {
-        double aa = loop_angle(c, L, i);
-        if (aa * 180.0 / QC_PI >= SHARP_DEG) continue;
-        int ia = L->p[(i + 1) % n], ib = L->p[(i + n - 1) % n], it = L->p[i];
-        const double *t = P(c, it), *a = P(c, ia), *b = P(c, ib);
-        /* X = a + u n_a = b + w n_b, n_a, n_b the inward normals of the sides */
-        double da[2] = {a[0] - t[0], a[1] - t[1]}, db[2] = {b[0] - t[0], b[1] - t[1]};
-        double na[2] = {-da[1], da[0]}, nb[2] = {db[1], -db[0]}; /* left of t->a, right of t->b */
-        double den = na[0] * nb[1] - na[1] * nb[0];
-        if (fabs(den) < 1e-300) continue;
-        double rx = b[0] - a[0], ry = b[1] - a[1];
-        double u = (rx * nb[1] - ry * nb[0]) / den;
-        double X[2] = {a[0] + u * na[0], a[1] + u * na[1]};
-        if (!(u > 0.0)) continue;
-        double q[8] = {t[0], t[1], a[0], a[1], X[0], X[1], b[0], b[1]};
-        int id4[4] = {0, 1, 2, 3};
-        if (!(glpgp_poly_min_sj(q, id4, 4) > 0.0)) continue;
-        /* X inside, a X and X b crossing nothing */
-        int Xi = c->xy->n / 2;
-        GLPGP_CHECK(dpush(c->xy, X[0]));
-        GLPGP_CHECK(dpush(c->xy, X[1]));
-        if (!glpgp_point_in_poly(c->xy->p, L->p, n, X, 0.0) || !visible(c, pc, ia, Xi) || !visible(c, pc, Xi, ib)) {
+        if (loop_angle(c, L, i) * 180.0 / QC_PI >= SHARP_DEG) continue;
+        const int it = L->p[i], ia = L->p[(i + 1) % n], ib = L->p[(i + n - 1) % n];
+        double X[8], best = 0.05;
+        int m = kite_points(P(c, it), P(c, ia), P(c, ib), X), bk = -1, Xi = c->xy->n / 2;
+        for (int k = 0; k < m; k++) {
+            GLPGP_CHECK(dpush(c->xy, X[2 * k]));
+            GLPGP_CHECK(dpush(c->xy, X[2 * k + 1]));
+            double v = kite_fit(c, pc, i, Xi);
             c->xy->n -= 2;
-            continue;
+            if (v > best) {
+                best = v;
+                bk = k;
+            }
         }
-        /* the loop left: no angle at a, X, b below 20 degrees */
-        L->p[i] = Xi;
-        int okl = 1;
-        for (int d = -1; d <= 1 && okl; d++) okl = loop_angle(c, L, (i + d + n) % n) * 180.0 / QC_PI > 20.0;
-        if (!okl) {
-            L->p[i] = it;
-            c->xy->n -= 2;
-            continue;
-        }
+        if (bk < 0) continue;
+        GLPGP_CHECK(dpush(c->xy, X[2 * bk]));
+        GLPGP_CHECK(dpush(c->xy, X[2 * bk + 1]));
         c->stats->points++;
         int f[4] = {it, ia, Xi, ib};
         GLPGP_CHECK(emit(c, f));
+        L->p[i] = Xi;
         c->stats->pieces++;
         *done = 1;
         return GLPGP_OK;
@@ -990,6 +1031,83 @@ static glpgp_status mesh_loop(qc *c, qc_piece *pc)
     return GLPGP_FAIL(GLPGP_ERR_NUMERIC, "quad cut mesher: no cut or split for a piece of %d points", L->n);
 }
 
+/* Distance from p to the nearest side of loop L. */
+static double loop_dist(const qc *c, const ivec *L, const double *p)
+{
+    double d = INFINITY;
+    for (int i = 0; i < L->n; i++) d = fmin(d, glpgp_seg_dist(P(c, L->p[i]), P(c, L->p[(i + 1) % L->n]), p, NULL));
+    return d;
+}
+
+/* One ring of quads around hole k of pc, its points moved out along their
+ * normals by their spacing (about square quads); the hole becomes the outer
+ * ring. *done 0 (nothing changed) when a quad would be poor or a new side
+ * would come near another loop. */
+static glpgp_status hole_ring(qc *c, qc_piece *pc, int k, int *done)
+{
+    ivec *H = &pc->holes[k];
+    const int n = H->n, base = c->xy->n;
+    *done = 0;
+    for (int i = 0; i < n; i++) {
+        const double *a = P(c, H->p[(i + n - 1) % n]), *b = P(c, H->p[i]), *d = P(c, H->p[(i + 1) % n]);
+        double l1 = hypot(b[0] - a[0], b[1] - a[1]), l2 = hypot(d[0] - b[0], d[1] - b[1]);
+        /* left normals of the two sides (into the region) */
+        double nx = -(b[1] - a[1]) / l1 - (d[1] - b[1]) / l2, ny = (b[0] - a[0]) / l1 + (d[0] - b[0]) / l2;
+        double nn = hypot(nx, ny), s = 0.5 * (l1 + l2);
+        if (!(nn > 1e-12)) return GLPGP_OK;
+        GLPGP_CHECK(dpush(c->xy, b[0] + s * nx / nn));
+        GLPGP_CHECK(dpush(c->xy, b[1] + s * ny / nn));
+    }
+    int ok = 1;
+    for (int i = 0; i < n && ok; i++) {
+        int q0 = base / 2 + i, q1 = base / 2 + (i + 1) % n;
+        int f[4] = {H->p[i], H->p[(i + 1) % n], q1, q0};
+        ok = glpgp_poly_min_sj(c->xy->p, f, 4) > 0.3;
+        const double *qa = P(c, q0), *qb = P(c, q1);
+        double e = hypot(qb[0] - qa[0], qb[1] - qa[1]);
+        for (int l = -1; l < pc->nh && ok; l++) { /* clear of the other loops */
+            if (l == k) continue;
+            const ivec *L = loop_of(pc, l);
+            ok = !blocked_by(c, L, qa, qb, 0.0) && !blocked_by(c, L, P(c, H->p[i]), qa, 0.0) && loop_dist(c, L, qa) > 0.7 * e;
+            if (ok && l == -1) ok = glpgp_point_in_poly(c->xy->p, L->p, L->n, qa, 0.0);
+        }
+    }
+    if (!ok) {
+        c->xy->n = base;
+        return GLPGP_OK;
+    }
+    for (int i = 0; i < n; i++) {
+        int f[4] = {H->p[i], H->p[(i + 1) % n], base / 2 + (i + 1) % n, base / 2 + i};
+        GLPGP_CHECK(emit(c, f));
+    }
+    for (int i = 0; i < n; i++) H->p[i] = base / 2 + i;
+    c->stats->points += n;
+    c->stats->pieces++;
+    *done = 1;
+    return GLPGP_OK;
+}
+
+/* Holes much smaller than the size get rings of quads around them (an
+ * O-grid) until their spacing reaches about 0.7 h or a ring would come near
+ * another loop: the cuts then start from a loop of about the local size. */
+static glpgp_status grow_holes(qc *c, qc_piece *pc)
+{
+    for (int k = 0; k < pc->nh; k++)
+        for (int ring = 0; ring < 8; ring++) {
+            const ivec *H = &pc->holes[k];
+            double len = 0.0;
+            for (int i = 0; i < H->n; i++) {
+                const double *a = P(c, H->p[i]), *b = P(c, H->p[(i + 1) % H->n]);
+                len += hypot(b[0] - a[0], b[1] - a[1]);
+            }
+            if (H->n < 4 || len / H->n >= 0.7 * c->h) break;
+            int done = 0;
+            GLPGP_CHECK(hole_ring(c, pc, k, &done));
+            if (!done) break;
+        }
+    return GLPGP_OK;
+}
+
 static glpgp_status initial_pieces(qc *c, const qcut_region *R)
 {
     for (int l = 0; l < R->nloops; l++) {
@@ -1007,6 +1125,7 @@ static glpgp_status initial_pieces(qc *c, const qcut_region *R)
             if (st == GLPGP_OK) st = add_hole(&pc, &h);
             ivec_free(&h);
         }
+        if (st == GLPGP_OK) st = grow_holes(c, &pc);
         if (st == GLPGP_OK) st = push_piece(c, &pc);
         piece_free(&pc);
         if (st != GLPGP_OK) return st;

@@ -227,7 +227,7 @@ static glpgp_status arc_keep(const region *R, const arcpts *A, int whole, unsign
         const double *a = m->normal_prev + 2 * vi, *b = m->normal_next + 2 * vi;
         if (a[0] * b[0] + a[1] * b[1] < cmin) keep[i] = 1;
     }
-    if (whole && np > 3) keep[np / 2] = keep[np / 4] = keep[3 * np / 4] = 1; /* a closed loop needs a triangle */
+    if (whole == 1 && np > 3) keep[np / 2] = keep[np / 4] = keep[3 * np / 4] = 1; /* a closed loop needs a triangle */
     int *stack = NULL, sp = 0, prev = 0;
     GLPGP_CHECK(glpgp_malloc((size_t)2 * np + 2, sizeof(int), &stack));
     for (int i = 1; i < np; i++) {
@@ -274,7 +274,8 @@ static void arc_at(const region *R, const arcpts *A, int i, int j, double s, dou
 
 /* Emit the domain boundary piece from region point u (param pu) to w
  * (param pw) on loop l as half-edges of about spacing sp. whole: the full
- * loop from pu back to pu. */
+ * loop from pu back to pu (1: three more points kept, 2: it has three
+ * corners or more, which are kept anyway). */
 static glpgp_status emit_arc(region *R, int l, int u, double pu, int w, double pw, int whole, double sp)
 {
     const glpgp_mesh *m = R->m;
@@ -434,11 +435,21 @@ static glpgp_status boundary_pieces(region *R, const bpos *bp, const int *cover,
                 lv[2 * cnt + 1] = v;
                 cnt++;
             }
-        if (cnt == 0) { /* the whole loop, from its first input vertex */
-            const double *x = m->xy + 2 * m->loop_vertices[m->loop_start[l]];
+        if (cnt == 0) { /* the whole loop, from its first corner (else its first input vertex) */
+            int s0 = 0, corners = 0;
+            const double cmin = cos(GLPGP_CORNER_DEG * RG_PI / 180.0);
+            for (int i = n - 1; i >= 0; i--) {
+                int vi = m->loop_vertices[m->loop_start[l] + i];
+                const double *a = m->normal_prev + 2 * vi, *b = m->normal_next + 2 * vi;
+                if (a[0] * b[0] + a[1] * b[1] < cmin) {
+                    s0 = i;
+                    corners++;
+                }
+            }
+            const double *x = m->xy + 2 * m->loop_vertices[m->loop_start[l] + s0];
             int v0;
             st = new_point(R, x[0], x[1], &v0);
-            if (st == GLPGP_OK) st = emit_arc(R, l, v0, 0.0, v0, (double)n, 1, R->h);
+            if (st == GLPGP_OK) st = emit_arc(R, l, v0, (double)s0, v0, (double)s0, corners >= 3 ? 2 : 1, R->h);
             continue;
         }
         qsort(lv, (size_t)cnt, 2 * sizeof(double), cmp_dbl_int);

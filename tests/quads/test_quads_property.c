@@ -11,7 +11,9 @@
  * defaults must return a valid all-quad mesh for every one (no solve: fast).
  * The count is GLPGP_PROPERTY_COUNT (default 40; bench/quads_property.sh
  * runs 3000); GLPGP_PROPERTY_SEED sets the first seed. A failure prints its
- * seed, and GLPGP_PROPERTY_KEEP=DIR keeps its .poly file. Skips (77)
+ * seed, and GLPGP_PROPERTY_KEEP=DIR keeps its triangle mesh (with
+ * GLPGP_PROPERTY_KEEP_POOR=S also the valid ones whose smallest scaled
+ * Jacobian over its corner bound is below S, with their quads). Skips (77)
  * without Gmsh. */
 #include "testutil.h"
 #include "hard_domains.h"
@@ -138,8 +140,17 @@ static void check_one(const glpgp_mesh *m, unsigned long long seed, double h, do
     }
     glpgp_error_clear();
     if (getenv("GLPGP_PROPERTY_VERBOSE"))
-        printf("seed %llu: %d vertices, %d loops, h %.2f: %d quads, SJ %.3f, repair %d rounds, %.2f s\n", seed, m->nv,
-               m->nloops, h, qq.quads, qq.sj_min, qq.repair.rounds, glpgp_now() - t0);
+        printf("seed %llu: %d vertices, %d loops, h %.2f: %d quads, SJ %.3f (of the corner bound %.3f), repair %d "
+               "rounds, %.2f s\n", seed, m->nv, m->nloops, h, qq.quads, qq.sj_min, qq.sj_min_corner, qq.repair.rounds,
+               glpgp_now() - t0);
+    const char *poor = getenv("GLPGP_PROPERTY_KEEP_POOR"), *keepdir = getenv("GLPGP_PROPERTY_KEEP");
+    if (poor && keepdir && q && qq.invalid == 0 && qq.sj_min_corner < atof(poor)) { /* a poorly shaped valid mesh */
+        char path[512];
+        snprintf(path, sizeof path, "%s/p%llu.msh", keepdir, seed);
+        glpgp_mesh_write(m, path);
+        snprintf(path, sizeof path, "%s/p%llu_quads.obj", keepdir, seed);
+        glpgp_quads_write(q, path);
+    }
     if (qq.invalid == 0) {
         T->valid++;
     } else {
