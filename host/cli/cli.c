@@ -75,6 +75,10 @@ int glpgp_cli_long(const char *s, long lo, long hi, long *out) { return glpgp_pa
 
 int glpgp_cli_quads_verdict(const struct glpgp_quad_quality *qq, unsigned ignore, int allow, char *why, size_t n)
 {
+    if (qq->repaired_share > GLPGP_QUAD_MOSTLY_REPAIRED)
+        glpgp_log(GLPGP_LOG_WARNING, "%.0f%% of the quads come from the repair, not from the parametrization's grid "
+                  "(features smaller than the size, or a mesh too coarse for it: try a smaller --size)",
+                  100.0 * qq->repaired_share);
     if (!glpgp_quads_invalid_text(qq, ignore, why, n)) return -1;
     if (!allow) return GLPGP_EXIT_INVALID;
     glpgp_log(GLPGP_LOG_WARNING, "the quad mesh is invalid (%s): written anyway (--allow-invalid)", why);

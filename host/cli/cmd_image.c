@@ -36,19 +36,29 @@ static int check_picture_out(const char *sub, const char *out, int size, int pan
 
 int glpgp_cmd_render(int argc, char **argv)
 {
-    const char *sub = "render", *in = NULL, *out = NULL;
+    const char *sub = "render", *in = NULL, *out = NULL, *domain = NULL;
+    double sj_below = 0.3;
     int verbosity = 1;
     long max_elements = GLPGP_DEFAULT_MAX_ELEMENTS;
     long long max_pixels = GLPGP_DEFAULT_MAX_PIXELS;
     glpgp_render_options ro;
     glpgp_render_options_default(&ro);
     glpgp_opts t;
-    glpgp_opts_init(&t, sub, "glpgp render RESULT.vtk -o OUT.{png,exr,tif,jpg,...} [options]",
+    glpgp_opts_init(&t, sub, "glpgp render RESULT.vtk|QUADS.obj|QUADS.msh -o OUT.{png,exr,tif,jpg,...} [options]",
                     "Picture of a result written by 'glpgp solve --out RESULT.vtk': the domain with\n"
                     "the unit grid of (theta_u, theta_v), singular triangles red, the boundary drawn.\n"
+                    "Of a quad mesh (.obj, .msh): its faces by origin (grid, strips, repair,\n"
+                    "fallback), faces below --sj-below red, irregular vertices marked (valence 3\n"
+                    "blue, 5 red, 6+ dark red), the boundary of --domain, counts under it.\n"
                     "The format follows the extension (OpenImageIO).\n");
     glpgp_opt *o = glpgp_opt_string(&t, "--out", &out, "FILE", "picture file");
     o->alias = "-o";
+    glpgp_opt_string(&t, "--domain", &domain, "FILE",
+                     "quad mesh input: the triangle mesh (.obj/.msh/.stl) of its\n"
+                     "domain, whose boundary is drawn (default: the mesh's own)");
+    glpgp_opt_double(&t, "--sj-below", &sj_below, 0.0, 0, 1.0, 1, "S",
+                     "quad mesh input: faces whose smallest corner scaled\n"
+                     "Jacobian is below S are drawn red");
     glpgp_opts_add_picture(&t, &ro, 1);
     glpgp_opts_add_limits(&t, &max_elements, &max_pixels);
     glpgp_opts_add_verbosity(&t, &verbosity);
@@ -58,6 +68,9 @@ int glpgp_cmd_render(int argc, char **argv)
     glpgp_cli_set_verbosity(verbosity);
     if (!in) return glpgp_cli_usage_error(sub, "missing RESULT.vtk");
     if ((rc = check_picture_out(sub, out, ro.size, 1, max_pixels)) >= 0) return rc;
+    if (glpgp_has_ext(in, ".obj") || glpgp_has_ext(in, ".msh"))
+        return glpgp_cli_render_quads(in, out, domain, sj_below, &ro, max_elements, verbosity);
+    if (domain) return glpgp_cli_usage_error(sub, "--domain is for a quad mesh input (.obj, .msh)");
     glpgp_error_clear();
     glpgp_mesh *m = NULL;
     glpgp_result *r = NULL;

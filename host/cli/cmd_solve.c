@@ -45,6 +45,7 @@ typedef struct solve_cli {
     int planar_face;     /* --planar-face: a 3D input's largest face in a coordinate plane */
     int gather;          /* distributed: the whole result is gathered to rank 0 (set on every rank) */
     double t_refine;     /* seconds of the refinement for the local size (prepare) */
+    int image_kind_given; /* --image-kind seen: with --quads, the picture is the quad mesh otherwise */
 } solve_cli;
 
 /* Default of --gather-max: 2^26 vertices (1 GiB per gathered z array, 16
@@ -106,8 +107,12 @@ static void build(glpgp_opts *t, solve_cli *c)
                      "report to the summary and the statistics (\"quads\")");
     glpgp_opts_add_quads(t, &c->qo, &c->quad_opts, &c->allow_invalid);
     glpgp_opt_string(t, "--image", &c->image, "FILE",
-                     "picture of the result (.png, .exr, .tif, .jpg, ...)");
+                     "picture of the result (.png, .exr, .tif, .jpg, ...); with --quads and\n"
+                     "no --image-kind: the quad mesh (faces by origin, poor ones red,\n"
+                     "irregular vertices marked, as 'glpgp render QUADS.obj')");
     glpgp_opts_add_picture(t, &c->ro, 0);
+    for (int k = 0; k < t->n; k++) /* whether --image-kind was given (the quad picture otherwise) */
+        if (t->opt[k].name && !strcmp(t->opt[k].name, "--image-kind")) t->opt[k].seen = &c->image_kind_given;
     glpgp_opts_group(t, "Mask image input (INPUT = image)");
     glpgp_opts_add_mask(t, &c->mo);
     glpgp_opts_add_limits(t, &c->mo.max_triangles, &c->mo.max_pixels);
@@ -798,7 +803,11 @@ static int solve_main(solve_cli *cc, const char *input)
     }
     cli_tm.s[GLPGP_TM_EXTRACT] = glpgp_now() - tp;
     tp = glpgp_now();
-    if (c.image && glpgp_render(m, r, &c.ro, &im) != GLPGP_OK) goto fail;
+    if (c.image && c.quads && !c.image_kind_given) {
+        if (glpgp_render_quadmesh(q, m, &c.ro, GLPGP_QUAD_SJ_GOAL, 1, &im) != GLPGP_OK) goto fail;
+    } else if (c.image && glpgp_render(m, r, &c.ro, &im) != GLPGP_OK) {
+        goto fail;
+    }
     cli_tm.s[GLPGP_TM_IMAGE] = glpgp_now() - tp;
 
     /* outputs: one set, committed together (all or nothing: a failure leaves

@@ -19,6 +19,13 @@ int glpgp_cmd_render(int argc, char **argv);
 int glpgp_cmd_mesh(int argc, char **argv);
 int glpgp_cmd_figure(int argc, char **argv);
 
+/* glpgp render QUADS.obj|QUADS.msh (cli/cmd_render_quads.c): read the quad
+ * mesh (and the domain, may be NULL), draw it (glpgp_render_quadmesh with
+ * the caption) into out, print one line with the counts. Returns the exit
+ * code. */
+int glpgp_cli_render_quads(const char *in, const char *out, const char *domain, double sj_below,
+                           const glpgp_render_options *ro, long max_elements, int verbosity);
+
 /* --size-field IMAGE (o->size_field GLPGP_SIZE_FUNC with o->size_file the
  * image and no size_fn yet): read the image (limit mo->max_pixels) over box
  * (--size-image-box; NaN: m's bounding box), black = o->size_min, white = 1,

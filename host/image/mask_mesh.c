@@ -107,14 +107,16 @@ static int read_all(int fd, void *buf, size_t n, double deadline)
 {
     char *p = buf;
     while (n > 0) {
-        if (deadline > 0) {
-            double left = deadline - now_s();
-            if (left <= 0) return -1;
-            struct pollfd pfd = {fd, POLLIN, 0};
-            int r = poll(&pfd, 1, (int)fmin(left * 1000.0 + 1.0, 1e9));
-            if (r < 0 && errno == EINTR) continue;
-            if (r < 0) return 0;
-            if (r == 0) continue; /* the deadline is checked above */
+        /* waits of at most a second: a progress line while Gmsh works */
+        double left = deadline > 0 ? deadline - now_s() : 1.0;
+        if (left <= 0) return -1;
+        struct pollfd pfd = {fd, POLLIN, 0};
+        int r = poll(&pfd, 1, (int)(fmin(left, 1.0) * 1000.0 + 1.0));
+        if (r < 0 && errno == EINTR) continue;
+        if (r < 0) return 0;
+        if (r == 0) { /* the deadline is checked above */
+            glpgp_progress_poll();
+            continue;
         }
         ssize_t k = read(fd, p, n);
         if (k < 0 && errno == EINTR) continue;
@@ -223,6 +225,9 @@ static glpgp_status mesh_in_child(const glpgp_gmsh_api *api, const glpgp_polygon
     int *tri = NULL;
     child_header hd;
     char msg[1024] = "";
+    glpgp_progress pr;
+    glpgp_progress_start(&pr, "meshing with Gmsh");
+    glpgp_progress_set(&pr, "%d boundary points, mesh size %g", p->start[p->n], hm_user);
     int got = read_all(rfd, &hd, sizeof hd, deadline); /* 1 ok, 0 short, -1 timeout */
     int data_ok = 0, bad_data = 0;
     if (got == 1) {
@@ -244,6 +249,7 @@ static glpgp_status mesh_in_child(const glpgp_gmsh_api *api, const glpgp_polygon
         }
     }
     close(rfd);
+    glpgp_progress_done(&pr, "%ld vertices, %ld triangles", data_ok ? (long)hd.nv : 0L, data_ok ? (long)hd.nt : 0L);
     if (!data_ok) kill(pid, SIGKILL); /* timeout, garbage, or no memory here */
     int ws = 0;
     pid_t w;

@@ -530,84 +530,6 @@ fin:
 
 /* ---- the paper's Fig. 1: cross field, texture, quads -------------------------- */
 
-static int cmp_ll(const void *a, const void *b)
-{
-    long long x = *(const long long *)a, y = *(const long long *)b;
-    return (x > y) - (x < y);
-}
-
-/* Quad mesh q drawn over the domain m's frame (same scale and margins as
- * glpgp_render): light domain fill, face edges, interior vertices of
- * valence 3 (blue) and 5+ (red) as dots. */
-static glpgp_status render_quads(const glpgp_mesh *m, const glpgp_quadmesh *q, const glpgp_render_options *o,
-                                 glpgp_image **out)
-{
-    glpgp_status st = GLPGP_OK;
-    glpgp_image *im = NULL;
-    float *cov = NULL;
-    long long *keys = NULL;
-    int *val = NULL;
-    unsigned char *bnd = NULL;
-    *out = NULL;
-    /* frame: as glpgp_render */
-    double lw = o->line_width > 0 ? o->line_width : fmax(1.0, 1.5 * o->size / 1024.0);
-    int margin = o->margin >= 0 ? o->margin : o->size / 64;
-    double bw = m->bbox[2] - m->bbox[0], bh = m->bbox[3] - m->bbox[1], span = fmax(bw, bh);
-    int inner = o->size - 2 * margin;
-    if (inner < 8) inner = 8;
-    double scale = inner / span;
-    int W = (int)ceil(bw * scale - 1e-9) + 2 * margin, H = (int)ceil(bh * scale - 1e-9) + 2 * margin;
-    if (W < 1) W = 1;
-    if (H < 1) H = 1;
-    double ox = m->bbox[0] - margin / scale, oy = m->bbox[3] + margin / scale;
-    GLPGP_CHECK(glpgp_image_create(W, H, 4, &im));
-    for (size_t i = 0; i < (size_t)W * (size_t)H; i++) {
-        float *p = im->px + 4 * i;
-        p[0] = p[1] = p[2] = 1.0f;
-        p[3] = o->transparent ? 0.0f : 1.0f;
-    }
-    GLPGP_CHECK_GOTO(st, glpgp_calloc((size_t)W * (size_t)H, sizeof(float), &cov), fail);
-    /* face edges; an edge is on the boundary when its reverse is no face's edge */
-    const int ne = q->face_start[q->nf];
-    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)ne + 1, sizeof(long long), &keys), fail);
-    GLPGP_CHECK_GOTO(st, glpgp_calloc((size_t)q->nv + 1, 1, &bnd), fail);
-    for (int f = 0; f < q->nf; f++)
-        for (int k = q->face_start[f]; k < q->face_start[f + 1]; k++) {
-            int a = q->face_vert[k], b = q->face_vert[k + 1 < q->face_start[f + 1] ? k + 1 : q->face_start[f]];
-            keys[k] = (long long)a * q->nv + b;
-            stroke(cov, W, H, (q->xy[2 * a] - ox) * scale, (oy - q->xy[2 * a + 1]) * scale,
-                   (q->xy[2 * b] - ox) * scale, (oy - q->xy[2 * b + 1]) * scale, fmax(1.0, 0.8 * lw));
-        }
-    static const float col_e[3] = {0.15f, 0.15f, 0.20f};
-    apply_cov(im, cov, col_e);
-    qsort(keys, (size_t)ne, sizeof(long long), cmp_ll);
-    for (int f = 0; f < q->nf; f++)
-        for (int k = q->face_start[f]; k < q->face_start[f + 1]; k++) {
-            int a = q->face_vert[k], b = q->face_vert[k + 1 < q->face_start[f + 1] ? k + 1 : q->face_start[f]];
-            long long rev = (long long)b * q->nv + a;
-            if (!bsearch(&rev, keys, (size_t)ne, sizeof(long long), cmp_ll)) bnd[a] = bnd[b] = 1;
-        }
-    GLPGP_CHECK_GOTO(st, glpgp_quadmesh_valences(q, &val), fail);
-    static const float col_3[3] = {0.05f, 0.35f, 0.95f}, col_5[3] = {0.90f, 0.05f, 0.05f};
-    for (int pass = 0; pass < 2; pass++) {
-        for (int i = 0; i < q->nv; i++) {
-            if (bnd[i] || val[i] == 4 || val[i] == 0 || (pass == 0) != (val[i] < 4)) continue;
-            double cx = (q->xy[2 * i] - ox) * scale, cy = (oy - q->xy[2 * i + 1]) * scale;
-            stroke(cov, W, H, cx, cy, cx, cy, 2 * fmax(3.0, 2.5 * lw));
-        }
-        apply_cov(im, cov, pass == 0 ? col_3 : col_5);
-    }
-    *out = im;
-    im = NULL;
-fail:
-    glpgp_image_destroy(&im);
-    free(cov);
-    free(keys);
-    free(val);
-    free(bnd);
-    return st;
-}
-
 glpgp_status glpgp_render_figure1(const glpgp_mesh *m, const glpgp_result *r, const glpgp_quadmesh *q,
                                   const glpgp_render_options *opt, glpgp_image **out)
 {
@@ -628,7 +550,7 @@ glpgp_status glpgp_render_figure1(const glpgp_mesh *m, const glpgp_result *r, co
     og.kind = GLPGP_IMAGE_GRID;
     GLPGP_CHECK_GOTO(st, glpgp_render(m, r, &oc, &panel[0]), fin);
     GLPGP_CHECK_GOTO(st, glpgp_render(m, r, &og, &panel[1]), fin);
-    if (q) GLPGP_CHECK_GOTO(st, render_quads(m, q, &o, &panel[2]), fin);
+    if (q) GLPGP_CHECK_GOTO(st, glpgp_render_quadmesh(q, m, &o, 0.0, 0, &panel[2]), fin);
     /* captions: the cross field's singularities, the parametrization's, the quads' irregular vertices */
     char l1[3][64], l2[3][96];
     int sp = 0, sm = 0;

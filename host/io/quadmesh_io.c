@@ -28,6 +28,54 @@ static void histogram(glpgp_json *w, const char *key, const int *h, int n, int f
     glpgp_json_close(w);
 }
 
+/* "origin": quads per face origin, the repaired share; "mostly_repaired". */
+static void json_origin(glpgp_json *w, const glpgp_quad_quality *qq)
+{
+    glpgp_json_object(w, "origin");
+    for (int k = 0; k < GLPGP_QFACE_KINDS; k++) glpgp_json_int(w, glpgp_quad_origin_name(k), qq->quads_by_origin[k]);
+    glpgp_json_num(w, "repaired_share", qq->repaired_share);
+    glpgp_json_close(w);
+    glpgp_json_bool(w, "mostly_repaired", qq->repaired_share > GLPGP_QUAD_MOSTLY_REPAIRED);
+}
+
+/* "repair": what it did, with the regions listed (the worst first). */
+static void json_repair(glpgp_json *w, const glpgp_quad_repair *r)
+{
+    glpgp_json_object(w, "repair");
+    glpgp_json_int(w, "rounds", r->rounds);
+    glpgp_json_int(w, "removed_faces", r->removed_faces);
+    glpgp_json_int(w, "regions", r->regions);
+    glpgp_json_int(w, "new_quads", r->new_quads);
+    glpgp_json_int(w, "snapped_vertices", r->snapped);
+    glpgp_json_int(w, "chord_strips", r->chord_strips);
+    glpgp_json_int(w, "paved_regions", r->paved_regions);
+    glpgp_json_int(w, "fallback_regions", r->fallback_regions);
+    glpgp_json_str(w, "whole_domain", r->whole_domain == 2 ? "input-triangles" : r->whole_domain == 1 ? "meshed-again" : "no");
+    int order[GLPGP_QUAD_REGIONS_LISTED], n = r->nlisted;
+    for (int i = 0; i < n; i++) order[i] = i;
+    for (int i = 1; i < n; i++) /* by sj_min, the worst first */
+        for (int j = i; j > 0 && r->region[order[j]].sj_min < r->region[order[j - 1]].sj_min; j--) {
+            int t = order[j];
+            order[j] = order[j - 1];
+            order[j - 1] = t;
+        }
+    glpgp_json_array(w, "regions_listed");
+    for (int i = 0; i < n; i++) {
+        const glpgp_quad_region *g = &r->region[order[i]];
+        glpgp_json_object(w, NULL);
+        glpgp_json_int(w, "faces_in", g->faces_in);
+        glpgp_json_int(w, "quads_out", g->quads_out);
+        glpgp_json_num(w, "sj_min", g->sj_min);
+        glpgp_json_num(w, "x", g->x);
+        glpgp_json_num(w, "y", g->y);
+        glpgp_json_str(w, "mesher", glpgp_quad_origin_name(g->origin));
+        glpgp_json_int(w, "round", g->round);
+        glpgp_json_close(w);
+    }
+    glpgp_json_close(w);
+    glpgp_json_close(w);
+}
+
 void glpgp_quads_json(glpgp_json *w, const char *key, const glpgp_quad_quality *qq)
 {
     glpgp_json_object(w, key);
@@ -60,6 +108,8 @@ void glpgp_quads_json(glpgp_json *w, const char *key, const glpgp_quad_quality *
     glpgp_json_num(w, "min", qq->sj_min);
     glpgp_json_num(w, "mean", qq->sj_mean);
     glpgp_json_num(w, "p01", qq->sj_p01);
+    glpgp_json_num(w, "min_of_corner_bound", qq->sj_min_corner);
+    glpgp_json_int(w, "below_goal", qq->below_sj_goal);
     glpgp_json_close(w);
     glpgp_json_int(w, "inverted", qq->inverted);
     glpgp_json_int(w, "degenerate", qq->degenerate);
@@ -129,13 +179,8 @@ void glpgp_quads_json(glpgp_json *w, const char *key, const glpgp_quad_quality *
         glpgp_json_null(w, "boundary_vertex_distance_over_h");
     }
     glpgp_json_num(w, "max_edge_over_h", qq->len_max);
-    glpgp_json_object(w, "repair");
-    glpgp_json_int(w, "rounds", qq->repair.rounds);
-    glpgp_json_int(w, "removed_faces", qq->repair.removed_faces);
-    glpgp_json_int(w, "regions", qq->repair.regions);
-    glpgp_json_int(w, "new_quads", qq->repair.new_quads);
-    glpgp_json_int(w, "snapped_vertices", qq->repair.snapped);
-    glpgp_json_close(w);
+    json_origin(w, qq);
+    json_repair(w, &qq->repair);
     glpgp_json_object(w, "cleanup");
     glpgp_json_int(w, "doublets", qq->cleanup.doublets);
     glpgp_json_int(w, "collapses", qq->cleanup.collapses);
@@ -198,7 +243,11 @@ static void write_obj(FILE *f, const glpgp_quadmesh *q)
 {
     fprintf(f, "# glpgp %s quad mesh: %d vertices, %d faces\n", GLPGP_VERSION, q->nv, q->nf);
     for (int i = 0; i < q->nv; i++) fprintf(f, "v %.17g %.17g 0\n", q->xy[2 * i], q->xy[2 * i + 1]);
+    int group = -1;
     for (int fa = 0; fa < q->nf; fa++) {
+        int o = q->face_origin ? q->face_origin[fa] : -1;
+        if (o != group && o >= 0) fprintf(f, "g %s\n", glpgp_quad_origin_name(o));
+        group = o;
         fputc('f', f);
         for (int j = q->face_start[fa]; j < q->face_start[fa + 1]; j++)
             fprintf(f, " %d", q->face_vert[j] + 1);
@@ -227,6 +276,8 @@ static void write_vtk(FILE *f, const glpgp_quadmesh *q)
     for (int fa = 0; fa < q->nf; fa++) fprintf(f, "%d\n", q->face_start[fa + 1] - q->face_start[fa]);
     fprintf(f, "SCALARS scaled_jacobian double 1\nLOOKUP_TABLE default\n");
     for (int fa = 0; fa < q->nf; fa++) fprintf(f, "%.6g\n", glpgp_quad_face_sj(q, fa));
+    fprintf(f, "SCALARS origin int 1\nLOOKUP_TABLE default\n");
+    for (int fa = 0; fa < q->nf; fa++) fprintf(f, "%d\n", q->face_origin ? q->face_origin[fa] : 0);
 }
 
 static glpgp_status write_vtk_valence(FILE *f, const glpgp_quadmesh *q)
@@ -331,6 +382,12 @@ static void qfill_sj(const void *c, size_t first, size_t n, void *out)
     double *o = out;
     for (size_t i = 0; i < n; i++) o[i] = glpgp_quad_face_sj(q, (int)(first + i));
 }
+static void qfill_origin(const void *c, size_t first, size_t n, void *out)
+{
+    const glpgp_quadmesh *q = ((const q_ctx *)c)->q;
+    int *o = out;
+    for (size_t i = 0; i < n; i++) o[i] = q->face_origin ? q->face_origin[first + i] : 0;
+}
 static void qfill_valence(const void *c, size_t first, size_t n, void *out)
 {
     memcpy(out, ((const q_ctx *)c)->valence + first, n * sizeof(int));
@@ -346,6 +403,7 @@ static glpgp_status write_vtu(FILE *f, const glpgp_quadmesh *q)
         {VTU_POINTDATA, "valence", "Int32", 4, 1, nv, qfill_valence, &ctx},
         {VTU_CELLDATA, "corners", "Int32", 4, 1, nf, qfill_corners, &ctx},
         {VTU_CELLDATA, "scaled_jacobian", "Float64", 8, 1, nf, qfill_sj, &ctx},
+        {VTU_CELLDATA, "origin", "Int32", 4, 1, nf, qfill_origin, &ctx},
         {VTU_POINTS, "Points", "Float64", 8, 3, nv, qfill_points, &ctx},
         {VTU_CELLS, "connectivity", "Int32", 4, 1, (size_t)q->face_start[q->nf], qfill_conn, &ctx},
         {VTU_CELLS, "offsets", "Int32", 4, 1, nf, qfill_offsets, &ctx},

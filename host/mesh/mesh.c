@@ -4,6 +4,7 @@
  * everything here is O(n) apart from rare high-degree vertices. */
 #include "glpgp/mesh.h"
 #include "glpgp/surface.h"
+#include "glpgp/util.h"
 
 #include <math.h>
 #include <stdint.h>
@@ -425,7 +426,9 @@ glpgp_status glpgp_mesh_create(int nv, const double *xy, int nt, const int *tri,
     used = NULL;
 
     GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)nt * 3, sizeof *twin, &twin), fail);
+    glpgp_progress_poll(); /* a progress line of the caller's phase when one is due */
     GLPGP_CHECK_GOTO(st, build_twins(nv, m->xy, nt, m->tri, twin, &m->mean_edge), fail);
+    glpgp_progress_poll();
     GLPGP_CHECK_GOTO(st, orient(nt, m->xy, m->tri, twin, &m->orientation_fixed), fail);
     GLPGP_CHECK_GOTO(st, build_boundary(m, twin), fail);
     free(twin);

@@ -36,6 +36,13 @@ glpgp_status glpgp_qcheck_run(const glpgp_quadmesh *q, const glpgp_mesh *domain,
                               qcheck *c);
 void glpgp_qcheck_free(qcheck *c);
 
+/* bound[f] (q->nf entries): the best smallest corner scaled Jacobian face f
+ * can have at the domain's sharp corners it touches: sin(alpha) for the
+ * smallest interior angle alpha < 90 degrees of a domain corner that is
+ * one of its vertices (a face there has a corner of at most alpha), 1 when
+ * it touches none. dm NULL: all 1. */
+glpgp_status glpgp_qcheck_corner_bound(const glpgp_quadmesh *q, const glpgp_mesh *dm, double h, double *bound);
+
 /* ---- small geometry shared with repair.c --------------------------------- */
 
 /* Uniform grid of axis-aligned boxes for candidate queries. */

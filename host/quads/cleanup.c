@@ -56,7 +56,15 @@ typedef struct cmesh {
     unsigned char *bnd;     /* nv: on the boundary (fixed) */
     int *ideal;             /* nv */
     int **vf, *nvf, *cvf;   /* incident faces per vertex */
+    unsigned char *fo;      /* nf: face origin (GLPGP_QFACE_*) */
 } cmesh;
+
+/* Faces f and g were remade together: both take the higher origin. */
+static void merge_origin(cmesh *c, int f, int g)
+{
+    unsigned char o = c->fo[f] > c->fo[g] ? c->fo[f] : c->fo[g];
+    c->fo[f] = c->fo[g] = o;
+}
 
 static void cm_free(cmesh *c)
 {
@@ -71,6 +79,7 @@ static void cm_free(cmesh *c)
     free(c->vdead);
     free(c->bnd);
     free(c->ideal);
+    free(c->fo);
 }
 
 static glpgp_status vf_add(cmesh *c, int v, int f)
@@ -309,7 +318,9 @@ static glpgp_status try_doublet(cmesh *c, int v, int *done)
     GLPGP_CHECK(set_face(c, f1, nf, 0));
     c->vdead[v] = 1;
     int core[2] = {a, b};
-    return settle(c, &t, core, 2, sj0, done);
+    GLPGP_CHECK(settle(c, &t, core, 2, sj0, done));
+    if (*done) merge_origin(c, f1, f2);
+    return GLPGP_OK;
 }
 
 static glpgp_status try_collapse(cmesh *c, int f, int diag, int *done)
@@ -404,7 +415,10 @@ static glpgp_status try_rotate(cmesh *c, int f1, int e, int *done)
         GLPGP_CHECK(set_face(c, f2, n2, 0));
         int core[4] = {u, w, s, t2};
         GLPGP_CHECK(settle(c, &t, core, 4, sj0, done));
-        if (*done) return GLPGP_OK;
+        if (*done) {
+            merge_origin(c, f1, f2);
+            return GLPGP_OK;
+        }
     }
     return GLPGP_OK;
 }
@@ -455,6 +469,8 @@ glpgp_status glpgp_quadmesh_cleanup(const glpgp_quadmesh *q, glpgp_quadmesh **ou
     GLPGP_CHECK_GOTO(st, glpgp_malloc(2 * nv1, sizeof(double), &c.xy), done);
     GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)4 * c.nf, sizeof(int), &c.f), done);
     GLPGP_CHECK_GOTO(st, glpgp_calloc((size_t)c.nf, 1, &c.fdead), done);
+    GLPGP_CHECK_GOTO(st, glpgp_calloc((size_t)c.nf + 1, 1, &c.fo), done);
+    if (q->face_origin) memcpy(c.fo, q->face_origin, (size_t)c.nf);
     GLPGP_CHECK_GOTO(st, glpgp_calloc(nv1, 1, &c.vdead), done);
     GLPGP_CHECK_GOTO(st, glpgp_calloc(nv1, 1, &c.bnd), done);
     GLPGP_CHECK_GOTO(st, glpgp_calloc(nv1, sizeof(int), &c.ideal), done);
@@ -498,6 +514,7 @@ glpgp_status glpgp_quadmesh_cleanup(const glpgp_quadmesh *q, glpgp_quadmesh **ou
     memset(&stats, 0, sizeof stats);
     stats.cost_before = total_cost(&c);
     for (int pass = 0; pass < CL_MAX_PASSES; pass++) {
+        glpgp_progress_poll();
         int changed = 0, done1 = 0;
         for (int v = 0; v < c.nv; v++) {
             GLPGP_CHECK_GOTO(st, try_doublet(&c, v, &done1), done);
@@ -528,17 +545,20 @@ glpgp_status glpgp_quadmesh_cleanup(const glpgp_quadmesh *q, glpgp_quadmesh **ou
     *r = *q; /* diagnostics */
     r->xy = NULL;
     r->face_start = r->face_vert = NULL;
+    r->face_origin = NULL;
     r->nv = nv;
     r->nf = nf;
     GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)2 * nv + 2, sizeof(double), &r->xy), done);
     GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)nf + 1, sizeof(int), &r->face_start), done);
     GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)4 * nf + 1, sizeof(int), &r->face_vert), done);
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)nf + 1, 1, &r->face_origin), done);
     for (int v = 0; v < c.nv; v++)
         if (map[v] >= 0) r->xy[2 * map[v]] = c.xy[2 * v], r->xy[2 * map[v] + 1] = c.xy[2 * v + 1];
     int k = 0;
     for (int f = 0; f < c.nf; f++) {
         if (c.fdead[f]) continue;
         r->face_start[k] = 4 * k;
+        r->face_origin[k] = c.fo[f];
         for (int j = 0; j < 4; j++) r->face_vert[4 * k + j] = map[c.f[4 * f + j]];
         k++;
     }

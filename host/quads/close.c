@@ -62,7 +62,9 @@
  */
 #include "glpgp/quads.h"
 #include "geom.h"
+#include "soup.h"
 #include "glpgp/status.h"
+#include "glpgp/util.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -72,130 +74,14 @@
 #define MIN_SJ 0.05        /* smallest scaled Jacobian accepted for a new quad */
 #define MAX_ROUNDS 32
 
-/* ---- growable polygon soup ---------------------------------------------- */
-
-typedef struct psoup {
-    int nv, cap_v;
-    double *xy;
-    int nf, cap_f;
-    int *fs, *fn; /* face start in fv, corner count; fn = 0: deleted */
-    int nfv, cap_fv;
-    int *fv;
-} psoup;
-
-static glpgp_status grow(void **p, int *cap, int need, size_t elem)
-{
-    if (need <= *cap) return GLPGP_OK;
-    int c = *cap ? *cap : 64;
-    while (c < need) c *= 2;
-    void *n = realloc(*p, (size_t)c * elem);
-    if (!n) return GLPGP_FAIL(GLPGP_ERR_NOMEM, "quad pairing: out of memory");
-    *p = n;
-    *cap = c;
-    return GLPGP_OK;
-}
-
-static glpgp_status soup_vertex(psoup *s, double x, double y, int *id)
-{
-    glpgp_status st = grow((void **)&s->xy, &s->cap_v, 2 * (s->nv + 1), sizeof(double));
-    if (st != GLPGP_OK) return st;
-    s->xy[2 * s->nv] = x;
-    s->xy[2 * s->nv + 1] = y;
-    *id = s->nv++;
-    return GLPGP_OK;
-}
-
-/* Append a face (n corners v[]); *id (may be NULL) receives its index. */
-static glpgp_status soup_face(psoup *s, const int *v, int n, int *id)
-{
-    glpgp_status st = grow((void **)&s->fv, &s->cap_fv, s->nfv + n, sizeof(int));
-    if (st != GLPGP_OK) return st;
-    if (s->nf + 1 > s->cap_f) {
-        int c = s->cap_f ? 2 * s->cap_f : 64;
-        int *a = realloc(s->fs, (size_t)c * sizeof(int));
-        if (a) s->fs = a;
-        int *b = a ? realloc(s->fn, (size_t)c * sizeof(int)) : NULL;
-        if (!b) return GLPGP_FAIL(GLPGP_ERR_NOMEM, "quad pairing: out of memory");
-        s->fn = b;
-        s->cap_f = c;
-    }
-    memcpy(s->fv + s->nfv, v, (size_t)n * sizeof(int));
-    s->fs[s->nf] = s->nfv;
-    s->fn[s->nf] = n;
-    s->nfv += n;
-    if (id) *id = s->nf;
-    s->nf++;
-    return GLPGP_OK;
-}
-
-static void soup_free(psoup *s)
-{
-    free(s->xy);
-    free(s->fs);
-    free(s->fn);
-    free(s->fv);
-    memset(s, 0, sizeof *s);
-}
-
 /* ---- splitting an even polygon into quads ---------------------------- */
-
-#define QMAXN 16 /* largest polygon split by the dynamic programme */
-
-/* best[i][j]: best minimum scaled Jacobian of a split of the sub-polygon
- * p[i], p[i+1], ..., p[j] (closed by the chord j -> i) into quads;
- * choice[i][j] = a * QMAXN + b for its quad (p[i], p[a], p[b], p[j]). */
-typedef struct qdp {
-    double best[QMAXN][QMAXN];
-    int choice[QMAXN][QMAXN];
-} qdp;
-
-static double qdp_solve(qdp *D, const double *xy, const int *p, int i, int j)
-{
-    if (j - i < 3) return INFINITY; /* an edge (j = i + 1): nothing to split */
-    if (D->choice[i][j] != -2) return D->best[i][j];
-    double best = -INFINITY;
-    int ch = -1;
-    /* the quad on chord (i, j): (i, a, b, j), with i..a, a..b, b..j of
-     * even length (odd vertex count difference) */
-    for (int a = i + 1; a < j - 1; a += 2)
-        for (int b = a + 1; b < j; b += 2) {
-            int q[4] = {p[i], p[a], p[b], p[j]};
-            double s = glpgp_poly_min_sj(xy, q, 4);
-            if (s <= best) continue;
-            s = fmin(s, qdp_solve(D, xy, p, i, a));
-            if (s <= best) continue;
-            s = fmin(s, qdp_solve(D, xy, p, a, b));
-            if (s <= best) continue;
-            s = fmin(s, qdp_solve(D, xy, p, b, j));
-            if (s > best) {
-                best = s;
-                ch = a * QMAXN + b;
-            }
-        }
-    D->best[i][j] = best;
-    D->choice[i][j] = ch;
-    return best;
-}
-
-static int qdp_emit(const qdp *D, const int *p, int i, int j, int *out, int w)
-{
-    if (j - i < 3) return w;
-    int a = D->choice[i][j] / QMAXN, b = D->choice[i][j] % QMAXN;
-    out[w++] = p[i];
-    out[w++] = p[a];
-    out[w++] = p[b];
-    out[w++] = p[j];
-    w = qdp_emit(D, p, i, a, out, w);
-    w = qdp_emit(D, p, a, b, out, w);
-    return qdp_emit(D, p, b, j, out, w);
-}
 
 /* The hexagon p[0..6) as three quads (p[o+2i], p[o+2i+1], p[o+2i+2], X)
  * around a new centre X = (x, y) added to s: out[0 .. 12), *nq = 3. */
 static glpgp_status centre_quads(psoup *s, const int *p, int o, double x, double y, int *out, int *nq)
 {
     int X;
-    glpgp_status st = soup_vertex(s, x, y, &X);
+    glpgp_status st = glpgp_soup_vertex(s, x, y, &X);
     if (st != GLPGP_OK) return st;
     for (int i = 0; i < 3; i++) {
         for (int k = 0; k < 3; k++) out[4 * i + k] = p[(o + 2 * i + k) % 6];
@@ -224,7 +110,7 @@ static glpgp_status split_even(psoup *s, const int *p, int n, int pref, int cent
         *sj = glpgp_poly_min_sj(s->xy, p, 4);
         return GLPGP_OK;
     }
-    if (n < 4 || n > QMAXN || n % 2) return GLPGP_OK;
+    if (n < 4 || n > GLPGP_POLY_SPLIT_MAX || n % 2) return GLPGP_OK;
     if (n == 6 && pref >= 0 && centre) {
         double x = 0.0, y = 0.0, c = glpgp_hex_centre_split_at(s->xy, p, pref % 2, &x, &y);
         if (c >= 0.3) {
@@ -247,18 +133,8 @@ static glpgp_status split_even(psoup *s, const int *p, int n, int pref, int cent
             return GLPGP_OK;
         }
     }
-    qdp *D = malloc(sizeof *D);
-    if (!D) return GLPGP_FAIL(GLPGP_ERR_NOMEM, "quad pairing: out of memory");
-    /* try every rotation's chord (0, n-1) is the closing edge p[n-1] -> p[0],
-     * which must be a quad side: one DP covers all splits */
-    for (int i = 0; i < QMAXN; i++)
-        for (int j = 0; j < QMAXN; j++) D->choice[i][j] = -2;
-    double best = qdp_solve(D, s->xy, p, 0, n - 1);
-    if (best > -INFINITY) {
-        *nq = qdp_emit(D, p, 0, n - 1, out, 0) / 4;
-        *sj = best;
-    }
-    free(D);
+    double best = glpgp_poly_quad_split(s->xy, p, n, out, nq);
+    if (best > -INFINITY) *sj = best;
     if (n == 6 && best < 0.5) {
         /* three quads around a centre X joined to every other corner, when
          * clearly better */
@@ -269,89 +145,6 @@ static glpgp_status split_even(psoup *s, const int *p, int n, int pref, int cent
             return centre_quads(s, p, o, x, y, out, nq);
         }
     }
-    return GLPGP_OK;
-}
-
-/* ---- adjacency ------------------------------------------------------- */
-
-typedef struct hedge {
-    int a, b, f, i; /* key (min, max), face, local edge index */
-} hedge;
-
-static int cmp_hedge(const void *pa, const void *pb)
-{
-    const hedge *x = pa, *y = pb;
-    if (x->a != y->a) return x->a < y->a ? -1 : 1;
-    if (x->b != y->b) return x->b < y->b ? -1 : 1;
-    if (x->f != y->f) return x->f < y->f ? -1 : 1;
-    return x->i - y->i;
-}
-
-/* adj[fs[f] + i]: the face across edge i of f (-1 boundary, -2 an edge
- * used by more than two faces); adji: the edge's index in that face.
- * val[v]: vertex valence (number of distinct edges), bnd[v]: on a boundary
- * or non-manifold edge. */
-typedef struct adjacency {
-    int *adj, *adji, *val;
-    int nv;  /* vertices when built (val, bnd cover 0 .. nv) */
-    int *sf; /* face of each corner slot fs[f] + i */
-    unsigned char *bnd;
-} adjacency;
-
-static void adj_free(adjacency *A)
-{
-    free(A->adj);
-    free(A->adji);
-    free(A->val);
-    free(A->sf);
-    free(A->bnd);
-    memset(A, 0, sizeof *A);
-}
-
-static glpgp_status adj_build(const psoup *s, adjacency *A)
-{
-    adj_free(A);
-    hedge *H = NULL;
-    int nh = 0;
-    glpgp_status st = glpgp_malloc((size_t)s->nfv + 1, sizeof *H, &H);
-    if (st == GLPGP_OK) st = glpgp_malloc((size_t)s->nfv + 1, sizeof(int), &A->adj);
-    if (st == GLPGP_OK) st = glpgp_malloc((size_t)s->nfv + 1, sizeof(int), &A->adji);
-    if (st == GLPGP_OK) st = glpgp_malloc((size_t)s->nfv + 1, sizeof(int), &A->sf);
-    if (st == GLPGP_OK) st = glpgp_calloc((size_t)s->nv + 1, sizeof(int), &A->val);
-    if (st == GLPGP_OK) st = glpgp_calloc((size_t)s->nv + 1, 1, &A->bnd);
-    if (st != GLPGP_OK) {
-        free(H);
-        adj_free(A);
-        return st;
-    }
-    for (int f = 0; f < s->nf; f++)
-        for (int i = 0; i < s->fn[f]; i++) {
-            int a = s->fv[s->fs[f] + i], b = s->fv[s->fs[f] + (i + 1) % s->fn[f]];
-            H[nh++] = (hedge){a < b ? a : b, a < b ? b : a, f, i};
-            A->sf[s->fs[f] + i] = f;
-        }
-    qsort(H, (size_t)nh, sizeof *H, cmp_hedge);
-    for (int k = 0; k < nh;) {
-        int e = k + 1;
-        while (e < nh && H[e].a == H[k].a && H[e].b == H[k].b) e++;
-        A->val[H[k].a]++;
-        A->val[H[k].b]++;
-        if (e - k == 1) {
-            A->adj[s->fs[H[k].f] + H[k].i] = -1;
-            A->bnd[H[k].a] = A->bnd[H[k].b] = 1;
-        } else if (e - k == 2) {
-            A->adj[s->fs[H[k].f] + H[k].i] = H[k + 1].f;
-            A->adji[s->fs[H[k].f] + H[k].i] = H[k + 1].i;
-            A->adj[s->fs[H[k + 1].f] + H[k + 1].i] = H[k].f;
-            A->adji[s->fs[H[k + 1].f] + H[k + 1].i] = H[k].i;
-        } else { /* non-manifold: treated like the boundary */
-            for (int j = k; j < e; j++) A->adj[s->fs[H[j].f] + H[j].i] = -2;
-            A->bnd[H[k].a] = A->bnd[H[k].b] = 1;
-        }
-        k = e;
-    }
-    free(H);
-    A->nv = s->nv;
     return GLPGP_OK;
 }
 
@@ -399,12 +192,12 @@ static glpgp_status end_cost(const psoup *s, const adjacency *A, int f, int i, d
     *cost = INFINITY;
     int n = s->fn[f];
     const int *v = s->fv + s->fs[f];
-    if (n + 1 > QMAXN) return GLPGP_OK;
+    if (n + 1 > GLPGP_POLY_SPLIT_MAX) return GLPGP_OK;
     psoup T;
     memset(&T, 0, sizeof T);
-    glpgp_status st = grow((void **)&T.xy, &T.cap_v, 2 * (n + 2), sizeof(double));
+    glpgp_status st = glpgp_soup_grow((void **)&T.xy, &T.cap_v, 2 * (n + 2), sizeof(double));
     if (st != GLPGP_OK) return st;
-    int p[QMAXN + 1], out[4 * QMAXN], nq = 0, gid[QMAXN + 2];
+    int p[GLPGP_POLY_SPLIT_MAX + 1], out[4 * GLPGP_POLY_SPLIT_MAX], nq = 0, gid[GLPGP_POLY_SPLIT_MAX + 2];
     /* local polygon: corners 0..n with the midpoint after corner i */
     for (int k = 0, w = 0; k < n; k++) {
         T.xy[2 * w] = s->xy[2 * v[k]];
@@ -430,7 +223,7 @@ static glpgp_status end_cost(const psoup *s, const adjacency *A, int f, int i, d
     if (st == GLPGP_OK && nq > 0 && sj >= MIN_SJ) {
         /* new edges per corner: quad sides that are not polygon sides (each
          * is seen from its two quads) */
-        int add[QMAXN + 2] = {0};
+        int add[GLPGP_POLY_SPLIT_MAX + 2] = {0};
         for (int q = 0; q < nq; q++)
             for (int k = 0; k < 4; k++) {
                 int a = out[4 * q + k], b = out[4 * q + (k + 1) % 4];
@@ -473,7 +266,7 @@ typedef struct heap {
 
 static glpgp_status heap_push(heap *h, double d, int state)
 {
-    glpgp_status st = grow((void **)&h->a, &h->cap, h->n + 1, sizeof(heap_item));
+    glpgp_status st = glpgp_soup_grow((void **)&h->a, &h->cap, h->n + 1, sizeof(heap_item));
     if (st != GLPGP_OK) return st;
     int i = h->n++;
     while (i > 0 && h->a[(i - 1) / 2].d > d) {
@@ -536,7 +329,7 @@ static glpgp_status relax(search *S, int slot, double c, int pred)
 {
     if (!(c < S->dist[slot])) return GLPGP_OK;
     if (S->dist[slot] == INFINITY) {
-        glpgp_status st = grow((void **)&S->touched, &S->cap_t, S->nt + 1, sizeof(int));
+        glpgp_status st = glpgp_soup_grow((void **)&S->touched, &S->cap_t, S->nt + 1, sizeof(int));
         if (st != GLPGP_OK) return st;
         S->touched[S->nt++] = slot;
     }
@@ -609,7 +402,7 @@ static glpgp_status find_strip(const psoup *s, const adjacency *A, const unsigne
         int fl = best_slot >= 0 ? A->sf[best_slot] : f0;
         int g = A->adj[s->fs[fl] + best_exit];
         int total = n + (g >= 0 ? 1 : 0);
-        GLPGP_CHECK_GOTO(st, grow((void **)path, cap_path, total, sizeof(pstep)), done);
+        GLPGP_CHECK_GOTO(st, glpgp_soup_grow((void **)path, cap_path, total, sizeof(pstep)), done);
         pstep *P = *path;
         int w = n - 1, out = best_exit;
         sl = best_slot;
@@ -665,13 +458,13 @@ static glpgp_status apply_strip(psoup *s, const adjacency *A, const pstep *P, in
         int f = P[i].f, e = P[i].out, n = s->fn[f];
         const double *a = s->xy + 2 * s->fv[s->fs[f] + e], *b = s->xy + 2 * s->fv[s->fs[f] + (e + 1) % n];
         double ax = a[0], ay = a[1], bx = b[0], by = b[1]; /* s->xy may move */
-        GLPGP_CHECK_GOTO(st, soup_vertex(s, 0.5 * (ax + bx), 0.5 * (ay + by), &mid[i]), done);
+        GLPGP_CHECK_GOTO(st, glpgp_soup_vertex(s, 0.5 * (ax + bx), 0.5 * (ay + by), &mid[i]), done);
     }
     double worst = INFINITY;
     for (int i = 0; i < len; i++) {
         int f = P[i].f;
         int min_ = i > 0 ? mid[i - 1] : -1, mout = mid[i];
-        int p[QMAXN + 4], out[4 * (QMAXN + 4)], nq = 0;
+        int p[GLPGP_POLY_SPLIT_MAX + 4], out[4 * (GLPGP_POLY_SPLIT_MAX + 4)], nq = 0;
         if (s->fn[f] != 4 || i == 0 || (i == last && !ends_on_boundary)) {
             /* an end face: one extra corner, then split the even polygon */
             int n = with_mids(s, f, P[i].in, min_, P[i].out, mout, p);
@@ -679,7 +472,7 @@ static glpgp_status apply_strip(psoup *s, const adjacency *A, const pstep *P, in
             int pref = -1;
             if (n == 6) pref = e + 1; /* the midpoint's position in p */
             double sj;
-            if (n > QMAXN) goto done;
+            if (n > GLPGP_POLY_SPLIT_MAX) goto done;
             GLPGP_CHECK_GOTO(st, split_even(s, p, n, pref, n == 6 && centre_first(A, p, pref), out, &nq, &sj),
                              done);
             if (nq == 0) goto done;
@@ -725,7 +518,7 @@ static glpgp_status apply_strip(psoup *s, const adjacency *A, const pstep *P, in
                     }
                 }
                 int X;
-                GLPGP_CHECK_GOTO(st, soup_vertex(s, bx, by, &X), done);
+                GLPGP_CHECK_GOTO(st, glpgp_soup_vertex(s, bx, by, &X), done);
                 int q1[4] = {mA, B, mB, X}, q2[4] = {X, mB, C2, D}, q3[4] = {C1, mA, X, D};
                 memcpy(out, q1, sizeof q1);
                 memcpy(out + 4, q2, sizeof q2);
@@ -736,7 +529,8 @@ static glpgp_status apply_strip(psoup *s, const adjacency *A, const pstep *P, in
             for (int q = 0; q < nq; q++) worst = fmin(worst, glpgp_poly_min_sj(s->xy, out + 4 * q, 4));
             ps->strip_quads++;
         }
-        for (int q = 0; q < nq; q++) GLPGP_CHECK_GOTO(st, soup_face(s, out + 4 * q, 4, NULL), done);
+        s->cur = glpgp_soup_closed_origin(s, f);
+        for (int q = 0; q < nq; q++) GLPGP_CHECK_GOTO(st, glpgp_soup_face(s, out + 4 * q, 4, NULL), done);
     }
     if (!(worst >= MIN_SJ)) {
         /* undo: drop the new vertices and faces; statistics restored by the caller */
@@ -767,18 +561,18 @@ static glpgp_status merge_triangle(psoup *s, unsigned char *used, const int *t_i
     *merged = 0;
     int t[3] = {t_in[0], t_in[1], t_in[2]}; /* t_in may point into s->fv, which may move */
     double best_even = 0.3, best_pent = 0.1;
-    int be[QMAXN], bp[5], nbe = 0, ge = -1, gp = -1;
+    int be[GLPGP_POLY_SPLIT_MAX], bp[5], nbe = 0, ge = -1, gp = -1;
     glpgp_status st = GLPGP_OK;
     for (int i = 0; i < 3; i++) {
         int g = nb[i], gi = nbi[i], ng = g >= 0 ? s->fn[g] : 0;
-        if (g < 0 || g == f_old || used[g] || ng + 1 > QMAXN || ng < 3) continue;
-        int pm[QMAXN], n = 0;
+        if (g < 0 || g == f_old || used[g] || ng + 1 > GLPGP_POLY_SPLIT_MAX || ng < 3) continue;
+        int pm[GLPGP_POLY_SPLIT_MAX], n = 0;
         pm[n++] = t[i];                                                    /* a */
         for (int k = 2; k < ng; k++) pm[n++] = s->fv[s->fs[g] + (gi + k) % ng]; /* g from a to b */
         pm[n++] = t[(i + 1) % 3];                                          /* b */
         pm[n++] = t[(i + 2) % 3];                                          /* c */
         if (ng % 2) {
-            int outq[4 * QMAXN], nq = 0, nv0 = s->nv;
+            int outq[4 * GLPGP_POLY_SPLIT_MAX], nq = 0, nv0 = s->nv;
             double sj;
             st = split_even(s, pm, n, -1, 0, outq, &nq, &sj);
             if (st != GLPGP_OK) return st;
@@ -799,17 +593,21 @@ static glpgp_status merge_triangle(psoup *s, unsigned char *used, const int *t_i
         }
     }
     if (ge >= 0) {
-        int outq[4 * QMAXN], nq = 0;
+        int outq[4 * GLPGP_POLY_SPLIT_MAX], nq = 0;
         double sj;
         st = split_even(s, be, nbe, -1, 0, outq, &nq, &sj);
-        for (int k = 0; k < nq && st == GLPGP_OK; k++) st = soup_face(s, outq + 4 * k, 4, NULL);
+        unsigned char o1 = glpgp_soup_closed_origin(s, f_old), o2 = glpgp_soup_closed_origin(s, ge);
+        s->cur = o1 > o2 ? o1 : o2;
+        for (int k = 0; k < nq && st == GLPGP_OK; k++) st = glpgp_soup_face(s, outq + 4 * k, 4, NULL);
         if (st != GLPGP_OK) return st;
         ps->closed_polygons += 1 + (s->fn[f_old] % 2);
         s->fn[f_old] = s->fn[ge] = 0;
         used[f_old] = used[ge] = 1;
         *merged = 1;
     } else if (gp >= 0) {
-        st = soup_face(s, bp, 5, NULL);
+        unsigned char o1 = glpgp_soup_closed_origin(s, f_old), o2 = glpgp_soup_closed_origin(s, gp);
+        s->cur = o1 > o2 ? o1 : o2;
+        st = glpgp_soup_face(s, bp, 5, NULL);
         if (st != GLPGP_OK) return st;
         s->fn[f_old] = s->fn[gp] = 0;
         used[f_old] = used[gp] = 1;
@@ -832,63 +630,154 @@ static int cmp_odd(const void *pa, const void *pb)
     return a->f - b->f;
 }
 
-static glpgp_status soup_from_mesh(const glpgp_quadmesh *q, psoup *s)
+/* The state of a closing. */
+typedef struct closing {
+    psoup s;
+    adjacency A;
+    search S;
+    pair_stats ps;
+    unsigned char *used, *failed;
+    odd_item *odd;
+    pstep *path;
+    int cap_path, cap_failed;
+} closing;
+
+/* Even polygons (hexagons, ...) need no partner: split them. */
+static glpgp_status split_even_faces(closing *C)
 {
-    memset(s, 0, sizeof *s);
-    glpgp_status st = grow((void **)&s->xy, &s->cap_v, 2 * q->nv + 2, sizeof(double));
-    if (st != GLPGP_OK) return st;
-    memcpy(s->xy, q->xy, 2 * (size_t)q->nv * sizeof(double));
-    s->nv = q->nv;
-    for (int f = 0; f < q->nf && st == GLPGP_OK; f++)
-        st = soup_face(s, q->face_vert + q->face_start[f], q->face_start[f + 1] - q->face_start[f], NULL);
-    return st;
+    psoup *s = &C->s;
+    for (int f = 0, nf0 = s->nf; f < nf0; f++) {
+        int n = s->fn[f];
+        if (n < 6 || n % 2 || n > GLPGP_POLY_SPLIT_MAX) continue;
+        int p[GLPGP_POLY_SPLIT_MAX], outq[4 * GLPGP_POLY_SPLIT_MAX], nq = 0, nv0 = s->nv;
+        double sj;
+        memcpy(p, s->fv + s->fs[f], (size_t)n * sizeof(int));
+        GLPGP_CHECK(split_even(s, p, n, -1, 0, outq, &nq, &sj));
+        if (nq == 0 || !(sj >= MIN_SJ)) {
+            s->nv = nv0;
+            continue;
+        }
+        s->cur = glpgp_soup_closed_origin(s, f);
+        for (int k = 0; k < nq; k++) GLPGP_CHECK(glpgp_soup_face(s, outq + 4 * k, 4, NULL));
+        s->fn[f] = 0;
+        C->ps.split_even++;
+    }
+    return GLPGP_OK;
 }
 
-/* The live faces of s as a new quad mesh (unused vertices dropped); the
- * extraction diagnostics are copied from ref. */
-static glpgp_status soup_to_mesh(const psoup *s, const glpgp_quadmesh *ref, const unsigned char *mark,
-                                 unsigned char **omark, glpgp_quadmesh **out)
+/* Triangles (see merge_triangle); first the quads that are triangles with
+ * a boundary vertex promoted to a corner by the extraction: a boundary
+ * vertex of valence 2 with a corner angle above 150 degrees (on a gently
+ * curved boundary the promoted vertex is nearly flat) is dropped again if
+ * the triangle left can be merged. */
+static glpgp_status merge_triangles(closing *C)
 {
-    glpgp_quadmesh *q = NULL;
-    int *id = NULL;
-    glpgp_status st = glpgp_calloc(1, sizeof *q, &q);
-    if (st != GLPGP_OK) return st;
-    *q = *ref; /* diagnostics; the arrays are replaced below */
-    q->xy = NULL;
-    q->face_start = NULL;
-    q->face_vert = NULL;
-    st = glpgp_malloc((size_t)s->nv + 1, sizeof(int), &id);
-    if (st == GLPGP_OK) st = glpgp_malloc((size_t)s->nf + 1, sizeof(int), &q->face_start);
-    if (st == GLPGP_OK) st = glpgp_malloc((size_t)s->nfv + 1, sizeof(int), &q->face_vert);
-    if (st == GLPGP_OK) st = glpgp_malloc((size_t)s->nv + 1, 2 * sizeof(double), &q->xy);
-    if (st == GLPGP_OK) st = glpgp_calloc((size_t)s->nv + 1, 1, omark);
-    if (st != GLPGP_OK) {
-        glpgp_quadmesh_destroy(&q);
-        free(id);
-        return st;
-    }
-    for (int v = 0; v < s->nv; v++) id[v] = -1;
-    q->nv = 0;
-    q->nf = 0;
-    int w = 0;
-    q->face_start[0] = 0;
-    for (int f = 0; f < s->nf; f++) {
-        if (s->fn[f] == 0) continue;
-        for (int i = 0; i < s->fn[f]; i++) {
-            int v = s->fv[s->fs[f] + i];
-            if (id[v] < 0) {
-                id[v] = q->nv;
-                q->xy[2 * q->nv] = s->xy[2 * v];
-                q->xy[2 * q->nv + 1] = s->xy[2 * v + 1];
-                (*omark)[q->nv] = mark[v];
-                q->nv++;
-            }
-            q->face_vert[w++] = id[v];
+    psoup *s = &C->s;
+    const adjacency *A = &C->A;
+    GLPGP_CHECK(glpgp_adj_build(s, &C->A));
+    int nf0 = s->nf;
+    GLPGP_CHECK(glpgp_calloc((size_t)nf0 + 1, 1, &C->used));
+    for (int f = 0; f < nf0; f++) {
+        if (s->fn[f] != 4 || C->used[f]) continue;
+        const int *c = s->fv + s->fs[f];
+        for (int k = 0; k < 4; k++) {
+            int v = c[k];
+            if (!A->bnd[v] || A->val[v] != 2) continue;
+            if (A->adj[s->fs[f] + k] != -1 || A->adj[s->fs[f] + (k + 3) % 4] != -1) continue;
+            const double *pv = s->xy + 2 * v, *pa = s->xy + 2 * c[(k + 1) % 4], *pb = s->xy + 2 * c[(k + 3) % 4];
+            double e1x = pa[0] - pv[0], e1y = pa[1] - pv[1], e2x = pb[0] - pv[0], e2y = pb[1] - pv[1];
+            double sine = (e1x * e2y - e1y * e2x) / (hypot(e1x, e1y) * hypot(e2x, e2y) + 1e-300);
+            /* only wide convex corners (150 to 180 deg): the chord b a then stays inside a convex arc */
+            if (!(sine < 0.5 && sine >= 0.0) || e1x * e2x + e1y * e2y > 0) continue;
+            /* triangle a -> c2 -> b (sides: f's two other sides, and the new boundary chord b -> a) */
+            int t[3] = {c[(k + 1) % 4], c[(k + 2) % 4], c[(k + 3) % 4]};
+            int nb[3] = {A->adj[s->fs[f] + (k + 1) % 4], A->adj[s->fs[f] + (k + 2) % 4], -1};
+            int nbi[3] = {A->adji[s->fs[f] + (k + 1) % 4], A->adji[s->fs[f] + (k + 2) % 4], -1};
+            int merged = 0;
+            GLPGP_CHECK(merge_triangle(s, C->used, t, nb, nbi, f, &merged, &C->ps));
+            if (merged) break;
         }
-        q->face_start[++q->nf] = w;
     }
-    free(id);
-    *out = q;
+    for (int f = 0; f < nf0; f++) {
+        if (s->fn[f] != 3 || C->used[f]) continue;
+        int nb[3], nbi[3];
+        for (int i = 0; i < 3; i++) {
+            nb[i] = A->adj[s->fs[f] + i];
+            nbi[i] = A->adji[s->fs[f] + i];
+        }
+        int merged = 0;
+        GLPGP_CHECK(merge_triangle(s, C->used, s->fv + s->fs[f], nb, nbi, f, &merged, &C->ps));
+    }
+    return GLPGP_OK;
+}
+
+/* The round's work arrays and the end costs of the odd faces. */
+static glpgp_status round_setup(closing *C)
+{
+    psoup *s = &C->s;
+    search *S = &C->S;
+    const int nf0 = s->nf, old = C->cap_failed;
+    GLPGP_CHECK(glpgp_soup_grow((void **)&C->failed, &C->cap_failed, nf0, 1));
+    if (C->cap_failed > old) memset(C->failed + old, 0, (size_t)(C->cap_failed - old));
+    glpgp_free(&C->used);
+    glpgp_free(&C->odd);
+    glpgp_free(&S->dist);
+    glpgp_free(&S->pred);
+    glpgp_free(&S->ecost);
+    GLPGP_CHECK(glpgp_calloc((size_t)nf0 + 1, 1, &C->used));
+    GLPGP_CHECK(glpgp_malloc((size_t)nf0 + 1, sizeof *C->odd, &C->odd));
+    GLPGP_CHECK(glpgp_malloc((size_t)s->nfv + 1, sizeof(double), &S->dist));
+    GLPGP_CHECK(glpgp_malloc((size_t)s->nfv + 1, sizeof(int), &S->pred));
+    GLPGP_CHECK(glpgp_malloc((size_t)s->nfv + 1, sizeof(double), &S->ecost));
+    for (int i = 0; i <= s->nfv; i++) S->dist[i] = S->ecost[i] = INFINITY;
+    for (int f = 0; f < nf0; f++)
+        if (s->fn[f] % 2)
+            for (int i = 0; i < s->fn[f]; i++) GLPGP_CHECK(end_cost(s, &C->A, f, i, &S->ecost[s->fs[f] + i]));
+    return GLPGP_OK;
+}
+
+/* One round of strips: the cheapest first, on disjoint faces. *progress:
+ * strips applied. */
+static glpgp_status strip_round(closing *C, int *progress)
+{
+    psoup *s = &C->s;
+    int nf0 = s->nf, nodd = 0, len;
+    double cost;
+    *progress = 0;
+    GLPGP_CHECK(glpgp_adj_build(s, &C->A));
+    GLPGP_CHECK(round_setup(C));
+    for (int f = 0; f < nf0; f++) {
+        if (s->fn[f] == 0 || s->fn[f] % 2 == 0 || s->fn[f] > GLPGP_POLY_SPLIT_MAX - 1) continue;
+        if (f < C->cap_failed && C->failed[f]) continue;
+        GLPGP_CHECK(find_strip(s, &C->A, C->used, &C->S, f, &C->path, &C->cap_path, &len, &cost));
+        if (len > 0) C->odd[nodd++] = (odd_item){cost, f};
+    }
+    qsort(C->odd, (size_t)nodd, sizeof *C->odd, cmp_odd);
+    for (int k = 0; k < nodd; k++) {
+        int f = C->odd[k].f;
+        if (C->used[f]) continue;
+        GLPGP_CHECK(find_strip(s, &C->A, C->used, &C->S, f, &C->path, &C->cap_path, &len, &cost));
+        if (len == 0) continue;
+        /* a strip that visits a face twice is not applied (marks: used) */
+        int rep = 0;
+        for (int i = 0; i < len && !rep; i++) {
+            if (C->used[C->path[i].f]) rep = 1;
+            C->used[C->path[i].f] = 1;
+        }
+        if (rep) {
+            for (int i = 0; i < len; i++) C->used[C->path[i].f] = 1;
+            continue;
+        }
+        pair_stats save = C->ps;
+        int ok = 0;
+        GLPGP_CHECK(apply_strip(s, &C->A, C->path, len, &ok, &C->ps));
+        if (!ok) {
+            C->ps = save;
+            C->failed[f] = 1;
+        } else {
+            (*progress)++;
+        }
+    }
     return GLPGP_OK;
 }
 
@@ -899,160 +788,33 @@ glpgp_status glpgp_quadmesh_close_polygons(const glpgp_quadmesh *q, glpgp_quadme
     if (new_vertices) *new_vertices = NULL;
     unsigned char *mark = NULL, *omark = NULL;
     if (!q || q->nf <= 0) return GLPGP_FAIL(GLPGP_ERR_ARG, "quad pairing: empty mesh");
-    psoup s;
-    adjacency A;
-    search S;
-    memset(&A, 0, sizeof A);
-    memset(&S, 0, sizeof S);
-    pair_stats ps;
-    memset(&ps, 0, sizeof ps);
-    unsigned char *used = NULL, *failed = NULL;
-    odd_item *odd = NULL;
-    pstep *path = NULL;
-    int cap_path = 0, cap_failed = 0;
+    closing C;
+    memset(&C, 0, sizeof C);
     glpgp_quadmesh *r = NULL;
-    glpgp_status st = soup_from_mesh(q, &s);
+    glpgp_status st = glpgp_soup_from_mesh(q, &C.s);
     if (st != GLPGP_OK) goto done;
     { /* typical size: mean edge length */
+        const psoup *s = &C.s;
         double sum = 0.0;
-        for (int f = 0; f < s.nf; f++)
-            for (int i = 0; i < s.fn[f]; i++) {
-                const double *a = s.xy + 2 * s.fv[s.fs[f] + i], *b = s.xy + 2 * s.fv[s.fs[f] + (i + 1) % s.fn[f]];
+        for (int f = 0; f < s->nf; f++)
+            for (int i = 0; i < s->fn[f]; i++) {
+                const double *a = s->xy + 2 * s->fv[s->fs[f] + i], *b = s->xy + 2 * s->fv[s->fs[f] + (i + 1) % s->fn[f]];
                 sum += hypot(b[0] - a[0], b[1] - a[1]);
             }
-        S.size = s.nfv ? sum / s.nfv : 1.0;
+        C.S.size = s->nfv ? sum / s->nfv : 1.0;
     }
-
-    /* even polygons (hexagons, ...) need no partner: split them */
-    for (int f = 0, nf0 = s.nf; f < nf0; f++) {
-        int n = s.fn[f];
-        if (n < 6 || n % 2 || n > QMAXN) continue;
-        int p[QMAXN], outq[4 * QMAXN], nq = 0, nv0 = s.nv;
-        double sj;
-        memcpy(p, s.fv + s.fs[f], (size_t)n * sizeof(int));
-        GLPGP_CHECK_GOTO(st, split_even(&s, p, n, -1, 0, outq, &nq, &sj), done);
-        if (nq == 0 || !(sj >= MIN_SJ)) {
-            s.nv = nv0;
-            continue;
-        }
-        for (int k = 0; k < nq; k++) GLPGP_CHECK_GOTO(st, soup_face(&s, outq + 4 * k, 4, NULL), done);
-        s.fn[f] = 0;
-        ps.split_even++;
-    }
-
-    /* triangles (see merge_triangle); first the quads that are triangles
-     * with a boundary vertex promoted to a corner by the extraction: a
-     * boundary vertex of valence 2 with a corner angle above 150 degrees
-     * (on a gently curved boundary the promoted vertex is nearly flat) is
-     * dropped again if the triangle left can be merged */
-    GLPGP_CHECK_GOTO(st, adj_build(&s, &A), done);
-    {
-        int nf0 = s.nf;
-        GLPGP_CHECK_GOTO(st, glpgp_calloc((size_t)nf0 + 1, 1, &used), done);
-        for (int f = 0; f < nf0; f++) {
-            if (s.fn[f] != 4 || used[f]) continue;
-            const int *c = s.fv + s.fs[f];
-            for (int k = 0; k < 4; k++) {
-                int v = c[k];
-                if (!A.bnd[v] || A.val[v] != 2) continue;
-                if (A.adj[s.fs[f] + k] != -1 || A.adj[s.fs[f] + (k + 3) % 4] != -1) continue;
-                const double *pv = s.xy + 2 * v, *pa = s.xy + 2 * c[(k + 1) % 4], *pb = s.xy + 2 * c[(k + 3) % 4];
-                double e1x = pa[0] - pv[0], e1y = pa[1] - pv[1], e2x = pb[0] - pv[0], e2y = pb[1] - pv[1];
-                double sine = (e1x * e2y - e1y * e2x) / (hypot(e1x, e1y) * hypot(e2x, e2y) + 1e-300);
-                /* only wide convex corners (150 to 180 deg): the chord b a then stays inside a convex arc */
-                if (!(sine < 0.5 && sine >= 0.0) || e1x * e2x + e1y * e2y > 0) continue;
-                /* triangle a -> c2 -> b (sides: f's two other sides, and the new boundary chord b -> a) */
-                int t[3] = {c[(k + 1) % 4], c[(k + 2) % 4], c[(k + 3) % 4]};
-                int nb[3] = {A.adj[s.fs[f] + (k + 1) % 4], A.adj[s.fs[f] + (k + 2) % 4], -1};
-                int nbi[3] = {A.adji[s.fs[f] + (k + 1) % 4], A.adji[s.fs[f] + (k + 2) % 4], -1};
-                int merged = 0;
-                GLPGP_CHECK_GOTO(st, merge_triangle(&s, used, t, nb, nbi, f, &merged, &ps), done);
-                if (merged) break;
-            }
-        }
-        for (int f = 0; f < nf0; f++) {
-            if (s.fn[f] != 3 || used[f]) continue;
-            int nb[3], nbi[3];
-            for (int i = 0; i < 3; i++) {
-                nb[i] = A.adj[s.fs[f] + i];
-                nbi[i] = A.adji[s.fs[f] + i];
-            }
-            int merged = 0;
-            GLPGP_CHECK_GOTO(st, merge_triangle(&s, used, s.fv + s.fs[f], nb, nbi, f, &merged, &ps), done);
-        }
-    }
-
+    GLPGP_CHECK_GOTO(st, split_even_faces(&C), done);
+    GLPGP_CHECK_GOTO(st, merge_triangles(&C), done);
     for (int round = 0; round < MAX_ROUNDS; round++) {
-        GLPGP_CHECK_GOTO(st, adj_build(&s, &A), done);
-        int nf0 = s.nf, nodd = 0, progress = 0;
-        {
-            int old = cap_failed;
-            GLPGP_CHECK_GOTO(st, grow((void **)&failed, &cap_failed, nf0, 1), done);
-            if (cap_failed > old) memset(failed + old, 0, (size_t)(cap_failed - old));
-        }
-        free(used);
-        used = NULL;
-        free(odd);
-        odd = NULL;
-        free(S.dist);
-        free(S.pred);
-        free(S.ecost);
-        S.dist = NULL;
-        S.pred = NULL;
-        S.ecost = NULL;
-        GLPGP_CHECK_GOTO(st, glpgp_calloc((size_t)nf0 + 1, 1, &used), done);
-        GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)nf0 + 1, sizeof *odd, &odd), done);
-        GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)s.nfv + 1, sizeof(double), &S.dist), done);
-        GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)s.nfv + 1, sizeof(int), &S.pred), done);
-        GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)s.nfv + 1, sizeof(double), &S.ecost), done);
-        for (int i = 0; i <= s.nfv; i++) S.dist[i] = S.ecost[i] = INFINITY;
-        for (int f = 0; f < nf0; f++)
-            if (s.fn[f] % 2)
-                for (int i = 0; i < s.fn[f]; i++)
-                    GLPGP_CHECK_GOTO(st, end_cost(&s, &A, f, i, &S.ecost[s.fs[f] + i]), done);
-        /* cheapest strips first */
-        for (int f = 0; f < nf0; f++) {
-            if (s.fn[f] == 0 || s.fn[f] % 2 == 0 || s.fn[f] > QMAXN - 1) continue;
-            if (f < cap_failed && failed[f]) continue;
-            int len;
-            double cost;
-            GLPGP_CHECK_GOTO(st, find_strip(&s, &A, used, &S, f, &path, &cap_path, &len, &cost), done);
-            if (len > 0) odd[nodd++] = (odd_item){cost, f};
-        }
-        if (nodd == 0) break;
-        qsort(odd, (size_t)nodd, sizeof *odd, cmp_odd);
-        for (int k = 0; k < nodd; k++) {
-            int f = odd[k].f, len;
-            double cost;
-            if (used[f]) continue;
-            GLPGP_CHECK_GOTO(st, find_strip(&s, &A, used, &S, f, &path, &cap_path, &len, &cost), done);
-            if (len == 0) continue;
-            /* a strip that visits a face twice is not applied (marks: used) */
-            int rep = 0;
-            for (int i = 0; i < len && !rep; i++) {
-                if (used[path[i].f]) rep = 1;
-                used[path[i].f] = 1;
-            }
-            if (rep) {
-                for (int i = 0; i < len; i++) used[path[i].f] = 1;
-                continue;
-            }
-            pair_stats save = ps;
-            int ok = 0;
-            GLPGP_CHECK_GOTO(st, apply_strip(&s, &A, path, len, &ok, &ps), done);
-            if (!ok) {
-                ps = save;
-                failed[f] = 1;
-            } else {
-                progress++;
-            }
-        }
+        int progress = 0;
+        glpgp_progress_poll();
+        GLPGP_CHECK_GOTO(st, strip_round(&C, &progress), done);
         if (!progress) break;
     }
-    GLPGP_CHECK_GOTO(st, glpgp_calloc((size_t)s.nv + 1, 1, &mark), done);
-    for (int v = q->nv; v < s.nv; v++) mark[v] = 1; /* every vertex added here */
-    GLPGP_CHECK_GOTO(st, soup_to_mesh(&s, q, mark, &omark, &r), done);
-    r->closing = ps;
+    GLPGP_CHECK_GOTO(st, glpgp_calloc((size_t)C.s.nv + 1, 1, &mark), done);
+    for (int v = q->nv; v < C.s.nv; v++) mark[v] = 1; /* every vertex added here */
+    GLPGP_CHECK_GOTO(st, glpgp_soup_to_mesh(&C.s, q, mark, &omark, &r), done);
+    r->closing = C.ps;
     *out = r;
     r = NULL;
     if (new_vertices) {
@@ -1060,227 +822,19 @@ glpgp_status glpgp_quadmesh_close_polygons(const glpgp_quadmesh *q, glpgp_quadme
         omark = NULL;
     }
 done:
-    soup_free(&s);
-    adj_free(&A);
-    free(S.dist);
-    free(S.pred);
-    free(S.ecost);
-    free(S.touched);
-    free(S.h.a);
-    free(used);
-    free(failed);
-    free(odd);
-    free(path);
+    glpgp_soup_free(&C.s);
+    glpgp_adj_free(&C.A);
+    free(C.S.dist);
+    free(C.S.pred);
+    free(C.S.ecost);
+    free(C.S.touched);
+    free(C.S.h.a);
+    free(C.used);
+    free(C.failed);
+    free(C.odd);
+    free(C.path);
     free(mark);
     free(omark);
     glpgp_quadmesh_destroy(&r);
-    return st;
-}
-
-/* ---- smoothing ------------------------------------------------------- */
-
-/* Worst corner over the faces around vertex v (its corner slots vc[vs[v] ..
- * vs[v+1]), A->sf giving each slot's face). */
-static double worst_around(const glpgp_quadmesh *q, const adjacency *A, const int *vs, const int *vc, int v)
-{
-    double m = INFINITY;
-    for (int j = vs[v]; j < vs[v + 1]; j++) {
-        int f = A->sf[vc[j]], b = q->face_start[f];
-        m = fmin(m, glpgp_poly_min_sj(q->xy, q->face_vert + b, q->face_start[f + 1] - b));
-    }
-    return m;
-}
-
-glpgp_status glpgp_quadmesh_smooth(glpgp_quadmesh *q, const unsigned char *mark, int iterations, double sj_below,
-                                   int *moved)
-{
-    if (moved) *moved = 0;
-    if (!q || iterations <= 0 || q->nv <= 0) return GLPGP_OK;
-    int nv = q->nv, nf = q->nf, nc = q->face_start[nf];
-    int *vs = NULL, *vc = NULL, *cnt = NULL;
-    unsigned char *act = NULL;
-    psoup s;
-    adjacency A;
-    memset(&A, 0, sizeof A);
-    /* the soup has the mesh's corner layout (slot c = face_vert index c):
-     * A gives the boundary (and non-manifold) vertices and each slot's face */
-    glpgp_status st = soup_from_mesh(q, &s);
-    if (st == GLPGP_OK) st = adj_build(&s, &A);
-    if (st == GLPGP_OK) st = glpgp_calloc((size_t)nv + 1, sizeof(int), &vs);
-    if (st == GLPGP_OK) st = glpgp_malloc((size_t)nc + 1, sizeof(int), &vc);
-    if (st == GLPGP_OK) st = glpgp_calloc((size_t)nv + 1, sizeof(int), &cnt);
-    if (st == GLPGP_OK) st = glpgp_calloc((size_t)nv + 1, 1, &act);
-    if (st != GLPGP_OK) goto done;
-    /* vertex -> its corner slots (CSR) */
-    for (int c = 0; c < nc; c++) vs[q->face_vert[c] + 1]++;
-    for (int v = 0; v < nv; v++) vs[v + 1] += vs[v];
-    for (int c = 0; c < nc; c++) vc[vs[q->face_vert[c]] + cnt[q->face_vert[c]]++] = c;
-    /* active: vertices of marked faces (a corner is marked) or of faces worse
-     * than sj_below, and their edge neighbours; never boundary vertices */
-    for (int f = 0; f < nf; f++) {
-        int b = q->face_start[f], n = q->face_start[f + 1] - b;
-        int hit = glpgp_poly_min_sj(q->xy, q->face_vert + b, n) < sj_below;
-        for (int i = 0; i < n && !hit && mark; i++) hit = mark[q->face_vert[b + i]];
-        if (!hit) continue;
-        for (int i = 0; i < n; i++) {
-            int v = q->face_vert[b + i];
-            act[v] = 1;
-            for (int j = vs[v]; j < vs[v + 1]; j++) { /* edge neighbours: previous and next corners */
-                int c = vc[j], g = A.sf[c], gb = q->face_start[g], gn = q->face_start[g + 1] - gb;
-                act[q->face_vert[gb + (c - gb + 1) % gn]] = 1;
-                act[q->face_vert[gb + (c - gb + gn - 1) % gn]] = 1;
-            }
-        }
-    }
-    for (int it = 0; it < iterations; it++) {
-        int changed = 0;
-        for (int v = 0; v < nv; v++) {
-            if (!act[v] || A.bnd[v] || vs[v + 1] - vs[v] < 2) continue;
-            /* target: mean of the edge neighbours; for an interior vertex each
-             * neighbour is the previous corner of one face and the next corner
-             * of another, so the mean over the faces' previous and next
-             * corners is that mean */
-            double tx = 0.0, ty = 0.0;
-            int k = 0;
-            for (int j = vs[v]; j < vs[v + 1]; j++) {
-                int c = vc[j], f = A.sf[c], b = q->face_start[f], n = q->face_start[f + 1] - b, i = c - b;
-                int pv = q->face_vert[b + (i + n - 1) % n], nx = q->face_vert[b + (i + 1) % n];
-                tx += q->xy[2 * pv] + q->xy[2 * nx];
-                ty += q->xy[2 * pv + 1] + q->xy[2 * nx + 1];
-                k += 2;
-            }
-            tx /= k;
-            ty /= k;
-            /* the step (1/4 .. 1 of the way to the mean) that most raises the
-             * worst corner around v; none if no step raises it by 1e-3 */
-            double ox = q->xy[2 * v], oy = q->xy[2 * v + 1], bw = 0.0;
-            double bval = worst_around(q, &A, vs, vc, v) + 1e-3;
-            for (int tr = 1; tr <= 4; tr++) {
-                double w = 0.25 * tr;
-                q->xy[2 * v] = ox + w * (tx - ox);
-                q->xy[2 * v + 1] = oy + w * (ty - oy);
-                double after = worst_around(q, &A, vs, vc, v);
-                if (after > bval) {
-                    bval = after;
-                    bw = w;
-                }
-            }
-            q->xy[2 * v] = ox + bw * (tx - ox);
-            q->xy[2 * v + 1] = oy + bw * (ty - oy);
-            if (bw > 0.0) {
-                changed++;
-                if (act[v] == 1) {
-                    act[v] = 2; /* counted once */
-                    if (moved) (*moved)++;
-                }
-            }
-        }
-        if (!changed) break;
-    }
-done:
-    soup_free(&s);
-    adj_free(&A);
-    free(vs);
-    free(vc);
-    free(cnt);
-    free(act);
-    return st;
-}
-
-/* ---- pipeline --------------------------------------------------------- */
-
-void glpgp_quad_options_default(glpgp_quad_options *o)
-{
-    o->keep_polygons = 0;
-    o->smooth = 20;
-    o->smooth_below = 0.5;
-    o->all_quads = 0;
-    o->repair = 1;
-    o->cleanup = 1;
-}
-
-glpgp_status glpgp_quads_build(const glpgp_mesh *m, const glpgp_result *r, const glpgp_quad_options *o,
-                               glpgp_quadmesh **out, double *h)
-{
-    glpgp_quad_options def;
-    if (!o) {
-        glpgp_quad_options_default(&def);
-        o = &def;
-    }
-    *out = NULL;
-    glpgp_quadmesh *q = NULL, *c = NULL;
-    unsigned char *mark = NULL;
-    glpgp_status st = glpgp_quads_extract(m, r, &q);
-    if (st == GLPGP_ERR_NUMERIC && o->repair) { /* no face: the repair meshes everything */
-        glpgp_log(GLPGP_LOG_INFO, "quads: %s; the repair meshes the whole domain", glpgp_error_message());
-        glpgp_error_clear();
-        st = glpgp_calloc(1, sizeof *q, &q);
-        if (st == GLPGP_OK) st = glpgp_calloc(1, sizeof(int), &q->face_start);
-        if (st != GLPGP_OK) {
-            glpgp_quadmesh_destroy(&q);
-            return st;
-        }
-    }
-    if (st != GLPGP_OK) return st;
-    if (!o->keep_polygons && q->nf > 0) {
-        st = glpgp_quadmesh_close_polygons(q, &c, &mark);
-        if (st != GLPGP_OK) goto done;
-        glpgp_quadmesh_destroy(&q);
-        q = c;
-        c = NULL;
-    }
-    if (o->smooth > 0 && q->nf > 0) {
-        int moved = 0;
-        st = glpgp_quadmesh_smooth(q, mark, o->smooth, o->smooth_below, &moved);
-        if (st != GLPGP_OK) goto done;
-        q->closing.smoothed_vertices = moved;
-    }
-    if (o->repair) {
-        st = glpgp_quadmesh_repair(q, m, *h, o->smooth, o->keep_polygons, &c);
-        if (st != GLPGP_OK) goto done;
-        glpgp_quadmesh_destroy(&q);
-        q = c;
-        c = NULL;
-    }
-    if (o->cleanup && !o->keep_polygons) {
-        st = glpgp_quadmesh_cleanup(q, &c);
-        if (st != GLPGP_OK) goto done;
-        if (c) {
-            /* kept only if it is as valid as before (by construction it
-             * should be: the report's own checks make sure) */
-            glpgp_quad_quality q0, q1;
-            st = glpgp_quads_quality(q, m, *h, &q0);
-            if (st == GLPGP_OK) st = glpgp_quads_quality(c, m, *h, &q1);
-            if (st != GLPGP_OK) goto done;
-            /* kept only if as valid as before and with no more irregular
-             * vertices (the operations lower the squared valence defect, which
-             * may trade one valence-6 vertex for two irregular ones: the
-             * strip of the hard domains, 61.9 -> 66.7 per 100 quads) */
-            if ((q1.invalid & ~q0.invalid) == 0 && q1.irregular <= q0.irregular) {
-                glpgp_quadmesh_destroy(&q);
-                q = c;
-                c = NULL;
-            } else {
-                if (q1.invalid & ~q0.invalid)
-                    glpgp_log(GLPGP_LOG_WARNING, "quads: the clean-up made the mesh invalid (0x%x): not used",
-                              q1.invalid & ~q0.invalid);
-                glpgp_quadmesh_destroy(&c);
-            }
-        }
-    }
-    if (o->all_quads) {
-        st = glpgp_quadmesh_subdivide(q, &c);
-        if (st != GLPGP_OK) goto done;
-        glpgp_quadmesh_destroy(&q);
-        q = c;
-        c = NULL;
-        *h *= 0.5;
-    }
-    *out = q;
-    q = NULL;
-done:
-    free(mark);
-    glpgp_quadmesh_destroy(&q);
-    glpgp_quadmesh_destroy(&c);
     return st;
 }

@@ -106,6 +106,7 @@
 #include "glpgp/phase.h"
 #include "glpgp/solve.h"
 #include "glpgp/util.h"
+#include "extract.h"
 #include "geom.h"
 
 #include <math.h>
@@ -116,27 +117,7 @@
 
 /* ---- small growable arrays --------------------------------------------- */
 
-typedef struct qnode {
-    double x, y;
-    int vert;            /* mesh vertex, or -1 */
-    unsigned char bnd;   /* on the domain boundary */
-    unsigned char fixed; /* domain corner / forced corner */
-} qnode;
-
-enum { QE_BND = 1, QE_U = 2, QE_V = 4, QE_DEL = 8 };
-typedef struct qedge {
-    int a, b;            /* for QE_BND edges a -> b is the boundary loop direction */
-    unsigned char flags;
-} qedge;
-
-typedef struct graph {
-    qnode *node;
-    int nn, capn;
-    qedge *edge;
-    int ne, cape;
-} graph;
-
-static glpgp_status add_node(graph *g, double x, double y, int vert, int bnd, int *id)
+glpgp_status glpgp_xg_add_node(graph *g, double x, double y, int vert, int bnd, int *id)
 {
     if (g->nn == g->capn) {
         int nc = g->capn ? 2 * g->capn : 1024;
@@ -155,7 +136,7 @@ static glpgp_status add_node(graph *g, double x, double y, int vert, int bnd, in
     return GLPGP_OK;
 }
 
-static glpgp_status add_edge(graph *g, int a, int b, int flags)
+glpgp_status glpgp_xg_add_edge(graph *g, int a, int b, int flags)
 {
     if (a == b) return GLPGP_OK;
     if (g->ne == g->cape) {
@@ -281,9 +262,9 @@ static glpgp_status add_mesh_edge_path(builder *B, int e, int from, int flags)
     }
     seq[n++] = b;
     if (from == a) {
-        for (int i = 0; i + 1 < n; i++) GLPGP_CHECK(add_edge(&B->g, seq[i], seq[i + 1], flags));
+        for (int i = 0; i + 1 < n; i++) GLPGP_CHECK(glpgp_xg_add_edge(&B->g, seq[i], seq[i + 1], flags));
     } else {
-        for (int i = n - 1; i > 0; i--) GLPGP_CHECK(add_edge(&B->g, seq[i], seq[i - 1], flags));
+        for (int i = n - 1; i > 0; i--) GLPGP_CHECK(glpgp_xg_add_edge(&B->g, seq[i], seq[i - 1], flags));
     }
     return GLPGP_OK;
 }
@@ -412,10 +393,10 @@ static glpgp_status add_chord_edges(builder *B, chord *C, int flags)
     }
     int prev = C->node[0];
     for (int i = 0; i < C->ng; i++) {
-        GLPGP_CHECK(add_edge(&B->g, prev, C->gnode[i], flags));
+        GLPGP_CHECK(glpgp_xg_add_edge(&B->g, prev, C->gnode[i], flags));
         prev = C->gnode[i];
     }
-    return add_edge(&B->g, prev, C->node[1], flags);
+    return glpgp_xg_add_edge(&B->g, prev, C->node[1], flags);
 }
 
 static glpgp_status build_arrangement(builder *B)
@@ -437,7 +418,7 @@ static glpgp_status build_arrangement(builder *B)
     /* V nodes: one per mesh vertex, id = vertex index */
     for (int i = 0; i < nv; i++) {
         int id;
-        GLPGP_CHECK(add_node(g, m->xy[2 * i], m->xy[2 * i + 1], i, m->on_boundary[i], &id));
+        GLPGP_CHECK(glpgp_xg_add_node(g, m->xy[2 * i], m->xy[2 * i + 1], i, m->on_boundary[i], &id));
     }
     /* X nodes: crossings per edge and family, computed once per edge */
     GLPGP_CHECK(glpgp_malloc((size_t)2 * ne, sizeof(int), &B->xint));
@@ -472,7 +453,7 @@ static glpgp_status build_arrangement(builder *B)
             }
             double s = B->xs[2 * e + k];
             int id = -1;
-            GLPGP_CHECK(add_node(g, ax + s * (bx - ax), ay + s * (by - ay), -1, bnd, &id));
+            GLPGP_CHECK(glpgp_xg_add_node(g, ax + s * (bx - ax), ay + s * (by - ay), -1, bnd, &id));
             B->xnode[2 * e + k] = id;
         }
         (void)have1;
@@ -486,6 +467,7 @@ static glpgp_status build_arrangement(builder *B)
         }
     /* chords and grid points, triangle by triangle */
     for (int t = 0; t < m->nt; t++) {
+        if ((t & 16383) == 0) glpgp_progress_poll();
         chord ch[2][3];
         int nch[2];
         for (int k = 0; k < 2; k++) {
@@ -527,7 +509,7 @@ static glpgp_status build_arrangement(builder *B)
                     node_xy(g, V->node[1], &q1x, &q1y);
                     seg_intersect(p0x, p0y, p1x, p1y, q0x, q0y, q1x, q1y, &tu, &tv);
                     int id = -1;
-                    GLPGP_CHECK(add_node(g, p0x + tu * (p1x - p0x), p0y + tu * (p1y - p0y), -1, 0,
+                    GLPGP_CHECK(glpgp_xg_add_node(g, p0x + tu * (p1x - p0x), p0y + tu * (p1y - p0y), -1, 0,
                                          &id));
                     U->gnode[U->ng] = id;
                     U->gpar[U->ng++] = tu;
@@ -550,451 +532,6 @@ static glpgp_status build_arrangement(builder *B)
         }
     }
     return GLPGP_OK;
-}
-
-/* ---- graph simplification ---------------------------------------------- */
-
-/* Node priority when merging: fixed corner > boundary > other. */
-static int node_rank(const qnode *n) { return 2 * n->fixed + n->bnd; }
-
-/* Merge node sets given by the union-find parent array: every edge is
- * re-pointed to representatives, self-loops are removed, duplicates merged
- * (flags OR-ed; a boundary direction is kept from the first boundary copy).
- * The representative takes the position of its best-ranked member. */
-static int cmp_edge(const void *pa, const void *pb)
-{
-    const qedge *a = pa, *b = pb;
-    int a0 = a->a < a->b ? a->a : a->b, a1 = a->a < a->b ? a->b : a->a;
-    int b0 = b->a < b->b ? b->a : b->b, b1 = b->a < b->b ? b->b : b->a;
-    if (a0 != b0) return a0 < b0 ? -1 : 1;
-    if (a1 != b1) return a1 < b1 ? -1 : 1;
-    /* boundary copies first */
-    return (int)(b->flags & QE_BND) - (int)(a->flags & QE_BND);
-}
-
-static glpgp_status merge_nodes(graph *g, int *parent)
-{
-    /* representative position */
-    int *best = NULL;
-    int *cnt = NULL;
-    double *sx = NULL;
-    glpgp_status st = GLPGP_OK;
-    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)g->nn, sizeof(int), &best), done);
-    GLPGP_CHECK_GOTO(st, glpgp_calloc((size_t)g->nn, sizeof(int), &cnt), done);
-    GLPGP_CHECK_GOTO(st, glpgp_calloc((size_t)2 * g->nn, sizeof(double), &sx), done);
-    for (int i = 0; i < g->nn; i++) best[i] = -1;
-    for (int i = 0; i < g->nn; i++) {
-        int rp = glpgp_uf_find(parent, i);
-        int rk = node_rank(&g->node[i]);
-        if (best[rp] < 0 || rk > node_rank(&g->node[best[rp]])) {
-            best[rp] = i;
-            cnt[rp] = 0;
-            sx[2 * rp] = sx[2 * rp + 1] = 0.0;
-        }
-        if (rk == node_rank(&g->node[best[rp]])) {
-            cnt[rp]++;
-            sx[2 * rp] += g->node[i].x;
-            sx[2 * rp + 1] += g->node[i].y;
-        }
-    }
-    for (int i = 0; i < g->nn; i++) {
-        if (parent[i] != i || glpgp_uf_find(parent, i) != i) continue;
-        qnode nb = g->node[best[i]];
-        nb.x = sx[2 * i] / cnt[i];
-        nb.y = sx[2 * i + 1] / cnt[i];
-        /* a mesh vertex keeps its exact position */
-        if (nb.vert >= 0 || nb.fixed) {
-            nb.x = g->node[best[i]].x;
-            nb.y = g->node[best[i]].y;
-        }
-        g->node[i] = nb;
-    }
-    int w = 0;
-    for (int e = 0; e < g->ne; e++) {
-        qedge E = g->edge[e];
-        if (E.flags & QE_DEL) continue;
-        E.a = glpgp_uf_find(parent, E.a);
-        E.b = glpgp_uf_find(parent, E.b);
-        if (E.a == E.b) continue;
-        g->edge[w++] = E;
-    }
-    g->ne = w;
-    qsort(g->edge, (size_t)g->ne, sizeof *g->edge, cmp_edge);
-    w = 0;
-    for (int e = 0; e < g->ne; e++) {
-        if (w > 0) {
-            qedge *P = &g->edge[w - 1];
-            int p0 = P->a < P->b ? P->a : P->b, p1 = P->a < P->b ? P->b : P->a;
-            int q0 = g->edge[e].a < g->edge[e].b ? g->edge[e].a : g->edge[e].b;
-            int q1 = g->edge[e].a < g->edge[e].b ? g->edge[e].b : g->edge[e].a;
-            if (p0 == q0 && p1 == q1) {
-                P->flags |= (unsigned char)(g->edge[e].flags & (QE_U | QE_V));
-                continue;
-            }
-        }
-        g->edge[w++] = g->edge[e];
-    }
-    g->ne = w;
-done:
-    free(best);
-    free(cnt);
-    free(sx);
-    return st;
-}
-
-/* Remove dangling edges: repeatedly delete the edges of degree-1 nodes. */
-static glpgp_status prune(graph *g)
-{
-    int *deg = NULL, *adj_start = NULL, *adj = NULL, *stack = NULL;
-    glpgp_status st = GLPGP_OK;
-    GLPGP_CHECK_GOTO(st, glpgp_calloc((size_t)g->nn + 1, sizeof(int), &deg), done);
-    GLPGP_CHECK_GOTO(st, glpgp_calloc((size_t)g->nn + 1, sizeof(int), &adj_start), done);
-    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)2 * g->ne + 1, sizeof(int), &adj), done);
-    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)g->nn + 1, sizeof(int), &stack), done);
-    for (int e = 0; e < g->ne; e++) {
-        if (g->edge[e].flags & QE_DEL) continue;
-        deg[g->edge[e].a]++;
-        deg[g->edge[e].b]++;
-    }
-    for (int i = 0; i < g->nn; i++) adj_start[i + 1] = adj_start[i] + deg[i];
-    {
-        int *fill = stack; /* reuse as cursor */
-        for (int i = 0; i < g->nn; i++) fill[i] = adj_start[i];
-        for (int e = 0; e < g->ne; e++) {
-            if (g->edge[e].flags & QE_DEL) continue;
-            adj[fill[g->edge[e].a]++] = e;
-            adj[fill[g->edge[e].b]++] = e;
-        }
-    }
-    int sp = 0;
-    for (int i = 0; i < g->nn; i++)
-        if (deg[i] == 1) stack[sp++] = i;
-    while (sp > 0) {
-        int v = stack[--sp];
-        if (deg[v] != 1) continue;
-        for (int q = adj_start[v]; q < adj_start[v + 1]; q++) {
-            qedge *E = &g->edge[adj[q]];
-            if (E->flags & QE_DEL) continue;
-            E->flags |= QE_DEL;
-            int o = E->a == v ? E->b : E->a;
-            deg[v]--;
-            deg[o]--;
-            if (deg[o] == 1) stack[sp++] = o;
-            break;
-        }
-    }
-    int w = 0;
-    for (int e = 0; e < g->ne; e++)
-        if (!(g->edge[e].flags & QE_DEL)) g->edge[w++] = g->edge[e];
-    g->ne = w;
-done:
-    free(deg);
-    free(adj_start);
-    free(adj);
-    free(stack);
-    return st;
-}
-
-/* ---- planar map and faces ---------------------------------------------- */
-
-typedef struct pmap {
-    int nh;          /* 2 * ne half-edges: h = 2e (a -> b), 2e + 1 (b -> a) */
-    int *rot_start;  /* nn + 1 */
-    int *rot;        /* half-edges by origin, counter-clockwise */
-    int *rot_pos;    /* nh: index of h in rot */
-    int *face;       /* nh: face of h (face on the left) */
-    int nf;
-    int *face_he;    /* a half-edge of each face */
-    unsigned char *outer; /* nf */
-    int *deg;        /* nn */
-} pmap;
-
-static void pmap_free(pmap *p)
-{
-    free(p->rot_start);
-    free(p->rot);
-    free(p->rot_pos);
-    free(p->face);
-    free(p->face_he);
-    free(p->outer);
-    free(p->deg);
-    memset(p, 0, sizeof *p);
-}
-
-/* Sort the half-edges h[0 .. n) by ang[h], stable (insertion: a vertex has
- * a handful of edges; no qsort context, so no static) */
-static void sort_he_angle(int *h, int n, const double *ang)
-{
-    for (int i = 1; i < n; i++) {
-        const int x = h[i];
-        int j = i;
-        for (; j > 0 && ang[h[j - 1]] > ang[x]; j--) h[j] = h[j - 1];
-        h[j] = x;
-    }
-}
-
-static int he_orig(const graph *g, int h) { return h & 1 ? g->edge[h >> 1].b : g->edge[h >> 1].a; }
-static int he_dest(const graph *g, int h) { return h & 1 ? g->edge[h >> 1].a : g->edge[h >> 1].b; }
-
-/* face_next(h) = the half-edge before twin(h) in counter-clockwise order
- * around the origin of twin(h) (= destination of h). */
-static int face_next(const graph *g, const pmap *p, int h)
-{
-    int t = h ^ 1;
-    int v = he_orig(g, t);
-    int i = p->rot_pos[t];
-    int s = p->rot_start[v], n = p->rot_start[v + 1] - s;
-    return p->rot[s + (i - s + n - 1) % n];
-}
-
-static glpgp_status pmap_build(const graph *g, pmap *p)
-{
-    memset(p, 0, sizeof *p);
-    glpgp_status st = GLPGP_OK;
-    double *ang = NULL;
-    int *fill = NULL;
-    int nh = 2 * g->ne;
-    p->nh = nh;
-    GLPGP_CHECK_GOTO(st, glpgp_calloc((size_t)g->nn + 1, sizeof(int), &p->rot_start), fail);
-    GLPGP_CHECK_GOTO(st, glpgp_calloc((size_t)g->nn + 1, sizeof(int), &p->deg), fail);
-    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)nh + 1, sizeof(int), &p->rot), fail);
-    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)nh + 1, sizeof(int), &p->rot_pos), fail);
-    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)nh + 1, sizeof(int), &p->face), fail);
-    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)nh + 1, sizeof(double), &ang), fail);
-    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)g->nn + 1, sizeof(int), &fill), fail);
-    for (int h = 0; h < nh; h++) {
-        int o = he_orig(g, h), d = he_dest(g, h);
-        p->deg[o]++;
-        ang[h] = atan2(g->node[d].y - g->node[o].y, g->node[d].x - g->node[o].x);
-    }
-    for (int i = 0; i < g->nn; i++) p->rot_start[i + 1] = p->rot_start[i] + p->deg[i];
-    for (int i = 0; i < g->nn; i++) fill[i] = p->rot_start[i];
-    for (int h = 0; h < nh; h++) p->rot[fill[he_orig(g, h)]++] = h;
-    for (int i = 0; i < g->nn; i++) {
-        int s = p->rot_start[i], n = p->rot_start[i + 1] - s;
-        if (n > 1) sort_he_angle(p->rot + s, n, ang);
-    }
-    for (int q = 0; q < nh; q++) p->rot_pos[p->rot[q]] = q;
-    for (int h = 0; h < nh; h++) p->face[h] = -1;
-    int nf = 0, capf = 0;
-    for (int h = 0; h < nh; h++) {
-        if (p->face[h] >= 0) continue;
-        if (nf == capf) {
-            capf = capf ? 2 * capf : 1024;
-            int *nfh = realloc(p->face_he, (size_t)capf * sizeof(int));
-            if (!nfh) {
-                st = GLPGP_FAIL(GLPGP_ERR_NOMEM, "out of memory (quad faces)");
-                goto fail;
-            }
-            p->face_he = nfh;
-        }
-        p->face_he[nf] = h;
-        int c = h, guard = 0;
-        do {
-            p->face[c] = nf;
-            c = face_next(g, p, c);
-        } while (c != h && ++guard <= nh);
-        nf++;
-    }
-    p->nf = nf;
-    GLPGP_CHECK_GOTO(st, glpgp_calloc((size_t)nf + 1, 1, &p->outer), fail);
-    for (int e = 0; e < g->ne; e++)
-        if (g->edge[e].flags & QE_BND) p->outer[p->face[2 * e + 1]] = 1; /* b -> a: outside */
-    free(ang);
-    free(fill);
-    return GLPGP_OK;
-fail:
-    free(ang);
-    free(fill);
-    pmap_free(p);
-    return st;
-}
-
-/* Turning angle at a degree-2 node between its two edges (0: straight). */
-static double turn_angle(const graph *g, const pmap *p, int v)
-{
-    int s = p->rot_start[v];
-    int h0 = p->rot[s], h1 = p->rot[s + 1];
-    int d0 = he_dest(g, h0), d1 = he_dest(g, h1);
-    double ax = g->node[d0].x - g->node[v].x, ay = g->node[d0].y - g->node[v].y;
-    double bx = g->node[d1].x - g->node[v].x, by = g->node[d1].y - g->node[v].y;
-    double c = (ax * bx + ay * by) / (hypot(ax, ay) * hypot(bx, by) + 1e-300);
-    c = fmax(-1.0, fmin(1.0, c));
-    return PI_ - acos(c);
-}
-
-/* Corner flags of all nodes for the current map. */
-static void corners(const graph *g, const pmap *p, unsigned char *corner)
-{
-    for (int v = 0; v < g->nn; v++) {
-        int d = p->deg[v];
-        corner[v] = 0;
-        if (d >= 3 || (d >= 1 && g->node[v].fixed))
-            corner[v] = 1;
-        else if (d == 2 && g->node[v].bnd && turn_angle(g, p, v) > GLPGP_CORNER_DEG * PI_ / 180.0)
-            corner[v] = 1;
-    }
-}
-
-/* ---- clean-up ---------------------------------------------------------- */
-
-/* One round of clean-up on the current map. Returns the number of changes
- * (0: the map is final). */
-static glpgp_status cleanup_round(graph *g, const pmap *p, double h, int *changes, int *collapsed,
-                                  int *promoted)
-{
-    glpgp_status st = GLPGP_OK;
-    unsigned char *corner = NULL;
-    int *parent = NULL;
-    unsigned char *fx = NULL; /* per union-find root: the set holds a domain corner */
-    int nchg = 0;
-    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)g->nn + 1, 1, &corner), done);
-    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)g->nn + 1, 1, &fx), done);
-    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)g->nn + 1, sizeof(int), &parent), done);
-    corners(g, p, corner);
-    for (int i = 0; i < g->nn; i++) {
-        parent[i] = i;
-        fx[i] = g->node[i].fixed;
-    }
-
-    /* 1. short sides: walk every side (corner to corner) once, from the
-     *    half-edge leaving a corner; contract those shorter than 0.2 h unless
-     *    that would merge two domain corners. */
-    for (int h0 = 0; h0 < p->nh; h0++) {
-        int a = he_orig(g, h0);
-        if (!corner[a]) continue;
-        if (p->outer[p->face[h0]] && p->outer[p->face[h0 ^ 1]]) continue;
-        double len = 0.0;
-        int c = h0, n = 0;
-        for (;;) {
-            int d = he_dest(g, c);
-            len += hypot(g->node[d].x - g->node[he_orig(g, c)].x,
-                         g->node[d].y - g->node[he_orig(g, c)].y);
-            if (corner[d] || ++n > 10000) break;
-            /* continue through the degree-2 node */
-            int s = p->rot_start[d];
-            c = (p->rot[s] == (c ^ 1)) ? p->rot[s + 1] : p->rot[s];
-        }
-        int b = he_dest(g, c);
-        /* each side once; a loop side (a == b: a closed level line through
-         * one corner, or a side whose two ends were merged) is seen twice,
-         * which is harmless since merging is idempotent */
-        if (a > b) continue;
-        if (len >= 0.2 * h) continue;
-        int ra = glpgp_uf_find(parent, a), rb = glpgp_uf_find(parent, b);
-        if (ra != rb && fx[ra] && fx[rb]) continue; /* would merge two domain corners */
-        /* merge the whole chain, interior nodes included: when a and b are
-         * already in one set (merged through other short sides of the same
-         * small face), the chain must collapse too, or it would be left as a
-         * loop that crosses the edges re-pointed to the merged node */
-        int changed = 0;
-        c = h0;
-        n = 0;
-        for (;;) {
-            int d = he_dest(g, c);
-            int rd = glpgp_uf_find(parent, d), r = glpgp_uf_find(parent, a);
-            if (rd != r) {
-                parent[rd] = r;
-                fx[r] = (unsigned char)(fx[r] | fx[rd]);
-                changed = 1;
-            }
-            if (corner[d] || ++n > 10000) break;
-            int s = p->rot_start[d];
-            c = (p->rot[s] == (c ^ 1)) ? p->rot[s + 1] : p->rot[s];
-        }
-        if (!changed) continue;
-        nchg++;
-        (*collapsed)++;
-    }
-
-    /* 2. faces with <= 2 corners: delete one of their non-boundary sides.
-     * 3. 3-corner faces with a boundary side through degree-2 boundary
-     *    nodes: promote the node farthest from the side's chord. */
-    if (nchg == 0) {
-        for (int f = 0; f < p->nf; f++) {
-            if (p->outer[f]) continue;
-            int f0 = p->face_he[f], nc = 0, guard = 0;
-            int c = f0;
-            do {
-                if (corner[he_orig(g, c)]) nc++;
-                c = face_next(g, p, c);
-            } while (c != f0 && ++guard < p->nh);
-            if (nc <= 2) {
-                /* find a side (maximal run between corners) without boundary edges */
-                int start = f0;
-                guard = 0;
-                while (!corner[he_orig(g, start)] && ++guard < p->nh) start = face_next(g, p, start);
-                c = start;
-                guard = 0;
-                do {
-                    int s0 = c, isb = 0;
-                    int d = c;
-                    do {
-                        if (g->edge[d >> 1].flags & QE_BND) isb = 1;
-                        d = face_next(g, p, d);
-                    } while (!corner[he_orig(g, d)] && ++guard < p->nh);
-                    if (!isb) {
-                        int q = s0;
-                        do {
-                            g->edge[q >> 1].flags |= QE_DEL;
-                            q = face_next(g, p, q);
-                        } while (q != d);
-                        nchg++;
-                        break;
-                    }
-                    c = d;
-                } while (c != start && guard < p->nh);
-            } else if (nc == 3) {
-                /* boundary side with intermediate nodes? */
-                int best = -1;
-                double bestd = 0.0;
-                int start = f0;
-                guard = 0;
-                while (!corner[he_orig(g, start)] && ++guard < p->nh) start = face_next(g, p, start);
-                c = start;
-                guard = 0;
-                do {
-                    int a = he_orig(g, c);
-                    int d = c, allb = 1, cnt = 0;
-                    do {
-                        if (!(g->edge[d >> 1].flags & QE_BND)) allb = 0;
-                        d = face_next(g, p, d);
-                        cnt++;
-                    } while (!corner[he_orig(g, d)] && ++guard < p->nh);
-                    int b = he_orig(g, d);
-                    if (allb && cnt >= 2) {
-                        double ax = g->node[a].x, ay = g->node[a].y;
-                        double bx = g->node[b].x, by = g->node[b].y;
-                        double L = hypot(bx - ax, by - ay) + 1e-300;
-                        int q = face_next(g, p, c);
-                        while (q != d) {
-                            int v = he_orig(g, q);
-                            double dist = fabs((bx - ax) * (g->node[v].y - ay) -
-                                               (by - ay) * (g->node[v].x - ax)) / L;
-                            if (dist > bestd) {
-                                bestd = dist;
-                                best = v;
-                            }
-                            q = face_next(g, p, q);
-                        }
-                    }
-                    c = d;
-                } while (c != start && guard < p->nh);
-                if (best >= 0) {
-                    g->node[best].fixed = 1;
-                    (*promoted)++;
-                    nchg++;
-                }
-            }
-        }
-    }
-    if (nchg > 0) GLPGP_CHECK_GOTO(st, merge_nodes(g, parent), done);
-    *changes = nchg;
-done:
-    free(corner);
-    free(parent);
-    free(fx);
-    return st;
 }
 
 /* ---- driver ------------------------------------------------------------ */
@@ -1035,46 +572,20 @@ static int out_vertex(const graph *g, glpgp_quadmesh *q, int *newid, int v)
     return newid[v];
 }
 
-glpgp_status glpgp_quads_extract(const glpgp_mesh *m, const glpgp_result *r, glpgp_quadmesh **out)
+/* The graph simplified: domain corners fixed (the boundary turns by more
+ * than 40 degrees), coincident nodes (edges below 1e-6 h) merged, dangling
+ * ends pruned, the clean-up rounds; its final map in *P. */
+static glpgp_status simplify(builder *B, double h, pmap *P, int *collapsed, int *promoted)
 {
-    *out = NULL;
-    if (!m || !r) return GLPGP_FAIL(GLPGP_ERR_ARG, "quad extraction: no mesh or result");
-    if (r->nv != m->nv || r->nt != m->nt)
-        return GLPGP_FAIL(GLPGP_ERR_ARG,
-                          "quad extraction: result has %d vertices / %d triangles, mesh %d / %d",
-                          r->nv, r->nt, m->nv, m->nt);
-    if (!r->osc[0].z || !r->osc[1].z)
-        return GLPGP_FAIL(GLPGP_ERR_FORMAT, "quad extraction: the result has no oscillators z_u, z_v");
-    double h = r->size > 0.0 ? r->size : glpgp_default_size(m, NULL);
-
-    glpgp_status st = GLPGP_OK;
-    builder B;
-    memset(&B, 0, sizeof B);
-    B.m = m;
-    B.r = r;
-    B.rep = r->coupled && r->field ? r->field : NULL;
-    pmap P;
-    memset(&P, 0, sizeof P);
-    int *parent = NULL, *newid = NULL;
-    unsigned char *corner = NULL;
-    glpgp_quadmesh *q = NULL;
-    int collapsed = 0, promoted = 0, split_pentagons = 0, center_splits = 0;
-    int *cyc = NULL, *cych = NULL;
-
-    GLPGP_CHECK_GOTO(st, build_edges(m, &B.E), done);
-    GLPGP_CHECK_GOTO(st, build_arrangement(&B), done);
-    graph *g = &B.g;
-
-    /* domain corners: boundary vertices where the boundary turns > 40 deg */
+    const glpgp_mesh *m = B->m;
+    graph *g = &B->g;
     for (int i = 0; i < m->nv; i++) {
         if (!m->on_boundary[i]) continue;
         const double *a = m->normal_prev + 2 * i, *b = m->normal_next + 2 * i;
-        double c = a[0] * b[0] + a[1] * b[1];
-        if (c < cos(GLPGP_CORNER_DEG * PI_ / 180.0)) g->node[i].fixed = 1;
+        if (a[0] * b[0] + a[1] * b[1] < cos(GLPGP_CORNER_DEG * PI_ / 180.0)) g->node[i].fixed = 1;
     }
-
-    /* contract edges shorter than 1e-6 h (coincident nodes), drop duplicates */
-    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)g->nn, sizeof(int), &parent), done);
+    int *parent = NULL;
+    GLPGP_CHECK(glpgp_malloc((size_t)g->nn, sizeof(int), &parent));
     for (int i = 0; i < g->nn; i++) parent[i] = i;
     for (int e = 0; e < g->ne; e++) {
         const qnode *a = &g->node[g->edge[e].a], *b = &g->node[g->edge[e].b];
@@ -1083,143 +594,201 @@ glpgp_status glpgp_quads_extract(const glpgp_mesh *m, const glpgp_result *r, glp
             if (ra != rb) parent[rb] = ra;
         }
     }
-    GLPGP_CHECK_GOTO(st, merge_nodes(g, parent), done);
-    GLPGP_CHECK_GOTO(st, prune(g), done);
-
+    glpgp_status st = glpgp_xm_merge_nodes(g, parent);
+    free(parent);
+    GLPGP_CHECK(st);
+    GLPGP_CHECK(glpgp_xm_prune(g));
     for (int round = 0; round < 8; round++) {
-        GLPGP_CHECK_GOTO(st, pmap_build(g, &P), done);
+        GLPGP_CHECK(glpgp_xm_pmap_build(g, P));
         int changes = 0;
-        GLPGP_CHECK_GOTO(st, cleanup_round(g, &P, h, &changes, &collapsed, &promoted), done);
+        GLPGP_CHECK(glpgp_xm_cleanup_round(g, P, h, &changes, collapsed, promoted));
         if (changes == 0) break;
-        pmap_free(&P);
-        GLPGP_CHECK_GOTO(st, prune(g), done);
+        glpgp_xm_pmap_free(P);
+        GLPGP_CHECK(glpgp_xm_prune(g));
     }
-    if (!P.rot_start) GLPGP_CHECK_GOTO(st, pmap_build(g, &P), done);
+    if (!P->rot_start) GLPGP_CHECK(glpgp_xm_pmap_build(g, P));
+    return GLPGP_OK;
+}
 
-    /* output: corner nodes of inner faces, renumbered */
-    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)g->nn + 1, 1, &corner), done);
-    /* room for one centre vertex per face (pentagons split around a centre) */
-    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)g->nn + P.nf + 1, sizeof(int), &newid), done);
-    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)P.nh + 1, sizeof(int), &cyc), done);
-    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)P.nh + 1, sizeof(int), &cych), done);
-    corners(g, &P, corner);
-    for (int i = 0; i < g->nn + P.nf + 1; i++) newid[i] = -1;
-    GLPGP_CHECK_GOTO(st, glpgp_calloc(1, sizeof *q, &q), done);
-    /* a face becomes at most 3 quads (12 corners; it has >= 6 half-edges then) */
-    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)P.nf + 2, 3 * sizeof(int), &q->face_start), done);
-    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)P.nh + 1, 2 * sizeof(int), &q->face_vert), done);
-    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)P.nh + P.nf + 1, 2 * sizeof(double), &q->xy), done);
-    q->face_start[0] = 0;
-    int w = 0;
-    for (int f = 0; f < P.nf; f++) {
-        if (P.outer[f]) continue;
-        /* the face cycle, starting at a corner */
-        int h0 = P.face_he[f], guard = 0;
-        while (!corner[he_orig(g, h0)] && ++guard < P.nh) h0 = face_next(g, &P, h0);
-        int nc = 0, len = 0, c = h0;
-        guard = 0;
-        do {
-            cych[len] = c;
-            cyc[len++] = he_orig(g, c);
-            nc += corner[he_orig(g, c)];
-            c = face_next(g, &P, c);
-        } while (c != h0 && ++guard < P.nh);
-        if (nc < 3) continue;
-        int cs[8], split = -1;
-        double best_diag = -INFINITY;
-        int chx[6], co = 0, csplit = -1; /* centre split: hexagon, offset */
-        double cx = 0.0, cy = 0.0, cbest = -INFINITY;
-        if (nc == 5) {
-            /* boundary pentagon: make the best intermediate boundary node of a
-             * boundary side a sixth corner and split the hexagon by the
-             * diagonal from it to an opposite corner (of the three diagonals, the one
-             * whose worse quad has the best scaled Jacobian, if that is > 0.1),
-             * or, when no diagonal gives a quad as good as 0.5, into three
-             * quads around a new centre vertex (hex_center_split) if that is
-             * better: the usual case when the new corner sits on a concave
-             * boundary arc, where every diagonal makes a reflex quad */
-            double best = 0.1;
-            int pos5[5], np5 = 0;
-            for (int i = 0; i < len; i++)
-                if (corner[cyc[i]]) pos5[np5++] = i;
-            for (int sd = 0; sd < 5; sd++) {
-                int i0 = pos5[sd], i1 = sd < 4 ? pos5[sd + 1] : len;
-                int allb = 1;
-                for (int i = i0; i < i1; i++)
-                    if (!(g->edge[cych[i] >> 1].flags & QE_BND)) allb = 0;
-                if (!allb || i1 - i0 < 2) continue;
-                int ca = cyc[i0], cb = cyc[i1 % len];
-                double Lab = hypot(g->node[cb].x - g->node[ca].x, g->node[cb].y - g->node[ca].y);
-                for (int i = i0 + 1; i < i1; i++) {
-                    int hx[6];
-                    hx[0] = cyc[i];
-                    /* keep the new corner away from the side's ends */
-                    double da = hypot(g->node[hx[0]].x - g->node[ca].x, g->node[hx[0]].y - g->node[ca].y);
-                    double db = hypot(g->node[hx[0]].x - g->node[cb].x, g->node[hx[0]].y - g->node[cb].y);
-                    if (da < 0.3 * Lab || db < 0.3 * Lab) continue;
-                    for (int k = 1; k < 6; k++) hx[k] = cyc[pos5[(sd + k) % 5]];
-                    {
-                        int o = 0;
-                        double x = 0.0, y = 0.0;
-                        double sj = hex_center_split(g, hx, &o, &x, &y);
-                        if (sj > cbest) {
-                            cbest = sj;
-                            csplit = i;
-                            co = o;
-                            cx = x;
-                            cy = y;
-                            memcpy(chx, hx, sizeof chx);
-                        }
-                    }
-                    /* the three diagonals (d, d + 3) of the hexagon */
-                    for (int d = 0; d < 3; d++) {
-                        int qa[4], qb[4];
-                        for (int k = 0; k < 4; k++) {
-                            qa[k] = hx[(d + k) % 6];
-                            qb[k] = hx[(d + 3 + k) % 6];
-                        }
-                        double sj = fmin(quad_sj(g, qa), quad_sj(g, qb));
-                        if (sj > best) {
-                            best = best_diag = sj;
-                            split = i;
-                            for (int k = 0; k < 4; k++) {
-                                cs[k] = qa[k];
-                                cs[4 + k] = qb[k];
-                            }
-                        }
-                    }
+/* The splits of a boundary pentagon considered (see the header). */
+typedef struct pent_split {
+    int split, csplit, co; /* diagonal split found (-1: none); centre split; its offset */
+    int cs[8], chx[6];     /* the two quads of the diagonal; the hexagon of the centre split */
+    double best_diag, cbest, cx, cy;
+} pent_split;
+
+/* Boundary pentagon (cycle cyc of len nodes, half-edges cych): make the best
+ * intermediate boundary node of a boundary side a sixth corner and split the
+ * hexagon by the diagonal from it to an opposite corner (of the three
+ * diagonals, the one whose worse quad has the best scaled Jacobian, if that
+ * is > 0.1), or, when no diagonal gives a quad as good as 0.5, into three
+ * quads around a new centre vertex if that is better: the usual case when
+ * the new corner sits on a concave boundary arc, where every diagonal makes
+ * a reflex quad. */
+static void pentagon_split(const graph *g, const int *cyc, const int *cych, int len, const unsigned char *corner,
+                           pent_split *ps)
+{
+    double best = 0.1;
+    int pos5[5], np5 = 0;
+    ps->split = ps->csplit = -1;
+    ps->best_diag = ps->cbest = -INFINITY;
+    for (int i = 0; i < len && np5 < 5; i++)
+        if (corner[cyc[i]]) pos5[np5++] = i;
+    for (int sd = 0; sd < 5; sd++) {
+        int i0 = pos5[sd], i1 = sd < 4 ? pos5[sd + 1] : len, allb = 1;
+        for (int i = i0; i < i1; i++)
+            if (!(g->edge[cych[i] >> 1].flags & QE_BND)) allb = 0;
+        if (!allb || i1 - i0 < 2) continue;
+        int ca = cyc[i0], cb = cyc[i1 % len];
+        double Lab = hypot(g->node[cb].x - g->node[ca].x, g->node[cb].y - g->node[ca].y);
+        for (int i = i0 + 1; i < i1; i++) {
+            int hx[6];
+            hx[0] = cyc[i];
+            /* keep the new corner away from the side's ends */
+            double da = hypot(g->node[hx[0]].x - g->node[ca].x, g->node[hx[0]].y - g->node[ca].y);
+            double db = hypot(g->node[hx[0]].x - g->node[cb].x, g->node[hx[0]].y - g->node[cb].y);
+            if (da < 0.3 * Lab || db < 0.3 * Lab) continue;
+            for (int k = 1; k < 6; k++) hx[k] = cyc[pos5[(sd + k) % 5]];
+            int o = 0;
+            double x = 0.0, y = 0.0, sj = hex_center_split(g, hx, &o, &x, &y);
+            if (sj > ps->cbest) {
+                ps->cbest = sj;
+                ps->csplit = i;
+                ps->co = o;
+                ps->cx = x;
+                ps->cy = y;
+                memcpy(ps->chx, hx, sizeof ps->chx);
+            }
+            for (int d = 0; d < 3; d++) { /* the three diagonals (d, d + 3) of the hexagon */
+                int qa[4], qb[4];
+                for (int k = 0; k < 4; k++) {
+                    qa[k] = hx[(d + k) % 6];
+                    qb[k] = hx[(d + 3 + k) % 6];
+                }
+                double v = fmin(quad_sj(g, qa), quad_sj(g, qb));
+                if (v > best) {
+                    best = ps->best_diag = v;
+                    ps->split = i;
+                    memcpy(ps->cs, qa, sizeof qa);
+                    memcpy(ps->cs + 4, qb, sizeof qb);
                 }
             }
         }
-        if (csplit >= 0 && cbest > 0.1 && (split < 0 || (best_diag < 0.5 && cbest > best_diag))) {
-            int X = -1;
-            GLPGP_CHECK_GOTO(st, add_node(g, cx, cy, -1, 0, &X), done);
-            newid[X] = -1;
-            for (int i = 0; i < 3; i++) {
-                for (int k = 0; k < 3; k++)
-                    q->face_vert[w++] = out_vertex(g, q, newid, chx[(co + 2 * i + k) % 6]);
-                q->face_vert[w++] = out_vertex(g, q, newid, X);
-                q->face_start[++q->nf] = w;
-            }
-            split_pentagons++;
-            center_splits++;
-            continue;
-        }
-        if (split >= 0) {
-            for (int k = 0; k < 8; k++) {
-                q->face_vert[w++] = out_vertex(g, q, newid, cs[k]);
-                if (k == 3 || k == 7) q->face_start[++q->nf] = w;
-            }
-            split_pentagons++;
-            continue;
-        }
-        for (int i = 0; i < len; i++)
-            if (corner[cyc[i]]) q->face_vert[w++] = out_vertex(g, q, newid, cyc[i]);
-        q->face_start[++q->nf] = w;
     }
+}
+
+/* The output and its counters. */
+typedef struct xout {
+    glpgp_quadmesh *q;
+    int *newid, w;
+    int split_pentagons, center_splits;
+} xout;
+
+/* Inner face f of the map into the output: its corners, a boundary
+ * pentagon split into two or three quads. */
+static glpgp_status emit_face(graph *g, const pmap *P, const unsigned char *corner, int f, int *cyc, int *cych, xout *X)
+{
+    glpgp_quadmesh *q = X->q;
+    int h0 = P->face_he[f], guard = 0;
+    while (!corner[he_orig(g, h0)] && ++guard < P->nh) h0 = glpgp_xm_face_next(g, P, h0); /* start at a corner */
+    int nc = 0, len = 0, c = h0;
+    guard = 0;
+    do {
+        cych[len] = c;
+        cyc[len++] = he_orig(g, c);
+        nc += corner[he_orig(g, c)];
+        c = glpgp_xm_face_next(g, P, c);
+    } while (c != h0 && ++guard < P->nh);
+    if (nc < 3) return GLPGP_OK;
+    pent_split ps = {-1, -1, 0, {0}, {0}, -INFINITY, -INFINITY, 0.0, 0.0};
+    if (nc == 5) pentagon_split(g, cyc, cych, len, corner, &ps);
+    if (ps.csplit >= 0 && ps.cbest > 0.1 && (ps.split < 0 || (ps.best_diag < 0.5 && ps.cbest > ps.best_diag))) {
+        int C = -1;
+        GLPGP_CHECK(glpgp_xg_add_node(g, ps.cx, ps.cy, -1, 0, &C));
+        X->newid[C] = -1;
+        for (int i = 0; i < 3; i++) {
+            for (int k = 0; k < 3; k++) q->face_vert[X->w++] = out_vertex(g, q, X->newid, ps.chx[(ps.co + 2 * i + k) % 6]);
+            q->face_vert[X->w++] = out_vertex(g, q, X->newid, C);
+            q->face_start[++q->nf] = X->w;
+        }
+        X->split_pentagons++;
+        X->center_splits++;
+        return GLPGP_OK;
+    }
+    if (ps.split >= 0) {
+        for (int k = 0; k < 8; k++) {
+            q->face_vert[X->w++] = out_vertex(g, q, X->newid, ps.cs[k]);
+            if (k == 3 || k == 7) q->face_start[++q->nf] = X->w;
+        }
+        X->split_pentagons++;
+        return GLPGP_OK;
+    }
+    for (int i = 0; i < len; i++)
+        if (corner[cyc[i]]) q->face_vert[X->w++] = out_vertex(g, q, X->newid, cyc[i]);
+    q->face_start[++q->nf] = X->w;
+    return GLPGP_OK;
+}
+
+static void builder_free(builder *B)
+{
+    for (int k = 0; k < 2; k++) {
+        free(B->theta[k]);
+        free(B->exact[k]);
+    }
+    free(B->xint);
+    free(B->xs);
+    free(B->xnode);
+    free(B->E.ev);
+    free(B->E.nbt);
+    free(B->E.tri_edge);
+    free(B->g.node);
+    free(B->g.edge);
+}
+
+glpgp_status glpgp_quads_extract(const glpgp_mesh *m, const glpgp_result *r, glpgp_quadmesh **out)
+{
+    *out = NULL;
+    if (!m || !r) return GLPGP_FAIL(GLPGP_ERR_ARG, "quad extraction: no mesh or result");
+    if (r->nv != m->nv || r->nt != m->nt)
+        return GLPGP_FAIL(GLPGP_ERR_ARG, "quad extraction: result has %d vertices / %d triangles, mesh %d / %d", r->nv,
+                          r->nt, m->nv, m->nt);
+    if (!r->osc[0].z || !r->osc[1].z)
+        return GLPGP_FAIL(GLPGP_ERR_FORMAT, "quad extraction: the result has no oscillators z_u, z_v");
+    double h = r->size > 0.0 ? r->size : glpgp_default_size(m, NULL);
+    glpgp_status st = GLPGP_OK;
+    builder B;
+    memset(&B, 0, sizeof B);
+    B.m = m;
+    B.r = r;
+    B.rep = r->coupled && r->field ? r->field : NULL;
+    pmap P;
+    memset(&P, 0, sizeof P);
+    unsigned char *corner = NULL;
+    xout X;
+    memset(&X, 0, sizeof X);
+    int collapsed = 0, promoted = 0, *cyc = NULL, *cych = NULL;
+    GLPGP_CHECK_GOTO(st, build_edges(m, &B.E), done);
+    GLPGP_CHECK_GOTO(st, build_arrangement(&B), done);
+    GLPGP_CHECK_GOTO(st, simplify(&B, h, &P, &collapsed, &promoted), done);
+    graph *g = &B.g;
+    /* output: corner nodes of inner faces, renumbered (room for one centre vertex per face) */
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)g->nn + 1, 1, &corner), done);
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)g->nn + P.nf + 1, sizeof(int), &X.newid), done);
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)P.nh + 1, sizeof(int), &cyc), done);
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)P.nh + 1, sizeof(int), &cych), done);
+    glpgp_xm_corners(g, &P, corner);
+    for (int i = 0; i < g->nn + P.nf + 1; i++) X.newid[i] = -1;
+    GLPGP_CHECK_GOTO(st, glpgp_calloc(1, sizeof *X.q, &X.q), done);
+    /* a face becomes at most 3 quads (12 corners; it has >= 6 half-edges then) */
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)P.nf + 2, 3 * sizeof(int), &X.q->face_start), done);
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)P.nh + 1, 2 * sizeof(int), &X.q->face_vert), done);
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)P.nh + P.nf + 1, 2 * sizeof(double), &X.q->xy), done);
+    X.q->face_start[0] = 0;
+    for (int f = 0; f < P.nf; f++)
+        if (!P.outer[f]) GLPGP_CHECK_GOTO(st, emit_face(g, &P, corner, f, cyc, cych, &X), done);
+    glpgp_quadmesh *q = X.q;
     if (q->nf == 0) {
-        st = GLPGP_FAIL(GLPGP_ERR_NUMERIC,
-                        "quad extraction: no face found (is h = %g too large for the domain?)", h);
+        st = GLPGP_FAIL(GLPGP_ERR_NUMERIC, "quad extraction: no face found (is h = %g too large for the domain?)", h);
         goto done;
     }
     for (int k = 0; k < 2; k++) {
@@ -1228,121 +797,17 @@ glpgp_status glpgp_quads_extract(const glpgp_mesh *m, const glpgp_result *r, glp
     }
     q->collapsed_edges = collapsed;
     q->promoted_corners = promoted;
-    q->split_pentagons = split_pentagons;
-    q->center_splits = center_splits;
+    q->split_pentagons = X.split_pentagons;
+    q->center_splits = X.center_splits;
     *out = q;
-    q = NULL;
+    X.q = NULL;
 done:
-    glpgp_quadmesh_destroy(&q);
-    pmap_free(&P);
-    free(parent);
-    free(newid);
+    glpgp_quadmesh_destroy(&X.q);
+    glpgp_xm_pmap_free(&P);
+    free(X.newid);
     free(corner);
     free(cyc);
     free(cych);
-    for (int k = 0; k < 2; k++) {
-        free(B.theta[k]);
-        free(B.exact[k]);
-    }
-    free(B.xint);
-    free(B.xs);
-    free(B.xnode);
-    free(B.E.ev);
-    free(B.E.nbt);
-    free(B.E.tri_edge);
-    free(B.g.node);
-    free(B.g.edge);
-    return st;
-}
-
-void glpgp_quadmesh_destroy(glpgp_quadmesh **q)
-{
-    if (!q || !*q) return;
-    free((*q)->xy);
-    free((*q)->face_start);
-    free((*q)->face_vert);
-    free(*q);
-    *q = NULL;
-}
-
-/* ---- refinement to an all-quad mesh ------------------------------------ */
-
-static int cmp_ll2(const void *pa, const void *pb)
-{
-    const long long *a = pa, *b = pb;
-    return (a[0] > b[0]) - (a[0] < b[0]);
-}
-
-glpgp_status glpgp_quadmesh_subdivide(const glpgp_quadmesh *q, glpgp_quadmesh **out)
-{
-    *out = NULL;
-    if (!q || q->nf < 1) return GLPGP_FAIL(GLPGP_ERR_ARG, "quad refinement: empty mesh");
-    const int nc = q->face_start[q->nf]; /* face sides = corners */
-    glpgp_status st = GLPGP_OK;
-    long long *key = NULL; /* (edge key, side index) pairs, sorted */
-    int *side_mid = NULL;  /* per side: index of its midpoint in the output */
-    glpgp_quadmesh *r = NULL;
-    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)nc, 2 * sizeof(long long), &key), done);
-    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)nc, sizeof(int), &side_mid), done);
-    for (int f = 0; f < q->nf; f++) {
-        int s = q->face_start[f], k = q->face_start[f + 1] - s;
-        for (int i = 0; i < k; i++) {
-            long long a = q->face_vert[s + i], b = q->face_vert[s + (i + 1) % k];
-            key[2 * (s + i)] = (a < b ? a : b) * (long long)q->nv + (a < b ? b : a);
-            key[2 * (s + i) + 1] = s + i;
-        }
-    }
-    qsort(key, (size_t)nc, 2 * sizeof(long long), cmp_ll2);
-    GLPGP_CHECK_GOTO(st, glpgp_calloc(1, sizeof *r, &r), done);
-    /* vertices: the old ones, one midpoint per edge, one centre per face */
-    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)q->nv + nc + q->nf, 2 * sizeof(double), &r->xy), done);
-    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)nc + 1, sizeof(int), &r->face_start), done);
-    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)nc, 4 * sizeof(int), &r->face_vert), done);
-    memcpy(r->xy, q->xy, (size_t)q->nv * 2 * sizeof(double));
-    r->nv = q->nv;
-    for (int i = 0; i < nc;) {
-        int j = i;
-        long long ab = key[2 * i];
-        int a = (int)(ab / q->nv), b = (int)(ab % q->nv);
-        r->xy[2 * r->nv] = 0.5 * (q->xy[2 * a] + q->xy[2 * b]);
-        r->xy[2 * r->nv + 1] = 0.5 * (q->xy[2 * a + 1] + q->xy[2 * b + 1]);
-        while (j < nc && key[2 * j] == ab) side_mid[key[2 * j++ + 1]] = r->nv;
-        r->nv++;
-        i = j;
-    }
-    int w = 0;
-    r->face_start[0] = 0;
-    for (int f = 0; f < q->nf; f++) {
-        int s = q->face_start[f], k = q->face_start[f + 1] - s;
-        double cx = 0.0, cy = 0.0;
-        for (int i = 0; i < k; i++) {
-            cx += q->xy[2 * q->face_vert[s + i]] / k;
-            cy += q->xy[2 * q->face_vert[s + i] + 1] / k;
-        }
-        int c = r->nv++;
-        r->xy[2 * c] = cx;
-        r->xy[2 * c + 1] = cy;
-        for (int i = 0; i < k; i++) { /* corner i, midpoint of side i, centre, midpoint of side i-1 */
-            r->face_vert[w++] = q->face_vert[s + i];
-            r->face_vert[w++] = side_mid[s + i];
-            r->face_vert[w++] = c;
-            r->face_vert[w++] = side_mid[s + (i + k - 1) % k];
-            r->face_start[++r->nf] = w;
-        }
-    }
-    for (int k = 0; k < 2; k++) {
-        r->singular_tris[k] = q->singular_tris[k];
-        r->inconsistent_tris[k] = q->inconsistent_tris[k];
-    }
-    r->collapsed_edges = q->collapsed_edges;
-    r->promoted_corners = q->promoted_corners;
-    r->split_pentagons = q->split_pentagons;
-    r->center_splits = q->center_splits;
-    *out = r;
-    r = NULL;
-done:
-    glpgp_quadmesh_destroy(&r);
-    free(key);
-    free(side_mid);
+    builder_free(&B);
     return st;
 }

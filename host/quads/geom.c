@@ -4,6 +4,7 @@
 #include "glpgp/quads.h"
 
 #include <math.h>
+#include <stdlib.h>
 
 double glpgp_poly_min_sj(const double *xy, const int *v, int n)
 {
@@ -63,6 +64,71 @@ double glpgp_hex_centre_split(const double *xy, const int *hx, int *o_best, doub
             *yb = y;
         }
     }
+    return best;
+}
+
+#define QMAXN GLPGP_POLY_SPLIT_MAX
+
+/* best[i][j]: best minimum scaled Jacobian of a split of the sub-polygon
+ * p[i], p[i+1], ..., p[j] (closed by the chord j -> i) into quads;
+ * choice[i][j] = a * QMAXN + b for its quad (p[i], p[a], p[b], p[j]). */
+typedef struct qdp {
+    double best[QMAXN][QMAXN];
+    int choice[QMAXN][QMAXN];
+} qdp;
+
+static double qdp_solve(qdp *D, const double *xy, const int *p, int i, int j)
+{
+    if (j - i < 3) return INFINITY; /* an edge (j = i + 1): nothing to split */
+    if (D->choice[i][j] != -2) return D->best[i][j];
+    double best = -INFINITY;
+    int ch = -1;
+    /* the quad on chord (i, j): (i, a, b, j), with i..a, a..b, b..j of
+     * even length (odd vertex count difference) */
+    for (int a = i + 1; a < j - 1; a += 2)
+        for (int b = a + 1; b < j; b += 2) {
+            int q[4] = {p[i], p[a], p[b], p[j]};
+            double s = glpgp_poly_min_sj(xy, q, 4);
+            if (s <= best) continue;
+            s = fmin(s, qdp_solve(D, xy, p, i, a));
+            if (s <= best) continue;
+            s = fmin(s, qdp_solve(D, xy, p, a, b));
+            if (s <= best) continue;
+            s = fmin(s, qdp_solve(D, xy, p, b, j));
+            if (s > best) {
+                best = s;
+                ch = a * QMAXN + b;
+            }
+        }
+    D->best[i][j] = best;
+    D->choice[i][j] = ch;
+    return best;
+}
+
+static int qdp_emit(const qdp *D, const int *p, int i, int j, int *out, int w)
+{
+    if (j - i < 3) return w;
+    int a = D->choice[i][j] / QMAXN, b = D->choice[i][j] % QMAXN;
+    out[w++] = p[i];
+    out[w++] = p[a];
+    out[w++] = p[b];
+    out[w++] = p[j];
+    w = qdp_emit(D, p, i, a, out, w);
+    w = qdp_emit(D, p, a, b, out, w);
+    return qdp_emit(D, p, b, j, out, w);
+}
+
+double glpgp_poly_quad_split(const double *xy, const int *p, int n, int *out, int *nq)
+{
+    *nq = 0;
+    if (n < 4 || n > QMAXN || n % 2) return -INFINITY;
+    qdp D; /* 16 x 16 doubles and ints: on the stack */
+    /* the chord (0, n-1) is the closing edge p[n-1] -> p[0], which must be a
+     * quad side: one DP covers all splits */
+    for (int i = 0; i < QMAXN; i++)
+        for (int j = 0; j < QMAXN; j++) D.choice[i][j] = -2;
+    double best = qdp_solve(&D, xy, p, 0, n - 1);
+    if (best > -INFINITY) *nq = qdp_emit(&D, p, 0, n - 1, out, 0) / 4;
     return best;
 }
 

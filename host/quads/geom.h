@@ -23,4 +23,15 @@ double glpgp_hex_centre_split(const double *xy, const int *hx, int *o, double *x
  * *x, *y. */
 double glpgp_hex_centre_split_at(const double *xy, const int *hx, int o, double *x, double *y);
 
+/* Largest polygon glpgp_poly_quad_split takes. */
+#define GLPGP_POLY_SPLIT_MAX 16
+
+/* Best split of the even polygon xy[2 p[0]], ..., xy[2 p[n-1]] (4 <= n <=
+ * GLPGP_POLY_SPLIT_MAX, counter-clockwise) into quads by its diagonals
+ * alone: the split whose smallest corner scaled Jacobian is largest
+ * (dynamic programme over the sub-polygons). out: 4 * *nq corner ids
+ * ((n - 2) / 2 quads). Returns that scaled Jacobian; -inf (and *nq = 0)
+ * for an odd n or one out of range. */
+double glpgp_poly_quad_split(const double *xy, const int *p, int n, int *out, int *nq);
+
 #endif

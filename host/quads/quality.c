@@ -195,6 +195,167 @@ static int cmp_double(const void *pa, const void *pb)
     return (a > b) - (a < b);
 }
 
+/* Per face: corners, area, scaled Jacobian (quads), interior angle sums
+ * per vertex; the face flags of the check. */
+static glpgp_status face_stats(const glpgp_quadmesh *q, const qcheck *ck, glpgp_quad_quality *o, double *angle)
+{
+    double *sj = NULL;
+    GLPGP_CHECK(glpgp_malloc((size_t)q->nf + 1, sizeof(double), &sj));
+    int nsj = 0;
+    double sjsum = 0.0;
+    for (int f = 0; f < q->nf; f++) {
+        int s = q->face_start[f], k = q->face_start[f + 1] - s;
+        const int *v = q->face_vert + s;
+        if (k == 4) {
+            o->quads++;
+        } else {
+            o->others++;
+            int b = k - 3;
+            o->others_by_size[b < 0 ? 0 : b > 7 ? 7 : b]++;
+        }
+        double area = 0.0, fmin_sj = INFINITY;
+        for (int i = 0; i < k; i++) {
+            int a = v[i], b = v[(i + 1) % k], c = v[(i + k - 1) % k];
+            double ax = q->xy[2 * a], ay = q->xy[2 * a + 1];
+            double e1x = q->xy[2 * b] - ax, e1y = q->xy[2 * b + 1] - ay;
+            double e2x = q->xy[2 * c] - ax, e2y = q->xy[2 * c + 1] - ay;
+            double l1 = hypot(e1x, e1y), l2 = hypot(e2x, e2y);
+            area += 0.5 * ck->orientation * (ax * q->xy[2 * b + 1] - q->xy[2 * b] * ay);
+            /* scaled Jacobian at corner a: sin of the angle from e1 to e2
+             * (in the mesh orientation) */
+            double cr = ck->orientation * (e1x * e2y - e1y * e2x);
+            fmin_sj = fmin(fmin_sj, (l1 > 0 && l2 > 0) ? cr / (l1 * l2) : 0.0);
+            /* interior angle at a (from e1 counter-clockwise to e2) */
+            double ang = atan2(cr, e1x * e2x + e1y * e2y);
+            angle[a] += ang < 0 ? ang + 2 * PI_ : ang;
+        }
+        o->area += area;
+        if (ck->flags[f] & QF_DEGENERATE) o->degenerate++;
+        if (ck->flags[f] & QF_INVERTED) o->inverted++;
+        if (ck->flags[f] & QF_OVERLAP) o->overlaps++;
+        if (ck->flags[f] & QF_OUTSIDE) o->outside++;
+        if (ck->flags[f] & (QF_FAR | QF_LOST)) o->far_faces++;
+        if (k == 4) {
+            sj[nsj++] = fmin_sj;
+            sjsum += fmin_sj;
+        }
+    }
+    if (nsj > 0) {
+        qsort(sj, (size_t)nsj, sizeof(double), cmp_double);
+        o->sj_min = sj[0];
+        o->sj_mean = sjsum / nsj;
+        o->sj_p01 = sj[(int)floor(0.01 * (nsj - 1))];
+    } else {
+        o->sj_min = o->sj_mean = o->sj_p01 = NAN;
+    }
+    free(sj);
+    return GLPGP_OK;
+}
+
+/* Quads by origin, the repaired share, and the scaled Jacobian against
+ * what the domain's sharp corners allow. */
+static glpgp_status origin_stats(const glpgp_quadmesh *q, const glpgp_mesh *domain, double h, glpgp_quad_quality *o)
+{
+    double *bound = NULL;
+    GLPGP_CHECK(glpgp_malloc((size_t)q->nf + 1, sizeof(double), &bound));
+    glpgp_status st = glpgp_qcheck_corner_bound(q, domain, h, bound);
+    o->sj_min_corner = INFINITY;
+    for (int f = 0; f < q->nf && st == GLPGP_OK; f++) {
+        if (q->face_start[f + 1] - q->face_start[f] != 4) continue;
+        int org = q->face_origin && q->face_origin[f] < GLPGP_QFACE_KINDS ? q->face_origin[f] : GLPGP_QFACE_GRID;
+        o->quads_by_origin[org]++;
+        double sj = glpgp_quad_face_sj(q, f);
+        o->sj_min_corner = fmin(o->sj_min_corner, sj / bound[f]);
+        if (sj < GLPGP_QUAD_SJ_GOAL && sj < 0.9 * bound[f]) o->below_sj_goal++;
+    }
+    if (!(o->sj_min_corner < INFINITY)) o->sj_min_corner = NAN;
+    int rep = o->quads_by_origin[GLPGP_QFACE_PAVED] + o->quads_by_origin[GLPGP_QFACE_FALLBACK];
+    o->repaired_share = o->quads > 0 ? (double)rep / o->quads : 0.0;
+    free(bound);
+    return st;
+}
+
+/* Boundary distances (Hausdorff, gaps) of q against the domain. */
+static glpgp_status boundary_stats(const glpgp_quadmesh *q, const glpgp_mesh *domain, double h, const qe *E, int ne,
+                                   glpgp_quad_quality *o)
+{
+    segset SD, SQ;
+    memset(&SD, 0, sizeof SD);
+    memset(&SQ, 0, sizeof SQ);
+    glpgp_status st = GLPGP_OK;
+    int nb = domain->loop_start[domain->nloops];
+    SD.n = nb;
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)4 * nb + 4, sizeof(double), &SD.s), done);
+    for (int l = 0; l < domain->nloops; l++) {
+        int s = domain->loop_start[l], n = domain->loop_start[l + 1] - s;
+        for (int i = 0; i < n; i++) {
+            int a = domain->loop_vertices[s + i], b = domain->loop_vertices[s + (i + 1) % n];
+            double *p = SD.s + 4 * (s + i);
+            p[0] = domain->xy[2 * a];
+            p[1] = domain->xy[2 * a + 1];
+            p[2] = domain->xy[2 * b];
+            p[3] = domain->xy[2 * b + 1];
+        }
+    }
+    SQ.n = o->boundary_edges;
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)4 * SQ.n + 4, sizeof(double), &SQ.s), done);
+    int w = 0;
+    for (int i = 0; i < ne; i++) {
+        if (E[i].nface != 1) continue;
+        double *p = SQ.s + 4 * w++;
+        p[0] = q->xy[2 * E[i].a];
+        p[1] = q->xy[2 * E[i].a + 1];
+        p[2] = q->xy[2 * E[i].b];
+        p[3] = q->xy[2 * E[i].b + 1];
+    }
+    GLPGP_CHECK_GOTO(st, segset_build(&SD, h), done);
+    if (SQ.n > 0) GLPGP_CHECK_GOTO(st, segset_build(&SQ, h), done);
+    double dq = 0.0, dd = 0.0;
+    int gaps = 0;
+    for (int i = 0; i < SQ.n; i++) {
+        const double *p = SQ.s + 4 * i;
+        for (int k = 0; k <= 8; k++) {
+            double t = k / 8.0;
+            dq = fmax(dq, segset_dist(&SD, p[0] + t * (p[2] - p[0]), p[1] + t * (p[3] - p[1])));
+        }
+        /* midpoint far from the domain boundary: an interior hole */
+        if (segset_dist(&SD, 0.5 * (p[0] + p[2]), 0.5 * (p[1] + p[3])) > 0.25 * h) gaps++;
+    }
+    for (int i = 0; i < SD.n; i++) {
+        const double *p = SD.s + 4 * i;
+        dd = fmax(dd, segset_dist(&SQ, p[0], p[1]));
+        dd = fmax(dd, segset_dist(&SQ, 0.5 * (p[0] + p[2]), 0.5 * (p[1] + p[3])));
+    }
+    o->dist_quad_to_domain = dq / h;
+    o->dist_domain_to_quad = dd / h;
+    o->hausdorff = fmax(dq, dd) / h;
+    o->gap_edges = gaps;
+done:
+    segset_free(&SD);
+    segset_free(&SQ);
+    return st;
+}
+
+static void validity(const glpgp_mesh *domain, glpgp_quad_quality *o)
+{
+    unsigned b = 0;
+    if (o->inverted) b |= GLPGP_QUAD_BAD_INVERTED;
+    if (o->degenerate) b |= GLPGP_QUAD_BAD_DEGENERATE;
+    if (o->nonmanifold_edges) b |= GLPGP_QUAD_BAD_NONMANIFOLD;
+    if (o->others) b |= GLPGP_QUAD_BAD_NONQUAD;
+    if (o->pinched) b |= GLPGP_QUAD_BAD_PINCHED;
+    if (o->overlaps) b |= GLPGP_QUAD_BAD_OVERLAP;
+    if (domain) {
+        if (o->outside) b |= GLPGP_QUAD_BAD_OUTSIDE;
+        if (o->boundary_loops != o->domain_loops) b |= GLPGP_QUAD_BAD_LOOPS;
+        if (!(fabs(o->area_ratio - 1.0) <= 0.01)) b |= GLPGP_QUAD_BAD_AREA;
+        if (!(o->hausdorff <= 0.25)) b |= GLPGP_QUAD_BAD_HAUSDORFF;
+        if (o->gap_edges > 0) b |= GLPGP_QUAD_BAD_GAPS;
+        if (o->corners_lost > 0) b |= GLPGP_QUAD_BAD_CORNERS;
+    }
+    o->invalid = b;
+}
+
 glpgp_status glpgp_quads_quality(const glpgp_quadmesh *q, const glpgp_mesh *domain, double h,
                                  glpgp_quad_quality *o)
 {
@@ -215,19 +376,14 @@ glpgp_status glpgp_quads_quality(const glpgp_quadmesh *q, const glpgp_mesh *doma
     memset(&ck, 0, sizeof ck);
     qe *E = NULL;
     int ne = 0;
-    double *sj = NULL, *angle = NULL;
+    double *angle = NULL;
     int *val = NULL;
     unsigned char *bnd = NULL;
-    segset SD, SQ;
-    memset(&SD, 0, sizeof SD);
-    memset(&SQ, 0, sizeof SQ);
     GLPGP_CHECK_GOTO(st, glpgp_qcheck_run(q, domain, h, 0.25 * h, &ck), done);
     GLPGP_CHECK_GOTO(st, face_edges(q, &E, &ne), done);
-    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)q->nf + 1, sizeof(double), &sj), done);
     GLPGP_CHECK_GOTO(st, glpgp_calloc((size_t)q->nv + 1, sizeof(double), &angle), done);
     GLPGP_CHECK_GOTO(st, glpgp_calloc((size_t)q->nv + 1, sizeof(int), &val), done);
     GLPGP_CHECK_GOTO(st, glpgp_calloc((size_t)q->nv + 1, 1, &bnd), done);
-
     /* edges: valence, boundary, lengths */
     o->edges = ne;
     o->len_min = INFINITY;
@@ -240,86 +396,26 @@ glpgp_status glpgp_quads_quality(const glpgp_quadmesh *q, const glpgp_mesh *doma
             o->boundary_edges++;
             bnd[E[i].a] = bnd[E[i].b] = 1;
         }
-        double l = hypot(q->xy[2 * E[i].a] - q->xy[2 * E[i].b],
-                         q->xy[2 * E[i].a + 1] - q->xy[2 * E[i].b + 1]) / h;
+        double l = hypot(q->xy[2 * E[i].a] - q->xy[2 * E[i].b], q->xy[2 * E[i].a + 1] - q->xy[2 * E[i].b + 1]) / h;
         lsum += l;
         o->len_min = fmin(o->len_min, l);
         o->len_max = fmax(o->len_max, l);
     }
     o->len_mean = ne ? lsum / ne : 0.0;
-
-    /* faces: corners, area, scaled Jacobian, interior angles per vertex */
-    int nsj = 0;
-    double sjsum = 0.0;
-    for (int f = 0; f < q->nf; f++) {
-        int s = q->face_start[f], k = q->face_start[f + 1] - s;
-        const int *v = q->face_vert + s;
-        if (k == 4)
-            o->quads++;
-        else {
-            o->others++;
-            int b = k - 3;
-            if (b < 0) b = 0;
-            if (b > 7) b = 7;
-            o->others_by_size[b]++;
-        }
-        double area = 0.0, fmin_sj = INFINITY;
-        int degen = 0;
-        for (int i = 0; i < k; i++) {
-            int a = v[i], b = v[(i + 1) % k], c = v[(i + k - 1) % k];
-            for (int j = i + 1; j < k; j++)
-                if (v[j] == a) degen = 1;
-            double ax = q->xy[2 * a], ay = q->xy[2 * a + 1];
-            double e1x = q->xy[2 * b] - ax, e1y = q->xy[2 * b + 1] - ay;
-            double e2x = q->xy[2 * c] - ax, e2y = q->xy[2 * c + 1] - ay;
-            double l1 = hypot(e1x, e1y), l2 = hypot(e2x, e2y);
-            if (l1 < 1e-9 * h) degen = 1;
-            area += 0.5 * ck.orientation * (ax * q->xy[2 * b + 1] - q->xy[2 * b] * ay);
-            /* scaled Jacobian at corner a: sin of the angle from e1 to e2
-             * (in the mesh orientation) */
-            double cr = ck.orientation * (e1x * e2y - e1y * e2x);
-            double sjc = (l1 > 0 && l2 > 0) ? cr / (l1 * l2) : 0.0;
-            fmin_sj = fmin(fmin_sj, sjc);
-            /* interior angle at a (from e1 counter-clockwise to e2) */
-            double ang = atan2(cr, e1x * e2x + e1y * e2y);
-            if (ang < 0) ang += 2 * PI_;
-            angle[a] += ang;
-        }
-        o->area += area;
-        (void)degen;
-        if (ck.flags[f] & QF_DEGENERATE) o->degenerate++;
-        if (ck.flags[f] & QF_INVERTED) o->inverted++;
-        if (ck.flags[f] & QF_OVERLAP) o->overlaps++;
-        if (ck.flags[f] & QF_OUTSIDE) o->outside++;
-        if (ck.flags[f] & (QF_FAR | QF_LOST)) o->far_faces++;
-        if (k == 4) {
-            sj[nsj++] = fmin_sj;
-            sjsum += fmin_sj;
-        }
-    }
-    if (nsj > 0) {
-        qsort(sj, (size_t)nsj, sizeof(double), cmp_double);
-        o->sj_min = sj[0];
-        o->sj_mean = sjsum / nsj;
-        o->sj_p01 = sj[(int)floor(0.01 * (nsj - 1))];
-    } else {
-        o->sj_min = o->sj_mean = o->sj_p01 = NAN;
-    }
-
+    GLPGP_CHECK_GOTO(st, face_stats(q, &ck, o, angle), done);
+    GLPGP_CHECK_GOTO(st, origin_stats(q, domain, h, o), done);
     /* valences */
     for (int i = 0; i < q->nv; i++) {
         int vb = val[i] > GLPGP_QUAD_MAXVAL ? GLPGP_QUAD_MAXVAL : val[i];
         if (bnd[i]) {
             o->valence_boundary[vb]++;
-            int ideal = (int)lround(angle[i] / (PI_ / 2)) + 1;
-            if (val[i] != ideal) o->irregular_boundary++;
+            if (val[i] != (int)lround(angle[i] / (PI_ / 2)) + 1) o->irregular_boundary++;
         } else {
             o->valence_interior[vb]++;
             if (val[i] != 4) o->irregular_interior++;
         }
     }
     o->irregular = o->irregular_interior + o->irregular_boundary;
-
     o->orientation = ck.orientation;
     o->nonmanifold_edges = ck.nonmanifold_edges;
     o->pinched = ck.pinched;
@@ -329,92 +425,20 @@ glpgp_status glpgp_quads_quality(const glpgp_quadmesh *q, const glpgp_mesh *doma
     if (!domain) o->outside = o->far_faces = -1;
     o->bnd_vertex_dist = domain ? ck.bnd_vertex_dist / h : -1.0;
     o->area_ratio = -1.0;
-
-    /* boundary distance */
     o->hausdorff = o->dist_quad_to_domain = o->dist_domain_to_quad = -1.0;
     o->gap_edges = -1;
     if (domain) {
         o->area_ratio = domain->area > 0 ? o->area / domain->area : -1.0;
         o->domain_area = domain->area;
-        int nb = domain->loop_start[domain->nloops];
-        SD.n = nb;
-        GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)4 * nb + 4, sizeof(double), &SD.s), done);
-        for (int l = 0; l < domain->nloops; l++) {
-            int s = domain->loop_start[l], n = domain->loop_start[l + 1] - s;
-            for (int i = 0; i < n; i++) {
-                int a = domain->loop_vertices[s + i], b = domain->loop_vertices[s + (i + 1) % n];
-                double *p = SD.s + 4 * (s + i);
-                p[0] = domain->xy[2 * a];
-                p[1] = domain->xy[2 * a + 1];
-                p[2] = domain->xy[2 * b];
-                p[3] = domain->xy[2 * b + 1];
-            }
-        }
-        SQ.n = o->boundary_edges;
-        GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)4 * SQ.n + 4, sizeof(double), &SQ.s), done);
-        int w = 0;
-        for (int i = 0; i < ne; i++) {
-            if (E[i].nface != 1) continue;
-            double *p = SQ.s + 4 * w++;
-            p[0] = q->xy[2 * E[i].a];
-            p[1] = q->xy[2 * E[i].a + 1];
-            p[2] = q->xy[2 * E[i].b];
-            p[3] = q->xy[2 * E[i].b + 1];
-        }
-        GLPGP_CHECK_GOTO(st, segset_build(&SD, h), done);
-        if (SQ.n > 0) GLPGP_CHECK_GOTO(st, segset_build(&SQ, h), done);
-        double dq = 0.0, dd = 0.0;
-        int gaps = 0;
-        for (int i = 0; i < SQ.n; i++) {
-            const double *p = SQ.s + 4 * i;
-            double emax = 0.0;
-            for (int k = 0; k <= 8; k++) {
-                double t = k / 8.0;
-                double d = segset_dist(&SD, p[0] + t * (p[2] - p[0]), p[1] + t * (p[3] - p[1]));
-                emax = fmax(emax, d);
-            }
-            dq = fmax(dq, emax);
-            /* midpoint far from the domain boundary: an interior hole */
-            if (segset_dist(&SD, 0.5 * (p[0] + p[2]), 0.5 * (p[1] + p[3])) > 0.25 * h) gaps++;
-        }
-        for (int i = 0; i < SD.n; i++) {
-            const double *p = SD.s + 4 * i;
-            dd = fmax(dd, segset_dist(&SQ, p[0], p[1]));
-            dd = fmax(dd, segset_dist(&SQ, 0.5 * (p[0] + p[2]), 0.5 * (p[1] + p[3])));
-        }
-        o->dist_quad_to_domain = dq / h;
-        o->dist_domain_to_quad = dd / h;
-        o->hausdorff = fmax(dq, dd) / h;
-        o->gap_edges = gaps;
+        GLPGP_CHECK_GOTO(st, boundary_stats(q, domain, h, E, ne, o), done);
     }
-    /* validity */
-    {
-        unsigned b = 0;
-        if (o->inverted) b |= GLPGP_QUAD_BAD_INVERTED;
-        if (o->degenerate) b |= GLPGP_QUAD_BAD_DEGENERATE;
-        if (o->nonmanifold_edges) b |= GLPGP_QUAD_BAD_NONMANIFOLD;
-        if (o->others) b |= GLPGP_QUAD_BAD_NONQUAD;
-        if (o->pinched) b |= GLPGP_QUAD_BAD_PINCHED;
-        if (o->overlaps) b |= GLPGP_QUAD_BAD_OVERLAP;
-        if (domain) {
-            if (o->outside) b |= GLPGP_QUAD_BAD_OUTSIDE;
-            if (o->boundary_loops != o->domain_loops) b |= GLPGP_QUAD_BAD_LOOPS;
-            if (!(fabs(o->area_ratio - 1.0) <= 0.01)) b |= GLPGP_QUAD_BAD_AREA;
-            if (!(o->hausdorff <= 0.25)) b |= GLPGP_QUAD_BAD_HAUSDORFF;
-            if (o->gap_edges > 0) b |= GLPGP_QUAD_BAD_GAPS;
-            if (o->corners_lost > 0) b |= GLPGP_QUAD_BAD_CORNERS;
-        }
-        o->invalid = b;
-    }
+    validity(domain, o);
 done:
     glpgp_qcheck_free(&ck);
     free(E);
-    free(sj);
     free(angle);
     free(val);
     free(bnd);
-    segset_free(&SD);
-    segset_free(&SQ);
     return st;
 }
 
@@ -502,6 +526,12 @@ void glpgp_quads_print(FILE *f, const glpgp_quad_quality *qq, const char *prefix
                 qq->cross_matched, qq->cross_singularities);
     fprintf(f, "%s  scaled jac.  min %.3f  mean %.3f  1%% %.3f;  inverted %d, degenerate %d\n", p,
             qq->sj_min, qq->sj_mean, qq->sj_p01, qq->inverted, qq->degenerate);
+    fprintf(f, "%s  corners      min %.3f of what the sharp domain corners allow; %d quads below %.1f that none limits\n",
+            p, qq->sj_min_corner, qq->below_sj_goal, GLPGP_QUAD_SJ_GOAL);
+    fprintf(f, "%s  origin       grid %d, strips %d, repair %d, fallback %d: %.1f%% from the repair%s\n", p,
+            qq->quads_by_origin[GLPGP_QFACE_GRID], qq->quads_by_origin[GLPGP_QFACE_CLOSED],
+            qq->quads_by_origin[GLPGP_QFACE_PAVED], qq->quads_by_origin[GLPGP_QFACE_FALLBACK], 100.0 * qq->repaired_share,
+            qq->repaired_share > GLPGP_QUAD_MOSTLY_REPAIRED ? " (mostly repaired)" : "");
     fprintf(f, "%s  edge / h     mean %.3f  min %.3f  max %.3f\n", p, qq->len_mean, qq->len_min,
             qq->len_max);
     if (qq->closing.closed_polygons || qq->closing.split_even || qq->closing.smoothed_vertices)
@@ -509,11 +539,14 @@ void glpgp_quads_print(FILE *f, const glpgp_quad_quality *qq, const char *prefix
                    "%d turns, %d even faces split; %d vertices smoothed\n",
                 p, qq->closing.closed_polygons, qq->closing.strips_to_boundary, qq->closing.strip_quads, qq->closing.strip_turns,
                 qq->closing.split_even, qq->closing.smoothed_vertices);
-    if (qq->repair.rounds)
-        fprintf(f, "%s  repair       %d faces removed, %d regions re-meshed with %d quads, %d boundary "
-                   "vertices snapped (%d rounds)\n",
-                p, qq->repair.removed_faces, qq->repair.regions, qq->repair.new_quads, qq->repair.snapped,
-                qq->repair.rounds);
+    if (qq->repair.rounds || qq->repair.chord_strips)
+        fprintf(f, "%s  repair       %d faces removed, %d regions re-meshed with %d quads (%d by the region mesher, "
+                   "%d by the fallback), %d boundary vertices snapped, %d grid lines for boundary chords (%d rounds)%s\n",
+                p, qq->repair.removed_faces, qq->repair.regions, qq->repair.new_quads, qq->repair.paved_regions,
+                qq->repair.fallback_regions, qq->repair.snapped, qq->repair.chord_strips, qq->repair.rounds,
+                qq->repair.whole_domain == 2   ? "; the whole domain from the input triangles"
+                : qq->repair.whole_domain == 1 ? "; the whole domain meshed again"
+                                                : "");
     if (qq->cleanup.doublets + qq->cleanup.collapses + qq->cleanup.rotations)
         fprintf(f, "%s  cleanup      %d doublets removed, %d quads collapsed, %d edges rotated (valence cost %d -> %d)\n",
                 p, qq->cleanup.doublets, qq->cleanup.collapses, qq->cleanup.rotations, qq->cleanup.cost_before,

@@ -94,6 +94,8 @@
  * sizes on the new mesh each round. */
 #include "internal.h"
 
+#include "glpgp/util.h"
+
 #include <errno.h>
 #include <math.h>
 #include <stdint.h>
@@ -349,7 +351,8 @@ static glpgp_status grade(const glpgp_mesh *m, const int *ptr, const int *adj, d
     }
     for (int i = 0; i < m->nv; i++)
         if (slope || s[i] < smax) heap_push(heap, &n, s[i], i);
-    while (n > 0) {
+    for (long pops = 0; n > 0; pops++) {
+        if ((pops & 65535) == 0) glpgp_progress_poll();
         heap_item it = heap_pop(heap, &n);
         const int i = it.v;
         if (it.key > s[i]) continue; /* stale entry */
@@ -862,7 +865,12 @@ static glpgp_status size_compute(const glpgp_mesh *m, const glpgp_options *o, do
 glpgp_status glpgp_size_compute(const glpgp_mesh *m, const glpgp_options *o, double h, const double *u,
                                 double *size, int *uniform)
 {
-    return size_compute(m, o, h, u, size, uniform, 1, NULL);
+    glpgp_progress pr;
+    glpgp_progress_start(&pr, "size field");
+    glpgp_progress_set(&pr, "%d vertices", m->nv);
+    glpgp_status st = size_compute(m, o, h, u, size, uniform, 1, NULL);
+    glpgp_progress_done(&pr, "%d vertices", m->nv);
+    return st;
 }
 
 /* ---- resolution ------------------------------------------------------------- */
@@ -1144,8 +1152,11 @@ glpgp_status glpgp_size_refine(const glpgp_mesh *m, const glpgp_options *o, doub
     if (o->size_field == GLPGP_SIZE_FILE || o->size_field == GLPGP_SIZE_NONE) return GLPGP_OK;
     if (oi.size_field == GLPGP_SIZE_AUTO) oi.size_field = GLPGP_SIZE_ISO;
     const glpgp_mesh *mm = m;
+    glpgp_progress pr;
+    glpgp_progress_start(&pr, "refinement for the local size");
     for (int round = 0;; round++) {
         glpgp_size_res res;
+        glpgp_progress_tick(&pr, "round %d: %d vertices, %d triangles", round + 1, mm->nv, mm->nt);
         GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)2 * mm->nv, sizeof(double), &size), done);
         GLPGP_CHECK_GOTO(st, size_compute(mm, &oi, h, NULL, size, NULL, 0, NULL), done);
         GLPGP_CHECK_GOTO(st, glpgp_size_resolution(mm, size, o->size_resolution, &res), done);
@@ -1184,6 +1195,7 @@ glpgp_status glpgp_size_refine(const glpgp_mesh *m, const glpgp_options *o, doub
         }
     }
 done:
+    glpgp_progress_done(&pr, "%d -> %d vertices", m->nv, mm->nv);
     free(size);
     free(need);
     if (st != GLPGP_OK) {

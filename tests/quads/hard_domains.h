@@ -52,6 +52,16 @@
 #define HD_NAMES \
     "slot strip smallhole wedge20 cusp graded perforated ibeam motor fillet crack airfoil gasket lamination comb " \
     "star keyhole"
+/* The failure classes of issue 27, beyond HD_NAMES (bench/hard_sweep.sh
+ * runs both lists and totals them apart):
+ * strip100  a strip 8 H long, 0.01 H wide (100 x narrower than H)
+ * cusp01    a square with a spike of 0.1 degrees and a slit 0.1 degrees open
+ * graded100 NACA 0012 (chord 1 H) in a 40 x 30 H far field graded 100 x
+ * sieve     a plate with 144 holes of radius 0.1 H, 0.6 H apart
+ * stator    an annulus (3 / 5 H) with 24 slots 0.15 H wide from its bore
+ * wing3     slat, main element and flap (gaps 0.05 H) in a far field
+ *           graded 100 x */
+#define HD_NAMES_27 "strip100 cusp01 graded100 sieve stator wing3"
 
 typedef struct hd_poly {
     int n, cap_l;      /* loops */
@@ -354,8 +364,189 @@ static int hd_build(const char *name, double e, hd_poly *p)
         hd_line_to(p, 3 * cos(a0), 3 * sin(a0), fmin(e, 0.05));
         p->np--;
         hd_end(p);
+    } else if (!strcmp(name, "strip100")) { /* 100x narrower than H */
+        double c[] = {0, 0, 8, 0, 8, 0.01, 0, 0.01};
+        hd_polygon(p, c, 4, fmin(e, 0.01));
+    } else if (!strcmp(name, "cusp01")) {
+        /* a square with a spike of the domain standing on its top side (a
+         * 0.1-degree tip) and a slit cut into its bottom side (0.1 degrees
+         * open: the outside's cusp) */
+        double t = 1.2 * tan(0.05 * HD_PI / 180.0), d = 1.5 * tan(0.05 * HD_PI / 180.0);
+        double c[] = {0, 0, 2.5 - t, 0, 2.5, 1.2, 2.5 + t, 0, 5, 0, 5, 4, 2.6 + d, 4, 2.6, 5.5, 2.6 - d, 4, 0, 4};
+        hd_polygon(p, c, 10, e);
+    } else if (!strcmp(name, "graded100")) {
+        /* NACA 0012 (chord 1 H) in a 40 x 30 H box: e at the airfoil, 100 e at the box */
+        double big = 100 * e, c[] = {-15, -15, 25, -15, 25, 15, -15, 15};
+        hd_begin(p);
+        for (int i = 0; i < 4; i++) {
+            double nx = c[2 * ((i + 1) % 4)], ny = c[2 * ((i + 1) % 4) + 1];
+            for (int k = 0; k < 8; k++)
+                hd_point(p, c[2 * i] + (nx - c[2 * i]) * k / 8, c[2 * i + 1] + (ny - c[2 * i + 1]) * k / 8, big);
+        }
+        hd_end(p);
+        hd_begin(p);
+        int k = (int)ceil(1.0 / e) + 4;
+        for (int i = 0; i < 2 * k; i++) {
+            double t = i < k ? 0.5 * (1 + cos(HD_PI * i / k)) : 0.5 * (1 - cos(HD_PI * (i - k) / k));
+            hd_point(p, t, (i < k ? 1 : -1) * hd_naca(t), e);
+        }
+        hd_end(p);
+    } else if (!strcmp(name, "sieve")) { /* 144 holes of radius 0.1 H, 0.6 H apart */
+        double c[] = {0, 0, 7.8, 0, 7.8, 7.8, 0, 7.8};
+        hd_polygon(p, c, 4, e);
+        for (int i = 0; i < 12; i++)
+            for (int j = 0; j < 12; j++) hd_circle(p, 0.6 + 0.6 * i, 0.6 + 0.6 * j + 0.05 * (i % 3), 0.1, fmin(e, 0.05));
+    } else if (!strcmp(name, "stator")) {
+        /* annulus (radii 3 / 5 H) with 24 slots 0.15 H wide and 1.2 H deep
+         * from the bore: slots narrower than H */
+        const int ns = 24;
+        const double R0 = 3.0, R1 = 5.0, w = 0.075, D = 1.2;
+        hd_begin(p);
+        for (int i = 0; i < 96; i++) hd_point(p, R1 * cos(2 * HD_PI * i / 96), R1 * sin(2 * HD_PI * i / 96), e);
+        hd_end(p);
+        hd_begin(p); /* the bore with the slots, clockwise */
+        for (int i = ns - 1; i >= 0; i--) {
+            double a = 2 * HD_PI * i / ns, ca = cos(a), sa = sin(a), ta = -sa, tb = ca;
+            double b = w / R0, a1 = a + b, a0 = a - b, an = 2 * HD_PI * (i - 1) / ns + b;
+            hd_point(p, R0 * cos(a1), R0 * sin(a1), e);
+            hd_point(p, (R0 + D) * ca + w * ta, (R0 + D) * sa + w * tb, fmin(e, 0.05));
+            hd_point(p, (R0 + D) * ca - w * ta, (R0 + D) * sa - w * tb, fmin(e, 0.05));
+            hd_point(p, R0 * cos(a0), R0 * sin(a0), e);
+            for (int k = 1; k < 4; k++) {
+                double u = a0 + (an - a0) * k / 4;
+                hd_point(p, R0 * cos(u), R0 * sin(u), e);
+            }
+        }
+        hd_end(p);
+    } else if (!strcmp(name, "wing3")) {
+        /* slat, main element and flap (NACA 0012 sections, chords 0.4, 2 and
+         * 0.7 H, gaps 0.05 H) in a far field graded 100 x */
+        double big = 100 * e, c[] = {-20, -15, 25, -15, 25, 15, -20, 15};
+        hd_begin(p);
+        for (int i = 0; i < 4; i++) {
+            double nx = c[2 * ((i + 1) % 4)], ny = c[2 * ((i + 1) % 4) + 1];
+            for (int k = 0; k < 6; k++)
+                hd_point(p, c[2 * i] + (nx - c[2 * i]) * k / 6, c[2 * i + 1] + (ny - c[2 * i + 1]) * k / 6, big);
+        }
+        hd_end(p);
+        const double x0[3] = {-0.47, 0.0, 2.05}, ch[3] = {0.4, 2.0, 0.7}, ang[3] = {-25, 0, 20}, y0[3] = {-0.12, 0, -0.2};
+        for (int w = 0; w < 3; w++) {
+            const double ca = cos(ang[w] * HD_PI / 180), sa = sin(ang[w] * HD_PI / 180);
+            int k = (int)ceil(ch[w] / e) + 6;
+            hd_begin(p);
+            for (int i = 0; i < 2 * k; i++) {
+                double t = i < k ? 0.5 * (1 + cos(HD_PI * i / k)) : 0.5 * (1 - cos(HD_PI * (i - k) / k));
+                double x = ch[w] * t, y = (i < k ? ch[w] : -ch[w]) * hd_naca(t);
+                hd_point(p, x0[w] + x * ca + y * sa, y0[w] - x * sa + y * ca, e);
+            }
+            hd_end(p);
+        }
     } else {
         return 0;
+    }
+    return 1;
+}
+
+/* ---- random polygons with holes ---- */
+
+/* Whether segments ab and cd cross (touching counts). */
+static inline int hd_seg_hit(const double *a, const double *b, const double *c, const double *d)
+{
+    double d1 = (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
+    double d2 = (b[0] - a[0]) * (d[1] - a[1]) - (b[1] - a[1]) * (d[0] - a[0]);
+    double d3 = (d[0] - c[0]) * (a[1] - c[1]) - (d[1] - c[1]) * (a[0] - c[0]);
+    double d4 = (d[0] - c[0]) * (b[1] - c[1]) - (d[1] - c[1]) * (b[0] - c[0]);
+    return ((d1 >= 0) != (d2 >= 0)) && ((d3 >= 0) != (d4 >= 0));
+}
+
+/* The outer loop's corners: a star with spikes and slits; 0 when it crosses itself. */
+static inline int hd_outer_loop(double (*rnd)(void), double *c, int *nc, double *rmin)
+{
+    int n = 6 + (int)(rnd() * 14), m = 0;
+    *rmin = 1e9;
+    for (int i = 0; i < n; i++) {
+        double a = 2 * HD_PI * (i + 0.35 * rnd()) / n, r = 2.5 + 1.5 * rnd();
+        double a1 = 2 * HD_PI * (i + 1) / n, x = r * cos(a), y = r * sin(a);
+        *rmin = fmin(*rmin, r);
+        c[2 * m] = x;
+        c[2 * m + 1] = y;
+        m++;
+        double u = rnd(), mx = 2.4 * cos(0.5 * (a + a1)), my = 2.4 * sin(0.5 * (a + a1));
+        double nx = cos(0.5 * (a + a1)), ny = sin(0.5 * (a + a1)), tx = -ny, ty = nx;
+        if (u < 0.12) { /* a spike out, 0.5 .. 10 degrees */
+            double L = 1.0 + rnd(), ang = (0.5 + 9.5 * rnd()) * HD_PI / 180, w = 2 * L * tan(0.5 * ang);
+            double pts[6] = {mx - 0.5 * w * tx, my - 0.5 * w * ty, mx + L * nx, my + L * ny, mx + 0.5 * w * tx,
+                             my + 0.5 * w * ty};
+            memcpy(c + 2 * m, pts, sizeof pts);
+            m += 3;
+        } else if (u < 0.24) { /* a slit in, 0.005 .. 0.1 H wide */
+            double w = 0.005 + 0.095 * rnd(), D = 0.5 + 0.8 * rnd();
+            double pts[8] = {mx - 0.5 * w * tx, my - 0.5 * w * ty, mx - D * nx - 0.5 * w * tx, my - D * ny - 0.5 * w * ty,
+                             mx - D * nx + 0.5 * w * tx, my - D * ny + 0.5 * w * ty, mx + 0.5 * w * tx, my + 0.5 * w * ty};
+            memcpy(c + 2 * m, pts, sizeof pts);
+            m += 4;
+        }
+    }
+    for (int i = 0; i < m; i++)
+        for (int j = i + 2; j < m; j++) {
+            if (i == 0 && j == m - 1) continue;
+            if (hd_seg_hit(c + 2 * i, c + 2 * ((i + 1) % m), c + 2 * j, c + 2 * ((j + 1) % m))) return 0;
+        }
+    *nc = m;
+    return 1;
+}
+
+/* Distance from p to the polygon's sides. */
+static inline double hd_poly_dist(const double *c, int n, double x, double y)
+{
+    double d = 1e9;
+    for (int i = 0; i < n; i++) {
+        const double *a = c + 2 * i, *b = c + 2 * ((i + 1) % n);
+        double ex = b[0] - a[0], ey = b[1] - a[1], l2 = ex * ex + ey * ey;
+        double t = l2 > 0 ? ((x - a[0]) * ex + (y - a[1]) * ey) / l2 : 0;
+        t = t < 0 ? 0 : t > 1 ? 1 : t;
+        d = fmin(d, hypot(a[0] + t * ex - x, a[1] + t * ey - y));
+    }
+    return d;
+}
+
+static inline int hd_inside(const double *c, int n, double x, double y)
+{
+    int in = 0;
+    for (int i = 0, j = n - 1; i < n; j = i++)
+        if ((c[2 * i + 1] > y) != (c[2 * j + 1] > y) &&
+            x < c[2 * j] + (y - c[2 * j + 1]) * (c[2 * i] - c[2 * j]) / (c[2 * i + 1] - c[2 * j + 1]))
+            in = !in;
+    return in;
+}
+
+/* A random polygon with holes (test_quads_property, glpgp-domains random):
+ * a star-shaped outer loop (radii 2.5 .. 4 H) with spikes of 0.5 .. 10
+ * degrees and slits 0.005 .. 0.1 H wide, up to 6 round holes of radius
+ * 0.02 .. 0.8 H, 0.001 .. 0.5 H from the outer loop and each other; point
+ * size e. rnd: uniform in [0, 1). 0 when the outer loop crossed itself. */
+static inline int hd_random(double (*rnd)(void), hd_poly *p, double e)
+{
+    double c[512], rmin;
+    int n = 0;
+    memset(p, 0, sizeof *p);
+    if (!hd_outer_loop(rnd, c, &n, &rmin)) return 0;
+    hd_polygon(p, c, n, e);
+    static const double gaps[4] = {1e-3, 1e-2, 0.1, 0.5};
+    int nh = (int)(rnd() * 7), placed = 0;
+    double hx[8], hy[8], hr[8];
+    for (int t = 0; t < 60 && placed < nh; t++) {
+        double r = 0.02 + 0.78 * rnd() * rnd(), gap = gaps[(int)(rnd() * 4)];
+        double x = (2 * rnd() - 1) * rmin, y = (2 * rnd() - 1) * rmin;
+        if (!hd_inside(c, n, x, y) || hd_poly_dist(c, n, x, y) < r + gap) continue;
+        int ok = 1;
+        for (int k = 0; k < placed && ok; k++) ok = hypot(x - hx[k], y - hy[k]) > r + hr[k] + gap;
+        if (!ok) continue;
+        hx[placed] = x;
+        hy[placed] = y;
+        hr[placed] = r;
+        placed++;
+        hd_circle(p, x, y, r, fmin(e, 0.5 * r + 0.005));
     }
     return 1;
 }

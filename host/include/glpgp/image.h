@@ -28,6 +28,7 @@
 #include "glpgp/io.h" /* GLPGP_DEFAULT_MAX_ELEMENTS */
 #include "glpgp/mesh.h"
 #include "glpgp/optdesc.h"
+#include "glpgp/quads.h"
 #include "glpgp/result.h"
 #include "glpgp/status.h"
 #include "glpgp/util.h" /* glpgp_is_image_path */
@@ -192,6 +193,21 @@ glpgp_status glpgp_render_compare(const glpgp_mesh *m, const glpgp_result *const
  * the number of faces). GLPGP_ERR_ARG when r has no cross field. */
 glpgp_status glpgp_render_figure1(const glpgp_mesh *m, const glpgp_result *r, const glpgp_quadmesh *q,
                                   const glpgp_render_options *o, glpgp_image **out);
+
+/* Picture of a quad mesh (image/render_quads.c), framed like glpgp_render
+ * (o's size, margin, line width, background): faces filled by origin
+ * (q->face_origin: grid light blue-grey, closing strips blue, the repair's
+ * region mesher orange, its fallback violet; NULL: all grid), faces whose
+ * smallest corner scaled Jacobian is below sj_low red (dark red when <= 0),
+ * other faces grey; the edges; the boundary of the domain dm (may be NULL:
+ * the mesh's own boundary edges) thick; irregular vertices as dots
+ * (interior: valence 3 blue, 5 red, 6+ dark red; boundary vertices against
+ * their ideal valence round(angle / 90 deg) + 1, smaller). caption: a line of
+ * counts under the picture (quads by origin, smallest scaled Jacobian, faces
+ * below sj_low, irregular vertices). *out: RGBA. GLPGP_ERR_ARG on an empty
+ * mesh or a size out of [16, 32768]. */
+glpgp_status glpgp_render_quadmesh(const glpgp_quadmesh *q, const glpgp_mesh *dm, const glpgp_render_options *o,
+                                   double sj_low, int caption, glpgp_image **out);
 
 /* Draw text with the built-in 5x7 font (A-Z, 0-9, + - : . , ( ) / = _ and
  * space; lower case drawn as upper case, other characters as a box), each

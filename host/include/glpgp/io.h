@@ -402,11 +402,12 @@ glpgp_status glpgp_output_set_quads_json(glpgp_output_set *s, const glpgp_quad_q
 
 /* Write q by extension (case-insensitive), atomically:
  *  .obj  `v x y 0` and one `f` line per face (quads: 4 indices, other faces
- *        as n-gons);
+ *        as n-gons); with face origins (q->face_origin) each run of faces
+ *        of one origin is put in the group `g grid|strips|repair|fallback`;
  *  .vtk  legacy ASCII UNSTRUCTURED_GRID, VTK_QUAD (9) for quads and
- *        VTK_POLYGON (7) for every other face; CELL_DATA corners (int) and
- *        scaled_jacobian (quads; min corner value for polygons); POINT_DATA
- *        valence;
+ *        VTK_POLYGON (7) for every other face; CELL_DATA corners (int),
+ *        scaled_jacobian (quads; min corner value for polygons) and origin
+ *        (GLPGP_QFACE_*, 0 without face origins); POINT_DATA valence;
  *  .vtu  the same arrays as VTK XML (appended raw, zlib as glpgp_write_vtu;
  *        scaled_jacobian stored exactly);
  *  .msh  Gmsh MSH 4.1 ASCII, one surface entity; quads are element type 3;
@@ -427,6 +428,20 @@ int glpgp_quads_path_supported(const char *path);
  * ignored; z ignored). Same parser and
  * limits as glpgp_mesh_read. GLPGP_ERR_IO / _FORMAT / _LIMIT. */
 glpgp_status glpgp_quads_read_msh(const char *path, glpgp_quadmesh **out);
+
+/* Read a quad mesh written by glpgp_quads_write (or any polygon mesh):
+ * .msh as glpgp_quads_read_msh; .obj: `v x y [z]` (z ignored) and `f` lines
+ * of 3 or more corners (OBJ indices, negative ones relative, /vt/vn parts
+ * ignored), faces in the file's orientation, vertices in file order; the
+ * faces after a `g grid|strips|repair|fallback` line get that origin
+ * (face_origin; NULL when the file has none of these groups). Errors name
+ * the file and line (GLPGP_ERR_FORMAT / _LIMIT / _IO); another extension is
+ * GLPGP_ERR_ARG. */
+glpgp_status glpgp_quads_read(const char *path, glpgp_quadmesh **out);
+
+/* Name of a face origin GLPGP_QFACE_* ("grid", "strips", "repair",
+ * "fallback"): the OBJ group and the JSON key. */
+const char *glpgp_quad_origin_name(int origin);
 
 
 #ifdef __cplusplus

@@ -17,6 +17,32 @@
 extern "C" {
 #endif
 
+/* Where a face of a quad mesh comes from (glpgp_quadmesh.face_origin). A
+ * face made from others takes the highest origin among them and the step
+ * that made it. */
+enum {
+    GLPGP_QFACE_GRID = 0,     /* the parametrization's grid (the extraction) */
+    GLPGP_QFACE_CLOSED = 1,   /* a grid face cut or split by the closing (strips, pentagon splits) */
+    GLPGP_QFACE_PAVED = 2,    /* the repair's region mesher (quads grown from the region's boundary) */
+    GLPGP_QFACE_FALLBACK = 3  /* the repair's last resort (triangles split into quads) */
+};
+#define GLPGP_QFACE_KINDS 4
+
+/* One region the repair re-meshed (glpgp_quad_repair.region). */
+typedef struct glpgp_quad_region {
+    int faces_in;   /* faces removed (bad faces and their rings) */
+    int quads_out;  /* quads made in their place */
+    double sj_min;  /* smallest corner scaled Jacobian of the repaired quads in box in the
+                     * repair's result (after its shape rounds, before the clean-up) */
+    double x, y;    /* centroid of the quads made */
+    double box[4];  /* their bounding box: xmin, ymin, xmax, ymax */
+    int origin;     /* GLPGP_QFACE_PAVED or GLPGP_QFACE_FALLBACK: which mesher filled it */
+    int round;      /* repair round (0-based; -1: the whole domain) */
+} glpgp_quad_region;
+
+/* Regions listed in a repair report: the ones with the lowest sj_min. */
+#define GLPGP_QUAD_REGIONS_LISTED 48
+
 /* What glpgp_quadmesh_repair did. */
 typedef struct glpgp_quad_repair {
     int rounds;          /* repair rounds run (0: the mesh was valid) */
@@ -24,6 +50,14 @@ typedef struct glpgp_quad_repair {
     int regions;         /* regions re-meshed */
     int new_quads;       /* quads made in the regions */
     int snapped;         /* boundary vertices moved onto the domain boundary */
+    int chord_strips;    /* grid lines added between boundary chords that cut off too much area */
+    int paved_regions;   /* of the regions: filled by the region mesher */
+    int fallback_regions;/* of the regions: filled by the fallback (triangles split into quads) */
+    int whole_domain;    /* 0; 1: the local repair did not end valid and the whole domain was
+                          * meshed again (region mesher, else the fallback); 2: the fallback of
+                          * the input triangles themselves was needed */
+    int nlisted;         /* entries of region[] (at most GLPGP_QUAD_REGIONS_LISTED) */
+    glpgp_quad_region region[GLPGP_QUAD_REGIONS_LISTED];
 } glpgp_quad_repair;
 
 /* What glpgp_quadmesh_close_polygons and glpgp_quadmesh_smooth did. */
@@ -54,6 +88,7 @@ typedef struct glpgp_quadmesh {
     int nf;
     int *face_start;    /* nf + 1 */
     int *face_vert;     /* face_start[nf] */
+    unsigned char *face_origin; /* nf GLPGP_QFACE_* (NULL: every face from the grid, or unknown) */
     /* Extraction diagnostics (0 for meshes read from a file). */
     int singular_tris[2];     /* triangles skipped as singular for u / v (given by the result) */
     int inconsistent_tris[2]; /* triangles skipped because their chart did not close (rounding) */
@@ -177,6 +212,11 @@ glpgp_status glpgp_quads_build(const glpgp_mesh *m, const glpgp_result *r, const
                                glpgp_quadmesh **out, double *h);
 
 #define GLPGP_QUAD_MAXVAL 8 /* valence histogram bins 0..MAXVAL (last: >= MAXVAL) */
+/* The scaled Jacobian a finite-element user accepts (the repair's shape
+ * rounds re-mesh quads below it that no sharp domain corner limits). */
+#define GLPGP_QUAD_SJ_GOAL 0.3
+/* A result whose repaired share is above this is flagged "mostly repaired". */
+#define GLPGP_QUAD_MOSTLY_REPAIRED 0.5
 
 /* Quality report of a polygon mesh (see glpgp_quads_quality). */
 typedef struct glpgp_quad_quality {
@@ -188,6 +228,13 @@ typedef struct glpgp_quad_quality {
     int irregular_boundary;  /* boundary vertices with valence != ideal (from the boundary angle) */
     int irregular;           /* sum of both */
     double sj_min, sj_mean, sj_p01; /* scaled Jacobian of the quads (min over corners) */
+    double sj_min_corner;    /* min over the quads of their scaled Jacobian over what the domain's
+                              * sharp corners allow them (sin of the smallest interior angle
+                              * below 90 degrees of a domain corner among their vertices, else 1):
+                              * 1 = every quad as good as its corner allows */
+    int below_sj_goal;       /* quads below GLPGP_QUAD_SJ_GOAL and below 0.9 of that bound */
+    int quads_by_origin[GLPGP_QFACE_KINDS]; /* quads per face origin (all grid without origins) */
+    double repaired_share;   /* share of the quads that the repair made (origins repair, fallback) */
     int inverted;            /* faces with area <= 0 or a quad corner with scaled Jacobian < 0 */
     int degenerate;          /* faces with a repeated vertex, a zero-length edge or ~zero area */
     int edges, boundary_edges, nonmanifold_edges; /* nonmanifold: edges used by > 2 faces */

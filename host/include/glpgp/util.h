@@ -13,6 +13,45 @@ extern "C" {
 /* Seconds of a monotonic clock (for durations only). */
 double glpgp_now(void);
 
+/* Progress of a long phase (core/progress.c): INFO log lines "WHAT:
+ * MESSAGE (T s)" at most every GLPGP_PROGRESS_S seconds, and a closing
+ * "WHAT: MESSAGE, done (T s)" when the phase showed a line or took that
+ * long; nothing for short phases. One struct per phase and thread. */
+#define GLPGP_PROGRESS_S 2.0
+typedef struct glpgp_progress {
+    const char *what;  /* the phase, e.g. "refinement" */
+    double t0, last;   /* start, last line */
+    int shown;         /* a line was printed */
+    char msg[160];     /* the state shown by glpgp_progress_poll */
+    struct glpgp_progress *outer; /* the enclosing phase of this thread */
+} glpgp_progress;
+/* Start a phase (it becomes this thread's innermost until glpgp_progress_done). */
+void glpgp_progress_start(glpgp_progress *p, const char *what);
+/* Set the state a due line will show, without printing. */
+void glpgp_progress_set(glpgp_progress *p, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 2, 3)))
+#endif
+    ;
+/* From inner loops: a line for this thread's innermost phase when one is
+ * due (cheap otherwise: a clock read). */
+void glpgp_progress_poll(void);
+/* Whether a line is due (GLPGP_PROGRESS_S since the start or the last one):
+ * lets callers skip counting work for it. */
+int glpgp_progress_due(const glpgp_progress *p);
+/* Set the state and print it when a line is due. */
+void glpgp_progress_tick(glpgp_progress *p, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 2, 3)))
+#endif
+    ;
+/* End the phase: a closing line when it showed one or took long. */
+void glpgp_progress_done(glpgp_progress *p, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 2, 3)))
+#endif
+    ;
+
 /* Whether path ends with ext (lower-case, with the dot: ".png"), ignoring
  * the case of path. */
 int glpgp_has_ext(const char *path, const char *ext);
