@@ -882,8 +882,8 @@ static glpgp_status ring_quad(qc *c, const ivec *L, int *done)
             c->stats->points++;
         }
         for (int q = 0; q < 5; q++) {
-            int f[4] = {id[Q[q][0]], id[Q[q][1]], id[Q[q][2]], id[Q[q][3]]};
-            GLPGP_CHECK(emit(c, f));
+            int fq[4] = {id[Q[q][0]], id[Q[q][1]], id[Q[q][2]], id[Q[q][3]]};
+            GLPGP_CHECK(emit(c, fq));
         }
         c->stats->pieces++;
         *done = 1;
