@@ -73,13 +73,13 @@ def shape(name, n=20000, *, max_elements=20000000):
     return _glpgp.shape(name, n, max_elements=max_elements)
 
 
-def solve(mesh, size=None, field="boundary", backend="auto", precond="amg", **options):
+def solve(mesh, size=None, field=None, backend="auto", precond="amg", **options):
     """Parametrize a domain: ``glpgp solve`` from Python, the same pipeline and result bit for bit.
 
     mesh : Mesh, or a path / ``"shape:NAME[:N]"`` (read with :func:`read`)
     size : the target quad size h (None: the bounding-box diagonal / 20, at least 10 mean edges)
     field : ``"boundary"``, ``"radial"``, ``"cross"``, a file of ``ux uy`` lines, or an (n, 2) array of
-        the guiding field per vertex of ``mesh``
+        the guiding field per vertex of ``mesh``; None: ``"boundary"``, on a 3D surface ``"cross"``
     backend : ``"auto"`` (OpenCL, else the reference backend with a warning), ``"opencl"``,
         ``"reference"``, ``"petsc"``; ``device=N`` picks an OpenCL device (see :func:`devices`)
     precond : ``"amg"`` or ``"jacobi"``
@@ -184,7 +184,7 @@ def _mesh_to_meshio(self):
     import meshio
     import numpy as np
     v = self.vertices
-    pts = np.column_stack([v, np.zeros(len(v))])
+    pts = v if v.shape[1] == 3 else np.column_stack([v, np.zeros(len(v))])
     return meshio.Mesh(pts, [("triangle", np.array(self.triangles))])
 
 
@@ -196,7 +196,7 @@ def _result_to_meshio(self):
     import numpy as np
     m = self.mesh
     v = m.vertices
-    pts = np.column_stack([v, np.zeros(len(v))])
+    pts = v if v.shape[1] == 3 else np.column_stack([v, np.zeros(len(v))])
     pd = {}
     for k in ("u", "v"):
         z = getattr(self, "z_" + k)

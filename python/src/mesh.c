@@ -103,8 +103,8 @@ static PyObject *mesh_new(PyTypeObject *type, PyObject *args, PyObject *kw)
 static PyObject *make_vertices(PyObject *self)
 {
     glpgp_mesh *m = ((pg_mesh *)self)->m;
-    npy_intp dims[2] = {m->nv, 2};
-    return pg_view(self, m->xy, 2, dims, NPY_DOUBLE);
+    npy_intp dims[2] = {m->nv, m->xyz ? 3 : 2}; /* a surface: its 3D points */
+    return pg_view(self, m->xyz ? m->xyz : m->xy, 2, dims, NPY_DOUBLE);
 }
 
 static PyObject *make_triangles(PyObject *self)

@@ -21,6 +21,7 @@ typedef struct solve_args {
     long long max_elements, max_pixels;
     double box[4];        /* size_image_box (NaN: the mesh's bounding box) */
     PyArrayObject *field; /* field=array: (nv, 2) float64 */
+    int field_given;      /* field= not None (else a surface takes the cross field) */
 } solve_args;
 
 static int parse_field_array(solve_args *a, const glpgp_mesh *m, PyObject *value, PyObject *keep)
@@ -69,6 +70,14 @@ static int solve_kwarg(solve_args *a, const glpgp_mesh *m, PyObject *key, PyObje
     const char *k = PyUnicode_AsUTF8(key);
     if (!k) return -1;
     if (!strcmp(k, "size") && value == Py_None) return 0;
+    if (!strcmp(k, "field")) {
+        if (value == Py_None) return 0; /* the default: boundary, a surface's cross */
+        a->field_given = 1;
+        if (m->xyz && !PyUnicode_Check(value)) {
+            PyErr_SetString(pg_input_error, "field: a surface takes 'cross' or 'boundary', not per-vertex vectors");
+            return -1;
+        }
+    }
     if (!strcmp(k, "field") && value != Py_None && !PyUnicode_Check(value) && !PyObject_HasAttrString(value, "__fspath__"))
         return parse_field_array(a, m, value, keep);
     if (!strcmp(k, "backend")) {
@@ -226,6 +235,7 @@ PyObject *pg_solve(PyObject *self, PyObject *args, PyObject *kw)
     if (!keep) goto done;
     while (kw && PyDict_Next(kw, &pos, &key, &value))
         if (solve_kwarg(&a, pm->m, key, value, keep) < 0) goto done;
+    if (pm->m->xyz && !a.field_given) a.o.field = GLPGP_FIELD_CROSS; /* a surface's default, as the CLI's */
     const char *name = pm->source != Py_None ? PyUnicode_AsUTF8(pm->source) : "mesh";
     if (!name) goto done;
     pg_cancel cancel;
@@ -352,11 +362,11 @@ static PyObject *make_wind_v(PyObject *self) { return winding(self, 1); }
 /* structured arrays: the C layouts and their dtypes */
 typedef struct sing_rec {
     int triangle, index;
-    double x, y;
+    double x, y, z;
 } sing_rec;
 typedef struct cross_rec {
     int triangle, triangles;
-    double index, x, y;
+    double index, x, y, z;
 } cross_rec;
 
 static PyArray_Descr *record_dtype(const char *spec)
@@ -391,16 +401,18 @@ static PyObject *singular(PyObject *self, int k)
     npy_intp j = 0;
     for (int t = 0; t < r->nt; t++) {
         if (!r->osc[k].singular[t]) continue;
-        double x = 0.0, y = 0.0;
+        double x = 0.0, y = 0.0, z = 0.0; /* the centroid (a surface's in 3D) */
         for (int c = 0; c < 3; c++) {
-            x += m->xy[2 * m->tri[3 * t + c]] / 3.0;
-            y += m->xy[2 * m->tri[3 * t + c] + 1] / 3.0;
+            const int v = m->tri[3 * t + c];
+            x += (m->xyz ? m->xyz[3 * v] : m->xy[2 * v]) / 3.0;
+            y += (m->xyz ? m->xyz[3 * v + 1] : m->xy[2 * v + 1]) / 3.0;
+            z += m->xyz ? m->xyz[3 * v + 2] / 3.0 : 0.0;
         }
-        rec[j++] = (sing_rec){t, r->osc[k].singular[t], x, y};
+        rec[j++] = (sing_rec){t, r->osc[k].singular[t], x, y, z};
     }
     PyObject *a = records(rec, n, sizeof *rec,
-                          "{'names': ['triangle', 'index', 'x', 'y'], 'formats': ['<i4', '<i4', '<f8', '<f8'], "
-                          "'offsets': [0, 4, 8, 16], 'itemsize': 24}");
+                          "{'names': ['triangle', 'index', 'x', 'y', 'z'], 'formats': ['<i4', '<i4', '<f8', '<f8', '<f8'], "
+                          "'offsets': [0, 4, 8, 16, 24], 'itemsize': 32}");
     PyMem_Free(rec);
     return a;
 }
@@ -425,10 +437,11 @@ static PyObject *make_cross(PyObject *self)
         }
         PyArray_CLEARFLAGS((PyArrayObject *)alpha, NPY_ARRAY_WRITEABLE);
         for (npy_intp k = 0; k < ns; k++)
-            rec[k] = (cross_rec){c->sing[k].tri, c->sing[k].ntri, c->sing[k].index4 / 4.0, c->sing[k].x, c->sing[k].y};
+            rec[k] = (cross_rec){c->sing[k].tri, c->sing[k].ntri, c->sing[k].index4 / 4.0, c->sing[k].x, c->sing[k].y,
+                                 c->sing[k].z};
         sing = records(rec, ns, sizeof *rec,
-                       "{'names': ['triangle', 'triangles', 'index', 'x', 'y'], 'formats': ['<i4', '<i4', '<f8', "
-                       "'<f8', '<f8'], 'offsets': [0, 4, 8, 16, 24], 'itemsize': 32}");
+                       "{'names': ['triangle', 'triangles', 'index', 'x', 'y', 'z'], 'formats': ['<i4', '<i4', '<f8', "
+                       "'<f8', '<f8', '<f8'], 'offsets': [0, 4, 8, 16, 24, 32], 'itemsize': 40}");
     }
     if (sing)
         out = Py_BuildValue("{s:O,s:O,s:O,s:O,s:d,s:d,s:O,s:d}", "w", w, "alpha", alpha, "winding", wind,

@@ -152,7 +152,7 @@ def test_options_table_is_the_clis(cli):
         assert "--" + o["cli"] in help_text
     quads = {o["name"] for o in glpgp.options("quads")}
     assert quads == {"keep_polygons", "smooth", "all_quads", "repair", "cleanup"}
-    assert {o["name"] for o in glpgp.options("render")} == {"size", "kind", "background", "line_width"}
+    assert {o["name"] for o in glpgp.options("render")} == {"size", "kind", "background", "view", "line_width"}
     assert "newton_max" in glpgp.solve.__doc__ and "Newton iterations per eps level" in glpgp.solve.__doc__
 
 
@@ -168,7 +168,7 @@ def test_result_arrays_and_stats(tmp_path):
     assert r.field.shape == (n, 2) and np.allclose(np.hypot(*r.field.T), 1.0)
     assert r.dirichlet_u.dtype == bool and r.dirichlet_u.any()
     assert r.winding_u.shape == (m.n_triangles,)
-    assert r.singular_u.dtype.names == ("triangle", "index", "x", "y") and len(r.singular_u) == 0
+    assert r.singular_u.dtype.names == ("triangle", "index", "x", "y", "z") and len(r.singular_u) == 0
     assert r.cross is None and r.converged and r.size == 0.3 and r.backend == "reference"
     s = r.stats
     assert s["input"] == "shape:square:400" and s["vertices"] == n and s["backend"] == "reference"

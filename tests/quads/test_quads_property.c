@@ -9,8 +9,8 @@
  * extraction is wrong near every boundary, and the closing, the repair and
  * its last resort have to make the mesh valid. glpgp_quads_build with the
  * defaults must return a valid all-quad mesh for every one (no solve: fast).
- * The count is GLPGP_PROPERTY_COUNT (default 40; bench/quads_property.sh
- * runs 3000); GLPGP_PROPERTY_SEED sets the first seed. A failure prints its
+ * The count is GLPGP_PROPERTY_COUNT (default 40; long runs: 3000);
+ * GLPGP_PROPERTY_SEED sets the first seed. A failure prints its
  * seed, and GLPGP_PROPERTY_KEEP=DIR keeps its triangle mesh (with
  * GLPGP_PROPERTY_KEEP_POOR=S also the valid ones whose smallest scaled
  * Jacobian over its corner bound is below S, with their quads). Skips (77)

@@ -1,0 +1,49 @@
+"""3D surfaces from Python: a built-in surface and arrays of 3D points are surfaces (3 columns of
+vertices), solve() takes the cross field on them by default, and the cross field's indices, with
+the surface's holonomy, sum to its Euler characteristic; the same result as the CLI's."""
+import numpy as np
+import pytest
+
+import glpgp
+from conftest import run_cli
+
+
+def test_sphere_cross_field_and_singularities():
+    m = glpgp.shape("sphere", 3000)
+    assert m.vertices.shape == (m.n_vertices, 3)
+    assert np.allclose(np.linalg.norm(m.vertices, axis=1), 1.0, atol=1e-9)
+    r = glpgp.solve(m, backend="reference")
+    c = r.cross
+    assert c is not None  # the cross field is a surface's default
+    assert c["index_sum"] == 2.0 and c["poincare_hopf"]
+    s = c["singularities"]
+    assert len(s) >= 8 and {"x", "y", "z"} <= set(s.dtype.names)
+    # the singularities lie on the sphere (the mesh's chords: within 2%)
+    assert np.all(np.abs(np.sqrt(s["x"] ** 2 + s["y"] ** 2 + s["z"] ** 2) - 1.0) < 0.02)
+    for k in ("u", "v"):
+        sing = getattr(r, "singular_" + k)
+        assert {"x", "y", "z"} <= set(sing.dtype.names)
+    assert np.median(np.abs(r.z_u)) > 0.9
+
+
+def test_surface_from_arrays_equals_the_cli(cli, tmp_path):
+    # the half cylinder (open, two straight boundary edges) given as arrays of 3D points
+    h = glpgp.shape("halfcyl", 2000)
+    m = glpgp.Mesh(np.array(h.vertices), np.array(h.triangles))
+    assert m.vertices.shape[1] == 3
+    assert np.array_equal(m.vertices, h.vertices)
+    for field in ("boundary", None):
+        kw = {} if field is None else {"field": field}
+        r = glpgp.solve(m, backend="reference", **kw)
+        assert np.median(np.abs(r.z_u)) > 0.9
+        args = [] if field is None else ["--field", field]
+        run_cli(cli, "solve", "shape:halfcyl:2000", "--backend", "reference", "-o", str(tmp_path / "c.vtu"),
+                "--quiet", *args)
+        c = glpgp.read_result(tmp_path / "c.vtu")
+        assert np.array_equal(r.z_u, c.z_u) and np.array_equal(r.z_v, c.z_v)  # bit for bit
+
+
+def test_surface_refuses_vector_field():
+    m = glpgp.shape("sphere", 2000)
+    with pytest.raises(glpgp.InputError, match="surface"):
+        glpgp.solve(m, field=np.ones((m.n_vertices, 2)), backend="reference")
