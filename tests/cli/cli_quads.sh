@@ -125,7 +125,11 @@ grep -qE "valid +yes" out.txt || fail "strip: the repaired mesh is not valid: $(
 grep -qE "repair +[0-9]+ faces removed" out.txt || fail "strip: no repair line: $(cat out.txt)"
 nf=$(grep -c '^f ' sr.obj)
 n4=$(grep -cE '^f [0-9]+ [0-9]+ [0-9]+ [0-9]+ *$' sr.obj)
-[ "$nf" -gt 8 ] && [ "$nf" -eq "$n4" ] || fail "strip repaired: $nf faces, $n4 quads"
+# the 8 x 0.12 strip at h = 1: at least one quad per unit of length, all quads,
+# well shaped (the repair's region mesher: 8 rectangles)
+[ "$nf" -ge 8 ] && [ "$nf" -eq "$n4" ] || fail "strip repaired: $nf faces, $n4 quads"
+sjmin=$(sed -nE 's/.*scaled jac\. +min ([0-9.]+).*/\1/p' out.txt)
+awk -v s="${sjmin:-0}" 'BEGIN { exit !(s >= 0.3) }' || fail "strip repaired: scaled Jacobian min ${sjmin:-none} < 0.3"
 run_fail "extract --no-repair: invalid" 3 "quad mesh is invalid" extract sr.vtk --quads ex.obj --no-repair
 [ -e ex.obj ] && fail "extract wrote an invalid mesh"
 run_fail "--allow-invalid without --quads" 2 "need --quads" solve shape:square:100 --allow-invalid
