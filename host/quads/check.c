@@ -146,7 +146,8 @@ double glpgp_seg_dist(const double *a, const double *b, const double *p, double 
     double t = l2 > 0 ? ((p[0] - a[0]) * dx + (p[1] - a[1]) * dy) / l2 : 0.0;
     t = fmax(0.0, fmin(1.0, t));
     if (tout) *tout = t;
-    return hypot(a[0] + t * dx - p[0], a[1] + t * dy - p[1]);
+    const double ex = a[0] + t * dx - p[0], ey = a[1] + t * dy - p[1];
+    return sqrt(ex * ex + ey * ey);
 }
 
 int glpgp_seg_cross(const double *a, const double *b, const double *c, const double *d, double eps)

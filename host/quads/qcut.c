@@ -148,7 +148,10 @@ static double qc_size(qc *c, double x, double y)
     int n = glpgp_bgrid_query(&c->G, x - r, y - r, x + r, y + r, &c->cand, &c->ncap);
     for (int i = 0; i < n; i++) {
         const double *q = c->src + 3 * c->cand[i];
-        s = fmin(s, q[2] + GRADE * hypot(q[0] - x, q[1] - y));
+        if (q[2] >= s) continue; /* cannot lower s */
+        const double dx = q[0] - x, dy = q[1] - y, d2 = dx * dx + dy * dy, reach = (s - q[2]) / GRADE;
+        if (d2 >= reach * reach) continue; /* too far to lower s */
+        s = q[2] + GRADE * sqrt(d2);
     }
     return s;
 }
@@ -184,8 +187,15 @@ static glpgp_status build_sizes(qc *c, const qcut_region *R)
  * its points (points at a or b excepted). */
 static int blocked_by(const qc *c, const ivec *L, const double *a, const double *b, double eps)
 {
+    /* an edge whose box misses the segment's (grown by eps) can neither be
+     * crossed nor have its first point within eps */
+    const double x0 = fmin(a[0], b[0]) - eps, x1 = fmax(a[0], b[0]) + eps;
+    const double y0 = fmin(a[1], b[1]) - eps, y1 = fmax(a[1], b[1]) + eps;
     for (int i = 0; i < L->n; i++) {
         const double *p = P(c, L->p[i]), *q = P(c, L->p[(i + 1) % L->n]);
+        if ((p[0] < x0 && q[0] < x0) || (p[0] > x1 && q[0] > x1) || (p[1] < y0 && q[1] < y0) ||
+            (p[1] > y1 && q[1] > y1))
+            continue;
         int pa = same_point(p, a) || same_point(p, b), qa = same_point(q, a) || same_point(q, b);
         if (!pa && glpgp_seg_dist(a, b, p, NULL) <= eps) return 1;
         if (pa || qa) continue;
@@ -361,16 +371,28 @@ static double centre_split(const double *xy, const int *p, int n, int *ob, doubl
     return best;
 }
 
+static void loop_box(const qc *c, const ivec *L, double *bb);
+
 /* Clearance cost of the cut from point ia to ib: loop points (other than
  * the ends) closer to it than half the local size make thin parts. */
 static double clearance_cost(qc *c, const qc_piece *pc, int ia, int ib)
 {
     const double *a = P(c, ia), *b = P(c, ib);
     double cost = 0.0;
+    /* only points within h / 2 of the cut count (the local size is at most
+     * h): the cut's box grown by that, and each hole's box against it */
+    const double g = 0.5 * c->h;
+    const double cb[4] = {fmin(a[0], b[0]) - g, fmin(a[1], b[1]) - g, fmax(a[0], b[0]) + g, fmax(a[1], b[1]) + g};
     for (int l = -1; l < pc->nh; l++) {
         const ivec *L = loop_of(pc, l);
+        if (l >= 0) {
+            double lb[4];
+            loop_box(c, L, lb);
+            if (lb[0] > cb[2] || lb[2] < cb[0] || lb[1] > cb[3] || lb[3] < cb[1]) continue;
+        }
         for (int t = 0; t < L->n; t++) {
             const double *p = P(c, L->p[t]);
+            if (p[0] < cb[0] || p[0] > cb[2] || p[1] < cb[1] || p[1] > cb[3]) continue;
             if (same_point(p, a) || same_point(p, b)) continue;
             double u, d = glpgp_seg_dist(a, b, p, &u);
             if (u <= 0.0 || u >= 1.0) continue; /* beyond an end: the end angles judge it */
