@@ -497,21 +497,189 @@ done:
     return st;
 }
 
+/* solve_mesh's state: what its phases share */
+typedef struct solve_ctx {
+    const glpgp_mesh *m;
+    glpgp_backend *b;
+    const glpgp_options *o;
+    glpgp_result *r;
+    glpgp_system *sys;
+    glpgp_amg_structure *amgs;
+    osc_work w;
+    double *wv, *size; /* W for u then V (2 x 2 nv); local sizes (2 nv) */
+    int uniform;       /* 1: h everywhere (size unused) */
+    double h;
+} solve_ctx;
+
+/* Layout and upload: the system's pattern, the local resolution check, the
+ * backend's setup and driver vectors, the multigrid structure (once for the
+ * guiding field, u and v). */
+static glpgp_status setup_system(solve_ctx *c)
+{
+    const glpgp_mesh *m = c->m;
+    glpgp_backend *b = c->b;
+    const glpgp_options *o = c->o;
+    const int nv = m->nv, nt = m->nt;
+    int prev = glpgp_timer_enter(b, GLPGP_TM_PATTERN);
+    glpgp_status st = glpgp_system_create(m, &c->sys);
+    glpgp_timer_leave(b, prev);
+    GLPGP_CHECK(st);
+    const glpgp_system *sys = c->sys;
+    if (m->part)
+        glpgp_log(GLPGP_LOG_INFO, "%d vertices, %d triangles (this rank: %d owned + %d ghost vertices, %d triangles, "
+                  "%ld blocks), h = %g (%.1f edges per period), backend %s", m->part->nv_global, m->part->nt_global,
+                  m->part->nv_owned, nv - m->part->nv_owned, nt, sys->nnzb, c->h, c->h / m->mean_edge, b->ops->name);
+    else
+        glpgp_log(GLPGP_LOG_INFO, "%d vertices, %d triangles, %ld blocks, h = %g (%.1f edges per period), backend %s",
+                  nv, nt, sys->nnzb, c->h, c->h / m->mean_edge, b->ops->name);
+    /* local resolution: longest edges against the local size (error /
+     * warning); a part: checked on the whole mesh before it was split */
+    prev = glpgp_timer_enter(b, GLPGP_TM_SIZE);
+    if (!m->part) st = glpgp_size_check_mesh(m, o, c->h);
+    glpgp_timer_leave(b, prev);
+    GLPGP_CHECK(st);
+    const size_t n2 = (size_t)2 * nv;
+    prev = glpgp_timer_enter(b, GLPGP_TM_UPLOAD);
+    st = b->ops->setup(b, sys);
+    if (st == GLPGP_OK) st = glpgp_osc_work_create(&c->w, b, o, n2, (size_t)nv);
+    glpgp_tm_leave(b, o->phase_sync, prev);
+    GLPGP_CHECK(st);
+    /* the multigrid structure, once for the guiding field, u and v */
+    if (o->precond == GLPGP_PRECOND_AMG && glpgp_amg_supported(b) && !b->ops->linear_solve) {
+        prev = glpgp_timer_enter(b, GLPGP_TM_STRUCTURE);
+        glpgp_amg_structure *amgs = NULL;
+        if (glpgp_amg_structure_create(sys, o, &amgs) == GLPGP_OK) {
+            glpgp_log(GLPGP_LOG_DEBUG, "multigrid structure: %d levels, %d -> %d nodes, operator complexity %.3f, "
+                      "%.3f s (shared by the guiding field, u and v)", amgs->L, amgs->lev[0].n,
+                      amgs->lev[amgs->L - 1].n, amgs->operator_complexity, amgs->seconds);
+            c->amgs = amgs;
+            b->amg_shared = amgs;
+        } else { /* each hierarchy tries its own (and warns) */
+            glpgp_error_clear();
+        }
+        glpgp_timer_leave(b, prev);
+    }
+    return glpgp_malloc(2 * n2, sizeof(double), &c->wv);
+}
+
+/* The guiding field U (a cross field kept in the result). */
+static glpgp_status guiding_field(solve_ctx *c)
+{
+    const double t1 = glpgp_now();
+    const int prev = glpgp_timer_enter(c->b, GLPGP_TM_FIELD);
+    glpgp_result *r = c->r;
+    glpgp_status st;
+    if (c->o->field == GLPGP_FIELD_CROSS) /* keep the cross field in the result */
+        st = glpgp_cross_guiding_field(c->m, c->b, c->o, &r->cross, r->field, &r->field_cg_iterations);
+    else
+        st = glpgp_field_compute(c->m, c->b, c->o, r->field, &r->field_cg_iterations);
+    glpgp_tm_leave(c->b, c->o->phase_sync, prev);
+    GLPGP_CHECK(st);
+    r->seconds_field = glpgp_now() - t1;
+    return GLPGP_OK;
+}
+
+/* The local size h(x) per oscillator (uniform: NULL, today's arithmetic),
+ * with --cross-size the cross field's conformal size for both. */
+static glpgp_status local_sizes(solve_ctx *c)
+{
+    const glpgp_mesh *m = c->m;
+    const glpgp_options *o = c->o;
+    glpgp_result *r = c->r;
+    const int nv = m->nv;
+    const size_t n2 = (size_t)2 * nv;
+    GLPGP_CHECK(glpgp_malloc(n2, sizeof(double), &c->size));
+    double *size = c->size;
+    if (m->part) { /* a part: the sizes computed on the whole mesh, see glpgp_field_presolve */
+        c->uniform = m->part->size == NULL;
+        if (!c->uniform) memcpy(size, m->part->size, n2 * sizeof(double));
+    } else {
+        GLPGP_CHECK(glpgp_size_compute(m, o, c->h, r->field, size, &c->uniform));
+    }
+    if (o->field == GLPGP_FIELD_CROSS && o->cross_size != GLPGP_CROSS_SIZE_OFF && r->cross) {
+        /* --cross-size: the cross field's conformal size, the smaller of the two, both oscillators */
+        double *cs = NULL;
+        GLPGP_CHECK(glpgp_malloc((size_t)nv, sizeof(double), &cs));
+        const glpgp_status st = glpgp_cross_conformal_size(m, c->b, o, r->cross->w, c->h, cs, &r->field_cg_iterations);
+        if (st == GLPGP_OK)
+            for (int k = 0; k < 2; k++)
+                for (int i = 0; i < nv; i++) size[(size_t)k * nv + i] = fmin(size[(size_t)k * nv + i], cs[i]);
+        free(cs);
+        GLPGP_CHECK(st);
+        c->uniform = 0;
+    }
+    if (!c->uniform && !m->part) glpgp_size_log(m, size, c->h);
+    return GLPGP_OK;
+}
+
+/* u and v (apart): v in a second thread on a backend copy when
+ * want_concurrent says so, else after u. */
+static glpgp_status oscillators(solve_ctx *c, const double *eps, int nlev)
+{
+    const glpgp_mesh *m = c->m;
+    glpgp_backend *b = c->b;
+    const glpgp_options *o = c->o;
+    glpgp_result *r = c->r;
+    const int nv = m->nv;
+    const size_t n2 = (size_t)2 * nv;
+    double *wv = c->wv, *size = c->uniform ? NULL : c->size;
+    /* W = U (k = 0) or V = U rotated by +90 degrees (k = 1) */
+    for (int k = 0; k < 2; k++)
+        for (int i = 0; i < nv; i++) {
+            double ux = r->field[2 * i], uy = r->field[2 * i + 1];
+            wv[n2 * k + 2 * i] = k == 0 ? ux : -uy;
+            wv[n2 * k + 2 * i + 1] = k == 0 ? uy : ux;
+        }
+    osc_job job = {.m = m, .parent = b, .sys = c->sys, .o = o, .k = 1, .wv = wv + n2,
+                   .size = size ? size + (size_t)nv : NULL, .r = &r->osc[1], .h = c->h, .eps = eps,
+                   .nlev = nlev};
+    pthread_t th;
+    int stop = 0; /* 1 + the oscillator that failed first */
+    job.stop = &stop;
+    int started = want_concurrent(m, b, o, c->sys) && pthread_create(&th, NULL, osc_job_run, &job) == 0;
+    c->w.stop = started ? &stop : NULL;
+    glpgp_status st = glpgp_solve_oscillator(m, &c->w, 0, wv, size, &r->osc[0], c->h, eps, nlev, NULL);
+    c->w.stop = NULL;
+    if (started) {
+        if (st != GLPGP_OK) { /* stop v at its next Newton step; the first failure is reported */
+            int none = 0;
+            __atomic_compare_exchange_n(&stop, &none, 1, 0, __ATOMIC_RELAXED, __ATOMIC_RELAXED);
+        }
+        pthread_join(th, NULL);
+        b->n_spmv += job.n_spmv;
+        b->n_cg_iter += job.n_cg_iter;
+        b->n_sync += job.n_sync;
+        b->n_launch += job.n_launch;
+        glpgp_timers_add(&b->tm, &job.tm);
+        if (st != GLPGP_OK || (job.ready && job.st != GLPGP_OK)) {
+            /* this thread's record is u's; v's replaces it when v failed
+             * first (u then only stopped) or alone */
+            if (job.ready && job.st != GLPGP_OK && (st == GLPGP_OK || stop == 2)) st = glpgp_error_restore(&job.err);
+            glpgp_error_push_trace(__FILE__, __LINE__);
+            return st;
+        }
+        if (!job.ready)
+            glpgp_log(o->oscillators == GLPGP_OSC_CONCURRENT ? GLPGP_LOG_WARNING : GLPGP_LOG_INFO,
+                      "v solved after u: its backend copy failed (%s)", job.err.msg);
+        r->concurrent = job.ready;
+        started = job.ready;
+    } else if (st != GLPGP_OK) {
+        glpgp_error_push_trace(__FILE__, __LINE__);
+        return st;
+    }
+    if (!started)
+        GLPGP_CHECK(glpgp_solve_oscillator(m, &c->w, 1, wv + n2, size ? size + (size_t)nv : NULL, &r->osc[1], c->h,
+                                           eps, nlev, NULL));
+    return GLPGP_OK;
+}
+
+/* The whole planar solve on m (in its numbering): setup, guiding field,
+ * local sizes, then the coupled pair or u and v apart. */
 static glpgp_status solve_mesh(const glpgp_mesh *m, glpgp_backend *b, const glpgp_options *o,
                                glpgp_result **out)
 {
-    glpgp_status st = GLPGP_OK;
-    glpgp_result *r = NULL;
-    glpgp_system *sys = NULL;
-    glpgp_amg_structure *amgs = NULL;
-    osc_work w;
-    double *wv = NULL, *size = NULL;
-    int uniform = 1;
-    memset(&w, 0, sizeof w);
     *out = NULL;
     const double t0 = glpgp_now();
-    const int nv = m->nv, nt = m->nt;
-
     GLPGP_CHECK(glpgp_options_check_mesh(o, m));
     if (m->part && (o->field == GLPGP_FIELD_FILE || o->field == GLPGP_FIELD_CROSS || o->size_field == GLPGP_SIZE_FILE ||
                     o->size_field == GLPGP_SIZE_FUNC))
@@ -526,158 +694,45 @@ static glpgp_status solve_mesh(const glpgp_mesh *m, glpgp_backend *b, const glpg
         ojac.precond = GLPGP_PRECOND_JACOBI;
         o = &ojac;
     }
-    double h = o->size > 0.0 ? o->size : glpgp_default_size(m, o);
-
-    GLPGP_CHECK(glpgp_result_create(nv, nt, &r));
-    r->size = h;
-    r->backend = b->ops->name;
-
-    /* layout + upload */
-    int prev = glpgp_timer_enter(b, GLPGP_TM_PATTERN);
-    st = glpgp_system_create(m, &sys);
-    glpgp_timer_leave(b, prev);
-    if (st != GLPGP_OK) goto fail;
-    if (m->part)
-        glpgp_log(GLPGP_LOG_INFO, "%d vertices, %d triangles (this rank: %d owned + %d ghost vertices, %d triangles, "
-                  "%ld blocks), h = %g (%.1f edges per period), backend %s", m->part->nv_global, m->part->nt_global,
-                  m->part->nv_owned, nv - m->part->nv_owned, nt, sys->nnzb, h, h / m->mean_edge, b->ops->name);
-    else
-        glpgp_log(GLPGP_LOG_INFO, "%d vertices, %d triangles, %ld blocks, h = %g (%.1f edges per period), backend %s",
-                  nv, nt, sys->nnzb, h, h / m->mean_edge, b->ops->name);
-    /* local resolution: longest edges against the local size (error /
-     * warning); a part: checked on the whole mesh before it was split */
-    prev = glpgp_timer_enter(b, GLPGP_TM_SIZE);
-    if (!m->part) st = glpgp_size_check_mesh(m, o, h);
-    glpgp_timer_leave(b, prev);
-    if (st != GLPGP_OK) goto fail;
-    const size_t n2 = (size_t)2 * nv;
-    prev = glpgp_timer_enter(b, GLPGP_TM_UPLOAD);
-    st = b->ops->setup(b, sys);
-    if (st == GLPGP_OK) st = glpgp_osc_work_create(&w, b, o, n2, (size_t)nv);
-    glpgp_tm_leave(b, o->phase_sync, prev);
-    if (st != GLPGP_OK) goto fail;
-    /* the multigrid structure, once for the guiding field, u and v */
-    if (o->precond == GLPGP_PRECOND_AMG && glpgp_amg_supported(b) && !b->ops->linear_solve) {
-        prev = glpgp_timer_enter(b, GLPGP_TM_STRUCTURE);
-        if (glpgp_amg_structure_create(sys, o, &amgs) == GLPGP_OK) {
-            glpgp_log(GLPGP_LOG_DEBUG, "multigrid structure: %d levels, %d -> %d nodes, operator complexity %.3f, "
-                      "%.3f s (shared by the guiding field, u and v)", amgs->L, amgs->lev[0].n,
-                      amgs->lev[amgs->L - 1].n, amgs->operator_complexity, amgs->seconds);
-            b->amg_shared = amgs;
-        } else { /* each hierarchy tries its own (and warns) */
-            glpgp_error_clear();
-        }
+    solve_ctx c;
+    memset(&c, 0, sizeof c);
+    c.m = m;
+    c.b = b;
+    c.o = o;
+    c.uniform = 1;
+    c.h = o->size > 0.0 ? o->size : glpgp_default_size(m, o);
+    GLPGP_CHECK(glpgp_result_create(m->nv, m->nt, &c.r));
+    c.r->size = c.h;
+    c.r->backend = b->ops->name;
+    glpgp_status st = setup_system(&c);
+    if (st == GLPGP_OK) {
+        c.r->seconds_setup = glpgp_now() - t0;
+        st = guiding_field(&c);
+    }
+    if (st == GLPGP_OK) {
+        const int prev = glpgp_timer_enter(b, GLPGP_TM_SIZE);
+        st = local_sizes(&c);
         glpgp_timer_leave(b, prev);
     }
-    GLPGP_CHECK_GOTO(st, glpgp_malloc(2 * n2, sizeof(double), &wv), fail); /* W for u, then for v */
-    r->seconds_setup = glpgp_now() - t0;
-
-    /* guiding field U */
-    double t1 = glpgp_now();
-    prev = glpgp_timer_enter(b, GLPGP_TM_FIELD);
-    if (o->field == GLPGP_FIELD_CROSS) /* keep the cross field in the result */
-        st = glpgp_cross_guiding_field(m, b, o, &r->cross, r->field, &r->field_cg_iterations);
-    else
-        st = glpgp_field_compute(m, b, o, r->field, &r->field_cg_iterations);
-    glpgp_tm_leave(b, o->phase_sync, prev);
-    if (st != GLPGP_OK) goto fail;
-    r->seconds_field = glpgp_now() - t1;
-    prev = glpgp_timer_enter(b, GLPGP_TM_SIZE);
-    /* local size h(x) per oscillator (uniform: NULL, today's arithmetic) */
-    GLPGP_CHECK_GOTO(st, glpgp_malloc(n2, sizeof(double), &size), fail);
-    if (m->part) { /* a part: the sizes computed on the whole mesh, see glpgp_field_presolve */
-        uniform = m->part->size == NULL;
-        if (!uniform) memcpy(size, m->part->size, n2 * sizeof(double));
-    } else {
-        GLPGP_CHECK_GOTO(st, glpgp_size_compute(m, o, h, r->field, size, &uniform), fail);
-    }
-    if (o->field == GLPGP_FIELD_CROSS && o->cross_size != GLPGP_CROSS_SIZE_OFF && r->cross) {
-        /* --cross-size: the cross field's conformal size, the smaller of the two, both oscillators */
-        double *cs = NULL;
-        GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)nv, sizeof(double), &cs), fail);
-        st = glpgp_cross_conformal_size(m, b, o, r->cross->w, h, cs, &r->field_cg_iterations);
-        if (st == GLPGP_OK)
-            for (int k = 0; k < 2; k++)
-                for (int i = 0; i < nv; i++) size[(size_t)k * nv + i] = fmin(size[(size_t)k * nv + i], cs[i]);
-        free(cs);
-        if (st != GLPGP_OK) goto fail;
-        uniform = 0;
-    }
-    if (!uniform && !m->part) glpgp_size_log(m, size, h);
-    glpgp_timer_leave(b, prev);
-
-    double eps[GLPGP_MAX_LEVELS];
-    int nlev = glpgp_eps_schedule(m, o, h, eps);
-
-    if (o->field == GLPGP_FIELD_CROSS && r->cross && use_coupling(m, b, o, r)) {
-        GLPGP_CHECK_GOTO(st, glpgp_solve_coupled(m, b, o, r, uniform ? NULL : size, h, eps, nlev, NULL, NULL, NULL),
-                         fail);
-        r->seconds_total = glpgp_now() - t0;
-        goto cleanup;
-    }
-    /* W = U (k = 0) or V = U rotated by +90 degrees (k = 1) */
-    for (int k = 0; k < 2; k++)
-        for (int i = 0; i < nv; i++) {
-            double ux = r->field[2 * i], uy = r->field[2 * i + 1];
-            wv[n2 * k + 2 * i] = k == 0 ? ux : -uy;
-            wv[n2 * k + 2 * i + 1] = k == 0 ? uy : ux;
+    if (st == GLPGP_OK) {
+        double eps[GLPGP_MAX_LEVELS];
+        const int nlev = glpgp_eps_schedule(m, o, c.h, eps);
+        if (o->field == GLPGP_FIELD_CROSS && c.r->cross && use_coupling(m, b, o, c.r)) {
+            st = glpgp_solve_coupled(m, b, o, c.r, c.uniform ? NULL : c.size, c.h, eps, nlev, NULL, NULL, NULL);
+            if (st != GLPGP_OK) glpgp_error_push_trace(__FILE__, __LINE__);
+        } else {
+            st = oscillators(&c, eps, nlev);
         }
-    {
-        osc_job job = {.m = m, .parent = b, .sys = sys, .o = o, .k = 1, .wv = wv + n2,
-                       .size = uniform ? NULL : size + (size_t)nv, .r = &r->osc[1], .h = h, .eps = eps,
-                       .nlev = nlev};
-        pthread_t th;
-        int stop = 0; /* 1 + the oscillator that failed first */
-        job.stop = &stop;
-        int started = want_concurrent(m, b, o, sys) && pthread_create(&th, NULL, osc_job_run, &job) == 0;
-        w.stop = started ? &stop : NULL;
-        st = glpgp_solve_oscillator(m, &w, 0, wv, uniform ? NULL : size, &r->osc[0], h, eps, nlev, NULL);
-        w.stop = NULL;
-        if (started) {
-            if (st != GLPGP_OK) { /* stop v at its next Newton step; the first failure is reported */
-                int none = 0;
-                __atomic_compare_exchange_n(&stop, &none, 1, 0, __ATOMIC_RELAXED, __ATOMIC_RELAXED);
-            }
-            pthread_join(th, NULL);
-            b->n_spmv += job.n_spmv;
-            b->n_cg_iter += job.n_cg_iter;
-            b->n_sync += job.n_sync;
-            b->n_launch += job.n_launch;
-            glpgp_timers_add(&b->tm, &job.tm);
-            if (st != GLPGP_OK || (job.ready && job.st != GLPGP_OK)) {
-                /* this thread's record is u's; v's replaces it when v failed
-                 * first (u then only stopped) or alone */
-                if (job.ready && job.st != GLPGP_OK && (st == GLPGP_OK || stop == 2))
-                    st = glpgp_error_restore(&job.err);
-                glpgp_error_push_trace(__FILE__, __LINE__);
-                goto fail;
-            }
-            if (!job.ready)
-                glpgp_log(o->oscillators == GLPGP_OSC_CONCURRENT ? GLPGP_LOG_WARNING : GLPGP_LOG_INFO,
-                          "v solved after u: its backend copy failed (%s)", job.err.msg);
-            r->concurrent = job.ready;
-            started = job.ready;
-        } else if (st != GLPGP_OK) {
-            glpgp_error_push_trace(__FILE__, __LINE__);
-            goto fail;
-        }
-        if (!started)
-            GLPGP_CHECK_GOTO(st, glpgp_solve_oscillator(m, &w, 1, wv + n2, uniform ? NULL : size + (size_t)nv, &r->osc[1], h,
-                                                  eps, nlev, NULL),
-                             fail);
     }
-    r->seconds_total = glpgp_now() - t0;
-    goto cleanup;
-fail:
-    glpgp_result_destroy(&r);
-cleanup:
-    glpgp_osc_work_free(&w);
-    free(wv);
-    free(size);
-    if (b->amg_shared == amgs) b->amg_shared = NULL;
-    glpgp_amg_structure_destroy(&amgs);
-    glpgp_system_destroy(&sys);
-    *out = r;
+    if (st == GLPGP_OK) c.r->seconds_total = glpgp_now() - t0;
+    else glpgp_result_destroy(&c.r);
+    glpgp_osc_work_free(&c.w);
+    free(c.wv);
+    free(c.size);
+    if (b->amg_shared == c.amgs) b->amg_shared = NULL;
+    glpgp_amg_structure_destroy(&c.amgs);
+    glpgp_system_destroy(&c.sys);
+    *out = c.r;
     return st;
 }
 
