@@ -298,6 +298,92 @@ static glpgp_status tr_amg_direction(glpgp_backend *b, const glpgp_options *o, g
 }
 
 /* Trust-region step (see glpgp_newton_step). */
+/* One direction's trial of the trust region: its model and trial points. */
+typedef struct tr_trial {
+    double gd, dhd;  /* g.d, d.H d */
+    double step;     /* |d|_M of a Steihaug step (0: a multigrid step) */
+    double a, Fa;    /* the last trial point's fraction of d and energy */
+    double rho;      /* actual / predicted decrease there */
+    int take;        /* the point is accepted */
+    int at_noise;    /* the predicted decrease is below F's rounding level */
+    int resolve;     /* the cut step is to be solved again in a smaller region */
+} tr_trial;
+
+/* Trial points x (+) a d: the full step, then backtracking along d with
+ * a from the minimiser of the quadratic through F, a g.d and F(x (+) a d),
+ * clamped to [tr_shrink_min, tr_shrink] times the previous a.
+ * rho = (F - F(x (+) a d)) / pred(a); a point is taken when rho >=
+ * tr_accept, or, when pred(a) is below the rounding level of F (where
+ * rho means nothing), when F does not visibly rise; the level then
+ * ends (converged to the rounding level).
+ * The look-ahead candidate gets the full step only.
+ * A Steihaug step cut by the region (boundary, negative curvature)
+ * whose full step fails or is poor (rho < tr_resolve_rho) is solved
+ * again in the region shrunk by tr_resolve_shrink (at most
+ * tr_resolve times per Newton step, on the same matrix) before
+ * backtracking: backtracking along d takes a fraction of a direction
+ * meant for the larger region (measured: the region's full step
+ * fails at twice the length of the last good one, the backtrack
+ * then lands at 0.2-0.4 of it and the radius oscillates). */
+static glpgp_status tr_trials(glpgp_backend *b, const glpgp_options *o, glpgp_newton_state *ns, double inv4e2,
+                              double F, int candidate, int cut, const glpgp_newton_step_info *info, tr_trial *t)
+{
+    const glpgp_backend_ops *op = b->ops;
+    double s[GLPGP_NSLOTS];
+    t->a = 1.0;
+    t->Fa = F;
+    t->rho = -HUGE_VAL;
+    t->take = t->at_noise = t->resolve = 0;
+    const int maxbt = candidate ? 0 : o->max_backtracks;
+    for (int j = 0; j <= maxbt; j++) {
+        if (j > 0) {
+            const double c = isfinite(t->Fa) ? (t->Fa - F - t->a * t->gd) / (t->a * t->a) : HUGE_VAL;
+            double an = c > 0.0 ? -t->gd / (2.0 * c) : o->tr_shrink * t->a;
+            t->a = fmax(o->tr_shrink_min * t->a, fmin(o->tr_shrink * t->a, an));
+        }
+        GLPGP_CHECK(trial_point(b, o, ns, t->a));
+        GLPGP_CHECK(op->energy(b, ns->xt, inv4e2, ns->work));
+        GLPGP_CHECK(op->get_scalars(b, s, GLPGP_NSLOTS));
+        t->Fa = s[GLPGP_S_E] + s[GLPGP_S_P];
+        const double pred = -(t->a * t->gd + 0.5 * t->a * t->a * t->dhd);
+        t->at_noise = pred <= ns->noise;
+        t->rho = pred > 0.0 && isfinite(t->Fa) ? (F - t->Fa) / pred : -HUGE_VAL;
+        t->take = isfinite(t->Fa) && (t->at_noise ? F - t->Fa >= -ns->noise : t->rho >= o->tr_accept);
+        if (j == 0 && cut && t->step > 0.0 && !t->at_noise && info->resolves < o->tr_resolve &&
+            (!t->take || t->rho < o->tr_resolve_rho)) {
+            t->resolve = 1;
+            break;
+        }
+        if (t->take || t->at_noise) break;
+    }
+    return GLPGP_OK;
+}
+
+/* The region after a Steihaug step (not a candidate): a backtracked step
+ * sets it to the length taken (tr_grow times that after a good model, rho >
+ * tr_good); after a full step, shrink it after a poor model (rho < tr_poor;
+ * to a* |d|, a* as in tr_trials within [tr_shrink_min, tr_shrink]), grow it
+ * by tr_grow after a good step (rho > tr_good) that the region cut, unless
+ * the region was shrunk in this step (re-solved: the larger one just
+ * failed); the first region is tr_grow |d| of the first (unbounded) step
+ * taken. */
+static void tr_update_radius(const glpgp_options *o, glpgp_newton_state *ns, const tr_trial *t, double F, int cut,
+                             int resolves)
+{
+    if (!t->take || t->at_noise) return;
+    if (t->a < 1.0) {
+        ns->radius = (t->rho > o->tr_good ? o->tr_grow : 1.0) * t->a * t->step;
+    } else if (t->rho < o->tr_poor) {
+        const double c = t->Fa - F - t->gd;
+        double as = c > 0.0 ? -t->gd / (2.0 * c) : o->tr_shrink;
+        ns->radius = fmax(o->tr_shrink_min, fmin(o->tr_shrink, as)) * t->step;
+    } else if (ns->radius <= 0.0) {
+        ns->radius = o->tr_grow * t->step;
+    } else if (t->rho > o->tr_good && cut && resolves == 0) {
+        ns->radius *= o->tr_grow;
+    }
+}
+
 static glpgp_status tr_step(glpgp_backend *b, const glpgp_options *o, glpgp_newton_state *ns,
                             double inv4e2, double F, double gn, glpgp_newton_step_info *info)
 {
@@ -321,8 +407,11 @@ static glpgp_status tr_step(glpgp_backend *b, const glpgp_options *o, glpgp_newt
     /* the candidate's multigrid: glpgp's (ns->amg) or the backend's linear
      * solver (PETSc's GAMG, b->ops->linear_solve) */
     int multigrid = (ns->amg != NULL || b->ops->linear_solve != NULL) && ns->inside, candidate = 0;
-    double a = 1.0, Fa = F, rho = -HUGE_VAL, gd = 0.0, step = 0.0;
-    int take = 0, at_noise = 0;
+    tr_trial t;
+    memset(&t, 0, sizeof t);
+    t.a = 1.0;
+    t.Fa = F;
+    t.rho = -HUGE_VAL;
     tr_matrix tm = {0, 0, 0}; /* what the NEWTON matrix holds for tr_direction */
     for (;;) {
         if (multigrid) {
@@ -354,63 +443,21 @@ static glpgp_status tr_step(glpgp_backend *b, const glpgp_options *o, glpgp_newt
         GLPGP_CHECK_GOTO(st, op->dot(b, ns->g, ns->d, GLPGP_S_DOT), done);
         GLPGP_CHECK_GOTO(st, op->dot(b, ns->d, ns->work, GLPGP_S_DOT2), done);
         GLPGP_CHECK_GOTO(st, op->get_scalars(b, s, GLPGP_NSLOTS), done);
-        gd = s[GLPGP_S_DOT];
-        const double dhd = s[GLPGP_S_DOT2];
-        step = multigrid ? 0.0 : ti.norm;
-        /* trial points x (+) a d: the full step, then backtracking along d with
-         * a from the minimiser of the quadratic through F, a g.d and F(x (+) a d),
-         * clamped to [tr_shrink_min, tr_shrink] times the previous a.
-         * rho = (F - F(x (+) a d)) / pred(a); a point is taken when rho >=
-         * tr_accept, or, when pred(a) is below the rounding level of F (where
-         * rho means nothing), when F does not visibly rise; the level then
-         * ends (converged to the rounding level).
-         * The look-ahead candidate gets the full step only.
-         * A Steihaug step cut by the region (boundary, negative curvature)
-         * whose full step fails or is poor (rho < tr_resolve_rho) is solved
-         * again in the region shrunk by tr_resolve_shrink (at most
-         * tr_resolve times per Newton step, on the same matrix) before
-         * backtracking: backtracking along d takes a fraction of a direction
-         * meant for the larger region (measured: the region's full step
-         * fails at twice the length of the last good one, the backtrack
-         * then lands at 0.2-0.4 of it and the radius oscillates). */
+        t.gd = s[GLPGP_S_DOT];
+        t.dhd = s[GLPGP_S_DOT2];
+        t.step = multigrid ? 0.0 : ti.norm;
         const int cut = !candidate && (ti.reason == GLPGP_TRCG_BOUNDARY || ti.reason == GLPGP_TRCG_NEGCURV);
-        int resolve = 0;
-        a = 1.0;
-        Fa = F;
-        rho = -HUGE_VAL;
-        take = at_noise = 0;
-        const int maxbt = candidate ? 0 : o->max_backtracks;
-        for (int j = 0; j <= maxbt; j++) {
-            if (j > 0) {
-                const double c = isfinite(Fa) ? (Fa - F - a * gd) / (a * a) : HUGE_VAL;
-                double an = c > 0.0 ? -gd / (2.0 * c) : o->tr_shrink * a;
-                a = fmax(o->tr_shrink_min * a, fmin(o->tr_shrink * a, an));
-            }
-            GLPGP_CHECK_GOTO(st, trial_point(b, o, ns, a), done);
-            GLPGP_CHECK_GOTO(st, op->energy(b, ns->xt, inv4e2, ns->work), done);
-            GLPGP_CHECK_GOTO(st, op->get_scalars(b, s, GLPGP_NSLOTS), done);
-            Fa = s[GLPGP_S_E] + s[GLPGP_S_P];
-            const double pred = -(a * gd + 0.5 * a * a * dhd);
-            at_noise = pred <= ns->noise;
-            rho = pred > 0.0 && isfinite(Fa) ? (F - Fa) / pred : -HUGE_VAL;
-            take = isfinite(Fa) && (at_noise ? F - Fa >= -ns->noise : rho >= o->tr_accept);
-            if (j == 0 && cut && step > 0.0 && !at_noise && info->resolves < o->tr_resolve &&
-                (!take || rho < o->tr_resolve_rho)) {
-                resolve = 1;
-                break;
-            }
-            if (take || at_noise) break;
-        }
-        if (resolve) {
+        GLPGP_CHECK_GOTO(st, tr_trials(b, o, ns, inv4e2, F, candidate, cut, info, &t), done);
+        if (t.resolve) {
             /* radius <- tr_resolve_shrink |d|_M;  d <- Steihaug step in it */
-            ns->radius = o->tr_resolve_shrink * step;
+            ns->radius = o->tr_resolve_shrink * t.step;
             info->resolves++;
             continue;
         }
         if (!candidate) break;
         /* a candidate: kept when the model held (rho >= tr_poor) or at the
          * rounding level */
-        if (take && (at_noise || rho >= o->tr_poor)) break;
+        if (t.take && (t.at_noise || t.rho >= o->tr_poor)) break;
         if (multigrid) {
             multigrid = candidate = 0;
             info->amg_rejected++;
@@ -422,44 +469,25 @@ static glpgp_status tr_step(glpgp_backend *b, const glpgp_options *o, glpgp_newt
     info->lookahead_step = candidate && !multigrid;
     /* region inactive: an accepted multigrid step, or a full interior
      * Steihaug step with a good model */
-    ns->inside = take && (multigrid || (!candidate && ti.reason == GLPGP_TRCG_CONVERGED && a == 1.0 &&
-                                        (at_noise || rho >= o->tr_poor)));
+    ns->inside = t.take && (multigrid || (!candidate && ti.reason == GLPGP_TRCG_CONVERGED && t.a == 1.0 &&
+                                          (t.at_noise || t.rho >= o->tr_poor)));
     if (candidate) {
         /* a Newton step longer than the region held: the region grows to it
          * (the multigrid step's M-length is unknown: the region stays) */
-        if (!multigrid && take && !at_noise) ns->radius = fmax(ns->radius, step);
+        if (!multigrid && t.take && !t.at_noise) ns->radius = fmax(ns->radius, t.step);
     } else {
-        /* radius: a backtracked step sets it to the length taken (tr_grow times
-         * that after a good model, rho > tr_good); after a full
-         * step, shrink it after a poor model (rho < tr_poor; to a* |d|, a* as
-         * above within [tr_shrink_min, tr_shrink]), grow it by tr_grow after a
-         * good step (rho > tr_good) that the region cut, unless the region
-         * was shrunk in this step (re-solved: the larger one just failed);
-         * the first region is tr_grow |d| of the first (unbounded) step taken */
-        const int cut = ti.reason == GLPGP_TRCG_BOUNDARY || ti.reason == GLPGP_TRCG_NEGCURV;
-        if (take && !at_noise) {
-            if (a < 1.0) {
-                ns->radius = (rho > o->tr_good ? o->tr_grow : 1.0) * a * step;
-            } else if (rho < o->tr_poor) {
-                const double c = Fa - F - gd;
-                double as = c > 0.0 ? -gd / (2.0 * c) : o->tr_shrink;
-                ns->radius = fmax(o->tr_shrink_min, fmin(o->tr_shrink, as)) * step;
-            } else if (ns->radius <= 0.0) {
-                ns->radius = o->tr_grow * step;
-            } else if (rho > o->tr_good && cut && info->resolves == 0) {
-                ns->radius *= o->tr_grow;
-            }
-        }
+        tr_update_radius(o, ns, &t, F, ti.reason == GLPGP_TRCG_BOUNDARY || ti.reason == GLPGP_TRCG_NEGCURV,
+                         info->resolves);
     }
-    info->accepted = take;
-    info->at_noise = at_noise;
-    info->alpha = take ? a : 0.0;
-    info->energy = take ? Fa : F;
-    info->rho = rho;
-    info->step = step;
+    info->accepted = t.take;
+    info->at_noise = t.at_noise;
+    info->alpha = t.take ? t.a : 0.0;
+    info->energy = t.take ? t.Fa : F;
+    info->rho = t.rho;
+    info->step = t.step;
     info->radius = ns->radius;
     info->reason = (int)ti.reason;
-    if (take) GLPGP_CHECK_GOTO(st, op->copy(b, ns->x, ns->xt), done); /* x <- x (+) a d */
+    if (t.take) GLPGP_CHECK_GOTO(st, op->copy(b, ns->x, ns->xt), done); /* x <- x (+) a d */
 done:
     op->vec_destroy(b, &xb);
     return st;
