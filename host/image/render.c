@@ -117,6 +117,318 @@ static void heat(double x, float c[3])
 
 /* ---- main render ------------------------------------------------------------- */
 
+/* A planar picture in the making: the image, a coverage buffer for the
+ * strokes, the interpolated field (FIELD, CROSS kinds), the pixel map. */
+typedef struct canvas {
+    glpgp_render_options o;
+    glpgp_image *im;
+    float *cov, *fld;
+    int W, H;
+    double ox, oy, scale; /* pixel (0,0) corner; pixels per unit */
+    double lw;            /* line width in pixels */
+} canvas;
+
+static const float col_u[3] = {0.10f, 0.22f, 0.60f}, col_v[3] = {0.60f, 0.18f, 0.10f};
+static const float col_red[3] = {0.90f, 0.05f, 0.05f};
+
+/* The picture's size from the mesh's box, the image and its buffers. */
+static glpgp_status canvas_create(const glpgp_mesh *m, canvas *cv)
+{
+    const glpgp_render_options *o = &cv->o;
+    cv->lw = o->line_width > 0 ? o->line_width : fmax(1.0, 1.5 * o->size / 1024.0);
+    const int margin = o->margin >= 0 ? o->margin : o->size / 64;
+    const double bw = m->bbox[2] - m->bbox[0], bh = m->bbox[3] - m->bbox[1];
+    const double span = fmax(bw, bh);
+    if (!(span > 0)) return GLPGP_FAIL(GLPGP_ERR_ARG, "render: degenerate bounding box");
+    int inner = o->size - 2 * margin;
+    if (inner < 8) inner = 8;
+    cv->scale = inner / span;
+    cv->W = (int)ceil(bw * cv->scale - 1e-9) + 2 * margin;
+    cv->H = (int)ceil(bh * cv->scale - 1e-9) + 2 * margin;
+    if (cv->W < 1) cv->W = 1;
+    if (cv->H < 1) cv->H = 1;
+    cv->ox = m->bbox[0] - margin / cv->scale;
+    cv->oy = m->bbox[3] + margin / cv->scale;
+    const size_t np = (size_t)cv->W * (size_t)cv->H;
+    GLPGP_CHECK(glpgp_image_create(cv->W, cv->H, 4, &cv->im));
+    GLPGP_CHECK(glpgp_calloc(np, sizeof(float), &cv->cov));
+    if (o->kind == GLPGP_IMAGE_FIELD || o->kind == GLPGP_IMAGE_CROSS) {
+        GLPGP_CHECK(glpgp_malloc(2 * np, sizeof(float), &cv->fld));
+        for (size_t i = 0; i < 2 * np; i++) cv->fld[i] = NAN;
+    }
+    if (!o->transparent)
+        for (size_t i = 0; i < np; i++)
+            cv->im->px[4 * i] = cv->im->px[4 * i + 1] = cv->im->px[4 * i + 2] = cv->im->px[4 * i + 3] = 1.0f;
+    return GLPGP_OK;
+}
+
+static void canvas_free(canvas *cv)
+{
+    free(cv->cov);
+    free(cv->fld);
+    cv->cov = cv->fld = NULL;
+    glpgp_image_destroy(&cv->im);
+}
+
+/* One triangle's values for its pixels: the unwrapped phases and |z| at its
+ * corners, the phase gradients' lengths in pixels, its corner indices. */
+typedef struct tri_vals {
+    const int *tv;
+    double th[2][3], za[2][3];
+    double gnu, gnv;
+} tri_vals;
+
+/* The colour of one pixel at barycentrics (l0, l1, l2) of triangle T
+ * (pixel index pi for the field buffers). */
+static void pixel_colour(const canvas *cv, const glpgp_result *r, const tri_vals *T, double l0, double l1, double l2,
+                         size_t pi, float c[3])
+{
+    const int *tv = T->tv;
+    const double tu = T->th[0][0] * l0 + T->th[0][1] * l1 + T->th[0][2] * l2;
+    const double tvv = T->th[1][0] * l0 + T->th[1][1] * l1 + T->th[1][2] * l2;
+    switch (cv->o.kind) {
+    case GLPGP_IMAGE_GRID: {
+        /* theta is only known modulo 1, so cells cannot be told
+         * apart: a light "pillow" shade, brightest at cell centres */
+        double fu = tu - floor(tu) - 0.5, fv = tvv - floor(tvv) - 0.5;
+        double sh = 1.0 - 0.12 * (fabs(fu) + fabs(fv));
+        c[0] = (float)(1.00 * sh);
+        c[1] = (float)(0.98 * sh);
+        c[2] = (float)(0.93 * sh + 0.05 * (1 - sh));
+        break;
+    }
+    case GLPGP_IMAGE_CHECKER: {
+        /* 2 x 2 checker per unit cell (transitions at integer and
+         * half-integer theta), anti-aliased over 0.75 px */
+        double au = tu - floor(tu), av = tvv - floor(tvv);
+        double su = au < 0.5 ? 1 : -1, sv = av < 0.5 ? 1 : -1;
+        double du = T->gnu > 1e-12 ? fmin(fmin(au, 1 - au), fabs(au - 0.5)) / T->gnu : 1e9;
+        double dv = T->gnv > 1e-12 ? fmin(fmin(av, 1 - av), fabs(av - 0.5)) / T->gnv : 1e9;
+        double sg = su * sv * fmin(1.0, fmin(du, dv) / 0.75);
+        double g = 0.5 + 0.5 * sg;
+        c[0] = (float)(0.15 + 0.80 * g);
+        c[1] = (float)(0.18 + 0.78 * g);
+        c[2] = (float)(0.25 + 0.72 * g);
+        break;
+    }
+    case GLPGP_IMAGE_ZABS: {
+        double a = fmin(T->za[0][0] * l0 + T->za[0][1] * l1 + T->za[0][2] * l2,
+                        T->za[1][0] * l0 + T->za[1][1] * l1 + T->za[1][2] * l2);
+        heat(a, c);
+        break;
+    }
+    case GLPGP_IMAGE_FIELD:
+        c[0] = 0.97f, c[1] = 0.97f, c[2] = 0.95f;
+        if (r->field) {
+            const double *U = r->field;
+            cv->fld[2 * pi] = (float)(U[2 * tv[0]] * l0 + U[2 * tv[1]] * l1 + U[2 * tv[2]] * l2);
+            cv->fld[2 * pi + 1] = (float)(U[2 * tv[0] + 1] * l0 + U[2 * tv[1] + 1] * l1 + U[2 * tv[2] + 1] * l2);
+        }
+        break;
+    case GLPGP_IMAGE_CROSS: {
+        /* background: |w| (light, darker in the cores); w kept for the crosses */
+        const double *w = r->cross->w;
+        double wr = w[2 * tv[0]] * l0 + w[2 * tv[1]] * l1 + w[2 * tv[2]] * l2;
+        double wi = w[2 * tv[0] + 1] * l0 + w[2 * tv[1] + 1] * l1 + w[2 * tv[2] + 1] * l2;
+        double a = clamp01(hypot(wr, wi));
+        cv->fld[2 * pi] = (float)wr;
+        cv->fld[2 * pi + 1] = (float)wi;
+        c[0] = (float)(0.80 + 0.17 * a);
+        c[1] = (float)(0.80 + 0.17 * a);
+        c[2] = (float)(0.78 + 0.17 * a);
+        break;
+    }
+    default: /* THETA */
+        c[0] = (float)(tu - floor(tu));
+        c[1] = (float)(tvv - floor(tvv));
+        c[2] = 0.5f;
+        break;
+    }
+}
+
+/* Triangle t's corner values: phases unwrapped around corner 0 (a coupled
+ * solve's read in the triangle's frame), |z|; g the barycentric gradients. */
+static void tri_values(const glpgp_mesh *m, const glpgp_result *r, int t, const double g[4], tri_vals *T)
+{
+    const int *tv = m->tri + 3 * t;
+    const double *zu = r->osc[0].z, *zv = r->osc[1].z;
+    T->tv = tv;
+    for (int q = 0; q < 2; q++) {
+        const double *z = q == 0 ? zu : zv;
+        double tc[3];
+        for (int k = 0; k < 3; k++) {
+            double br = z[2 * tv[k]], bi = z[2 * tv[k] + 1];
+            if (r->coupled && r->field) { /* coupled solve: the triangle's frame oscillator q */
+                double f[2];
+                glpgp_coupled_frame_value(glpgp_cross_turn(r->field + 2 * tv[0], r->field + 2 * tv[k]), q,
+                                          zu + 2 * tv[k], zv + 2 * tv[k], f);
+                br = f[0];
+                bi = f[1];
+            }
+            T->za[q][k] = hypot(br, bi);
+            tc[k] = glpgp_theta(br, bi);
+        }
+        glpgp_phase_chart(tc, T->th[q]); /* unwrapped around corner 0 */
+    }
+    double gu[2], gv[2];
+    gu[0] = (T->th[0][1] - T->th[0][0]) * g[0] + (T->th[0][2] - T->th[0][0]) * g[2];
+    gu[1] = (T->th[0][1] - T->th[0][0]) * g[1] + (T->th[0][2] - T->th[0][0]) * g[3];
+    gv[0] = (T->th[1][1] - T->th[1][0]) * g[0] + (T->th[1][2] - T->th[1][0]) * g[2];
+    gv[1] = (T->th[1][1] - T->th[1][0]) * g[1] + (T->th[1][2] - T->th[1][0]) * g[3];
+    T->gnu = hypot(gu[0], gu[1]);
+    T->gnv = hypot(gv[0], gv[1]);
+}
+
+/* Every pixel whose centre lies in triangle t. */
+static void raster_triangle(canvas *cv, const glpgp_mesh *m, const glpgp_result *r, int t)
+{
+    const int *tv = m->tri + 3 * t;
+    double P[3][2];
+    for (int k = 0; k < 3; k++) {
+        P[k][0] = (m->xy[2 * tv[k]] - cv->ox) * cv->scale;
+        P[k][1] = (cv->oy - m->xy[2 * tv[k] + 1]) * cv->scale;
+    }
+    double e1x = P[1][0] - P[0][0], e1y = P[1][1] - P[0][1];
+    double e2x = P[2][0] - P[0][0], e2y = P[2][1] - P[0][1];
+    double det = e1x * e2y - e2x * e1y;
+    if (fabs(det) < 1e-18) return;
+    /* barycentric l1, l2 = inv * (p - P0); rows of inv = gradients */
+    const double g[4] = {e2y / det, -e2x / det, -e1y / det, e1x / det};
+    tri_vals T;
+    tri_values(m, r, t, g, &T);
+    const int sing = cv->o.kind != GLPGP_IMAGE_CROSS && ((r->osc[0].singular && r->osc[0].singular[t]) ||
+                                                         (r->osc[1].singular && r->osc[1].singular[t]));
+    int x0 = (int)floor(fmin(P[0][0], fmin(P[1][0], P[2][0]))), x1 = (int)ceil(fmax(P[0][0], fmax(P[1][0], P[2][0])));
+    int y0 = (int)floor(fmin(P[0][1], fmin(P[1][1], P[2][1]))), y1 = (int)ceil(fmax(P[0][1], fmax(P[1][1], P[2][1])));
+    if (x0 < 0) x0 = 0;
+    if (y0 < 0) y0 = 0;
+    if (x1 > cv->W - 1) x1 = cv->W - 1;
+    if (y1 > cv->H - 1) y1 = cv->H - 1;
+    const double eps = -1e-9;
+    for (int j = y0; j <= y1; j++)
+        for (int i = x0; i <= x1; i++) {
+            double dx = i + 0.5 - P[0][0], dy = j + 0.5 - P[0][1];
+            double l1 = g[0] * dx + g[1] * dy, l2 = g[2] * dx + g[3] * dy, l0 = 1 - l1 - l2;
+            if (l0 < eps || l1 < eps || l2 < eps) continue;
+            const size_t pi = (size_t)j * (size_t)cv->W + (size_t)i;
+            float *p = cv->im->px + 4 * pi;
+            float c[3];
+            pixel_colour(cv, r, &T, l0, l1, l2, pi, c);
+            p[0] = c[0], p[1] = c[1], p[2] = c[2], p[3] = 1.0f;
+            if (cv->o.kind == GLPGP_IMAGE_GRID) {
+                const double tu = T.th[0][0] * l0 + T.th[0][1] * l1 + T.th[0][2] * l2;
+                const double tvv = T.th[1][0] * l0 + T.th[1][1] * l1 + T.th[1][2] * l2;
+                over(p, col_v, line_cov(tvv, T.gnv, cv->lw));
+                over(p, col_u, line_cov(tu, T.gnu, cv->lw));
+            }
+            if (sing && cv->o.singular && cv->o.kind != GLPGP_IMAGE_ZABS) {
+                p[0] = col_red[0], p[1] = col_red[1], p[2] = col_red[2];
+            }
+        }
+}
+
+/* CROSS: short crosses on a regular pixel grid (alpha = arg(w)/4 and alpha
+ * + 90 degrees), the singularities (+1/4 red, -1/4 blue, radius growing
+ * with |index|). */
+static void overlay_cross(canvas *cv, const glpgp_result *r)
+{
+    const int W = cv->W, H = cv->H;
+    const double lw = cv->lw;
+    int step = cv->o.size / 40 < 8 ? 8 : cv->o.size / 40;
+    double len = 0.75 * step;
+    for (int j = step / 2; j < H; j += step)
+        for (int i = step / 2; i < W; i += step) {
+            size_t pi = (size_t)j * (size_t)W + (size_t)i;
+            double wr = cv->fld[2 * pi], wi = cv->fld[2 * pi + 1];
+            if (isnan(wr) || !(hypot(wr, wi) > 1e-12)) continue;
+            double al = atan2(wi, wr) / 4.0;
+            double cx = i + 0.5, cy = j + 0.5;
+            for (int q = 0; q < 2; q++) {
+                double ux = cos(al + q * GLPGP_PI / 2), uy = -sin(al + q * GLPGP_PI / 2); /* y down */
+                stroke(cv->cov, W, H, cx - 0.5 * len * ux, cy - 0.5 * len * uy, cx + 0.5 * len * ux,
+                       cy + 0.5 * len * uy, lw);
+            }
+        }
+    static const float col_cross[3] = {0.10f, 0.20f, 0.45f};
+    apply_cov(cv->im, cv->cov, col_cross);
+    if (!cv->o.singular) return;
+    static const float col_pos[3] = {0.90f, 0.05f, 0.05f}, col_neg[3] = {0.05f, 0.35f, 0.95f};
+    for (int sgn = 0; sgn < 2; sgn++) {
+        for (int k = 0; k < r->cross->nsing; k++) {
+            const glpgp_cross_sing *q = &r->cross->sing[k];
+            if ((q->index4 > 0) != (sgn == 0)) continue;
+            double rad = fmax(4.0, 3.0 * lw) * sqrt((double)abs(q->index4));
+            double cx = (q->x - cv->ox) * cv->scale, cy = (cv->oy - q->y) * cv->scale;
+            stroke(cv->cov, W, H, cx, cy, cx, cy, 2 * rad);
+        }
+        apply_cov(cv->im, cv->cov, sgn == 0 ? col_pos : col_neg);
+    }
+}
+
+/* Singular triangles can be smaller than a pixel: a red dot on each. */
+static void overlay_singular(canvas *cv, const glpgp_mesh *m, const glpgp_result *r)
+{
+    double rad = fmax(2.5, 1.5 * cv->lw);
+    for (int t = 0; t < m->nt; t++) {
+        if (!((r->osc[0].singular && r->osc[0].singular[t]) || (r->osc[1].singular && r->osc[1].singular[t])))
+            continue;
+        const int *tv = m->tri + 3 * t;
+        double cx = 0, cy = 0;
+        for (int k = 0; k < 3; k++) {
+            cx += (m->xy[2 * tv[k]] - cv->ox) * cv->scale / 3;
+            cy += (cv->oy - m->xy[2 * tv[k] + 1]) * cv->scale / 3;
+        }
+        stroke(cv->cov, cv->W, cv->H, cx, cy, cx, cy, 2 * rad);
+    }
+    apply_cov(cv->im, cv->cov, col_red);
+}
+
+/* FIELD: arrows of U on a regular pixel grid. */
+static void overlay_arrows(canvas *cv)
+{
+    const int W = cv->W, H = cv->H;
+    int step = cv->o.size / 40 < 8 ? 8 : cv->o.size / 40;
+    double len = 0.8 * step;
+    for (int j = step / 2; j < H; j += step)
+        for (int i = step / 2; i < W; i += step) {
+            size_t pi = (size_t)j * (size_t)W + (size_t)i;
+            double ux = cv->fld[2 * pi], uy = cv->fld[2 * pi + 1];
+            if (isnan(ux)) continue;
+            double n = hypot(ux, uy);
+            if (!(n > 1e-12)) continue;
+            ux /= n;
+            uy = -uy / n; /* pixel y points down */
+            double cx = i + 0.5, cy = j + 0.5;
+            double ax = cx - 0.5 * len * ux, ay = cy - 0.5 * len * uy;
+            double bx = cx + 0.5 * len * ux, by = cy + 0.5 * len * uy;
+            stroke(cv->cov, W, H, ax, ay, bx, by, cv->lw);
+            double hl = 0.3 * len;
+            for (int s = -1; s <= 1; s += 2) {
+                double ca = cos(2.6), sa = s * sin(2.6);
+                double hx = ux * ca - uy * sa, hy = ux * sa + uy * ca;
+                stroke(cv->cov, W, H, bx, by, bx + hl * hx, by + hl * hy, cv->lw);
+            }
+        }
+    static const float col_arrow[3] = {0.08f, 0.18f, 0.50f};
+    apply_cov(cv->im, cv->cov, col_arrow);
+}
+
+/* The domain's boundary loops, dark. */
+static void overlay_boundary(canvas *cv, const glpgp_mesh *m)
+{
+    for (int l = 0; l < m->nloops; l++) {
+        int s = m->loop_start[l], e = m->loop_start[l + 1];
+        for (int k = s; k < e; k++) {
+            int a = m->loop_vertices[k], b = m->loop_vertices[k + 1 < e ? k + 1 : s];
+            stroke(cv->cov, cv->W, cv->H, (m->xy[2 * a] - cv->ox) * cv->scale, (cv->oy - m->xy[2 * a + 1]) * cv->scale,
+                   (m->xy[2 * b] - cv->ox) * cv->scale, (cv->oy - m->xy[2 * b + 1]) * cv->scale,
+                   fmax(1.5, cv->lw * 1.3));
+        }
+    }
+    static const float col_b[3] = {0.12f, 0.12f, 0.12f};
+    apply_cov(cv->im, cv->cov, col_b);
+}
+
 glpgp_status glpgp_render(const glpgp_mesh *m, const glpgp_result *r, const glpgp_render_options *opt,
                           glpgp_image **out)
 {
@@ -126,282 +438,33 @@ glpgp_status glpgp_render(const glpgp_mesh *m, const glpgp_result *r, const glpg
     if (r->nv != m->nv || r->nt != m->nt)
         return GLPGP_FAIL(GLPGP_ERR_ARG, "render: result (%d vertices, %d triangles) does not match "
                                          "the mesh (%d, %d)", r->nv, r->nt, m->nv, m->nt);
-    glpgp_render_options o;
+    canvas cv;
+    memset(&cv, 0, sizeof cv);
     if (opt)
-        o = *opt;
+        cv.o = *opt;
     else
-        glpgp_render_options_default(&o);
-    if (o.size < 16 || o.size > 32768)
-        return GLPGP_FAIL(GLPGP_ERR_ARG, "image size %d out of range [16, 32768]", o.size);
-    if (o.kind < 0 || o.kind > GLPGP_IMAGE_CROSS)
-        return GLPGP_FAIL(GLPGP_ERR_ARG, "unknown image kind %d", o.kind);
-    if (o.kind == GLPGP_IMAGE_CROSS && !r->cross)
+        glpgp_render_options_default(&cv.o);
+    const glpgp_render_options *o = &cv.o;
+    if (o->size < 16 || o->size > 32768)
+        return GLPGP_FAIL(GLPGP_ERR_ARG, "image size %d out of range [16, 32768]", o->size);
+    if (o->kind < 0 || o->kind > GLPGP_IMAGE_CROSS) return GLPGP_FAIL(GLPGP_ERR_ARG, "unknown image kind %d", o->kind);
+    if (o->kind == GLPGP_IMAGE_CROSS && !r->cross)
         return GLPGP_FAIL(GLPGP_ERR_ARG, "render: the result has no cross field (solve with --field cross)");
     if (!r->osc[0].z || !r->osc[1].z) return GLPGP_FAIL(GLPGP_ERR_ARG, "render: result has no z");
-    double lw = o.line_width > 0 ? o.line_width : fmax(1.0, 1.5 * o.size / 1024.0);
-    int margin = o.margin >= 0 ? o.margin : o.size / 64;
-
-    double bw = m->bbox[2] - m->bbox[0], bh = m->bbox[3] - m->bbox[1];
-    double span = fmax(bw, bh);
-    if (!(span > 0)) return GLPGP_FAIL(GLPGP_ERR_ARG, "render: degenerate bounding box");
-    int inner = o.size - 2 * margin;
-    if (inner < 8) inner = 8;
-    double scale = inner / span;
-    int W = (int)ceil(bw * scale - 1e-9) + 2 * margin, H = (int)ceil(bh * scale - 1e-9) + 2 * margin;
-    if (W < 1) W = 1;
-    if (H < 1) H = 1;
-    double ox = m->bbox[0] - margin / scale, oy = m->bbox[3] + margin / scale; /* pixel (0,0) corner */
-
-    glpgp_image *im = NULL;
-    float *cov = NULL, *fld = NULL;
-    glpgp_status st = GLPGP_OK;
-    GLPGP_CHECK(glpgp_image_create(W, H, 4, &im));
-    GLPGP_CHECK_GOTO(st, glpgp_calloc((size_t)W * (size_t)H, sizeof(float), &cov), fail);
-    if (o.kind == GLPGP_IMAGE_FIELD || o.kind == GLPGP_IMAGE_CROSS) {
-        GLPGP_CHECK_GOTO(st, glpgp_malloc(2 * (size_t)W * (size_t)H, sizeof(float), &fld), fail);
-        for (size_t i = 0; i < 2 * (size_t)W * (size_t)H; i++) fld[i] = NAN;
+    const glpgp_status st = canvas_create(m, &cv);
+    if (st != GLPGP_OK) {
+        canvas_free(&cv);
+        return st;
     }
-    if (!o.transparent)
-        for (size_t i = 0; i < (size_t)W * (size_t)H; i++)
-            im->px[4 * i] = im->px[4 * i + 1] = im->px[4 * i + 2] = im->px[4 * i + 3] = 1.0f;
-
-    static const float col_u[3] = {0.10f, 0.22f, 0.60f}, col_v[3] = {0.60f, 0.18f, 0.10f};
-    static const float col_red[3] = {0.90f, 0.05f, 0.05f};
-    const double *zu = r->osc[0].z, *zv = r->osc[1].z;
-
-    for (int t = 0; t < m->nt; t++) {
-        const int *tv = m->tri + 3 * t;
-        double P[3][2];
-        for (int k = 0; k < 3; k++) {
-            P[k][0] = (m->xy[2 * tv[k]] - ox) * scale;
-            P[k][1] = (oy - m->xy[2 * tv[k] + 1]) * scale;
-        }
-        double e1x = P[1][0] - P[0][0], e1y = P[1][1] - P[0][1];
-        double e2x = P[2][0] - P[0][0], e2y = P[2][1] - P[0][1];
-        double det = e1x * e2y - e2x * e1y;
-        if (fabs(det) < 1e-18) continue;
-        /* barycentric l1, l2 = inv * (p - P0); rows of inv = gradients */
-        double g1x = e2y / det, g1y = -e2x / det, g2x = -e1y / det, g2y = e1x / det;
-        /* unwrapped theta at the corners */
-        double th[2][3], za[2][3];
-        for (int q = 0; q < 2; q++) {
-            const double *z = q == 0 ? zu : zv;
-            double tc[3];
-            for (int k = 0; k < 3; k++) {
-                double br = z[2 * tv[k]], bi = z[2 * tv[k] + 1];
-                if (r->coupled && r->field) { /* coupled solve: the triangle's frame oscillator q */
-                    double f[2];
-                    glpgp_coupled_frame_value(glpgp_cross_turn(r->field + 2 * tv[0], r->field + 2 * tv[k]), q,
-                                              zu + 2 * tv[k], zv + 2 * tv[k], f);
-                    br = f[0];
-                    bi = f[1];
-                }
-                za[q][k] = hypot(br, bi);
-                tc[k] = glpgp_theta(br, bi);
-            }
-            glpgp_phase_chart(tc, th[q]); /* unwrapped around corner 0 */
-        }
-        double gu[2], gv[2], gnu, gnv;
-        gu[0] = (th[0][1] - th[0][0]) * g1x + (th[0][2] - th[0][0]) * g2x;
-        gu[1] = (th[0][1] - th[0][0]) * g1y + (th[0][2] - th[0][0]) * g2y;
-        gv[0] = (th[1][1] - th[1][0]) * g1x + (th[1][2] - th[1][0]) * g2x;
-        gv[1] = (th[1][1] - th[1][0]) * g1y + (th[1][2] - th[1][0]) * g2y;
-        gnu = hypot(gu[0], gu[1]);
-        gnv = hypot(gv[0], gv[1]);
-        int sing = o.kind != GLPGP_IMAGE_CROSS && ((r->osc[0].singular && r->osc[0].singular[t]) ||
-                                                   (r->osc[1].singular && r->osc[1].singular[t]));
-
-        int x0 = (int)floor(fmin(P[0][0], fmin(P[1][0], P[2][0]))),
-            x1 = (int)ceil(fmax(P[0][0], fmax(P[1][0], P[2][0])));
-        int y0 = (int)floor(fmin(P[0][1], fmin(P[1][1], P[2][1]))),
-            y1 = (int)ceil(fmax(P[0][1], fmax(P[1][1], P[2][1])));
-        if (x0 < 0) x0 = 0;
-        if (y0 < 0) y0 = 0;
-        if (x1 > W - 1) x1 = W - 1;
-        if (y1 > H - 1) y1 = H - 1;
-        const double eps = -1e-9;
-        for (int j = y0; j <= y1; j++)
-            for (int i = x0; i <= x1; i++) {
-                double dx = i + 0.5 - P[0][0], dy = j + 0.5 - P[0][1];
-                double l1 = g1x * dx + g1y * dy, l2 = g2x * dx + g2y * dy, l0 = 1 - l1 - l2;
-                if (l0 < eps || l1 < eps || l2 < eps) continue;
-                float *p = im->px + 4 * ((size_t)j * (size_t)W + (size_t)i);
-                double tu = th[0][0] * l0 + th[0][1] * l1 + th[0][2] * l2;
-                double tvv = th[1][0] * l0 + th[1][1] * l1 + th[1][2] * l2;
-                float c[3];
-                switch (o.kind) {
-                case GLPGP_IMAGE_GRID: {
-                    /* theta is only known modulo 1, so cells cannot be told
-                     * apart: a light "pillow" shade, brightest at cell centres */
-                    double fu = tu - floor(tu) - 0.5, fv = tvv - floor(tvv) - 0.5;
-                    double sh = 1.0 - 0.12 * (fabs(fu) + fabs(fv));
-                    c[0] = (float)(1.00 * sh);
-                    c[1] = (float)(0.98 * sh);
-                    c[2] = (float)(0.93 * sh + 0.05 * (1 - sh));
-                    break;
-                }
-                case GLPGP_IMAGE_CHECKER: {
-                    /* 2 x 2 checker per unit cell (transitions at integer and
-                     * half-integer theta), anti-aliased over 0.75 px */
-                    double au = tu - floor(tu), av = tvv - floor(tvv);
-                    double su = au < 0.5 ? 1 : -1, sv = av < 0.5 ? 1 : -1;
-                    double du = gnu > 1e-12 ? fmin(fmin(au, 1 - au), fabs(au - 0.5)) / gnu : 1e9;
-                    double dv = gnv > 1e-12 ? fmin(fmin(av, 1 - av), fabs(av - 0.5)) / gnv : 1e9;
-                    double sg = su * sv * fmin(1.0, fmin(du, dv) / 0.75);
-                    double g = 0.5 + 0.5 * sg;
-                    c[0] = (float)(0.15 + 0.80 * g);
-                    c[1] = (float)(0.18 + 0.78 * g);
-                    c[2] = (float)(0.25 + 0.72 * g);
-                    break;
-                }
-                case GLPGP_IMAGE_ZABS: {
-                    double a = fmin(za[0][0] * l0 + za[0][1] * l1 + za[0][2] * l2,
-                                    za[1][0] * l0 + za[1][1] * l1 + za[1][2] * l2);
-                    heat(a, c);
-                    break;
-                }
-                case GLPGP_IMAGE_FIELD:
-                    c[0] = 0.97f, c[1] = 0.97f, c[2] = 0.95f;
-                    if (r->field) {
-                        size_t pi = (size_t)j * (size_t)W + (size_t)i;
-                        const double *U = r->field;
-                        fld[2 * pi] = (float)(U[2 * tv[0]] * l0 + U[2 * tv[1]] * l1 + U[2 * tv[2]] * l2);
-                        fld[2 * pi + 1] =
-                            (float)(U[2 * tv[0] + 1] * l0 + U[2 * tv[1] + 1] * l1 + U[2 * tv[2] + 1] * l2);
-                    }
-                    break;
-                case GLPGP_IMAGE_CROSS: {
-                    /* background: |w| (light, darker in the cores); w kept for the crosses */
-                    const double *w = r->cross->w;
-                    size_t pi = (size_t)j * (size_t)W + (size_t)i;
-                    double wr = w[2 * tv[0]] * l0 + w[2 * tv[1]] * l1 + w[2 * tv[2]] * l2;
-                    double wi = w[2 * tv[0] + 1] * l0 + w[2 * tv[1] + 1] * l1 + w[2 * tv[2] + 1] * l2;
-                    double a = clamp01(hypot(wr, wi));
-                    fld[2 * pi] = (float)wr;
-                    fld[2 * pi + 1] = (float)wi;
-                    c[0] = (float)(0.80 + 0.17 * a);
-                    c[1] = (float)(0.80 + 0.17 * a);
-                    c[2] = (float)(0.78 + 0.17 * a);
-                    break;
-                }
-                default: /* THETA */
-                    c[0] = (float)(tu - floor(tu));
-                    c[1] = (float)(tvv - floor(tvv));
-                    c[2] = 0.5f;
-                    break;
-                }
-                p[0] = c[0], p[1] = c[1], p[2] = c[2], p[3] = 1.0f;
-                if (o.kind == GLPGP_IMAGE_GRID) {
-                    over(p, col_v, line_cov(tvv, gnv, lw));
-                    over(p, col_u, line_cov(tu, gnu, lw));
-                }
-                if (sing && o.singular && o.kind != GLPGP_IMAGE_ZABS) {
-                    p[0] = col_red[0], p[1] = col_red[1], p[2] = col_red[2];
-                }
-            }
-    }
-
-    if (o.kind == GLPGP_IMAGE_CROSS) {
-        /* short crosses on a regular pixel grid: alpha = arg(w)/4 and alpha + 90 degrees */
-        int step = o.size / 40 < 8 ? 8 : o.size / 40;
-        double len = 0.75 * step;
-        for (int j = step / 2; j < H; j += step)
-            for (int i = step / 2; i < W; i += step) {
-                size_t pi = (size_t)j * (size_t)W + (size_t)i;
-                double wr = fld[2 * pi], wi = fld[2 * pi + 1];
-                if (isnan(wr) || !(hypot(wr, wi) > 1e-12)) continue;
-                double al = atan2(wi, wr) / 4.0;
-                double cx = i + 0.5, cy = j + 0.5;
-                for (int q = 0; q < 2; q++) {
-                    double ux = cos(al + q * GLPGP_PI / 2), uy = -sin(al + q * GLPGP_PI / 2); /* y down */
-                    stroke(cov, W, H, cx - 0.5 * len * ux, cy - 0.5 * len * uy, cx + 0.5 * len * ux,
-                           cy + 0.5 * len * uy, lw);
-                }
-            }
-        static const float col_cross[3] = {0.10f, 0.20f, 0.45f};
-        apply_cov(im, cov, col_cross);
-        /* singularities: +1/4 red, -1/4 blue; radius grows with |index| */
-        if (o.singular) {
-            static const float col_pos[3] = {0.90f, 0.05f, 0.05f}, col_neg[3] = {0.05f, 0.35f, 0.95f};
-            for (int sgn = 0; sgn < 2; sgn++) {
-                for (int k = 0; k < r->cross->nsing; k++) {
-                    const glpgp_cross_sing *q = &r->cross->sing[k];
-                    if ((q->index4 > 0) != (sgn == 0)) continue;
-                    double rad = fmax(4.0, 3.0 * lw) * sqrt((double)abs(q->index4));
-                    double cx = (q->x - ox) * scale, cy = (oy - q->y) * scale;
-                    stroke(cov, W, H, cx, cy, cx, cy, 2 * rad);
-                }
-                apply_cov(im, cov, sgn == 0 ? col_pos : col_neg);
-            }
-        }
-    }
-
-    /* singular triangles can be smaller than a pixel: mark each with a red dot */
-    if (o.singular && o.kind != GLPGP_IMAGE_ZABS && o.kind != GLPGP_IMAGE_CROSS) {
-        double rad = fmax(2.5, 1.5 * lw);
-        for (int t = 0; t < m->nt; t++) {
-            if (!((r->osc[0].singular && r->osc[0].singular[t]) ||
-                  (r->osc[1].singular && r->osc[1].singular[t])))
-                continue;
-            const int *tv = m->tri + 3 * t;
-            double cx = 0, cy = 0;
-            for (int k = 0; k < 3; k++) {
-                cx += (m->xy[2 * tv[k]] - ox) * scale / 3;
-                cy += (oy - m->xy[2 * tv[k] + 1]) * scale / 3;
-            }
-            stroke(cov, W, H, cx, cy, cx, cy, 2 * rad);
-        }
-        apply_cov(im, cov, col_red);
-    }
-
-    if (o.kind == GLPGP_IMAGE_FIELD && r->field) {
-        int step = o.size / 40 < 8 ? 8 : o.size / 40;
-        double len = 0.8 * step;
-        for (int j = step / 2; j < H; j += step)
-            for (int i = step / 2; i < W; i += step) {
-                size_t pi = (size_t)j * (size_t)W + (size_t)i;
-                double ux = fld[2 * pi], uy = fld[2 * pi + 1];
-                if (isnan(ux)) continue;
-                double n = hypot(ux, uy);
-                if (!(n > 1e-12)) continue;
-                ux /= n;
-                uy = -uy / n; /* pixel y points down */
-                double cx = i + 0.5, cy = j + 0.5;
-                double ax = cx - 0.5 * len * ux, ay = cy - 0.5 * len * uy;
-                double bx = cx + 0.5 * len * ux, by = cy + 0.5 * len * uy;
-                stroke(cov, W, H, ax, ay, bx, by, lw);
-                double hl = 0.3 * len;
-                for (int s = -1; s <= 1; s += 2) {
-                    double ca = cos(2.6), sa = s * sin(2.6);
-                    double hx = ux * ca - uy * sa, hy = ux * sa + uy * ca;
-                    stroke(cov, W, H, bx, by, bx + hl * hx, by + hl * hy, lw);
-                }
-            }
-        static const float col_arrow[3] = {0.08f, 0.18f, 0.50f};
-        apply_cov(im, cov, col_arrow);
-    }
-
-    if (o.boundary) {
-        for (int l = 0; l < m->nloops; l++) {
-            int s = m->loop_start[l], e = m->loop_start[l + 1];
-            for (int k = s; k < e; k++) {
-                int a = m->loop_vertices[k], b = m->loop_vertices[k + 1 < e ? k + 1 : s];
-                stroke(cov, W, H, (m->xy[2 * a] - ox) * scale, (oy - m->xy[2 * a + 1]) * scale,
-                       (m->xy[2 * b] - ox) * scale, (oy - m->xy[2 * b + 1]) * scale, fmax(1.5, lw * 1.3));
-            }
-        }
-        static const float col_b[3] = {0.12f, 0.12f, 0.12f};
-        apply_cov(im, cov, col_b);
-    }
-    free(cov);
-    free(fld);
-    *out = im;
+    for (int t = 0; t < m->nt; t++) raster_triangle(&cv, m, r, t);
+    if (o->kind == GLPGP_IMAGE_CROSS) overlay_cross(&cv, r);
+    if (o->singular && o->kind != GLPGP_IMAGE_ZABS && o->kind != GLPGP_IMAGE_CROSS) overlay_singular(&cv, m, r);
+    if (o->kind == GLPGP_IMAGE_FIELD && r->field) overlay_arrows(&cv);
+    if (o->boundary) overlay_boundary(&cv, m);
+    *out = cv.im;
+    cv.im = NULL;
+    canvas_free(&cv);
     return GLPGP_OK;
-fail:
-    free(cov);
-    free(fld);
-    glpgp_image_destroy(&im);
-    return st;
 }
 
 /* ---- font ------------------------------------------------------------------ */
