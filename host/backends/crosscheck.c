@@ -456,13 +456,159 @@ static glpgp_status amg_fused_rows(cc *c, int l, glpgp_vec *lv[2][4], const doub
  * share kernels/amg_rows.h (bit-identical in practice): rtol 1e-12; so does
  * the dense coarse inverse (kernels/amg_dense.h, on each backend); the
  * cycle (K-cycle coefficients from dot products) 1e-10; the solve 1e-6. */
+#define LV(k) lv[s][k]
+
+/* The coarsest level l (n unknowns): its dense matrix, the coarse solve C r
+ * with the LU and with the SPD inverse (the trust region's), on both sides
+ * (lv[s]: x, r, y). */
+static glpgp_status amg_coarsest_rows(cc *c, glpgp_amg *a[2], int l, glpgp_vec *lv[2][4], size_t n)
+{
+    char name[64];
+    const size_t mm = n * n;
+    double *dn[2] = {NULL, NULL};
+    glpgp_status st = GLPGP_OK;
+    for (int s = 0; s < 2 && st == GLPGP_OK; s++) st = glpgp_malloc(mm ? mm : 1, sizeof(double), &dn[s]);
+    for (int s = 0; s < 2 && st == GLPGP_OK; s++) st = c->S[s].b->ops->amg_coarse_read(c->S[s].b, dn[s]);
+    if (st == GLPGP_OK) {
+        snprintf(name, sizeof name, "multigrid coarsest A_%d (dense)", l);
+        st = cmp(c, name, dn[0], dn[1], mm, 1e-12, 1e-14, 0.0);
+    }
+    free(dn[0]);
+    free(dn[1]);
+    GLPGP_CHECK(st);
+    BOTH(o->amg_coarse_solve(b, LV(1), LV(2)));
+    BOTH(o->vec_read(b, LV(2), c->h[s]));
+    GLPGP_CHECK(cmp(c, "multigrid coarse solve C r", c->h[0], c->h[1], n, 1e-12, 1e-14, 0.0));
+    /* the symmetric PSD coarse operator (glpgp_amg_update_spd: the trust region's) */
+    for (int s = 0; s < 2; s++) GLPGP_CHECK(glpgp_amg_update_spd(a[s], c->S[s].v[VX]));
+    BOTH(o->amg_coarse_solve(b, LV(1), LV(2)));
+    BOTH(o->vec_read(b, LV(2), c->h[s]));
+    GLPGP_CHECK(cmp(c, "multigrid coarse solve C r (SPD)", c->h[0], c->h[1], n, 1e-12, 1e-14, 0.0));
+    for (int s = 0; s < 2; s++) GLPGP_CHECK(glpgp_amg_update(a[s], c->S[s].v[VX]));
+    return GLPGP_OK;
+}
+
+/* A non-coarsest level l: smoother, restriction, prolongation and the fused
+ * halves (lv[s]: x, r, y of level l, e of level l+1; he: e's values). */
+static glpgp_status amg_level_rows(cc *c, int l, glpgp_vec *lv[2][4], const double *he, size_t n, size_t nc)
+{
+    char name[64];
+    /* y <- M^-1 r;  then y <- x + M^-1 (r - A x) */
+    BOTH(o->amg_smooth(b, l, LV(1), NULL, LV(2)));
+    BOTH(o->vec_read(b, LV(2), c->h[s]));
+    BOTH(o->amg_smooth(b, l, LV(1), LV(0), LV(2)));
+    BOTH(o->vec_read(b, LV(2), c->h[s] + n));
+    snprintf(name, sizeof name, "multigrid smoother level %d", l);
+    GLPGP_CHECK(cmp(c, name, c->h[0], c->h[1], 2 * n, 1e-12, 1e-14, 0.0));
+    /* e' <- P^T r;  e' <- P^T (r - A x)  (into the level-l+1 vector; e rewritten after) */
+    BOTH(o->amg_restrict(b, l, LV(1), NULL, LV(3)));
+    BOTH(o->vec_read(b, LV(3), c->h[s]));
+    BOTH(o->amg_restrict(b, l, LV(1), LV(0), LV(3)));
+    BOTH(o->vec_read(b, LV(3), c->h[s] + nc));
+    snprintf(name, sizeof name, "multigrid restriction %d -> %d", l, l + 1);
+    GLPGP_CHECK(cmp(c, name, c->h[0], c->h[1], 2 * nc, 1e-12, 1e-14, 0.0));
+    /* y <- x;  y <- y + P e */
+    BOTH(o->vec_write(b, LV(3), he));
+    BOTH(o->copy(b, LV(2), LV(0)));
+    BOTH(o->amg_prolong(b, l, LV(3), LV(2)));
+    BOTH(o->vec_read(b, LV(2), c->h[s]));
+    snprintf(name, sizeof name, "multigrid prolongation %d -> %d", l + 1, l);
+    GLPGP_CHECK(cmp(c, name, c->h[0], c->h[1], n, 1e-12, 1e-14, 0.0));
+    return amg_fused_rows(c, l, lv, he, n, nc);
+}
+
+/* Level 0 only: the K-cycle's register ops (dots, axpby with register
+ * coefficients, kcombine) and one whole cycle z <- B r. */
+static glpgp_status amg_level0_rows(cc *c, glpgp_amg *a[2], glpgp_vec *lv[2][4], size_t n, int S,
+                                    double t[2][GLPGP_AMG_NSLOTS])
+{
+    /* t[S] <- x.r, t[S+1] <- x.x;  y <- r;  y <- (t[S]/t[S+1]) x - 0.5 y;
+     * t[S+2..S+4] <- a few more;  y <- kcombine(x, r) */
+    BOTH(o->amg_dots(b, LV(0), LV(1), LV(0), S));
+    BOTH(o->copy(b, LV(2), LV(1)));
+    const glpgp_amg_coef ca = {S, S + 1, 1.0}, cc2 = {-1, -1, -0.5};
+    BOTH(o->amg_axpby(b, ca, LV(0), cc2, LV(2)));
+    BOTH(o->vec_read(b, LV(2), c->h[s]));
+    BOTH(o->amg_dots(b, LV(2), LV(0), LV(1), S + 2));
+    BOTH(o->amg_dots(b, LV(2), LV(2), NULL, S + 4));
+    GLPGP_CHECK(amg_scalars(c, t));
+    GLPGP_CHECK(cmp(c, "multigrid dots (5)", t[0] + S, t[1] + S, 5, 1e-12, 1e-13, 0.0));
+    GLPGP_CHECK(cmp(c, "multigrid axpby (coefficients)", c->h[0], c->h[1], n, 1e-12, 1e-14, 0.0));
+    BOTH(o->amg_kcombine(b, LV(0), LV(1), LV(2), S));
+    BOTH(o->vec_read(b, LV(2), c->h[s]));
+    GLPGP_CHECK(cmp(c, "multigrid kcombine", c->h[0], c->h[1], n, 1e-10, 1e-10, 0.0));
+    /* one cycle z <- B r */
+    BOTH(glpgp_amg_apply(a[s], LV(1), LV(2)));
+    BOTH(o->vec_read(b, LV(2), c->h[s]));
+    return cmp(c, "multigrid cycle B r", c->h[0], c->h[1], n, 1e-10, 1e-10, 0.0);
+}
+
+/* Level l's vectors on both sides (x, r filled with hx, hr; e of level
+ * l+1 with he) and its rows compared; the vectors freed. */
+static glpgp_status amg_level(cc *c, glpgp_amg *a[2], int l, int L, const glpgp_amg_info *in, const double *hx,
+                              const double *hr, const double *he)
+{
+    char name[64];
+    double t[2][GLPGP_AMG_NSLOTS];
+    glpgp_vec *lv[2][4] = {{NULL}}; /* per side: x, r, y (level l), e (level l+1) */
+    const size_t n = (size_t)2 * in->n[l], nc = l + 1 < L ? (size_t)2 * in->n[l + 1] : 0;
+    const int S = GLPGP_AMG_KSLOT(0);
+    glpgp_status st = GLPGP_OK;
+    for (int s = 0; s < 2 && st == GLPGP_OK; s++) {
+        glpgp_backend *b = c->S[s].b;
+        for (int k = 0; k < 3 && st == GLPGP_OK; k++) st = b->ops->vec_create(b, n, &lv[s][k]);
+        if (nc && st == GLPGP_OK) st = b->ops->vec_create(b, nc, &lv[s][3]);
+        if (st == GLPGP_OK) st = b->ops->vec_write(b, lv[s][0], hx);
+        if (st == GLPGP_OK) st = b->ops->vec_write(b, lv[s][1], hr);
+        if (nc && st == GLPGP_OK) st = b->ops->vec_write(b, lv[s][3], he);
+    }
+    /* y <- A_l x;  t[S] <- x.y;  t[S+1] <- x.r */
+    for (int s = 0; s < 2 && st == GLPGP_OK; s++) {
+        glpgp_backend *b = c->S[s].b;
+        st = b->ops->amg_spmv_dots(b, l, LV(0), LV(2), LV(1), NULL, S);
+        if (st == GLPGP_OK) st = b->ops->vec_read(b, LV(2), c->h[s]);
+    }
+    if (st == GLPGP_OK) st = amg_scalars(c, t);
+    if (st == GLPGP_OK) {
+        snprintf(name, sizeof name, "multigrid A_%d x", l);
+        st = cmp(c, name, c->h[0], c->h[1], n, 1e-12, 1e-14, 0.0);
+    }
+    if (st == GLPGP_OK) {
+        snprintf(name, sizeof name, "multigrid A_%d x: x.Ax, x.r", l);
+        double d0[2] = {t[0][S], t[0][S + 1]}, d1[2] = {t[1][S], t[1][S + 1]};
+        st = cmp(c, name, d0, d1, 2, 1e-12, 1e-13, 0.0);
+    }
+    if (st == GLPGP_OK) st = nc ? amg_level_rows(c, l, lv, he, n, nc) : amg_coarsest_rows(c, a, l, lv, n);
+    if (st == GLPGP_OK && l == 0) st = amg_level0_rows(c, a, lv, n, S, t);
+    for (int s = 0; s < 2; s++)
+        for (int k = 0; k < 4; k++)
+            if (lv[s][k]) c->S[s].b->ops->vec_destroy(c->S[s].b, &lv[s][k]);
+    return st;
+}
+#undef LV
+
+/* Both sides' hierarchies must have the same levels and sizes (a row). */
+static glpgp_status amg_levels_row(cc *c, const glpgp_amg_info in[2], int *same)
+{
+    glpgp_crosscheck_row *r;
+    GLPGP_CHECK(row_add(c->t, &r, "multigrid levels (%d, %d -> %d)", in[1].nlevels, in[1].n[0],
+                        in[1].n[in[1].nlevels - 1]));
+    snprintf(r->tol, sizeof r->tol, "exact");
+    r->pass = in[0].nlevels == in[1].nlevels;
+    for (int l = 0; r->pass && l < in[1].nlevels; l++)
+        r->pass = in[0].n[l] == in[1].n[l] && in[0].nnzb[l] == in[1].nnzb[l];
+    r->max_abs = r->max_rel = r->pass ? 0.0 : 1.0;
+    *same = r->pass;
+    return GLPGP_OK;
+}
+
+/* The multigrid ops level by level on random vectors, then a flexible CG
+ * solve with the multigrid, on both sides. */
 static glpgp_status stage_amg(cc *c)
 {
     glpgp_status st = GLPGP_OK;
     glpgp_amg *a[2] = {NULL, NULL};
-    glpgp_vec *lv[2][4] = {{NULL}}; /* per side: x, r, y (level l), e (level l+1) */
     double *hx = NULL, *hr = NULL, *he = NULL;
-    double t[2][GLPGP_AMG_NSLOTS];
     char name[48];
     unsigned long long seed = c->opt->seed ^ 0x9e3779b97f4a7c15ull;
     glpgp_options so = c->so;
@@ -478,143 +624,37 @@ static glpgp_status stage_amg(cc *c)
     }
     glpgp_amg_info in[2];
     for (int s = 0; s < 2; s++) glpgp_amg_get_info(a[s], &in[s]);
-    {
-        glpgp_crosscheck_row *r;
-        GLPGP_CHECK_GOTO(st, row_add(c->t, &r, "multigrid levels (%d, %d -> %d)", in[1].nlevels, in[1].n[0],
-                                     in[1].n[in[1].nlevels - 1]), done);
-        snprintf(r->tol, sizeof r->tol, "exact");
-        r->pass = in[0].nlevels == in[1].nlevels;
-        for (int l = 0; r->pass && l < in[1].nlevels; l++)
-            r->pass = in[0].n[l] == in[1].n[l] && in[0].nnzb[l] == in[1].nnzb[l];
-        r->max_abs = r->max_rel = r->pass ? 0.0 : 1.0;
-        if (!r->pass) goto done;
-    }
+    int same = 0;
+    GLPGP_CHECK_GOTO(st, amg_levels_row(c, in, &same), done);
+    if (!same) goto done;
     const int L = in[1].nlevels;
     GLPGP_CHECK_GOTO(st, glpgp_malloc(c->n2, sizeof(double), &hx), done);
     GLPGP_CHECK_GOTO(st, glpgp_malloc(c->n2, sizeof(double), &hr), done);
     GLPGP_CHECK_GOTO(st, glpgp_malloc(c->n2, sizeof(double), &he), done);
     for (int l = 0; l < L; l++) {
         const size_t n = (size_t)2 * in[1].n[l], nc = l + 1 < L ? (size_t)2 * in[1].n[l + 1] : 0;
-        const int S = GLPGP_AMG_KSLOT(0);
         cc_fill(&seed, hx, n);
         cc_fill(&seed, hr, n);
         cc_fill(&seed, he, nc);
-        for (int s = 0; s < 2; s++) {
-            glpgp_backend *b = c->S[s].b;
-            for (int k = 0; k < 3; k++) GLPGP_CHECK_GOTO(st, b->ops->vec_create(b, n, &lv[s][k]), done);
-            if (nc) GLPGP_CHECK_GOTO(st, b->ops->vec_create(b, nc, &lv[s][3]), done);
-            GLPGP_CHECK_GOTO(st, b->ops->vec_write(b, lv[s][0], hx), done);
-            GLPGP_CHECK_GOTO(st, b->ops->vec_write(b, lv[s][1], hr), done);
-            if (nc) GLPGP_CHECK_GOTO(st, b->ops->vec_write(b, lv[s][3], he), done);
-        }
-#define LV(k) lv[s][k]
-#define BOTH_GOTO(call)                                                                                      \
-    for (int s = 0; s < 2; s++) {                                                                            \
-        glpgp_backend *b = c->S[s].b;                                                                        \
-        const glpgp_backend_ops *o = b->ops; (void)o;                                                              \
-        GLPGP_CHECK_GOTO(st, call, done);                                                                    \
-    }
-        /* y <- A_l x;  t[S] <- x.y;  t[S+1] <- x.r */
-        BOTH_GOTO(o->amg_spmv_dots(b, l, LV(0), LV(2), LV(1), NULL, S));
-        BOTH_GOTO(o->vec_read(b, LV(2), c->h[s]));
-        GLPGP_CHECK_GOTO(st, amg_scalars(c, t), done);
-        snprintf(name, sizeof name, "multigrid A_%d x", l);
-        GLPGP_CHECK_GOTO(st, cmp(c, name, c->h[0], c->h[1], n, 1e-12, 1e-14, 0.0), done);
-        snprintf(name, sizeof name, "multigrid A_%d x: x.Ax, x.r", l);
-        double d0[2] = {t[0][S], t[0][S + 1]}, d1[2] = {t[1][S], t[1][S + 1]};
-        GLPGP_CHECK_GOTO(st, cmp(c, name, d0, d1, 2, 1e-12, 1e-13, 0.0), done);
-        if (!nc) {
-            /* coarsest: the dense matrix and C r */
-            const size_t m = n, mm = m * m;
-            double *dn[2] = {NULL, NULL};
-            for (int s = 0; s < 2 && st == GLPGP_OK; s++) st = glpgp_malloc(mm ? mm : 1, sizeof(double), &dn[s]);
-            if (st == GLPGP_OK) BOTH_GOTO(o->amg_coarse_read(b, dn[s]));
-            if (st == GLPGP_OK) {
-                snprintf(name, sizeof name, "multigrid coarsest A_%d (dense)", l);
-                st = cmp(c, name, dn[0], dn[1], mm, 1e-12, 1e-14, 0.0);
-            }
-            free(dn[0]);
-            free(dn[1]);
-            if (st != GLPGP_OK) goto done;
-            BOTH_GOTO(o->amg_coarse_solve(b, LV(1), LV(2)));
-            BOTH_GOTO(o->vec_read(b, LV(2), c->h[s]));
-            GLPGP_CHECK_GOTO(st, cmp(c, "multigrid coarse solve C r", c->h[0], c->h[1], n, 1e-12, 1e-14, 0.0), done);
-            /* the symmetric PSD coarse operator (glpgp_amg_update_spd: the trust region's) */
-            for (int s = 0; s < 2; s++) GLPGP_CHECK_GOTO(st, glpgp_amg_update_spd(a[s], c->S[s].v[VX]), done);
-            BOTH_GOTO(o->amg_coarse_solve(b, LV(1), LV(2)));
-            BOTH_GOTO(o->vec_read(b, LV(2), c->h[s]));
-            GLPGP_CHECK_GOTO(st, cmp(c, "multigrid coarse solve C r (SPD)", c->h[0], c->h[1], n, 1e-12, 1e-14, 0.0),
-                             done);
-            for (int s = 0; s < 2; s++) GLPGP_CHECK_GOTO(st, glpgp_amg_update(a[s], c->S[s].v[VX]), done);
-        } else {
-            /* y <- M^-1 r;  then y <- x + M^-1 (r - A x) */
-            BOTH_GOTO(o->amg_smooth(b, l, LV(1), NULL, LV(2)));
-            BOTH_GOTO(o->vec_read(b, LV(2), c->h[s]));
-            BOTH_GOTO(o->amg_smooth(b, l, LV(1), LV(0), LV(2)));
-            BOTH_GOTO(o->vec_read(b, LV(2), c->h[s] + n));
-            snprintf(name, sizeof name, "multigrid smoother level %d", l);
-            GLPGP_CHECK_GOTO(st, cmp(c, name, c->h[0], c->h[1], 2 * n, 1e-12, 1e-14, 0.0), done);
-            /* e' <- P^T r;  e' <- P^T (r - A x)  (into the level-l+1 vector; e rewritten after) */
-            BOTH_GOTO(o->amg_restrict(b, l, LV(1), NULL, LV(3)));
-            BOTH_GOTO(o->vec_read(b, LV(3), c->h[s]));
-            BOTH_GOTO(o->amg_restrict(b, l, LV(1), LV(0), LV(3)));
-            BOTH_GOTO(o->vec_read(b, LV(3), c->h[s] + nc));
-            snprintf(name, sizeof name, "multigrid restriction %d -> %d", l, l + 1);
-            GLPGP_CHECK_GOTO(st, cmp(c, name, c->h[0], c->h[1], 2 * nc, 1e-12, 1e-14, 0.0), done);
-            /* y <- x;  y <- y + P e */
-            BOTH_GOTO(o->vec_write(b, LV(3), he));
-            BOTH_GOTO(o->copy(b, LV(2), LV(0)));
-            BOTH_GOTO(o->amg_prolong(b, l, LV(3), LV(2)));
-            BOTH_GOTO(o->vec_read(b, LV(2), c->h[s]));
-            snprintf(name, sizeof name, "multigrid prolongation %d -> %d", l + 1, l);
-            GLPGP_CHECK_GOTO(st, cmp(c, name, c->h[0], c->h[1], n, 1e-12, 1e-14, 0.0), done);
-            GLPGP_CHECK_GOTO(st, amg_fused_rows(c, l, lv, he, n, nc), done);
-        }
-        if (l == 0) {
-            /* t[S] <- x.r, t[S+1] <- x.x;  y <- r;  y <- (t[S]/t[S+1]) x - 0.5 y;
-             * t[S+2..S+4] <- a few more;  y <- kcombine(x, r) */
-            BOTH_GOTO(o->amg_dots(b, LV(0), LV(1), LV(0), S));
-            BOTH_GOTO(o->copy(b, LV(2), LV(1)));
-            {
-                const glpgp_amg_coef ca = {S, S + 1, 1.0}, cc2 = {-1, -1, -0.5};
-                BOTH_GOTO(o->amg_axpby(b, ca, LV(0), cc2, LV(2)));
-            }
-            BOTH_GOTO(o->vec_read(b, LV(2), c->h[s]));
-            BOTH_GOTO(o->amg_dots(b, LV(2), LV(0), LV(1), S + 2));
-            BOTH_GOTO(o->amg_dots(b, LV(2), LV(2), NULL, S + 4));
-            GLPGP_CHECK_GOTO(st, amg_scalars(c, t), done);
-            GLPGP_CHECK_GOTO(st, cmp(c, "multigrid dots (5)", t[0] + S, t[1] + S, 5, 1e-12, 1e-13, 0.0), done);
-            GLPGP_CHECK_GOTO(st, cmp(c, "multigrid axpby (coefficients)", c->h[0], c->h[1], n, 1e-12, 1e-14, 0.0),
-                             done);
-            BOTH_GOTO(o->amg_kcombine(b, LV(0), LV(1), LV(2), S));
-            BOTH_GOTO(o->vec_read(b, LV(2), c->h[s]));
-            GLPGP_CHECK_GOTO(st, cmp(c, "multigrid kcombine", c->h[0], c->h[1], n, 1e-10, 1e-10, 0.0), done);
-            /* one cycle z <- B r */
-            BOTH_GOTO(glpgp_amg_apply(a[s], LV(1), LV(2)));
-            BOTH_GOTO(o->vec_read(b, LV(2), c->h[s]));
-            GLPGP_CHECK_GOTO(st, cmp(c, "multigrid cycle B r", c->h[0], c->h[1], n, 1e-10, 1e-10, 0.0), done);
-        }
-#undef LV
-        for (int s = 0; s < 2; s++)
-            for (int k = 0; k < 4; k++) c->S[s].b->ops->vec_destroy(c->S[s].b, &lv[s][k]);
+        GLPGP_CHECK_GOTO(st, amg_level(c, a, l, L, &in[1], hx, hr, he), done);
     }
     {
         /* flexible CG + multigrid: NEWTON d = -g */
         glpgp_cg_info ci[2];
-        BOTH_GOTO(o->gradient(b, c->S[s].v[VX], c->inv4e2, c->S[s].v[VG]));
-        BOTH_GOTO(o->axpby(b, -1.0, c->S[s].v[VG], 0.0, c->S[s].v[VY]));
-        BOTH_GOTO(glpgp_fcg(a[s], c->S[s].v[VY], c->S[s].v[VD], 1e-10, 1000, &ci[s]));
-        BOTH_GOTO(o->vec_read(b, c->S[s].v[VD], c->h[s]));
+        for (int s = 0; s < 2 && st == GLPGP_OK; s++) {
+            glpgp_backend *b = c->S[s].b;
+            glpgp_vec **v = c->S[s].v;
+            st = b->ops->gradient(b, v[VX], c->inv4e2, v[VG]);
+            if (st == GLPGP_OK) st = b->ops->axpby(b, -1.0, v[VG], 0.0, v[VY]);
+            if (st == GLPGP_OK) st = glpgp_fcg(a[s], v[VY], v[VD], 1e-10, 1000, &ci[s]);
+            if (st == GLPGP_OK) st = b->ops->vec_read(b, v[VD], c->h[s]);
+        }
+        if (st != GLPGP_OK) goto done;
         snprintf(name, sizeof name, "FCG+multigrid solve (%d vs %d it)", ci[0].iterations, ci[1].iterations);
         GLPGP_CHECK_GOTO(st, cmp(c, name, c->h[0], c->h[1], c->n2, 1e-6, 1e-6, 0.0), done);
     }
-#undef BOTH_GOTO
 done:
-    for (int s = 0; s < 2; s++) {
-        for (int k = 0; k < 4; k++)
-            if (lv[s][k]) c->S[s].b->ops->vec_destroy(c->S[s].b, &lv[s][k]);
-        glpgp_amg_destroy(&a[s]);
-    }
+    for (int s = 0; s < 2; s++) glpgp_amg_destroy(&a[s]);
     free(hx);
     free(hr);
     free(he);
