@@ -29,32 +29,10 @@ static void stats_surface(glpgp_json *w, const glpgp_mesh *m, const glpgp_option
     free(fl);
 }
 
-static void stats_body(FILE *f, const glpgp_mesh *m, const glpgp_options *o, const glpgp_result *r,
-                       const glpgp_stats_extra *x)
+/* "field", "field_file", "init" and "options": the solve's options (null
+ * without them). */
+static void stats_options(glpgp_json *w, const glpgp_options *o)
 {
-    static const char *const oname[2] = {"u", "v"};
-    glpgp_json w0, *w = &w0;
-    glpgp_json_init(w, f);
-    const glpgp_osc_result *ou = &r->osc[0], *ov = &r->osc[1];
-
-    glpgp_json_object(w, NULL);
-    glpgp_json_str(w, "version", GLPGP_VERSION);
-    glpgp_json_str(w, "input", x ? x->input : NULL);
-    glpgp_json_str(w, "output", x ? x->output : NULL);
-    glpgp_json_int(w, "vertices", m->nv);
-    glpgp_json_int(w, "triangles", m->nt);
-    glpgp_json_num(w, "size", r->size);
-    if (o) {
-        glpgp_json_str(w, "method", method_name(o->method));
-        glpgp_json_str(w, "energy", energy_name(o->energy));
-        glpgp_json_str(w, "newton", hess_name(o->hess));
-    } else {
-        glpgp_json_null(w, "method");
-        glpgp_json_null(w, "energy");
-        glpgp_json_null(w, "newton");
-    }
-    glpgp_json_str(w, "backend", r->backend);
-    glpgp_json_str(w, "device", x ? x->device : NULL);
     if (o) {
         glpgp_json_str(w, "field", field_name(o->field));
         glpgp_json_str(w, "field_file", o->field == GLPGP_FIELD_FILE ? o->field_file : NULL);
@@ -97,27 +75,12 @@ static void stats_body(FILE *f, const glpgp_mesh *m, const glpgp_options *o, con
         glpgp_json_null(w, "init");
         glpgp_json_null(w, "options");
     }
+}
 
-    glpgp_json_object(w, "mesh");
-    glpgp_json_num(w, "area", m->area);
-    glpgp_json_num(w, "mean_edge", m->mean_edge);
-    glpgp_json_int(w, "boundary_loops", m->nloops);
-    glpgp_json_array(w, "bbox");
-    for (int i = 0; i < 4; i++) glpgp_json_num(w, NULL, m->bbox[i]);
-    glpgp_json_close(w);
-    glpgp_json_int(w, "orientation_fixed", m->orientation_fixed);
-    if (m->surf) stats_surface(w, m, o);
-    glpgp_json_close(w);
-
-    glpgp_json_object(w, "singularities");
-    for (int k = 0; k < 2; k++) {
-        glpgp_json_object(w, oname[k]);
-        glpgp_json_int(w, "plus", r->osc[k].plus);
-        glpgp_json_int(w, "minus", r->osc[k].minus);
-        glpgp_json_close(w);
-    }
-    glpgp_json_close(w);
-
+/* "cross_field" (--field cross): singularities with index and position,
+ * the levels of its continuation. */
+static void stats_cross(glpgp_json *w, const glpgp_mesh *m, const glpgp_result *r)
+{
     /* the cross field (--field cross): singularities with index and position */
     if (r->cross) {
         const glpgp_cross_result *c = r->cross;
@@ -164,7 +127,13 @@ static void stats_body(FILE *f, const glpgp_mesh *m, const glpgp_options *o, con
         glpgp_json_num(w, "seconds", c->seconds);
         glpgp_json_close(w);
     }
+}
 
+/* "zabs", "final_energy", "dirichlet", iteration counts and "converged". */
+static void stats_counts(glpgp_json *w, const glpgp_result *r)
+{
+    static const char *const oname[2] = {"u", "v"};
+    const glpgp_osc_result *ou = &r->osc[0], *ov = &r->osc[1];
     glpgp_json_object(w, "zabs");
     for (int k = 0; k < 2; k++) {
         glpgp_json_object(w, oname[k]);
@@ -204,7 +173,12 @@ static void stats_body(FILE *f, const glpgp_mesh *m, const glpgp_options *o, con
     glpgp_json_int(w, "capped_levels_u", ou->capped_levels);
     glpgp_json_int(w, "capped_levels_v", ov->capped_levels);
     glpgp_json_close(w);
+}
 
+/* "eps_schedule": every level of both oscillators. */
+static void stats_schedule(glpgp_json *w, const glpgp_result *r)
+{
+    static const char *const oname[2] = {"u", "v"};
     glpgp_json_object(w, "eps_schedule");
     for (int k = 0; k < 2; k++) {
         const glpgp_osc_result *os = &r->osc[k];
@@ -234,7 +208,13 @@ static void stats_body(FILE *f, const glpgp_mesh *m, const glpgp_options *o, con
         glpgp_json_close(w);
     }
     glpgp_json_close(w);
+}
 
+/* "seconds", "phases" (glpgp/timers.h), "solve_split", "device_calls",
+ * "oscillators". */
+static void stats_time(glpgp_json *w, const glpgp_result *r, const glpgp_stats_extra *x)
+{
+    const glpgp_osc_result *ou = &r->osc[0], *ov = &r->osc[1];
     glpgp_json_object(w, "seconds");
     if (x && x->seconds_read >= 0)
         glpgp_json_num(w, "read", x->seconds_read);
@@ -281,7 +261,11 @@ static void stats_body(FILE *f, const glpgp_mesh *m, const glpgp_options *o, con
     /* u and v: one after the other, at the same time (glpgp_options.oscillators) or
      * one coupled system */
     glpgp_json_str(w, "oscillators", r->coupled ? "coupled" : r->concurrent ? "concurrent" : "sequential");
+}
 
+/* "ranks" and "per_rank" of a distributed run. */
+static void stats_ranks(glpgp_json *w, const glpgp_stats_extra *x)
+{
     if (x && x->ranks > 0 && x->rank_info) {
         glpgp_json_int(w, "ranks", x->ranks);
         glpgp_json_array(w, "per_rank");
@@ -297,6 +281,60 @@ static void stats_body(FILE *f, const glpgp_mesh *m, const glpgp_options *o, con
         }
         glpgp_json_close(w);
     }
+}
+
+static void stats_body(FILE *f, const glpgp_mesh *m, const glpgp_options *o, const glpgp_result *r,
+                       const glpgp_stats_extra *x)
+{
+    static const char *const oname[2] = {"u", "v"};
+    glpgp_json w0, *w = &w0;
+    glpgp_json_init(w, f);
+
+    glpgp_json_object(w, NULL);
+    glpgp_json_str(w, "version", GLPGP_VERSION);
+    glpgp_json_str(w, "input", x ? x->input : NULL);
+    glpgp_json_str(w, "output", x ? x->output : NULL);
+    glpgp_json_int(w, "vertices", m->nv);
+    glpgp_json_int(w, "triangles", m->nt);
+    glpgp_json_num(w, "size", r->size);
+    if (o) {
+        glpgp_json_str(w, "method", method_name(o->method));
+        glpgp_json_str(w, "energy", energy_name(o->energy));
+        glpgp_json_str(w, "newton", hess_name(o->hess));
+    } else {
+        glpgp_json_null(w, "method");
+        glpgp_json_null(w, "energy");
+        glpgp_json_null(w, "newton");
+    }
+    glpgp_json_str(w, "backend", r->backend);
+    glpgp_json_str(w, "device", x ? x->device : NULL);
+    stats_options(w, o);
+
+    glpgp_json_object(w, "mesh");
+    glpgp_json_num(w, "area", m->area);
+    glpgp_json_num(w, "mean_edge", m->mean_edge);
+    glpgp_json_int(w, "boundary_loops", m->nloops);
+    glpgp_json_array(w, "bbox");
+    for (int i = 0; i < 4; i++) glpgp_json_num(w, NULL, m->bbox[i]);
+    glpgp_json_close(w);
+    glpgp_json_int(w, "orientation_fixed", m->orientation_fixed);
+    if (m->surf) stats_surface(w, m, o);
+    glpgp_json_close(w);
+
+    glpgp_json_object(w, "singularities");
+    for (int k = 0; k < 2; k++) {
+        glpgp_json_object(w, oname[k]);
+        glpgp_json_int(w, "plus", r->osc[k].plus);
+        glpgp_json_int(w, "minus", r->osc[k].minus);
+        glpgp_json_close(w);
+    }
+    glpgp_json_close(w);
+
+    stats_cross(w, m, r);
+    stats_counts(w, r);
+    stats_schedule(w, r);
+    stats_time(w, r, x);
+    stats_ranks(w, x);
     if (x && x->quads) glpgp_quads_json(w, "quads", x->quads);
     glpgp_json_finish(w);
 }
