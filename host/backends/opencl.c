@@ -33,7 +33,10 @@
  * get_scalars is a blocking read.
  *
  * Test switch: GLPGP_CL_CORRUPT=1 adds 1.0 to QUAD's first value after each
- * QUAD assembly, so `glpgp crosscheck` can be shown to fail. */
+ * QUAD assembly, so `glpgp crosscheck` can be shown to fail.
+ *
+ * The multigrid ops are in opencl_amg.c; what both files share in
+ * opencl_impl.h. */
 #include "cl_util.h"
 
 #include <stdio.h>
@@ -71,6 +74,7 @@ void glpgp_cl_backend_log(const glpgp_backend *b) { (void)b; }
 
 #include "amg_dense.h" /* GLPGP_DENSE_W, _I (the coarse inverse's work arrays) */
 #include "amg_rows.h" /* GLPGP_AMG_BT_* (the fused kernel's level table) */
+#include "opencl_impl.h"
 
 /* the register layout the kernels assume (kernels/amg_rows.h) */
 _Static_assert(GLPGP_AMG_ROWS_KSLOT(3) == GLPGP_AMG_KSLOT(3) && GLPGP_AMG_ROWS_KSLOT(0) == GLPGP_AMG_KSLOT(0),
@@ -78,203 +82,34 @@ _Static_assert(GLPGP_AMG_ROWS_KSLOT(3) == GLPGP_AMG_KSLOT(3) && GLPGP_AMG_ROWS_K
 _Static_assert(GLPGP_AMG_ROWS_MAX_LEVELS == GLPGP_AMG_MAX_LEVELS,
                "kernels/amg_rows.h: level limit differs from glpgp/backend.h");
 
-extern const char glpgp_kernel_source[];
-extern const char glpgp_kernel_prelude[];
 
 int glpgp_have_opencl(void) { return 1; }
 
-/* Kernels of the program, in this order. */
-enum {
-    K_FINALIZE,
-    K_ASM_QUAD,
-    K_ASM_NEWTON,
-    K_GRADIENT,
-    K_PEN_ENERGY,
-    K_AXPBY,
-    K_DOT,
-    K_SPMV,
-    K_CG_PRECOND,
-    K_CG_SPMV_DOT,
-    K_CG_UPDATE,
-    K_CG_DIRECTION,
-    /* multigrid (backend_multigrid.cl) */
-    K_AMG_FINALIZE,
-    K_AMG_WEIGHTS,
-    K_AMG_GALERKIN,
-    K_AMG_L1,
-    K_AMG_SMOOTH,
-    K_AMG_RESTRICT,
-    K_AMG_PROLONG,
-    K_AMG_DENSE,
-    K_AMG_SPMV_DOTS,
-    K_AMG_DOTS,
-    K_AMG_AXPBY,
-    K_AMG_KCOMBINE,
-    K_AMG_BOTTOM,
-    K_AMG_RESIDUAL,
-    K_AMG_COARSE_INVERT,
-    K_AMG_PRESMOOTH_RESTRICT,
-    K_AMG_PRESMOOTH_RESID,
-    K_AMG_PROLONG_SMOOTH,
-    /* coupled cross-field system (backend_coupled.cl) */
-    K_CASM_QUAD,
-    K_CASM_NEWTON,
-    K_CGRADIENT,
-    K_CPEN_ENERGY,
-    /* Newton driver (backend_newton.cl) */
-    K_TRIAL_POINT,
-    K_COUNT
-};
-static const char *const kernel_names[K_COUNT] = {
-    "glpgp_finalize",   "glpgp_asm_quad",   "glpgp_asm_newton",      "glpgp_gradient",
-    "glpgp_pen_energy_part", "glpgp_axpby",    "glpgp_dot_part",
-    "glpgp_spmv",       "glpgp_cg_precond", "glpgp_cg_spmv_dot",     "glpgp_cg_update",
-    "glpgp_cg_direction",
-    "glpgp_amg_finalize", "glpgp_amg_weights", "glpgp_amg_galerkin", "glpgp_amg_l1",
-    "glpgp_amg_smooth",   "glpgp_amg_restrict", "glpgp_amg_prolong", "glpgp_amg_dense",
-    "glpgp_amg_spmv_dots", "glpgp_amg_dots",   "glpgp_amg_axpby",   "glpgp_amg_kcombine",
-    "glpgp_amg_bottom", "glpgp_amg_residual", "glpgp_amg_coarse_invert",
-    "glpgp_amg_presmooth_restrict", "glpgp_amg_presmooth_resid", "glpgp_amg_prolong_smooth",
-    "glpgp_casm_quad", "glpgp_casm_newton", "glpgp_cgradient", "glpgp_cpen_energy_part",
-    "glpgp_trial_point",
-};
 
-struct glpgp_vec {
-    size_t n;
-    cl_mem m;
-};
-
-/* GLPGP_CL_PROFILE's size classes: index counts below 4, 4^1, ..., 4^11 and above */
-#define PROF_CLASSES 13
-
-/* One level of the multigrid hierarchy on the device (amg_setup). Level 0
- * uses the system's pattern and NEWTON; the values of the levels >= 1, the
- * weights c, the amplitudes and the smoothers are rebuilt by amg_values. */
-typedef struct cl_amg_level {
-    int n, nc;           /* nodes; nodes of level l+1 (0 on the coarsest) */
-    long nnzb;
-    cl_mem rowptr, col, diag; /* levels >= 1 (level 0: the system's) */
-    cl_mem val;          /* 4 nnzb, levels >= 1 */
-    cl_mem amp;          /* n, levels >= 1: frame amplitude, 0 = dead */
-    cl_mem srow;         /* nnzb, levels < L-1: row of each slot */
-    cl_mem minv;         /* 4 n, levels < L-1 */
-    cl_mem c;            /* 2 n, levels < L-1 (zero for nodes in no aggregate) */
-    cl_mem agg, aptr, amem, gptr, gsrc; /* levels < L-1 */
-} cl_amg_level;
-
-typedef struct cl_amg {
-    glpgp_amg_layout lay;/* the layout it was set up from (its key and parameters; the
-                            array pointers are the caller's and not used after setup) */
-    int L;
-    double weight;
-    cl_amg_level lev[GLPGP_AMG_MAX_LEVELS];
-    int m;               /* coarse order 2 n_{L-1} */
-    int *crowptr, *ccol; /* host copy of the coarsest pattern (amg_coarse_read) */
-    double *cval;        /* host buffer for its values */
-    cl_mem cinv;         /* m*m */
-    cl_mem dw, di;       /* work of the coarse inverse (kernels/amg_dense.h) */
-    cl_mem t;            /* GLPGP_AMG_NSLOTS registers */
-    cl_mem resid;        /* 2 n_0 doubles: the residual of the two-pass restriction */
-    cl_mem part;         /* 3 * pstride partials */
-    size_t pstride;
-    /* fused coarse corrections (CPU shape): levels lb .. L-1 live in the
-     * packed arrays ipack / dpack (their per-level buffers above, and cinv,
-     * are sub-buffers of these), described by the table tab
-     * (GLPGP_AMG_BT_* of kernels/amg_rows.h); lb = L: none */
-    int lb;
-    int pre, post;       /* smoother sweeps (layout) */
-    int cinv_off;        /* offset of cinv in dpack (doubles) */
-    cl_mem ipack, dpack, tab;
-} cl_amg;
-
-typedef struct cl_impl {
-    cl_context ctx;
-    cl_command_queue q;
-    cl_device_id dev;
-    cl_program prog;
-    cl_kernel k[K_COUNT];
-    int index;           /* global device index */
-    int cpu;             /* CPU launch shape */
-    size_t wg;           /* local size (1 in the CPU shape) */
-    size_t nwi;          /* CPU shape: number of work-items */
-    cl_device_type type;
-    cl_ulong global_mem, max_alloc;
-    char name[256];
-    double build_seconds;
-    int corrupt;         /* GLPGP_CL_CORRUPT=1 */
-    int verbose;
-
-    const glpgp_system *sys;
-    cl_mem xy, tri, rowptr, col, diag, cptr, contrib, vptr, vtri; /* mesh + pattern */
-    cl_mem cconj, cfield;  /* coupled cross-field system (sys->cconj): per-corner matching, else 0 */
-    cl_mem ctxy, crot;     /* a surface's triangle planes and corner rotations (sys->ctxy, crot), else 0 */
-    cl_mem w, dir;                                                /* field */
-    cl_mem size;                                                  /* nv target sizes */
-    int sized;                                                    /* set_size given */
-    cl_mem quad, newton, dinv;                                    /* matrices */
-    cl_mem s;                                                     /* GLPGP_NSLOTS scalars */
-    cl_mem part;                                                  /* 2 * pstride partials */
-    cl_mem bad;                                                   /* 1 int */
-    size_t pstride;
-    cl_amg *amg;         /* multigrid hierarchy (NULL before amg_setup) */
-    int amg_small;       /* CPU shape: multigrid launches over at most this many
-                            indices run as one work-item (GLPGP_CL_AMG_SMALL) */
-    int amg_fuse;        /* CPU shape: coarse corrections of levels with at most
-                            this many nodes run in one launch (GLPGP_CL_AMG_FUSE;
-                            0: never) */
-    cl_uint align;       /* CL_DEVICE_MEM_BASE_ADDR_ALIGN in bytes (sub-buffers) */
-    long *launches;      /* the backend's n_launch: kernel launches enqueued */
-    glpgp_backend *owner;/* the backend this is the implementation of (its phase accounts) */
-    int bad_pending;     /* an assembly's singular-block flag not yet read (sync_read) */
-    int prof;            /* GLPGP_CL_PROFILE=1: per-kernel device times (launch) */
-    const int *stop;     /* glpgp_cl_options.stop (creation only) */
-    double prof_ns[K_COUNT][PROF_CLASSES]; /* by kernel and index count class (log4 of n) */
-    long prof_n[K_COUNT][PROF_CLASSES];
-    size_t prof_size;    /* the index count of the launch being enqueued (run, amg_run_w) */
-    double need;         /* device memory estimate of the system set up (bytes) */
-    double other_need;   /* a clone: device memory its parent holds (its estimate, with
-                            room for the multigrid), counted at setup */
-} cl_impl;
-
-#define IMPL(b) ((cl_impl *)(b)->impl)
-
-/* A blocking OpenCL call: its time is the host's wait on the device, booked
- * to the owner's current phase (glpgp_backend_waited). */
-#define CL_WAIT(c, call)                                                                                   \
-    do {                                                                                                   \
-        const double t_wait_ = now_seconds();                                                              \
-        GLPGP_CL(call);                                                                                    \
-        if ((c)->owner) glpgp_backend_waited((c)->owner, now_seconds() - t_wait_);                         \
-    } while (0)
-
-/* clSetKernelArg of an lvalue. */
-#define ARG(kern, i, v) GLPGP_CL(clSetKernelArg((kern), (i), sizeof(v), &(v)))
-
-static double now_seconds(void)
+double glpgp_cl_now_seconds(void)
 {
     struct timespec ts;
     clock_gettime(CLOCK_MONOTONIC, &ts);
     return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
-static void release_mem(cl_mem *m)
+void glpgp_cl_release_mem(cl_mem *m)
 {
     if (*m) clReleaseMemObject(*m);
     *m = NULL;
 }
 
-static void amg_free(cl_impl *c);
 static void log_profile(const cl_impl *c);
 
 /* Release the buffers of the system set up last (and its multigrid hierarchy). */
 static void release_system(cl_impl *c)
 {
-    amg_free(c);
+    glpgp_cl_amg_free(c);
     cl_mem *mems[] = {&c->xy,   &c->tri,  &c->rowptr, &c->col,    &c->diag, &c->cptr,
                       &c->contrib, &c->vptr, &c->vtri, &c->w,      &c->dir,  &c->quad,
                       &c->newton, &c->dinv, &c->s,      &c->part,   &c->bad,  &c->size,
                       &c->cconj, &c->cfield, &c->ctxy, &c->crot};
-    for (size_t i = 0; i < sizeof mems / sizeof mems[0]; i++) release_mem(mems[i]);
+    for (size_t i = 0; i < sizeof mems / sizeof mems[0]; i++) glpgp_cl_release_mem(mems[i]);
     c->pstride = 0;
     c->sized = 0;
     c->sys = NULL;
@@ -298,13 +133,8 @@ static void cl_destroy(glpgp_backend *b)
 
 /* ---- launch helpers ------------------------------------------------------ */
 
-/* Work decomposition of n indices: chunk per work-item, global/local sizes. */
-typedef struct launch_shape {
-    size_t global, local, groups;
-    cl_int n, chunk;
-} launch_shape;
 
-static launch_shape shape_for(const cl_impl *c, size_t n)
+launch_shape glpgp_cl_shape_for(const cl_impl *c, size_t n)
 {
     launch_shape s;
     s.n = (cl_int)n;
@@ -336,7 +166,7 @@ static glpgp_status ensure_part(cl_impl *c, size_t groups)
     cl_int err;
     cl_mem m = NULL;
     GLPGP_CL((m = clCreateBuffer(c->ctx, CL_MEM_READ_WRITE, 2 * groups * sizeof(double), NULL, &err), err));
-    release_mem(&c->part);
+    glpgp_cl_release_mem(&c->part);
     c->part = m;
     c->pstride = groups;
     return GLPGP_OK;
@@ -346,19 +176,19 @@ static glpgp_status ensure_part(cl_impl *c, size_t groups)
  * counted in the backend's launches. With GLPGP_CL_PROFILE=1 (c->prof) each
  * launch is waited for and its device time added to the kernel's account
  * (logged when the backend is destroyed): a diagnosis, not for timing runs. */
-static glpgp_status launch(cl_impl *c, int kid, size_t global, size_t local)
+glpgp_status glpgp_cl_launch(cl_impl *c, int kid, size_t global, size_t local)
 {
     c->launches[0]++;
     cl_event ev = NULL;
     GLPGP_CL_WHAT(clEnqueueNDRangeKernel(c->q, c->k[kid], 1, NULL, &global, &local, 0, NULL, c->prof ? &ev : NULL),
-                  kernel_names[kid]);
+                  glpgp_cl_kernel_names[kid]);
     if (ev) {
         cl_ulong t0 = 0, t1 = 0;
         cl_int err = clWaitForEvents(1, &ev);
         if (err == CL_SUCCESS) err = clGetEventProfilingInfo(ev, CL_PROFILING_COMMAND_START, sizeof t0, &t0, NULL);
         if (err == CL_SUCCESS) err = clGetEventProfilingInfo(ev, CL_PROFILING_COMMAND_END, sizeof t1, &t1, NULL);
         clReleaseEvent(ev);
-        GLPGP_CL_WHAT(err, kernel_names[kid]);
+        GLPGP_CL_WHAT(err, glpgp_cl_kernel_names[kid]);
         int cls = 0;
         for (size_t n = c->prof_size; n >= 4 && cls + 1 < PROF_CLASSES; n /= 4) cls++;
         c->prof_ns[kid][cls] += (double)(t1 - t0);
@@ -397,7 +227,7 @@ static void log_profile(const cl_impl *c)
             classes += c->prof_n[k][q] > 0;
         }
         if (nk == 0) continue;
-        glpgp_log(GLPGP_LOG_INFO, "  %-24s %8ld launches %9.3f s %5.1f%% %9.1f us each", kernel_names[k], nk,
+        glpgp_log(GLPGP_LOG_INFO, "  %-24s %8ld launches %9.3f s %5.1f%% %9.1f us each", glpgp_cl_kernel_names[k], nk,
                   1e-9 * tk[k], total > 0.0 ? 100.0 * tk[k] / total : 0.0, 1e-3 * tk[k] / (double)nk);
         for (int q = 0; classes > 1 && q < PROF_CLASSES; q++)
             if (c->prof_n[k][q] > 0)
@@ -412,12 +242,12 @@ static void log_profile(const cl_impl *c)
  * others must be set. *groups (optional) receives the work-group count. */
 static glpgp_status run(cl_impl *c, int kid, size_t n, size_t *groups)
 {
-    launch_shape s = shape_for(c, n);
+    launch_shape s = glpgp_cl_shape_for(c, n);
     cl_kernel k = c->k[kid];
     ARG(k, 0, s.n);
     ARG(k, 1, s.chunk);
     c->prof_size = n;
-    GLPGP_CHECK(launch(c, kid, s.global, s.local));
+    GLPGP_CHECK(glpgp_cl_launch(c, kid, s.global, s.local));
     if (groups) *groups = s.groups;
     return GLPGP_OK;
 }
@@ -438,330 +268,21 @@ static glpgp_status finalize(cl_impl *c, size_t np0, size_t np1, double scale0, 
     ARG(k, 6, c->s);
     ARG(k, 7, s0);
     ARG(k, 8, s1);
-    return launch(c, K_FINALIZE, c->wg, c->wg);
+    return glpgp_cl_launch(c, K_FINALIZE, c->wg, c->wg);
 }
 
 /* Groups a reduction over n indices produces; grows the partial buffer. */
 static glpgp_status groups_for(cl_impl *c, size_t n, size_t *groups)
 {
-    launch_shape s = shape_for(c, n);
+    launch_shape s = glpgp_cl_shape_for(c, n);
     GLPGP_CHECK(ensure_part(c, s.groups));
     *groups = s.groups;
     return GLPGP_OK;
 }
 
-/* ---- program ------------------------------------------------------------- */
-
-static glpgp_status read_text(const char *path, char **out, size_t *len)
-{
-    FILE *f = fopen(path, "rb");
-    *out = NULL;
-    *len = 0;
-    if (!f) return GLPGP_FAIL(GLPGP_ERR_IO, "GLPGP_KERNEL_DIR: cannot open %s", path);
-    char *buf = NULL;
-    size_t cap = 0, n = 0;
-    for (;;) {
-        if (n + 4096 + 1 > cap) {
-            cap = 2 * cap + 8192;
-            char *nb = realloc(buf, cap);
-            if (!nb) {
-                free(buf);
-                fclose(f);
-                return GLPGP_FAIL(GLPGP_ERR_NOMEM, "out of memory reading %s", path);
-            }
-            buf = nb;
-        }
-        size_t r = fread(buf + n, 1, 4096, f);
-        n += r;
-        if (r < 4096) break;
-    }
-    int bad = ferror(f);
-    fclose(f);
-    if (bad) {
-        free(buf);
-        return GLPGP_FAIL(GLPGP_ERR_IO, "GLPGP_KERNEL_DIR: error reading %s", path);
-    }
-    buf[n] = '\0';
-    *out = buf;
-    *len = n;
-    return GLPGP_OK;
-}
-
-static int cl_file_filter(const struct dirent *d)
-{
-    size_t n = strlen(d->d_name);
-    return n > 3 && strcmp(d->d_name + n - 3, ".cl") == 0;
-}
-
-/* Headers read from GLPGP_KERNEL_DIR before its .cl files, in program order. */
-static const char *const kernel_dir_headers[] = {"element.h", "rows.h", "amg_rows.h", "coupled_rows.h",
-                                                  "newton_rows.h", "amg_dense.h"};
-#define N_KERNEL_DIR_HEADERS ((int)(sizeof kernel_dir_headers / sizeof kernel_dir_headers[0]))
-
-/* The embedded glpgp/kinds.h, then dir/element.h, dir/rows.h, dir/amg_rows.h
- * and the .cl files of dir (name order), concatenated into *out (malloc'ed). */
-static glpgp_status load_kernel_dir(const char *dir, char **out)
-{
-    struct dirent **list = NULL;
-    char path[4096];
-    char *src = NULL, *piece = NULL;
-    size_t len = 0, plen = 0;
-    glpgp_status st = GLPGP_OK;
-    *out = NULL;
-    int n = scandir(dir, &list, cl_file_filter, alphasort);
-    if (n < 0) return GLPGP_FAIL(GLPGP_ERR_IO, "GLPGP_KERNEL_DIR: cannot list %s", dir);
-    len = strlen(glpgp_kernel_prelude);
-    if (!(src = malloc(len + 2))) {
-        st = GLPGP_FAIL(GLPGP_ERR_NOMEM, "out of memory loading kernels");
-        goto done;
-    }
-    memcpy(src, glpgp_kernel_prelude, len + 1);
-    for (int i = -N_KERNEL_DIR_HEADERS; i < n; i++) {
-        snprintf(path, sizeof path, "%s/%s", dir,
-                 i < 0 ? kernel_dir_headers[N_KERNEL_DIR_HEADERS + i] : list[i]->d_name);
-        GLPGP_CHECK_GOTO(st, read_text(path, &piece, &plen), done);
-        char *ns = realloc(src, len + plen + 2);
-        if (!ns) {
-            free(piece);
-            st = GLPGP_FAIL(GLPGP_ERR_NOMEM, "out of memory loading kernels");
-            goto done;
-        }
-        src = ns;
-        memcpy(src + len, piece, plen);
-        len += plen;
-        src[len++] = '\n';
-        src[len] = '\0';
-        free(piece);
-        piece = NULL;
-    }
-    *out = src;
-    src = NULL;
-done:
-    for (int i = 0; i < n; i++) free(list[i]);
-    free(list);
-    free(src);
-    return st;
-}
-
-static glpgp_status warm_up(cl_impl *c);
-
-static glpgp_status build_program(cl_impl *c)
-{
-    static const char header[] = "#pragma OPENCL EXTENSION cl_khr_fp64 : enable\n"
-                                 "#pragma OPENCL FP_CONTRACT OFF\n";
-    char *dirsrc = NULL;
-    const char *kdir = getenv("GLPGP_KERNEL_DIR");
-    if (kdir && *kdir) GLPGP_CHECK(load_kernel_dir(kdir, &dirsrc));
-    const char *srcs[2] = {header, dirsrc ? dirsrc : glpgp_kernel_source};
-    cl_int err;
-    double t0 = now_seconds();
-    c->prog = clCreateProgramWithSource(c->ctx, 2, srcs, NULL, &err);
-    free(dirsrc);
-    GLPGP_CL(err);
-    char opts[128];
-    snprintf(opts, sizeof opts, "-cl-std=CL1.2 -DGLPGP_WG=%zu", c->wg);
-    err = clBuildProgram(c->prog, 1, &c->dev, opts, NULL, NULL);
-    if (err != CL_SUCCESS) {
-        size_t loglen = 0;
-        char *log = NULL;
-        clGetProgramBuildInfo(c->prog, c->dev, CL_PROGRAM_BUILD_LOG, 0, NULL, &loglen);
-        if (loglen > 0 && (log = malloc(loglen + 1)) != NULL) {
-            if (clGetProgramBuildInfo(c->prog, c->dev, CL_PROGRAM_BUILD_LOG, loglen, log, NULL) != CL_SUCCESS)
-                log[0] = '\0';
-            log[loglen] = '\0';
-        }
-        glpgp_status st = GLPGP_FAIL(GLPGP_ERR_OPENCL,
-                                     "OpenCL program build failed with %s on %s (options %s)%s; build log below",
-                                     glpgp_cl_error_name(err), c->name, opts,
-                                     kdir && *kdir ? " [sources from GLPGP_KERNEL_DIR]" : "");
-        glpgp_error_set_detail(log ? log : "(no build log)");
-        free(log);
-        return st;
-    }
-    for (int i = 0; i < K_COUNT; i++)
-        GLPGP_CL_WHAT((c->k[i] = clCreateKernel(c->prog, kernel_names[i], &err), err), kernel_names[i]);
-    GLPGP_CHECK(warm_up(c));
-    c->build_seconds = now_seconds() - t0;
-    return GLPGP_OK;
-}
-
-/* Launch every kernel once on no work (n = 0, every buffer argument a small
- * zeroed buffer), so that a device that compiles a kernel at its first
- * launch (PoCL: per local size) does it now, as part of the program build,
- * and not in the first numerical phase that launches it (a cold cache: about
- * 0.3 s per kernel). Arguments are set by size: a buffer where one fits,
- * else an int 0 (the fused coarse correction's level count 1: a coarsest
- * level of order 0). */
-static glpgp_status warm_up(cl_impl *c)
-{
-    cl_int err;
-    cl_mem dummy = NULL;
-    GLPGP_CL((dummy = clCreateBuffer(c->ctx, CL_MEM_READ_WRITE, 65536, NULL, &err), err));
-    const cl_int zero = 0;
-    glpgp_status st = GLPGP_OK;
-    err = clEnqueueFillBuffer(c->q, dummy, &zero, sizeof zero, 0, 65536, 0, NULL, NULL);
-    for (int kid = 0; kid < K_COUNT && err == CL_SUCCESS; kid++) {
-        if (c->stop && __atomic_load_n(c->stop, __ATOMIC_RELAXED)) {
-            st = GLPGP_FAIL(GLPGP_ERR_ARG, "stopped");
-            break;
-        }
-        if (kid == K_AMG_BOTTOM && !c->cpu) continue; /* one work-item: the CPU shape's only */
-        /* the coupled cross-field kernels: compiled at their first use (most runs have none) */
-        if (kid == K_CASM_QUAD || kid == K_CASM_NEWTON || kid == K_CGRADIENT || kid == K_CPEN_ENERGY) continue;
-        cl_kernel k = c->k[kid];
-        cl_uint nargs = 0;
-        err = clGetKernelInfo(k, CL_KERNEL_NUM_ARGS, sizeof nargs, &nargs, NULL);
-        for (cl_uint a = 0; a < nargs && err == CL_SUCCESS; a++) {
-            const cl_int v = kid == K_AMG_BOTTOM && a == 1 ? 1 : 0;
-            err = clSetKernelArg(k, a, sizeof dummy, &dummy);
-            if (err == CL_INVALID_ARG_SIZE) err = clSetKernelArg(k, a, sizeof v, &v);
-        }
-        size_t g = c->wg, l = c->wg;
-        if (err == CL_SUCCESS) err = clEnqueueNDRangeKernel(c->q, k, 1, NULL, &g, &l, 0, NULL, NULL);
-        if (err != CL_SUCCESS)
-            st = GLPGP_FAIL(GLPGP_ERR_OPENCL, "OpenCL: the first launch of %s failed with %s", kernel_names[kid],
-                            glpgp_cl_error_name(err));
-    }
-    if (st == GLPGP_OK && err == CL_SUCCESS) err = clFinish(c->q);
-    if (st == GLPGP_OK && err != CL_SUCCESS)
-        st = GLPGP_FAIL(GLPGP_ERR_OPENCL, "OpenCL: kernel warm-up failed with %s", glpgp_cl_error_name(err));
-    clReleaseMemObject(dummy);
-    return st;
-}
-
-/* ---- device choice ----------------------------------------------------- */
-
-static glpgp_status pick_device(const glpgp_cl_options *opt, glpgp_cl_device *devs, int n, int *idx)
-{
-    int want = opt ? opt->device : -1;
-    const char *env = getenv("GLPGP_DEVICE");
-    const char *from = "--device";
-    if (want < 0 && env && *env) {
-        char *end = NULL;
-        long v = strtol(env, &end, 10);
-        if (*end != '\0' || v < 0 || v > INT_MAX)
-            return GLPGP_FAIL(GLPGP_ERR_ARG, "GLPGP_DEVICE='%s' is not a device index (see glpgp devices)", env);
-        want = (int)v;
-        from = "GLPGP_DEVICE";
-    }
-    if (want >= 0) {
-        if (want >= n)
-            return GLPGP_FAIL(GLPGP_ERR_ARG, "%s %d: no such OpenCL device (%d available, see glpgp devices)",
-                              from, want, n);
-        if (!glpgp_cl_has_fp64(devs[want].device)) {
-            char name[256];
-            glpgp_cl_device_str(devs[want].device, CL_DEVICE_NAME, name, sizeof name);
-            return GLPGP_FAIL(GLPGP_ERR_UNSUPPORTED,
-                              "OpenCL device %d (%s) has no double precision (cl_khr_fp64), which glpgp "
-                              "needs; choose another with --device (see glpgp devices)",
-                              want, name);
-        }
-        *idx = want;
-        return GLPGP_OK;
-    }
-    *idx = glpgp_cl_auto_device(devs, n); /* the first fp64 GPU, else the first fp64 device */
-    if (*idx >= 0) return GLPGP_OK;
-    if (n == 0) return GLPGP_FAIL(GLPGP_ERR_OPENCL, "OpenCL platforms exist but expose no device");
-    return GLPGP_FAIL(GLPGP_ERR_UNSUPPORTED,
-                      "none of the %d OpenCL devices supports double precision (cl_khr_fp64), which "
-                      "glpgp needs (install pocl-opencl-icd for the CPU)",
-                      n);
-}
-
-static void log_device(const cl_impl *c)
-{
-    glpgp_log(GLPGP_LOG_INFO, "OpenCL device %d: %s, %s launch shape (%s), program built in %.2f s", c->index, c->name,
-              c->cpu ? "cpu" : "gpu", c->cpu ? "chunked work-items, local size 1" : "one row per work-item",
-              c->build_seconds);
-    if (c->cpu)
-        glpgp_log(GLPGP_LOG_INFO, "OpenCL cpu shape: up to %zu work-items", c->nwi);
-    else
-        glpgp_log(GLPGP_LOG_INFO, "OpenCL gpu shape: local size %zu", c->wg);
-}
-
-static glpgp_status init_device(cl_impl *c, const glpgp_cl_options *opt)
-{
-    glpgp_cl_device *devs = NULL;
-    int n = 0, idx = -1;
-    GLPGP_CHECK(glpgp_cl_devices(&devs, &n));
-    glpgp_status st = pick_device(opt, devs, n, &idx);
-    if (st != GLPGP_OK) {
-        free(devs);
-        glpgp_error_push_trace(__FILE__, __LINE__);
-        return st;
-    }
-    cl_platform_id plat = devs[idx].platform;
-    c->dev = devs[idx].device;
-    c->index = idx;
-    free(devs);
-
-    glpgp_cl_device_str(c->dev, CL_DEVICE_NAME, c->name, sizeof c->name);
-    GLPGP_CL(clGetDeviceInfo(c->dev, CL_DEVICE_TYPE, sizeof c->type, &c->type, NULL));
-    GLPGP_CL(clGetDeviceInfo(c->dev, CL_DEVICE_GLOBAL_MEM_SIZE, sizeof c->global_mem, &c->global_mem, NULL));
-    GLPGP_CL(clGetDeviceInfo(c->dev, CL_DEVICE_MAX_MEM_ALLOC_SIZE, sizeof c->max_alloc, &c->max_alloc, NULL));
-    size_t maxwg = 1;
-    GLPGP_CL(clGetDeviceInfo(c->dev, CL_DEVICE_MAX_WORK_GROUP_SIZE, sizeof maxwg, &maxwg, NULL));
-
-    /* launch shape from the device type (GLPGP_CL_SHAPE=cpu|gpu overrides) */
-    c->cpu = (c->type & CL_DEVICE_TYPE_CPU) != 0;
-    const char *shape = getenv("GLPGP_CL_SHAPE");
-    if (shape && strcmp(shape, "cpu") == 0) c->cpu = 1;
-    else if (shape && strcmp(shape, "gpu") == 0) c->cpu = 0;
-    else if (shape && *shape)
-        return GLPGP_FAIL(GLPGP_ERR_ARG, "GLPGP_CL_SHAPE='%s': expected cpu or gpu", shape);
-    c->nwi = 128;
-    const char *nwi = getenv("GLPGP_CL_WORKITEMS");
-    if (nwi && *nwi) {
-        char *end = NULL;
-        long v = strtol(nwi, &end, 10);
-        if (*end != '\0' || v < 1 || v > 65536)
-            return GLPGP_FAIL(GLPGP_ERR_ARG, "GLPGP_CL_WORKITEMS='%s': expected 1..65536", nwi);
-        c->nwi = (size_t)v;
-    }
-    if (c->cpu) {
-        c->wg = 1;
-    } else {
-        c->wg = 128; /* power of two, at most the device limit */
-        while (c->wg > maxwg && c->wg > 1) c->wg /= 2;
-    }
-    c->amg_small = 2048;
-    c->amg_fuse = 32768;
-    {
-        static const char *const names[2] = {"GLPGP_CL_AMG_SMALL", "GLPGP_CL_AMG_FUSE"};
-        int *dst[2] = {&c->amg_small, &c->amg_fuse};
-        for (int i = 0; i < 2; i++) {
-            const char *ev = getenv(names[i]);
-            if (!ev || !*ev) continue;
-            char *end = NULL;
-            long v = strtol(ev, &end, 10);
-            if (*end != '\0' || v < 0 || v > 1000000)
-                return GLPGP_FAIL(GLPGP_ERR_ARG, "%s='%s': expected a count in [0, 1000000]", names[i], ev);
-            *dst[i] = (int)v;
-        }
-    }
-    cl_uint bits = 1024;
-    GLPGP_CL(clGetDeviceInfo(c->dev, CL_DEVICE_MEM_BASE_ADDR_ALIGN, sizeof bits, &bits, NULL));
-    c->align = bits / 8 < 8 ? 8 : bits / 8;
-    c->verbose = opt ? opt->verbose : 0;
-    const char *cor = getenv("GLPGP_CL_CORRUPT");
-    c->corrupt = cor && strcmp(cor, "1") == 0;
-    c->stop = opt ? opt->stop : NULL;
-    const char *prof = getenv("GLPGP_CL_PROFILE");
-    c->prof = prof && strcmp(prof, "1") == 0;
-
-    cl_int err;
-    cl_context_properties props[] = {CL_CONTEXT_PLATFORM, (cl_context_properties)plat, 0};
-    GLPGP_CL((c->ctx = clCreateContext(props, 1, &c->dev, NULL, NULL, &err), err));
-    GLPGP_CL((c->q = clCreateCommandQueue(c->ctx, c->dev, c->prof ? CL_QUEUE_PROFILING_ENABLE : 0, &err), err));
-    if (c->stop && __atomic_load_n(c->stop, __ATOMIC_RELAXED)) return GLPGP_FAIL(GLPGP_ERR_ARG, "stopped");
-    GLPGP_CHECK(build_program(c));
-    if (opt && opt->verbose) log_device(c);
-    return GLPGP_OK;
-}
-
 /* ---- setup --------------------------------------------------------------- */
 
-static glpgp_status upload(cl_impl *c, cl_mem *m, const void *host, size_t bytes)
+glpgp_status glpgp_cl_upload(cl_impl *c, cl_mem *m, const void *host, size_t bytes)
 {
     cl_int err;
     if (bytes == 0) bytes = sizeof(double); /* no zero-size buffers */
@@ -800,7 +321,7 @@ static glpgp_status cl_setup(glpgp_backend *b, const glpgp_system *sys)
 
     /* device memory estimate: pattern and maps, two matrices, DINV, field,
      * sizes, ~8 working vectors of 2 nv doubles, partial sums */
-    size_t ngr = shape_for(c, 2 * nv > nt ? 2 * nv : nt).groups;
+    size_t ngr = glpgp_cl_shape_for(c, 2 * nv > nt ? 2 * nv : nt).groups;
     double need = 4.0 * (3.0 * nt + (nv + 1) + nnzb + nv + (nnzb + 1) + 9.0 * nt + (nv + 1) + 3.0 * nt) +
                   8.0 * (2.0 * nv + 2.0 * nv + 1.0 * nv + 8.0 * nnzb + 4.0 * nv + 8.0 * 2.0 * nv + 2.0 * ngr + GLPGP_NSLOTS) +
                   1.0 * nv + (sys->ctxy ? 48.0 * nt : 0.0) + (sys->crot ? 48.0 * nt : 0.0);
@@ -839,28 +360,28 @@ static glpgp_status cl_setup(glpgp_backend *b, const glpgp_system *sys)
     c->sys = sys;
     b->sys = sys;
     c->need = need;
-    if (m->xy) GLPGP_CHECK(upload(c, &c->xy, m->xy, 2 * nv * sizeof(double))); /* a surface: none (ctxy) */
-    GLPGP_CHECK(upload(c, &c->tri, m->tri, 3 * nt * sizeof(int)));
-    GLPGP_CHECK(upload(c, &c->rowptr, sys->rowptr, (nv + 1) * sizeof(int)));
-    GLPGP_CHECK(upload(c, &c->col, sys->col, nnzb * sizeof(int)));
-    GLPGP_CHECK(upload(c, &c->diag, sys->diag, nv * sizeof(int)));
-    GLPGP_CHECK(upload(c, &c->cptr, sys->cptr, (nnzb + 1) * sizeof(int)));
-    GLPGP_CHECK(upload(c, &c->contrib, sys->contrib, 9 * nt * sizeof(int)));
-    GLPGP_CHECK(upload(c, &c->vptr, sys->vptr, (nv + 1) * sizeof(int)));
-    GLPGP_CHECK(upload(c, &c->vtri, sys->vtri, 3 * nt * sizeof(int)));
+    if (m->xy) GLPGP_CHECK(glpgp_cl_upload(c, &c->xy, m->xy, 2 * nv * sizeof(double))); /* a surface: none (ctxy) */
+    GLPGP_CHECK(glpgp_cl_upload(c, &c->tri, m->tri, 3 * nt * sizeof(int)));
+    GLPGP_CHECK(glpgp_cl_upload(c, &c->rowptr, sys->rowptr, (nv + 1) * sizeof(int)));
+    GLPGP_CHECK(glpgp_cl_upload(c, &c->col, sys->col, nnzb * sizeof(int)));
+    GLPGP_CHECK(glpgp_cl_upload(c, &c->diag, sys->diag, nv * sizeof(int)));
+    GLPGP_CHECK(glpgp_cl_upload(c, &c->cptr, sys->cptr, (nnzb + 1) * sizeof(int)));
+    GLPGP_CHECK(glpgp_cl_upload(c, &c->contrib, sys->contrib, 9 * nt * sizeof(int)));
+    GLPGP_CHECK(glpgp_cl_upload(c, &c->vptr, sys->vptr, (nv + 1) * sizeof(int)));
+    GLPGP_CHECK(glpgp_cl_upload(c, &c->vtri, sys->vtri, 3 * nt * sizeof(int)));
     if (sys->cconj) { /* coupled cross-field system: per-corner matching */
-        GLPGP_CHECK(upload(c, &c->cconj, sys->cconj, 3 * nt));
-        GLPGP_CHECK(upload(c, &c->cfield, sys->cfield, 6 * nt * sizeof(double)));
-        if (sys->ctxy) GLPGP_CHECK(upload(c, &c->ctxy, sys->ctxy, 6 * nt * sizeof(double)));
-        if (sys->crot) GLPGP_CHECK(upload(c, &c->crot, sys->crot, 6 * nt * sizeof(double)));
+        GLPGP_CHECK(glpgp_cl_upload(c, &c->cconj, sys->cconj, 3 * nt));
+        GLPGP_CHECK(glpgp_cl_upload(c, &c->cfield, sys->cfield, 6 * nt * sizeof(double)));
+        if (sys->ctxy) GLPGP_CHECK(glpgp_cl_upload(c, &c->ctxy, sys->ctxy, 6 * nt * sizeof(double)));
+        if (sys->crot) GLPGP_CHECK(glpgp_cl_upload(c, &c->crot, sys->crot, 6 * nt * sizeof(double)));
     }
-    GLPGP_CHECK(upload(c, &c->w, NULL, 2 * nv * sizeof(double)));
-    GLPGP_CHECK(upload(c, &c->dir, NULL, nv));
-    GLPGP_CHECK(upload(c, &c->size, NULL, nv * sizeof(double)));
-    GLPGP_CHECK(upload(c, &c->quad, NULL, 4 * nnzb * sizeof(double)));
-    GLPGP_CHECK(upload(c, &c->newton, NULL, 4 * nnzb * sizeof(double)));
-    GLPGP_CHECK(upload(c, &c->dinv, NULL, 4 * nv * sizeof(double)));
-    GLPGP_CHECK(upload(c, &c->s, NULL, GLPGP_NSLOTS * sizeof(double)));
+    GLPGP_CHECK(glpgp_cl_upload(c, &c->w, NULL, 2 * nv * sizeof(double)));
+    GLPGP_CHECK(glpgp_cl_upload(c, &c->dir, NULL, nv));
+    GLPGP_CHECK(glpgp_cl_upload(c, &c->size, NULL, nv * sizeof(double)));
+    GLPGP_CHECK(glpgp_cl_upload(c, &c->quad, NULL, 4 * nnzb * sizeof(double)));
+    GLPGP_CHECK(glpgp_cl_upload(c, &c->newton, NULL, 4 * nnzb * sizeof(double)));
+    GLPGP_CHECK(glpgp_cl_upload(c, &c->dinv, NULL, 4 * nv * sizeof(double)));
+    GLPGP_CHECK(glpgp_cl_upload(c, &c->s, NULL, GLPGP_NSLOTS * sizeof(double)));
     cl_int err;
     GLPGP_CL((c->bad = clCreateBuffer(c->ctx, CL_MEM_READ_WRITE, sizeof(cl_int), NULL, &err), err));
     GLPGP_CHECK(ensure_part(c, ngr));
@@ -877,7 +398,7 @@ static glpgp_status cl_vec_create(glpgp_backend *b, size_t n, glpgp_vec **out)
     *out = NULL;
     GLPGP_CHECK(glpgp_calloc(1, sizeof *v, &v));
     v->n = n;
-    glpgp_status st = upload(c, &v->m, NULL, n * sizeof(double));
+    glpgp_status st = glpgp_cl_upload(c, &v->m, NULL, n * sizeof(double));
     if (st != GLPGP_OK) {
         free(v);
         glpgp_error_push_trace(__FILE__, __LINE__);
@@ -891,7 +412,7 @@ static void cl_vec_destroy(glpgp_backend *b, glpgp_vec **v)
 {
     (void)b;
     if (!v || !*v) return;
-    release_mem(&(*v)->m);
+    glpgp_cl_release_mem(&(*v)->m);
     free(*v);
     *v = NULL;
 }
@@ -908,7 +429,7 @@ static glpgp_status cl_vec_write(glpgp_backend *b, glpgp_vec *v, const double *h
  * wait for the device). The singular-block flag of an assembly not checked
  * yet (cl_assemble_newton) is read in the same round trip: a non-blocking
  * read queued first is done when the blocking one returns (in-order queue). */
-static glpgp_status sync_read(cl_impl *c, cl_mem buf, size_t off, size_t bytes, void *host)
+glpgp_status glpgp_cl_sync_read(cl_impl *c, cl_mem buf, size_t off, size_t bytes, void *host)
 {
     cl_int bad = INT_MAX;
     const int check = c->bad_pending;
@@ -923,7 +444,7 @@ static glpgp_status sync_read(cl_impl *c, cl_mem buf, size_t off, size_t bytes, 
 static glpgp_status cl_vec_read(glpgp_backend *b, const glpgp_vec *v, double *host)
 {
     if (v->n == 0) return GLPGP_OK;
-    return sync_read(IMPL(b), v->m, 0, v->n * sizeof(double), host);
+    return glpgp_cl_sync_read(IMPL(b), v->m, 0, v->n * sizeof(double), host);
 }
 
 static glpgp_status cl_finish(glpgp_backend *b)
@@ -977,7 +498,7 @@ static glpgp_status cl_get_scalars(glpgp_backend *b, double *out, int n)
 {
     if (n <= 0) return GLPGP_OK;
     if (n > GLPGP_NSLOTS) n = GLPGP_NSLOTS;
-    return sync_read(IMPL(b), IMPL(b)->s, 0, (size_t)n * sizeof(double), out);
+    return glpgp_cl_sync_read(IMPL(b), IMPL(b)->s, 0, (size_t)n * sizeof(double), out);
 }
 
 /* ---- mesh operations --------------------------------------------------------- */
@@ -1272,794 +793,6 @@ static glpgp_status cl_cg_direction(glpgp_backend *b, glpgp_vec *p, const glpgp_
     return GLPGP_OK;
 }
 
-/* ---- multigrid (amg_* ops; kernels/backend_multigrid.cl) ------------------------
- * The hierarchy's structure is uploaded once by amg_setup; amg_values rebuilds
- * the weights, coarse values and smoothers on the device (one launch for the
- * level-0 smoother, then two per level: weights, Galerkin rows + smoother);
- * the coarsest matrix is read back and its inverse uploaded once per Newton
- * step (amg_coarse_read / amg_coarse_set). Launch shape: as the other ops,
- * except that in the CPU shape a launch over at most amg_small indices (the
- * coarse levels) is one work-item: PoCL's cost of a launch does not depend
- * on the size there, and a single work-group writes its dot products straight
- * into the registers (no finalize launch; the sum is then in the reference's
- * sequential order). */
-
-static void amg_free(cl_impl *c)
-{
-    cl_amg *a = c->amg;
-    if (!a) return;
-    for (int l = 0; l < GLPGP_AMG_MAX_LEVELS; l++) {
-        cl_amg_level *v = &a->lev[l];
-        cl_mem *ms[] = {&v->rowptr, &v->col, &v->diag, &v->val, &v->amp, &v->srow, &v->minv,
-                        &v->c,      &v->agg, &v->aptr, &v->amem, &v->gptr, &v->gsrc};
-        for (size_t k = 0; k < sizeof ms / sizeof ms[0]; k++) release_mem(ms[k]);
-    }
-    release_mem(&a->cinv);
-    release_mem(&a->dw);
-    release_mem(&a->di);
-    release_mem(&a->t);
-    release_mem(&a->resid);
-    release_mem(&a->part);
-    release_mem(&a->tab);
-    release_mem(&a->ipack);
-    release_mem(&a->dpack);
-    free(a->crowptr);
-    free(a->ccol);
-    free(a->cval);
-    free(a);
-    c->amg = NULL;
-}
-
-/* Launch shape of a multigrid kernel over n indices (see above). */
-static launch_shape amg_shape_w(const cl_impl *c, size_t n, size_t work)
-{
-    if (c->cpu && work <= (size_t)c->amg_small) {
-        launch_shape s;
-        s.n = (cl_int)n;
-        s.chunk = (cl_int)(n ? n : 1);
-        s.global = s.local = s.groups = 1;
-        return s;
-    }
-    return shape_for(c, n);
-}
-
-static launch_shape amg_shape(const cl_impl *c, size_t n) { return amg_shape_w(c, n, n); }
-
-/* Enqueue multigrid kernel kid over n indices (arguments 0, 1 = n, chunk);
- * work: the size that decides the one-work-item shape (the fine level's
- * node count for kernels indexed by aggregate or coarse row, whose work is
- * proportional to the fine level). */
-static glpgp_status amg_run_w(cl_impl *c, int kid, size_t n, size_t work, size_t *groups)
-{
-    launch_shape s = amg_shape_w(c, n, work);
-    cl_kernel k = c->k[kid];
-    ARG(k, 0, s.n);
-    ARG(k, 1, s.chunk);
-    c->prof_size = work;
-    GLPGP_CHECK(launch(c, kid, s.global, s.local));
-    if (groups) *groups = s.groups;
-    return GLPGP_OK;
-}
-
-static glpgp_status amg_run(cl_impl *c, int kid, size_t n, size_t *groups) { return amg_run_w(c, kid, n, n, groups); }
-
-/* Where a reduction over n indices writes its partials: (buffer, stride) of
- * a->part, or, for a single work-group, the registers t + slot directly
- * (stride 1). *direct <- 1 in the latter case (no finalize needed). */
-static glpgp_status amg_partials(cl_impl *c, size_t n, int slot, cl_mem *buf, cl_int *off, cl_int *stride,
-                                 int *direct)
-{
-    cl_amg *a = c->amg;
-    launch_shape s = amg_shape(c, n);
-    if (s.groups == 1) {
-        *buf = a->t;
-        *off = slot;
-        *stride = 1;
-        *direct = 1;
-        return GLPGP_OK;
-    }
-    if (s.groups > a->pstride || !a->part) {
-        cl_int err;
-        cl_mem m = NULL;
-        GLPGP_CL((m = clCreateBuffer(c->ctx, CL_MEM_READ_WRITE, 3 * s.groups * sizeof(double), NULL, &err), err));
-        release_mem(&a->part);
-        a->part = m;
-        a->pstride = s.groups;
-    }
-    *buf = a->part;
-    *off = 0;
-    *stride = (cl_int)a->pstride;
-    *direct = 0;
-    return GLPGP_OK;
-}
-
-/* t[slot + q] <- sum of the np partials of quantity q, for the q in mask. */
-static glpgp_status amg_finalize(cl_impl *c, size_t np, int mask, int slot)
-{
-    cl_amg *a = c->amg;
-    cl_kernel k = c->k[K_AMG_FINALIZE];
-    cl_int n = (cl_int)np, st = (cl_int)a->pstride, mk = mask, sl = slot;
-    ARG(k, 0, a->part);
-    ARG(k, 1, n);
-    ARG(k, 2, st);
-    ARG(k, 3, mk);
-    ARG(k, 4, a->t);
-    ARG(k, 5, sl);
-    return launch(c, K_AMG_FINALIZE, c->wg, c->wg);
-}
-
-static glpgp_status amg_check_slot(int slot, int n, const char *what)
-{
-    if (slot < 0 || slot + n > GLPGP_AMG_NSLOTS)
-        return GLPGP_FAIL(GLPGP_ERR_ARG, "%s: bad register %d", what, slot);
-    return GLPGP_OK;
-}
-
-/* *m <- a read-only device copy of n ints (n may be 0). */
-static glpgp_status upload_ints(cl_impl *c, cl_mem *m, const int *host, size_t n)
-{
-    const int zero = 0;
-    return upload(c, m, n ? (const void *)host : (const void *)&zero, n ? n * sizeof(int) : sizeof(int));
-}
-
-/* A sub-buffer of parent: `count` elements of `elem` bytes at element offset off. */
-static glpgp_status sub_buffer(cl_mem parent, size_t off, size_t count, size_t elem, cl_mem *out)
-{
-    cl_int err;
-    cl_buffer_region reg = {off * elem, (count ? count : 1) * elem};
-    GLPGP_CL((*out = clCreateSubBuffer(parent, 0, CL_BUFFER_CREATE_TYPE_REGION, &reg, &err), err));
-    return GLPGP_OK;
-}
-
-/* Packed layout of the fused levels lb .. L-1 (see cl_amg): offsets of every
- * array in ints / doubles, each aligned for a sub-buffer; *cinv: offset of
- * the dense coarse inverse; *ni, *nd: totals.
- * Returns 0 when the totals would not fit an int index. */
-static int bottom_layout(const cl_impl *c, const glpgp_amg_layout *lay, int lb, int *tab, long *ni, long *nd,
-                         int *cinv)
-{
-    const long ai = (long)c->align / (long)sizeof(int), ad = (long)c->align / (long)sizeof(double);
-    long oi = 0, od = 0;
-#define TAKE_I(f, cnt) (tab[q * GLPGP_AMG_BT_COUNT + (f)] = (int)oi, oi += (((long)(cnt) + 1 + ai - 1) / ai) * ai)
-#define TAKE_D(f, cnt) (tab[q * GLPGP_AMG_BT_COUNT + (f)] = (int)od, od += (((long)(cnt) + 1 + ad - 1) / ad) * ad)
-    for (int l = lb; l < lay->nlevels; l++) {
-        const int q = l - lb;
-        const glpgp_amg_level *in = &lay->lev[l];
-        const int last = l + 1 == lay->nlevels;
-        for (int f = 0; f < GLPGP_AMG_BT_COUNT; f++) tab[q * GLPGP_AMG_BT_COUNT + f] = -1;
-        tab[q * GLPGP_AMG_BT_COUNT + GLPGP_AMG_BT_N] = in->n;
-        tab[q * GLPGP_AMG_BT_COUNT + GLPGP_AMG_BT_NC] = last ? 0 : lay->lev[l + 1].n;
-        tab[q * GLPGP_AMG_BT_COUNT + GLPGP_AMG_BT_K] = last ? 0 : lay->kcycle[l];
-        TAKE_I(GLPGP_AMG_BT_ROWPTR, in->n + 1);
-        TAKE_I(GLPGP_AMG_BT_COL, in->nnzb);
-        TAKE_I(GLPGP_AMG_BT_DIAG, in->n);
-        TAKE_D(GLPGP_AMG_BT_VAL, 4 * in->nnzb);
-        TAKE_D(GLPGP_AMG_BT_B, 2 * in->n);
-        TAKE_D(GLPGP_AMG_BT_E, 2 * in->n);
-        if (!last) {
-            TAKE_I(GLPGP_AMG_BT_AGG, in->n);
-            TAKE_I(GLPGP_AMG_BT_APTR, lay->lev[l + 1].n + 1);
-            TAKE_I(GLPGP_AMG_BT_AMEM, in->aptr[lay->lev[l + 1].n]);
-            TAKE_D(GLPGP_AMG_BT_MINV, 4 * in->n);
-            TAKE_D(GLPGP_AMG_BT_C, 2 * in->n);
-            TAKE_D(GLPGP_AMG_BT_TMP, 2 * in->n);
-            if (lay->kcycle[l]) {
-                TAKE_D(GLPGP_AMG_BT_V, 2 * in->n);
-                TAKE_D(GLPGP_AMG_BT_W, 2 * in->n);
-                TAKE_D(GLPGP_AMG_BT_R2, 2 * in->n);
-                TAKE_D(GLPGP_AMG_BT_D, 2 * in->n);
-                TAKE_D(GLPGP_AMG_BT_WD, 2 * in->n);
-            }
-        }
-        if (oi > INT_MAX / 2 || od > INT_MAX / 2) return 0;
-    }
-    /* the dense coarse inverse, order m = 2 n_{L-1} */
-    const long m = 2L * lay->lev[lay->nlevels - 1].n;
-    *cinv = (int)od;
-    od += ((m * m + 1 + ad - 1) / ad) * ad;
-    if (od > INT_MAX / 2) return 0;
-#undef TAKE_I
-#undef TAKE_D
-    *ni = oi;
-    *nd = od;
-    return 1;
-}
-
-static glpgp_status cl_amg_setup(glpgp_backend *b, const glpgp_amg_layout *lay)
-{
-    cl_impl *c = IMPL(b);
-    const glpgp_system *sys = c->sys;
-    if (!sys) return GLPGP_FAIL(GLPGP_ERR_ARG, "amg_setup before setup");
-    if (lay->nlevels < 2 || lay->nlevels > GLPGP_AMG_MAX_LEVELS)
-        return GLPGP_FAIL(GLPGP_ERR_ARG, "amg_setup: %d levels", lay->nlevels);
-    if (lay->lev[0].n != sys->nv || lay->lev[0].nnzb != sys->nnzb)
-        return GLPGP_FAIL(GLPGP_ERR_ARG, "amg_setup: level 0 is not the system");
-    if (!(lay->weight > 0.0 && lay->weight < 2.0))
-        return GLPGP_FAIL(GLPGP_ERR_ARG, "amg_setup: smoother weight %g not in (0, 2)", lay->weight);
-    if (lay->pre < 0 || lay->pre > 64 || lay->post < 0 || lay->post > 64)
-        return GLPGP_FAIL(GLPGP_ERR_ARG, "amg_setup: %d / %d smoother sweeps", lay->pre, lay->post);
-    if (c->amg && glpgp_amg_layout_same(&c->amg->lay, lay)) return GLPGP_OK; /* holds it already */
-    amg_free(c);
-    GLPGP_CHECK(glpgp_calloc(1, sizeof(cl_amg), &c->amg));
-    cl_amg *a = c->amg;
-    glpgp_status st = GLPGP_OK;
-    int *srow = NULL, *tab = NULL, *ihost = NULL;
-    a->lay = *lay;
-    a->L = lay->nlevels;
-    a->weight = lay->weight;
-    a->pre = lay->pre;
-    a->post = lay->post;
-    for (int l = 0; l < a->L; l++) {
-        const glpgp_amg_level *in = &lay->lev[l];
-        if (in->n < 1 || in->nnzb < in->n || in->nnzb > (long)INT_MAX - 1) {
-            st = GLPGP_FAIL(GLPGP_ERR_ARG, "amg_setup: level %d has %d nodes and %ld blocks", l, in->n, in->nnzb);
-            goto fail;
-        }
-    }
-
-    /* fused levels: the first level >= 1 small enough, and all below it */
-    a->lb = a->L;
-    if (c->cpu && c->amg_fuse > 0)
-        for (int l = 1; l < a->L; l++)
-            if (lay->lev[l].n <= c->amg_fuse) {
-                a->lb = l;
-                break;
-            }
-    if (a->lb < a->L) {
-        long ni = 0, nd = 0;
-        const int nq = a->L - a->lb;
-        GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)nq * GLPGP_AMG_BT_COUNT, sizeof(int), &tab), fail);
-        if (!bottom_layout(c, lay, a->lb, tab, &ni, &nd, &a->cinv_off)) {
-            a->lb = a->L; /* too large to index: the per-op path */
-        } else {
-            /* packed ints from the layout, doubles zeroed */
-            GLPGP_CHECK_GOTO(st, glpgp_calloc((size_t)ni, sizeof(int), &ihost), fail);
-            for (int l = a->lb; l < a->L; l++) {
-                const int q = l - a->lb, *row = tab + q * GLPGP_AMG_BT_COUNT;
-                const glpgp_amg_level *in = &lay->lev[l];
-                const int n = in->n;
-                memcpy(ihost + row[GLPGP_AMG_BT_ROWPTR], in->rowptr, ((size_t)n + 1) * sizeof(int));
-                memcpy(ihost + row[GLPGP_AMG_BT_COL], in->col, (size_t)in->nnzb * sizeof(int));
-                memcpy(ihost + row[GLPGP_AMG_BT_DIAG], in->diag, (size_t)n * sizeof(int));
-                if (l + 1 < a->L) {
-                    const int nc = lay->lev[l + 1].n;
-                    memcpy(ihost + row[GLPGP_AMG_BT_AGG], in->agg, (size_t)n * sizeof(int));
-                    memcpy(ihost + row[GLPGP_AMG_BT_APTR], in->aptr, ((size_t)nc + 1) * sizeof(int));
-                    memcpy(ihost + row[GLPGP_AMG_BT_AMEM], in->amem, (size_t)in->aptr[nc] * sizeof(int));
-                }
-            }
-            GLPGP_CHECK_GOTO(st, upload(c, &a->ipack, ihost, (size_t)ni * sizeof(int)), fail);
-            GLPGP_CHECK_GOTO(st, upload(c, &a->dpack, NULL, (size_t)nd * sizeof(double)), fail);
-            GLPGP_CHECK_GOTO(st, upload_ints(c, &a->tab, tab, (size_t)nq * GLPGP_AMG_BT_COUNT), fail);
-        }
-    }
-
-    for (int l = 0; l < a->L; l++) {
-        const glpgp_amg_level *in = &lay->lev[l];
-        cl_amg_level *v = &a->lev[l];
-        const int *rowptr = l ? in->rowptr : sys->rowptr;
-        const int fused = l >= a->lb, *row = fused ? tab + (l - a->lb) * GLPGP_AMG_BT_COUNT : NULL;
-        v->n = in->n;
-        v->nnzb = in->nnzb;
-        if (l > 0 && fused) {
-            GLPGP_CHECK_GOTO(st, sub_buffer(a->ipack, (size_t)row[GLPGP_AMG_BT_ROWPTR], (size_t)v->n + 1, sizeof(int), &v->rowptr), fail);
-            GLPGP_CHECK_GOTO(st, sub_buffer(a->ipack, (size_t)row[GLPGP_AMG_BT_COL], (size_t)v->nnzb, sizeof(int), &v->col), fail);
-            GLPGP_CHECK_GOTO(st, sub_buffer(a->ipack, (size_t)row[GLPGP_AMG_BT_DIAG], (size_t)v->n, sizeof(int), &v->diag), fail);
-            GLPGP_CHECK_GOTO(st, sub_buffer(a->dpack, (size_t)row[GLPGP_AMG_BT_VAL], 4 * (size_t)v->nnzb, sizeof(double), &v->val), fail);
-        } else if (l > 0) {
-            GLPGP_CHECK_GOTO(st, upload_ints(c, &v->rowptr, in->rowptr, (size_t)v->n + 1), fail);
-            GLPGP_CHECK_GOTO(st, upload_ints(c, &v->col, in->col, (size_t)v->nnzb), fail);
-            GLPGP_CHECK_GOTO(st, upload_ints(c, &v->diag, in->diag, (size_t)v->n), fail);
-            GLPGP_CHECK_GOTO(st, upload(c, &v->val, NULL, (size_t)4 * v->nnzb * sizeof(double)), fail);
-        }
-        if (l > 0) GLPGP_CHECK_GOTO(st, upload(c, &v->amp, NULL, (size_t)v->n * sizeof(double)), fail);
-        if (l + 1 < a->L) {
-            const glpgp_amg_level *nx = &lay->lev[l + 1];
-            v->nc = nx->n;
-            /* srow[k] <- row of slot k */
-            GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)v->nnzb, sizeof(int), &srow), fail);
-            for (int i = 0; i < v->n; i++)
-                for (int k = rowptr[i]; k < rowptr[i + 1]; k++) srow[k] = i;
-            GLPGP_CHECK_GOTO(st, upload_ints(c, &v->srow, srow, (size_t)v->nnzb), fail);
-            free(srow);
-            srow = NULL;
-            if (fused) {
-                GLPGP_CHECK_GOTO(st, sub_buffer(a->dpack, (size_t)row[GLPGP_AMG_BT_MINV], 4 * (size_t)v->n, sizeof(double), &v->minv), fail);
-                GLPGP_CHECK_GOTO(st, sub_buffer(a->dpack, (size_t)row[GLPGP_AMG_BT_C], 2 * (size_t)v->n, sizeof(double), &v->c), fail);
-                GLPGP_CHECK_GOTO(st, sub_buffer(a->ipack, (size_t)row[GLPGP_AMG_BT_AGG], (size_t)v->n, sizeof(int), &v->agg), fail);
-                GLPGP_CHECK_GOTO(st, sub_buffer(a->ipack, (size_t)row[GLPGP_AMG_BT_APTR], (size_t)v->nc + 1, sizeof(int), &v->aptr), fail);
-                GLPGP_CHECK_GOTO(st, sub_buffer(a->ipack, (size_t)row[GLPGP_AMG_BT_AMEM], (size_t)in->aptr[v->nc], sizeof(int), &v->amem), fail);
-            } else {
-                GLPGP_CHECK_GOTO(st, upload(c, &v->minv, NULL, (size_t)4 * v->n * sizeof(double)), fail);
-                GLPGP_CHECK_GOTO(st, upload(c, &v->c, NULL, (size_t)2 * v->n * sizeof(double)), fail);
-                GLPGP_CHECK_GOTO(st, upload_ints(c, &v->agg, in->agg, (size_t)v->n), fail);
-                GLPGP_CHECK_GOTO(st, upload_ints(c, &v->aptr, in->aptr, (size_t)v->nc + 1), fail);
-                GLPGP_CHECK_GOTO(st, upload_ints(c, &v->amem, in->amem, (size_t)in->aptr[v->nc]), fail);
-            }
-            GLPGP_CHECK_GOTO(st, upload_ints(c, &v->gptr, in->gptr, (size_t)nx->nnzb + 1), fail);
-            GLPGP_CHECK_GOTO(st, upload_ints(c, &v->gsrc, in->gsrc, (size_t)in->gptr[nx->nnzb]), fail);
-        }
-    }
-    /* the coarsest level: host copy of its pattern, dense inverse buffer */
-    {
-        const glpgp_amg_level *in = &lay->lev[a->L - 1];
-        const int n = in->n;
-        a->m = 2 * n;
-        GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)n + 1, sizeof(int), &a->crowptr), fail);
-        GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)in->nnzb, sizeof(int), &a->ccol), fail);
-        GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)4 * in->nnzb, sizeof(double), &a->cval), fail);
-        memcpy(a->crowptr, in->rowptr, ((size_t)n + 1) * sizeof(int));
-        memcpy(a->ccol, in->col, (size_t)in->nnzb * sizeof(int));
-        if (a->lb < a->L)
-            GLPGP_CHECK_GOTO(st, sub_buffer(a->dpack, (size_t)a->cinv_off, (size_t)a->m * a->m, sizeof(double), &a->cinv), fail);
-        else
-            GLPGP_CHECK_GOTO(st, upload(c, &a->cinv, NULL, (size_t)a->m * a->m * sizeof(double)), fail);
-    }
-    GLPGP_CHECK_GOTO(st, upload(c, &a->dw, NULL, (size_t)GLPGP_DENSE_W(a->m) * sizeof(double)), fail);
-    GLPGP_CHECK_GOTO(st, upload(c, &a->di, NULL, ((size_t)GLPGP_DENSE_I(a->m) + 1) * sizeof(int)), fail);
-    GLPGP_CHECK_GOTO(st, upload(c, &a->t, NULL, GLPGP_AMG_NSLOTS * sizeof(double)), fail);
-    GLPGP_CHECK_GOTO(st, upload(c, &a->resid, NULL, (size_t)2 * lay->lev[0].n * sizeof(double)), fail);
-    {
-        cl_int err = clFinish(c->q);
-        if (err != CL_SUCCESS) {
-            st = GLPGP_FAIL(GLPGP_ERR_OPENCL, "amg_setup: clFinish failed with %s", glpgp_cl_error_name(err));
-            goto fail;
-        }
-    }
-    free(tab);
-    free(ihost);
-    return GLPGP_OK;
-fail:
-    free(srow);
-    free(tab);
-    free(ihost);
-    amg_free(c);
-    return st;
-}
-
-/* values of A_l and its pattern */
-static cl_mem amg_val(cl_impl *c, int l) { return l == 0 ? c->newton : c->amg->lev[l].val; }
-static cl_mem amg_rowptr(cl_impl *c, int l) { return l == 0 ? c->rowptr : c->amg->lev[l].rowptr; }
-static cl_mem amg_col(cl_impl *c, int l) { return l == 0 ? c->col : c->amg->lev[l].col; }
-
-static glpgp_status amg_ready(const cl_impl *c, const char *what)
-{
-    if (!c->amg) return GLPGP_FAIL(GLPGP_ERR_ARG, "%s before amg_setup", what);
-    return GLPGP_OK;
-}
-
-static glpgp_status amg_level_ok(const cl_impl *c, int l, int coarse_ok, const char *what)
-{
-    GLPGP_CHECK(amg_ready(c, what));
-    if (l < 0 || l >= c->amg->L - (coarse_ok ? 0 : 1))
-        return GLPGP_FAIL(GLPGP_ERR_ARG, "%s: bad level %d", what, l);
-    return GLPGP_OK;
-}
-
-static glpgp_status cl_amg_values(glpgp_backend *b, const glpgp_vec *const *frames)
-{
-    cl_impl *c = IMPL(b);
-    GLPGP_CHECK(amg_ready(c, "amg_values"));
-    cl_amg *a = c->amg;
-    const cl_int one = 1, zero = 0;
-    /* M_0^-1 <- w (A_ii + sum_{j != i} ||A_ij||_2 I)^-1 on NEWTON */
-    {
-        cl_kernel k = c->k[K_AMG_L1];
-        ARG(k, 2, c->rowptr);
-        ARG(k, 3, c->diag);
-        ARG(k, 4, c->newton);
-        ARG(k, 5, a->weight);
-        ARG(k, 6, a->lev[0].minv);
-        GLPGP_CHECK(amg_run(c, K_AMG_L1, (size_t)a->lev[0].n, NULL));
-    }
-    for (int l = 0; l + 1 < a->L; l++) {
-        cl_amg_level *v = &a->lev[l], *w = &a->lev[l + 1];
-        if (frames[l] && frames[l]->n != (size_t)2 * v->n)
-            return GLPGP_FAIL(GLPGP_ERR_ARG, "amg_values: frame %d has the wrong length", l);
-        /* per aggregate J: s_J = sqrt(sum_{i in J} |a_i frame_i|^2), c_i = a_i frame_i / s_J */
-        cl_kernel k = c->k[K_AMG_WEIGHTS];
-        const cl_int has_amp = l > 0, has_frame = frames[l] != NULL;
-        cl_mem amp = l > 0 ? v->amp : v->c; /* not read on level 0 */
-        cl_mem fr = frames[l] ? frames[l]->m : v->c;
-        const cl_int has_dir = l == 0;
-        ARG(k, 2, v->aptr);
-        ARG(k, 3, v->amem);
-        ARG(k, 4, has_amp);
-        ARG(k, 5, amp);
-        ARG(k, 6, has_frame);
-        ARG(k, 7, fr);
-        ARG(k, 8, has_dir);
-        ARG(k, 9, c->dir);
-        ARG(k, 10, v->c);
-        ARG(k, 11, w->amp);
-        GLPGP_CHECK(amg_run_w(c, K_AMG_WEIGHTS, (size_t)v->nc, (size_t)v->n, NULL));
-        /* A_{l+1} <- P^T A_l P (Galerkin rows), M_{l+1}^-1 unless coarsest */
-        k = c->k[K_AMG_GALERKIN];
-        cl_mem A = amg_val(c, l), col = amg_col(c, l);
-        const cl_int do_l1 = l + 2 < a->L ? one : zero;
-        cl_mem minv = do_l1 ? w->minv : w->val; /* not written on the coarsest level */
-        ARG(k, 2, w->rowptr);
-        ARG(k, 3, w->diag);
-        ARG(k, 4, v->gptr);
-        ARG(k, 5, v->gsrc);
-        ARG(k, 6, v->srow);
-        ARG(k, 7, col);
-        ARG(k, 8, v->c);
-        ARG(k, 9, A);
-        ARG(k, 10, w->amp);
-        ARG(k, 11, w->val);
-        ARG(k, 12, do_l1);
-        ARG(k, 13, a->weight);
-        ARG(k, 14, minv);
-        GLPGP_CHECK(amg_run_w(c, K_AMG_GALERKIN, (size_t)w->n, (size_t)v->n, NULL));
-    }
-    return GLPGP_OK;
-}
-
-static glpgp_status cl_amg_coarse_read(glpgp_backend *b, double *dense)
-{
-    cl_impl *c = IMPL(b);
-    GLPGP_CHECK(amg_ready(c, "amg_coarse_read"));
-    cl_amg *a = c->amg;
-    const cl_amg_level *v = &a->lev[a->L - 1];
-    const int m = a->m;
-    GLPGP_CHECK(sync_read(c, v->val, 0, (size_t)4 * v->nnzb * sizeof(double), a->cval));
-    memset(dense, 0, (size_t)m * m * sizeof(double));
-    /* dense[2I + p][2J + q] <- A[K](p, q) for every block K = (I, J) */
-    for (int I = 0; I < v->n; I++)
-        for (int K = a->crowptr[I]; K < a->crowptr[I + 1]; K++) {
-            const int J = a->ccol[K];
-            for (int p = 0; p < 2; p++)
-                for (int q = 0; q < 2; q++)
-                    dense[(size_t)(2 * I + p) * m + 2 * J + q] = a->cval[4 * (size_t)K + 2 * p + q];
-        }
-    return GLPGP_OK;
-}
-
-static glpgp_status cl_amg_coarse_invert(glpgp_backend *b, int spd)
-{
-    cl_impl *c = IMPL(b);
-    GLPGP_CHECK(amg_ready(c, "amg_coarse_invert"));
-    cl_amg *a = c->amg;
-    const cl_amg_level *v = &a->lev[a->L - 1];
-    /* C <- the coarse operator, one work-group (kernels/amg_dense.h) */
-    cl_kernel k = c->k[K_AMG_COARSE_INVERT];
-    const cl_int n = v->n, sp = spd != 0, slot = GLPGP_AMG_SLOT_STATUS;
-    ARG(k, 0, n);
-    ARG(k, 1, sp);
-    ARG(k, 2, v->rowptr);
-    ARG(k, 3, v->col);
-    ARG(k, 4, v->val);
-    ARG(k, 5, a->cinv);
-    ARG(k, 6, a->dw);
-    ARG(k, 7, a->di);
-    ARG(k, 8, a->t);
-    ARG(k, 9, slot);
-    return launch(c, K_AMG_COARSE_INVERT, c->wg, c->wg);
-}
-
-static glpgp_status cl_amg_smooth(glpgp_backend *b, int l, const glpgp_vec *r, const glpgp_vec *x, glpgp_vec *y)
-{
-    cl_impl *c = IMPL(b);
-    GLPGP_CHECK(amg_level_ok(c, l, 0, "amg_smooth"));
-    /* y_i <- x_i + M_i^-1 (r_i - (A x)_i) */
-    cl_kernel k = c->k[K_AMG_SMOOTH];
-    const cl_int has_x = x != NULL;
-    cl_mem rp = amg_rowptr(c, l), col = amg_col(c, l), A = amg_val(c, l), xm = x ? x->m : r->m;
-    ARG(k, 2, has_x);
-    ARG(k, 3, rp);
-    ARG(k, 4, col);
-    ARG(k, 5, A);
-    ARG(k, 6, c->amg->lev[l].minv);
-    ARG(k, 7, r->m);
-    ARG(k, 8, xm);
-    ARG(k, 9, y->m);
-    return amg_run(c, K_AMG_SMOOTH, (size_t)c->amg->lev[l].n, NULL);
-}
-
-static glpgp_status cl_amg_restrict(glpgp_backend *b, int l, const glpgp_vec *r, const glpgp_vec *x,
-                                    glpgp_vec *rc)
-{
-    cl_impl *c = IMPL(b);
-    GLPGP_CHECK(amg_level_ok(c, l, 0, "amg_restrict"));
-    const cl_amg_level *v = &c->amg->lev[l];
-    /* rc_J <- sum_{i in J} P_i^T (r - A x)_i, in two passes when x is given:
-     * t <- r - A x (rows in order), then rc_J <- sum_{i in J} P_i^T t_i */
-    cl_mem rp = amg_rowptr(c, l), col = amg_col(c, l), A = amg_val(c, l);
-    cl_mem rin = r->m;
-    if (x && l > 0 && c->cpu) {
-        /* the coarse levels' aggregates are consecutive rows (solver/amg_structure.c):
-         * one pass, each aggregate forming its rows' residuals (glpgp_amg_agg_restrict) */
-        cl_kernel k = c->k[K_AMG_RESTRICT];
-        const cl_int has_x = 1;
-        ARG(k, 2, v->aptr);
-        ARG(k, 3, v->amem);
-        ARG(k, 4, v->c);
-        ARG(k, 5, has_x);
-        ARG(k, 6, rp);
-        ARG(k, 7, col);
-        ARG(k, 8, A);
-        ARG(k, 9, r->m);
-        ARG(k, 10, x->m);
-        ARG(k, 11, rc->m);
-        return amg_run_w(c, K_AMG_RESTRICT, (size_t)v->nc, (size_t)v->n, NULL);
-    }
-    if (x) {
-        cl_kernel kr = c->k[K_AMG_RESIDUAL];
-        ARG(kr, 2, rp);
-        ARG(kr, 3, col);
-        ARG(kr, 4, A);
-        ARG(kr, 5, r->m);
-        ARG(kr, 6, x->m);
-        ARG(kr, 7, c->amg->resid);
-        GLPGP_CHECK(amg_run(c, K_AMG_RESIDUAL, (size_t)v->n, NULL));
-        rin = c->amg->resid;
-    }
-    cl_kernel k = c->k[K_AMG_RESTRICT];
-    const cl_int has_x = 0;
-    cl_mem xm = rin;
-    ARG(k, 2, v->aptr);
-    ARG(k, 3, v->amem);
-    ARG(k, 4, v->c);
-    ARG(k, 5, has_x);
-    ARG(k, 6, rp);
-    ARG(k, 7, col);
-    ARG(k, 8, A);
-    ARG(k, 9, rin);
-    ARG(k, 10, xm);
-    ARG(k, 11, rc->m);
-    return amg_run_w(c, K_AMG_RESTRICT, (size_t)v->nc, (size_t)v->n, NULL);
-}
-
-static glpgp_status cl_amg_presmooth_restrict(glpgp_backend *b, int l, const glpgp_vec *r, glpgp_vec *y,
-                                              glpgp_vec *rc)
-{
-    cl_impl *c = IMPL(b);
-    GLPGP_CHECK(amg_level_ok(c, l, 0, "amg_presmooth_restrict"));
-    const cl_amg_level *v = &c->amg->lev[l];
-    cl_mem rp = amg_rowptr(c, l), col = amg_col(c, l), A = amg_val(c, l);
-    if (c->cpu) {
-        /* one pass by aggregates: y and rc (glpgp_amg_agg_presmooth_restrict) */
-        cl_kernel k = c->k[K_AMG_PRESMOOTH_RESTRICT];
-        ARG(k, 2, v->aptr);
-        ARG(k, 3, v->amem);
-        ARG(k, 4, v->c);
-        ARG(k, 5, rp);
-        ARG(k, 6, col);
-        ARG(k, 7, A);
-        ARG(k, 8, v->minv);
-        ARG(k, 9, r->m);
-        ARG(k, 10, y->m);
-        ARG(k, 11, rc->m);
-        return amg_run_w(c, K_AMG_PRESMOOTH_RESTRICT, (size_t)v->nc, (size_t)v->n, NULL);
-    }
-    /* rows (y and the residual t), then the aggregates gather t */
-    cl_kernel k = c->k[K_AMG_PRESMOOTH_RESID];
-    ARG(k, 2, rp);
-    ARG(k, 3, col);
-    ARG(k, 4, A);
-    ARG(k, 5, v->minv);
-    ARG(k, 6, r->m);
-    ARG(k, 7, y->m);
-    ARG(k, 8, c->amg->resid);
-    GLPGP_CHECK(amg_run(c, K_AMG_PRESMOOTH_RESID, (size_t)v->n, NULL));
-    k = c->k[K_AMG_RESTRICT];
-    const cl_int has_x = 0;
-    ARG(k, 2, v->aptr);
-    ARG(k, 3, v->amem);
-    ARG(k, 4, v->c);
-    ARG(k, 5, has_x);
-    ARG(k, 6, rp);
-    ARG(k, 7, col);
-    ARG(k, 8, A);
-    ARG(k, 9, c->amg->resid);
-    ARG(k, 10, c->amg->resid);
-    ARG(k, 11, rc->m);
-    return amg_run_w(c, K_AMG_RESTRICT, (size_t)v->nc, (size_t)v->n, NULL);
-}
-
-static glpgp_status cl_amg_prolong_smooth(glpgp_backend *b, int l, const glpgp_vec *ec, const glpgp_vec *x,
-                                          const glpgp_vec *r, glpgp_vec *y)
-{
-    cl_impl *c = IMPL(b);
-    GLPGP_CHECK(amg_level_ok(c, l, 0, "amg_prolong_smooth"));
-    const cl_amg_level *v = &c->amg->lev[l];
-    /* y <- x' + M^-1 (r - A x'), x' = x + P ec (glpgp_amg_row_prolong_smooth) */
-    cl_kernel k = c->k[K_AMG_PROLONG_SMOOTH];
-    cl_mem rp = amg_rowptr(c, l), col = amg_col(c, l), A = amg_val(c, l);
-    ARG(k, 2, v->agg);
-    ARG(k, 3, v->c);
-    ARG(k, 4, ec->m);
-    ARG(k, 5, rp);
-    ARG(k, 6, col);
-    ARG(k, 7, A);
-    ARG(k, 8, v->minv);
-    ARG(k, 9, r->m);
-    ARG(k, 10, x->m);
-    ARG(k, 11, y->m);
-    return amg_run(c, K_AMG_PROLONG_SMOOTH, (size_t)v->n, NULL);
-}
-
-static glpgp_status cl_amg_prolong(glpgp_backend *b, int l, const glpgp_vec *ec, glpgp_vec *x)
-{
-    cl_impl *c = IMPL(b);
-    GLPGP_CHECK(amg_level_ok(c, l, 0, "amg_prolong"));
-    const cl_amg_level *v = &c->amg->lev[l];
-    /* x_i <- x_i + P_i ec_agg(i) */
-    cl_kernel k = c->k[K_AMG_PROLONG];
-    ARG(k, 2, v->agg);
-    ARG(k, 3, v->c);
-    ARG(k, 4, ec->m);
-    ARG(k, 5, x->m);
-    return amg_run(c, K_AMG_PROLONG, (size_t)v->n, NULL);
-}
-
-static glpgp_status cl_amg_coarse_solve(glpgp_backend *b, const glpgp_vec *r, glpgp_vec *x)
-{
-    cl_impl *c = IMPL(b);
-    GLPGP_CHECK(amg_ready(c, "amg_coarse_solve"));
-    /* x <- C r */
-    cl_kernel k = c->k[K_AMG_DENSE];
-    ARG(k, 2, c->amg->cinv);
-    ARG(k, 3, r->m);
-    ARG(k, 4, x->m);
-    return amg_run(c, K_AMG_DENSE, (size_t)c->amg->m, NULL);
-}
-
-static glpgp_status cl_amg_spmv_dots(glpgp_backend *b, int l, const glpgp_vec *x, glpgp_vec *y,
-                                     const glpgp_vec *u, const glpgp_vec *w, int slot)
-{
-    cl_impl *c = IMPL(b);
-    GLPGP_CHECK(amg_level_ok(c, l, 1, "amg_spmv_dots"));
-    GLPGP_CHECK(amg_check_slot(slot, 3, "amg_spmv_dots"));
-    const size_t n = (size_t)c->amg->lev[l].n;
-    /* y <- A_l x;  t[slot] <- x.y;  t[slot+1] <- x.u;  t[slot+2] <- x.w */
-    cl_mem part;
-    cl_int off, stride;
-    int direct;
-    size_t groups;
-    GLPGP_CHECK(amg_partials(c, n, slot, &part, &off, &stride, &direct));
-    cl_kernel k = c->k[K_AMG_SPMV_DOTS];
-    const cl_int has_u = u != NULL, has_w = w != NULL;
-    cl_mem rp = amg_rowptr(c, l), col = amg_col(c, l), A = amg_val(c, l), um = u ? u->m : x->m,
-           wm = w ? w->m : x->m;
-    ARG(k, 2, rp);
-    ARG(k, 3, col);
-    ARG(k, 4, A);
-    ARG(k, 5, x->m);
-    ARG(k, 6, y->m);
-    ARG(k, 7, has_u);
-    ARG(k, 8, um);
-    ARG(k, 9, has_w);
-    ARG(k, 10, wm);
-    ARG(k, 11, part);
-    ARG(k, 12, off);
-    ARG(k, 13, stride);
-    GLPGP_CHECK(amg_run(c, K_AMG_SPMV_DOTS, n, &groups));
-    if (!direct) GLPGP_CHECK(amg_finalize(c, groups, 1 | (u ? 2 : 0) | (w ? 4 : 0), slot));
-    return GLPGP_OK;
-}
-
-static glpgp_status cl_amg_dots(glpgp_backend *b, const glpgp_vec *x, const glpgp_vec *u, const glpgp_vec *w,
-                                int slot)
-{
-    cl_impl *c = IMPL(b);
-    GLPGP_CHECK(amg_ready(c, "amg_dots"));
-    GLPGP_CHECK(amg_check_slot(slot, 2, "amg_dots"));
-    if (!u && !w) return GLPGP_OK;
-    /* t[slot] <- x.u;  t[slot+1] <- x.w */
-    cl_mem part;
-    cl_int off, stride;
-    int direct;
-    size_t groups;
-    GLPGP_CHECK(amg_partials(c, x->n, slot, &part, &off, &stride, &direct));
-    cl_kernel k = c->k[K_AMG_DOTS];
-    const cl_int has_u = u != NULL, has_w = w != NULL;
-    cl_mem um = u ? u->m : x->m, wm = w ? w->m : x->m;
-    ARG(k, 2, x->m);
-    ARG(k, 3, has_u);
-    ARG(k, 4, um);
-    ARG(k, 5, has_w);
-    ARG(k, 6, wm);
-    ARG(k, 7, part);
-    ARG(k, 8, off);
-    ARG(k, 9, stride);
-    GLPGP_CHECK(amg_run(c, K_AMG_DOTS, x->n, &groups));
-    if (!direct) GLPGP_CHECK(amg_finalize(c, groups, (u ? 1 : 0) | (w ? 2 : 0), slot));
-    return GLPGP_OK;
-}
-
-static glpgp_status amg_check_coef(glpgp_amg_coef cf, const char *what)
-{
-    if (cf.num >= 0) {
-        GLPGP_CHECK(amg_check_slot(cf.num, 1, what));
-        GLPGP_CHECK(amg_check_slot(cf.den, 1, what));
-    }
-    return GLPGP_OK;
-}
-
-static glpgp_status cl_amg_axpby(glpgp_backend *b, glpgp_amg_coef ca, const glpgp_vec *x, glpgp_amg_coef cc,
-                                 glpgp_vec *y)
-{
-    cl_impl *c = IMPL(b);
-    GLPGP_CHECK(amg_ready(c, "amg_axpby"));
-    GLPGP_CHECK(amg_check_coef(ca, "amg_axpby"));
-    GLPGP_CHECK(amg_check_coef(cc, "amg_axpby"));
-    if (y->n == 0) return GLPGP_OK;
-    /* y <- a x + c y, coefficients from the registers */
-    cl_kernel k = c->k[K_AMG_AXPBY];
-    const cl_int an = ca.num, ad = ca.den, cn = cc.num, cd = cc.den;
-    ARG(k, 2, c->amg->t);
-    ARG(k, 3, an);
-    ARG(k, 4, ad);
-    ARG(k, 5, ca.sign);
-    ARG(k, 6, x->m);
-    ARG(k, 7, cn);
-    ARG(k, 8, cd);
-    ARG(k, 9, cc.sign);
-    ARG(k, 10, y->m);
-    return amg_run(c, K_AMG_AXPBY, y->n, NULL);
-}
-
-static glpgp_status cl_amg_kcombine(glpgp_backend *b, const glpgp_vec *v, const glpgp_vec *d, glpgp_vec *e,
-                                    int slot)
-{
-    cl_impl *c = IMPL(b);
-    GLPGP_CHECK(amg_ready(c, "amg_kcombine"));
-    GLPGP_CHECK(amg_check_slot(slot, 5, "amg_kcombine"));
-    if (e->n == 0) return GLPGP_OK;
-    /* e <- c0 v + c1 d from t[slot .. slot + 4] */
-    cl_kernel k = c->k[K_AMG_KCOMBINE];
-    const cl_int sl = slot;
-    ARG(k, 2, c->amg->t);
-    ARG(k, 3, sl);
-    ARG(k, 4, v->m);
-    ARG(k, 5, d->m);
-    ARG(k, 6, e->m);
-    return amg_run(c, K_AMG_KCOMBINE, e->n, NULL);
-}
-
-static glpgp_status cl_amg_coarse_correction(glpgp_backend *b, int lc, int sym, const glpgp_vec *rhs,
-                                             glpgp_vec *e, int *done)
-{
-    cl_impl *c = IMPL(b);
-    *done = 0;
-    GLPGP_CHECK(amg_ready(c, "amg_coarse_correction"));
-    cl_amg *a = c->amg;
-    if (lc != a->lb || a->lb >= a->L) return GLPGP_OK; /* the driver runs this level */
-    /* e <- coarse correction of levels lb .. L-1, one work-item (glpgp_amg_bottom) */
-    cl_kernel k = c->k[K_AMG_BOTTOM];
-    /* the symmetric cycle: max(pre, post) sweeps on both sides, W-visits */
-    const cl_int nu = a->pre > a->post ? a->pre : a->post;
-    const cl_int lb = a->lb, L = a->L, pre = sym ? nu : a->pre, post = sym ? nu : a->post, m = a->m,
-                 ci = a->cinv_off, sy = sym != 0;
-    ARG(k, 0, lb);
-    ARG(k, 1, L);
-    ARG(k, 2, pre);
-    ARG(k, 3, post);
-    ARG(k, 4, m);
-    ARG(k, 5, ci);
-    ARG(k, 6, a->tab);
-    ARG(k, 7, a->ipack);
-    ARG(k, 8, a->dpack);
-    ARG(k, 9, a->t);
-    ARG(k, 10, rhs->m);
-    ARG(k, 11, e->m);
-    ARG(k, 12, sy);
-    GLPGP_CHECK(launch(c, K_AMG_BOTTOM, 1, 1));
-    *done = 1;
-    return GLPGP_OK;
-}
-
-static glpgp_status cl_amg_get_scalars(glpgp_backend *b, double *out, int n)
-{
-    cl_impl *c = IMPL(b);
-    GLPGP_CHECK(amg_ready(c, "amg_get_scalars"));
-    if (n <= 0) return GLPGP_OK;
-    if (n > GLPGP_AMG_NSLOTS) n = GLPGP_AMG_NSLOTS;
-    return sync_read(c, c->amg->t, 0, (size_t)n * sizeof(double), out);
-}
-
 static glpgp_status cl_clone(glpgp_backend *b, glpgp_backend **out);
 
 static const glpgp_backend_ops cl_ops = {
@@ -2087,22 +820,22 @@ static const glpgp_backend_ops cl_ops = {
     .cg_spmv_dot = cl_cg_spmv_dot,
     .cg_update = cl_cg_update,
     .cg_direction = cl_cg_direction,
-    .amg_setup = cl_amg_setup,
-    .amg_values = cl_amg_values,
-    .amg_coarse_read = cl_amg_coarse_read,
-    .amg_coarse_invert = cl_amg_coarse_invert,
-    .amg_smooth = cl_amg_smooth,
-    .amg_restrict = cl_amg_restrict,
-    .amg_prolong = cl_amg_prolong,
-    .amg_coarse_solve = cl_amg_coarse_solve,
-    .amg_spmv_dots = cl_amg_spmv_dots,
-    .amg_dots = cl_amg_dots,
-    .amg_axpby = cl_amg_axpby,
-    .amg_kcombine = cl_amg_kcombine,
-    .amg_get_scalars = cl_amg_get_scalars,
-    .amg_coarse_correction = cl_amg_coarse_correction,
-    .amg_presmooth_restrict = cl_amg_presmooth_restrict,
-    .amg_prolong_smooth = cl_amg_prolong_smooth,
+    .amg_setup = glpgp_cl_amg_setup,
+    .amg_values = glpgp_cl_amg_values,
+    .amg_coarse_read = glpgp_cl_amg_coarse_read,
+    .amg_coarse_invert = glpgp_cl_amg_coarse_invert,
+    .amg_smooth = glpgp_cl_amg_smooth,
+    .amg_restrict = glpgp_cl_amg_restrict,
+    .amg_prolong = glpgp_cl_amg_prolong,
+    .amg_coarse_solve = glpgp_cl_amg_coarse_solve,
+    .amg_spmv_dots = glpgp_cl_amg_spmv_dots,
+    .amg_dots = glpgp_cl_amg_dots,
+    .amg_axpby = glpgp_cl_amg_axpby,
+    .amg_kcombine = glpgp_cl_amg_kcombine,
+    .amg_get_scalars = glpgp_cl_amg_get_scalars,
+    .amg_coarse_correction = glpgp_cl_amg_coarse_correction,
+    .amg_presmooth_restrict = glpgp_cl_amg_presmooth_restrict,
+    .amg_prolong_smooth = glpgp_cl_amg_prolong_smooth,
     .finish = cl_finish,
     .trial_point = cl_trial_point,
 };
@@ -2137,7 +870,7 @@ static glpgp_status clone_device(cl_impl *d, const cl_impl *c)
     d->prof = c->prof;
     GLPGP_CL((d->q = clCreateCommandQueue(d->ctx, d->dev, d->prof ? CL_QUEUE_PROFILING_ENABLE : 0, &err), err));
     for (int i = 0; i < K_COUNT; i++)
-        GLPGP_CL_WHAT((d->k[i] = clCreateKernel(d->prog, kernel_names[i], &err), err), kernel_names[i]);
+        GLPGP_CL_WHAT((d->k[i] = clCreateKernel(d->prog, glpgp_cl_kernel_names[i], &err), err), glpgp_cl_kernel_names[i]);
     return GLPGP_OK;
 }
 
@@ -2181,7 +914,7 @@ glpgp_status glpgp_backend_create_opencl(const glpgp_cl_options *opt, glpgp_back
         return st;
     }
     b->ops = &cl_ops;
-    st = init_device(IMPL(b), opt);
+    st = glpgp_cl_init_device(IMPL(b), opt);
     if (st != GLPGP_OK) {
         glpgp_error_push_trace(__FILE__, __LINE__);
         glpgp_backend_destroy(&b);
@@ -2200,7 +933,7 @@ glpgp_status glpgp_backend_create_opencl(const glpgp_cl_options *opt, glpgp_back
 
 void glpgp_cl_backend_log(const glpgp_backend *b)
 {
-    if (b && b->ops == &cl_ops && b->impl) log_device((const cl_impl *)b->impl);
+    if (b && b->ops == &cl_ops && b->impl) glpgp_cl_log_device((const cl_impl *)b->impl);
 }
 
 int glpgp_cl_backend_info(const glpgp_backend *b, char *buf, size_t len)
