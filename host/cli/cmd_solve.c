@@ -350,6 +350,14 @@ static int prepare(solve_cli *c, const char *input, glpgp_mesh **pm, glpgp_size_
     if ((rc = glpgp_cli_load_input_ex("solve", input, &c->mo, c->planar_face ? GLPGP_READ_PLANAR_FACE : 0, &m,
                                       NULL)) >= 0)
         return rc;
+    /* --quads on a planar domain: the cross field unless --field says
+     * otherwise (fewer irregular vertices on every measured set,
+     * bench/results/quads_fields.md); not on several PETSc ranks, which it
+     * would keep from splitting the mesh */
+    if (!m->xyz && c->quads && !c->field_seen && !(c->backend == GLPGP_BACKEND_PETSC && glpgp_petsc_size() > 1)) {
+        c->o.field = GLPGP_FIELD_CROSS;
+        glpgp_log(GLPGP_LOG_DEBUG, "quads: the cross field (the default with --quads; --field boundary for the other)");
+    }
     if (m->xyz) {
         /* a surface: the cross field unless --field says otherwise; no quads yet */
         if (!c->field_seen) c->o.field = GLPGP_FIELD_CROSS;

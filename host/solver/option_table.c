@@ -126,7 +126,7 @@ static const glpgp_optdesc k_table[] = {
         "with --precond amg: preconditioner and norm of the trust region's\n"
         "Steihaug CG: 2x2-block Jacobi, or a symmetric multigrid W-cycle\n"
         "built on the projected Hessian"),
-    TXT("field", G1, parse_field, "boundary|radial|cross|FILE", "boundary; surfaces: cross",
+    TXT("field", G1, parse_field, "boundary|radial|cross|FILE", "boundary; cross with --quads and on surfaces",
         "guiding field U: smooth field aligned with the boundary, radial\n"
         "about --center, from the Ginzburg-Landau cross field (see\n"
         "--cross-eps0), or one \"ux uy\" line per vertex from FILE;\n"

@@ -64,12 +64,20 @@ if [ "$rc" = 0 ]; then # the file itself, through the same checks
     expect_out "valid +yes" "quality e.msh"
 fi
 
-# no cross field: the fields are absent
-run_ok "boundary quads" solve shape:disk:2000 --backend reference --quads b.obj --stats b.json
+# no cross field (--field boundary; with --quads the cross field is the default): the fields are absent
+run_ok "boundary quads" solve shape:disk:2000 --field boundary --backend reference --quads b.obj --stats b.json
 python3 - b.json <<'PY' || fail "boundary report has cross fields"
 import json, sys
 q = json.load(open(sys.argv[1]))["quads"]
 assert "cross_singularities" not in q and "interior_near_cross" not in q["irregular_vertices"], q
 PY
 grep -q "near cross" out.txt && fail "boundary run prints the near-cross line"
+
+# with --quads and no --field: the cross field (bench/results/quads_fields.md); without --quads: boundary
+run_ok "quads default field" solve shape:disk:2000 --backend reference --quads d.obj --stats d.json
+python3 -c 'import json, sys; d = json.load(open(sys.argv[1])); assert d["field"] == "cross" and "cross_singularities" in d["quads"], d["field"]' d.json ||
+    fail "solve --quads without --field did not take the cross field"
+run_ok "default field" solve shape:disk:2000 --backend reference --stats n.json
+python3 -c 'import json, sys; assert json.load(open(sys.argv[1]))["field"] == "boundary"' n.json ||
+    fail "solve without --quads did not take the boundary field"
 finish
