@@ -2211,10 +2211,10 @@ int glpgp_cl_backend_info(const glpgp_backend *b, char *buf, size_t len)
     }
     const cl_impl *c = (const cl_impl *)b->impl;
     if (c->cpu)
-        snprintf(buf, len, "device %d: %s (cpu shape: up to %zu work-items, local size 1; build %.2f s)", c->index,
+        glpgp_snprintf(buf, len, "device %d: %s (cpu shape: up to %zu work-items, local size 1; build %.2f s)", c->index,
                  c->name, c->nwi, c->build_seconds);
     else
-        snprintf(buf, len, "device %d: %s (gpu shape: one row per work-item, local size %zu; build %.2f s)",
+        glpgp_snprintf(buf, len, "device %d: %s (gpu shape: one row per work-item, local size %zu; build %.2f s)",
                  c->index, c->name, c->wg, c->build_seconds);
     return c->index;
 }
