@@ -1061,7 +1061,7 @@ static glpgp_status refine_round(const rmesh *r, const unsigned char *need, rmes
         for (int a = 0; a < 3; a++) c += mark[edge[3 * t + a]];
         ntri2 += 1 + c;
     }
-    if (ntri2 > INT32_MAX / 9) {
+    if (ntri2 > GLPGP_MESH_MAX_TRIANGLES) {
         st = GLPGP_FAIL(GLPGP_ERR_LIMIT, "refinement: %ld triangles is too many", ntri2);
         goto done;
     }
