@@ -99,6 +99,11 @@ typedef struct glpgp_module_dirs {
 void glpgp_module_dirs_get(glpgp_module_dirs *d);
 /* path <- the first d->dir[i]/file that exists (returns 1), or 0 if none. */
 int glpgp_module_find(const glpgp_module_dirs *d, const char *file, char *path, size_t len);
+/* The one lock of module loading (image modules, the PETSc module): a loader
+ * holds it while it looks a module up, dlopen's it and records the outcome,
+ * so two threads asking at once load it once. Not recursive. */
+void glpgp_module_lock(void);
+void glpgp_module_unlock(void);
 
 /* Locale-independent numbers (core/numlocale.c): every number the library
  * reads or writes (files, option values, messages) uses '.' as the decimal
