@@ -12,6 +12,8 @@
 #include "glpgp/solve.h"
 #include "glpgp/surfsolve.h"
 #include "glpgp/util.h"
+#include "glpgp/internal/newton.h"
+#include "glpgp/internal/probe.h"
 
 #include <math.h>
 #include <stdarg.h>

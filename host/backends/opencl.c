@@ -69,6 +69,7 @@ void glpgp_cl_backend_log(const glpgp_backend *b) { (void)b; }
 
 #include "glpgp/internal/debug.h"
 #include "glpgp/util.h"
+#include "glpgp/internal/newton.h"
 
 #include "amg_dense.h" /* GLPGP_DENSE_W, _I (the coarse inverse's work arrays) */
 #include "amg_rows.h" /* GLPGP_AMG_BT_* (the fused kernel's level table) */

@@ -15,6 +15,7 @@
 #include "glpgp/solve.h"
 #include "glpgp/surface.h"
 #include "glpgp/util.h"
+#include "glpgp/internal/newton.h"
 
 #include <math.h>
 #include <pthread.h>
