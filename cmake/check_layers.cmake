@@ -32,6 +32,7 @@ set(OWNER_backends backends)
 set(OWNER_probe backends)
 set(OWNER_quads quads)
 set(OWNER_io io)
+set(OWNER_distributed io)
 set(OWNER_image image)
 set(OWNER_glpgp image)
 

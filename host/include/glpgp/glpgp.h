@@ -3,7 +3,8 @@
  * calls: errors and logging (status.h), the version, option descriptors,
  * meshes, built-in shapes and surfaces, the solve and its result, cross
  * fields, the backends (reference, OpenCL, PETSc, the cross-check), quad
- * meshes, every reader and writer (io.h) and the image layer (pictures,
+ * meshes, every reader and writer (io.h), the distributed solve on MPI ranks
+ * (distributed.h) and the image layer (pictures,
  * mask domains, Gmsh). The headers under glpgp/internal/ (the Newton step,
  * CG, the multigrid, the test switches) are the library's own plumbing:
  * not installed, no stability promise. Layer: image (it includes all). */
@@ -27,6 +28,7 @@
 #include "glpgp/backends.h"
 #include "glpgp/quads.h"
 #include "glpgp/io.h"
+#include "glpgp/distributed.h"
 #include "glpgp/image.h"
 
 #endif
