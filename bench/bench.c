@@ -16,6 +16,7 @@
 #include "glpgp/solve.h"
 #include "glpgp/status.h"
 #include "glpgp/system.h"
+#include "glpgp/internal/newton.h"
 
 #include <errno.h>
 #include <ftw.h>

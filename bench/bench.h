@@ -14,6 +14,8 @@
 #include "glpgp/status.h"
 #include "glpgp/util.h"
 #include "glpgp/system.h"
+#include "glpgp/internal/newton.h"
+#include "glpgp/internal/probe.h"
 
 /* Monotonic wall clock in seconds. */
 double bench_now(void);

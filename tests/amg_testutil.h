@@ -9,6 +9,7 @@
 
 #include "glpgp/backend.h"
 #include "glpgp/solve.h"
+#include "glpgp/internal/newton.h"
 #include "testutil.h"
 
 #include <math.h>

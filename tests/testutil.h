@@ -21,6 +21,7 @@
 #include "glpgp/system.h"
 #include "glpgp/util.h"
 #include "glpgp/version.h"
+#include "glpgp/internal/newton.h"
 
 #include <math.h>
 #include <stdio.h>

@@ -79,9 +79,7 @@ const char *glpgp_cl_error_name(cl_int err)
     N(CL_PLATFORM_NOT_FOUND_KHR);
 #undef N
     }
-    static _Thread_local char buf[32]; /* unknown codes only (one per thread) */
-    snprintf(buf, sizeof buf, "CL_ERROR_%d", (int)err);
-    return buf;
+    return "an unknown OpenCL error"; /* a constant: no static buffer (GLPGP_CL prints the code) */
 }
 
 glpgp_status glpgp_cl_devices(glpgp_cl_device **out, int *n)

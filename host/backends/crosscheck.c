@@ -12,6 +12,8 @@
 #include "glpgp/solve.h"
 #include "glpgp/surfsolve.h"
 #include "glpgp/util.h"
+#include "glpgp/internal/newton.h"
+#include "glpgp/internal/probe.h"
 
 #include <math.h>
 #include <stdarg.h>
@@ -92,7 +94,7 @@ static glpgp_status row_add(glpgp_crosscheck *t, glpgp_crosscheck_row **row, con
     memset(r, 0, sizeof *r);
     va_list ap;
     va_start(ap, fmt);
-    vsnprintf(r->stage, sizeof r->stage, fmt, ap);
+    glpgp_vsnprintf(r->stage, sizeof r->stage, fmt, ap);
     va_end(ap);
     r->pass = 1;
     *row = r;
@@ -122,7 +124,7 @@ static glpgp_status cmp(cc *c, const char *stage, const double *a, const double 
     r->max_abs = maxd;
     r->max_rel = maxb > 0.0 ? maxd / maxb : (maxd > 0.0 ? INFINITY : maxd);
     if (rtol == 0.0 && atol == 0.0) snprintf(r->tol, sizeof r->tol, "exact");
-    else snprintf(r->tol, sizeof r->tol, "rtol %.0e, atol %.0e", rtol, atol);
+    else glpgp_snprintf(r->tol, sizeof r->tol, "rtol %.0e, atol %.0e", rtol, atol);
     return GLPGP_OK;
 }
 

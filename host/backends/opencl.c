@@ -70,7 +70,9 @@ void glpgp_cl_backend_log(const glpgp_backend *b) { (void)b; }
 #include <string.h>
 #include <time.h>
 
+#include "glpgp/internal/debug.h"
 #include "glpgp/util.h"
+#include "glpgp/internal/newton.h"
 
 #include "amg_dense.h" /* GLPGP_DENSE_W, _I (the coarse inverse's work arrays) */
 #include "amg_rows.h" /* GLPGP_AMG_BT_* (the fused kernel's level table) */
@@ -944,10 +946,10 @@ int glpgp_cl_backend_info(const glpgp_backend *b, char *buf, size_t len)
     }
     const cl_impl *c = (const cl_impl *)b->impl;
     if (c->cpu)
-        snprintf(buf, len, "device %d: %s (cpu shape: up to %zu work-items, local size 1; build %.2f s)", c->index,
+        glpgp_snprintf(buf, len, "device %d: %s (cpu shape: up to %zu work-items, local size 1; build %.2f s)", c->index,
                  c->name, c->nwi, c->build_seconds);
     else
-        snprintf(buf, len, "device %d: %s (gpu shape: one row per work-item, local size %zu; build %.2f s)",
+        glpgp_snprintf(buf, len, "device %d: %s (gpu shape: one row per work-item, local size %zu; build %.2f s)",
                  c->index, c->name, c->wg, c->build_seconds);
     return c->index;
 }

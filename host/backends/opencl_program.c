@@ -15,6 +15,7 @@
 #include <string.h>
 #include <time.h>
 
+#include "glpgp/internal/debug.h"
 #include "glpgp/util.h"
 
 #include "opencl_impl.h"
@@ -288,52 +289,27 @@ glpgp_status glpgp_cl_init_device(cl_impl *c, const glpgp_cl_options *opt)
     size_t maxwg = 1;
     GLPGP_CL(clGetDeviceInfo(c->dev, CL_DEVICE_MAX_WORK_GROUP_SIZE, sizeof maxwg, &maxwg, NULL));
 
-    /* launch shape from the device type (GLPGP_CL_SHAPE=cpu|gpu overrides) */
-    c->cpu = (c->type & CL_DEVICE_TYPE_CPU) != 0;
-    const char *shape = getenv("GLPGP_CL_SHAPE");
-    if (shape && strcmp(shape, "cpu") == 0) c->cpu = 1;
-    else if (shape && strcmp(shape, "gpu") == 0) c->cpu = 0;
-    else if (shape && *shape)
-        return GLPGP_FAIL(GLPGP_ERR_ARG, "GLPGP_CL_SHAPE='%s': expected cpu or gpu", shape);
-    c->nwi = 128;
-    const char *nwi = getenv("GLPGP_CL_WORKITEMS");
-    if (nwi && *nwi) {
-        char *end = NULL;
-        long v = strtol(nwi, &end, 10);
-        if (*end != '\0' || v < 1 || v > 65536)
-            return GLPGP_FAIL(GLPGP_ERR_ARG, "GLPGP_CL_WORKITEMS='%s': expected 1..65536", nwi);
-        c->nwi = (size_t)v;
-    }
+    /* launch shape from the device type (GLPGP_CL_SHAPE=cpu|gpu overrides), the
+     * environment's switches read once (glpgp/internal/debug.h) */
+    glpgp_debug dbg;
+    GLPGP_CHECK(glpgp_debug_read(&dbg));
+    c->cpu = dbg.cl_shape >= 0 ? dbg.cl_shape : (c->type & CL_DEVICE_TYPE_CPU) != 0;
+    c->nwi = dbg.cl_workitems > 0 ? (size_t)dbg.cl_workitems : 128;
     if (c->cpu) {
         c->wg = 1;
     } else {
         c->wg = 128; /* power of two, at most the device limit */
         while (c->wg > maxwg && c->wg > 1) c->wg /= 2;
     }
-    c->amg_small = 2048;
-    c->amg_fuse = 32768;
-    {
-        static const char *const names[2] = {"GLPGP_CL_AMG_SMALL", "GLPGP_CL_AMG_FUSE"};
-        int *dst[2] = {&c->amg_small, &c->amg_fuse};
-        for (int i = 0; i < 2; i++) {
-            const char *ev = getenv(names[i]);
-            if (!ev || !*ev) continue;
-            char *end = NULL;
-            long v = strtol(ev, &end, 10);
-            if (*end != '\0' || v < 0 || v > 1000000)
-                return GLPGP_FAIL(GLPGP_ERR_ARG, "%s='%s': expected a count in [0, 1000000]", names[i], ev);
-            *dst[i] = (int)v;
-        }
-    }
+    c->amg_small = dbg.cl_amg_small >= 0 ? dbg.cl_amg_small : 2048;
+    c->amg_fuse = dbg.cl_amg_fuse >= 0 ? dbg.cl_amg_fuse : 32768;
     cl_uint bits = 1024;
     GLPGP_CL(clGetDeviceInfo(c->dev, CL_DEVICE_MEM_BASE_ADDR_ALIGN, sizeof bits, &bits, NULL));
     c->align = bits / 8 < 8 ? 8 : bits / 8;
     c->verbose = opt ? opt->verbose : 0;
-    const char *cor = getenv("GLPGP_CL_CORRUPT");
-    c->corrupt = cor && strcmp(cor, "1") == 0;
+    c->corrupt = dbg.cl_corrupt;
     c->stop = opt ? opt->stop : NULL;
-    const char *prof = getenv("GLPGP_CL_PROFILE");
-    c->prof = prof && strcmp(prof, "1") == 0;
+    c->prof = dbg.cl_profile;
 
     cl_int err;
     cl_context_properties props[] = {CL_CONTEXT_PLATFORM, (cl_context_properties)plat, 0};

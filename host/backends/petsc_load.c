@@ -5,7 +5,9 @@
  * hands it the error record and the log, and forwards to its table.
  *
  * Search: the first directory of glpgp_module_dirs_get (core/module_dirs.c,
- * the same as for the image modules) that holds the file. */
+ * the same as for the image modules) that holds the file. Loading, MPI's
+ * initialisation and finalisation run under the modules' lock
+ * (glpgp_module_lock): two threads asking at once load the module once. */
 #include "glpgp/backends.h"
 #include "glpgp/solve.h"
 #include "glpgp/util.h"
@@ -65,7 +67,7 @@ static void load_path(const char *path)
     g_api = api;
 }
 
-static glpgp_status load(void)
+static glpgp_status load_locked(void)
 {
     if (g_tried) {
         if (g_api) return GLPGP_OK;
@@ -90,19 +92,34 @@ static glpgp_status load(void)
     return glpgp_error_set(__FILE__, __LINE__, g_st, "%s", g_why);
 }
 
+static glpgp_status load(void)
+{
+    glpgp_module_lock();
+    glpgp_status st = load_locked();
+    glpgp_module_unlock();
+    return st;
+}
+
 glpgp_status glpgp_petsc_init(void)
 {
     GLPGP_CHECK(load());
-    GLPGP_CHECK(g_api->init());
-    if (!g_initialised) atexit(glpgp_petsc_finalize); /* a caller that forgets: MPI still ends cleanly */
-    g_initialised = 1;
-    return GLPGP_OK;
+    glpgp_module_lock();
+    glpgp_status st = g_api->init();
+    if (st == GLPGP_OK) {
+        if (!g_initialised) atexit(glpgp_petsc_finalize); /* a caller that forgets: MPI still ends cleanly */
+        g_initialised = 1;
+    }
+    glpgp_module_unlock();
+    if (st != GLPGP_OK) glpgp_error_push_trace(__FILE__, __LINE__);
+    return st;
 }
 
 void glpgp_petsc_finalize(void)
 {
+    glpgp_module_lock();
     if (g_initialised && g_api) g_api->finalize();
     g_initialised = 0;
+    glpgp_module_unlock();
 }
 
 int glpgp_petsc_rank(void) { return g_initialised ? g_api->rank() : 0; }

@@ -2,6 +2,7 @@
  * and the OpenCL tests (glpgp_probe_matrix, glpgp/backends.h): every value of
  * a backend matrix recovered exactly through its ops table only. */
 #include "glpgp/backends.h"
+#include "glpgp/internal/probe.h"
 
 #include <stdio.h>
 #include <stdlib.h>

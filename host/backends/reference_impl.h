@@ -5,6 +5,7 @@
 #define GLPGP_REFERENCE_IMPL_H
 
 #include "glpgp/backend.h"
+#include "glpgp/internal/newton.h"
 
 #include <stddef.h>
 

@@ -8,6 +8,7 @@
 #include "opts.h"
 
 #include "glpgp/backends.h"
+#include "glpgp/distributed.h"
 #include "glpgp/image.h"
 #include "glpgp/io.h"
 #include "glpgp/cross.h"
@@ -15,6 +16,7 @@
 #include "glpgp/solve.h"
 #include "glpgp/surface.h"
 #include "glpgp/util.h"
+#include "glpgp/internal/newton.h"
 
 #include <math.h>
 #include <pthread.h>
@@ -261,36 +263,7 @@ static void print_summary(const solve_cli *c, const char *input, const glpgp_mes
 }
 
 static int solve_ranks(solve_cli *c, const char *input);
-static int distributed(const solve_cli *c);
-
-
-/* *mp <- m renumbered for P ranks: rank r owns the vertices [r nv / P,
- * (r+1) nv / P) of the backend's rows, filled with the part r of a
- * recursive coordinate bisection (input order kept within a part) */
-static glpgp_status partition_mesh(const glpgp_mesh *m, int P, glpgp_mesh **mp, int **new_of_old)
-{
-    glpgp_status st = GLPGP_OK;
-    int *size = NULL, *part = NULL, *next = NULL;
-    *mp = NULL;
-    GLPGP_CHECK(glpgp_malloc((size_t)m->nv, sizeof(int), new_of_old));
-    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)P, sizeof(int), &size), done);
-    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)P, sizeof(int), &next), done);
-    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)m->nv, sizeof(int), &part), done);
-    for (int r = 0; r < P; r++) {
-        next[r] = (int)((long long)m->nv * r / P);
-        size[r] = (int)((long long)m->nv * (r + 1) / P) - next[r];
-    }
-    GLPGP_CHECK_GOTO(st, glpgp_mesh_partition(m, P, size, part), done);
-    for (int i = 0; i < m->nv; i++) (*new_of_old)[i] = next[part[i]]++;
-    GLPGP_CHECK_GOTO(st, glpgp_mesh_renumber(m, *new_of_old, mp), done);
-done:
-    free(size);
-    free(next);
-    free(part);
-    return st;
-}
-
-static int solve_main(solve_cli *c, const char *input);
+static int solve_main(solve_cli *c, const char *input, glpgp_dist *dd);
 
 int glpgp_cmd_solve(int argc, char **argv)
 {
@@ -312,7 +285,7 @@ int glpgp_cmd_solve(int argc, char **argv)
         glpgp_petsc_finalize();
         return rc;
     }
-    return solve_main(&c, input);
+    return solve_main(&c, input, NULL);
 }
 
 /* The PETSc run on every rank: ranks other than 0 print nothing (stdout and
@@ -323,15 +296,19 @@ static int solve_ranks(solve_cli *c, const char *input)
     const int rank = glpgp_petsc_rank();
     /* distributed: whether rank 0 needs the whole result (decided alike on every rank) */
     c->gather = (c->out && !c->pieces) || c->quads || c->image;
+    const glpgp_dist_options dopt = {c->gather, c->gather_max, c->pieces ? c->out : NULL};
+    glpgp_dist *dd = NULL;
+    if (glpgp_dist_create(&c->o, &dopt, &dd) != GLPGP_OK) return glpgp_cli_fail();
     if (rank != 0) {
         if (!freopen("/dev/null", "w", stdout) || !freopen("/dev/null", "w", stderr)) {
             /* nothing to do: the output of this rank is lost either way */
         }
         /* a distributed .pvtu: this rank writes its piece */
-        if (!(c->pieces && distributed(c))) c->out = NULL;
+        if (!(c->pieces && glpgp_dist_splits(dd))) c->out = NULL;
         c->stats = c->quads = c->image = NULL;
     }
-    int rc = solve_main(c, input);
+    int rc = solve_main(c, input, dd);
+    glpgp_dist_destroy(&dd); /* after a failure: the verdicts this rank owes */
     /* the same exit code everywhere (a rank that failed alone: all fail) */
     if (!glpgp_petsc_all_ok(rc == 0) && rc == 0) rc = GLPGP_EXIT_FAIL;
     return rc;
@@ -404,136 +381,6 @@ fail:
     glpgp_mesh_destroy(&m);
     glpgp_size_image_destroy(psimg);
     return rc;
-}
-
-/* Whether the PETSc ranks split the mesh (each holds its part,
- * glpgp_mesh_part) rather than every rank holding the whole mesh: several
- * ranks, and no per-vertex input file (field, sizes: their lines belong to
- * the input's numbering), no cross field, no size function (--size-field
- * IMAGE: evaluated on rank 0 only). */
-static int distributed(const solve_cli *c)
-{
-    return c->backend == GLPGP_BACKEND_PETSC && glpgp_petsc_size() > 1 && c->o.field != GLPGP_FIELD_FILE &&
-           c->o.field != GLPGP_FIELD_CROSS && c->o.size_field != GLPGP_SIZE_FILE &&
-           c->o.size_field != GLPGP_SIZE_FUNC;
-}
-
-/* Rank 0 of a distributed solve: what needs the whole renumbered mesh mp
- * (the local size field and its check, the radial field's centre), then
- * each rank's part: sent to ranks 1 .. P-1, rank 0's own in *mine. The
- * other ranks wait in glpgp_petsc_mesh_recv after the all_ok verdict that
- * the caller announces between split_prepare and split_send. */
-static glpgp_status split_prepare(const solve_cli *c, const glpgp_mesh *mp, double **size, double center[2])
-{
-    *size = NULL;
-    const double h = c->o.size > 0.0 ? c->o.size : glpgp_default_size(mp, &c->o);
-    if (c->gather && mp->nv > c->gather_max)
-        return GLPGP_FAIL(GLPGP_ERR_LIMIT,
-                          "%d vertices: above --gather-max %d for gathering the result to rank 0 (needed by "
-                          "--out .vtu/.vtk/.obj, --quads, --image): write --out FILE.pvtu (a piece per rank) "
-                          "or raise --gather-max",
-                          mp->nv, c->gather_max);
-    /* the local resolution of the whole mesh (glpgp_solve skips it on a part) */
-    GLPGP_CHECK(glpgp_options_check_mesh(&c->o, mp));
-    GLPGP_CHECK(glpgp_size_check_mesh(mp, &c->o, h));
-    /* the field where the size field reads it (the boundary), the centroid;
-     * the sizes of both oscillators (NULL when uniform) */
-    double *u = NULL, *sz = NULL;
-    int uniform = 1;
-    glpgp_status st = glpgp_malloc((size_t)2 * mp->nv, sizeof(double), &u);
-    if (st == GLPGP_OK) st = glpgp_malloc((size_t)2 * mp->nv, sizeof(double), &sz);
-    if (st == GLPGP_OK) {
-        glpgp_field_presolve(mp, &c->o, u, center);
-        glpgp_options oc = c->o;
-        if (oc.field == GLPGP_FIELD_RADIAL && !oc.has_center) {
-            oc.center[0] = center[0];
-            oc.center[1] = center[1];
-            oc.has_center = 1;
-        }
-        st = glpgp_size_compute(mp, &oc, h, u, sz, &uniform);
-    }
-    free(u);
-    if (st == GLPGP_OK && !uniform) *size = sz;
-    else free(sz);
-    return st;
-}
-
-static glpgp_status split_send(const solve_cli *c, const glpgp_mesh *mp, const double *size, const double center[2],
-                               glpgp_mesh **mine)
-{
-    const int P = glpgp_petsc_size();
-    *mine = NULL;
-    glpgp_status st = GLPGP_OK;
-    for (int q = 1; q < P; q++) {
-        glpgp_mesh *pq = NULL;
-        if (st == GLPGP_OK) st = glpgp_mesh_extract_part(mp, P, q, size, center, c->o.size, &pq);
-        /* after a failure the remaining ranks get the NULL part: their receive fails, none waits */
-        glpgp_status sst = glpgp_petsc_mesh_send(st == GLPGP_OK ? pq : NULL, q);
-        glpgp_mesh_destroy(&pq);
-        if (st == GLPGP_OK) st = sst;
-    }
-    GLPGP_CHECK(st);
-    return glpgp_mesh_extract_part(mp, P, 0, size, center, c->o.size, mine);
-}
-
-/* The whole result on rank 0 from the parts' results (rl: this rank's, of
- * its part pm): the per-vertex arrays of the owned vertices gathered in rank
- * order (the renumbered mesh's order), the scalars (global already) copied;
- * *out (rank 0, of nv vertices and nt triangles) then summarised by the
- * caller. Every rank calls it. */
-static glpgp_status gather_result(const glpgp_result *rl, const glpgp_mesh *pm, int nv, int nt, glpgp_result **out)
-{
-    *out = NULL;
-    const int root = glpgp_petsc_rank() == 0;
-    const size_t n = (size_t)pm->part->nv_owned;
-    glpgp_result *rw = NULL;
-    if (root) {
-        GLPGP_CHECK(glpgp_result_create(nv, nt, &rw));
-        glpgp_result keep = *rw;
-        *rw = *rl; /* the scalars and statistics */
-        rw->nv = keep.nv;
-        rw->nt = keep.nt;
-        rw->field = keep.field;
-        rw->cross = NULL;
-        for (int k = 0; k < 2; k++) {
-            rw->osc[k].z = keep.osc[k].z;
-            rw->osc[k].dirichlet = keep.osc[k].dirichlet;
-            rw->osc[k].singular = keep.osc[k].singular;
-        }
-    }
-    glpgp_status st = glpgp_petsc_gather_bytes(rl->field, 2 * n * sizeof(double), root ? rw->field : NULL);
-    for (int k = 0; k < 2 && st == GLPGP_OK; k++) {
-        st = glpgp_petsc_gather_bytes(rl->osc[k].z, 2 * n * sizeof(double), root ? rw->osc[k].z : NULL);
-        if (st == GLPGP_OK)
-            st = glpgp_petsc_gather_bytes(rl->osc[k].dirichlet, n, root ? rw->osc[k].dirichlet : NULL);
-    }
-    if (st != GLPGP_OK) {
-        glpgp_result_destroy(&rw);
-        return st;
-    }
-    *out = rw;
-    return GLPGP_OK;
-}
-
-/* Distributed --out FILE.pvtu: every rank's verdict on its files (ok: its
- * output set prepared), gathered to rank 0 (okv: P doubles there, NULL
- * elsewhere), which names the first rank that failed. Returns the verdict
- * agreed by all ranks (1: every rank commits). Every rank calls it. */
-static int pieces_verdict(int ok, const char *pvtu, double *okv)
-{
-    const double mine = ok ? 1.0 : 0.0;
-    glpgp_petsc_gather(&mine, 1, okv);
-    if (glpgp_petsc_rank() == 0 && ok)
-        for (int q = 1; q < glpgp_petsc_size(); q++)
-            if (okv[q] == 0.0) {
-                char piece[4096];
-                if (glpgp_pvtu_piece_path(pvtu, q, piece, sizeof piece) != GLPGP_OK) piece[0] = '\0';
-                GLPGP_FAIL(GLPGP_ERR_IO, "MPI rank %d could not write its piece '%s' (no output was written)", q,
-                           piece);
-                ok = 0;
-                break;
-            }
-    return glpgp_petsc_all_ok(ok);
 }
 
 /* The backend created in a second thread while the input is read (an OpenCL
@@ -618,7 +465,9 @@ static int backend_job_abandon(backend_job *j, int rc)
     return rc;
 }
 
-static int solve_main(solve_cli *cc, const char *input)
+/* The one flow of every run: read, solve (serial, or glpgp_solve_distributed
+ * on MPI ranks: dd), compute the outputs, write them together. */
+static int solve_main(solve_cli *cc, const char *input, glpgp_dist *dd)
 {
     solve_cli c = *cc;
     int rc;
@@ -635,165 +484,51 @@ static int solve_main(solve_cli *cc, const char *input)
     memset(&qq, 0, sizeof qq);
     int invalid_rc = -1;
     int nranks = 0;             /* --backend petsc: MPI ranks, per-rank numbers */
-    glpgp_mesh *mp = NULL;      /* the renumbered mesh the ranks solve (NULL: m) */
-    glpgp_mesh *part = NULL;    /* distributed: this rank's part of mp */
-    int *new_of_old = NULL;
-    double *rank_info = NULL, *split_size = NULL, *okv = NULL;
-    int verdict_pending = 0;    /* distributed .pvtu: this rank still owes pieces_verdict */
-    double center[2] = {0.0, 0.0};
+    const double *rank_info = NULL;
     char why[1024] = "";
     glpgp_size_image *simg = NULL; /* --size-field IMAGE */
-    const int dist = distributed(&c), root = glpgp_petsc_rank() == 0;
-    int announced = 0;          /* distributed: rank 0's verdict on the input sent */
     double t_read = 0.0, t_build_wait = 0.0, t_build = 0.0;
     glpgp_timers cli_tm; /* the phases measured here (read, program build, outputs) */
     memset(&cli_tm, 0, sizeof cli_tm);
     backend_job bj;
     memset(&bj, 0, sizeof bj);
     memset(&c.refined, 0, sizeof c.refined);
-    if (dist && !root) {
-        /* rank 0 reads, checks, refines and splits the input: its verdict,
-         * then this rank's part */
-        announced = 1;
-        if (!glpgp_petsc_all_ok(1)) return glpgp_cli_reported(GLPGP_EXIT_FAIL); /* rank 0 reported it */
-        if (glpgp_petsc_mesh_recv(&part) != GLPGP_OK) goto fail;
-        c.o.size = part->part->size_opt; /* rank 0's (set by the refinement) */
-    } else {
+    if (glpgp_dist_reads(dd)) { /* (a split run's other ranks get their part from rank 0) */
         /* the backend (program build) in a thread while the input is read */
-        if (c.backend != GLPGP_BACKEND_PETSC) backend_job_start(&bj, &c);
-        if ((rc = prepare(&c, input, &m, &simg)) >= 0) {
-            if (dist) glpgp_petsc_all_ok(0);
-            if (c.backend != GLPGP_BACKEND_PETSC) rc = backend_job_abandon(&bj, rc);
-            return rc;
-        }
+        if (!dd) backend_job_start(&bj, &c);
+        if ((rc = prepare(&c, input, &m, &simg)) >= 0) return dd ? rc : backend_job_abandon(&bj, rc);
         t_read = glpgp_now() - t0;
     }
     cli_tm.s[GLPGP_TM_READ] = t_read - c.t_refine;
     cli_tm.s[GLPGP_TM_REFINE] = c.t_refine;
     rc = GLPGP_EXIT_FAIL;
 
-    if (c.backend == GLPGP_BACKEND_PETSC) {
-        const double tb = glpgp_now();
-        if (glpgp_backend_create_petsc(c.o.precond, &b) != GLPGP_OK) goto fail;
-        t_build = t_build_wait = glpgp_now() - tb;
-    } else {
-        if (backend_job_join(&bj, &b, &t_build_wait) != GLPGP_OK) goto fail;
-        t_build = bj.seconds;
-        if (c.verbosity > 0) glpgp_cl_backend_log(b);
-    }
-    /* program build: the backend's creation (in the background); its wait: what the run waited for it */
-    cli_tm.s[GLPGP_TM_BUILD] = t_build;
-    cli_tm.wait[GLPGP_TM_BUILD] = t_build_wait;
-    /* several ranks: the vertices renumbered so that each rank's rows are
-     * a compact region (recursive coordinate bisection); the result comes
-     * back in the input's vertex order. Not with per-vertex input files
-     * (field, sizes), whose lines belong to the input's numbering.
-     * Distributed: rank 0 only, which then splits the renumbered mesh. */
-    if (c.backend == GLPGP_BACKEND_PETSC && glpgp_petsc_size() > 1 && c.o.field != GLPGP_FIELD_FILE &&
-        c.o.field != GLPGP_FIELD_CROSS && c.o.size_field != GLPGP_SIZE_FILE && (root || !dist))
-        if (partition_mesh(m, glpgp_petsc_size(), &mp, &new_of_old) != GLPGP_OK) goto fail;
-    /* otherwise glpgp_solve renumbers the vertices for memory locality
-     * (--input-order: not); a mesh split for its ranks keeps that order */
-    if (new_of_old) c.o.vertex_order = GLPGP_ORDER_INPUT;
-    if (dist && root) {
-        /* rank 0: the whole-mesh work, the verdict, the parts; then only
-         * the input mesh m stays whole here (for the outputs) */
-        glpgp_status pst = split_prepare(&c, mp, &split_size, center);
-        announced = 1;
-        if (!glpgp_petsc_all_ok(pst == GLPGP_OK)) goto fail;
-        if (split_send(&c, mp, split_size, center, &part) != GLPGP_OK) goto fail;
-        free(split_size);
-        split_size = NULL;
-        glpgp_mesh_destroy(&mp);
-        if (!c.gather) {
-            /* no gathered output: rank 0 keeps of the whole mesh only the
-             * counts and scalars the summary and the statistics report
-             * (1M vertices, --precond jacobi
-             * --newton-max 1 --cg-max 50, 2 ranks: rank 0 619 -> 571 MiB,
-             * rank 1 554) */
-            glpgp_mesh_release_arrays(m);
-            free(new_of_old);
-            new_of_old = NULL;
-        }
-    }
-    glpgp_status sst = glpgp_solve(dist ? part : mp ? mp : m, b, &c.o, &r);
-    if (glpgp_cl_backend_info(b, device_buf, sizeof device_buf) >= 0) device = device_buf;
-    if (c.backend == GLPGP_BACKEND_PETSC) {
-        /* every rank: the same verdict (a rank that failed alone fails all,
-         * no rank waits in a collective the others never reach) */
-        if (!glpgp_petsc_all_ok(sst == GLPGP_OK)) {
-            if (sst == GLPGP_OK) GLPGP_FAIL(GLPGP_ERR_NUMERIC, "the solve failed on another MPI rank");
-            goto fail;
-        }
-        /* per-rank sizes, time and memory to rank 0 (stats JSON) */
-        nranks = glpgp_petsc_size();
-        int owned = 0, ghosts = 0;
-        glpgp_petsc_backend_info(b, &owned, &ghosts);
-        const double mine[GLPGP_RANK_INFO_N] = {owned, ghosts, r->seconds_total, glpgp_petsc_max_rss()};
-        /* an allocation failure on one rank is every rank's (collective
-         * verdict), so no rank waits in the gather alone */
-        const glpgp_status ast = glpgp_malloc((size_t)nranks * GLPGP_RANK_INFO_N, sizeof(double), &rank_info);
-        if (!glpgp_petsc_all_ok(ast == GLPGP_OK)) goto fail;
-        glpgp_petsc_gather(mine, GLPGP_RANK_INFO_N, rank_info);
-        if (root && c.verbosity > 0)
+    if (dd) { /* MPI ranks: scatter, solve, gather or pieces, verdicts (glpgp/distributed.h) */
+        if (glpgp_output_set_create(&outs) != GLPGP_OK) goto fail;
+        int finished = 0;
+        if (glpgp_solve_distributed(dd, m, &c.o, outs, &r, &finished) != GLPGP_OK) goto fail;
+        t_build = t_build_wait = glpgp_dist_build_seconds(dd);
+        rank_info = glpgp_dist_rank_info(dd, &nranks);
+        if (rank_info && c.verbosity > 0)
             for (int k = 0; k < nranks; k++) {
                 const double *ri = rank_info + (size_t)k * GLPGP_RANK_INFO_N;
                 glpgp_log(GLPGP_LOG_INFO, "rank %d: %.0f owned + %.0f ghost vertices, solve %.3f s, max RSS %.1f MiB",
                           k, ri[0], ri[1], ri[2], ri[3] / 1048576.0);
             }
-        if (dist) {
-            /* --out FILE.pvtu: every rank's piece from its part, rank 0's
-             * with the index (written under temporary names; committed by
-             * every rank once all agree) */
-            glpgp_status pst = GLPGP_OK;
-            if (c.pieces) {
-                pst = glpgp_output_set_create(&outs);
-                if (pst == GLPGP_OK && root) pst = glpgp_malloc((size_t)nranks, sizeof(double), &okv);
-                if (pst == GLPGP_OK)
-                    pst = glpgp_output_set_result_piece(outs, part, &c.o, r, c.out, glpgp_petsc_rank());
-                if (pst == GLPGP_OK && root) pst = glpgp_output_set_pvtu(outs, r, c.out, nranks);
-            }
-            /* the whole result on rank 0 when an output needs it */
-            if (c.gather) {
-                glpgp_result *rw = NULL;
-                const glpgp_status gst = gather_result(r, part, root ? m->nv : 0, root ? m->nt : 0, &rw);
-                if (!glpgp_petsc_all_ok(gst == GLPGP_OK)) goto fail;
-                if (root) {
-                    glpgp_result_destroy(&r);
-                    r = rw;
-                }
-            }
-            glpgp_mesh_destroy(&part);
-            verdict_pending = c.pieces;
-            if (!root) { /* its piece committed with the others, then done */
-                if (c.pieces) {
-                    if (pst == GLPGP_OK) pst = glpgp_output_set_prepare(outs);
-                    verdict_pending = 0;
-                    if (!pieces_verdict(pst == GLPGP_OK, c.out, NULL)) goto fail;
-                    const glpgp_status cst = glpgp_output_set_commit(outs);
-                    if (!glpgp_petsc_all_ok(cst == GLPGP_OK)) goto fail;
-                }
-                rc = 0;
-                goto done;
-            }
-            if (pst != GLPGP_OK) goto fail;
+        if (finished) { /* a rank other than 0: its piece committed with the others */
+            rc = 0;
+            goto done;
         }
-    } else if (sst != GLPGP_OK) {
-        goto fail;
+    } else {
+        if (backend_job_join(&bj, &b, &t_build_wait) != GLPGP_OK) goto fail;
+        t_build = bj.seconds;
+        if (c.verbosity > 0) glpgp_cl_backend_log(b);
+        if (glpgp_solve(m, b, &c.o, &r) != GLPGP_OK) goto fail;
+        if (glpgp_cl_backend_info(b, device_buf, sizeof device_buf) >= 0) device = device_buf;
     }
-    /* a distributed run that gathered nothing: r is rank 0's part of the
-     * result, its counts and |z| statistics the global ones (the summary,
-     * the statistics and the pieces need no more) */
-    const int whole = !dist || c.gather;
-    if (new_of_old && whole) {
-        /* back to the input's vertex order; a gathered result: its
-         * singular triangles and |z| statistics on the whole mesh (the
-         * parts' global ones, recomputed) */
-        if (glpgp_result_permute_vertices(r, new_of_old) != GLPGP_OK) goto fail;
-        if (dist)
-            for (int k = 0; k < 2; k++)
-                if (glpgp_osc_summarize(m, &r->osc[k]) != GLPGP_OK) goto fail;
-    }
+    /* program build: the backend's creation (in the background); its wait: what the run waited for it */
+    cli_tm.s[GLPGP_TM_BUILD] = t_build;
+    cli_tm.wait[GLPGP_TM_BUILD] = t_build_wait;
     /* everything computed before anything is written */
     double tp = glpgp_now();
     if (c.quads) {
@@ -821,10 +556,6 @@ static int solve_main(solve_cli *cc, const char *input)
     /* outputs: one set, committed together (all or nothing: a failure leaves
      * every existing file as it was and no temporary behind) */
     if (!outs && glpgp_output_set_create(&outs) != GLPGP_OK) goto fail;
-    if (c.out && c.pieces && !dist) { /* .pvtu of one piece: the whole mesh, on rank 0 */
-        if (glpgp_output_set_result_piece(outs, m, &c.o, r, c.out, 0) != GLPGP_OK) goto fail;
-        if (glpgp_output_set_pvtu(outs, r, c.out, 1) != GLPGP_OK) goto fail;
-    }
     tp = glpgp_now();
     if (c.out && !c.pieces && glpgp_output_set_result(outs, m, &c.o, r, c.out) != GLPGP_OK) goto fail;
     cli_tm.s[GLPGP_TM_OUT_RESULT] += glpgp_now() - tp;
@@ -845,19 +576,8 @@ static int solve_main(solve_cli *cc, const char *input)
         glpgp_stats_extra x = {input, c.out, t_read, c.quads ? &qq : NULL, nranks, rank_info, device};
         if (glpgp_output_set_stats(outs, m, &c.o, r, c.stats, &x) != GLPGP_OK) goto fail;
     }
-    if (verdict_pending) { /* distributed .pvtu: all ranks' files complete, then all commit */
-        const glpgp_status pst = glpgp_output_set_prepare(outs);
-        verdict_pending = 0;
-        if (!pieces_verdict(pst == GLPGP_OK, c.out, okv)) goto fail;
-        const glpgp_status cst = glpgp_output_set_commit(outs);
-        if (!glpgp_petsc_all_ok(cst == GLPGP_OK)) {
-            if (cst == GLPGP_OK)
-                GLPGP_FAIL(GLPGP_ERR_IO, "another MPI rank could not rename its piece of '%s' into place", c.out);
-            goto fail;
-        }
-    } else if (glpgp_output_set_commit(outs) != GLPGP_OK) {
-        goto fail;
-    }
+    /* distributed .pvtu: every rank's files complete, then every rank commits */
+    if (glpgp_dist_commit(dd, outs) != GLPGP_OK) goto fail;
 
     if (c.o.method == GLPGP_METHOD_GL && (r->osc[0].zabs_median < 0.5 || r->osc[1].zabs_median < 0.5))
         glpgp_log(GLPGP_LOG_WARNING,
@@ -877,8 +597,6 @@ fail:
         if (backend_job_join(&bj, &bb, &w) == GLPGP_OK) glpgp_backend_destroy(&bb);
         glpgp_error_restore(&keep);
     }
-    if (dist && !announced) glpgp_petsc_all_ok(0); /* the other ranks wait for rank 0's verdict */
-    if (verdict_pending) pieces_verdict(0, c.out, okv); /* ... or for the verdict on the pieces */
     rc = glpgp_cli_fail();
 done:
     glpgp_output_set_destroy(&outs);
@@ -888,11 +606,5 @@ done:
     glpgp_backend_destroy(&b);
     glpgp_mesh_destroy(&m);
     glpgp_size_image_destroy(&simg);
-    glpgp_mesh_destroy(&mp);
-    glpgp_mesh_destroy(&part);
-    free(split_size);
-    free(new_of_old);
-    free(rank_info);
-    free(okv);
     return rc;
 }

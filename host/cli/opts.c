@@ -413,7 +413,7 @@ void glpgp_opts_add_mask(glpgp_opts *t, glpgp_mask_options *m)
                          "huge meshes)");
     o->def = "frontal";
     glpgp_opt_double(t, "--mesh-timeout", &m->timeout, 0.0, 0, HUGE_VAL, 0, "S",
-                         "stop Gmsh after S seconds (0: no limit)");
+                         "stop Gmsh after S seconds (0: the default, 3600)");
 }
 
 static const char *parse_max_elements(const char *v, void *dest)

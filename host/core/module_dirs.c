@@ -6,12 +6,14 @@
  * code is in a shared object other than the executable (the Python
  * extension, glpgp/_glpgp*.so), <its directory>/modules, then
  * GLPGP_MODULE_INSTALL_DIR, then GLPGP_MODULE_BUILD_DIR (compile
- * definitions from host/CMakeLists.txt). */
+ * definitions from host/CMakeLists.txt); and the one lock every module
+ * loader holds while it loads (glpgp_module_lock). */
 #define _GNU_SOURCE /* dladdr */
 #include "glpgp/util.h"
 
 #include <dlfcn.h>
 #include <limits.h>
+#include <pthread.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -20,6 +22,12 @@
 #ifndef GLPGP_MODULE_EXE_REL
 #define GLPGP_MODULE_EXE_REL "../lib/glpgp"
 #endif
+
+/* the modules' lock: the only mutable static, a lock */
+static pthread_mutex_t g_module_lock = PTHREAD_MUTEX_INITIALIZER;
+
+void glpgp_module_lock(void) { pthread_mutex_lock(&g_module_lock); }
+void glpgp_module_unlock(void) { pthread_mutex_unlock(&g_module_lock); }
 
 static void add_dir(glpgp_module_dirs *d, const char *dir)
 {

@@ -3,6 +3,7 @@
  * place where option values are parsed and range-checked, for the CLI and
  * the Python binding alike. */
 #include "glpgp/optdesc.h"
+#include "glpgp/util.h"
 
 #include <errno.h>
 #include <limits.h>
@@ -16,7 +17,7 @@ int glpgp_parse_double(const char *s, double *out)
     if (!s || !*s) return 0;
     char *end = NULL;
     errno = 0;
-    double v = strtod(s, &end);
+    double v = glpgp_strtod(s, &end);
     if (end == s || *end != '\0' || errno == ERANGE || !isfinite(v)) return 0;
     *out = v;
     return 1;
@@ -64,11 +65,11 @@ void glpgp_optdesc_range(const glpgp_optdesc *d, char *buf, size_t n)
     else if (hi_inf && d->lo == 0.0 && d->lo_open && d->kind == GLPGP_OPTK_DOUBLE)
         snprintf(buf, n, "a positive number");
     else if (hi_inf)
-        snprintf(buf, n, "%s %s %g", what, d->lo_open ? ">" : ">=", d->lo);
+        glpgp_snprintf(buf, n, "%s %s %g", what, d->lo_open ? ">" : ">=", d->lo);
     else if (lo_inf)
-        snprintf(buf, n, "%s %s %g", what, d->hi_open ? "<" : "<=", d->hi);
+        glpgp_snprintf(buf, n, "%s %s %g", what, d->hi_open ? "<" : "<=", d->hi);
     else
-        snprintf(buf, n, "%s in %c%g, %g%c", what, d->lo_open ? '(' : '[', d->lo, d->hi, d->hi_open ? ')' : ']');
+        glpgp_snprintf(buf, n, "%s in %c%g, %g%c", what, d->lo_open ? '(' : '[', d->lo, d->hi, d->hi_open ? ')' : ']');
 }
 
 static const char *not_in_range(const glpgp_optdesc *d, char *why, size_t n)
@@ -157,7 +158,7 @@ void glpgp_optdesc_default(const glpgp_optdesc *d, const void *opts, char *buf, 
         return;
     }
     if (d->kind == GLPGP_OPTK_DOUBLE)
-        snprintf(buf, n, "%g", *(const double *)((const char *)opts + d->offset));
+        glpgp_snprintf(buf, n, "%g", *(const double *)((const char *)opts + d->offset));
     else
         glpgp_optdesc_value(d, opts, buf, n);
 }
@@ -168,7 +169,7 @@ void glpgp_optdesc_value(const glpgp_optdesc *d, const void *opts, char *buf, si
     if (n) buf[0] = '\0';
     switch (d->kind) {
     case GLPGP_OPTK_INT: snprintf(buf, n, "%d", *(const int *)member); break;
-    case GLPGP_OPTK_DOUBLE: snprintf(buf, n, "%.17g", *(const double *)member); break;
+    case GLPGP_OPTK_DOUBLE: glpgp_snprintf(buf, n, "%.17g", *(const double *)member); break;
     case GLPGP_OPTK_CHOICE:
         for (int k = 0; d->names[k]; k++)
             if (choice_value(d, k) == *(const int *)member) snprintf(buf, n, "%s", d->names[k]);

@@ -27,7 +27,7 @@ void glpgp_progress_set(glpgp_progress *p, const char *fmt, ...)
 {
     va_list ap;
     va_start(ap, fmt);
-    vsnprintf(p->msg, sizeof p->msg, fmt, ap);
+    glpgp_vsnprintf(p->msg, sizeof p->msg, fmt, ap);
     va_end(ap);
 }
 
@@ -43,7 +43,7 @@ void glpgp_progress_poll(void)
 static void line(glpgp_progress *p, const char *tail, const char *fmt, va_list ap)
 {
     char msg[512];
-    vsnprintf(msg, sizeof msg, fmt, ap);
+    glpgp_vsnprintf(msg, sizeof msg, fmt, ap);
     glpgp_log(GLPGP_LOG_INFO, "%s: %s%s (%.1f s)", p->what, msg, tail, glpgp_now() - p->t0);
 }
 
@@ -53,7 +53,7 @@ void glpgp_progress_tick(glpgp_progress *p, const char *fmt, ...)
 {
     va_list ap;
     va_start(ap, fmt);
-    vsnprintf(p->msg, sizeof p->msg, fmt, ap);
+    glpgp_vsnprintf(p->msg, sizeof p->msg, fmt, ap);
     va_end(ap);
     if (!glpgp_log_enabled() || !glpgp_progress_due(p)) return;
     glpgp_log(GLPGP_LOG_INFO, "%s: %s (%.1f s)", p->what, p->msg, glpgp_now() - p->t0);

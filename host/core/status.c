@@ -1,6 +1,7 @@
 /* core/status.c: the thread-local error record (message + trace), the log
  * callback and the checked allocation helpers of glpgp/status.h. */
 #include "glpgp/status.h"
+#include "glpgp/util.h"
 
 #include <stdarg.h>
 #include <stdint.h>
@@ -56,7 +57,7 @@ glpgp_status glpgp_error_set(const char *file, int line, glpgp_status st, const 
     if (e->st == GLPGP_OK) {
         va_list ap;
         va_start(ap, fmt);
-        vsnprintf(e->msg, sizeof e->msg, fmt, ap);
+        glpgp_vsnprintf(e->msg, sizeof e->msg, fmt, ap);
         va_end(ap);
         /* the message is one line: later lines of a formatted text are dropped */
         e->msg[strcspn(e->msg, "\n")] = '\0';
@@ -139,7 +140,7 @@ void glpgp_log(glpgp_log_level level, const char *fmt, ...)
     char buf[1024];
     va_list ap;
     va_start(ap, fmt);
-    vsnprintf(buf, sizeof buf, fmt, ap);
+    glpgp_vsnprintf(buf, sizeof buf, fmt, ap);
     va_end(ap);
     g_log_fn(level, buf, g_log_user);
 }

@@ -7,13 +7,17 @@
  * and no message), so the module's mesh_polygons runs in a forked child: the
  * child meshes and writes a header (status, counts, error message) and the
  * vertex and triangle arrays into a pipe, then _exit()s; the parent reads
- * them (with a deadline when a timeout is given), reaps the child and turns
+ * them before a deadline (the caller's timeout, else GLPGP_GMSH_DEFAULT_TIMEOUT:
+ * no child runs unbounded), reaps the child (killed at the deadline) and turns
  * its death by a signal, a non-zero exit or a timeout into one GLPGP_ERR_MESH
  * / GLPGP_ERR_LIMIT message. The child has SIGINT/SIGTERM at their defaults
  * (it never runs the CLI's cleanup of the parent's temporaries), its stdout
  * and stderr on /dev/null, and dies with the parent (PR_SET_PDEATHSIG).
  * For the tests, GLPGP_TEST_GMSH_FAULT=abort|segv|exit|garbage|hang in the
- * environment makes the child fail that way instead of meshing. */
+ * environment makes the child fail that way instead of meshing, and
+ * GLPGP_TEST_GMSH_TIMEOUT=S replaces the default bound
+ * (glpgp/internal/debug.h, read before the fork). */
+#include "glpgp/internal/debug.h"
 #include "glpgp/image.h"
 #include "glpgp/io.h"
 #include "glpgp/util.h"
@@ -50,7 +54,7 @@ void glpgp_mask_options_default(glpgp_mask_options *o)
     o->algorithm = 6;
     o->max_triangles = GLPGP_DEFAULT_MAX_ELEMENTS;
     o->max_pixels = GLPGP_DEFAULT_MAX_PIXELS;
-    o->timeout = 0;
+    o->timeout = GLPGP_GMSH_DEFAULT_TIMEOUT;
     o->remesh = 0;
 }
 
@@ -129,7 +133,7 @@ static int read_all(int fd, void *buf, size_t n, double deadline)
 
 /* The child: mesh, send, _exit. Never returns. */
 static void child_main(int wfd, pid_t parent, const glpgp_gmsh_api *api, const glpgp_polygons *p,
-                       double hm, int algorithm)
+                       double hm, int algorithm, const char *fault)
 {
     signal(SIGINT, SIG_DFL);
     signal(SIGTERM, SIG_DFL);
@@ -148,8 +152,7 @@ static void child_main(int wfd, pid_t parent, const glpgp_gmsh_api *api, const g
     /* fault injection for tests/image/test_mask_guard.c: how a child that
      * dies or misbehaves is reported (segv with the default disposition, so
      * that a sanitizer's handler does not turn the crash into an exit) */
-    const char *fault = getenv("GLPGP_TEST_GMSH_FAULT");
-    if (fault && *fault) {
+    if (*fault) { /* GLPGP_TEST_GMSH_FAULT (glpgp/internal/debug.h) */
         if (!strcmp(fault, "abort")) abort();
         if (!strcmp(fault, "segv")) {
             signal(SIGSEGV, SIG_DFL);
@@ -201,6 +204,9 @@ static glpgp_status mesh_in_child(const glpgp_gmsh_api *api, const glpgp_polygon
     *out_nv = *out_nt = 0;
     *out_xy = NULL;
     *out_tri = NULL;
+    glpgp_debug dbg; /* read before the fork: the child calls no getenv */
+    GLPGP_CHECK(glpgp_debug_read(&dbg));
+    if (!(timeout > 0)) timeout = dbg.gmsh_timeout > 0 ? dbg.gmsh_timeout : GLPGP_GMSH_DEFAULT_TIMEOUT;
     int fds[2];
     if (pipe(fds) != 0)
         return GLPGP_FAIL(GLPGP_ERR_MESH, "cannot start the Gmsh process: pipe: %s", strerror(errno));
@@ -215,11 +221,11 @@ static glpgp_status mesh_in_child(const glpgp_gmsh_api *api, const glpgp_polygon
     }
     if (pid == 0) {
         close(fds[0]);
-        child_main(fds[1], parent, api, p, hm, algorithm);
+        child_main(fds[1], parent, api, p, hm, algorithm, dbg.gmsh_fault);
     }
     close(fds[1]);
     const int rfd = fds[0];
-    const double deadline = timeout > 0 ? now_s() + timeout : 0.0;
+    const double deadline = now_s() + timeout; /* always bounded */
     glpgp_status st = GLPGP_OK;
     double *xy = NULL;
     int *tri = NULL;

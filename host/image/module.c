@@ -61,7 +61,6 @@ static module_slot g_slots[2] = {
     {"Gmsh", GLPGP_GMSH_MODULE_FILE, GLPGP_GMSH_ENTRY, "libgmsh-dev", GMSH_BUILT, 0, NULL,
      GLPGP_OK, ""},
 };
-static pthread_mutex_t g_lock = PTHREAD_MUTEX_INITIALIZER;
 
 static const glpgp_module_host g_host = {
     GLPGP_MODULE_ABI,     sizeof(glpgp_image),  sizeof(glpgp_polygons), glpgp_error_set,
@@ -131,12 +130,12 @@ static void slot_load(module_slot *s)
 
 static glpgp_status slot_get(module_slot *s, const void **api, const char **why)
 {
-    pthread_mutex_lock(&g_lock);
+    glpgp_module_lock();
     if (s->state == 0) slot_load(s);
     glpgp_status st = s->state == 1 ? GLPGP_OK : s->st;
     *api = s->api;
     if (why) *why = s->why;
-    pthread_mutex_unlock(&g_lock);
+    glpgp_module_unlock();
     return st;
 }
 
@@ -160,9 +159,9 @@ int glpgp_module_available(int gmsh)
 {
     module_slot *s = &g_slots[gmsh ? 1 : 0];
     if (!s->built) return 0;
-    pthread_mutex_lock(&g_lock);
+    glpgp_module_lock();
     int state = s->state;
-    pthread_mutex_unlock(&g_lock);
+    glpgp_module_unlock();
     if (state != 0) return state == 1;
     glpgp_module_dirs d;
     glpgp_module_dirs_get(&d);

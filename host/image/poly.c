@@ -21,6 +21,7 @@
  * hole points, when given, must lie outside the domain so read (a check, not
  * an input). */
 #include "glpgp/image.h"
+#include "glpgp/util.h"
 
 #include <ctype.h>
 #include <errno.h>
@@ -66,7 +67,7 @@ static int line_numbers(ptok *t, double *v, int n)
         if (!*s) break;
         char *end = NULL;
         errno = 0;
-        double x = strtod(s, &end);
+        double x = glpgp_strtod(s, &end);
         if (end == s || errno == ERANGE || !isfinite(x) || (*end && !isspace((unsigned char)*end))) return -1;
         v[k++] = x;
         s = end;

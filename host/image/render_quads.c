@@ -8,6 +8,7 @@
  * counts. Faces are filled per pixel centre by the crossing rule, so a
  * non-convex or folded face shows as it is. */
 #include "glpgp/image.h"
+#include "glpgp/util.h"
 #include "glpgp/quads.h"
 
 #include <math.h>
@@ -197,7 +198,7 @@ static void draw_caption(glpgp_image *im, const qframe *F, int caption, const qc
 {
     char line[256];
     int ts = caption / 12 < 1 ? 1 : caption / 12;
-    snprintf(line, sizeof line, "%d QUADS%s  GRID %d  STRIPS %d  REPAIR %d  FALLBACK %d  SJ MIN %.2f  BELOW %.2f: %d  "
+    glpgp_snprintf(line, sizeof line, "%d QUADS%s  GRID %d  STRIPS %d  REPAIR %d  FALLBACK %d  SJ MIN %.2f  BELOW %.2f: %d  "
              "IRREGULAR %d", n->quads, n->others ? "(+ OTHER FACES)" : "", n->by_origin[0], n->by_origin[1],
              n->by_origin[2], n->by_origin[3], n->sj_min, sj_low, n->low, n->irregular);
     /* shrink the font until the line fits */

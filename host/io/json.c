@@ -3,6 +3,7 @@
  * exactly), non-finite numbers as null, escaped strings. Used by the
  * statistics file and the quad-mesh quality report. */
 #include "glpgp/io.h"
+#include "glpgp/util.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -14,10 +15,13 @@ char *glpgp_json_format_number(double v, char *buf)
         strcpy(buf, "null");
         return buf;
     }
+    glpgp_cnum cn; /* '.' whatever the locale */
+    glpgp_cnum_begin(&cn);
     for (int prec = 15; prec <= 17; prec++) {
         snprintf(buf, 32, "%.*g", prec, v);
         if (strtod(buf, NULL) == v) break; /* %.17g always reads back */
     }
+    glpgp_cnum_end(&cn);
     return buf;
 }
 

@@ -915,10 +915,13 @@ glpgp_status glpgp_output_set_mesh(glpgp_output_set *s, const glpgp_mesh *m, con
     }
     FILE *f;
     GLPGP_CHECK(glpgp_output_set_open(s, path, &f));
+    glpgp_cnum cn; /* '.' whatever the locale */
+    glpgp_cnum_begin(&cn);
     if (kind == 1)
         write_obj(f, m);
     else
         write_msh(f, m);
+    glpgp_cnum_end(&cn);
     return GLPGP_OK;
 }
 

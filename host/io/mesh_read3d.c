@@ -9,6 +9,7 @@
  * are used; errors name the file and the line (or the element and item for
  * binary data). */
 #include "raw_mesh.h"
+#include "glpgp/util.h"
 
 #include <ctype.h>
 #include <errno.h>
@@ -56,7 +57,7 @@ static glpgp_status tok_double(tok_stream *ts, double *out, const char *what)
     if (!t) return text_error(ts->tr, GLPGP_ERR_FORMAT, 0, "the file ends before %s", what);
     char *e;
     errno = 0;
-    *out = strtod(t, &e);
+    *out = glpgp_strtod(t, &e);
     if (e == t || *e || !isfinite(*out) || errno == ERANGE)
         return text_error(ts->tr, GLPGP_ERR_FORMAT, 0, "malformed number '%.40s' (%s)", t, what);
     return GLPGP_OK;

@@ -426,17 +426,22 @@ glpgp_status glpgp_output_set_quads(glpgp_output_set *s, const glpgp_quadmesh *q
         return GLPGP_FAIL(GLPGP_ERR_ARG, "quad mesh output '%s': extension must be .obj, .vtk, .vtu or .msh", path);
     FILE *f;
     GLPGP_CHECK(glpgp_output_set_open(s, path, &f));
+    glpgp_status st = GLPGP_OK;
+    glpgp_cnum cn; /* '.' whatever the locale */
+    glpgp_cnum_begin(&cn);
     if (kind == QF_OBJ) {
         write_obj(f, q);
     } else if (kind == QF_VTK) {
         write_vtk(f, q);
-        GLPGP_CHECK(write_vtk_valence(f, q));
+        st = write_vtk_valence(f, q);
     } else if (kind == QF_VTU) {
-        GLPGP_CHECK(write_vtu(f, q));
+        st = write_vtu(f, q);
     } else {
         write_msh(f, q);
     }
-    return GLPGP_OK;
+    glpgp_cnum_end(&cn);
+    if (st != GLPGP_OK) glpgp_error_push_trace(__FILE__, __LINE__);
+    return st;
 }
 
 glpgp_status glpgp_quads_write(const glpgp_quadmesh *q, const char *path)

@@ -365,10 +365,10 @@ static glpgp_status vtu_result(FILE *f, const glpgp_mesh *m, const glpgp_options
     const int na = result_arrays(ctx, r, nv, nt, piece, a);
     char comment[256];
     if (o)
-        snprintf(comment, sizeof comment, "glpgp %s result: method %s, energy %s, h %.17g", GLPGP_VERSION,
+        glpgp_snprintf(comment, sizeof comment, "glpgp %s result: method %s, energy %s, h %.17g", GLPGP_VERSION,
                  method_name(o->method), energy_name(o->energy), r->size);
     else
-        snprintf(comment, sizeof comment, "glpgp %s result: h %.17g", GLPGP_VERSION, r->size);
+        glpgp_snprintf(comment, sizeof comment, "glpgp %s result: h %.17g", GLPGP_VERSION, r->size);
     GLPGP_CHECK(vtu_write(f, comment, nv, nt, a, na, level));
     return GLPGP_OK;
 }
@@ -448,13 +448,18 @@ static glpgp_status add_result(glpgp_output_set *s, const glpgp_mesh *m, const g
         return GLPGP_FAIL(GLPGP_ERR_ARG, "unsupported output format '%s' (use .vtk, .vtu or .obj)", path);
     GLPGP_CHECK(check_result(m, r));
     GLPGP_CHECK(glpgp_output_set_open(s, path, &f));
+    glpgp_status st = GLPGP_OK;
+    glpgp_cnum cn; /* '.' whatever the locale */
+    glpgp_cnum_begin(&cn);
     if (fmt == FMT_VTK)
         vtk_body(f, m, opts, r);
     else if (fmt == FMT_OBJ)
         obj_body(f, m, r);
     else
-        GLPGP_CHECK(vtu_result(f, m, opts, r, default_level(level), 0, NULL, 0));
-    return GLPGP_OK;
+        st = vtu_result(f, m, opts, r, default_level(level), 0, NULL, 0);
+    glpgp_cnum_end(&cn);
+    if (st != GLPGP_OK) glpgp_error_push_trace(__FILE__, __LINE__);
+    return st;
 }
 
 /* An output set of one file. */
@@ -645,8 +650,10 @@ glpgp_status glpgp_output_set_pvtu(glpgp_output_set *s, const glpgp_result *r, c
     const int na = result_arrays(ctx, r, 0, 0, 1, a);
     GLPGP_CHECK(glpgp_output_set_open(s, pvtu, &f));
     const unsigned one = 1;
-    fprintf(f, "<?xml version=\"1.0\"?>\n<!-- glpgp %s result in %d pieces, h %.17g -->\n", GLPGP_VERSION,
-            npieces, r->size);
+    char h[40];
+    glpgp_snprintf(h, sizeof h, "%.17g", r->size);
+    fprintf(f, "<?xml version=\"1.0\"?>\n<!-- glpgp %s result in %d pieces, h %s -->\n", GLPGP_VERSION,
+            npieces, h);
     fprintf(f, "<VTKFile type=\"PUnstructuredGrid\" version=\"1.0\" byte_order=\"%s\" header_type=\"UInt64\">\n",
             *(const unsigned char *)&one ? "LittleEndian" : "BigEndian");
     fprintf(f, "  <PUnstructuredGrid GhostLevel=\"0\">\n");

@@ -1,6 +1,7 @@
 /* io/text_reader.c: streaming line reader and token helpers shared by the
  * text-format readers (see text_reader.h). */
 #include "text_reader.h"
+#include "glpgp/util.h"
 
 #include "glpgp/io.h"
 
@@ -54,7 +55,7 @@ glpgp_status text_error(const text_reader *tr, glpgp_status st, long line, const
     char msg[512];
     va_list ap;
     va_start(ap, fmt);
-    vsnprintf(msg, sizeof msg, fmt, ap);
+    glpgp_vsnprintf(msg, sizeof msg, fmt, ap);
     va_end(ap);
     return GLPGP_FAIL(st, "%s:%ld: %s", tr->path, line > 0 ? line : tr->line, msg);
 }
@@ -171,7 +172,7 @@ int text_parse_ll(char **p, long long *out)
 int text_parse_double(char **p, double *out)
 {
     char *s = text_skip_ws(*p), *e;
-    double v = strtod(s, &e);
+    double v = glpgp_strtod(s, &e);
     if (e == s || (*e && !isspace((unsigned char)*e)) || !isfinite(v)) return 0;
     *out = v;
     *p = e;

@@ -14,6 +14,7 @@
  *   other blocks stored (zlib level 0): noisy doubles do not compress, and
  *   trying costs more than the write. */
 #include "vtu.h"
+#include "glpgp/util.h"
 
 #include "glpgp/io.h"
 
@@ -66,7 +67,7 @@ static void sb_printf(sbuf *b, const char *fmt, ...)
     for (;;) {
         va_list ap;
         va_start(ap, fmt);
-        int k = vsnprintf(b->s ? b->s + b->n : NULL, b->s ? b->cap - b->n : 0, fmt, ap);
+        int k = glpgp_vsnprintf(b->s ? b->s + b->n : NULL, b->s ? b->cap - b->n : 0, fmt, ap);
         va_end(ap);
         if (k < 0) {
             b->oom = 1;
@@ -276,7 +277,7 @@ static glpgp_status verr(const vtu_reader *v, const char *fmt, ...)
     char msg[512];
     va_list ap;
     va_start(ap, fmt);
-    vsnprintf(msg, sizeof msg, fmt, ap);
+    glpgp_vsnprintf(msg, sizeof msg, fmt, ap);
     va_end(ap);
     return GLPGP_FAIL(GLPGP_ERR_FORMAT, "%s: %s", v->tr->path, msg);
 }

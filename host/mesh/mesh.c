@@ -356,6 +356,17 @@ done:
     return st;
 }
 
+glpgp_status glpgp_mesh_check_size(long long nv, long long nt)
+{
+    if (nt > GLPGP_MESH_MAX_TRIANGLES)
+        return GLPGP_FAIL(GLPGP_ERR_LIMIT, "too many triangles (%lld; glpgp handles at most %d)", nt,
+                          GLPGP_MESH_MAX_TRIANGLES);
+    if (nv > GLPGP_MESH_MAX_VERTICES)
+        return GLPGP_FAIL(GLPGP_ERR_LIMIT, "too many vertices (%lld; glpgp handles at most %d)", nv,
+                          GLPGP_MESH_MAX_VERTICES);
+    return GLPGP_OK;
+}
+
 glpgp_status glpgp_mesh_create(int nv, const double *xy, int nt, const int *tri, glpgp_mesh **out)
 {
     glpgp_status st = GLPGP_OK;
@@ -367,8 +378,7 @@ glpgp_status glpgp_mesh_create(int nv, const double *xy, int nt, const int *tri,
     if (nv < 3) return GLPGP_FAIL(GLPGP_ERR_MESH, "mesh needs at least 3 vertices (got %d)", nv);
     if (nt < 1) return GLPGP_FAIL(GLPGP_ERR_MESH, "mesh needs at least 1 triangle (got %d)", nt);
     if (!xy || !tri) return GLPGP_FAIL(GLPGP_ERR_ARG, "glpgp_mesh_create: NULL array");
-    if ((long)nt > (long)(INT32_MAX / 3))
-        return GLPGP_FAIL(GLPGP_ERR_MESH, "too many triangles (%d)", nt);
+    GLPGP_CHECK(glpgp_mesh_check_size(nv, nt));
 
     GLPGP_CHECK_GOTO(st, glpgp_calloc(1, sizeof *m, &m), fail);
     GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)nv * 2, sizeof *m->xy, &m->xy), fail);

@@ -319,7 +319,7 @@ glpgp_status glpgp_mesh_create_surface(int nv, const double *xyz, int nt, const 
     if (nv < 3) return GLPGP_FAIL(GLPGP_ERR_MESH, "mesh needs at least 3 vertices (got %d)", nv);
     if (nt < 1) return GLPGP_FAIL(GLPGP_ERR_MESH, "mesh needs at least 1 triangle (got %d)", nt);
     if (!xyz || !tri) return GLPGP_FAIL(GLPGP_ERR_ARG, "glpgp_mesh_create_surface: NULL array");
-    if ((long)nt > (long)(INT32_MAX / 9)) return GLPGP_FAIL(GLPGP_ERR_MESH, "too many triangles (%d)", nt);
+    GLPGP_CHECK(glpgp_mesh_check_size(nv, nt));
     GLPGP_CHECK_GOTO(st, glpgp_calloc(1, sizeof *m, &m), fail);
     GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)nv * 3, sizeof(double), &m->xyz), fail);
     GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)nt * 3, sizeof(int), &m->tri), fail);

@@ -3,6 +3,7 @@
  * (glpgp/backend.h, glpgp/timers.h). */
 #include "glpgp/backend.h"
 #include "glpgp/util.h"
+#include "glpgp/internal/newton.h"
 
 #include <stdlib.h>
 #include <string.h>

@@ -4,6 +4,7 @@
  * iterations. A breakdown (p.Ap <= 0: the matrix is not SPD) or the cap is a
  * reason in the returned info, not an error: the Newton driver reacts to it. */
 #include "glpgp/solve.h"
+#include "glpgp/internal/newton.h"
 
 #include <math.h>
 

@@ -363,7 +363,7 @@ static int want_concurrent(const glpgp_mesh *m, const glpgp_backend *b, const gl
     else if (!asked && glpgp_cpu_count() < 2)
         snprintf(why, sizeof why, "one processor");
     else if (!asked && !b->launch_bound && avail > 0 && 2.0 * need > (double)avail)
-        snprintf(why, sizeof why, "a second copy needs about %.0f MiB, auto takes it from no more than half "
+        glpgp_snprintf(why, sizeof why, "a second copy needs about %.0f MiB, auto takes it from no more than half "
                  "of the %.0f MiB available", need / mib, (double)avail / mib);
     if (why[0]) {
         glpgp_log(asked ? GLPGP_LOG_WARNING : GLPGP_LOG_DEBUG, "u and v solved one after the other: %s", why);

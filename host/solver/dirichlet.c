@@ -1,6 +1,7 @@
 /* solver/dirichlet.c: the Dirichlet set of an oscillator: boundary vertices
  * where its wave runs across the boundary (glpgp/solve.h). */
 #include "glpgp/solve.h"
+#include "glpgp/internal/newton.h"
 
 #include <math.h>
 

@@ -3,6 +3,7 @@
  * backend's PCG, multigrid-preconditioned with --precond amg), radial about
  * a centre, or read from a file (glpgp/solve.h). */
 #include "internal.h"
+#include "glpgp/util.h"
 
 #include "glpgp/cross.h"
 
@@ -106,7 +107,7 @@ static glpgp_status field_file(const glpgp_mesh *m, const char *path, double *u)
         if (*p == '#' || *p == '\n' || *p == '\r' || *p == '\0') continue;
         double ux, uy;
         char extra;
-        if (sscanf(p, "%lf %lf %c", &ux, &uy, &extra) != 2 || !isfinite(ux) || !isfinite(uy)) {
+        if (glpgp_sscanf(p, "%lf %lf %c", &ux, &uy, &extra) != 2 || !isfinite(ux) || !isfinite(uy)) {
             st = GLPGP_FAIL(GLPGP_ERR_FORMAT, "%s:%d: expected two finite numbers 'ux uy'", path, lineno);
             goto done;
         }

@@ -5,6 +5,7 @@
 #define GLPGP_SOLVER_INTERNAL_H
 
 #include "glpgp/solve.h"
+#include "glpgp/internal/newton.h"
 
 /* Leave a timed phase (glpgp_timer_enter / _leave of glpgp/backend.h):
  * with sync (glpgp_options.phase_sync) the device's work enqueued in it is

@@ -48,6 +48,7 @@
  *   direction), Jacobi or the multigrid (flexible CG), backtracking (Armijo)
  *   on F, x <- x + a d. */
 #include "internal.h"
+#include "glpgp/util.h"
 
 #include <float.h>
 #include <math.h>
@@ -587,7 +588,7 @@ static glpgp_status newton_level(glpgp_backend *b, const glpgp_options *o, glpgp
             /* |d|: the Steihaug step's length in its preconditioner's norm
              * (a multigrid step's is not computed: "-") */
             char dn[32] = "-";
-            if (!info.amg_step) snprintf(dn, sizeof dn, "%.3g", info.step);
+            if (!info.amg_step) glpgp_snprintf(dn, sizeof dn, "%.3g", info.step);
             glpgp_log(GLPGP_LOG_INFO,
                       "  %s eps=%.4g newton %3d  |g|=%.3e  E+P=%.10g  cg=%d  |d|=%s  a=%.3g  rho=%.3g  "
                       "radius=%.3g  re-solved %d  %s%s%s",

@@ -2,6 +2,7 @@
  * parameter, the default quad size and the eps schedule (glpgp/solve.h). */
 #include "glpgp/solve.h"
 #include "glpgp/surface.h"
+#include "glpgp/internal/newton.h"
 
 #include <math.h>
 #include <string.h>

@@ -7,6 +7,7 @@
  * the same options. */
 #include "glpgp/solve.h"
 #include "glpgp/util.h"
+#include "glpgp/internal/newton.h"
 
 #include <math.h>
 #include <stdlib.h>

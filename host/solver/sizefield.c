@@ -772,7 +772,7 @@ static glpgp_status size_file(const glpgp_mesh *m, const char *path, double *siz
         if (*p == '#' || *p == '\n' || *p == '\r' || *p == '\0') continue;
         double a, b;
         char extra;
-        const int nread = sscanf(p, "%lf %lf %c", &a, &b, &extra);
+        const int nread = glpgp_sscanf(p, "%lf %lf %c", &a, &b, &extra);
         if (nread != 1 && nread != 2) {
             st = GLPGP_FAIL(GLPGP_ERR_FORMAT, "%s:%d: expected one size 'h' or two 'h_u h_v'", path, lineno);
             goto done;
@@ -1061,7 +1061,7 @@ static glpgp_status refine_round(const rmesh *r, const unsigned char *need, rmes
         for (int a = 0; a < 3; a++) c += mark[edge[3 * t + a]];
         ntri2 += 1 + c;
     }
-    if (ntri2 > INT32_MAX / 9) {
+    if (ntri2 > GLPGP_MESH_MAX_TRIANGLES) {
         st = GLPGP_FAIL(GLPGP_ERR_LIMIT, "refinement: %ld triangles is too many", ntri2);
         goto done;
     }

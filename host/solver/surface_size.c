@@ -36,7 +36,7 @@ static glpgp_status size_file(const glpgp_mesh *m, const char *path, double *siz
         if (*p == '#' || *p == '\n' || *p == '\r' || !*p) continue;
         double a, b;
         char extra;
-        const int n = sscanf(p, "%lf %lf %c", &a, &b, &extra);
+        const int n = glpgp_sscanf(p, "%lf %lf %c", &a, &b, &extra);
         if (n == 1) b = a;
         if ((n != 1 && n != 2) || !(a > 0.0) || !(b > 0.0) || !isfinite(a) || !isfinite(b))
             st = GLPGP_FAIL(GLPGP_ERR_FORMAT, "%s:%d: expected one or two positive sizes", path, ln);

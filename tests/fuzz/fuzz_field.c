@@ -6,6 +6,7 @@
 
 #include "glpgp/shapes.h"
 #include "glpgp/solve.h"
+#include "glpgp/internal/newton.h"
 
 #include <math.h>
 

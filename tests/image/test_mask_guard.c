@@ -97,6 +97,41 @@ static void check_fault(const char *fault, glpgp_status want, const char *needle
     CHECK(waitpid(-1, NULL, WNOHANG) == -1 && errno == ECHILD);
 }
 
+/* No timeout given (glpgp_mesh_polygons, and a timeout of 0): a hanging
+ * child is still stopped, at the default bound (GLPGP_TEST_GMSH_TIMEOUT
+ * stands in for GLPGP_GMSH_DEFAULT_TIMEOUT's hour), and the option struct's
+ * default is that bound. */
+static void check_default_bound(void)
+{
+    glpgp_mask_options mo;
+    glpgp_mask_options_default(&mo);
+    CHECK(mo.timeout == GLPGP_GMSH_DEFAULT_TIMEOUT && mo.timeout > 0);
+    double xy[8] = {0, 0, 1, 0, 1, 1, 0, 1};
+    int start[2], parent[1], counts[1] = {4};
+    double area[1];
+    glpgp_polygons p = make_polys(xy, start, area, parent, 1, counts);
+    setenv("GLPGP_TEST_GMSH_FAULT", "hang", 1);
+    setenv("GLPGP_TEST_GMSH_TIMEOUT", "0.4", 1);
+    for (int k = 0; k < 2; k++) {
+        glpgp_mesh *m = NULL;
+        double t0 = now();
+        glpgp_status st = k ? glpgp_mesh_polygons_timeout(&p, 0.2, 0, 0.0, &m) : glpgp_mesh_polygons(&p, 0.2, 0, &m);
+        double dt = now() - t0;
+        printf("hang, no timeout given (%s) -> %s (%.2f s): %s\n", k ? "timeout 0" : "glpgp_mesh_polygons",
+               glpgp_status_name(st), dt, glpgp_error_message());
+        CHECK(st == GLPGP_ERR_LIMIT && m == NULL && dt < 5.0);
+        CHECK(strstr(glpgp_error_message(), "time limit of 0.4 s") != NULL);
+        glpgp_error_clear();
+    }
+    setenv("GLPGP_TEST_GMSH_TIMEOUT", "-1", 1); /* malformed: one clear error, no child */
+    glpgp_mesh *m = NULL;
+    CHECK(glpgp_mesh_polygons(&p, 0.2, 0, &m) == GLPGP_ERR_ARG && m == NULL);
+    CHECK(strstr(glpgp_error_message(), "GLPGP_TEST_GMSH_TIMEOUT") != NULL);
+    glpgp_error_clear();
+    unsetenv("GLPGP_TEST_GMSH_TIMEOUT");
+    unsetenv("GLPGP_TEST_GMSH_FAULT");
+}
+
 int main(void)
 {
     glpgp_error_clear();
@@ -209,6 +244,7 @@ int main(void)
     }
 
     /* ---- the Gmsh child: crashes, garbage, hangs ------------------------------ */
+    check_default_bound();
     check_fault("abort", GLPGP_ERR_MESH, "Gmsh crashed (signal 6");
     check_fault("segv", GLPGP_ERR_MESH, "Gmsh crashed (signal 11");
     check_fault("exit", GLPGP_ERR_MESH, "exited with status 7");

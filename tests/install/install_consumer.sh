@@ -45,9 +45,11 @@ if ! "$CMAKE" --install "$BUILD" --prefix "$P" >"$T/install.log" 2>&1; then
 fi
 LIBDIR=$(dirname "$(find "$P" -name libglpgp_core.a | head -1)")
 [ -n "$LIBDIR" ] && [ -d "$LIBDIR" ] || fail "no libglpgp_core.a under $P"
-for f in include/glpgp/version.h include/glpgp/solve.h include/glpgp/image.h bin/glpgp; do
+for f in include/glpgp/version.h include/glpgp/glpgp.h include/glpgp/solve.h include/glpgp/image.h bin/glpgp; do
     [ -e "$P/$f" ] || fail "not installed: $f"
 done
+# the internals (glpgp/internal/: Newton step, CG, multigrid, test switches) stay in the tree
+[ ! -e "$P/include/glpgp/internal" ] || fail "installed: include/glpgp/internal/ (internal headers)"
 for l in core mesh solver backends quads io image; do
     [ -e "$LIBDIR/libglpgp_$l.a" ] || fail "not installed: libglpgp_$l.a"
 done

@@ -548,6 +548,29 @@ static void test_far_from_origin(void)
     glpgp_mesh_destroy(&m0);
 }
 
+/* The size limit holds every int product of the counts (9 * nt element
+ * entries, 12 * nt corners, 6 * nv): a count one over it is refused with
+ * GLPGP_ERR_LIMIT before anything is read or allocated (the arrays here are
+ * far too short to be read), and the limits keep those products in an int. */
+static void test_size_limits(void)
+{
+    const double xy[6] = {0, 0, 1, 0, 0, 1};
+    const int tri[3] = {0, 1, 2};
+    glpgp_mesh *m = NULL;
+    CHECK((long long)GLPGP_MESH_MAX_TRIANGLES * 12 <= INT_MAX && (long long)GLPGP_MESH_MAX_VERTICES * 6 <= INT_MAX);
+    CHECK(glpgp_mesh_create(3, xy, GLPGP_MESH_MAX_TRIANGLES + 1, tri, &m) == GLPGP_ERR_LIMIT && !m);
+    CHECK(strstr(glpgp_error_message(), "too many triangles") != NULL);
+    glpgp_error_clear();
+    CHECK(glpgp_mesh_create(GLPGP_MESH_MAX_VERTICES + 1, xy, 1, tri, &m) == GLPGP_ERR_LIMIT && !m);
+    glpgp_error_clear();
+    const double xyz[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+    CHECK(glpgp_mesh_create_surface(3, xyz, GLPGP_MESH_MAX_TRIANGLES + 1, tri, &m) == GLPGP_ERR_LIMIT && !m);
+    glpgp_error_clear();
+    CHECK(glpgp_mesh_check_size(GLPGP_MESH_MAX_VERTICES, GLPGP_MESH_MAX_TRIANGLES) == GLPGP_OK);
+    CHECK(glpgp_mesh_check_size(1LL << 40, 1) == GLPGP_ERR_LIMIT);
+    glpgp_error_clear();
+}
+
 static void remove_tmp_dir(void)
 {
     DIR *d = opendir(g_tmp);
@@ -580,5 +603,6 @@ int main(void)
     test_roundtrip();
     test_far_from_origin();
     remove_tmp_dir();
+    test_size_limits();
     TEST_DONE();
 }

@@ -129,17 +129,7 @@ int glpgp_cl_backend_info(const glpgp_backend *b, char *buf, size_t len);
  * another backend. */
 void glpgp_cl_backend_log(const glpgp_backend *b);
 
-/* Which matrix glpgp_probe_matrix reads: GLPGP_MAT_QUAD, GLPGP_MAT_NEWTON
- * (4*nnzb values, block-CSR order) or GLPGP_PROBE_DINV (4*nv values). */
-#define GLPGP_PROBE_DINV 2
-/* Recover every value of a matrix of backend b (setup done) exactly, using
- * only its ops: vertices get a distance-2 colouring (no two vertices of one
- * colour share a row), so spmv of the indicator vector of colour c and
- * component d returns column d of every block whose column has colour c
- * (2 spmvs per colour). DINV comes from cg_precond on the two unit fields
- * (it overwrites s[GLPGP_S_DOT] and s[GLPGP_S_RR]). Products with 0 and 1
- * are exact, so the values are bit-exact. */
-glpgp_status glpgp_probe_matrix(glpgp_backend *b, int which, double *vals);
+/* (the exact matrix read-back of the cross-check, glpgp_probe_matrix: glpgp/internal/probe.h) */
 
 /* ---- cross-check engine (backends/crosscheck.c) ----------------------------
  * Runs the OpenCL backend (a) and the reference backend (b) side by side on

@@ -337,7 +337,8 @@ typedef struct glpgp_mask_options {
                            exceeds this (GLPGP_ERR_LIMIT) [GLPGP_DEFAULT_MAX_ELEMENTS] */
     long long max_pixels; /* refuse images with more pixels, read from the header before
                              any pixel is [GLPGP_DEFAULT_MAX_PIXELS] */
-    double timeout;    /* seconds the Gmsh process may run (<= 0: no limit) [0] */
+    double timeout;    /* seconds the Gmsh process may run (<= 0: the default)
+                          [GLPGP_GMSH_DEFAULT_TIMEOUT] */
     int remesh;        /* the CLI's input loading (solve --remesh): a triangle mesh file
                           is meshed again inside its boundary points like a .poly [0] */
 } glpgp_mask_options;
@@ -390,8 +391,11 @@ double glpgp_mask_default_mesh_size(const glpgp_polygons *p, double quad_size);
 glpgp_status glpgp_mesh_polygons(const glpgp_polygons *p, double mesh_size, int algorithm,
                                  glpgp_mesh **out);
 
-/* The same with a limit on Gmsh's run time: after timeout seconds (> 0) the
- * Gmsh process is killed and GLPGP_ERR_LIMIT returned. */
+/* The same with a limit on Gmsh's run time: after timeout seconds the Gmsh
+ * process is killed and GLPGP_ERR_LIMIT returned. timeout <= 0 (and
+ * glpgp_mesh_polygons) take GLPGP_GMSH_DEFAULT_TIMEOUT: the library never
+ * forks a child without a bound. */
+#define GLPGP_GMSH_DEFAULT_TIMEOUT 3600.0
 glpgp_status glpgp_mesh_polygons_timeout(const glpgp_polygons *p, double mesh_size, int algorithm,
                                          double timeout, glpgp_mesh **out);
 

@@ -8,6 +8,8 @@
 
 #include "glpgp/status.h"
 
+#include <limits.h>
+
 #ifdef __cplusplus
 extern "C" {
 #endif
@@ -95,6 +97,16 @@ typedef struct glpgp_mesh {
  *    two boundary loops touching) -> GLPGP_ERR_MESH.
  * Messages name the offending triangle/edge/vertex (0-based). */
 glpgp_status glpgp_mesh_create(int nv, const double *xy, int nt, const int *tri, glpgp_mesh **out);
+
+/* The largest mesh the library accepts (glpgp_mesh_create, glpgp_mesh_create_surface,
+ * refinement): every int product of a count the library forms (up to 12 * nt
+ * and 6 * nv: element-matrix entries, corner lists, coupled unknowns, device
+ * buffers) stays below INT_MAX: about 179 million triangles, 358 million
+ * vertices. */
+#define GLPGP_MESH_MAX_TRIANGLES (INT_MAX / 12)
+#define GLPGP_MESH_MAX_VERTICES (INT_MAX / 6)
+/* GLPGP_ERR_LIMIT naming the count and the limit when nv or nt is over them. */
+glpgp_status glpgp_mesh_check_size(long long nv, long long nt);
 void glpgp_mesh_destroy(glpgp_mesh **m);
 /* Free m's arrays (coordinates, triangles, boundary loops, flags, normals,
  * a part's ids and sizes), keeping its counts and scalars (nv, nt, nloops,

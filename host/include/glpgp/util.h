@@ -1,9 +1,11 @@
 /* glpgp/util.h: small helpers every layer uses: a monotonic clock,
  * case-insensitive file-extension tests, order statistics without sorting,
- * union-find, and where the dlopen'd modules are looked for. Layer: core. */
+ * union-find, where the dlopen'd modules are looked for, and numbers read
+ * and written whatever the process's locale. Layer: core. */
 #ifndef GLPGP_UTIL_H
 #define GLPGP_UTIL_H
 
+#include <stdarg.h>
 #include <stddef.h>
 
 #ifdef __cplusplus
@@ -97,6 +99,36 @@ typedef struct glpgp_module_dirs {
 void glpgp_module_dirs_get(glpgp_module_dirs *d);
 /* path <- the first d->dir[i]/file that exists (returns 1), or 0 if none. */
 int glpgp_module_find(const glpgp_module_dirs *d, const char *file, char *path, size_t len);
+/* The one lock of module loading (image modules, the PETSc module): a loader
+ * holds it while it looks a module up, dlopen's it and records the outcome,
+ * so two threads asking at once load it once. Not recursive. */
+void glpgp_module_lock(void);
+void glpgp_module_unlock(void);
+
+/* Locale-independent numbers (core/numlocale.c): every number the library
+ * reads or writes (files, option values, messages) uses '.' as the decimal
+ * point whatever the process's locale. A scope switches the calling thread
+ * alone to the "C" locale (uselocale; the process's locale and other threads
+ * are untouched) until its end; begin/end pair in one function on one
+ * thread, and nest. The functions below do the same per call. */
+typedef struct glpgp_cnum {
+    void *prev, *loc; /* the thread's locale before, the "C" one (NULL: unchanged) */
+} glpgp_cnum;
+void glpgp_cnum_begin(glpgp_cnum *s);
+void glpgp_cnum_end(glpgp_cnum *s);
+/* strtod, sscanf, snprintf in the "C" locale (errno as strtod leaves it). */
+double glpgp_strtod(const char *s, char **end);
+int glpgp_sscanf(const char *s, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(scanf, 2, 3)))
+#endif
+    ;
+int glpgp_snprintf(char *buf, size_t n, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 3, 4)))
+#endif
+    ;
+int glpgp_vsnprintf(char *buf, size_t n, const char *fmt, va_list ap);
 
 #ifdef __cplusplus
 }

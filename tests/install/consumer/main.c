@@ -1,14 +1,9 @@
 /* consumer/main.c: the tiny consumer of an installed glpgp: a built-in square
  * of about 600 vertices solved with the reference backend; checks that the
  * solve converged to a regular parametrization (no singularity, median |z|
- * near 1) and prints one line with the version it was built against. */
-#include <glpgp/backends.h>
-#include <glpgp/image.h>
-#include <glpgp/result.h>
-#include <glpgp/shapes.h>
-#include <glpgp/solve.h>
-#include <glpgp/status.h>
-#include <glpgp/version.h>
+ * near 1) and prints one line with the version it was built against.
+ * Includes the umbrella header alone. */
+#include <glpgp/glpgp.h> /* the umbrella header: the whole public API */
 
 #include <stdio.h>
 
