@@ -817,7 +817,7 @@ static int solve_main(solve_cli *cc, const char *input)
     }
     cli_tm.s[GLPGP_TM_EXTRACT] = glpgp_now() - tp;
     tp = glpgp_now();
-    if (c.image && c.quads && !c.image_kind_given) {
+    if (c.image && c.quads && !c.image_kind_given && !m->surf) { /* a surface: the grid picture (render3d) */
         if (glpgp_render_quadmesh(q, m, &c.ro, GLPGP_QUAD_SJ_GOAL, 1, &im) != GLPGP_OK) goto fail;
     } else if (c.image && glpgp_render(m, r, &c.ro, &im) != GLPGP_OK) {
         goto fail;
