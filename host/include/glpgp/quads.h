@@ -389,17 +389,20 @@ double glpgp_quad_face_sj_surface(const glpgp_quadmesh *q, int f);
 typedef struct glpgp_quad_surface_steps {
     int extracted_faces;   /* faces of the extraction (0: none) */
     int extracted_quads;   /* of those, quads */
-    int closed;            /* faces made quads: a triangle and a pentagon across a side, or a
-                              hexagon, split into two quads (a valid split only) */
+    int closed;            /* faces made quads: two odd faces across a side joined, or an even
+                              face, split into quads (up to 10 corners; a valid split only) */
+    int strips;            /* odd faces joined pairwise through strips of quads cut in two */
     int subdivided;        /* 1: faces other than quads were left and every face was split
                               (Catmull-Clark, h/2) */
     int fallback;          /* 1: the extraction was not valid: the input triangles split into quads */
     unsigned invalid_before; /* GLPGP_QUAD_BAD_* of the extraction's mesh when it was not used */
 } glpgp_quad_surface_steps;
 
-/* The surface pipeline (quads/quads_surface.c): extraction; a triangle
- * and a pentagon that share a side (a +1/4 singularity between grid
- * points) and the hexagons are split into two quads each; when faces that
+/* The surface pipeline (quads/quads_surface.c): extraction; two odd
+ * faces that share a side (a triangle and a pentagon around a +1/4
+ * singularity between grid points) joined, and the even faces, are split
+ * into quads (the split with the best smallest scaled Jacobian, above
+ * 0.05, up to 10 corners); when faces that
  * are not quads are left, one Catmull-Clark split (edges about h/2, the
  * new points moved onto the surface; skipped when o->keep_polygons); when
  * that is not valid (glpgp_quads_quality_surface against the target h: the
