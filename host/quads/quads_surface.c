@@ -216,6 +216,21 @@ static int cmp_fedge(const void *pa, const void *pb)
     return a->key < b->key ? -1 : a->key > b->key ? 1 : a->f - b->f;
 }
 
+/* Whether side i of face f is on the boundary (in no other face). */
+static int boundary_side(const glpgp_quadmesh *q, const fedge *E, int nc, int f, int i)
+{
+    const int s = q->face_start[f], n = q->face_start[f + 1] - s;
+    long long a = q->face_vert[s + i], b = q->face_vert[s + (i + 1) % n];
+    const long long key = a < b ? a * q->nv + b : b * q->nv + a;
+    int lo = 0, hi = nc;
+    while (lo < hi) {
+        const int mid = (lo + hi) / 2;
+        if (E[mid].key < key) lo = mid + 1;
+        else hi = mid;
+    }
+    return lo < nc && E[lo].key == key && (lo + 1 >= nc || E[lo + 1].key != key);
+}
+
 /* The face across side i of face f (-1: none or more than one); *j its side. */
 static int across(const glpgp_quadmesh *q, const fedge *E, int nc, int f, int i, int *j)
 {
@@ -379,6 +394,7 @@ typedef struct strip_ctx {
     int *mid_in, *mid_out, *centre; /* nf: a strip quad's new vertices */
     double *xyz;         /* new vertex positions (3 per vertex, from q->nv on) */
     int nv, capv;
+    int any_side;        /* 0: strips only through the sides opposite the odd faces' flattest corners */
 } strip_ctx;
 
 static int is_odd(const glpgp_quadmesh *q, int f) { return (q->face_start[f + 1] - q->face_start[f]) % 2; }
@@ -410,7 +426,8 @@ static glpgp_status apply_strip(strip_ctx *c, int A, int B, int bside, int last,
 {
     const glpgp_quadmesh *q = c->q;
     int path[64], entry[64], ex[64], n = 0, st = last, e = -1, startSide = -1;
-    { /* B's side is entered through the last quad's side across it */
+    if (B < 0) e = -1 - B; /* to the boundary: the last quad's exit side */
+    else { /* B's side is entered through the last quad's side across it */
         const int g = last / 4;
         for (int k = 0; k < 4; k++) {
             int jj, gg = across(q, c->E, c->nc, g, k, &jj);
@@ -467,11 +484,42 @@ static glpgp_status apply_strip(strip_ctx *c, int A, int B, int bside, int last,
             GLPGP_CHECK(new_vertex(c, p3, &c->centre[g]));
         }
     }
-    c->used[A] = c->used[B] = 1;
-    c->ins[B] = bside;
-    c->insv[B] = m;
+    c->used[A] = 1;
+    if (B >= 0) {
+        c->used[B] = 1;
+        c->ins[B] = bside;
+        c->insv[B] = m;
+    }
     *found = 1;
     return GLPGP_OK;
+}
+
+/* The side of odd face f (at least 5 corners) opposite its flattest
+ * corner (a dislocation's T-junction): a strip through it continues the
+ * line that ended there; -1 for a triangle (a midpoint would make a flat
+ * quad). */
+static int strip_side(const glpgp_quadmesh *q, int f)
+{
+    const int s = q->face_start[f], n = q->face_start[f + 1] - s;
+    if (n < 5) return -1;
+    int best = 0;
+    double bc = 2.0;
+    for (int i = 0; i < n; i++) {
+        const double *p = q->xyz + 3 * q->face_vert[s + i], *a = q->xyz + 3 * q->face_vert[s + (i + 1) % n],
+                     *b = q->xyz + 3 * q->face_vert[s + (i + n - 1) % n];
+        double e1[3], e2[3];
+        for (int d = 0; d < 3; d++) {
+            e1[d] = a[d] - p[d];
+            e2[d] = b[d] - p[d];
+        }
+        const double l = sqrt((e1[0] * e1[0] + e1[1] * e1[1] + e1[2] * e1[2]) * (e2[0] * e2[0] + e2[1] * e2[1] + e2[2] * e2[2]));
+        const double cs = l > 0 ? (e1[0] * e2[0] + e1[1] * e2[1] + e1[2] * e2[2]) / l : 2.0;
+        if (cs < bc) { /* the most negative cosine: the widest angle */
+            bc = cs;
+            best = i;
+        }
+    }
+    return (best + (n - 1) / 2) % n;
 }
 
 /* Breadth-first from odd face A through unused quads (straight on or
@@ -481,22 +529,29 @@ static glpgp_status find_strip(strip_ctx *c, int A, int *found)
 {
     const glpgp_quadmesh *q = c->q;
     *found = 0;
-    int head = 0, tail = 0, endB = -1, endBside = -1, endState = -1;
+    int head = 0, tail = 0, endB = -1000000, endBside = -1, endState = -1; /* endB < 0: the boundary */
     const int nA = q->face_start[A + 1] - q->face_start[A];
-    for (int i = 0; i < nA && endB < 0; i++) {
+    const int sA = strip_side(q, A);
+    for (int i = 0; i < nA; i++) {
+        if (!c->any_side && i != sA) continue;
         int j, g = across(q, c->E, c->nc, A, i, &j);
         if (g < 0 || c->used[g] || q->face_start[g + 1] - q->face_start[g] != 4 || c->par[4 * g + j] != -2) continue;
         c->par[4 * g + j] = -3 - i; /* from A's side i */
         c->queue[tail++] = 4 * g + j;
     }
-    while (head < tail && endB < 0) {
+    while (head < tail && endB == -1000000) {
         const int st = c->queue[head++], g = st / 4, j = st % 4;
-        for (int turn = 0; turn < 3 && endB < 0; turn++) {
+        for (int turn = 0; turn < 3 && endB == -1000000; turn++) {
             const int e = (j + (turn == 0 ? 2 : turn == 1 ? 1 : 3)) % 4;
             int k, h = across(q, c->E, c->nc, g, e, &k);
+            if (h < 0 && boundary_side(q, c->E, c->nc, g, e)) { /* a strip to the boundary */
+                endB = -1 - e; /* -1 - the exit side */
+                endState = st;
+                break;
+            }
             if (h < 0 || h == A || c->used[h]) continue;
             const int nh = q->face_start[h + 1] - q->face_start[h];
-            if (nh % 2) {
+            if (nh % 2 && (c->any_side || k == strip_side(q, h))) {
                 endB = h;
                 endBside = k;
                 endState = st;
@@ -507,7 +562,7 @@ static glpgp_status find_strip(strip_ctx *c, int A, int *found)
         }
     }
     glpgp_status st = GLPGP_OK;
-    if (endB >= 0) st = apply_strip(c, A, endB, endBside, endState, found);
+    if (endB != -1000000) st = apply_strip(c, A, endB, endBside, endState, found);
     for (int i = 0; i < tail; i++) c->par[c->queue[i]] = -2;
     return st;
 }
@@ -566,15 +621,20 @@ static void strip_free(strip_ctx *c)
 }
 
 /* Odd faces joined pairwise by strips of quads cut in two (three at a
- * turn), through the nearest other odd face (breadth-first over the
- * quads); the odd faces become even (close_pairs splits them). *out NULL
+ * turn; any_side 0: leaving and entering the odd faces only through the
+ * side opposite their flattest corner, so the new quads keep no flat
+ * corner; 1: any side, pentagons and triangles alike), through the nearest other odd face or boundary side
+ * (breadth-first over the quads; a new boundary vertex on the side's
+ * chord, moved onto the surface); the odd faces become even (close_pairs splits them). *out NULL
  * when no strip was found; *nstrips: strips made. */
-static glpgp_status strips(const glpgp_mesh *m, const glpgp_quadmesh *q, double h, glpgp_quadmesh **out, int *nstrips)
+static glpgp_status strips(const glpgp_mesh *m, const glpgp_quadmesh *q, double h, int any_side, glpgp_quadmesh **out,
+                           int *nstrips)
 {
     *out = NULL;
     *nstrips = 0;
     strip_ctx c;
     memset(&c, 0, sizeof c);
+    c.any_side = any_side;
     c.q = q;
     c.nc = q->face_start[q->nf];
     c.nv = q->nv;
@@ -679,9 +739,14 @@ static glpgp_status candidates(const glpgp_mesh *m, glpgp_quadmesh **pq, const g
     if (st == GLPGP_OK && count_nonquads(c ? c : q)) { /* strips between the odd faces left */
         glpgp_quadmesh *t = NULL, *t2 = NULL;
         int ns = 0, cl = 0;
-        st = strips(m, c ? c : q, h, &t, &ns);
-        if (st == GLPGP_OK && t) st = close_pairs(t, &t2, &cl);
-        if (st == GLPGP_OK && t2) {
+        for (int any = 0; any < 2 && st == GLPGP_OK; any++) { /* through the T-junctions first, then any side */
+            glpgp_quadmesh_destroy(&t);
+            glpgp_quadmesh_destroy(&t2);
+            st = strips(m, c ? c : q, h, any, &t, &ns);
+            if (st == GLPGP_OK && t) st = close_pairs(t, &t2, &cl);
+            if (st == GLPGP_OK && t2 && !count_nonquads(t2)) break;
+        }
+        if (st == GLPGP_OK && t2 && !count_nonquads(t2)) {
             glpgp_quadmesh_destroy(&c);
             c = t2;
             t2 = NULL;
