@@ -4,12 +4,12 @@
 # interior vertices), scaled Jacobian min / mean, Hausdorff / h, the Euler
 # characteristic against the input's, whether the last resort was needed,
 # and the seconds of the whole command and of its quad phase. Writes
-# $OUT/summary.md (default bench/out/surface_quads).
+# $OUT/summary.md (default out/surface_quads, ignored by git).
 # Usage: bash bench/surface_quads.sh [path/to/glpgp]   (BACKEND=reference|opencl, default reference)
 set -u
 GLPGP=${1:-build/glpgp}
 BACKEND=${BACKEND:-reference}
-OUT=${OUT:-bench/out/surface_quads}
+OUT=${OUT:-out/surface_quads}
 mkdir -p "$OUT"
 CASES=${CASES:-"shape:sphere:20000| shape:torus:20000| shape:genus2:20000| shape:cube:20000| shape:hemisphere:10000| shape:halfcyl:5000| shape:sphere:40000|--faces 300 shape:torus:40000|--faces 300 shape:cube:40000|--faces 600"}
 {

@@ -261,8 +261,9 @@ static void print_summary(const solve_cli *c, const char *input, const glpgp_mes
     if (c->stats) printf("  wrote          %s\n", c->stats);
     if (c->quads) {
         if (m->surf)
-            printf("  surface quads  extraction %d faces (%d quads), %d odd or even faces closed%s%s\n",
-                   c->qsteps.extracted_faces, c->qsteps.extracted_quads, c->qsteps.closed, c->qsteps.subdivided ? "; split into quads (Catmull-Clark, h/2)" : "",
+            printf("  surface quads  extraction %d faces (%d quads), %d odd or even faces closed, %d strips%s%s\n",
+                   c->qsteps.extracted_faces, c->qsteps.extracted_quads, c->qsteps.closed, c->qsteps.strips,
+                   c->qsteps.subdivided ? "; split into quads (Catmull-Clark, h/2)" : "",
                    c->qsteps.fallback ? "; not valid: the input triangles split into quads (last resort)" : "");
         glpgp_quads_print(stdout, qq, "  ");
         if (quads_written) printf("  wrote          %s\n", c->quads);

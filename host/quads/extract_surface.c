@@ -737,7 +737,7 @@ glpgp_status glpgp_quads_extract_surface(const glpgp_mesh *m, const glpgp_result
             q->inconsistent_tris[k] = c.inconsistent[k];
             for (int t = 0; t < m->nt; t++) q->singular_tris[k] += !c.ok[2 * t + k];
         }
-        glpgp_log(GLPGP_LOG_INFO,
+        glpgp_log(GLPGP_LOG_DEBUG,
                   "quads: surface extraction: %d nodes, %d graph edges, %d faces; singular triangles u %d v %d, "
                   "charts not closing u %d v %d",
                   c.nn, c.ne, q->nf, q->singular_tris[0], q->singular_tris[1], c.inconsistent[0], c.inconsistent[1]);

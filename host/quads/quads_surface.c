@@ -734,7 +734,7 @@ static glpgp_status candidates(const glpgp_mesh *m, glpgp_quadmesh **pq, const g
     }
     glpgp_status st = close_pairs(q, &c, &stp->closed);
     if (st == GLPGP_OK)
-        glpgp_log(GLPGP_LOG_INFO, "quads: surface closing: %d faces made quads, %d of %d faces not quads left",
+        glpgp_log(GLPGP_LOG_DEBUG, "quads: surface closing: %d faces made quads, %d of %d faces not quads left",
                   stp->closed, c ? count_nonquads(c) : count_nonquads(q), c ? c->nf : q->nf);
     if (st == GLPGP_OK && count_nonquads(c ? c : q)) { /* strips between the odd faces left */
         glpgp_quadmesh *t = NULL, *t2 = NULL;
@@ -755,7 +755,7 @@ static glpgp_status candidates(const glpgp_mesh *m, glpgp_quadmesh **pq, const g
         }
         glpgp_quadmesh_destroy(&t);
         glpgp_quadmesh_destroy(&t2);
-        glpgp_log(GLPGP_LOG_INFO, "quads: surface strips: %d, %d faces not quads left", ns,
+        glpgp_log(GLPGP_LOG_DEBUG, "quads: surface strips: %d, %d faces not quads left", ns,
                   count_nonquads(c ? c : q));
     }
     if (st == GLPGP_OK && c && !count_nonquads(c)) {
@@ -776,6 +776,7 @@ static glpgp_status candidates(const glpgp_mesh *m, glpgp_quadmesh **pq, const g
     glpgp_quadmesh_destroy(&c);
     return st;
 keep_c:
+    memset(&c->closing, 0, sizeof c->closing); /* the surface's steps are in stp */
     *out = c;
     return GLPGP_OK;
 keep_s:
