@@ -9,6 +9,7 @@
 #include "glpgp/util.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -816,10 +817,13 @@ glpgp_status glpgp_quads_build_surface(const glpgp_mesh *m, const glpgp_result *
             return st;
         }
         char why[256];
-        glpgp_quad_quality qq;
-        memset(&qq, 0, sizeof qq);
-        qq.invalid = bad;
-        glpgp_quads_invalid_text(&qq, GLPGP_QUAD_BAD_NONQUAD, why, sizeof why);
+        size_t w = 0;
+        why[0] = 0;
+        for (int b = 0; b < GLPGP_QUAD_BAD_COUNT; b++) /* the reasons by name (the counts are in the report) */
+            if ((bad & (1u << b)) && (1u << b) != GLPGP_QUAD_BAD_NONQUAD && w < sizeof why) {
+                int k = snprintf(why + w, sizeof why - w, "%s%s", w ? ", " : "", glpgp_quad_bad_name(1u << b));
+                if (k > 0) w += (size_t)k;
+            }
         glpgp_log(GLPGP_LOG_WARNING,
                   "quads: the extracted mesh is not valid%s%s%s: the input triangles are split into quads",
                   why[0] ? " (" : "", why, why[0] ? ")" : "");
