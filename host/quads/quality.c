@@ -360,6 +360,7 @@ glpgp_status glpgp_quads_quality(const glpgp_quadmesh *q, const glpgp_mesh *doma
                                  glpgp_quad_quality *o)
 {
     memset(o, 0, sizeof *o);
+    if (q && q->xyz && domain && domain->xyz) return glpgp_quads_quality_surface(q, domain, h, o); /* a surface's */
     if (!(h > 0)) return GLPGP_FAIL(GLPGP_ERR_ARG, "quad quality: size h must be > 0");
     if (!q || q->nf < 1) return GLPGP_FAIL(GLPGP_ERR_ARG, "quad quality: empty mesh");
     o->h = h;

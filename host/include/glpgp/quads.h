@@ -184,6 +184,10 @@ glpgp_status glpgp_quadmesh_repair(const glpgp_quadmesh *q, const glpgp_mesh *m,
  * not all quads, is non-manifold or nothing could be improved (q stands). */
 glpgp_status glpgp_quadmesh_cleanup(const glpgp_quadmesh *q, glpgp_quadmesh **out);
 
+/* On a 3D surface (m->xyz): glpgp_quads_extract refuses it (GLPGP_ERR_ARG),
+ * glpgp_quads_build runs glpgp_quads_build_surface and glpgp_quads_quality
+ * (a surface's mesh against its surface) glpgp_quads_quality_surface. */
+
 /* What glpgp_quads_build does after the extraction. */
 typedef struct glpgp_quad_options {
     int keep_polygons;  /* 1: leave non-quad faces as they are (no strips) */
