@@ -48,6 +48,8 @@ typedef struct solve_cli {
     int gather;          /* distributed: the whole result is gathered to rank 0 (set on every rank) */
     double t_refine;     /* seconds of the refinement for the local size (prepare) */
     int image_kind_given; /* --image-kind seen: with --quads, the picture is the quad mesh otherwise */
+    double faces;        /* --faces N: the target quad count (h = sqrt(area / N)); 0: not given */
+    glpgp_quad_surface_steps qsteps; /* a surface's quad pipeline (--quads) */
 } solve_cli;
 
 /* Default of --gather-max: 2^26 vertices (1 GiB per gathered z array, 16
@@ -108,6 +110,9 @@ static void build(glpgp_opts *t, solve_cli *c)
                      "extract the quad mesh (.obj/.vtu/.vtk/.msh) and add its quality\n"
                      "report to the summary and the statistics (\"quads\")");
     glpgp_opts_add_quads(t, &c->qo, &c->quad_opts, &c->allow_invalid);
+    glpgp_opt_double(t, "--faces", &c->faces, 0.0, 1, 1e12, 0, "N",
+                     "target quad count: the size h = sqrt(area / N) (instead of --size;\n"
+                     "the mesh has about N quads where the parametrization is regular)");
     glpgp_opt_string(t, "--image", &c->image, "FILE",
                      "picture of the result (.png, .exr, .tif, .jpg, ...); with --quads and\n"
                      "no --image-kind: the quad mesh (faces by origin, poor ones red,\n"
@@ -131,6 +136,7 @@ static int check(solve_cli *c, const char *input)
     if (!input) return glpgp_cli_usage_error(sub, "missing INPUT (a .obj/.msh file or shape:NAME[:N])");
     if (c->out && c->stats && !strcmp(c->out, c->stats))
         return glpgp_cli_usage_error(sub, "--out and --stats name the same file '%s'", c->out);
+    if (c->faces > 0.0 && c->o.size > 0.0) return glpgp_cli_usage_error(sub, "--faces and --size both set the size: give one");
     if (c->quad_opts && !c->quads)
         return glpgp_cli_usage_error(sub, "--all-quads, --keep-polygons, --smooth, --no-repair and --allow-invalid need --quads FILE");
     if (c->quads && ((c->out && !strcmp(c->out, c->quads)) || (c->stats && !strcmp(c->stats, c->quads))))
@@ -256,6 +262,11 @@ static void print_summary(const solve_cli *c, const char *input, const glpgp_mes
     if (c->out) printf("  wrote          %s\n", c->out);
     if (c->stats) printf("  wrote          %s\n", c->stats);
     if (c->quads) {
+        if (m->surf)
+            printf("  surface quads  extraction %d faces (%d quads), %d odd or even faces closed, %d strips%s%s\n",
+                   c->qsteps.extracted_faces, c->qsteps.extracted_quads, c->qsteps.closed, c->qsteps.strips,
+                   c->qsteps.subdivided ? "; split into quads (Catmull-Clark, h/2)" : "",
+                   c->qsteps.fallback ? "; not valid: the input triangles split into quads (last resort)" : "");
         glpgp_quads_print(stdout, qq, "  ");
         if (quads_written) printf("  wrote          %s\n", c->quads);
     }
@@ -335,8 +346,12 @@ static int prepare(solve_cli *c, const char *input, glpgp_mesh **pm, glpgp_size_
         c->o.field = GLPGP_FIELD_CROSS;
         glpgp_log(GLPGP_LOG_DEBUG, "quads: the cross field (the default with --quads; --field boundary for the other)");
     }
+    if (c->faces > 0.0) { /* --faces N: h from the input's area */
+        c->o.size = sqrt(m->area / c->faces);
+        c->mo.quad_size = c->o.size;
+    }
     if (m->xyz) {
-        /* a surface: the cross field unless --field says otherwise; no quads yet */
+        /* a surface: the cross field unless --field says otherwise */
         if (!c->field_seen) c->o.field = GLPGP_FIELD_CROSS;
         const double diag = glpgp_mesh_diagonal(m), hd = glpgp_default_size(m, &c->o);
         if (!(c->o.size > 0.0) && hd > diag / GLPGP_SIZE_DEFAULT_MIN_QUADS)
@@ -344,11 +359,6 @@ static int prepare(solve_cli *c, const char *input, glpgp_mesh **pm, glpgp_size_
                       "%s: the surface is too coarse for the default size (mean edge %.3g): h = 10 mean edges = "
                       "%.4g gives a handful of quads; surfaces are not refined yet: give a finer mesh (or --size)",
                       input, m->mean_edge, hd);
-        if (c->quads) {
-            glpgp_mesh_destroy(&m);
-            return glpgp_cli_usage_error("solve", "--quads: quad extraction on surfaces is not implemented yet (the "
-                                                  "result's .vtu holds the parametrization)");
-        }
     }
     if ((rc = glpgp_cli_size_image(&c->o, m, c->size_box, &c->mo, psimg)) >= 0) {
         glpgp_mesh_destroy(&m);
@@ -533,8 +543,13 @@ static int solve_main(solve_cli *cc, const char *input, glpgp_dist *dd)
     double tp = glpgp_now();
     if (c.quads) {
         double h = r->size;
-        if (glpgp_quads_build(m, r, &c.qo, &q, &h) != GLPGP_OK) goto fail;
-        if (glpgp_quads_quality(q, m, h, &qq) != GLPGP_OK) goto fail;
+        if (m->surf) { /* a surface: its own pipeline and check (quads/quads_surface.c) */
+            if (glpgp_quads_build_surface(m, r, &c.qo, &q, &h, &c.qsteps) != GLPGP_OK) goto fail;
+            if (glpgp_quads_quality_surface(q, m, h, &qq) != GLPGP_OK) goto fail;
+        } else {
+            if (glpgp_quads_build(m, r, &c.qo, &q, &h) != GLPGP_OK) goto fail;
+            if (glpgp_quads_quality(q, m, h, &qq) != GLPGP_OK) goto fail;
+        }
         qq.singular[0] = r->osc[0].plus + r->osc[0].minus;
         qq.singular[1] = r->osc[1].plus + r->osc[1].minus;
         /* --field cross: irregular interior vertices within h of a cross-field singularity, and the others */
@@ -546,7 +561,7 @@ static int solve_main(solve_cli *cc, const char *input, glpgp_dist *dd)
     }
     cli_tm.s[GLPGP_TM_EXTRACT] = glpgp_now() - tp;
     tp = glpgp_now();
-    if (c.image && c.quads && !c.image_kind_given) {
+    if (c.image && c.quads && !c.image_kind_given && !m->surf) { /* a surface: the grid picture (render3d) */
         if (glpgp_render_quadmesh(q, m, &c.ro, GLPGP_QUAD_SJ_GOAL, 1, &im) != GLPGP_OK) goto fail;
     } else if (c.image && glpgp_render(m, r, &c.ro, &im) != GLPGP_OK) {
         goto fail;

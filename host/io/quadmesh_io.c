@@ -179,6 +179,19 @@ void glpgp_quads_json(glpgp_json *w, const char *key, const glpgp_quad_quality *
         glpgp_json_null(w, "boundary_vertex_distance_over_h");
     }
     glpgp_json_num(w, "max_edge_over_h", qq->len_max);
+    if (qq->surface) { /* a surface's mesh: distances to the surface, topology against the input's */
+        glpgp_json_object(w, "surface");
+        glpgp_json_num(w, "hausdorff_over_h", qq->hausdorff);
+        glpgp_json_num(w, "quads_to_surface_over_h", qq->dist_quad_to_domain);
+        glpgp_json_num(w, "surface_to_quads_over_h", qq->dist_domain_to_quad);
+        glpgp_json_int(w, "euler", qq->euler);
+        glpgp_json_int(w, "input_euler", qq->domain_euler);
+        glpgp_json_int(w, "boundary_loops", qq->boundary_loops);
+        glpgp_json_int(w, "input_boundary_loops", qq->domain_loops);
+        glpgp_json_num(w, "area_ratio", qq->area_ratio);
+        glpgp_json_num(w, "area_tolerance", glpgp_quads_surface_area_tolerance(qq));
+        glpgp_json_close(w);
+    }
     json_origin(w, qq);
     json_repair(w, &qq->repair);
     glpgp_json_object(w, "cleanup");
@@ -242,7 +255,10 @@ int glpgp_quads_path_supported(const char *path) { return quads_format(path) != 
 static void write_obj(FILE *f, const glpgp_quadmesh *q)
 {
     fprintf(f, "# glpgp %s quad mesh: %d vertices, %d faces\n", GLPGP_VERSION, q->nv, q->nf);
-    for (int i = 0; i < q->nv; i++) fprintf(f, "v %.17g %.17g 0\n", q->xy[2 * i], q->xy[2 * i + 1]);
+    for (int i = 0; i < q->nv; i++) {
+        if (q->xyz) fprintf(f, "v %.17g %.17g %.17g\n", q->xyz[3 * i], q->xyz[3 * i + 1], q->xyz[3 * i + 2]);
+        else fprintf(f, "v %.17g %.17g 0\n", q->xy[2 * i], q->xy[2 * i + 1]);
+    }
     int group = -1;
     for (int fa = 0; fa < q->nf; fa++) {
         int o = q->face_origin ? q->face_origin[fa] : -1;
@@ -260,7 +276,10 @@ static void write_vtk(FILE *f, const glpgp_quadmesh *q)
     fprintf(f, "# vtk DataFile Version 3.0\nglpgp %s quad mesh\nASCII\nDATASET UNSTRUCTURED_GRID\n",
             GLPGP_VERSION);
     fprintf(f, "POINTS %d double\n", q->nv);
-    for (int i = 0; i < q->nv; i++) fprintf(f, "%.17g %.17g 0\n", q->xy[2 * i], q->xy[2 * i + 1]);
+    for (int i = 0; i < q->nv; i++) {
+        if (q->xyz) fprintf(f, "%.17g %.17g %.17g\n", q->xyz[3 * i], q->xyz[3 * i + 1], q->xyz[3 * i + 2]);
+        else fprintf(f, "%.17g %.17g 0\n", q->xy[2 * i], q->xy[2 * i + 1]);
+    }
     int nfv = q->face_start[q->nf];
     fprintf(f, "CELLS %d %d\n", q->nf, q->nf + nfv);
     for (int fa = 0; fa < q->nf; fa++) {
@@ -275,7 +294,7 @@ static void write_vtk(FILE *f, const glpgp_quadmesh *q)
     fprintf(f, "CELL_DATA %d\nSCALARS corners int 1\nLOOKUP_TABLE default\n", q->nf);
     for (int fa = 0; fa < q->nf; fa++) fprintf(f, "%d\n", q->face_start[fa + 1] - q->face_start[fa]);
     fprintf(f, "SCALARS scaled_jacobian double 1\nLOOKUP_TABLE default\n");
-    for (int fa = 0; fa < q->nf; fa++) fprintf(f, "%.6g\n", glpgp_quad_face_sj(q, fa));
+    for (int fa = 0; fa < q->nf; fa++) fprintf(f, "%.6g\n", q->xyz ? glpgp_quad_face_sj_surface(q, fa) : glpgp_quad_face_sj(q, fa));
     fprintf(f, "SCALARS origin int 1\nLOOKUP_TABLE default\n");
     for (int fa = 0; fa < q->nf; fa++) fprintf(f, "%d\n", q->face_origin ? q->face_origin[fa] : 0);
 }
@@ -313,7 +332,10 @@ static void write_msh(FILE *f, const glpgp_quadmesh *q)
             y1);
     fprintf(f, "$Nodes\n1 %d 1 %d\n2 1 0 %d\n", q->nv, q->nv, q->nv);
     for (int i = 0; i < q->nv; i++) fprintf(f, "%d\n", i + 1);
-    for (int i = 0; i < q->nv; i++) fprintf(f, "%.17g %.17g 0\n", q->xy[2 * i], q->xy[2 * i + 1]);
+    for (int i = 0; i < q->nv; i++) {
+        if (q->xyz) fprintf(f, "%.17g %.17g %.17g\n", q->xyz[3 * i], q->xyz[3 * i + 1], q->xyz[3 * i + 2]);
+        else fprintf(f, "%.17g %.17g 0\n", q->xy[2 * i], q->xy[2 * i + 1]);
+    }
     fprintf(f, "$EndNodes\n$Elements\n%d %ld 1 %ld\n", nblocks, nquad + ntri, nquad + ntri);
     long tag = 1;
     if (nquad > 0) {
@@ -350,7 +372,11 @@ static void qfill_points(const void *c, size_t first, size_t n, void *out)
     for (size_t i = 0; i < n; i++) {
         o[3 * i] = q->xy[2 * (first + i)];
         o[3 * i + 1] = q->xy[2 * (first + i) + 1];
-        o[3 * i + 2] = 0.0;
+        o[3 * i + 2] = q->xyz ? q->xyz[3 * (first + i) + 2] : 0.0;
+        if (q->xyz) {
+            o[3 * i] = q->xyz[3 * (first + i)];
+            o[3 * i + 1] = q->xyz[3 * (first + i) + 1];
+        }
     }
 }
 static void qfill_conn(const void *c, size_t first, size_t n, void *out)
@@ -380,7 +406,7 @@ static void qfill_sj(const void *c, size_t first, size_t n, void *out)
 {
     const glpgp_quadmesh *q = ((const q_ctx *)c)->q;
     double *o = out;
-    for (size_t i = 0; i < n; i++) o[i] = glpgp_quad_face_sj(q, (int)(first + i));
+    for (size_t i = 0; i < n; i++) o[i] = q->xyz ? glpgp_quad_face_sj_surface(q, (int)(first + i)) : glpgp_quad_face_sj(q, (int)(first + i));
 }
 static void qfill_origin(const void *c, size_t first, size_t n, void *out)
 {

@@ -749,6 +749,8 @@ glpgp_status glpgp_quads_extract(const glpgp_mesh *m, const glpgp_result *r, glp
 {
     *out = NULL;
     if (!m || !r) return GLPGP_FAIL(GLPGP_ERR_ARG, "quad extraction: no mesh or result");
+    if (m->xyz) /* a surface: glpgp_quads_extract_surface */
+        return GLPGP_FAIL(GLPGP_ERR_ARG, "quad extraction: a 3D surface (glpgp_quads_extract_surface extracts it)");
     if (r->nv != m->nv || r->nt != m->nt)
         return GLPGP_FAIL(GLPGP_ERR_ARG, "quad extraction: result has %d vertices / %d triangles, mesh %d / %d", r->nv,
                           r->nt, m->nv, m->nt);

@@ -28,6 +28,7 @@ glpgp_status glpgp_quads_build(const glpgp_mesh *m, const glpgp_result *r, const
         o = &def;
     }
     *out = NULL;
+    if (m && m->xyz) return glpgp_quads_build_surface(m, r, o, out, h, NULL); /* a 3D surface: its own pipeline */
     glpgp_quadmesh *q = NULL, *c = NULL;
     unsigned char *mark = NULL;
     glpgp_progress pr;

@@ -14,6 +14,7 @@ void glpgp_quadmesh_destroy(glpgp_quadmesh **q)
     free((*q)->face_start);
     free((*q)->face_vert);
     free((*q)->face_origin);
+    free((*q)->xyz);
     free(*q);
     *q = NULL;
 }

@@ -360,6 +360,7 @@ glpgp_status glpgp_quads_quality(const glpgp_quadmesh *q, const glpgp_mesh *doma
                                  glpgp_quad_quality *o)
 {
     memset(o, 0, sizeof *o);
+    if (q && q->xyz && domain && domain->xyz) return glpgp_quads_quality_surface(q, domain, h, o); /* a surface's */
     if (!(h > 0)) return GLPGP_FAIL(GLPGP_ERR_ARG, "quad quality: size h must be > 0");
     if (!q || q->nf < 1) return GLPGP_FAIL(GLPGP_ERR_ARG, "quad quality: empty mesh");
     o->h = h;
@@ -551,7 +552,12 @@ void glpgp_quads_print(FILE *f, const glpgp_quad_quality *qq, const char *prefix
         fprintf(f, "%s  cleanup      %d doublets removed, %d quads collapsed, %d edges rotated (valence cost %d -> %d)\n",
                 p, qq->cleanup.doublets, qq->cleanup.collapses, qq->cleanup.rotations, qq->cleanup.cost_before,
                 qq->cleanup.cost_after);
-    if (qq->hausdorff >= 0)
+    if (qq->surface)
+        fprintf(f, "%s  surface      Hausdorff %.3f h (quads->surface %.3f h, surface->quads %.3f h), "
+                   "area %.5g of %.5g (ratio %.4f), Euler %d of %d, boundary loops %d of %d\n",
+                p, qq->hausdorff, qq->dist_quad_to_domain, qq->dist_domain_to_quad, qq->area, qq->domain_area,
+                qq->area_ratio, qq->euler, qq->domain_euler, qq->boundary_loops, qq->domain_loops);
+    else if (qq->hausdorff >= 0)
         fprintf(f, "%s  boundary     Hausdorff %.3f h (quads->domain %.3f h, domain->quads %.3f h), "
                    "area %.5g of %.5g (ratio %.4f), loops %d of %d\n",
                 p, qq->hausdorff, qq->dist_quad_to_domain, qq->dist_domain_to_quad, qq->area,
@@ -585,6 +591,7 @@ const char *glpgp_quad_bad_name(unsigned b)
     case GLPGP_QUAD_BAD_GAPS: return "gaps";
     case GLPGP_QUAD_BAD_CORNERS: return "corners";
     case GLPGP_QUAD_BAD_EMPTY: return "empty";
+    case GLPGP_QUAD_BAD_TOPOLOGY: return "topology";
     default: return NULL;
     }
 }
@@ -618,6 +625,7 @@ unsigned glpgp_quads_invalid_text(const glpgp_quad_quality *qq, unsigned ignore,
     if (b & GLPGP_QUAD_BAD_HAUSDORFF) ADD("Hausdorff %.3f h", qq->hausdorff);
     if (b & GLPGP_QUAD_BAD_GAPS) ADD("%d boundary edges away from the domain boundary", (int)qq->gap_edges);
     if (b & GLPGP_QUAD_BAD_CORNERS) ADD("%d domain corners lost", qq->corners_lost);
+    if (b & GLPGP_QUAD_BAD_TOPOLOGY) ADD("Euler characteristic %d of %d", qq->euler, qq->domain_euler);
 #undef ADD
     return b;
 }

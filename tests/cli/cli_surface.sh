@@ -6,8 +6,9 @@
 # eight corners; the same surface as PLY and OFF; bad 3D inputs (non-manifold
 # edge and vertex, inconsistent orientation, degenerate face, Moebius strip)
 # each one error line, exit 1, no output; --planar-face keeps a box STL's
-# bottom; --quads and `figure --cross` on a surface are usage errors,
-# `extract` of a surface's result an error; a surface picture (skipped
+# bottom; --quads on a surface writes an all-quad OBJ (issue 29; the
+# details in cli_surfquads.sh), `figure --cross` on a surface is a usage
+# error, `extract` of a surface's result an error; a surface picture (skipped
 # without OpenImageIO).
 # Usage: bash cli_surface.sh <path-to-glpgp> <data-dir>
 . "$(dirname "$0")/lib.sh" "$@"
@@ -113,8 +114,12 @@ expect_err "largest face" "--planar-face warns"
 expect_out "refined +4 -> [0-9]+ vertices, 2 -> " "--planar-face solves the bottom (2 triangles, refined)"
 grep -q "^  surface " out.txt && fail "--planar-face solved the surface"
 
-run 2 "surface --quads" solve s.obj --quads q.obj --quiet
-one_error_line "surface --quads"
+run_ok "surface --quads" solve s.obj --backend reference --quads q.obj --quiet
+python3 - <<'PY' || fail "surface --quads: an all-quad OBJ in 3D"
+f = [l.split() for l in open("q.obj")]
+assert any(l[0] == "f" for l in f if l) and all(len(l) == 5 for l in f if l and l[0] == "f")
+assert len({l[3] for l in f if l and l[0] == "v"}) > 2
+PY
 run 1 "extract a surface result" extract s.vtu --quads q.obj
 one_error_line "extract a surface result"
 expect_err "surface" "extract says surface"

@@ -84,7 +84,7 @@ typedef struct glpgp_quad_cleanup {
  * face_vert[face_start[f] .. face_start[f+1]). */
 typedef struct glpgp_quadmesh {
     int nv;
-    double *xy;         /* 2*nv */
+    double *xy;         /* 2*nv (a surface's mesh: x and y of xyz) */
     int nf;
     int *face_start;    /* nf + 1 */
     int *face_vert;     /* face_start[nf] */
@@ -99,6 +99,8 @@ typedef struct glpgp_quadmesh {
     glpgp_quad_closing closing; /* set by glpgp_quadmesh_close_polygons / _smooth */
     glpgp_quad_repair repair;   /* set by glpgp_quadmesh_repair */
     glpgp_quad_cleanup cleanup; /* set by glpgp_quadmesh_cleanup */
+    double *xyz;        /* 3*nv: a quad mesh of a 3D surface (faces counter-clockwise seen from
+                         * the side the surface's normals point to); NULL in the plane */
 } glpgp_quadmesh;
 
 /* Extract the quad mesh of a result on mesh m (r->osc[k].z, .dirichlet and
@@ -181,6 +183,10 @@ glpgp_status glpgp_quadmesh_repair(const glpgp_quadmesh *q, const glpgp_mesh *m,
  * *out: the cleaned mesh (q's diagnostics, cleanup set), or NULL when q is
  * not all quads, is non-manifold or nothing could be improved (q stands). */
 glpgp_status glpgp_quadmesh_cleanup(const glpgp_quadmesh *q, glpgp_quadmesh **out);
+
+/* On a 3D surface (m->xyz): glpgp_quads_extract refuses it (GLPGP_ERR_ARG),
+ * glpgp_quads_build runs glpgp_quads_build_surface and glpgp_quads_quality
+ * (a surface's mesh against its surface) glpgp_quads_quality_surface. */
 
 /* What glpgp_quads_build does after the extraction. */
 typedef struct glpgp_quad_options {
@@ -277,6 +283,10 @@ typedef struct glpgp_quad_quality {
     int irregular_near_cross;/* irregular interior vertices within cross_radius of a singularity */
     int irregular_far_cross; /* the other irregular interior vertices (near + far = irregular_interior) */
     int cross_matched;       /* singularities with an irregular interior vertex within cross_radius */
+    /* Surfaces (glpgp_quads_quality_surface; 0 in the plane): hausdorff,
+     * the distances, area and loops are against the input surface. */
+    int surface;             /* 1: a report of a surface's quad mesh */
+    int euler, domain_euler; /* V - E + F of the quads and of the input surface */
 } glpgp_quad_quality;
 
 /* Reasons a quad mesh is invalid (glpgp_quad_quality.invalid). The domain
@@ -294,9 +304,10 @@ enum {
     GLPGP_QUAD_BAD_HAUSDORFF = 1u << 9,   /* boundary Hausdorff distance above h/4 */
     GLPGP_QUAD_BAD_GAPS = 1u << 10,       /* boundary edges away from the domain boundary */
     GLPGP_QUAD_BAD_CORNERS = 1u << 11,    /* domain corners without a mesh vertex */
-    GLPGP_QUAD_BAD_EMPTY = 1u << 12       /* no face */
+    GLPGP_QUAD_BAD_EMPTY = 1u << 12,      /* no face */
+    GLPGP_QUAD_BAD_TOPOLOGY = 1u << 13    /* surfaces: Euler characteristic differs from the input's */
 };
-#define GLPGP_QUAD_BAD_COUNT 13
+#define GLPGP_QUAD_BAD_COUNT 14
 
 /* Short name of reason bit b ("inverted", "non-quad", ...); NULL for an unknown bit. */
 const char *glpgp_quad_bad_name(unsigned b);
@@ -338,6 +349,72 @@ glpgp_status glpgp_quadmesh_valences(const glpgp_quadmesh *q, int **val);
 /* Smallest corner scaled Jacobian of face f (1 for a rectangle; <= 0 at a
  * flat or reflex corner; -1 at a zero-length side). */
 double glpgp_quad_face_sj(const glpgp_quadmesh *q, int f);
+
+/* ---- quad meshes of 3D surfaces (issue 29) ---------------------------- */
+
+/* Extract the polygon mesh of a surface result (quads/extract_surface.c):
+ * the integer level lines of the phases read per triangle through its
+ * matching, traced across the triangles; positions in 3D (xyz set, xy
+ * their x and y). Faces that are not quads are kept as polygons. Errors as
+ * glpgp_quads_extract; GLPGP_ERR_ARG when m is not a surface. */
+glpgp_status glpgp_quads_extract_surface(const glpgp_mesh *m, const glpgp_result *r, glpgp_quadmesh **out);
+
+/* The last resort on a surface: every input triangle split into 3 quads
+ * around its centroid through its sides' midpoints (valid by construction:
+ * each quad is planar and convex in its triangle's plane; same topology).
+ * Faces of origin GLPGP_QFACE_FALLBACK. */
+glpgp_status glpgp_quads_surface_fallback(const glpgp_mesh *m, glpgp_quadmesh **out);
+
+/* One Catmull-Clark split of every face in 3D (no smoothing): all quads,
+ * edges about h / 2; origins kept. */
+glpgp_status glpgp_quadmesh_subdivide_surface(const glpgp_quadmesh *q, glpgp_quadmesh **out);
+
+/* The quality report of a surface's quad mesh against the surface m
+ * (quads/check_surface.c): the planar report's counts, with the scaled
+ * Jacobian in each face's best-fit plane, orientation against the
+ * surface's normal, manifold edges and vertices, Euler characteristic and
+ * boundary loops against m's, two-sided Hausdorff distance (<= h/4) and
+ * area (within 2%). qq->surface = 1. */
+glpgp_status glpgp_quads_quality_surface(const glpgp_quadmesh *q, const glpgp_mesh *m, double h,
+                                         glpgp_quad_quality *qq);
+
+/* The relative area difference a surface's quad mesh may have (the
+ * verdict's bound): 2% plus what flat faces of a curved surface lose,
+ * 2 (d/h)^2 for quads whose corners are on the surface and whose faces
+ * are within d (qq->dist_quad_to_domain h) of it (a flat face of
+ * half-diagonal h/sqrt2 under a cap of depth d covers 1 - (d/rho)^2 of it). */
+double glpgp_quads_surface_area_tolerance(const glpgp_quad_quality *qq);
+
+/* Smallest corner scaled Jacobian of face f of a surface's quad mesh, in
+ * its best-fit (Newell) plane. */
+double glpgp_quad_face_sj_surface(const glpgp_quadmesh *q, int f);
+
+/* What glpgp_quads_build_surface did. */
+typedef struct glpgp_quad_surface_steps {
+    int extracted_faces;   /* faces of the extraction (0: none) */
+    int extracted_quads;   /* of those, quads */
+    int closed;            /* faces made quads: two odd faces across a side joined, or an even
+                              face, split into quads (up to 10 corners; a valid split only) */
+    int strips;            /* odd faces joined pairwise through strips of quads cut in two */
+    int subdivided;        /* 1: faces other than quads were left and every face was split
+                              (Catmull-Clark, h/2) */
+    int fallback;          /* 1: the extraction was not valid: the input triangles split into quads */
+    unsigned invalid_before; /* GLPGP_QUAD_BAD_* of the extraction's mesh when it was not used */
+} glpgp_quad_surface_steps;
+
+/* The surface pipeline (quads/quads_surface.c): extraction; two odd
+ * faces that share a side (a triangle and a pentagon around a +1/4
+ * singularity between grid points) joined, and the even faces, are split
+ * into quads (the split with the best smallest scaled Jacobian, above
+ * 0.05, up to 10 corners); when faces that
+ * are not quads are left, one Catmull-Clark split (edges about h/2, the
+ * new points moved onto the surface; skipped when o->keep_polygons); when
+ * that is not valid (glpgp_quads_quality_surface against the target h: the
+ * user's tolerance), the last resort (glpgp_quads_surface_fallback;
+ * o->repair = 0: the extraction's mesh stands, invalid). *h: the target
+ * size (unchanged). steps may be NULL. */
+glpgp_status glpgp_quads_build_surface(const glpgp_mesh *m, const glpgp_result *r, const glpgp_quad_options *o,
+                                       glpgp_quadmesh **out, double *h, glpgp_quad_surface_steps *steps);
 
 #ifdef __cplusplus
 }

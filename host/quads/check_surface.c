@@ -1,0 +1,571 @@
+/* quads/check_surface.c: the quality report and validity of a quad mesh of
+ * a 3D surface (glpgp_quads_quality_surface, glpgp/quads.h).
+ *
+ * A face's own plane is its best fit through the Newell normal N (the
+ * vector area); its corners' scaled Jacobians are measured in that plane
+ * (N . (e_next x e_prev) / |e_next| |e_prev|), and the face is inverted
+ * when one is <= 0 or N points against the input surface's normal (the
+ * triangle nearest the face's centroid). Topology: every edge used by one
+ * or two faces, two faces running it in opposite directions; every
+ * vertex's faces one edge-connected fan; the Euler characteristic V - E + F
+ * and the number of boundary loops those of the input. Geometry: the
+ * two-sided Hausdorff distance between the quads (each face fanned into
+ * triangles) and the input triangles, sampled on a barycentric grid of
+ * spacing <= h/8 per triangle (at most 8 x 8), found through a uniform grid
+ * of cells (about two mean edges) searched ring by ring up to 0.3 h (a
+ * larger distance is reported as 0.3 h), at most h/4; the area within 2%
+ * plus what flat faces lose on a curved surface
+ * (glpgp_quads_surface_area_tolerance: an inscribed quad mesh of a unit
+ * sphere at h = 0.29 has 0.977 of its area). */
+#include "quads_surface.h"
+
+#include "glpgp/kinds.h"
+#include "glpgp/surface.h"
+#include "glpgp/util.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define PI_ GLPGP_PI
+
+static void sub3(const double *a, const double *b, double *o)
+{
+    o[0] = a[0] - b[0];
+    o[1] = a[1] - b[1];
+    o[2] = a[2] - b[2];
+}
+static double dot3(const double *a, const double *b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+static void cross3(const double *a, const double *b, double *o)
+{
+    o[0] = a[1] * b[2] - a[2] * b[1];
+    o[1] = a[2] * b[0] - a[0] * b[2];
+    o[2] = a[0] * b[1] - a[1] * b[0];
+}
+
+/* Squared distance from p to triangle (a, b, c) (Ericson, Real-Time Collision Detection 5.1.5). */
+static double dist2_tri_x(const double *p, const double *a, const double *b, const double *c, double *x)
+{
+    double ab[3], ac[3], ap[3], bp[3], cp[3];
+    sub3(b, a, ab);
+    sub3(c, a, ac);
+    sub3(p, a, ap);
+    double d1 = dot3(ab, ap), d2 = dot3(ac, ap);
+    if (d1 <= 0 && d2 <= 0) {
+        memcpy(x, a, 3 * sizeof *x);
+        return dot3(ap, ap);
+    }
+    sub3(p, b, bp);
+    double d3 = dot3(ab, bp), d4 = dot3(ac, bp);
+    if (d3 >= 0 && d4 <= d3) {
+        memcpy(x, b, 3 * sizeof *x);
+        return dot3(bp, bp);
+    }
+    double vc = d1 * d4 - d3 * d2;
+    double v, w;
+    if (vc <= 0 && d1 >= 0 && d3 <= 0) {
+        v = d1 / (d1 - d3);
+        for (int i = 0; i < 3; i++) x[i] = a[i] + v * ab[i];
+        goto out;
+    }
+    sub3(p, c, cp);
+    double d5 = dot3(ab, cp), d6 = dot3(ac, cp);
+    if (d6 >= 0 && d5 <= d6) {
+        memcpy(x, c, 3 * sizeof *x);
+        return dot3(cp, cp);
+    }
+    double vb = d5 * d2 - d1 * d6;
+    if (vb <= 0 && d2 >= 0 && d6 <= 0) {
+        w = d2 / (d2 - d6);
+        for (int i = 0; i < 3; i++) x[i] = a[i] + w * ac[i];
+        goto out;
+    }
+    double va = d3 * d6 - d5 * d4;
+    if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) {
+        w = (d4 - d3) / ((d4 - d3) + (d5 - d6));
+        for (int i = 0; i < 3; i++) x[i] = b[i] + w * (c[i] - b[i]);
+        goto out;
+    }
+    {
+        double den = 1.0 / (va + vb + vc);
+        v = vb * den;
+        w = vc * den;
+        for (int i = 0; i < 3; i++) x[i] = a[i] + ab[i] * v + ac[i] * w;
+    }
+out:
+    sub3(p, x, ap);
+    return dot3(ap, ap);
+}
+
+static double dist2_tri(const double *p, const double *a, const double *b, const double *c)
+{
+    double x[3];
+    return dist2_tri_x(p, a, b, c, x);
+}
+
+/* ---- a triangle soup with a uniform grid of cells ---------------------- */
+
+typedef struct tsoup {
+    int nt;
+    const double *xyz;
+    int *tri;          /* 3 nt */
+    double lo[3], cs;  /* cell size */
+    double cap;        /* distances are capped here (0.3 h: above the h/4 limit) */
+    int dim[3];
+    int *cstart, *clist;
+} tsoup;
+
+static int cell_of(const tsoup *s, double x, int d)
+{
+    int i = (int)floor((x - s->lo[d]) / s->cs);
+    return i < 0 ? 0 : i >= s->dim[d] ? s->dim[d] - 1 : i;
+}
+
+static glpgp_status soup_grid(tsoup *s, double h)
+{
+    double hi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+    for (int d = 0; d < 3; d++) s->lo[d] = HUGE_VAL;
+    for (int i = 0; i < 3 * s->nt; i++)
+        for (int d = 0; d < 3; d++) {
+            s->lo[d] = fmin(s->lo[d], s->xyz[3 * s->tri[i] + d]);
+            hi[d] = fmax(hi[d], s->xyz[3 * s->tri[i] + d]);
+        }
+    double el = 0.0; /* mean edge */
+    for (int t = 0; t < s->nt; t++)
+        for (int k = 0; k < 3; k++) {
+            const double *a = s->xyz + 3 * s->tri[3 * t + k], *b = s->xyz + 3 * s->tri[3 * t + (k + 1) % 3];
+            el += sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2]));
+        }
+    el /= 3.0 * (s->nt > 0 ? s->nt : 1);
+    s->cap = 0.3 * h;
+    s->cs = fmin(fmax(2.0 * el, 1e-3 * h), s->cap);
+    for (;;) { /* at most ~2M cells */
+        double cells = 1.0;
+        for (int d = 0; d < 3; d++) cells *= floor((hi[d] - s->lo[d]) / s->cs) + 1.0;
+        if (cells <= 2e6) break;
+        s->cs *= 1.5;
+    }
+    size_t nc = 1;
+    for (int d = 0; d < 3; d++) {
+        s->dim[d] = (int)floor((hi[d] - s->lo[d]) / s->cs) + 1;
+        nc *= (size_t)s->dim[d];
+    }
+    GLPGP_CHECK(glpgp_calloc(nc + 1, sizeof(int), &s->cstart));
+    for (int pass = 0; pass < 2; pass++) {
+        for (int t = 0; t < s->nt; t++) {
+            int a[3], b[3];
+            for (int d = 0; d < 3; d++) {
+                double l = HUGE_VAL, u = -HUGE_VAL;
+                for (int k = 0; k < 3; k++) {
+                    l = fmin(l, s->xyz[3 * s->tri[3 * t + k] + d]);
+                    u = fmax(u, s->xyz[3 * s->tri[3 * t + k] + d]);
+                }
+                a[d] = cell_of(s, l, d);
+                b[d] = cell_of(s, u, d);
+            }
+            for (int i = a[0]; i <= b[0]; i++)
+                for (int j = a[1]; j <= b[1]; j++)
+                    for (int k = a[2]; k <= b[2]; k++) {
+                        size_t c = ((size_t)k * s->dim[1] + (size_t)j) * s->dim[0] + (size_t)i;
+                        if (pass == 0) s->cstart[c + 1]++;
+                        else s->clist[s->cstart[c]++] = t;
+                    }
+        }
+        if (pass == 0) {
+            for (size_t c = 0; c < nc; c++) s->cstart[c + 1] += s->cstart[c];
+            GLPGP_CHECK(glpgp_malloc((size_t)s->cstart[nc] + 1, sizeof(int), &s->clist));
+        }
+    }
+    for (size_t c = nc; c > 0; c--) s->cstart[c] = s->cstart[c - 1];
+    s->cstart[0] = 0;
+    return GLPGP_OK;
+}
+
+/* Distance from p to the soup, capped at s->cap; *tri: the nearest
+ * triangle (-1: none within the cap). Rings of cells around p's cell: after
+ * ring r every triangle within r cells' width has been seen. */
+static double soup_dist(const tsoup *s, const double *p, int *tri)
+{
+    double best = s->cap * s->cap;
+    int bt = -1;
+    int c0[3];
+    for (int d = 0; d < 3; d++) c0[d] = cell_of(s, p[d], d);
+    for (int r = 0;; r++) {
+        for (int k = c0[2] - r; k <= c0[2] + r; k++)
+            for (int j = c0[1] - r; j <= c0[1] + r; j++)
+                for (int i = c0[0] - r; i <= c0[0] + r; i++) {
+                    if (abs(i - c0[0]) != r && abs(j - c0[1]) != r && abs(k - c0[2]) != r) continue;
+                    if (i < 0 || j < 0 || k < 0 || i >= s->dim[0] || j >= s->dim[1] || k >= s->dim[2]) continue;
+                    size_t c = ((size_t)k * s->dim[1] + (size_t)j) * s->dim[0] + (size_t)i;
+                    for (int q = s->cstart[c]; q < s->cstart[c + 1]; q++) {
+                        const int t = s->clist[q];
+                        const int *v = s->tri + 3 * t;
+                        double d2 = dist2_tri(p, s->xyz + 3 * v[0], s->xyz + 3 * v[1], s->xyz + 3 * v[2]);
+                        if (d2 < best) {
+                            best = d2;
+                            bt = t;
+                        }
+                    }
+                }
+        const double seen = r * s->cs;
+        if (seen * seen >= best || r > s->dim[0] + s->dim[1] + s->dim[2]) break;
+    }
+    if (tri) *tri = bt;
+    return sqrt(best);
+}
+
+/* The nearest point of the soup to p within its cap (p itself when none). */
+static void soup_nearest(const tsoup *s, const double *p, double *out)
+{
+    int t = -1;
+    memcpy(out, p, 3 * sizeof *out);
+    soup_dist(s, p, &t);
+    if (t < 0) return;
+    const int *v = s->tri + 3 * t;
+    dist2_tri_x(p, s->xyz + 3 * v[0], s->xyz + 3 * v[1], s->xyz + 3 * v[2], out);
+}
+
+static void soup_free(tsoup *s)
+{
+    free(s->cstart);
+    free(s->clist);
+}
+
+/* Largest distance from samples of soup a's triangles to soup b. */
+static double one_sided(const tsoup *a, const tsoup *b, double h)
+{
+    double worst = 0.0;
+    for (int t = 0; t < a->nt; t++) {
+        const double *A = a->xyz + 3 * a->tri[3 * t], *B = a->xyz + 3 * a->tri[3 * t + 1],
+                     *C = a->xyz + 3 * a->tri[3 * t + 2];
+        double e[3], L = 0.0;
+        sub3(B, A, e);
+        L = fmax(L, sqrt(dot3(e, e)));
+        sub3(C, A, e);
+        L = fmax(L, sqrt(dot3(e, e)));
+        int n = (int)ceil(L / (h / 8.0));
+        n = n < 1 ? 1 : n > 8 ? 8 : n;
+        for (int i = 0; i <= n; i++)
+            for (int j = 0; i + j <= n; j++) {
+                const double u = (double)i / n, v = (double)j / n;
+                double p[3];
+                for (int d = 0; d < 3; d++) p[d] = (1 - u - v) * A[d] + u * B[d] + v * C[d];
+                worst = fmax(worst, soup_dist(b, p, NULL));
+            }
+    }
+    return worst;
+}
+
+/* ---- topology ---------------------------------------------------------- */
+
+typedef struct dedge {
+    int a, b, f, i; /* min, max vertex; face, corner of the directed edge's start */
+    int fwd;        /* 1: the face runs a -> b */
+} dedge;
+
+static int cmp_dedge(const void *pa, const void *pb)
+{
+    const dedge *x = pa, *y = pb;
+    if (x->a != y->a) return x->a < y->a ? -1 : 1;
+    if (x->b != y->b) return x->b < y->b ? -1 : 1;
+    return 0;
+}
+
+/* Edges, boundary, manifoldness, pinched vertices, loops, valences. */
+static glpgp_status topology(const glpgp_quadmesh *q, glpgp_quad_quality *qq, unsigned char *onb)
+{
+    const int nc = q->face_start[q->nf];
+    dedge *E = NULL;
+    int *uf = NULL, *vuf = NULL, *root = NULL, *val = NULL;
+    glpgp_status st = GLPGP_OK;
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)nc + 1, sizeof *E, &E), done);
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)nc + 1, sizeof(int), &uf), done);
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)q->nv + 1, sizeof(int), &vuf), done);
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)q->nv + 1, sizeof(int), &root), done);
+    GLPGP_CHECK_GOTO(st, glpgp_calloc((size_t)q->nv + 1, sizeof(int), &val), done);
+    for (int f = 0; f < q->nf; f++) {
+        const int s = q->face_start[f], n = q->face_start[f + 1] - s;
+        for (int i = 0; i < n; i++) {
+            const int a = q->face_vert[s + i], b = q->face_vert[s + (i + 1) % n];
+            E[s + i] = (dedge){a < b ? a : b, a < b ? b : a, f, i, a < b};
+        }
+    }
+    for (int i = 0; i < nc; i++) uf[i] = i;
+    for (int i = 0; i < q->nv; i++) vuf[i] = i;
+    qsort(E, (size_t)nc, sizeof *E, cmp_dedge);
+    for (int i = 0; i < nc;) {
+        int j = i;
+        while (j < nc && E[j].a == E[i].a && E[j].b == E[i].b) j++;
+        qq->edges++;
+        val[E[i].a]++;
+        val[E[i].b]++;
+        if (j - i == 1) {
+            qq->boundary_edges++;
+            onb[E[i].a] = onb[E[i].b] = 1;
+            vuf[glpgp_uf_find(vuf, E[i].a)] = glpgp_uf_find(vuf, E[i].b);
+        } else if (j - i > 2 || E[i].fwd == E[i + 1].fwd) {
+            qq->nonmanifold_edges++;
+        } else { /* join the corners of both faces at each end */
+            for (int end = 0; end < 2; end++) {
+                int cidx[2];
+                for (int k = 0; k < 2; k++) {
+                    const dedge *d = &E[i + k];
+                    const int s = q->face_start[d->f], n = q->face_start[d->f + 1] - s;
+                    const int start_is_a = d->fwd; /* the directed edge starts at a when fwd */
+                    const int at_start = (end == 0) == start_is_a;
+                    cidx[k] = s + (at_start ? d->i : (d->i + 1) % n);
+                }
+                uf[glpgp_uf_find(uf, cidx[0])] = glpgp_uf_find(uf, cidx[1]);
+            }
+        }
+        i = j;
+    }
+    for (int i = 0; i < q->nv; i++) root[i] = -1;
+    for (int c = 0; c < nc; c++) {
+        const int v = q->face_vert[c], r = glpgp_uf_find(uf, c);
+        if (root[v] < 0) root[v] = r;
+        else if (root[v] != r && root[v] != -2) {
+            qq->pinched++;
+            root[v] = -2;
+        }
+    }
+    for (int v = 0; v < q->nv; v++) {
+        if (onb[v] && glpgp_uf_find(vuf, v) == v) qq->boundary_loops++;
+        const int b = val[v] > GLPGP_QUAD_MAXVAL ? GLPGP_QUAD_MAXVAL : val[v];
+        if (onb[v]) qq->valence_boundary[b]++;
+        else qq->valence_interior[b]++;
+        if (!onb[v] && val[v] != 4) qq->irregular_interior++;
+    }
+    qq->euler = q->nv - qq->edges + q->nf;
+done:
+    free(E);
+    free(uf);
+    free(vuf);
+    free(root);
+    free(val);
+    return st;
+}
+
+/* ---- faces ------------------------------------------------------------- */
+
+/* Newell normal (twice the vector area) of face f. */
+static void newell(const glpgp_quadmesh *q, int f, double *N)
+{
+    const int s = q->face_start[f], n = q->face_start[f + 1] - s;
+    N[0] = N[1] = N[2] = 0.0;
+    for (int i = 0; i < n; i++) {
+        const double *a = q->xyz + 3 * q->face_vert[s + i], *b = q->xyz + 3 * q->face_vert[s + (i + 1) % n];
+        N[0] += (a[1] - b[1]) * (a[2] + b[2]);
+        N[1] += (a[2] - b[2]) * (a[0] + b[0]);
+        N[2] += (a[0] - b[0]) * (a[1] + b[1]);
+    }
+}
+
+double glpgp_quad_face_sj_surface(const glpgp_quadmesh *q, int f)
+{
+    double N[3];
+    newell(q, f, N);
+    const double nn = sqrt(dot3(N, N));
+    if (!(nn > 0)) return -1.0;
+    const int s = q->face_start[f], n = q->face_start[f + 1] - s;
+    double sj = 1.0;
+    for (int i = 0; i < n; i++) {
+        const double *p = q->xyz + 3 * q->face_vert[s + i];
+        double e1[3], e2[3], x[3];
+        sub3(q->xyz + 3 * q->face_vert[s + (i + 1) % n], p, e1);
+        sub3(q->xyz + 3 * q->face_vert[s + (i + n - 1) % n], p, e2);
+        const double l = sqrt(dot3(e1, e1) * dot3(e2, e2));
+        if (!(l > 0)) return -1.0;
+        cross3(e1, e2, x);
+        sj = fmin(sj, dot3(x, N) / (nn * l));
+    }
+    return sj;
+}
+
+/* Per face: scaled Jacobian, orientation against the surface, area; the
+ * boundary vertices' ideal valence from their corner angles. */
+static void faces(const glpgp_quadmesh *q, const glpgp_mesh *m, const tsoup *in, double h,
+                  const unsigned char *onb, double *angle, glpgp_quad_quality *qq)
+{
+    double sum = 0.0;
+    qq->sj_min = 1.0;
+    for (int f = 0; f < q->nf; f++) {
+        const int s = q->face_start[f], n = q->face_start[f + 1] - s;
+        double N[3], c[3] = {0, 0, 0};
+        newell(q, f, N);
+        qq->area += 0.5 * sqrt(dot3(N, N));
+        for (int i = 0; i < n; i++)
+            for (int d = 0; d < 3; d++) c[d] += q->xyz[3 * q->face_vert[s + i] + d] / n;
+        int t = -1;
+        soup_dist(in, c, &t);
+        const int against = t >= 0 && dot3(N, m->surf->tframe + 9 * t + 6) <= 0.0;
+        const double sj = glpgp_quad_face_sj_surface(q, f);
+        int degen = !(sqrt(dot3(N, N)) > 1e-12 * h * h);
+        for (int i = 0; i < n; i++) {
+            const int a = q->face_vert[s + i];
+            const double *p = q->xyz + 3 * a;
+            double e1[3], e2[3];
+            sub3(q->xyz + 3 * q->face_vert[s + (i + 1) % n], p, e1);
+            sub3(q->xyz + 3 * q->face_vert[s + (i + n - 1) % n], p, e2);
+            const double l1 = sqrt(dot3(e1, e1)), l2 = sqrt(dot3(e2, e2));
+            if (!(l1 > 1e-9 * h) || a == q->face_vert[s + (i + 1) % n]) degen = 1;
+            if (onb[a] && l1 > 0 && l2 > 0) angle[a] += acos(fmax(-1.0, fmin(1.0, dot3(e1, e2) / (l1 * l2))));
+            qq->len_mean += l1 / h;
+            qq->len_min = fmin(qq->len_min, l1 / h);
+            qq->len_max = fmax(qq->len_max, l1 / h);
+        }
+        qq->degenerate += degen;
+        if (n == 4) {
+            qq->quads++;
+            sum += sj;
+            qq->sj_min = fmin(qq->sj_min, sj);
+            if (sj < GLPGP_QUAD_SJ_GOAL) qq->below_sj_goal++;
+        } else {
+            qq->others++;
+            qq->others_by_size[n - 3 > 7 ? 7 : n - 3 < 0 ? 0 : n - 3]++;
+        }
+        if (against || sj <= 0.0) qq->inverted++;
+        const int o = q->face_origin ? q->face_origin[f] : GLPGP_QFACE_GRID;
+        if (n == 4) qq->quads_by_origin[o < GLPGP_QFACE_KINDS ? o : 0]++;
+    }
+    qq->sj_mean = qq->quads ? sum / qq->quads : 0.0;
+    qq->sj_p01 = qq->sj_min;
+    qq->sj_min_corner = qq->sj_min;
+    if (q->face_start[q->nf]) qq->len_mean /= q->face_start[q->nf];
+    const int nrep = qq->quads_by_origin[GLPGP_QFACE_PAVED] + qq->quads_by_origin[GLPGP_QFACE_FALLBACK];
+    qq->repaired_share = qq->quads ? (double)nrep / qq->quads : 0.0;
+}
+
+static void boundary_valence(const glpgp_quadmesh *q, const unsigned char *onb, const double *angle,
+                             glpgp_quad_quality *qq)
+{
+    int *val = NULL;
+    if (glpgp_quadmesh_valences(q, &val) != GLPGP_OK) return;
+    for (int v = 0; v < q->nv; v++)
+        if (onb[v] && val[v] != (int)lround(angle[v] / (0.5 * PI_)) + 1) qq->irregular_boundary++;
+    free(val);
+}
+
+static glpgp_status distances(const glpgp_quadmesh *q, const tsoup *in, double h, glpgp_quad_quality *qq)
+{
+    tsoup qs;
+    memset(&qs, 0, sizeof qs);
+    int nt = 0;
+    for (int f = 0; f < q->nf; f++) nt += q->face_start[f + 1] - q->face_start[f] - 2;
+    glpgp_status st = glpgp_malloc((size_t)3 * nt + 3, sizeof(int), &qs.tri);
+    if (st != GLPGP_OK) return st;
+    qs.xyz = q->xyz;
+    for (int f = 0; f < q->nf; f++) {
+        const int s = q->face_start[f], n = q->face_start[f + 1] - s;
+        for (int i = 1; i + 1 < n; i++) {
+            qs.tri[3 * qs.nt] = q->face_vert[s];
+            qs.tri[3 * qs.nt + 1] = q->face_vert[s + i];
+            qs.tri[3 * qs.nt + 2] = q->face_vert[s + i + 1];
+            qs.nt++;
+        }
+    }
+    st = soup_grid(&qs, h);
+    if (st == GLPGP_OK) {
+        qq->dist_quad_to_domain = one_sided(&qs, in, h) / h;
+        qq->dist_domain_to_quad = one_sided(in, &qs, h) / h;
+        qq->hausdorff = fmax(qq->dist_quad_to_domain, qq->dist_domain_to_quad);
+    }
+    free(qs.tri);
+    soup_free(&qs);
+    return st;
+}
+
+glpgp_status glpgp_qs_project(const glpgp_mesh *m, double h, double *xyz, int first, int n)
+{
+    tsoup in;
+    memset(&in, 0, sizeof in);
+    in.nt = m->nt;
+    in.xyz = m->xyz;
+    in.tri = m->tri;
+    glpgp_status st = soup_grid(&in, h);
+    in.cap = 2.0 * h; /* a chord's midpoint of a coarse mesh may be farther than the check's cap */
+    if (st == GLPGP_OK)
+        for (int i = first; i < n; i++) {
+            double x[3];
+            soup_nearest(&in, xyz + 3 * i, x);
+            memcpy(xyz + 3 * i, x, sizeof x);
+        }
+    in.tri = NULL;
+    soup_free(&in);
+    return st;
+}
+
+double glpgp_quads_surface_area_tolerance(const glpgp_quad_quality *qq)
+{
+    const double d = qq->dist_quad_to_domain > 0 ? qq->dist_quad_to_domain : 0.0;
+    return 0.02 + 2.0 * d * d;
+}
+
+static void verdict(glpgp_quad_quality *qq)
+{
+    if (qq->faces == 0) qq->invalid |= GLPGP_QUAD_BAD_EMPTY;
+    if (qq->inverted) qq->invalid |= GLPGP_QUAD_BAD_INVERTED;
+    if (qq->degenerate) qq->invalid |= GLPGP_QUAD_BAD_DEGENERATE;
+    if (qq->nonmanifold_edges) qq->invalid |= GLPGP_QUAD_BAD_NONMANIFOLD;
+    if (qq->others) qq->invalid |= GLPGP_QUAD_BAD_NONQUAD;
+    if (qq->pinched) qq->invalid |= GLPGP_QUAD_BAD_PINCHED;
+    if (qq->boundary_loops != qq->domain_loops) qq->invalid |= GLPGP_QUAD_BAD_LOOPS;
+    if (qq->euler != qq->domain_euler) qq->invalid |= GLPGP_QUAD_BAD_TOPOLOGY;
+    if (fabs(qq->area_ratio - 1.0) > glpgp_quads_surface_area_tolerance(qq)) qq->invalid |= GLPGP_QUAD_BAD_AREA;
+    if (qq->hausdorff > 0.25) qq->invalid |= GLPGP_QUAD_BAD_HAUSDORFF;
+}
+
+glpgp_status glpgp_quads_quality_surface(const glpgp_quadmesh *q, const glpgp_mesh *m, double h,
+                                         glpgp_quad_quality *qq)
+{
+    memset(qq, 0, sizeof *qq);
+    if (!q || !q->xyz || !glpgp_mesh_is_surface(m) || !m->surf || !(h > 0))
+        return GLPGP_FAIL(GLPGP_ERR_ARG, "surface quad quality: a surface quad mesh, its surface and h > 0 are needed");
+    qq->surface = 1;
+    qq->h = h;
+    qq->vertices = q->nv;
+    qq->faces = q->nf;
+    qq->len_min = HUGE_VAL;
+    qq->singular[0] = q->singular_tris[0];
+    qq->singular[1] = q->singular_tris[1];
+    qq->closing = q->closing;
+    qq->repair = q->repair;
+    qq->cleanup = q->cleanup;
+    qq->cross_singularities = qq->irregular_near_cross = qq->irregular_far_cross = qq->cross_matched = -1;
+    qq->outside = qq->far_faces = qq->corners_lost = -1;
+    qq->gap_edges = -1;
+    qq->bnd_vertex_dist = -1;
+    qq->orientation = 1;
+    qq->domain_euler = m->surf->euler;
+    qq->domain_loops = m->nloops;
+    qq->domain_area = m->area;
+    tsoup in;
+    memset(&in, 0, sizeof in);
+    in.nt = m->nt;
+    in.xyz = m->xyz;
+    in.tri = m->tri;
+    unsigned char *onb = NULL;
+    double *angle = NULL;
+    glpgp_status st = GLPGP_OK;
+    GLPGP_CHECK_GOTO(st, glpgp_calloc((size_t)q->nv + 1, 1, &onb), done);
+    GLPGP_CHECK_GOTO(st, glpgp_calloc((size_t)q->nv + 1, sizeof(double), &angle), done);
+    if (q->nf == 0) {
+        qq->len_min = 0;
+        verdict(qq);
+        goto done;
+    }
+    GLPGP_CHECK_GOTO(st, soup_grid(&in, h), done);
+    GLPGP_CHECK_GOTO(st, topology(q, qq, onb), done);
+    faces(q, m, &in, h, onb, angle, qq);
+    boundary_valence(q, onb, angle, qq);
+    qq->irregular = qq->irregular_interior + qq->irregular_boundary;
+    qq->area_ratio = qq->domain_area > 0 ? qq->area / qq->domain_area : -1.0;
+    GLPGP_CHECK_GOTO(st, distances(q, &in, h, qq), done);
+    verdict(qq);
+done:
+    in.tri = NULL;
+    soup_free(&in);
+    free(onb);
+    free(angle);
+    return st;
+}

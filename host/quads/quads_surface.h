@@ -1,0 +1,14 @@
+/* quads/quads_surface.h: the quad layer's surface files (extract_surface.c,
+ * check_surface.c, quads_surface.c); their entry points are in
+ * glpgp/quads.h. Internal to the quads layer. */
+#ifndef GLPGP_QUADS_SURFACE_H
+#define GLPGP_QUADS_SURFACE_H
+
+#include "glpgp/quads.h"
+#include "glpgp/status.h"
+
+/* Move the points xyz[3 first .. 3 n) to their nearest points on surface m
+ * (those within 2 h of it; check_surface.c). */
+glpgp_status glpgp_qs_project(const glpgp_mesh *m, double h, double *xyz, int first, int n);
+
+#endif

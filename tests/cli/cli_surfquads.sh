@@ -1,0 +1,79 @@
+#!/usr/bin/env bash
+# cli_surfquads.sh: quad meshes of 3D surfaces (issue 29).
+#  - `solve shape:S --quads q.obj --stats q.json` on a sphere, a torus
+#    (genus 1), a cube with sharp features and an open hemisphere: exit 0,
+#    every OBJ face a quad with 3D points, the report valid, the Euler
+#    characteristic and boundary loops the input's, Hausdorff <= h/4, and
+#    the quads from the parametrization's grid (not the last resort);
+#  - the developable half cylinder and its unrolled planar twin: the same
+#    face count and valence histogram;
+#  - --faces N sets h = sqrt(area / N) (the summary's h), --faces with
+#    --size is one usage error;
+#  - --no-repair on a size the surface cannot carry: an invalid mesh is not
+#    written (exit 3) unless --allow-invalid; with the repair on, the last
+#    resort (triangles split into quads) is valid.
+# Usage: bash cli_surfquads.sh <path-to-glpgp> <data-dir>
+. "$(dirname "$0")/lib.sh" "$@"
+
+check_model() { # name shape
+    local name=$1 shape=$2
+    run_ok "$name" solve "$shape" --backend reference --quads "$name.obj" --stats "$name.json"
+    [ -s "$name.obj" ] || { fail "$name: no OBJ"; return; }
+    python3 - "$name" <<'PY' || fail "$name: report"
+import json, sys
+name = sys.argv[1]
+q = json.load(open(name + ".json"))["quads"]
+s = q["surface"]
+faces = [l.split()[1:] for l in open(name + ".obj") if l.startswith("f ")]
+zs = [float(l.split()[3]) for l in open(name + ".obj") if l.startswith("v ")]
+bad = []
+if not faces or any(len(f) != 4 for f in faces): bad.append("non-quad faces in the OBJ")
+if max(zs) - min(zs) <= 0: bad.append("flat OBJ")
+if not q["valid"]: bad.append("invalid: %s" % q["invalid_reasons"])
+if s["euler"] != s["input_euler"]: bad.append("Euler %d of %d" % (s["euler"], s["input_euler"]))
+if s["boundary_loops"] != s["input_boundary_loops"]: bad.append("loops")
+if not s["hausdorff_over_h"] <= 0.25: bad.append("Hausdorff %g h" % s["hausdorff_over_h"])
+grid = q["origin"]["grid"] + q["origin"]["strips"]
+if grid < 0.9 * q["quads"]: bad.append("grid quads %d of %d" % (grid, q["quads"]))
+if bad:
+    print(name, "; ".join(bad)); sys.exit(1)
+PY
+}
+check_model sphere shape:sphere:20000
+check_model torus shape:torus:20000
+check_model cube shape:cube:20000
+check_model hemi shape:hemisphere:10000
+
+# the developable half cylinder against its unrolled twin
+run_ok "halfcyl" solve shape:halfcyl:5000 --backend reference --quads hc.obj --stats hc.json
+run_ok "halfcyl_flat" solve shape:halfcyl_flat:5000 --field cross --cross-coupling on --backend reference \
+    --quads hf.obj --stats hf.json
+python3 - <<'PY' || fail "half cylinder vs its twin"
+import json
+a = json.load(open("hc.json"))["quads"]; b = json.load(open("hf.json"))["quads"]
+if (a["faces"], a["valence"]) != (b["faces"], b["valence"]) or a["faces"] < 10:
+    print("surface", a["faces"], a["valence"], "plane", b["faces"], b["valence"]); raise SystemExit(1)
+PY
+
+# --faces
+run_ok "faces" solve shape:hemisphere:10000 --backend reference --faces 100 --quads f.obj
+python3 - <<'PY' || fail "--faces: h"
+import math, re
+h = float(re.search(r"h = ([0-9.e+-]+)", open("out.txt").read()).group(1))
+want = math.sqrt(2 * math.pi / 100)  # the unit hemisphere's area / N
+assert abs(h / want - 1) < 0.01, (h, want)
+PY
+run_fail "--faces with --size" 2 "faces.*size|size.*faces" solve shape:sphere:5000 --faces 100 --size 0.3 --quads x.obj
+
+# a size the surface cannot carry (3.5 edges per period): invalid without the repair, the last resort with it
+run 3 "no repair" solve shape:sphere:5000 --backend reference --size 0.2 --no-repair --quads bad.obj
+[ ! -e bad.obj ] || fail "an invalid surface mesh was written"
+run_ok "allow invalid" solve shape:sphere:5000 --backend reference --size 0.2 --no-repair --allow-invalid --quads bad.obj
+[ -s bad.obj ] || fail "--allow-invalid: not written"
+run_ok "last resort" solve shape:sphere:5000 --backend reference --size 0.2 --quads lr.obj --stats lr.json
+python3 - <<'PY' || fail "last resort"
+import json
+q = json.load(open("lr.json"))["quads"]
+assert q["valid"] and q["surface"]["euler"] == 2 and q["other_faces"] == 0, q["invalid_reasons"]
+PY
+finish

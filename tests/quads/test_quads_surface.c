@@ -1,0 +1,139 @@
+/* test_quads_surface.c: quad meshes of 3D surfaces (issue 29), without a
+ * solve:
+ *  - the extraction on the half cylinder (radius 2, height 2, its vertex
+ *    columns on generators) from plane waves in its arc length s and height
+ *    y, theta_u = s / (2 pi / 9) + 1/2, theta_v = y / (2/3) + 1/2: the grid
+ *    is 10 x 4 cells, all quads, every corner on the surface, valid (SJ in
+ *    the faces' planes, orientation, Euler 1, one boundary loop, Hausdorff,
+ *    area) and the same through glpgp_quads_build_surface;
+ *  - the last resort (3 quads per triangle) on a sphere and a hemisphere is
+ *    valid with the input's Euler characteristic and loops, and its
+ *    Catmull-Clark split too;
+ *  - the check fails where it must: a face turned over (non-manifold and
+ *    inverted), a face removed (a new boundary loop, Euler 1 of 2), a vertex
+ *    moved h/2 off the surface (Hausdorff), a planar mesh or h <= 0
+ *    refused. */
+#include "testutil.h"
+
+#include "glpgp/surface.h"
+
+#include <string.h>
+
+static glpgp_result *plane_waves(const glpgp_mesh *m, double hu, double hv)
+{
+    glpgp_result *r = NULL;
+    CHECK_OK(glpgp_result_create(m->nv, m->nt, &r));
+    if (!r) return NULL;
+    r->size = hv;
+    for (int i = 0; i < m->nv; i++) {
+        const double *p = m->xyz + 3 * i;
+        const double s = 2.0 * atan2(p[1], p[0]), y = p[2]; /* arc length on radius 2 */
+        const double a = 2.0 * GLPGP_PI * (s / hu + 0.5), b = 2.0 * GLPGP_PI * (y / hv + 0.5);
+        r->osc[0].z[2 * i] = cos(a);
+        r->osc[0].z[2 * i + 1] = sin(a);
+        r->osc[1].z[2 * i] = cos(b);
+        r->osc[1].z[2 * i + 1] = sin(b);
+    }
+    return r;
+}
+
+static void extraction(void)
+{
+    glpgp_mesh *m = NULL;
+    CHECK_OK(glpgp_surface_generate("halfcyl", 5000, &m));
+    if (!m) return;
+    const double hu = 2.0 * GLPGP_PI / 9.0, hv = 2.0 / 3.0;
+    glpgp_result *r = plane_waves(m, hu, hv);
+    glpgp_quadmesh *q = NULL;
+    CHECK_OK(glpgp_quads_extract_surface(m, r, &q));
+    if (q) {
+        CHECK(q->nf == 40);
+        for (int f = 0; f < q->nf; f++) CHECK(q->face_start[f + 1] - q->face_start[f] == 4);
+        for (int i = 0; i < q->nv; i++) {
+            const double *p = q->xyz + 3 * i;
+            CHECK(fabs(hypot(p[0], p[1]) - 2.0) < 0.01); /* on the cylinder (chords of 1/70 of it) */
+        }
+        glpgp_quad_quality qq;
+        CHECK_OK(glpgp_quads_quality_surface(q, m, hv, &qq));
+        CHECK(qq.invalid == 0);
+        CHECK(qq.quads == 40 && qq.euler == 1 && qq.boundary_loops == 1);
+        CHECK(qq.sj_min > 0.9);
+        CHECK(qq.hausdorff < 0.05);
+        CHECK(qq.valence_interior[4] == 27);
+    }
+    glpgp_quadmesh_destroy(&q);
+    double h = hv;
+    glpgp_quad_surface_steps steps;
+    CHECK_OK(glpgp_quads_build_surface(m, r, NULL, &q, &h, &steps));
+    CHECK(q && q->nf == 40 && !steps.fallback && !steps.subdivided && h == hv);
+    glpgp_quadmesh_destroy(&q);
+    /* a planar mesh is refused */
+    glpgp_mesh *flat = NULL;
+    CHECK_OK(glpgp_surface_generate("halfcyl_flat", 500, &flat));
+    CHECK(glpgp_quads_extract_surface(flat, r, &q) == GLPGP_ERR_ARG && !q);
+    glpgp_error_clear();
+    glpgp_mesh_destroy(&flat);
+    glpgp_result_destroy(&r);
+    glpgp_mesh_destroy(&m);
+}
+
+static void fallback(const char *shape, int euler, int loops)
+{
+    glpgp_mesh *m = NULL;
+    CHECK_OK(glpgp_surface_generate(shape, 800, &m));
+    if (!m) return;
+    glpgp_quadmesh *q = NULL, *s = NULL;
+    glpgp_quad_quality qq;
+    const double h = 0.3;
+    CHECK_OK(glpgp_quads_surface_fallback(m, &q));
+    if (!q) {
+        glpgp_mesh_destroy(&m);
+        return;
+    }
+    CHECK(q->nf == 3 * m->nt);
+    CHECK_OK(glpgp_quads_quality_surface(q, m, h, &qq));
+    CHECK(qq.invalid == 0 && qq.euler == euler && qq.boundary_loops == loops && qq.hausdorff < 1e-9);
+    CHECK(qq.quads_by_origin[GLPGP_QFACE_FALLBACK] == q->nf);
+    CHECK_OK(glpgp_quadmesh_subdivide_surface(q, &s));
+    if (s) {
+        CHECK(s->nf == 4 * q->nf);
+        CHECK_OK(glpgp_quads_quality_surface(s, m, h, &qq));
+        CHECK(qq.invalid == 0 && qq.euler == euler);
+    }
+    glpgp_quadmesh_destroy(&s);
+    /* one face turned over */
+    int *fv = q->face_vert + q->face_start[7];
+    int t = fv[1];
+    fv[1] = fv[3];
+    fv[3] = t;
+    CHECK_OK(glpgp_quads_quality_surface(q, m, h, &qq));
+    CHECK(qq.invalid & GLPGP_QUAD_BAD_NONMANIFOLD);
+    CHECK(qq.invalid & GLPGP_QUAD_BAD_INVERTED);
+    fv[3] = fv[1];
+    fv[1] = t;
+    /* one face removed: a hole */
+    q->nf--;
+    CHECK_OK(glpgp_quads_quality_surface(q, m, h, &qq));
+    CHECK((qq.invalid & GLPGP_QUAD_BAD_LOOPS) && (qq.invalid & GLPGP_QUAD_BAD_TOPOLOGY));
+    CHECK(qq.euler == euler - 1 && qq.boundary_loops == loops + 1);
+    q->nf++;
+    /* a centroid moved h/2 along its triangle's normal */
+    double *p = q->xyz + 3 * (q->nv - 1);
+    const double *n = m->surf->tframe + 9 * (m->nt - 1) + 6;
+    for (int d = 0; d < 3; d++) p[d] += 0.5 * h * n[d];
+    CHECK_OK(glpgp_quads_quality_surface(q, m, h, &qq));
+    CHECK(qq.invalid & GLPGP_QUAD_BAD_HAUSDORFF);
+    CHECK(qq.hausdorff > 0.25);
+    CHECK(glpgp_quads_quality_surface(q, m, 0.0, &qq) == GLPGP_ERR_ARG);
+    glpgp_error_clear();
+    glpgp_quadmesh_destroy(&q);
+    glpgp_mesh_destroy(&m);
+}
+
+int main(void)
+{
+    extraction();
+    fallback("sphere", 2, 0);
+    fallback("hemisphere", 1, 1);
+    TEST_DONE();
+}
