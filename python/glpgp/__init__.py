@@ -217,7 +217,7 @@ def _quadmesh_to_meshio(self):
     import meshio
     import numpy as np
     v = self.vertices
-    pts = np.column_stack([v, np.zeros(len(v))])
+    pts = v if v.shape[1] == 3 else np.column_stack([v, np.zeros(len(v))])
     off = np.asarray(self.face_offsets)
     fv = np.asarray(self.face_vertices)
     sizes = np.diff(off)

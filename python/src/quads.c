@@ -20,8 +20,8 @@ static int all_quads(const glpgp_quadmesh *q)
 static PyObject *qm_vertices(pg_quadmesh *self, void *c)
 {
     (void)c;
-    npy_intp d[2] = {self->q->nv, 2};
-    return pg_view((PyObject *)self, self->q->xy, 2, d, NPY_DOUBLE);
+    npy_intp d[2] = {self->q->nv, self->q->xyz ? 3 : 2}; /* a surface's quads: 3D points */
+    return pg_view((PyObject *)self, self->q->xyz ? self->q->xyz : self->q->xy, 2, d, NPY_DOUBLE);
 }
 
 static PyObject *qm_faces(pg_quadmesh *self, void *c)

@@ -47,3 +47,16 @@ def test_surface_refuses_vector_field():
     m = glpgp.shape("sphere", 2000)
     with pytest.raises(glpgp.InputError, match="surface"):
         glpgp.solve(m, field=np.ones((m.n_vertices, 2)), backend="reference")
+
+
+def test_surface_quads(tmp_path):
+    """quads of a surface from Python: all quads, 3D points on the sphere, the report's surface block"""
+    r = glpgp.solve(glpgp.shape("sphere", 20000), backend="reference")
+    q = r.quads()
+    assert q.valid and q.vertices.shape[1] == 3
+    # vertices lie on the triangle mesh: inside the unit sphere by at most its chords' depth
+    assert np.allclose(np.linalg.norm(q.vertices, axis=1), 1.0, atol=1e-3)
+    assert q.faces.shape[1] == 4 and len(q.faces) > 50
+    assert "surface" in q.report
+    q.write(tmp_path / "s.obj")
+    assert (tmp_path / "s.obj").stat().st_size > 0
