@@ -29,7 +29,7 @@
 run_ok "coupled disk" solve shape:disk:16000 --size 0.1 --field cross --backend reference \
     --quads c.obj --stats c.json -o c.vtk
 expect_out "newton [0-9]+ \(u and v coupled" "coupled summary line"
-run_ok "boundary disk" solve shape:disk:16000 --size 0.1 --backend reference --quads b.obj --stats b.json
+run_ok "boundary disk" solve shape:disk:16000 --size 0.1 --field boundary --backend reference --quads b.obj --stats b.json
 run_ok "uncoupled disk" solve shape:disk:16000 --size 0.1 --field cross --cross-coupling off \
     --backend reference --quads o.obj --stats o.json
 expect_out "newton [0-9]+ \(u [0-9]+, v [0-9]+\)" "uncoupled summary line"
@@ -103,7 +103,7 @@ PY
 # than the boundary field's
 run_ok "default-size disk, cross" solve shape:disk:8000 --field cross \
     --backend reference --quads d.obj --stats d.json
-run_ok "default-size disk, boundary" solve shape:disk:8000 --backend reference --quads db.obj --stats db.json
+run_ok "default-size disk, boundary" solve shape:disk:8000 --field boundary --backend reference --quads db.obj --stats db.json
 python3 - d.json db.json <<'PY' || fail "default-size disk: cross vs boundary"
 import json, sys
 d, b = (json.load(open(p)) for p in sys.argv[1:3])
