@@ -204,194 +204,214 @@ static glpgp_status read_numbers(lex *lx, long long n, const char *what, double 
     return GLPGP_OK;
 }
 
-static glpgp_status read_legacy(text_reader *tr, raw_result *w)
-{
-    glpgp_status st = GLPGP_OK;
-    lex lx = {tr, NULL};
-    char *s, *t;
-    double *tmp = NULL;
-    long long ncell_types = -1;
-    enum { NONE, POINT_DATA, CELL_DATA } where = NONE;
-    /* names of the arrays seen (each at most once) */
-    char seen[32][64];
-    int nseen = 0;
+/* The legacy reader's state between sections. */
+typedef struct legacy {
+    text_reader *tr;
+    lex lx;
+    raw_result *w;
+    long long ncell_types;                    /* -1: no CELL_TYPES yet */
+    enum { NONE, POINT_DATA, CELL_DATA } where; /* the data section being read */
+    char seen[32][64];                        /* names of the arrays seen (each at most once) */
+    int nseen;
+} legacy;
 
-    /* line 2: title, "... h VALUE ..." */
+/* Line 2 (the title, "... h VALUE ..."), "ASCII", "DATASET UNSTRUCTURED_GRID". */
+static glpgp_status legacy_header(legacy *L)
+{
+    text_reader *tr = L->tr;
+    char *s, *t;
     GLPGP_CHECK(text_next_line(tr, &s));
     if (s) {
         const char *p = strstr(s, " h ");
         if (p) {
             char *q = (char *)p + 3;
             double h;
-            if (text_parse_double(&q, &h) && h >= 0) w->h = h;
+            if (text_parse_double(&q, &h) && h >= 0) L->w->h = h;
         }
     }
-    GLPGP_CHECK(next_tok(&lx, &t));
+    GLPGP_CHECK(next_tok(&L->lx, &t));
     if (!t || strcmp(t, "ASCII"))
         return text_error(tr, GLPGP_ERR_FORMAT, 0, "%s VTK is not supported (only ASCII)", t ? t : "(empty)");
-    GLPGP_CHECK(next_tok(&lx, &t));
+    GLPGP_CHECK(next_tok(&L->lx, &t));
     if (!t || strcmp(t, "DATASET")) return text_error(tr, GLPGP_ERR_FORMAT, 0, "expected DATASET UNSTRUCTURED_GRID");
-    GLPGP_CHECK(next_tok(&lx, &t));
+    GLPGP_CHECK(next_tok(&L->lx, &t));
     if (!t || strcmp(t, "UNSTRUCTURED_GRID"))
         return text_error(tr, GLPGP_ERR_FORMAT, 0, "dataset %s is not supported (UNSTRUCTURED_GRID only)",
                           t ? t : "(none)");
-    for (;;) {
-        GLPGP_CHECK_GOTO(st, next_tok(&lx, &t), done);
-        if (!t) break;
-        if (!strcmp(t, "POINTS")) {
-            long long n;
-            if (w->xyz) {
-                st = text_error(tr, GLPGP_ERR_FORMAT, 0, "second POINTS section");
+    return GLPGP_OK;
+}
+
+static glpgp_status legacy_points(legacy *L)
+{
+    text_reader *tr = L->tr;
+    raw_result *w = L->w;
+    long long n;
+    if (w->xyz) return text_error(tr, GLPGP_ERR_FORMAT, 0, "second POINTS section");
+    GLPGP_CHECK(tok_ll(&L->lx, "number of points", &n));
+    rest_of_line(&L->lx); /* data type */
+    GLPGP_CHECK(text_check_count(tr, n, 6, "points"));
+    if (n < 3) return text_error(tr, GLPGP_ERR_FORMAT, 0, "%lld points (at least 3 needed)", n);
+    w->nv = n;
+    return read_numbers(&L->lx, 3 * n, "POINTS", &w->xyz);
+}
+
+/* CELLS: triangles only, "3 a b c" each, integer indices. */
+static glpgp_status legacy_cells(legacy *L)
+{
+    text_reader *tr = L->tr;
+    raw_result *w = L->w;
+    long long n, size;
+    if (w->tri) return text_error(tr, GLPGP_ERR_FORMAT, 0, "second CELLS section");
+    GLPGP_CHECK(tok_ll(&L->lx, "number of cells", &n));
+    GLPGP_CHECK(tok_ll(&L->lx, "size of the cell list", &size));
+    GLPGP_CHECK(text_check_count(tr, n, 8, "cells"));
+    if (n < 1 || size != 4 * n) /* n <= GLPGP_IO_MAX_ITEMS: no overflow */
+        return text_error(tr, GLPGP_ERR_FORMAT, 0, "CELLS must hold triangles only (%lld cells, size %lld)", n, size);
+    w->nt = n;
+    double *tmp = NULL;
+    glpgp_status st = GLPGP_OK;
+    GLPGP_CHECK_GOTO(st, read_numbers(&L->lx, 4 * n, "CELLS", &tmp), done);
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)(3 * n), sizeof *w->tri, &w->tri), done);
+    for (long long c = 0; c < n; c++) {
+        const double *q = tmp + 4 * c;
+        for (int k = 0; k < 4; k++)
+            if (q[k] != floor(q[k]) || fabs(q[k]) > 2147483647.0) {
+                st = text_error(tr, GLPGP_ERR_FORMAT, 0, "cell %lld: not an integer index", c);
                 goto done;
             }
-            GLPGP_CHECK_GOTO(st, tok_ll(&lx, "number of points", &n), done);
-            rest_of_line(&lx); /* data type */
-            GLPGP_CHECK_GOTO(st, text_check_count(tr, n, 6, "points"), done);
-            if (n < 3) {
-                st = text_error(tr, GLPGP_ERR_FORMAT, 0, "%lld points (at least 3 needed)", n);
-                goto done;
-            }
-            w->nv = n;
-            GLPGP_CHECK_GOTO(st, read_numbers(&lx, 3 * n, "POINTS", &w->xyz), done);
-        } else if (!strcmp(t, "CELLS")) {
-            long long n, size;
-            if (w->tri) {
-                st = text_error(tr, GLPGP_ERR_FORMAT, 0, "second CELLS section");
-                goto done;
-            }
-            GLPGP_CHECK_GOTO(st, tok_ll(&lx, "number of cells", &n), done);
-            GLPGP_CHECK_GOTO(st, tok_ll(&lx, "size of the cell list", &size), done);
-            GLPGP_CHECK_GOTO(st, text_check_count(tr, n, 8, "cells"), done);
-            if (n < 1 || size != 4 * n) { /* n <= GLPGP_IO_MAX_ITEMS: no overflow */
-                st = text_error(tr, GLPGP_ERR_FORMAT, 0, "CELLS must hold triangles only (%lld cells, size %lld)", n,
-                                size);
-                goto done;
-            }
-            w->nt = n;
-            GLPGP_CHECK_GOTO(st, read_numbers(&lx, 4 * n, "CELLS", &tmp), done);
-            GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)(3 * n), sizeof *w->tri, &w->tri), done);
-            for (long long c = 0; c < n; c++) {
-                const double *q = tmp + 4 * c;
-                for (int k = 0; k < 4; k++)
-                    if (q[k] != floor(q[k]) || fabs(q[k]) > 2147483647.0) {
-                        st = text_error(tr, GLPGP_ERR_FORMAT, 0, "cell %lld: not an integer index", c);
-                        goto done;
-                    }
-                if (q[0] != 3) {
-                    st = text_error(tr, GLPGP_ERR_FORMAT, 0, "cell %lld is not a triangle", c);
-                    goto done;
-                }
-                for (int k = 0; k < 3; k++) w->tri[3 * c + k] = (long long)q[k + 1];
-            }
-            free(tmp);
-            tmp = NULL;
-        } else if (!strcmp(t, "CELL_TYPES")) {
-            long long n;
-            if (ncell_types >= 0 || !w->tri) {
-                st = text_error(tr, GLPGP_ERR_FORMAT, 0, "%s CELL_TYPES section",
-                                ncell_types >= 0 ? "second" : "CELLS must come before the");
-                goto done;
-            }
-            GLPGP_CHECK_GOTO(st, tok_ll(&lx, "number of cell types", &n), done);
-            if (n != w->nt) {
-                st = text_error(tr, GLPGP_ERR_FORMAT, 0, "CELL_TYPES %lld does not match CELLS %lld", n, w->nt);
-                goto done;
-            }
-            ncell_types = n;
-            GLPGP_CHECK_GOTO(st, read_numbers(&lx, n, "CELL_TYPES", &tmp), done);
-            for (long long c = 0; c < n; c++)
-                if (tmp[c] != 5) {
-                    st = text_error(tr, GLPGP_ERR_FORMAT, 0, "cell %lld has type %g, not a triangle (5)", c, tmp[c]);
-                    goto done;
-                }
-            free(tmp);
-            tmp = NULL;
-        } else if (!strcmp(t, "POINT_DATA") || !strcmp(t, "CELL_DATA")) {
-            long long n;
-            int cells = t[0] == 'C';
-            GLPGP_CHECK_GOTO(st, tok_ll(&lx, t, &n), done);
-            if ((cells && (!w->tri || n != w->nt)) || (!cells && (!w->xyz || n != w->nv))) {
-                st = text_error(tr, GLPGP_ERR_FORMAT, 0, "%s %lld does not match the %s", cells ? "CELL_DATA" : "POINT_DATA",
-                                n, cells ? "cells" : "points");
-                goto done;
-            }
-            where = cells ? CELL_DATA : POINT_DATA;
-        } else if (!strcmp(t, "SCALARS") || !strcmp(t, "VECTORS")) {
-            const int vectors = t[0] == 'V';
-            char name[64];
-            long long ncomp = 3;
-            GLPGP_CHECK_GOTO(st, next_tok(&lx, &t), done);
-            if (!t || strlen(t) >= sizeof name) {
-                st = text_error(tr, GLPGP_ERR_FORMAT, 0, "bad data array header");
-                goto done;
-            }
-            strcpy(name, t);
-            GLPGP_CHECK_GOTO(st, next_tok(&lx, &t), done); /* data type */
-            if (!t) {
-                st = text_error(tr, GLPGP_ERR_FORMAT, 0, "bad data array header for %s", name);
-                goto done;
-            }
-            if (!vectors) { /* optional component count, then LOOKUP_TABLE name */
-                char *rest = rest_of_line(&lx);
-                ncomp = 1;
-                if (*rest && (!text_parse_ll(&rest, &ncomp) || !text_at_end(rest) || ncomp < 1 || ncomp > 4)) {
-                    st = text_error(tr, GLPGP_ERR_FORMAT, 0, "bad component count for %s", name);
-                    goto done;
-                }
-                GLPGP_CHECK_GOTO(st, next_tok(&lx, &t), done);
-                if (!t || strcmp(t, "LOOKUP_TABLE")) {
-                    st = text_error(tr, GLPGP_ERR_FORMAT, 0, "missing LOOKUP_TABLE for %s", name);
-                    goto done;
-                }
-                rest_of_line(&lx);
-            }
-            if (where == NONE) {
-                st = text_error(tr, GLPGP_ERR_FORMAT, 0, "data array %s before POINT_DATA / CELL_DATA", name);
-                goto done;
-            }
-            for (int i = 0; i < nseen; i++)
-                if (!strcmp(seen[i], name)) {
-                    st = text_error(tr, GLPGP_ERR_FORMAT, 0, "repeated data array %s", name);
-                    goto done;
-                }
-            if (nseen == 32) {
-                st = text_error(tr, GLPGP_ERR_FORMAT, 0, "more than 32 data arrays");
-                goto done;
-            }
-            strcpy(seen[nseen++], name);
-            const long long n = where == CELL_DATA ? w->nt : w->nv;
-            const int is_z = where == POINT_DATA && (!strcmp(name, "z_u") || !strcmp(name, "z_v"));
-            const int is_field = where == POINT_DATA && vectors && !strcmp(name, "field_u");
-            const int is_dir = where == POINT_DATA && (!strcmp(name, "dirichlet_u") || !strcmp(name, "dirichlet_v"));
-            const int is_cross = where == POINT_DATA && !strcmp(name, "cross_w");
-            if (where == CELL_DATA && !strcmp(name, "cross_coupled")) w->coupled = 1;
-            if ((is_z || is_cross) && ncomp != 2) {
-                st = text_error(tr, GLPGP_ERR_FORMAT, 0, "%s must have 2 components", name);
-                goto done;
-            }
-            if (is_dir && ncomp != 1) {
-                st = text_error(tr, GLPGP_ERR_FORMAT, 0, "%s must have 1 component", name);
-                goto done;
-            }
-            GLPGP_CHECK_GOTO(st, read_numbers(&lx, n * ncomp, name, (is_z || is_field || is_dir || is_cross) ? &tmp : NULL), done);
-            if (is_cross) {
-                w->cross = tmp;
-            } else if (is_z) {
-                w->z[name[2] == 'v'] = tmp;
-            } else if (is_dir) {
-                w->dir[name[10] == 'v'] = tmp;
-            } else if (is_field) {
-                w->field = tmp; /* 3D vectors: to the plane or the vertices' frames in assemble */
-            }
-            tmp = NULL;
-        } else {
-            st = text_error(tr, GLPGP_ERR_FORMAT, 0, "unexpected '%.40s' (not a glpgp result)", t);
+        if (q[0] != 3) {
+            st = text_error(tr, GLPGP_ERR_FORMAT, 0, "cell %lld is not a triangle", c);
             goto done;
         }
+        for (int k = 0; k < 3; k++) w->tri[3 * c + k] = (long long)q[k + 1];
     }
 done:
     free(tmp);
     return st;
+}
+
+/* CELL_TYPES: after CELLS, as many, every one a triangle (5). */
+static glpgp_status legacy_cell_types(legacy *L)
+{
+    text_reader *tr = L->tr;
+    long long n;
+    if (L->ncell_types >= 0 || !L->w->tri)
+        return text_error(tr, GLPGP_ERR_FORMAT, 0, "%s CELL_TYPES section",
+                          L->ncell_types >= 0 ? "second" : "CELLS must come before the");
+    GLPGP_CHECK(tok_ll(&L->lx, "number of cell types", &n));
+    if (n != L->w->nt) return text_error(tr, GLPGP_ERR_FORMAT, 0, "CELL_TYPES %lld does not match CELLS %lld", n, L->w->nt);
+    L->ncell_types = n;
+    double *tmp = NULL;
+    glpgp_status st = read_numbers(&L->lx, n, "CELL_TYPES", &tmp);
+    for (long long c = 0; st == GLPGP_OK && c < n; c++)
+        if (tmp[c] != 5) st = text_error(tr, GLPGP_ERR_FORMAT, 0, "cell %lld has type %g, not a triangle (5)", c, tmp[c]);
+    free(tmp);
+    return st;
+}
+
+/* POINT_DATA n / CELL_DATA n: the section that the arrays after it are in. */
+static glpgp_status legacy_data_section(legacy *L, const char *t)
+{
+    const raw_result *w = L->w;
+    long long n;
+    const int cells = t[0] == 'C';
+    GLPGP_CHECK(tok_ll(&L->lx, t, &n));
+    if ((cells && (!w->tri || n != w->nt)) || (!cells && (!w->xyz || n != w->nv)))
+        return text_error(L->tr, GLPGP_ERR_FORMAT, 0, "%s %lld does not match the %s",
+                          cells ? "CELL_DATA" : "POINT_DATA", n, cells ? "cells" : "points");
+    L->where = cells ? CELL_DATA : POINT_DATA;
+    return GLPGP_OK;
+}
+
+/* The header of a SCALARS / VECTORS array: its name (name[64]) and
+ * component count; each name at most once. */
+static glpgp_status legacy_array_header(legacy *L, int vectors, char *name, long long *ncomp)
+{
+    text_reader *tr = L->tr;
+    char *t;
+    *ncomp = 3;
+    GLPGP_CHECK(next_tok(&L->lx, &t));
+    if (!t || strlen(t) >= 64) return text_error(tr, GLPGP_ERR_FORMAT, 0, "bad data array header");
+    strcpy(name, t);
+    GLPGP_CHECK(next_tok(&L->lx, &t)); /* data type */
+    if (!t) return text_error(tr, GLPGP_ERR_FORMAT, 0, "bad data array header for %s", name);
+    if (!vectors) { /* optional component count, then LOOKUP_TABLE name */
+        char *rest = rest_of_line(&L->lx);
+        *ncomp = 1;
+        if (*rest && (!text_parse_ll(&rest, ncomp) || !text_at_end(rest) || *ncomp < 1 || *ncomp > 4))
+            return text_error(tr, GLPGP_ERR_FORMAT, 0, "bad component count for %s", name);
+        GLPGP_CHECK(next_tok(&L->lx, &t));
+        if (!t || strcmp(t, "LOOKUP_TABLE")) return text_error(tr, GLPGP_ERR_FORMAT, 0, "missing LOOKUP_TABLE for %s", name);
+        rest_of_line(&L->lx);
+    }
+    if (L->where == NONE)
+        return text_error(tr, GLPGP_ERR_FORMAT, 0, "data array %s before POINT_DATA / CELL_DATA", name);
+    for (int i = 0; i < L->nseen; i++)
+        if (!strcmp(L->seen[i], name)) return text_error(tr, GLPGP_ERR_FORMAT, 0, "repeated data array %s", name);
+    if (L->nseen == 32) return text_error(tr, GLPGP_ERR_FORMAT, 0, "more than 32 data arrays");
+    strcpy(L->seen[L->nseen++], name);
+    return GLPGP_OK;
+}
+
+/* A SCALARS / VECTORS array: the ones a result needs kept (z_u, z_v,
+ * field_u, dirichlet_*, cross_w), the others read past. */
+static glpgp_status legacy_array(legacy *L, int vectors)
+{
+    text_reader *tr = L->tr;
+    raw_result *w = L->w;
+    char name[64];
+    long long ncomp;
+    GLPGP_CHECK(legacy_array_header(L, vectors, name, &ncomp));
+    const int pts = L->where == POINT_DATA;
+    const long long n = pts ? w->nv : w->nt;
+    const int is_z = pts && (!strcmp(name, "z_u") || !strcmp(name, "z_v"));
+    const int is_field = pts && vectors && !strcmp(name, "field_u");
+    const int is_dir = pts && (!strcmp(name, "dirichlet_u") || !strcmp(name, "dirichlet_v"));
+    const int is_cross = pts && !strcmp(name, "cross_w");
+    if (!pts && !strcmp(name, "cross_coupled")) w->coupled = 1;
+    if ((is_z || is_cross) && ncomp != 2) return text_error(tr, GLPGP_ERR_FORMAT, 0, "%s must have 2 components", name);
+    if (is_dir && ncomp != 1) return text_error(tr, GLPGP_ERR_FORMAT, 0, "%s must have 1 component", name);
+    double *tmp = NULL;
+    GLPGP_CHECK(read_numbers(&L->lx, n * ncomp, name, (is_z || is_field || is_dir || is_cross) ? &tmp : NULL));
+    if (is_cross)
+        w->cross = tmp;
+    else if (is_z)
+        w->z[name[2] == 'v'] = tmp;
+    else if (is_dir)
+        w->dir[name[10] == 'v'] = tmp;
+    else if (is_field)
+        w->field = tmp; /* 3D vectors: to the plane or the vertices' frames in assemble */
+    return GLPGP_OK;
+}
+
+static glpgp_status read_legacy(text_reader *tr, raw_result *w)
+{
+    legacy L;
+    memset(&L, 0, sizeof L);
+    L.tr = tr;
+    L.lx.tr = tr;
+    L.w = w;
+    L.ncell_types = -1;
+    L.where = NONE;
+    GLPGP_CHECK(legacy_header(&L));
+    for (;;) {
+        char *t;
+        GLPGP_CHECK(next_tok(&L.lx, &t));
+        if (!t) break;
+        if (!strcmp(t, "POINTS"))
+            GLPGP_CHECK(legacy_points(&L));
+        else if (!strcmp(t, "CELLS"))
+            GLPGP_CHECK(legacy_cells(&L));
+        else if (!strcmp(t, "CELL_TYPES"))
+            GLPGP_CHECK(legacy_cell_types(&L));
+        else if (!strcmp(t, "POINT_DATA") || !strcmp(t, "CELL_DATA"))
+            GLPGP_CHECK(legacy_data_section(&L, t));
+        else if (!strcmp(t, "SCALARS") || !strcmp(t, "VECTORS"))
+            GLPGP_CHECK(legacy_array(&L, t[0] == 'V'));
+        else
+            return text_error(tr, GLPGP_ERR_FORMAT, 0, "unexpected '%.40s' (not a glpgp result)", t);
+    }
+    return GLPGP_OK;
 }
 
 /* ---- VTK XML (.vtu) ----------------------------------------------------------------- */
