@@ -152,93 +152,106 @@ static glpgp_status polygons_orient(glpgp_polygons *P)
     return GLPGP_OK;
 }
 
-glpgp_status glpgp_polygons_read(const char *path, glpgp_polygons **out)
-{
-    *out = NULL;
+/* A .poly file as read: vertices (numbered from base), the loops' adjacency,
+ * hole points. */
+typedef struct poly_file {
     ptok t;
-    memset(&t, 0, sizeof t);
-    t.path = path;
-    t.f = fopen(path, "r");
-    if (!t.f) return GLPGP_FAIL(GLPGP_ERR_IO, "cannot open '%s': %s", path, strerror(errno));
-    glpgp_status st = GLPGP_OK;
-    double *vxy = NULL, *vsize = NULL;
-    int *seg = NULL, *deg = NULL, *adj = NULL, *vloop = NULL, *order = NULL;
-    double *hole = NULL;
-    glpgp_polygons *P = NULL;
+    int nv, base, nholes;
+    double *vxy, *vsize;    /* 2 nv, nv (0: no size) */
+    int *deg, *adj;         /* nv, 2 nv: each vertex's segments (at most two) */
+    double *hole;           /* 2 nholes */
+} poly_file;
+
+/* The vertex section: "<n> 2 <attributes> <0|1>", then "i x y [size]". */
+static glpgp_status poly_vertices(poly_file *F)
+{
+    ptok *t = &F->t;
     double v[64];
     int k;
-    GLPGP_CHECK_GOTO(st, header(&t, "vertex count", v, 4, 4, &k), done);
-    if (!is_count(v[0], POLY_MAX_VERTICES) || v[0] < 3 || v[1] != 2 || !is_count(v[2], 60) || !is_count(v[3], 1)) {
-        st = GLPGP_FAIL(GLPGP_ERR_FORMAT, "%s:%d: expected '<vertices >= 3> 2 <attributes> <0|1>'", path, t.line);
-        goto done;
-    }
+    GLPGP_CHECK(header(t, "vertex count", v, 4, 4, &k));
+    if (!is_count(v[0], POLY_MAX_VERTICES) || v[0] < 3 || v[1] != 2 || !is_count(v[2], 60) || !is_count(v[3], 1))
+        return GLPGP_FAIL(GLPGP_ERR_FORMAT, "%s:%d: expected '<vertices >= 3> 2 <attributes> <0|1>'", t->path, t->line);
     const int nv = (int)v[0], nattr = (int)v[2];
-    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)2 * nv, sizeof(double), &vxy), done);
-    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)nv, sizeof(double), &vsize), done);
-    int base = -1;
+    F->nv = nv;
+    GLPGP_CHECK(glpgp_malloc((size_t)2 * nv, sizeof(double), &F->vxy));
+    GLPGP_CHECK(glpgp_malloc((size_t)nv, sizeof(double), &F->vsize));
+    F->base = -1;
     for (int i = 0; i < nv; i++) {
-        GLPGP_CHECK_GOTO(st, header(&t, "vertex", v, 3, 3 + nattr + 1, &k), done);
-        if (base < 0) base = v[0] == 1 ? 1 : 0;
-        if (v[0] != i + base) {
-            st = GLPGP_FAIL(GLPGP_ERR_FORMAT, "%s:%d: vertex number %g, expected %d", path, t.line, v[0], i + base);
-            goto done;
-        }
-        vxy[2 * i] = v[1];
-        vxy[2 * i + 1] = v[2];
-        vsize[i] = (nattr > 0 && k > 3 && v[3] > 0) ? v[3] : 0.0;
+        GLPGP_CHECK(header(t, "vertex", v, 3, 3 + nattr + 1, &k));
+        if (F->base < 0) F->base = v[0] == 1 ? 1 : 0;
+        if (v[0] != i + F->base)
+            return GLPGP_FAIL(GLPGP_ERR_FORMAT, "%s:%d: vertex number %g, expected %d", t->path, t->line, v[0],
+                              i + F->base);
+        F->vxy[2 * i] = v[1];
+        F->vxy[2 * i + 1] = v[2];
+        F->vsize[i] = (nattr > 0 && k > 3 && v[3] > 0) ? v[3] : 0.0;
     }
-    GLPGP_CHECK_GOTO(st, header(&t, "segment count", v, 1, 2, &k), done);
-    if (!is_count(v[0], 4 * (long)nv) || v[0] < 3) {
-        st = GLPGP_FAIL(GLPGP_ERR_FORMAT, "%s:%d: bad segment count", path, t.line);
-        goto done;
-    }
+    return GLPGP_OK;
+}
+
+/* The segment section: every vertex in at most two segments. */
+static glpgp_status poly_segments(poly_file *F)
+{
+    ptok *t = &F->t;
+    double v[64];
+    int k;
+    const int nv = F->nv, base = F->base;
+    GLPGP_CHECK(header(t, "segment count", v, 1, 2, &k));
+    if (!is_count(v[0], 4 * (long)nv) || v[0] < 3)
+        return GLPGP_FAIL(GLPGP_ERR_FORMAT, "%s:%d: bad segment count", t->path, t->line);
     const int ns = (int)v[0];
-    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)2 * ns, sizeof(int), &seg), done);
-    GLPGP_CHECK_GOTO(st, glpgp_calloc((size_t)nv, sizeof(int), &deg), done);
-    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)2 * nv, sizeof(int), &adj), done);
+    GLPGP_CHECK(glpgp_calloc((size_t)nv, sizeof(int), &F->deg));
+    GLPGP_CHECK(glpgp_malloc((size_t)2 * nv, sizeof(int), &F->adj));
+    int *deg = F->deg, *adj = F->adj;
     for (int i = 0; i < ns; i++) {
-        GLPGP_CHECK_GOTO(st, header(&t, "segment", v, 3, 4, &k), done);
+        GLPGP_CHECK(header(t, "segment", v, 3, 4, &k));
         int a = (int)v[1] - base, b = (int)v[2] - base;
-        if (v[1] != floor(v[1]) || v[2] != floor(v[2]) || a < 0 || a >= nv || b < 0 || b >= nv || a == b) {
-            st = GLPGP_FAIL(GLPGP_ERR_FORMAT, "%s:%d: segment with bad vertex numbers", path, t.line);
-            goto done;
-        }
-        if (deg[a] >= 2 || deg[b] >= 2) {
-            st = GLPGP_FAIL(GLPGP_ERR_FORMAT, "%s:%d: vertex %d is in more than two segments (loops must be simple)",
-                            path, t.line, (deg[a] >= 2 ? a : b) + base);
-            goto done;
-        }
+        if (v[1] != floor(v[1]) || v[2] != floor(v[2]) || a < 0 || a >= nv || b < 0 || b >= nv || a == b)
+            return GLPGP_FAIL(GLPGP_ERR_FORMAT, "%s:%d: segment with bad vertex numbers", t->path, t->line);
+        if (deg[a] >= 2 || deg[b] >= 2)
+            return GLPGP_FAIL(GLPGP_ERR_FORMAT, "%s:%d: vertex %d is in more than two segments (loops must be simple)",
+                              t->path, t->line, (deg[a] >= 2 ? a : b) + base);
         adj[2 * a + deg[a]++] = b;
         adj[2 * b + deg[b]++] = a;
-        seg[2 * i] = a;
-        seg[2 * i + 1] = b;
     }
-    int nholes = 0;
-    if (next_line(&t)) {
-        k = line_numbers(&t, v, 1);
-        if (k != 1 || !is_count(v[0], 10000000)) {
-            st = GLPGP_FAIL(GLPGP_ERR_FORMAT, "%s:%d: bad hole count", path, t.line);
-            goto done;
-        }
-        nholes = (int)v[0];
-        GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)2 * nholes + 2, sizeof(double), &hole), done);
-        for (int i = 0; i < nholes; i++) {
-            GLPGP_CHECK_GOTO(st, header(&t, "hole", v, 3, 3, &k), done);
-            hole[2 * i] = v[1];
-            hole[2 * i + 1] = v[2];
-        }
+    return GLPGP_OK;
+}
+
+/* The optional hole section: "<n>", then "i x y". */
+static glpgp_status poly_holes(poly_file *F)
+{
+    ptok *t = &F->t;
+    double v[64];
+    int k;
+    F->nholes = 0;
+    if (!next_line(t)) return GLPGP_OK;
+    k = line_numbers(t, v, 1);
+    if (k != 1 || !is_count(v[0], 10000000)) return GLPGP_FAIL(GLPGP_ERR_FORMAT, "%s:%d: bad hole count", t->path, t->line);
+    F->nholes = (int)v[0];
+    GLPGP_CHECK(glpgp_malloc((size_t)2 * F->nholes + 2, sizeof(double), &F->hole));
+    for (int i = 0; i < F->nholes; i++) {
+        GLPGP_CHECK(header(t, "hole", v, 3, 3, &k));
+        F->hole[2 * i] = v[1];
+        F->hole[2 * i + 1] = v[2];
     }
+    return GLPGP_OK;
+}
+
+/* The closed loops of segments, in P (start, n, xy, size; a size array
+ * only where a vertex has one). */
+static glpgp_status poly_loops(const poly_file *F, glpgp_polygons *P)
+{
+    const char *path = F->t.path;
+    const int nv = F->nv, *deg = F->deg, *adj = F->adj;
     for (int i = 0; i < nv; i++)
-        if (deg[i] == 1) {
-            st = GLPGP_FAIL(GLPGP_ERR_FORMAT, "%s: vertex %d ends an open chain of segments (loops must close)", path,
-                            i + base);
-            goto done;
-        }
-    /* chain the loops */
+        if (deg[i] == 1)
+            return GLPGP_FAIL(GLPGP_ERR_FORMAT, "%s: vertex %d ends an open chain of segments (loops must close)", path,
+                              i + F->base);
+    int *vloop = NULL, *order = NULL;
+    glpgp_status st = GLPGP_OK;
     GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)nv + 1, sizeof(int), &vloop), done);
     GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)nv + 1, sizeof(int), &order), done);
     for (int i = 0; i < nv; i++) vloop[i] = -1;
-    GLPGP_CHECK_GOTO(st, glpgp_calloc(1, sizeof *P, &P), done);
     GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)nv + 1, sizeof(int), &P->start), done);
     int nl = 0, w = 0;
     for (int i = 0; i < nv; i++) {
@@ -271,21 +284,28 @@ glpgp_status glpgp_polygons_read(const char *path, glpgp_polygons **out)
     GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)nl, sizeof(int), &P->parent), done);
     int any_size = 0;
     for (int j = 0; j < w; j++) {
-        P->xy[2 * j] = vxy[2 * order[j]];
-        P->xy[2 * j + 1] = vxy[2 * order[j] + 1];
-        P->size[j] = vsize[order[j]];
+        P->xy[2 * j] = F->vxy[2 * order[j]];
+        P->xy[2 * j + 1] = F->vxy[2 * order[j] + 1];
+        P->size[j] = F->vsize[order[j]];
         any_size |= P->size[j] > 0;
     }
     if (!any_size) {
         free(P->size);
         P->size = NULL;
     }
-    GLPGP_CHECK_GOTO(st, polygons_orient(P), done);
-    /* hole points must be outside the domain (even-odd) */
-    for (int i = 0; i < nholes; i++) {
-        const double *p = hole + 2 * i;
+done:
+    free(vloop);
+    free(order);
+    return st;
+}
+
+/* Hole points must be outside the domain (even-odd over every loop). */
+static glpgp_status poly_check_holes(const poly_file *F, const glpgp_polygons *P)
+{
+    for (int i = 0; i < F->nholes; i++) {
+        const double *p = F->hole + 2 * i;
         int in = 0;
-        for (int l = 0; l < nl; l++) {
+        for (int l = 0; l < P->n; l++) {
             int s = P->start[l], n = P->start[l + 1] - s;
             for (int a = 0, b = n - 1; a < n; b = a++) {
                 const double *A = P->xy + 2 * (s + a), *B = P->xy + 2 * (s + b);
@@ -293,13 +313,31 @@ glpgp_status glpgp_polygons_read(const char *path, glpgp_polygons **out)
                     in = !in;
             }
         }
-        if (in) {
-            st = GLPGP_FAIL(GLPGP_ERR_FORMAT,
-                            "%s: hole point %d (%g, %g) lies inside the domain (holes are found from the nesting "
-                            "of the loops)", path, i + base, p[0], p[1]);
-            goto done;
-        }
+        if (in)
+            return GLPGP_FAIL(GLPGP_ERR_FORMAT,
+                              "%s: hole point %d (%g, %g) lies inside the domain (holes are found from the nesting "
+                              "of the loops)", F->t.path, i + F->base, p[0], p[1]);
     }
+    return GLPGP_OK;
+}
+
+glpgp_status glpgp_polygons_read(const char *path, glpgp_polygons **out)
+{
+    *out = NULL;
+    poly_file F;
+    memset(&F, 0, sizeof F);
+    F.t.path = path;
+    F.t.f = fopen(path, "r");
+    if (!F.t.f) return GLPGP_FAIL(GLPGP_ERR_IO, "cannot open '%s': %s", path, strerror(errno));
+    glpgp_status st = GLPGP_OK;
+    glpgp_polygons *P = NULL;
+    GLPGP_CHECK_GOTO(st, poly_vertices(&F), done);
+    GLPGP_CHECK_GOTO(st, poly_segments(&F), done);
+    GLPGP_CHECK_GOTO(st, poly_holes(&F), done);
+    GLPGP_CHECK_GOTO(st, glpgp_calloc(1, sizeof *P, &P), done);
+    GLPGP_CHECK_GOTO(st, poly_loops(&F, P), done);
+    GLPGP_CHECK_GOTO(st, polygons_orient(P), done);
+    GLPGP_CHECK_GOTO(st, poly_check_holes(&F, P), done);
     if (!(P->total_area > 0)) {
         st = GLPGP_FAIL(GLPGP_ERR_FORMAT, "%s: the loops enclose no area", path);
         goto done;
@@ -307,15 +345,12 @@ glpgp_status glpgp_polygons_read(const char *path, glpgp_polygons **out)
     *out = P;
     P = NULL;
 done:
-    fclose(t.f);
-    free(vxy);
-    free(vsize);
-    free(seg);
-    free(deg);
-    free(adj);
-    free(vloop);
-    free(order);
-    free(hole);
+    fclose(F.t.f);
+    free(F.vxy);
+    free(F.vsize);
+    free(F.deg);
+    free(F.adj);
+    free(F.hole);
     glpgp_polygons_destroy(&P);
     return st;
 }
