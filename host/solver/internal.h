@@ -12,6 +12,15 @@
  * waited for first (b->ops->finish), so that the phase's time includes it. */
 void glpgp_tm_leave(glpgp_backend *b, int sync, int prev);
 
+/* The local size field of glpgp_size_compute (sizefield.c) without its
+ * progress line; clamp: auto / iso limited to what m resolves (*raised: how
+ * many vertices were raised; may be NULL). */
+glpgp_status glpgp_size_compute_field(const glpgp_mesh *m, const glpgp_options *o, double h, const double *u,
+                                      double *size, int *uniform, int clamp, int *raised);
+/* Triangle t's local resolution: (its corners' smallest size over both
+ * oscillators) / its longest edge (*lmax; may be NULL). */
+double glpgp_size_tri_resolution(const glpgp_mesh *m, const double *size, int t, double *lmax);
+
 /* Name of oscillator k ("u", "v", or "cross" for k = 2: the cross field) for messages. */
 const char *glpgp_osc_name(int k);
 
