@@ -38,41 +38,18 @@
  * from both sides); irregular points are left at reflex corners, where cuts
  * meet at an angle, and by the small-loop templates. The caller smooths
  * the new points. */
-#include "qcut.h"
-#include "check.h"
-#include "geom.h"
+#include "qcut_impl.h"
 #include "glpgp/util.h"
 
 #include <math.h>
 #include <string.h>
 
-#define QC_PI 3.14159265358979323846
 #define GRADE 0.5          /* size growth per unit distance from the loops */
 #define SPLIT_OK 0.45      /* a small loop's split taken at once above this */
 #define CORNER_DEG 150.0   /* no cut starts at a point whose angle is below this */
 #define REFLEX_DEG 200.0
 
-typedef struct qc_piece {
-    ivec outer;
-    int nh;
-    ivec *holes;
-} qc_piece;
 
-typedef struct qc {
-    dvec *xy;
-    ivec *quads;
-    qcut_stats *stats;
-    double h;
-    int ns;
-    double *src; /* size sources: x, y, s */
-    bgrid G;
-    int *cand, ncap;
-    long budget; /* cuts left */
-    qc_piece *stack;
-    int nstack, capstack;
-} qc;
-
-static const double *P(const qc *c, int id) { return c->xy->p + 2 * id; }
 
 static void piece_free(qc_piece *p)
 {
@@ -132,7 +109,7 @@ static double ccw_angle(double ux, double uy, double vx, double vy)
 }
 
 /* Interior angle at position i of loop L (region on the left). */
-static double loop_angle(const qc *c, const ivec *L, int i)
+double glpgp_qc_loop_angle(const qc *c, const ivec *L, int i)
 {
     const double *a = P(c, L->p[(i + L->n - 1) % L->n]), *b = P(c, L->p[i]), *n = P(c, L->p[(i + 1) % L->n]);
     double a0 = ccw_angle(n[0] - b[0], n[1] - b[1], a[0] - b[0], a[1] - b[1]);
@@ -204,7 +181,7 @@ static int blocked_by(const qc *c, const ivec *L, const double *a, const double 
     return 0;
 }
 
-static int visible(const qc *c, const qc_piece *pc, int ia, int ib)
+int glpgp_qc_visible(const qc *c, const qc_piece *pc, int ia, int ib)
 {
     const double *a = P(c, ia), *b = P(c, ib);
     double eps = 1e-9 * hypot(b[0] - a[0], b[1] - a[1]);
@@ -321,7 +298,7 @@ static double ends_cost(const qc *c, const qc_piece *pc, int li, int i, int lj, 
 {
     const ivec *A = loop_of(pc, li), *B = loop_of(pc, lj);
     const double *pa = P(c, A->p[i]), *pb = P(c, B->p[j]);
-    double aa = loop_angle(c, A, i), ab = loop_angle(c, B, j), a1, a2, b1, b2;
+    double aa = glpgp_qc_loop_angle(c, A, i), ab = glpgp_qc_loop_angle(c, B, j), a1, a2, b1, b2;
     if (!split_angle(pa, P(c, A->p[(i + 1) % A->n]), aa, pb, &a1, &a2)) return INFINITY;
     if (!split_angle(pb, P(c, B->p[(j + 1) % B->n]), ab, pa, &b1, &b2)) return INFINITY;
     double cost = angle_cost(a1) + angle_cost(a2) + angle_cost(b1) + angle_cost(b2);
@@ -336,7 +313,7 @@ static double ends_cost(const qc *c, const qc_piece *pc, int li, int i, int lj, 
  * few blends of the centroids of the joined and of the other corners.
  * Returns the smallest corner scaled Jacobian, the centre in *x, *y and
  * the offset in *ob. */
-static double centre_split(const double *xy, const int *p, int n, int *ob, double *xb, double *yb)
+double glpgp_qc_centre_split(const double *xy, const int *p, int n, int *ob, double *xb, double *yb)
 {
     double best = -INFINITY;
     for (int o = 0; o < 2; o++) {
@@ -432,7 +409,7 @@ static double part_cost(const qc *c, const ivec *L, int from, int to, const doub
     int out[4 * 8], nq, o;
     double sj = glpgp_poly_quad_split(xy, id, n, out, &nq), x, y, extra = 0.0;
     if (n >= 6) { /* as best_split: a centre of valence n / 2 */
-        double v = centre_split(xy, id, n, &o, &x, &y);
+        double v = glpgp_qc_centre_split(xy, id, n, &o, &x, &y);
         double margin = n == 8 ? -0.05 : n == 6 ? 0.05 : fmax(0.1, 0.3 - sj);
         if (v > sj + margin) {
             sj = v;
@@ -451,7 +428,7 @@ static void score_cut(qc *c, const qc_piece *pc, int i, int j, cut *cu)
     cu->cost = INFINITY;
     if (arc < 2 || arc > n - 2) return;
     double e = ends_cost(c, pc, -1, i, -1, j);
-    if (!(e < INFINITY) || !visible(c, pc, L->p[i], L->p[j])) return;
+    if (!(e < INFINITY) || !glpgp_qc_visible(c, pc, L->p[i], L->p[j])) return;
     const double *a = P(c, L->p[i]), *b = P(c, L->p[j]);
     double ncell = cut_cells(c, a, b);
     int k = cut_points(ncell, arc + 1);
@@ -473,7 +450,7 @@ static void score_cut(qc *c, const qc_piece *pc, int i, int j, cut *cu)
 /* The rays of loop point (l, i): half the angle, 90 degrees from either side. */
 static int cut_rays(const qc *c, const ivec *L, int i, double *dir)
 {
-    double aa = loop_angle(c, L, i), deg = aa * 180.0 / QC_PI;
+    double aa = glpgp_qc_loop_angle(c, L, i), deg = aa * 180.0 / QC_PI;
     if (deg < CORNER_DEG) return 0;
     const double *o = P(c, L->p[i]), *nx = P(c, L->p[(i + 1) % L->n]);
     double base = atan2(nx[1] - o[1], nx[0] - o[0]);
@@ -584,7 +561,7 @@ static void try_hole_cut(qc *c, const qc_piece *pc, int h, int i, int hl, int j,
     const ivec *H = &pc->holes[h], *T = loop_of(pc, hl);
     if (ex && (j == ex->j || i == ex->i)) return;
     double e = ends_cost(c, pc, h, i, hl, j);
-    if (!(e < best->cost) || !visible(c, pc, H->p[i], T->p[j])) return;
+    if (!(e < best->cost) || !glpgp_qc_visible(c, pc, H->p[i], T->p[j])) return;
     const double *a = P(c, H->p[i]), *b = P(c, T->p[j]);
     if (ex) { /* must not touch the first cut */
         const double *ea = P(c, H->p[ex->i]), *eb = P(c, loop_of(pc, ex->lj)->p[ex->j]);
@@ -812,204 +789,6 @@ static glpgp_status cut_hole(qc *c, qc_piece *pc)
     return GLPGP_FAIL(GLPGP_ERR_NUMERIC, "quad cut mesher: no pair of cuts from a hole");
 }
 
-/* ---- small loops ------------------------------------------------------------------ */
-
-static glpgp_status emit(qc *c, const int *q)
-{
-    for (int t = 0; t < 4; t++) GLPGP_CHECK(ipush(c->quads, q[t]));
-    return GLPGP_OK;
-}
-
-/* Quads around a new centre (x, y) joined to p[o], p[o+2], ... of the n-gon. */
-static glpgp_status emit_centre(qc *c, const int *p, int n, int o, double x, double y)
-{
-    int X = c->xy->n / 2;
-    GLPGP_CHECK(dpush(c->xy, x));
-    GLPGP_CHECK(dpush(c->xy, y));
-    c->stats->points++;
-    for (int q = 0; q < n / 2; q++) {
-        int f[4] = {p[(o + 2 * q) % n], p[(o + 2 * q + 1) % n], p[(o + 2 * q + 2) % n], X};
-        GLPGP_CHECK(emit(c, f));
-    }
-    return GLPGP_OK;
-}
-
-/* The best split of the single loop L (n <= GLPGP_POLY_SPLIT_MAX) and its
- * scaled Jacobian; *how: 0 diagonals (out, nq), 1 a centre (o, x, y). */
-typedef struct split {
-    double sj;
-    int how, nq, o;
-    double x, y;
-    int out[4 * GLPGP_POLY_SPLIT_MAX];
-} split;
-
-static void best_split(const qc *c, const ivec *L, split *s)
-{
-    s->sj = glpgp_poly_quad_split(c->xy->p, L->p, L->n, s->out, &s->nq);
-    s->how = 0;
-    double x = 0, y = 0;
-    int o = 0;
-    if (L->n >= 6 && L->n <= GLPGP_POLY_SPLIT_MAX) {
-        /* a centre of valence n / 2: taken for an octagon when as good, else
-         * only where the diagonals fail */
-        double v = centre_split(c->xy->p, L->p, L->n, &o, &x, &y);
-        double margin = L->n == 8 ? -0.05 : L->n == 6 ? 0.05 : fmax(0.1, 0.3 - s->sj);
-        if (v > s->sj + margin) *s = (split){v, 1, 0, o, x, y, {0}};
-    }
-}
-
-static glpgp_status emit_split(qc *c, const ivec *L, const split *s)
-{
-    c->stats->pieces++;
-    if (s->how == 1) return emit_centre(c, L->p, L->n, s->o, s->x, s->y);
-    for (int q = 0; q < s->nq; q++) GLPGP_CHECK(emit(c, s->out + 4 * q));
-    return GLPGP_OK;
-}
-
-/* A quad with a reflex corner: five quads around a copy shrunk towards
- * its centroid (0 when no shrink gives positive corners). */
-static glpgp_status ring_quad(qc *c, const ivec *L, int *done)
-{
-    *done = 0;
-    const int *p = L->p;
-    double g[2] = {0, 0};
-    for (int t = 0; t < 4; t++) {
-        g[0] += P(c, p[t])[0] / 4;
-        g[1] += P(c, p[t])[1] / 4;
-    }
-    double rm = 0.0;
-    for (int t = 0; t < 4; t++) rm += 0.25 * hypot(P(c, p[t])[0] - g[0], P(c, p[t])[1] - g[1]);
-    for (int tr = 1; tr <= 8 && !*done; tr++) {
-        /* the corners pulled towards the centroid: a scaled copy (tries 1-4)
-         * or all at one distance (5-8: a flat corner of the quad is not copied) */
-        double f = 0.2 * ((tr - 1) % 4 + 1), xy[16];
-        for (int t = 0; t < 4; t++) {
-            xy[2 * t] = P(c, p[t])[0];
-            xy[2 * t + 1] = P(c, p[t])[1];
-            double dx = xy[2 * t] - g[0], dy = xy[2 * t + 1] - g[1], d = hypot(dx, dy);
-            double s = tr <= 4 ? f : (d > 0 ? f * rm / d : 0.0);
-            xy[8 + 2 * t] = g[0] + s * dx;
-            xy[9 + 2 * t] = g[1] + s * dy;
-        }
-        static const int Q[5][4] = {{0, 1, 5, 4}, {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}, {4, 5, 6, 7}};
-        double w = INFINITY;
-        for (int q = 0; q < 5; q++) w = fmin(w, glpgp_poly_min_sj(xy, Q[q], 4));
-        if (!(w > 0.0)) continue;
-        int id[8];
-        for (int t = 0; t < 4; t++) {
-            id[t] = p[t];
-            id[4 + t] = c->xy->n / 2;
-            GLPGP_CHECK(dpush(c->xy, xy[8 + 2 * t]));
-            GLPGP_CHECK(dpush(c->xy, xy[9 + 2 * t]));
-            c->stats->points++;
-        }
-        for (int q = 0; q < 5; q++) {
-            int fq[4] = {id[Q[q][0]], id[Q[q][1]], id[Q[q][2]], id[Q[q][3]]};
-            GLPGP_CHECK(emit(c, fq));
-        }
-        c->stats->pieces++;
-        *done = 1;
-    }
-    return GLPGP_OK;
-}
-
-/* Candidate fourth corners X of the kite (tip t, a, X, b): where the normals
- * to the sides at a and b meet (right angles at a and b), and points on the
- * bisector at 0.8, 1 and 1.2 times the mean distance of a and b (when a and
- * b are at different distances from the tip the normals meet far off).
- * Returns how many (at most 4) into X[2 k]. */
-static int kite_points(const double *t, const double *a, const double *b, double *X)
-{
-    int n = 0;
-    double da[2] = {a[0] - t[0], a[1] - t[1]}, db[2] = {b[0] - t[0], b[1] - t[1]};
-    double na[2] = {-da[1], da[0]}, nb[2] = {db[1], -db[0]}; /* left of t->a, right of t->b */
-    double den = na[0] * nb[1] - na[1] * nb[0];
-    if (fabs(den) > 1e-300) {
-        double u = ((b[0] - a[0]) * nb[1] - (b[1] - a[1]) * nb[0]) / den;
-        if (u > 0.0) {
-            X[2 * n] = a[0] + u * na[0];
-            X[2 * n + 1] = a[1] + u * na[1];
-            n++;
-        }
-    }
-    double la = hypot(da[0], da[1]), lb = hypot(db[0], db[1]);
-    double bx = da[0] / la + db[0] / lb, by = da[1] / la + db[1] / lb, bl = hypot(bx, by);
-    if (!(bl > 1e-12)) return n;
-    for (int k = 0; k < 3; k++) {
-        double r = (0.8 + 0.2 * k) * 0.5 * (la + lb) / (0.5 * bl); /* past the chord a b */
-        X[2 * n] = t[0] + r * bx / bl;
-        X[2 * n + 1] = t[1] + r * by / bl;
-        n++;
-    }
-    return n;
-}
-
-/* Whether the kite (tip i of L, X at point Xi) can be cut off: convex, X
- * inside, a X and X b crossing nothing, no angle below 20 degrees left at
- * a, X, b. Returns the smallest scaled Jacobian at a, X, b (-1: not). */
-static double kite_fit(qc *c, qc_piece *pc, int i, int Xi)
-{
-    ivec *L = &pc->outer;
-    const int n = L->n, it = L->p[i], ia = L->p[(i + 1) % n], ib = L->p[(i + n - 1) % n];
-    const double *X = P(c, Xi);
-    int f[4] = {it, ia, Xi, ib};
-    if (!(glpgp_poly_min_sj(c->xy->p, f, 4) > 0.0)) return -1.0;
-    if (!glpgp_point_in_poly(c->xy->p, L->p, n, X, 0.0) || !visible(c, pc, ia, Xi) || !visible(c, pc, Xi, ib)) return -1.0;
-    L->p[i] = Xi;
-    int ok = 1;
-    for (int d = -1; d <= 1 && ok; d++) ok = loop_angle(c, L, (i + d + n) % n) * 180.0 / QC_PI > 20.0;
-    L->p[i] = it;
-    if (!ok) return -1.0;
-    int g[4] = {ia, Xi, ib, it}; /* corners a, X, b (the tip's is sin of its angle whatever X) */
-    double m = INFINITY;
-    for (int k = 0; k < 3; k++) {
-        const double *o = P(c, g[k]), *nx = P(c, g[k + 1]), *pv = P(c, g[(k + 3) % 4]);
-        double e1x = nx[0] - o[0], e1y = nx[1] - o[1], e2x = pv[0] - o[0], e2y = pv[1] - o[1];
-        m = fmin(m, (e1x * e2y - e1y * e2x) / (hypot(e1x, e1y) * hypot(e2x, e2y)));
-    }
-    return m;
-}
-
-/* A sharp point (angle below SHARP_DEG) of a loop of more than 4 points,
- * with its neighbours a and b, becomes a kite (tip, a, X, b), X the best of
- * kite_points; the loop keeps its count with X in place of the tip.
- * *done: 1 when one was cut (pc then changed). */
-#define SHARP_DEG 50.0
-static glpgp_status kite_cut(qc *c, qc_piece *pc, int *done)
-{
-    *done = 0;
-    ivec *L = &pc->outer;
-    const int n = L->n;
-    if (n <= 4) return GLPGP_OK;
-    for (int i = 0; i < n; i++) {
-        if (loop_angle(c, L, i) * 180.0 / QC_PI >= SHARP_DEG) continue;
-        const int it = L->p[i], ia = L->p[(i + 1) % n], ib = L->p[(i + n - 1) % n];
-        double X[8], best = 0.05;
-        int m = kite_points(P(c, it), P(c, ia), P(c, ib), X), bk = -1, Xi = c->xy->n / 2;
-        for (int k = 0; k < m; k++) {
-            GLPGP_CHECK(dpush(c->xy, X[2 * k]));
-            GLPGP_CHECK(dpush(c->xy, X[2 * k + 1]));
-            double v = kite_fit(c, pc, i, Xi);
-            c->xy->n -= 2;
-            if (v > best) {
-                best = v;
-                bk = k;
-            }
-        }
-        if (bk < 0) continue;
-        GLPGP_CHECK(dpush(c->xy, X[2 * bk]));
-        GLPGP_CHECK(dpush(c->xy, X[2 * bk + 1]));
-        c->stats->points++;
-        int f[4] = {it, ia, Xi, ib};
-        GLPGP_CHECK(emit(c, f));
-        L->p[i] = Xi;
-        c->stats->pieces++;
-        *done = 1;
-        return GLPGP_OK;
-    }
-    return GLPGP_OK;
-}
-
 /* ---- driver --------------------------------------------------------------------------- */
 
 static glpgp_status mesh_loop(qc *c, qc_piece *pc)
@@ -1019,15 +798,15 @@ static glpgp_status mesh_loop(qc *c, qc_piece *pc)
     if (L->n < 4) return GLPGP_FAIL(GLPGP_ERR_NUMERIC, "quad cut mesher: a piece with %d points", L->n);
     for (int guard = 0; guard < L->n; guard++) { /* sharp points first */
         int done = 0;
-        GLPGP_CHECK(kite_cut(c, pc, &done));
+        GLPGP_CHECK(glpgp_qc_kite_cut(c, pc, &done));
         if (!done) break;
     }
     split s;
     s.sj = -INFINITY;
     if (L->n <= GLPGP_POLY_SPLIT_MAX) {
-        best_split(c, L, &s);
+        glpgp_qc_best_split(c, L, &s);
         if (s.sj >= SPLIT_OK || (L->n == 4 && s.sj > 0.15)) {
-            GLPGP_CHECK(emit_split(c, L, &s));
+            GLPGP_CHECK(glpgp_qc_emit_split(c, L, &s));
             piece_free(pc);
             return GLPGP_OK;
         }
@@ -1038,13 +817,13 @@ static glpgp_status mesh_loop(qc *c, qc_piece *pc)
     if (cu.cost < INFINITY && c->budget-- > 0 && !(s.sj > 0.2 && cu.cost > 6.0) && !(s.sj > 0.0 && cu.cost >= 40.0))
         return apply_cut(c, pc, &cu);
     if (s.sj > 0.0) {
-        GLPGP_CHECK(emit_split(c, L, &s));
+        GLPGP_CHECK(glpgp_qc_emit_split(c, L, &s));
         piece_free(pc);
         return GLPGP_OK;
     }
     if (L->n == 4) {
         int done = 0;
-        GLPGP_CHECK(ring_quad(c, L, &done));
+        GLPGP_CHECK(glpgp_qc_ring_quad(c, L, &done));
         if (done) {
             piece_free(pc);
             return GLPGP_OK;
@@ -1100,7 +879,7 @@ static glpgp_status hole_ring(qc *c, qc_piece *pc, int k, int *done)
     }
     for (int i = 0; i < n; i++) {
         int f[4] = {H->p[i], H->p[(i + 1) % n], base / 2 + (i + 1) % n, base / 2 + i};
-        GLPGP_CHECK(emit(c, f));
+        GLPGP_CHECK(glpgp_qc_emit(c, f));
     }
     for (int i = 0; i < n; i++) H->p[i] = base / 2 + i;
     c->stats->points += n;
