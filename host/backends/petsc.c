@@ -64,66 +64,14 @@
 
 _Static_assert(GLPGP_ROWS_S_PQ == GLPGP_S_PQ, "kernels/rows.h: p.Ap slot differs from glpgp/backend.h");
 
-/* a PETSc call: its error becomes a glpgp error */
-#define PCHK(call)                                                                                 \
-    do {                                                                                           \
-        PetscErrorCode pe_ = (call);                                                               \
-        if (pe_) return GLPGP_FAIL(GLPGP_ERR_NUMERIC, "PETSc error %d in %s", (int)pe_, #call);     \
-    } while (0)
+#include "petsc_impl.h"
 
-struct glpgp_vec {
-    Vec v;
-};
-
-typedef struct pimpl {
-    const glpgp_system *sys;
-    int rank, size;
-    int lo, hi;                 /* owned vertices [lo, hi) (system numbering) */
-    int vstart;                 /* global id of vertex lo (the PETSc numbering: block rows) */
-    const int *gid;             /* global id of each system vertex (a part's), NULL: the identity */
-    long slo, shi;              /* owned block slots [rowptr[lo], rowptr[hi]) */
-    double *wbuf, *size_;       /* 2 nv field, nv sizes (as the driver hands them) */
-    unsigned char *dir;         /* nv Dirichlet flags */
-    int sized;
-    double *quadb, *newtonb, *dinvb; /* owned slices */
-    int nghost;
-    int *ghost;                 /* ghost vertices, increasing */
-    int *tcount;                /* triangles counted here (lowest vertex owned), increasing */
-    int ntcount;
-    double *xf[2];              /* system-length scratch arrays (owned + ghost values valid) */
-    Vec xseq[2];                /* Seq Vecs over xf */
-    VecScatter sc;              /* owned parts of a global Vec -> ghost entries of xseq */
-    int *rcounts, *rdispls;     /* all-gather of vectors (doubles) */
-    Mat A;                      /* NEWTON as MATMPIBAIJ (lazily) */
-    int A_dirty;
-    KSP ksp;
-    Vec nn;                     /* the Newton iterate of the last assemble_newton with penalty */
-    int nn_valid;
-    long quad_gen;              /* assemble_quadratic calls so far (a new QUAD: field, oscillator) */
-    double newton_inv4e2;       /* 1/(4 eps^2) of the last assemble_newton */
-    long ksp_gen;               /* the (quad_gen, newton_inv4e2, nn_valid) the KSP's hierarchy was built for */
-    double ksp_inv4e2;
-    int ksp_nn;
-    int rebuild;                /* -glpgp_gamg_rebuild: 1 step, 2 level, 3 oscillator (0: not read yet) */
-    int precond;
-    double s[GLPGP_NSLOTS];
-} pimpl;
-
-#define PI(b) ((pimpl *)(b)->impl)
-
-/* base pointers shifted so that global indices address the owned slices */
-#define QUAD(p) ((p)->quadb - 4 * (p)->slo)
-#define NEWT(p) ((p)->newtonb - 4 * (p)->slo)
-#define DINV(p) ((p)->dinvb - 4 * (long)(p)->lo)
-
-/* the global (PETSc) block index of system vertex j */
-static inline PetscInt gcol(const pimpl *p, int j) { return p->gid ? p->gid[j] : j; }
 
 /* ---- process-wide: MPI / PETSc ------------------------------------------- */
 
 static int g_init, g_we_init_mpi;
 
-static glpgp_status m_init(void)
+glpgp_status glpgp_petsc_m_init(void)
 {
     if (g_init) return GLPGP_OK;
     int flag = 0;
@@ -150,14 +98,14 @@ static void m_finalize(void)
     g_init = 0;
 }
 
-static int m_rank(void)
+int glpgp_petsc_m_rank(void)
 {
     int r = 0;
     if (g_init) MPI_Comm_rank(PETSC_COMM_WORLD, &r);
     return r;
 }
 
-static int m_size(void)
+int glpgp_petsc_m_size(void)
 {
     int s = 1;
     if (g_init) MPI_Comm_size(PETSC_COMM_WORLD, &s);
@@ -190,7 +138,7 @@ static double m_max_rss(void)
 /* ---- reductions: partials all-gathered, summed in rank order -------------- */
 
 /* v[0 .. n) <- sum over ranks of v (n <= 4), the same bits on every rank */
-static glpgp_status reduce_sum(pimpl *p, double *v, int n)
+glpgp_status glpgp_petsc_reduce_sum(pimpl *p, double *v, int n)
 {
     if (p->size == 1) return GLPGP_OK;
     double buf[4 * 256], *all = buf;
@@ -487,7 +435,7 @@ static glpgp_status p_dot(glpgp_backend *b, const glpgp_vec *x, const glpgp_vec 
     double s = glpgp_range_dot(0, (long)n, xa, ya);
     PCHK(VecRestoreArrayRead(y->v, &ya));
     PCHK(VecRestoreArrayRead(x->v, &xa));
-    GLPGP_CHECK(reduce_sum(p, &s, 1));
+    GLPGP_CHECK(glpgp_petsc_reduce_sum(p, &s, 1));
     p->s[slot] = s;
     return GLPGP_OK;
 }
@@ -592,7 +540,7 @@ static glpgp_status p_gradient(glpgp_backend *b, const glpgp_vec *xv, double inv
                            gg, &e[0]);
     PCHK(VecRestoreArray(g->v, &ga));
     e[1] = penalty_local(p, x, inv4e2);
-    GLPGP_CHECK(reduce_sum(p, e, 2));
+    GLPGP_CHECK(glpgp_petsc_reduce_sum(p, e, 2));
     p->s[GLPGP_S_E] = 0.5 * e[0];
     p->s[GLPGP_S_P] = e[1];
     return GLPGP_OK;
@@ -624,7 +572,7 @@ static glpgp_status p_energy(glpgp_backend *b, const glpgp_vec *xv, double inv4e
     double e[2];
     GLPGP_CHECK(spmv_rows(p, QUAD(p), 0, work, 1, &e[0]));
     e[1] = penalty_local(p, p->xf[0], inv4e2);
-    GLPGP_CHECK(reduce_sum(p, e, 2));
+    GLPGP_CHECK(glpgp_petsc_reduce_sum(p, e, 2));
     p->s[GLPGP_S_E] = 0.5 * e[0];
     p->s[GLPGP_S_P] = e[1];
     return GLPGP_OK;
@@ -653,7 +601,7 @@ static glpgp_status p_cg_precond(glpgp_backend *b, const glpgp_vec *r, glpgp_vec
     for (int i = p->lo; i < p->hi; i++) glpgp_row_precond(i, dinv, rr, zz, &s[0], &s[1]);
     PCHK(VecRestoreArray(z->v, &za));
     PCHK(VecRestoreArrayRead(r->v, &ra));
-    GLPGP_CHECK(reduce_sum(p, s, 2));
+    GLPGP_CHECK(glpgp_petsc_reduce_sum(p, s, 2));
     p->s[rz] = s[0];
     p->s[GLPGP_S_RR] = s[1];
     return GLPGP_OK;
@@ -666,7 +614,7 @@ static glpgp_status p_cg_spmv_dot(glpgp_backend *b, const glpgp_vec *pv, glpgp_v
     /* q <- N p;  s[PQ] <- p.q */
     double s;
     GLPGP_CHECK(spmv_rows(p, NEWT(p), 0, q, 1, &s));
-    GLPGP_CHECK(reduce_sum(p, &s, 1));
+    GLPGP_CHECK(glpgp_petsc_reduce_sum(p, &s, 1));
     p->s[GLPGP_S_PQ] = s;
     return GLPGP_OK;
 }
@@ -695,7 +643,7 @@ static glpgp_status p_cg_update(glpgp_backend *b, glpgp_vec *x, glpgp_vec *r, co
     PCHK(VecRestoreArray(z->v, &za));
     PCHK(VecRestoreArray(r->v, &ra));
     PCHK(VecRestoreArray(x->v, &xa));
-    GLPGP_CHECK(reduce_sum(p, s, 2));
+    GLPGP_CHECK(glpgp_petsc_reduce_sum(p, s, 2));
     p->s[rz_new] = s[0];
     p->s[GLPGP_S_RR] = s[1];
     return GLPGP_OK;
@@ -718,210 +666,12 @@ static glpgp_status p_cg_direction(glpgp_backend *b, glpgp_vec *pv, const glpgp_
     return GLPGP_OK;
 }
 
-/* ---- linear solve: KSP on NEWTON ------------------------------------------ */
-
-/* A <- NEWTON (owned rows, global columns), created and preallocated once */
-static glpgp_status newton_to_mat(pimpl *p)
-{
-    const glpgp_system *sys = p->sys;
-    const int nown = p->hi - p->lo;
-    if (!p->A) {
-        /* AIJ with block size 2 (GAMG wants AIJ), preallocated per block row:
-         * diagonal-part and off-diagonal-part block counts */
-        PetscInt *dn = NULL, *on = NULL;
-        GLPGP_CHECK(glpgp_calloc((size_t)(nown > 0 ? nown : 1), sizeof(PetscInt), &dn));
-        glpgp_status st = glpgp_calloc((size_t)(nown > 0 ? nown : 1), sizeof(PetscInt), &on);
-        if (st != GLPGP_OK) {
-            free(dn);
-            return st;
-        }
-        for (int i = p->lo; i < p->hi; i++)
-            for (int k = sys->rowptr[i]; k < sys->rowptr[i + 1]; k++) {
-                const int j = sys->col[k];
-                if (j >= p->lo && j < p->hi) dn[i - p->lo]++;
-                else on[i - p->lo]++;
-            }
-        PetscErrorCode pe = MatCreate(PETSC_COMM_WORLD, &p->A);
-        if (!pe) pe = MatSetSizes(p->A, 2 * nown, 2 * nown, PETSC_DETERMINE, PETSC_DETERMINE);
-        if (!pe) pe = MatSetType(p->A, MATAIJ);
-        if (!pe) pe = MatSetBlockSize(p->A, 2);
-        if (!pe) pe = MatXAIJSetPreallocation(p->A, 2, dn, on, NULL, NULL);
-        if (!pe) pe = MatSetOption(p->A, MAT_NO_OFF_PROC_ENTRIES, PETSC_TRUE);
-        if (!pe) pe = MatSetOption(p->A, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE);
-        free(dn);
-        free(on);
-        if (pe) return GLPGP_FAIL(GLPGP_ERR_NUMERIC, "PETSc error %d creating the Newton matrix", (int)pe);
-    }
-    /* block rows: our blocks are row-major 2x2; PETSc wants the 2 x (2 ncol)
-     * row-major dense strip of the block row */
-    int maxc = 0;
-    for (int i = p->lo; i < p->hi; i++)
-        if (sys->rowptr[i + 1] - sys->rowptr[i] > maxc) maxc = sys->rowptr[i + 1] - sys->rowptr[i];
-    double *vals = NULL;
-    PetscInt *cols = NULL;
-    GLPGP_CHECK(glpgp_malloc((size_t)4 * (maxc > 0 ? maxc : 1), sizeof(double), &vals));
-    glpgp_status st = glpgp_malloc((size_t)(maxc > 0 ? maxc : 1), sizeof(PetscInt), &cols);
-    if (st != GLPGP_OK) {
-        free(vals);
-        return st;
-    }
-    const double *N = NEWT(p);
-    PetscErrorCode pe = 0;
-    for (int i = p->lo; i < p->hi && !pe; i++) {
-        const int k0 = sys->rowptr[i], nc = sys->rowptr[i + 1] - k0;
-        for (int c = 0; c < nc; c++) {
-            const double *blk = N + 4 * (long)(k0 + c);
-            cols[c] = gcol(p, sys->col[k0 + c]);
-            vals[2 * c] = blk[0];
-            vals[2 * c + 1] = blk[1];
-            vals[2 * nc + 2 * c] = blk[2];
-            vals[2 * nc + 2 * c + 1] = blk[3];
-        }
-        PetscInt row = p->vstart + (i - p->lo);
-        pe = MatSetValuesBlocked(p->A, 1, &row, nc, cols, vals, INSERT_VALUES);
-    }
-    free(vals);
-    free(cols);
-    if (pe) return GLPGP_FAIL(GLPGP_ERR_NUMERIC, "PETSc error %d setting the Newton matrix", (int)pe);
-    PCHK(MatAssemblyBegin(p->A, MAT_FINAL_ASSEMBLY));
-    PCHK(MatAssemblyEnd(p->A, MAT_FINAL_ASSEMBLY));
-    p->A_dirty = 0;
-    return GLPGP_OK;
-}
-
-/* near null space [z, iz] of the iterate (zero at Dirichlet vertices), or none */
-static glpgp_status set_near_null(pimpl *p)
-{
-    if (!p->nn_valid) {
-        PCHK(MatSetNearNullSpace(p->A, NULL));
-        return GLPGP_OK;
-    }
-    Vec v[2];
-    PCHK(VecDuplicate(p->nn, &v[0]));
-    PCHK(VecDuplicate(p->nn, &v[1]));
-    const PetscScalar *z;
-    PetscScalar *a0, *a1;
-    PCHK(VecGetArrayRead(p->nn, &z));
-    PCHK(VecGetArray(v[0], &a0));
-    PCHK(VecGetArray(v[1], &a1));
-    for (int i = 0; i < p->hi - p->lo; i++) {
-        const int fixed = p->dir[p->lo + i];
-        const double zr = fixed ? 0.0 : z[2 * i], zi = fixed ? 0.0 : z[2 * i + 1];
-        a0[2 * i] = zr; /* z */
-        a0[2 * i + 1] = zi;
-        a1[2 * i] = -zi; /* i z */
-        a1[2 * i + 1] = zr;
-    }
-    PCHK(VecRestoreArray(v[1], &a1));
-    PCHK(VecRestoreArray(v[0], &a0));
-    PCHK(VecRestoreArrayRead(p->nn, &z));
-    PetscReal n0;
-    PCHK(VecNorm(v[0], NORM_2, &n0)); /* |z| = |iz|, and z . iz = 0: orthonormal after scaling */
-    MatNullSpace ns = NULL;
-    if (n0 > 0.0) {
-        PCHK(VecScale(v[0], 1.0 / n0));
-        PCHK(VecScale(v[1], 1.0 / n0));
-        PCHK(MatNullSpaceCreate(PETSC_COMM_WORLD, PETSC_FALSE, 2, v, &ns));
-    }
-    PCHK(MatSetNearNullSpace(p->A, ns));
-    if (ns) MatNullSpaceDestroy(&ns);
-    VecDestroy(&v[0]);
-    VecDestroy(&v[1]);
-    return GLPGP_OK;
-}
-
-static glpgp_status p_linear_solve(glpgp_backend *b, const glpgp_vec *rhs, glpgp_vec *x, double rtol, int maxit,
-                                   int *iterations, double *relres, int *reason)
-{
-    pimpl *p = PI(b);
-    *iterations = 0;
-    *relres = 0.0;
-    *reason = 0;
-    if (p->A_dirty || !p->A) GLPGP_CHECK(newton_to_mat(p));
-    /* GAMG's hierarchy: built anew for each new system (a new QUAD, a new
-     * eps level: its aggregates and prolongator from the current near null
-     * space [z, iz]) and reused within an eps level, where z moves little:
-     * only the Galerkin products are recomputed (-pc_gamg_reuse_interpolation
-     * below). -glpgp_gamg_rebuild step|level|oscillator ($PETSC_OPTIONS)
-     * rebuilds it every linear solve (before), per eps level (default) or
-     * once per oscillator's GL levels. shape:square:100000, one rank, line
-     * search: 32.4 s, 537 CG (step) -> 21.9 s, 212 CG (level)
-     * (bench/results/petsc_gamg.md) */
-    if (!p->rebuild) {
-        char mode[32] = "level";
-        PetscBool set = PETSC_FALSE;
-        PCHK(PetscOptionsGetString(NULL, NULL, "-glpgp_gamg_rebuild", mode, sizeof mode, &set));
-        p->rebuild = !strcmp(mode, "step") ? 1 : !strcmp(mode, "level") ? 2 : !strcmp(mode, "oscillator") ? 3 : -1;
-        if (p->rebuild < 0)
-            return GLPGP_FAIL(GLPGP_ERR_ARG, "-glpgp_gamg_rebuild '%s': expected step, level or oscillator", mode);
-    }
-    if (p->ksp && p->precond == GLPGP_PRECOND_AMG &&
-        (p->rebuild == 1 || p->ksp_gen != p->quad_gen || p->ksp_nn != p->nn_valid ||
-         (p->rebuild == 2 && p->ksp_inv4e2 != p->newton_inv4e2)))
-        KSPDestroy(&p->ksp);
-    if (!p->ksp) {
-        p->ksp_gen = p->quad_gen;
-        p->ksp_inv4e2 = p->newton_inv4e2;
-        p->ksp_nn = p->nn_valid;
-        PCHK(KSPCreate(PETSC_COMM_WORLD, &p->ksp));
-        PCHK(KSPSetType(p->ksp, KSPCG));
-        PCHK(KSPSetNormType(p->ksp, KSP_NORM_UNPRECONDITIONED));
-        PC pc;
-        PCHK(KSPGetPC(p->ksp, &pc));
-        PCHK(PCSetType(pc, PCGAMG));
-        /* smoother: PETSc's default Chebyshev, from a short eigenvalue
-         * estimate, made the preconditioner indefinite on the naive PGP
-         * system (CG stopped with DIVERGED_INDEFINITE_PC after 3 iterations
-         * on shape:disk:3000); damped point-block Jacobi is SPD for these
-         * matrices. Defaults only: $PETSC_OPTIONS wins. */
-        /* the prolongator kept for the KSP's life (one eps level, above):
-         * rebuilt per Newton step it costs its setup again (shape:square:
-         * 100000: 15.3 of 32.4 s in PCSetUp); kept for the whole run, the
-         * naive solve's (no near null space) served every level (square
-         * 40000: 898 CG iterations against 661) */
-        static const char *const defaults[][2] = {{"-mg_levels_ksp_type", "richardson"},
-                                                  {"-mg_levels_pc_type", "pbjacobi"},
-                                                  {"-mg_levels_ksp_richardson_scale", "0.6"},
-                                                  {"-pc_gamg_reuse_interpolation", "true"}};
-        for (size_t k = 0; k < sizeof defaults / sizeof defaults[0]; k++) {
-            PetscBool set = PETSC_FALSE;
-            PCHK(PetscOptionsHasName(NULL, NULL, defaults[k][0], &set));
-            if (!set) PCHK(PetscOptionsSetValue(NULL, defaults[k][0], defaults[k][1]));
-        }
-        PCHK(KSPSetFromOptions(p->ksp)); /* $PETSC_OPTIONS */
-    }
-    if (p->precond == GLPGP_PRECOND_AMG) GLPGP_CHECK(set_near_null(p));
-    PCHK(KSPSetOperators(p->ksp, p->A, p->A));
-    PCHK(KSPSetTolerances(p->ksp, rtol, 0.0, PETSC_DEFAULT, maxit));
-    PCHK(KSPSetInitialGuessNonzero(p->ksp, PETSC_FALSE));
-    /* x <- NEWTON^-1 rhs */
-    PCHK(KSPSolve(p->ksp, rhs->v, x->v));
-    PetscInt it;
-    KSPConvergedReason why;
-    PetscReal rn, bn;
-    PCHK(KSPGetIterationNumber(p->ksp, &it));
-    PCHK(KSPGetConvergedReason(p->ksp, &why));
-    PCHK(KSPGetResidualNorm(p->ksp, &rn));
-    PCHK(VecNorm(rhs->v, NORM_2, &bn));
-    *iterations = (int)it;
-    *relres = bn > 0.0 ? rn / bn : 0.0;
-    if (why > 0) *reason = 0;
-    else if (why == KSP_DIVERGED_ITS) *reason = 1;
-    else *reason = 2;
-    /* a breakdown (KSP_DIVERGED_INDEFINITE_MAT or _PC: GAMG built from an
-     * indefinite Newton matrix is itself indefinite) is routine: the driver
-     * falls back to a safer Hessian; logged with --verbose only */
-    if (why < 0 && why != KSP_DIVERGED_ITS)
-        glpgp_log(GLPGP_LOG_DEBUG, "PETSc KSP stopped after %d iterations: %s", (int)it, KSPConvergedReasons[why]);
-    return GLPGP_OK;
-}
-
 static glpgp_status p_reduce(glpgp_backend *b, double *v, int n, int op)
 {
     pimpl *p = PI(b);
     /* sums: partials summed in rank order (the same bits everywhere) */
     if (op == GLPGP_REDUCE_SUM) {
-        for (int k = 0; k < n; k += 4) GLPGP_CHECK(reduce_sum(p, v + k, n - k < 4 ? n - k : 4));
+        for (int k = 0; k < n; k += 4) GLPGP_CHECK(glpgp_petsc_reduce_sum(p, v + k, n - k < 4 ? n - k : 4));
         return GLPGP_OK;
     }
     if (p->size == 1) return GLPGP_OK;
@@ -954,7 +704,7 @@ static const glpgp_backend_ops petsc_ops = {
     .cg_spmv_dot = p_cg_spmv_dot,
     .cg_update = p_cg_update,
     .cg_direction = p_cg_direction,
-    .linear_solve = p_linear_solve,
+    .linear_solve = glpgp_petsc_linear_solve,
     .reduce = p_reduce,
     .trial_point = p_trial_point,
 };
@@ -964,10 +714,10 @@ static const glpgp_backend_ops petsc_ops = {
  * iteration, bit for bit on one rank */
 static glpgp_backend_ops petsc_ops_jacobi;
 
-static glpgp_status m_create(int precond, glpgp_backend **out)
+glpgp_status glpgp_petsc_m_create(int precond, glpgp_backend **out)
 {
     *out = NULL;
-    GLPGP_CHECK(m_init());
+    GLPGP_CHECK(glpgp_petsc_m_init());
     glpgp_backend *b = NULL;
     GLPGP_CHECK(glpgp_calloc(1, sizeof *b, &b));
     pimpl *p = NULL;
@@ -976,8 +726,8 @@ static glpgp_status m_create(int precond, glpgp_backend **out)
         free(b);
         return st;
     }
-    p->rank = m_rank();
-    p->size = m_size();
+    p->rank = glpgp_petsc_m_rank();
+    p->size = glpgp_petsc_m_size();
     p->precond = precond;
     b->impl = p;
     if (precond == GLPGP_PRECOND_JACOBI) {
@@ -991,7 +741,7 @@ static glpgp_status m_create(int precond, glpgp_backend **out)
     return GLPGP_OK;
 }
 
-static void m_local_info(const glpgp_backend *b, int *owned, int *ghosts)
+void glpgp_petsc_m_local_info(const glpgp_backend *b, int *owned, int *ghosts)
 {
     const pimpl *p = PI(b);
     *owned = p->sys ? p->hi - p->lo : 0;
@@ -1077,7 +827,7 @@ fail:
 
 static glpgp_status m_gather_bytes(const void *mine, size_t bytes, void *out)
 {
-    const int P = m_size(), r = m_rank();
+    const int P = glpgp_petsc_m_size(), r = glpgp_petsc_m_rank();
     if (bytes > (size_t)INT_MAX) return GLPGP_FAIL(GLPGP_ERR_LIMIT, "gather of %zu bytes from one rank", bytes);
     int n = (int)bytes, *cnt = NULL, *dsp = NULL;
     if (r == 0) {
@@ -1104,8 +854,8 @@ static glpgp_status m_gather_bytes(const void *mine, size_t bytes, void *out)
     return GLPGP_OK;
 }
 
-static const glpgp_petsc_api g_api = {GLPGP_PETSC_ABI, m_init,      m_finalize,  m_rank,         m_size,
-                                      m_create,        m_all_ok,    m_gather,    m_max_rss,      m_local_info,
+static const glpgp_petsc_api g_api = {GLPGP_PETSC_ABI, glpgp_petsc_m_init,      m_finalize,  glpgp_petsc_m_rank,         glpgp_petsc_m_size,
+                                      glpgp_petsc_m_create,        m_all_ok,    m_gather,    m_max_rss,      glpgp_petsc_m_local_info,
                                       m_mesh_send,     m_mesh_recv, m_gather_bytes};
 
 /* glue (petsc_glue.c) */
