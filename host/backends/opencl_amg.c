@@ -213,6 +213,36 @@ static int bottom_layout(const cl_impl *c, const glpgp_amg_layout *lay, int lb, 
     return 1;
 }
 
+/* The fused levels' packed arrays on the device (layout tab, ni ints, nd
+ * doubles from bottom_layout): the ints from the layout, the doubles
+ * zeroed, and the table. */
+static glpgp_status bottom_upload(cl_impl *c, const glpgp_amg_layout *lay, const int *tab, long ni, long nd)
+{
+    cl_amg *a = c->amg;
+    int *ihost = NULL;
+    glpgp_status st = GLPGP_OK;
+    GLPGP_CHECK(glpgp_calloc((size_t)ni, sizeof(int), &ihost));
+    for (int l = a->lb; l < a->L; l++) {
+        const int q = l - a->lb, *row = tab + q * GLPGP_AMG_BT_COUNT;
+        const glpgp_amg_level *in = &lay->lev[l];
+        const int n = in->n;
+        memcpy(ihost + row[GLPGP_AMG_BT_ROWPTR], in->rowptr, ((size_t)n + 1) * sizeof(int));
+        memcpy(ihost + row[GLPGP_AMG_BT_COL], in->col, (size_t)in->nnzb * sizeof(int));
+        memcpy(ihost + row[GLPGP_AMG_BT_DIAG], in->diag, (size_t)n * sizeof(int));
+        if (l + 1 < a->L) {
+            const int nc = lay->lev[l + 1].n;
+            memcpy(ihost + row[GLPGP_AMG_BT_AGG], in->agg, (size_t)n * sizeof(int));
+            memcpy(ihost + row[GLPGP_AMG_BT_APTR], in->aptr, ((size_t)nc + 1) * sizeof(int));
+            memcpy(ihost + row[GLPGP_AMG_BT_AMEM], in->amem, (size_t)in->aptr[nc] * sizeof(int));
+        }
+    }
+    st = glpgp_cl_upload(c, &a->ipack, ihost, (size_t)ni * sizeof(int));
+    free(ihost);
+    GLPGP_CHECK(st);
+    GLPGP_CHECK(glpgp_cl_upload(c, &a->dpack, NULL, (size_t)nd * sizeof(double)));
+    return upload_ints(c, &a->tab, tab, (size_t)(a->L - a->lb) * GLPGP_AMG_BT_COUNT);
+}
+
 glpgp_status glpgp_cl_amg_setup(glpgp_backend *b, const glpgp_amg_layout *lay)
 {
     cl_impl *c = IMPL(b);
@@ -231,7 +261,7 @@ glpgp_status glpgp_cl_amg_setup(glpgp_backend *b, const glpgp_amg_layout *lay)
     GLPGP_CHECK(glpgp_calloc(1, sizeof(cl_amg), &c->amg));
     cl_amg *a = c->amg;
     glpgp_status st = GLPGP_OK;
-    int *srow = NULL, *tab = NULL, *ihost = NULL;
+    int *srow = NULL, *tab = NULL;
     a->lay = *lay;
     a->L = lay->nlevels;
     a->weight = lay->weight;
@@ -257,29 +287,10 @@ glpgp_status glpgp_cl_amg_setup(glpgp_backend *b, const glpgp_amg_layout *lay)
         long ni = 0, nd = 0;
         const int nq = a->L - a->lb;
         GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)nq * GLPGP_AMG_BT_COUNT, sizeof(int), &tab), fail);
-        if (!bottom_layout(c, lay, a->lb, tab, &ni, &nd, &a->cinv_off)) {
+        if (!bottom_layout(c, lay, a->lb, tab, &ni, &nd, &a->cinv_off))
             a->lb = a->L; /* too large to index: the per-op path */
-        } else {
-            /* packed ints from the layout, doubles zeroed */
-            GLPGP_CHECK_GOTO(st, glpgp_calloc((size_t)ni, sizeof(int), &ihost), fail);
-            for (int l = a->lb; l < a->L; l++) {
-                const int q = l - a->lb, *row = tab + q * GLPGP_AMG_BT_COUNT;
-                const glpgp_amg_level *in = &lay->lev[l];
-                const int n = in->n;
-                memcpy(ihost + row[GLPGP_AMG_BT_ROWPTR], in->rowptr, ((size_t)n + 1) * sizeof(int));
-                memcpy(ihost + row[GLPGP_AMG_BT_COL], in->col, (size_t)in->nnzb * sizeof(int));
-                memcpy(ihost + row[GLPGP_AMG_BT_DIAG], in->diag, (size_t)n * sizeof(int));
-                if (l + 1 < a->L) {
-                    const int nc = lay->lev[l + 1].n;
-                    memcpy(ihost + row[GLPGP_AMG_BT_AGG], in->agg, (size_t)n * sizeof(int));
-                    memcpy(ihost + row[GLPGP_AMG_BT_APTR], in->aptr, ((size_t)nc + 1) * sizeof(int));
-                    memcpy(ihost + row[GLPGP_AMG_BT_AMEM], in->amem, (size_t)in->aptr[nc] * sizeof(int));
-                }
-            }
-            GLPGP_CHECK_GOTO(st, glpgp_cl_upload(c, &a->ipack, ihost, (size_t)ni * sizeof(int)), fail);
-            GLPGP_CHECK_GOTO(st, glpgp_cl_upload(c, &a->dpack, NULL, (size_t)nd * sizeof(double)), fail);
-            GLPGP_CHECK_GOTO(st, upload_ints(c, &a->tab, tab, (size_t)nq * GLPGP_AMG_BT_COUNT), fail);
-        }
+        else
+            GLPGP_CHECK_GOTO(st, bottom_upload(c, lay, tab, ni, nd), fail);
     }
 
     for (int l = 0; l < a->L; l++) {
@@ -355,12 +366,10 @@ glpgp_status glpgp_cl_amg_setup(glpgp_backend *b, const glpgp_amg_layout *lay)
         }
     }
     free(tab);
-    free(ihost);
     return GLPGP_OK;
 fail:
     free(srow);
     free(tab);
-    free(ihost);
     glpgp_cl_amg_free(c);
     return st;
 }
