@@ -6,6 +6,8 @@
  * of crossing ids plus the crossing points themselves, so a 4096 x 4096 mask
  * needs little beyond its own values. */
 #include "glpgp/image.h"
+#include "glpgp/internal/geom2.h"
+#include "glpgp/internal/grid.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -100,17 +102,6 @@ static glpgp_status ibuf_push(ibuf *b, int x)
 
 /* ---- Douglas-Peucker ----------------------------------------------------- */
 
-static double seg_dist2(const double *p, const double *a, const double *b)
-{
-    double dx = b[0] - a[0], dy = b[1] - a[1];
-    double L2 = dx * dx + dy * dy;
-    double t = L2 > 0 ? ((p[0] - a[0]) * dx + (p[1] - a[1]) * dy) / L2 : 0.0;
-    if (t < 0) t = 0;
-    if (t > 1) t = 1;
-    double ex = a[0] + t * dx - p[0], ey = a[1] + t * dy - p[1];
-    return ex * ex + ey * ey;
-}
-
 glpgp_status glpgp_simplify_closed(double *xy, int *np, double tol)
 {
     int n = *np;
@@ -142,7 +133,7 @@ glpgp_status glpgp_simplify_closed(double *xy, int *np, double tol)
         int imax = -1;
         double dmax = tol2;
         for (int i = a + 1; i < b; i++) {
-            double d = seg_dist2(xy + 2 * i, pa, pb);
+            double d = glpgp_seg_dist2(pa, pb, xy + 2 * i);
             if (d > dmax) dmax = d, imax = i;
         }
         if (imax >= 0) {
@@ -534,12 +525,6 @@ static int cmp_seg(const void *a, const void *b)
     return (x > y) - (x < y);
 }
 
-/* orientation of (a, b, c): > 0 counter-clockwise */
-static double orient(const double *a, const double *b, const double *c)
-{
-    return (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
-}
-
 /* Problems between the boundary segments of p: two segments that cross or
  * touch, non-adjacent segments closer than min_dist, adjacent segments that
  * fold back onto each other (a spike narrower than min_dist) or have zero
@@ -586,23 +571,23 @@ static long polygon_problems(const glpgp_polygons *p, double min_dist, unsigned 
             if (next && prev) { /* a loop of two points */
                 problem = 1;
             } else if (next) { /* fold back: b1 close to segment a, or a0 close to b */
-                problem = seg_dist2(b1, a0, a1) < d2 || seg_dist2(a0, b0, b1) < d2;
+                problem = glpgp_seg_dist2(a0, a1, b1) < d2 || glpgp_seg_dist2(b0, b1, a0) < d2;
             } else if (prev) {
-                problem = seg_dist2(a1, b0, b1) < d2 || seg_dist2(b0, a0, a1) < d2;
+                problem = glpgp_seg_dist2(b0, b1, a1) < d2 || glpgp_seg_dist2(a0, a1, b0) < d2;
             } else {
-                double o1 = orient(a0, a1, b0), o2 = orient(a0, a1, b1);
-                double o3 = orient(b0, b1, a0), o4 = orient(b0, b1, a1);
+                double o1 = glpgp_orient2(a0, a1, b0), o2 = glpgp_orient2(a0, a1, b1);
+                double o3 = glpgp_orient2(b0, b1, a0), o4 = glpgp_orient2(b0, b1, a1);
                 if (((o1 > 0 && o2 < 0) || (o1 < 0 && o2 > 0)) && ((o3 > 0 && o4 < 0) || (o3 < 0 && o4 > 0))) {
                     problem = is_cross = 1;
                 } else {
-                    double m = fmin(fmin(seg_dist2(b0, a0, a1), seg_dist2(b1, a0, a1)),
-                                    fmin(seg_dist2(a0, b0, b1), seg_dist2(a1, b0, b1)));
+                    double m = fmin(fmin(glpgp_seg_dist2(a0, a1, b0), glpgp_seg_dist2(a0, a1, b1)),
+                                    fmin(glpgp_seg_dist2(b0, b1, a0), glpgp_seg_dist2(b0, b1, a1)));
                     problem = m < d2;
                 }
             }
             if (problem) {
                 if (is_cross) { /* the crossing point: a0 + t (a1 - a0), t = o3 / (o3 - o4) */
-                    double o3 = orient(b0, b1, a0), o4 = orient(b0, b1, a1), tc = o3 / (o3 - o4);
+                    double o3 = glpgp_orient2(b0, b1, a0), o4 = glpgp_orient2(b0, b1, a1), tc = o3 / (o3 - o4);
                     px = a0[0] + tc * (a1[0] - a0[0]);
                     py = a0[1] + tc * (a1[1] - a0[1]);
                 } else { /* the endpoint closest to the other segment */
@@ -610,7 +595,7 @@ static long polygon_problems(const glpgp_polygons *p, double min_dist, unsigned 
                     const double *s0[4] = {a0, a0, b0, b0}, *s1[4] = {a1, a1, b1, b1};
                     double best = INFINITY;
                     for (int c = 0; c < 4; c++) {
-                        double d = seg_dist2(cand[c], s0[c], s1[c]);
+                        double d = glpgp_seg_dist2(s0[c], s1[c], cand[c]);
                         if (d < best) best = d, px = cand[c][0], py = cand[c][1];
                     }
                 }
@@ -657,30 +642,19 @@ glpgp_status glpgp_polygons_check(const glpgp_polygons *p, double min_dist)
     return GLPGP_OK;
 }
 
-/* Loop bounding boxes in a uniform grid of g x g cells over the bounding box
- * of all loops (each loop listed in every cell its box overlaps), to find
+/* Loop bounding boxes in a grid of boxes (glpgp/internal/grid.h), to find
  * the loops that may contain a point. */
 typedef struct loop_grid {
-    int g;
-    double x0, y0, cw, ch;
-    int *cell_start; /* g*g + 1 */
-    int *items;      /* loop ids */
-    double *box;     /* 4 per loop: xmin, ymin, xmax, ymax */
+    glpgp_bgrid g;
+    double *box; /* 4 per loop: xmin, ymin, xmax, ymax */
+    int *cand, ncap;
 } loop_grid;
-
-static void grid_cells(const loop_grid *G, const double *b, int *i0, int *j0, int *i1, int *j1)
-{
-    *i0 = (int)fmin(G->g - 1, fmax(0, floor((b[0] - G->x0) / G->cw)));
-    *j0 = (int)fmin(G->g - 1, fmax(0, floor((b[1] - G->y0) / G->ch)));
-    *i1 = (int)fmin(G->g - 1, fmax(0, floor((b[2] - G->x0) / G->cw)));
-    *j1 = (int)fmin(G->g - 1, fmax(0, floor((b[3] - G->y0) / G->ch)));
-}
 
 static void grid_free(loop_grid *G)
 {
-    free(G->cell_start);
-    free(G->items);
+    glpgp_bgrid_free(&G->g);
     free(G->box);
+    free(G->cand);
     memset(G, 0, sizeof *G);
 }
 
@@ -705,37 +679,9 @@ static glpgp_status grid_build(loop_grid *G, const glpgp_polygons *p)
             all[c + 2] = fmax(all[c + 2], b[c + 2]);
         }
     }
-    G->g = (int)fmin(256.0, ceil(sqrt((double)nl)) + 1);
-    G->x0 = all[0];
-    G->y0 = all[1];
-    G->cw = fmax(all[2] - all[0], 1e-300) / G->g;
-    G->ch = fmax(all[3] - all[1], 1e-300) / G->g;
-    const size_t ncell = (size_t)G->g * (size_t)G->g;
-    glpgp_status st = glpgp_calloc(ncell + 1, sizeof(int), &G->cell_start);
-    size_t total = 0;
-    for (int pass = 0; st == GLPGP_OK && pass < 2; pass++) {
-        if (pass == 1) {
-            for (size_t c = 0; c < ncell; c++) G->cell_start[c + 1] += G->cell_start[c];
-            total = (size_t)G->cell_start[ncell];
-            st = glpgp_malloc(total + 1, sizeof(int), &G->items);
-            if (st != GLPGP_OK) break;
-        }
-        for (int l = 0; l < nl; l++) {
-            int i0, j0, i1, j1;
-            grid_cells(G, G->box + 4 * l, &i0, &j0, &i1, &j1);
-            for (int j = j0; j <= j1; j++)
-                for (int i = i0; i <= i1; i++) {
-                    size_t c = (size_t)j * (size_t)G->g + (size_t)i;
-                    if (pass == 0)
-                        G->cell_start[c + 1]++;
-                    else
-                        G->items[G->cell_start[c]++] = l;
-                }
-        }
-        if (pass == 1) /* cell_start was advanced to the ends: shift back */
-            for (size_t c = ncell; c > 0; c--) G->cell_start[c] = G->cell_start[c - 1];
-        if (pass == 1) G->cell_start[0] = 0;
-    }
+    /* about sqrt(nl) cells a side */
+    const double g = fmin(256.0, ceil(sqrt((double)nl)) + 1);
+    glpgp_status st = glpgp_bgrid_build(&G->g, G->box, nl, fmax(all[2] - all[0], all[3] - all[1]) / g);
     if (st != GLPGP_OK) {
         grid_free(G);
         glpgp_error_push_trace(__FILE__, __LINE__);
@@ -743,17 +689,18 @@ static glpgp_status grid_build(loop_grid *G, const glpgp_polygons *p)
     return st;
 }
 
-/* Number of loops of p other than l containing point x (grid G of p). */
-static int containing_loops(const loop_grid *G, const glpgp_polygons *p, int l, const double *x)
+/* Number of loops of p other than l containing point x (grid G of p); -1
+ * when out of memory (recorded). */
+static int containing_loops(loop_grid *G, const glpgp_polygons *p, int l, const double *x)
 {
-    if (x[0] < G->x0 || x[1] < G->y0) return 0;
-    int i = (int)floor((x[0] - G->x0) / G->cw), j = (int)floor((x[1] - G->y0) / G->ch);
-    if (i >= G->g) i = G->g - 1;
-    if (j >= G->g) j = G->g - 1;
-    size_t c = (size_t)j * (size_t)G->g + (size_t)i;
+    const int n = glpgp_bgrid_query(&G->g, x[0], x[1], x[0], x[1], &G->cand, &G->ncap);
+    if (n < 0) {
+        GLPGP_FAIL(GLPGP_ERR_NOMEM, "out of memory");
+        return -1;
+    }
     int depth = 0;
-    for (int k = G->cell_start[c]; k < G->cell_start[c + 1]; k++) {
-        int q = G->items[k];
+    for (int k = 0; k < n; k++) {
+        int q = G->cand[k];
         const double *b = G->box + 4 * q;
         if (q == l || x[0] < b[0] || x[0] > b[2] || x[1] < b[1] || x[1] > b[3]) continue;
         depth += point_in_loop(p->xy + 2 * p->start[q], p->start[q + 1] - p->start[q], x[0], x[1]);
@@ -784,6 +731,7 @@ glpgp_status glpgp_polygons_simplify(glpgp_polygons *p, double tol, double min_d
     for (int l = 0; l < nl; l++) {
         depth[l] = containing_loops(&G, p, l, raw + 2 * rstart[l]);
         ltol[l] = tol;
+        if (depth[l] < 0) GLPGP_CHECK_GOTO(st, GLPGP_ERR_NOMEM, done);
     }
     grid_free(&G);
     for (int round = 0;; round++) {
@@ -809,8 +757,11 @@ glpgp_status glpgp_polygons_simplify(glpgp_polygons *p, double tol, double min_d
             goto done;
         }
         GLPGP_CHECK_GOTO(st, grid_build(&G, p), done);
-        for (int l = 0; l < nl; l++)
-            if (containing_loops(&G, p, l, p->xy + 2 * (size_t)p->start[l]) != depth[l]) bad[l] = 1;
+        for (int l = 0; l < nl; l++) {
+            const int d = containing_loops(&G, p, l, p->xy + 2 * (size_t)p->start[l]);
+            if (d < 0) GLPGP_CHECK_GOTO(st, GLPGP_ERR_NOMEM, done);
+            if (d != depth[l]) bad[l] = 1;
+        }
         grid_free(&G);
         int nbad = 0, stuck = 0;
         for (int l = 0; l < nl; l++) {

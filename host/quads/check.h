@@ -5,6 +5,8 @@
 #ifndef GLPGP_QUADS_CHECK_H
 #define GLPGP_QUADS_CHECK_H
 
+#include "glpgp/internal/geom2.h"
+#include "glpgp/internal/grid.h"
 #include "glpgp/quads.h"
 
 /* Why a face is bad (bits of the per-face flags). */
@@ -43,32 +45,8 @@ void glpgp_qcheck_free(qcheck *c);
  * it touches none. dm NULL: all 1. */
 glpgp_status glpgp_qcheck_corner_bound(const glpgp_quadmesh *q, const glpgp_mesh *dm, double h, double *bound);
 
-/* ---- small geometry shared with repair.c --------------------------------- */
+/* ---- small geometry shared with repair.c: the core's (glpgp/internal/) --- */
 
-/* Uniform grid of axis-aligned boxes for candidate queries. */
-typedef struct bgrid {
-    double x0, y0, cs;
-    int nx, ny;
-    int *start, *item; /* CSR: cell -> items */
-    int *stamp, tick;  /* per item: last query that returned it */
-    int nitems;
-} bgrid;
-
-/* box[4 i .. 4 i + 3] = xmin, ymin, xmax, ymax of item i. cs: cell size hint. */
-glpgp_status glpgp_bgrid_build(bgrid *g, const double *box, int n, double cs);
-void glpgp_bgrid_free(bgrid *g);
-/* Items whose box may overlap [x0, x1] x [y0, y1] (each once) into *out
- * (grown as needed, *cap its capacity); returns their count or -1 on OOM. */
-int glpgp_bgrid_query(bgrid *g, double x0, double y0, double x1, double y1, int **out, int *cap);
-
-/* 1 when the open segments ab and cd cross properly (their intersection is
- * a single point interior to both, farther than eps from the four end
- * points). */
-int glpgp_seg_cross(const double *a, const double *b, const double *c, const double *d, double eps);
-/* Distance from p to segment ab; *t: parameter of the nearest point. */
-double glpgp_seg_dist(const double *a, const double *b, const double *p, double *t);
-/* Winding test: 1 when p is inside polygon xy[2 v[i]] (n corners, either
- * orientation) and farther than eps from its sides. */
-int glpgp_point_in_poly(const double *xy, const int *v, int n, const double *p, double eps);
+typedef glpgp_bgrid bgrid;
 
 #endif

@@ -60,6 +60,7 @@
  * step towards its neighbours' mean that most raises the worst nearby
  * corner.
  */
+#include "glpgp/internal/heap.h"
 #include "glpgp/quads.h"
 #include "geom.h"
 #include "soup.h"
@@ -254,45 +255,6 @@ static glpgp_status end_cost(const psoup *s, const adjacency *A, int f, int i, d
     return st;
 }
 
-typedef struct heap_item {
-    double d;
-    int state; /* corner slot fs[f] + entry edge i, or -1 - k for target k */
-} heap_item;
-
-typedef struct heap {
-    heap_item *a;
-    int n, cap;
-} heap;
-
-static glpgp_status heap_push(heap *h, double d, int state)
-{
-    glpgp_status st = glpgp_soup_grow((void **)&h->a, &h->cap, h->n + 1, sizeof(heap_item));
-    if (st != GLPGP_OK) return st;
-    int i = h->n++;
-    while (i > 0 && h->a[(i - 1) / 2].d > d) {
-        h->a[i] = h->a[(i - 1) / 2];
-        i = (i - 1) / 2;
-    }
-    h->a[i] = (heap_item){d, state};
-    return GLPGP_OK;
-}
-
-static heap_item heap_pop(heap *h)
-{
-    heap_item top = h->a[0], last = h->a[--h->n];
-    int i = 0;
-    for (;;) {
-        int c = 2 * i + 1;
-        if (c >= h->n) break;
-        if (c + 1 < h->n && h->a[c + 1].d < h->a[c].d) c++;
-        if (h->a[c].d >= last.d) break;
-        h->a[i] = h->a[c];
-        i = c;
-    }
-    if (h->n > 0) h->a[i] = last;
-    return top;
-}
-
 /* Search workspace: per corner slot (fs[f] + entry edge of quad f) the
  * distance and the predecessor slot (-1 - i: entered from the start face
  * through its edge i), reset through the touched list. */
@@ -302,7 +264,7 @@ typedef struct search {
     double *ecost; /* end_cost of each corner slot of the odd faces */
     double size;   /* typical edge length (cost of cutting thin quads) */
     int *touched, nt, cap_t;
-    heap h;
+    glpgp_heap h;
 } search;
 
 /* One face of a strip: face f entered through edge in and left through
@@ -335,7 +297,7 @@ static glpgp_status relax(search *S, int slot, double c, int pred)
     }
     S->dist[slot] = c;
     S->pred[slot] = pred;
-    return heap_push(&S->h, c, slot);
+    return glpgp_heap_push(&S->h, c, slot);
 }
 
 /* The strip search crosses edge k of face f (reached at cost c, from the
@@ -381,13 +343,13 @@ static glpgp_status find_strip(const psoup *s, const adjacency *A, const unsigne
             GLPGP_CHECK_GOTO(st, cross(s, A, used, S, f0, f0, i, c0, -1 - i, &best, &best_slot, &best_exit), done);
     }
     while (S->h.n > 0) {
-        heap_item it = heap_pop(&S->h);
-        if (it.d >= best) break;
-        int slot = it.state;
-        if (it.d > S->dist[slot]) continue;
+        glpgp_heap_item it = glpgp_heap_pop(&S->h);
+        if (it.key >= best) break;
+        int slot = it.id;
+        if (it.key > S->dist[slot]) continue;
         int f = A->sf[slot], j = slot - s->fs[f];
         for (int dk = 1; dk <= 3; dk++) /* straight through (dk = 2, the opposite edge) or a turn */
-            GLPGP_CHECK_GOTO(st, cross(s, A, used, S, f0, f, (j + dk) % 4, it.d + (dk == 2 ? 0.0 : TURN_COST),
+            GLPGP_CHECK_GOTO(st, cross(s, A, used, S, f0, f, (j + dk) % 4, it.key + (dk == 2 ? 0.0 : TURN_COST),
                                        slot, &best, &best_slot, &best_exit),
                              done);
     }
@@ -828,7 +790,7 @@ done:
     free(C.S.pred);
     free(C.S.ecost);
     free(C.S.touched);
-    free(C.S.h.a);
+    glpgp_heap_free(&C.S.h);
     free(C.used);
     free(C.failed);
     free(C.odd);

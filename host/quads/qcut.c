@@ -88,16 +88,11 @@ static glpgp_status add_hole(qc_piece *p, ivec *h)
 
 /* ---- geometry --------------------------------------------------------------- */
 
-static double orient(const double *a, const double *b, const double *c)
-{
-    return (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
-}
-
 static double loop_area(const qc *c, const ivec *L)
 {
     double s = 0.0;
     const double *o = P(c, L->p[0]);
-    for (int i = 1; i + 1 < L->n; i++) s += 0.5 * orient(o, P(c, L->p[i]), P(c, L->p[i + 1]));
+    for (int i = 1; i + 1 < L->n; i++) s += 0.5 * glpgp_orient2(o, P(c, L->p[i]), P(c, L->p[i + 1]));
     return s;
 }
 

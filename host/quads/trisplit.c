@@ -27,11 +27,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-static double orient2(const double *a, const double *b, const double *c)
-{
-    return (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
-}
-
 /* ---- triangulation of a polygon with holes ---------------------------------- */
 
 typedef struct tri_ctx {
@@ -52,7 +47,7 @@ static int seg_cross_any(const double *xy, const int *e, int n, const double *p,
         int a = e[i], b = e[i + 1];
         if (a == skip_a || b == skip_a || a == skip_b || b == skip_b) continue;
         const double *A = xy + 2 * a, *Bp = xy + 2 * b;
-        double d1 = orient2(p, q, A), d2 = orient2(p, q, Bp), d3 = orient2(A, Bp, p), d4 = orient2(A, Bp, q);
+        double d1 = glpgp_orient2(p, q, A), d2 = glpgp_orient2(p, q, Bp), d3 = glpgp_orient2(A, Bp, p), d4 = glpgp_orient2(A, Bp, q);
         if (((d1 > 0 && d2 < 0) || (d1 < 0 && d2 > 0)) && ((d3 > 0 && d4 < 0) || (d3 < 0 && d4 > 0))) return 1;
         /* an end on the open segment */
         if (d1 == 0 && (A[0] - p[0]) * (A[0] - q[0]) + (A[1] - p[1]) * (A[1] - q[1]) < 0) return 1;
@@ -92,7 +87,7 @@ static glpgp_status bridge_holes(tri_ctx *T, ivec *ring, const ivec *holes, int 
                 /* inside the ring's angle at V: the bridge must leave V into the polygon */
                 int pj = ring->p[(j + ring->n - 1) % ring->n], nj = ring->p[(j + 1) % ring->n];
                 const double *pp = T->xy.p + 2 * pj, *pn = T->xy.p + 2 * nj;
-                double o1 = orient2(pv, pn, pm), o2 = orient2(pp, pv, pm), conv = orient2(pp, pv, pn);
+                double o1 = glpgp_orient2(pv, pn, pm), o2 = glpgp_orient2(pp, pv, pm), conv = glpgp_orient2(pp, pv, pn);
                 int in_angle = conv >= 0 ? (o1 > 0 && o2 > 0) : (o1 > 0 || o2 > 0);
                 if (!in_angle) continue;
                 if (seg_cross_any(T->xy.p, all_edges->p, all_edges->n, pm, pv, M, V)) continue;
@@ -138,7 +133,7 @@ static glpgp_status ear_clip(tri_ctx *T, const ivec *ring)
     while (left > 3 && st == GLPGP_OK) {
         int a = prv[cur], c = nxt[cur];
         const double *pa = xy + 2 * ring->p[a], *pb = xy + 2 * ring->p[cur], *pc = xy + 2 * ring->p[c];
-        double ar = orient2(pa, pb, pc);
+        double ar = glpgp_orient2(pa, pb, pc);
         int ear = ar > 0;
         if (ear) {
             /* no other vertex inside or on the triangle (duplicates of the corners excepted) */
@@ -146,7 +141,7 @@ static glpgp_status ear_clip(tri_ctx *T, const ivec *ring)
                 int v = ring->p[j];
                 if (v == ring->p[a] || v == ring->p[cur] || v == ring->p[c]) continue;
                 const double *p = xy + 2 * v;
-                if (orient2(pa, pb, p) >= 0 && orient2(pb, pc, p) >= 0 && orient2(pc, pa, p) >= 0) ear = 0;
+                if (glpgp_orient2(pa, pb, p) >= 0 && glpgp_orient2(pb, pc, p) >= 0 && glpgp_orient2(pc, pa, p) >= 0) ear = 0;
             }
         }
         if (!ear && stall > 2 * left) {
@@ -154,7 +149,7 @@ static glpgp_status ear_clip(tri_ctx *T, const ivec *ring)
             double best = -INFINITY;
             int bi = cur, j = cur;
             for (int k = 0; k < left; k++, j = nxt[j]) {
-                double o = orient2(xy + 2 * ring->p[prv[j]], xy + 2 * ring->p[j], xy + 2 * ring->p[nxt[j]]);
+                double o = glpgp_orient2(xy + 2 * ring->p[prv[j]], xy + 2 * ring->p[j], xy + 2 * ring->p[nxt[j]]);
                 if (o > best) {
                     best = o;
                     bi = j;
@@ -297,7 +292,7 @@ static glpgp_status flips(tri_ctx *T, const eset *C)
                 const double *xy = T->xy.p;
                 if (!incircle(xy + 2 * a, xy + 2 * b, xy + 2 * c, xy + 2 * d)) continue;
                 /* the quad a d b c must be convex for the flip */
-                if (orient2(xy + 2 * c, xy + 2 * a, xy + 2 * d) <= 0 || orient2(xy + 2 * d, xy + 2 * b, xy + 2 * c) <= 0)
+                if (glpgp_orient2(xy + 2 * c, xy + 2 * a, xy + 2 * d) <= 0 || glpgp_orient2(xy + 2 * d, xy + 2 * b, xy + 2 * c) <= 0)
                     continue;
                 A[0] = c;
                 A[1] = a;
@@ -359,7 +354,7 @@ static glpgp_status refine(tri_ctx *T, const eset *C, double lmax, int max_new)
             int d = w[(k + 2) % 3];
             {   /* not next to a sliver: bisecting there only piles points onto its long side */
                 const double *pa = T->xy.p + 2 * a, *pb = T->xy.p + 2 * b;
-                double hc = fabs(orient2(pa, pb, T->xy.p + 2 * c)) / L, hd = fabs(orient2(pa, pb, T->xy.p + 2 * d)) / L;
+                double hc = fabs(glpgp_orient2(pa, pb, T->xy.p + 2 * c)) / L, hd = fabs(glpgp_orient2(pa, pb, T->xy.p + 2 * d)) / L;
                 if (hc < 0.25 * L || hd < 0.25 * L) continue;
             }
             int mi = T->xy.n / 2;

@@ -94,6 +94,7 @@
  * sizes on the new mesh each round. */
 #include "internal.h"
 
+#include "glpgp/internal/heap.h"
 #include "glpgp/util.h"
 
 #include <errno.h>
@@ -267,40 +268,6 @@ static double ray_cast(const glpgp_mesh *m, const bedges *be, int self, double p
 
 /* ---- gradation ------------------------------------------------------------- */
 
-typedef struct heap_item {
-    double key;
-    int v;
-} heap_item;
-
-static void heap_push(heap_item *h, size_t *n, double key, int v)
-{
-    size_t i = (*n)++;
-    while (i > 0) {
-        size_t p = (i - 1) / 2;
-        if (h[p].key <= key) break;
-        h[i] = h[p];
-        i = p;
-    }
-    h[i].key = key;
-    h[i].v = v;
-}
-
-static heap_item heap_pop(heap_item *h, size_t *n)
-{
-    heap_item top = h[0], last = h[--(*n)];
-    size_t i = 0;
-    for (;;) {
-        size_t c = 2 * i + 1;
-        if (c >= *n) break;
-        if (c + 1 < *n && h[c + 1].key < h[c].key) c++;
-        if (h[c].key >= last.key) break;
-        h[i] = h[c];
-        i = c;
-    }
-    if (*n > 0) h[i] = last;
-    return top;
-}
-
 /* Vertex adjacency of the mesh (CSR, an interior edge listed from both of its
  * triangles: duplicates are harmless for Dijkstra). */
 static glpgp_status vertex_graph(const glpgp_mesh *m, int **pptr, int **padj)
@@ -337,9 +304,9 @@ static glpgp_status vertex_graph(const glpgp_mesh *m, int **pptr, int **padj)
  * every mesh edge when it returns. */
 static glpgp_status grade(const glpgp_mesh *m, const int *ptr, const int *adj, double g, double *s, double *slope)
 {
-    heap_item *heap = NULL;
-    size_t n = 0;
-    GLPGP_CHECK(glpgp_malloc((size_t)m->nv + (size_t)ptr[m->nv] + 1, sizeof(heap_item), &heap));
+    /* at most one push per vertex and one per adjacency entry: never grows */
+    glpgp_heap heap = {NULL, 0, 0};
+    GLPGP_CHECK(glpgp_heap_reserve(&heap, (size_t)m->nv + (size_t)ptr[m->nv] + 1));
     /* one slope: a vertex at the largest size lowers no neighbour (s_i + g |e|
      * > s_max >= s_j), so only the others start in the heap (a uniform
      * field: none); the result, the graph distances, is the same in any
@@ -350,11 +317,11 @@ static glpgp_status grade(const glpgp_mesh *m, const int *ptr, const int *adj, d
         for (int i = 0; i < m->nv; i++) smax = fmax(smax, s[i]);
     }
     for (int i = 0; i < m->nv; i++)
-        if (slope || s[i] < smax) heap_push(heap, &n, s[i], i);
-    for (long pops = 0; n > 0; pops++) {
+        if (slope || s[i] < smax) (void)glpgp_heap_push(&heap, s[i], i);
+    for (long pops = 0; heap.n > 0; pops++) {
         if ((pops & 65535) == 0) glpgp_progress_poll();
-        heap_item it = heap_pop(heap, &n);
-        const int i = it.v;
+        const glpgp_heap_item it = glpgp_heap_pop(&heap);
+        const int i = it.id;
         if (it.key > s[i]) continue; /* stale entry */
         const double gi = slope ? slope[i] : g;
         for (int k = ptr[i]; k < ptr[i + 1]; k++) {
@@ -364,11 +331,11 @@ static glpgp_status grade(const glpgp_mesh *m, const int *ptr, const int *adj, d
             if (c < s[j]) {
                 s[j] = c;
                 if (slope) slope[j] = gi;
-                heap_push(heap, &n, c, j);
+                (void)glpgp_heap_push(&heap, c, j);
             }
         }
     }
-    free(heap);
+    glpgp_heap_free(&heap);
     return GLPGP_OK;
 }
 

@@ -8,6 +8,7 @@
 #include "internal.h"
 
 #include "glpgp/surfsolve.h"
+#include "glpgp/internal/heap.h"
 #include "glpgp/util.h"
 
 #include <errno.h>
@@ -53,46 +54,6 @@ static glpgp_status size_file(const glpgp_mesh *m, const char *path, double *siz
     return st;
 }
 
-/* ---- a binary heap of (key, vertex) for Dijkstra ------------------------------ */
-
-typedef struct heap {
-    double *key;
-    int *v, n;
-} heap;
-
-static void heap_push(heap *q, double k, int v)
-{
-    int i = q->n++;
-    while (i > 0 && q->key[(i - 1) / 2] > k) {
-        q->key[i] = q->key[(i - 1) / 2];
-        q->v[i] = q->v[(i - 1) / 2];
-        i = (i - 1) / 2;
-    }
-    q->key[i] = k;
-    q->v[i] = v;
-}
-
-static int heap_pop(heap *q, double *k)
-{
-    const int top = q->v[0];
-    *k = q->key[0];
-    const double lk = q->key[--q->n];
-    const int lv = q->v[q->n];
-    int i = 0;
-    for (;;) {
-        int c = 2 * i + 1;
-        if (c >= q->n) break;
-        if (c + 1 < q->n && q->key[c + 1] < q->key[c]) c++;
-        if (q->key[c] >= lk) break;
-        q->key[i] = q->key[c];
-        q->v[i] = q->v[c];
-        i = c;
-    }
-    q->key[i] = lk;
-    q->v[i] = lv;
-    return top;
-}
-
 /* Each edge's endpoints to fn: the half-edges out of each corner, plus a
  * boundary fan's incoming edge. */
 #define FOR_NEIGHBOURS(m, i, j, BODY)                                                                             \
@@ -114,30 +75,23 @@ static int heap_pop(heap *q, double *k)
 /* s_i <- min(s_i, min_j s_j + g |x_i - x_j|) over the mesh (Dijkstra). */
 static glpgp_status grade(const glpgp_mesh *m, double g, double *s)
 {
-    heap q;
+    glpgp_heap q = {NULL, 0, 0};
     const size_t cap = (size_t)3 * m->nt + (size_t)m->nv + 1;
-    q.n = 0;
-    GLPGP_CHECK(glpgp_malloc(cap, sizeof(double), &q.key));
-    glpgp_status st = glpgp_malloc(cap, sizeof(int), &q.v);
-    if (st != GLPGP_OK) {
-        free(q.key);
-        return st;
-    }
-    for (int i = 0; i < m->nv; i++) heap_push(&q, s[i], i);
+    GLPGP_CHECK(glpgp_heap_reserve(&q, cap));
+    for (int i = 0; i < m->nv; i++) (void)glpgp_heap_push(&q, s[i], i); /* within cap: cannot fail */
     while (q.n > 0) {
-        double k;
-        const int i = heap_pop(&q, &k);
-        if (k > s[i]) continue; /* stale */
+        const glpgp_heap_item it = glpgp_heap_pop(&q);
+        const int i = it.id;
+        if (it.key > s[i]) continue; /* stale */
         FOR_NEIGHBOURS(m, i, j, {
             const double c = s[i] + g * dist3(m->xyz + 3 * i, m->xyz + 3 * j);
-            if (c < s[j] && (size_t)q.n < cap) {
+            if (c < s[j] && q.n < cap) {
                 s[j] = c;
-                heap_push(&q, c, j);
+                (void)glpgp_heap_push(&q, c, j);
             }
         });
     }
-    free(q.key);
-    free(q.v);
+    glpgp_heap_free(&q);
     return GLPGP_OK;
 }
 
@@ -210,15 +164,14 @@ static glpgp_status feature_spacing(const glpgp_mesh *m, const glpgp_surface_con
     const int nv = m->nv;
     int *lab = NULL, *src = NULL;
     double *d = NULL, *tan3 = NULL;
-    heap q = {NULL, NULL, 0};
+    glpgp_heap q = {NULL, 0, 0};
     glpgp_status st = GLPGP_OK;
     const size_t cap = (size_t)3 * m->nt + (size_t)nv + 1;
     GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)nv, sizeof(int), &lab), done);
     GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)nv, sizeof(int), &src), done);
     GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)nv, sizeof(double), &d), done);
     GLPGP_CHECK_GOTO(st, glpgp_calloc((size_t)6 * nv, sizeof(double), &tan3), done);
-    GLPGP_CHECK_GOTO(st, glpgp_malloc(cap, sizeof(double), &q.key), done);
-    GLPGP_CHECK_GOTO(st, glpgp_malloc(cap, sizeof(int), &q.v), done);
+    GLPGP_CHECK_GOTO(st, glpgp_heap_reserve(&q, cap), done);
     /* curve labels: union of constraint edges between two-edge vertices; tangents */
     for (int i = 0; i < nv; i++) lab[i] = con->cptr[i + 1] - con->cptr[i] == 2 ? i : -1;
     for (int h = 0; h < 3 * m->nt; h++) {
@@ -242,21 +195,21 @@ static glpgp_status feature_spacing(const glpgp_mesh *m, const glpgp_surface_con
         if (lab[i] >= 0) {
             d[i] = 0.0;
             src[i] = i;
-            heap_push(&q, 0.0, i);
+            (void)glpgp_heap_push(&q, 0.0, i); /* within cap */
         }
     }
     for (int i = 0; i < nv; i++)
         if (lab[i] >= 0) lab[i] = glpgp_uf_find(lab, i);
     while (q.n > 0) {
-        double k;
-        const int i = heap_pop(&q, &k);
-        if (k > d[i]) continue;
+        const glpgp_heap_item it = glpgp_heap_pop(&q);
+        const int i = it.id;
+        if (it.key > d[i]) continue;
         FOR_NEIGHBOURS(m, i, j, {
             const double c = d[i] + dist3(m->xyz + 3 * i, m->xyz + 3 * j);
-            if (c < d[j] && (size_t)q.n < cap) {
+            if (c < d[j] && q.n < cap) {
                 d[j] = c;
                 src[j] = src[i];
-                heap_push(&q, c, j);
+                (void)glpgp_heap_push(&q, c, j);
             }
         });
     }
@@ -287,8 +240,7 @@ done:
     free(src);
     free(d);
     free(tan3);
-    free(q.key);
-    free(q.v);
+    glpgp_heap_free(&q);
     return st;
 }
 
