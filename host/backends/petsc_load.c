@@ -4,17 +4,17 @@
  * `glpgp --version` and every other command load no PETSc or MPI library),
  * hands it the error record and the log, and forwards to its table.
  *
- * Search: the first directory of glpgp_module_dirs_get (core/module_dirs.c,
- * the same as for the image modules) that holds the file. Loading, MPI's
+ * Search and dlopen: glpgp_module_open (core/modload.c, the same as for the
+ * image modules). Loading, MPI's
  * initialisation and finalisation run under the modules' lock
  * (glpgp_module_lock): two threads asking at once load the module once. */
 #include "glpgp/backends.h"
 #include "glpgp/solve.h"
+#include "glpgp/internal/modload.h"
 #include "glpgp/util.h"
 
 #include "petsc_module.h"
 
-#include <dlfcn.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -45,23 +45,22 @@ int glpgp_have_petsc(void)
 #endif
 }
 
-/* Load the module at path (g_api; g_why set on failure). */
-static void load_path(const char *path)
+/* Find and load the module (g_api; g_why set on failure). RTLD_GLOBAL: MPI's
+ * own plugins (OpenMPI's mca components) dlopen later and need libmpi's
+ * symbols in the global namespace. */
+static void load_module(void)
 {
-    /* RTLD_GLOBAL: MPI's own plugins (OpenMPI's mca components) dlopen later and
-     * need libmpi's symbols in the global namespace */
-    void *h = dlopen(path, RTLD_NOW | RTLD_GLOBAL);
-    if (!h) {
-        const char *e = dlerror();
-        snprintf(g_why, sizeof g_why, "cannot load the PETSc module %s: %s", path, e ? e : "dlopen failed");
+    void *sym = NULL;
+    if (glpgp_module_open("PETSc", GLPGP_PETSC_MODULE_FILE, GLPGP_PETSC_ENTRY, 1, &sym, g_why, sizeof g_why) !=
+        GLPGP_OK)
         return;
-    }
-    void *sym = dlsym(h, GLPGP_PETSC_ENTRY);
+    char path[sizeof g_why];
+    snprintf(path, sizeof path, "%s", g_why);
     glpgp_petsc_entry_fn entry;
-    memcpy(&entry, &sym, sizeof entry);
-    const glpgp_petsc_api *api = sym ? entry(&g_host) : NULL;
+    memcpy(&entry, &sym, sizeof entry); /* object pointer -> function pointer, ISO C safe */
+    const glpgp_petsc_api *api = entry(&g_host);
     if (!api || api->abi != GLPGP_PETSC_ABI) {
-        snprintf(g_why, sizeof g_why, "cannot load the PETSc module %s: it belongs to another glpgp build", path);
+        snprintf(g_why, sizeof g_why, "cannot load the PETSc module %.4160s: it belongs to another glpgp build", path);
         return;
     }
     g_api = api;
@@ -80,14 +79,7 @@ static glpgp_status load_locked(void)
         return glpgp_error_set(__FILE__, __LINE__, g_st, "%s", g_why);
     }
     g_st = GLPGP_ERR_IO;
-    glpgp_module_dirs d;
-    glpgp_module_dirs_get(&d);
-    char path[GLPGP_MODULE_PATH_LEN + 64];
-    if (glpgp_module_find(&d, GLPGP_PETSC_MODULE_FILE, path, sizeof path))
-        load_path(path);
-    else
-        snprintf(g_why, sizeof g_why, "the PETSc module %s was not found%s", GLPGP_PETSC_MODULE_FILE,
-                 d.from_env ? " in $GLPGP_MODULE_DIR" : " (set GLPGP_MODULE_DIR to its directory)");
+    load_module();
     if (g_api) return GLPGP_OK;
     return glpgp_error_set(__FILE__, __LINE__, g_st, "%s", g_why);
 }

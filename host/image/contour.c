@@ -62,7 +62,7 @@ void glpgp_polygons_destroy(glpgp_polygons **p)
     *p = NULL;
 }
 
-/* ---- growable arrays --------------------------------------------------- */
+/* ---- growable arrays (glpgp_grow) ---------------------------------------- */
 
 typedef struct dbuf {
     double *a;
@@ -75,13 +75,7 @@ typedef struct ibuf {
 
 static glpgp_status dbuf_push2(dbuf *b, double x, double y)
 {
-    if (b->n + 2 > b->cap) {
-        size_t c = b->cap ? 2 * b->cap : 1024;
-        double *na = realloc(b->a, c * sizeof *na);
-        if (!na) return GLPGP_FAIL(GLPGP_ERR_NOMEM, "out of memory (contour points)");
-        b->a = na;
-        b->cap = c;
-    }
+    if (b->n + 2 > b->cap) GLPGP_CHECK(glpgp_grow(&b->a, &b->cap, b->n + 2, sizeof *b->a));
     b->a[b->n++] = x;
     b->a[b->n++] = y;
     return GLPGP_OK;
@@ -89,13 +83,7 @@ static glpgp_status dbuf_push2(dbuf *b, double x, double y)
 
 static glpgp_status ibuf_push(ibuf *b, int x)
 {
-    if (b->n + 1 > b->cap) {
-        size_t c = b->cap ? 2 * b->cap : 1024;
-        int *na = realloc(b->a, c * sizeof *na);
-        if (!na) return GLPGP_FAIL(GLPGP_ERR_NOMEM, "out of memory (contour links)");
-        b->a = na;
-        b->cap = c;
-    }
+    if (b->n + 1 > b->cap) GLPGP_CHECK(glpgp_grow(&b->a, &b->cap, b->n + 1, sizeof *b->a));
     b->a[b->n++] = x;
     return GLPGP_OK;
 }

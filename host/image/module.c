@@ -14,9 +14,9 @@
  * outcome (table or error text) is kept for the life of the process. */
 #include "module.h"
 
+#include "glpgp/internal/modload.h"
 #include "glpgp/util.h"
 
-#include <dlfcn.h>
 #include <pthread.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -84,42 +84,21 @@ static void slot_load(module_slot *s)
                  "this glpgp was built without %s (install %s and rebuild)", s->what, s->package);
         return;
     }
-    glpgp_module_dirs d;
-    glpgp_module_dirs_get(&d);
-    char path[PATH_LEN + 64];
-    if (!glpgp_module_find(&d, s->file, path, sizeof path)) {
-        char dirs[GLPGP_MODULE_MAX_DIRS * (PATH_LEN + 2)] = "";
-        for (int i = 0; i < d.n; i++) {
-            if (i) strcat(dirs, ", ");
-            strcat(dirs, d.dir[i]);
-        }
-        slot_fail(s, GLPGP_ERR_IO,
-                  d.from_env ? "the %s module %s is not in %s ($GLPGP_MODULE_DIR)"
-                             : "the %s module %s is not in %s (set GLPGP_MODULE_DIR to its directory)",
-                  s->file, d.n ? dirs : "(no directory)");
+    void *sym = NULL;
+    glpgp_status st = glpgp_module_open(s->what, s->file, s->entry, 0, &sym, s->why, sizeof s->why);
+    if (st != GLPGP_OK) { /* RTLD_LOCAL: OpenImageIO, libstdc++, Gmsh stay out of the global namespace */
+        s->state = -1;
+        s->st = st;
         return;
     }
-    /* RTLD_LOCAL: the module's libraries (OpenImageIO, libstdc++, Gmsh) stay
-     * out of the global namespace; RTLD_NOW: a missing dependency fails here */
-    void *h = dlopen(path, RTLD_NOW | RTLD_LOCAL);
-    if (!h) {
-        const char *e = dlerror();
-        slot_fail(s, GLPGP_ERR_IO, "cannot load the %s module %s: %s", path, e ? e : "dlopen failed");
-        return;
-    }
+    char path[sizeof s->why];
+    snprintf(path, sizeof path, "%s", s->why);
     glpgp_module_entry_fn entry;
-    void *sym = dlsym(h, s->entry);
     memcpy(&entry, &sym, sizeof entry); /* object pointer -> function pointer, ISO C safe */
-    if (!sym) {
-        slot_fail(s, GLPGP_ERR_IO, "cannot load the %s module %s: it has no %s (not a glpgp module)",
-                  path, s->entry);
-        dlclose(h);
-        return;
-    }
     const void *api = entry(&g_host);
     if (!api || *(const int *)api != GLPGP_MODULE_ABI) {
         slot_fail(s, GLPGP_ERR_IO,
-                  "cannot load the %s module %s: it belongs to another glpgp build (%s)", path,
+                  "cannot load the %s module %.4160s: it belongs to another glpgp build (%s)", path,
                   "module interface version mismatch");
         /* not dlclose'd: the entry ran code of the module */
         return;

@@ -196,7 +196,7 @@ static glpgp_status end_cost(const psoup *s, const adjacency *A, int f, int i, d
     if (n + 1 > GLPGP_POLY_SPLIT_MAX) return GLPGP_OK;
     psoup T;
     memset(&T, 0, sizeof T);
-    glpgp_status st = glpgp_soup_grow((void **)&T.xy, &T.cap_v, 2 * (n + 2), sizeof(double));
+    glpgp_status st = glpgp_grow_int(&T.xy, &T.cap_v, 2 * (n + 2), sizeof(double));
     if (st != GLPGP_OK) return st;
     int p[GLPGP_POLY_SPLIT_MAX + 1], out[4 * GLPGP_POLY_SPLIT_MAX], nq = 0, gid[GLPGP_POLY_SPLIT_MAX + 2];
     /* local polygon: corners 0..n with the midpoint after corner i */
@@ -291,7 +291,7 @@ static glpgp_status relax(search *S, int slot, double c, int pred)
 {
     if (!(c < S->dist[slot])) return GLPGP_OK;
     if (S->dist[slot] == INFINITY) {
-        glpgp_status st = glpgp_soup_grow((void **)&S->touched, &S->cap_t, S->nt + 1, sizeof(int));
+        glpgp_status st = glpgp_grow_int(&S->touched, &S->cap_t, S->nt + 1, sizeof(int));
         if (st != GLPGP_OK) return st;
         S->touched[S->nt++] = slot;
     }
@@ -364,7 +364,7 @@ static glpgp_status find_strip(const psoup *s, const adjacency *A, const unsigne
         int fl = best_slot >= 0 ? A->sf[best_slot] : f0;
         int g = A->adj[s->fs[fl] + best_exit];
         int total = n + (g >= 0 ? 1 : 0);
-        GLPGP_CHECK_GOTO(st, glpgp_soup_grow((void **)path, cap_path, total, sizeof(pstep)), done);
+        GLPGP_CHECK_GOTO(st, glpgp_grow_int(path, cap_path, total, sizeof(pstep)), done);
         pstep *P = *path;
         int w = n - 1, out = best_exit;
         sl = best_slot;
@@ -679,7 +679,7 @@ static glpgp_status round_setup(closing *C)
     psoup *s = &C->s;
     search *S = &C->S;
     const int nf0 = s->nf, old = C->cap_failed;
-    GLPGP_CHECK(glpgp_soup_grow((void **)&C->failed, &C->cap_failed, nf0, 1));
+    GLPGP_CHECK(glpgp_grow_int(&C->failed, &C->cap_failed, nf0, 1));
     if (C->cap_failed > old) memset(C->failed + old, 0, (size_t)(C->cap_failed - old));
     glpgp_free(&C->used);
     glpgp_free(&C->odd);

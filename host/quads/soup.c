@@ -5,9 +5,8 @@
 
 #include <stdlib.h>
 #include <string.h>
+
 /* ---- growable polygon soup ---- */
-
-
 
 /* Origin of a face made from face f by the closing. */
 unsigned char glpgp_soup_closed_origin(const psoup *s, int f)
@@ -15,21 +14,9 @@ unsigned char glpgp_soup_closed_origin(const psoup *s, int f)
     return s->fo[f] > GLPGP_QFACE_CLOSED ? s->fo[f] : GLPGP_QFACE_CLOSED;
 }
 
-glpgp_status glpgp_soup_grow(void **p, int *cap, int need, size_t elem)
-{
-    if (need <= *cap) return GLPGP_OK;
-    int c = *cap ? *cap : 64;
-    while (c < need) c *= 2;
-    void *n = realloc(*p, (size_t)c * elem);
-    if (!n) return GLPGP_FAIL(GLPGP_ERR_NOMEM, "quad pairing: out of memory");
-    *p = n;
-    *cap = c;
-    return GLPGP_OK;
-}
-
 glpgp_status glpgp_soup_vertex(psoup *s, double x, double y, int *id)
 {
-    glpgp_status st = glpgp_soup_grow((void **)&s->xy, &s->cap_v, 2 * (s->nv + 1), sizeof(double));
+    glpgp_status st = glpgp_grow_int(&s->xy, &s->cap_v, 2 * (s->nv + 1), sizeof(double));
     if (st != GLPGP_OK) return st;
     s->xy[2 * s->nv] = x;
     s->xy[2 * s->nv + 1] = y;
@@ -40,7 +27,7 @@ glpgp_status glpgp_soup_vertex(psoup *s, double x, double y, int *id)
 /* Append a face (n corners v[]); *id (may be NULL) receives its index. */
 glpgp_status glpgp_soup_face(psoup *s, const int *v, int n, int *id)
 {
-    glpgp_status st = glpgp_soup_grow((void **)&s->fv, &s->cap_fv, s->nfv + n, sizeof(int));
+    glpgp_status st = glpgp_grow_int(&s->fv, &s->cap_fv, s->nfv + n, sizeof(int));
     if (st != GLPGP_OK) return st;
     if (s->nf + 1 > s->cap_f) {
         int c = s->cap_f ? 2 * s->cap_f : 64;
@@ -79,7 +66,7 @@ void glpgp_soup_free(psoup *s)
 glpgp_status glpgp_soup_from_mesh(const glpgp_quadmesh *q, psoup *s)
 {
     memset(s, 0, sizeof *s);
-    glpgp_status st = glpgp_soup_grow((void **)&s->xy, &s->cap_v, 2 * q->nv + 2, sizeof(double));
+    glpgp_status st = glpgp_grow_int(&s->xy, &s->cap_v, 2 * q->nv + 2, sizeof(double));
     if (st != GLPGP_OK) return st;
     memcpy(s->xy, q->xy, 2 * (size_t)q->nv * sizeof(double));
     s->nv = q->nv;

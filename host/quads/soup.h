@@ -5,6 +5,7 @@
 #ifndef GLPGP_QUADS_SOUP_H
 #define GLPGP_QUADS_SOUP_H
 
+#include "glpgp/internal/vec.h"
 #include "glpgp/quads.h"
 
 typedef struct psoup {
@@ -20,8 +21,6 @@ typedef struct psoup {
 
 /* Origin of a face made from face f by the closing (at least "strips"). */
 unsigned char glpgp_soup_closed_origin(const psoup *s, int f);
-/* Grow *p (*cap elements of elem bytes) to hold need elements. */
-glpgp_status glpgp_soup_grow(void **p, int *cap, int need, size_t elem);
 glpgp_status glpgp_soup_vertex(psoup *s, double x, double y, int *id);
 /* Append a face (n corners v[], origin s->cur); *id (may be NULL) receives its index. */
 glpgp_status glpgp_soup_face(psoup *s, const int *v, int n, int *id);
