@@ -3,11 +3,11 @@
  * backend's PCG, multigrid-preconditioned with --precond amg), radial about
  * a centre, or read from a file (glpgp/solve.h). */
 #include "internal.h"
+#include "glpgp/internal/text.h"
 #include "glpgp/util.h"
 
 #include "glpgp/cross.h"
 
-#include <errno.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -87,54 +87,23 @@ done:
 /* Longest line a field file may have (a "ux uy" pair needs < 100 characters). */
 #define FIELD_LINE_MAX 4096
 
+/* One field row: "ux uy", normalised. */
+static glpgp_status field_row(void *ctx, const text_reader *tr, int i, const double *v, int nv)
+{
+    double *u = ctx;
+    if (nv != 2) return text_error(tr, GLPGP_ERR_FORMAT, 0, "expected two finite numbers 'ux uy'");
+    /* u <- (ux, uy) / |(ux, uy)|, hypot: no overflow for 1e200, no underflow for 1e-200 */
+    const double n = hypot(v[0], v[1]);
+    if (!(n > 0.0) || !isfinite(n)) return text_error(tr, GLPGP_ERR_FORMAT, 0, "zero vector");
+    u[2 * i] = v[0] / n;
+    u[2 * i + 1] = v[1] / n;
+    return GLPGP_OK;
+}
+
 static glpgp_status field_file(const glpgp_mesh *m, const char *path, double *u)
 {
-    FILE *f = fopen(path, "r");
-    if (!f) return GLPGP_FAIL(GLPGP_ERR_IO, "cannot open field file '%s': %s", path, strerror(errno));
-    glpgp_status st = GLPGP_OK;
-    char line[FIELD_LINE_MAX + 2];
-    int i = 0, lineno = 0;
-    while (fgets(line, sizeof line, f)) {
-        lineno++;
-        size_t len = strlen(line);
-        if (len > FIELD_LINE_MAX && line[len - 1] != '\n') {
-            st = GLPGP_FAIL(GLPGP_ERR_FORMAT, "%s:%d: line longer than %d characters", path, lineno,
-                            FIELD_LINE_MAX);
-            goto done;
-        }
-        char *p = line;
-        while (*p == ' ' || *p == '\t') p++;
-        if (*p == '#' || *p == '\n' || *p == '\r' || *p == '\0') continue;
-        double ux, uy;
-        char extra;
-        if (glpgp_sscanf(p, "%lf %lf %c", &ux, &uy, &extra) != 2 || !isfinite(ux) || !isfinite(uy)) {
-            st = GLPGP_FAIL(GLPGP_ERR_FORMAT, "%s:%d: expected two finite numbers 'ux uy'", path, lineno);
-            goto done;
-        }
-        if (i >= m->nv) {
-            st = GLPGP_FAIL(GLPGP_ERR_FORMAT, "%s: more than %d field lines (one per vertex expected)",
-                            path, m->nv);
-            goto done;
-        }
-        /* u <- (ux, uy) / |(ux, uy)|, hypot: no overflow for 1e200, no underflow for 1e-200 */
-        double n = hypot(ux, uy);
-        if (!(n > 0.0) || !isfinite(n)) {
-            st = GLPGP_FAIL(GLPGP_ERR_FORMAT, "%s:%d: zero vector", path, lineno);
-            goto done;
-        }
-        u[2 * i] = ux / n;
-        u[2 * i + 1] = uy / n;
-        i++;
-    }
-    if (ferror(f)) {
-        st = GLPGP_FAIL(GLPGP_ERR_IO, "%s: read error", path);
-        goto done;
-    }
-    if (i != m->nv)
-        st = GLPGP_FAIL(GLPGP_ERR_FORMAT, "%s: %d field lines for %d vertices", path, i, m->nv);
-done:
-    fclose(f);
-    return st;
+    GLPGP_CHECK(text_read_rows(path, "field", m->nv, 2, FIELD_LINE_MAX, field_row, u));
+    return GLPGP_OK;
 }
 
 /* the field given in memory (glpgp_options.field_values), normalised like a file's lines */

@@ -20,6 +20,10 @@ glpgp_status glpgp_size_compute_field(const glpgp_mesh *m, const glpgp_options *
 /* Triangle t's local resolution: (its corners' smallest size over both
  * oscillators) / its longest edge (*lmax; may be NULL). */
 double glpgp_size_tri_resolution(const glpgp_mesh *m, const double *size, int t, double *lmax);
+/* A size file (--size-field FILE): one "h" or "h_u h_v" line per vertex of m
+ * (as many numbers on every line as on the first) into size[0 .. nv) (u) and
+ * size[nv .. 2 nv) (v) (sizefield.c; the plane's and the surfaces'). */
+glpgp_status glpgp_size_file_read(const glpgp_mesh *m, const char *path, double *size);
 
 /* Name of oscillator k ("u", "v", or "cross" for k = 2: the cross field) for messages. */
 const char *glpgp_osc_name(int k);

@@ -95,9 +95,9 @@
 #include "internal.h"
 
 #include "glpgp/internal/heap.h"
+#include "glpgp/internal/text.h"
 #include "glpgp/util.h"
 
-#include <errno.h>
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -720,57 +720,33 @@ static glpgp_status size_feature(const glpgp_mesh *m, const glpgp_options *o, do
 /* Longest line a size file may have. */
 #define SIZE_LINE_MAX 4096
 
-static glpgp_status size_file(const glpgp_mesh *m, const char *path, double *size)
+/* One size row: "h" or "h_u h_v" (as many numbers as the first row), into
+ * size[i] and size[nv + i]. The solver's surface path reads the same format
+ * (surface_size.c). */
+typedef struct size_rows {
+    double *size;
+    int nv, cols;
+} size_rows;
+
+static glpgp_status size_row(void *ctx, const text_reader *tr, int i, const double *v, int nv)
 {
-    FILE *f = fopen(path, "r");
-    if (!f) return GLPGP_FAIL(GLPGP_ERR_IO, "cannot open size file '%s': %s", path, strerror(errno));
-    glpgp_status st = GLPGP_OK;
-    char line[SIZE_LINE_MAX + 2];
-    int i = 0, lineno = 0, cols = 0;
-    while (fgets(line, sizeof line, f)) {
-        lineno++;
-        size_t len = strlen(line);
-        if (len > SIZE_LINE_MAX && line[len - 1] != '\n') {
-            st = GLPGP_FAIL(GLPGP_ERR_FORMAT, "%s:%d: line longer than %d characters", path, lineno, SIZE_LINE_MAX);
-            goto done;
-        }
-        char *p = line;
-        while (*p == ' ' || *p == '\t') p++;
-        if (*p == '#' || *p == '\n' || *p == '\r' || *p == '\0') continue;
-        double a, b;
-        char extra;
-        const int nread = glpgp_sscanf(p, "%lf %lf %c", &a, &b, &extra);
-        if (nread != 1 && nread != 2) {
-            st = GLPGP_FAIL(GLPGP_ERR_FORMAT, "%s:%d: expected one size 'h' or two 'h_u h_v'", path, lineno);
-            goto done;
-        }
-        if (cols == 0) cols = nread;
-        if (nread != cols) {
-            st = GLPGP_FAIL(GLPGP_ERR_FORMAT, "%s:%d: %d value(s) where the first line had %d", path, lineno, nread,
-                            cols);
-            goto done;
-        }
-        if (nread == 1) b = a;
-        if (!(a > 0.0) || !(b > 0.0) || !isfinite(a) || !isfinite(b)) {
-            st = GLPGP_FAIL(GLPGP_ERR_FORMAT, "%s:%d: sizes must be positive finite numbers", path, lineno);
-            goto done;
-        }
-        if (i >= m->nv) {
-            st = GLPGP_FAIL(GLPGP_ERR_FORMAT, "%s: more than %d size lines (one per vertex expected)", path, m->nv);
-            goto done;
-        }
-        size[i] = a;
-        size[m->nv + i] = b;
-        i++;
-    }
-    if (ferror(f)) {
-        st = GLPGP_FAIL(GLPGP_ERR_IO, "%s: read error", path);
-        goto done;
-    }
-    if (i != m->nv) st = GLPGP_FAIL(GLPGP_ERR_FORMAT, "%s: %d size lines for %d vertices", path, i, m->nv);
-done:
-    fclose(f);
-    return st;
+    size_rows *r = ctx;
+    if (nv != 1 && nv != 2) return text_error(tr, GLPGP_ERR_FORMAT, 0, "expected one size 'h' or two 'h_u h_v'");
+    if (r->cols == 0) r->cols = nv;
+    if (nv != r->cols)
+        return text_error(tr, GLPGP_ERR_FORMAT, 0, "%d value(s) where the first line had %d", nv, r->cols);
+    const double a = v[0], b = nv == 2 ? v[1] : v[0];
+    if (!(a > 0.0) || !(b > 0.0)) return text_error(tr, GLPGP_ERR_FORMAT, 0, "sizes must be positive finite numbers");
+    r->size[i] = a;
+    r->size[r->nv + i] = b;
+    return GLPGP_OK;
+}
+
+glpgp_status glpgp_size_file_read(const glpgp_mesh *m, const char *path, double *size)
+{
+    size_rows r = {size, m->nv, 0};
+    GLPGP_CHECK(text_read_rows(path, "size", m->nv, 2, SIZE_LINE_MAX, size_row, &r));
+    return GLPGP_OK;
 }
 
 /* auto / iso on a mesh that cannot resolve them: s_i <- max(s_i, min(h, R l_i))
@@ -811,7 +787,7 @@ glpgp_status glpgp_size_compute_field(const glpgp_mesh *m, const glpgp_options *
     if (raised) *raised = 0;
     if (!(h > 0.0) || !isfinite(h)) return GLPGP_FAIL(GLPGP_ERR_ARG, "size field: h = %g is not positive", h);
     if (o->size_field == GLPGP_SIZE_FILE) {
-        GLPGP_CHECK(size_file(m, o->size_file, size));
+        GLPGP_CHECK(glpgp_size_file_read(m, o->size_file, size));
     } else if (o->size_field == GLPGP_SIZE_AUTO || o->size_field == GLPGP_SIZE_ISO ||
                o->size_field == GLPGP_SIZE_FUNC) {
         GLPGP_CHECK(size_feature(m, o, h, u, size));

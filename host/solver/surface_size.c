@@ -11,7 +11,6 @@
 #include "glpgp/internal/heap.h"
 #include "glpgp/util.h"
 
-#include <errno.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -20,38 +19,6 @@
 static double dist3(const double *a, const double *b)
 {
     return sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2]));
-}
-
-/* One "h" or "h_u h_v" line per vertex (as the planar size file). */
-static glpgp_status size_file(const glpgp_mesh *m, const char *path, double *size)
-{
-    FILE *f = fopen(path, "r");
-    if (!f) return GLPGP_FAIL(GLPGP_ERR_IO, "cannot open size file '%s': %s", path, strerror(errno));
-    char line[4096];
-    int i = 0, ln = 0;
-    glpgp_status st = GLPGP_OK;
-    while (st == GLPGP_OK && fgets(line, sizeof line, f)) {
-        ln++;
-        char *p = line;
-        while (*p == ' ' || *p == '\t') p++;
-        if (*p == '#' || *p == '\n' || *p == '\r' || !*p) continue;
-        double a, b;
-        char extra;
-        const int n = glpgp_sscanf(p, "%lf %lf %c", &a, &b, &extra);
-        if (n == 1) b = a;
-        if ((n != 1 && n != 2) || !(a > 0.0) || !(b > 0.0) || !isfinite(a) || !isfinite(b))
-            st = GLPGP_FAIL(GLPGP_ERR_FORMAT, "%s:%d: expected one or two positive sizes", path, ln);
-        else if (i >= m->nv)
-            st = GLPGP_FAIL(GLPGP_ERR_FORMAT, "%s: more than %d size lines (one per vertex)", path, m->nv);
-        else {
-            size[i] = a;
-            size[m->nv + i] = b;
-            i++;
-        }
-    }
-    if (st == GLPGP_OK && i != m->nv) st = GLPGP_FAIL(GLPGP_ERR_FORMAT, "%s: %d size lines for %d vertices", path, i, m->nv);
-    fclose(f);
-    return st;
 }
 
 /* Each edge's endpoints to fn: the half-edges out of each corner, plus a
@@ -252,7 +219,7 @@ glpgp_status glpgp_surface_size(const glpgp_mesh *m, const glpgp_options *o, con
     for (int i = 0; i < 2 * nv; i++) size[i] = h;
     if (o->size_field == GLPGP_SIZE_NONE) return GLPGP_OK;
     if (o->size_field == GLPGP_SIZE_FILE) {
-        GLPGP_CHECK(size_file(m, o->size_file, size));
+        GLPGP_CHECK(glpgp_size_file_read(m, o->size_file, size));
     } else {
         GLPGP_CHECK(curvature_cap(m, con, o->size_chord_depth, h, size));
         GLPGP_CHECK(feature_spacing(m, con, o->size_across, size));

@@ -40,6 +40,7 @@
 #include <stdio.h>
 
 #include "glpgp/mesh.h"
+#include "glpgp/util.h"
 #include "glpgp/quads.h"
 #include "glpgp/result.h"
 #include "glpgp/solve.h"
@@ -49,15 +50,12 @@
 extern "C" {
 #endif
 
-/* Largest count of vertices / nodes, triangles / elements / cells a reader
- * accepts (so that 4 * count still fits an int). */
-#define GLPGP_IO_MAX_ITEMS ((1L << 29) - 1)
+/* GLPGP_IO_MAX_ITEMS, the largest count a reader accepts, and
+ * GLPGP_IO_MAX_LINE, the longest line of a text format: glpgp/util.h. */
 /* Default limit on the triangles (faces, cells) of a mesh the glpgp CLI
  * reads, generates or meshes (option --max-elements; the readers' own hard
  * limit is GLPGP_IO_MAX_ITEMS), and of glpgp_mask_options.max_triangles. */
 #define GLPGP_DEFAULT_MAX_ELEMENTS 20000000L
-/* Longest line of a text format (bytes). */
-#define GLPGP_IO_MAX_LINE (1L << 20)
 /* Most files one output set (and the whole process) may have open at once. */
 #define GLPGP_IO_MAX_OPEN 256
 

@@ -12,6 +12,14 @@
 extern "C" {
 #endif
 
+/* Limits of every file reader (core/text_reader.c and the readers of the io
+ * layer, glpgp/io.h). */
+/* Largest count of vertices / nodes, triangles / elements / cells a reader
+ * accepts (so that 4 * count still fits an int). */
+#define GLPGP_IO_MAX_ITEMS ((1L << 29) - 1)
+/* Longest line of a text format (bytes). */
+#define GLPGP_IO_MAX_LINE (1L << 20)
+
 /* Seconds of a monotonic clock (for durations only). */
 double glpgp_now(void);
 

@@ -1,9 +1,8 @@
-/* io/text_reader.c: streaming line reader and token helpers shared by the
- * text-format readers (see text_reader.h). */
-#include "text_reader.h"
+/* core/text_reader.c: streaming line reader and token helpers shared by the
+ * text-format readers and the per-vertex files (glpgp/internal/text.h). */
+#include "glpgp/internal/text.h"
 #include "glpgp/util.h"
 
-#include "glpgp/io.h"
 
 #include <ctype.h>
 #include <errno.h>
@@ -179,14 +178,6 @@ int text_parse_double(char **p, double *out)
     return 1;
 }
 
-glpgp_status io_name_error(const char *path, glpgp_status st)
-{
-    char msg[1024];
-    snprintf(msg, sizeof msg, "%s", glpgp_error_message());
-    glpgp_error_clear();
-    return glpgp_error_set(__FILE__, __LINE__, st, "%s: %s", path, msg);
-}
-
 glpgp_status text_check_count(const text_reader *tr, long long n, long long min_bytes, const char *what)
 {
     if (n < 0) return text_error(tr, GLPGP_ERR_FORMAT, 0, "negative number of %s (%lld)", what, n);
@@ -199,4 +190,40 @@ glpgp_status text_check_count(const text_reader *tr, long long n, long long min_
         return text_error(tr, GLPGP_ERR_LIMIT, 0, "%lld %s: more than the limit of %ld", n, what,
                           (long)GLPGP_IO_MAX_ITEMS);
     return GLPGP_OK;
+}
+
+glpgp_status text_read_rows(const char *path, const char *what, int nrows, int max_cols, long max_line,
+                            text_row_fn fn, void *ctx)
+{
+    if (max_cols < 1 || max_cols > 8) return GLPGP_FAIL(GLPGP_ERR_ARG, "text_read_rows: max_cols %d", max_cols);
+    text_reader tr;
+    GLPGP_CHECK(text_open(&tr, path));
+    glpgp_status st = GLPGP_OK;
+    int i = 0;
+    for (;;) {
+        char *line;
+        GLPGP_CHECK_GOTO(st, text_next_line(&tr, &line), done);
+        if (!line) break;
+        if ((long)strlen(line) > max_line) {
+            st = text_error(&tr, GLPGP_ERR_FORMAT, 0, "line longer than %ld characters", max_line);
+            goto done;
+        }
+        char *p = text_skip_ws(line);
+        if (*p == '#' || *p == '\0') continue;
+        double v[9];
+        int nv = 0;
+        while (nv <= max_cols && !text_at_end(p) && text_parse_double(&p, &v[nv])) nv++;
+        if (nv > max_cols || !text_at_end(p)) nv = -1;
+        if (i >= nrows) {
+            st = GLPGP_FAIL(GLPGP_ERR_FORMAT, "%s: more than %d %s lines (one per vertex expected)", path, nrows,
+                            what);
+            goto done;
+        }
+        GLPGP_CHECK_GOTO(st, fn(ctx, &tr, i, v, nv), done);
+        i++;
+    }
+    if (i != nrows) st = GLPGP_FAIL(GLPGP_ERR_FORMAT, "%s: %d %s lines for %d vertices", path, i, what, nrows);
+done:
+    text_close(&tr);
+    return st;
 }
