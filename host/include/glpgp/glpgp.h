@@ -18,6 +18,7 @@
 #include "glpgp/phase.h"
 #include "glpgp/timers.h"
 #include "glpgp/util.h"
+#include "glpgp/json.h"
 #include "glpgp/mesh.h"
 #include "glpgp/shapes.h"
 #include "glpgp/surface.h"

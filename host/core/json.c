@@ -1,8 +1,8 @@
-/* io/json.c: the one JSON emitter of the library (glpgp/io.h): pretty
+/* core/json.c: the one JSON emitter of the library (glpgp/json.h): pretty
  * printed, lossless numbers (shortest of %.15g/%.16g/%.17g that reads back
  * exactly), non-finite numbers as null, escaped strings. Used by the
  * statistics file and the quad-mesh quality report. */
-#include "glpgp/io.h"
+#include "glpgp/json.h"
 #include "glpgp/util.h"
 
 #include <math.h>
