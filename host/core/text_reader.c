@@ -106,6 +106,24 @@ glpgp_status text_next_line(text_reader *tr, char **line)
     }
 }
 
+glpgp_status text_next_keyword(text_reader *tr, char **kw, size_t *kl, char **rest)
+{
+    *kw = *rest = NULL;
+    *kl = 0;
+    for (;;) {
+        char *s;
+        GLPGP_CHECK(text_next_line(tr, &s));
+        if (!s) return GLPGP_OK;
+        s = text_skip_ws(s);
+        if (*s == '\0' || *s == '#') continue;
+        *kw = s;
+        while (*s && !isspace((unsigned char)*s)) s++;
+        *kl = (size_t)(s - *kw);
+        *rest = s;
+        return GLPGP_OK;
+    }
+}
+
 int text_read_raw(text_reader *tr, void *dst, size_t n)
 {
     unsigned char *d = dst;

@@ -449,15 +449,11 @@ static glpgp_status read_obj(text_reader *tr, raw_mesh *r)
     size_t ncap = 0;
     long long max_index = 0; /* largest positive index used, 1-based */
     long max_line = 0;
-    char *s;
     for (;;) {
-        GLPGP_CHECK_GOTO(st, text_next_line(tr, &s), done);
-        if (!s) break;
-        s = text_skip_ws(s);
-        if (*s == '\0' || *s == '#') continue;
-        char *kw = s;
-        while (*s && !isspace((unsigned char)*s)) s++;
-        size_t kl = (size_t)(s - kw);
+        char *kw, *s;
+        size_t kl;
+        GLPGP_CHECK_GOTO(st, text_next_keyword(tr, &kw, &kl, &s), done);
+        if (!kw) break;
         if (kl == 1 && kw[0] == 'v') {
             double c[7];
             int n = 0;
@@ -483,29 +479,9 @@ static glpgp_status read_obj(text_reader *tr, raw_mesh *r)
         } else if (kl == 1 && kw[0] == 'f') {
             size_t n = 0;
             for (;;) {
-                s = text_skip_ws(s);
-                if (*s == '\0') break;
-                char *tok = s, *e;
-                errno = 0;
-                long long idx = strtoll(tok, &e, 10);
-                if (e == tok || errno == ERANGE) {
-                    st = text_error(tr, GLPGP_ERR_FORMAT, 0, "malformed face index '%.40s'", tok);
-                    goto done;
-                }
-                /* optional /vt/vn parts: digits, signs and slashes only */
-                if (*e == '/') {
-                    while (*e && !isspace((unsigned char)*e)) {
-                        if (!(isdigit((unsigned char)*e) || *e == '/' || *e == '-')) {
-                            st = text_error(tr, GLPGP_ERR_FORMAT, 0, "malformed face corner '%.40s'", tok);
-                            goto done;
-                        }
-                        e++;
-                    }
-                } else if (*e && !isspace((unsigned char)*e)) {
-                    st = text_error(tr, GLPGP_ERR_FORMAT, 0, "malformed face index '%.40s'", tok);
-                    goto done;
-                }
-                s = e;
+                long long idx;
+                GLPGP_CHECK_GOTO(st, obj_corner(tr, &s, &idx), done);
+                if (idx == 0) break;
                 long long v;
                 if (idx > 0) {
                     v = idx - 1;
@@ -513,7 +489,7 @@ static glpgp_status read_obj(text_reader *tr, raw_mesh *r)
                         max_index = idx;
                         max_line = tr->line;
                     }
-                } else if (idx < 0) {
+                } else {
                     v = (long long)r->nv + idx;
                     if (v < 0) {
                         st = text_error(tr, GLPGP_ERR_FORMAT, 0,
@@ -522,9 +498,6 @@ static glpgp_status read_obj(text_reader *tr, raw_mesh *r)
                                         idx, r->nv);
                         goto done;
                     }
-                } else {
-                    st = text_error(tr, GLPGP_ERR_FORMAT, 0, "face index 0 is invalid (OBJ indices start at 1)");
-                    goto done;
                 }
                 GLPGP_CHECK_GOTO(st, glpgp_grow(&corners, &ncap, n + 1, sizeof *corners), done);
                 corners[n++] = v;

@@ -35,21 +35,10 @@ static glpgp_status obj_face(text_reader *tr, char *s, qobj *o, int origin)
 {
     size_t n = 0;
     for (;;) {
-        s = text_skip_ws(s);
-        if (*s == '\0') break;
-        char *tok = s, *e;
-        errno = 0;
-        long long idx = strtoll(tok, &e, 10);
-        if (e == tok || errno == ERANGE || (*e && *e != '/' && !isspace((unsigned char)*e)))
-            return text_error(tr, GLPGP_ERR_FORMAT, 0, "malformed face index '%.40s'", tok);
-        while (*e && !isspace((unsigned char)*e)) {
-            if (!(isdigit((unsigned char)*e) || *e == '/' || *e == '-'))
-                return text_error(tr, GLPGP_ERR_FORMAT, 0, "malformed face corner '%.40s'", tok);
-            e++;
-        }
-        s = e;
+        long long idx;
+        GLPGP_CHECK(obj_corner(tr, &s, &idx));
+        if (idx == 0) break;
         long long v = idx > 0 ? idx - 1 : (long long)o->nv + idx;
-        if (idx == 0) return text_error(tr, GLPGP_ERR_FORMAT, 0, "face index 0 is invalid (OBJ indices start at 1)");
         if (v < 0 || v >= (long long)o->nv)
             return text_error(tr, GLPGP_ERR_FORMAT, 0, "face index %lld out of range (%zu vertices defined so far)",
                               idx, o->nv);
@@ -70,17 +59,13 @@ static glpgp_status obj_face(text_reader *tr, char *s, qobj *o, int origin)
 static glpgp_status read_qobj(text_reader *tr, qobj *o)
 {
     int origin = GLPGP_QFACE_GRID;
-    char *s;
     GLPGP_CHECK(glpgp_grow(&o->fs, &o->cap_fs, 1, sizeof(int)));
     o->fs[0] = 0;
     for (;;) {
-        GLPGP_CHECK(text_next_line(tr, &s));
-        if (!s) break;
-        s = text_skip_ws(s);
-        if (*s == '\0' || *s == '#') continue;
-        char *kw = s;
-        while (*s && !isspace((unsigned char)*s)) s++;
-        size_t kl = (size_t)(s - kw);
+        char *kw, *s;
+        size_t kl;
+        GLPGP_CHECK(text_next_keyword(tr, &kw, &kl, &s));
+        if (!kw) break;
         if (kl == 1 && kw[0] == 'v') {
             double c[4];
             int n = 0;

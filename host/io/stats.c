@@ -77,6 +77,31 @@ static void stats_options(glpgp_json *w, const glpgp_options *o)
     }
 }
 
+/* One eps level's row of an "eps_schedule": the cross field's (osc = 0)
+ * or an oscillator's (osc = 1: also the median |z|, restarts, backtracks,
+ * whether it stopped at the noise level). */
+static void stats_level(glpgp_json *w, int l, const glpgp_level_stats *ls, int osc)
+{
+    glpgp_json_object(w, NULL);
+    glpgp_json_int(w, "level", l);
+    glpgp_json_num(w, "eps", ls->eps);
+    glpgp_json_int(w, "newton", ls->newton);
+    glpgp_json_int(w, "cg", ls->cg);
+    glpgp_json_num(w, "grad0", ls->grad0);
+    glpgp_json_num(w, "grad", ls->grad);
+    glpgp_json_num(w, "energy", ls->energy);
+    if (osc) {
+        glpgp_json_num(w, "median_zabs", ls->median_zabs);
+        glpgp_json_bool(w, "restarted", ls->restarted);
+    }
+    glpgp_json_int(w, "fallbacks", ls->fallbacks);
+    if (osc) glpgp_json_int(w, "backtracked", ls->backtracked);
+    glpgp_json_num(w, "rtol", ls->rtol);
+    glpgp_json_bool(w, "capped", ls->capped);
+    if (osc) glpgp_json_bool(w, "at_noise", ls->at_noise);
+    glpgp_json_close(w);
+}
+
 /* "cross_field" (--field cross): singularities with index and position,
  * the levels of its continuation. */
 static void stats_cross(glpgp_json *w, const glpgp_mesh *m, const glpgp_result *r)
@@ -109,19 +134,7 @@ static void stats_cross(glpgp_json *w, const glpgp_mesh *m, const glpgp_result *
         glpgp_json_int(w, "capped_levels", c->capped_levels);
         glpgp_json_array(w, "eps_schedule");
         for (int l = 0; l < c->nlevels && l < GLPGP_CROSS_MAX_LEVELS; l++) {
-            const glpgp_level_stats *ls = &c->level[l];
-            glpgp_json_object(w, NULL);
-            glpgp_json_int(w, "level", l);
-            glpgp_json_num(w, "eps", ls->eps);
-            glpgp_json_int(w, "newton", ls->newton);
-            glpgp_json_int(w, "cg", ls->cg);
-            glpgp_json_num(w, "grad0", ls->grad0);
-            glpgp_json_num(w, "grad", ls->grad);
-            glpgp_json_num(w, "energy", ls->energy);
-            glpgp_json_int(w, "fallbacks", ls->fallbacks);
-            glpgp_json_num(w, "rtol", ls->rtol);
-            glpgp_json_bool(w, "capped", ls->capped);
-            glpgp_json_close(w);
+            stats_level(w, l, &c->level[l], 0);
         }
         glpgp_json_close(w);
         glpgp_json_num(w, "seconds", c->seconds);
@@ -187,23 +200,7 @@ static void stats_schedule(glpgp_json *w, const glpgp_result *r)
         if (nl > GLPGP_MAX_LEVELS) nl = GLPGP_MAX_LEVELS;
         glpgp_json_array(w, oname[k]);
         for (int l = 0; l < nl; l++) {
-            const glpgp_level_stats *ls = &os->level[l];
-            glpgp_json_object(w, NULL);
-            glpgp_json_int(w, "level", l);
-            glpgp_json_num(w, "eps", ls->eps);
-            glpgp_json_int(w, "newton", ls->newton);
-            glpgp_json_int(w, "cg", ls->cg);
-            glpgp_json_num(w, "grad0", ls->grad0);
-            glpgp_json_num(w, "grad", ls->grad);
-            glpgp_json_num(w, "energy", ls->energy);
-            glpgp_json_num(w, "median_zabs", ls->median_zabs);
-            glpgp_json_bool(w, "restarted", ls->restarted);
-            glpgp_json_int(w, "fallbacks", ls->fallbacks);
-            glpgp_json_int(w, "backtracked", ls->backtracked);
-            glpgp_json_num(w, "rtol", ls->rtol);
-            glpgp_json_bool(w, "capped", ls->capped);
-            glpgp_json_bool(w, "at_noise", ls->at_noise);
-            glpgp_json_close(w);
+            stats_level(w, l, &os->level[l], 1);
         }
         glpgp_json_close(w);
     }

@@ -364,6 +364,37 @@ glpgp_status glpgp_cross_levels(const glpgp_mesh *m, glpgp_backend *b, const glp
     return GLPGP_OK;
 }
 
+glpgp_status glpgp_cross_vecs_create(glpgp_backend *b, size_t n2, glpgp_vec **x, glpgp_vec **g, glpgp_vec **d,
+                                     glpgp_vec **xt, glpgp_vec **work)
+{
+    glpgp_vec **v[5] = {x, g, d, xt, work};
+    for (int k = 0; k < 5; k++) {
+        glpgp_status st = b->ops->vec_create(b, n2, v[k]);
+        if (st != GLPGP_OK) {
+            glpgp_cross_vecs_destroy(b, x, g, d, xt, work);
+            glpgp_error_push_trace(__FILE__, __LINE__);
+            return st;
+        }
+    }
+    return GLPGP_OK;
+}
+
+void glpgp_cross_vecs_destroy(glpgp_backend *b, glpgp_vec **x, glpgp_vec **g, glpgp_vec **d, glpgp_vec **xt,
+                              glpgp_vec **work)
+{
+    glpgp_vec **v[5] = {x, g, d, xt, work};
+    for (int k = 0; k < 5; k++) b->ops->vec_destroy(b, v[k]);
+}
+
+void glpgp_cross_unit(double *w, int nv)
+{
+    for (int i = 0; i < nv; i++) {
+        const double a = hypot(w[2 * i], w[2 * i + 1]);
+        w[2 * i] = a > 1e-300 ? w[2 * i] / a : 1.0;
+        w[2 * i + 1] = a > 1e-300 ? w[2 * i + 1] / a : 0.0;
+    }
+}
+
 glpgp_status glpgp_cross_solve(const glpgp_mesh *m, glpgp_backend *b, const glpgp_options *o,
                                glpgp_cross_result **out)
 {
@@ -383,11 +414,7 @@ glpgp_status glpgp_cross_solve(const glpgp_mesh *m, glpgp_backend *b, const glpg
         return GLPGP_FAIL(GLPGP_ERR_ARG, "cross field: the backend is not set up for this mesh");
     GLPGP_CHECK(glpgp_cross_result_create(nv, m->nt, &c));
     GLPGP_CHECK_GOTO(st, glpgp_calloc(n2, sizeof(double), &zero), fail);
-    GLPGP_CHECK_GOTO(st, op->vec_create(b, n2, &x), fail);
-    GLPGP_CHECK_GOTO(st, op->vec_create(b, n2, &g), fail);
-    GLPGP_CHECK_GOTO(st, op->vec_create(b, n2, &d), fail);
-    GLPGP_CHECK_GOTO(st, op->vec_create(b, n2, &xt), fail);
-    GLPGP_CHECK_GOTO(st, op->vec_create(b, n2, &work), fail);
+    GLPGP_CHECK_GOTO(st, glpgp_cross_vecs_create(b, n2, &x, &g, &d, &xt, &work), fail);
 
     /* the oscillators' energy with W = 0 (omega = 0): QUAD = stiffness;
      * Dirichlet set = every boundary vertex */
@@ -414,11 +441,7 @@ glpgp_status glpgp_cross_solve(const glpgp_mesh *m, glpgp_backend *b, const glpg
     GLPGP_CHECK_GOTO(st, op->axpby(b, 1.0, d, 1.0, x), fail);
     /* |w| <- 1 (phase kept; w = 1 where the harmonic field vanishes) */
     GLPGP_CHECK_GOTO(st, op->vec_read(b, x, c->w), fail);
-    for (int i = 0; i < nv; i++) {
-        double a = hypot(c->w[2 * i], c->w[2 * i + 1]);
-        c->w[2 * i] = a > 1e-300 ? c->w[2 * i] / a : 1.0;
-        c->w[2 * i + 1] = a > 1e-300 ? c->w[2 * i + 1] / a : 0.0;
-    }
+    glpgp_cross_unit(c->w, nv);
     GLPGP_CHECK_GOTO(st, op->vec_write(b, x, c->w), fail);
     glpgp_log(GLPGP_LOG_INFO, "cross: harmonic initial guess, %d boundary vertices fixed, %d CG iterations",
               m->loop_start[m->nloops], ci.iterations);
@@ -435,11 +458,7 @@ fail:
     glpgp_cross_result_destroy(&c);
 done:
     glpgp_amg_destroy(&amg);
-    op->vec_destroy(b, &x);
-    op->vec_destroy(b, &g);
-    op->vec_destroy(b, &d);
-    op->vec_destroy(b, &xt);
-    op->vec_destroy(b, &work);
+    glpgp_cross_vecs_destroy(b, &x, &g, &d, &xt, &work);
     free(zero);
     *out = c;
     return st;

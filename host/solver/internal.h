@@ -108,6 +108,14 @@ struct glpgp_cross_result;
 void glpgp_cross_log_done(const struct glpgp_cross_result *c);
 glpgp_status glpgp_cross_levels(const glpgp_mesh *m, glpgp_backend *b, const glpgp_options *o,
                                 glpgp_newton_state *ns, struct glpgp_cross_result *c);
+/* The five vectors of a cross-field solve (x, g, d, xt, work; n2 entries
+ * each) created on b; on failure the ones made are destroyed (crossfield.c). */
+glpgp_status glpgp_cross_vecs_create(glpgp_backend *b, size_t n2, glpgp_vec **x, glpgp_vec **g, glpgp_vec **d,
+                                     glpgp_vec **xt, glpgp_vec **work);
+void glpgp_cross_vecs_destroy(glpgp_backend *b, glpgp_vec **x, glpgp_vec **g, glpgp_vec **d, glpgp_vec **xt,
+                              glpgp_vec **work);
+/* |w_i| <- 1 for the nv complex values of w (phase kept; 1 where |w_i| vanishes). */
+void glpgp_cross_unit(double *w, int nv);
 
 /* ---- one oscillator's solve (continuation.c), shared with the surface
  * pipeline (surface_solve.c) ---- */

@@ -341,15 +341,6 @@ static glpgp_status pin_gauge(const glpgp_mesh *m, glpgp_backend *b, const glpgp
 }
 
 /* |w| <- 1 (phase kept; w = 1 where it vanishes) */
-static void normalise(double *w, int nv)
-{
-    for (int i = 0; i < nv; i++) {
-        const double a = hypot(w[2 * i], w[2 * i + 1]);
-        w[2 * i] = a > 1e-300 ? w[2 * i] / a : 1.0;
-        w[2 * i + 1] = a > 1e-300 ? w[2 * i + 1] / a : 0.0;
-    }
-}
-
 /* The cross field of a surface: the initial guess, then (levels) the GL
  * continuation; c->w, analysed. */
 static glpgp_status surface_cross(const glpgp_mesh *m, glpgp_backend *b, const glpgp_options *o,
@@ -372,11 +363,7 @@ static glpgp_status surface_cross(const glpgp_mesh *m, glpgp_backend *b, const g
     GLPGP_CHECK_GOTO(st, op->setup(b, sys), fail);
     GLPGP_CHECK_GOTO(st, glpgp_calloc(n2, sizeof(double), &zero), fail);
     GLPGP_CHECK_GOTO(st, glpgp_calloc((size_t)nv, sizeof(double), &mass), fail);
-    GLPGP_CHECK_GOTO(st, op->vec_create(b, n2, &x), fail);
-    GLPGP_CHECK_GOTO(st, op->vec_create(b, n2, &g), fail);
-    GLPGP_CHECK_GOTO(st, op->vec_create(b, n2, &d), fail);
-    GLPGP_CHECK_GOTO(st, op->vec_create(b, n2, &xt), fail);
-    GLPGP_CHECK_GOTO(st, op->vec_create(b, n2, &work), fail);
+    GLPGP_CHECK_GOTO(st, glpgp_cross_vecs_create(b, n2, &x, &g, &d, &xt, &work), fail);
     GLPGP_CHECK_GOTO(st, op->set_field(b, zero, con->fixed), fail);
     GLPGP_CHECK_GOTO(st, op->assemble_quadratic(b, GLPGP_ELEM_P1, 1.0), fail);
     /* multigrid frames: the transported field (vertex frames are unrelated to their neighbours') */
@@ -402,7 +389,7 @@ static glpgp_status surface_cross(const glpgp_mesh *m, glpgp_backend *b, const g
         GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)nv, 1, &pin), fail);
         GLPGP_CHECK_GOTO(st, pin_gauge(m, b, o, c->w, zero, pin, &amg), fail);
     }
-    normalise(c->w, nv);
+    glpgp_cross_unit(c->w, nv);
     GLPGP_CHECK_GOTO(st, op->vec_write(b, x, c->w), fail);
     if (levels) {
         glpgp_newton_state ns = {.x = x, .g = g, .d = d, .xt = xt, .work = work, .amg = amg};
@@ -417,11 +404,7 @@ fail:
     glpgp_cross_result_destroy(&c);
 done:
     glpgp_amg_destroy(&amg);
-    op->vec_destroy(b, &x);
-    op->vec_destroy(b, &g);
-    op->vec_destroy(b, &d);
-    op->vec_destroy(b, &xt);
-    op->vec_destroy(b, &work);
+    glpgp_cross_vecs_destroy(b, &x, &g, &d, &xt, &work);
     /* the backend keeps a pointer to sys: the caller sets it up again first */
     glpgp_system_destroy(&sys);
     b->sys = NULL;

@@ -35,6 +35,11 @@ void text_close(text_reader *tr);
  * read error. */
 glpgp_status text_next_line(text_reader *tr, char **line);
 
+/* Next line that is neither blank nor a '#' comment, split after its first
+ * word: *kw (NULL at the end of the input) and its length *kl, *rest what
+ * follows (keyword formats: OBJ). Errors as text_next_line. */
+glpgp_status text_next_keyword(text_reader *tr, char **kw, size_t *kl, char **rest);
+
 /* Bytes not yet returned (after the last line), or -1 for streams of
  * unknown size. */
 long long text_remaining(const text_reader *tr);
