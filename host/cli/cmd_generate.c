@@ -27,11 +27,8 @@ int glpgp_cmd_generate(int argc, char **argv)
     o->alias = "-o";
     glpgp_opts_add_limits(&t, &max_elements, NULL);
     glpgp_opts_add_verbosity(&t, &verbosity);
-    int npos = 0;
-    int rc = glpgp_opts_parse(&t, argc, argv, &shape, 1, &npos);
+    int rc = glpgp_opts_parse_input(&t, argc, argv, &shape, verbosity, "SHAPE");
     if (rc >= 0) return rc;
-    glpgp_cli_set_verbosity(verbosity);
-    if (!shape) return glpgp_cli_usage_error("generate", "missing SHAPE");
     if (!out) return glpgp_cli_usage_error("generate", "missing -o FILE");
     char name[64];
     long n;

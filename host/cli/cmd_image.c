@@ -62,11 +62,8 @@ int glpgp_cmd_render(int argc, char **argv)
     glpgp_opts_add_picture(&t, &ro, 1);
     glpgp_opts_add_limits(&t, &max_elements, &max_pixels);
     glpgp_opts_add_verbosity(&t, &verbosity);
-    int npos = 0;
-    int rc = glpgp_opts_parse(&t, argc, argv, &in, 1, &npos);
+    int rc = glpgp_opts_parse_input(&t, argc, argv, &in, verbosity, "RESULT.vtk");
     if (rc >= 0) return rc;
-    glpgp_cli_set_verbosity(verbosity);
-    if (!in) return glpgp_cli_usage_error(sub, "missing RESULT.vtk");
     if ((rc = check_picture_out(sub, out, ro.size, 1, max_pixels)) >= 0) return rc;
     if (glpgp_has_ext(in, ".obj") || glpgp_has_ext(in, ".msh"))
         return glpgp_cli_render_quads(in, out, domain, sj_below, &ro, max_elements, verbosity);
@@ -131,11 +128,8 @@ int glpgp_cmd_mesh(int argc, char **argv)
     o->def = "";
     glpgp_opts_add_limits(&t, &mo.max_triangles, &mo.max_pixels);
     glpgp_opts_add_verbosity(&t, &verbosity);
-    int npos = 0;
-    int rc = glpgp_opts_parse(&t, argc, argv, &in, 1, &npos);
+    int rc = glpgp_opts_parse_input(&t, argc, argv, &in, verbosity, "MASK image, .poly file or mesh");
     if (rc >= 0) return rc;
-    glpgp_cli_set_verbosity(verbosity);
-    if (!in) return glpgp_cli_usage_error(sub, "missing MASK image, .poly file or mesh");
     if (!out) return glpgp_cli_usage_error(sub, "missing -o DOMAIN.msh");
     if ((rc = glpgp_cli_check_output(sub, "--out", out, exts)) >= 0) return rc;
     const int polygons = glpgp_is_poly_path(in) || glpgp_has_ext(in, ".obj") || glpgp_has_ext(in, ".msh") ||
@@ -193,11 +187,8 @@ int glpgp_cmd_figure(int argc, char **argv)
     glpgp_opts_add_mask(&t, &mo);
     glpgp_opts_add_limits(&t, &mo.max_triangles, &mo.max_pixels);
     glpgp_opts_add_verbosity(&t, &verbosity);
-    int npos = 0;
-    int rc = glpgp_opts_parse(&t, argc, argv, &in, 1, &npos);
+    int rc = glpgp_opts_parse_input(&t, argc, argv, &in, verbosity, "INPUT");
     if (rc >= 0) return rc;
-    glpgp_cli_set_verbosity(verbosity);
-    if (!in) return glpgp_cli_usage_error(sub, "missing INPUT");
     if (backend == GLPGP_BACKEND_PETSC)
         return glpgp_cli_usage_error(sub, "--backend petsc: only 'glpgp solve' runs on MPI ranks");
     if ((rc = check_picture_out(sub, out, ro.size, fig1 ? 3 : 2, mo.max_pixels)) >= 0) return rc;

@@ -120,12 +120,9 @@ int glpgp_cmd_crosscheck(int argc, char **argv)
                "levels stopped at the Newton cap: unconverged vortex drift amplifies rounding).\n"
                "The environment variable GLPGP_CL_CORRUPT=1 corrupts the OpenCL QUAD assembly\n"
                "(the check must fail).\n";
-    int npos = 0;
-    int rc = glpgp_opts_parse(&t, argc, argv, &input, 1, &npos);
+    int rc = glpgp_opts_parse_input(&t, argc, argv, &input, verbosity, "INPUT (a .obj/.msh file or shape:NAME[:N])");
     if (rc >= 0) return rc;
-    glpgp_cli_set_verbosity(verbosity);
     co.solve = !no_solve;
-    if (!input) return glpgp_cli_usage_error("crosscheck", "missing INPUT (a .obj/.msh file or shape:NAME[:N])");
     glpgp_mesh *m = NULL;
     if ((rc = glpgp_cli_load_input("crosscheck", input, &mo, &m, NULL)) >= 0) return rc;
     co.mesh = m;

@@ -209,6 +209,17 @@ static glpgp_opt *find(glpgp_opts *t, const char *name)
     return NULL;
 }
 
+int glpgp_opts_parse_input(glpgp_opts *t, int argc, char **argv, const char **in, int verbosity,
+                           const char *missing)
+{
+    int npos = 0;
+    int rc = glpgp_opts_parse(t, argc, argv, in, 1, &npos);
+    if (rc >= 0) return rc;
+    glpgp_cli_set_verbosity(verbosity);
+    if (missing && !*in) return glpgp_cli_usage_error(t->cmd, "missing %s", missing);
+    return -1;
+}
+
 int glpgp_opts_parse(glpgp_opts *t, int argc, char **argv, const char **pos, int maxpos, int *npos)
 {
     *npos = 0;

@@ -4,6 +4,7 @@
  * lines from the per-triangle gradient in pixels); then overlays: field
  * arrows, the boundary (anti-aliased strokes through a coverage buffer, so
  * joints are not drawn twice), captions with a 5x7 bitmap font. */
+#include "raster.h"
 #include "glpgp/image.h"
 #include "glpgp/cross.h"
 #include "glpgp/kinds.h"
@@ -44,62 +45,14 @@ const char *glpgp_image_kind_name(int kind)
 
 /* ---- small helpers ------------------------------------------------------- */
 
-static double clamp01(double x) { return x < 0 ? 0 : x > 1 ? 1 : x; }
-
-/* composite colour c with coverage a over pixel p (straight RGBA) */
-static void over(float *p, const float c[3], double a)
-{
-    if (a <= 0) return;
-    if (a > 1) a = 1;
-    double pa = p[3];
-    double oa = a + pa * (1 - a);
-    if (oa <= 0) return;
-    for (int k = 0; k < 3; k++) p[k] = (float)((c[k] * a + p[k] * pa * (1 - a)) / oa);
-    p[3] = (float)oa;
-}
-
-/* Anti-aliased stroke of segment a-b (pixel coordinates) into a coverage
- * buffer (max of coverages). */
-static void stroke(float *cov, int W, int H, double ax, double ay, double bx, double by, double width)
-{
-    double r = 0.5 * width + 1.0;
-    int x0 = (int)floor(fmin(ax, bx) - r), x1 = (int)ceil(fmax(ax, bx) + r);
-    int y0 = (int)floor(fmin(ay, by) - r), y1 = (int)ceil(fmax(ay, by) + r);
-    if (x0 < 0) x0 = 0;
-    if (y0 < 0) y0 = 0;
-    if (x1 > W - 1) x1 = W - 1;
-    if (y1 > H - 1) y1 = H - 1;
-    double dx = bx - ax, dy = by - ay, L2 = dx * dx + dy * dy;
-    for (int j = y0; j <= y1; j++)
-        for (int i = x0; i <= x1; i++) {
-            double px = i + 0.5, py = j + 0.5;
-            double t = L2 > 0 ? ((px - ax) * dx + (py - ay) * dy) / L2 : 0;
-            t = t < 0 ? 0 : t > 1 ? 1 : t;
-            double ex = ax + t * dx - px, ey = ay + t * dy - py;
-            double c = clamp01(0.5 * width + 0.5 - sqrt(ex * ex + ey * ey));
-            float *q = cov + (size_t)j * (size_t)W + (size_t)i;
-            if (c > *q) *q = (float)c;
-        }
-}
-
-static void apply_cov(glpgp_image *im, float *cov, const float c[3])
-{
-    size_t n = (size_t)im->w * (size_t)im->h;
-    for (size_t i = 0; i < n; i++)
-        if (cov[i] > 0) {
-            over(im->px + 4 * i, c, cov[i]);
-            cov[i] = 0;
-        }
-}
-
 /* Coverage of a grid line at theta t with gradient magnitude g (per pixel). */
 static double line_cov(double t, double g, double lw)
 {
     if (!(g > 1e-12)) return 0;
     double d = fabs(t - floor(t + 0.5)) / g;
-    double c = clamp01(0.5 * lw + 0.5 - d);
-    double mean = clamp01(lw * g); /* lines closer than a few pixels: average */
-    double blend = clamp01((g * (2 * lw + 2) - 0.5) * 2);
+    double c = glpgp_clamp01(0.5 * lw + 0.5 - d);
+    double mean = glpgp_clamp01(lw * g); /* lines closer than a few pixels: average */
+    double blend = glpgp_clamp01((g * (2 * lw + 2) - 0.5) * 2);
     return c * (1 - blend) + mean * blend;
 }
 
@@ -108,7 +61,7 @@ static void heat(double x, float c[3])
 {
     static const double st[6][3] = {{0.00, 0.00, 0.02}, {0.23, 0.06, 0.43}, {0.55, 0.16, 0.51},
                                     {0.87, 0.30, 0.38}, {0.99, 0.64, 0.36}, {0.99, 0.99, 0.75}};
-    x = clamp01(x) * 5;
+    x = glpgp_clamp01(x) * 5;
     int k = (int)x;
     if (k > 4) k = 4;
     double f = x - k;
@@ -230,7 +183,7 @@ static void pixel_colour(const canvas *cv, const glpgp_result *r, const tri_vals
         const double *w = r->cross->w;
         double wr = w[2 * tv[0]] * l0 + w[2 * tv[1]] * l1 + w[2 * tv[2]] * l2;
         double wi = w[2 * tv[0] + 1] * l0 + w[2 * tv[1] + 1] * l1 + w[2 * tv[2] + 1] * l2;
-        double a = clamp01(hypot(wr, wi));
+        double a = glpgp_clamp01(hypot(wr, wi));
         cv->fld[2 * pi] = (float)wr;
         cv->fld[2 * pi + 1] = (float)wi;
         c[0] = (float)(0.80 + 0.17 * a);
@@ -318,8 +271,8 @@ static void raster_triangle(canvas *cv, const glpgp_mesh *m, const glpgp_result 
             if (cv->o.kind == GLPGP_IMAGE_GRID) {
                 const double tu = T.th[0][0] * l0 + T.th[0][1] * l1 + T.th[0][2] * l2;
                 const double tvv = T.th[1][0] * l0 + T.th[1][1] * l1 + T.th[1][2] * l2;
-                over(p, col_v, line_cov(tvv, T.gnv, cv->lw));
-                over(p, col_u, line_cov(tu, T.gnu, cv->lw));
+                glpgp_px_over(p, col_v, line_cov(tvv, T.gnv, cv->lw));
+                glpgp_px_over(p, col_u, line_cov(tu, T.gnu, cv->lw));
             }
             if (sing && cv->o.singular && cv->o.kind != GLPGP_IMAGE_ZABS) {
                 p[0] = col_red[0], p[1] = col_red[1], p[2] = col_red[2];
@@ -345,12 +298,12 @@ static void overlay_cross(canvas *cv, const glpgp_result *r)
             double cx = i + 0.5, cy = j + 0.5;
             for (int q = 0; q < 2; q++) {
                 double ux = cos(al + q * GLPGP_PI / 2), uy = -sin(al + q * GLPGP_PI / 2); /* y down */
-                stroke(cv->cov, W, H, cx - 0.5 * len * ux, cy - 0.5 * len * uy, cx + 0.5 * len * ux,
+                glpgp_cov_stroke(cv->cov, W, H, cx - 0.5 * len * ux, cy - 0.5 * len * uy, cx + 0.5 * len * ux,
                        cy + 0.5 * len * uy, lw);
             }
         }
     static const float col_cross[3] = {0.10f, 0.20f, 0.45f};
-    apply_cov(cv->im, cv->cov, col_cross);
+    glpgp_cov_apply(cv->im, cv->cov, col_cross);
     if (!cv->o.singular) return;
     static const float col_pos[3] = {0.90f, 0.05f, 0.05f}, col_neg[3] = {0.05f, 0.35f, 0.95f};
     for (int sgn = 0; sgn < 2; sgn++) {
@@ -359,9 +312,9 @@ static void overlay_cross(canvas *cv, const glpgp_result *r)
             if ((q->index4 > 0) != (sgn == 0)) continue;
             double rad = fmax(4.0, 3.0 * lw) * sqrt((double)abs(q->index4));
             double cx = (q->x - cv->ox) * cv->scale, cy = (cv->oy - q->y) * cv->scale;
-            stroke(cv->cov, W, H, cx, cy, cx, cy, 2 * rad);
+            glpgp_cov_stroke(cv->cov, W, H, cx, cy, cx, cy, 2 * rad);
         }
-        apply_cov(cv->im, cv->cov, sgn == 0 ? col_pos : col_neg);
+        glpgp_cov_apply(cv->im, cv->cov, sgn == 0 ? col_pos : col_neg);
     }
 }
 
@@ -378,9 +331,9 @@ static void overlay_singular(canvas *cv, const glpgp_mesh *m, const glpgp_result
             cx += (m->xy[2 * tv[k]] - cv->ox) * cv->scale / 3;
             cy += (cv->oy - m->xy[2 * tv[k] + 1]) * cv->scale / 3;
         }
-        stroke(cv->cov, cv->W, cv->H, cx, cy, cx, cy, 2 * rad);
+        glpgp_cov_stroke(cv->cov, cv->W, cv->H, cx, cy, cx, cy, 2 * rad);
     }
-    apply_cov(cv->im, cv->cov, col_red);
+    glpgp_cov_apply(cv->im, cv->cov, col_red);
 }
 
 /* FIELD: arrows of U on a regular pixel grid. */
@@ -401,16 +354,16 @@ static void overlay_arrows(canvas *cv)
             double cx = i + 0.5, cy = j + 0.5;
             double ax = cx - 0.5 * len * ux, ay = cy - 0.5 * len * uy;
             double bx = cx + 0.5 * len * ux, by = cy + 0.5 * len * uy;
-            stroke(cv->cov, W, H, ax, ay, bx, by, cv->lw);
+            glpgp_cov_stroke(cv->cov, W, H, ax, ay, bx, by, cv->lw);
             double hl = 0.3 * len;
             for (int s = -1; s <= 1; s += 2) {
                 double ca = cos(2.6), sa = s * sin(2.6);
                 double hx = ux * ca - uy * sa, hy = ux * sa + uy * ca;
-                stroke(cv->cov, W, H, bx, by, bx + hl * hx, by + hl * hy, cv->lw);
+                glpgp_cov_stroke(cv->cov, W, H, bx, by, bx + hl * hx, by + hl * hy, cv->lw);
             }
         }
     static const float col_arrow[3] = {0.08f, 0.18f, 0.50f};
-    apply_cov(cv->im, cv->cov, col_arrow);
+    glpgp_cov_apply(cv->im, cv->cov, col_arrow);
 }
 
 /* The domain's boundary loops, dark. */
@@ -420,13 +373,13 @@ static void overlay_boundary(canvas *cv, const glpgp_mesh *m)
         int s = m->loop_start[l], e = m->loop_start[l + 1];
         for (int k = s; k < e; k++) {
             int a = m->loop_vertices[k], b = m->loop_vertices[k + 1 < e ? k + 1 : s];
-            stroke(cv->cov, cv->W, cv->H, (m->xy[2 * a] - cv->ox) * cv->scale, (cv->oy - m->xy[2 * a + 1]) * cv->scale,
+            glpgp_cov_stroke(cv->cov, cv->W, cv->H, (m->xy[2 * a] - cv->ox) * cv->scale, (cv->oy - m->xy[2 * a + 1]) * cv->scale,
                    (m->xy[2 * b] - cv->ox) * cv->scale, (cv->oy - m->xy[2 * b + 1]) * cv->scale,
                    fmax(1.5, cv->lw * 1.3));
         }
     }
     static const float col_b[3] = {0.12f, 0.12f, 0.12f};
-    apply_cov(cv->im, cv->cov, col_b);
+    glpgp_cov_apply(cv->im, cv->cov, col_b);
 }
 
 glpgp_status glpgp_render(const glpgp_mesh *m, const glpgp_result *r, const glpgp_render_options *opt,
@@ -440,13 +393,8 @@ glpgp_status glpgp_render(const glpgp_mesh *m, const glpgp_result *r, const glpg
                                          "the mesh (%d, %d)", r->nv, r->nt, m->nv, m->nt);
     canvas cv;
     memset(&cv, 0, sizeof cv);
-    if (opt)
-        cv.o = *opt;
-    else
-        glpgp_render_options_default(&cv.o);
+    GLPGP_CHECK(glpgp_render_options_take(opt, &cv.o));
     const glpgp_render_options *o = &cv.o;
-    if (o->size < 16 || o->size > 32768)
-        return GLPGP_FAIL(GLPGP_ERR_ARG, "image size %d out of range [16, 32768]", o->size);
     if (o->kind < 0 || o->kind > GLPGP_IMAGE_CROSS) return GLPGP_FAIL(GLPGP_ERR_ARG, "unknown image kind %d", o->kind);
     if (o->kind == GLPGP_IMAGE_CROSS && !r->cross)
         return GLPGP_FAIL(GLPGP_ERR_ARG, "render: the result has no cross field (solve with --field cross)");
@@ -517,7 +465,7 @@ int glpgp_draw_text(glpgp_image *im, int x, int y, int scale, const char *text, 
                         if (px < 0 || py < 0 || px >= im->w || py >= im->h) continue;
                         float *p = im->px + (size_t)im->nc * ((size_t)py * (size_t)im->w + (size_t)px);
                         if (im->nc == 4) {
-                            over(p, rgba, rgba[3]);
+                            glpgp_px_over(p, rgba, rgba[3]);
                         } else {
                             for (int k = 0; k < 3; k++) p[k] = p[k] * (1 - rgba[3]) + rgba[k] * rgba[3];
                         }
@@ -566,10 +514,7 @@ glpgp_status glpgp_render_compare(const glpgp_mesh *m, const glpgp_result *const
         return GLPGP_FAIL(GLPGP_ERR_ARG, "glpgp_render_compare: bad arguments");
     *out = NULL;
     glpgp_render_options o;
-    if (opt)
-        o = *opt;
-    else
-        glpgp_render_options_default(&o);
+    GLPGP_CHECK(glpgp_render_options_take(opt, &o));
     glpgp_image *panel[16] = {0};
     glpgp_image *im = NULL;
     glpgp_status st = GLPGP_OK;
@@ -600,10 +545,7 @@ glpgp_status glpgp_render_figure1(const glpgp_mesh *m, const glpgp_result *r, co
     if (!r->cross) return GLPGP_FAIL(GLPGP_ERR_ARG, "figure: the result has no cross field");
     *out = NULL;
     glpgp_render_options o;
-    if (opt)
-        o = *opt;
-    else
-        glpgp_render_options_default(&o);
+    GLPGP_CHECK(glpgp_render_options_take(opt, &o));
     const int n = q ? 3 : 2;
     glpgp_image *panel[3] = {0};
     glpgp_image *im = NULL;

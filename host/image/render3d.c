@@ -9,6 +9,7 @@
  * checkerboard, |z| or the raw phases; singular triangles red, the cross
  * field's singularities as dots (+1/4 red, -1/4 blue) where visible, the
  * boundary as dark strokes; averaged down to pixels. */
+#include "raster.h"
 #include "glpgp/image.h"
 #include "glpgp/cross.h"
 #include "glpgp/kinds.h"
@@ -147,15 +148,13 @@ static void phases(const glpgp_mesh *m, const glpgp_result *r, const cam3 *c, in
     }
 }
 
-static double clamp01(double x) { return x < 0.0 ? 0.0 : x > 1.0 ? 1.0 : x; }
-
 /* Coverage of the grid line nearest t (gradient g per sample, width lw samples). */
 static double line_cov(double t, double g, double lw)
 {
     if (!(g > 1e-12)) return 0.0;
     const double d = fabs(t - floor(t + 0.5)) / g;
-    const double cov = clamp01(0.5 * lw + 0.5 - d);
-    return g * lw > 0.5 ? fmax(cov, clamp01(g * lw)) * 0.7 : cov; /* lines denser than the samples: a tint */
+    const double cov = glpgp_clamp01(0.5 * lw + 0.5 - d);
+    return g * lw > 0.5 ? fmax(cov, glpgp_clamp01(g * lw)) * 0.7 : cov; /* lines denser than the samples: a tint */
 }
 
 /* The colour of sample (t, l) by the kind (before shading). */
@@ -167,9 +166,9 @@ static void sample_colour(const glpgp_render_options *o, const tri_phase *p, dou
     if (o->kind == GLPGP_IMAGE_ZABS) {
         const double a = fmin(p->za[0][0] * l0 + p->za[0][1] * l1 + p->za[0][2] * l2,
                               p->za[1][0] * l0 + p->za[1][1] * l1 + p->za[1][2] * l2);
-        c[0] = (float)clamp01(1.5 * a);
-        c[1] = (float)clamp01(1.5 * a - 0.5);
-        c[2] = (float)clamp01(3.0 * a - 2.0);
+        c[0] = (float)glpgp_clamp01(1.5 * a);
+        c[1] = (float)glpgp_clamp01(1.5 * a - 0.5);
+        c[2] = (float)glpgp_clamp01(3.0 * a - 2.0);
         return;
     }
     if (o->kind == GLPGP_IMAGE_THETA) {
@@ -239,7 +238,7 @@ static void disc(glpgp_image *im, double x, double y, double rad, const float *c
     for (int j = (int)floor(y - rad - 1); j <= (int)ceil(y + rad + 1); j++)
         for (int i = (int)floor(x - rad - 1); i <= (int)ceil(x + rad + 1); i++) {
             if (i < 0 || j < 0 || i >= im->w || j >= im->h) continue;
-            const double a = clamp01(rad + 0.5 - hypot(i + 0.5 - x, j + 0.5 - y));
+            const double a = glpgp_clamp01(rad + 0.5 - hypot(i + 0.5 - x, j + 0.5 - y));
             float *p = im->px + 4 * ((size_t)j * (size_t)im->w + (size_t)i);
             for (int k = 0; k < 3; k++) p[k] = (float)(p[k] * (1.0 - a) + col[k] * a);
             p[3] = (float)fmax(p[3], a);
@@ -332,11 +331,7 @@ glpgp_status glpgp_render3d(const glpgp_mesh *m, const glpgp_result *r, const gl
     if (r->nv != m->nv || r->nt != m->nt || !r->osc[0].z || !r->osc[1].z)
         return GLPGP_FAIL(GLPGP_ERR_ARG, "render: the result does not match the surface");
     glpgp_render_options o;
-    if (opt)
-        o = *opt;
-    else
-        glpgp_render_options_default(&o);
-    if (o.size < 16 || o.size > 32768) return GLPGP_FAIL(GLPGP_ERR_ARG, "image size %d out of range [16, 32768]", o.size);
+    GLPGP_CHECK(glpgp_render_options_take(opt, &o));
     if (o.kind != GLPGP_IMAGE_GRID && o.kind != GLPGP_IMAGE_CHECKER && o.kind != GLPGP_IMAGE_ZABS &&
         o.kind != GLPGP_IMAGE_THETA)
         return GLPGP_FAIL(GLPGP_ERR_ARG, "a surface's picture is of kind grid, checker, zabs or theta (not %s)",

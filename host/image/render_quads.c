@@ -7,6 +7,7 @@
  * vertices against their ideal valence, smaller), and a caption with the
  * counts. Faces are filled per pixel centre by the crossing rule, so a
  * non-convex or folded face shows as it is. */
+#include "raster.h"
 #include "glpgp/image.h"
 #include "glpgp/util.h"
 #include "glpgp/quads.h"
@@ -23,52 +24,6 @@ typedef struct qframe {
     double ox, oy, scale; /* pixel x = (x - ox) scale, pixel y = (oy - y) scale */
     double lw;
 } qframe;
-
-static double clamp01(double x) { return x < 0 ? 0 : x > 1 ? 1 : x; }
-
-/* Straight-alpha "over" of colour c with coverage a onto pixel p (RGBA). */
-static void px_over(float *p, const float c[3], double a)
-{
-    if (a <= 0) return;
-    if (a > 1) a = 1;
-    double pa = p[3], oa = a + pa * (1 - a);
-    if (oa <= 0) return;
-    for (int k = 0; k < 3; k++) p[k] = (float)((c[k] * a + p[k] * pa * (1 - a)) / oa);
-    p[3] = (float)oa;
-}
-
-/* Anti-aliased round-capped segment into a coverage buffer (max). */
-static void cov_segment(float *cov, const qframe *F, double ax, double ay, double bx, double by, double width)
-{
-    double r = 0.5 * width + 1.0;
-    int x0 = (int)floor(fmin(ax, bx) - r), x1 = (int)ceil(fmax(ax, bx) + r);
-    int y0 = (int)floor(fmin(ay, by) - r), y1 = (int)ceil(fmax(ay, by) + r);
-    if (x0 < 0) x0 = 0;
-    if (y0 < 0) y0 = 0;
-    if (x1 > F->W - 1) x1 = F->W - 1;
-    if (y1 > F->H - 1) y1 = F->H - 1;
-    double dx = bx - ax, dy = by - ay, L2 = dx * dx + dy * dy;
-    for (int j = y0; j <= y1; j++)
-        for (int i = x0; i <= x1; i++) {
-            double px = i + 0.5, py = j + 0.5;
-            double t = L2 > 0 ? ((px - ax) * dx + (py - ay) * dy) / L2 : 0;
-            t = t < 0 ? 0 : t > 1 ? 1 : t;
-            double ex = ax + t * dx - px, ey = ay + t * dy - py;
-            double c = clamp01(0.5 * width + 0.5 - sqrt(ex * ex + ey * ey));
-            float *q = cov + (size_t)j * (size_t)F->W + (size_t)i;
-            if (c > *q) *q = (float)c;
-        }
-}
-
-static void cov_apply(glpgp_image *im, float *cov, const float c[3])
-{
-    size_t n = (size_t)im->w * (size_t)im->h;
-    for (size_t i = 0; i < n; i++)
-        if (cov[i] > 0) {
-            px_over(im->px + 4 * i, c, cov[i]);
-            cov[i] = 0;
-        }
-}
 
 static void to_px(const qframe *F, const double *p, double *x, double *y)
 {
@@ -100,7 +55,7 @@ static void fill_poly(glpgp_image *im, const qframe *F, const double *pts, int n
                 double xk = pts[2 * k], yk = pts[2 * k + 1], xl = pts[2 * l], yl = pts[2 * l + 1];
                 if ((yk > py) != (yl > py) && px < xl + (py - yl) * (xk - xl) / (yk - yl)) in = !in;
             }
-            if (in) px_over(im->px + 4 * ((size_t)j * (size_t)F->W + (size_t)i), c, alpha);
+            if (in) glpgp_px_over(im->px + 4 * ((size_t)j * (size_t)F->W + (size_t)i), c, alpha);
         }
 }
 
@@ -222,9 +177,9 @@ static void draw_vertices(glpgp_image *im, float *cov, const qframe *F, const gl
             if (kind != pass) continue;
             double x, y, rr = bnd[v] ? 0.65 * r : r;
             to_px(F, q->xy + 2 * v, &x, &y);
-            cov_segment(cov, F, x, y, x, y, 2 * (kind == 2 ? 1.3 * rr : rr));
+            glpgp_cov_stroke(cov, F->W, F->H, x, y, x, y, 2 * (kind == 2 ? 1.3 * rr : rr));
         }
-        cov_apply(im, cov, col[pass]);
+        glpgp_cov_apply(im, cov, col[pass]);
     }
 }
 
@@ -234,11 +189,7 @@ glpgp_status glpgp_render_quadmesh(const glpgp_quadmesh *q, const glpgp_mesh *dm
     if (!q || !out || q->nf < 1 || q->nv < 3) return GLPGP_FAIL(GLPGP_ERR_ARG, "render: empty quad mesh");
     *out = NULL;
     glpgp_render_options o;
-    if (opt)
-        o = *opt;
-    else
-        glpgp_render_options_default(&o);
-    if (o.size < 16 || o.size > 32768) return GLPGP_FAIL(GLPGP_ERR_ARG, "image size %d out of range [16, 32768]", o.size);
+    GLPGP_CHECK(glpgp_render_options_take(opt, &o));
     qframe F;
     int caption = caption_on ? (o.size / 48 < 12 ? 12 : o.size / 48) : 0;
     frame_of(q, dm, &o, caption, &F);
@@ -278,11 +229,11 @@ glpgp_status glpgp_render_quadmesh(const glpgp_quadmesh *q, const glpgp_mesh *dm
             n.others++;
         }
         for (int i = 0; i < k; i++)
-            cov_segment(cov, &F, pts[2 * i], pts[2 * i + 1], pts[2 * ((i + 1) % k)], pts[2 * ((i + 1) % k) + 1],
+            glpgp_cov_stroke(cov, F.W, F.H, pts[2 * i], pts[2 * i + 1], pts[2 * ((i + 1) % k)], pts[2 * ((i + 1) % k) + 1],
                         fmax(1.0, 0.8 * F.lw));
     }
     static const float col_e[3] = {0.15f, 0.15f, 0.20f}, col_b[3] = {0.0f, 0.0f, 0.0f};
-    cov_apply(im, cov, col_e);
+    glpgp_cov_apply(im, cov, col_e);
     GLPGP_CHECK_GOTO(st, boundary_info(q, &bnd, &angle), done);
     /* the domain boundary (or the mesh's own), thicker */
     double bw = fmax(1.5, 1.6 * F.lw);
@@ -293,7 +244,7 @@ glpgp_status glpgp_render_quadmesh(const glpgp_quadmesh *q, const glpgp_mesh *dm
                 double ax, ay, bx, by;
                 to_px(&F, dm->xy + 2 * a, &ax, &ay);
                 to_px(&F, dm->xy + 2 * b, &bx, &by);
-                cov_segment(cov, &F, ax, ay, bx, by, bw);
+                glpgp_cov_stroke(cov, F.W, F.H, ax, ay, bx, by, bw);
             }
     } else {
         for (int f = 0; f < q->nf; f++) {
@@ -304,11 +255,11 @@ glpgp_status glpgp_render_quadmesh(const glpgp_quadmesh *q, const glpgp_mesh *dm
                 double ax, ay, bx, by;
                 to_px(&F, q->xy + 2 * a, &ax, &ay);
                 to_px(&F, q->xy + 2 * b, &bx, &by);
-                cov_segment(cov, &F, ax, ay, bx, by, bw);
+                glpgp_cov_stroke(cov, F.W, F.H, ax, ay, bx, by, bw);
             }
         }
     }
-    cov_apply(im, cov, col_b);
+    glpgp_cov_apply(im, cov, col_b);
     GLPGP_CHECK_GOTO(st, glpgp_quadmesh_valences(q, &val), done);
     draw_vertices(im, cov, &F, q, val, bnd, angle, &n);
     if (caption) {
