@@ -6,6 +6,7 @@
  * symbol from the program that loads it and its errors and messages land in
  * the caller's. Built with hidden visibility: these stay private. */
 #include "petsc_module.h"
+#include "glpgp/internal/glue.h"
 
 #include <stdarg.h>
 #include <stdint.h>
@@ -24,17 +25,7 @@ int glpgp_petsc_glue_init(const glpgp_petsc_host *host)
     return 1;
 }
 
-glpgp_status glpgp_error_set(const char *file, int line, glpgp_status st, const char *fmt, ...)
-{
-    char msg[1024];
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(msg, sizeof msg, fmt, ap);
-    va_end(ap);
-    return g_host->error_set(file, line, st, "%s", msg);
-}
-
-void glpgp_error_push_trace(const char *file, int line) { g_host->push_trace(file, line); }
+GLPGP_GLUE_ERRORS(g_host)
 
 void glpgp_mesh_destroy(glpgp_mesh **m) { g_host->mesh_destroy(m); }
 

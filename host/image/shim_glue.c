@@ -8,6 +8,7 @@
  * modules are built with hidden visibility: these definitions stay private
  * to the module. */
 #include "module.h"
+#include "glpgp/internal/glue.h"
 
 #include <stdarg.h>
 #include <stdio.h>
@@ -23,17 +24,7 @@ int glpgp_module_glue_init(const glpgp_module_host *host)
     return 1;
 }
 
-glpgp_status glpgp_error_set(const char *file, int line, glpgp_status st, const char *fmt, ...)
-{
-    char msg[1024]; /* the size of the host's message buffer */
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(msg, sizeof msg, fmt, ap);
-    va_end(ap);
-    return g_host->error_set(file, line, st, "%s", msg);
-}
-
-void glpgp_error_push_trace(const char *file, int line) { g_host->push_trace(file, line); }
+GLPGP_GLUE_ERRORS(g_host)
 
 glpgp_status glpgp_malloc(size_t n, size_t size, void *out_ptr)
 {

@@ -3,6 +3,33 @@
 
 #include <stdlib.h>
 
+/* The vertices of the triangles at vertex i (i among them), each once
+ * (cnt[j] == i marks j seen; start with cnt[] = -1 and rows in increasing
+ * order); col (may be NULL) receives them in increasing order. Returns
+ * their count. */
+static int row_neighbours(const glpgp_system *s, const glpgp_mesh *m, int i, int *cnt, int *col)
+{
+    int n = 0;
+    for (int p = s->vptr[i]; p < s->vptr[i + 1]; p++) {
+        const int t = s->vtri[p] / 3;
+        for (int b = 0; b < 3; b++) {
+            const int j = m->tri[3 * t + b];
+            if (cnt[j] == i) continue;
+            cnt[j] = i;
+            if (col) { /* insertion sort into the row */
+                int q = n;
+                while (q > 0 && col[q - 1] > j) {
+                    col[q] = col[q - 1];
+                    q--;
+                }
+                col[q] = j;
+            }
+            n++;
+        }
+    }
+    return n;
+}
+
 glpgp_status glpgp_system_create(const glpgp_mesh *m, glpgp_system **out)
 {
     glpgp_status st = GLPGP_OK;
@@ -31,42 +58,13 @@ glpgp_status glpgp_system_create(const glpgp_mesh *m, glpgp_system **out)
     GLPGP_CHECK_GOTO(st, glpgp_calloc((size_t)nv + 1, sizeof(int), &s->rowptr), fail);
     GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)nv, sizeof(int), &cnt), fail);
     for (int i = 0; i < nv; i++) cnt[i] = -1;
-    for (int i = 0; i < nv; i++) {
-        int n = 0;
-        for (int p = s->vptr[i]; p < s->vptr[i + 1]; p++) {
-            int t = s->vtri[p] / 3;
-            for (int b = 0; b < 3; b++) {
-                int j = m->tri[3 * t + b];
-                if (cnt[j] != i) {
-                    cnt[j] = i;
-                    n++;
-                }
-            }
-        }
-        s->rowptr[i + 1] = s->rowptr[i] + n;
-    }
+    for (int i = 0; i < nv; i++) s->rowptr[i + 1] = s->rowptr[i] + row_neighbours(s, m, i, cnt, NULL);
     s->nnzb = s->rowptr[nv];
     GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)s->nnzb, sizeof(int), &s->col), fail);
     GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)nv, sizeof(int), &s->diag), fail);
     for (int i = 0; i < nv; i++) cnt[i] = -1;
     for (int i = 0; i < nv; i++) {
-        int k = s->rowptr[i];
-        for (int p = s->vptr[i]; p < s->vptr[i + 1]; p++) {
-            int t = s->vtri[p] / 3;
-            for (int b = 0; b < 3; b++) {
-                int j = m->tri[3 * t + b];
-                if (cnt[j] != i) {
-                    cnt[j] = i;
-                    /* insertion sort into row */
-                    int q = k++;
-                    while (q > s->rowptr[i] && s->col[q - 1] > j) {
-                        s->col[q] = s->col[q - 1];
-                        q--;
-                    }
-                    s->col[q] = j;
-                }
-            }
-        }
+        row_neighbours(s, m, i, cnt, s->col + s->rowptr[i]);
         for (int q = s->rowptr[i]; q < s->rowptr[i + 1]; q++)
             if (s->col[q] == i) s->diag[i] = q;
     }

@@ -18,6 +18,7 @@
  * off by more than CHORD_TARGET; a strip that meets itself, is longer than
  * the mesh, or whose quads would get a corner below CHORD_MIN_SJ is not
  * taken. */
+#include "glpgp/internal/edgekey.h"
 #include "repair.h"
 #include "geom.h"
 #include "glpgp/quads.h"
@@ -39,12 +40,6 @@ static int cmp_hedge(const void *x, const void *y)
     const hedge *a = x, *b = y;
     return a->k < b->k ? -1 : a->k > b->k ? 1 : a->f - b->f;
 }
-static unsigned long long ekey(int a, int b)
-{
-    unsigned lo = (unsigned)(a < b ? a : b), hi = (unsigned)(a < b ? b : a);
-    return ((unsigned long long)lo << 32) | hi;
-}
-
 typedef struct sides {
     hedge *h;
     int n;
@@ -54,7 +49,7 @@ typedef struct sides {
 static int across(const sides *S, const glpgp_quadmesh *q, int f, int i, int *j)
 {
     const int *v = q->face_vert + 4 * f;
-    unsigned long long k = ekey(v[i], v[(i + 1) % 4]);
+    unsigned long long k = glpgp_edge_key(v[i], v[(i + 1) % 4]);
     int lo = 0, hi = S->n;
     while (lo < hi) {
         int mid = (lo + hi) / 2;
@@ -252,7 +247,7 @@ static glpgp_status one_strip(glpgp_quadmesh *q, dbnd *D, double h, int *done)
     if (st != GLPGP_OK) goto done;
     for (int f = 0; f < q->nf; f++)
         for (int i = 0; i < 4; i++)
-            S.h[4 * f + i] = (hedge){ekey(q->face_vert[4 * f + i], q->face_vert[4 * f + (i + 1) % 4]), f, i};
+            S.h[4 * f + i] = (hedge){glpgp_edge_key(q->face_vert[4 * f + i], q->face_vert[4 * f + (i + 1) % 4]), f, i};
     qsort(S.h, (size_t)S.n, sizeof *S.h, cmp_hedge);
     for (int f = 0; f < q->nf; f++)
         for (int i = 0; i < 4; i++) {

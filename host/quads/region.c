@@ -16,6 +16,7 @@
  * clockwise from the way back, so touching parts of R stay separate loops);
  * loops with positive area are outer loops, the others holes, put into the
  * smallest outer loop that contains them. */
+#include "glpgp/internal/edgekey.h"
 #include "repair.h"
 #include "glpgp/util.h"
 
@@ -318,16 +319,6 @@ static glpgp_status emit_arc(region *R, int l, int u, double pu, int w, double p
 
 /* ---- the region's boundary ---------------------------------------------------------- */
 
-typedef struct ekv {
-    unsigned long long k;
-    int slot;
-} ekv;
-static int cmp_ekv(const void *x, const void *y)
-{
-    const ekv *a = x, *b = y;
-    return a->k < b->k ? -1 : a->k > b->k ? 1 : a->slot - b->slot;
-}
-
 static int cmp_dbl_int(const void *x, const void *y)
 {
     const double *a = x, *b = y;
@@ -365,7 +356,7 @@ static glpgp_status interface_edges(region *R, const unsigned char *inB, const b
 {
     const glpgp_quadmesh *q = R->q;
     int nK = 0, *kn = NULL;
-    ekv *hk = NULL;
+    glpgp_ekv *hk = NULL;
     for (int f = 0; f < q->nf; f++)
         if (!inB[f]) nK += q->face_start[f + 1] - q->face_start[f];
     GLPGP_CHECK(glpgp_malloc((size_t)nK + 1, sizeof *hk, &hk));
@@ -380,15 +371,15 @@ static glpgp_status interface_edges(region *R, const unsigned char *inB, const b
             hk[nK++].slot = s + i;
         }
     }
-    if (st == GLPGP_OK) qsort(hk, (size_t)nK, sizeof *hk, cmp_ekv);
+    if (st == GLPGP_OK) qsort(hk, (size_t)nK, sizeof *hk, glpgp_ekv_cmp);
     for (int i = 0; i < nK && st == GLPGP_OK; i++) {
         int a = (int)(hk[i].k >> 32), b = (int)(hk[i].k & 0xffffffffu);
         unsigned long long tw = ((unsigned long long)(unsigned)b << 32) | (unsigned)a;
-        ekv key = {tw, -1};
+        glpgp_ekv key = {tw, -1};
         int lo = 0, hi = nK; /* first entry >= (tw, -1) */
         while (lo < hi) {
             int mid = (lo + hi) / 2;
-            if (cmp_ekv(&hk[mid], &key) < 0) lo = mid + 1;
+            if (glpgp_ekv_cmp(&hk[mid], &key) < 0) lo = mid + 1;
             else hi = mid;
         }
         if (lo < nK && hk[lo].k == tw) continue;

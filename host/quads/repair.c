@@ -33,6 +33,7 @@
  * (lastresort.c: the whole domain meshed, down to the input triangles split
  * into quads), kept only if that one is valid; else it is returned as it
  * is and the quality report says so. */
+#include "glpgp/internal/edgekey.h"
 #include "repair.h"
 #include "geom.h"
 #include "qcut.h"
@@ -153,21 +154,6 @@ glpgp_quadmesh *glpgp_qm_copy(const glpgp_quadmesh *q)
 
 /* ---- snapping ---------------------------------------------------------------------- */
 
-typedef struct ekv {
-    unsigned long long k;
-    int slot;
-} ekv;
-static int cmp_ekv(const void *x, const void *y)
-{
-    const ekv *a = x, *b = y;
-    return a->k < b->k ? -1 : a->k > b->k ? 1 : a->slot - b->slot;
-}
-static unsigned long long ekey(int a, int b)
-{
-    unsigned lo = (unsigned)(a < b ? a : b), hi = (unsigned)(a < b ? b : a);
-    return ((unsigned long long)lo << 32) | hi;
-}
-
 /* Faces per vertex (CSR): vs[v] .. vs[v+1] in vf. */
 static glpgp_status vertex_faces(const glpgp_quadmesh *q, int **vs, int **vf)
 {
@@ -188,7 +174,7 @@ static glpgp_status vertex_faces(const glpgp_quadmesh *q, int **vs, int **vf)
 static glpgp_status snap_boundary(glpgp_quadmesh *q, dbnd *D, double h, int *snapped)
 {
     int *cand = NULL, ncap = 0, *vs = NULL, *vf = NULL, nc = q->face_start[q->nf];
-    ekv *E = NULL;
+    glpgp_ekv *E = NULL;
     unsigned char *bnd = NULL;
     glpgp_status st = glpgp_malloc((size_t)nc + 1, sizeof *E, &E);
     if (st == GLPGP_OK) st = glpgp_calloc((size_t)q->nv + 1, 1, &bnd);
@@ -196,9 +182,9 @@ static glpgp_status snap_boundary(glpgp_quadmesh *q, dbnd *D, double h, int *sna
     if (st != GLPGP_OK) goto done;
     for (int f = 0; f < q->nf; f++) {
         int s = q->face_start[f], k = q->face_start[f + 1] - s;
-        for (int i = 0; i < k; i++) E[s + i] = (ekv){ekey(q->face_vert[s + i], q->face_vert[s + (i + 1) % k]), s + i};
+        for (int i = 0; i < k; i++) E[s + i] = (glpgp_ekv){glpgp_edge_key(q->face_vert[s + i], q->face_vert[s + (i + 1) % k]), s + i};
     }
-    qsort(E, (size_t)nc, sizeof *E, cmp_ekv);
+    qsort(E, (size_t)nc, sizeof *E, glpgp_ekv_cmp);
     for (int i = 0; i < nc;) {
         int j = i + 1;
         while (j < nc && E[j].k == E[i].k) j++;
@@ -273,7 +259,7 @@ static glpgp_status check_faces(const glpgp_quadmesh *q, const glpgp_mesh *m, do
 static glpgp_status drop_islands(const glpgp_quadmesh *q, unsigned char *inB)
 {
     int nc = q->face_start[q->nf], *comp = NULL, *size = NULL, *stack = NULL;
-    ekv *E = NULL;
+    glpgp_ekv *E = NULL;
     glpgp_status st = glpgp_malloc((size_t)nc + 1, sizeof *E, &E);
     if (st == GLPGP_OK) st = glpgp_malloc((size_t)q->nf + 1, sizeof(int), &comp);
     if (st == GLPGP_OK) st = glpgp_calloc((size_t)q->nf + 1, sizeof(int), &size);
@@ -284,10 +270,10 @@ static glpgp_status drop_islands(const glpgp_quadmesh *q, unsigned char *inB)
         removed += inB[f];
         for (int s = q->face_start[f]; s < q->face_start[f + 1]; s++) {
             int k = q->face_start[f + 1] - q->face_start[f], i = s - q->face_start[f];
-            E[sf++] = (ekv){ekey(q->face_vert[s], q->face_vert[q->face_start[f] + (i + 1) % k]), f};
+            E[sf++] = (glpgp_ekv){glpgp_edge_key(q->face_vert[s], q->face_vert[q->face_start[f] + (i + 1) % k]), f};
         }
     }
-    qsort(E, (size_t)nc, sizeof *E, cmp_ekv);
+    qsort(E, (size_t)nc, sizeof *E, glpgp_ekv_cmp);
     int *nbr = NULL; /* adjacency through shared edges, CSR over E */
     for (int f = 0; f < q->nf; f++) comp[f] = -1;
     int ncomp = 0;
@@ -301,7 +287,7 @@ static glpgp_status drop_islands(const glpgp_quadmesh *q, unsigned char *inB)
             size[ncomp]++;
             int k = q->face_start[f + 1] - q->face_start[f];
             for (int i = 0; i < k; i++) {
-                unsigned long long key = ekey(q->face_vert[q->face_start[f] + i], q->face_vert[q->face_start[f] + (i + 1) % k]);
+                unsigned long long key = glpgp_edge_key(q->face_vert[q->face_start[f] + i], q->face_vert[q->face_start[f] + (i + 1) % k]);
                 int lo = 0, hi = nc;
                 while (lo < hi) {
                     int mid = (lo + hi) / 2;

@@ -20,6 +20,7 @@
  *     left (no partner, no boundary) stays a pentagon for the closing.
  * The quads are valid but irregular (a centroid of valence 3 per triangle,
  * fans at the input's boundary points): the cut mesher is preferred. */
+#include "glpgp/internal/edgekey.h"
 #include "repair.h"
 #include "geom.h"
 
@@ -191,22 +192,6 @@ typedef struct tadj {
     int *nb; /* 3 per triangle: the triangle across side j = (v_j, v_j+1), -1 none */
 } tadj;
 
-static unsigned long long ekey(int a, int b)
-{
-    unsigned lo = (unsigned)(a < b ? a : b), hi = (unsigned)(a < b ? b : a);
-    return ((unsigned long long)lo << 32) | hi;
-}
-
-typedef struct ekv {
-    unsigned long long k;
-    int slot;
-} ekv;
-static int cmp_ekv(const void *x, const void *y)
-{
-    const ekv *a = x, *b = y;
-    return a->k < b->k ? -1 : a->k > b->k ? 1 : a->slot - b->slot;
-}
-
 /* Constrained edge lookup (sorted keys). */
 typedef struct eset {
     unsigned long long *k;
@@ -215,7 +200,7 @@ typedef struct eset {
 } eset;
 static int eset_find(const eset *E, int a, int b)
 {
-    unsigned long long key = ekey(a, b);
+    unsigned long long key = glpgp_edge_key(a, b);
     int lo = 0, hi = E->n - 1;
     while (lo <= hi) {
         int mid = (lo + hi) / 2;
@@ -231,7 +216,7 @@ static int eset_find(const eset *E, int a, int b)
 static glpgp_status build_adj(const tri_ctx *T, int **nb)
 {
     int nt = T->tri.n / 3;
-    ekv *E = NULL;
+    glpgp_ekv *E = NULL;
     GLPGP_CHECK(glpgp_malloc((size_t)3 * nt + 1, sizeof *E, &E));
     glpgp_status st = glpgp_malloc((size_t)3 * nt + 1, sizeof(int), nb);
     if (st != GLPGP_OK) {
@@ -240,11 +225,11 @@ static glpgp_status build_adj(const tri_ctx *T, int **nb)
     }
     for (int t = 0; t < nt; t++)
         for (int j = 0; j < 3; j++) {
-            E[3 * t + j].k = ekey(T->tri.p[3 * t + j], T->tri.p[3 * t + (j + 1) % 3]);
+            E[3 * t + j].k = glpgp_edge_key(T->tri.p[3 * t + j], T->tri.p[3 * t + (j + 1) % 3]);
             E[3 * t + j].slot = 3 * t + j;
             (*nb)[3 * t + j] = -1;
         }
-    qsort(E, (size_t)3 * nt, sizeof *E, cmp_ekv);
+    qsort(E, (size_t)3 * nt, sizeof *E, glpgp_ekv_cmp);
     for (int i = 0; i + 1 < 3 * nt; i++)
         if (E[i].k == E[i + 1].k) {
             (*nb)[E[i].slot] = E[i + 1].slot / 3;
@@ -457,7 +442,7 @@ static glpgp_status local_loops(const region *R, int O, tri_ctx *T, int *loc, iv
             ncons++;
         }
     }
-    ekv *tmp = NULL;
+    glpgp_ekv *tmp = NULL;
     if (st == GLPGP_OK) st = glpgp_malloc((size_t)ncons + 1, sizeof *tmp, &tmp);
     if (st == GLPGP_OK) st = glpgp_malloc((size_t)ncons + 1, sizeof *CE->k, &CE->k);
     if (st == GLPGP_OK) st = glpgp_malloc((size_t)ncons + 1, sizeof *CE->val, &CE->val);
@@ -466,14 +451,14 @@ static glpgp_status local_loops(const region *R, int O, tri_ctx *T, int *loc, iv
         if (L != O && R->owner[L] != O) continue;
         for (int i = R->loop_start[L]; i < R->loop_start[L + 1] && st == GLPGP_OK; i++) {
             const rhe *e = &R->he[R->loopv.p[i]];
-            tmp[n].k = ekey(loc[e->a], loc[e->b]);
+            tmp[n].k = glpgp_edge_key(loc[e->a], loc[e->b]);
             tmp[n++].slot = R->loopv.p[i];
             st = ipush(alle, loc[e->a]);
             if (st == GLPGP_OK) st = ipush(alle, loc[e->b]);
         }
     }
     if (st == GLPGP_OK) {
-        qsort(tmp, (size_t)n, sizeof *tmp, cmp_ekv);
+        qsort(tmp, (size_t)n, sizeof *tmp, glpgp_ekv_cmp);
         for (int i = 0; i < n; i++) {
             CE->k[i] = tmp[i].k;
             CE->val[i] = 1 + tmp[i].slot;

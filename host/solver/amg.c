@@ -530,14 +530,7 @@ static glpgp_status fcg_run(glpgp_amg *a, const glpgp_vec *rhs, glpgp_vec *x, do
             if (rel <= rtol) break;
         }
     }
-    if (k > maxit) {
-        k = maxit;
-        info->reason = GLPGP_CG_MAXIT;
-    } else if (k == maxit && info->reason == GLPGP_CG_CONVERGED && !(rel <= rtol)) {
-        info->reason = GLPGP_CG_MAXIT;
-    }
-    info->relres = rel;
-    info->iterations = k;
+    info->iterations = glpgp_cg_verdict(info, k, maxit, rel, rtol);
     return GLPGP_OK;
 }
 

@@ -8,6 +8,18 @@
 
 #include <math.h>
 
+int glpgp_cg_verdict(glpgp_cg_info *info, int k, int maxit, double rel, double rtol)
+{
+    if (k > maxit) {
+        k = maxit;
+        info->reason = GLPGP_CG_MAXIT;
+    } else if (k == maxit && info->reason == GLPGP_CG_CONVERGED && !(rel <= rtol)) {
+        info->reason = GLPGP_CG_MAXIT;
+    }
+    info->relres = rel;
+    return k;
+}
+
 static glpgp_status cg_run(glpgp_backend *b, const glpgp_vec *rhs, glpgp_vec *x, double rtol, int maxit, int check,
                            glpgp_cg_info *info);
 
@@ -76,13 +88,7 @@ static glpgp_status cg_run(glpgp_backend *b, const glpgp_vec *rhs, glpgp_vec *x,
         rz = rzn;
         rzn = tmp;
     }
-    if (k > maxit) {
-        k = maxit;
-        info->reason = GLPGP_CG_MAXIT;
-    } else if (k == maxit && info->reason == GLPGP_CG_CONVERGED && !(rel <= rtol)) {
-        info->reason = GLPGP_CG_MAXIT;
-    }
-    info->relres = rel;
+    k = glpgp_cg_verdict(info, k, maxit, rel, rtol);
 done:
     info->iterations = k;
     return st;

@@ -105,6 +105,12 @@ typedef struct glpgp_cg_info {
     glpgp_cg_reason reason;
 } glpgp_cg_info;
 
+/* The end of a CG loop (cg.c; shared by the Jacobi-PCG and the flexible CG
+ * of the multigrid): k iterations done (k > maxit: the cap was hit), rel the
+ * last relative residual; sets info->reason (MAXIT at the cap unless
+ * converged) and info->relres and returns the iteration count (<= maxit). */
+int glpgp_cg_verdict(glpgp_cg_info *info, int k, int maxit, double rel, double rtol);
+
 /* Jacobi-PCG on the backend's NEWTON matrix: solves NEWTON x = rhs from x = 0.
  * A breakdown or the cap is not an error: it is reported in info->reason
  * (GLPGP_OK returned); errors are backend failures and a non-finite rhs.
