@@ -246,8 +246,7 @@ static glpgp_status run(cl_impl *c, int kid, size_t n, size_t *groups)
 {
     launch_shape s = glpgp_cl_shape_for(c, n);
     cl_kernel k = c->k[kid];
-    ARG(k, 0, s.n);
-    ARG(k, 1, s.chunk);
+    ARGS(k, 0, s.n, s.chunk);
     c->prof_size = n;
     GLPGP_CHECK(glpgp_cl_launch(c, kid, s.global, s.local));
     if (groups) *groups = s.groups;
@@ -261,15 +260,7 @@ static glpgp_status finalize(cl_impl *c, size_t np0, size_t np1, double scale0, 
 {
     cl_kernel k = c->k[K_FINALIZE];
     cl_int a = (cl_int)np0, off1 = (cl_int)c->pstride, b = (cl_int)np1, s0 = slot0, s1 = slot1;
-    ARG(k, 0, c->part);
-    ARG(k, 1, a);
-    ARG(k, 2, off1);
-    ARG(k, 3, b);
-    ARG(k, 4, scale0);
-    ARG(k, 5, scale1);
-    ARG(k, 6, c->s);
-    ARG(k, 7, s0);
-    ARG(k, 8, s1);
+    ARGS(k, 0, c->part, a, off1, b, scale0, scale1, c->s, s0, s1);
     return glpgp_cl_launch(c, K_FINALIZE, c->wg, c->wg);
 }
 
@@ -470,10 +461,7 @@ static glpgp_status cl_axpby(glpgp_backend *b, double a, const glpgp_vec *x, dou
     /* y <- a x + c y */
     if (y->n == 0) return GLPGP_OK;
     cl_kernel k = c->k[K_AXPBY];
-    ARG(k, 2, a);
-    ARG(k, 3, x->m);
-    ARG(k, 4, cc);
-    ARG(k, 5, y->m);
+    ARGS(k, 2, a, x->m, cc, y->m);
     GLPGP_CHECK(run(c, K_AXPBY, y->n, NULL));
     return GLPGP_OK;
 }
@@ -487,10 +475,7 @@ static glpgp_status cl_dot(glpgp_backend *b, const glpgp_vec *x, const glpgp_vec
     GLPGP_CHECK(groups_for(c, x->n, &g));
     cl_kernel k = c->k[K_DOT];
     cl_int off = 0;
-    ARG(k, 2, x->m);
-    ARG(k, 3, y->m);
-    ARG(k, 4, c->part);
-    ARG(k, 5, off);
+    ARGS(k, 2, x->m, y->m, c->part, off);
     GLPGP_CHECK(run(c, K_DOT, x->n, NULL));
     GLPGP_CHECK(finalize(c, g, 0, 1.0, 0.0, slot, -1));
     return GLPGP_OK;
@@ -525,6 +510,21 @@ static glpgp_status cl_set_size(glpgp_backend *b, const double *size)
     return GLPGP_OK;
 }
 
+/* The element kernels' geometry group of arguments from *a on (advanced):
+ * the coordinates, (coupled: the transported coordinates), the triangles,
+ * (coupled: the matching and the rotations). */
+static glpgp_status args_geometry(cl_impl *c, cl_kernel k, cl_uint *a)
+{
+    ARG(k, (*a)++, c->xy);
+    if (c->cconj) ARG(k, (*a)++, c->ctxy);
+    ARG(k, (*a)++, c->tri);
+    if (c->cconj) {
+        ARG(k, (*a)++, c->cconj);
+        ARG(k, (*a)++, c->crot);
+    }
+    return GLPGP_OK;
+}
+
 static glpgp_status cl_assemble_quadratic(glpgp_backend *b, int kind, double h)
 {
     cl_impl *c = IMPL(b);
@@ -534,25 +534,14 @@ static glpgp_status cl_assemble_quadratic(glpgp_backend *b, int kind, double h)
     const int kid = c->cconj ? K_CASM_QUAD : K_ASM_QUAD;
     cl_kernel k = c->k[kid];
     cl_int kd = kind, sized = c->sized;
-    cl_uint a = 2;
-    ARG(k, a++, kd);
-    ARG(k, a++, h);
-    ARG(k, a++, c->xy);
-    if (c->cconj) ARG(k, a++, c->ctxy);
-    ARG(k, a++, c->tri);
-    if (c->cconj) {
-        ARG(k, a++, c->cconj);
-        ARG(k, a++, c->crot);
+    ARGS(k, 2, kd, h);
+    cl_uint a = 4;
+    GLPGP_CHECK(args_geometry(c, k, &a));
+    if (c->cconj)
         ARG(k, a++, c->cfield);
-    } else {
+    else
         ARG(k, a++, c->w);
-    }
-    ARG(k, a++, c->rowptr);
-    ARG(k, a++, c->cptr);
-    ARG(k, a++, c->contrib);
-    ARG(k, a++, c->quad);
-    ARG(k, a++, sized);
-    ARG(k, a++, c->size);
+    ARGS(k, a, c->rowptr, c->cptr, c->contrib, c->quad, sized, c->size);
     GLPGP_CHECK(run(c, kid, (size_t)c->sys->nv, NULL));
     if (c->corrupt) {
         /* test switch: QUAD value 0 += 1 (crosscheck must then fail) */
@@ -575,27 +564,10 @@ static glpgp_status cl_assemble_newton(glpgp_backend *b, const glpgp_vec *x, dou
     /* coupled: the penalty at the frame values, pulled back (the matching cconj) */
     const int kid = c->cconj ? K_CASM_NEWTON : K_ASM_NEWTON;
     cl_kernel k = c->k[kid];
-    cl_uint a = 2;
-    ARG(k, a++, hs);
-    ARG(k, a++, inv4e2);
-    ARG(k, a++, c->xy);
-    if (c->cconj) ARG(k, a++, c->ctxy);
-    ARG(k, a++, c->tri);
-    if (c->cconj) {
-        ARG(k, a++, c->cconj);
-        ARG(k, a++, c->crot);
-    }
-    ARG(k, a++, x->m);
-    ARG(k, a++, c->rowptr);
-    ARG(k, a++, c->col);
-    ARG(k, a++, c->diag);
-    ARG(k, a++, c->vptr);
-    ARG(k, a++, c->vtri);
-    ARG(k, a++, c->dir);
-    ARG(k, a++, c->quad);
-    ARG(k, a++, c->newton);
-    ARG(k, a++, c->dinv);
-    ARG(k, a++, c->bad);
+    ARGS(k, 2, hs, inv4e2);
+    cl_uint a = 4;
+    GLPGP_CHECK(args_geometry(c, k, &a));
+    ARGS(k, a, x->m, c->rowptr, c->col, c->diag, c->vptr, c->vtri, c->dir, c->quad, c->newton, c->dinv, c->bad);
     GLPGP_CHECK(run(c, kid, (size_t)c->sys->nv, NULL));
     /* a singular diagonal block is reported by the next read back
      * (sync_read): no host round trip per assembly */
@@ -614,16 +586,8 @@ static glpgp_status penalty_partials(cl_impl *c, const glpgp_vec *x, double inv4
     cl_kernel k = c->k[kid];
     cl_uint a = 2;
     ARG(k, a++, inv4e2);
-    ARG(k, a++, c->xy);
-    if (c->cconj) ARG(k, a++, c->ctxy);
-    ARG(k, a++, c->tri);
-    if (c->cconj) {
-        ARG(k, a++, c->cconj);
-        ARG(k, a++, c->crot);
-    }
-    ARG(k, a++, x->m);
-    ARG(k, a++, c->part);
-    ARG(k, a++, off);
+    GLPGP_CHECK(args_geometry(c, k, &a));
+    ARGS(k, a, x->m, c->part, off);
     return run(c, kid, (size_t)c->sys->nt, g1);
 }
 
@@ -633,13 +597,7 @@ static glpgp_status spmv_dot_partials(cl_impl *c, cl_mem A, const glpgp_vec *x, 
 {
     cl_kernel k = c->k[K_CG_SPMV_DOT];
     cl_int off = 0;
-    ARG(k, 2, c->rowptr);
-    ARG(k, 3, c->col);
-    ARG(k, 4, A);
-    ARG(k, 5, x->m);
-    ARG(k, 6, y->m);
-    ARG(k, 7, c->part);
-    ARG(k, 8, off);
+    ARGS(k, 2, c->rowptr, c->col, A, x->m, y->m, c->part, off);
     return run(c, K_CG_SPMV_DOT, (size_t)c->sys->nv, groups);
 }
 
@@ -657,23 +615,8 @@ static glpgp_status cl_gradient(glpgp_backend *b, const glpgp_vec *x, double inv
     cl_kernel k = c->k[kid];
     cl_uint a = 2;
     ARG(k, a++, inv4e2);
-    ARG(k, a++, c->xy);
-    if (c->cconj) ARG(k, a++, c->ctxy);
-    ARG(k, a++, c->tri);
-    if (c->cconj) {
-        ARG(k, a++, c->cconj);
-        ARG(k, a++, c->crot);
-    }
-    ARG(k, a++, x->m);
-    ARG(k, a++, c->rowptr);
-    ARG(k, a++, c->col);
-    ARG(k, a++, c->quad);
-    ARG(k, a++, c->vptr);
-    ARG(k, a++, c->vtri);
-    ARG(k, a++, c->dir);
-    ARG(k, a++, g->m);
-    ARG(k, a++, c->part);
-    ARG(k, a++, off);
+    GLPGP_CHECK(args_geometry(c, k, &a));
+    ARGS(k, a, x->m, c->rowptr, c->col, c->quad, c->vptr, c->vtri, c->dir, g->m, c->part, off);
     GLPGP_CHECK(run(c, kid, (size_t)sys->nv, &g0));
     GLPGP_CHECK(penalty_partials(c, x, inv4e2, &g1));
     /* s[E] <- 1/2 x.QUAD x;  s[P] <- P(x) */
@@ -702,11 +645,7 @@ static glpgp_status cl_spmv(glpgp_backend *b, int matrix, const glpgp_vec *x, gl
     /* y <- M x */
     cl_kernel k = c->k[K_SPMV];
     cl_mem a = matrix == GLPGP_MAT_QUAD ? c->quad : c->newton;
-    ARG(k, 2, c->rowptr);
-    ARG(k, 3, c->col);
-    ARG(k, 4, a);
-    ARG(k, 5, x->m);
-    ARG(k, 6, y->m);
+    ARGS(k, 2, c->rowptr, c->col, a, x->m, y->m);
     GLPGP_CHECK(run(c, K_SPMV, (size_t)c->sys->nv, NULL));
     return GLPGP_OK;
 }
@@ -717,11 +656,7 @@ static glpgp_status cl_trial_point(glpgp_backend *b, const glpgp_vec *x, const g
     cl_impl *c = IMPL(b);
     /* xt <- x (+) a d per vertex (kernels/newton_rows.h) */
     cl_kernel k = c->k[K_TRIAL_POINT];
-    ARG(k, 2, x->m);
-    ARG(k, 3, d->m);
-    ARG(k, 4, a);
-    ARG(k, 5, r1);
-    ARG(k, 6, xt->m);
+    ARGS(k, 2, x->m, d->m, a, r1, xt->m);
     return run(c, K_TRIAL_POINT, (size_t)c->sys->nv, NULL);
 }
 
@@ -735,11 +670,7 @@ static glpgp_status cl_cg_precond(glpgp_backend *b, const glpgp_vec *r, glpgp_ve
     /* z <- DINV r;  s[rz] <- r.z;  s[RR] <- r.r */
     cl_kernel k = c->k[K_CG_PRECOND];
     cl_int off1 = (cl_int)c->pstride;
-    ARG(k, 2, c->dinv);
-    ARG(k, 3, r->m);
-    ARG(k, 4, z->m);
-    ARG(k, 5, c->part);
-    ARG(k, 6, off1);
+    ARGS(k, 2, c->dinv, r->m, z->m, c->part, off1);
     GLPGP_CHECK(run(c, K_CG_PRECOND, (size_t)c->sys->nv, NULL));
     GLPGP_CHECK(finalize(c, g, g, 1.0, 1.0, rz, GLPGP_S_RR));
     return GLPGP_OK;
@@ -765,16 +696,7 @@ static glpgp_status cl_cg_update(glpgp_backend *b, glpgp_vec *x, glpgp_vec *r, c
      * z <- DINV r;  s[rz_new] <- r.z;  s[RR] <- r.r */
     cl_kernel k = c->k[K_CG_UPDATE];
     cl_int a = rz, off1 = (cl_int)c->pstride;
-    ARG(k, 2, c->s);
-    ARG(k, 3, a);
-    ARG(k, 4, x->m);
-    ARG(k, 5, r->m);
-    ARG(k, 6, p->m);
-    ARG(k, 7, q->m);
-    ARG(k, 8, c->dinv);
-    ARG(k, 9, z->m);
-    ARG(k, 10, c->part);
-    ARG(k, 11, off1);
+    ARGS(k, 2, c->s, a, x->m, r->m, p->m, q->m, c->dinv, z->m, c->part, off1);
     GLPGP_CHECK(run(c, K_CG_UPDATE, (size_t)c->sys->nv, NULL));
     GLPGP_CHECK(finalize(c, g, g, 1.0, 1.0, rz_new, GLPGP_S_RR));
     return GLPGP_OK;
@@ -786,11 +708,7 @@ static glpgp_status cl_cg_direction(glpgp_backend *b, glpgp_vec *p, const glpgp_
     /* beta = s[rz_new] / s[rz];  p <- z + beta p */
     cl_kernel k = c->k[K_CG_DIRECTION];
     cl_int a = rz_new, o = rz;
-    ARG(k, 2, c->s);
-    ARG(k, 3, a);
-    ARG(k, 4, o);
-    ARG(k, 5, p->m);
-    ARG(k, 6, z->m);
+    ARGS(k, 2, c->s, a, o, p->m, z->m);
     GLPGP_CHECK(run(c, K_CG_DIRECTION, p->n, NULL));
     return GLPGP_OK;
 }

@@ -81,8 +81,7 @@ static glpgp_status amg_run_w(cl_impl *c, int kid, size_t n, size_t work, size_t
 {
     launch_shape s = amg_shape_w(c, n, work);
     cl_kernel k = c->k[kid];
-    ARG(k, 0, s.n);
-    ARG(k, 1, s.chunk);
+    ARGS(k, 0, s.n, s.chunk);
     c->prof_size = work;
     GLPGP_CHECK(glpgp_cl_launch(c, kid, s.global, s.local));
     if (groups) *groups = s.groups;
@@ -127,12 +126,7 @@ static glpgp_status amg_finalize(cl_impl *c, size_t np, int mask, int slot)
     cl_amg *a = c->amg;
     cl_kernel k = c->k[K_AMG_FINALIZE];
     cl_int n = (cl_int)np, st = (cl_int)a->pstride, mk = mask, sl = slot;
-    ARG(k, 0, a->part);
-    ARG(k, 1, n);
-    ARG(k, 2, st);
-    ARG(k, 3, mk);
-    ARG(k, 4, a->t);
-    ARG(k, 5, sl);
+    ARGS(k, 0, a->part, n, st, mk, a->t, sl);
     return glpgp_cl_launch(c, K_AMG_FINALIZE, c->wg, c->wg);
 }
 
@@ -402,11 +396,7 @@ glpgp_status glpgp_cl_amg_values(glpgp_backend *b, const glpgp_vec *const *frame
     /* M_0^-1 <- w (A_ii + sum_{j != i} ||A_ij||_2 I)^-1 on NEWTON */
     {
         cl_kernel k = c->k[K_AMG_L1];
-        ARG(k, 2, c->rowptr);
-        ARG(k, 3, c->diag);
-        ARG(k, 4, c->newton);
-        ARG(k, 5, a->weight);
-        ARG(k, 6, a->lev[0].minv);
+        ARGS(k, 2, c->rowptr, c->diag, c->newton, a->weight, a->lev[0].minv);
         GLPGP_CHECK(amg_run(c, K_AMG_L1, (size_t)a->lev[0].n, NULL));
     }
     for (int l = 0; l + 1 < a->L; l++) {
@@ -419,35 +409,15 @@ glpgp_status glpgp_cl_amg_values(glpgp_backend *b, const glpgp_vec *const *frame
         cl_mem amp = l > 0 ? v->amp : v->c; /* not read on level 0 */
         cl_mem fr = frames[l] ? frames[l]->m : v->c;
         const cl_int has_dir = l == 0;
-        ARG(k, 2, v->aptr);
-        ARG(k, 3, v->amem);
-        ARG(k, 4, has_amp);
-        ARG(k, 5, amp);
-        ARG(k, 6, has_frame);
-        ARG(k, 7, fr);
-        ARG(k, 8, has_dir);
-        ARG(k, 9, c->dir);
-        ARG(k, 10, v->c);
-        ARG(k, 11, w->amp);
+        ARGS(k, 2, v->aptr, v->amem, has_amp, amp, has_frame, fr, has_dir, c->dir, v->c, w->amp);
         GLPGP_CHECK(amg_run_w(c, K_AMG_WEIGHTS, (size_t)v->nc, (size_t)v->n, NULL));
         /* A_{l+1} <- P^T A_l P (Galerkin rows), M_{l+1}^-1 unless coarsest */
         k = c->k[K_AMG_GALERKIN];
         cl_mem A = amg_val(c, l), col = amg_col(c, l);
         const cl_int do_l1 = l + 2 < a->L ? one : zero;
         cl_mem minv = do_l1 ? w->minv : w->val; /* not written on the coarsest level */
-        ARG(k, 2, w->rowptr);
-        ARG(k, 3, w->diag);
-        ARG(k, 4, v->gptr);
-        ARG(k, 5, v->gsrc);
-        ARG(k, 6, v->srow);
-        ARG(k, 7, col);
-        ARG(k, 8, v->c);
-        ARG(k, 9, A);
-        ARG(k, 10, w->amp);
-        ARG(k, 11, w->val);
-        ARG(k, 12, do_l1);
-        ARG(k, 13, a->weight);
-        ARG(k, 14, minv);
+        ARGS(k, 2, w->rowptr, w->diag, v->gptr, v->gsrc, v->srow, col, v->c, A, w->amp, w->val, do_l1, a->weight,
+             minv);
         GLPGP_CHECK(amg_run_w(c, K_AMG_GALERKIN, (size_t)w->n, (size_t)v->n, NULL));
     }
     return GLPGP_OK;
@@ -482,16 +452,7 @@ glpgp_status glpgp_cl_amg_coarse_invert(glpgp_backend *b, int spd)
     /* C <- the coarse operator, one work-group (kernels/amg_dense.h) */
     cl_kernel k = c->k[K_AMG_COARSE_INVERT];
     const cl_int n = v->n, sp = spd != 0, slot = GLPGP_AMG_SLOT_STATUS;
-    ARG(k, 0, n);
-    ARG(k, 1, sp);
-    ARG(k, 2, v->rowptr);
-    ARG(k, 3, v->col);
-    ARG(k, 4, v->val);
-    ARG(k, 5, a->cinv);
-    ARG(k, 6, a->dw);
-    ARG(k, 7, a->di);
-    ARG(k, 8, a->t);
-    ARG(k, 9, slot);
+    ARGS(k, 0, n, sp, v->rowptr, v->col, v->val, a->cinv, a->dw, a->di, a->t, slot);
     return glpgp_cl_launch(c, K_AMG_COARSE_INVERT, c->wg, c->wg);
 }
 
@@ -503,14 +464,7 @@ glpgp_status glpgp_cl_amg_smooth(glpgp_backend *b, int l, const glpgp_vec *r, co
     cl_kernel k = c->k[K_AMG_SMOOTH];
     const cl_int has_x = x != NULL;
     cl_mem rp = amg_rowptr(c, l), col = amg_col(c, l), A = amg_val(c, l), xm = x ? x->m : r->m;
-    ARG(k, 2, has_x);
-    ARG(k, 3, rp);
-    ARG(k, 4, col);
-    ARG(k, 5, A);
-    ARG(k, 6, c->amg->lev[l].minv);
-    ARG(k, 7, r->m);
-    ARG(k, 8, xm);
-    ARG(k, 9, y->m);
+    ARGS(k, 2, has_x, rp, col, A, c->amg->lev[l].minv, r->m, xm, y->m);
     return amg_run(c, K_AMG_SMOOTH, (size_t)c->amg->lev[l].n, NULL);
 }
 
@@ -529,42 +483,19 @@ glpgp_status glpgp_cl_amg_restrict(glpgp_backend *b, int l, const glpgp_vec *r, 
          * one pass, each aggregate forming its rows' residuals (glpgp_amg_agg_restrict) */
         cl_kernel k = c->k[K_AMG_RESTRICT];
         const cl_int has_x = 1;
-        ARG(k, 2, v->aptr);
-        ARG(k, 3, v->amem);
-        ARG(k, 4, v->c);
-        ARG(k, 5, has_x);
-        ARG(k, 6, rp);
-        ARG(k, 7, col);
-        ARG(k, 8, A);
-        ARG(k, 9, r->m);
-        ARG(k, 10, x->m);
-        ARG(k, 11, rc->m);
+        ARGS(k, 2, v->aptr, v->amem, v->c, has_x, rp, col, A, r->m, x->m, rc->m);
         return amg_run_w(c, K_AMG_RESTRICT, (size_t)v->nc, (size_t)v->n, NULL);
     }
     if (x) {
         cl_kernel kr = c->k[K_AMG_RESIDUAL];
-        ARG(kr, 2, rp);
-        ARG(kr, 3, col);
-        ARG(kr, 4, A);
-        ARG(kr, 5, r->m);
-        ARG(kr, 6, x->m);
-        ARG(kr, 7, c->amg->resid);
+        ARGS(kr, 2, rp, col, A, r->m, x->m, c->amg->resid);
         GLPGP_CHECK(amg_run(c, K_AMG_RESIDUAL, (size_t)v->n, NULL));
         rin = c->amg->resid;
     }
     cl_kernel k = c->k[K_AMG_RESTRICT];
     const cl_int has_x = 0;
     cl_mem xm = rin;
-    ARG(k, 2, v->aptr);
-    ARG(k, 3, v->amem);
-    ARG(k, 4, v->c);
-    ARG(k, 5, has_x);
-    ARG(k, 6, rp);
-    ARG(k, 7, col);
-    ARG(k, 8, A);
-    ARG(k, 9, rin);
-    ARG(k, 10, xm);
-    ARG(k, 11, rc->m);
+    ARGS(k, 2, v->aptr, v->amem, v->c, has_x, rp, col, A, rin, xm, rc->m);
     return amg_run_w(c, K_AMG_RESTRICT, (size_t)v->nc, (size_t)v->n, NULL);
 }
 
@@ -578,40 +509,16 @@ glpgp_status glpgp_cl_amg_presmooth_restrict(glpgp_backend *b, int l, const glpg
     if (c->cpu) {
         /* one pass by aggregates: y and rc (glpgp_amg_agg_presmooth_restrict) */
         cl_kernel k = c->k[K_AMG_PRESMOOTH_RESTRICT];
-        ARG(k, 2, v->aptr);
-        ARG(k, 3, v->amem);
-        ARG(k, 4, v->c);
-        ARG(k, 5, rp);
-        ARG(k, 6, col);
-        ARG(k, 7, A);
-        ARG(k, 8, v->minv);
-        ARG(k, 9, r->m);
-        ARG(k, 10, y->m);
-        ARG(k, 11, rc->m);
+        ARGS(k, 2, v->aptr, v->amem, v->c, rp, col, A, v->minv, r->m, y->m, rc->m);
         return amg_run_w(c, K_AMG_PRESMOOTH_RESTRICT, (size_t)v->nc, (size_t)v->n, NULL);
     }
     /* rows (y and the residual t), then the aggregates gather t */
     cl_kernel k = c->k[K_AMG_PRESMOOTH_RESID];
-    ARG(k, 2, rp);
-    ARG(k, 3, col);
-    ARG(k, 4, A);
-    ARG(k, 5, v->minv);
-    ARG(k, 6, r->m);
-    ARG(k, 7, y->m);
-    ARG(k, 8, c->amg->resid);
+    ARGS(k, 2, rp, col, A, v->minv, r->m, y->m, c->amg->resid);
     GLPGP_CHECK(amg_run(c, K_AMG_PRESMOOTH_RESID, (size_t)v->n, NULL));
     k = c->k[K_AMG_RESTRICT];
     const cl_int has_x = 0;
-    ARG(k, 2, v->aptr);
-    ARG(k, 3, v->amem);
-    ARG(k, 4, v->c);
-    ARG(k, 5, has_x);
-    ARG(k, 6, rp);
-    ARG(k, 7, col);
-    ARG(k, 8, A);
-    ARG(k, 9, c->amg->resid);
-    ARG(k, 10, c->amg->resid);
-    ARG(k, 11, rc->m);
+    ARGS(k, 2, v->aptr, v->amem, v->c, has_x, rp, col, A, c->amg->resid, c->amg->resid, rc->m);
     return amg_run_w(c, K_AMG_RESTRICT, (size_t)v->nc, (size_t)v->n, NULL);
 }
 
@@ -624,16 +531,7 @@ glpgp_status glpgp_cl_amg_prolong_smooth(glpgp_backend *b, int l, const glpgp_ve
     /* y <- x' + M^-1 (r - A x'), x' = x + P ec (glpgp_amg_row_prolong_smooth) */
     cl_kernel k = c->k[K_AMG_PROLONG_SMOOTH];
     cl_mem rp = amg_rowptr(c, l), col = amg_col(c, l), A = amg_val(c, l);
-    ARG(k, 2, v->agg);
-    ARG(k, 3, v->c);
-    ARG(k, 4, ec->m);
-    ARG(k, 5, rp);
-    ARG(k, 6, col);
-    ARG(k, 7, A);
-    ARG(k, 8, v->minv);
-    ARG(k, 9, r->m);
-    ARG(k, 10, x->m);
-    ARG(k, 11, y->m);
+    ARGS(k, 2, v->agg, v->c, ec->m, rp, col, A, v->minv, r->m, x->m, y->m);
     return amg_run(c, K_AMG_PROLONG_SMOOTH, (size_t)v->n, NULL);
 }
 
@@ -644,10 +542,7 @@ glpgp_status glpgp_cl_amg_prolong(glpgp_backend *b, int l, const glpgp_vec *ec, 
     const cl_amg_level *v = &c->amg->lev[l];
     /* x_i <- x_i + P_i ec_agg(i) */
     cl_kernel k = c->k[K_AMG_PROLONG];
-    ARG(k, 2, v->agg);
-    ARG(k, 3, v->c);
-    ARG(k, 4, ec->m);
-    ARG(k, 5, x->m);
+    ARGS(k, 2, v->agg, v->c, ec->m, x->m);
     return amg_run(c, K_AMG_PROLONG, (size_t)v->n, NULL);
 }
 
@@ -657,9 +552,7 @@ glpgp_status glpgp_cl_amg_coarse_solve(glpgp_backend *b, const glpgp_vec *r, glp
     GLPGP_CHECK(amg_ready(c, "amg_coarse_solve"));
     /* x <- C r */
     cl_kernel k = c->k[K_AMG_DENSE];
-    ARG(k, 2, c->amg->cinv);
-    ARG(k, 3, r->m);
-    ARG(k, 4, x->m);
+    ARGS(k, 2, c->amg->cinv, r->m, x->m);
     return amg_run(c, K_AMG_DENSE, (size_t)c->amg->m, NULL);
 }
 
@@ -680,18 +573,7 @@ glpgp_status glpgp_cl_amg_spmv_dots(glpgp_backend *b, int l, const glpgp_vec *x,
     const cl_int has_u = u != NULL, has_w = w != NULL;
     cl_mem rp = amg_rowptr(c, l), col = amg_col(c, l), A = amg_val(c, l), um = u ? u->m : x->m,
            wm = w ? w->m : x->m;
-    ARG(k, 2, rp);
-    ARG(k, 3, col);
-    ARG(k, 4, A);
-    ARG(k, 5, x->m);
-    ARG(k, 6, y->m);
-    ARG(k, 7, has_u);
-    ARG(k, 8, um);
-    ARG(k, 9, has_w);
-    ARG(k, 10, wm);
-    ARG(k, 11, part);
-    ARG(k, 12, off);
-    ARG(k, 13, stride);
+    ARGS(k, 2, rp, col, A, x->m, y->m, has_u, um, has_w, wm, part, off, stride);
     GLPGP_CHECK(amg_run(c, K_AMG_SPMV_DOTS, n, &groups));
     if (!direct) GLPGP_CHECK(amg_finalize(c, groups, 1 | (u ? 2 : 0) | (w ? 4 : 0), slot));
     return GLPGP_OK;
@@ -713,14 +595,7 @@ glpgp_status glpgp_cl_amg_dots(glpgp_backend *b, const glpgp_vec *x, const glpgp
     cl_kernel k = c->k[K_AMG_DOTS];
     const cl_int has_u = u != NULL, has_w = w != NULL;
     cl_mem um = u ? u->m : x->m, wm = w ? w->m : x->m;
-    ARG(k, 2, x->m);
-    ARG(k, 3, has_u);
-    ARG(k, 4, um);
-    ARG(k, 5, has_w);
-    ARG(k, 6, wm);
-    ARG(k, 7, part);
-    ARG(k, 8, off);
-    ARG(k, 9, stride);
+    ARGS(k, 2, x->m, has_u, um, has_w, wm, part, off, stride);
     GLPGP_CHECK(amg_run(c, K_AMG_DOTS, x->n, &groups));
     if (!direct) GLPGP_CHECK(amg_finalize(c, groups, (u ? 1 : 0) | (w ? 2 : 0), slot));
     return GLPGP_OK;
@@ -746,15 +621,7 @@ glpgp_status glpgp_cl_amg_axpby(glpgp_backend *b, glpgp_amg_coef ca, const glpgp
     /* y <- a x + c y, coefficients from the registers */
     cl_kernel k = c->k[K_AMG_AXPBY];
     const cl_int an = ca.num, ad = ca.den, cn = cc.num, cd = cc.den;
-    ARG(k, 2, c->amg->t);
-    ARG(k, 3, an);
-    ARG(k, 4, ad);
-    ARG(k, 5, ca.sign);
-    ARG(k, 6, x->m);
-    ARG(k, 7, cn);
-    ARG(k, 8, cd);
-    ARG(k, 9, cc.sign);
-    ARG(k, 10, y->m);
+    ARGS(k, 2, c->amg->t, an, ad, ca.sign, x->m, cn, cd, cc.sign, y->m);
     return amg_run(c, K_AMG_AXPBY, y->n, NULL);
 }
 
@@ -768,11 +635,7 @@ glpgp_status glpgp_cl_amg_kcombine(glpgp_backend *b, const glpgp_vec *v, const g
     /* e <- c0 v + c1 d from t[slot .. slot + 4] */
     cl_kernel k = c->k[K_AMG_KCOMBINE];
     const cl_int sl = slot;
-    ARG(k, 2, c->amg->t);
-    ARG(k, 3, sl);
-    ARG(k, 4, v->m);
-    ARG(k, 5, d->m);
-    ARG(k, 6, e->m);
+    ARGS(k, 2, c->amg->t, sl, v->m, d->m, e->m);
     return amg_run(c, K_AMG_KCOMBINE, e->n, NULL);
 }
 
@@ -790,19 +653,7 @@ glpgp_status glpgp_cl_amg_coarse_correction(glpgp_backend *b, int lc, int sym, c
     const cl_int nu = a->pre > a->post ? a->pre : a->post;
     const cl_int lb = a->lb, L = a->L, pre = sym ? nu : a->pre, post = sym ? nu : a->post, m = a->m,
                  ci = a->cinv_off, sy = sym != 0;
-    ARG(k, 0, lb);
-    ARG(k, 1, L);
-    ARG(k, 2, pre);
-    ARG(k, 3, post);
-    ARG(k, 4, m);
-    ARG(k, 5, ci);
-    ARG(k, 6, a->tab);
-    ARG(k, 7, a->ipack);
-    ARG(k, 8, a->dpack);
-    ARG(k, 9, a->t);
-    ARG(k, 10, rhs->m);
-    ARG(k, 11, e->m);
-    ARG(k, 12, sy);
+    ARGS(k, 0, lb, L, pre, post, m, ci, a->tab, a->ipack, a->dpack, a->t, rhs->m, e->m, sy);
     GLPGP_CHECK(glpgp_cl_launch(c, K_AMG_BOTTOM, 1, 1));
     *done = 1;
     return GLPGP_OK;

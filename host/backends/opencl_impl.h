@@ -163,6 +163,31 @@ typedef struct cl_impl {
 
 /* clSetKernelArg of an lvalue. */
 #define ARG(kern, i, v) GLPGP_CL(clSetKernelArg((kern), (i), sizeof(v), &(v)))
+/* A kernel's arguments first, first + 1, ... set from the lvalues given, in
+ * order (at most 16): ARGS(k, 0, n, v->rowptr, v->col, x->m) is ARG(k, 0, n);
+ * ARG(k, 1, v->rowptr); ... one statement. */
+#define ARGS_1(k, i, a) ARG(k, i, a)
+#define ARGS_2(k, i, a, ...) ARG(k, i, a); ARGS_1(k, (i) + 1, __VA_ARGS__)
+#define ARGS_3(k, i, a, ...) ARG(k, i, a); ARGS_2(k, (i) + 1, __VA_ARGS__)
+#define ARGS_4(k, i, a, ...) ARG(k, i, a); ARGS_3(k, (i) + 1, __VA_ARGS__)
+#define ARGS_5(k, i, a, ...) ARG(k, i, a); ARGS_4(k, (i) + 1, __VA_ARGS__)
+#define ARGS_6(k, i, a, ...) ARG(k, i, a); ARGS_5(k, (i) + 1, __VA_ARGS__)
+#define ARGS_7(k, i, a, ...) ARG(k, i, a); ARGS_6(k, (i) + 1, __VA_ARGS__)
+#define ARGS_8(k, i, a, ...) ARG(k, i, a); ARGS_7(k, (i) + 1, __VA_ARGS__)
+#define ARGS_9(k, i, a, ...) ARG(k, i, a); ARGS_8(k, (i) + 1, __VA_ARGS__)
+#define ARGS_10(k, i, a, ...) ARG(k, i, a); ARGS_9(k, (i) + 1, __VA_ARGS__)
+#define ARGS_11(k, i, a, ...) ARG(k, i, a); ARGS_10(k, (i) + 1, __VA_ARGS__)
+#define ARGS_12(k, i, a, ...) ARG(k, i, a); ARGS_11(k, (i) + 1, __VA_ARGS__)
+#define ARGS_13(k, i, a, ...) ARG(k, i, a); ARGS_12(k, (i) + 1, __VA_ARGS__)
+#define ARGS_14(k, i, a, ...) ARG(k, i, a); ARGS_13(k, (i) + 1, __VA_ARGS__)
+#define ARGS_15(k, i, a, ...) ARG(k, i, a); ARGS_14(k, (i) + 1, __VA_ARGS__)
+#define ARGS_16(k, i, a, ...) ARG(k, i, a); ARGS_15(k, (i) + 1, __VA_ARGS__)
+#define ARGS_PICK(_1, _2, _3, _4, _5, _6, _7, _8, _9, _10, _11, _12, _13, _14, _15, _16, NAME, ...) NAME
+#define ARGS(kern, first, ...)                                                        \
+    do {                                                                           \
+        ARGS_PICK(__VA_ARGS__, ARGS_16, ARGS_15, ARGS_14, ARGS_13, ARGS_12, ARGS_11, ARGS_10, ARGS_9, ARGS_8, ARGS_7, ARGS_6, ARGS_5, ARGS_4, ARGS_3, ARGS_2, ARGS_1, 0)       \
+        (kern, first, __VA_ARGS__);                                               \
+    } while (0)
 
 /* Work decomposition of n indices: chunk per work-item, global/local sizes. */
 typedef struct launch_shape {
