@@ -40,6 +40,14 @@ static void set_xy(glpgp_quadmesh *q)
     }
 }
 
+/* r made from q: its plane coordinates (x, y of xyz) and q's singularity counts. */
+static void finish_from(glpgp_quadmesh *r, const glpgp_quadmesh *q)
+{
+    set_xy(r);
+    memcpy(r->singular_tris, q->singular_tris, sizeof r->singular_tris);
+    memcpy(r->inconsistent_tris, q->inconsistent_tris, sizeof r->inconsistent_tris);
+}
+
 glpgp_status glpgp_quads_surface_fallback(const glpgp_mesh *m, glpgp_quadmesh **out)
 {
     *out = NULL;
@@ -142,9 +150,7 @@ glpgp_status glpgp_quadmesh_subdivide_surface(const glpgp_quadmesh *q, glpgp_qua
         }
     }
     r->face_start[nc] = 4 * nc;
-    set_xy(r);
-    memcpy(r->singular_tris, q->singular_tris, sizeof r->singular_tris);
-    memcpy(r->inconsistent_tris, q->inconsistent_tris, sizeof r->inconsistent_tris);
+    finish_from(r, q);
     *out = r;
     r = NULL;
 done:
@@ -217,33 +223,53 @@ static int cmp_fedge(const void *pa, const void *pb)
     return a->key < b->key ? -1 : a->key > b->key ? 1 : a->f - b->f;
 }
 
-/* Whether side i of face f is on the boundary (in no other face). */
-static int boundary_side(const glpgp_quadmesh *q, const fedge *E, int nc, int f, int i)
+/* Every face side (edge key, face, side), sorted by key then face. */
+static glpgp_status build_fedges(const glpgp_quadmesh *q, fedge **out)
+{
+    const int nc = q->face_start[q->nf];
+    fedge *E = NULL;
+    GLPGP_CHECK(glpgp_malloc((size_t)nc + 1, sizeof *E, &E));
+    for (int f = 0; f < q->nf; f++) {
+        const int s = q->face_start[f], n = q->face_start[f + 1] - s;
+        for (int i = 0; i < n; i++) {
+            long long a = q->face_vert[s + i], b = q->face_vert[s + (i + 1) % n];
+            E[s + i] = (fedge){a < b ? a * q->nv + b : b * q->nv + a, f, i};
+        }
+    }
+    qsort(E, (size_t)nc, sizeof *E, cmp_fedge);
+    *out = E;
+    return GLPGP_OK;
+}
+
+/* Side i of face f as its edge key (*key) and the first entry of the sorted
+ * sides E[0 .. nc) with that key (nc: none larger). */
+static int first_side(const glpgp_quadmesh *q, const fedge *E, int nc, int f, int i, long long *key)
 {
     const int s = q->face_start[f], n = q->face_start[f + 1] - s;
     long long a = q->face_vert[s + i], b = q->face_vert[s + (i + 1) % n];
-    const long long key = a < b ? a * q->nv + b : b * q->nv + a;
+    *key = a < b ? a * q->nv + b : b * q->nv + a;
     int lo = 0, hi = nc;
     while (lo < hi) {
         const int mid = (lo + hi) / 2;
-        if (E[mid].key < key) lo = mid + 1;
+        if (E[mid].key < *key) lo = mid + 1;
         else hi = mid;
     }
+    return lo;
+}
+
+/* Whether side i of face f is on the boundary (in no other face). */
+static int boundary_side(const glpgp_quadmesh *q, const fedge *E, int nc, int f, int i)
+{
+    long long key;
+    const int lo = first_side(q, E, nc, f, i, &key);
     return lo < nc && E[lo].key == key && (lo + 1 >= nc || E[lo + 1].key != key);
 }
 
 /* The face across side i of face f (-1: none or more than one); *j its side. */
 static int across(const glpgp_quadmesh *q, const fedge *E, int nc, int f, int i, int *j)
 {
-    const int s = q->face_start[f], n = q->face_start[f + 1] - s;
-    long long a = q->face_vert[s + i], b = q->face_vert[s + (i + 1) % n];
-    const long long key = a < b ? a * q->nv + b : b * q->nv + a;
-    int lo = 0, hi = nc;
-    while (lo < hi) {
-        const int mid = (lo + hi) / 2;
-        if (E[mid].key < key) lo = mid + 1;
-        else hi = mid;
-    }
+    long long key;
+    const int lo = first_side(q, E, nc, f, i, &key);
     if (lo + 1 >= nc || E[lo].key != key || E[lo + 1].key != key || (lo + 2 < nc && E[lo + 2].key == key)) return -1;
     const fedge *o = E[lo].f == f ? &E[lo + 1] : &E[lo];
     *j = o->i;
@@ -277,17 +303,9 @@ static glpgp_status close_pairs(const glpgp_quadmesh *q, glpgp_quadmesh **out, i
     unsigned char *used = NULL;
     int *newq = NULL, nnew = 0;
     glpgp_status st = GLPGP_OK;
-    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)nc + 1, sizeof *E, &E), done);
+    GLPGP_CHECK_GOTO(st, build_fedges(q, &E), done);
     GLPGP_CHECK_GOTO(st, glpgp_calloc((size_t)q->nf + 1, 1, &used), done);
     GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)4 * nc + 8, sizeof(int), &newq), done);
-    for (int f = 0; f < q->nf; f++) {
-        const int s = q->face_start[f], n = q->face_start[f + 1] - s;
-        for (int i = 0; i < n; i++) {
-            long long a = q->face_vert[s + i], b = q->face_vert[s + (i + 1) % n];
-            E[s + i] = (fedge){a < b ? a * q->nv + b : b * q->nv + a, f, i};
-        }
-    }
-    qsort(E, (size_t)nc, sizeof *E, cmp_fedge);
     for (int f = 0; f < q->nf; f++) {
         const int n = q->face_start[f + 1] - q->face_start[f];
         int p[10], qd[16], bq[16], bn = 0;
@@ -349,9 +367,7 @@ static glpgp_status close_pairs(const glpgp_quadmesh *q, glpgp_quadmesh **out, i
             for (int c = 0; c < 4; c++) r->face_vert[w++] = newq[4 * k + c];
         }
         r->face_start[o] = w;
-        set_xy(r);
-        memcpy(r->singular_tris, q->singular_tris, sizeof r->singular_tris);
-        memcpy(r->inconsistent_tris, q->inconsistent_tris, sizeof r->inconsistent_tris);
+        finish_from(r, q);
         r->closing.closed_polygons = *closed;
         *out = r;
     }
@@ -363,23 +379,6 @@ done:
 }
 
 /* ---- strips: an odd face joined to another through a strip of quads ---- */
-
-static glpgp_status build_fedges(const glpgp_quadmesh *q, fedge **out)
-{
-    const int nc = q->face_start[q->nf];
-    fedge *E = NULL;
-    GLPGP_CHECK(glpgp_malloc((size_t)nc + 1, sizeof *E, &E));
-    for (int f = 0; f < q->nf; f++) {
-        const int s = q->face_start[f], n = q->face_start[f + 1] - s;
-        for (int i = 0; i < n; i++) {
-            long long a = q->face_vert[s + i], b = q->face_vert[s + (i + 1) % n];
-            E[s + i] = (fedge){a < b ? a * q->nv + b : b * q->nv + a, f, i};
-        }
-    }
-    qsort(E, (size_t)nc, sizeof *E, cmp_fedge);
-    *out = E;
-    return GLPGP_OK;
-}
 
 typedef struct strip_ctx {
     const glpgp_quadmesh *q;
@@ -678,9 +677,7 @@ static glpgp_status strips(const glpgp_mesh *m, const glpgp_quadmesh *q, double 
     r->nf = o;
     r->face_start[o] = w;
     GLPGP_CHECK_GOTO(st, glpgp_qs_project(m, h, r->xyz, q->nv, r->nv), done);
-    set_xy(r);
-    memcpy(r->singular_tris, q->singular_tris, sizeof r->singular_tris);
-    memcpy(r->inconsistent_tris, q->inconsistent_tris, sizeof r->inconsistent_tris);
+    finish_from(r, q);
     *out = r;
     r = NULL;
 done:

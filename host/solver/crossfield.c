@@ -395,6 +395,19 @@ void glpgp_cross_unit(double *w, int nv)
     }
 }
 
+glpgp_status glpgp_cross_finish(const glpgp_mesh *m, glpgp_backend *b, const glpgp_options *o,
+                                glpgp_newton_state *ns, int levels, double t0, glpgp_cross_result *c)
+{
+    if (levels) {
+        GLPGP_CHECK(glpgp_cross_levels(m, b, o, ns, c));
+        GLPGP_CHECK(b->ops->vec_read(b, ns->x, c->w));
+    }
+    GLPGP_CHECK(glpgp_cross_analyze(m, c));
+    c->seconds = glpgp_now() - t0;
+    glpgp_cross_log_done(c);
+    return GLPGP_OK;
+}
+
 glpgp_status glpgp_cross_solve(const glpgp_mesh *m, glpgp_backend *b, const glpgp_options *o,
                                glpgp_cross_result **out)
 {
@@ -448,11 +461,7 @@ glpgp_status glpgp_cross_solve(const glpgp_mesh *m, glpgp_backend *b, const glpg
 
     /* Ginzburg-Landau continuation: Newton levels at decreasing eps */
     glpgp_newton_state ns = {.x = x, .g = g, .d = d, .xt = xt, .work = work, .amg = amg};
-    GLPGP_CHECK_GOTO(st, glpgp_cross_levels(m, b, o, &ns, c), fail);
-    GLPGP_CHECK_GOTO(st, op->vec_read(b, x, c->w), fail);
-    GLPGP_CHECK_GOTO(st, glpgp_cross_analyze(m, c), fail);
-    c->seconds = glpgp_now() - t0;
-    glpgp_cross_log_done(c);
+    GLPGP_CHECK_GOTO(st, glpgp_cross_finish(m, b, o, &ns, 1, t0, c), fail);
     goto done;
 fail:
     glpgp_cross_result_destroy(&c);

@@ -114,6 +114,11 @@ glpgp_status glpgp_cross_vecs_create(glpgp_backend *b, size_t n2, glpgp_vec **x,
                                      glpgp_vec **xt, glpgp_vec **work);
 void glpgp_cross_vecs_destroy(glpgp_backend *b, glpgp_vec **x, glpgp_vec **g, glpgp_vec **d, glpgp_vec **xt,
                               glpgp_vec **work);
+/* The end of a cross-field solve from the state ns (its x holds the initial
+ * guess, on the device): the GL continuation when levels, c->w read back,
+ * analysed, timed from t0 and logged (crossfield.c). */
+glpgp_status glpgp_cross_finish(const glpgp_mesh *m, glpgp_backend *b, const glpgp_options *o,
+                                glpgp_newton_state *ns, int levels, double t0, struct glpgp_cross_result *c);
 /* |w_i| <- 1 for the nv complex values of w (phase kept; 1 where |w_i| vanishes). */
 void glpgp_cross_unit(double *w, int nv);
 

@@ -391,14 +391,8 @@ static glpgp_status surface_cross(const glpgp_mesh *m, glpgp_backend *b, const g
     }
     glpgp_cross_unit(c->w, nv);
     GLPGP_CHECK_GOTO(st, op->vec_write(b, x, c->w), fail);
-    if (levels) {
-        glpgp_newton_state ns = {.x = x, .g = g, .d = d, .xt = xt, .work = work, .amg = amg};
-        GLPGP_CHECK_GOTO(st, glpgp_cross_levels(m, b, o, &ns, c), fail);
-        GLPGP_CHECK_GOTO(st, op->vec_read(b, x, c->w), fail);
-    }
-    GLPGP_CHECK_GOTO(st, glpgp_cross_analyze(m, c), fail);
-    c->seconds = glpgp_now() - t0;
-    glpgp_cross_log_done(c);
+    glpgp_newton_state ns = {.x = x, .g = g, .d = d, .xt = xt, .work = work, .amg = amg};
+    GLPGP_CHECK_GOTO(st, glpgp_cross_finish(m, b, o, &ns, levels, t0, c), fail);
     goto done;
 fail:
     glpgp_cross_result_destroy(&c);
