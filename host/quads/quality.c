@@ -4,6 +4,7 @@
  * distance to a domain, and its printed form. */
 #include "glpgp/quads.h"
 #include "glpgp/cross.h"
+#include "glpgp/util.h"
 #include "check.h"
 #include "geom.h"
 
@@ -499,7 +500,7 @@ done:
     return st;
 }
 
-void glpgp_quads_print(FILE *f, const glpgp_quad_quality *qq, const char *prefix)
+static void quads_print(FILE *f, const glpgp_quad_quality *qq, const char *prefix)
 {
     const char *p = prefix ? prefix : "";
     fprintf(f, "%squads          %d quads, %d other faces (", p, qq->quads, qq->others);
@@ -596,7 +597,28 @@ const char *glpgp_quad_bad_name(unsigned b)
     }
 }
 
+/* The report's numbers are written with '.' whatever the process's locale
+ * (glpgp_cnum: this thread alone in the "C" locale meanwhile). */
+void glpgp_quads_print(FILE *f, const glpgp_quad_quality *qq, const char *prefix)
+{
+    glpgp_cnum cn;
+    glpgp_cnum_begin(&cn);
+    quads_print(f, qq, prefix);
+    glpgp_cnum_end(&cn);
+}
+
+static unsigned invalid_text(const glpgp_quad_quality *qq, unsigned ignore, char *buf, size_t n);
+
 unsigned glpgp_quads_invalid_text(const glpgp_quad_quality *qq, unsigned ignore, char *buf, size_t n)
+{
+    glpgp_cnum cn;
+    glpgp_cnum_begin(&cn);
+    const unsigned b = invalid_text(qq, ignore, buf, n);
+    glpgp_cnum_end(&cn);
+    return b;
+}
+
+static unsigned invalid_text(const glpgp_quad_quality *qq, unsigned ignore, char *buf, size_t n)
 {
     unsigned b = qq->invalid & ~ignore;
     size_t w = 0;

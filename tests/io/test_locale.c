@@ -81,6 +81,18 @@ static void write_all(const fixture *x, const char *prefix)
         else if (i < 7 && x->r) CHECK_OK(glpgp_write_result(x->m, &x->o, x->r, path));
         else if (i >= 7 && x->q) CHECK_OK(glpgp_quads_write(x->q, path));
     }
+    if (x->q) { /* the quality report as text (glpgp_quads_print: "%.3f" figures) */
+        glpgp_quad_quality qq;
+        if (glpgp_quads_quality(x->q, x->m, x->r->size, &qq) == GLPGP_OK) {
+            snprintf(p, sizeof p, "%s_qq.txt", prefix);
+            FILE *fq = fopen(tu_tmp_path(p), "w");
+            if (fq) {
+                glpgp_quads_print(fq, &qq, "  ");
+                fclose(fq);
+            }
+        }
+        glpgp_error_clear();
+    }
     snprintf(p, sizeof p, "%s_n.json", prefix);
     FILE *f = fopen(tu_tmp_path(p), "w");
     if (!f) return;
@@ -98,7 +110,7 @@ static void write_all(const fixture *x, const char *prefix)
 static void compare_writers(void)
 {
     const char *ext[] = {"m.obj", "m.msh", "m3.obj", "m3.msh", "r.vtk", "r.vtu", "r.obj",
-                         "q.obj", "q.vtk", "q.msh", "n.json"};
+                         "q.obj", "q.vtk", "q.msh", "n.json", "qq.txt"};
     char a[64], b[64];
     for (size_t i = 0; i < sizeof ext / sizeof *ext; i++) {
         snprintf(a, sizeof a, "c_%s", ext[i]);
