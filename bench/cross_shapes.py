@@ -57,7 +57,7 @@ def main():
     out = sys.argv[1]
     edge = float(sys.argv[2]) if len(sys.argv) > 2 else 0.04
     os.makedirs(out, exist_ok=True)
-    # flower hole: r(phi) = 0.8 (1 + 0.25 cos 5 phi), centred in [-2, 2]^2
+    # flower hole: r(phi) = 0.8 (1 + 0.25 cos 5 phi), centered in [-2, 2]^2
     fl = [(0.8 * (1 + 0.25 * math.cos(5 * p)) * math.cos(p), 0.8 * (1 + 0.25 * math.cos(5 * p)) * math.sin(p))
           for p in (2 * math.pi * k / 4000 for k in range(4000))]
     write_poly(os.path.join(out, "flower.poly"), [square(-2, -2, 2, 2, edge), resample(fl, edge)], [(0.0, 0.0)], edge)

@@ -1,5 +1,5 @@
 /* image/contour.c: mask image -> boundary polygons (glpgp/image.h): mask channel
- * choice, marching squares on the pixel-centre grid padded with one ring of
+ * choice, marching squares on the pixel-center grid padded with one ring of
  * outside samples (crossing points shared by neighbouring cells, linked into
  * closed loops), speck removal, Douglas-Peucker simplification, orientation
  * (domain on the left) and hole -> outer loop assignment. Memory: two rows
@@ -281,7 +281,7 @@ static glpgp_status march_cell(ms_ctx *c, ms_rows *r, int I, int J)
     }
     /* in->out edges k (in[k] && !in[k+1]) link to an out->in edge */
     int saddle = mask == 5 || mask == 10;
-    int centre_in = saddle && (f[0] + f[1] + f[2] + f[3]) >= 0;
+    int center_in = saddle && (f[0] + f[1] + f[2] + f[3]) >= 0;
     for (int k = 0; k < 4; k++) {
         int k1 = (k + 1) & 3;
         if (!(in[k] && !in[k1])) continue;
@@ -290,7 +290,7 @@ static glpgp_status march_cell(ms_ctx *c, ms_rows *r, int I, int J)
             for (int q = 0; q < 4; q++)
                 if (!in[q] && in[(q + 1) & 3]) target = q;
         } else {
-            target = centre_in ? (k + 1) & 3 : (k + 3) & 3;
+            target = center_in ? (k + 1) & 3 : (k + 3) & 3;
         }
         if (target < 0 || eid[k] < 0 || eid[target] < 0)
             return GLPGP_FAIL(GLPGP_ERR_NUMERIC, "marching squares: inconsistent cell");

@@ -1,5 +1,5 @@
 /* image/render.c: the rasteriser of glpgp/image.h. One pass over the triangles fills
- * every pixel whose centre lies in a triangle with the colour of the chosen
+ * every pixel whose center lies in a triangle with the colour of the chosen
  * kind (theta unwrapped per triangle, analytic anti-aliasing of the grid
  * lines from the per-triangle gradient in pixels); then overlays: field
  * arrows, the boundary (anti-aliased strokes through a coverage buffer, so
@@ -142,7 +142,7 @@ static void pixel_colour(const canvas *cv, const glpgp_result *r, const tri_vals
     switch (cv->o.kind) {
     case GLPGP_IMAGE_GRID: {
         /* theta is only known modulo 1, so cells cannot be told
-         * apart: a light "pillow" shade, brightest at cell centres */
+         * apart: a light "pillow" shade, brightest at cell centers */
         double fu = tu - floor(tu) - 0.5, fv = tvv - floor(tvv) - 0.5;
         double sh = 1.0 - 0.12 * (fabs(fu) + fabs(fv));
         c[0] = (float)(1.00 * sh);
@@ -232,7 +232,7 @@ static void tri_values(const glpgp_mesh *m, const glpgp_result *r, int t, const 
     T->gnv = hypot(gv[0], gv[1]);
 }
 
-/* Every pixel whose centre lies in triangle t. */
+/* Every pixel whose center lies in triangle t. */
 static void raster_triangle(canvas *cv, const glpgp_mesh *m, const glpgp_result *r, int t)
 {
     const int *tv = m->tri + 3 * t;
@@ -477,7 +477,7 @@ int glpgp_draw_text(glpgp_image *im, int x, int y, int scale, const char *text, 
 
 /* Panels side by side (the first panel's size; a smaller panel is drawn
  * from the top left) on white (unless o->transparent), each with two
- * centred caption lines l1[k], l2[k] below it: *out (RGBA). */
+ * centered caption lines l1[k], l2[k] below it: *out (RGBA). */
 static glpgp_status compose_panels(glpgp_image *const *panel, int n, const char *const *l1, const char *const *l2,
                                    const glpgp_render_options *o, glpgp_image **out)
 {

@@ -5,7 +5,7 @@
  * a threshold, the edges, the domain boundary over them, the irregular
  * vertices as dots (valence 3 blue, 5 red, 6 and more dark red; boundary
  * vertices against their ideal valence, smaller), and a caption with the
- * counts. Faces are filled per pixel centre by the crossing rule, so a
+ * counts. Faces are filled per pixel center by the crossing rule, so a
  * non-convex or folded face shows as it is. */
 #include "raster.h"
 #include "glpgp/image.h"
@@ -32,7 +32,7 @@ static void to_px(const qframe *F, const double *p, double *x, double *y)
 }
 
 /* Fill polygon pts (n points, pixel coordinates) with colour c: pixel
- * centres inside by the crossing rule (either orientation). */
+ * centers inside by the crossing rule (either orientation). */
 static void fill_poly(glpgp_image *im, const qframe *F, const double *pts, int n, const float c[3], double alpha)
 {
     double y0 = INFINITY, y1 = -INFINITY, x0 = INFINITY, x1 = -INFINITY;

@@ -75,7 +75,7 @@ void glpgp_size_image_dims(const glpgp_size_image *s, int *w, int *h)
 double glpgp_size_image_eval(void *ctx, double x, double y)
 {
     const glpgp_size_image *s = ctx;
-    /* continuous pixel coordinates of (x, y): sample centres at integers */
+    /* continuous pixel coordinates of (x, y): sample centers at integers */
     double u = (x - s->box[0]) / (s->box[2] - s->box[0]) * s->w - 0.5;
     double v = (s->box[3] - y) / (s->box[3] - s->box[1]) * s->h - 0.5;
     if (!(u >= 0.0)) u = 0.0; /* NaN too */

@@ -80,7 +80,7 @@ done:
 }
 
 /* Rank 0 of a split run: what needs the whole renumbered mesh mp (the local
- * size field and its check, the radial field's centre). The other ranks
+ * size field and its check, the radial field's center). The other ranks
  * wait for the verdict announced after it. */
 static glpgp_status split_prepare(const glpgp_dist *d, const glpgp_options *o, const glpgp_mesh *mp, double **size,
                                   double center[2])

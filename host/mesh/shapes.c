@@ -111,7 +111,7 @@ done:
 }
 
 /* Ring layout for disk (r0 == 0) and annulus: K+1 rings at radii
- * r_k = r0 + (r1 - r0) k / K, ring k has n_k points (1 for the disk centre). */
+ * r_k = r0 + (r1 - r0) k / K, ring k has n_k points (1 for the disk center). */
 static long ring_count(double r0, double r1, int K, int k)
 {
     if (r0 == 0.0 && k == 0) return 1;
@@ -181,7 +181,7 @@ static glpgp_status gen_rings(double r0, double r1, long nverts, glpgp_mesh **ou
     long nt = 0;
     for (int k = 0; k < K; k++) {
         long na = cnt[k], nb = cnt[k + 1], sa = start[k], sb = start[k + 1];
-        if (na == 1) { /* disk centre: fan */
+        if (na == 1) { /* disk center: fan */
             for (long j = 0; j < nb; j++) {
                 int *t = tri + 3 * nt++;
                 t[0] = (int)sa, t[1] = (int)(sb + j), t[2] = (int)(sb + (j + 1) % nb);

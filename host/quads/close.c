@@ -25,14 +25,14 @@
  *   - an odd face with one extra corner is even and is split into quads
  *     (best minimum scaled Jacobian over all splits into quads by
  *     diagonals, dynamic programming; a hexagon may also become three
- *     quads around a centre vertex).
+ *     quads around a center vertex).
  * For a pentagon the preferred crossing edge is the one opposite T: the
  * hexagon's diagonal m - T then splits it into two quads and gives T its
  * fourth edge, so the line that ended at T is continued through the strip
  * and no irregular vertex is left at all. A pentagon without a T vertex
  * (around a +1/4 cross-field singularity: corners of valence 3 / 4 / 3 seen
  * from the crossed edge) is instead split into three quads around one
- * valence-3 centre joined to the midpoint (centre_first: whichever leaves
+ * valence-3 center joined to the midpoint (center_first: whichever leaves
  * fewer irregular vertices).
  *
  * Paths are shortest paths (Dijkstra over (face, entry edge) states) with
@@ -78,8 +78,8 @@
 /* ---- splitting an even polygon into quads ---------------------------- */
 
 /* The hexagon p[0..6) as three quads (p[o+2i], p[o+2i+1], p[o+2i+2], X)
- * around a new centre X = (x, y) added to s: out[0 .. 12), *nq = 3. */
-static glpgp_status centre_quads(psoup *s, const int *p, int o, double x, double y, int *out, int *nq)
+ * around a new center X = (x, y) added to s: out[0 .. 12), *nq = 3. */
+static glpgp_status center_quads(psoup *s, const int *p, int o, double x, double y, int *out, int *nq)
 {
     int X;
     glpgp_status st = glpgp_soup_vertex(s, x, y, &X);
@@ -93,14 +93,14 @@ static glpgp_status centre_quads(psoup *s, const int *p, int o, double x, double
 }
 
 /* A split of the even polygon p[0..n) (n >= 4) into quads: *nq quads in
- * out[0 .. 4 nq), new vertices (a hexagon's centre) added to s. pref >= 0:
+ * out[0 .. 4 nq), new vertices (a hexagon's center) added to s. pref >= 0:
  * the hexagon diagonal (pref, pref + 3) is taken when its quads reach 0.3
- * (it gives the T vertex of a pentagon its fourth edge); with centre = 1
- * (centre_first: a pentagon around a +1/4 cross-field singularity, no T
- * vertex) the three quads around a centre joined to pref, pref + 2 and
+ * (it gives the T vertex of a pentagon its fourth edge); with center = 1
+ * (center_first: a pentagon around a +1/4 cross-field singularity, no T
+ * vertex) the three quads around a center joined to pref, pref + 2 and
  * pref + 4 are tried first, under the same 0.3. Returns the minimum scaled
  * Jacobian of the result (-inf: no split). */
-static glpgp_status split_even(psoup *s, const int *p, int n, int pref, int centre, int *out, int *nq,
+static glpgp_status split_even(psoup *s, const int *p, int n, int pref, int center, int *out, int *nq,
                                double *sj)
 {
     *nq = 0;
@@ -112,11 +112,11 @@ static glpgp_status split_even(psoup *s, const int *p, int n, int pref, int cent
         return GLPGP_OK;
     }
     if (n < 4 || n > GLPGP_POLY_SPLIT_MAX || n % 2) return GLPGP_OK;
-    if (n == 6 && pref >= 0 && centre) {
-        double x = 0.0, y = 0.0, c = glpgp_hex_centre_split_at(s->xy, p, pref % 2, &x, &y);
+    if (n == 6 && pref >= 0 && center) {
+        double x = 0.0, y = 0.0, c = glpgp_hex_center_split_at(s->xy, p, pref % 2, &x, &y);
         if (c >= 0.3) {
             *sj = c;
-            return centre_quads(s, p, pref % 2, x, y, out, nq);
+            return center_quads(s, p, pref % 2, x, y, out, nq);
         }
     }
     if (n == 6 && pref >= 0) {
@@ -137,13 +137,13 @@ static glpgp_status split_even(psoup *s, const int *p, int n, int pref, int cent
     double best = glpgp_poly_quad_split(s->xy, p, n, out, nq);
     if (best > -INFINITY) *sj = best;
     if (n == 6 && best < 0.5) {
-        /* three quads around a centre X joined to every other corner, when
+        /* three quads around a center X joined to every other corner, when
          * clearly better */
         int o = 0;
-        double x = 0.0, y = 0.0, c = glpgp_hex_centre_split(s->xy, p, &o, &x, &y);
+        double x = 0.0, y = 0.0, c = glpgp_hex_center_split(s->xy, p, &o, &x, &y);
         if (c > best + 0.05) {
             *sj = c;
-            return centre_quads(s, p, o, x, y, out, nq);
+            return center_quads(s, p, o, x, y, out, nq);
         }
     }
     return GLPGP_OK;
@@ -160,20 +160,20 @@ static int gain_irr(const adjacency *A, int v)
 }
 
 /* Hexagon p[0..6) = an odd pentagon with the midpoint p[pref] of the
- * crossed edge: 1 when the centre split (X joined to p[pref], p[pref+2],
+ * crossed edge: 1 when the center split (X joined to p[pref], p[pref+2],
  * p[pref+4]; X of valence 3) leaves fewer irregular vertices than the
  * diagonal p[pref] - p[pref+3]. A dislocation's pentagon has its T vertex
  * (valence 3) at pref + 3 and keeps the diagonal; a pentagon around a +1/4
  * cross-field singularity (three corners of valence 3 / 4 / 3 seen from the
  * crossed edge, e.g. the singularity half a period from the boundary) gets
- * the centre: one valence-3 vertex at the singularity instead of a 3-5-3
+ * the center: one valence-3 vertex at the singularity instead of a 3-5-3
  * row. */
-static int centre_first(const adjacency *A, const int *p, int pref)
+static int center_first(const adjacency *A, const int *p, int pref)
 {
     if (pref < 0) return 0;
     int diag = gain_irr(A, p[(pref + 3) % 6]);
-    int centre = 1 + gain_irr(A, p[(pref + 2) % 6]) + gain_irr(A, p[(pref + 4) % 6]);
-    return centre < diag;
+    int center = 1 + gain_irr(A, p[(pref + 2) % 6]) + gain_irr(A, p[(pref + 4) % 6]);
+    return center < diag;
 }
 
 /* ---- shortest strip ----------------------------------------------------- */
@@ -220,7 +220,7 @@ static glpgp_status end_cost(const psoup *s, const adjacency *A, int f, int i, d
     int pref = n + 1 == 6 ? i + 1 : -1, gp[6];
     if (pref >= 0)
         for (int k = 0; k < 6; k++) gp[k] = gid[k];
-    st = split_even(&T, p, n + 1, pref, pref >= 0 && centre_first(A, gp, pref), out, &nq, &sj);
+    st = split_even(&T, p, n + 1, pref, pref >= 0 && center_first(A, gp, pref), out, &nq, &sj);
     if (st == GLPGP_OK && nq > 0 && sj >= MIN_SJ) {
         /* new edges per corner: quad sides that are not polygon sides (each
          * is seen from its two quads) */
@@ -237,7 +237,7 @@ static glpgp_status end_cost(const psoup *s, const adjacency *A, int f, int i, d
         int dirr = 0;
         for (int k = 0; k < T.nv; k++) {
             int d = add[k] / 2;
-            if (k > n) { /* a centre vertex */
+            if (k > n) { /* a center vertex */
                 dirr += d != 4;
                 continue;
             }
@@ -435,7 +435,7 @@ static glpgp_status apply_strip(psoup *s, const adjacency *A, const pstep *P, in
             if (n == 6) pref = e + 1; /* the midpoint's position in p */
             double sj;
             if (n > GLPGP_POLY_SPLIT_MAX) goto done;
-            GLPGP_CHECK_GOTO(st, split_even(s, p, n, pref, n == 6 && centre_first(A, p, pref), out, &nq, &sj),
+            GLPGP_CHECK_GOTO(st, split_even(s, p, n, pref, n == 6 && center_first(A, p, pref), out, &nq, &sj),
                              done);
             if (nq == 0) goto done;
             worst = fmin(worst, sj);

@@ -85,7 +85,7 @@
  * Jacobian of 0.5 and the alternative is better, into three quads around a
  * new interior vertex X joined to every other hexagon corner (X gets
  * valence 3, one corner one more edge: the 3-5 pair of a dislocation). The
- * centre split is what closes a pentagon whose boundary side is a concave
+ * center split is what closes a pentagon whose boundary side is a concave
  * arc (a hole), where every diagonal gives a reflex quad. M, the pattern and
  * X are chosen to maximise the smallest scaled Jacobian of the new quads,
  * and a split is made only if that is > 0.1.
@@ -548,7 +548,7 @@ static double quad_sj(const graph *g, const int *v)
     return glpgp_poly_min_sj(xy, id, 4);
 }
 
-/* glpgp_hex_centre_split for the hexagon hx[0..5] of graph nodes. */
+/* glpgp_hex_center_split for the hexagon hx[0..5] of graph nodes. */
 static double hex_center_split(const graph *g, const int *hx, int *o_best, double *xb, double *yb)
 {
     double xy[12];
@@ -557,7 +557,7 @@ static double hex_center_split(const graph *g, const int *hx, int *o_best, doubl
         xy[2 * i] = g->node[hx[i]].x;
         xy[2 * i + 1] = g->node[hx[i]].y;
     }
-    return glpgp_hex_centre_split(xy, id, o_best, xb, yb);
+    return glpgp_hex_center_split(xy, id, o_best, xb, yb);
 }
 
 /* Output index of graph node v (appended on first use). */
@@ -612,8 +612,8 @@ static glpgp_status simplify(builder *B, double h, pmap *P, int *collapsed, int 
 
 /* The splits of a boundary pentagon considered (see the header). */
 typedef struct pent_split {
-    int split, csplit, co; /* diagonal split found (-1: none); centre split; its offset */
-    int cs[8], chx[6];     /* the two quads of the diagonal; the hexagon of the centre split */
+    int split, csplit, co; /* diagonal split found (-1: none); center split; its offset */
+    int cs[8], chx[6];     /* the two quads of the diagonal; the hexagon of the center split */
     double best_diag, cbest, cx, cy;
 } pent_split;
 
@@ -622,7 +622,7 @@ typedef struct pent_split {
  * hexagon by the diagonal from it to an opposite corner (of the three
  * diagonals, the one whose worse quad has the best scaled Jacobian, if that
  * is > 0.1), or, when no diagonal gives a quad as good as 0.5, into three
- * quads around a new centre vertex if that is better: the usual case when
+ * quads around a new center vertex if that is better: the usual case when
  * the new corner sits on a concave boundary arc, where every diagonal makes
  * a reflex quad. */
 static void pentagon_split(const graph *g, const int *cyc, const int *cych, int len, const unsigned char *corner,
@@ -773,7 +773,7 @@ glpgp_status glpgp_quads_extract(const glpgp_mesh *m, const glpgp_result *r, glp
     GLPGP_CHECK_GOTO(st, build_arrangement(&B), done);
     GLPGP_CHECK_GOTO(st, simplify(&B, h, &P, &collapsed, &promoted), done);
     graph *g = &B.g;
-    /* output: corner nodes of inner faces, renumbered (room for one centre vertex per face) */
+    /* output: corner nodes of inner faces, renumbered (room for one center vertex per face) */
     GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)g->nn + 1, 1, &corner), done);
     GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)g->nn + P.nf + 1, sizeof(int), &X.newid), done);
     GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)P.nh + 1, sizeof(int), &cyc), done);

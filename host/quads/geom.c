@@ -1,5 +1,5 @@
 /* quads/geom.c: polygon geometry shared by the quad code (geom.h): the
- * corner scaled Jacobian of a polygon and the centre split of a hexagon. */
+ * corner scaled Jacobian of a polygon and the center split of a hexagon. */
 #include "geom.h"
 #include "glpgp/quads.h"
 
@@ -18,7 +18,7 @@ double glpgp_poly_min_sj(const double *xy, const int *v, int n)
     return m;
 }
 
-double glpgp_hex_centre_split_at(const double *xy, const int *hx, int o, double *xb, double *yb)
+double glpgp_hex_center_split_at(const double *xy, const int *hx, int o, double *xb, double *yb)
 {
     double best = -INFINITY;
     double ax = 0, ay = 0, bx = 0, by = 0; /* centroids of the joined / the other corners */
@@ -52,11 +52,11 @@ double glpgp_hex_centre_split_at(const double *xy, const int *hx, int o, double 
     return best;
 }
 
-double glpgp_hex_centre_split(const double *xy, const int *hx, int *o_best, double *xb, double *yb)
+double glpgp_hex_center_split(const double *xy, const int *hx, int *o_best, double *xb, double *yb)
 {
     double best = -INFINITY;
     for (int o = 0; o < 2; o++) {
-        double x = 0.0, y = 0.0, sj = glpgp_hex_centre_split_at(xy, hx, o, &x, &y);
+        double x = 0.0, y = 0.0, sj = glpgp_hex_center_split_at(xy, hx, o, &x, &y);
         if (sj > best) {
             best = sj;
             *o_best = o;

@@ -11,17 +11,17 @@
 double glpgp_poly_min_sj(const double *xy, const int *v, int n);
 
 /* Best split of the hexagon with corners hx[0..5] (indices into xy,
- * counter-clockwise) into three quads around a new centre X joined to every
+ * counter-clockwise) into three quads around a new center X joined to every
  * other corner (hx[o], hx[o+2], hx[o+4], o = 0 or 1): the quads are
  * (hx[o+2i], hx[o+2i+1], hx[o+2i+2], X). X is taken among five blends of
  * the centroids of the joined and of the other corners. Returns the
  * smallest corner scaled Jacobian of the three quads and sets *o, *x, *y. */
-double glpgp_hex_centre_split(const double *xy, const int *hx, int *o, double *x, double *y);
+double glpgp_hex_center_split(const double *xy, const int *hx, int *o, double *x, double *y);
 
 /* The same with the orientation o (0 or 1) given: X joined to hx[o],
  * hx[o+2], hx[o+4]. Returns the smallest corner scaled Jacobian and sets
  * *x, *y. */
-double glpgp_hex_centre_split_at(const double *xy, const int *hx, int o, double *x, double *y);
+double glpgp_hex_center_split_at(const double *xy, const int *hx, int o, double *x, double *y);
 
 /* Largest polygon glpgp_poly_quad_split takes. */
 #define GLPGP_POLY_SPLIT_MAX 16

@@ -14,7 +14,7 @@
  *    the rest keeps one merged hole.
  * A single loop of n points:
  *  - n <= 16: the best split into quads by its diagonals (dynamic
- *    programme, geom.c), or around one centre point (an octagon into four
+ *    programme, geom.c), or around one center point (an octagon into four
  *    quads, a hexagon into three), is taken when its smallest corner scaled
  *    Jacobian reaches SPLIT_OK;
  *  - else (or when no split is good enough) the best cut is made: cuts
@@ -303,12 +303,12 @@ static double ends_cost(const qc *c, const qc_piece *pc, int li, int i, int lj, 
 }
 
 /* Quads of the even polygon xy[2 p[i]] (n <= GLPGP_POLY_SPLIT_MAX) around
- * one centre joined to every other corner (p[o], p[o+2], ...): n / 2
- * quads (p[o+2q], p[o+2q+1], p[o+2q+2], X). The centre is the best of a
+ * one center joined to every other corner (p[o], p[o+2], ...): n / 2
+ * quads (p[o+2q], p[o+2q+1], p[o+2q+2], X). The center is the best of a
  * few blends of the centroids of the joined and of the other corners.
- * Returns the smallest corner scaled Jacobian, the centre in *x, *y and
+ * Returns the smallest corner scaled Jacobian, the center in *x, *y and
  * the offset in *ob. */
-double glpgp_qc_centre_split(const double *xy, const int *p, int n, int *ob, double *xb, double *yb)
+double glpgp_qc_center_split(const double *xy, const int *p, int n, int *ob, double *xb, double *yb)
 {
     double best = -INFINITY;
     for (int o = 0; o < 2; o++) {
@@ -403,8 +403,8 @@ static double part_cost(const qc *c, const ivec *L, int from, int to, const doub
     }
     int out[4 * 8], nq, o;
     double sj = glpgp_poly_quad_split(xy, id, n, out, &nq), x, y, extra = 0.0;
-    if (n >= 6) { /* as best_split: a centre of valence n / 2 */
-        double v = glpgp_qc_centre_split(xy, id, n, &o, &x, &y);
+    if (n >= 6) { /* as best_split: a center of valence n / 2 */
+        double v = glpgp_qc_center_split(xy, id, n, &o, &x, &y);
         double margin = n == 8 ? -0.05 : n == 6 ? 0.05 : fmax(0.1, 0.3 - sj);
         if (v > sj + margin) {
             sj = v;

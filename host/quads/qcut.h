@@ -20,7 +20,7 @@ typedef struct qcut_region {
 typedef struct qcut_stats {
     int pieces;  /* pieces meshed by a split or a template */
     int cuts;    /* straight cuts made (hole cuts included) */
-    int points;  /* new points (on cuts, template centres) */
+    int points;  /* new points (on cuts, template centers) */
 } qcut_stats;
 
 /* Mesh R with quads. xy: the points (2 per point), grown with the new ones;

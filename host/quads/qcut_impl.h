@@ -32,7 +32,7 @@ typedef struct qc {
 } qc;
 
 /* A small loop's best split: of the loop L (n <= GLPGP_POLY_SPLIT_MAX) and its
- * scaled Jacobian; *how: 0 diagonals (out, nq), 1 a centre (o, x, y). */
+ * scaled Jacobian; *how: 0 diagonals (out, nq), 1 a center (o, x, y). */
 typedef struct split {
     double sj;
     int how, nq, o;
@@ -42,7 +42,7 @@ typedef struct split {
 
 static inline const double *P(const qc *c, int id) { return c->xy->p + 2 * id; }
 
-double glpgp_qc_centre_split(const double *xy, const int *p, int n, int *ob, double *xb, double *yb);
+double glpgp_qc_center_split(const double *xy, const int *p, int n, int *ob, double *xb, double *yb);
 double glpgp_qc_loop_angle(const qc *c, const ivec *L, int i);
 int glpgp_qc_visible(const qc *c, const qc_piece *pc, int ia, int ib);
 void glpgp_qc_best_split(const qc *c, const ivec *L, split *s);

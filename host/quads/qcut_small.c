@@ -1,6 +1,6 @@
 /* quads/qcut_small.c: the cut mesher's small loops (qcut.c calls them when a
  * loop has few points or no cut fits): the best split into quads by its
- * diagonals or around a centre, the kite at a sharp point, the five-quad
+ * diagonals or around a center, the kite at a sharp point, the five-quad
  * ring of a quad with a reflex or flat corner; each emits its quads. */
 #include "qcut_impl.h"
 
@@ -18,8 +18,8 @@ glpgp_status glpgp_qc_emit(qc *c, const int *q)
     return GLPGP_OK;
 }
 
-/* Quads around a new centre (x, y) joined to p[o], p[o+2], ... of the n-gon. */
-static glpgp_status emit_centre(qc *c, const int *p, int n, int o, double x, double y)
+/* Quads around a new center (x, y) joined to p[o], p[o+2], ... of the n-gon. */
+static glpgp_status emit_center(qc *c, const int *p, int n, int o, double x, double y)
 {
     int X = c->xy->n / 2;
     GLPGP_CHECK(dpush(c->xy, x));
@@ -42,9 +42,9 @@ void glpgp_qc_best_split(const qc *c, const ivec *L, split *s)
     double x = 0, y = 0;
     int o = 0;
     if (L->n >= 6 && L->n <= GLPGP_POLY_SPLIT_MAX) {
-        /* a centre of valence n / 2: taken for an octagon when as good, else
+        /* a center of valence n / 2: taken for an octagon when as good, else
          * only where the diagonals fail */
-        double v = glpgp_qc_centre_split(c->xy->p, L->p, L->n, &o, &x, &y);
+        double v = glpgp_qc_center_split(c->xy->p, L->p, L->n, &o, &x, &y);
         double margin = L->n == 8 ? -0.05 : L->n == 6 ? 0.05 : fmax(0.1, 0.3 - s->sj);
         if (v > s->sj + margin) *s = (split){v, 1, 0, o, x, y, {0}};
     }
@@ -53,7 +53,7 @@ void glpgp_qc_best_split(const qc *c, const ivec *L, split *s)
 glpgp_status glpgp_qc_emit_split(qc *c, const ivec *L, const split *s)
 {
     c->stats->pieces++;
-    if (s->how == 1) return emit_centre(c, L->p, L->n, s->o, s->x, s->y);
+    if (s->how == 1) return emit_center(c, L->p, L->n, s->o, s->x, s->y);
     for (int q = 0; q < s->nq; q++) GLPGP_CHECK(glpgp_qc_emit(c, s->out + 4 * q));
     return GLPGP_OK;
 }

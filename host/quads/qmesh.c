@@ -48,7 +48,7 @@ glpgp_status glpgp_quadmesh_subdivide(const glpgp_quadmesh *q, glpgp_quadmesh **
     }
     qsort(key, (size_t)nc, 2 * sizeof(long long), cmp_ll2);
     GLPGP_CHECK_GOTO(st, glpgp_calloc(1, sizeof *r, &r), done);
-    /* vertices: the old ones, one midpoint per edge, one centre per face */
+    /* vertices: the old ones, one midpoint per edge, one center per face */
     GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)q->nv + nc + q->nf, 2 * sizeof(double), &r->xy), done);
     GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)nc + 1, sizeof(int), &r->face_start), done);
     GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)nc, 4 * sizeof(int), &r->face_vert), done);
@@ -77,7 +77,7 @@ glpgp_status glpgp_quadmesh_subdivide(const glpgp_quadmesh *q, glpgp_quadmesh **
         int c = r->nv++;
         r->xy[2 * c] = cx;
         r->xy[2 * c + 1] = cy;
-        for (int i = 0; i < k; i++) { /* corner i, midpoint of side i, centre, midpoint of side i-1 */
+        for (int i = 0; i < k; i++) { /* corner i, midpoint of side i, center, midpoint of side i-1 */
             r->face_vert[w++] = q->face_vert[s + i];
             r->face_vert[w++] = side_mid[s + i];
             r->face_vert[w++] = c;

@@ -391,7 +391,7 @@ typedef struct strip_ctx {
     int *insv;           /* nf: that midpoint */
     int *exit_side;      /* nf: a strip quad's exit side (-1) */
     int *entry_side;     /* nf */
-    int *mid_in, *mid_out, *centre; /* nf: a strip quad's new vertices */
+    int *mid_in, *mid_out, *center; /* nf: a strip quad's new vertices */
     double *xyz;         /* new vertex positions (3 per vertex, from q->nv on) */
     int nv, capv;
     int any_side;        /* 0: strips only through the sides opposite the odd faces' flattest corners */
@@ -421,7 +421,7 @@ static void side_mid(const glpgp_quadmesh *q, int f, int i, double *p)
 
 /* The strip found by the search, from A to B (entered at B's side bside
  * from the quad of state last): its quads (unique), midpoints and turn
- * centres; *found 1 when applied. */
+ * centers; *found 1 when applied. */
 static glpgp_status apply_strip(strip_ctx *c, int A, int B, int bside, int last, int *found)
 {
     const glpgp_quadmesh *q = c->q;
@@ -474,14 +474,14 @@ static glpgp_status apply_strip(strip_ctx *c, int A, int B, int bside, int last,
         side_mid(q, g, ex[i], p3);
         GLPGP_CHECK(new_vertex(c, p3, &m));
         c->mid_out[g] = m;
-        c->centre[g] = -1;
-        if ((ex[i] - entry[i] + 4) % 4 != 2) { /* a turn: a centre vertex */
+        c->center[g] = -1;
+        if ((ex[i] - entry[i] + 4) % 4 != 2) { /* a turn: a center vertex */
             const int s0 = q->face_start[g];
             for (int d = 0; d < 3; d++) {
                 p3[d] = 0.0;
                 for (int k = 0; k < 4; k++) p3[d] += 0.25 * q->xyz[3 * q->face_vert[s0 + k] + d];
             }
-            GLPGP_CHECK(new_vertex(c, p3, &c->centre[g]));
+            GLPGP_CHECK(new_vertex(c, p3, &c->center[g]));
         }
     }
     c->used[A] = 1;
@@ -574,7 +574,7 @@ static int emit_face(const strip_ctx *c, int f, glpgp_quadmesh *r, int *o, int w
     const unsigned char org = q->face_origin ? q->face_origin[f] : GLPGP_QFACE_GRID;
     if (c->exit_side[f] >= 0) {
         const int *G = q->face_vert + s, j = c->entry_side[f], e = c->exit_side[f];
-        const int mi = c->mid_in[f], mo = c->mid_out[f], C = c->centre[f];
+        const int mi = c->mid_in[f], mo = c->mid_out[f], C = c->center[f];
         int qs[3][4], nq;
         if ((e - j + 4) % 4 == 2) {
             int a[2][4] = {{G[(j + 1) % 4], G[(j + 2) % 4], mo, mi}, {G[(j + 3) % 4], G[j], mi, mo}};
@@ -616,7 +616,7 @@ static void strip_free(strip_ctx *c)
     free(c->entry_side);
     free(c->mid_in);
     free(c->mid_out);
-    free(c->centre);
+    free(c->center);
     free(c->xyz);
 }
 
@@ -644,7 +644,7 @@ static glpgp_status strips(const glpgp_mesh *m, const glpgp_quadmesh *q, double 
     glpgp_status st = build_fedges(q, &E);
     c.E = E;
     if (st == GLPGP_OK) st = glpgp_calloc(nf, 1, &c.used);
-    int **arr[] = {&c.ins, &c.insv, &c.exit_side, &c.entry_side, &c.mid_in, &c.mid_out, &c.centre};
+    int **arr[] = {&c.ins, &c.insv, &c.exit_side, &c.entry_side, &c.mid_in, &c.mid_out, &c.center};
     for (int k = 0; k < 7 && st == GLPGP_OK; k++) st = glpgp_malloc(nf, sizeof(int), arr[k]);
     if (st == GLPGP_OK) st = glpgp_malloc(4 * nf, sizeof(int), &c.par);
     if (st == GLPGP_OK) st = glpgp_malloc(4 * nf, sizeof(int), &c.queue);

@@ -241,7 +241,7 @@ int glpgp_cross_to_vector(const glpgp_mesh *m, const double *w, double *u)
         free(fill);
     }
     /* alpha_i = arg(w_i) / 4 + k pi/2, k chosen closest to the neighbour that
-     * reached i (breadth-first from the vertex nearest the bounding-box centre,
+     * reached i (breadth-first from the vertex nearest the bounding-box center,
      * each component from its first vertex) */
     const double cx = 0.5 * (m->bbox[0] + m->bbox[2]), cy = 0.5 * (m->bbox[1] + m->bbox[3]);
     int root = 0;
@@ -493,7 +493,7 @@ glpgp_status glpgp_cross_guiding_field(const glpgp_mesh *m, glpgp_backend *b, co
     else if (c->nsing > 0 || cuts > 0)
         glpgp_log(GLPGP_LOG_WARNING,
                   "cross field has %d singularities: U (alpha = arg(w)/4, branches chosen outward from the "
-                  "centre) turns by 90 degrees across %d edges, which the oscillators see as cuts",
+                  "center) turns by 90 degrees across %d edges, which the oscillators see as cuts",
                   c->nsing, cuts);
     if (keep)
         *keep = c;

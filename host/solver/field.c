@@ -1,7 +1,7 @@
 /* solver/field.c: the guiding field U: boundary-aligned (the boundary angle,
  * folded to the 4-fold symmetry, interpolated harmonically inside with the
  * backend's PCG, multigrid-preconditioned with --precond amg), radial about
- * a centre, or read from a file (glpgp/solve.h). */
+ * a center, or read from a file (glpgp/solve.h). */
 #include "internal.h"
 #include "glpgp/internal/text.h"
 #include "glpgp/util.h"

@@ -132,7 +132,7 @@ static const glpgp_optdesc k_table[] = {
         "--cross-eps0), or one \"ux uy\" line per vertex from FILE;\n"
         "a surface: cross (default) or boundary (harmonic, aligned with\n"
         "its boundary and sharp features)"),
-    TXT("center", G1, parse_center, "X,Y", "area centroid", "centre of the radial field"),
+    TXT("center", G1, parse_center, "X,Y", "area centroid", "center of the radial field"),
     CHO("init", G1, init, k_inits, k_init_vals,
         "initial guess of the GL continuation: the normalised naive PGP\n"
         "solution, or z = 1"),

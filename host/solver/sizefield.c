@@ -42,7 +42,7 @@
  *      per unit of arc a(h, kappa) = R (theta - sin theta) / (2 theta) ~
  *      h^2 / (12 R) (sagitta s = h^2 / 8R, segment ~ 2/3 s h). kappa_i per
  *      boundary vertex: the turning angle over an arc window of length h_i
- *      centred at i over its length, corners (turns > 40 degrees, kept as
+ *      centered at i over its length, corners (turns > 40 degrees, kept as
  *      mesh vertices) excluded. Predicted error at the graded sizes (h_b the
  *      larger oscillator's, the chord along the boundary):
  *        L = sum_{convex e} a(h_e, kappa_e) |e| (lost),  G = the same over
@@ -401,7 +401,7 @@ static int arc_index(const double *a, int n, double r)
 }
 
 /* Signed curvature kappa_i of every boundary vertex (0 elsewhere): the
- * boundary's turning angle over an arc window of length hb_i centred at i
+ * boundary's turning angle over an arc window of length hb_i centered at i
  * (the whole loop when that is shorter) over the window's length,
  *   kappa_i = (sum_{p in window} tau_p) / |window|,
  * tau_p the signed turn at boundary vertex p (> 0: a left turn, a convex part

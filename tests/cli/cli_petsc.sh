@@ -184,7 +184,7 @@ else
     fail "data/plate_holes.msh not found (data dir '$DATA')"
 fi
 
-# 3 ranks, each on its part of the mesh: the radial field (its centre from
+# 3 ranks, each on its part of the mesh: the radial field (its center from
 # the whole mesh) against the reference; a per-vertex field file keeps the
 # whole mesh on every rank: 2 ranks against the reference
 run_ok "annulus radial reference" solve shape:annulus:2500 --field radial --backend reference --precond jacobi \

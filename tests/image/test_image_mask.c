@@ -11,7 +11,7 @@
  * (unreadable, empty, all inside) fail with GLPGP_ERR_IO / GLPGP_ERR_ARG.
  * Also: Douglas-Peucker keeps a square's corners, and the contour of a
  * binary mask touching the image border closes half a pixel beyond the
- * border pixel centres (exact area without simplification).
+ * border pixel centers (exact area without simplification).
  * Skips (77) in builds without OpenImageIO or Gmsh. */
 #include "glpgp/image.h"
 #include "testutil.h"

@@ -104,12 +104,12 @@ int main(void)
                first, last);
         CHECK(abs(runs - 10) <= 1);
         CHECK(runs == 9);
-        /* light cell shading: a cell centre is lighter than a point near its corner */
+        /* light cell shading: a cell center is lighter than a point near its corner */
         int ia, ja, ib, jb;
         to_pixel(m, &o, 0.55, 0.55, &ia, &ja);
         to_pixel(m, &o, 0.585, 0.585, &ib, &jb);
         const float *pa = im->px + 4 * ((size_t)ja * im->w + ia), *pb = im->px + 4 * ((size_t)jb * im->w + ib);
-        printf("cell centre %.3f, near corner %.3f\n", pa[0], pb[0]);
+        printf("cell center %.3f, near corner %.3f\n", pa[0], pb[0]);
         CHECK(pa[0] > pb[0] + 0.03 && pb[0] > 0.8);
         glpgp_image_destroy(&im);
     }

@@ -1,7 +1,7 @@
 /* test_render3d.c: pictures of a surface's result (image/render3d.c, in
  * memory, no OpenImageIO): a sphere's GL-PGP result drawn from the default
  * camera fills a disc (background in the corners, shaded surface at the
- * centre, darker towards the rim), carries grid lines of both oscillators
+ * center, darker towards the rim), carries grid lines of both oscillators
  * (bluish and reddish pixels), marks the cross field's singularities (pure
  * red dots); the camera moves the picture; the hidden half is hidden (a
  * singularity behind the sphere is not drawn); kinds without a 3D form are

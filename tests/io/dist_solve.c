@@ -62,7 +62,7 @@ static int run(const char *dir, int give_mesh)
     if (st == GLPGP_OK && root) {
         EXPECT(r && r->nv == m->nv);
         double worst = 0.0;
-        for (int i = 0; r && i < m->nv; i++) { /* radial: u = x / |x| at every vertex off the centre */
+        for (int i = 0; r && i < m->nv; i++) { /* radial: u = x / |x| at every vertex off the center */
             const double x = m->xy[2 * i], y = m->xy[2 * i + 1], n = hypot(x, y);
             if (n > 0.2) worst = fmax(worst, hypot(r->field[2 * i] - x / n, r->field[2 * i + 1] - y / n));
         }

@@ -369,7 +369,7 @@ static void test_obj(void)
 
 static void test_msh(void)
 {
-    /* MSH 2.2: unit square split in 4 around a centre node, tags
+    /* MSH 2.2: unit square split in 4 around a center node, tags
      * non-contiguous, a physical-names section, points and lines ignored. */
     const char *m22 = "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n"
                       "$PhysicalNames\n1\n2 1 \"domain $Nodes\"\n$EndPhysicalNames\n"

@@ -123,7 +123,7 @@ static void hd_circle(hd_poly *p, double cx, double cy, double r, double s)
     for (int i = 0; i < k; i++) hd_point(p, cx + r * cos(2 * HD_PI * i / k), cy + r * sin(2 * HD_PI * i / k), s);
     hd_end(p);
 }
-/* Arc (centre, radius, angles a0 -> a1, end point included, start not). */
+/* Arc (center, radius, angles a0 -> a1, end point included, start not). */
 static void hd_arc(hd_poly *p, double cx, double cy, double r, double a0, double a1, double s)
 {
     int k = (int)ceil(fabs(a1 - a0) * r / s);

@@ -1,7 +1,7 @@
 /* test_cleanup.c: the topological clean-up of quad meshes
  * (glpgp_quadmesh_cleanup, quads/cleanup.c).
  *  - a regular N x N grid: nothing to do (NULL: the mesh stands);
- *  - a doublet (a grid quad split through its centre into two quads sharing
+ *  - a doublet (a grid quad split through its center into two quads sharing
  *    two edges): removed, the grid's valences restored (0 irregular);
  *  - a rotated edge (two valence 5 and two valence 3 vertices): rotated
  *    back (0 irregular);
@@ -52,7 +52,7 @@ static int face_of(const glpgp_quadmesh *q, int i, int j)
     return j * N + i;
 }
 
-/* Split quad f = (a, b, c, d) through a new centre vertex into (a, b, c, v)
+/* Split quad f = (a, b, c, d) through a new center vertex into (a, b, c, v)
  * and (c, d, a, v): v has valence 2 (a doublet). */
 static void make_doublet(glpgp_quadmesh *q, int f)
 {

@@ -12,7 +12,7 @@
  *  - data/plate_holes.msh (the default domain: holes, a small ellipse, a
  *    v dipole): no degenerate or inverted face (a level-line loop left by
  *    the short-side contraction once gave a zero-length edge and a 10-gon),
- *    every face a quad (boundary pentagons closed by a diagonal or a centre
+ *    every face a quad (boundary pentagons closed by a diagonal or a center
  *    vertex);
  *  - glpgp_quadmesh_subdivide (--all-quads) on the radial annulus: only
  *    quads, n quads per n-gon, conforming, same area, nothing inverted;

@@ -196,7 +196,7 @@ static void test_solves(void)
                     CHECK(fabs(gap - 90.0) <= 5.0);
                 }
                 CHECK(rmax <= 1.05 * rmin);
-                CHECK(rmin > 0.3 && rmax < 0.98); /* inside, away from the centre */
+                CHECK(rmin > 0.3 && rmax < 0.98); /* inside, away from the center */
             }
         }
         if (!strcmp(names[s], "square") || !strcmp(names[s], "lshape")) {

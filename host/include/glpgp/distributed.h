@@ -15,7 +15,7 @@
  * Split runs (glpgp_dist_splits: several ranks, no per-vertex input file, no
  * cross field, no size function): rank 0 renumbers the mesh by recursive
  * coordinate bisection, computes what needs the whole mesh (the local size
- * field, the radial centre), announces its verdict and sends every rank its
+ * field, the radial center), announces its verdict and sends every rank its
  * part; after the solve the result is gathered to rank 0 in the input's
  * vertex order (gather) and/or every rank writes its piece of a .pvtu
  * (pvtu; a run that does not split: rank 0 writes the whole mesh as one

@@ -108,7 +108,7 @@ glpgp_status glpgp_size_image_create(const char *path, long long max_pixels, con
                                      double hi, glpgp_size_image **out);
 void glpgp_size_image_destroy(glpgp_size_image **s);
 void glpgp_size_image_dims(const glpgp_size_image *s, int *w, int *h);
-/* The size fraction at (x, y): bilinear between pixel centres, the nearest
+/* The size fraction at (x, y): bilinear between pixel centers, the nearest
  * border sample outside the box. A glpgp_size_fn (glpgp/solve.h) with ctx the
  * glpgp_size_image. */
 double glpgp_size_image_eval(void *ctx, double x, double y);
@@ -156,7 +156,7 @@ int glpgp_image_kind_parse(const char *name);
 const char *glpgp_image_kind_name(int kind);
 
 /* Render result r on mesh m: the domain's bounding box scaled to o->size
- * pixels on the long side (plus margins), y up. Per pixel (centre sample),
+ * pixels on the long side (plus margins), y up. Per pixel (center sample),
  * the containing triangle's theta_u, theta_v are interpolated linearly after
  * unwrapping relative to its first corner (theta_k = theta_0 + arg(z_k /
  * z_0) / 2 pi); grid lines where theta is an integer are anti-aliased with
@@ -254,7 +254,7 @@ glpgp_status glpgp_mask_values(const glpgp_image *im, float **out);
  * s = pixel_size; the image covers [0, w s] x [0, h s]. Outside the image
  * counts as outside the domain, so a region touching the image border is
  * closed half a pixel beyond the border pixels. Crossings are placed on the
- * pixel-centre grid by linear interpolation of v (a binary mask gives
+ * pixel-center grid by linear interpolation of v (a binary mask gives
  * midpoints; an anti-aliased one sub-pixel positions); ambiguous saddle cells
  * are resolved by the mean of their four corners. Loops are simplified by
  * glpgp_polygons_simplify (tolerance o->tolerance pixels, so the topology is
@@ -297,7 +297,7 @@ glpgp_status glpgp_simplify_closed(double *xy, int *n, double tol);
 
 /* Smallest distance (in pixels) glpgp_contours keeps between boundary
  * segments that are not neighbours: crossings of the marching squares lie
- * at least 0.01 px from a pixel centre, so unsimplified contours are always
+ * at least 0.01 px from a pixel center, so unsimplified contours are always
  * further apart than this. */
 #define GLPGP_CONTOUR_MIN_DIST 1e-3
 

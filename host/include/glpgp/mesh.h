@@ -30,7 +30,7 @@ typedef struct glpgp_mesh_part {
     int nv_global, nt_global;
     int *gid;          /* nv: global id of each local vertex */
     double *size;      /* 2 nv: local size of u then v (size[k nv + i]) from the whole mesh; NULL: uniform h */
-    double center[2];  /* area centroid of the whole mesh (radial field's default centre) */
+    double center[2];  /* area centroid of the whole mesh (radial field's default center) */
     double size_opt;   /* glpgp_options.size of the rank that built the parts (0: default) */
 } glpgp_mesh_part;
 

@@ -95,7 +95,7 @@ typedef struct glpgp_quadmesh {
     int collapsed_edges;      /* short edges contracted during the clean-up */
     int promoted_corners;     /* boundary vertices made face corners (3-gon -> quad) */
     int split_pentagons;      /* boundary pentagons split into two or three quads */
-    int center_splits;        /* of those: three quads around a new centre vertex */
+    int center_splits;        /* of those: three quads around a new center vertex */
     glpgp_quad_closing closing; /* set by glpgp_quadmesh_close_polygons / _smooth */
     glpgp_quad_repair repair;   /* set by glpgp_quadmesh_repair */
     glpgp_quad_cleanup cleanup; /* set by glpgp_quadmesh_cleanup */

@@ -18,8 +18,8 @@ extern "C" {
 
 /* Built-in shapes at about `nverts` vertices (>= 16):
  *   "square"  unit square [0,1]^2
- *   "disk"    unit disk centred at the origin
- *   "annulus" radii 0.3 and 1.0 centred at the origin
+ *   "disk"    unit disk centered at the origin
+ *   "annulus" radii 0.3 and 1.0 centered at the origin
  *   "lshape"  [0,1]^2 minus [0.5,1]^2
  * Triangles are well shaped (min angle >= 25 degrees). Deterministic.
  * Surfaces (glpgp_surface_generate, glpgp/surface.h): "sphere", "torus",

@@ -89,7 +89,7 @@ typedef struct glpgp_options {
     const double *field_values; /* for GLPGP_FIELD_FILE: the field in memory instead of the file, 2 nv
                              values (ux, uy per vertex of the solved mesh, normalised here; field_file
                              then only names it in messages and the statistics) [NULL] */
-    int has_center;       /* radial field centre given (else: area centroid) [0] */
+    int has_center;       /* radial field center given (else: area centroid) [0] */
     double center[2];
     int init;             /* initial guess of GL: GLPGP_INIT_NAIVE or ONE [NAIVE] */
     int vertex_order;     /* GLPGP_ORDER_RCM: glpgp_solve renumbers the vertices for
