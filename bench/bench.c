@@ -977,218 +977,180 @@ static void machine_info(machine *mc)
     }
 }
 
-/* ---- JSON ------------------------------------------------------------------------------ */
+/* ---- JSON (the library's emitter, glpgp/json.h) -------------------------------------- */
 
-static void jnum(FILE *f, double v)
+static void jstat(glpgp_json *w, const char *key, const tstat *t)
 {
-    if (isfinite(v)) fprintf(f, "%.6g", v);
-    else fprintf(f, "null");
-}
-
-static void jstr(FILE *f, const char *s)
-{
-    if (!s) {
-        fprintf(f, "null");
-        return;
-    }
-    fputc('"', f);
-    for (; *s; s++) {
-        unsigned char ch = (unsigned char)*s;
-        if (ch == '"' || ch == '\\') fprintf(f, "\\%c", ch);
-        else if (ch < 0x20) fprintf(f, "\\u%04x", ch);
-        else fputc(ch, f);
-    }
-    fputc('"', f);
-}
-
-static void jstat(FILE *f, const char *key, const tstat *t)
-{
-    fprintf(f, "\"%s\": {\"median\": ", key);
-    jnum(f, t->med);
-    fprintf(f, ", \"min\": ");
-    jnum(f, t->min);
-    fprintf(f, ", \"n\": %d}", t->n);
+    glpgp_json_object(w, key);
+    glpgp_json_num(w, "median", t->med);
+    glpgp_json_num(w, "min", t->min);
+    glpgp_json_int(w, "n", t->n);
+    glpgp_json_close(w);
 }
 
 static double ratio(double a, double b) { return (isfinite(a) && isfinite(b) && b != 0.0) ? a / b : NAN; }
 
-static void json_bres(FILE *f, const bres *b, double triad)
+static void json_bres(glpgp_json *w, const char *key, const bres *b, double triad)
 {
-    fprintf(f, "{\"ran\": %s, \"note\": ", b->ran ? "true" : "false");
-    jstr(f, b->note);
+    glpgp_json_object(w, key);
+    glpgp_json_bool(w, "ran", b->ran);
+    glpgp_json_str(w, "note", b->note);
     if (b->ran) {
-        fprintf(f, ",\n      \"create_s\": ");
-        jnum(f, b->create_s);
-        fprintf(f, ", \"setup_s\": ");
-        jnum(f, b->setup_s);
-        fprintf(f, ",\n      ");
-        jstat(f, "quad_assembly_s", &b->quad);
-        fprintf(f, ",\n      ");
-        jstat(f, "newton_assembly_s", &b->newton);
-        fprintf(f, ",\n      ");
-        jstat(f, "spmv_s", &b->spmv);
-        fprintf(f, ", \"spmv_gbs\": ");
-        jnum(f, b->spmv_gbs);
-        fprintf(f, ", \"spmv_gbs_best\": ");
-        jnum(f, b->spmv_gbs_best);
-        fprintf(f, ", \"spmv_triad_ratio\": ");
-        jnum(f, ratio(b->spmv_gbs, triad));
-        fprintf(f, ",\n      ");
-        jstat(f, "cg_iter_s", &b->cg_iter);
-        fprintf(f, ", \"cg_iter_gbs\": ");
-        jnum(f, b->cg_gbs);
-        fprintf(f, ", \"cg_iter_gbs_best\": ");
-        jnum(f, b->cg_gbs_best);
-        fprintf(f, ", \"cg_triad_ratio\": ");
-        jnum(f, ratio(b->cg_gbs, triad));
-        fprintf(f, ",\n      ");
-        jstat(f, "linear_solve_s", &b->lin);
-        fprintf(f, ", \"linear_solve_iterations\": %d, \"linear_solve_relres\": ", b->lin_iters);
-        jnum(f, b->lin_relres);
-        fprintf(f, ",\n      ");
-        jstat(f, "newton_step_s", &b->nstep);
-        fprintf(f, ", \"newton_step_cg_iterations\": %d, \"newton_step_alpha\": ", b->nstep_cg);
-        jnum(f, b->nstep_alpha);
-        fprintf(f, ",\n      \"backend_bytes\": ");
-        jnum(f, b->backend_bytes);
-        fprintf(f, ", \"rss_delta_bytes\": %ld", b->rss_delta);
+        glpgp_json_num(w, "create_s", b->create_s);
+        glpgp_json_num(w, "setup_s", b->setup_s);
+        jstat(w, "quad_assembly_s", &b->quad);
+        jstat(w, "newton_assembly_s", &b->newton);
+        jstat(w, "spmv_s", &b->spmv);
+        glpgp_json_num(w, "spmv_gbs", b->spmv_gbs);
+        glpgp_json_num(w, "spmv_gbs_best", b->spmv_gbs_best);
+        glpgp_json_num(w, "spmv_triad_ratio", ratio(b->spmv_gbs, triad));
+        jstat(w, "cg_iter_s", &b->cg_iter);
+        glpgp_json_num(w, "cg_iter_gbs", b->cg_gbs);
+        glpgp_json_num(w, "cg_iter_gbs_best", b->cg_gbs_best);
+        glpgp_json_num(w, "cg_triad_ratio", ratio(b->cg_gbs, triad));
+        jstat(w, "linear_solve_s", &b->lin);
+        glpgp_json_int(w, "linear_solve_iterations", b->lin_iters);
+        glpgp_json_num(w, "linear_solve_relres", b->lin_relres);
+        jstat(w, "newton_step_s", &b->nstep);
+        glpgp_json_int(w, "newton_step_cg_iterations", b->nstep_cg);
+        glpgp_json_num(w, "newton_step_alpha", b->nstep_alpha);
+        glpgp_json_num(w, "backend_bytes", b->backend_bytes);
+        glpgp_json_int(w, "rss_delta_bytes", b->rss_delta);
     }
-    fprintf(f, ",\n      \"gl_solve\": {\"ran\": %s, \"note\": ", b->gl_ran ? "true" : "false");
-    jstr(f, b->gl_note);
+    glpgp_json_object(w, "gl_solve");
+    glpgp_json_bool(w, "ran", b->gl_ran);
+    glpgp_json_str(w, "note", b->gl_note);
     if (b->gl_ran) {
-        fprintf(f, ", ");
-        jstat(f, "s", &b->gl);
-        fprintf(f, ", \"newton_iterations\": %d, \"cg_iterations\": %ld, \"setup_s\": ", b->gl_newton, b->gl_cg);
-        jnum(f, b->gl_setup_s);
-        fprintf(f, ", \"field_s\": ");
-        jnum(f, b->gl_field_s);
+        jstat(w, "s", &b->gl);
+        glpgp_json_int(w, "newton_iterations", b->gl_newton);
+        glpgp_json_int(w, "cg_iterations", b->gl_cg);
+        glpgp_json_num(w, "setup_s", b->gl_setup_s);
+        glpgp_json_num(w, "field_s", b->gl_field_s);
     }
-    fprintf(f, "}}");
+    glpgp_json_close(w);
+    glpgp_json_close(w);
+}
+
+static void json_cholmod(glpgp_json *w, const sres *s)
+{
+    const bench_cholmod *c = &s->chol;
+    glpgp_json_object(w, "cholmod");
+    glpgp_json_bool(w, "ran", c->ran);
+    glpgp_json_bool(w, "ok", c->ok);
+    glpgp_json_str(w, "note", c->note);
+    if (c->ok) {
+        const double fs = c->factorize_s + c->solve_s, afs = c->analyze_s + fs;
+        glpgp_json_num(w, "analyze_s", c->analyze_s);
+        glpgp_json_num(w, "factorize_s", c->factorize_s);
+        glpgp_json_num(w, "solve_s", c->solve_s);
+        glpgp_json_num(w, "factor_nnz", c->factor_nnz);
+        glpgp_json_num(w, "peak_bytes", c->peak_bytes);
+        glpgp_json_num(w, "rel_diff_vs_cg", c->rel_diff_vs_cg);
+        glpgp_json_num(w, "pcg_reference_over_factor_solve", s->ref.ran ? ratio(s->ref.lin.med, fs) : NAN);
+        glpgp_json_num(w, "pcg_opencl_over_factor_solve", s->cl.ran ? ratio(s->cl.lin.med, fs) : NAN);
+        glpgp_json_num(w, "pcg_reference_over_analyze_factor_solve", s->ref.ran ? ratio(s->ref.lin.med, afs) : NAN);
+        glpgp_json_num(w, "pcg_opencl_over_analyze_factor_solve", s->cl.ran ? ratio(s->cl.lin.med, afs) : NAN);
+    }
+    glpgp_json_close(w);
+}
+
+static void json_size(glpgp_json *w, const sres *s, const bench_stream *bs, const clbuild *cb)
+{
+    const double triad = bs->triad_gbs;
+    const int both = s->cl.ran && s->ref.ran;
+    glpgp_json_object(w, NULL);
+    glpgp_json_int(w, "requested", s->requested);
+    glpgp_json_int(w, "vertices", s->nv);
+    glpgp_json_int(w, "triangles", s->nt);
+    glpgp_json_int(w, "blocks", s->nnzb);
+    glpgp_json_num(w, "mean_edge", s->mean_edge);
+    glpgp_json_num(w, "h", s->h);
+    glpgp_json_num(w, "eps", s->eps);
+    glpgp_json_num(w, "bytes_spmv", s->bytes_spmv);
+    glpgp_json_num(w, "bytes_cg_iter", s->bytes_cg);
+    glpgp_json_num(w, "mesh_s", s->mesh_s);
+    glpgp_json_num(w, "system_s", s->system_s);
+    glpgp_json_num(w, "cg_bandwidth_ratio", s->cl.ran ? ratio(s->cl.cg_gbs, triad) : NAN);
+    glpgp_json_num(w, "cg_device_bandwidth_ratio", s->cl.ran && cb->ok ? ratio(s->cl.cg_gbs, cb->dev_axpby_gbs) : NAN);
+    glpgp_json_num(w, "cg_speedup_vs_reference", both ? ratio(s->ref.cg_iter.med, s->cl.cg_iter.med) : NAN);
+    glpgp_json_num(w, "spmv_speedup_vs_reference", both ? ratio(s->ref.spmv.med, s->cl.spmv.med) : NAN);
+    glpgp_json_num(w, "linear_solve_speedup_vs_reference", both ? ratio(s->ref.lin.med, s->cl.lin.med) : NAN);
+    glpgp_json_num(w, "newton_step_speedup_vs_reference", both ? ratio(s->ref.nstep.med, s->cl.nstep.med) : NAN);
+    glpgp_json_num(w, "gl_speedup_vs_reference",
+                   (s->cl.gl_ran && s->ref.gl_ran) ? ratio(s->ref.gl.med, s->cl.gl.med) : NAN);
+    glpgp_json_num(w, "peak_rss_bytes", s->peak_rss_kb >= 0 ? 1024.0 * s->peak_rss_kb : NAN);
+    glpgp_json_num(w, "device_bytes", s->cl.ran ? s->cl.backend_bytes : NAN);
+    json_bres(w, "reference", &s->ref, triad);
+    json_bres(w, "opencl", &s->cl, triad);
+    json_cholmod(w, s);
+    glpgp_json_close(w);
 }
 
 static void write_json(FILE *f, const bopts *o, const machine *mc, const bench_stream *bs, const clbuild *cb,
                        const sres *sr, int ns, double total_s)
 {
-    fprintf(f, "{\n  \"schema\": \"glpgp-bench/1\",\n  \"machine\": {\"cpu\": ");
-    jstr(f, mc->cpu);
-    fprintf(f, ", \"cores\": %d, \"memory_bytes\": ", mc->cores);
-    jnum(f, mc->mem_bytes);
-    fprintf(f, "},\n  \"device\": ");
-    jstr(f, cb->ok ? cb->device : NULL);
-    fprintf(f, ",\n  \"commit\": ");
-    jstr(f, mc->have_commit ? mc->commit : NULL);
-    fprintf(f, ", \"worktree_dirty\": %s", mc->dirty ? "true" : "false");
-    fprintf(f, ",\n  \"options\": {\"shape\": ");
-    jstr(f, o->shape);
-    fprintf(f, ", \"repeat\": %d, \"min_time_s\": %g, \"smoke\": %s, \"h_mean_edges\": 10, \"eps_h\": 0.5, "
-               "\"hessian\": \"projected\", \"cg_block\": %d, \"max_solve_vertices\": %ld, "
-               "\"max_solve_vertices_opencl\": %ld, \"solve_repeat\": %d, \"oscillators\": \"%s\"},\n",
-            o->repeat, o->min_time, o->smoke ? "true" : "false", CG_BLOCK, o->max_solve_ref, o->max_solve_cl,
-            o->solve_repeat,
-            o->oscillators == GLPGP_OSC_SEQUENTIAL ? "sequential" : o->oscillators == GLPGP_OSC_CONCURRENT ? "concurrent" : "auto");
-    fprintf(f, "  \"stream\": {\"threads\": %d, \"array_bytes\": %zu, \"reps\": %d, \"copy_gbs\": ", bs->threads,
-            bs->array_bytes, bs->reps);
-    jnum(f, bs->copy_gbs);
-    fprintf(f, ", \"triad_gbs\": ");
-    jnum(f, bs->triad_gbs);
-    fprintf(f, ", \"copy_gbs_median\": ");
-    jnum(f, bs->copy_gbs_med);
-    fprintf(f, ", \"triad_gbs_median\": ");
-    jnum(f, bs->triad_gbs_med);
-    fprintf(f, "},\n  \"opencl\": {\"available\": %s, \"note\": ", cb->ok ? "true" : "false");
-    jstr(f, cb->ok ? "" : cb->note);
-    fprintf(f, ", \"profiling_events\": false, \"timing\": \"wall clock (the backend exposes no profiling events)\"");
+    glpgp_json w;
+    glpgp_json_init(&w, f);
+    glpgp_json_object(&w, NULL);
+    glpgp_json_str(&w, "schema", "glpgp-bench/1");
+    glpgp_json_object(&w, "machine");
+    glpgp_json_str(&w, "cpu", mc->cpu);
+    glpgp_json_int(&w, "cores", mc->cores);
+    glpgp_json_num(&w, "memory_bytes", mc->mem_bytes);
+    glpgp_json_close(&w);
+    glpgp_json_str(&w, "device", cb->ok ? cb->device : NULL);
+    glpgp_json_str(&w, "commit", mc->have_commit ? mc->commit : NULL);
+    glpgp_json_bool(&w, "worktree_dirty", mc->dirty);
+    glpgp_json_object(&w, "options");
+    glpgp_json_str(&w, "shape", o->shape);
+    glpgp_json_int(&w, "repeat", o->repeat);
+    glpgp_json_num(&w, "min_time_s", o->min_time);
+    glpgp_json_bool(&w, "smoke", o->smoke);
+    glpgp_json_int(&w, "h_mean_edges", 10);
+    glpgp_json_num(&w, "eps_h", 0.5);
+    glpgp_json_str(&w, "hessian", "projected");
+    glpgp_json_int(&w, "cg_block", CG_BLOCK);
+    glpgp_json_int(&w, "max_solve_vertices", o->max_solve_ref);
+    glpgp_json_int(&w, "max_solve_vertices_opencl", o->max_solve_cl);
+    glpgp_json_int(&w, "solve_repeat", o->solve_repeat);
+    glpgp_json_str(&w, "oscillators", o->oscillators == GLPGP_OSC_SEQUENTIAL   ? "sequential"
+                                      : o->oscillators == GLPGP_OSC_CONCURRENT ? "concurrent"
+                                                                               : "auto");
+    glpgp_json_close(&w);
+    glpgp_json_object(&w, "stream");
+    glpgp_json_int(&w, "threads", bs->threads);
+    glpgp_json_int(&w, "array_bytes", (long long)bs->array_bytes);
+    glpgp_json_int(&w, "reps", bs->reps);
+    glpgp_json_num(&w, "copy_gbs", bs->copy_gbs);
+    glpgp_json_num(&w, "triad_gbs", bs->triad_gbs);
+    glpgp_json_num(&w, "copy_gbs_median", bs->copy_gbs_med);
+    glpgp_json_num(&w, "triad_gbs_median", bs->triad_gbs_med);
+    glpgp_json_close(&w);
+    glpgp_json_object(&w, "opencl");
+    glpgp_json_bool(&w, "available", cb->ok);
+    glpgp_json_str(&w, "note", cb->ok ? "" : cb->note);
+    glpgp_json_bool(&w, "profiling_events", 0);
+    glpgp_json_str(&w, "timing", "wall clock (the backend exposes no profiling events)");
     if (cb->ok) {
-        fprintf(f, ", \"pocl_cache_dir\": ");
-        jstr(f, cb->cache_dir[0] ? cb->cache_dir : NULL);
-        fprintf(f, ", \"build_cold_s\": ");
-        jnum(f, cb->create_cold_s);
-        fprintf(f, ", \"first_launch_cold_s\": ");
-        jnum(f, cb->first_ops_cold_s);
-        fprintf(f, ", \"build_cached_s\": ");
-        jnum(f, cb->create_warm_s);
-        fprintf(f, ", \"first_launch_cached_s\": ");
-        jnum(f, cb->first_ops_warm_s);
-        fprintf(f, ", \"device_array_bytes\": %zu, \"device_reps\": %d, \"device_copy_gbs\": ", cb->dev_bytes,
-                cb->dev_reps);
-        jnum(f, cb->dev_copy_gbs);
-        fprintf(f, ", \"device_axpby_gbs\": ");
-        jnum(f, cb->dev_axpby_gbs);
+        glpgp_json_str(&w, "pocl_cache_dir", cb->cache_dir[0] ? cb->cache_dir : NULL);
+        glpgp_json_num(&w, "build_cold_s", cb->create_cold_s);
+        glpgp_json_num(&w, "first_launch_cold_s", cb->first_ops_cold_s);
+        glpgp_json_num(&w, "build_cached_s", cb->create_warm_s);
+        glpgp_json_num(&w, "first_launch_cached_s", cb->first_ops_warm_s);
+        glpgp_json_int(&w, "device_array_bytes", (long long)cb->dev_bytes);
+        glpgp_json_int(&w, "device_reps", cb->dev_reps);
+        glpgp_json_num(&w, "device_copy_gbs", cb->dev_copy_gbs);
+        glpgp_json_num(&w, "device_axpby_gbs", cb->dev_axpby_gbs);
     }
-    fprintf(f, "},\n  \"cholmod\": {\"built\": %s},\n", bench_have_cholmod() ? "true" : "false");
-    fprintf(f, "  \"sizes\": [");
-    for (int i = 0; i < ns; i++) {
-        const sres *s = &sr[i];
-        const double triad = bs->triad_gbs;
-        fprintf(f, "%s\n    {\"requested\": %ld, \"vertices\": %d, \"triangles\": %d, \"blocks\": %ld, \"mean_edge\": ",
-                i ? "," : "", s->requested, s->nv, s->nt, s->nnzb);
-        jnum(f, s->mean_edge);
-        fprintf(f, ", \"h\": ");
-        jnum(f, s->h);
-        fprintf(f, ", \"eps\": ");
-        jnum(f, s->eps);
-        fprintf(f, ",\n     \"bytes_spmv\": ");
-        jnum(f, s->bytes_spmv);
-        fprintf(f, ", \"bytes_cg_iter\": ");
-        jnum(f, s->bytes_cg);
-        fprintf(f, ", \"mesh_s\": ");
-        jnum(f, s->mesh_s);
-        fprintf(f, ", \"system_s\": ");
-        jnum(f, s->system_s);
-        fprintf(f, ",\n     \"cg_bandwidth_ratio\": ");
-        jnum(f, s->cl.ran ? ratio(s->cl.cg_gbs, triad) : NAN);
-        fprintf(f, ", \"cg_device_bandwidth_ratio\": ");
-        jnum(f, s->cl.ran && cb->ok ? ratio(s->cl.cg_gbs, cb->dev_axpby_gbs) : NAN);
-        fprintf(f, ", \"cg_speedup_vs_reference\": ");
-        jnum(f, (s->cl.ran && s->ref.ran) ? ratio(s->ref.cg_iter.med, s->cl.cg_iter.med) : NAN);
-        fprintf(f, ", \"spmv_speedup_vs_reference\": ");
-        jnum(f, (s->cl.ran && s->ref.ran) ? ratio(s->ref.spmv.med, s->cl.spmv.med) : NAN);
-        fprintf(f, ", \"linear_solve_speedup_vs_reference\": ");
-        jnum(f, (s->cl.ran && s->ref.ran) ? ratio(s->ref.lin.med, s->cl.lin.med) : NAN);
-        fprintf(f, ", \"newton_step_speedup_vs_reference\": ");
-        jnum(f, (s->cl.ran && s->ref.ran) ? ratio(s->ref.nstep.med, s->cl.nstep.med) : NAN);
-        fprintf(f, ", \"gl_speedup_vs_reference\": ");
-        jnum(f, (s->cl.gl_ran && s->ref.gl_ran) ? ratio(s->ref.gl.med, s->cl.gl.med) : NAN);
-        fprintf(f, ",\n     \"peak_rss_bytes\": ");
-        jnum(f, s->peak_rss_kb >= 0 ? 1024.0 * s->peak_rss_kb : NAN);
-        fprintf(f, ", \"device_bytes\": ");
-        jnum(f, s->cl.ran ? s->cl.backend_bytes : NAN);
-        fprintf(f, ",\n     \"reference\": ");
-        json_bres(f, &s->ref, triad);
-        fprintf(f, ",\n     \"opencl\": ");
-        json_bres(f, &s->cl, triad);
-        const bench_cholmod *c = &s->chol;
-        fprintf(f, ",\n     \"cholmod\": {\"ran\": %s, \"ok\": %s, \"note\": ", c->ran ? "true" : "false",
-                c->ok ? "true" : "false");
-        jstr(f, c->note);
-        if (c->ok) {
-            const double fs = c->factorize_s + c->solve_s, afs = c->analyze_s + fs;
-            fprintf(f, ", \"analyze_s\": ");
-            jnum(f, c->analyze_s);
-            fprintf(f, ", \"factorize_s\": ");
-            jnum(f, c->factorize_s);
-            fprintf(f, ", \"solve_s\": ");
-            jnum(f, c->solve_s);
-            fprintf(f, ", \"factor_nnz\": ");
-            jnum(f, c->factor_nnz);
-            fprintf(f, ", \"peak_bytes\": ");
-            jnum(f, c->peak_bytes);
-            fprintf(f, ", \"rel_diff_vs_cg\": ");
-            jnum(f, c->rel_diff_vs_cg);
-            fprintf(f, ",\n       \"pcg_reference_over_factor_solve\": ");
-            jnum(f, s->ref.ran ? ratio(s->ref.lin.med, fs) : NAN);
-            fprintf(f, ", \"pcg_opencl_over_factor_solve\": ");
-            jnum(f, s->cl.ran ? ratio(s->cl.lin.med, fs) : NAN);
-            fprintf(f, ", \"pcg_reference_over_analyze_factor_solve\": ");
-            jnum(f, s->ref.ran ? ratio(s->ref.lin.med, afs) : NAN);
-            fprintf(f, ", \"pcg_opencl_over_analyze_factor_solve\": ");
-            jnum(f, s->cl.ran ? ratio(s->cl.lin.med, afs) : NAN);
-        }
-        fprintf(f, "}}");
-    }
-    fprintf(f, "\n  ],\n  \"total_s\": ");
-    jnum(f, total_s);
-    fprintf(f, "\n}\n");
+    glpgp_json_close(&w);
+    glpgp_json_object(&w, "cholmod");
+    glpgp_json_bool(&w, "built", bench_have_cholmod());
+    glpgp_json_close(&w);
+    glpgp_json_array(&w, "sizes");
+    for (int i = 0; i < ns; i++) json_size(&w, &sr[i], bs, cb);
+    glpgp_json_close(&w);
+    glpgp_json_num(&w, "total_s", total_s);
+    glpgp_json_finish(&w);
 }
 
 /* ---- Markdown -------------------------------------------------------------------------- */

@@ -298,54 +298,76 @@ static void print_case(const pc_case *c, const int want[PC_N])
     }
 }
 
-static void json_case(FILE *f, const pc_case *c, int first)
+static void json_case(glpgp_json *w, const pc_case *c)
 {
-    fprintf(f, "%s    {\"vertices\": %d, \"blocks\": %ld, \"h\": %.6g, \"h_case\": \"%s\", \"backend\": \"%s\"", first ? "" : ",\n",
-            c->nv, c->nnzb, c->h, c->hdefault ? "default" : "10_mean_edges", c->opencl ? "opencl" : "reference");
-    if (c->ran[1])
-        fprintf(f, ", \"amg_levels\": %d, \"amg_operator_complexity\": %.4f, \"amg_structure_s\": %.4f, "
-                   "\"amg_bytes_per_iteration\": %.6g, \"amg_kcycle_min\": %d",
-                c->info.nlevels, c->info.operator_complexity, c->info.seconds_structure, c->bytes_amg_it, c->kmin);
+    glpgp_json_object(w, NULL);
+    glpgp_json_int(w, "vertices", c->nv);
+    glpgp_json_int(w, "blocks", c->nnzb);
+    glpgp_json_num(w, "h", c->h);
+    glpgp_json_str(w, "h_case", c->hdefault ? "default" : "10_mean_edges");
+    glpgp_json_str(w, "backend", c->opencl ? "opencl" : "reference");
+    if (c->ran[1]) {
+        glpgp_json_int(w, "amg_levels", c->info.nlevels);
+        glpgp_json_num(w, "amg_operator_complexity", c->info.operator_complexity);
+        glpgp_json_num(w, "amg_structure_s", c->info.seconds_structure);
+        glpgp_json_num(w, "amg_bytes_per_iteration", c->bytes_amg_it);
+        glpgp_json_int(w, "amg_kcycle_min", c->kmin);
+    }
     for (int pc = 0; pc < PC_N; pc++) {
         const char *name = pc_name[pc];
         if (pc == 2 && !c->anchors) continue;
         if (!c->ran[pc]) {
-            fprintf(f, ", \"%s\": null", name);
+            glpgp_json_null(w, name);
             continue;
         }
         const int n = c->nsteps[pc];
-        fprintf(f, ", \"%s\": {\"steps\": %d, \"mean_cg\": %.3f, \"mean_setup_s\": %.6f, \"mean_solve_s\": %.6f, "
-                   "\"per_step\": [",
-                name, n, n ? sum_field(c, pc, 0) / n : 0.0, n ? sum_field(c, pc, 1) / n : 0.0,
-                n ? sum_field(c, pc, 2) / n : 0.0);
+        glpgp_json_object(w, name);
+        glpgp_json_int(w, "steps", n);
+        glpgp_json_num(w, "mean_cg", n ? sum_field(c, pc, 0) / n : 0.0);
+        glpgp_json_num(w, "mean_setup_s", n ? sum_field(c, pc, 1) / n : 0.0);
+        glpgp_json_num(w, "mean_solve_s", n ? sum_field(c, pc, 2) / n : 0.0);
+        glpgp_json_array(w, "per_step");
         for (int k = 0; k < n; k++) {
             const pc_step *s = &c->st[pc][k];
-            fprintf(f, "%s{\"cg\": %d, \"setup_s\": %.6f, \"solve_s\": %.6f, \"ms_per_it\": %.6f, \"bytes\": %.6g, "
-                       "\"assemble_s\": %.6f, \"relres\": %.3g, \"alpha\": %g, \"syncs_setup\": %ld, \"syncs_solve\": %ld, "
-                       "\"launches_setup\": %ld, \"launches_solve\": %ld}",
-                    k ? ", " : "", s->cg, s->setup_s, s->solve_s, s->cg ? 1e3 * s->solve_s / s->cg : 0.0, s->bytes,
-                    s->assemble_s, s->relres, s->alpha, s->sync_setup, s->sync_solve, s->launch_setup,
-                    s->launch_solve);
+            glpgp_json_object(w, NULL);
+            glpgp_json_int(w, "cg", s->cg);
+            glpgp_json_num(w, "setup_s", s->setup_s);
+            glpgp_json_num(w, "solve_s", s->solve_s);
+            glpgp_json_num(w, "ms_per_it", s->cg ? 1e3 * s->solve_s / s->cg : 0.0);
+            glpgp_json_num(w, "bytes", s->bytes);
+            glpgp_json_num(w, "assemble_s", s->assemble_s);
+            glpgp_json_num(w, "relres", s->relres);
+            glpgp_json_num(w, "alpha", s->alpha);
+            glpgp_json_int(w, "syncs_setup", s->sync_setup);
+            glpgp_json_int(w, "syncs_solve", s->sync_solve);
+            glpgp_json_int(w, "launches_setup", s->launch_setup);
+            glpgp_json_int(w, "launches_solve", s->launch_solve);
+            glpgp_json_close(w);
         }
-        fprintf(f, "]}");
+        glpgp_json_close(w);
+        glpgp_json_close(w);
     }
     if (c->anchors) {
-        fprintf(f, ", \"cholmod\": ");
         if (!c->want_cholmod || c->nch == 0) {
-            fprintf(f, "null");
+            glpgp_json_null(w, "cholmod");
         } else {
-            fprintf(f, "[");
+            glpgp_json_array(w, "cholmod");
             for (int k = 0; k < c->nch; k++) {
                 const bench_cholmod *h = &c->ch[k];
-                fprintf(f, "%s{\"ok\": %s, \"analyze_s\": %.6f, \"factorize_s\": %.6f, \"solve_s\": %.6f, "
-                           "\"factor_nnz\": %.6g, \"rel_diff_vs_cg\": %.3g, \"peak_bytes\": %.6g}",
-                        k ? ", " : "", h->ok ? "true" : "false", h->analyze_s, h->factorize_s, h->solve_s,
-                        h->factor_nnz, h->rel_diff_vs_cg, h->peak_bytes);
+                glpgp_json_object(w, NULL);
+                glpgp_json_bool(w, "ok", h->ok);
+                glpgp_json_num(w, "analyze_s", h->analyze_s);
+                glpgp_json_num(w, "factorize_s", h->factorize_s);
+                glpgp_json_num(w, "solve_s", h->solve_s);
+                glpgp_json_num(w, "factor_nnz", h->factor_nnz);
+                glpgp_json_num(w, "rel_diff_vs_cg", h->rel_diff_vs_cg);
+                glpgp_json_num(w, "peak_bytes", h->peak_bytes);
+                glpgp_json_close(w);
             }
-            fprintf(f, "]");
+            glpgp_json_close(w);
         }
     }
-    fprintf(f, "}");
+    glpgp_json_close(w);
 }
 
 int bench_precond_run(const bench_precond_opts *po)
@@ -535,11 +557,17 @@ int bench_precond_run(const bench_precond_opts *po)
             fprintf(stderr, "glpgp-bench: cannot write %s\n", po->json);
             rc = 1;
         } else {
-            fprintf(f, "{\n  \"bench\": \"glpgp-bench --precond\",\n  \"shape\": \"%s\",\n  \"newton_steps\": %d,\n"
-                       "  \"cg_rtol\": 1e-8,\n  \"precond_ladder\": [\n",
-                    po->shape, po->steps);
-            for (int i = 0; i < nc; i++) json_case(f, &cases[i], i == 0);
-            fprintf(f, "\n  ]\n}\n");
+            glpgp_json w;
+            glpgp_json_init(&w, f);
+            glpgp_json_object(&w, NULL);
+            glpgp_json_str(&w, "bench", "glpgp-bench --precond");
+            glpgp_json_str(&w, "shape", po->shape);
+            glpgp_json_int(&w, "newton_steps", po->steps);
+            glpgp_json_num(&w, "cg_rtol", 1e-8);
+            glpgp_json_array(&w, "precond_ladder");
+            for (int i = 0; i < nc; i++) json_case(&w, &cases[i]);
+            glpgp_json_close(&w);
+            glpgp_json_finish(&w);
             if (fclose(f) != 0) rc = 1;
             else fprintf(stderr, "glpgp-bench: wrote %s\n", po->json);
         }
