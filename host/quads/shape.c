@@ -14,8 +14,10 @@
  *    domain boundary half-way between the edge's ends (chords.c's rule).
  *    Through a structured part each strip is one more grid line; c gets two
  *    faces, g is a valence-3 vertex: the irregular count does not grow.
- *    Taken only when both strips reach the boundary without meeting each
- *    other or Q and every new quad is above the goal (or better than Q).
+ *    Where the strips cross, the quad is cut in four; where the first strip
+ *    comes back into Q it is the only one. Taken when the strips reach the
+ *    boundary (not along each other, not through Q), Q's three quads are
+ *    better than Q and the cut quads no worse than the goal or than before.
  * 2. Optimisation smoothing: the interior vertices of quads below
  *    SHAPE_BELOW and their edge neighbours are moved by a compass search
  *    that maximises the smallest corner scaled Jacobian among the corners
@@ -241,6 +243,8 @@ typedef struct flat_fix {
     int Q, i;              /* the face and c's corner in it */
     int *path[2], len[2];  /* the strips from sides (a, b) and (d, a) */
     int loop;              /* 1: one strip from (a, b) that comes back through (d, a) */
+    int ncross;            /* faces both strips cross (each cut in four) */
+    int *pos[2];           /* per face: its index in strip k, -1 when not on it */
     double end[2][2];      /* their ends on the domain boundary */
 } flat_fix;
 
@@ -266,7 +270,15 @@ static int flat_strips(const glpgp_quadmesh *q, const qsides *S, dbnd *D, double
             }
         }
         if (!ok) break;
-        for (int t = 0; t < F->len[k]; t++) seen[F->path[k][2 * t]] = 1; /* the second strip may not cross it */
+        for (int t = 0; t < F->len[k]; t++) F->pos[k][F->path[k][2 * t]] = t;
+        if (k == 1) /* where the strips cross, at right angles only (not along each other) */
+            for (int t = 0; t < F->len[1] && ok; t++) {
+                int f = F->path[1][2 * t], t1 = F->pos[0][f];
+                if (t1 < 0) continue;
+                F->ncross++;
+                ok = (F->path[1][2 * t + 1] - F->path[0][2 * t1 + 1] + 4) % 2 == 1;
+            }
+        if (!ok) break;
         const int *v = q->face_vert + 4 * fe;
         const double *a = q->xy + 2 * v[ie], *b = q->xy + 2 * v[(ie + 1) % 4];
         double loss = 0.0;
@@ -276,8 +288,9 @@ static int flat_strips(const glpgp_quadmesh *q, const qsides *S, dbnd *D, double
         }
     }
     seen[F->Q] = 0;
-    for (int k = 0; k < 2; k++)
-        for (int t = 0; t < F->len[k] && F->path[k]; t++) seen[F->path[k][2 * t]] = 0;
+    if (!ok) /* pos is kept for flat_apply only when the strips are taken */
+        for (int k = 0; k < 2; k++)
+            for (int t = 0; t < F->len[k]; t++) F->pos[k][F->path[k][2 * t]] = -1;
     return ok;
 }
 
@@ -358,11 +371,30 @@ static double flat_apply(const glpgp_quadmesh *q, const flat_fix *F, double *xy,
         worst = fmin(worst, glpgp_poly_min_sj(xy, T[k], 4));
     }
     double halves = INFINITY, before = INFINITY;
+    int X = s0[1] + F->len[1] + 1; /* the next crossing's centre */
     for (int k = 0; k < 2; k++)
         for (int t = 0; t < F->len[k]; t++) {
             int f = F->path[k][2 * t], i = F->path[k][2 * t + 1], mi = s0[k] + t, mo = mi + 1;
             const int *v = q->face_vert + 4 * f;
             before = fmin(before, glpgp_poly_min_sj(q->xy, v, 4));
+            if (F->pos[1 - k][f] >= 0) { /* crossed by both: four quads about the midpoints' mean */
+                if (k == 1) continue;
+                int t2 = F->pos[1][f], i2 = F->path[1][2 * t2 + 1], M[4];
+                M[i] = mi;
+                M[(i + 2) % 4] = mo;
+                M[i2] = s0[1] + t2;
+                M[(i2 + 2) % 4] = s0[1] + t2 + 1;
+                for (int e = 0; e < 2; e++)
+                    xy[2 * X + e] = 0.25 * (xy[2 * M[0] + e] + xy[2 * M[1] + e] + xy[2 * M[2] + e] + xy[2 * M[3] + e]);
+                for (int r = 0; r < 4; r++) {
+                    int C[4] = {v[r], M[r], X, M[(r + 3) % 4]};
+                    memcpy(fv + 4 * w, C, sizeof C);
+                    fo[w++] = split_origin(q, f);
+                    halves = fmin(halves, glpgp_poly_min_sj(xy, C, 4));
+                }
+                X++;
+                continue;
+            }
             int A[4] = {v[i], mi, mo, v[(i + 3) % 4]}, B[4] = {mi, v[(i + 1) % 4], v[(i + 2) % 4], mo};
             memcpy(fv + 4 * w, A, sizeof A);
             fo[w++] = split_origin(q, f);
@@ -378,7 +410,8 @@ static glpgp_status flat_commit(glpgp_quadmesh *q, const flat_fix *F, double sjq
 {
     *done = 0;
     *worst = -INFINITY;
-    const int nv = q->nv + 3 - F->loop + F->len[0] + F->len[1], nf = q->nf + 2 + F->len[0] + F->len[1];
+    const int nv = q->nv + 3 - F->loop + F->len[0] + F->len[1] + F->ncross;
+    const int nf = q->nf + 2 + F->len[0] + F->len[1] + F->ncross;
     double *xy = NULL;
     int *fv = NULL, *fs = NULL;
     unsigned char *fo = NULL, *cut = NULL;
@@ -457,14 +490,20 @@ static glpgp_status flat_corners(glpgp_quadmesh *q, const glpgp_mesh *m, double 
         if (st == GLPGP_OK) st = glpgp_qsides_build(q, &E);
         free(seen);
         seen = NULL;
-        free(F.path[0]);
-        free(F.path[1]);
-        F.path[0] = F.path[1] = NULL;
+        for (int k = 0; k < 2; k++) {
+            free(F.path[k]);
+            free(F.pos[k]);
+            F.path[k] = F.pos[k] = NULL;
+        }
         if (st == GLPGP_OK) st = glpgp_calloc((size_t)q->nf + 1, 1, &seen);
+        for (int k = 0; k < 2 && st == GLPGP_OK; k++) {
+            st = glpgp_malloc((size_t)q->nf + 1, sizeof(int), &F.pos[k]);
+            for (int f = 0; f < q->nf && st == GLPGP_OK; f++) F.pos[k][f] = -1;
+        }
         if (st == GLPGP_OK) st = glpgp_malloc((size_t)2 * q->nf + 2, sizeof(int), &F.path[0]);
         if (st == GLPGP_OK) st = glpgp_malloc((size_t)2 * q->nf + 2, sizeof(int), &F.path[1]);
         if (st == GLPGP_OK) c = flat_find(q, &S, refused, &F.Q, &F.i, &sjq);
-        F.len[0] = F.len[1] = F.loop = 0;
+        F.len[0] = F.len[1] = F.loop = F.ncross = 0;
         if (st == GLPGP_OK && c >= 0 && flat_strips(q, &E, &D, h, &F, seen, &cand, &ncap))
             st = flat_commit(q, &F, sjq, &done, &worst);
         vstar_free(&S);
@@ -479,7 +518,7 @@ static glpgp_status flat_corners(glpgp_quadmesh *q, const glpgp_mesh *m, double 
         (*nfixed)++;
         unsigned char *r2 = NULL; /* room for the new vertices (never refused) */
         st = glpgp_calloc((size_t)q->nv + 1, 1, &r2);
-        if (st == GLPGP_OK) memcpy(r2, refused, (size_t)(q->nv - 3 + F.loop - F.len[0] - F.len[1]));
+        if (st == GLPGP_OK) memcpy(r2, refused, (size_t)(q->nv - 3 + F.loop - F.len[0] - F.len[1] - F.ncross));
         free(refused);
         refused = r2;
     }
@@ -487,8 +526,10 @@ static glpgp_status flat_corners(glpgp_quadmesh *q, const glpgp_mesh *m, double 
     free(refused);
     free(seen);
     free(cand);
-    free(F.path[0]);
-    free(F.path[1]);
+    for (int k = 0; k < 2; k++) {
+        free(F.path[k]);
+        free(F.pos[k]);
+    }
     return st;
 }
 
