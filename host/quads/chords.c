@@ -211,20 +211,7 @@ static glpgp_status cut_strip(glpgp_quadmesh *q, const int *path, int len, const
         fo[w++] = o > GLPGP_QFACE_CLOSED ? o : GLPGP_QFACE_CLOSED;
     }
     if (!(worst >= CHORD_MIN_SJ)) goto done;
-    for (int f = 0; f <= nf; f++) fs[f] = 4 * f;
-    free(q->xy);
-    free(q->face_vert);
-    free(q->face_start);
-    free(q->face_origin);
-    q->xy = xy;
-    q->face_vert = fv;
-    q->face_start = fs;
-    q->face_origin = fo;
-    q->nv = nv + nnew;
-    q->nf = nf;
-    xy = NULL;
-    fv = fs = NULL;
-    fo = NULL;
+    glpgp_qm_adopt_quads(q, &xy, nv + nnew, &fv, &fs, &fo, nf);
     *ok = 1;
 done:
     free(xy);

@@ -159,5 +159,9 @@ glpgp_status glpgp_repair_rounds(const glpgp_quadmesh *q, const glpgp_mesh *m, d
 
 /* A copy of q (arrays and face origins; diagnostics kept). NULL: no memory. */
 glpgp_quadmesh *glpgp_qm_copy(const glpgp_quadmesh *q);
+/* q's arrays replaced by an all-quad mesh's: points *xy (nv), corners *fv
+ * (4 nf), origins *fo, and *fs (room for nf + 1, filled here); the old
+ * arrays freed, the caller's pointers set to NULL. */
+void glpgp_qm_adopt_quads(glpgp_quadmesh *q, double **xy, int nv, int **fv, int **fs, unsigned char **fo, int nf);
 
 #endif

@@ -422,20 +422,7 @@ static glpgp_status flat_commit(glpgp_quadmesh *q, const flat_fix *F, double sjq
     if (st == GLPGP_OK) st = glpgp_calloc((size_t)q->nf + 1, 1, &cut);
     if (st == GLPGP_OK) *worst = flat_apply(q, F, xy, fv, fo, cut);
     if (st == GLPGP_OK && *worst > sjq + 0.02) {
-        for (int f = 0; f <= nf; f++) fs[f] = 4 * f;
-        free(q->xy);
-        free(q->face_vert);
-        free(q->face_start);
-        free(q->face_origin);
-        q->xy = xy;
-        q->face_vert = fv;
-        q->face_start = fs;
-        q->face_origin = fo;
-        q->nv = nv;
-        q->nf = nf;
-        xy = NULL;
-        fv = fs = NULL;
-        fo = NULL;
+        glpgp_qm_adopt_quads(q, &xy, nv, &fv, &fs, &fo, nf);
         *done = 1;
     }
     free(xy);

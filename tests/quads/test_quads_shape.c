@@ -33,6 +33,23 @@ static glpgp_quadmesh *qm(const double *xy, int nv, const int *fv, int nf)
     return q;
 }
 
+/* The n x n unit grid's points (interior ones moved by up to jitter / 2 at
+ * random) and quads into xy, fv. */
+static void unit_grid(int n, double jitter, double *xy, int *fv)
+{
+    for (int j = 0; j <= n; j++)
+        for (int i = 0; i <= n; i++) {
+            int v = j * (n + 1) + i, in = i > 0 && i < n && j > 0 && j < n;
+            xy[2 * v] = i + (in ? jitter * (tu_rand() - 0.5) : 0);
+            xy[2 * v + 1] = j + (in ? jitter * (tu_rand() - 0.5) : 0);
+        }
+    for (int j = 0; j < n; j++)
+        for (int i = 0; i < n; i++) {
+            int a = j * (n + 1) + i, f[4] = {a, a + 1, a + n + 2, a + n + 1};
+            memcpy(fv + 4 * (j * n + i), f, sizeof f);
+        }
+}
+
 static double min_sj(const glpgp_quadmesh *q)
 {
     double m = INFINITY;
@@ -74,25 +91,15 @@ static void flat_corner(void)
 }
 
 /* A distorted grid: interior vertices jittered, one boundary vertex of the
- * bottom side (straight) shifted along it, one corner of the left side
- * pulled in. The worst corner rises; the boundary polygon is the same. */
+ * bottom side (straight) shifted along it. The worst corner rises; the
+ * boundary polygon is the same. */
 static void optimise(void)
 {
     enum { N = 6 };
     double xy[2 * (N + 1) * (N + 1)];
     int fv[4 * N * N];
-    for (int j = 0; j <= N; j++)
-        for (int i = 0; i <= N; i++) {
-            int v = j * (N + 1) + i, in = i > 0 && i < N && j > 0 && j < N;
-            xy[2 * v] = i + (in ? 0.7 * (tu_rand() - 0.5) : 0);
-            xy[2 * v + 1] = j + (in ? 0.7 * (tu_rand() - 0.5) : 0);
-        }
+    unit_grid(N, 0.7, xy, fv);
     xy[2 * 3] = 3.42; /* bottom vertex (3, 0) slid along the side */
-    for (int j = 0; j < N; j++)
-        for (int i = 0; i < N; i++) {
-            int a = j * (N + 1) + i, f[4] = {a, a + 1, a + N + 2, a + N + 1};
-            memcpy(fv + 4 * (j * N + i), f, sizeof f);
-        }
     glpgp_quadmesh *q = qm(xy, (N + 1) * (N + 1), fv, N * N);
     glpgp_mesh *m = tu_grid_mesh((tu_grid){.nx = N, .ny = N, .Lx = N, .Ly = N});
     if (!q || !m) return;
@@ -121,16 +128,7 @@ static void untouched(void)
     enum { N = 4 };
     double xy[2 * (N + 1) * (N + 1)];
     int fv[4 * N * N];
-    for (int j = 0; j <= N; j++)
-        for (int i = 0; i <= N; i++) {
-            xy[2 * (j * (N + 1) + i)] = i;
-            xy[2 * (j * (N + 1) + i) + 1] = j;
-        }
-    for (int j = 0; j < N; j++)
-        for (int i = 0; i < N; i++) {
-            int a = j * (N + 1) + i, f[4] = {a, a + 1, a + N + 2, a + N + 1};
-            memcpy(fv + 4 * (j * N + i), f, sizeof f);
-        }
+    unit_grid(N, 0.0, xy, fv);
     glpgp_quadmesh *q = qm(xy, (N + 1) * (N + 1), fv, N * N);
     glpgp_mesh *m = tu_grid_mesh((tu_grid){.nx = N, .ny = N, .Lx = N, .Ly = N});
     if (!q || !m) return;
