@@ -14,10 +14,11 @@
  *    domain boundary half-way between the edge's ends (chords.c's rule).
  *    Through a structured part each strip is one more grid line; c gets two
  *    faces, g is a valence-3 vertex: the irregular count does not grow.
- *    Where the strips cross, the quad is cut in four; where the first strip
- *    comes back into Q it is the only one. Taken when the strips reach the
- *    boundary (not along each other, not through Q), Q's three quads are
- *    better than Q and the cut quads no worse than the goal or than before.
+ *    Where the strips cross (each other or themselves, at right angles) the
+ *    quad is cut in four; where the first strip comes back into Q it is the
+ *    only one. Taken when the strips reach the boundary (not along
+ *    themselves, not through Q) and the mesh, smoothed (part 2), has fewer
+ *    quads below the goal or a better worst one, and that no worse.
  * 2. Optimisation smoothing: the interior vertices of quads below
  *    SHAPE_BELOW and their edge neighbours are moved by a compass search
  *    that maximises the smallest corner scaled Jacobian among the corners
@@ -241,43 +242,66 @@ done:
 
 typedef struct flat_fix {
     int Q, i;              /* the face and c's corner in it */
-    int *path[2], len[2];  /* the strips from sides (a, b) and (d, a) */
+    int *path[2], len[2];  /* the strips from sides (a, b) and (d, a): faces and entry sides */
     int loop;              /* 1: one strip from (a, b) that comes back through (d, a) */
-    int ncross;            /* faces both strips cross (each cut in four) */
-    int *pos[2];           /* per face: its index in strip k, -1 when not on it */
-    double end[2][2];      /* their ends on the domain boundary */
+    int ncross;            /* faces crossed twice, at right angles (each cut in four) */
+    int *pos[2];           /* per face: its first and second pass, 2 t + k (step t of strip k), or -1 */
+    double end[2][2];      /* the strips' ends on the domain boundary */
 } flat_fix;
 
+/* Strip k from face f0 entered through side i0: each quad left through the
+ * side opposite its entry, recorded in F->pos; a quad already passed may be
+ * crossed once more at right angles. 1: it reached the boundary (side ie of
+ * face fe); 2: it came back into Q through side qside; 0: it met Q
+ * otherwise, a quad a third time or along its first pass, or a non-quad. */
+static int flat_trace(const qsides *S, const glpgp_quadmesh *q, flat_fix *F, int k, int f0, int i0, int qside, int *fe,
+                      int *ie)
+{
+    int f = f0, i = i0, n = 0;
+    F->len[k] = 0;
+    while (n < 2 * q->nf) {
+        if (f == F->Q) return i == qside && k == 0 ? 2 : 0;
+        if (q->face_start[f + 1] - q->face_start[f] != 4) return 0;
+        int code = 2 * n + k;
+        if (F->pos[0][f] < 0) F->pos[0][f] = code;
+        else if (F->pos[1][f] < 0) {
+            int c0 = F->pos[0][f], i1 = F->path[c0 % 2][2 * (c0 / 2) + 1];
+            if ((i - i1 + 4) % 2 == 0) return 0; /* along the first pass */
+            F->pos[1][f] = code;
+            F->ncross++;
+        } else
+            return 0;
+        F->path[k][2 * n] = f;
+        F->path[k][2 * n + 1] = i;
+        F->len[k] = ++n;
+        int o = (i + 2) % 4, j = -1, g = glpgp_qsides_across(S, q, f, o, &j);
+        if (g < 0) {
+            *fe = f;
+            *ie = o;
+            return 1;
+        }
+        f = g;
+        i = j;
+    }
+    return 0;
+}
+
 /* The strips of candidate corner (Q, i); 0 when they do not both reach the
- * boundary apart from each other and Q. */
-static int flat_strips(const glpgp_quadmesh *q, const qsides *S, dbnd *D, double h, flat_fix *F, unsigned char *seen,
-                       int **cand, int *ncap)
+ * boundary (or come back as one) apart from Q. F->pos is restored when not. */
+static int flat_strips(const glpgp_quadmesh *q, const qsides *S, dbnd *D, double h, flat_fix *F, int **cand, int *ncap)
 {
     int side[2] = {(F->i + 2) % 4, (F->i + 1) % 4}, ok = 1;
-    seen[F->Q] = 1;
     for (int k = 0; k < 2 && ok; k++) {
         int j = -1, fe = -1, ie = -1, P = glpgp_qsides_across(S, q, F->Q, side[k], &j);
-        ok = P >= 0 && glpgp_quad_strip_trace(S, q, P, j, F->path[k], &F->len[k], &fe, &ie, seen) && F->len[k] > 0;
-        if (!ok && k == 0 && P >= 0 && F->len[0] > 0) { /* back into Q through side (d, a): one strip */
-            int n = F->len[0], fl = F->path[0][2 * n - 2], o = (F->path[0][2 * n - 1] + 2) % 4, jq = -1;
-            if (glpgp_qsides_across(S, q, fl, o, &jq) == F->Q && jq == side[1]) {
-                const int *v = q->face_vert + 4 * fl;
-                for (int e = 0; e < 2; e++)
-                    F->end[0][e] = 0.5 * (q->xy[2 * v[o] + e] + q->xy[2 * v[(o + 1) % 4] + e]);
-                F->loop = 1;
-                ok = 1;
-                break;
-            }
+        int r = P >= 0 ? flat_trace(S, q, F, k, P, j, side[1], &fe, &ie) : 0;
+        ok = r > 0 && F->len[k] > 0;
+        if (r == 2) { /* back into Q through side (d, a): one strip */
+            int n = F->len[0], fl = F->path[0][2 * n - 2], o = (F->path[0][2 * n - 1] + 2) % 4;
+            const int *v = q->face_vert + 4 * fl;
+            for (int e = 0; e < 2; e++) F->end[0][e] = 0.5 * (q->xy[2 * v[o] + e] + q->xy[2 * v[(o + 1) % 4] + e]);
+            F->loop = 1;
+            break;
         }
-        if (!ok) break;
-        for (int t = 0; t < F->len[k]; t++) F->pos[k][F->path[k][2 * t]] = t;
-        if (k == 1) /* where the strips cross, at right angles only (not along each other) */
-            for (int t = 0; t < F->len[1] && ok; t++) {
-                int f = F->path[1][2 * t], t1 = F->pos[0][f];
-                if (t1 < 0) continue;
-                F->ncross++;
-                ok = (F->path[1][2 * t + 1] - F->path[0][2 * t1 + 1] + 4) % 2 == 1;
-            }
         if (!ok) break;
         const int *v = q->face_vert + 4 * fe;
         const double *a = q->xy + 2 * v[ie], *b = q->xy + 2 * v[(ie + 1) % 4];
@@ -287,10 +311,9 @@ static int flat_strips(const glpgp_quadmesh *q, const qsides *S, dbnd *D, double
             F->end[k][1] = 0.5 * (a[1] + b[1]);
         }
     }
-    seen[F->Q] = 0;
     if (!ok) /* pos is kept for flat_apply only when the strips are taken */
         for (int k = 0; k < 2; k++)
-            for (int t = 0; t < F->len[k]; t++) F->pos[k][F->path[k][2 * t]] = -1;
+            for (int t = 0; t < F->len[k]; t++) F->pos[0][F->path[k][2 * t]] = F->pos[1][F->path[k][2 * t]] = -1;
     return ok;
 }
 
@@ -334,9 +357,8 @@ static void place_centre(double *xy, int T[3][4], int g)
     }
 }
 
-/* The mesh with F applied into the new arrays; how good it is: the smallest
- * corner scaled Jacobian of Q's three quads, or -1 when a strip's halves
- * are worse than both the goal and the faces they replace. */
+/* The mesh with F applied into the new arrays; the smallest corner scaled
+ * Jacobian of the new quads. */
 static double flat_apply(const glpgp_quadmesh *q, const flat_fix *F, double *xy, int *fv, unsigned char *fo,
                          unsigned char *cut)
 {
@@ -377,13 +399,13 @@ static double flat_apply(const glpgp_quadmesh *q, const flat_fix *F, double *xy,
             int f = F->path[k][2 * t], i = F->path[k][2 * t + 1], mi = s0[k] + t, mo = mi + 1;
             const int *v = q->face_vert + 4 * f;
             before = fmin(before, glpgp_poly_min_sj(q->xy, v, 4));
-            if (F->pos[1 - k][f] >= 0) { /* crossed by both: four quads about the midpoints' mean */
-                if (k == 1) continue;
-                int t2 = F->pos[1][f], i2 = F->path[1][2 * t2 + 1], M[4];
+            if (F->pos[1][f] >= 0) { /* crossed twice: four quads about the midpoints' mean */
+                if (F->pos[1][f] != 2 * t + k) continue; /* made at its second pass */
+                int c0 = F->pos[0][f], k0 = c0 % 2, t0 = c0 / 2, i0 = F->path[k0][2 * t0 + 1], M[4];
                 M[i] = mi;
                 M[(i + 2) % 4] = mo;
-                M[i2] = s0[1] + t2;
-                M[(i2 + 2) % 4] = s0[1] + t2 + 1;
+                M[i0] = s0[k0] + t0;
+                M[(i0 + 2) % 4] = s0[k0] + t0 + 1;
                 for (int e = 0; e < 2; e++)
                     xy[2 * X + e] = 0.25 * (xy[2 * M[0] + e] + xy[2 * M[1] + e] + xy[2 * M[2] + e] + xy[2 * M[3] + e]);
                 for (int r = 0; r < 4; r++) {
@@ -402,10 +424,11 @@ static double flat_apply(const glpgp_quadmesh *q, const flat_fix *F, double *xy,
             fo[w++] = split_origin(q, f);
             halves = fmin(halves, fmin(glpgp_poly_min_sj(xy, A, 4), glpgp_poly_min_sj(xy, B, 4)));
         }
-    return halves >= fmin(before - 1e-9, GLPGP_QUAD_SJ_GOAL) ? worst : -1.0;
+    (void)before;
+    return fmin(worst, halves);
 }
 
-/* Apply F to q when its new quads are better than Q's corner (*done 1). */
+/* Apply F to q when its new quads are better than sjq + 0.02 (*done 1). */
 static glpgp_status flat_commit(glpgp_quadmesh *q, const flat_fix *F, double sjq, int *done, double *worst)
 {
     *done = 0;
@@ -433,6 +456,45 @@ static glpgp_status flat_commit(glpgp_quadmesh *q, const flat_fix *F, double sjq
     return st;
 }
 
+/* The worst corner scaled Jacobian of q, and in *below the quads under the goal. */
+static double mesh_worst(const glpgp_quadmesh *q, int *below)
+{
+    double m = INFINITY;
+    *below = 0;
+    for (int f = 0; f < q->nf; f++) {
+        double sj = glpgp_poly_min_sj(q->xy, q->face_vert + q->face_start[f], q->face_start[f + 1] - q->face_start[f]);
+        m = fmin(m, sj);
+        *below += sj < GLPGP_QUAD_SJ_GOAL;
+    }
+    return m;
+}
+
+/* F applied and the mesh smoothed; kept (*done 1) when the mesh has then
+ * fewer quads below the goal or a better worst one, and that no worse;
+ * else q restored. */
+static glpgp_status flat_try(glpgp_quadmesh *q, const flat_fix *F, int *done, double *worst, int *nmoved)
+{
+    glpgp_quadmesh *save = glpgp_qm_copy(q);
+    if (!save) return GLPGP_FAIL(GLPGP_ERR_NOMEM, "quads: no memory for the shape pass");
+    int moved = 0;
+    glpgp_status st = flat_commit(q, F, 0.03, done, worst); /* any new quad above 0.05 */
+    if (st == GLPGP_OK && *done) st = optimise(q, &moved);
+    if (st == GLPGP_OK && *done) *nmoved += moved;
+    if (st == GLPGP_OK && *done) { /* better: fewer quads below the goal or a better worst, that no worse */
+        int b0 = 0, b1 = 0;
+        double m0 = mesh_worst(save, &b0), m1 = mesh_worst(q, &b1);
+        *worst = m1;
+        *done = m1 >= m0 - 1e-12 && (b1 < b0 || m1 > m0 + 1e-9);
+    }
+    if (st == GLPGP_OK && !*done) { /* back to the mesh before */
+        glpgp_quadmesh tmp = *q;
+        *q = *save;
+        *save = tmp;
+    }
+    glpgp_quadmesh_destroy(&save);
+    return st;
+}
+
 /* The worst flat boundary corner not refused yet: (Q, i) and its scaled
  * Jacobian; -1 when none. */
 static int flat_find(const glpgp_quadmesh *q, const vstar *S, const unsigned char *refused, int *Q, int *ci,
@@ -456,14 +518,14 @@ static int flat_find(const glpgp_quadmesh *q, const vstar *S, const unsigned cha
     return best;
 }
 
-static glpgp_status flat_corners(glpgp_quadmesh *q, const glpgp_mesh *m, double h, int *nfixed)
+static glpgp_status flat_corners(glpgp_quadmesh *q, const glpgp_mesh *m, double h, int *nfixed, int *nmoved)
 {
     *nfixed = 0;
     for (int f = 0; f < q->nf; f++)
         if (q->face_start[f] != 4 * f || q->face_start[f + 1] != 4 * f + 4) return GLPGP_OK;
     dbnd D;
     GLPGP_CHECK(glpgp_dbnd_build(&D, m, h));
-    unsigned char *refused = NULL, *seen = NULL;
+    unsigned char *refused = NULL;
     int *cand = NULL, ncap = 0;
     flat_fix F;
     memset(&F, 0, sizeof F);
@@ -475,24 +537,21 @@ static glpgp_status flat_corners(glpgp_quadmesh *q, const glpgp_mesh *m, double 
         int done = 0, c = -1;
         st = vstar_build(q, &S);
         if (st == GLPGP_OK) st = glpgp_qsides_build(q, &E);
-        free(seen);
-        seen = NULL;
         for (int k = 0; k < 2; k++) {
             free(F.path[k]);
             free(F.pos[k]);
             F.path[k] = F.pos[k] = NULL;
         }
-        if (st == GLPGP_OK) st = glpgp_calloc((size_t)q->nf + 1, 1, &seen);
         for (int k = 0; k < 2 && st == GLPGP_OK; k++) {
             st = glpgp_malloc((size_t)q->nf + 1, sizeof(int), &F.pos[k]);
             for (int f = 0; f < q->nf && st == GLPGP_OK; f++) F.pos[k][f] = -1;
         }
-        if (st == GLPGP_OK) st = glpgp_malloc((size_t)2 * q->nf + 2, sizeof(int), &F.path[0]);
-        if (st == GLPGP_OK) st = glpgp_malloc((size_t)2 * q->nf + 2, sizeof(int), &F.path[1]);
+        if (st == GLPGP_OK) st = glpgp_malloc((size_t)4 * q->nf + 2, sizeof(int), &F.path[0]);
+        if (st == GLPGP_OK) st = glpgp_malloc((size_t)4 * q->nf + 2, sizeof(int), &F.path[1]);
         if (st == GLPGP_OK) c = flat_find(q, &S, refused, &F.Q, &F.i, &sjq);
         F.len[0] = F.len[1] = F.loop = F.ncross = 0;
-        if (st == GLPGP_OK && c >= 0 && flat_strips(q, &E, &D, h, &F, seen, &cand, &ncap))
-            st = flat_commit(q, &F, sjq, &done, &worst);
+        if (st == GLPGP_OK && c >= 0 && flat_strips(q, &E, &D, h, &F, &cand, &ncap))
+            st = flat_try(q, &F, &done, &worst, nmoved);
         vstar_free(&S);
         glpgp_qsides_free(&E);
         if (st != GLPGP_OK || c < 0) break;
@@ -511,7 +570,6 @@ static glpgp_status flat_corners(glpgp_quadmesh *q, const glpgp_mesh *m, double 
     }
     glpgp_dbnd_free(&D);
     free(refused);
-    free(seen);
     free(cand);
     for (int k = 0; k < 2; k++) {
         free(F.path[k]);
@@ -524,6 +582,9 @@ glpgp_status glpgp_quadmesh_shape_pass(glpgp_quadmesh *q, const glpgp_mesh *m, d
 {
     *flat = *moved = 0;
     if (!q || q->nf <= 0) return GLPGP_OK;
-    GLPGP_CHECK(flat_corners(q, m, h, flat));
-    return optimise(q, moved);
+    int m1 = 0, m2 = 0;
+    GLPGP_CHECK(flat_corners(q, m, h, flat, &m1));
+    GLPGP_CHECK(optimise(q, &m2));
+    *moved = m1 + m2; /* moves (a vertex moved in two sweeps counts twice) */
+    return GLPGP_OK;
 }
