@@ -28,8 +28,8 @@ trap 'rm -rf "$T"' EXIT
 "$DOMAINS" 1 "$EDGES" "$T" >/dev/null || exit 1
 bad=0
 : >"$T/rows.txt"
-echo "| domain | size | quads | irregular | per 100 quads | SJ min | SJ mean | Hausdorff / h | area ratio | valid | s |"
-echo "|---|---|---|---|---|---|---|---|---|---|---|"
+echo "| domain | size | quads | irregular | per 100 quads | SJ min | SJ min / corner bound | below 0.3 unforced | SJ mean | Hausdorff / h | area ratio | valid | s |"
+echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|"
 for poly in "$T"/*.poly; do
     d=$(basename "$poly" .poly)
     if ! "$GLPGP" mesh "$poly" -o "$T/$d.msh" --quiet 2>"$T/err.txt"; then
@@ -58,11 +58,13 @@ d, size, secs, rows = sys.argv[2], sys.argv[3], float(sys.argv[5]) - float(sys.a
 irr = q["irregular_vertices"]["total"]
 row = {"domain": d, "size": size, "quads": q["quads"], "irregular": irr,
        "sj_min": q["scaled_jacobian"]["min"], "sj_mean": q["scaled_jacobian"]["mean"],
+       "sj_min_corner": q["scaled_jacobian"]["min_of_corner_bound"], "below_goal": q["scaled_jacobian"]["below_goal"],
        "hausdorff": q["boundary_distance_over_h"]["hausdorff"], "area_ratio": q["area_ratio"],
        "valid": bool(q["valid"]), "seconds": secs}
 open(rows, "a").write(json.dumps(row) + "\n")
-print("| %s | %s | %d | %d | %.1f | %.3f | %.3f | %.3f | %.4f | %s | %.1f |" % (
-    d, size, row["quads"], irr, 100.0 * irr / max(row["quads"], 1), row["sj_min"], row["sj_mean"],
+print("| %s | %s | %d | %d | %.1f | %.3f | %.3f | %d | %.3f | %.3f | %.4f | %s | %.1f |" % (
+    d, size, row["quads"], irr, 100.0 * irr / max(row["quads"], 1), row["sj_min"], row["sj_min_corner"],
+    row["below_goal"], row["sj_mean"],
     row["hausdorff"], row["area_ratio"], "yes" if row["valid"] else "no", secs))
 sys.exit(0 if row["valid"] else 1)
 PY
@@ -74,8 +76,10 @@ rows = [json.loads(l) for l in open(sys.argv[1])]
 nq = sum(r["quads"] for r in rows)
 ni = sum(r["irregular"] for r in rows)
 nv = sum(r["valid"] for r in rows)
-print("\n%d runs: %d quads, %d irregular vertices (%.1f per 100 quads), %d valid" % (
-    len(rows), nq, ni, 100.0 * ni / max(nq, 1), nv))
+print("\n%d runs: %d quads, %d irregular vertices (%.1f per 100 quads), %d valid; lowest SJ %.3f, "
+      "lowest SJ over its corner bound %.3f, %d quads below 0.3 that no corner forces" % (
+    len(rows), nq, ni, 100.0 * ni / max(nq, 1), nv, min(r["sj_min"] for r in rows),
+    min(r["sj_min_corner"] for r in rows), sum(r["below_goal"] for r in rows)))
 if sys.argv[3]:
     json.dump({"edges_per_H": int(sys.argv[2]), "runs": rows, "quads": nq, "irregular": ni, "valid": nv},
               open(sys.argv[3], "w"), indent=1)

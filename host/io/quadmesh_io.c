@@ -50,6 +50,8 @@ static void json_repair(glpgp_json *w, const glpgp_quad_repair *r)
     glpgp_json_int(w, "chord_strips", r->chord_strips);
     glpgp_json_int(w, "paved_regions", r->paved_regions);
     glpgp_json_int(w, "fallback_regions", r->fallback_regions);
+    glpgp_json_int(w, "flat_corners", r->flat_corners);
+    glpgp_json_int(w, "shaped_vertices", r->shaped_vertices);
     glpgp_json_str(w, "whole_domain", r->whole_domain == 2 ? "input-triangles" : r->whole_domain == 1 ? "meshed-again" : "no");
     int order[GLPGP_QUAD_REGIONS_LISTED], n = r->nlisted;
     for (int i = 0; i < n; i++) order[i] = i;

@@ -31,22 +31,36 @@
 #define CHORD_MIN_SJ 0.2
 #define CHORD_MAX_STRIPS 256
 
-typedef struct hedge {
+struct chord_hedge {
     unsigned long long k;
     int f, i; /* face, side i (corners i, i+1) */
-} hedge;
+};
 static int cmp_hedge(const void *x, const void *y)
 {
-    const hedge *a = x, *b = y;
+    const struct chord_hedge *a = x, *b = y;
     return a->k < b->k ? -1 : a->k > b->k ? 1 : a->f - b->f;
 }
-typedef struct sides {
-    hedge *h;
-    int n;
-} sides;
+glpgp_status glpgp_qsides_build(const glpgp_quadmesh *q, qsides *S)
+{
+    S->n = 4 * q->nf;
+    S->h = NULL;
+    GLPGP_CHECK(glpgp_malloc((size_t)S->n + 1, sizeof *S->h, &S->h));
+    for (int f = 0; f < q->nf; f++)
+        for (int i = 0; i < 4; i++)
+            S->h[4 * f + i] =
+                (struct chord_hedge){glpgp_edge_key(q->face_vert[4 * f + i], q->face_vert[4 * f + (i + 1) % 4]), f, i};
+    qsort(S->h, (size_t)S->n, sizeof *S->h, cmp_hedge);
+    return GLPGP_OK;
+}
 
-/* The other face across side i of face f (-1: boundary). */
-static int across(const sides *S, const glpgp_quadmesh *q, int f, int i, int *j)
+void glpgp_qsides_free(qsides *S)
+{
+    free(S->h);
+    S->h = NULL;
+    S->n = 0;
+}
+
+int glpgp_qsides_across(const qsides *S, const glpgp_quadmesh *q, int f, int i, int *j)
 {
     const int *v = q->face_vert + 4 * f;
     unsigned long long k = glpgp_edge_key(v[i], v[(i + 1) % 4]);
@@ -68,7 +82,7 @@ static int across(const sides *S, const glpgp_quadmesh *q, int f, int i, int *j)
  * (area between the chord and the boundary polyline) and the boundary
  * point half-way along (*mid). 0 when a or b is not on the boundary or
  * they are on different loops. */
-static int chord_loss(dbnd *D, const double *a, const double *b, double h, double *loss, double *mid, int **cand,
+int glpgp_dbnd_chord(dbnd *D, const double *a, const double *b, double h, double *loss, double *mid, int **cand,
                       int *ncap)
 {
     const glpgp_mesh *m = D->m;
@@ -116,7 +130,7 @@ static int chord_loss(dbnd *D, const double *a, const double *b, double h, doubl
 /* A strip from boundary side (f0, i0): faces and entry sides into *path
  * (2 ints per face), the far boundary side in *fe, *ie. 0 when it meets
  * itself or a non-quad. */
-static int trace(const sides *S, const glpgp_quadmesh *q, int f0, int i0, int *path, int *len, int *fe, int *ie,
+int glpgp_quad_strip_trace(const qsides *S, const glpgp_quadmesh *q, int f0, int i0, int *path, int *len, int *fe, int *ie,
                  unsigned char *seen)
 {
     int f = f0, i = i0, n = 0, ok = 0;
@@ -126,7 +140,7 @@ static int trace(const sides *S, const glpgp_quadmesh *q, int f0, int i0, int *p
         path[2 * n] = f;
         path[2 * n + 1] = i;
         n++;
-        int o = (i + 2) % 4, j = -1, g = across(S, q, f, o, &j);
+        int o = (i + 2) % 4, j = -1, g = glpgp_qsides_across(S, q, f, o, &j);
         if (g < 0) {
             *fe = f;
             *ie = o;
@@ -192,20 +206,7 @@ static glpgp_status cut_strip(glpgp_quadmesh *q, const int *path, int len, const
         fo[w++] = o > GLPGP_QFACE_CLOSED ? o : GLPGP_QFACE_CLOSED;
     }
     if (!(worst >= CHORD_MIN_SJ)) goto done;
-    for (int f = 0; f <= nf; f++) fs[f] = 4 * f;
-    free(q->xy);
-    free(q->face_vert);
-    free(q->face_start);
-    free(q->face_origin);
-    q->xy = xy;
-    q->face_vert = fv;
-    q->face_start = fs;
-    q->face_origin = fo;
-    q->nv = nv + nnew;
-    q->nf = nf;
-    xy = NULL;
-    fv = fs = NULL;
-    fo = NULL;
+    glpgp_qm_adopt_quads(q, &xy, nv + nnew, &fv, &fs, &fo, nf);
     *ok = 1;
 done:
     free(xy);
@@ -234,11 +235,11 @@ static double mesh_area(const glpgp_quadmesh *q)
 static glpgp_status one_strip(glpgp_quadmesh *q, dbnd *D, double h, int *done)
 {
     *done = 0;
-    sides S = {NULL, 4 * q->nf};
+    qsides S = {NULL, 0};
     int *path = NULL, *order = NULL, *cand = NULL, ncap = 0, nb = 0;
     double *loss = NULL, *mids = NULL;
     unsigned char *seen = NULL;
-    glpgp_status st = glpgp_malloc((size_t)S.n + 1, sizeof *S.h, &S.h);
+    glpgp_status st = glpgp_qsides_build(q, &S);
     if (st == GLPGP_OK) st = glpgp_malloc((size_t)2 * q->nf + 2, sizeof(int), &path);
     if (st == GLPGP_OK) st = glpgp_malloc((size_t)S.n + 1, sizeof(int), &order);
     if (st == GLPGP_OK) st = glpgp_malloc((size_t)S.n + 1, sizeof(double), &loss);
@@ -246,16 +247,12 @@ static glpgp_status one_strip(glpgp_quadmesh *q, dbnd *D, double h, int *done)
     if (st == GLPGP_OK) st = glpgp_calloc((size_t)q->nf + 1, 1, &seen);
     if (st != GLPGP_OK) goto done;
     for (int f = 0; f < q->nf; f++)
-        for (int i = 0; i < 4; i++)
-            S.h[4 * f + i] = (hedge){glpgp_edge_key(q->face_vert[4 * f + i], q->face_vert[4 * f + (i + 1) % 4]), f, i};
-    qsort(S.h, (size_t)S.n, sizeof *S.h, cmp_hedge);
-    for (int f = 0; f < q->nf; f++)
         for (int i = 0; i < 4; i++) {
             int j, s = 4 * f + i;
             loss[s] = 0.0;
-            if (across(&S, q, f, i, &j) >= 0) continue;
+            if (glpgp_qsides_across(&S, q, f, i, &j) >= 0) continue;
             const double *a = q->xy + 2 * q->face_vert[4 * f + i], *b = q->xy + 2 * q->face_vert[4 * f + (i + 1) % 4];
-            int okc = chord_loss(D, a, b, h, &loss[s], mids + 2 * s, &cand, &ncap);
+            int okc = glpgp_dbnd_chord(D, a, b, h, &loss[s], mids + 2 * s, &cand, &ncap);
             if (!okc || !(loss[s] > 0)) continue;
             order[nb++] = s;
         }
@@ -264,7 +261,7 @@ static glpgp_status one_strip(glpgp_quadmesh *q, dbnd *D, double h, int *done)
     double bgain = 0.0;
     for (int k = 0; k < nb; k++) {
         int s = order[k], len = 0, fe = -1, ie = -1;
-        if (!trace(&S, q, s / 4, s % 4, path, &len, &fe, &ie, seen) || len < 1) continue;
+        if (!glpgp_quad_strip_trace(&S, q, s / 4, s % 4, path, &len, &fe, &ie, seen) || len < 1) continue;
         int se = 4 * fe + ie;
         if (!(loss[se] > 0)) continue; /* ends on an edge with nothing to gain (a hole: more area) */
         double gain = (loss[s] + loss[se]) / len;
@@ -277,13 +274,13 @@ static glpgp_status one_strip(glpgp_quadmesh *q, dbnd *D, double h, int *done)
     }
     if (bs >= 0) {
         int len = 0, fe = -1, ie = -1;
-        trace(&S, q, bs / 4, bs % 4, path, &len, &fe, &ie, seen);
+        glpgp_quad_strip_trace(&S, q, bs / 4, bs % 4, path, &len, &fe, &ie, seen);
         GLPGP_CHECK_GOTO(st, cut_strip(q, path, len, mids + 2 * bs, mids + 2 * bse, done), done);
         glpgp_log(GLPGP_LOG_DEBUG, "quad chords: strip of %d quads, losses %.3g and %.3g: %s", blen, loss[bs], loss[bse],
                   *done ? "cut" : "not cut (poor quads)");
     }
 done:
-    free(S.h);
+    glpgp_qsides_free(&S);
     free(path);
     free(order);
     free(loss);

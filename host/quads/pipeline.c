@@ -5,9 +5,40 @@
 #include "glpgp/quads.h"
 #include "glpgp/status.h"
 #include "glpgp/util.h"
+#include "repair.h"
 
 #include <stdlib.h>
 /* ---- pipeline --------------------------------------------------------- */
+
+/* The last shape pass (shape.c) on a copy of *q, kept when the mesh is as
+ * valid as before, its worst quad (relative to what the domain's corners
+ * allow) no worse and the irregular vertices not more than the split flat
+ * corners add. */
+static glpgp_status shape_pass(glpgp_quadmesh **q, const glpgp_mesh *m, double h)
+{
+    glpgp_quadmesh *t = glpgp_qm_copy(*q);
+    if (!t) return GLPGP_FAIL(GLPGP_ERR_NOMEM, "quads: no memory for the shape pass");
+    int flat = 0, moved = 0;
+    glpgp_quad_quality q0, q1;
+    glpgp_status st = glpgp_quadmesh_shape_pass(t, m, h, &flat, &moved);
+    if (st == GLPGP_OK && (flat || moved)) {
+        st = glpgp_quads_quality(*q, m, h, &q0);
+        if (st == GLPGP_OK) st = glpgp_quads_quality(t, m, h, &q1);
+        if (st == GLPGP_OK && (q1.invalid & ~q0.invalid) == 0 && q1.sj_min_corner >= q0.sj_min_corner - 1e-12 &&
+            q1.below_sj_goal <= q0.below_sj_goal && q1.irregular <= q0.irregular + flat) {
+            t->repair.flat_corners = flat;
+            t->repair.shaped_vertices = moved;
+            glpgp_quadmesh_destroy(q);
+            *q = t;
+            t = NULL;
+        } else if (st == GLPGP_OK) {
+            glpgp_log(GLPGP_LOG_DEBUG, "quads: shape pass not kept (invalid 0x%x, worst %.3f -> %.3f, irregular %d -> %d)",
+                      q1.invalid & ~q0.invalid, q0.sj_min_corner, q1.sj_min_corner, q0.irregular, q1.irregular);
+        }
+    }
+    glpgp_quadmesh_destroy(&t);
+    return st;
+}
 
 void glpgp_quad_options_default(glpgp_quad_options *o)
 {
@@ -97,6 +128,11 @@ glpgp_status glpgp_quads_build(const glpgp_mesh *m, const glpgp_result *r, const
                 glpgp_quadmesh_destroy(&c);
             }
         }
+    }
+    if (o->repair && !o->keep_polygons && q->nf > 0) {
+        glpgp_progress_tick(&pr, "%d faces; shape pass", q->nf);
+        st = shape_pass(&q, m, *h);
+        if (st != GLPGP_OK) goto done;
     }
     if (o->all_quads) {
         st = glpgp_quadmesh_subdivide(q, &c);

@@ -29,8 +29,10 @@
  *    must be cut sooner or later. The cut gets k points so that both parts
  *    are even;
  *  - when no cut is possible, the split of a small loop is taken if its
- *    corners are positive, a quad with a reflex corner becomes five quads
- *    around a shrunk copy; otherwise the mesher fails (GLPGP_ERR_NUMERIC).
+ *    corners are positive, a quad with a reflex or flat corner becomes five
+ *    quads around a shrunk copy (shrunk towards its centroid, or for a dart
+ *    towards a point on a corner's inward bisector); otherwise the mesher
+ *    fails (GLPGP_ERR_NUMERIC).
  * The local size is min(h, min over the input loop points of s_p + G d),
  * s_p the mean length of the loop edges at p, G = GRADE: quads grow from the
  * loops' spacing to h. Cuts from straight loop points across a piece give

@@ -58,50 +58,82 @@ glpgp_status glpgp_qc_emit_split(qc *c, const ivec *L, const split *s)
     return GLPGP_OK;
 }
 
-/* A quad with a reflex corner: five quads around a copy shrunk towards
- * its centroid (0 when no shrink gives positive corners). */
+/* A quad with a reflex or flat corner: five quads around a copy of it
+ * shrunk towards a center g: the centroid, or (a dart, whose centroid may
+ * see a side from behind) points on the inward bisectors of its corners,
+ * where the shrunk copy stays inside. The best of these by the worst
+ * corner; 0 when none gives positive corners. */
 glpgp_status glpgp_qc_ring_quad(qc *c, const ivec *L, int *done)
 {
     *done = 0;
     const int *p = L->p;
-    double g[2] = {0, 0};
+    double G[2 * 13], cen[2] = {0, 0};
+    int ng = 0;
     for (int t = 0; t < 4; t++) {
-        g[0] += P(c, p[t])[0] / 4;
-        g[1] += P(c, p[t])[1] / 4;
+        cen[0] += P(c, p[t])[0] / 4;
+        cen[1] += P(c, p[t])[1] / 4;
     }
-    double rm = 0.0;
-    for (int t = 0; t < 4; t++) rm += 0.25 * hypot(P(c, p[t])[0] - g[0], P(c, p[t])[1] - g[1]);
-    for (int tr = 1; tr <= 8 && !*done; tr++) {
-        /* the corners pulled towards the centroid: a scaled copy (tries 1-4)
-         * or all at one distance (5-8: a flat corner of the quad is not copied) */
-        double f = 0.2 * ((tr - 1) % 4 + 1), xy[16];
-        for (int t = 0; t < 4; t++) {
-            xy[2 * t] = P(c, p[t])[0];
-            xy[2 * t + 1] = P(c, p[t])[1];
-            double dx = xy[2 * t] - g[0], dy = xy[2 * t + 1] - g[1], d = hypot(dx, dy);
-            double s = tr <= 4 ? f : (d > 0 ? f * rm / d : 0.0);
-            xy[8 + 2 * t] = g[0] + s * dx;
-            xy[9 + 2 * t] = g[1] + s * dy;
+    G[ng++] = cen[0];
+    G[ng++] = cen[1];
+    for (int t = 0; t < 4; t++) { /* on the bisector of corner t, into the quad (left of its sides) */
+        const double *o = P(c, p[t]), *nx = P(c, p[(t + 1) % 4]), *pv = P(c, p[(t + 3) % 4]);
+        double ux = nx[0] - o[0], uy = nx[1] - o[1], vx = pv[0] - o[0], vy = pv[1] - o[1];
+        double lu = hypot(ux, uy), lv = hypot(vx, vy);
+        if (!(lu > 0 && lv > 0)) continue;
+        /* direction: the angle from u (to the next) counter-clockwise to v (to the previous), halved */
+        double a = atan2(ux * vy - uy * vx, ux * vx + uy * vy);
+        if (a < 0) a += 2 * 3.14159265358979323846;
+        double b = atan2(uy, ux) + 0.5 * a;
+        double lmin = fmin(lu, lv);
+        for (int k = 0; k < 3 && ng + 2 <= 26; k++) {
+            double d = (0.15 + 0.2 * k) * lmin;
+            G[ng++] = o[0] + d * cos(b);
+            G[ng++] = o[1] + d * sin(b);
         }
-        static const int Q[5][4] = {{0, 1, 5, 4}, {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}, {4, 5, 6, 7}};
-        double w = INFINITY;
-        for (int q = 0; q < 5; q++) w = fmin(w, glpgp_poly_min_sj(xy, Q[q], 4));
-        if (!(w > 0.0)) continue;
-        int id[8];
-        for (int t = 0; t < 4; t++) {
-            id[t] = p[t];
-            id[4 + t] = c->xy->n / 2;
-            GLPGP_CHECK(dpush(c->xy, xy[8 + 2 * t]));
-            GLPGP_CHECK(dpush(c->xy, xy[9 + 2 * t]));
-            c->stats->points++;
-        }
-        for (int q = 0; q < 5; q++) {
-            int fq[4] = {id[Q[q][0]], id[Q[q][1]], id[Q[q][2]], id[Q[q][3]]};
-            GLPGP_CHECK(glpgp_qc_emit(c, fq));
-        }
-        c->stats->pieces++;
-        *done = 1;
     }
+    static const int Q[5][4] = {{0, 1, 5, 4}, {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}, {4, 5, 6, 7}};
+    double best = 0.0, bxy[16];
+    for (int gi = 0; gi < ng / 2; gi++) {
+        const double *g = G + 2 * gi;
+        double rm = 0.0;
+        for (int t = 0; t < 4; t++) rm += 0.25 * hypot(P(c, p[t])[0] - g[0], P(c, p[t])[1] - g[1]);
+        for (int tr = 1; tr <= 8; tr++) {
+            /* the corners pulled towards g: a scaled copy (tries 1-4) or all at
+             * one distance (5-8: a flat corner of the quad is not copied) */
+            double f = 0.2 * ((tr - 1) % 4 + 1), xy[16];
+            for (int t = 0; t < 4; t++) {
+                xy[2 * t] = P(c, p[t])[0];
+                xy[2 * t + 1] = P(c, p[t])[1];
+                double dx = xy[2 * t] - g[0], dy = xy[2 * t + 1] - g[1], d = hypot(dx, dy);
+                double s = tr <= 4 ? f : (d > 0 ? f * rm / d : 0.0);
+                xy[8 + 2 * t] = g[0] + s * dx;
+                xy[9 + 2 * t] = g[1] + s * dy;
+            }
+            double w = INFINITY;
+            for (int q = 0; q < 5; q++) w = fmin(w, glpgp_poly_min_sj(xy, Q[q], 4));
+            if (w > best + 1e-12) {
+                best = w;
+                memcpy(bxy, xy, sizeof xy);
+                if (gi == 0) break; /* the centroid's first valid copy serves */
+            }
+        }
+        if (gi == 0 && best > 0.0) break;
+    }
+    if (!(best > 0.0)) return GLPGP_OK;
+    int id[8];
+    for (int t = 0; t < 4; t++) {
+        id[t] = p[t];
+        id[4 + t] = c->xy->n / 2;
+        GLPGP_CHECK(dpush(c->xy, bxy[8 + 2 * t]));
+        GLPGP_CHECK(dpush(c->xy, bxy[9 + 2 * t]));
+        c->stats->points++;
+    }
+    for (int q = 0; q < 5; q++) {
+        int fq[4] = {id[Q[q][0]], id[Q[q][1]], id[Q[q][2]], id[Q[q][3]]};
+        GLPGP_CHECK(glpgp_qc_emit(c, fq));
+    }
+    c->stats->pieces++;
+    *done = 1;
     return GLPGP_OK;
 }
 

@@ -152,6 +152,24 @@ glpgp_quadmesh *glpgp_qm_copy(const glpgp_quadmesh *q)
     return o;
 }
 
+void glpgp_qm_adopt_quads(glpgp_quadmesh *q, double **xy, int nv, int **fv, int **fs, unsigned char **fo, int nf)
+{
+    for (int f = 0; f <= nf; f++) (*fs)[f] = 4 * f;
+    free(q->xy);
+    free(q->face_vert);
+    free(q->face_start);
+    free(q->face_origin);
+    q->xy = *xy;
+    q->face_vert = *fv;
+    q->face_start = *fs;
+    q->face_origin = *fo;
+    q->nv = nv;
+    q->nf = nf;
+    *xy = NULL;
+    *fv = *fs = NULL;
+    *fo = NULL;
+}
+
 /* ---- snapping ---------------------------------------------------------------------- */
 
 /* Faces per vertex (CSR): vs[v] .. vs[v+1] in vf. */

@@ -118,6 +118,38 @@ glpgp_status glpgp_quads_last_resort(const glpgp_mesh *m, double h, glpgp_quadme
  * alone. */
 glpgp_status glpgp_quadmesh_chord_strips(glpgp_quadmesh *q, const glpgp_mesh *m, double h, int *nstrips);
 
+/* The sides of an all-quad mesh (face_start[f] = 4 f) sorted by edge, to
+ * find the face across a side. */
+typedef struct qsides {
+    struct chord_hedge *h;
+    int n;
+} qsides;
+glpgp_status glpgp_qsides_build(const glpgp_quadmesh *q, qsides *S);
+void glpgp_qsides_free(qsides *S);
+/* The face across side i (corners i, i + 1) of face f, its side there in
+ * *j; -1 on the boundary. */
+int glpgp_qsides_across(const qsides *S, const glpgp_quadmesh *q, int f, int i, int *j);
+/* The strip entering face f0 through side i0 and leaving each quad through
+ * the opposite side: faces and entry sides into path (2 ints a face, room
+ * for 2 nf), the boundary side where it ends in *fe, *ie. 0 when it meets
+ * a face marked in seen (itself included: seen is restored) or a non-quad. */
+int glpgp_quad_strip_trace(const qsides *S, const glpgp_quadmesh *q, int f0, int i0, int *path, int *len, int *fe,
+                           int *ie, unsigned char *seen);
+/* The domain boundary between the ends of boundary edge a -> b: the area
+ * between it and the chord (*loss) and the boundary point half-way along
+ * (*mid); 0 when a or b is not on the boundary, they are on different loops
+ * or the arc spans over half its loop. */
+int glpgp_dbnd_chord(dbnd *D, const double *a, const double *b, double h, double *loss, double *mid, int **cand,
+                     int *ncap);
+
+/* ---- the last shape pass (shape.c) -------------------------------------------------- */
+
+/* Flat boundary corners split with two strips, then the optimisation
+ * smoothing around quads below 0.5 (shape.c's header); q changed in place.
+ * *flat: corners fixed, *moved: vertices moved. The caller keeps the
+ * result only when it is as valid as before. */
+glpgp_status glpgp_quadmesh_shape_pass(glpgp_quadmesh *q, const glpgp_mesh *m, double h, int *flat, int *moved);
+
 /* ---- shared helpers (repair.c) ---------------------------------------------------- */
 
 /* The repair rounds alone (at most rounds, no last resort), smooth sweeps:
@@ -127,5 +159,9 @@ glpgp_status glpgp_repair_rounds(const glpgp_quadmesh *q, const glpgp_mesh *m, d
 
 /* A copy of q (arrays and face origins; diagnostics kept). NULL: no memory. */
 glpgp_quadmesh *glpgp_qm_copy(const glpgp_quadmesh *q);
+/* q's arrays replaced by an all-quad mesh's: points *xy (nv), corners *fv
+ * (4 nf), origins *fo, and *fs (room for nf + 1, filled here); the old
+ * arrays freed, the caller's pointers set to NULL. */
+void glpgp_qm_adopt_quads(glpgp_quadmesh *q, double **xy, int nv, int **fv, int **fs, unsigned char **fo, int nf);
 
 #endif

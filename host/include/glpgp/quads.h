@@ -56,6 +56,8 @@ typedef struct glpgp_quad_repair {
     int whole_domain;    /* 0; 1: the local repair did not end valid and the whole domain was
                           * meshed again (region mesher, else the fallback); 2: the fallback of
                           * the input triangles themselves was needed */
+    int flat_corners;    /* the last shape pass: flat boundary corners split (with two grid lines) */
+    int shaped_vertices; /* the last shape pass: vertices moved to raise the worst corner near them */
     int nlisted;         /* entries of region[] (at most GLPGP_QUAD_REGIONS_LISTED) */
     glpgp_quad_region region[GLPGP_QUAD_REGIONS_LISTED];
 } glpgp_quad_repair;
