@@ -398,8 +398,13 @@ typedef struct glpgp_quad_surface_steps {
     int strips;            /* odd faces joined pairwise through strips of quads cut in two */
     int subdivided;        /* 1: faces other than quads were left and every face was split
                               (Catmull-Clark, h/2) */
-    int fallback;          /* 1: the extraction was not valid: the input triangles split into quads */
+    int fallback;          /* 1: the extraction was not valid: the last resort, triangles split into
+                              quads (coarse_triangles of a coarsened triangulation, else the input's) */
+    int coarse_triangles;  /* the last resort's coarse triangles (0: the input's own) */
     unsigned invalid_before; /* GLPGP_QUAD_BAD_* of the extraction's mesh when it was not used */
+    int smoothed;          /* vertices moved by the smoothing on the surface (o->smooth sweeps) */
+    double sj_before;      /* smallest scaled Jacobian before the smoothing */
+    double sj_after;       /* and after it (the same when it moved nothing or was undone) */
 } glpgp_quad_surface_steps;
 
 /* The surface pipeline (quads/quads_surface.c): extraction; two odd
