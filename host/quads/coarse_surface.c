@@ -1,5 +1,5 @@
 /* quads/coarse_surface.c: the coarse last resort on a surface
- * (glpgp_qs_coarse_fallback, quads_surface.h): the input triangulation
+ * (glpgp_quads_surface_fallback_coarse, glpgp/quads.h): the input triangulation
  * coarsened by half-edge collapses to edges of about 2 h, then every
  * triangle split into three quads (centroid and side midpoints, moved onto
  * the surface). A collapse v -> u keeps every vertex an input vertex and is
@@ -12,7 +12,7 @@
  *    surface manifold with its topology, and no triangle is left hanging;
  *  - every new triangle keeps its normal within 72 degrees of the one
  *    before and of the surface's under it, its smallest angle above
- *    min(15 degrees, the smallest before), its edges under 1.3 x 2 h,
+ *    min(20 degrees, the smallest before), its edges under 1.3 x 2 h,
  *    and samples of it within 0.2 h of the input surface.
  * Shortest edges first, in passes until none collapses. The caller checks
  * the quads and falls back to the input's own triangles when they fail. */
@@ -25,6 +25,8 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+
+#define AMIN_DEG 20.0 /* the smallest angle a new triangle may have (unless one before was smaller) */
 
 typedef struct cz {
     const glpgp_mesh *m;
@@ -151,6 +153,26 @@ static int link_ok(cz *c, int v, int u, int nshared)
     return common == nshared;
 }
 
+/* Whether triangle (p0, p1, p2) is within 0.2 h of the surface and faces its way
+ * where it is off it (samples; on a crease the nearest triangle may be either side's). */
+static int near_surface(const cz *c, const double *p0, const double *p1, const double *p2)
+{
+    double n1[3];
+    tri_normal(p0, p1, p2, n1);
+    const double dmax = 0.2 * c->h;
+    for (int a = 0; a <= 4; a++)
+        for (int b = 0; a + b <= 4; b++) {
+            double s[3], x[3], e[3];
+            for (int d = 0; d < 3; d++) s[d] = ((4 - a - b) * p0[d] + a * p1[d] + b * p2[d]) / 4.0;
+            const int tt = glpgp_qs_proj_nearest(c->P, s, x);
+            sub3(s, x, e);
+            if (tt < 0 || dot3(e, e) > dmax * dmax) return 0;
+            if (dot3(e, e) > 1e-6 * dmax * dmax && dot3(n1, c->m->surf->tframe + 9 * tt + 6) < 0.3) return 0;
+        }
+    return 1;
+}
+
+
 /* The geometric tests of v -> u on v's triangles not shared with u. */
 static int geometry_ok(cz *c, int v, int u, const int *r, int n)
 {
@@ -159,7 +181,7 @@ static int geometry_ok(cz *c, int v, int u, const int *r, int n)
         const int *t = c->tri + 3 * r[i];
         worst_before = fmin(worst_before, min_angle(X(c, t[0]), X(c, t[1]), X(c, t[2])));
     }
-    const double amin = fmin(15.0 * GLPGP_PI / 180.0, worst_before), lmax = 1.3 * c->L, dmax = 0.2 * c->h;
+    const double amin = fmin(AMIN_DEG * GLPGP_PI / 180.0, worst_before), lmax = 1.3 * c->L;
     for (int i = 0; i < n; i++) {
         const int *t = c->tri + 3 * r[i];
         if (t[0] == u || t[1] == u || t[2] == u) continue; /* shared: removed */
@@ -177,14 +199,7 @@ static int geometry_ok(cz *c, int v, int u, const int *r, int n)
             sub3(p[(k + 1) % 3], p[k], e);
             if (dot3(e, e) > lmax * lmax) return 0;
         }
-        for (int a = 0; a <= 4; a++) /* samples within 0.2 h of the surface, facing its way */
-            for (int b = 0; a + b <= 4; b++) {
-                double s[3], x[3], e[3];
-                for (int d = 0; d < 3; d++) s[d] = ((4 - a - b) * p[0][d] + a * p[1][d] + b * p[2][d]) / 4.0;
-                const int tt = glpgp_qs_proj_nearest(c->P, s, x);
-                sub3(s, x, e);
-                if (tt < 0 || dot3(e, e) > dmax * dmax || dot3(n1, c->m->surf->tframe + 9 * tt + 6) < 0.3) return 0;
-            }
+        if (!near_surface(c, p[0], p[1], p[2])) return 0;
     }
     return 1;
 }
@@ -243,6 +258,71 @@ static glpgp_status collapse(cz *c, int v, int u, int *done)
     return GLPGP_OK;
 }
 
+/* Flip the edge of slot s (a -> b of t1 = (a, b, c), t2 = (b, a, d)) to
+ * (c, d) when that raises the pair's smallest angle and keeps them on the
+ * surface; returns 1 when flipped. */
+static int flip(cz *c, int s)
+{
+    const int t1 = s / 3, k = s % 3;
+    if (c->flag[s]) return 0;
+    const int a = c->tri[s], b = c->tri[3 * t1 + (k + 1) % 3], cc = c->tri[3 * t1 + (k + 2) % 3];
+    const int o = slot_of(c, b, a, t1);
+    if (o < 0) return 0;
+    const int t2 = o / 3, ko = o % 3, d = c->tri[3 * t2 + (ko + 2) % 3];
+    if (d == cc) return 0;
+    int *r;
+    const int n = ring(c, cc, &r);
+    for (int i = 0; i < n; i++) /* (c, d) must not be an edge already */
+        for (int j = 0; j < 3; j++)
+            if (c->tri[3 * r[i] + j] == d) return 0;
+    const double before = fmin(min_angle(X(c, a), X(c, b), X(c, cc)), min_angle(X(c, b), X(c, a), X(c, d)));
+    const double after = fmin(min_angle(X(c, cc), X(c, a), X(c, d)), min_angle(X(c, d), X(c, b), X(c, cc)));
+    if (after < before + 1e-3) return 0;
+    double n0[3], n1[3], m0[3], m1[3];
+    tri_normal(X(c, a), X(c, b), X(c, cc), n0);
+    tri_normal(X(c, b), X(c, a), X(c, d), n1);
+    tri_normal(X(c, cc), X(c, a), X(c, d), m0);
+    tri_normal(X(c, d), X(c, b), X(c, cc), m1);
+    if (dot3(n0, n1) < 0.7 || dot3(m0, m1) < 0.7 || dot3(m0, n0) < 0.3 || dot3(m1, n1) < 0.3) return 0;
+    if (!near_surface(c, X(c, cc), X(c, a), X(c, d)) || !near_surface(c, X(c, d), X(c, b), X(c, cc))) return 0;
+    const unsigned char f_ca = c->flag[3 * t1 + (k + 2) % 3], f_bc = c->flag[3 * t1 + (k + 1) % 3];
+    const unsigned char f_ad = c->flag[3 * t2 + (ko + 1) % 3], f_db = c->flag[3 * t2 + (ko + 2) % 3];
+    const int T1[3] = {cc, a, d}, T2[3] = {d, b, cc};
+    const unsigned char F1[3] = {f_ca, f_ad, 0}, F2[3] = {f_db, f_bc, 0};
+    for (int j = 0; j < 3; j++) {
+        c->tri[3 * t1 + j] = T1[j];
+        c->flag[3 * t1 + j] = F1[j];
+        c->tri[3 * t2 + j] = T2[j];
+        c->flag[3 * t2 + j] = F2[j];
+    }
+    const int add[2][2] = {{cc, t2}, {d, t1}};
+    for (int j = 0; j < 2; j++) {
+        const int v = add[j][0];
+        if (c->vn[v] == c->vcap[v]) {
+            const int cap = 2 * c->vcap[v] + 8;
+            int *g = realloc(c->vt[v], (size_t)cap * sizeof(int));
+            if (!g) return -1;
+            c->vt[v] = g;
+            c->vcap[v] = cap;
+        }
+        c->vt[v][c->vn[v]++] = add[j][1];
+    }
+    return 1;
+}
+
+/* One pass of flips over the alive triangles' edges; the flips made (-1: out of memory). */
+static int flips(cz *c, int nt)
+{
+    int made = 0;
+    for (int t = 0; t < nt; t++)
+        for (int k = 0; k < 3 && c->alive[t]; k++) {
+            const int f = flip(c, 3 * t + k);
+            if (f < 0) return -1;
+            made += f;
+        }
+    return made;
+}
+
 typedef struct cedge {
     double len;
     int a, b;
@@ -280,7 +360,9 @@ static glpgp_status coarsen(cz *c, int nt)
             if (st == GLPGP_OK && !done) st = collapse(c, E[i].b, E[i].a, &done);
             made += done;
         }
-        if (!made) break;
+        const int nflip = st == GLPGP_OK ? flips(c, nt) : 0;
+        if (nflip < 0) st = GLPGP_FAIL(GLPGP_ERR_NOMEM, "coarse last resort: out of memory");
+        if (!made && nflip <= 0) break;
     }
     free(E);
     return st;
@@ -410,7 +492,7 @@ static void cz_free(cz *c, int nv)
     free(c->alive);
 }
 
-glpgp_status glpgp_qs_coarse_fallback(const glpgp_mesh *m, double h, glpgp_quadmesh **out, int *ntri)
+glpgp_status glpgp_quads_surface_fallback_coarse(const glpgp_mesh *m, double h, glpgp_quadmesh **out, int *ntri)
 {
     *out = NULL;
     if (ntri) *ntri = 0;

@@ -787,7 +787,7 @@ keep_s:
     return GLPGP_OK;
 }
 
-/* The smoothing on the surface (o->smooth sweeps, glpgp_qs_smooth) of a
+/* The smoothing on the surface (o->smooth sweeps, glpgp_quads_smooth_surface) of a
  * valid mesh, undone when the smoothed mesh is not valid (the check's
  * Hausdorff distance or area). */
 static glpgp_status smooth_valid(const glpgp_mesh *m, double h, const glpgp_quad_options *o, glpgp_quadmesh *q,
@@ -801,7 +801,7 @@ static glpgp_status smooth_valid(const glpgp_mesh *m, double h, const glpgp_quad
     GLPGP_CHECK(glpgp_malloc((size_t)3 * q->nv + 1, sizeof(double), &keep));
     memcpy(keep, q->xyz, (size_t)3 * q->nv * sizeof(double));
     int moved = 0;
-    glpgp_status st = glpgp_qs_smooth(m, h, o->smooth, q, &moved);
+    glpgp_status st = glpgp_quads_smooth_surface(m, h, o->smooth, q, &moved);
     if (st == GLPGP_OK && moved) st = glpgp_quads_quality_surface(q, m, h, &qq);
     if (st == GLPGP_OK && moved && !qq.invalid) {
         stp->smoothed = moved;
@@ -824,7 +824,7 @@ static glpgp_status last_resort(const glpgp_mesh *m, double h, glpgp_quadmesh **
 {
     int nt = 0;
     unsigned bad = 0;
-    glpgp_status st = glpgp_qs_coarse_fallback(m, h, out, &nt);
+    glpgp_status st = glpgp_quads_surface_fallback_coarse(m, h, out, &nt);
     if (st == GLPGP_OK) st = verdict_of(m, *out, h, 0, &bad);
     if (st == GLPGP_OK && !bad) {
         stp->coarse_triangles = nt;

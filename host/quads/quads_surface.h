@@ -20,21 +20,6 @@ glpgp_status glpgp_qs_proj_create(const glpgp_mesh *m, double h, double cap, glp
 int glpgp_qs_proj_nearest(const glpgp_qs_proj *P, const double *p, double *x);
 void glpgp_qs_proj_destroy(glpgp_qs_proj **P);
 
-/* Quality-guarded smoothing on the surface (smooth_surface.c): sweeps
- * (at most `sweeps`) of tangential moves of the free vertices (not on the
- * quad mesh's boundary, not on the input's boundary or sharp features)
- * towards the mean of their edge neighbours or the corner that makes their
- * worst face a parallelogram, each moved back onto the surface and kept
- * only when the smallest scaled Jacobian of its faces rises and no face
- * falls below min(0.3, its value before) or turns over. *moved: vertices
- * moved at least once (may be NULL). */
-glpgp_status glpgp_qs_smooth(const glpgp_mesh *m, double h, int sweeps, glpgp_quadmesh *q, int *moved);
 
-/* The coarse last resort (coarse_surface.c): m's triangles coarsened by
- * half-edge collapses to edges of about 2 h (boundaries, sharp features
- * and the topology kept; new triangles within 0.2 h of m), each split into
- * three quads. *ntri: the coarse triangles (may be NULL). The result is
- * not checked. */
-glpgp_status glpgp_qs_coarse_fallback(const glpgp_mesh *m, double h, glpgp_quadmesh **out, int *ntri);
 
 #endif

@@ -1,5 +1,5 @@
 /* quads/smooth_surface.c: the quality-guarded smoothing of a surface's
- * quad mesh (glpgp_qs_smooth, quads_surface.h). A free vertex (not on the
+ * quad mesh (glpgp_quads_smooth_surface, glpgp/quads.h). A free vertex (not on the
  * quad mesh's boundary, not on the input's boundary or sharp features)
  * tries a few targets, each moved back onto the input surface (its nearest
  * point): part of the way to the mean of its edge neighbours, and the
@@ -227,7 +227,7 @@ static glpgp_status setup(sm_ctx *c)
     return lock_vertices(c);
 }
 
-glpgp_status glpgp_qs_smooth(const glpgp_mesh *m, double h, int sweeps, glpgp_quadmesh *q, int *moved)
+glpgp_status glpgp_quads_smooth_surface(const glpgp_mesh *m, double h, int sweeps, glpgp_quadmesh *q, int *moved)
 {
     if (moved) *moved = 0;
     if (!q || !q->xyz || q->nf == 0 || sweeps <= 0) return GLPGP_OK;
