@@ -9,6 +9,13 @@
 #    face count and valence histogram;
 #  - --faces N sets h = sqrt(area / N) (the summary's h), --faces with
 #    --size is one usage error;
+#  - the smoothing on the surface: every model's smallest scaled Jacobian
+#    >= 0.3 (the sphere's strips left 0.014 before it);
+#  - the coarse last resort: genus 2 at its default h and a sphere with 20
+#    holes (bench/surface_models.py) are valid with their Euler
+#    characteristic and loops in under 3000 quads (the input's triangles
+#    split: 76800 and 13662), smallest scaled Jacobian >= 0.3;
+#  - --quads OUT.ply: a PLY whose faces are the report's quads;
 #  - --no-repair on a size the surface cannot carry: an invalid mesh is not
 #    written (exit 3) unless --allow-invalid; with the repair on, the last
 #    resort (triangles split into quads) is valid.
@@ -33,6 +40,7 @@ if not q["valid"]: bad.append("invalid: %s" % q["invalid_reasons"])
 if s["euler"] != s["input_euler"]: bad.append("Euler %d of %d" % (s["euler"], s["input_euler"]))
 if s["boundary_loops"] != s["input_boundary_loops"]: bad.append("loops")
 if not s["hausdorff_over_h"] <= 0.25: bad.append("Hausdorff %g h" % s["hausdorff_over_h"])
+if not q["scaled_jacobian"]["min"] >= 0.3: bad.append("SJ min %g" % q["scaled_jacobian"]["min"])
 grid = q["origin"]["grid"] + q["origin"]["strips"]
 if grid < 0.9 * q["quads"]: bad.append("grid quads %d of %d" % (grid, q["quads"]))
 if bad:
@@ -43,6 +51,32 @@ check_model sphere shape:sphere:20000
 check_model torus shape:torus:20000
 check_model cube shape:cube:20000
 check_model hemi shape:hemisphere:10000
+
+# the coarse last resort: genus 2 at its default h, a sphere with 20 holes
+python3 "$(dirname "$0")/../../bench/surface_models.py" holes 20 4 holes20.obj || fail "holes20.obj"
+check_coarse() { # name model euler loops
+    run_ok "$1" solve "$2" --backend reference --quads "$1.ply" --stats "$1.json"
+    python3 - "$1" "$3" "$4" <<'PY' || fail "$1: coarse last resort"
+import json, sys
+name, euler, loops = sys.argv[1], int(sys.argv[2]), int(sys.argv[3])
+q = json.load(open(name + ".json"))["quads"]; s = q["surface"]
+lines = open(name + ".ply").read().split("\n")
+nv = int([l for l in lines if l.startswith("element vertex")][0].split()[2])
+nf = int([l for l in lines if l.startswith("element face")][0].split()[2])
+body = lines[lines.index("end_header") + 1:]
+faces = [l.split() for l in body[nv:nv + nf]]
+bad = []
+if not q["valid"]: bad.append("invalid: %s" % q["invalid_reasons"])
+if (s["euler"], s["boundary_loops"]) != (euler, loops): bad.append("Euler %d loops %d" % (s["euler"], s["boundary_loops"]))
+if not 10 <= q["quads"] < 3000: bad.append("%d quads" % q["quads"])
+if not q["scaled_jacobian"]["min"] >= 0.3: bad.append("SJ min %g" % q["scaled_jacobian"]["min"])
+if nf != q["quads"] or any(f[0] != "4" or len(f) != 5 for f in faces): bad.append("PLY faces")
+if bad:
+    print(name, "; ".join(bad)); sys.exit(1)
+PY
+}
+check_coarse genus2 shape:genus2:20000 -2 0
+check_coarse holes20 holes20.obj -18 20
 
 # the developable half cylinder against its unrolled twin
 run_ok "halfcyl" solve shape:halfcyl:5000 --backend reference --quads hc.obj --stats hc.json
