@@ -37,6 +37,7 @@ typedef struct cz {
     unsigned char *alive; /* nt */
     int **vt, *vn, *vcap; /* per vertex: its triangles (pruned on use) */
     int *mark, stamp;     /* per vertex scratch */
+    int *touched, pass;   /* per vertex: the last pass its triangles changed in */
 } cz;
 
 static void sub3(const double *a, const double *b, double *o)
@@ -182,6 +183,7 @@ static int geometry_ok(cz *c, int v, int u, const int *r, int n)
         worst_before = fmin(worst_before, min_angle(X(c, t[0]), X(c, t[1]), X(c, t[2])));
     }
     const double amin = fmin(AMIN_DEG * GLPGP_PI / 180.0, worst_before), lmax = 1.3 * c->L;
+    for (int pass = 0; pass < 2; pass++) /* the cheap tests on every triangle first, then the samples */
     for (int i = 0; i < n; i++) {
         const int *t = c->tri + 3 * r[i];
         if (t[0] == u || t[1] == u || t[2] == u) continue; /* shared: removed */
@@ -189,6 +191,10 @@ static int geometry_ok(cz *c, int v, int u, const int *r, int n)
         for (int k = 0; k < 3; k++) {
             o[k] = X(c, t[k]);
             p[k] = X(c, t[k] == v ? u : t[k]);
+        }
+        if (pass == 1) {
+            if (!near_surface(c, p[0], p[1], p[2])) return 0;
+            continue;
         }
         double n0[3], n1[3];
         tri_normal(o[0], o[1], o[2], n0);
@@ -199,7 +205,6 @@ static int geometry_ok(cz *c, int v, int u, const int *r, int n)
             sub3(p[(k + 1) % 3], p[k], e);
             if (dot3(e, e) > lmax * lmax) return 0;
         }
-        if (!near_surface(c, p[0], p[1], p[2])) return 0;
     }
     return 1;
 }
@@ -239,6 +244,8 @@ static glpgp_status collapse(cz *c, int v, int u, int *done)
             if (of[i][j] >= 0) c->flag[of[i][j]] = f;
     }
     for (int i = 0; i < ns; i++) c->alive[shared[i]] = 0;
+    for (int i = 0; i < n; i++)
+        for (int k = 0; k < 3; k++) c->touched[c->tri[3 * c->vt[v][i] + k]] = c->pass;
     for (int i = 0; i < n; i++) {
         const int t = c->vt[v][i];
         if (!c->alive[t]) continue;
@@ -288,6 +295,7 @@ static int flip(cz *c, int s)
     const unsigned char f_ca = c->flag[3 * t1 + (k + 2) % 3], f_bc = c->flag[3 * t1 + (k + 1) % 3];
     const unsigned char f_ad = c->flag[3 * t2 + (ko + 1) % 3], f_db = c->flag[3 * t2 + (ko + 2) % 3];
     const int T1[3] = {cc, a, d}, T2[3] = {d, b, cc};
+    c->touched[a] = c->touched[b] = c->touched[cc] = c->touched[d] = c->pass;
     const unsigned char F1[3] = {f_ca, f_ad, 0}, F2[3] = {f_db, f_bc, 0};
     for (int j = 0; j < 3; j++) {
         c->tri[3 * t1 + j] = T1[j];
@@ -342,6 +350,7 @@ static glpgp_status coarsen(cz *c, int nt)
     glpgp_status st = GLPGP_OK;
     for (int pass = 0; pass < 50 && st == GLPGP_OK; pass++) {
         int ne = 0, made = 0;
+        c->pass = pass + 1; /* an edge whose ends saw no change since the pass before is not tried again */
         for (int t = 0; t < nt; t++) {
             if (!c->alive[t]) continue;
             for (int k = 0; k < 3; k++) {
@@ -349,7 +358,8 @@ static glpgp_status coarsen(cz *c, int nt)
                 double e[3];
                 sub3(X(c, a), X(c, b), e);
                 const double l = sqrt(dot3(e, e));
-                if (a < b && l < c->L) E[ne++] = (cedge){l, a, b};
+                if (a < b && l < c->L && (pass == 0 || c->touched[a] >= pass || c->touched[b] >= pass))
+                    E[ne++] = (cedge){l, a, b};
             }
         }
         qsort(E, (size_t)ne, sizeof *E, cmp_cedge);
@@ -467,6 +477,7 @@ static glpgp_status cz_init(cz *c, const glpgp_mesh *m)
     GLPGP_CHECK(glpgp_calloc((size_t)m->nv + 1, sizeof(int), &c->vn));
     GLPGP_CHECK(glpgp_calloc((size_t)m->nv + 1, sizeof(int), &c->vcap));
     GLPGP_CHECK(glpgp_calloc((size_t)m->nv + 1, sizeof(int), &c->mark));
+    GLPGP_CHECK(glpgp_calloc((size_t)m->nv + 1, sizeof(int), &c->touched));
     memcpy(c->tri, m->tri, (size_t)3 * nt * sizeof(int));
     memset(c->alive, 1, (size_t)nt);
     glpgp_surface_features(m, GLPGP_FEATURE_ANGLE_DEFAULT, c->flag);
@@ -487,6 +498,7 @@ static void cz_free(cz *c, int nv)
     free(c->vn);
     free(c->vcap);
     free(c->mark);
+    free(c->touched);
     free(c->tri);
     free(c->flag);
     free(c->alive);

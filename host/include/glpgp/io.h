@@ -432,7 +432,7 @@ int glpgp_quads_path_supported(const char *path);
 glpgp_status glpgp_quads_read_msh(const char *path, glpgp_quadmesh **out);
 
 /* Read a quad mesh written by glpgp_quads_write (or any polygon mesh):
- * .msh as glpgp_quads_read_msh; .obj: `v x y [z]` (z ignored) and `f` lines
+ * .msh as glpgp_quads_read_msh; .obj: `v x y [z]` (q->xyz set too when a z is not 0: a surface's mesh) and `f` lines
  * of 3 or more corners (OBJ indices, negative ones relative, /vt/vn parts
  * ignored), faces in the file's orientation, vertices in file order; the
  * faces after a `g grid|strips|repair|fallback` line get that origin
