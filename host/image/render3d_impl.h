@@ -33,4 +33,13 @@ int glpgp_r3_visible(const cam3 *c, const gbuf *g, const double *p, double tol, 
 /* A filled anti-aliased disc of radius rad pixels at pixel (x, y). */
 void glpgp_r3_disc(glpgp_image *im, double x, double y, double rad, const float *col);
 
+/* Panels side by side with two caption lines each (render.c). */
+glpgp_status glpgp_r_compose_panels(glpgp_image *const *panel, int n, const char *const *l1, const char *const *l2,
+                                    const glpgp_render_options *o, glpgp_image **out);
+/* A surface's figure (render3d_quads.c; glpgp_render_figure1 on a surface):
+ * the input triangles shaded, the grid texture, the quad mesh q (NULL:
+ * left out), each from o's view, with captions. */
+glpgp_status glpgp_r_figure_surface(const glpgp_mesh *m, const glpgp_result *r, const glpgp_quadmesh *q,
+                                    const glpgp_render_options *o, glpgp_image **out);
+
 #endif

@@ -11,6 +11,7 @@
 
 #include "glpgp/image.h"
 #include "glpgp/quads.h"
+#include "glpgp/surface.h"
 #include "glpgp/util.h"
 
 #include <math.h>
@@ -24,12 +25,17 @@ typedef struct q3 {
     int *tface;       /* per triangle: its face */
     double *fn;       /* per face: unit normal (3) */
     float *fcol;      /* per face: colour (3) */
+    int edges;        /* draw the edges */
 } q3;
 
 static double dot3(const double *a, const double *b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 
 static void face_colour(const glpgp_quadmesh *q, int f, double sj_low, float *c)
 {
+    if (sj_low < -1.0) { /* a plain surface (the figure's input panel) */
+        c[0] = c[1] = c[2] = 0.86f;
+        return;
+    }
     static const float by_origin[GLPGP_QFACE_KINDS][3] = {
         {0.80f, 0.85f, 0.95f}, {0.62f, 0.74f, 0.98f}, {1.00f, 0.80f, 0.50f}, {0.86f, 0.66f, 0.93f}};
     static const float other[3] = {0.55f, 0.55f, 0.55f}, low[3] = {1.00f, 0.45f, 0.38f}, bad[3] = {0.70f, 0.05f, 0.05f};
@@ -111,7 +117,7 @@ static void resolve(const q3 *Q, const glpgp_render_options *o, const cam3 *c, c
                     if (g->tri[s] < 0) continue;
                     const int f = Q->tface[g->tri[s]];
                     const double sh = 0.3 + 0.7 * fabs(dot3(Q->fn + 3 * f, L)) / ln;
-                    const double d = side_dist(Q, c, f, x + 0.5, y + 0.5);
+                    const double d = Q->edges ? side_dist(Q, c, f, x + 0.5, y + 0.5) : HUGE_VAL;
                     const double ink = fmax(0.0, fmin(1.0, 0.5 * lw * c->ss + 0.5 - d));
                     for (int k = 0; k < 3; k++) acc[k] += (1.0 - ink) * Q->fcol[3 * f + k] * sh + ink * 0.12;
                     n++;
@@ -180,8 +186,9 @@ static glpgp_status boundary(const glpgp_quadmesh *q, unsigned char *bnd)
     return GLPGP_OK;
 }
 
-glpgp_status glpgp_render3d_quadmesh(const glpgp_quadmesh *q, const glpgp_render_options *opt, double sj_low,
-                                     int caption, glpgp_image **out)
+/* sj_low < -1: a plain picture (grey faces, no dots, no caption). */
+static glpgp_status render(const glpgp_quadmesh *q, const glpgp_render_options *opt, double sj_low, int caption,
+                           glpgp_image **out)
 {
     if (!q || !out) return GLPGP_FAIL(GLPGP_ERR_ARG, "glpgp_render3d_quadmesh: NULL argument");
     *out = NULL;
@@ -202,6 +209,7 @@ glpgp_status glpgp_render3d_quadmesh(const glpgp_quadmesh *q, const glpgp_render
     unsigned char *bnd = NULL;
     cam3 c;
     glpgp_status st = q3_build(&Q, q, sj_low);
+    Q.edges = sj_low >= -1.0 || (double)q->nf * 400.0 <= (double)o.size * o.size; /* a plain surface's dense edges: none */
     if (st != GLPGP_OK) goto done;
     glpgp_r3_cam_setup(&Q.fan, &o, margin, &c);
     const size_t ns = (size_t)c.W * (size_t)c.H;
@@ -216,7 +224,7 @@ glpgp_status glpgp_render3d_quadmesh(const glpgp_quadmesh *q, const glpgp_render
     GLPGP_CHECK_GOTO(st, glpgp_quadmesh_valences(q, &val), done);
     GLPGP_CHECK_GOTO(st, glpgp_calloc((size_t)q->nv + 1, 1, &bnd), done);
     GLPGP_CHECK_GOTO(st, boundary(q, bnd), done);
-    const int irr = vertices(&Q, &o, &c, &g, im, val, bnd);
+    const int irr = sj_low < -1.0 ? 0 : vertices(&Q, &o, &c, &g, im, val, bnd);
     if (cap) {
         int quads = 0, low = 0;
         double sjmin = 1.0;
@@ -249,5 +257,59 @@ done:
     free(Q.fcol);
     free(val);
     free(bnd);
+    return st;
+}
+
+glpgp_status glpgp_render3d_quadmesh(const glpgp_quadmesh *q, const glpgp_render_options *o, double sj_low,
+                                     int caption, glpgp_image **out)
+{
+    return render(q, o, sj_low < -1.0 ? -1.0 : sj_low, caption, out);
+}
+
+glpgp_status glpgp_r_figure_surface(const glpgp_mesh *m, const glpgp_result *r, const glpgp_quadmesh *q,
+                                    const glpgp_render_options *opt, glpgp_image **out)
+{
+    *out = NULL;
+    glpgp_render_options o;
+    if (opt) o = *opt;
+    else glpgp_render_options_default(&o);
+    glpgp_render_options og = o;
+    og.kind = GLPGP_IMAGE_GRID;
+    glpgp_quadmesh in; /* the input's triangles as faces of 3 corners (its arrays borrowed) */
+    memset(&in, 0, sizeof in);
+    int *fs = NULL;
+    GLPGP_CHECK(glpgp_malloc((size_t)m->nt + 1, sizeof(int), &fs));
+    for (int t = 0; t <= m->nt; t++) fs[t] = 3 * t;
+    in.nv = m->nv;
+    in.nf = m->nt;
+    in.xyz = m->xyz;
+    in.face_start = fs;
+    in.face_vert = m->tri;
+    glpgp_image *panel[3] = {NULL, NULL, NULL};
+    const int n = q ? 3 : 2;
+    glpgp_status st = render(&in, &o, -2.0, 0, &panel[0]);
+    if (st == GLPGP_OK) st = glpgp_render3d(m, r, &og, &panel[1]);
+    if (st == GLPGP_OK && q) st = render(q, &o, 0.3, 0, &panel[2]);
+    char l1[3][64], l2[3][96];
+    int irr = 0;
+    int *val = NULL;
+    if (st == GLPGP_OK && q && glpgp_quadmesh_valences(q, &val) == GLPGP_OK) {
+        unsigned char *bnd = NULL;
+        if (glpgp_calloc((size_t)q->nv + 1, 1, &bnd) == GLPGP_OK && boundary(q, bnd) == GLPGP_OK)
+            for (int v = 0; v < q->nv; v++) irr += !bnd[v] && val[v] && val[v] != 4;
+        free(bnd);
+    }
+    free(val);
+    snprintf(l1[0], sizeof l1[0], "INPUT");
+    snprintf(l2[0], sizeof l2[0], "%d TRIANGLES  GENUS %d  LOOPS %d", m->nt, m->surf ? m->surf->genus : 0, m->nloops);
+    snprintf(l1[1], sizeof l1[1], "GL-PGP");
+    snprintf(l2[1], sizeof l2[1], "U +%d -%d   V +%d -%d", r->osc[0].plus, r->osc[0].minus, r->osc[1].plus,
+             r->osc[1].minus);
+    snprintf(l1[2], sizeof l1[2], "QUADS");
+    snprintf(l2[2], sizeof l2[2], "%d FACES  %d IRREGULAR", q ? q->nf : 0, irr);
+    const char *c1[3] = {l1[0], l1[1], l1[2]}, *c2[3] = {l2[0], l2[1], l2[2]};
+    if (st == GLPGP_OK) st = glpgp_r_compose_panels(panel, n, c1, c2, &o, out);
+    for (int i = 0; i < 3; i++) glpgp_image_destroy(&panel[i]);
+    free(fs);
     return st;
 }

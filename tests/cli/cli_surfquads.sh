@@ -16,6 +16,11 @@
 #    characteristic and loops in under 3000 quads (the input's triangles
 #    split: 76800 and 13662), smallest scaled Jacobian >= 0.3;
 #  - --quads OUT.ply: a PLY whose faces are the report's quads;
+#  - pictures (where built with OpenImageIO): `render sphere.obj` draws the
+#    3D quad mesh (its counts line: the scaled Jacobian in the faces' own
+#    planes, >= 0.3; the xy projection gave negative ones), `figure
+#    --surface` three panels of a surface and one usage error on a planar
+#    input;
 #  - --no-repair on a size the surface cannot carry: an invalid mesh is not
 #    written (exit 3) unless --allow-invalid; with the repair on, the last
 #    resort (triangles split into quads) is valid.
@@ -51,6 +56,28 @@ check_model sphere shape:sphere:20000
 check_model torus shape:torus:20000
 check_model cube shape:cube:20000
 check_model hemi shape:hemisphere:10000
+
+# pictures of a surface's quads
+"$GLPGP" render sphere.obj -o probe.png >out.txt 2>err.txt
+if grep -q "built without" err.txt; then
+    echo "pictures skipped: $(head -1 err.txt)"
+else
+    run_ok "render 3D quads" render sphere.obj -o sphere.png --image-size 300 --view 20,30
+    [ -s sphere.png ] || fail "render: no picture"
+    python3 - <<'PY' || fail "render 3D quads: counts"
+import re
+m = re.search(r"smallest scaled Jacobian (-?[0-9.]+)", open("out.txt").read())
+assert m and float(m.group(1)) >= 0.3, open("out.txt").read()
+PY
+    run_ok "figure --surface" figure shape:sphere:3000 --surface --backend reference -o fig.png --image-size 200
+    [ -s fig.png ] || fail "figure --surface: no picture"
+    python3 - <<'PY' || fail "figure --surface: three panels"
+import struct
+w, h = struct.unpack(">II", open("fig.png", "rb").read()[16:24])
+assert w > 2 * h, (w, h)
+PY
+    run_fail "figure --surface on a planar domain" 2 "not a 3D surface" figure shape:disk:500 --surface -o x.png
+fi
 
 # the coarse last resort: genus 2 at its default h, a sphere with 20 holes
 python3 "$(dirname "$0")/../../bench/surface_models.py" holes 20 4 holes20.obj || fail "holes20.obj"
