@@ -12,7 +12,8 @@
  *    surface manifold with its topology, and no triangle is left hanging;
  *  - every new triangle keeps its normal within 72 degrees of the one
  *    before and of the surface's under it, its smallest angle above
- *    min(20 degrees, the smallest before), its edges under 1.3 x 2 h,
+ *    min(amin, the smallest before) (17 degrees, then 20 when that is not
+ *    valid: quads_surface.c), its edges under 1.3 x 2 h,
  *    and samples of it within 0.2 h of the input surface.
  * Shortest edges first, in passes until none collapses. The caller checks
  * the quads and falls back to the input's own triangles when they fail. */
@@ -26,12 +27,12 @@
 #include <stdlib.h>
 #include <string.h>
 
-#define AMIN_DEG 20.0 /* the smallest angle a new triangle may have (unless one before was smaller) */
 
 typedef struct cz {
     const glpgp_mesh *m;
     const glpgp_qs_proj *P;
-    double h, L;
+    double h, L, amin;    /* amin: the smallest angle a new triangle may have (radians; unless one
+                             before was smaller) */
     int *tri;             /* 3 nt, a working copy */
     unsigned char *flag;  /* 3 nt: half-edge slot on a boundary or feature edge */
     unsigned char *alive; /* nt */
@@ -182,7 +183,7 @@ static int geometry_ok(cz *c, int v, int u, const int *r, int n)
         const int *t = c->tri + 3 * r[i];
         worst_before = fmin(worst_before, min_angle(X(c, t[0]), X(c, t[1]), X(c, t[2])));
     }
-    const double amin = fmin(AMIN_DEG * GLPGP_PI / 180.0, worst_before), lmax = 1.3 * c->L;
+    const double amin = fmin(c->amin, worst_before), lmax = 1.3 * c->L;
     for (int pass = 0; pass < 2; pass++) /* the cheap tests on every triangle first, then the samples */
     for (int i = 0; i < n; i++) {
         const int *t = c->tri + 3 * r[i];
@@ -504,7 +505,7 @@ static void cz_free(cz *c, int nv)
     free(c->alive);
 }
 
-glpgp_status glpgp_quads_surface_fallback_coarse(const glpgp_mesh *m, double h, glpgp_quadmesh **out, int *ntri)
+glpgp_status glpgp_qs_coarse(const glpgp_mesh *m, double h, double amin_deg, glpgp_quadmesh **out, int *ntri)
 {
     *out = NULL;
     if (ntri) *ntri = 0;
@@ -515,6 +516,7 @@ glpgp_status glpgp_quads_surface_fallback_coarse(const glpgp_mesh *m, double h, 
     c.m = m;
     c.h = h;
     c.L = 2.0 * h;
+    c.amin = amin_deg * GLPGP_PI / 180.0;
     glpgp_qs_proj *P = NULL;
     glpgp_status st = glpgp_qs_proj_create(m, h, 0.3 * h, &P);
     c.P = P;
@@ -525,4 +527,9 @@ glpgp_status glpgp_quads_surface_fallback_coarse(const glpgp_mesh *m, double h, 
     cz_free(&c, m->nv);
     glpgp_qs_proj_destroy(&P);
     return st;
+}
+
+glpgp_status glpgp_quads_surface_fallback_coarse(const glpgp_mesh *m, double h, glpgp_quadmesh **out, int *ntri)
+{
+    return glpgp_qs_coarse(m, h, 17.0, out, ntri);
 }

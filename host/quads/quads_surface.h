@@ -22,4 +22,8 @@ void glpgp_qs_proj_destroy(glpgp_qs_proj **P);
 
 
 
+/* glpgp_quads_surface_fallback_coarse (17 degrees) with the smallest angle
+ * a new triangle may have (degrees; unless one before was smaller). */
+glpgp_status glpgp_qs_coarse(const glpgp_mesh *m, double h, double amin_deg, glpgp_quadmesh **out, int *ntri);
+
 #endif

@@ -401,7 +401,8 @@ glpgp_status glpgp_quads_smooth_surface(const glpgp_mesh *m, double h, int sweep
 
 /* The coarse last resort (quads/coarse_surface.c): m's triangles coarsened by
  * half-edge collapses to edges of about 2 h (boundaries, sharp features
- * and the topology kept; new triangles within 0.2 h of m), each split into
+ * and the topology kept; new triangles within 0.2 h of m, smallest angle
+ * 17 degrees unless one before was smaller), each split into
  * three quads. *ntri: the coarse triangles (may be NULL). The result is
  * not checked. */
 glpgp_status glpgp_quads_surface_fallback_coarse(const glpgp_mesh *m, double h, glpgp_quadmesh **out, int *ntri);
