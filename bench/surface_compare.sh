@@ -1,45 +1,75 @@
 #!/usr/bin/env bash
-# bench/surface_compare.sh [GLPGP] [OUT.json]: GL-PGP against naive PGP on
-# surfaces the surface path was not tuned on (bench/surface_models.py:
-# ellipsoid.ply, bumpy.off, trefoil.obj, can.stl, saddle.obj) and on the
-# built-in sphere, torus, genus2 and cube: per model and method the
-# oscillators' singular triangles (u + v), median and 10th percentile of
-# |z|, Newton steps and seconds, default options (the cross field, the
-# default size), one after the other in one run. Prints a table, writes
-# JSON. BACKEND (default auto) picks the backend; N (default 20000) the
-# models' size.
-set -eu
-G=${1:-build/glpgp}
-OUT=${2:-surface_compare.json}
-BACKEND=${BACKEND:-auto}
-N=${N:-20000}
-D=$(mktemp -d "${TMPDIR:-/tmp}/glpgp_surface_compare.XXXXXX")
-trap 'rm -rf "$D"' EXIT
-python3 "$(dirname "$0")/surface_models.py" "$D" "$N"
-inputs="$D/ellipsoid.ply $D/bumpy.off $D/trefoil.obj $D/can.stl $D/saddle.obj shape:sphere:$N shape:torus:$N shape:genus2:$N shape:cube:$N"
-rows=()
-printf '%-12s %-4s %9s %9s %8s %8s %7s %8s\n' model meth vertices singular med_zabs p10_zabs newton seconds
-for in in $inputs; do
-    name=$(basename "${in#shape:}")
-    for m in pgp gl; do
-        "$G" solve "$in" --method $m --backend "$BACKEND" --stats "$D/s.json" --quiet >/dev/null
-        row=$(python3 - "$D/s.json" "$name" "$m" <<'PY'
-import json, sys
-d = json.load(open(sys.argv[1]))
-s = d["singularities"]
-sing = s["u"]["plus"] + s["u"]["minus"] + s["v"]["plus"] + s["v"]["minus"]
-z = d["zabs"]
-med = min(z["u"]["median"], z["v"]["median"])
-p10 = min(z["u"]["p10"], z["v"]["p10"])
-print(json.dumps({"model": sys.argv[2], "method": sys.argv[3], "vertices": d["vertices"], "singular": sing,
-                  "median_zabs": med, "p10_zabs": p10, "newton": d["newton_iterations"]["total"],
-                  "seconds": d["seconds"]["total"], "cross_singularities": d["cross_field"]["singularities"],
-                  "backend": d["backend"]}))
+# bench/surface_compare.sh: quad meshes of surfaces against the peers
+# (issue 29): generated models (sphere, torus, genus 2, the feature cube,
+# the hemisphere, a sphere with 20 holes) and any user models (MODELS="a.obj
+# b.ply"), each at the target face counts FACES (default "300 1000"), with
+# `glpgp solve MODEL --faces N --quads`; per row: valid / manifold /
+# all-quad, Euler characteristic and boundary loops kept, irregular
+# interior vertices (% of the interior ones), SJ min / mean, Hausdorff / h
+# and the seconds of the solve and of the quad phase. A peer runs when its
+# binary is named (QUADRIFLOW=/path/to/quadriflow: -i IN -o OUT -f N;
+# INSTANT_MESHES=/path/to/Instant\ Meshes: -o OUT -f N -D IN), else its
+# column is skipped; its output is checked by bench/surface_check.py (all
+# quads, manifold, Euler, loops, irregular %, SJ in the faces' own planes;
+# no Hausdorff distance). Writes $OUT/summary.md (default out/surface_compare).
+# Usage: bash bench/surface_compare.sh [path/to/glpgp]   (SCALE: triangles of the generated models, default 20000)
+set -u
+GLPGP=${1:-build/glpgp}
+OUT=${OUT:-out/surface_compare}
+FACES=${FACES:-"300 1000"}
+SCALE=${SCALE:-20000}
+BACKEND=${BACKEND:-reference}
+HERE=$(cd "$(dirname "$0")" && pwd)
+mkdir -p "$OUT"
+python3 "$HERE/surface_models.py" holes 20 5 "$OUT/holes20.obj"
+MODELS_ALL="shape:sphere:$SCALE shape:torus:$SCALE shape:genus2:$SCALE shape:cube:$SCALE shape:hemisphere:$SCALE $OUT/holes20.obj ${MODELS:-}"
+peers=""
+[ -n "${QUADRIFLOW:-}" ] && peers="$peers quadriflow"
+[ -n "${INSTANT_MESHES:-}" ] && peers="$peers instant"
+{
+    echo "| model | faces | tool | quads | valid / manifold / all-quad | Euler, loops kept | irregular interior | SJ min | SJ mean | Hausdorff/h | path | seconds (quads) |"
+    echo "|---|---|---|---|---|---|---|---|---|---|---|---|"
+} >"$OUT/summary.md"
+for model in $MODELS_ALL; do
+    for n in $FACES; do
+        tag=$(basename "$model" | tr ':.' '__')_$n
+        t0=$(date +%s.%N)
+        "$GLPGP" solve "$model" --faces "$n" --backend "$BACKEND" --quads "$OUT/$tag.obj" --stats "$OUT/$tag.json" \
+            >"$OUT/$tag.txt" 2>&1
+        t1=$(date +%s.%N)
+        python3 - "$OUT/$tag.json" "$OUT/$tag.txt" "$model" "$n" "$(echo "$t1 - $t0" | bc)" >>"$OUT/summary.md" <<'PY'
+import json, re, sys
+js, txt, model, n, secs = sys.argv[1:]
+try:
+    d = json.load(open(js)); q = d["quads"]; s = q["surface"]
+except Exception as e:
+    print("| %s | %s | glpgp | failed: %s |" % (model, n, e)); sys.exit(0)
+vi = q["valence"]["interior"]; nint = sum(vi.values()); irr = nint - vi.get("4", 0)
+out = open(txt).read()
+path = ("coarse last resort" if "coarsened triangulation" in out else "last resort" if "last resort" in out
+        else "split (h/2)" if "Catmull-Clark" in out else "grid")
+m = re.search(r"extraction ([0-9.]+)", out)
+manifold = "nonmanifold" not in q["invalid_reasons"] and "pinched" not in q["invalid_reasons"]
+print("| %s | %s | glpgp | %d | %s / %s / %s | %s | %d (%.1f%%) | %.3f | %.3f | %.3f | %s | %.1f (%s) |" % (
+    model, n, q["quads"], "yes" if q["valid"] else "no", "yes" if manifold else "no",
+    "yes" if q["other_faces"] == 0 else "no",
+    "yes" if (s["euler"], s["boundary_loops"]) == (s["input_euler"], s["input_boundary_loops"]) else "no",
+    irr, 100.0 * irr / max(nint, 1), q["scaled_jacobian"]["min"], q["scaled_jacobian"]["mean"],
+    s["hausdorff_over_h"], path, float(secs), m.group(1) if m else "?"))
 PY
-)
-        rows+=("$row")
-        python3 -c "import json,sys; r=json.loads(sys.argv[1]); print('%-12s %-4s %9d %9d %8.4f %8.4f %7d %8.2f' % (r['model'], r['method'], r['vertices'], r['singular'], r['median_zabs'], r['p10_zabs'], r['newton'], r['seconds']))" "$row"
+        for p in $peers; do
+            in="$OUT/${tag}_in.obj"
+            case $model in shape:*) "$GLPGP" generate "$model" -o "$in" >/dev/null 2>&1 ;; *) cp "$model" "$in" ;; esac
+            t0=$(date +%s.%N)
+            if [ "$p" = quadriflow ]; then
+                "$QUADRIFLOW" -i "$in" -o "$OUT/${tag}_$p.obj" -f "$n" >"$OUT/${tag}_$p.txt" 2>&1
+            else
+                "$INSTANT_MESHES" -o "$OUT/${tag}_$p.obj" -f "$n" -D "$in" >"$OUT/${tag}_$p.txt" 2>&1
+            fi
+            t1=$(date +%s.%N)
+            python3 "$HERE/surface_check.py" "$in" "$OUT/${tag}_$p.obj" "$model" "$n" "$p" "$(echo "$t1 - $t0" | bc)" \
+                >>"$OUT/summary.md"
+        done
     done
 done
-(IFS=,; echo "[${rows[*]}]") | python3 -c "import json,sys; json.dump({'runs': json.load(sys.stdin)}, open(sys.argv[1], 'w'), indent=1)" "$OUT"
-echo "wrote $OUT"
+cat "$OUT/summary.md"

@@ -164,17 +164,23 @@ int glpgp_cmd_figure(int argc, char **argv)
     glpgp_render_options_default(&ro);
     glpgp_mask_options_default(&mo);
     glpgp_opts t;
-    int fig1 = 0;
+    int fig1 = 0, figs = 0;
     glpgp_opts_init(&t, sub, "glpgp figure INPUT -o OUT.{png,exr,tif,jpg,...} [options]",
                     "Solve INPUT (a .obj/.msh mesh, shape:NAME[:N] or a mask image) with naive PGP\n"
                     "and with GL-PGP and render both side by side with their singularity counts;\n"
-                    "with --cross: the paper's Fig. 1 (cross field, GL-PGP texture, quads).\n");
+                    "with --cross: the paper's Fig. 1 (cross field, GL-PGP texture, quads);\n"
+                    "with --surface (a 3D surface): the input, the grid texture and the quads.\n");
     glpgp_opt *o = glpgp_opt_string(&t, "--out", &out, "FILE", "picture file");
     o->alias = "-o";
     glpgp_opt_flag(&t, "--cross", &fig1, 1,
                    "the paper's Fig. 1 instead: one GL-PGP solve with --field cross,\n"
                    "then the cross field (singularities +1/4 red, -1/4 blue), the\n"
-                   "grid texture and the quad mesh (valence 3 blue, 5+ red) side by side");
+                   "grid texture and the quad mesh (valence 3 blue, 5+ red) side by side\n"
+                   "(on a surface: as --surface)");
+    glpgp_opt_flag(&t, "--surface", &figs, 1,
+                   "a 3D surface's figure: one GL-PGP solve with the cross field, then\n"
+                   "the input shaded, the grid texture and the quad mesh (valence 3\n"
+                   "blue, 5 red, 6+ dark red) side by side, from --view");
     glpgp_opts_add_picture(&t, &ro, 1);
     glpgp_opts_add_solver(&t, &so);
     int field_seen = 0;
@@ -191,6 +197,7 @@ int glpgp_cmd_figure(int argc, char **argv)
     if (rc >= 0) return rc;
     if (backend == GLPGP_BACKEND_PETSC)
         return glpgp_cli_usage_error(sub, "--backend petsc: only 'glpgp solve' runs on MPI ranks");
+    fig1 |= figs;
     if ((rc = check_picture_out(sub, out, ro.size, fig1 ? 3 : 2, mo.max_pixels)) >= 0) return rc;
     glpgp_error_clear();
     mo.quad_size = so.size;
@@ -201,9 +208,8 @@ int glpgp_cmd_figure(int argc, char **argv)
     double t0 = glpgp_now();
     glpgp_size_image *simg = NULL; /* --size-field IMAGE */
     if ((rc = glpgp_cli_load_input(sub, in, &mo, &m, NULL)) >= 0) return rc;
-    if (m->xyz && fig1) {
-        rc = glpgp_cli_usage_error(sub, "--cross: the quad mesh of a surface is not implemented yet (without "
-                                        "--cross: naive PGP and GL-PGP side by side)");
+    if (!m->xyz && figs) {
+        rc = glpgp_cli_usage_error(sub, "--surface: %s is not a 3D surface (--cross: the planar Fig. 1)", in);
         goto done;
     }
     if (m->xyz && !field_seen) so.field = GLPGP_FIELD_CROSS; /* a surface's default */

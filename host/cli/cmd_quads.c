@@ -21,7 +21,7 @@
 #include <stdio.h>
 #include <string.h>
 
-static const char *const k_quad_exts[] = {".obj", ".vtk", ".vtu", ".msh", NULL};
+static const char *const k_quad_exts[] = {".obj", ".vtk", ".vtu", ".msh", ".ply", NULL};
 
 int glpgp_cmd_extract(int argc, char **argv)
 {
@@ -32,14 +32,15 @@ int glpgp_cmd_extract(int argc, char **argv)
     glpgp_quad_options qo;
     glpgp_quad_options_default(&qo);
     glpgp_opts t;
-    glpgp_opts_init(&t, sub, "glpgp extract RESULT.{vtu,vtk} --quads OUT.{obj,vtu,vtk,msh} [options]",
+    glpgp_opts_init(&t, sub, "glpgp extract RESULT.{vtu,vtk} --quads OUT.{obj,vtu,vtk,msh,ply} [options]",
                     "Extract the quad mesh whose edges are the integer level lines of theta_u and\n"
                     "theta_v from a result written by 'glpgp solve -o RESULT.vtk', and print its\n"
                     "quality report.\n");
     glpgp_opt_string(&t, "--quads", &quads, "FILE",
                      "quad mesh: .obj (quads as 4-vertex faces, other faces as\n"
-                     "n-gons), .vtu / .vtk (VTK_QUAD / VTK_POLYGON) or .msh (Gmsh\n"
-                     "4.1, quadrangles; other faces split into quads + one triangle)");
+                     "n-gons), .vtu / .vtk (VTK_QUAD / VTK_POLYGON), .msh (Gmsh\n"
+                     "4.1, quadrangles; other faces split into quads + one triangle)\n"
+                     "or .ply (ASCII, faces as vertex lists)");
     glpgp_opt_string(&t, "--stats", &stats, "FILE", "quality report as JSON {\"quads\": {...}}");
     glpgp_opt *o = glpgp_opt_double(&t, "--size", &size, 0.0, 1, HUGE_VAL, 0, "H", "target size h");
     o->def = "the h recorded in RESULT";

@@ -1,7 +1,8 @@
 /* cli/cmd_render_quads.c: `glpgp render QUADS.obj|QUADS.msh -o OUT.png
  * [--domain MESH] [--sj-below S]`, the quad-mesh branch of glpgp render
  * (cmd_image.c parses the command line and calls it): the picture of
- * glpgp_render_quadmesh and one line of counts. */
+ * glpgp_render_quadmesh (a 3D surface's OBJ: glpgp_render3d_quadmesh, from
+ * --view) and one line of counts. */
 #include "commands.h"
 
 #include "cli.h"
@@ -24,8 +25,10 @@ int glpgp_cli_render_quads(const char *in, const char *out, const char *domain, 
     if (rc < 0) rc = glpgp_cli_check_elements(in, q->nf, "faces", 0, max_elements);
     if (rc < 0 && domain && glpgp_mesh_read(domain, &dm) != GLPGP_OK) rc = glpgp_cli_fail();
     if (rc < 0 && dm) rc = glpgp_cli_check_elements(domain, dm->nt, "triangles", 0, max_elements);
-    if (rc < 0 && (glpgp_render_quadmesh(q, dm, ro, sj_below, 1, &im) != GLPGP_OK ||
-                   glpgp_image_write(out, im) != GLPGP_OK))
+    if (rc < 0 && (q->xyz ? glpgp_render3d_quadmesh(q, ro, sj_below, 1, &im)
+                          : glpgp_render_quadmesh(q, dm, ro, sj_below, 1, &im)) != GLPGP_OK)
+        rc = glpgp_cli_fail();
+    if (rc < 0 && glpgp_image_write(out, im) != GLPGP_OK)
         rc = glpgp_cli_fail();
     if (rc < 0) {
         rc = 0;
@@ -34,7 +37,7 @@ int glpgp_cli_render_quads(const char *in, const char *out, const char *domain, 
             double sjmin = INFINITY;
             for (int f = 0; f < q->nf; f++) {
                 if (q->face_start[f + 1] - q->face_start[f] != 4) continue;
-                double sj = glpgp_quad_face_sj(q, f);
+                double sj = q->xyz ? glpgp_quad_face_sj_surface(q, f) : glpgp_quad_face_sj(q, f);
                 quads++;
                 low += sj < sj_below;
                 sjmin = fmin(sjmin, sj);

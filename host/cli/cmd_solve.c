@@ -27,7 +27,7 @@
 #include <string.h>
 
 static const char *const k_result_exts[] = {".vtk", ".vtu", ".obj", ".pvtu", NULL};
-static const char *const k_quad_exts[] = {".obj", ".vtk", ".vtu", ".msh", NULL};
+static const char *const k_quad_exts[] = {".obj", ".vtk", ".vtu", ".msh", ".ply", NULL};
 static const char *const k_json_exts[] = {".json", NULL};
 
 typedef struct solve_cli {
@@ -107,7 +107,7 @@ static void build(glpgp_opts *t, solve_cli *c)
                   "need it; above: an error before the solve, use --out FILE.pvtu)");
     glpgp_opt_string(t, "--stats", &c->stats, "FILE", "statistics as JSON");
     glpgp_opt_string(t, "--quads", &c->quads, "FILE",
-                     "extract the quad mesh (.obj/.vtu/.vtk/.msh) and add its quality\n"
+                     "extract the quad mesh (.obj/.vtu/.vtk/.msh/.ply) and add its quality\n"
                      "report to the summary and the statistics (\"quads\")");
     glpgp_opts_add_quads(t, &c->qo, &c->quad_opts, &c->allow_invalid);
     glpgp_opt_double(t, "--faces", &c->faces, 0.0, 1, 1e12, 0, "N",
@@ -266,7 +266,12 @@ static void print_summary(const solve_cli *c, const char *input, const glpgp_mes
             printf("  surface quads  extraction %d faces (%d quads), %d odd or even faces closed, %d strips%s%s\n",
                    c->qsteps.extracted_faces, c->qsteps.extracted_quads, c->qsteps.closed, c->qsteps.strips,
                    c->qsteps.subdivided ? "; split into quads (Catmull-Clark, h/2)" : "",
-                   c->qsteps.fallback ? "; not valid: the input triangles split into quads (last resort)" : "");
+                   !c->qsteps.fallback      ? ""
+                   : c->qsteps.coarse_triangles ? "; not valid: a coarsened triangulation split into quads (last resort)"
+                                                : "; not valid: the input triangles split into quads (last resort)");
+        if (m->surf && c->qsteps.smoothed)
+            printf("  smoothed       %d vertices on the surface: smallest scaled Jacobian %.3f -> %.3f\n",
+                   c->qsteps.smoothed, c->qsteps.sj_before, c->qsteps.sj_after);
         glpgp_quads_print(stdout, qq, "  ");
         if (quads_written) printf("  wrote          %s\n", c->quads);
     }

@@ -5,6 +5,8 @@
  * arrows, the boundary (anti-aliased strokes through a coverage buffer, so
  * joints are not drawn twice), captions with a 5x7 bitmap font. */
 #include "raster.h"
+#include "render3d_impl.h"
+
 #include "glpgp/image.h"
 #include "glpgp/cross.h"
 #include "glpgp/kinds.h"
@@ -478,8 +480,8 @@ int glpgp_draw_text(glpgp_image *im, int x, int y, int scale, const char *text, 
 /* Panels side by side (the first panel's size; a smaller panel is drawn
  * from the top left) on white (unless o->transparent), each with two
  * centered caption lines l1[k], l2[k] below it: *out (RGBA). */
-static glpgp_status compose_panels(glpgp_image *const *panel, int n, const char *const *l1, const char *const *l2,
-                                   const glpgp_render_options *o, glpgp_image **out)
+glpgp_status glpgp_r_compose_panels(glpgp_image *const *panel, int n, const char *const *l1, const char *const *l2,
+                                    const glpgp_render_options *o, glpgp_image **out)
 {
     const int pw = panel[0]->w, ph = panel[0]->h;
     const int ts = o->size / 300 < 2 ? 2 : o->size / 300; /* font scale */
@@ -527,7 +529,7 @@ glpgp_status glpgp_render_compare(const glpgp_mesh *m, const glpgp_result *const
         l1[k] = labels && labels[k] ? labels[k] : "";
         l2[k] = line2[k];
     }
-    GLPGP_CHECK_GOTO(st, compose_panels(panel, n, l1, l2, &o, &im), fin);
+    GLPGP_CHECK_GOTO(st, glpgp_r_compose_panels(panel, n, l1, l2, &o, &im), fin);
     *out = im;
     im = NULL;
 fin:
@@ -543,6 +545,7 @@ glpgp_status glpgp_render_figure1(const glpgp_mesh *m, const glpgp_result *r, co
 {
     if (!m || !r || !out) return GLPGP_FAIL(GLPGP_ERR_ARG, "glpgp_render_figure1: bad arguments");
     if (!r->cross) return GLPGP_FAIL(GLPGP_ERR_ARG, "figure: the result has no cross field");
+    if (m->surf) return glpgp_r_figure_surface(m, r, q, opt, out); /* input, texture, quads (render3d_quads.c) */
     *out = NULL;
     glpgp_render_options o;
     GLPGP_CHECK(glpgp_render_options_take(opt, &o));
@@ -573,7 +576,7 @@ glpgp_status glpgp_render_figure1(const glpgp_mesh *m, const glpgp_result *r, co
         snprintf(l2[2], sizeof l2[2], "%d FACES", q->nf);
     }
     const char *c1[3] = {l1[0], l1[1], l1[2]}, *c2[3] = {l2[0], l2[1], l2[2]};
-    GLPGP_CHECK_GOTO(st, compose_panels(panel, n, c1, c2, &o, &im), fin);
+    GLPGP_CHECK_GOTO(st, glpgp_r_compose_panels(panel, n, c1, c2, &o, &im), fin);
     *out = im;
     im = NULL;
 fin:

@@ -10,6 +10,8 @@
  * field's singularities as dots (+1/4 red, -1/4 blue) where visible, the
  * boundary as dark strokes; averaged down to pixels. */
 #include "raster.h"
+#include "render3d_impl.h"
+
 #include "glpgp/image.h"
 #include "glpgp/cross.h"
 #include "glpgp/kinds.h"
@@ -24,16 +26,10 @@
  * above (the sample buffers take 20 bytes a sample) */
 #define SS_MAX_PIXELS 4200000.0
 
-typedef struct cam3 {
-    double right[3], up[3], dir[3]; /* dir: from the surface towards the camera */
-    double scale, ox, oy;           /* sample = (p . right - ox) scale, (oy - p . up) scale */
-    int W, H;                       /* samples */
-    int ss;                         /* samples per pixel side */
-} cam3;
 
 static double dot3(const double *a, const double *b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 
-static void cam_setup(const glpgp_mesh *m, const glpgp_render_options *o, int margin, cam3 *c)
+void glpgp_r3_cam_setup(const glpgp_mesh *m, const glpgp_render_options *o, int margin, cam3 *c)
 {
     const double az = o->azimuth * GLPGP_PI / 180.0, el = o->elevation * GLPGP_PI / 180.0;
     c->dir[0] = cos(el) * cos(az);
@@ -72,25 +68,19 @@ static void cam_setup(const glpgp_mesh *m, const glpgp_render_options *o, int ma
     c->oy = y1 + margin / s;
 }
 
-static void project(const cam3 *c, const double *p, double *q)
+void glpgp_r3_project(const cam3 *c, const double *p, double *q)
 {
     q[0] = (dot3(p, c->right) - c->ox) * c->scale;
     q[1] = (c->oy - dot3(p, c->up)) * c->scale;
     q[2] = dot3(p, c->dir); /* larger: nearer the camera */
 }
 
-/* G-buffer: per sample the nearest triangle (-1: none), its barycentrics, depth. */
-typedef struct gbuf {
-    int *tri;
-    float *l1, *l2;
-    double *depth;
-} gbuf;
 
-static void raster(const glpgp_mesh *m, const cam3 *c, gbuf *g)
+void glpgp_r3_raster(const glpgp_mesh *m, const cam3 *c, gbuf *g)
 {
     for (int t = 0; t < m->nt; t++) {
         double P[3][3];
-        for (int k = 0; k < 3; k++) project(c, m->xyz + 3 * m->tri[3 * t + k], P[k]);
+        for (int k = 0; k < 3; k++) glpgp_r3_project(c, m->xyz + 3 * m->tri[3 * t + k], P[k]);
         const double e1x = P[1][0] - P[0][0], e1y = P[1][1] - P[0][1], e2x = P[2][0] - P[0][0], e2y = P[2][1] - P[0][1];
         const double det = e1x * e2y - e2x * e1y;
         if (fabs(det) < 1e-18) continue;
@@ -127,7 +117,7 @@ static void phases(const glpgp_mesh *m, const glpgp_result *r, const cam3 *c, in
 {
     const int *v = m->tri + 3 * t;
     double P[3][3];
-    for (int k = 0; k < 3; k++) project(c, m->xyz + 3 * v[k], P[k]);
+    for (int k = 0; k < 3; k++) glpgp_r3_project(c, m->xyz + 3 * v[k], P[k]);
     const double e1x = P[1][0] - P[0][0], e1y = P[1][1] - P[0][1], e2x = P[2][0] - P[0][0], e2y = P[2][1] - P[0][1];
     const double det = e1x * e2y - e2x * e1y;
     const double g1x = e2y / det, g1y = -e2x / det, g2x = -e1y / det, g2y = e1x / det;
@@ -218,9 +208,9 @@ static double shade(const glpgp_mesh *m, const cam3 *c, int t, double l0, double
 }
 
 /* Whether point p (3D) is in front of what the samples around it show. */
-static int visible(const cam3 *c, const gbuf *g, const double *p, double tol, double *q)
+int glpgp_r3_visible(const cam3 *c, const gbuf *g, const double *p, double tol, double *q)
 {
-    project(c, p, q);
+    glpgp_r3_project(c, p, q);
     const int i = (int)floor(q[0]), j = (int)floor(q[1]);
     for (int dj = -1; dj <= 1; dj++)
         for (int di = -1; di <= 1; di++) {
@@ -233,7 +223,7 @@ static int visible(const cam3 *c, const gbuf *g, const double *p, double tol, do
 }
 
 /* A filled disc of radius rad (pixels) at pixel position (x, y), colour col, anti-aliased. */
-static void disc(glpgp_image *im, double x, double y, double rad, const float *col)
+void glpgp_r3_disc(glpgp_image *im, double x, double y, double rad, const float *col)
 {
     for (int j = (int)floor(y - rad - 1); j <= (int)ceil(y + rad + 1); j++)
         for (int i = (int)floor(x - rad - 1); i <= (int)ceil(x + rad + 1); i++) {
@@ -256,13 +246,13 @@ static void overlays(const glpgp_mesh *m, const glpgp_result *r, const glpgp_ren
         for (int k = m->loop_start[l]; k < m->loop_start[l + 1]; k++) {
             const int a = m->loop_vertices[k], b = m->loop_vertices[k + 1 < m->loop_start[l + 1] ? k + 1 : m->loop_start[l]];
             double qa[3], qb[3];
-            project(c, m->xyz + 3 * a, qa);
-            project(c, m->xyz + 3 * b, qb);
+            glpgp_r3_project(c, m->xyz + 3 * a, qa);
+            glpgp_r3_project(c, m->xyz + 3 * b, qb);
             const int n = 1 + (int)(hypot(qb[0] - qa[0], qb[1] - qa[1]) / c->ss * 2.0);
             for (int s = 0; s <= n; s++) {
                 double p[3], q[3];
                 for (int e = 0; e < 3; e++) p[e] = m->xyz[3 * a + e] + (m->xyz[3 * b + e] - m->xyz[3 * a + e]) * s / n;
-                if (visible(c, g, p, tol, q)) disc(im, q[0] / c->ss, q[1] / c->ss, 0.5 * lw, dark);
+                if (glpgp_r3_visible(c, g, p, tol, q)) glpgp_r3_disc(im, q[0] / c->ss, q[1] / c->ss, 0.5 * lw, dark);
             }
         }
     if (!r->cross || !o->singular) return;
@@ -271,8 +261,8 @@ static void overlays(const glpgp_mesh *m, const glpgp_result *r, const glpgp_ren
         const glpgp_cross_sing *s = &r->cross->sing[k];
         const double p[3] = {s->x, s->y, s->z};
         double q[3];
-        if (visible(c, g, p, tol, q))
-            disc(im, q[0] / c->ss, q[1] / c->ss, rad * (abs(s->index4) > 1 ? 1.4 : 1.0), s->index4 > 0 ? red : blue);
+        if (glpgp_r3_visible(c, g, p, tol, q))
+            glpgp_r3_disc(im, q[0] / c->ss, q[1] / c->ss, rad * (abs(s->index4) > 1 ? 1.4 : 1.0), s->index4 > 0 ? red : blue);
     }
 }
 
@@ -341,7 +331,7 @@ glpgp_status glpgp_render3d(const glpgp_mesh *m, const glpgp_result *r, const gl
     const double lw = o.line_width > 0 ? o.line_width : fmax(1.0, 1.5 * o.size / 1024.0);
     const int margin = o.margin >= 0 ? o.margin : o.size / 64;
     cam3 c;
-    cam_setup(m, &o, margin, &c);
+    glpgp_r3_cam_setup(m, &o, margin, &c);
     gbuf g = {NULL, NULL, NULL, NULL};
     glpgp_image *im = NULL;
     const size_t ns = (size_t)c.W * (size_t)c.H;
@@ -351,7 +341,7 @@ glpgp_status glpgp_render3d(const glpgp_mesh *m, const glpgp_result *r, const gl
     GLPGP_CHECK_GOTO(st, glpgp_malloc(ns, sizeof(float), &g.l2), done);
     GLPGP_CHECK_GOTO(st, glpgp_malloc(ns, sizeof(double), &g.depth), done);
     for (size_t s = 0; s < ns; s++) g.tri[s] = -1;
-    raster(m, &c, &g);
+    glpgp_r3_raster(m, &c, &g);
     GLPGP_CHECK_GOTO(st, glpgp_image_create(c.W / c.ss, c.H / c.ss, 4, &im), done);
     GLPGP_CHECK_GOTO(st, resolve(m, r, &o, &c, &g, lw, im), done);
     overlays(m, r, &o, &c, &g, lw, im);

@@ -240,7 +240,7 @@ glpgp_status glpgp_quads_write_json_file(const glpgp_quad_quality *qq, const cha
 
 /* ---- writers ----------------------------------------------------------- */
 
-enum { QF_NONE = 0, QF_OBJ, QF_VTK, QF_VTU, QF_MSH };
+enum { QF_NONE = 0, QF_OBJ, QF_VTK, QF_VTU, QF_MSH, QF_PLY };
 
 static int quads_format(const char *path)
 {
@@ -249,10 +249,30 @@ static int quads_format(const char *path)
            : glpgp_has_ext(path, ".vtk") ? QF_VTK
            : glpgp_has_ext(path, ".vtu") ? QF_VTU
            : glpgp_has_ext(path, ".msh") ? QF_MSH
+           : glpgp_has_ext(path, ".ply") ? QF_PLY
                                          : QF_NONE;
 }
 
 int glpgp_quads_path_supported(const char *path) { return quads_format(path) != QF_NONE; }
+
+/* ASCII PLY: the vertices (z 0 for a planar mesh) and the faces as
+ * vertex index lists, counter-clockwise (seen from the surface's front). */
+static void write_ply(FILE *f, const glpgp_quadmesh *q)
+{
+    fprintf(f, "ply\nformat ascii 1.0\ncomment glpgp %s quad mesh\nelement vertex %d\n", GLPGP_VERSION, q->nv);
+    fprintf(f, "property double x\nproperty double y\nproperty double z\nelement face %d\n", q->nf);
+    fprintf(f, "property list uchar int vertex_indices\nend_header\n");
+    for (int i = 0; i < q->nv; i++) {
+        if (q->xyz) fprintf(f, "%.17g %.17g %.17g\n", q->xyz[3 * i], q->xyz[3 * i + 1], q->xyz[3 * i + 2]);
+        else fprintf(f, "%.17g %.17g 0\n", q->xy[2 * i], q->xy[2 * i + 1]);
+    }
+    for (int fa = 0; fa < q->nf; fa++) {
+        const int b = q->face_start[fa], n = q->face_start[fa + 1] - b;
+        fprintf(f, "%d", n > 255 ? 255 : n);
+        for (int i = 0; i < n && i < 255; i++) fprintf(f, " %d", q->face_vert[b + i]);
+        fputc('\n', f);
+    }
+}
 
 static void write_obj(FILE *f, const glpgp_quadmesh *q)
 {
@@ -451,7 +471,7 @@ glpgp_status glpgp_output_set_quads(glpgp_output_set *s, const glpgp_quadmesh *q
     if (!q || !path) return GLPGP_FAIL(GLPGP_ERR_ARG, "quad writer: no mesh or path");
     int kind = quads_format(path);
     if (!kind)
-        return GLPGP_FAIL(GLPGP_ERR_ARG, "quad mesh output '%s': extension must be .obj, .vtk, .vtu or .msh", path);
+        return GLPGP_FAIL(GLPGP_ERR_ARG, "quad mesh output '%s': extension must be .obj, .vtk, .vtu, .msh or .ply", path);
     FILE *f;
     GLPGP_CHECK(glpgp_output_set_open(s, path, &f));
     glpgp_status st = GLPGP_OK;
@@ -464,6 +484,8 @@ glpgp_status glpgp_output_set_quads(glpgp_output_set *s, const glpgp_quadmesh *q
         st = write_vtk_valence(f, q);
     } else if (kind == QF_VTU) {
         st = write_vtu(f, q);
+    } else if (kind == QF_PLY) {
+        write_ply(f, q);
     } else {
         write_msh(f, q);
     }

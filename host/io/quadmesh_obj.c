@@ -1,7 +1,8 @@
 /* io/quadmesh_obj.c: reading quad meshes back (glpgp_quads_read, glpgp/io.h):
  * the OBJ polygon reader here (faces of any corner count, in the file's
  * orientation, the face origins from the groups glpgp's writer puts them in),
- * .msh through glpgp_quads_read_msh. */
+ * .msh through glpgp_quads_read_msh. An OBJ whose z are not all 0 is a
+ * surface's mesh: q->xyz is set too (q->xy its x and y). */
 #include "glpgp/io.h"
 #include "glpgp/util.h"
 
@@ -21,8 +22,9 @@ const char *glpgp_quad_origin_name(int origin)
 }
 
 typedef struct qobj {
-    double *xy;
-    size_t nv, cap_v;
+    double *xy, *z;
+    size_t nv, cap_v, cap_z;
+    int any_z; /* a z other than 0: a surface's mesh (q->xyz) */
     int *fs, *fv;
     size_t nf, cap_fs, nfv, cap_fv;
     unsigned char *origin;
@@ -75,8 +77,11 @@ static glpgp_status read_qobj(text_reader *tr, qobj *o)
             if (o->nv >= (size_t)GLPGP_IO_MAX_ITEMS)
                 return text_error(tr, GLPGP_ERR_LIMIT, 0, "more than %ld vertices", (long)GLPGP_IO_MAX_ITEMS);
             GLPGP_CHECK(glpgp_grow(&o->xy, &o->cap_v, o->nv + 1, 2 * sizeof(double)));
+            GLPGP_CHECK(glpgp_grow(&o->z, &o->cap_z, o->nv + 1, sizeof(double)));
             o->xy[2 * o->nv] = c[0];
             o->xy[2 * o->nv + 1] = c[1];
+            o->z[o->nv] = n > 2 ? c[2] : 0.0;
+            if (o->z[o->nv] != 0.0) o->any_z = 1;
             o->nv++;
         } else if (kl == 1 && kw[0] == 'f') {
             GLPGP_CHECK(obj_face(tr, s, o, origin));
@@ -118,9 +123,18 @@ glpgp_status glpgp_quads_read(const char *path, glpgp_quadmesh **out)
         q->face_vert = o.fv;
         q->face_origin = o.any_origin ? o.origin : NULL;
         if (!o.any_origin) free(o.origin);
+        if (o.any_z) st = glpgp_malloc(3 * o.nv + 1, sizeof(double), &q->xyz);
+        for (size_t i = 0; o.any_z && st == GLPGP_OK && i < o.nv; i++) {
+            q->xyz[3 * i] = o.xy[2 * i];
+            q->xyz[3 * i + 1] = o.xy[2 * i + 1];
+            q->xyz[3 * i + 2] = o.z[i];
+        }
+        free(o.z);
+        if (st != GLPGP_OK) glpgp_quadmesh_destroy(&q);
         *out = q;
-        return GLPGP_OK;
+        return st;
     }
+    free(o.z);
     free(o.xy);
     free(o.fs);
     free(o.fv);

@@ -214,17 +214,6 @@ static double soup_dist(const tsoup *s, const double *p, int *tri)
     return sqrt(best);
 }
 
-/* The nearest point of the soup to p within its cap (p itself when none). */
-static void soup_nearest(const tsoup *s, const double *p, double *out)
-{
-    int t = -1;
-    memcpy(out, p, 3 * sizeof *out);
-    soup_dist(s, p, &t);
-    if (t < 0) return;
-    const int *v = s->tri + 3 * t;
-    dist2_tri_x(p, s->xyz + 3 * v[0], s->xyz + 3 * v[1], s->xyz + 3 * v[2], out);
-}
-
 static void soup_free(tsoup *s)
 {
     free(s->cstart);
@@ -475,24 +464,60 @@ static glpgp_status distances(const glpgp_quadmesh *q, const tsoup *in, double h
     return st;
 }
 
+struct glpgp_qs_proj {
+    tsoup in;
+};
+
+glpgp_status glpgp_qs_proj_create(const glpgp_mesh *m, double h, double cap, glpgp_qs_proj **out)
+{
+    *out = NULL;
+    glpgp_qs_proj *P = NULL;
+    GLPGP_CHECK(glpgp_calloc(1, sizeof *P, &P));
+    P->in.nt = m->nt;
+    P->in.xyz = m->xyz;
+    P->in.tri = m->tri;
+    glpgp_status st = soup_grid(&P->in, h);
+    P->in.cap = cap;
+    if (st != GLPGP_OK) {
+        glpgp_qs_proj_destroy(&P);
+        return st;
+    }
+    *out = P;
+    return GLPGP_OK;
+}
+
+int glpgp_qs_proj_nearest(const glpgp_qs_proj *P, const double *p, double *x)
+{
+    int t = -1;
+    memcpy(x, p, 3 * sizeof *x);
+    soup_dist(&P->in, p, &t);
+    if (t >= 0) {
+        const int *v = P->in.tri + 3 * t;
+        dist2_tri_x(p, P->in.xyz + 3 * v[0], P->in.xyz + 3 * v[1], P->in.xyz + 3 * v[2], x);
+    }
+    return t;
+}
+
+void glpgp_qs_proj_destroy(glpgp_qs_proj **P)
+{
+    if (!P || !*P) return;
+    (*P)->in.tri = NULL;
+    soup_free(&(*P)->in);
+    free(*P);
+    *P = NULL;
+}
+
 glpgp_status glpgp_qs_project(const glpgp_mesh *m, double h, double *xyz, int first, int n)
 {
-    tsoup in;
-    memset(&in, 0, sizeof in);
-    in.nt = m->nt;
-    in.xyz = m->xyz;
-    in.tri = m->tri;
-    glpgp_status st = soup_grid(&in, h);
-    in.cap = 2.0 * h; /* a chord's midpoint of a coarse mesh may be farther than the check's cap */
-    if (st == GLPGP_OK)
-        for (int i = first; i < n; i++) {
-            double x[3];
-            soup_nearest(&in, xyz + 3 * i, x);
-            memcpy(xyz + 3 * i, x, sizeof x);
-        }
-    in.tri = NULL;
-    soup_free(&in);
-    return st;
+    glpgp_qs_proj *P = NULL; /* cap 2 h: a chord's midpoint of a coarse mesh may be farther than the check's cap */
+    GLPGP_CHECK(glpgp_qs_proj_create(m, h, 2.0 * h, &P));
+    for (int i = first; i < n; i++) {
+        double x[3];
+        glpgp_qs_proj_nearest(P, xyz + 3 * i, x);
+        memcpy(xyz + 3 * i, x, sizeof x);
+    }
+    glpgp_qs_proj_destroy(&P);
+    return GLPGP_OK;
 }
 
 double glpgp_quads_surface_area_tolerance(const glpgp_quad_quality *qq)

@@ -145,8 +145,8 @@ printf '# vtk DataFile Version 3.0\nmesh\nASCII\nDATASET UNSTRUCTURED_GRID\nPOIN
 run_fail "extract of a VTK without oscillators" 1 "without oscillators" extract bad.vtk --quads b.obj
 [ -e b.obj ] && fail "b.obj written for a bad input"
 run_fail "extract of a missing file" 1 "cannot|no such" extract missing.vtk --quads b.obj
-run_fail "extract --quads .txt" 2 "obj, .vtk, .vtu or .msh" extract r.vtk --quads b.txt
-run_fail "solve --quads .txt" 2 "obj, .vtk, .vtu or .msh" solve shape:square:100 --quads b.txt
+run_fail "extract --quads .txt" 2 "obj, .vtk, .vtu, .msh or .ply" extract r.vtk --quads b.txt
+run_fail "solve --quads .txt" 2 "obj, .vtk, .vtu, .msh or .ply" solve shape:square:100 --quads b.txt
 run_fail "quality of a non-MSH file" 1 "MSH|MeshFormat" quality bad.vtk
 ls -A | grep -q '\.tmp' && fail "temporary file left: $(ls -A | grep '\.tmp')"
 

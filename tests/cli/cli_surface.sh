@@ -7,8 +7,9 @@
 # edge and vertex, inconsistent orientation, degenerate face, Moebius strip)
 # each one error line, exit 1, no output; --planar-face keeps a box STL's
 # bottom; --quads on a surface writes an all-quad OBJ (issue 29; the
-# details in cli_surfquads.sh), `figure --cross` on a surface is a usage
-# error, `extract` of a surface's result an error; a surface picture (skipped
+# details in cli_surfquads.sh), `figure --cross` on a surface draws the
+# surface figure (input, texture, quads), `extract` of a surface's result an
+# error; a surface picture (skipped
 # without OpenImageIO).
 # Usage: bash cli_surface.sh <path-to-glpgp> <data-dir>
 . "$(dirname "$0")/lib.sh" "$@"
@@ -127,7 +128,8 @@ expect_err "surface" "extract says surface"
 if "$GLPGP" render s.vtu -o probe.png >/dev/null 2>probe.txt; then
     run_ok "render a surface" render s.vtu -o s.png --image-size 300 --view 10,40
     [ -s s.png ] || fail "s.png not written"
-    run 2 "figure --cross on a surface" figure s.obj --cross -o f.png
+    run_ok "figure --cross on a surface (as --surface)" figure s.obj --cross -o f.png --image-size 200
+    [ -s f.png ] || fail "figure --cross on a surface: no picture"
     run 1 "render kind cross" render s.vtu --image-kind cross -o x.png
     one_error_line "render kind cross"
 else

@@ -9,6 +9,19 @@
 #    face count and valence histogram;
 #  - --faces N sets h = sqrt(area / N) (the summary's h), --faces with
 #    --size is one usage error;
+#  - the smoothing on the surface: every model's smallest scaled Jacobian
+#    >= 0.3 (the sphere's strips left 0.014 before it);
+#  - the coarse last resort: genus 2 at its default h and a sphere with 20
+#    holes (bench/surface_models.py) are valid with their Euler
+#    characteristic and loops in under 1000 and 3000 quads (the input's
+#    triangles split: 76800 and 13662; a 20 degree angle floor: 1938 and
+#    1665), smallest scaled Jacobian >= 0.3;
+#  - --quads OUT.ply: a PLY whose faces are the report's quads;
+#  - pictures (where built with OpenImageIO): `render sphere.obj` draws the
+#    3D quad mesh (its counts line: the scaled Jacobian in the faces' own
+#    planes, >= 0.3; the xy projection gave negative ones), `figure
+#    --surface` three panels of a surface and one usage error on a planar
+#    input;
 #  - --no-repair on a size the surface cannot carry: an invalid mesh is not
 #    written (exit 3) unless --allow-invalid; with the repair on, the last
 #    resort (triangles split into quads) is valid.
@@ -33,6 +46,7 @@ if not q["valid"]: bad.append("invalid: %s" % q["invalid_reasons"])
 if s["euler"] != s["input_euler"]: bad.append("Euler %d of %d" % (s["euler"], s["input_euler"]))
 if s["boundary_loops"] != s["input_boundary_loops"]: bad.append("loops")
 if not s["hausdorff_over_h"] <= 0.25: bad.append("Hausdorff %g h" % s["hausdorff_over_h"])
+if not q["scaled_jacobian"]["min"] >= 0.3: bad.append("SJ min %g" % q["scaled_jacobian"]["min"])
 grid = q["origin"]["grid"] + q["origin"]["strips"]
 if grid < 0.9 * q["quads"]: bad.append("grid quads %d of %d" % (grid, q["quads"]))
 if bad:
@@ -43,6 +57,54 @@ check_model sphere shape:sphere:20000
 check_model torus shape:torus:20000
 check_model cube shape:cube:20000
 check_model hemi shape:hemisphere:10000
+
+# pictures of a surface's quads
+"$GLPGP" render sphere.obj -o probe.png >out.txt 2>err.txt
+if grep -q "built without" err.txt; then
+    echo "pictures skipped: $(head -1 err.txt)"
+else
+    run_ok "render 3D quads" render sphere.obj -o sphere.png --image-size 300 --view 20,30
+    [ -s sphere.png ] || fail "render: no picture"
+    python3 - <<'PY' || fail "render 3D quads: counts"
+import re
+m = re.search(r"smallest scaled Jacobian (-?[0-9.]+)", open("out.txt").read())
+assert m and float(m.group(1)) >= 0.3, open("out.txt").read()
+PY
+    run_ok "figure --surface" figure shape:sphere:3000 --surface --backend reference -o fig.png --image-size 200
+    [ -s fig.png ] || fail "figure --surface: no picture"
+    python3 - <<'PY' || fail "figure --surface: three panels"
+import struct
+w, h = struct.unpack(">II", open("fig.png", "rb").read()[16:24])
+assert w > 2 * h, (w, h)
+PY
+    run_fail "figure --surface on a planar domain" 2 "not a 3D surface" figure shape:disk:500 --surface -o x.png
+fi
+
+# the coarse last resort: genus 2 at its default h, a sphere with 20 holes
+python3 "$(dirname "$0")/../../bench/surface_models.py" holes 20 4 holes20.obj || fail "holes20.obj"
+check_coarse() { # name model euler loops max-quads
+    run_ok "$1" solve "$2" --backend reference --quads "$1.ply" --stats "$1.json"
+    python3 - "$1" "$3" "$4" "$5" <<'PY' || fail "$1: coarse last resort"
+import json, sys
+name, euler, loops, most = sys.argv[1], int(sys.argv[2]), int(sys.argv[3]), int(sys.argv[4])
+q = json.load(open(name + ".json"))["quads"]; s = q["surface"]
+lines = open(name + ".ply").read().split("\n")
+nv = int([l for l in lines if l.startswith("element vertex")][0].split()[2])
+nf = int([l for l in lines if l.startswith("element face")][0].split()[2])
+body = lines[lines.index("end_header") + 1:]
+faces = [l.split() for l in body[nv:nv + nf]]
+bad = []
+if not q["valid"]: bad.append("invalid: %s" % q["invalid_reasons"])
+if (s["euler"], s["boundary_loops"]) != (euler, loops): bad.append("Euler %d loops %d" % (s["euler"], s["boundary_loops"]))
+if not 10 <= q["quads"] < most: bad.append("%d quads" % q["quads"])
+if not q["scaled_jacobian"]["min"] >= 0.3: bad.append("SJ min %g" % q["scaled_jacobian"]["min"])
+if nf != q["quads"] or any(f[0] != "4" or len(f) != 5 for f in faces): bad.append("PLY faces")
+if bad:
+    print(name, "; ".join(bad)); sys.exit(1)
+PY
+}
+check_coarse genus2 shape:genus2:20000 -2 0 1000
+check_coarse holes20 holes20.obj -18 20 3000
 
 # the developable half cylinder against its unrolled twin
 run_ok "halfcyl" solve shape:halfcyl:5000 --backend reference --quads hc.obj --stats hc.json

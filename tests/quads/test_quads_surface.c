@@ -9,6 +9,13 @@
  *  - the last resort (3 quads per triangle) on a sphere and a hemisphere is
  *    valid with the input's Euler characteristic and loops, and its
  *    Catmull-Clark split too;
+ *  - the smoothing on the surface: an interior vertex of that grid slid
+ *    along the cylinder (smallest scaled Jacobian about 0.3) comes back
+ *    (above 0.9), every vertex stays on the cylinder, the boundary stays;
+ *  - the coarse last resort on genus 2, the cube (sharp features) and the
+ *    hemisphere: valid, all quads, the input's Euler characteristic and
+ *    loops, under a tenth of the fine last resort's quads, and smoothing
+ *    it keeps it valid without lowering its smallest scaled Jacobian;
  *  - the check fails where it must: a face turned over (non-manifold and
  *    inverted), a face removed (a new boundary loop, Euler 1 of 2), a vertex
  *    moved h/2 off the surface (Hausdorff), a planar mesh or h <= 0
@@ -130,9 +137,92 @@ static void fallback(const char *shape, int euler, int loops)
     glpgp_mesh_destroy(&m);
 }
 
+static void smoothing(void)
+{
+    glpgp_mesh *m = NULL;
+    CHECK_OK(glpgp_surface_generate("halfcyl", 5000, &m));
+    if (!m) return;
+    const double hu = 2.0 * GLPGP_PI / 9.0, hv = 2.0 / 3.0;
+    glpgp_result *r = plane_waves(m, hu, hv);
+    glpgp_quadmesh *q = NULL;
+    CHECK_OK(glpgp_quads_extract_surface(m, r, &q));
+    glpgp_result_destroy(&r);
+    if (!q) {
+        glpgp_mesh_destroy(&m);
+        return;
+    }
+    glpgp_quad_quality qq;
+    int *val = NULL, v = -1;
+    CHECK_OK(glpgp_quadmesh_valences(q, &val));
+    for (int i = 0; i < q->nv && v < 0; i++) { /* an interior vertex (valence 4, off the rim) */
+        const double *p = q->xyz + 3 * i;
+        if (val[i] == 4 && fabs(p[2] - 1.0) < 0.5 && fabs(atan2(p[1], p[0]) - 0.5 * GLPGP_PI) < 1.0) v = i;
+    }
+    free(val);
+    CHECK(v >= 0);
+    double zlo = HUGE_VAL, zhi = -HUGE_VAL;
+    for (int i = 0; i < m->nv; i++) {
+        zlo = fmin(zlo, m->xyz[3 * i + 2]);
+        zhi = fmax(zhi, m->xyz[3 * i + 2]);
+    }
+    double *keep = malloc((size_t)3 * q->nv * sizeof(double));
+    memcpy(keep, q->xyz, (size_t)3 * q->nv * sizeof(double));
+    double *p = q->xyz + 3 * v; /* slid 0.6 of a period along the arc and 0.3 along z */
+    const double a = atan2(p[1], p[0]) + 0.6 * hu / 2.0;
+    p[0] = 2.0 * cos(a);
+    p[1] = 2.0 * sin(a);
+    p[2] += 0.3 * hv;
+    CHECK_OK(glpgp_quads_quality_surface(q, m, hv, &qq));
+    const double before = qq.sj_min;
+    CHECK(before < 0.5 && qq.invalid == 0);
+    int moved = 0;
+    CHECK_OK(glpgp_quads_smooth_surface(m, hv, 20, q, &moved));
+    CHECK_OK(glpgp_quads_quality_surface(q, m, hv, &qq));
+    CHECK(moved >= 1 && qq.invalid == 0);
+    CHECK(qq.sj_min > 0.9);
+    if (!(qq.sj_min > 0.9)) fprintf(stderr, "smoothing: SJ min %.3f -> %.3f (%d moved)\n", before, qq.sj_min, moved);
+    for (int i = 0; i < q->nv; i++) {
+        const double *x = q->xyz + 3 * i;
+        CHECK(fabs(hypot(x[0], x[1]) - 2.0) < 0.01);
+        if (fabs(keep[3 * i + 2] - zlo) < 1e-9 || fabs(keep[3 * i + 2] - zhi) < 1e-9) /* on the rim: stays */
+            CHECK(fabs(x[0] - keep[3 * i]) + fabs(x[1] - keep[3 * i + 1]) + fabs(x[2] - keep[3 * i + 2]) < 1e-12);
+    }
+    free(keep);
+    glpgp_quadmesh_destroy(&q);
+    glpgp_mesh_destroy(&m);
+}
+
+static void coarse(const char *shape, long nv, double h, int euler, int loops)
+{
+    glpgp_mesh *m = NULL;
+    CHECK_OK(glpgp_surface_generate(shape, nv, &m));
+    if (!m) return;
+    glpgp_quadmesh *q = NULL;
+    glpgp_quad_quality qq;
+    int nt = 0;
+    CHECK_OK(glpgp_quads_surface_fallback_coarse(m, h, &q, &nt));
+    if (q) {
+        CHECK_OK(glpgp_quads_quality_surface(q, m, h, &qq));
+        CHECK(qq.invalid == 0 && qq.others == 0 && qq.euler == euler && qq.boundary_loops == loops);
+        CHECK(q->nf == 3 * nt && 10 * q->nf < 3 * m->nt);
+        if (qq.invalid || 10 * q->nf >= 3 * m->nt)
+            fprintf(stderr, "coarse %s: %d quads of %d triangles, invalid 0x%x\n", shape, q->nf, m->nt, qq.invalid);
+        const double before = qq.sj_min;
+        CHECK_OK(glpgp_quads_smooth_surface(m, h, 20, q, NULL));
+        CHECK_OK(glpgp_quads_quality_surface(q, m, h, &qq));
+        CHECK(qq.sj_min >= before && qq.euler == euler);
+    }
+    glpgp_quadmesh_destroy(&q);
+    glpgp_mesh_destroy(&m);
+}
+
 int main(void)
 {
     extraction();
+    smoothing();
+    coarse("genus2", 5000, 0.55, -2, 0);
+    coarse("cube", 5000, 0.3, 2, 0);
+    coarse("hemisphere", 5000, 0.25, 1, 1);
     fallback("sphere", 2, 0);
     fallback("hemisphere", 1, 1);
     TEST_DONE();

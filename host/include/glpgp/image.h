@@ -209,6 +209,17 @@ glpgp_status glpgp_render_figure1(const glpgp_mesh *m, const glpgp_result *r, co
 glpgp_status glpgp_render_quadmesh(const glpgp_quadmesh *q, const glpgp_mesh *dm, const glpgp_render_options *o,
                                    double sj_low, int caption, glpgp_image **out);
 
+/* Picture of a 3D surface's quad mesh (q->xyz; image/render3d_quads.c):
+ * the view of glpgp_render3d (o's azimuth, elevation, size, margin, line
+ * width, background), z-buffered and shaded, faces by origin (as
+ * glpgp_render_quadmesh), those whose scaled Jacobian in their own plane is
+ * below sj_low red (dark red <= 0), the edges dark, the irregular interior
+ * vertices as dots where visible (valence 3 blue, 5 red, 6+ dark red); with
+ * caption a line of counts under it. GLPGP_ERR_ARG on an empty or planar
+ * mesh, a size out of [16, 32768] or a bad view. */
+glpgp_status glpgp_render3d_quadmesh(const glpgp_quadmesh *q, const glpgp_render_options *o, double sj_low,
+                                     int caption, glpgp_image **out);
+
 /* Draw text with the built-in 5x7 font (A-Z, 0-9, + - : . , ( ) / = _ and
  * space; lower case drawn as upper case, other characters as a box), each
  * font pixel a scale x scale block, top-left corner at (x, y), composited

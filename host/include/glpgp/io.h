@@ -381,13 +381,15 @@ glpgp_status glpgp_output_set_quads_json(glpgp_output_set *s, const glpgp_quad_q
  *  .msh  Gmsh MSH 4.1 ASCII, one surface entity; quads are element type 3;
  *        a face with n != 4 corners is split into a fan of quads
  *        (0,2i+1,2i+2,2i+3) plus, for odd n, one triangle (type 2), so the
- *        file holds only quads and triangles and stays conforming.
+ *        file holds only quads and triangles and stays conforming;
+ *  .ply  ASCII PLY, x y z doubles (z 0 in the plane) and each face's
+ *        vertex_indices list.
  * Other extensions -> GLPGP_ERR_ARG. */
 glpgp_status glpgp_quads_write(const glpgp_quadmesh *q, const char *path);
 glpgp_status glpgp_output_set_quads(glpgp_output_set *s, const glpgp_quadmesh *q,
                                     const char *path);
 
-/* Whether path ends in .obj, .vtk, .vtu or .msh (case-insensitive). */
+/* Whether path ends in .obj, .vtk, .vtu, .msh or .ply (case-insensitive). */
 int glpgp_quads_path_supported(const char *path);
 
 /* Read a 2D quad/triangle mesh from Gmsh MSH 4.1 or 2.2 ASCII (faces keep the
@@ -398,7 +400,7 @@ int glpgp_quads_path_supported(const char *path);
 glpgp_status glpgp_quads_read_msh(const char *path, glpgp_quadmesh **out);
 
 /* Read a quad mesh written by glpgp_quads_write (or any polygon mesh):
- * .msh as glpgp_quads_read_msh; .obj: `v x y [z]` (z ignored) and `f` lines
+ * .msh as glpgp_quads_read_msh; .obj: `v x y [z]` (q->xyz set too when a z is not 0: a surface's mesh) and `f` lines
  * of 3 or more corners (OBJ indices, negative ones relative, /vt/vn parts
  * ignored), faces in the file's orientation, vertices in file order; the
  * faces after a `g grid|strips|repair|fallback` line get that origin

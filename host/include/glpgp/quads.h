@@ -391,6 +391,24 @@ double glpgp_quads_surface_area_tolerance(const glpgp_quad_quality *qq);
  * its best-fit (Newell) plane. */
 double glpgp_quad_face_sj_surface(const glpgp_quadmesh *q, int f);
 
+/* Quality-guarded smoothing on the surface (quads/smooth_surface.c): sweeps
+ * (at most `sweeps`) of tangential moves of the free vertices (not on the
+ * quad mesh's boundary, not on the input's boundary or sharp features)
+ * towards the mean of their edge neighbours or the corner that makes their
+ * worst face a parallelogram, each moved back onto the surface and kept
+ * only when the smallest scaled Jacobian of its faces rises and no face
+ * falls below min(0.3, its value before) or turns over. *moved: vertices
+ * moved at least once (may be NULL). */
+glpgp_status glpgp_quads_smooth_surface(const glpgp_mesh *m, double h, int sweeps, glpgp_quadmesh *q, int *moved);
+
+/* The coarse last resort (quads/coarse_surface.c): m's triangles coarsened by
+ * half-edge collapses to edges of about 2 h (boundaries, sharp features
+ * and the topology kept; new triangles within 0.2 h of m, smallest angle
+ * 17 degrees unless one before was smaller), each split into
+ * three quads. *ntri: the coarse triangles (may be NULL). The result is
+ * not checked. */
+glpgp_status glpgp_quads_surface_fallback_coarse(const glpgp_mesh *m, double h, glpgp_quadmesh **out, int *ntri);
+
 /* What glpgp_quads_build_surface did. */
 typedef struct glpgp_quad_surface_steps {
     int extracted_faces;   /* faces of the extraction (0: none) */
@@ -400,8 +418,13 @@ typedef struct glpgp_quad_surface_steps {
     int strips;            /* odd faces joined pairwise through strips of quads cut in two */
     int subdivided;        /* 1: faces other than quads were left and every face was split
                               (Catmull-Clark, h/2) */
-    int fallback;          /* 1: the extraction was not valid: the input triangles split into quads */
+    int fallback;          /* 1: the extraction was not valid: the last resort, triangles split into
+                              quads (coarse_triangles of a coarsened triangulation, else the input's) */
+    int coarse_triangles;  /* the last resort's coarse triangles (0: the input's own) */
     unsigned invalid_before; /* GLPGP_QUAD_BAD_* of the extraction's mesh when it was not used */
+    int smoothed;          /* vertices moved by the smoothing on the surface (o->smooth sweeps) */
+    double sj_before;      /* smallest scaled Jacobian before the smoothing */
+    double sj_after;       /* and after it (the same when it moved nothing or was undone) */
 } glpgp_quad_surface_steps;
 
 /* The surface pipeline (quads/quads_surface.c): extraction; two odd

@@ -1,0 +1,535 @@
+/* quads/coarse_surface.c: the coarse last resort on a surface
+ * (glpgp_quads_surface_fallback_coarse, glpgp/quads.h): the input triangulation
+ * coarsened by half-edge collapses to edges of about 2 h, then every
+ * triangle split into three quads (centroid and side midpoints, moved onto
+ * the surface). A collapse v -> u keeps every vertex an input vertex and is
+ * made only when
+ *  - v is free (on no boundary or sharp feature edge), or v is inside one
+ *    boundary or feature curve (two such edges, turning by under 30
+ *    degrees) and (v, u) is one of them: corners and curves stay;
+ *  - the link condition holds (the common neighbours of u and v are the
+ *    opposite corners of their one or two triangles), which keeps the
+ *    surface manifold with its topology, and no triangle is left hanging;
+ *  - every new triangle keeps its normal within 72 degrees of the one
+ *    before and of the surface's under it, its smallest angle above
+ *    min(amin, the smallest before) (17 degrees, then 20 when that is not
+ *    valid: quads_surface.c), its edges under 1.3 x 2 h,
+ *    and samples of it within 0.2 h of the input surface.
+ * Shortest edges first, in passes until none collapses. The caller checks
+ * the quads and falls back to the input's own triangles when they fail. */
+#include "quads_surface.h"
+
+#include "glpgp/kinds.h"
+#include "glpgp/surface.h"
+#include "glpgp/util.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+
+typedef struct cz {
+    const glpgp_mesh *m;
+    const glpgp_qs_proj *P;
+    double h, L, amin;    /* amin: the smallest angle a new triangle may have (radians; unless one
+                             before was smaller) */
+    int *tri;             /* 3 nt, a working copy */
+    unsigned char *flag;  /* 3 nt: half-edge slot on a boundary or feature edge */
+    unsigned char *alive; /* nt */
+    int **vt, *vn, *vcap; /* per vertex: its triangles (pruned on use) */
+    int *mark, stamp;     /* per vertex scratch */
+    int *touched, pass;   /* per vertex: the last pass its triangles changed in */
+} cz;
+
+static void sub3(const double *a, const double *b, double *o)
+{
+    for (int d = 0; d < 3; d++) o[d] = a[d] - b[d];
+}
+static double dot3(const double *a, const double *b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+static void tri_normal(const double *a, const double *b, const double *c, double *n)
+{
+    double e1[3], e2[3];
+    sub3(b, a, e1);
+    sub3(c, a, e2);
+    n[0] = e1[1] * e2[2] - e1[2] * e2[1];
+    n[1] = e1[2] * e2[0] - e1[0] * e2[2];
+    n[2] = e1[0] * e2[1] - e1[1] * e2[0];
+    const double l = sqrt(dot3(n, n));
+    if (l > 0)
+        for (int d = 0; d < 3; d++) n[d] /= l;
+}
+static double min_angle(const double *p0, const double *p1, const double *p2)
+{
+    const double *p[3] = {p0, p1, p2};
+    double m = GLPGP_PI;
+    for (int k = 0; k < 3; k++) {
+        double e1[3], e2[3];
+        sub3(p[(k + 1) % 3], p[k], e1);
+        sub3(p[(k + 2) % 3], p[k], e2);
+        const double l = sqrt(dot3(e1, e1) * dot3(e2, e2));
+        m = fmin(m, l > 0 ? acos(fmax(-1.0, fmin(1.0, dot3(e1, e2) / l))) : 0.0);
+    }
+    return m;
+}
+static const double *X(const cz *c, int v) { return c->m->xyz + 3 * v; }
+
+/* v's alive triangles (the list pruned of dead ones and of those no longer v's). */
+static int ring(cz *c, int v, int **out)
+{
+    int n = 0;
+    for (int i = 0; i < c->vn[v]; i++) {
+        const int t = c->vt[v][i];
+        if (c->alive[t] && (c->tri[3 * t] == v || c->tri[3 * t + 1] == v || c->tri[3 * t + 2] == v)) c->vt[v][n++] = t;
+    }
+    c->vn[v] = n;
+    *out = c->vt[v];
+    return n;
+}
+
+/* The slot of the half-edge a -> b in an alive triangle other than ex (-1: none). */
+static int slot_of(cz *c, int a, int b, int ex)
+{
+    int *r;
+    const int n = ring(c, a, &r);
+    for (int i = 0; i < n; i++) {
+        const int t = r[i];
+        if (t == ex) continue;
+        for (int k = 0; k < 3; k++)
+            if (c->tri[3 * t + k] == a && c->tri[3 * t + (k + 1) % 3] == b) return 3 * t + k;
+    }
+    return -1;
+}
+
+/* The flagged edges at v: their count and up to two other ends. */
+static int flagged_at(cz *c, int v, int *ends)
+{
+    int *r, cnt = 0;
+    const int n = ring(c, v, &r);
+    c->stamp++;
+    for (int i = 0; i < n; i++)
+        for (int k = 0; k < 3; k++) {
+            const int s = 3 * r[i] + k, a = c->tri[s], b = c->tri[3 * r[i] + (k + 1) % 3];
+            if (!c->flag[s] || (a != v && b != v)) continue;
+            const int w = a == v ? b : a;
+            if (c->mark[w] == c->stamp) continue;
+            c->mark[w] = c->stamp;
+            if (cnt < 2) ends[cnt] = w;
+            cnt++;
+        }
+    return cnt;
+}
+
+/* Whether v may move onto u (its class and the curve's turn). */
+static int movable(cz *c, int v, int u)
+{
+    int ends[2];
+    const int nf = flagged_at(c, v, ends);
+    if (nf == 0) return 1;
+    if (nf != 2 || (ends[0] != u && ends[1] != u)) return 0;
+    double a[3], b[3];
+    sub3(X(c, v), X(c, ends[0]), a);
+    sub3(X(c, ends[1]), X(c, v), b);
+    const double l = sqrt(dot3(a, a) * dot3(b, b));
+    return l > 0 && dot3(a, b) / l > cos(30.0 * GLPGP_PI / 180.0);
+}
+
+/* The link condition for the edge (v, u): the common neighbours are the
+ * opposite corners of the shared triangles. */
+static int link_ok(cz *c, int v, int u, int nshared)
+{
+    int *r, common = 0;
+    int n = ring(c, v, &r);
+    c->stamp++;
+    for (int i = 0; i < n; i++)
+        for (int k = 0; k < 3; k++) c->mark[c->tri[3 * r[i] + k]] = c->stamp;
+    const int s1 = c->stamp;
+    c->stamp++;
+    n = ring(c, u, &r);
+    for (int i = 0; i < n; i++)
+        for (int k = 0; k < 3; k++) {
+            const int w = c->tri[3 * r[i] + k];
+            if (w == u || w == v || c->mark[w] < s1) continue;
+            if (c->mark[w] == s1) common++;
+            c->mark[w] = c->stamp;
+        }
+    return common == nshared;
+}
+
+/* Whether triangle (p0, p1, p2) is within 0.2 h of the surface and faces its way
+ * where it is off it (samples; on a crease the nearest triangle may be either side's). */
+static int near_surface(const cz *c, const double *p0, const double *p1, const double *p2)
+{
+    double n1[3];
+    tri_normal(p0, p1, p2, n1);
+    const double dmax = 0.2 * c->h;
+    for (int a = 0; a <= 4; a++)
+        for (int b = 0; a + b <= 4; b++) {
+            double s[3], x[3], e[3];
+            for (int d = 0; d < 3; d++) s[d] = ((4 - a - b) * p0[d] + a * p1[d] + b * p2[d]) / 4.0;
+            const int tt = glpgp_qs_proj_nearest(c->P, s, x);
+            sub3(s, x, e);
+            if (tt < 0 || dot3(e, e) > dmax * dmax) return 0;
+            if (dot3(e, e) > 1e-6 * dmax * dmax && dot3(n1, c->m->surf->tframe + 9 * tt + 6) < 0.3) return 0;
+        }
+    return 1;
+}
+
+
+/* The geometric tests of v -> u on v's triangles not shared with u. */
+static int geometry_ok(cz *c, int v, int u, const int *r, int n)
+{
+    double worst_before = GLPGP_PI;
+    for (int i = 0; i < n; i++) {
+        const int *t = c->tri + 3 * r[i];
+        worst_before = fmin(worst_before, min_angle(X(c, t[0]), X(c, t[1]), X(c, t[2])));
+    }
+    const double amin = fmin(c->amin, worst_before), lmax = 1.3 * c->L;
+    for (int pass = 0; pass < 2; pass++) /* the cheap tests on every triangle first, then the samples */
+    for (int i = 0; i < n; i++) {
+        const int *t = c->tri + 3 * r[i];
+        if (t[0] == u || t[1] == u || t[2] == u) continue; /* shared: removed */
+        const double *p[3], *o[3];
+        for (int k = 0; k < 3; k++) {
+            o[k] = X(c, t[k]);
+            p[k] = X(c, t[k] == v ? u : t[k]);
+        }
+        if (pass == 1) {
+            if (!near_surface(c, p[0], p[1], p[2])) return 0;
+            continue;
+        }
+        double n0[3], n1[3];
+        tri_normal(o[0], o[1], o[2], n0);
+        tri_normal(p[0], p[1], p[2], n1);
+        if (dot3(n0, n1) < 0.3 || min_angle(p[0], p[1], p[2]) < amin) return 0;
+        for (int k = 0; k < 3; k++) {
+            double e[3];
+            sub3(p[(k + 1) % 3], p[k], e);
+            if (dot3(e, e) > lmax * lmax) return 0;
+        }
+    }
+    return 1;
+}
+
+/* Collapse v onto u when allowed; returns 1 when done. */
+static glpgp_status collapse(cz *c, int v, int u, int *done)
+{
+    *done = 0;
+    int *r, shared[2], ns = 0;
+    const int n = ring(c, v, &r);
+    for (int i = 0; i < n; i++) {
+        const int *t = c->tri + 3 * r[i];
+        if (t[0] == u || t[1] == u || t[2] == u) {
+            if (ns == 2) return GLPGP_OK;
+            shared[ns++] = r[i];
+        }
+    }
+    if (ns == 0 || !movable(c, v, u) || !link_ok(c, v, u, ns) || !geometry_ok(c, v, u, c->vt[v], n)) return GLPGP_OK;
+    int of[2][2];
+    for (int i = 0; i < ns; i++) { /* the two other sides of a shared triangle become one edge */
+        const int t = shared[i];
+        int x = -1;
+        for (int k = 0; k < 3; k++)
+            if (c->tri[3 * t + k] != u && c->tri[3 * t + k] != v) x = c->tri[3 * t + k];
+        int e1 = -1, e2 = -1;
+        for (int k = 0; k < 3; k++) {
+            const int a = c->tri[3 * t + k], b = c->tri[3 * t + (k + 1) % 3];
+            if ((a == v && b == x) || (a == x && b == v)) e1 = 3 * t + k;
+            if ((a == u && b == x) || (a == x && b == u)) e2 = 3 * t + k;
+        }
+        of[i][0] = slot_of(c, c->tri[e1 - e1 % 3 + (e1 % 3 + 1) % 3], c->tri[e1], t);
+        of[i][1] = slot_of(c, c->tri[e2 - e2 % 3 + (e2 % 3 + 1) % 3], c->tri[e2], t);
+        if (of[i][0] < 0 && of[i][1] < 0) return GLPGP_OK; /* a triangle left hanging */
+        const unsigned char f = c->flag[e1] | c->flag[e2] | (of[i][0] >= 0 ? c->flag[of[i][0]] : 0) |
+                                (of[i][1] >= 0 ? c->flag[of[i][1]] : 0);
+        for (int j = 0; j < 2; j++)
+            if (of[i][j] >= 0) c->flag[of[i][j]] = f;
+    }
+    for (int i = 0; i < ns; i++) c->alive[shared[i]] = 0;
+    for (int i = 0; i < n; i++)
+        for (int k = 0; k < 3; k++) c->touched[c->tri[3 * c->vt[v][i] + k]] = c->pass;
+    for (int i = 0; i < n; i++) {
+        const int t = c->vt[v][i];
+        if (!c->alive[t]) continue;
+        for (int k = 0; k < 3; k++)
+            if (c->tri[3 * t + k] == v) c->tri[3 * t + k] = u;
+        if (c->vn[u] == c->vcap[u]) {
+            const int cap = 2 * c->vcap[u] + 8;
+            int *g = realloc(c->vt[u], (size_t)cap * sizeof(int));
+            if (!g) return GLPGP_FAIL(GLPGP_ERR_NOMEM, "coarse last resort: out of memory");
+            c->vt[u] = g;
+            c->vcap[u] = cap;
+        }
+        c->vt[u][c->vn[u]++] = t;
+    }
+    c->vn[v] = 0;
+    *done = 1;
+    return GLPGP_OK;
+}
+
+/* Flip the edge of slot s (a -> b of t1 = (a, b, c), t2 = (b, a, d)) to
+ * (c, d) when that raises the pair's smallest angle and keeps them on the
+ * surface; returns 1 when flipped. */
+static int flip(cz *c, int s)
+{
+    const int t1 = s / 3, k = s % 3;
+    if (c->flag[s]) return 0;
+    const int a = c->tri[s], b = c->tri[3 * t1 + (k + 1) % 3], cc = c->tri[3 * t1 + (k + 2) % 3];
+    const int o = slot_of(c, b, a, t1);
+    if (o < 0) return 0;
+    const int t2 = o / 3, ko = o % 3, d = c->tri[3 * t2 + (ko + 2) % 3];
+    if (d == cc) return 0;
+    int *r;
+    const int n = ring(c, cc, &r);
+    for (int i = 0; i < n; i++) /* (c, d) must not be an edge already */
+        for (int j = 0; j < 3; j++)
+            if (c->tri[3 * r[i] + j] == d) return 0;
+    const double before = fmin(min_angle(X(c, a), X(c, b), X(c, cc)), min_angle(X(c, b), X(c, a), X(c, d)));
+    const double after = fmin(min_angle(X(c, cc), X(c, a), X(c, d)), min_angle(X(c, d), X(c, b), X(c, cc)));
+    if (after < before + 1e-3) return 0;
+    double n0[3], n1[3], m0[3], m1[3];
+    tri_normal(X(c, a), X(c, b), X(c, cc), n0);
+    tri_normal(X(c, b), X(c, a), X(c, d), n1);
+    tri_normal(X(c, cc), X(c, a), X(c, d), m0);
+    tri_normal(X(c, d), X(c, b), X(c, cc), m1);
+    if (dot3(n0, n1) < 0.7 || dot3(m0, m1) < 0.7 || dot3(m0, n0) < 0.3 || dot3(m1, n1) < 0.3) return 0;
+    if (!near_surface(c, X(c, cc), X(c, a), X(c, d)) || !near_surface(c, X(c, d), X(c, b), X(c, cc))) return 0;
+    const unsigned char f_ca = c->flag[3 * t1 + (k + 2) % 3], f_bc = c->flag[3 * t1 + (k + 1) % 3];
+    const unsigned char f_ad = c->flag[3 * t2 + (ko + 1) % 3], f_db = c->flag[3 * t2 + (ko + 2) % 3];
+    const int T1[3] = {cc, a, d}, T2[3] = {d, b, cc};
+    c->touched[a] = c->touched[b] = c->touched[cc] = c->touched[d] = c->pass;
+    const unsigned char F1[3] = {f_ca, f_ad, 0}, F2[3] = {f_db, f_bc, 0};
+    for (int j = 0; j < 3; j++) {
+        c->tri[3 * t1 + j] = T1[j];
+        c->flag[3 * t1 + j] = F1[j];
+        c->tri[3 * t2 + j] = T2[j];
+        c->flag[3 * t2 + j] = F2[j];
+    }
+    const int add[2][2] = {{cc, t2}, {d, t1}};
+    for (int j = 0; j < 2; j++) {
+        const int v = add[j][0];
+        if (c->vn[v] == c->vcap[v]) {
+            const int cap = 2 * c->vcap[v] + 8;
+            int *g = realloc(c->vt[v], (size_t)cap * sizeof(int));
+            if (!g) return -1;
+            c->vt[v] = g;
+            c->vcap[v] = cap;
+        }
+        c->vt[v][c->vn[v]++] = add[j][1];
+    }
+    return 1;
+}
+
+/* One pass of flips over the alive triangles' edges; the flips made (-1: out of memory). */
+static int flips(cz *c, int nt)
+{
+    int made = 0;
+    for (int t = 0; t < nt; t++)
+        for (int k = 0; k < 3 && c->alive[t]; k++) {
+            const int f = flip(c, 3 * t + k);
+            if (f < 0) return -1;
+            made += f;
+        }
+    return made;
+}
+
+typedef struct cedge {
+    double len;
+    int a, b;
+} cedge;
+
+static int cmp_cedge(const void *pa, const void *pb)
+{
+    const cedge *x = pa, *y = pb;
+    return x->len < y->len ? -1 : x->len > y->len ? 1 : (x->a != y->a ? x->a - y->a : x->b - y->b);
+}
+
+/* Passes over the edges shorter than L, shortest first, until none collapses. */
+static glpgp_status coarsen(cz *c, int nt)
+{
+    cedge *E = NULL;
+    GLPGP_CHECK(glpgp_malloc((size_t)3 * nt + 1, sizeof *E, &E));
+    glpgp_status st = GLPGP_OK;
+    for (int pass = 0; pass < 50 && st == GLPGP_OK; pass++) {
+        int ne = 0, made = 0;
+        c->pass = pass + 1; /* an edge whose ends saw no change since the pass before is not tried again */
+        for (int t = 0; t < nt; t++) {
+            if (!c->alive[t]) continue;
+            for (int k = 0; k < 3; k++) {
+                const int a = c->tri[3 * t + k], b = c->tri[3 * t + (k + 1) % 3];
+                double e[3];
+                sub3(X(c, a), X(c, b), e);
+                const double l = sqrt(dot3(e, e));
+                if (a < b && l < c->L && (pass == 0 || c->touched[a] >= pass || c->touched[b] >= pass))
+                    E[ne++] = (cedge){l, a, b};
+            }
+        }
+        qsort(E, (size_t)ne, sizeof *E, cmp_cedge);
+        for (int i = 0; i < ne && st == GLPGP_OK; i++) {
+            int done = 0;
+            if (!c->vn[E[i].a] || !c->vn[E[i].b]) continue; /* an end collapsed in this pass */
+            st = collapse(c, E[i].a, E[i].b, &done);
+            if (st == GLPGP_OK && !done) st = collapse(c, E[i].b, E[i].a, &done);
+            made += done;
+        }
+        const int nflip = st == GLPGP_OK ? flips(c, nt) : 0;
+        if (nflip < 0) st = GLPGP_FAIL(GLPGP_ERR_NOMEM, "coarse last resort: out of memory");
+        if (!made && nflip <= 0) break;
+    }
+    free(E);
+    return st;
+}
+
+static int cmp_key2(const void *pa, const void *pb)
+{
+    const long long *a = pa, *b = pb;
+    return a[0] < b[0] ? -1 : a[0] > b[0] ? 1 : 0;
+}
+
+/* The alive triangles of c split into three quads each: side midpoints
+ * and centroids moved onto the surface. */
+static glpgp_status split3(const cz *c, int nt, double h, glpgp_quadmesh **out)
+{
+    const glpgp_mesh *m = c->m;
+    int *vid = NULL, *mid = NULL, ntri = 0, nvert = 0;
+    long long *key = NULL;
+    glpgp_quadmesh *q = NULL;
+    glpgp_status st = GLPGP_OK;
+    for (int t = 0; t < nt; t++) ntri += c->alive[t];
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)m->nv + 1, sizeof(int), &vid), done);
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)6 * ntri + 2, sizeof(long long), &key), done);
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)3 * ntri + 1, sizeof(int), &mid), done);
+    for (int v = 0; v < m->nv; v++) vid[v] = -1;
+    int *T = NULL;
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)3 * ntri + 1, sizeof(int), &T), done);
+    for (int t = 0, o = 0; t < nt; t++)
+        if (c->alive[t])
+            for (int k = 0; k < 3; k++, o++) {
+                const int v = c->tri[3 * t + k];
+                if (vid[v] < 0) vid[v] = nvert++;
+                T[o] = vid[v];
+            }
+    for (int s = 0; s < 3 * ntri; s++) {
+        const long long a = T[s], b = T[s - s % 3 + (s % 3 + 1) % 3];
+        key[2 * s] = a < b ? a * nvert + b : b * nvert + a;
+        key[2 * s + 1] = s;
+    }
+    qsort(key, (size_t)3 * ntri, 2 * sizeof(long long), cmp_key2);
+    int nv = nvert;
+    for (int i = 0; i < 3 * ntri; i++) {
+        if (i == 0 || key[2 * i] != key[2 * i - 2]) nv++;
+        mid[key[2 * i + 1]] = nv - 1;
+    }
+    const int cen = nv;
+    nv += ntri;
+    GLPGP_CHECK_GOTO(st, glpgp_calloc(1, sizeof *q, &q), split_done);
+    q->nv = nv;
+    q->nf = 3 * ntri;
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)3 * nv + 1, sizeof(double), &q->xyz), split_done);
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)2 * nv + 1, sizeof(double), &q->xy), split_done);
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)q->nf + 1, sizeof(int), &q->face_start), split_done);
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)4 * q->nf + 1, sizeof(int), &q->face_vert), split_done);
+    GLPGP_CHECK_GOTO(st, glpgp_calloc((size_t)q->nf + 1, 1, &q->face_origin), split_done);
+    for (int v = 0; v < m->nv; v++)
+        if (vid[v] >= 0) memcpy(q->xyz + 3 * vid[v], m->xyz + 3 * v, 3 * sizeof(double));
+    for (int t = 0; t < ntri; t++) {
+        const int *v = T + 3 * t;
+        for (int d = 0; d < 3; d++) {
+            q->xyz[3 * (cen + t) + d] = 0.0;
+            for (int k = 0; k < 3; k++) {
+                q->xyz[3 * (cen + t) + d] += q->xyz[3 * v[k] + d] / 3.0;
+                q->xyz[3 * mid[3 * t + k] + d] = 0.5 * (q->xyz[3 * v[k] + d] + q->xyz[3 * v[(k + 1) % 3] + d]);
+            }
+        }
+        for (int a = 0; a < 3; a++) {
+            const int f = 3 * t + a;
+            q->face_start[f] = 4 * f;
+            q->face_vert[4 * f] = v[a];
+            q->face_vert[4 * f + 1] = mid[3 * t + a];
+            q->face_vert[4 * f + 2] = cen + t;
+            q->face_vert[4 * f + 3] = mid[3 * t + (a + 2) % 3];
+            q->face_origin[f] = GLPGP_QFACE_FALLBACK;
+        }
+    }
+    q->face_start[q->nf] = 4 * q->nf;
+    GLPGP_CHECK_GOTO(st, glpgp_qs_project(m, h, q->xyz, nvert, nv), split_done);
+    for (int i = 0; i < nv; i++) {
+        q->xy[2 * i] = q->xyz[3 * i];
+        q->xy[2 * i + 1] = q->xyz[3 * i + 1];
+    }
+    *out = q;
+    q = NULL;
+split_done:
+    free(T);
+done:
+    glpgp_quadmesh_destroy(&q);
+    free(vid);
+    free(key);
+    free(mid);
+    return st;
+}
+
+static glpgp_status cz_init(cz *c, const glpgp_mesh *m)
+{
+    const int nt = m->nt;
+    GLPGP_CHECK(glpgp_malloc((size_t)3 * nt + 1, sizeof(int), &c->tri));
+    GLPGP_CHECK(glpgp_calloc((size_t)3 * nt + 1, 1, &c->flag));
+    GLPGP_CHECK(glpgp_malloc((size_t)nt + 1, 1, &c->alive));
+    GLPGP_CHECK(glpgp_calloc((size_t)m->nv + 1, sizeof(int *), &c->vt));
+    GLPGP_CHECK(glpgp_calloc((size_t)m->nv + 1, sizeof(int), &c->vn));
+    GLPGP_CHECK(glpgp_calloc((size_t)m->nv + 1, sizeof(int), &c->vcap));
+    GLPGP_CHECK(glpgp_calloc((size_t)m->nv + 1, sizeof(int), &c->mark));
+    GLPGP_CHECK(glpgp_calloc((size_t)m->nv + 1, sizeof(int), &c->touched));
+    memcpy(c->tri, m->tri, (size_t)3 * nt * sizeof(int));
+    memset(c->alive, 1, (size_t)nt);
+    glpgp_surface_features(m, GLPGP_FEATURE_ANGLE_DEFAULT, c->flag);
+    for (int s = 0; s < 3 * nt; s++) {
+        if (m->surf->twin[s] < 0) c->flag[s] = 1;
+        c->vcap[m->tri[s]]++;
+    }
+    for (int v = 0; v < m->nv; v++)
+        if (c->vcap[v]) GLPGP_CHECK(glpgp_malloc((size_t)c->vcap[v], sizeof(int), &c->vt[v]));
+    for (int s = 0; s < 3 * nt; s++) c->vt[m->tri[s]][c->vn[m->tri[s]]++] = s / 3;
+    return GLPGP_OK;
+}
+
+static void cz_free(cz *c, int nv)
+{
+    for (int v = 0; v < nv && c->vt; v++) free(c->vt[v]);
+    free(c->vt);
+    free(c->vn);
+    free(c->vcap);
+    free(c->mark);
+    free(c->touched);
+    free(c->tri);
+    free(c->flag);
+    free(c->alive);
+}
+
+glpgp_status glpgp_qs_coarse(const glpgp_mesh *m, double h, double amin_deg, glpgp_quadmesh **out, int *ntri)
+{
+    *out = NULL;
+    if (ntri) *ntri = 0;
+    if (!glpgp_mesh_is_surface(m) || !m->surf || !(h > 0))
+        return GLPGP_FAIL(GLPGP_ERR_ARG, "coarse last resort: a surface and h > 0 are needed");
+    cz c;
+    memset(&c, 0, sizeof c);
+    c.m = m;
+    c.h = h;
+    c.L = 2.0 * h;
+    c.amin = amin_deg * GLPGP_PI / 180.0;
+    glpgp_qs_proj *P = NULL;
+    glpgp_status st = glpgp_qs_proj_create(m, h, 0.3 * h, &P);
+    c.P = P;
+    if (st == GLPGP_OK) st = cz_init(&c, m);
+    if (st == GLPGP_OK) st = coarsen(&c, m->nt);
+    if (st == GLPGP_OK) st = split3(&c, m->nt, h, out);
+    if (st == GLPGP_OK && ntri) *ntri = (*out)->nf / 3;
+    cz_free(&c, m->nv);
+    glpgp_qs_proj_destroy(&P);
+    return st;
+}
+
+glpgp_status glpgp_quads_surface_fallback_coarse(const glpgp_mesh *m, double h, glpgp_quadmesh **out, int *ntri)
+{
+    return glpgp_qs_coarse(m, h, 17.0, out, ntri);
+}

@@ -1,0 +1,268 @@
+/* quads/smooth_surface.c: the quality-guarded smoothing of a surface's
+ * quad mesh (glpgp_quads_smooth_surface, glpgp/quads.h). A free vertex (not on the
+ * quad mesh's boundary, not on the input's boundary or sharp features)
+ * tries a few targets, each moved back onto the input surface (its nearest
+ * point): part of the way to the mean of its edge neighbours, and the
+ * corner that makes its worst quad a parallelogram. A target is kept only
+ * when the smallest scaled Jacobian of the vertex's faces (each in its own
+ * plane) rises, no face falls below min(0.3, its value before the
+ * smoothing), no face turns against its normal before, and the surface
+ * under the target faces the same way as the vertex's faces; so the
+ * smallest scaled Jacobian never falls and the mesh's topology is
+ * untouched. The caller checks the result (Hausdorff, area) and keeps the
+ * mesh it had when the check fails. */
+#include "quads_surface.h"
+
+#include "glpgp/surface.h"
+#include "glpgp/util.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define SJ_FLOOR 0.3
+
+static int cmp_key(const void *pa, const void *pb)
+{
+    const long long a = *(const long long *)pa, b = *(const long long *)pb;
+    return a < b ? -1 : a > b;
+}
+
+typedef struct sm_ctx {
+    const glpgp_mesh *m;
+    glpgp_quadmesh *q;
+    const glpgp_qs_proj *P;
+    int *vs, *vf;          /* vertex -> its faces (CSR) */
+    unsigned char *locked; /* per quad vertex */
+    double *floor_;        /* per face: min(0.3, its scaled Jacobian before) */
+    double *fn;            /* per face: its unit normal before (3) */
+} sm_ctx;
+
+static void face_normal(const glpgp_quadmesh *q, int f, double *N)
+{
+    const int s = q->face_start[f], n = q->face_start[f + 1] - s;
+    N[0] = N[1] = N[2] = 0.0;
+    for (int i = 0; i < n; i++) {
+        const double *a = q->xyz + 3 * q->face_vert[s + i], *b = q->xyz + 3 * q->face_vert[s + (i + 1) % n];
+        N[0] += (a[1] - b[1]) * (a[2] + b[2]);
+        N[1] += (a[2] - b[2]) * (a[0] + b[0]);
+        N[2] += (a[0] - b[0]) * (a[1] + b[1]);
+    }
+    const double l = sqrt(N[0] * N[0] + N[1] * N[1] + N[2] * N[2]);
+    if (l > 0)
+        for (int d = 0; d < 3; d++) N[d] /= l;
+}
+
+/* Barycentric coordinates of x in input triangle t. */
+static void bary(const glpgp_mesh *m, int t, const double *x, double *w)
+{
+    const double *a = m->xyz + 3 * m->tri[3 * t], *b = m->xyz + 3 * m->tri[3 * t + 1], *c = m->xyz + 3 * m->tri[3 * t + 2];
+    double v0[3], v1[3], v2[3];
+    for (int d = 0; d < 3; d++) {
+        v0[d] = b[d] - a[d];
+        v1[d] = c[d] - a[d];
+        v2[d] = x[d] - a[d];
+    }
+    const double d00 = v0[0] * v0[0] + v0[1] * v0[1] + v0[2] * v0[2], d01 = v0[0] * v1[0] + v0[1] * v1[1] + v0[2] * v1[2];
+    const double d11 = v1[0] * v1[0] + v1[1] * v1[1] + v1[2] * v1[2], d20 = v2[0] * v0[0] + v2[1] * v0[1] + v2[2] * v0[2];
+    const double d21 = v2[0] * v1[0] + v2[1] * v1[1] + v2[2] * v1[2], den = d00 * d11 - d01 * d01;
+    w[1] = den > 0 ? (d11 * d20 - d01 * d21) / den : 0.0;
+    w[2] = den > 0 ? (d00 * d21 - d01 * d20) / den : 0.0;
+    w[0] = 1.0 - w[1] - w[2];
+}
+
+/* locked: the quad mesh's boundary and non-manifold vertices (an edge not
+ * in exactly two faces) and the vertices on the input's boundary or sharp
+ * features (on such an edge or at such an edge's end). */
+static glpgp_status lock_vertices(sm_ctx *c)
+{
+    const glpgp_mesh *m = c->m;
+    const glpgp_quadmesh *q = c->q;
+    const int nc = q->face_start[q->nf];
+    unsigned char *hf = NULL, *vfeat = NULL;
+    long long *key = NULL;
+    glpgp_status st = GLPGP_OK;
+    GLPGP_CHECK_GOTO(st, glpgp_calloc((size_t)3 * m->nt + 1, 1, &hf), done);
+    GLPGP_CHECK_GOTO(st, glpgp_calloc((size_t)m->nv + 1, 1, &vfeat), done);
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)nc + 1, sizeof *key, &key), done);
+    glpgp_surface_features(m, GLPGP_FEATURE_ANGLE_DEFAULT, hf);
+    for (int h = 0; h < 3 * m->nt; h++) {
+        if (m->surf->twin[h] < 0) hf[h] = 1;
+        if (hf[h]) vfeat[m->tri[h]] = vfeat[m->tri[h - h % 3 + (h % 3 + 1) % 3]] = 1;
+    }
+    for (int f = 0; f < q->nf; f++) {
+        const int s = q->face_start[f], n = q->face_start[f + 1] - s;
+        for (int i = 0; i < n; i++) {
+            long long a = q->face_vert[s + i], b = q->face_vert[s + (i + 1) % n];
+            key[s + i] = a < b ? a * q->nv + b : b * q->nv + a;
+        }
+    }
+    qsort(key, (size_t)nc, sizeof *key, cmp_key);
+    for (int i = 0; i < nc;) {
+        int j = i;
+        while (j < nc && key[j] == key[i]) j++;
+        if (j - i != 2) c->locked[key[i] / q->nv] = c->locked[key[i] % q->nv] = 1;
+        i = j;
+    }
+    for (int v = 0; v < q->nv; v++) {
+        double x[3], w[3];
+        const int t = glpgp_qs_proj_nearest(c->P, q->xyz + 3 * v, x);
+        if (t < 0 || c->locked[v]) continue;
+        bary(m, t, x, w);
+        for (int k = 0; k < 3; k++) {
+            if (w[k] < 1e-6 && hf[3 * t + (k + 1) % 3]) c->locked[v] = 1; /* on the edge opposite corner k */
+            if (w[k] > 1.0 - 1e-6 && vfeat[m->tri[3 * t + k]]) c->locked[v] = 1;
+        }
+    }
+done:
+    free(hf);
+    free(vfeat);
+    free(key);
+    return st;
+}
+
+/* Smallest scaled Jacobian of v's faces with v at its current place; -2
+ * when a face falls below its floor or turns. */
+static double worst_at(const sm_ctx *c, int v)
+{
+    double w = 2.0;
+    for (int j = c->vs[v]; j < c->vs[v + 1]; j++) {
+        const int f = c->vf[j];
+        const double sj = glpgp_quad_face_sj_surface(c->q, f);
+        double N[3];
+        face_normal(c->q, f, N);
+        if (sj < c->floor_[f] || N[0] * c->fn[3 * f] + N[1] * c->fn[3 * f + 1] + N[2] * c->fn[3 * f + 2] <= 0.0)
+            return -2.0;
+        w = fmin(w, sj);
+    }
+    return w;
+}
+
+/* The targets of v: the mean of its edge neighbours at 1, 1/2, 1/4 of the
+ * way, and the corner making its worst quad a parallelogram at 1, 1/2.
+ * Returns their count. */
+static int targets(const sm_ctx *c, int v, double (*T)[3])
+{
+    const glpgp_quadmesh *q = c->q;
+    const double *p = q->xyz + 3 * v;
+    double L[3] = {0, 0, 0}, par[3] = {0, 0, 0}, worst = 3.0;
+    int k = 0, haspar = 0;
+    for (int j = c->vs[v]; j < c->vs[v + 1]; j++) {
+        const int f = c->vf[j], s = q->face_start[f], n = q->face_start[f + 1] - s;
+        int i = 0;
+        while (i < n && q->face_vert[s + i] != v) i++;
+        const double *a = q->xyz + 3 * q->face_vert[s + (i + 1) % n], *b = q->xyz + 3 * q->face_vert[s + (i + n - 1) % n];
+        for (int d = 0; d < 3; d++) L[d] += a[d] + b[d];
+        k += 2;
+        const double sj = glpgp_quad_face_sj_surface(q, f);
+        if (n == 4 && sj < worst) {
+            const double *o = q->xyz + 3 * q->face_vert[s + (i + 2) % 4];
+            worst = sj;
+            haspar = 1;
+            for (int d = 0; d < 3; d++) par[d] = a[d] + b[d] - o[d];
+        }
+    }
+    int nt = 0;
+    static const double wl[3] = {1.0, 0.5, 0.25}, wp[2] = {1.0, 0.5};
+    for (int x = 0; x < 3 && k; x++, nt++)
+        for (int d = 0; d < 3; d++) T[nt][d] = p[d] + wl[x] * (L[d] / k - p[d]);
+    for (int x = 0; x < 2 && haspar; x++, nt++)
+        for (int d = 0; d < 3; d++) T[nt][d] = p[d] + wp[x] * (par[d] - p[d]);
+    return nt;
+}
+
+/* One try at moving v; returns 1 when it moved. */
+static int move_vertex(const sm_ctx *c, int v)
+{
+    glpgp_quadmesh *q = c->q;
+    double *p = q->xyz + 3 * v, old[3], best[3], T[5][3], vn[3] = {0, 0, 0};
+    memcpy(old, p, sizeof old);
+    const double before = worst_at(c, v);
+    double bval = before + 1e-4;
+    int found = 0;
+    for (int j = c->vs[v]; j < c->vs[v + 1]; j++)
+        for (int d = 0; d < 3; d++) vn[d] += c->fn[3 * c->vf[j] + d];
+    const int nt = targets(c, v, T);
+    for (int k = 0; k < nt; k++) {
+        double x[3];
+        const int t = glpgp_qs_proj_nearest(c->P, T[k], x);
+        if (t < 0) continue;
+        const double *tn = c->m->surf->tframe + 9 * t + 6; /* the surface there faces v's faces' way */
+        if (tn[0] * vn[0] + tn[1] * vn[1] + tn[2] * vn[2] <= 0.0) continue;
+        memcpy(p, x, sizeof x);
+        const double w = worst_at(c, v);
+        if (w > bval) {
+            bval = w;
+            memcpy(best, x, sizeof x);
+            found = 1;
+        }
+    }
+    memcpy(p, found ? best : old, sizeof old);
+    return found;
+}
+
+static glpgp_status setup(sm_ctx *c)
+{
+    glpgp_quadmesh *q = c->q;
+    const int nc = q->face_start[q->nf];
+    int *cnt = NULL;
+    GLPGP_CHECK(glpgp_calloc((size_t)q->nv + 2, sizeof(int), &c->vs));
+    GLPGP_CHECK(glpgp_malloc((size_t)nc + 1, sizeof(int), &c->vf));
+    GLPGP_CHECK(glpgp_calloc((size_t)q->nv + 1, 1, &c->locked));
+    GLPGP_CHECK(glpgp_malloc((size_t)q->nf + 1, sizeof(double), &c->floor_));
+    GLPGP_CHECK(glpgp_malloc((size_t)3 * q->nf + 3, sizeof(double), &c->fn));
+    GLPGP_CHECK(glpgp_calloc((size_t)q->nv + 1, sizeof(int), &cnt));
+    for (int k = 0; k < nc; k++) c->vs[q->face_vert[k] + 1]++;
+    for (int v = 0; v < q->nv; v++) c->vs[v + 1] += c->vs[v];
+    for (int f = 0; f < q->nf; f++)
+        for (int k = q->face_start[f]; k < q->face_start[f + 1]; k++) {
+            const int v = q->face_vert[k];
+            c->vf[c->vs[v] + cnt[v]++] = f;
+        }
+    free(cnt);
+    for (int f = 0; f < q->nf; f++) {
+        c->floor_[f] = fmin(SJ_FLOOR, glpgp_quad_face_sj_surface(q, f));
+        face_normal(q, f, c->fn + 3 * f);
+    }
+    return lock_vertices(c);
+}
+
+glpgp_status glpgp_quads_smooth_surface(const glpgp_mesh *m, double h, int sweeps, glpgp_quadmesh *q, int *moved)
+{
+    if (moved) *moved = 0;
+    if (!q || !q->xyz || q->nf == 0 || sweeps <= 0) return GLPGP_OK;
+    sm_ctx c;
+    memset(&c, 0, sizeof c);
+    c.m = m;
+    c.q = q;
+    glpgp_qs_proj *P = NULL;
+    unsigned char *did = NULL;
+    glpgp_status st = glpgp_qs_proj_create(m, h, 0.5 * h, &P);
+    c.P = P;
+    if (st == GLPGP_OK) st = setup(&c);
+    if (st == GLPGP_OK) st = glpgp_calloc((size_t)q->nv + 1, 1, &did);
+    for (int it = 0; it < sweeps && st == GLPGP_OK; it++) {
+        int changed = 0;
+        for (int v = 0; v < q->nv; v++) {
+            if (c.locked[v] || c.vs[v + 1] - c.vs[v] < 2) continue;
+            if (move_vertex(&c, v)) {
+                changed++;
+                if (!did[v] && moved) (*moved)++;
+                did[v] = 1;
+            }
+        }
+        if (!changed) break;
+    }
+    for (int v = 0; v < q->nv; v++) { /* the planar copy the writers and the pictures read */
+        q->xy[2 * v] = q->xyz[3 * v];
+        q->xy[2 * v + 1] = q->xyz[3 * v + 1];
+    }
+    glpgp_qs_proj_destroy(&P);
+    free(c.vs);
+    free(c.vf);
+    free(c.locked);
+    free(c.floor_);
+    free(c.fn);
+    free(did);
+    return st;
+}
