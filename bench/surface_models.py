@@ -40,15 +40,15 @@ def icosphere(subdiv):
 def holes(n, subdiv, out):
     v, f = icosphere(subdiv)
     g = math.pi * (3 - 5 ** 0.5)
-    centres = []
+    centers = []
     for i in range(n):
         z = 1 - 2 * (i + 0.5) / n
         r = math.sqrt(1 - z * z)
-        centres.append((r * math.cos(g * i), r * math.sin(g * i), z))
+        centers.append((r * math.cos(g * i), r * math.sin(g * i), z))
     keep = []
     for t in f:
         c = [sum(v[k][i] for k in t) / 3 for i in range(3)]
-        if all(sum((c[i] - p[i]) ** 2 for i in range(3)) > 0.15 ** 2 for p in centres):
+        if all(sum((c[i] - p[i]) ** 2 for i in range(3)) > 0.15 ** 2 for p in centers):
             keep.append(t)
     used = sorted({k for t in keep for k in t})
     idx = {k: i + 1 for i, k in enumerate(used)}
