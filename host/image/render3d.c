@@ -208,6 +208,14 @@ static double shade(const glpgp_mesh *m, const cam3 *c, int t, double l0, double
 }
 
 /* Whether point p (3D) is in front of what the samples around it show. */
+void glpgp_r3_gbuf_free(gbuf *g)
+{
+    free(g->tri);
+    free(g->l1);
+    free(g->l2);
+    free(g->depth);
+}
+
 int glpgp_r3_visible(const cam3 *c, const gbuf *g, const double *p, double tol, double *q)
 {
     glpgp_r3_project(c, p, q);
@@ -349,9 +357,6 @@ glpgp_status glpgp_render3d(const glpgp_mesh *m, const glpgp_result *r, const gl
     im = NULL;
 done:
     glpgp_image_destroy(&im);
-    free(g.tri);
-    free(g.l1);
-    free(g.l2);
-    free(g.depth);
+    glpgp_r3_gbuf_free(&g);
     return st;
 }

@@ -28,6 +28,8 @@ void glpgp_r3_cam_setup(const glpgp_mesh *m, const glpgp_render_options *o, int 
 void glpgp_r3_project(const cam3 *c, const double *p, double *q);
 /* m's triangles (m->nt, m->tri, m->xyz) into g (nearest per sample). */
 void glpgp_r3_raster(const glpgp_mesh *m, const cam3 *c, gbuf *g);
+/* Frees the buffers of g (not g itself). */
+void glpgp_r3_gbuf_free(gbuf *g);
 /* Whether point p is in front of what the samples around it show (q: projected). */
 int glpgp_r3_visible(const cam3 *c, const gbuf *g, const double *p, double tol, double *q);
 /* A filled anti-aliased disc of radius rad pixels at pixel (x, y). */

@@ -60,16 +60,7 @@ static glpgp_status q3_build(q3 *Q, const glpgp_quadmesh *q, double sj_low)
     GLPGP_CHECK(glpgp_malloc((size_t)3 * q->nf + 3, sizeof(float), &Q->fcol));
     for (int f = 0, t = 0; f < q->nf; f++) {
         const int s = q->face_start[f], n = q->face_start[f + 1] - s;
-        double *N = Q->fn + 3 * f;
-        N[0] = N[1] = N[2] = 0.0;
-        for (int i = 0; i < n; i++) {
-            const double *a = q->xyz + 3 * q->face_vert[s + i], *b = q->xyz + 3 * q->face_vert[s + (i + 1) % n];
-            N[0] += (a[1] - b[1]) * (a[2] + b[2]);
-            N[1] += (a[2] - b[2]) * (a[0] + b[0]);
-            N[2] += (a[0] - b[0]) * (a[1] + b[1]);
-        }
-        const double l = sqrt(dot3(N, N));
-        for (int d = 0; d < 3 && l > 0; d++) N[d] /= l;
+        glpgp_quadmesh_face_normal(q, f, 1, Q->fn + 3 * f);
         face_colour(q, f, sj_low, Q->fcol + 3 * f);
         for (int i = 1; i + 1 < n; i++, t++) {
             Q->fan.tri[3 * t] = q->face_vert[s];
@@ -247,10 +238,7 @@ static glpgp_status render(const glpgp_quadmesh *q, const glpgp_render_options *
     im = NULL;
 done:
     glpgp_image_destroy(&im);
-    free(g.tri);
-    free(g.l1);
-    free(g.l2);
-    free(g.depth);
+    glpgp_r3_gbuf_free(&g);
     free(Q.fan.tri);
     free(Q.tface);
     free(Q.fn);

@@ -337,23 +337,11 @@ done:
 
 /* ---- faces ------------------------------------------------------------- */
 
-/* Newell normal (twice the vector area) of face f. */
-static void newell(const glpgp_quadmesh *q, int f, double *N)
-{
-    const int s = q->face_start[f], n = q->face_start[f + 1] - s;
-    N[0] = N[1] = N[2] = 0.0;
-    for (int i = 0; i < n; i++) {
-        const double *a = q->xyz + 3 * q->face_vert[s + i], *b = q->xyz + 3 * q->face_vert[s + (i + 1) % n];
-        N[0] += (a[1] - b[1]) * (a[2] + b[2]);
-        N[1] += (a[2] - b[2]) * (a[0] + b[0]);
-        N[2] += (a[0] - b[0]) * (a[1] + b[1]);
-    }
-}
 
 double glpgp_quad_face_sj_surface(const glpgp_quadmesh *q, int f)
 {
     double N[3];
-    newell(q, f, N);
+    glpgp_quadmesh_face_normal(q, f, 0, N);
     const double nn = sqrt(dot3(N, N));
     if (!(nn > 0)) return -1.0;
     const int s = q->face_start[f], n = q->face_start[f + 1] - s;
@@ -381,7 +369,7 @@ static void faces(const glpgp_quadmesh *q, const glpgp_mesh *m, const tsoup *in,
     for (int f = 0; f < q->nf; f++) {
         const int s = q->face_start[f], n = q->face_start[f + 1] - s;
         double N[3], c[3] = {0, 0, 0};
-        newell(q, f, N);
+        glpgp_quadmesh_face_normal(q, f, 0, N);
         qq->area += 0.5 * sqrt(dot3(N, N));
         for (int i = 0; i < n; i++)
             for (int d = 0; d < 3; d++) c[d] += q->xyz[3 * q->face_vert[s + i] + d] / n;

@@ -4,6 +4,7 @@
 #include "glpgp/quads.h"
 #include "glpgp/status.h"
 
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -25,6 +26,21 @@ static int cmp_ll2(const void *pa, const void *pb)
 {
     const long long *a = pa, *b = pb;
     return (a[0] > b[0]) - (a[0] < b[0]);
+}
+
+void glpgp_quadmesh_face_normal(const glpgp_quadmesh *q, int f, int unit, double *N)
+{
+    const int s = q->face_start[f], n = q->face_start[f + 1] - s;
+    N[0] = N[1] = N[2] = 0.0;
+    for (int i = 0; i < n; i++) { /* Newell's formula */
+        const double *a = q->xyz + 3 * q->face_vert[s + i], *b = q->xyz + 3 * q->face_vert[s + (i + 1) % n];
+        N[0] += (a[1] - b[1]) * (a[2] + b[2]);
+        N[1] += (a[2] - b[2]) * (a[0] + b[0]);
+        N[2] += (a[0] - b[0]) * (a[1] + b[1]);
+    }
+    const double l = sqrt(N[0] * N[0] + N[1] * N[1] + N[2] * N[2]);
+    if (unit && l > 0)
+        for (int d = 0; d < 3; d++) N[d] /= l;
 }
 
 glpgp_status glpgp_quadmesh_subdivide(const glpgp_quadmesh *q, glpgp_quadmesh **out)

@@ -38,20 +38,6 @@ typedef struct sm_ctx {
     double *fn;            /* per face: its unit normal before (3) */
 } sm_ctx;
 
-static void face_normal(const glpgp_quadmesh *q, int f, double *N)
-{
-    const int s = q->face_start[f], n = q->face_start[f + 1] - s;
-    N[0] = N[1] = N[2] = 0.0;
-    for (int i = 0; i < n; i++) {
-        const double *a = q->xyz + 3 * q->face_vert[s + i], *b = q->xyz + 3 * q->face_vert[s + (i + 1) % n];
-        N[0] += (a[1] - b[1]) * (a[2] + b[2]);
-        N[1] += (a[2] - b[2]) * (a[0] + b[0]);
-        N[2] += (a[0] - b[0]) * (a[1] + b[1]);
-    }
-    const double l = sqrt(N[0] * N[0] + N[1] * N[1] + N[2] * N[2]);
-    if (l > 0)
-        for (int d = 0; d < 3; d++) N[d] /= l;
-}
 
 /* Barycentric coordinates of x in input triangle t. */
 static void bary(const glpgp_mesh *m, int t, const double *x, double *w)
@@ -130,7 +116,7 @@ static double worst_at(const sm_ctx *c, int v)
         const int f = c->vf[j];
         const double sj = glpgp_quad_face_sj_surface(c->q, f);
         double N[3];
-        face_normal(c->q, f, N);
+        glpgp_quadmesh_face_normal(c->q, f, 1, N);
         if (sj < c->floor_[f] || N[0] * c->fn[3 * f] + N[1] * c->fn[3 * f + 1] + N[2] * c->fn[3 * f + 2] <= 0.0)
             return -2.0;
         w = fmin(w, sj);
@@ -222,7 +208,7 @@ static glpgp_status setup(sm_ctx *c)
     free(cnt);
     for (int f = 0; f < q->nf; f++) {
         c->floor_[f] = fmin(SJ_FLOOR, glpgp_quad_face_sj_surface(q, f));
-        face_normal(q, f, c->fn + 3 * f);
+        glpgp_quadmesh_face_normal(q, f, 1, c->fn + 3 * f);
     }
     return lock_vertices(c);
 }

@@ -117,6 +117,10 @@ glpgp_status glpgp_quads_extract(const glpgp_mesh *m, const glpgp_result *r,
                                  glpgp_quadmesh **out);
 void glpgp_quadmesh_destroy(glpgp_quadmesh **q);
 
+/* Normal of face f of a 3D quad mesh (q->xyz), by Newell's formula: twice
+ * the face's vector area, or of length 1 when unit (a zero vector stays 0). */
+void glpgp_quadmesh_face_normal(const glpgp_quadmesh *q, int f, int unit, double *N);
+
 /* All-quad refinement (one Catmull-Clark step without smoothing): every
  * face with n corners becomes n quads joined at its vertex centroid, each
  * edge is split at its midpoint (shared by both faces, so the result is
