@@ -83,7 +83,7 @@ static inline double tu_rand(void)
  * quads extracted at the period h and measured into *qq. Returns 1 when a
  * quad mesh came out (then *qq is set), 0 otherwise (a failed step is a
  * failed check). */
-static inline int tu_solve_quads(const glpgp_mesh *m, const glpgp_options *o, double h, glpgp_quad_quality *qq)
+static inline int tu_solve_quads(const glpgp_mesh *m, const glpgp_options *o, double h, glpgp_quads_report *qq)
 {
     glpgp_backend *be = NULL;
     glpgp_result *r = NULL;

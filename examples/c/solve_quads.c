@@ -8,7 +8,7 @@
 static glpgp_status run(const char *in, const char *out)
 {
     glpgp_mesh *m = NULL; glpgp_backend *b = NULL; glpgp_result *r = NULL;
-    glpgp_quadmesh *q = NULL; glpgp_quad_quality qq; glpgp_options o; glpgp_status st;
+    glpgp_quadmesh *q = NULL; glpgp_quads_report qq; glpgp_options o; glpgp_status st;
     double h = 0;
     glpgp_options_default(&o);                                  /* the CLI's defaults */
     GLPGP_CHECK_GOTO(st, glpgp_mesh_read(in, &m), done);        /* .obj .msh .stl */

@@ -73,9 +73,9 @@ int glpgp_cli_double(const char *s, double *out) { return glpgp_parse_double(s, 
 
 int glpgp_cli_long(const char *s, long lo, long hi, long *out) { return glpgp_parse_long(s, lo, hi, out); }
 
-int glpgp_cli_quads_verdict(const struct glpgp_quad_quality *qq, unsigned ignore, int allow, char *why, size_t n)
+int glpgp_cli_quads_verdict(const struct glpgp_quads_report *qq, unsigned ignore, int allow, char *why, size_t n)
 {
-    if (qq->repaired_share > GLPGP_QUAD_MOSTLY_REPAIRED)
+    if (qq->repaired_share > GLPGP_QUADS_MOSTLY_REPAIRED)
         glpgp_log(GLPGP_LOG_WARNING, "%.0f%% of the quads come from the repair, not from the parametrization's grid "
                   "(features smaller than the size, or a mesh too coarse for it: try a smaller --size)",
                   100.0 * qq->repaired_share);

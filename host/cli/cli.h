@@ -12,7 +12,7 @@
 #define GLPGP_EXIT_USAGE 2
 #define GLPGP_EXIT_INVALID 3 /* a quad mesh is invalid: not written (README "Quad meshes") */
 
-struct glpgp_quad_quality;
+struct glpgp_quads_report;
 
 /* Verbosity: 0 = --quiet (warnings only), 1 = default (progress), 2 = --verbose. */
 void glpgp_cli_set_verbosity(int v);
@@ -42,7 +42,7 @@ int glpgp_cli_usage_error(const char *sub, const char *fmt, ...)
  * prints one warning line naming the reasons and returns -1 (write it
  * anyway); without, returns GLPGP_EXIT_INVALID and leaves the reasons in why
  * (for glpgp_cli_invalid, after the other outputs are written). */
-int glpgp_cli_quads_verdict(const struct glpgp_quad_quality *qq, unsigned ignore, int allow, char *why,
+int glpgp_cli_quads_verdict(const struct glpgp_quads_report *qq, unsigned ignore, int allow, char *why,
                             size_t n);
 /* Print "glpgp: error: quad mesh is invalid (WHY): not written ..." and
  * return GLPGP_EXIT_INVALID. what: "not written" or "" (quality). */

@@ -29,8 +29,8 @@ int glpgp_cmd_extract(int argc, char **argv)
     double size = 0.0;
     int verbosity = 1, qgiven = 0, allow_invalid = 0;
     long max_elements = GLPGP_DEFAULT_MAX_ELEMENTS;
-    glpgp_quad_options qo;
-    glpgp_quad_options_default(&qo);
+    glpgp_quads_options qo;
+    glpgp_quads_options_default(&qo);
     glpgp_opts t;
     glpgp_opts_init(&t, sub, "glpgp extract RESULT.{vtu,vtk} --quads OUT.{obj,vtu,vtk,msh,ply} [options]",
                     "Extract the quad mesh whose edges are the integer level lines of theta_u and\n"
@@ -59,7 +59,7 @@ int glpgp_cmd_extract(int argc, char **argv)
     glpgp_result *r = NULL;
     glpgp_quadmesh *q = NULL;
     glpgp_output_set *outs = NULL;
-    glpgp_quad_quality qq;
+    glpgp_quads_report qq;
     rc = GLPGP_EXIT_FAIL;
     if (glpgp_read_result(in, &m, &r) != GLPGP_OK) goto fail;
     if (m->xyz) {
@@ -100,7 +100,7 @@ int glpgp_cmd_extract(int argc, char **argv)
     if (r->cross && glpgp_quads_quality_cross(q, r->cross->sing, r->cross->nsing, r->size, &qq) != GLPGP_OK)
         goto fail;
     char why[1024] = "";
-    int invalid_rc = glpgp_cli_quads_verdict(&qq, qo.keep_polygons ? GLPGP_QUAD_BAD_NONQUAD : 0u, allow_invalid,
+    int invalid_rc = glpgp_cli_quads_verdict(&qq, qo.keep_polygons ? GLPGP_QUADS_BAD_NONQUAD : 0u, allow_invalid,
                                              why, sizeof why);
     /* both outputs or neither (an invalid mesh: the report only) */
     if (glpgp_output_set_create(&outs) != GLPGP_OK ||
@@ -185,7 +185,7 @@ int glpgp_cmd_quality(int argc, char **argv)
             goto done;
         }
     }
-    glpgp_quad_quality qq;
+    glpgp_quads_report qq;
     if (glpgp_quads_quality(q, dm, size, &qq) != GLPGP_OK) goto fail;
     if (stats && glpgp_quads_write_json_file(&qq, stats) != GLPGP_OK) goto fail;
     printf("glpgp: %s: h = %.6g\n", in, size);

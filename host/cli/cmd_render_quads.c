@@ -37,7 +37,7 @@ int glpgp_cli_render_quads(const char *in, const char *out, const char *domain, 
             double sjmin = INFINITY;
             for (int f = 0; f < q->nf; f++) {
                 if (q->face_start[f + 1] - q->face_start[f] != 4) continue;
-                double sj = q->xyz ? glpgp_quad_face_sj_surface(q, f) : glpgp_quad_face_sj(q, f);
+                double sj = q->xyz ? glpgp_quadmesh_face_sj_surface(q, f) : glpgp_quadmesh_face_sj(q, f);
                 quads++;
                 low += sj < sj_below;
                 sjmin = fmin(sjmin, sj);

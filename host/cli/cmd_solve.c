@@ -36,7 +36,7 @@ typedef struct solve_cli {
     int no_refine;
     glpgp_refine_info refined;
     const char *out, *stats, *quads, *image;
-    glpgp_quad_options qo;
+    glpgp_quads_options qo;
     int quad_opts, allow_invalid;
     glpgp_render_options ro;
     glpgp_mask_options mo;
@@ -49,7 +49,7 @@ typedef struct solve_cli {
     double t_refine;     /* seconds of the refinement for the local size (prepare) */
     int image_kind_given; /* --image-kind seen: with --quads, the picture is the quad mesh otherwise */
     double faces;        /* --faces N: the target quad count (h = sqrt(area / N)); 0: not given */
-    glpgp_quad_surface_steps qsteps; /* a surface's quad pipeline (--quads) */
+    glpgp_quads_surface_steps qsteps; /* a surface's quad pipeline (--quads) */
 } solve_cli;
 
 /* Default of --gather-max: 2^26 vertices (1 GiB per gathered z array, 16
@@ -60,7 +60,7 @@ static void build(glpgp_opts *t, solve_cli *c)
 {
     memset(c, 0, sizeof *c); /* outputs NULL, no option seen */
     glpgp_options_default(&c->o);
-    glpgp_quad_options_default(&c->qo);
+    glpgp_quads_options_default(&c->qo);
     glpgp_render_options_default(&c->ro);
     glpgp_mask_options_default(&c->mo);
     c->backend = GLPGP_BACKEND_AUTO;
@@ -214,7 +214,7 @@ static void print_phases(const glpgp_result *r)
 }
 
 static void print_summary(const solve_cli *c, const char *input, const glpgp_mesh *m, const glpgp_result *r,
-                          const char *device, double t_all, double t_read, const glpgp_quad_quality *qq,
+                          const char *device, double t_all, double t_read, const glpgp_quads_report *qq,
                           int quads_written)
 {
     const glpgp_osc_result *u = &r->osc[0], *v = &r->osc[1];
@@ -495,7 +495,7 @@ static int solve_main(solve_cli *cc, const char *input, glpgp_dist *dd)
     glpgp_quadmesh *q = NULL;
     glpgp_image *im = NULL;
     glpgp_output_set *outs = NULL;
-    glpgp_quad_quality qq;
+    glpgp_quads_report qq;
     memset(&qq, 0, sizeof qq);
     int invalid_rc = -1;
     int nranks = 0;             /* --backend petsc: MPI ranks, per-rank numbers */
@@ -561,13 +561,13 @@ static int solve_main(solve_cli *cc, const char *input, glpgp_dist *dd)
         if (r->cross && glpgp_quads_quality_cross(q, r->cross->sing, r->cross->nsing, r->size, &qq) != GLPGP_OK)
             goto fail;
         /* an invalid mesh is not written (exit 3) unless --allow-invalid */
-        invalid_rc = glpgp_cli_quads_verdict(&qq, c.qo.keep_polygons ? GLPGP_QUAD_BAD_NONQUAD : 0u,
+        invalid_rc = glpgp_cli_quads_verdict(&qq, c.qo.keep_polygons ? GLPGP_QUADS_BAD_NONQUAD : 0u,
                                              c.allow_invalid, why, sizeof why);
     }
     cli_tm.s[GLPGP_TM_EXTRACT] = glpgp_now() - tp;
     tp = glpgp_now();
     if (c.image && c.quads && !c.image_kind_given && !m->surf) { /* a surface: the grid picture (render3d) */
-        if (glpgp_render_quadmesh(q, m, &c.ro, GLPGP_QUAD_SJ_GOAL, 1, &im) != GLPGP_OK) goto fail;
+        if (glpgp_render_quadmesh(q, m, &c.ro, GLPGP_QUADS_SJ_GOAL, 1, &im) != GLPGP_OK) goto fail;
     } else if (c.image && glpgp_render(m, r, &c.ro, &im) != GLPGP_OK) {
         goto fail;
     }

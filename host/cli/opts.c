@@ -384,9 +384,9 @@ void glpgp_opts_add_backend(glpgp_opts *t, int *kind, int *device)
     d->def = "$GLPGP_DEVICE, else the first fp64 GPU, else the first fp64 device";
 }
 
-void glpgp_opts_add_quads(glpgp_opts *t, glpgp_quad_options *q, int *given, int *allow_invalid)
+void glpgp_opts_add_quads(glpgp_opts *t, glpgp_quads_options *q, int *given, int *allow_invalid)
 {
-    for (const glpgp_optdesc *d = glpgp_quad_option_table(); d->name; d++) glpgp_opts_add_desc(t, d, q)->seen = given;
+    for (const glpgp_optdesc *d = glpgp_quads_option_table(); d->name; d++) glpgp_opts_add_desc(t, d, q)->seen = given;
     glpgp_opt *o = glpgp_opt_flag(t, "--allow-invalid", allow_invalid, 1,
                                   "write an invalid quad mesh anyway, with a warning (default: not\n"
                                   "written, exit code 3)");

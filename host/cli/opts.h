@@ -119,7 +119,7 @@ void glpgp_opts_add_size_image(glpgp_opts *t, double box[4]);
 void glpgp_opts_add_backend(glpgp_opts *t, int *kind, int *device);
 /* --keep-polygons, --smooth N, --all-quads, --no-repair, --allow-invalid;
  * *given set when one is used. */
-void glpgp_opts_add_quads(glpgp_opts *t, glpgp_quad_options *q, int *given, int *allow_invalid);
+void glpgp_opts_add_quads(glpgp_opts *t, glpgp_quads_options *q, int *given, int *allow_invalid);
 /* --image-size, --image-kind, --background[, --line-width]. */
 void glpgp_opts_add_picture(glpgp_opts *t, glpgp_render_options *r, int line_width);
 /* --threshold, --invert, --pixel-size, --mesh-size, --min-area, --simplify, --algorithm,

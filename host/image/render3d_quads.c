@@ -40,7 +40,7 @@ static void face_colour(const glpgp_quadmesh *q, int f, double sj_low, float *c)
         {0.80f, 0.85f, 0.95f}, {0.62f, 0.74f, 0.98f}, {1.00f, 0.80f, 0.50f}, {0.86f, 0.66f, 0.93f}};
     static const float other[3] = {0.55f, 0.55f, 0.55f}, low[3] = {1.00f, 0.45f, 0.38f}, bad[3] = {0.70f, 0.05f, 0.05f};
     const int k = q->face_start[f + 1] - q->face_start[f];
-    const double sj = glpgp_quad_face_sj_surface(q, f);
+    const double sj = glpgp_quadmesh_face_sj_surface(q, f);
     const float *s = k != 4 ? other : sj <= 0 ? bad : sj < sj_low ? low
                    : by_origin[q->face_origin && q->face_origin[f] < GLPGP_QFACE_KINDS ? q->face_origin[f] : 0];
     memcpy(c, s, 3 * sizeof(float));
@@ -221,7 +221,7 @@ static glpgp_status render(const glpgp_quadmesh *q, const glpgp_render_options *
         double sjmin = 1.0;
         for (int f = 0; f < q->nf; f++) {
             if (q->face_start[f + 1] - q->face_start[f] != 4) continue;
-            const double sj = glpgp_quad_face_sj_surface(q, f);
+            const double sj = glpgp_quadmesh_face_sj_surface(q, f);
             quads++;
             low += sj < sj_low;
             sjmin = fmin(sjmin, sj);

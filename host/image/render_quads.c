@@ -96,7 +96,7 @@ static void face_colour(const glpgp_quadmesh *q, int f, double sj_low, float c[3
     static const float other[3] = {0.55f, 0.55f, 0.55f}, low[3] = {1.00f, 0.45f, 0.38f},
                        bad[3] = {0.70f, 0.05f, 0.05f};
     int k = q->face_start[f + 1] - q->face_start[f];
-    double sj = glpgp_quad_face_sj(q, f);
+    double sj = glpgp_quadmesh_face_sj(q, f);
     const float *s = k != 4 ? other : sj <= 0 ? bad : sj < sj_low ? low
                    : by_origin[q->face_origin && q->face_origin[f] < GLPGP_QFACE_KINDS ? q->face_origin[f] : 0];
     memcpy(c, s, 3 * sizeof(float));
@@ -220,7 +220,7 @@ glpgp_status glpgp_render_quadmesh(const glpgp_quadmesh *q, const glpgp_mesh *dm
         for (int i = 0; i < k; i++) to_px(&F, q->xy + 2 * q->face_vert[s + i], &pts[2 * i], &pts[2 * i + 1]);
         fill_poly(im, &F, pts, k, c, 1.0);
         if (k == 4) {
-            double sj = glpgp_quad_face_sj(q, f);
+            double sj = glpgp_quadmesh_face_sj(q, f);
             n.quads++;
             n.sj_min = fmin(n.sj_min, sj);
             n.low += sj < sj_low;

@@ -29,17 +29,17 @@ static void histogram(glpgp_json *w, const char *key, const int *h, int n, int f
 }
 
 /* "origin": quads per face origin, the repaired share; "mostly_repaired". */
-static void json_origin(glpgp_json *w, const glpgp_quad_quality *qq)
+static void json_origin(glpgp_json *w, const glpgp_quads_report *qq)
 {
     glpgp_json_object(w, "origin");
-    for (int k = 0; k < GLPGP_QFACE_KINDS; k++) glpgp_json_int(w, glpgp_quad_origin_name(k), qq->quads_by_origin[k]);
+    for (int k = 0; k < GLPGP_QFACE_KINDS; k++) glpgp_json_int(w, glpgp_quads_origin_name(k), qq->quads_by_origin[k]);
     glpgp_json_num(w, "repaired_share", qq->repaired_share);
     glpgp_json_close(w);
-    glpgp_json_bool(w, "mostly_repaired", qq->repaired_share > GLPGP_QUAD_MOSTLY_REPAIRED);
+    glpgp_json_bool(w, "mostly_repaired", qq->repaired_share > GLPGP_QUADS_MOSTLY_REPAIRED);
 }
 
 /* "repair": what it did, with the regions listed (the worst first). */
-static void json_repair(glpgp_json *w, const glpgp_quad_repair *r)
+static void json_repair(glpgp_json *w, const glpgp_quads_repair *r)
 {
     glpgp_json_object(w, "repair");
     glpgp_json_int(w, "rounds", r->rounds);
@@ -53,7 +53,7 @@ static void json_repair(glpgp_json *w, const glpgp_quad_repair *r)
     glpgp_json_int(w, "flat_corners", r->flat_corners);
     glpgp_json_int(w, "shaped_vertices", r->shaped_vertices);
     glpgp_json_str(w, "whole_domain", r->whole_domain == 2 ? "input-triangles" : r->whole_domain == 1 ? "meshed-again" : "no");
-    int order[GLPGP_QUAD_REGIONS_LISTED], n = r->nlisted;
+    int order[GLPGP_QUADS_REGIONS_LISTED], n = r->nlisted;
     for (int i = 0; i < n; i++) order[i] = i;
     for (int i = 1; i < n; i++) /* by sj_min, the worst first */
         for (int j = i; j > 0 && r->region[order[j]].sj_min < r->region[order[j - 1]].sj_min; j--) {
@@ -63,14 +63,14 @@ static void json_repair(glpgp_json *w, const glpgp_quad_repair *r)
         }
     glpgp_json_array(w, "regions_listed");
     for (int i = 0; i < n; i++) {
-        const glpgp_quad_region *g = &r->region[order[i]];
+        const glpgp_quads_region *g = &r->region[order[i]];
         glpgp_json_object(w, NULL);
         glpgp_json_int(w, "faces_in", g->faces_in);
         glpgp_json_int(w, "quads_out", g->quads_out);
         glpgp_json_num(w, "sj_min", g->sj_min);
         glpgp_json_num(w, "x", g->x);
         glpgp_json_num(w, "y", g->y);
-        glpgp_json_str(w, "mesher", glpgp_quad_origin_name(g->origin));
+        glpgp_json_str(w, "mesher", glpgp_quads_origin_name(g->origin));
         glpgp_json_int(w, "round", g->round);
         glpgp_json_close(w);
     }
@@ -78,7 +78,7 @@ static void json_repair(glpgp_json *w, const glpgp_quad_repair *r)
     glpgp_json_close(w);
 }
 
-void glpgp_quads_json(glpgp_json *w, const char *key, const glpgp_quad_quality *qq)
+void glpgp_quads_json(glpgp_json *w, const char *key, const glpgp_quads_report *qq)
 {
     glpgp_json_object(w, key);
     glpgp_json_int(w, "vertices", qq->vertices);
@@ -87,8 +87,8 @@ void glpgp_quads_json(glpgp_json *w, const char *key, const glpgp_quad_quality *
     glpgp_json_int(w, "other_faces", qq->others);
     histogram(w, "other_faces_by_corners", qq->others_by_size, 8, 3, 1, 7);
     glpgp_json_object(w, "valence");
-    histogram(w, "interior", qq->valence_interior, GLPGP_QUAD_MAXVAL + 1, 0, -1, GLPGP_QUAD_MAXVAL);
-    histogram(w, "boundary", qq->valence_boundary, GLPGP_QUAD_MAXVAL + 1, 0, -1, GLPGP_QUAD_MAXVAL);
+    histogram(w, "interior", qq->valence_interior, GLPGP_QUADS_MAXVAL + 1, 0, -1, GLPGP_QUADS_MAXVAL);
+    histogram(w, "boundary", qq->valence_boundary, GLPGP_QUADS_MAXVAL + 1, 0, -1, GLPGP_QUADS_MAXVAL);
     glpgp_json_close(w);
     glpgp_json_object(w, "irregular_vertices");
     glpgp_json_int(w, "interior", qq->irregular_interior);
@@ -153,8 +153,8 @@ void glpgp_quads_json(glpgp_json *w, const char *key, const glpgp_quad_quality *
     }
     glpgp_json_bool(w, "valid", qq->invalid == 0);
     glpgp_json_array(w, "invalid_reasons");
-    for (int b = 0; b < GLPGP_QUAD_BAD_COUNT; b++)
-        if (qq->invalid & (1u << b)) glpgp_json_str(w, NULL, glpgp_quad_bad_name(1u << b));
+    for (int b = 0; b < GLPGP_QUADS_BAD_COUNT; b++)
+        if (qq->invalid & (1u << b)) glpgp_json_str(w, NULL, glpgp_quads_bad_name(1u << b));
     glpgp_json_close(w);
     glpgp_json_int(w, "orientation", qq->orientation);
     glpgp_json_int(w, "overlapping_faces", qq->overlaps);
@@ -214,7 +214,7 @@ void glpgp_quads_json(glpgp_json *w, const char *key, const glpgp_quad_quality *
     glpgp_json_close(w);
 }
 
-glpgp_status glpgp_output_set_quads_json(glpgp_output_set *s, const glpgp_quad_quality *qq, const char *path)
+glpgp_status glpgp_output_set_quads_json(glpgp_output_set *s, const glpgp_quads_report *qq, const char *path)
 {
     FILE *f;
     if (!qq) return GLPGP_FAIL(GLPGP_ERR_ARG, "no quad report to write");
@@ -227,7 +227,7 @@ glpgp_status glpgp_output_set_quads_json(glpgp_output_set *s, const glpgp_quad_q
     return GLPGP_OK;
 }
 
-glpgp_status glpgp_quads_write_json_file(const glpgp_quad_quality *qq, const char *path)
+glpgp_status glpgp_quads_write_json_file(const glpgp_quads_report *qq, const char *path)
 {
     glpgp_output_set *s = NULL;
     GLPGP_CHECK(glpgp_output_set_create(&s));
@@ -284,7 +284,7 @@ static void write_obj(FILE *f, const glpgp_quadmesh *q)
     int group = -1;
     for (int fa = 0; fa < q->nf; fa++) {
         int o = q->face_origin ? q->face_origin[fa] : -1;
-        if (o != group && o >= 0) fprintf(f, "g %s\n", glpgp_quad_origin_name(o));
+        if (o != group && o >= 0) fprintf(f, "g %s\n", glpgp_quads_origin_name(o));
         group = o;
         fputc('f', f);
         for (int j = q->face_start[fa]; j < q->face_start[fa + 1]; j++)
@@ -316,7 +316,7 @@ static void write_vtk(FILE *f, const glpgp_quadmesh *q)
     fprintf(f, "CELL_DATA %d\nSCALARS corners int 1\nLOOKUP_TABLE default\n", q->nf);
     for (int fa = 0; fa < q->nf; fa++) fprintf(f, "%d\n", q->face_start[fa + 1] - q->face_start[fa]);
     fprintf(f, "SCALARS scaled_jacobian double 1\nLOOKUP_TABLE default\n");
-    for (int fa = 0; fa < q->nf; fa++) fprintf(f, "%.6g\n", q->xyz ? glpgp_quad_face_sj_surface(q, fa) : glpgp_quad_face_sj(q, fa));
+    for (int fa = 0; fa < q->nf; fa++) fprintf(f, "%.6g\n", q->xyz ? glpgp_quadmesh_face_sj_surface(q, fa) : glpgp_quadmesh_face_sj(q, fa));
     fprintf(f, "SCALARS origin int 1\nLOOKUP_TABLE default\n");
     for (int fa = 0; fa < q->nf; fa++) fprintf(f, "%d\n", q->face_origin ? q->face_origin[fa] : 0);
 }
@@ -428,7 +428,7 @@ static void qfill_sj(const void *c, size_t first, size_t n, void *out)
 {
     const glpgp_quadmesh *q = ((const q_ctx *)c)->q;
     double *o = out;
-    for (size_t i = 0; i < n; i++) o[i] = q->xyz ? glpgp_quad_face_sj_surface(q, (int)(first + i)) : glpgp_quad_face_sj(q, (int)(first + i));
+    for (size_t i = 0; i < n; i++) o[i] = q->xyz ? glpgp_quadmesh_face_sj_surface(q, (int)(first + i)) : glpgp_quadmesh_face_sj(q, (int)(first + i));
 }
 static void qfill_origin(const void *c, size_t first, size_t n, void *out)
 {

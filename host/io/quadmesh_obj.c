@@ -16,7 +16,7 @@
 /* The group names of the face origins (glpgp_quads_write's OBJ groups). */
 static const char *const k_origin_group[GLPGP_QFACE_KINDS] = {"grid", "strips", "repair", "fallback"};
 
-const char *glpgp_quad_origin_name(int origin)
+const char *glpgp_quads_origin_name(int origin)
 {
     return origin >= 0 && origin < GLPGP_QFACE_KINDS ? k_origin_group[origin] : "?";
 }

@@ -377,7 +377,7 @@ glpgp_status glpgp_stats_json_text(const glpgp_mesh *m, const glpgp_options *opt
     return GLPGP_OK;
 }
 
-glpgp_status glpgp_quads_json_text(const glpgp_quad_quality *qq, char **out)
+glpgp_status glpgp_quads_json_text(const glpgp_quads_report *qq, char **out)
 {
     *out = NULL;
     size_t len = 0;

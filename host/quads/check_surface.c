@@ -261,7 +261,7 @@ static int cmp_dedge(const void *pa, const void *pb)
 }
 
 /* Edges, boundary, manifoldness, pinched vertices, loops, valences. */
-static glpgp_status topology(const glpgp_quadmesh *q, glpgp_quad_quality *qq, unsigned char *onb)
+static glpgp_status topology(const glpgp_quadmesh *q, glpgp_quads_report *qq, unsigned char *onb)
 {
     const int nc = q->face_start[q->nf];
     dedge *E = NULL;
@@ -320,7 +320,7 @@ static glpgp_status topology(const glpgp_quadmesh *q, glpgp_quad_quality *qq, un
     }
     for (int v = 0; v < q->nv; v++) {
         if (onb[v] && glpgp_uf_find(vuf, v) == v) qq->boundary_loops++;
-        const int b = val[v] > GLPGP_QUAD_MAXVAL ? GLPGP_QUAD_MAXVAL : val[v];
+        const int b = val[v] > GLPGP_QUADS_MAXVAL ? GLPGP_QUADS_MAXVAL : val[v];
         if (onb[v]) qq->valence_boundary[b]++;
         else qq->valence_interior[b]++;
         if (!onb[v] && val[v] != 4) qq->irregular_interior++;
@@ -338,7 +338,7 @@ done:
 /* ---- faces ------------------------------------------------------------- */
 
 
-double glpgp_quad_face_sj_surface(const glpgp_quadmesh *q, int f)
+double glpgp_quadmesh_face_sj_surface(const glpgp_quadmesh *q, int f)
 {
     double N[3];
     glpgp_quadmesh_face_normal(q, f, 0, N);
@@ -362,7 +362,7 @@ double glpgp_quad_face_sj_surface(const glpgp_quadmesh *q, int f)
 /* Per face: scaled Jacobian, orientation against the surface, area; the
  * boundary vertices' ideal valence from their corner angles. */
 static void faces(const glpgp_quadmesh *q, const glpgp_mesh *m, const tsoup *in, double h,
-                  const unsigned char *onb, double *angle, glpgp_quad_quality *qq)
+                  const unsigned char *onb, double *angle, glpgp_quads_report *qq)
 {
     double sum = 0.0;
     qq->sj_min = 1.0;
@@ -376,7 +376,7 @@ static void faces(const glpgp_quadmesh *q, const glpgp_mesh *m, const tsoup *in,
         int t = -1;
         soup_dist(in, c, &t);
         const int against = t >= 0 && dot3(N, m->surf->tframe + 9 * t + 6) <= 0.0;
-        const double sj = glpgp_quad_face_sj_surface(q, f);
+        const double sj = glpgp_quadmesh_face_sj_surface(q, f);
         int degen = !(sqrt(dot3(N, N)) > 1e-12 * h * h);
         for (int i = 0; i < n; i++) {
             const int a = q->face_vert[s + i];
@@ -396,7 +396,7 @@ static void faces(const glpgp_quadmesh *q, const glpgp_mesh *m, const tsoup *in,
             qq->quads++;
             sum += sj;
             qq->sj_min = fmin(qq->sj_min, sj);
-            if (sj < GLPGP_QUAD_SJ_GOAL) qq->below_sj_goal++;
+            if (sj < GLPGP_QUADS_SJ_GOAL) qq->below_sj_goal++;
         } else {
             qq->others++;
             qq->others_by_size[n - 3 > 7 ? 7 : n - 3 < 0 ? 0 : n - 3]++;
@@ -414,7 +414,7 @@ static void faces(const glpgp_quadmesh *q, const glpgp_mesh *m, const tsoup *in,
 }
 
 static void boundary_valence(const glpgp_quadmesh *q, const unsigned char *onb, const double *angle,
-                             glpgp_quad_quality *qq)
+                             glpgp_quads_report *qq)
 {
     int *val = NULL;
     if (glpgp_quadmesh_valences(q, &val) != GLPGP_OK) return;
@@ -423,7 +423,7 @@ static void boundary_valence(const glpgp_quadmesh *q, const unsigned char *onb, 
     free(val);
 }
 
-static glpgp_status distances(const glpgp_quadmesh *q, const tsoup *in, double h, glpgp_quad_quality *qq)
+static glpgp_status distances(const glpgp_quadmesh *q, const tsoup *in, double h, glpgp_quads_report *qq)
 {
     tsoup qs;
     memset(&qs, 0, sizeof qs);
@@ -508,28 +508,28 @@ glpgp_status glpgp_qs_project(const glpgp_mesh *m, double h, double *xyz, int fi
     return GLPGP_OK;
 }
 
-double glpgp_quads_surface_area_tolerance(const glpgp_quad_quality *qq)
+double glpgp_quads_surface_area_tolerance(const glpgp_quads_report *qq)
 {
     const double d = qq->dist_quad_to_domain > 0 ? qq->dist_quad_to_domain : 0.0;
     return 0.02 + 2.0 * d * d;
 }
 
-static void verdict(glpgp_quad_quality *qq)
+static void verdict(glpgp_quads_report *qq)
 {
-    if (qq->faces == 0) qq->invalid |= GLPGP_QUAD_BAD_EMPTY;
-    if (qq->inverted) qq->invalid |= GLPGP_QUAD_BAD_INVERTED;
-    if (qq->degenerate) qq->invalid |= GLPGP_QUAD_BAD_DEGENERATE;
-    if (qq->nonmanifold_edges) qq->invalid |= GLPGP_QUAD_BAD_NONMANIFOLD;
-    if (qq->others) qq->invalid |= GLPGP_QUAD_BAD_NONQUAD;
-    if (qq->pinched) qq->invalid |= GLPGP_QUAD_BAD_PINCHED;
-    if (qq->boundary_loops != qq->domain_loops) qq->invalid |= GLPGP_QUAD_BAD_LOOPS;
-    if (qq->euler != qq->domain_euler) qq->invalid |= GLPGP_QUAD_BAD_TOPOLOGY;
-    if (fabs(qq->area_ratio - 1.0) > glpgp_quads_surface_area_tolerance(qq)) qq->invalid |= GLPGP_QUAD_BAD_AREA;
-    if (qq->hausdorff > 0.25) qq->invalid |= GLPGP_QUAD_BAD_HAUSDORFF;
+    if (qq->faces == 0) qq->invalid |= GLPGP_QUADS_BAD_EMPTY;
+    if (qq->inverted) qq->invalid |= GLPGP_QUADS_BAD_INVERTED;
+    if (qq->degenerate) qq->invalid |= GLPGP_QUADS_BAD_DEGENERATE;
+    if (qq->nonmanifold_edges) qq->invalid |= GLPGP_QUADS_BAD_NONMANIFOLD;
+    if (qq->others) qq->invalid |= GLPGP_QUADS_BAD_NONQUAD;
+    if (qq->pinched) qq->invalid |= GLPGP_QUADS_BAD_PINCHED;
+    if (qq->boundary_loops != qq->domain_loops) qq->invalid |= GLPGP_QUADS_BAD_LOOPS;
+    if (qq->euler != qq->domain_euler) qq->invalid |= GLPGP_QUADS_BAD_TOPOLOGY;
+    if (fabs(qq->area_ratio - 1.0) > glpgp_quads_surface_area_tolerance(qq)) qq->invalid |= GLPGP_QUADS_BAD_AREA;
+    if (qq->hausdorff > 0.25) qq->invalid |= GLPGP_QUADS_BAD_HAUSDORFF;
 }
 
 glpgp_status glpgp_quads_quality_surface(const glpgp_quadmesh *q, const glpgp_mesh *m, double h,
-                                         glpgp_quad_quality *qq)
+                                         glpgp_quads_report *qq)
 {
     memset(qq, 0, sizeof *qq);
     if (!q || !q->xyz || !glpgp_mesh_is_surface(m) || !m->surf || !(h > 0))

@@ -130,7 +130,7 @@ int glpgp_dbnd_chord(dbnd *D, const double *a, const double *b, double h, double
 /* A strip from boundary side (f0, i0): faces and entry sides into *path
  * (2 ints per face), the far boundary side in *fe, *ie. 0 when it meets
  * itself or a non-quad. */
-int glpgp_quad_strip_trace(const qsides *S, const glpgp_quadmesh *q, int f0, int i0, int *path, int *len, int *fe, int *ie,
+int glpgp_quadmesh_strip_trace(const qsides *S, const glpgp_quadmesh *q, int f0, int i0, int *path, int *len, int *fe, int *ie,
                  unsigned char *seen)
 {
     int f = f0, i = i0, n = 0, ok = 0;
@@ -261,7 +261,7 @@ static glpgp_status one_strip(glpgp_quadmesh *q, dbnd *D, double h, int *done)
     double bgain = 0.0;
     for (int k = 0; k < nb; k++) {
         int s = order[k], len = 0, fe = -1, ie = -1;
-        if (!glpgp_quad_strip_trace(&S, q, s / 4, s % 4, path, &len, &fe, &ie, seen) || len < 1) continue;
+        if (!glpgp_quadmesh_strip_trace(&S, q, s / 4, s % 4, path, &len, &fe, &ie, seen) || len < 1) continue;
         int se = 4 * fe + ie;
         if (!(loss[se] > 0)) continue; /* ends on an edge with nothing to gain (a hole: more area) */
         double gain = (loss[s] + loss[se]) / len;
@@ -274,7 +274,7 @@ static glpgp_status one_strip(glpgp_quadmesh *q, dbnd *D, double h, int *done)
     }
     if (bs >= 0) {
         int len = 0, fe = -1, ie = -1;
-        glpgp_quad_strip_trace(&S, q, bs / 4, bs % 4, path, &len, &fe, &ie, seen);
+        glpgp_quadmesh_strip_trace(&S, q, bs / 4, bs % 4, path, &len, &fe, &ie, seen);
         GLPGP_CHECK_GOTO(st, cut_strip(q, path, len, mids + 2 * bs, mids + 2 * bse, done), done);
         glpgp_log(GLPGP_LOG_DEBUG, "quad chords: strip of %d quads, losses %.3g and %.3g: %s", blen, loss[bs], loss[bse],
                   *done ? "cut" : "not cut (poor quads)");

@@ -510,7 +510,7 @@ glpgp_status glpgp_quadmesh_cleanup(const glpgp_quadmesh *q, glpgp_quadmesh **ou
         }
     for (int v = 0; v < c.nv; v++) c.ideal[v] = c.bnd[v] ? (int)lround(angle[v] / (CL_PI / 2)) + 1 : 4;
 
-    glpgp_quad_cleanup stats;
+    glpgp_quads_cleanup stats;
     memset(&stats, 0, sizeof stats);
     stats.cost_before = total_cost(&c);
     for (int pass = 0; pass < CL_MAX_PASSES; pass++) {

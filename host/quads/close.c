@@ -398,7 +398,7 @@ static int with_mids(const psoup *s, int f, int in, int mid_in, int out, int mid
     return n;
 }
 
-typedef glpgp_quad_closing pair_stats;
+typedef glpgp_quads_closing pair_stats;
 
 /* Apply the strip P[0..len): new midpoints, the faces rewritten (old ones
  * deleted, new ones appended). Nothing is changed when a new quad would

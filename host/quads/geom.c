@@ -133,7 +133,7 @@ double glpgp_poly_quad_split(const double *xy, const int *p, int n, int *out, in
 }
 
 /* Minimum corner scaled Jacobian of face f. */
-double glpgp_quad_face_sj(const glpgp_quadmesh *q, int f)
+double glpgp_quadmesh_face_sj(const glpgp_quadmesh *q, int f)
 {
     int s = q->face_start[f];
     return glpgp_poly_min_sj(q->xy, q->face_vert + s, q->face_start[f + 1] - s);

@@ -385,7 +385,7 @@ static glpgp_status coarse_triangles(const cmesh3 *c, double **xy, int *nv, int 
 
 static glpgp_status accept(glpgp_quadmesh **cand, const glpgp_mesh *m, double h, glpgp_quadmesh **out)
 {
-    glpgp_quad_quality qq;
+    glpgp_quads_report qq;
     if (!*cand || (*cand)->nf == 0) return GLPGP_OK;
     GLPGP_CHECK(glpgp_quads_quality(*cand, m, h, &qq));
     if (qq.invalid) {

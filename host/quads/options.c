@@ -1,12 +1,12 @@
 /* quads/options.c: the table of the user-settable quad-mesh options
- * (glpgp_quad_option_table, glpgp/quads.h; descriptors: glpgp/optdesc.h),
+ * (glpgp_quads_option_table, glpgp/quads.h; descriptors: glpgp/optdesc.h),
  * read by the CLI (--keep-polygons, --smooth, ...) and the Python keyword
  * arguments of Result.quads (keep_polygons, smooth, ...). */
 #include "glpgp/quads.h"
 
 #include <stddef.h>
 
-#define OFF(m) offsetof(glpgp_quad_options, m)
+#define OFF(m) offsetof(glpgp_quads_options, m)
 
 static const glpgp_optdesc k_table[] = {
     {.name = "keep-polygons", .kind = GLPGP_OPTK_FLAG, .offset = OFF(keep_polygons), .ival = 1,
@@ -30,4 +30,4 @@ static const glpgp_optdesc k_table[] = {
              "where they lower the irregular vertices and keep the quality)"},
     {.name = NULL}};
 
-const glpgp_optdesc *glpgp_quad_option_table(void) { return k_table; }
+const glpgp_optdesc *glpgp_quads_option_table(void) { return k_table; }

@@ -19,7 +19,7 @@ static glpgp_status shape_pass(glpgp_quadmesh **q, const glpgp_mesh *m, double h
     glpgp_quadmesh *t = glpgp_qm_copy(*q);
     if (!t) return GLPGP_FAIL(GLPGP_ERR_NOMEM, "quads: no memory for the shape pass");
     int flat = 0, moved = 0;
-    glpgp_quad_quality q0, q1;
+    glpgp_quads_report q0, q1;
     glpgp_status st = glpgp_quadmesh_shape_pass(t, m, h, &flat, &moved);
     if (st == GLPGP_OK && (flat || moved)) {
         st = glpgp_quads_quality(*q, m, h, &q0);
@@ -40,7 +40,7 @@ static glpgp_status shape_pass(glpgp_quadmesh **q, const glpgp_mesh *m, double h
     return st;
 }
 
-void glpgp_quad_options_default(glpgp_quad_options *o)
+void glpgp_quads_options_default(glpgp_quads_options *o)
 {
     o->keep_polygons = 0;
     o->smooth = 20;
@@ -50,12 +50,12 @@ void glpgp_quad_options_default(glpgp_quad_options *o)
     o->cleanup = 1;
 }
 
-glpgp_status glpgp_quads_build(const glpgp_mesh *m, const glpgp_result *r, const glpgp_quad_options *o,
+glpgp_status glpgp_quads_build(const glpgp_mesh *m, const glpgp_result *r, const glpgp_quads_options *o,
                                glpgp_quadmesh **out, double *h)
 {
-    glpgp_quad_options def;
+    glpgp_quads_options def;
     if (!o) {
-        glpgp_quad_options_default(&def);
+        glpgp_quads_options_default(&def);
         o = &def;
     }
     *out = NULL;
@@ -109,7 +109,7 @@ glpgp_status glpgp_quads_build(const glpgp_mesh *m, const glpgp_result *r, const
         if (c) {
             /* kept only if it is as valid as before (by construction it
              * should be: the report's own checks make sure) */
-            glpgp_quad_quality q0, q1;
+            glpgp_quads_report q0, q1;
             st = glpgp_quads_quality(q, m, *h, &q0);
             if (st == GLPGP_OK) st = glpgp_quads_quality(c, m, *h, &q1);
             if (st != GLPGP_OK) goto done;

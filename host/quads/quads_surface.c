@@ -708,9 +708,9 @@ static glpgp_status split_onto(const glpgp_mesh *m, const glpgp_quadmesh *q, dou
 static glpgp_status verdict_of(const glpgp_mesh *m, const glpgp_quadmesh *q, double h, int keep_polygons,
                                unsigned *bad)
 {
-    glpgp_quad_quality qq;
+    glpgp_quads_report qq;
     GLPGP_CHECK(glpgp_quads_quality_surface(q, m, h, &qq));
-    *bad = qq.invalid & ~(keep_polygons ? (unsigned)GLPGP_QUAD_BAD_NONQUAD : 0u);
+    *bad = qq.invalid & ~(keep_polygons ? (unsigned)GLPGP_QUADS_BAD_NONQUAD : 0u);
     return GLPGP_OK;
 }
 
@@ -718,8 +718,8 @@ static glpgp_status verdict_of(const glpgp_mesh *m, const glpgp_quadmesh *q, dou
  * quads, or polygons with keep_polygons), the closed mesh when all quads,
  * the split of the closed mesh, the split of the extraction. *out NULL:
  * none is valid (*bad: the extraction's reasons). */
-static glpgp_status candidates(const glpgp_mesh *m, glpgp_quadmesh **pq, const glpgp_quad_options *o, double h,
-                               glpgp_quad_surface_steps *stp, glpgp_quadmesh **out, unsigned *bad0)
+static glpgp_status candidates(const glpgp_mesh *m, glpgp_quadmesh **pq, const glpgp_quads_options *o, double h,
+                               glpgp_quads_surface_steps *stp, glpgp_quadmesh **out, unsigned *bad0)
 {
     glpgp_quadmesh *q = *pq, *c = NULL, *s = NULL;
     unsigned bad;
@@ -787,10 +787,10 @@ keep_s:
 /* The smoothing on the surface (o->smooth sweeps, glpgp_quads_smooth_surface) of a
  * valid mesh, undone when the smoothed mesh is not valid (the check's
  * Hausdorff distance or area). */
-static glpgp_status smooth_valid(const glpgp_mesh *m, double h, const glpgp_quad_options *o, glpgp_quadmesh *q,
-                                 glpgp_quad_surface_steps *stp)
+static glpgp_status smooth_valid(const glpgp_mesh *m, double h, const glpgp_quads_options *o, glpgp_quadmesh *q,
+                                 glpgp_quads_surface_steps *stp)
 {
-    glpgp_quad_quality qq;
+    glpgp_quads_report qq;
     GLPGP_CHECK(glpgp_quads_quality_surface(q, m, h, &qq));
     stp->sj_before = stp->sj_after = qq.sj_min;
     if (o->smooth <= 0 || o->keep_polygons || !o->repair || qq.invalid) return GLPGP_OK;
@@ -820,7 +820,7 @@ static glpgp_status smooth_valid(const glpgp_mesh *m, double h, const glpgp_quad
  * and a 20-hole sphere, 17 gives 2-4x fewer quads with a higher smallest
  * scaled Jacobian, but 16 already failed once), else the input's own
  * triangles split (valid by construction). */
-static glpgp_status last_resort(const glpgp_mesh *m, double h, glpgp_quadmesh **out, glpgp_quad_surface_steps *stp)
+static glpgp_status last_resort(const glpgp_mesh *m, double h, glpgp_quadmesh **out, glpgp_quads_surface_steps *stp)
 {
     static const double amin[2] = {17.0, 20.0};
     int nt = 0;
@@ -842,13 +842,13 @@ static glpgp_status last_resort(const glpgp_mesh *m, double h, glpgp_quadmesh **
     return glpgp_quads_surface_fallback(m, out);
 }
 
-glpgp_status glpgp_quads_build_surface(const glpgp_mesh *m, const glpgp_result *r, const glpgp_quad_options *o,
-                                       glpgp_quadmesh **out, double *h, glpgp_quad_surface_steps *steps)
+glpgp_status glpgp_quads_build_surface(const glpgp_mesh *m, const glpgp_result *r, const glpgp_quads_options *o,
+                                       glpgp_quadmesh **out, double *h, glpgp_quads_surface_steps *steps)
 {
-    glpgp_quad_options def;
-    glpgp_quad_surface_steps stp;
+    glpgp_quads_options def;
+    glpgp_quads_surface_steps stp;
     if (!o) {
-        glpgp_quad_options_default(&def);
+        glpgp_quads_options_default(&def);
         o = &def;
     }
     memset(&stp, 0, sizeof stp);
@@ -876,9 +876,9 @@ glpgp_status glpgp_quads_build_surface(const glpgp_mesh *m, const glpgp_result *
         char why[256];
         size_t w = 0;
         why[0] = 0;
-        for (int b = 0; b < GLPGP_QUAD_BAD_COUNT; b++) /* the reasons by name (the counts are in the report) */
-            if ((bad & (1u << b)) && (1u << b) != GLPGP_QUAD_BAD_NONQUAD && w < sizeof why) {
-                int k = snprintf(why + w, sizeof why - w, "%s%s", w ? ", " : "", glpgp_quad_bad_name(1u << b));
+        for (int b = 0; b < GLPGP_QUADS_BAD_COUNT; b++) /* the reasons by name (the counts are in the report) */
+            if ((bad & (1u << b)) && (1u << b) != GLPGP_QUADS_BAD_NONQUAD && w < sizeof why) {
+                int k = snprintf(why + w, sizeof why - w, "%s%s", w ? ", " : "", glpgp_quads_bad_name(1u << b));
                 if (k > 0) w += (size_t)k;
             }
         glpgp_log(GLPGP_LOG_WARNING,

@@ -198,7 +198,7 @@ static int cmp_double(const void *pa, const void *pb)
 
 /* Per face: corners, area, scaled Jacobian (quads), interior angle sums
  * per vertex; the face flags of the check. */
-static glpgp_status face_stats(const glpgp_quadmesh *q, const qcheck *ck, glpgp_quad_quality *o, double *angle)
+static glpgp_status face_stats(const glpgp_quadmesh *q, const qcheck *ck, glpgp_quads_report *o, double *angle)
 {
     double *sj = NULL;
     GLPGP_CHECK(glpgp_malloc((size_t)q->nf + 1, sizeof(double), &sj));
@@ -255,7 +255,7 @@ static glpgp_status face_stats(const glpgp_quadmesh *q, const qcheck *ck, glpgp_
 
 /* Quads by origin, the repaired share, and the scaled Jacobian against
  * what the domain's sharp corners allow. */
-static glpgp_status origin_stats(const glpgp_quadmesh *q, const glpgp_mesh *domain, double h, glpgp_quad_quality *o)
+static glpgp_status origin_stats(const glpgp_quadmesh *q, const glpgp_mesh *domain, double h, glpgp_quads_report *o)
 {
     double *bound = NULL;
     GLPGP_CHECK(glpgp_malloc((size_t)q->nf + 1, sizeof(double), &bound));
@@ -265,9 +265,9 @@ static glpgp_status origin_stats(const glpgp_quadmesh *q, const glpgp_mesh *doma
         if (q->face_start[f + 1] - q->face_start[f] != 4) continue;
         int org = q->face_origin && q->face_origin[f] < GLPGP_QFACE_KINDS ? q->face_origin[f] : GLPGP_QFACE_GRID;
         o->quads_by_origin[org]++;
-        double sj = glpgp_quad_face_sj(q, f);
+        double sj = glpgp_quadmesh_face_sj(q, f);
         o->sj_min_corner = fmin(o->sj_min_corner, sj / bound[f]);
-        if (sj < GLPGP_QUAD_SJ_GOAL && sj < 0.9 * bound[f]) o->below_sj_goal++;
+        if (sj < GLPGP_QUADS_SJ_GOAL && sj < 0.9 * bound[f]) o->below_sj_goal++;
     }
     if (!(o->sj_min_corner < INFINITY)) o->sj_min_corner = NAN;
     int rep = o->quads_by_origin[GLPGP_QFACE_PAVED] + o->quads_by_origin[GLPGP_QFACE_FALLBACK];
@@ -278,7 +278,7 @@ static glpgp_status origin_stats(const glpgp_quadmesh *q, const glpgp_mesh *doma
 
 /* Boundary distances (Hausdorff, gaps) of q against the domain. */
 static glpgp_status boundary_stats(const glpgp_quadmesh *q, const glpgp_mesh *domain, double h, const qe *E, int ne,
-                                   glpgp_quad_quality *o)
+                                   glpgp_quads_report *o)
 {
     segset SD, SQ;
     memset(&SD, 0, sizeof SD);
@@ -337,28 +337,28 @@ done:
     return st;
 }
 
-static void validity(const glpgp_mesh *domain, glpgp_quad_quality *o)
+static void validity(const glpgp_mesh *domain, glpgp_quads_report *o)
 {
     unsigned b = 0;
-    if (o->inverted) b |= GLPGP_QUAD_BAD_INVERTED;
-    if (o->degenerate) b |= GLPGP_QUAD_BAD_DEGENERATE;
-    if (o->nonmanifold_edges) b |= GLPGP_QUAD_BAD_NONMANIFOLD;
-    if (o->others) b |= GLPGP_QUAD_BAD_NONQUAD;
-    if (o->pinched) b |= GLPGP_QUAD_BAD_PINCHED;
-    if (o->overlaps) b |= GLPGP_QUAD_BAD_OVERLAP;
+    if (o->inverted) b |= GLPGP_QUADS_BAD_INVERTED;
+    if (o->degenerate) b |= GLPGP_QUADS_BAD_DEGENERATE;
+    if (o->nonmanifold_edges) b |= GLPGP_QUADS_BAD_NONMANIFOLD;
+    if (o->others) b |= GLPGP_QUADS_BAD_NONQUAD;
+    if (o->pinched) b |= GLPGP_QUADS_BAD_PINCHED;
+    if (o->overlaps) b |= GLPGP_QUADS_BAD_OVERLAP;
     if (domain) {
-        if (o->outside) b |= GLPGP_QUAD_BAD_OUTSIDE;
-        if (o->boundary_loops != o->domain_loops) b |= GLPGP_QUAD_BAD_LOOPS;
-        if (!(fabs(o->area_ratio - 1.0) <= 0.01)) b |= GLPGP_QUAD_BAD_AREA;
-        if (!(o->hausdorff <= 0.25)) b |= GLPGP_QUAD_BAD_HAUSDORFF;
-        if (o->gap_edges > 0) b |= GLPGP_QUAD_BAD_GAPS;
-        if (o->corners_lost > 0) b |= GLPGP_QUAD_BAD_CORNERS;
+        if (o->outside) b |= GLPGP_QUADS_BAD_OUTSIDE;
+        if (o->boundary_loops != o->domain_loops) b |= GLPGP_QUADS_BAD_LOOPS;
+        if (!(fabs(o->area_ratio - 1.0) <= 0.01)) b |= GLPGP_QUADS_BAD_AREA;
+        if (!(o->hausdorff <= 0.25)) b |= GLPGP_QUADS_BAD_HAUSDORFF;
+        if (o->gap_edges > 0) b |= GLPGP_QUADS_BAD_GAPS;
+        if (o->corners_lost > 0) b |= GLPGP_QUADS_BAD_CORNERS;
     }
     o->invalid = b;
 }
 
 glpgp_status glpgp_quads_quality(const glpgp_quadmesh *q, const glpgp_mesh *domain, double h,
-                                 glpgp_quad_quality *o)
+                                 glpgp_quads_report *o)
 {
     memset(o, 0, sizeof *o);
     if (q && q->xyz && domain && domain->xyz) return glpgp_quads_quality_surface(q, domain, h, o); /* a surface's */
@@ -408,7 +408,7 @@ glpgp_status glpgp_quads_quality(const glpgp_quadmesh *q, const glpgp_mesh *doma
     GLPGP_CHECK_GOTO(st, origin_stats(q, domain, h, o), done);
     /* valences */
     for (int i = 0; i < q->nv; i++) {
-        int vb = val[i] > GLPGP_QUAD_MAXVAL ? GLPGP_QUAD_MAXVAL : val[i];
+        int vb = val[i] > GLPGP_QUADS_MAXVAL ? GLPGP_QUADS_MAXVAL : val[i];
         if (bnd[i]) {
             o->valence_boundary[vb]++;
             if (val[i] != (int)lround(angle[i] / (PI_ / 2)) + 1) o->irregular_boundary++;
@@ -445,7 +445,7 @@ done:
 }
 
 glpgp_status glpgp_quads_quality_cross(const glpgp_quadmesh *q, const glpgp_cross_sing *sing, int nsing,
-                                       double radius, glpgp_quad_quality *qq)
+                                       double radius, glpgp_quads_report *qq)
 {
     if (!(radius > 0) || !isfinite(radius))
         return GLPGP_FAIL(GLPGP_ERR_ARG, "quad quality: singularity radius must be > 0");
@@ -500,7 +500,7 @@ done:
     return st;
 }
 
-static void quads_print(FILE *f, const glpgp_quad_quality *qq, const char *prefix)
+static void quads_print(FILE *f, const glpgp_quads_report *qq, const char *prefix)
 {
     const char *p = prefix ? prefix : "";
     fprintf(f, "%squads          %d quads, %d other faces (", p, qq->quads, qq->others);
@@ -513,10 +513,10 @@ static void quads_print(FILE *f, const glpgp_quad_quality *qq, const char *prefi
     }
     fprintf(f, "%s), %d vertices\n", first ? "none" : "", qq->vertices);
     fprintf(f, "%s  valence      interior", p);
-    for (int v = 0; v <= GLPGP_QUAD_MAXVAL; v++)
+    for (int v = 0; v <= GLPGP_QUADS_MAXVAL; v++)
         if (qq->valence_interior[v]) fprintf(f, " %d:%d", v, qq->valence_interior[v]);
     fprintf(f, "   boundary");
-    for (int v = 0; v <= GLPGP_QUAD_MAXVAL; v++)
+    for (int v = 0; v <= GLPGP_QUADS_MAXVAL; v++)
         if (qq->valence_boundary[v]) fprintf(f, " %d:%d", v, qq->valence_boundary[v]);
     fprintf(f, "\n");
     fprintf(f, "%s  irregular    %d (interior %d, boundary %d)\n", p, qq->irregular,
@@ -529,11 +529,11 @@ static void quads_print(FILE *f, const glpgp_quad_quality *qq, const char *prefi
     fprintf(f, "%s  scaled jac.  min %.3f  mean %.3f  1%% %.3f;  inverted %d, degenerate %d\n", p,
             qq->sj_min, qq->sj_mean, qq->sj_p01, qq->inverted, qq->degenerate);
     fprintf(f, "%s  corners      min %.3f of what the sharp domain corners allow; %d quads below %.1f that none limits\n",
-            p, qq->sj_min_corner, qq->below_sj_goal, GLPGP_QUAD_SJ_GOAL);
+            p, qq->sj_min_corner, qq->below_sj_goal, GLPGP_QUADS_SJ_GOAL);
     fprintf(f, "%s  origin       grid %d, strips %d, repair %d, fallback %d: %.1f%% from the repair%s\n", p,
             qq->quads_by_origin[GLPGP_QFACE_GRID], qq->quads_by_origin[GLPGP_QFACE_CLOSED],
             qq->quads_by_origin[GLPGP_QFACE_PAVED], qq->quads_by_origin[GLPGP_QFACE_FALLBACK], 100.0 * qq->repaired_share,
-            qq->repaired_share > GLPGP_QUAD_MOSTLY_REPAIRED ? " (mostly repaired)" : "");
+            qq->repaired_share > GLPGP_QUADS_MOSTLY_REPAIRED ? " (mostly repaired)" : "");
     fprintf(f, "%s  edge / h     mean %.3f  min %.3f  max %.3f\n", p, qq->len_mean, qq->len_min,
             qq->len_max);
     if (qq->closing.closed_polygons || qq->closing.split_even || qq->closing.smoothed_vertices)
@@ -579,30 +579,30 @@ static void quads_print(FILE *f, const glpgp_quad_quality *qq, const char *prefi
         fprintf(f, "%s  valid        yes\n", p);
 }
 
-const char *glpgp_quad_bad_name(unsigned b)
+const char *glpgp_quads_bad_name(unsigned b)
 {
     switch (b) {
-    case GLPGP_QUAD_BAD_INVERTED: return "inverted";
-    case GLPGP_QUAD_BAD_DEGENERATE: return "degenerate";
-    case GLPGP_QUAD_BAD_NONMANIFOLD: return "non-manifold";
-    case GLPGP_QUAD_BAD_NONQUAD: return "non-quad";
-    case GLPGP_QUAD_BAD_PINCHED: return "pinched";
-    case GLPGP_QUAD_BAD_OVERLAP: return "overlap";
-    case GLPGP_QUAD_BAD_OUTSIDE: return "outside";
-    case GLPGP_QUAD_BAD_LOOPS: return "boundary-loops";
-    case GLPGP_QUAD_BAD_AREA: return "area";
-    case GLPGP_QUAD_BAD_HAUSDORFF: return "hausdorff";
-    case GLPGP_QUAD_BAD_GAPS: return "gaps";
-    case GLPGP_QUAD_BAD_CORNERS: return "corners";
-    case GLPGP_QUAD_BAD_EMPTY: return "empty";
-    case GLPGP_QUAD_BAD_TOPOLOGY: return "topology";
+    case GLPGP_QUADS_BAD_INVERTED: return "inverted";
+    case GLPGP_QUADS_BAD_DEGENERATE: return "degenerate";
+    case GLPGP_QUADS_BAD_NONMANIFOLD: return "non-manifold";
+    case GLPGP_QUADS_BAD_NONQUAD: return "non-quad";
+    case GLPGP_QUADS_BAD_PINCHED: return "pinched";
+    case GLPGP_QUADS_BAD_OVERLAP: return "overlap";
+    case GLPGP_QUADS_BAD_OUTSIDE: return "outside";
+    case GLPGP_QUADS_BAD_LOOPS: return "boundary-loops";
+    case GLPGP_QUADS_BAD_AREA: return "area";
+    case GLPGP_QUADS_BAD_HAUSDORFF: return "hausdorff";
+    case GLPGP_QUADS_BAD_GAPS: return "gaps";
+    case GLPGP_QUADS_BAD_CORNERS: return "corners";
+    case GLPGP_QUADS_BAD_EMPTY: return "empty";
+    case GLPGP_QUADS_BAD_TOPOLOGY: return "topology";
     default: return NULL;
     }
 }
 
 /* The report's numbers are written with '.' whatever the process's locale
  * (glpgp_cnum: this thread alone in the "C" locale meanwhile). */
-void glpgp_quads_print(FILE *f, const glpgp_quad_quality *qq, const char *prefix)
+void glpgp_quads_print(FILE *f, const glpgp_quads_report *qq, const char *prefix)
 {
     glpgp_cnum cn;
     glpgp_cnum_begin(&cn);
@@ -610,9 +610,9 @@ void glpgp_quads_print(FILE *f, const glpgp_quad_quality *qq, const char *prefix
     glpgp_cnum_end(&cn);
 }
 
-static unsigned invalid_text(const glpgp_quad_quality *qq, unsigned ignore, char *buf, size_t n);
+static unsigned invalid_text(const glpgp_quads_report *qq, unsigned ignore, char *buf, size_t n);
 
-unsigned glpgp_quads_invalid_text(const glpgp_quad_quality *qq, unsigned ignore, char *buf, size_t n)
+unsigned glpgp_quads_invalid_text(const glpgp_quads_report *qq, unsigned ignore, char *buf, size_t n)
 {
     glpgp_cnum cn;
     glpgp_cnum_begin(&cn);
@@ -621,7 +621,7 @@ unsigned glpgp_quads_invalid_text(const glpgp_quad_quality *qq, unsigned ignore,
     return b;
 }
 
-static unsigned invalid_text(const glpgp_quad_quality *qq, unsigned ignore, char *buf, size_t n)
+static unsigned invalid_text(const glpgp_quads_report *qq, unsigned ignore, char *buf, size_t n)
 {
     unsigned b = qq->invalid & ~ignore;
     size_t w = 0;
@@ -637,20 +637,20 @@ static unsigned invalid_text(const glpgp_quad_quality *qq, unsigned ignore, char
             if (r_ > 0) w += (size_t)r_;                                               \
         }                                                                              \
     } while (0)
-    if (b & GLPGP_QUAD_BAD_EMPTY) ADD("no face");
-    if (b & GLPGP_QUAD_BAD_INVERTED) ADD("%d inverted faces", qq->inverted);
-    if (b & GLPGP_QUAD_BAD_DEGENERATE) ADD("%d degenerate faces", qq->degenerate);
-    if (b & GLPGP_QUAD_BAD_NONMANIFOLD) ADD("%d non-manifold edges", qq->nonmanifold_edges);
-    if (b & GLPGP_QUAD_BAD_NONQUAD) ADD("%d non-quad faces", qq->others);
-    if (b & GLPGP_QUAD_BAD_PINCHED) ADD("%d pinched vertices", qq->pinched);
-    if (b & GLPGP_QUAD_BAD_OVERLAP) ADD("%d overlapping faces", qq->overlaps);
-    if (b & GLPGP_QUAD_BAD_OUTSIDE) ADD("%d faces outside the domain", qq->outside);
-    if (b & GLPGP_QUAD_BAD_LOOPS) ADD("boundary loops %d of %d", qq->boundary_loops, qq->domain_loops);
-    if (b & GLPGP_QUAD_BAD_AREA) ADD("area ratio %.4f", qq->area_ratio);
-    if (b & GLPGP_QUAD_BAD_HAUSDORFF) ADD("Hausdorff %.3f h", qq->hausdorff);
-    if (b & GLPGP_QUAD_BAD_GAPS) ADD("%d boundary edges away from the domain boundary", (int)qq->gap_edges);
-    if (b & GLPGP_QUAD_BAD_CORNERS) ADD("%d domain corners lost", qq->corners_lost);
-    if (b & GLPGP_QUAD_BAD_TOPOLOGY) ADD("Euler characteristic %d of %d", qq->euler, qq->domain_euler);
+    if (b & GLPGP_QUADS_BAD_EMPTY) ADD("no face");
+    if (b & GLPGP_QUADS_BAD_INVERTED) ADD("%d inverted faces", qq->inverted);
+    if (b & GLPGP_QUADS_BAD_DEGENERATE) ADD("%d degenerate faces", qq->degenerate);
+    if (b & GLPGP_QUADS_BAD_NONMANIFOLD) ADD("%d non-manifold edges", qq->nonmanifold_edges);
+    if (b & GLPGP_QUADS_BAD_NONQUAD) ADD("%d non-quad faces", qq->others);
+    if (b & GLPGP_QUADS_BAD_PINCHED) ADD("%d pinched vertices", qq->pinched);
+    if (b & GLPGP_QUADS_BAD_OVERLAP) ADD("%d overlapping faces", qq->overlaps);
+    if (b & GLPGP_QUADS_BAD_OUTSIDE) ADD("%d faces outside the domain", qq->outside);
+    if (b & GLPGP_QUADS_BAD_LOOPS) ADD("boundary loops %d of %d", qq->boundary_loops, qq->domain_loops);
+    if (b & GLPGP_QUADS_BAD_AREA) ADD("area ratio %.4f", qq->area_ratio);
+    if (b & GLPGP_QUADS_BAD_HAUSDORFF) ADD("Hausdorff %.3f h", qq->hausdorff);
+    if (b & GLPGP_QUADS_BAD_GAPS) ADD("%d boundary edges away from the domain boundary", (int)qq->gap_edges);
+    if (b & GLPGP_QUADS_BAD_CORNERS) ADD("%d domain corners lost", qq->corners_lost);
+    if (b & GLPGP_QUADS_BAD_TOPOLOGY) ADD("Euler characteristic %d of %d", qq->euler, qq->domain_euler);
 #undef ADD
     return b;
 }

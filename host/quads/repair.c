@@ -362,14 +362,14 @@ static glpgp_status grow_bad(const glpgp_quadmesh *q, const qcheck *ck, int roun
 
 /* ---- one round --------------------------------------------------------------------- */
 
-/* Record a region in rs (the GLPGP_QUAD_REGIONS_LISTED with the lowest sj_min kept). */
-static void note_region(glpgp_quad_repair *rs, const glpgp_quad_region *g)
+/* Record a region in rs (the GLPGP_QUADS_REGIONS_LISTED with the lowest sj_min kept). */
+static void note_region(glpgp_quads_repair *rs, const glpgp_quads_region *g)
 {
     rs->regions++;
     rs->new_quads += g->quads_out;
     if (g->origin == GLPGP_QFACE_PAVED) rs->paved_regions++;
     else rs->fallback_regions++;
-    if (rs->nlisted < GLPGP_QUAD_REGIONS_LISTED) {
+    if (rs->nlisted < GLPGP_QUADS_REGIONS_LISTED) {
         rs->region[rs->nlisted++] = *g;
         return;
     }
@@ -380,7 +380,7 @@ static void note_region(glpgp_quad_repair *rs, const glpgp_quad_region *g)
 }
 
 /* Centroid, box and smallest scaled Jacobian of the faces of B from f0 on. */
-static void face_box(const rbuild *B, int f0, glpgp_quad_region *g)
+static void face_box(const rbuild *B, int f0, glpgp_quads_region *g)
 {
     g->sj_min = INFINITY;
     g->box[0] = g->box[1] = INFINITY;
@@ -405,10 +405,10 @@ static void face_box(const rbuild *B, int f0, glpgp_quad_region *g)
 }
 
 /* The listed regions' sj_min from the repaired quads of q in their boxes. */
-static void final_region_sj(const glpgp_quadmesh *q, glpgp_quad_repair *rs)
+static void final_region_sj(const glpgp_quadmesh *q, glpgp_quads_repair *rs)
 {
     for (int i = 0; i < rs->nlisted; i++) {
-        glpgp_quad_region *g = &rs->region[i];
+        glpgp_quads_region *g = &rs->region[i];
         double m = INFINITY;
         for (int f = 0; f < q->nf; f++) {
             if (!q->face_origin || q->face_origin[f] < GLPGP_QFACE_PAVED) continue;
@@ -428,7 +428,7 @@ static void final_region_sj(const glpgp_quadmesh *q, glpgp_quad_repair *rs)
 /* Mesh outer loop O of R (and its holes) with the cut mesher: its quads
  * into B (region point v is output vertex gid[v]). *ok: 0 when it failed
  * (nothing added). */
-static glpgp_status cut_region(const region *R, int O, int *gid, rbuild *B, glpgp_quad_region *g, int *ok)
+static glpgp_status cut_region(const region *R, int O, int *gid, rbuild *B, glpgp_quads_region *g, int *ok)
 {
     *ok = 0;
     ivec ls = {0}, lv = {0}, ow = {0}, quads = {0}, map = {0};
@@ -551,7 +551,7 @@ static glpgp_status emit_kept(const glpgp_quadmesh *q, const unsigned char *inB,
 /* One repair round on q (faces in inB removed). *out: the new mesh,
  * *newmark: per output vertex 1 if made here. */
 static glpgp_status repair_round(const glpgp_quadmesh *q, const glpgp_mesh *m, dbnd *D, double h,
-                                 const unsigned char *inB, int round, glpgp_quad_repair *rs, glpgp_quadmesh **out,
+                                 const unsigned char *inB, int round, glpgp_quads_repair *rs, glpgp_quadmesh **out,
                                  unsigned char **newmark)
 {
     region R;
@@ -582,7 +582,7 @@ static glpgp_status repair_round(const glpgp_quadmesh *q, const glpgp_mesh *m, d
     for (int O = 0; O < R.nloops; O++) nreg += R.area[O] > 0;
     for (int O = 0; O < R.nloops && st == GLPGP_OK; O++) {
         if (R.area[O] <= 0) continue;
-        glpgp_quad_region g = {removed / (nreg > 0 ? nreg : 1), 0, INFINITY, 0.0, 0.0, {0, 0, 0, 0}, GLPGP_QFACE_PAVED, round};
+        glpgp_quads_region g = {removed / (nreg > 0 ? nreg : 1), 0, INFINITY, 0.0, 0.0, {0, 0, 0, 0}, GLPGP_QFACE_PAVED, round};
         int ok = 0, f0 = B.fs.n;
         glpgp_progress_poll();
         st = cut_region(&R, O, gid, &B, &g, &ok);
@@ -609,11 +609,11 @@ static glpgp_status repair_round(const glpgp_quadmesh *q, const glpgp_mesh *m, d
  * non-quad faces allowed). */
 static glpgp_status is_valid(const glpgp_quadmesh *q, const glpgp_mesh *m, double h, int keep_polygons, int *valid)
 {
-    glpgp_quad_quality qq;
+    glpgp_quads_report qq;
     *valid = 0;
     if (q->nf == 0) return GLPGP_OK;
     GLPGP_CHECK(glpgp_quads_quality(q, m, h, &qq));
-    *valid = (qq.invalid & ~(keep_polygons ? (unsigned)GLPGP_QUAD_BAD_NONQUAD : 0u)) == 0;
+    *valid = (qq.invalid & ~(keep_polygons ? (unsigned)GLPGP_QUADS_BAD_NONQUAD : 0u)) == 0;
     return GLPGP_OK;
 }
 
@@ -626,7 +626,7 @@ static glpgp_status finish_round(glpgp_quadmesh **n, unsigned char *mark, int sm
     if (!odd || keep_polygons) return GLPGP_OK;
     glpgp_quadmesh *c = NULL;
     unsigned char *mark2 = NULL;
-    glpgp_quad_closing keep = (*n)->closing;
+    glpgp_quads_closing keep = (*n)->closing;
     GLPGP_CHECK(glpgp_quadmesh_close_polygons(*n, &c, &mark2));
     c->closing = keep;
     glpgp_status st = smooth > 0 ? glpgp_quadmesh_smooth(c, mark2, smooth, 0.5, NULL) : GLPGP_OK;
@@ -637,7 +637,7 @@ static glpgp_status finish_round(glpgp_quadmesh **n, unsigned char *mark, int sm
 }
 
 /* Still invalid after the rounds: the whole domain again (lastresort.c). */
-static glpgp_status last_resort(glpgp_quadmesh **q, const glpgp_mesh *m, double h, glpgp_quad_repair *rs)
+static glpgp_status last_resort(glpgp_quadmesh **q, const glpgp_mesh *m, double h, glpgp_quads_repair *rs)
 {
     glpgp_quadmesh *w = NULL;
     int level = 0;
@@ -648,8 +648,8 @@ static glpgp_status last_resort(glpgp_quadmesh **q, const glpgp_mesh *m, double 
                                                   : "from the input triangles, split into quads");
     rs->whole_domain = level >= 3 ? 2 : 1;
     rs->removed_faces += (*q)->nf;
-    glpgp_quad_region g = {(*q)->nf, w->nf, INFINITY, 0.0, 0.0, {0, 0, 0, 0}, level == 1 ? GLPGP_QFACE_PAVED : GLPGP_QFACE_FALLBACK, -1};
-    for (int f = 0; f < w->nf; f++) g.sj_min = fmin(g.sj_min, glpgp_quad_face_sj(w, f));
+    glpgp_quads_region g = {(*q)->nf, w->nf, INFINITY, 0.0, 0.0, {0, 0, 0, 0}, level == 1 ? GLPGP_QFACE_PAVED : GLPGP_QFACE_FALLBACK, -1};
+    for (int f = 0; f < w->nf; f++) g.sj_min = fmin(g.sj_min, glpgp_quadmesh_face_sj(w, f));
     memcpy(g.box, m->bbox, sizeof g.box);
     g.x = 0.5 * (m->bbox[0] + m->bbox[2]);
     g.y = 0.5 * (m->bbox[1] + m->bbox[3]);
@@ -662,7 +662,7 @@ static glpgp_status last_resort(glpgp_quadmesh **q, const glpgp_mesh *m, double 
 
 /* The rounds on a copy of qin: *q the result (owned), rs filled. */
 static glpgp_status run_rounds(const glpgp_quadmesh *qin, const glpgp_mesh *m, double h, int smooth, int keep_polygons,
-                               int rounds, glpgp_quadmesh **qout, glpgp_quad_repair *rs)
+                               int rounds, glpgp_quadmesh **qout, glpgp_quads_repair *rs)
 {
     glpgp_status st = GLPGP_OK;
     dbnd D;
@@ -722,7 +722,7 @@ done:
 
 #define SHAPE_ROUNDS 2
 
-/* Quads below GLPGP_QUAD_SJ_GOAL and below 0.9 of what their sharp domain corners
+/* Quads below GLPGP_QUADS_SJ_GOAL and below 0.9 of what their sharp domain corners
  * allow (glpgp_qcheck_corner_bound) into flags (QF_FLAT); *npoor, and the
  * smallest scaled Jacobian relative to that bound over all quads. */
 static glpgp_status poor_faces(const glpgp_quadmesh *q, const glpgp_mesh *m, double h, unsigned *flags, int *npoor,
@@ -734,10 +734,10 @@ static glpgp_status poor_faces(const glpgp_quadmesh *q, const glpgp_mesh *m, dou
     *npoor = 0;
     *worst = INFINITY;
     for (int f = 0; f < q->nf && st == GLPGP_OK; f++) {
-        double sj = glpgp_quad_face_sj(q, f);
+        double sj = glpgp_quadmesh_face_sj(q, f);
         flags[f] = 0;
         *worst = fmin(*worst, sj / bound[f]);
-        if (sj < GLPGP_QUAD_SJ_GOAL && sj < 0.9 * bound[f]) {
+        if (sj < GLPGP_QUADS_SJ_GOAL && sj < 0.9 * bound[f]) {
             flags[f] = QF_FLAT;
             (*npoor)++;
         }
@@ -749,7 +749,7 @@ static glpgp_status poor_faces(const glpgp_quadmesh *q, const glpgp_mesh *m, dou
 /* Valid mesh, poorly shaped quads: they and a ring around them are meshed
  * again, kept when the result is valid, has fewer poor quads and no worse
  * a smallest relative scaled Jacobian. */
-static glpgp_status shape_rounds(glpgp_quadmesh **q, const glpgp_mesh *m, double h, int smooth, glpgp_quad_repair *rs)
+static glpgp_status shape_rounds(glpgp_quadmesh **q, const glpgp_mesh *m, double h, int smooth, glpgp_quads_repair *rs)
 {
     dbnd D;
     qcheck ck;
@@ -769,7 +769,7 @@ static glpgp_status shape_rounds(glpgp_quadmesh **q, const glpgp_mesh *m, double
         if (np0 == 0) break;
         GLPGP_CHECK_GOTO(st, glpgp_calloc((size_t)(*q)->nf + 1, 1, &inB), done);
         GLPGP_CHECK_GOTO(st, grow_bad(*q, &ck, round, inB), done); /* round + 1 rings */
-        glpgp_quad_repair trial = *rs;
+        glpgp_quads_repair trial = *rs;
         free(mark);
         mark = NULL;
         st = repair_round(*q, m, &D, h, inB, REPAIR_ROUNDS + round, &trial, &n, &mark);
@@ -814,7 +814,7 @@ done:
 glpgp_status glpgp_repair_rounds(const glpgp_quadmesh *q, const glpgp_mesh *m, double h, int smooth, int rounds,
                                  glpgp_quadmesh **out)
 {
-    glpgp_quad_repair rs;
+    glpgp_quads_repair rs;
     memset(&rs, 0, sizeof rs);
     *out = NULL;
     GLPGP_CHECK(run_rounds(q, m, h, smooth, 0, rounds, out, &rs));
@@ -827,7 +827,7 @@ glpgp_status glpgp_quadmesh_repair(const glpgp_quadmesh *qin, const glpgp_mesh *
 {
     *out = NULL;
     if (!qin || !m || qin->nf < 0 || !(h > 0)) return GLPGP_FAIL(GLPGP_ERR_ARG, "quad repair: bad arguments");
-    glpgp_quad_repair rs;
+    glpgp_quads_repair rs;
     memset(&rs, 0, sizeof rs);
     glpgp_quadmesh *q = NULL;
     GLPGP_CHECK(run_rounds(qin, m, h, smooth, keep_polygons, REPAIR_ROUNDS, &q, &rs));

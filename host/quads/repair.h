@@ -133,7 +133,7 @@ int glpgp_qsides_across(const qsides *S, const glpgp_quadmesh *q, int f, int i, 
  * the opposite side: faces and entry sides into path (2 ints a face, room
  * for 2 nf), the boundary side where it ends in *fe, *ie. 0 when it meets
  * a face marked in seen (itself included: seen is restored) or a non-quad. */
-int glpgp_quad_strip_trace(const qsides *S, const glpgp_quadmesh *q, int f0, int i0, int *path, int *len, int *fe,
+int glpgp_quadmesh_strip_trace(const qsides *S, const glpgp_quadmesh *q, int f0, int i0, int *path, int *len, int *fe,
                            int *ie, unsigned char *seen);
 /* The domain boundary between the ends of boundary edge a -> b: the area
  * between it and the chord (*loss) and the boundary point half-way along

@@ -99,7 +99,7 @@ static double moved_corners(const glpgp_quadmesh *q, const vstar *S, int v, int 
         for (int k = n - 1; k <= n + 1; k++) {
             double sj = corner_sj(q->xy, fv, n, (i + k) % n);
             m = fmin(m, sj);
-            *below += sj < GLPGP_QUAD_SJ_GOAL;
+            *below += sj < GLPGP_QUADS_SJ_GOAL;
         }
     }
     return m;
@@ -464,7 +464,7 @@ static double mesh_worst(const glpgp_quadmesh *q, int *below)
     for (int f = 0; f < q->nf; f++) {
         double sj = glpgp_poly_min_sj(q->xy, q->face_vert + q->face_start[f], q->face_start[f + 1] - q->face_start[f]);
         m = fmin(m, sj);
-        *below += sj < GLPGP_QUAD_SJ_GOAL;
+        *below += sj < GLPGP_QUADS_SJ_GOAL;
     }
     return m;
 }
@@ -509,7 +509,7 @@ static int flat_find(const glpgp_quadmesh *q, const vstar *S, const unsigned cha
         const double *p = q->xy + 2 * c, *b = q->xy + 2 * v[(i + 3) % 4], *d = q->xy + 2 * v[(i + 1) % 4];
         double sj = corner_sj(q->xy, v, 4, i);
         double dot = (b[0] - p[0]) * (d[0] - p[0]) + (b[1] - p[1]) * (d[1] - p[1]);
-        if (!(sj < GLPGP_QUAD_SJ_GOAL) || !(dot < 0) || !(sj < *sjq)) continue;
+        if (!(sj < GLPGP_QUADS_SJ_GOAL) || !(dot < 0) || !(sj < *sjq)) continue;
         *sjq = sj;
         *Q = f;
         *ci = i;

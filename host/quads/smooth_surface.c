@@ -114,7 +114,7 @@ static double worst_at(const sm_ctx *c, int v)
     double w = 2.0;
     for (int j = c->vs[v]; j < c->vs[v + 1]; j++) {
         const int f = c->vf[j];
-        const double sj = glpgp_quad_face_sj_surface(c->q, f);
+        const double sj = glpgp_quadmesh_face_sj_surface(c->q, f);
         double N[3];
         glpgp_quadmesh_face_normal(c->q, f, 1, N);
         if (sj < c->floor_[f] || N[0] * c->fn[3 * f] + N[1] * c->fn[3 * f + 1] + N[2] * c->fn[3 * f + 2] <= 0.0)
@@ -140,7 +140,7 @@ static int targets(const sm_ctx *c, int v, double (*T)[3])
         const double *a = q->xyz + 3 * q->face_vert[s + (i + 1) % n], *b = q->xyz + 3 * q->face_vert[s + (i + n - 1) % n];
         for (int d = 0; d < 3; d++) L[d] += a[d] + b[d];
         k += 2;
-        const double sj = glpgp_quad_face_sj_surface(q, f);
+        const double sj = glpgp_quadmesh_face_sj_surface(q, f);
         if (n == 4 && sj < worst) {
             const double *o = q->xyz + 3 * q->face_vert[s + (i + 2) % 4];
             worst = sj;
@@ -207,7 +207,7 @@ static glpgp_status setup(sm_ctx *c)
         }
     free(cnt);
     for (int f = 0; f < q->nf; f++) {
-        c->floor_[f] = fmin(SJ_FLOOR, glpgp_quad_face_sj_surface(q, f));
+        c->floor_[f] = fmin(SJ_FLOOR, glpgp_quadmesh_face_sj_surface(q, f));
         glpgp_quadmesh_face_normal(q, f, 1, c->fn + 3 * f);
     }
     return lock_vertices(c);

@@ -281,7 +281,7 @@ static PyObject *py_options(PyObject *self, PyObject *arg)
     if (!which) return NULL;
     const glpgp_optdesc *t = NULL;
     glpgp_options so;
-    glpgp_quad_options qo;
+    glpgp_quads_options qo;
     glpgp_render_options ro;
     void *obj = NULL;
     if (!strcmp(which, "solve")) {
@@ -289,8 +289,8 @@ static PyObject *py_options(PyObject *self, PyObject *arg)
         glpgp_options_default(&so);
         obj = &so;
     } else if (!strcmp(which, "quads")) {
-        t = glpgp_quad_option_table();
-        glpgp_quad_options_default(&qo);
+        t = glpgp_quads_option_table();
+        glpgp_quads_options_default(&qo);
         obj = &qo;
     } else if (!strcmp(which, "render")) {
         t = glpgp_render_option_table();

@@ -54,7 +54,7 @@ typedef struct pg_result {
 typedef struct pg_quadmesh {
     PyObject_HEAD
     glpgp_quadmesh *q;
-    glpgp_quad_quality qq;
+    glpgp_quads_report qq;
     double h;
     int valid;
     char why[1024];     /* why it is invalid ("" when valid) */

@@ -116,7 +116,7 @@ static PyObject *qm_write(pg_quadmesh *self, PyObject *args, PyObject *kw)
 
 static PyObject *qm_repr(pg_quadmesh *self)
 {
-    const glpgp_quad_quality *qq = &self->qq;
+    const glpgp_quads_report *qq = &self->qq;
     char buf[1400];
     snprintf(buf, sizeof buf, "<glpgp.QuadMesh: %d vertices, %d faces (%d quads), %d irregular, min scaled Jacobian %.3f, %s%s%s>",
              qq->vertices, qq->faces, qq->quads, qq->irregular, qq->sj_min, self->valid ? "valid" : "INVALID: ",
@@ -189,7 +189,7 @@ int pg_quadmesh_init_type(PyObject *module)
 /* ---- Result.quads ----------------------------------------------------------------------- */
 
 /* the CLI's pipeline: build, report, the cross-field report, the verdict */
-static glpgp_status build_quads(const glpgp_mesh *m, const glpgp_result *r, const glpgp_quad_options *qo,
+static glpgp_status build_quads(const glpgp_mesh *m, const glpgp_result *r, const glpgp_quads_options *qo,
                                 pg_quadmesh *out)
 {
     double h = r->size;
@@ -199,7 +199,7 @@ static glpgp_status build_quads(const glpgp_mesh *m, const glpgp_result *r, cons
     out->qq.singular[0] = r->osc[0].plus + r->osc[0].minus;
     out->qq.singular[1] = r->osc[1].plus + r->osc[1].minus;
     if (r->cross) GLPGP_CHECK(glpgp_quads_quality_cross(out->q, r->cross->sing, r->cross->nsing, r->size, &out->qq));
-    out->valid = !glpgp_quads_invalid_text(&out->qq, qo->keep_polygons ? GLPGP_QUAD_BAD_NONQUAD : 0u, out->why,
+    out->valid = !glpgp_quads_invalid_text(&out->qq, qo->keep_polygons ? GLPGP_QUADS_BAD_NONQUAD : 0u, out->why,
                                            sizeof out->why);
     if (out->valid) out->why[0] = '\0';
     return GLPGP_OK;
@@ -208,13 +208,13 @@ static glpgp_status build_quads(const glpgp_mesh *m, const glpgp_result *r, cons
 PyObject *pg_quads(pg_result *self, PyObject *args, PyObject *kw)
 {
     if (PyTuple_GET_SIZE(args) != 0) return PyErr_Format(PyExc_TypeError, "quads() takes keyword arguments only");
-    glpgp_quad_options qo;
-    glpgp_quad_options_default(&qo);
+    glpgp_quads_options qo;
+    glpgp_quads_options_default(&qo);
     PyObject *key, *value, *keep = PyList_New(0);
     Py_ssize_t pos = 0;
     if (!keep) return NULL;
     while (kw && PyDict_Next(kw, &pos, &key, &value)) {
-        const int r = pg_set_option(glpgp_quad_option_table(), &qo, "quads", key, value, keep);
+        const int r = pg_set_option(glpgp_quads_option_table(), &qo, "quads", key, value, keep);
         if (r == 0) PyErr_Format(PyExc_TypeError, "quads() got an unexpected keyword argument '%U'", key);
         if (r <= 0) {
             Py_DECREF(keep);

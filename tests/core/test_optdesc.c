@@ -69,10 +69,10 @@ static void check_choices_and_text(void)
 
 static void check_flags(void)
 {
-    glpgp_quad_options q;
-    glpgp_quad_options_default(&q);
+    glpgp_quads_options q;
+    glpgp_quads_options_default(&q);
     char py[64], buf[64];
-    const glpgp_optdesc *t = glpgp_quad_option_table();
+    const glpgp_optdesc *t = glpgp_quads_option_table();
     const glpgp_optdesc *rep = glpgp_optdesc_find(t, "repair");
     CHECK(rep && !strcmp(rep->name, "no-repair"));
     glpgp_optdesc_pyname(rep, py, sizeof py);
@@ -103,12 +103,12 @@ static void check_flags(void)
 static void check_tables(void)
 {
     glpgp_options o;
-    glpgp_quad_options q;
+    glpgp_quads_options q;
     glpgp_render_options r;
     glpgp_options_default(&o);
-    glpgp_quad_options_default(&q);
+    glpgp_quads_options_default(&q);
     glpgp_render_options_default(&r);
-    const glpgp_optdesc *tables[3] = {glpgp_solve_option_table(), glpgp_quad_option_table(),
+    const glpgp_optdesc *tables[3] = {glpgp_solve_option_table(), glpgp_quads_option_table(),
                                       glpgp_render_option_table()};
     void *objs[3] = {&o, &q, &r};
     int n = 0;

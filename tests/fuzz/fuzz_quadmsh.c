@@ -35,7 +35,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         }
     }
     double h = n && s > 0 && isfinite(s) ? s / (double)n : 1.0;
-    glpgp_quad_quality qq;
+    glpgp_quads_report qq;
     st = glpgp_quads_quality(q, NULL, h, &qq);
     fuzz_check_error(st);
     glpgp_quadmesh_destroy(&q);

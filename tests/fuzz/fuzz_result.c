@@ -38,15 +38,15 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         st = glpgp_options_check_mesh(&so, m);
         fuzz_check_error(st);
         if (st == GLPGP_OK && !m->xyz) { /* quads: planar results only (not yet on surfaces) */
-            glpgp_quad_options qo;
-            glpgp_quad_options_default(&qo);
+            glpgp_quads_options qo;
+            glpgp_quads_options_default(&qo);
             qo.smooth = 3;
             glpgp_quadmesh *q = NULL;
             double h = r->size;
             st = glpgp_quads_build(m, r, &qo, &q, &h);
             fuzz_check_error(st);
             if (st == GLPGP_OK) {
-                glpgp_quad_quality qq;
+                glpgp_quads_report qq;
                 fuzz_check_error(glpgp_quads_quality(q, m, h, &qq));
             }
             glpgp_quadmesh_destroy(&q);

@@ -55,8 +55,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
             FUZZ_ASSERT(r->osc[k].plus >= 0 && r->osc[k].minus >= 0);
             FUZZ_ASSERT(r->osc[k].zabs_median >= 0 && isfinite(r->osc[k].zabs_median));
         }
-        glpgp_quad_options qo;
-        glpgp_quad_options_default(&qo);
+        glpgp_quads_options qo;
+        glpgp_quads_options_default(&qo);
         qo.smooth = 2;
         glpgp_quadmesh *q = NULL;
         double h = r->size;

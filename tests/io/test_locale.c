@@ -82,7 +82,7 @@ static void write_all(const fixture *x, const char *prefix)
         else if (i >= 7 && x->q) CHECK_OK(glpgp_quads_write(x->q, path));
     }
     if (x->q) { /* the quality report as text (glpgp_quads_print: "%.3f" figures) */
-        glpgp_quad_quality qq;
+        glpgp_quads_report qq;
         if (glpgp_quads_quality(x->q, x->m, x->r->size, &qq) == GLPGP_OK) {
             snprintf(p, sizeof p, "%s_qq.txt", prefix);
             FILE *fq = fopen(tu_tmp_path(p), "w");

@@ -504,14 +504,14 @@ static void test_stats_quads(const char *dir, const glpgp_mesh *m, const glpgp_r
 {
     char path[512];
     snprintf(path, sizeof path, "%s/sq.json", dir);
-    glpgp_quad_quality qq;
+    glpgp_quads_report qq;
     memset(&qq, 0, sizeof qq);
     qq.vertices = 36;
     qq.quads = qq.faces = 25;
     qq.others_by_size[0] = 2;
     qq.others_by_size[7] = 1;
     qq.valence_interior[4] = 16;
-    qq.valence_boundary[GLPGP_QUAD_MAXVAL] = 3;
+    qq.valence_boundary[GLPGP_QUADS_MAXVAL] = 3;
     qq.sj_min = 0.1 + 0.2;
     qq.sj_mean = 1.0 / 3.0;
     qq.sj_p01 = NAN;

@@ -125,7 +125,7 @@ static void check_mesh(const glpgp_quadmesh *q, const glpgp_quadmesh *r, const c
 
 static int irregular(const glpgp_quadmesh *q)
 {
-    glpgp_quad_quality qq;
+    glpgp_quads_report qq;
     CHECK_OK(glpgp_quads_quality(q, NULL, 1.0, &qq));
     return qq.irregular;
 }

@@ -48,7 +48,7 @@ static glpgp_mesh *mesh_of(const hd_poly *p, double e, const char *name)
     return m;
 }
 
-static void check_valid(const glpgp_quad_quality *qq, const char *what)
+static void check_valid(const glpgp_quads_report *qq, const char *what)
 {
     char why[512];
     if (glpgp_quads_invalid_text(qq, 0, why, sizeof why)) fprintf(stderr, "%s: invalid: %s\n", what, why);
@@ -73,7 +73,7 @@ static void pipeline(const glpgp_mesh *m0, const char *what, int size_field, int
     glpgp_refine_info ri;
     CHECK_OK(glpgp_size_refine(m0, &o, o.size, &mr, &ri));
     const glpgp_mesh *m = mr ? mr : m0;
-    glpgp_quad_quality qq;
+    glpgp_quads_report qq;
     if (tu_solve_quads(m, &o, 1.0, &qq)) {
         printf("%-22s %6d vertices: %4d quads, irregular %4d, SJ min %.3f (%.3f of its corner bound), area %.4f, "
                "Hausdorff %.3f h, repair: %d faces removed, %d quads made%s\n",
@@ -223,7 +223,7 @@ int main(void)
         double h = 0.5 + tu_rand();
         CHECK_OK(glpgp_quadmesh_repair(&q0, m, h, 20, 0, &r));
         if (r) {
-            glpgp_quad_quality qq;
+            glpgp_quads_report qq;
             CHECK_OK(glpgp_quads_quality(r, m, h, &qq));
             printf("%-10s fill at h %.2f: %d loops, %d quads, SJ min %.3f, area %.4f%s\n", what, h, m->nloops, qq.quads,
                    qq.sj_min, qq.area_ratio, qq.invalid ? "  INVALID" : "");

@@ -69,9 +69,9 @@ static glpgp_quadmesh *grid(int n, int extra_faces, const int *extra, int skip_f
     return q;
 }
 
-static glpgp_quad_quality report(const glpgp_quadmesh *q, const glpgp_mesh *m, double h, const char *what)
+static glpgp_quads_report report(const glpgp_quadmesh *q, const glpgp_mesh *m, double h, const char *what)
 {
-    glpgp_quad_quality qq;
+    glpgp_quads_report qq;
     memset(&qq, 0, sizeof qq);
     CHECK_OK(glpgp_quads_quality(q, m, h, &qq));
     char why[512];
@@ -86,7 +86,7 @@ static void repaired_valid(const glpgp_quadmesh *q, const glpgp_mesh *m, double 
     glpgp_quadmesh *r = NULL;
     CHECK_OK(glpgp_quadmesh_repair(q, m, h, 20, 0, &r));
     if (!r) return;
-    glpgp_quad_quality qq = report(r, m, h, what);
+    glpgp_quads_report qq = report(r, m, h, what);
     CHECK(qq.invalid == 0);
     CHECK(qq.others == 0 && qq.inverted == 0 && qq.degenerate == 0 && qq.nonmanifold_edges == 0);
     CHECK(qq.boundary_loops == m->nloops);
@@ -105,7 +105,7 @@ int main(void)
 
     /* valid grid, and the same clockwise */
     glpgp_quadmesh *q = grid(4, 0, NULL, -1);
-    glpgp_quad_quality qq = report(q, sq, h, "grid");
+    glpgp_quads_report qq = report(q, sq, h, "grid");
     CHECK(qq.invalid == 0 && qq.inverted == 0 && qq.overlaps == 0 && qq.pinched == 0);
     CHECK(qq.boundary_loops == 1 && qq.domain_loops == 1 && qq.orientation == 1);
     CHECK_CLOSE(qq.area_ratio, 1.0, 1e-12, 0);
@@ -123,7 +123,7 @@ int main(void)
     q->xy[12] = 0.5 * 0.25 + 0.01;
     q->xy[13] = 0.1;
     qq = report(q, sq, h, "folded vertex");
-    CHECK(qq.inverted > 0 && (qq.invalid & GLPGP_QUAD_BAD_INVERTED));
+    CHECK(qq.inverted > 0 && (qq.invalid & GLPGP_QUADS_BAD_INVERTED));
     repaired_valid(q, sq, h, "  repaired");
     glpgp_quadmesh_destroy(&q);
 
@@ -136,7 +136,7 @@ int main(void)
     }
     qq = report(q, sq, h, "one face reversed");
     CHECK(qq.inverted == 1 && qq.nonmanifold_edges == 4);
-    CHECK((qq.invalid & GLPGP_QUAD_BAD_INVERTED) && (qq.invalid & GLPGP_QUAD_BAD_NONMANIFOLD));
+    CHECK((qq.invalid & GLPGP_QUADS_BAD_INVERTED) && (qq.invalid & GLPGP_QUADS_BAD_NONMANIFOLD));
     /* the same read back from MSH: the orientation of the file is kept */
     {
         char path[] = "/tmp/glpgp_validity_XXXXXX";
@@ -149,8 +149,8 @@ int main(void)
         glpgp_quadmesh *r = NULL;
         CHECK_OK(glpgp_quads_read_msh(msh, &r));
         if (r) {
-            glpgp_quad_quality q2 = report(r, sq, h, "  read back from MSH");
-            CHECK(q2.inverted == 1 && (q2.invalid & GLPGP_QUAD_BAD_INVERTED));
+            glpgp_quads_report q2 = report(r, sq, h, "  read back from MSH");
+            CHECK(q2.inverted == 1 && (q2.invalid & GLPGP_QUADS_BAD_INVERTED));
             glpgp_quadmesh_destroy(&r);
         }
         unlink(msh);
@@ -164,7 +164,7 @@ int main(void)
         int fv[] = {0, 1, 4, 3, 1, 2, 5, 4, 6, 1, 4, 0};
         glpgp_quadmesh *n = make_q(7, xy, 3, fv, NULL);
         qq = report(n, NULL, 1.0, "non-manifold edge");
-        CHECK(qq.nonmanifold_edges >= 1 && (qq.invalid & GLPGP_QUAD_BAD_NONMANIFOLD));
+        CHECK(qq.nonmanifold_edges >= 1 && (qq.invalid & GLPGP_QUADS_BAD_NONMANIFOLD));
         glpgp_quadmesh_destroy(&n);
     }
 
@@ -174,7 +174,7 @@ int main(void)
         int fv[] = {0, 1, 2, 3, 2, 4, 5, 6};
         glpgp_quadmesh *n = make_q(7, xy, 2, fv, NULL);
         qq = report(n, NULL, 1.0, "pinched vertex");
-        CHECK(qq.pinched == 1 && (qq.invalid & GLPGP_QUAD_BAD_PINCHED));
+        CHECK(qq.pinched == 1 && (qq.invalid & GLPGP_QUADS_BAD_PINCHED));
         CHECK(qq.boundary_loops == 1 || qq.boundary_loops == 2);
         glpgp_quadmesh_destroy(&n);
     }
@@ -184,7 +184,7 @@ int main(void)
         int extra[] = {0, 2, 12, 10}; /* (0,0) (0.5,0) (0.5,0.5) (0,0.5) */
         q = grid(4, 1, extra, -1);
         qq = report(q, sq, h, "overlapping quad");
-        CHECK(qq.overlaps > 0 && (qq.invalid & GLPGP_QUAD_BAD_OVERLAP));
+        CHECK(qq.overlaps > 0 && (qq.invalid & GLPGP_QUADS_BAD_OVERLAP));
         repaired_valid(q, sq, h, "  repaired");
         glpgp_quadmesh_destroy(&q);
     }
@@ -211,9 +211,9 @@ int main(void)
         }
         glpgp_quadmesh *n = make_q(q->nv, q->xy, k, fv, fn);
         qq = report(n, sq, h, "hexagon");
-        CHECK(qq.others == 1 && qq.invalid == GLPGP_QUAD_BAD_NONQUAD);
+        CHECK(qq.others == 1 && qq.invalid == GLPGP_QUADS_BAD_NONQUAD);
         char why[256];
-        CHECK(glpgp_quads_invalid_text(&qq, GLPGP_QUAD_BAD_NONQUAD, why, sizeof why) == 0);
+        CHECK(glpgp_quads_invalid_text(&qq, GLPGP_QUADS_BAD_NONQUAD, why, sizeof why) == 0);
         CHECK(glpgp_quads_invalid_text(&qq, 0, why, sizeof why) != 0 && strstr(why, "non-quad") != NULL);
         repaired_valid(n, sq, h, "  repaired");
         glpgp_quadmesh_destroy(&n);
@@ -226,14 +226,14 @@ int main(void)
     q = grid(4, 0, NULL, -1);
     q->xy[2 * 22 + 1] = 1.2;
     qq = report(q, sq, h, "vertex outside");
-    CHECK(qq.outside > 0 && (qq.invalid & GLPGP_QUAD_BAD_OUTSIDE));
+    CHECK(qq.outside > 0 && (qq.invalid & GLPGP_QUADS_BAD_OUTSIDE));
     repaired_valid(q, sq, h, "  repaired");
     glpgp_quadmesh_destroy(&q);
 
     /* a gap: one face missing */
     q = grid(4, 0, NULL, 5);
     qq = report(q, sq, h, "missing face");
-    CHECK(qq.boundary_loops == 2 && (qq.invalid & GLPGP_QUAD_BAD_LOOPS) && (qq.invalid & GLPGP_QUAD_BAD_GAPS));
+    CHECK(qq.boundary_loops == 2 && (qq.invalid & GLPGP_QUADS_BAD_LOOPS) && (qq.invalid & GLPGP_QUADS_BAD_GAPS));
     repaired_valid(q, sq, h, "  repaired");
     glpgp_quadmesh_destroy(&q);
 
@@ -259,7 +259,7 @@ int main(void)
         q->nf = k;
         for (int f = 0; f <= k; f++) q->face_start[f] = 4 * f;
         qq = report(q, an, 0.25, "hole covered");
-        CHECK(qq.boundary_loops == 1 && qq.domain_loops == 2 && (qq.invalid & GLPGP_QUAD_BAD_LOOPS));
+        CHECK(qq.boundary_loops == 1 && qq.domain_loops == 2 && (qq.invalid & GLPGP_QUADS_BAD_LOOPS));
         CHECK(qq.far_faces > 0);
         repaired_valid(q, an, 0.25, "  repaired");
         glpgp_quadmesh_destroy(&q);

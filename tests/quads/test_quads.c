@@ -42,14 +42,14 @@
 
 #define PI_ 3.14159265358979323846
 
-static void print_q(const char *what, const glpgp_quad_quality *qq)
+static void print_q(const char *what, const glpgp_quads_report *qq)
 {
     if (*what) printf("%s:\n", what);
     glpgp_quads_print(stdout, qq, "  ");
 }
 
 /* Common invariants of every extracted mesh. */
-static void check_valid(const glpgp_quad_quality *qq, const glpgp_mesh *m)
+static void check_valid(const glpgp_quads_report *qq, const glpgp_mesh *m)
 {
     CHECK(qq->inverted == 0);
     CHECK(qq->degenerate == 0);
@@ -111,7 +111,7 @@ static void test_square_exact(const char *dir)
     glpgp_quadmesh *q = NULL;
     CHECK_OK(glpgp_quads_extract(m, r, &q));
     if (!q) goto out;
-    glpgp_quad_quality qq;
+    glpgp_quads_report qq;
     CHECK_OK(glpgp_quads_quality(q, m, 0.2, &qq));
     print_q("square, plane waves, h = 0.2", &qq);
     CHECK(qq.quads == 25 && qq.others == 0);
@@ -154,7 +154,7 @@ static void test_square_exact(const char *dir)
     glpgp_quadmesh *q2 = NULL;
     CHECK_OK(glpgp_quads_read_msh(p, &q2));
     if (q2) {
-        glpgp_quad_quality q2q;
+        glpgp_quads_report q2q;
         CHECK_OK(glpgp_quads_quality(q2, m, 0.2, &q2q));
         CHECK(q2q.quads == 25 && q2q.vertices == 36 && q2q.sj_min > 0.99);
         glpgp_quadmesh_destroy(&q2);
@@ -195,7 +195,7 @@ static void test_square_solved(void)
     glpgp_quadmesh *q = NULL;
     if (r) CHECK_OK(glpgp_quads_extract(m, r, &q));
     if (q) {
-        glpgp_quad_quality qq;
+        glpgp_quads_report qq;
         CHECK_OK(glpgp_quads_quality(q, m, 0.2, &qq));
         print_q("square, GL solve, h = 0.2", &qq);
         CHECK(qq.quads == 25 && qq.others == 0);
@@ -261,7 +261,7 @@ static glpgp_quadmesh *grid_with_line3(const int *has3)
 
 static void check_unit_grid(const glpgp_quadmesh *q, const char *what)
 {
-    glpgp_quad_quality qq;
+    glpgp_quads_report qq;
     CHECK_OK(glpgp_quads_quality(q, NULL, 1.0, &qq));
     print_q(what, &qq);
     CHECK(qq.quads == 36 && qq.others == 0);
@@ -327,7 +327,7 @@ static void test_pairing_by_hand(void)
     CHECK(q->xy[2 * v33] == 3.0 && q->xy[2 * v33 + 1] == 3.0);
     q->xy[2 * v33] = 3.45;
     q->xy[2 * v33 + 1] = 3.4;
-    glpgp_quad_quality before, after;
+    glpgp_quads_report before, after;
     CHECK_OK(glpgp_quads_quality(q, NULL, 1.0, &before));
     CHECK_OK(glpgp_quadmesh_smooth(q, NULL, 20, 0.9, &moved));
     CHECK_OK(glpgp_quads_quality(q, NULL, 1.0, &after));
@@ -410,7 +410,7 @@ static void test_pairing_random(void)
         if (c) {
             for (int pass = 0; pass < 2; pass++) {
                 if (pass == 1) CHECK_OK(glpgp_quadmesh_smooth(c, mark, 20, 0.5, NULL));
-                glpgp_quad_quality qq;
+                glpgp_quads_report qq;
                 CHECK_OK(glpgp_quads_quality(c, NULL, 1.0, &qq));
                 if (qq.others > worst_others) worst_others = qq.others;
                 if (qq.sj_min < worst_sj) worst_sj = qq.sj_min;
@@ -438,7 +438,7 @@ static void test_annulus(int field, const char *name)
     glpgp_quadmesh *q = NULL;
     if (r) CHECK_OK(glpgp_quads_extract(m, r, &q));
     if (q) {
-        glpgp_quad_quality qq;
+        glpgp_quads_report qq;
         CHECK_OK(glpgp_quads_quality(q, m, 0.1, &qq));
         int ns = r->osc[0].plus + r->osc[0].minus + r->osc[1].plus + r->osc[1].minus;
         printf("annulus, %s field, h = 0.1: %d singular triangles (u +%d -%d, v +%d -%d)\n", name,
@@ -465,7 +465,7 @@ static void test_annulus(int field, const char *name)
             glpgp_quadmesh *fine = NULL;
             CHECK_OK(glpgp_quadmesh_subdivide(q, &fine));
             if (fine) {
-                glpgp_quad_quality fq;
+                glpgp_quads_report fq;
                 CHECK_OK(glpgp_quads_quality(fine, m, 0.05, &fq));
                 print_q("  refined (--all-quads), h = 0.05", &fq);
                 CHECK(fq.others == 0 && fq.quads == q->face_start[q->nf]);
@@ -482,7 +482,7 @@ static void test_annulus(int field, const char *name)
         double hf = 0.1;
         CHECK_OK(glpgp_quads_build(m, r, NULL, &full, &hf));
         if (full) {
-            glpgp_quad_quality fq;
+            glpgp_quads_report fq;
             CHECK_OK(glpgp_quads_quality(full, m, 0.1, &fq));
             printf("  all quads (strips: %d polygons closed, %d to the boundary, %d quads cut, %d turns; "
                    "%d smoothed):\n",
@@ -545,7 +545,7 @@ static void test_data_hole(void)
     glpgp_quadmesh *q = NULL;
     double h = 0.0;
     if (data_case("annulus.msh", &m, &r, &q, &h)) {
-        glpgp_quad_quality qq;
+        glpgp_quads_report qq;
         CHECK_OK(glpgp_quads_quality(q, m, h, &qq));
         printf("data/annulus.msh, h = %g:\n", h);
         print_q("", &qq);
@@ -582,7 +582,7 @@ static void test_data_plate(void)
     glpgp_quadmesh *q = NULL;
     double h = 0.0;
     if (data_case("plate_holes.msh", &m, &r, &q, &h)) {
-        glpgp_quad_quality qq;
+        glpgp_quads_report qq;
         CHECK_OK(glpgp_quads_quality(q, m, h, &qq));
         printf("data/plate_holes.msh, h = %g: singular u +%d -%d, v +%d -%d\n", h,
                r->osc[0].plus, r->osc[0].minus, r->osc[1].plus, r->osc[1].minus);

@@ -68,7 +68,7 @@ int main(void)
     CHECK_OK(glpgp_quadmesh_subdivide(c, &q));
     CHECK(q != NULL);
     if (!q) TEST_DONE();
-    glpgp_quad_quality qq;
+    glpgp_quads_report qq;
     CHECK_OK(glpgp_quads_quality(q, NULL, 0.5, &qq));
     CHECK(qq.quads == q->nf && qq.others == 0);
     CHECK(qq.irregular_interior == 8);

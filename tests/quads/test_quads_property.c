@@ -127,7 +127,7 @@ static void check_one(const glpgp_mesh *m, unsigned long long seed, double h, do
     glpgp_result *r = plane_waves(m, h, turn);
     glpgp_quadmesh *q = NULL;
     double hq = h, t0 = glpgp_now();
-    glpgp_quad_quality qq;
+    glpgp_quads_report qq;
     memset(&qq, 0, sizeof qq);
     qq.invalid = ~0u;
     T->meshed++;

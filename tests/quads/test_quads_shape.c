@@ -72,7 +72,7 @@ static void flat_corner(void)
     glpgp_quadmesh *q = qm(xy, 11, fv, 5);
     glpgp_mesh *m = tu_grid_mesh((tu_grid){.nx = 6, .ny = 4, .Lx = 3, .Ly = 2});
     if (!q || !m) return;
-    glpgp_quad_quality q0, q1;
+    glpgp_quads_report q0, q1;
     CHECK_OK(glpgp_quads_quality(q, m, 1.0, &q0));
     CHECK(fabs(q0.sj_min) < 1e-12); /* the flat corner */
     int flat = 0, moved = 0;
@@ -83,7 +83,7 @@ static void flat_corner(void)
     CHECK(flat == 1);
     CHECK(q1.invalid == 0 && q1.others == 0);
     CHECK(q1.quads == 5 + 2 + 2); /* Q in 3, one quad cut by each strip */
-    CHECK(q1.sj_min >= GLPGP_QUAD_SJ_GOAL);
+    CHECK(q1.sj_min >= GLPGP_QUADS_SJ_GOAL);
     CHECK(fabs(q1.area - 6.0) < 1e-12);
     CHECK(q1.irregular <= q0.irregular);
     glpgp_quadmesh_destroy(&q);

@@ -60,7 +60,7 @@ static void extraction(void)
             const double *p = q->xyz + 3 * i;
             CHECK(fabs(hypot(p[0], p[1]) - 2.0) < 0.01); /* on the cylinder (chords of 1/70 of it) */
         }
-        glpgp_quad_quality qq;
+        glpgp_quads_report qq;
         CHECK_OK(glpgp_quads_quality_surface(q, m, hv, &qq));
         CHECK(qq.invalid == 0);
         CHECK(qq.quads == 40 && qq.euler == 1 && qq.boundary_loops == 1);
@@ -70,7 +70,7 @@ static void extraction(void)
     }
     glpgp_quadmesh_destroy(&q);
     double h = hv;
-    glpgp_quad_surface_steps steps;
+    glpgp_quads_surface_steps steps;
     CHECK_OK(glpgp_quads_build_surface(m, r, NULL, &q, &h, &steps));
     CHECK(q && q->nf == 40 && !steps.fallback && !steps.subdivided && h == hv);
     glpgp_quadmesh_destroy(&q);
@@ -90,7 +90,7 @@ static void fallback(const char *shape, int euler, int loops)
     CHECK_OK(glpgp_surface_generate(shape, 800, &m));
     if (!m) return;
     glpgp_quadmesh *q = NULL, *s = NULL;
-    glpgp_quad_quality qq;
+    glpgp_quads_report qq;
     const double h = 0.3;
     CHECK_OK(glpgp_quads_surface_fallback(m, &q));
     if (!q) {
@@ -114,14 +114,14 @@ static void fallback(const char *shape, int euler, int loops)
     fv[1] = fv[3];
     fv[3] = t;
     CHECK_OK(glpgp_quads_quality_surface(q, m, h, &qq));
-    CHECK(qq.invalid & GLPGP_QUAD_BAD_NONMANIFOLD);
-    CHECK(qq.invalid & GLPGP_QUAD_BAD_INVERTED);
+    CHECK(qq.invalid & GLPGP_QUADS_BAD_NONMANIFOLD);
+    CHECK(qq.invalid & GLPGP_QUADS_BAD_INVERTED);
     fv[3] = fv[1];
     fv[1] = t;
     /* one face removed: a hole */
     q->nf--;
     CHECK_OK(glpgp_quads_quality_surface(q, m, h, &qq));
-    CHECK((qq.invalid & GLPGP_QUAD_BAD_LOOPS) && (qq.invalid & GLPGP_QUAD_BAD_TOPOLOGY));
+    CHECK((qq.invalid & GLPGP_QUADS_BAD_LOOPS) && (qq.invalid & GLPGP_QUADS_BAD_TOPOLOGY));
     CHECK(qq.euler == euler - 1 && qq.boundary_loops == loops + 1);
     q->nf++;
     /* a centroid moved h/2 along its triangle's normal */
@@ -129,7 +129,7 @@ static void fallback(const char *shape, int euler, int loops)
     const double *n = m->surf->tframe + 9 * (m->nt - 1) + 6;
     for (int d = 0; d < 3; d++) p[d] += 0.5 * h * n[d];
     CHECK_OK(glpgp_quads_quality_surface(q, m, h, &qq));
-    CHECK(qq.invalid & GLPGP_QUAD_BAD_HAUSDORFF);
+    CHECK(qq.invalid & GLPGP_QUADS_BAD_HAUSDORFF);
     CHECK(qq.hausdorff > 0.25);
     CHECK(glpgp_quads_quality_surface(q, m, 0.0, &qq) == GLPGP_ERR_ARG);
     glpgp_error_clear();
@@ -151,7 +151,7 @@ static void smoothing(void)
         glpgp_mesh_destroy(&m);
         return;
     }
-    glpgp_quad_quality qq;
+    glpgp_quads_report qq;
     int *val = NULL, v = -1;
     CHECK_OK(glpgp_quadmesh_valences(q, &val));
     for (int i = 0; i < q->nv && v < 0; i++) { /* an interior vertex (valence 4, off the rim) */
@@ -198,7 +198,7 @@ static void coarse(const char *shape, long nv, double h, int euler, int loops)
     CHECK_OK(glpgp_surface_generate(shape, nv, &m));
     if (!m) return;
     glpgp_quadmesh *q = NULL;
-    glpgp_quad_quality qq;
+    glpgp_quads_report qq;
     int nt = 0;
     CHECK_OK(glpgp_quads_surface_fallback_coarse(m, h, &q, &nt));
     if (q) {

@@ -526,7 +526,7 @@ static void test_chord_disk(void)
         glpgp_options os;
         glpgp_options_default(&os);
         os.field = fields[f];
-        glpgp_quad_quality qq;
+        glpgp_quads_report qq;
         const int made = tu_solve_quads(m, &os, h, &qq);
         if (made) {
             printf("chord budget, disk %s quads: %d faces, %d irregular, SJ min %.3f, area %.4f, Hausdorff %.3f h, "
@@ -564,7 +564,7 @@ static void test_chord_netted(void)
             o.newton_max = 30; /* as bench/size_compare.sh */
             CHECK_OK(glpgp_size_refine(m, &o, 1.0, &r, NULL));
             const glpgp_mesh *mm = r ? r : m;
-            glpgp_quad_quality qq[2];
+            glpgp_quads_report qq[2];
             memset(qq, 0, sizeof qq);
             for (int k = 0; k < 2; k++) {
                 /* k = 0: the default budget; 1: none */

@@ -186,7 +186,7 @@ typedef struct glpgp_stats_extra {
     const char *input;   /* input path or "shape:NAME:N" (NULL: written as null) */
     const char *output;  /* result file written alongside (NULL: null) */
     double seconds_read; /* time to read / generate the mesh (< 0: omitted) */
-    const glpgp_quad_quality *quads; /* quad mesh report: "quads" member (NULL: none) */
+    const glpgp_quads_report *quads; /* quad mesh report: "quads" member (NULL: none) */
     /* MPI runs (--backend petsc): ranks > 0 writes "ranks" and "per_rank", an
      * array of {rank, owned, ghosts, seconds, max_rss_mib} from rank_info
      * (ranks x GLPGP_RANK_INFO_N doubles, in that order; seconds: the
@@ -230,7 +230,7 @@ glpgp_status glpgp_write_stats_json(const glpgp_mesh *m, const glpgp_options *op
  * returns as Result.stats / QuadMesh.report. */
 glpgp_status glpgp_stats_json_text(const glpgp_mesh *m, const glpgp_options *opts, const glpgp_result *r,
                                    const glpgp_stats_extra *extra, char **out);
-glpgp_status glpgp_quads_json_text(const glpgp_quad_quality *qq, char **out);
+glpgp_status glpgp_quads_json_text(const glpgp_quads_report *qq, char **out);
 
 /* Write the result with the writer chosen by the extension of path
  * (case-insensitive): ".vtk" -> legacy VTK, ".vtu" -> glpgp_write_vtu
@@ -352,7 +352,7 @@ glpgp_status glpgp_read_result(const char *path, glpgp_mesh **m, glpgp_result **
  *  "boundary_distance_over_h": {"hausdorff", "quads_to_domain", "domain_to_quads"}
  *  (null without a domain), "gap_edges", "singular_triangles": {"u", "v"},
  *  "valid" (true / false), "invalid_reasons": ["inverted", "non-quad", ...]
- *  (glpgp_quad_bad_name), "orientation" (+1 / -1), "overlapping_faces",
+ *  (glpgp_quads_bad_name), "orientation" (+1 / -1), "overlapping_faces",
  *  "pinched_vertices", "non_quad_faces", "boundary_loops": {"mesh", "domain"},
  *  "area_ratio", "outside_faces", "far_faces", "corners_lost",
  *  "boundary_vertex_distance_over_h" (the last five null without a domain),
@@ -361,11 +361,11 @@ glpgp_status glpgp_read_result(const char *path, glpgp_mesh **m, glpgp_result **
  *  "closing": {"odd_faces_closed", "strips_to_boundary", "quads_cut", "turns",
  *  "even_faces_split", "smoothed_vertices"}}.
  * Numbers lossless, non-finite ones null (glpgp_json). */
-void glpgp_quads_json(glpgp_json *w, const char *key, const glpgp_quad_quality *qq);
+void glpgp_quads_json(glpgp_json *w, const char *key, const glpgp_quads_report *qq);
 
 /* Write a standalone JSON file {"quads": REPORT} atomically. */
-glpgp_status glpgp_quads_write_json_file(const glpgp_quad_quality *qq, const char *path);
-glpgp_status glpgp_output_set_quads_json(glpgp_output_set *s, const glpgp_quad_quality *qq,
+glpgp_status glpgp_quads_write_json_file(const glpgp_quads_report *qq, const char *path);
+glpgp_status glpgp_output_set_quads_json(glpgp_output_set *s, const glpgp_quads_report *qq,
                                          const char *path);
 
 /* Write q by extension (case-insensitive), atomically:
@@ -411,7 +411,7 @@ glpgp_status glpgp_quads_read(const char *path, glpgp_quadmesh **out);
 
 /* Name of a face origin GLPGP_QFACE_* ("grid", "strips", "repair",
  * "fallback"): the OBJ group and the JSON key. */
-const char *glpgp_quad_origin_name(int origin);
+const char *glpgp_quads_origin_name(int origin);
 
 
 #ifdef __cplusplus

@@ -1,6 +1,6 @@
 /* glpgp/optdesc.h: option descriptors. Each options struct a user sets
  * (glpgp_options: glpgp_solve_option_table, glpgp/solve.h;
- * glpgp_quad_options: glpgp_quad_option_table, glpgp/quads.h;
+ * glpgp_quads_options: glpgp_quads_option_table, glpgp/quads.h;
  * glpgp_render_options: glpgp_render_option_table, glpgp/image.h) has one
  * table naming every user-settable member once, with its type, range or
  * choices, help text and default: the CLI's parser and help (cli/opts.c)

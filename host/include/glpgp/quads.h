@@ -28,8 +28,8 @@ enum {
 };
 #define GLPGP_QFACE_KINDS 4
 
-/* One region the repair re-meshed (glpgp_quad_repair.region). */
-typedef struct glpgp_quad_region {
+/* One region the repair re-meshed (glpgp_quads_repair.region). */
+typedef struct glpgp_quads_region {
     int faces_in;   /* faces removed (bad faces and their rings) */
     int quads_out;  /* quads made in their place */
     double sj_min;  /* smallest corner scaled Jacobian of the repaired quads in box in the
@@ -38,13 +38,13 @@ typedef struct glpgp_quad_region {
     double box[4];  /* their bounding box: xmin, ymin, xmax, ymax */
     int origin;     /* GLPGP_QFACE_PAVED or GLPGP_QFACE_FALLBACK: which mesher filled it */
     int round;      /* repair round (0-based; -1: the whole domain) */
-} glpgp_quad_region;
+} glpgp_quads_region;
 
 /* Regions listed in a repair report: the ones with the lowest sj_min. */
-#define GLPGP_QUAD_REGIONS_LISTED 48
+#define GLPGP_QUADS_REGIONS_LISTED 48
 
 /* What glpgp_quadmesh_repair did. */
-typedef struct glpgp_quad_repair {
+typedef struct glpgp_quads_repair {
     int rounds;          /* repair rounds run (0: the mesh was valid) */
     int removed_faces;   /* faces removed (bad faces and their neighbours) */
     int regions;         /* regions re-meshed */
@@ -58,28 +58,28 @@ typedef struct glpgp_quad_repair {
                           * the input triangles themselves was needed */
     int flat_corners;    /* the last shape pass: flat boundary corners split (with two grid lines) */
     int shaped_vertices; /* the last shape pass: vertices moved to raise the worst corner near them */
-    int nlisted;         /* entries of region[] (at most GLPGP_QUAD_REGIONS_LISTED) */
-    glpgp_quad_region region[GLPGP_QUAD_REGIONS_LISTED];
-} glpgp_quad_repair;
+    int nlisted;         /* entries of region[] (at most GLPGP_QUADS_REGIONS_LISTED) */
+    glpgp_quads_region region[GLPGP_QUADS_REGIONS_LISTED];
+} glpgp_quads_repair;
 
 /* What glpgp_quadmesh_close_polygons and glpgp_quadmesh_smooth did. */
-typedef struct glpgp_quad_closing {
+typedef struct glpgp_quads_closing {
     int closed_polygons;    /* odd faces (dislocation pentagons, ...) made quads */
     int strips_to_boundary; /* of the strips: those that end on the boundary (else: on a second odd face) */
     int strip_quads;        /* quads cut in two (or three, at a turn) along the strips */
     int strip_turns;        /* strip turns (each adds a valence 3 and a valence 5 vertex) */
     int split_even;         /* even polygons (hexagons, ...) split into quads */
     int smoothed_vertices;  /* vertices moved by the smoothing */
-} glpgp_quad_closing;
+} glpgp_quads_closing;
 
 /* What glpgp_quadmesh_cleanup did. */
-typedef struct glpgp_quad_cleanup {
+typedef struct glpgp_quads_cleanup {
     int doublets;      /* interior valence-2 vertices removed (two quads merged) */
     int collapses;     /* quads removed by merging two opposite corners */
     int rotations;     /* edges rotated within the hexagon of their two quads */
     int passes;        /* passes over the mesh */
     int cost_before, cost_after; /* sum over vertices of d^2 + [d > 0], d = |valence - ideal| */
-} glpgp_quad_cleanup;
+} glpgp_quads_cleanup;
 
 /* A polygon mesh of a planar domain, mostly quads. Faces are counter-clockwise
  * and stored back to back: face f has the vertices
@@ -98,9 +98,9 @@ typedef struct glpgp_quadmesh {
     int promoted_corners;     /* boundary vertices made face corners (3-gon -> quad) */
     int split_pentagons;      /* boundary pentagons split into two or three quads */
     int center_splits;        /* of those: three quads around a new center vertex */
-    glpgp_quad_closing closing; /* set by glpgp_quadmesh_close_polygons / _smooth */
-    glpgp_quad_repair repair;   /* set by glpgp_quadmesh_repair */
-    glpgp_quad_cleanup cleanup; /* set by glpgp_quadmesh_cleanup */
+    glpgp_quads_closing closing; /* set by glpgp_quadmesh_close_polygons / _smooth */
+    glpgp_quads_repair repair;   /* set by glpgp_quadmesh_repair */
+    glpgp_quads_cleanup cleanup; /* set by glpgp_quadmesh_cleanup */
     double *xyz;        /* 3*nv: a quad mesh of a 3D surface (faces counter-clockwise seen from
                          * the side the surface's normals point to); NULL in the plane */
 } glpgp_quadmesh;
@@ -195,23 +195,23 @@ glpgp_status glpgp_quadmesh_cleanup(const glpgp_quadmesh *q, glpgp_quadmesh **ou
  * (a surface's mesh against its surface) glpgp_quads_quality_surface. */
 
 /* What glpgp_quads_build does after the extraction. */
-typedef struct glpgp_quad_options {
+typedef struct glpgp_quads_options {
     int keep_polygons;  /* 1: leave non-quad faces as they are (no strips) */
     int smooth;         /* smoothing sweeps (0: none; default 20) */
     double smooth_below;/* also smooth around faces with scaled Jacobian below this (default 0.5) */
     int all_quads;      /* 1: one Catmull-Clark step at the end (h halves) */
     int repair;         /* 1: glpgp_quadmesh_repair after the smoothing (default) */
     int cleanup;        /* 1: glpgp_quadmesh_cleanup after the repair (default) */
-} glpgp_quad_options;
+} glpgp_quads_options;
 
 /* The defaults: strips on, 20 smoothing sweeps, smooth_below 0.5, repair on, clean-up on, no refinement. */
-void glpgp_quad_options_default(glpgp_quad_options *o);
+void glpgp_quads_options_default(glpgp_quads_options *o);
 
-/* The user-settable members of glpgp_quad_options, one descriptor each
+/* The user-settable members of glpgp_quads_options, one descriptor each
  * (glpgp/optdesc.h; quads/options.c): --keep-polygons, --smooth,
  * --all-quads, --no-repair, --no-cleanup (group NULL: the command places
  * them). */
-const glpgp_optdesc *glpgp_quad_option_table(void);
+const glpgp_optdesc *glpgp_quads_option_table(void);
 
 /* Extraction + closing of the polygons + smoothing + repair + clean-up
  * (glpgp_quadmesh_cleanup, its result kept only when it is as valid as the
@@ -220,22 +220,22 @@ const glpgp_optdesc *glpgp_quad_option_table(void);
  * (GLPGP_ERR_NUMERIC: the oscillators collapsed) is not an error: the
  * repair meshes the whole domain. *h: in: the target size, out: the size the mesh is made for
  * (halved by all_quads). o = NULL: the defaults. */
-glpgp_status glpgp_quads_build(const glpgp_mesh *m, const glpgp_result *r, const glpgp_quad_options *o,
+glpgp_status glpgp_quads_build(const glpgp_mesh *m, const glpgp_result *r, const glpgp_quads_options *o,
                                glpgp_quadmesh **out, double *h);
 
-#define GLPGP_QUAD_MAXVAL 8 /* valence histogram bins 0..MAXVAL (last: >= MAXVAL) */
+#define GLPGP_QUADS_MAXVAL 8 /* valence histogram bins 0..MAXVAL (last: >= MAXVAL) */
 /* The scaled Jacobian a finite-element user accepts (the repair's shape
  * rounds re-mesh quads below it that no sharp domain corner limits). */
-#define GLPGP_QUAD_SJ_GOAL 0.3
+#define GLPGP_QUADS_SJ_GOAL 0.3
 /* A result whose repaired share is above this is flagged "mostly repaired". */
-#define GLPGP_QUAD_MOSTLY_REPAIRED 0.5
+#define GLPGP_QUADS_MOSTLY_REPAIRED 0.5
 
 /* Quality report of a polygon mesh (see glpgp_quads_quality). */
-typedef struct glpgp_quad_quality {
+typedef struct glpgp_quads_report {
     int vertices, faces, quads, others; /* others = faces with != 4 corners */
     int others_by_size[8];              /* 3, 4(unused), 5, ... 9+ corners: index n-3 capped at 7 (index 1 unused) */
-    int valence_interior[GLPGP_QUAD_MAXVAL + 1];
-    int valence_boundary[GLPGP_QUAD_MAXVAL + 1];
+    int valence_interior[GLPGP_QUADS_MAXVAL + 1];
+    int valence_boundary[GLPGP_QUADS_MAXVAL + 1];
     int irregular_interior;  /* interior vertices with valence != 4 */
     int irregular_boundary;  /* boundary vertices with valence != ideal (from the boundary angle) */
     int irregular;           /* sum of both */
@@ -244,7 +244,7 @@ typedef struct glpgp_quad_quality {
                               * sharp corners allow them (sin of the smallest interior angle
                               * below 90 degrees of a domain corner among their vertices, else 1):
                               * 1 = every quad as good as its corner allows */
-    int below_sj_goal;       /* quads below GLPGP_QUAD_SJ_GOAL and below 0.9 of that bound */
+    int below_sj_goal;       /* quads below GLPGP_QUADS_SJ_GOAL and below 0.9 of that bound */
     int quads_by_origin[GLPGP_QFACE_KINDS]; /* quads per face origin (all grid without origins) */
     double repaired_share;   /* share of the quads that the repair made (origins repair, fallback) */
     int inverted;            /* faces with area <= 0 or a quad corner with scaled Jacobian < 0 */
@@ -259,7 +259,7 @@ typedef struct glpgp_quad_quality {
                               * domain boundary (holes in the quad mesh); -1 without domain */
     double h;
     int singular[2];         /* singular triangles of the solve (u, v), -1 if unknown */
-    glpgp_quad_closing closing; /* copied from the mesh (0 when it was not closed) */
+    glpgp_quads_closing closing; /* copied from the mesh (0 when it was not closed) */
     /* Validity (one orientation for the whole mesh: the sign of its total
      * signed area; inverted counts the faces of the other sign). */
     int orientation;         /* +1: faces counter-clockwise, -1: clockwise */
@@ -278,9 +278,9 @@ typedef struct glpgp_quad_quality {
     double area_ratio;       /* area / domain_area (-1 without domain) */
     double bnd_vertex_dist;  /* largest distance of a mesh boundary vertex from the domain
                               * boundary, in units of h (-1 without domain) */
-    unsigned invalid;        /* GLPGP_QUAD_BAD_* bits: why the mesh is not valid (0: valid) */
-    glpgp_quad_repair repair;/* copied from the mesh */
-    glpgp_quad_cleanup cleanup; /* copied from the mesh */
+    unsigned invalid;        /* GLPGP_QUADS_BAD_* bits: why the mesh is not valid (0: valid) */
+    glpgp_quads_repair repair;/* copied from the mesh */
+    glpgp_quads_cleanup cleanup; /* copied from the mesh */
     /* Irregular interior vertices against the singularities of the cross
      * field (glpgp_quads_quality_cross); all -1 when no cross field was
      * given (glpgp_quads_quality sets them so): the report then omits them. */
@@ -293,35 +293,35 @@ typedef struct glpgp_quad_quality {
      * the distances, area and loops are against the input surface. */
     int surface;             /* 1: a report of a surface's quad mesh */
     int euler, domain_euler; /* V - E + F of the quads and of the input surface */
-} glpgp_quad_quality;
+} glpgp_quads_report;
 
-/* Reasons a quad mesh is invalid (glpgp_quad_quality.invalid). The domain
+/* Reasons a quad mesh is invalid (glpgp_quads_report.invalid). The domain
  * reasons are only tested when the report was made with a domain. */
 enum {
-    GLPGP_QUAD_BAD_INVERTED = 1u << 0,    /* inverted faces */
-    GLPGP_QUAD_BAD_DEGENERATE = 1u << 1,  /* degenerate faces */
-    GLPGP_QUAD_BAD_NONMANIFOLD = 1u << 2, /* non-manifold edges (or folds across an edge) */
-    GLPGP_QUAD_BAD_NONQUAD = 1u << 3,     /* faces that are not quads */
-    GLPGP_QUAD_BAD_PINCHED = 1u << 4,     /* pinched vertices */
-    GLPGP_QUAD_BAD_OVERLAP = 1u << 5,     /* overlapping faces */
-    GLPGP_QUAD_BAD_OUTSIDE = 1u << 6,     /* faces outside the domain */
-    GLPGP_QUAD_BAD_LOOPS = 1u << 7,       /* boundary loops differ from the domain's (lost hole, gap) */
-    GLPGP_QUAD_BAD_AREA = 1u << 8,        /* area off by more than 1% */
-    GLPGP_QUAD_BAD_HAUSDORFF = 1u << 9,   /* boundary Hausdorff distance above h/4 */
-    GLPGP_QUAD_BAD_GAPS = 1u << 10,       /* boundary edges away from the domain boundary */
-    GLPGP_QUAD_BAD_CORNERS = 1u << 11,    /* domain corners without a mesh vertex */
-    GLPGP_QUAD_BAD_EMPTY = 1u << 12,      /* no face */
-    GLPGP_QUAD_BAD_TOPOLOGY = 1u << 13    /* surfaces: Euler characteristic differs from the input's */
+    GLPGP_QUADS_BAD_INVERTED = 1u << 0,    /* inverted faces */
+    GLPGP_QUADS_BAD_DEGENERATE = 1u << 1,  /* degenerate faces */
+    GLPGP_QUADS_BAD_NONMANIFOLD = 1u << 2, /* non-manifold edges (or folds across an edge) */
+    GLPGP_QUADS_BAD_NONQUAD = 1u << 3,     /* faces that are not quads */
+    GLPGP_QUADS_BAD_PINCHED = 1u << 4,     /* pinched vertices */
+    GLPGP_QUADS_BAD_OVERLAP = 1u << 5,     /* overlapping faces */
+    GLPGP_QUADS_BAD_OUTSIDE = 1u << 6,     /* faces outside the domain */
+    GLPGP_QUADS_BAD_LOOPS = 1u << 7,       /* boundary loops differ from the domain's (lost hole, gap) */
+    GLPGP_QUADS_BAD_AREA = 1u << 8,        /* area off by more than 1% */
+    GLPGP_QUADS_BAD_HAUSDORFF = 1u << 9,   /* boundary Hausdorff distance above h/4 */
+    GLPGP_QUADS_BAD_GAPS = 1u << 10,       /* boundary edges away from the domain boundary */
+    GLPGP_QUADS_BAD_CORNERS = 1u << 11,    /* domain corners without a mesh vertex */
+    GLPGP_QUADS_BAD_EMPTY = 1u << 12,      /* no face */
+    GLPGP_QUADS_BAD_TOPOLOGY = 1u << 13    /* surfaces: Euler characteristic differs from the input's */
 };
-#define GLPGP_QUAD_BAD_COUNT 14
+#define GLPGP_QUADS_BAD_COUNT 14
 
 /* Short name of reason bit b ("inverted", "non-quad", ...); NULL for an unknown bit. */
-const char *glpgp_quad_bad_name(unsigned b);
+const char *glpgp_quads_bad_name(unsigned b);
 
 /* Write the reasons of qq->invalid, less the bits in ignore, as one line
  * ("2 inverted faces, 1 lost hole (boundary loops 3 of 4)") into buf.
  * Returns the bits that remain (0: valid once ignore is taken out). */
-unsigned glpgp_quads_invalid_text(const glpgp_quad_quality *qq, unsigned ignore, char *buf, size_t n);
+unsigned glpgp_quads_invalid_text(const glpgp_quads_report *qq, unsigned ignore, char *buf, size_t n);
 
 /* Compute the quality report of q for target size h (> 0). domain (may be
  * NULL) is the triangle mesh whose boundary the quads should reproduce: it
@@ -330,7 +330,7 @@ unsigned glpgp_quads_invalid_text(const glpgp_quad_quality *qq, unsigned ignore,
  * valence is round(a / 90 deg) + 1 (3 on a straight boundary, 2 at a convex
  * right-angle corner). */
 glpgp_status glpgp_quads_quality(const glpgp_quadmesh *q, const glpgp_mesh *domain, double h,
-                                 glpgp_quad_quality *out);
+                                 glpgp_quads_report *out);
 
 /* Count the irregular interior vertices of q (valence != 4, the vertices
  * not on a boundary edge; the same rule as glpgp_quads_quality) that lie
@@ -343,10 +343,10 @@ glpgp_status glpgp_quads_quality(const glpgp_quadmesh *q, const glpgp_mesh *doma
  * nsing < 0 or an empty mesh. */
 struct glpgp_cross_sing;
 glpgp_status glpgp_quads_quality_cross(const glpgp_quadmesh *q, const struct glpgp_cross_sing *sing, int nsing,
-                                       double radius, glpgp_quad_quality *qq);
+                                       double radius, glpgp_quads_report *qq);
 
 /* Print the report as a short human-readable block (each line prefixed). */
-void glpgp_quads_print(FILE *f, const glpgp_quad_quality *qq, const char *prefix);
+void glpgp_quads_print(FILE *f, const glpgp_quads_report *qq, const char *prefix);
 
 /* Valence (number of distinct edges) of every vertex of q: *val is a
  * calloc'ed array of q->nv + 1 ints (free()). */
@@ -354,7 +354,7 @@ glpgp_status glpgp_quadmesh_valences(const glpgp_quadmesh *q, int **val);
 
 /* Smallest corner scaled Jacobian of face f (1 for a rectangle; <= 0 at a
  * flat or reflex corner; -1 at a zero-length side). */
-double glpgp_quad_face_sj(const glpgp_quadmesh *q, int f);
+double glpgp_quadmesh_face_sj(const glpgp_quadmesh *q, int f);
 
 /* ---- quad meshes of 3D surfaces (issue 29) ---------------------------- */
 
@@ -382,18 +382,18 @@ glpgp_status glpgp_quadmesh_subdivide_surface(const glpgp_quadmesh *q, glpgp_qua
  * boundary loops against m's, two-sided Hausdorff distance (<= h/4) and
  * area (within 2%). qq->surface = 1. */
 glpgp_status glpgp_quads_quality_surface(const glpgp_quadmesh *q, const glpgp_mesh *m, double h,
-                                         glpgp_quad_quality *qq);
+                                         glpgp_quads_report *qq);
 
 /* The relative area difference a surface's quad mesh may have (the
  * verdict's bound): 2% plus what flat faces of a curved surface lose,
  * 2 (d/h)^2 for quads whose corners are on the surface and whose faces
  * are within d (qq->dist_quad_to_domain h) of it (a flat face of
  * half-diagonal h/sqrt2 under a cap of depth d covers 1 - (d/rho)^2 of it). */
-double glpgp_quads_surface_area_tolerance(const glpgp_quad_quality *qq);
+double glpgp_quads_surface_area_tolerance(const glpgp_quads_report *qq);
 
 /* Smallest corner scaled Jacobian of face f of a surface's quad mesh, in
  * its best-fit (Newell) plane. */
-double glpgp_quad_face_sj_surface(const glpgp_quadmesh *q, int f);
+double glpgp_quadmesh_face_sj_surface(const glpgp_quadmesh *q, int f);
 
 /* Quality-guarded smoothing on the surface (quads/smooth_surface.c): sweeps
  * (at most `sweeps`) of tangential moves of the free vertices (not on the
@@ -414,7 +414,7 @@ glpgp_status glpgp_quads_smooth_surface(const glpgp_mesh *m, double h, int sweep
 glpgp_status glpgp_quads_surface_fallback_coarse(const glpgp_mesh *m, double h, glpgp_quadmesh **out, int *ntri);
 
 /* What glpgp_quads_build_surface did. */
-typedef struct glpgp_quad_surface_steps {
+typedef struct glpgp_quads_surface_steps {
     int extracted_faces;   /* faces of the extraction (0: none) */
     int extracted_quads;   /* of those, quads */
     int closed;            /* faces made quads: two odd faces across a side joined, or an even
@@ -425,11 +425,11 @@ typedef struct glpgp_quad_surface_steps {
     int fallback;          /* 1: the extraction was not valid: the last resort, triangles split into
                               quads (coarse_triangles of a coarsened triangulation, else the input's) */
     int coarse_triangles;  /* the last resort's coarse triangles (0: the input's own) */
-    unsigned invalid_before; /* GLPGP_QUAD_BAD_* of the extraction's mesh when it was not used */
+    unsigned invalid_before; /* GLPGP_QUADS_BAD_* of the extraction's mesh when it was not used */
     int smoothed;          /* vertices moved by the smoothing on the surface (o->smooth sweeps) */
     double sj_before;      /* smallest scaled Jacobian before the smoothing */
     double sj_after;       /* and after it (the same when it moved nothing or was undone) */
-} glpgp_quad_surface_steps;
+} glpgp_quads_surface_steps;
 
 /* The surface pipeline (quads/quads_surface.c): extraction; two odd
  * faces that share a side (a triangle and a pentagon around a +1/4
@@ -442,8 +442,8 @@ typedef struct glpgp_quad_surface_steps {
  * user's tolerance), the last resort (glpgp_quads_surface_fallback;
  * o->repair = 0: the extraction's mesh stands, invalid). *h: the target
  * size (unchanged). steps may be NULL. */
-glpgp_status glpgp_quads_build_surface(const glpgp_mesh *m, const glpgp_result *r, const glpgp_quad_options *o,
-                                       glpgp_quadmesh **out, double *h, glpgp_quad_surface_steps *steps);
+glpgp_status glpgp_quads_build_surface(const glpgp_mesh *m, const glpgp_result *r, const glpgp_quads_options *o,
+                                       glpgp_quadmesh **out, double *h, glpgp_quads_surface_steps *steps);
 
 #ifdef __cplusplus
 }
