@@ -38,6 +38,7 @@
 #define SHAPE_BELOW 0.5   /* the smoothing works around quads below this */
 #define SHAPE_SWEEPS 12
 #define SHAPE_FLAT_MAX 64 /* flat corners fixed per pass at most */
+#define SHAPE_FLAT_NEW 0.05 /* a split's new quads above this before the smoothing */
 
 /* ---- corner measure ----------------------------------------------------------- */
 
@@ -392,13 +393,12 @@ static double flat_apply(const glpgp_quadmesh *q, const flat_fix *F, double *xy,
         fo[w++] = split_origin(q, F->Q);
         worst = fmin(worst, glpgp_poly_min_sj(xy, T[k], 4));
     }
-    double halves = INFINITY, before = INFINITY;
+    double halves = INFINITY;
     int X = s0[1] + F->len[1] + 1; /* the next crossing's center */
     for (int k = 0; k < 2; k++)
         for (int t = 0; t < F->len[k]; t++) {
             int f = F->path[k][2 * t], i = F->path[k][2 * t + 1], mi = s0[k] + t, mo = mi + 1;
             const int *v = q->face_vert + 4 * f;
-            before = fmin(before, glpgp_poly_min_sj(q->xy, v, 4));
             if (F->pos[1][f] >= 0) { /* crossed twice: four quads about the midpoints' mean */
                 if (F->pos[1][f] != 2 * t + k) continue; /* made at its second pass */
                 int c0 = F->pos[0][f], k0 = c0 % 2, t0 = c0 / 2, i0 = F->path[k0][2 * t0 + 1], M[4];
@@ -424,12 +424,11 @@ static double flat_apply(const glpgp_quadmesh *q, const flat_fix *F, double *xy,
             fo[w++] = split_origin(q, f);
             halves = fmin(halves, fmin(glpgp_poly_min_sj(xy, A, 4), glpgp_poly_min_sj(xy, B, 4)));
         }
-    (void)before;
     return fmin(worst, halves);
 }
 
-/* Apply F to q when its new quads are better than sjq + 0.02 (*done 1). */
-static glpgp_status flat_commit(glpgp_quadmesh *q, const flat_fix *F, double sjq, int *done, double *worst)
+/* Apply F to q when none of its new quads is below SHAPE_FLAT_NEW (*done 1). */
+static glpgp_status flat_commit(glpgp_quadmesh *q, const flat_fix *F, int *done, double *worst)
 {
     *done = 0;
     *worst = -INFINITY;
@@ -444,7 +443,7 @@ static glpgp_status flat_commit(glpgp_quadmesh *q, const flat_fix *F, double sjq
     if (st == GLPGP_OK) st = glpgp_malloc((size_t)nf + 1, 1, &fo);
     if (st == GLPGP_OK) st = glpgp_calloc((size_t)q->nf + 1, 1, &cut);
     if (st == GLPGP_OK) *worst = flat_apply(q, F, xy, fv, fo, cut);
-    if (st == GLPGP_OK && *worst > sjq + 0.02) {
+    if (st == GLPGP_OK && *worst > SHAPE_FLAT_NEW) {
         glpgp_qm_adopt_quads(q, &xy, nv, &fv, &fs, &fo, nf);
         *done = 1;
     }
@@ -477,7 +476,7 @@ static glpgp_status flat_try(glpgp_quadmesh *q, const flat_fix *F, int *done, do
     glpgp_quadmesh *save = glpgp_qm_copy(q);
     if (!save) return GLPGP_FAIL(GLPGP_ERR_NOMEM, "quads: no memory for the shape pass");
     int moved = 0;
-    glpgp_status st = flat_commit(q, F, 0.03, done, worst); /* any new quad above 0.05 */
+    glpgp_status st = flat_commit(q, F, done, worst);
     if (st == GLPGP_OK && *done) st = optimise(q, &moved);
     if (st == GLPGP_OK && *done) *nmoved += moved;
     if (st == GLPGP_OK && *done) { /* better: fewer quads below the goal or a better worst, that no worse */
