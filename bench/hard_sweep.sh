@@ -5,8 +5,9 @@
 # cracks, airfoils, gaskets, combs, stars, keyholes) at glpgp's default size
 # and at h = 0.5 H, one table row per run: quads, irregular vertices (and per
 # 100 quads), smallest and mean scaled Jacobian, Hausdorff distance to the
-# domain, area ratio, validity, wall seconds; the totals at the end; and the
-# rows as JSON. The measure behind changes to the size field, the extraction
+# domain, area ratio, quads over area / h^2 (h the global size: features
+# smaller than h and the local size need more), validity, wall seconds; the
+# totals at the end; and the rows as JSON. The measure behind changes to the size field, the extraction
 # or the repair (bench/results/size_field.md): run it before and after, same
 # machine, and compare the totals (single cases swing both ways: the
 # extraction near holes smaller than h is chaotic).
@@ -28,8 +29,8 @@ trap 'rm -rf "$T"' EXIT
 "$DOMAINS" 1 "$EDGES" "$T" >/dev/null || exit 1
 bad=0
 : >"$T/rows.txt"
-echo "| domain | size | quads | irregular | per 100 quads | SJ min | SJ min / corner bound | below 0.3 unforced | SJ mean | Hausdorff / h | area ratio | valid | s |"
-echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|"
+echo "| domain | size | quads | irregular | per 100 quads | SJ min | SJ min / corner bound | below 0.3 unforced | SJ mean | Hausdorff / h | area ratio | quads / (area / h^2) | valid | s |"
+echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
 for poly in "$T"/*.poly; do
     d=$(basename "$poly" .poly)
     if ! "$GLPGP" mesh "$poly" -o "$T/$d.msh" --quiet 2>"$T/err.txt"; then
@@ -60,12 +61,13 @@ row = {"domain": d, "size": size, "quads": q["quads"], "irregular": irr,
        "sj_min": q["scaled_jacobian"]["min"], "sj_mean": q["scaled_jacobian"]["mean"],
        "sj_min_corner": q["scaled_jacobian"]["min_of_corner_bound"], "below_goal": q["scaled_jacobian"]["below_goal"],
        "hausdorff": q["boundary_distance_over_h"]["hausdorff"], "area_ratio": q["area_ratio"],
-       "valid": bool(q["valid"]), "seconds": secs}
+       "valid": bool(q["valid"]), "seconds": secs,
+       "quads_per_area": q["quads"] / max(q["domain_area"] / q["h"] ** 2, 1e-300)}
 open(rows, "a").write(json.dumps(row) + "\n")
-print("| %s | %s | %d | %d | %.1f | %.3f | %.3f | %d | %.3f | %.3f | %.4f | %s | %.1f |" % (
+print("| %s | %s | %d | %d | %.1f | %.3f | %.3f | %d | %.3f | %.3f | %.4f | %.2f | %s | %.1f |" % (
     d, size, row["quads"], irr, 100.0 * irr / max(row["quads"], 1), row["sj_min"], row["sj_min_corner"],
     row["below_goal"], row["sj_mean"],
-    row["hausdorff"], row["area_ratio"], "yes" if row["valid"] else "no", secs))
+    row["hausdorff"], row["area_ratio"], row["quads_per_area"], "yes" if row["valid"] else "no", secs))
 sys.exit(0 if row["valid"] else 1)
 PY
     done
@@ -80,6 +82,10 @@ print("\n%d runs: %d quads, %d irregular vertices (%.1f per 100 quads), %d valid
       "lowest SJ over its corner bound %.3f, %d quads below 0.3 that no corner forces" % (
     len(rows), nq, ni, 100.0 * ni / max(nq, 1), nv, min(r["sj_min"] for r in rows),
     min(r["sj_min_corner"] for r in rows), sum(r["below_goal"] for r in rows)))
+far = ["%s@%s %.2f" % (r["domain"], r["size"], r["quads_per_area"]) for r in rows
+       if not (1 / 1.5 <= r["quads_per_area"] <= 1.5)]
+print("quads within 1.5x of area / h^2: %d of %d runs%s" % (len(rows) - len(far), len(rows),
+      (" (not: " + ", ".join(far) + ")") if far else ""))
 if sys.argv[3]:
     json.dump({"edges_per_H": int(sys.argv[2]), "runs": rows, "quads": nq, "irregular": ni, "valid": nv},
               open(sys.argv[3], "w"), indent=1)

@@ -51,6 +51,7 @@ static void json_repair(glpgp_json *w, const glpgp_quads_repair *r)
     glpgp_json_int(w, "paved_regions", r->paved_regions);
     glpgp_json_int(w, "fallback_regions", r->fallback_regions);
     glpgp_json_int(w, "flat_corners", r->flat_corners);
+    glpgp_json_int(w, "sharp_tips", r->sharp_tips);
     glpgp_json_int(w, "shaped_vertices", r->shaped_vertices);
     glpgp_json_str(w, "whole_domain", r->whole_domain == 2 ? "input-triangles" : r->whole_domain == 1 ? "meshed-again" : "no");
     int order[GLPGP_QUADS_REGIONS_LISTED], n = r->nlisted;

@@ -13,19 +13,20 @@
 /* The last shape pass (shape.c) on a copy of *q, kept when the mesh is as
  * valid as before, its worst quad (relative to what the domain's corners
  * allow) no worse and the irregular vertices not more than the split flat
- * corners add. */
+ * corners and the re-meshed tips add. */
 static glpgp_status shape_pass(glpgp_quadmesh **q, const glpgp_mesh *m, double h)
 {
     glpgp_quadmesh *t = glpgp_qm_copy(*q);
     if (!t) return GLPGP_FAIL(GLPGP_ERR_NOMEM, "quads: no memory for the shape pass");
-    int flat = 0, moved = 0;
+    int tips = 0, flat = 0, moved = 0;
     glpgp_quads_report q0, q1;
-    glpgp_status st = glpgp_quadmesh_shape_pass(t, m, h, &flat, &moved);
-    if (st == GLPGP_OK && (flat || moved)) {
+    glpgp_status st = glpgp_quadmesh_shape_pass(t, m, h, &tips, &flat, &moved);
+    if (st == GLPGP_OK && (tips || flat || moved)) {
         st = glpgp_quads_quality(*q, m, h, &q0);
         if (st == GLPGP_OK) st = glpgp_quads_quality(t, m, h, &q1);
         if (st == GLPGP_OK && (q1.invalid & ~q0.invalid) == 0 && q1.sj_min_corner >= q0.sj_min_corner - 1e-12 &&
-            q1.below_sj_goal <= q0.below_sj_goal && q1.irregular <= q0.irregular + flat) {
+            q1.below_sj_goal <= q0.below_sj_goal && q1.irregular <= q0.irregular + flat + tips) {
+            t->repair.sharp_tips = tips;
             t->repair.flat_corners = flat;
             t->repair.shaped_vertices = moved;
             glpgp_quadmesh_destroy(q);

@@ -553,9 +553,9 @@ static void quads_print(FILE *f, const glpgp_quads_report *qq, const char *prefi
         fprintf(f, "%s  cleanup      %d doublets removed, %d quads collapsed, %d edges rotated (valence cost %d -> %d)\n",
                 p, qq->cleanup.doublets, qq->cleanup.collapses, qq->cleanup.rotations, qq->cleanup.cost_before,
                 qq->cleanup.cost_after);
-    if (qq->repair.flat_corners || qq->repair.shaped_vertices)
-        fprintf(f, "%s  shape        %d flat boundary corners split, %d vertices moved to raise the worst corner\n", p,
-                qq->repair.flat_corners, qq->repair.shaped_vertices);
+    if (qq->repair.sharp_tips || qq->repair.flat_corners || qq->repair.shaped_vertices)
+        fprintf(f, "%s  shape        %d sharp tips re-meshed, %d flat boundary corners split, %d vertices moved to raise the worst corner\n",
+                p, qq->repair.sharp_tips, qq->repair.flat_corners, qq->repair.shaped_vertices);
     if (qq->surface)
         fprintf(f, "%s  surface      Hausdorff %.3f h (quads->surface %.3f h, surface->quads %.3f h), "
                    "area %.5g of %.5g (ratio %.4f), Euler %d of %d, boundary loops %d of %d\n",

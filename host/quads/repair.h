@@ -144,11 +144,13 @@ int glpgp_dbnd_chord(dbnd *D, const double *a, const double *b, double h, double
 
 /* ---- the last shape pass (shape.c) -------------------------------------------------- */
 
-/* Flat boundary corners split with two strips, then the optimisation
- * smoothing around quads below 0.5 (shape.c's header); q changed in place.
- * *flat: corners fixed, *moved: vertices moved. The caller keeps the
+/* Sharp tips re-meshed with one strip, flat boundary corners split with
+ * two strips, then the optimisation smoothing around quads below 0.5
+ * (shape.c's header); q changed in place. *tips, *flat: tips and corners
+ * fixed, *moved: vertices moved. The caller keeps the
  * result only when it is as valid as before. */
-glpgp_status glpgp_quadmesh_shape_pass(glpgp_quadmesh *q, const glpgp_mesh *m, double h, int *flat, int *moved);
+glpgp_status glpgp_quadmesh_shape_pass(glpgp_quadmesh *q, const glpgp_mesh *m, double h, int *tips, int *flat,
+                                       int *moved);
 
 /* ---- shared helpers (repair.c) ---------------------------------------------------- */
 

@@ -3,6 +3,8 @@
  * mesh; what it changes the pipeline keeps only when the mesh stays as
  * valid and its worst quad is better.
  *
+ * 0. Sharp tips (tips.c): the region of a boundary corner below 60 degrees
+ *    re-meshed as its triangle's incircle kites, with one strip (part 1's).
  * 1. Flat boundary corners. A boundary vertex c with one face Q = (a, b, c,
  *    d) whose corner there is flat (the boundary runs nearly straight
  *    through c, SJ below the goal) makes Q a triangle a-b-d with c on its
@@ -27,23 +29,21 @@
  *    never falls and no face inverts. A boundary vertex moves only when it
  *    lies on a straight piece between its two boundary neighbours, and then
  *    along that piece: the domain's boundary stays where it is. */
-#include "repair.h"
+#include "shape_impl.h"
 #include "geom.h"
 #include "soup.h"
+#include "check.h"
 
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
-#define SHAPE_BELOW 0.5   /* the smoothing works around quads below this */
 #define SHAPE_SWEEPS 12
-#define SHAPE_FLAT_MAX 64 /* flat corners fixed per pass at most */
-#define SHAPE_FLAT_NEW 0.05 /* a split's new quads above this before the smoothing */
 
 /* ---- corner measure ----------------------------------------------------------- */
 
 /* Scaled Jacobian of corner i of polygon v[0..n-1] (counter-clockwise). */
-static double corner_sj(const double *xy, const int *v, int n, int i)
+double glpgp_shape_corner_sj(const double *xy, const int *v, int n, int i)
 {
     const double *a = xy + 2 * v[i], *b = xy + 2 * v[(i + 1) % n], *c = xy + 2 * v[(i + n - 1) % n];
     double e1x = b[0] - a[0], e1y = b[1] - a[1], e2x = c[0] - a[0], e2y = c[1] - a[1];
@@ -51,12 +51,8 @@ static double corner_sj(const double *xy, const int *v, int n, int i)
     return l > 0 ? (e1x * e2y - e1y * e2x) / l : -1.0;
 }
 
-typedef struct vstar {
-    int *vs, *vc; /* vertex -> corner slots (CSR) */
-    int *sf;      /* slot -> face */
-} vstar;
 
-static void vstar_free(vstar *S)
+void glpgp_vstar_free(vstar *S)
 {
     free(S->vs);
     free(S->vc);
@@ -64,7 +60,7 @@ static void vstar_free(vstar *S)
     memset(S, 0, sizeof *S);
 }
 
-static glpgp_status vstar_build(const glpgp_quadmesh *q, vstar *S)
+glpgp_status glpgp_vstar_build(const glpgp_quadmesh *q, vstar *S)
 {
     int nv = q->nv, nc = q->face_start[q->nf];
     int *cnt = NULL;
@@ -74,7 +70,7 @@ static glpgp_status vstar_build(const glpgp_quadmesh *q, vstar *S)
     if (st == GLPGP_OK) st = glpgp_malloc((size_t)nc + 1, sizeof(int), &S->sf);
     if (st == GLPGP_OK) st = glpgp_calloc((size_t)nv + 1, sizeof(int), &cnt);
     if (st != GLPGP_OK) {
-        vstar_free(S);
+        glpgp_vstar_free(S);
         free(cnt);
         return st;
     }
@@ -98,7 +94,7 @@ static double moved_corners(const glpgp_quadmesh *q, const vstar *S, int v, int 
         int c = S->vc[j], f = S->sf[c], b = q->face_start[f], n = q->face_start[f + 1] - b, i = c - b;
         const int *fv = q->face_vert + b;
         for (int k = n - 1; k <= n + 1; k++) {
-            double sj = corner_sj(q->xy, fv, n, (i + k) % n);
+            double sj = glpgp_shape_corner_sj(q->xy, fv, n, (i + k) % n);
             m = fmin(m, sj);
             *below += sj < GLPGP_QUADS_SJ_GOAL;
         }
@@ -201,7 +197,7 @@ static glpgp_status optimise(glpgp_quadmesh *q, int *moved)
     memset(&S, 0, sizeof S);
     glpgp_status st = glpgp_soup_from_mesh(q, &s);
     if (st == GLPGP_OK) st = glpgp_adj_build(&s, &A);
-    if (st == GLPGP_OK) st = vstar_build(q, &S);
+    if (st == GLPGP_OK) st = glpgp_vstar_build(q, &S);
     if (st == GLPGP_OK) st = glpgp_calloc((size_t)q->nv + 1, 1, &act);
     if (st != GLPGP_OK) goto done;
     for (int f = 0; f < q->nf; f++) {
@@ -234,28 +230,20 @@ static glpgp_status optimise(glpgp_quadmesh *q, int *moved)
 done:
     glpgp_soup_free(&s);
     glpgp_adj_free(&A);
-    vstar_free(&S);
+    glpgp_vstar_free(&S);
     free(act);
     return st;
 }
 
 /* ---- flat boundary corners ---------------------------------------------------- */
 
-typedef struct flat_fix {
-    int Q, i;              /* the face and c's corner in it */
-    int *path[2], len[2];  /* the strips from sides (a, b) and (d, a): faces and entry sides */
-    int loop;              /* 1: one strip from (a, b) that comes back through (d, a) */
-    int ncross;            /* faces crossed twice, at right angles (each cut in four) */
-    int *pos[2];           /* per face: its first and second pass, 2 t + k (step t of strip k), or -1 */
-    double end[2][2];      /* the strips' ends on the domain boundary */
-} flat_fix;
 
 /* Strip k from face f0 entered through side i0: each quad left through the
  * side opposite its entry, recorded in F->pos; a quad already passed may be
  * crossed once more at right angles. 1: it reached the boundary (side ie of
  * face fe); 2: it came back into Q through side qside; 0: it met Q
  * otherwise, a quad a third time or along its first pass, or a non-quad. */
-static int flat_trace(const qsides *S, const glpgp_quadmesh *q, flat_fix *F, int k, int f0, int i0, int qside, int *fe,
+int glpgp_shape_trace(const qsides *S, const glpgp_quadmesh *q, flat_fix *F, int k, int f0, int i0, int qside, int *fe,
                       int *ie)
 {
     int f = f0, i = i0, n = 0;
@@ -294,7 +282,7 @@ static int flat_strips(const glpgp_quadmesh *q, const qsides *S, dbnd *D, double
     int side[2] = {(F->i + 2) % 4, (F->i + 1) % 4}, ok = 1;
     for (int k = 0; k < 2 && ok; k++) {
         int j = -1, fe = -1, ie = -1, P = glpgp_qsides_across(S, q, F->Q, side[k], &j);
-        int r = P >= 0 ? flat_trace(S, q, F, k, P, j, side[1], &fe, &ie) : 0;
+        int r = P >= 0 ? glpgp_shape_trace(S, q, F, k, P, j, side[1], &fe, &ie) : 0;
         ok = r > 0 && F->len[k] > 0;
         if (r == 2) { /* back into Q through side (d, a): one strip */
             int n = F->len[0], fl = F->path[0][2 * n - 2], o = (F->path[0][2 * n - 1] + 2) % 4;
@@ -318,7 +306,7 @@ static int flat_strips(const glpgp_quadmesh *q, const qsides *S, dbnd *D, double
     return ok;
 }
 
-static unsigned char split_origin(const glpgp_quadmesh *q, int f)
+unsigned char glpgp_shape_split_origin(const glpgp_quadmesh *q, int f)
 {
     unsigned char o = q->face_origin ? q->face_origin[f] : GLPGP_QFACE_GRID;
     return o > GLPGP_QFACE_CLOSED ? o : GLPGP_QFACE_CLOSED;
@@ -358,14 +346,13 @@ static void place_center(double *xy, int T[3][4], int g)
     }
 }
 
-/* The mesh with F applied into the new arrays; the smallest corner scaled
- * Jacobian of the new quads. */
-static double flat_apply(const glpgp_quadmesh *q, const flat_fix *F, double *xy, int *fv, unsigned char *fo,
+/* The points of the first nk strips of F into xy (step t of strip k at
+ * s0[k] + t: the midpoint of the side it enters through, the last one its
+ * end on the boundary); the faces they cut marked in cut. */
+void glpgp_shape_strip_points(const glpgp_quadmesh *q, const flat_fix *F, int nk, const int *s0, double *xy,
                          unsigned char *cut)
 {
-    const int nv = q->nv, g = nv, s0[2] = {nv + 1, F->loop ? nv + 1 + F->len[0] : nv + 2 + F->len[0]};
-    memcpy(xy, q->xy, sizeof(double) * 2 * (size_t)nv);
-    for (int k = 0; k < 2 - F->loop; k++)
+    for (int k = 0; k < nk; k++)
         for (int t = 0; t <= F->len[k]; t++) {
             int last = t == F->len[k], f = F->path[k][2 * (last ? t - 1 : t)], i = F->path[k][2 * (last ? t - 1 : t) + 1];
             const int *v = q->face_vert + 4 * f;
@@ -374,6 +361,55 @@ static double flat_apply(const glpgp_quadmesh *q, const flat_fix *F, double *xy,
             xy[2 * (s0[k] + t) + 1] = last ? F->end[k][1] : 0.5 * (a[1] + b[1]);
             cut[f] = 1;
         }
+}
+
+/* The faces the strips of F cut, in two (in four about the midpoints' mean
+ * where two passes cross, centers from X on) into fv / fo from slot *w;
+ * their smallest corner scaled Jacobian. */
+double glpgp_shape_strip_halves(const glpgp_quadmesh *q, const flat_fix *F, const int *s0, int X, double *xy, int *fv,
+                           unsigned char *fo, int *w)
+{
+    double halves = INFINITY;
+    for (int k = 0; k < 2; k++)
+        for (int t = 0; t < F->len[k]; t++) {
+            int f = F->path[k][2 * t], i = F->path[k][2 * t + 1], mi = s0[k] + t, mo = mi + 1;
+            const int *v = q->face_vert + 4 * f;
+            if (F->pos[1][f] >= 0) { /* crossed twice: four quads about the midpoints' mean */
+                if (F->pos[1][f] != 2 * t + k) continue; /* made at its second pass */
+                int c0 = F->pos[0][f], k0 = c0 % 2, t0 = c0 / 2, i0 = F->path[k0][2 * t0 + 1], M[4];
+                M[i] = mi;
+                M[(i + 2) % 4] = mo;
+                M[i0] = s0[k0] + t0;
+                M[(i0 + 2) % 4] = s0[k0] + t0 + 1;
+                for (int e = 0; e < 2; e++)
+                    xy[2 * X + e] = 0.25 * (xy[2 * M[0] + e] + xy[2 * M[1] + e] + xy[2 * M[2] + e] + xy[2 * M[3] + e]);
+                for (int r = 0; r < 4; r++) {
+                    int C[4] = {v[r], M[r], X, M[(r + 3) % 4]};
+                    memcpy(fv + 4 * *w, C, sizeof C);
+                    fo[(*w)++] = glpgp_shape_split_origin(q, f);
+                    halves = fmin(halves, glpgp_poly_min_sj(xy, C, 4));
+                }
+                X++;
+                continue;
+            }
+            int A[4] = {v[i], mi, mo, v[(i + 3) % 4]}, B[4] = {mi, v[(i + 1) % 4], v[(i + 2) % 4], mo};
+            memcpy(fv + 4 * *w, A, sizeof A);
+            fo[(*w)++] = glpgp_shape_split_origin(q, f);
+            memcpy(fv + 4 * *w, B, sizeof B);
+            fo[(*w)++] = glpgp_shape_split_origin(q, f);
+            halves = fmin(halves, fmin(glpgp_poly_min_sj(xy, A, 4), glpgp_poly_min_sj(xy, B, 4)));
+        }
+    return halves;
+}
+
+/* The mesh with F applied into the new arrays; the smallest corner scaled
+ * Jacobian of the new quads. */
+static double flat_apply(const glpgp_quadmesh *q, const flat_fix *F, double *xy, int *fv, unsigned char *fo,
+                         unsigned char *cut)
+{
+    const int nv = q->nv, g = nv, s0[2] = {nv + 1, F->loop ? nv + 1 + F->len[0] : nv + 2 + F->len[0]};
+    memcpy(xy, q->xy, sizeof(double) * 2 * (size_t)nv);
+    glpgp_shape_strip_points(q, F, 2 - F->loop, s0, xy, cut);
     const int *Qv = q->face_vert + 4 * F->Q;
     int c = Qv[F->i], d = Qv[(F->i + 1) % 4], a = Qv[(F->i + 2) % 4], b = Qv[(F->i + 3) % 4];
     for (int e = 0; e < 2; e++)
@@ -390,41 +426,10 @@ static double flat_apply(const glpgp_quadmesh *q, const flat_fix *F, double *xy,
     place_center(xy, T, g);
     for (int k = 0; k < 3; k++) {
         memcpy(fv + 4 * w, T[k], sizeof T[k]);
-        fo[w++] = split_origin(q, F->Q);
+        fo[w++] = glpgp_shape_split_origin(q, F->Q);
         worst = fmin(worst, glpgp_poly_min_sj(xy, T[k], 4));
     }
-    double halves = INFINITY;
-    int X = s0[1] + F->len[1] + 1; /* the next crossing's center */
-    for (int k = 0; k < 2; k++)
-        for (int t = 0; t < F->len[k]; t++) {
-            int f = F->path[k][2 * t], i = F->path[k][2 * t + 1], mi = s0[k] + t, mo = mi + 1;
-            const int *v = q->face_vert + 4 * f;
-            if (F->pos[1][f] >= 0) { /* crossed twice: four quads about the midpoints' mean */
-                if (F->pos[1][f] != 2 * t + k) continue; /* made at its second pass */
-                int c0 = F->pos[0][f], k0 = c0 % 2, t0 = c0 / 2, i0 = F->path[k0][2 * t0 + 1], M[4];
-                M[i] = mi;
-                M[(i + 2) % 4] = mo;
-                M[i0] = s0[k0] + t0;
-                M[(i0 + 2) % 4] = s0[k0] + t0 + 1;
-                for (int e = 0; e < 2; e++)
-                    xy[2 * X + e] = 0.25 * (xy[2 * M[0] + e] + xy[2 * M[1] + e] + xy[2 * M[2] + e] + xy[2 * M[3] + e]);
-                for (int r = 0; r < 4; r++) {
-                    int C[4] = {v[r], M[r], X, M[(r + 3) % 4]};
-                    memcpy(fv + 4 * w, C, sizeof C);
-                    fo[w++] = split_origin(q, f);
-                    halves = fmin(halves, glpgp_poly_min_sj(xy, C, 4));
-                }
-                X++;
-                continue;
-            }
-            int A[4] = {v[i], mi, mo, v[(i + 3) % 4]}, B[4] = {mi, v[(i + 1) % 4], v[(i + 2) % 4], mo};
-            memcpy(fv + 4 * w, A, sizeof A);
-            fo[w++] = split_origin(q, f);
-            memcpy(fv + 4 * w, B, sizeof B);
-            fo[w++] = split_origin(q, f);
-            halves = fmin(halves, fmin(glpgp_poly_min_sj(xy, A, 4), glpgp_poly_min_sj(xy, B, 4)));
-        }
-    return fmin(worst, halves);
+    return fmin(worst, glpgp_shape_strip_halves(q, F, s0, s0[1] + F->len[1] + 1, xy, fv, fo, &w));
 }
 
 /* Apply F to q when none of its new quads is below SHAPE_FLAT_NEW (*done 1). */
@@ -468,18 +473,85 @@ static double mesh_worst(const glpgp_quadmesh *q, int *below)
     return m;
 }
 
-/* F applied and the mesh smoothed; kept (*done 1) when the mesh has then
- * fewer quads below the goal or a better worst one, and that no worse;
- * else q restored. */
-static glpgp_status flat_try(glpgp_quadmesh *q, const flat_fix *F, int *done, double *worst, int *nmoved)
+/* The mesh's quality as a tip fix is judged: the worst quad relative to
+ * what the domain's sharp corners allow it (sin of the corner), and the
+ * quads below the goal and below SHAPE_BELOW where no corner forces it. */
+typedef struct shape_score {
+    double worst;
+    int below, below_half, irregular;
+} shape_score;
+
+/* Interior vertices of q whose face count is not 4. */
+static glpgp_status irregular_interior(const glpgp_quadmesh *q, int *count)
+{
+    qsides E = {NULL, 0};
+    int *deg = NULL;
+    *count = 0;
+    glpgp_status st = glpgp_qsides_build(q, &E);
+    if (st == GLPGP_OK) st = glpgp_calloc((size_t)q->nv + 1, sizeof(int), &deg);
+    for (int f = 0; f < q->nf && st == GLPGP_OK; f++)
+        for (int i = 0; i < 4; i++) {
+            int j = -1, v = q->face_vert[4 * f + i];
+            if (deg[v] >= 0) deg[v]++;
+            if (glpgp_qsides_across(&E, q, f, i, &j) < 0) deg[v] = deg[q->face_vert[4 * f + (i + 1) % 4]] = -1000000;
+        }
+    for (int v = 0; v < q->nv && st == GLPGP_OK; v++) *count += deg[v] > 0 && deg[v] != 4;
+    glpgp_qsides_free(&E);
+    free(deg);
+    return st;
+}
+
+static glpgp_status score_mesh(const glpgp_quadmesh *q, const glpgp_mesh *m, double h, shape_score *sc)
+{
+    double *bound = NULL;
+    GLPGP_CHECK(glpgp_malloc((size_t)q->nf + 1, sizeof(double), &bound));
+    glpgp_status st = glpgp_qcheck_corner_bound(q, m, h, bound);
+    sc->worst = INFINITY;
+    sc->below = sc->below_half = 0;
+    for (int f = 0; f < q->nf && st == GLPGP_OK; f++) {
+        double sj = glpgp_poly_min_sj(q->xy, q->face_vert + q->face_start[f], q->face_start[f + 1] - q->face_start[f]);
+        sc->worst = fmin(sc->worst, sj / bound[f]);
+        sc->below += sj < GLPGP_QUADS_SJ_GOAL && sj < 0.9 * bound[f];
+        sc->below_half += sj < SHAPE_BELOW && sj < 0.9 * bound[f];
+    }
+    free(bound);
+    if (st == GLPGP_OK) st = irregular_interior(q, &sc->irregular);
+    return st;
+}
+
+/* Kept by the corners' measure: the worst quad relative to its bound, the
+ * quads below the goal and below SHAPE_BELOW and the irregular interior
+ * vertices all no worse, one of them better. */
+static glpgp_status better_bounded(const glpgp_quadmesh *before, const glpgp_quadmesh *after, const glpgp_mesh *m,
+                                   double h, int *done, double *worst)
+{
+    shape_score s0, s1;
+    GLPGP_CHECK(score_mesh(before, m, h, &s0));
+    GLPGP_CHECK(score_mesh(after, m, h, &s1));
+    *worst = s1.worst;
+    *done = s1.worst >= s0.worst - 1e-12 && s1.below <= s0.below && s1.below_half <= s0.below_half &&
+            s1.irregular <= s0.irregular &&
+            (s1.below < s0.below || s1.below_half < s0.below_half || s1.irregular < s0.irregular ||
+             s1.worst > s0.worst + 1e-9);
+    return GLPGP_OK;
+}
+
+/* A change applied by commit (on *done 1) and the mesh smoothed; kept
+ * (*done 1) when the mesh has then fewer quads below the goal or a better
+ * worst one, and that no worse (m NULL), or when better_bounded says so
+ * (m given); else q restored. */
+
+glpgp_status glpgp_shape_try(glpgp_quadmesh *q, shape_commit commit, const void *fix, const glpgp_mesh *m, double h,
+                              int *done, double *worst, int *nmoved)
 {
     glpgp_quadmesh *save = glpgp_qm_copy(q);
     if (!save) return GLPGP_FAIL(GLPGP_ERR_NOMEM, "quads: no memory for the shape pass");
     int moved = 0;
-    glpgp_status st = flat_commit(q, F, done, worst);
+    glpgp_status st = commit(q, fix, done, worst);
     if (st == GLPGP_OK && *done) st = optimise(q, &moved);
     if (st == GLPGP_OK && *done) *nmoved += moved;
-    if (st == GLPGP_OK && *done) { /* better: fewer quads below the goal or a better worst, that no worse */
+    if (st == GLPGP_OK && *done && m) st = better_bounded(save, q, m, h, done, worst);
+    else if (st == GLPGP_OK && *done) { /* better: fewer quads below the goal or a better worst, that no worse */
         int b0 = 0, b1 = 0;
         double m0 = mesh_worst(save, &b0), m1 = mesh_worst(q, &b1);
         *worst = m1;
@@ -494,6 +566,11 @@ static glpgp_status flat_try(glpgp_quadmesh *q, const flat_fix *F, int *done, do
     return st;
 }
 
+static glpgp_status flat_commit_any(glpgp_quadmesh *q, const void *F, int *done, double *worst)
+{
+    return flat_commit(q, (const flat_fix *)F, done, worst);
+}
+
 /* The worst flat boundary corner not refused yet: (Q, i) and its scaled
  * Jacobian; -1 when none. */
 static int flat_find(const glpgp_quadmesh *q, const vstar *S, const unsigned char *refused, int *Q, int *ci,
@@ -506,7 +583,7 @@ static int flat_find(const glpgp_quadmesh *q, const vstar *S, const unsigned cha
         int slot = S->vc[S->vs[c]], f = S->sf[slot], i = slot - 4 * f;
         const int *v = q->face_vert + 4 * f;
         const double *p = q->xy + 2 * c, *b = q->xy + 2 * v[(i + 3) % 4], *d = q->xy + 2 * v[(i + 1) % 4];
-        double sj = corner_sj(q->xy, v, 4, i);
+        double sj = glpgp_shape_corner_sj(q->xy, v, 4, i);
         double dot = (b[0] - p[0]) * (d[0] - p[0]) + (b[1] - p[1]) * (d[1] - p[1]);
         if (!(sj < GLPGP_QUADS_SJ_GOAL) || !(dot < 0) || !(sj < *sjq)) continue;
         *sjq = sj;
@@ -534,7 +611,7 @@ static glpgp_status flat_corners(glpgp_quadmesh *q, const glpgp_mesh *m, double 
         qsides E = {NULL, 0};
         double sjq = 0.0, worst = -INFINITY;
         int done = 0, c = -1;
-        st = vstar_build(q, &S);
+        st = glpgp_vstar_build(q, &S);
         if (st == GLPGP_OK) st = glpgp_qsides_build(q, &E);
         for (int k = 0; k < 2; k++) {
             free(F.path[k]);
@@ -550,8 +627,8 @@ static glpgp_status flat_corners(glpgp_quadmesh *q, const glpgp_mesh *m, double 
         if (st == GLPGP_OK) c = flat_find(q, &S, refused, &F.Q, &F.i, &sjq);
         F.len[0] = F.len[1] = F.loop = F.ncross = 0;
         if (st == GLPGP_OK && c >= 0 && flat_strips(q, &E, &D, h, &F, &cand, &ncap))
-            st = flat_try(q, &F, &done, &worst, nmoved);
-        vstar_free(&S);
+            st = glpgp_shape_try(q, flat_commit_any, &F, NULL, 0.0, &done, &worst, nmoved);
+        glpgp_vstar_free(&S);
         glpgp_qsides_free(&E);
         if (st != GLPGP_OK || c < 0) break;
         if (!done) {
@@ -577,13 +654,15 @@ static glpgp_status flat_corners(glpgp_quadmesh *q, const glpgp_mesh *m, double 
     return st;
 }
 
-glpgp_status glpgp_quadmesh_shape_pass(glpgp_quadmesh *q, const glpgp_mesh *m, double h, int *flat, int *moved)
+glpgp_status glpgp_quadmesh_shape_pass(glpgp_quadmesh *q, const glpgp_mesh *m, double h, int *tips, int *flat,
+                                       int *moved)
 {
-    *flat = *moved = 0;
+    *tips = *flat = *moved = 0;
     if (!q || q->nf <= 0) return GLPGP_OK;
-    int m1 = 0, m2 = 0;
+    int m0 = 0, m1 = 0, m2 = 0;
+    GLPGP_CHECK(glpgp_shape_tips(q, m, h, tips, &m0));
     GLPGP_CHECK(flat_corners(q, m, h, flat, &m1));
     GLPGP_CHECK(optimise(q, &m2));
-    *moved = m1 + m2; /* moves (a vertex moved in two sweeps counts twice) */
+    *moved = m0 + m1 + m2; /* moves (a vertex moved in two sweeps counts twice) */
     return GLPGP_OK;
 }

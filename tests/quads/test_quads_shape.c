@@ -7,10 +7,16 @@
  *  - the optimisation smoothing raises the worst corner of a distorted
  *    grid, never lowers it, keeps the boundary, and slides a boundary
  *    vertex only along a straight side;
+ *  - a sharp tip whose quad has a nearly flat corner (a 20-degree wedge
+ *    meshed by a 2-wide column whose middle line ends just short of the
+ *    tip's triangle) is re-meshed as its triangle's incircle kites: valid,
+ *    the same area, the poor quad gone (every quad at or above what the
+ *    tip's corner allows it), the tip kept as a corner of one quad;
  *  - a mesh with nothing to do is left as it is, bit for bit. */
 #include "glpgp/quads.h"
 #include "testutil.h"
 #include "../host/quads/repair.h"
+#include "../host/quads/geom.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -75,8 +81,8 @@ static void flat_corner(void)
     glpgp_quads_report q0, q1;
     CHECK_OK(glpgp_quads_quality(q, m, 1.0, &q0));
     CHECK(fabs(q0.sj_min) < 1e-12); /* the flat corner */
-    int flat = 0, moved = 0;
-    CHECK_OK(glpgp_quadmesh_shape_pass(q, m, 1.0, &flat, &moved));
+    int tips = 0, flat = 0, moved = 0;
+    CHECK_OK(glpgp_quadmesh_shape_pass(q, m, 1.0, &tips, &flat, &moved));
     CHECK_OK(glpgp_quads_quality(q, m, 1.0, &q1));
     printf("flat corner: %d split, %d moved: %d quads, SJ min %.3f -> %.3f, irregular %d -> %d, invalid 0x%x\n", flat,
            moved, q1.quads, q0.sj_min, q1.sj_min, q0.irregular, q1.irregular, q1.invalid);
@@ -104,8 +110,8 @@ static void optimise(void)
     glpgp_mesh *m = tu_grid_mesh((tu_grid){.nx = N, .ny = N, .Lx = N, .Ly = N});
     if (!q || !m) return;
     double before = min_sj(q);
-    int flat = 0, moved = 0;
-    CHECK_OK(glpgp_quadmesh_shape_pass(q, m, 1.0, &flat, &moved));
+    int tips = 0, flat = 0, moved = 0;
+    CHECK_OK(glpgp_quadmesh_shape_pass(q, m, 1.0, &tips, &flat, &moved));
     double after = min_sj(q);
     printf("optimise: %d moved, SJ min %.3f -> %.3f, bottom vertex x %.3f\n", moved, before, after, q->xy[6]);
     CHECK(flat == 0 && moved > 0);
@@ -122,6 +128,60 @@ static void optimise(void)
     glpgp_mesh_destroy(&m);
 }
 
+/* Signed area of an all-quad mesh. */
+static double quad_area(const glpgp_quadmesh *q)
+{
+    double a = 0.0;
+    for (int f = 0; f < q->nf; f++)
+        for (int i = 0; i < 4; i++) {
+            const double *p = q->xy + 2 * q->face_vert[4 * f + i], *r = q->xy + 2 * q->face_vert[4 * f + (i + 1) % 4];
+            a += 0.5 * (p[0] * r[1] - r[0] * p[1]);
+        }
+    return a;
+}
+
+/* The wedge T = (0, 0), half-angle 10 degrees, cut at x = 3: a 2-wide
+ * column (rungs at x = 1, 2, 3 through their middle points) whose tip quad
+ * T, L1, M1, R1 has M1 = (1.01, 0) just beyond the rung: its corner there
+ * 173.5 degrees, SJ 0.11, where the tip allows sin 20 = 0.34. */
+static void sharp_tip(void)
+{
+    const double t = tan(10.0 * 3.14159265358979323846 / 180.0);
+    const double xy[] = {0, 0, 1, -t, 1.01, 0, 1, t, 2, -2 * t, 2, 0, 2, 2 * t, 3, -3 * t, 3, 0, 3, 3 * t};
+    const int fv[] = {0, 1, 2, 3, 1, 4, 5, 2, 2, 5, 6, 3, 4, 7, 8, 5, 5, 8, 9, 6};
+    int tri[2 * 3 * 5];
+    for (int f = 0; f < 5; f++) {
+        const int *v = fv + 4 * f, T2[6] = {v[0], v[1], v[2], v[0], v[2], v[3]};
+        memcpy(tri + 6 * f, T2, sizeof T2);
+    }
+    glpgp_mesh *m = NULL;
+    CHECK_OK(glpgp_mesh_create(10, xy, 10, tri, &m));
+    glpgp_quadmesh *q = qm(xy, 10, fv, 5);
+    if (!q || !m) return;
+    double area0 = quad_area(q), before = min_sj(q), bound = sin(20.0 * 3.14159265358979323846 / 180.0);
+    int tips = 0, flat = 0, moved = 0;
+    CHECK_OK(glpgp_quadmesh_shape_pass(q, m, 1.0, &tips, &flat, &moved));
+    double after = min_sj(q);
+    printf("sharp tip: %d re-meshed, %d quads, SJ min %.3f -> %.3f (the tip allows %.3f)\n", tips, q->nf, before, after,
+           bound);
+    CHECK(tips == 1 && flat == 0);
+    CHECK(fabs(quad_area(q) - area0) < 1e-9 * area0);
+    CHECK(before < 0.12 && after > bound - 1e-6);
+    int at_tip = 0;
+    double away = INFINITY; /* the worst quad away from the tip */
+    for (int f = 0; f < q->nf; f++) {
+        int has = 0;
+        for (int i = 0; i < 4; i++) has += q->xy[2 * q->face_vert[4 * f + i]] == 0 && q->xy[2 * q->face_vert[4 * f + i] + 1] == 0;
+        at_tip += has;
+        if (!has) away = fmin(away, glpgp_poly_min_sj(q->xy, q->face_vert + 4 * f, 4));
+    }
+    printf("sharp tip: the worst quad away from the tip %.3f\n", away);
+    CHECK(at_tip == 1);
+    CHECK(away > 0.8); /* the kites at A and B and the column */
+    glpgp_quadmesh_destroy(&q);
+    glpgp_mesh_destroy(&m);
+}
+
 /* A regular grid: nothing to do, nothing changed. */
 static void untouched(void)
 {
@@ -132,9 +192,9 @@ static void untouched(void)
     glpgp_quadmesh *q = qm(xy, (N + 1) * (N + 1), fv, N * N);
     glpgp_mesh *m = tu_grid_mesh((tu_grid){.nx = N, .ny = N, .Lx = N, .Ly = N});
     if (!q || !m) return;
-    int flat = 1, moved = 1;
-    CHECK_OK(glpgp_quadmesh_shape_pass(q, m, 1.0, &flat, &moved));
-    CHECK(flat == 0 && moved == 0 && q->nv == (N + 1) * (N + 1) && q->nf == N * N);
+    int tips = 1, flat = 1, moved = 1;
+    CHECK_OK(glpgp_quadmesh_shape_pass(q, m, 1.0, &tips, &flat, &moved));
+    CHECK(tips == 0 && flat == 0 && moved == 0 && q->nv == (N + 1) * (N + 1) && q->nf == N * N);
     CHECK(memcmp(q->xy, xy, sizeof xy) == 0 && memcmp(q->face_vert, fv, sizeof fv) == 0);
     glpgp_quadmesh_destroy(&q);
     glpgp_mesh_destroy(&m);
@@ -144,6 +204,7 @@ int main(void)
 {
     flat_corner();
     optimise();
+    sharp_tip();
     untouched();
     TEST_DONE();
 }

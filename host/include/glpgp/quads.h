@@ -57,6 +57,7 @@ typedef struct glpgp_quads_repair {
                           * meshed again (region mesher, else the fallback); 2: the fallback of
                           * the input triangles themselves was needed */
     int flat_corners;    /* the last shape pass: flat boundary corners split (with two grid lines) */
+    int sharp_tips;      /* the last shape pass: sharp tips re-meshed as their triangle's incircle kites */
     int shaped_vertices; /* the last shape pass: vertices moved to raise the worst corner near them */
     int nlisted;         /* entries of region[] (at most GLPGP_QUADS_REGIONS_LISTED) */
     glpgp_quads_region region[GLPGP_QUADS_REGIONS_LISTED];
