@@ -379,11 +379,33 @@ static glpgp_status tip_alloc(const glpgp_quadmesh *q, tip_fix *X)
 /* Sharp boundary tips whose regions hold quads below the goal that the tip
  * does not force: each region re-meshed as its triangle's incircle kites
  * with one strip (tip_apply); kept as flat_corners keeps a split. */
+/* 1 when some vertex is in one face only with a corner below TIP_ANGLE. */
+static glpgp_status any_tip(const glpgp_quadmesh *q, int *any)
+{
+    int *cnt = NULL;
+    *any = 0;
+    GLPGP_CHECK(glpgp_calloc((size_t)q->nv + 1, sizeof(int), &cnt));
+    for (int k = 0; k < 4 * q->nf; k++) cnt[q->face_vert[k]]++;
+    for (int k = 0; k < 4 * q->nf && !*any; k++)
+        if (cnt[q->face_vert[k]] == 1) {
+            const double *t = q->xy + 2 * q->face_vert[k], *a = q->xy + 2 * q->face_vert[4 * (k / 4) + (k + 1) % 4],
+                         *b = q->xy + 2 * q->face_vert[4 * (k / 4) + (k + 3) % 4];
+            double ux = a[0] - t[0], uy = a[1] - t[1], vx = b[0] - t[0], vy = b[1] - t[1];
+            double al = atan2(ux * vy - uy * vx, ux * vx + uy * vy);
+            *any = al > 0 && al < TIP_ANGLE;
+        }
+    free(cnt);
+    return GLPGP_OK;
+}
+
 glpgp_status glpgp_shape_tips(glpgp_quadmesh *q, const glpgp_mesh *m, double h, int *nfixed, int *nmoved)
 {
     *nfixed = 0;
     for (int f = 0; f < q->nf; f++)
         if (q->face_start[f] != 4 * f || q->face_start[f + 1] != 4 * f + 4) return GLPGP_OK;
+    int any = 0;
+    GLPGP_CHECK(any_tip(q, &any));
+    if (!any) return GLPGP_OK;
     dbnd D;
     GLPGP_CHECK(glpgp_dbnd_build(&D, m, h));
     double *refused = NULL;
