@@ -362,7 +362,7 @@ static int prepare(solve_cli *c, const char *input, glpgp_mesh **pm, glpgp_size_
         if (!(c->o.size > 0.0) && hd > diag / GLPGP_SIZE_DEFAULT_MIN_QUADS)
             glpgp_log(GLPGP_LOG_WARNING,
                       "%s: the surface is too coarse for the default size (mean edge %.3g): h = 10 mean edges = "
-                      "%.4g gives a handful of quads; surfaces are not refined yet: give a finer mesh (or --size)",
+                      "%.4g gives a handful of quads: give --size or --faces (the surface is subdivided for them) or a finer mesh",
                       input, m->mean_edge, hd);
     }
     if ((rc = glpgp_cli_size_image(&c->o, m, c->size_box, &c->mo, psimg)) >= 0) {

@@ -6,6 +6,7 @@
  * local size. One copy, so that every front end solves the same mesh with
  * the same options. */
 #include "glpgp/solve.h"
+#include "glpgp/surface.h"
 #include "glpgp/util.h"
 #include "glpgp/internal/newton.h"
 
@@ -64,12 +65,74 @@ static glpgp_status check_field(const glpgp_mesh *m, const glpgp_options *o)
     return st;
 }
 
+/* A surface too coarse for its size h (mean edge above h /
+ * GLPGP_SURFACE_EDGES: the oscillators collapse towards z = 0 at about 4
+ * mean edges per period) is subdivided, each round splitting every
+ * triangle in four at its edge midpoints (the same surface), while the
+ * result stays within max_triangles; *out NULL when no round was needed. */
+static glpgp_status refine_surface(const glpgp_mesh *m, const glpgp_options *o, const char *name, double max_triangles,
+                                   glpgp_mesh **out, glpgp_prepare_info *info)
+{
+    *out = NULL;
+    const double h = o->size, t0 = glpgp_now();
+    glpgp_mesh *cur = NULL;
+    const glpgp_mesh *at = m;
+    while (h > 0.0 && at->mean_edge > h / GLPGP_SURFACE_EDGES) {
+        if (max_triangles > 0 && 4.0 * at->nt > max_triangles) {
+            glpgp_log(GLPGP_LOG_WARNING,
+                      "%s: h = %.4g is %.2g mean edges of the surface (about %g are needed, P1 needs about 10 per "
+                      "period); subdivided once more it would have %.0f triangles, above --max-elements %.0f: "
+                      "solved as it is (the oscillators may collapse: a larger --size, fewer --faces)",
+                      name, h, h / at->mean_edge, GLPGP_SURFACE_EDGES, 4.0 * at->nt, max_triangles);
+            break;
+        }
+        glpgp_mesh *next = NULL;
+        glpgp_status st = glpgp_mesh_subdivide_surface(at, &next);
+        glpgp_mesh_destroy(&cur);
+        if (st != GLPGP_OK) return st;
+        cur = next;
+        at = cur;
+        info->refined.rounds++;
+    }
+    if (!cur) return GLPGP_OK;
+    info->refined.nv0 = m->nv;
+    info->refined.nt0 = m->nt;
+    info->refined.nv = cur->nv;
+    info->refined.nt = cur->nt;
+    info->seconds_refine = glpgp_now() - t0;
+    glpgp_log(GLPGP_LOG_INFO, "%s: subdivided for h = %.4g: %d -> %d vertices in %d rounds (%.3g mean edges per period)",
+              name, h, m->nv, cur->nv, info->refined.rounds, h / cur->mean_edge);
+    *out = cur;
+    return GLPGP_OK;
+}
+
+/* glpgp_solve_prepare on a surface: slivers, the subdivision, the size and
+ * field checks on the mesh that is solved. */
+static glpgp_status prepare_surface(const glpgp_mesh *m, glpgp_options *o, const char *name, double max_triangles,
+                                    int refine_ok, glpgp_mesh **refined, glpgp_prepare_info *info)
+{
+    warn_slivers(m, name);
+    glpgp_mesh *mr = NULL;
+    if (refine_ok && o->field != GLPGP_FIELD_FILE) GLPGP_CHECK(refine_surface(m, o, name, max_triangles, &mr, info));
+    const glpgp_mesh *ms = mr ? mr : m;
+    glpgp_status st = check_sizes(ms, o, 0, max_triangles);
+    if (st != GLPGP_OK) info->usage = 1;
+    if (st == GLPGP_OK) st = check_field(ms, o);
+    if (st != GLPGP_OK) {
+        glpgp_mesh_destroy(&mr);
+        return st;
+    }
+    *refined = mr;
+    return GLPGP_OK;
+}
+
 glpgp_status glpgp_solve_prepare(const glpgp_mesh *m, glpgp_options *o, const char *name, double max_triangles,
                                  int refine_ok, glpgp_mesh **refined, glpgp_prepare_info *info)
 {
     *refined = NULL;
     memset(info, 0, sizeof *info);
     if (!name) name = "mesh";
+    if (m->xyz) return prepare_surface(m, o, name, max_triangles, refine_ok, refined, info);
     /* the input is refined for the local size (auto / iso / function,
      * refinement on, no per-vertex field): h may be below 2 mean edges here
      * (a graded input whose far field is coarser than h, a CAD export's fan

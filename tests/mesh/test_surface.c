@@ -4,8 +4,10 @@
  * cylinder, 2 pi chi minus the boundary turning in general; each triangle's
  * sum of rho congruent to its holonomy), the rotations into the triangles
  * (both edges of a corner agree on a developable surface), vertex vectors
- * and angles (round trip), feature edges of the cube, and the rejection of
- * bad 3D inputs with one message naming the culprit. */
+ * and angles (round trip), feature edges of the cube, the midpoint
+ * subdivision (the same surface: area, topology, boundary loops, feature
+ * edges doubled, edges halved, every new point the midpoint of an old edge),
+ * and the rejection of bad 3D inputs with one message naming the culprit. */
 #include "testutil.h"
 
 #include <string.h>
@@ -170,6 +172,41 @@ static void check_bad_inputs(void)
     bad("Moebius strip", mx, 2 * K, mt, 2 * K, "non-orientable");
 }
 
+/* midpoint subdivision: the same piecewise linear surface, edges halved */
+static void check_subdivide(const char *name)
+{
+    glpgp_mesh *m = NULL, *r = NULL;
+    CHECK_OK(glpgp_mesh_generate(name, 600, &m));
+    if (!m) return;
+    CHECK_OK(glpgp_mesh_subdivide_surface(m, &r));
+    if (!r) {
+        glpgp_mesh_destroy(&m);
+        return;
+    }
+    printf("%s subdivided: %d -> %d vertices, %d -> %d triangles, area %.15g -> %.15g, mean edge %.4g -> %.4g\n",
+           name, m->nv, r->nv, m->nt, r->nt, m->area, r->area, m->mean_edge, r->mean_edge);
+    CHECK(r->nt == 4 * m->nt && r->nv == m->nv + m->surf->nedges);
+    CHECK_CLOSE(r->area, m->area, 1e-12, 0.0);
+    CHECK(r->surf->euler == m->surf->euler && r->surf->genus == m->surf->genus && r->nloops == m->nloops);
+    CHECK_CLOSE(r->mean_edge, 0.5 * m->mean_edge, 0.35, 0.0); /* halved up to the new edges' lengths */
+    CHECK(memcmp(r->xyz, m->xyz, sizeof(double) * 3 * (size_t)m->nv) == 0); /* old points kept */
+    /* every new point the midpoint of one of its two old neighbours' edge */
+    int off = 0;
+    for (int t = 0; t < r->nt; t += 4) { /* the corner triangle (a, ab, ca) of old triangle t / 4 */
+        const int *v = m->tri + 3 * (t / 4), *w = r->tri + 3 * t;
+        for (int e = 0; e < 3; e++) off += fabs(r->xyz[3 * w[1] + e] - 0.5 * (m->xyz[3 * v[0] + e] + m->xyz[3 * v[1] + e])) > 1e-15;
+    }
+    CHECK(off == 0);
+    unsigned char *f0 = malloc((size_t)3 * m->nt), *f1 = malloc((size_t)3 * r->nt);
+    if (f0 && f1)
+        CHECK(glpgp_surface_features(r, GLPGP_FEATURE_ANGLE_DEFAULT, f1) ==
+              2 * glpgp_surface_features(m, GLPGP_FEATURE_ANGLE_DEFAULT, f0));
+    free(f0);
+    free(f1);
+    glpgp_mesh_destroy(&r);
+    glpgp_mesh_destroy(&m);
+}
+
 int main(void)
 {
     check_shape("sphere", 2000, 2, 0, 0, 4.0 * GLPGP_PI);
@@ -180,6 +217,9 @@ int main(void)
     check_shape("halfcyl", 2000, 1, 0, 1, 0.0);
     check_developable();
     check_features();
+    check_subdivide("sphere");
+    check_subdivide("cube");
+    check_subdivide("hemisphere");
     check_bad_inputs();
     TEST_DONE();
 }

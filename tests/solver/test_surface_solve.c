@@ -10,7 +10,10 @@
  *  - a developable surface (halfcyl) gives the planar result of its
  *    unrolled twin (halfcyl_flat, the coupled planar solve) to 1e-8 at a
  *    uniform size: every vertex's (z_u, z_v), read through the quarter turn
- *    between the two solves' representatives. */
+ *    between the two solves' representatives;
+ *  - the preparation (glpgp_solve_prepare) subdivides a surface too coarse
+ *    for its size to GLPGP_SURFACE_EDGES mean edges per period, not beyond
+ *    --max-elements, not with --no-refine. */
 #include "testutil.h"
 
 #include "glpgp/surfsolve.h"
@@ -200,6 +203,29 @@ static void test_developable(void)
     glpgp_mesh_destroy(&mp);
 }
 
+/* glpgp_solve_prepare on a surface 3 mean edges per period: subdivided to
+ * at least GLPGP_SURFACE_EDGES; with --max-elements below that, solved as
+ * it is */
+static void check_prepare_subdivides(void)
+{
+    glpgp_mesh *m = NULL, *r = NULL;
+    CHECK_OK(glpgp_mesh_generate("torus", 2000, &m));
+    if (!m) return;
+    glpgp_options o;
+    glpgp_options_default(&o);
+    o.size = 3.0 * m->mean_edge;
+    glpgp_prepare_info pi;
+    CHECK_OK(glpgp_solve_prepare(m, &o, "torus", 0, 1, &r, &pi));
+    CHECK(r != NULL && pi.refined.rounds == 2 && r->nt == 16 * m->nt);
+    if (r) CHECK(r->mean_edge <= o.size / GLPGP_SURFACE_EDGES);
+    glpgp_mesh_destroy(&r);
+    CHECK_OK(glpgp_solve_prepare(m, &o, "torus", 2.0 * m->nt, 1, &r, &pi));
+    CHECK(r == NULL && pi.refined.rounds == 0);
+    CHECK_OK(glpgp_solve_prepare(m, &o, "torus", 0, 0, &r, &pi)); /* --no-refine */
+    CHECK(r == NULL);
+    glpgp_mesh_destroy(&m);
+}
+
 int main(void)
 {
     test_fd();
@@ -209,5 +235,6 @@ int main(void)
     test_cross("genus2", 3000, -8, -1, -1);
     test_cross("hemisphere", 3000, 4, -1, -1);
     test_developable();
+    check_prepare_subdivides();
     TEST_DONE();
 }

@@ -251,6 +251,10 @@ glpgp_status glpgp_options_check(const glpgp_options *o);
  * bounding-box diagonal (beyond, there is no grid line to compute).
  * GLPGP_ERR_ARG with a message naming the ratio otherwise. */
 #define GLPGP_SIZE_MIN_EDGES 2.0
+/* A surface whose mean edge is above h / GLPGP_SURFACE_EDGES is subdivided
+ * (glpgp_solve_prepare; at about 4 mean edges per period the oscillators
+ * collapse towards z = 0). */
+#define GLPGP_SURFACE_EDGES 8.0
 #define GLPGP_SIZE_MAX_DIAG 100.0
 /* `glpgp solve` with refinement: a default size above diameter / this (the
  * raise to 10 mean edges on a coarse input) is replaced by diameter / 20 and
@@ -333,7 +337,9 @@ glpgp_status glpgp_size_refine(const glpgp_mesh *m, const glpgp_options *o, doub
  * (glpgp_options_check_mesh; below 2 mean edges with refinement: against
  * max_triangles for the refined mesh, > 0, else no limit); a field file
  * read once; the triangles too coarse for the local size refined
- * (glpgp_size_refine; o->size then set to h). *refined <- the refined mesh
+ * (glpgp_size_refine; o->size then set to h); a surface whose mean edge is
+ * above h / GLPGP_SURFACE_EDGES subdivided (glpgp_mesh_subdivide_surface,
+ * rounds while within max_triangles). *refined <- the refined mesh
  * to solve instead of m (free it with glpgp_mesh_destroy), or NULL: solve m.
  * On failure info->usage tells whether it is about the option values (the
  * CLI's usage error, "--size: MESSAGE") rather than the input. */

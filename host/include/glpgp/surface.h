@@ -98,6 +98,11 @@ typedef struct glpgp_surface {
  * y range and bbox3 the 3D box. */
 glpgp_status glpgp_mesh_create_surface(int nv, const double *xyz, int nt, const int *tri, glpgp_mesh **out);
 
+/* *out: surface m with every triangle split in four at its edge midpoints
+ * (mesh/subdivide.c): the same piecewise linear surface, sharp edges,
+ * boundary loops and topology, edges halved; 4 nt triangles. */
+glpgp_status glpgp_mesh_subdivide_surface(const glpgp_mesh *m, glpgp_mesh **out);
+
 /* Free a surface's arrays (NULL-safe, sets *s = NULL); glpgp_mesh_destroy
  * calls it. */
 void glpgp_surface_destroy(struct glpgp_surface **s);
