@@ -29,6 +29,7 @@
 #include "quads_surface.h"
 #include "qvec.h"
 
+#include "glpgp/kinds.h"
 #include "glpgp/surface.h"
 #include "glpgp/util.h"
 
@@ -40,7 +41,7 @@
 #define LR_FAR 0.22      /* a face sample farther from the surface (in h): repaired */
 #define LR_ROUNDS 6      /* growth rounds */
 #define LR_SHARE 0.5     /* regions over this share of the faces: not a local repair */
-#define LR_NORMAL 0.1    /* the chart: loop normals . plane normal above this */
+#define LR_NORMAL -0.3   /* the chart: loop normals . plane normal above this */
 
 typedef struct lrep {
     const glpgp_mesh *m;
@@ -358,6 +359,57 @@ static glpgp_status region_loop(lrep *L, int k, ivec *loop, int *bnd, int *disk)
     return GLPGP_OK;
 }
 
+/* Faces added to region k (into sel) that is not a disk: the faces at a
+ * vertex its boundary passes twice, else across the boundary loops but the
+ * longest (kept faces it encloses), else the faces at all its vertices. */
+static glpgp_status region_fix(lrep *L, int k, unsigned char *sel)
+{
+    const glpgp_quadmesh *q = L->q;
+    ivec rim = {0};
+    int pinch = 0;
+    for (int i = L->cs[k]; i < L->cs[k + 1]; i++)
+        for (int c = q->face_start[L->cf[i]]; c < q->face_start[L->cf[i] + 1]; c++) {
+            if (!on_rim(L, k, c)) continue;
+            const int v = q->face_vert[c];
+            if (L->outc[v] >= 0) {
+                for (int j = L->vs[v]; j < L->vs[v + 1]; j++) sel[L->vf[j]] = 1;
+                pinch = 1;
+            }
+            L->outc[v] = c;
+            GLPGP_CHECK(ipush(&rim, c));
+        }
+    int longest = -1, nloops = 0, best = 0;
+    ivec start = {0};
+    glpgp_status st = GLPGP_OK;
+    for (int r = 0; r < rim.n && !pinch && st == GLPGP_OK; r++) { /* the loops: outc[v] = -2 - loop once traced */
+        const int c0 = rim.p[r];
+        if (L->outc[q->face_vert[c0]] < 0) continue;
+        int c = c0, len = 0;
+        while (c >= 0 && L->outc[q->face_vert[c]] >= 0) {
+            const int nxt = L->outc[q->face_vert[cnext(L, c)]];
+            L->outc[q->face_vert[c]] = -2 - nloops;
+            len++;
+            c = nxt;
+        }
+        if (len > best) best = len, longest = nloops;
+        nloops++;
+    }
+    if (!pinch && nloops > 1) {
+        for (int r = 0; r < rim.n; r++) {
+            const int c = rim.p[r];
+            if (L->outc[q->face_vert[c]] != -2 - longest && L->twin[c] >= 0) sel[L->cface[L->twin[c]]] = 1;
+        }
+    } else if (!pinch) {
+        for (int i = L->cs[k]; i < L->cs[k + 1]; i++)
+            for (int c = q->face_start[L->cf[i]]; c < q->face_start[L->cf[i] + 1]; c++)
+                for (int j = L->vs[q->face_vert[c]]; j < L->vs[q->face_vert[c] + 1]; j++) sel[L->vf[j]] = 1;
+    }
+    for (int r = 0; r < rim.n; r++) L->outc[q->face_vert[rim.p[r]]] = -1;
+    ivec_free(&rim);
+    ivec_free(&start);
+    return st;
+}
+
 /* Region k (odd boundary) joined to the nearest face of another odd region
  * or with a side on the surface's boundary: the faces of the path into in.
  * *found: 0 when none is reachable. */
@@ -417,13 +469,22 @@ static double mvc(const double *x, const double *z, int n, const double *p)
     return fabs(sw) > 0 ? sz / sw : 0.0;
 }
 
+/* Whether p (collinear with a, b) lies in their box. */
+static int on_seg(const double *a, const double *b, const double *p)
+{
+    return fmin(a[0], b[0]) <= p[0] && p[0] <= fmax(a[0], b[0]) && fmin(a[1], b[1]) <= p[1] && p[1] <= fmax(a[1], b[1]);
+}
+
+/* Whether segments a b and c d cross or touch. */
 static int seg_cross(const double *a, const double *b, const double *c, const double *d)
 {
     const double d1 = (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
     const double d2 = (b[0] - a[0]) * (d[1] - a[1]) - (b[1] - a[1]) * (d[0] - a[0]);
     const double d3 = (d[0] - c[0]) * (a[1] - c[1]) - (d[1] - c[1]) * (a[0] - c[0]);
     const double d4 = (d[0] - c[0]) * (b[1] - c[1]) - (d[1] - c[1]) * (b[0] - c[0]);
-    return ((d1 > 0) != (d2 > 0) || d1 == 0 || d2 == 0) && ((d3 > 0) != (d4 > 0) || d3 == 0 || d4 == 0);
+    if (((d1 > 0 && d2 < 0) || (d1 < 0 && d2 > 0)) && ((d3 > 0 && d4 < 0) || (d3 < 0 && d4 > 0))) return 1;
+    return (d1 == 0 && on_seg(a, b, c)) || (d2 == 0 && on_seg(a, b, d)) || (d3 == 0 && on_seg(c, d, a)) ||
+           (d4 == 0 && on_seg(c, d, b));
 }
 
 /* Whether polygon x (n points) is simple and counter-clockwise. */
@@ -543,44 +604,250 @@ static glpgp_status conforming(const int *quads, int nq, int n, int np, int *ok)
     return GLPGP_OK;
 }
 
-/* Loop (n ids, even) meshed: its quads (ids) appended to out, new points
- * into L->nxyz; *sjmin their worst corner; *ok 0 when it failed (nothing
- * added). */
-static glpgp_status mesh_loop(lrep *L, const int *loop, int n, ivec *out, double *sjmin, int *ok)
+/* ---- the Tutte chart: the region's faces, fanned from their centroids,
+ * embedded in a disk (the loop on a circle by 3D arc length, every inner
+ * point the mean of its neighbours: injective on a disk, Tutte 1963) ---- */
+
+typedef struct tchart {
+    int nloc, ntri;
+    double *uv, *p3; /* per local point: chart and 3D positions */
+    int *tri;        /* 3 per triangle, local ids */
+    int *nbs, *nb;   /* neighbours (nbs: nloc + 1 offsets) */
+} tchart;
+
+static void tchart_free(tchart *T)
 {
+    free(T->uv);
+    free(T->p3);
+    free(T->tri);
+    free(T->nbs);
+    free(T->nb);
+    memset(T, 0, sizeof *T);
+}
+
+/* Local ids (lid: per global id, -1 unset) of region k's points: the loop's
+ * first (0 .. n-1), then the inner ones, then one centroid per face. */
+static glpgp_status tutte_points(const lrep *L, int k, const int *loop, int n, int *lid, tchart *T, ivec *ids)
+{
+    const glpgp_quadmesh *q = L->q;
+    for (int i = 0; i < n; i++) {
+        lid[loop[i]] = i;
+        GLPGP_CHECK(ipush(ids, loop[i]));
+    }
+    for (int i = L->cs[k]; i < L->cs[k + 1]; i++)
+        for (int c = q->face_start[L->cf[i]]; c < q->face_start[L->cf[i] + 1]; c++)
+            if (lid[q->face_vert[c]] < 0) {
+                lid[q->face_vert[c]] = ids->n;
+                GLPGP_CHECK(ipush(ids, q->face_vert[c]));
+            }
+    T->nloc = ids->n + (L->cs[k + 1] - L->cs[k]);
+    return GLPGP_OK;
+}
+
+/* The fan triangles of region k's faces (a split side: the loop point
+ * between its ends, when the loop has one: split_a -> split_m -> split_b). */
+static glpgp_status tutte_triangles(const lrep *L, int k, const int *lid, int nfirst, const int *split, tchart *T)
+{
+    const glpgp_quadmesh *q = L->q;
+    int nt = 0;
+    for (int i = L->cs[k]; i < L->cs[k + 1]; i++)
+        nt += q->face_start[L->cf[i] + 1] - q->face_start[L->cf[i]] + 1;
+    GLPGP_CHECK(glpgp_malloc((size_t)3 * nt + 3, sizeof(int), &T->tri));
+    for (int i = L->cs[k]; i < L->cs[k + 1]; i++) {
+        const int f = L->cf[i], s = q->face_start[f], m = q->face_start[f + 1] - s, c = nfirst + (i - L->cs[k]);
+        for (int j = 0; j < m; j++) {
+            const int a = q->face_vert[s + j], b = q->face_vert[s + (j + 1) % m];
+            if (split && a == split[0] && b == split[2]) {
+                const int t1[6] = {c, lid[a], lid[split[1]], c, lid[split[1]], lid[b]};
+                memcpy(T->tri + 3 * T->ntri, t1, sizeof t1);
+                T->ntri += 2;
+                continue;
+            }
+            T->tri[3 * T->ntri] = c;
+            T->tri[3 * T->ntri + 1] = lid[a];
+            T->tri[3 * T->ntri + 2] = lid[b];
+            T->ntri++;
+        }
+    }
+    return GLPGP_OK;
+}
+
+/* The neighbour lists of the triangles' points (repeats kept). */
+static glpgp_status tutte_neighbours(tchart *T)
+{
+    GLPGP_CHECK(glpgp_calloc((size_t)T->nloc + 2, sizeof(int), &T->nbs));
+    GLPGP_CHECK(glpgp_malloc((size_t)6 * T->ntri + 1, sizeof(int), &T->nb));
+    for (int t = 0; t < 3 * T->ntri; t++) T->nbs[T->tri[t] + 1] += 2;
+    for (int v = 0; v < T->nloc; v++) T->nbs[v + 1] += T->nbs[v];
+    int *fill = NULL;
+    GLPGP_CHECK(glpgp_calloc((size_t)T->nloc + 1, sizeof(int), &fill));
+    for (int t = 0; t < T->ntri; t++)
+        for (int j = 0; j < 3; j++) {
+            const int a = T->tri[3 * t + j], b = T->tri[3 * t + (j + 1) % 3];
+            T->nb[T->nbs[a] + fill[a]++] = b;
+            T->nb[T->nbs[b] + fill[b]++] = a;
+        }
+    free(fill);
+    return GLPGP_OK;
+}
+
+/* The Tutte chart of region k with its loop (split: see tutte_triangles). */
+static glpgp_status tutte_chart(const lrep *L, int k, const int *loop, int n, const int *split, tchart *T)
+{
+    const glpgp_quadmesh *q = L->q;
+    const int nall = q->nv + L->nxyz.n / 3;
+    int *lid = NULL;
+    ivec ids = {0};
+    memset(T, 0, sizeof *T);
+    glpgp_status st = glpgp_malloc((size_t)nall + 1, sizeof(int), &lid);
+    if (st != GLPGP_OK) return st;
+    for (int v = 0; v < nall; v++) lid[v] = -1;
+    st = tutte_points(L, k, loop, n, lid, T, &ids);
+    if (st == GLPGP_OK) st = glpgp_calloc((size_t)2 * T->nloc + 2, sizeof(double), &T->uv);
+    if (st == GLPGP_OK) st = glpgp_calloc((size_t)3 * T->nloc + 3, sizeof(double), &T->p3);
+    if (st == GLPGP_OK) st = tutte_triangles(L, k, lid, ids.n, split, T);
+    if (st == GLPGP_OK) st = tutte_neighbours(T);
+    if (st != GLPGP_OK) goto done;
+    for (int i = 0; i < ids.n; i++) memcpy(T->p3 + 3 * i, pos(L, ids.p[i]), 3 * sizeof(double));
+    for (int i = L->cs[k]; i < L->cs[k + 1]; i++) { /* the face centroids */
+        const int f = L->cf[i], s = q->face_start[f], m = q->face_start[f + 1] - s;
+        double *c = T->p3 + 3 * (ids.n + i - L->cs[k]);
+        for (int j = 0; j < m; j++)
+            for (int d = 0; d < 3; d++) c[d] += q->xyz[3 * q->face_vert[s + j] + d] / m;
+    }
+    double len = 0.0, *acc = NULL;
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)n + 1, sizeof(double), &acc), done);
+    for (int i = 0; i < n; i++) {
+        double d[3];
+        acc[i] = len;
+        sub3(T->p3 + 3 * ((i + 1) % n), T->p3 + 3 * i, d);
+        len += sqrt(dot3(d, d));
+    }
+    double area = 0.0; /* the disk as large as the region (the cut mesher's sizes), at most the loop's circle */
+    for (int i = L->cs[k]; i < L->cs[k + 1]; i++) {
+        double N[3];
+        glpgp_quadmesh_face_normal(q, L->cf[i], 0, N);
+        area += 0.5 * sqrt(dot3(N, N));
+    }
+    const double R = fmin(len / (2.0 * GLPGP_PI), sqrt(area / GLPGP_PI));
+    for (int i = 0; i < n; i++) {
+        T->uv[2 * i] = R * cos(2.0 * GLPGP_PI * acc[i] / len);
+        T->uv[2 * i + 1] = R * sin(2.0 * GLPGP_PI * acc[i] / len);
+    }
+    free(acc);
+    for (int it = 0; it < 2000; it++) { /* Gauss-Seidel on the mean of the neighbours */
+        double moved = 0.0;
+        for (int v = n; v < T->nloc; v++) {
+            double u[2] = {0.0, 0.0};
+            const int deg = T->nbs[v + 1] - T->nbs[v];
+            if (deg == 0) continue;
+            for (int j = T->nbs[v]; j < T->nbs[v + 1]; j++) {
+                u[0] += T->uv[2 * T->nb[j]] / deg;
+                u[1] += T->uv[2 * T->nb[j] + 1] / deg;
+            }
+            moved = fmax(moved, fabs(u[0] - T->uv[2 * v]) + fabs(u[1] - T->uv[2 * v + 1]));
+            T->uv[2 * v] = u[0];
+            T->uv[2 * v + 1] = u[1];
+        }
+        if (moved < 1e-10 * R) break;
+    }
+done:
+    free(lid);
+    ivec_free(&ids);
+    return st;
+}
+
+/* The 3D point under chart point p (the Tutte triangle holding it,
+ * barycentric); 0 when none holds it. */
+static int tutte_lift(const tchart *T, const double *p, double *x)
+{
+    int best = -1;
+    double bmin = -1e-9, bb[3] = {0, 0, 0};
+    for (int t = 0; t < T->ntri; t++) {
+        const double *a = T->uv + 2 * T->tri[3 * t], *b = T->uv + 2 * T->tri[3 * t + 1], *c = T->uv + 2 * T->tri[3 * t + 2];
+        const double det = (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
+        if (!(fabs(det) > 0)) continue;
+        const double l1 = ((p[0] - a[0]) * (c[1] - a[1]) - (p[1] - a[1]) * (c[0] - a[0])) / det;
+        const double l2 = ((b[0] - a[0]) * (p[1] - a[1]) - (b[1] - a[1]) * (p[0] - a[0])) / det;
+        const double w[3] = {1.0 - l1 - l2, l1, l2}, mn = fmin(w[0], fmin(w[1], w[2]));
+        if (mn > bmin) {
+            bmin = mn;
+            best = t;
+            memcpy(bb, w, sizeof w);
+        }
+    }
+    if (best < 0) return 0;
+    for (int d = 0; d < 3; d++)
+        x[d] = bb[0] * T->p3[3 * T->tri[3 * best] + d] + bb[1] * T->p3[3 * T->tri[3 * best + 1] + d] +
+               bb[2] * T->p3[3 * T->tri[3 * best + 2] + d];
+    return 1;
+}
+
+/* ---- one region meshed in a chart ---------------------------------------------------- */
+
+/* A chart of a region: the plane (kind 0: o, e, z) or the Tutte disk (1: T). */
+typedef struct lchart {
+    int kind;
+    double o[3], e[9], *z;
+    tchart T;
+} lchart;
+
+/* The quads of the cut mesher on the loop's chart points xy (n, then the
+ * new ones); *ok 0 when it failed. */
+static glpgp_status cut_loop(const lrep *L, dvec *xy, int n, ivec *quads, int *ok)
+{
+    ivec ls = {0}, lv = {0}, ow = {0};
     *ok = 0;
-    dvec xy = {0};
-    ivec quads = {0}, ls = {0}, lv = {0}, ow = {0}, gid = {0};
-    double o[3], e[9], *z = NULL;
-    const int nx0 = L->nxyz.n;
-    glpgp_status st = glpgp_malloc((size_t)n + 1, sizeof(double), &z);
-    for (int i = 0; i < 2 * n && st == GLPGP_OK; i++) st = dpush(&xy, 0.0);
-    if (st != GLPGP_OK || !chart(L, loop, n, o, e, xy.p, z)) goto done;
-    GLPGP_CHECK_GOTO(st, ipush(&ls, 0), done);
-    GLPGP_CHECK_GOTO(st, ipush(&ls, n), done);
-    GLPGP_CHECK_GOTO(st, ipush(&ow, -1), done);
-    for (int i = 0; i < n; i++) GLPGP_CHECK_GOTO(st, ipush(&lv, i), done);
+    glpgp_status st = ipush(&ls, 0);
+    if (st == GLPGP_OK) st = ipush(&ls, n);
+    if (st == GLPGP_OK) st = ipush(&ow, -1);
+    for (int i = 0; i < n && st == GLPGP_OK; i++) st = ipush(&lv, i);
     qcut_stats qs;
     qcut_region QR = {1, ls.p, lv.p, ow.p};
-    st = glpgp_qcut_mesh(&xy, &QR, L->h, &quads, &qs);
+    if (st == GLPGP_OK) st = glpgp_qcut_mesh(xy, &QR, L->h, quads, &qs);
     if (st == GLPGP_ERR_NUMERIC) {
         glpgp_log(GLPGP_LOG_DEBUG, "quads: surface local repair: %s", glpgp_error_message());
         glpgp_error_clear();
         st = GLPGP_OK;
-        goto done;
+    } else if (st == GLPGP_OK && quads->n) {
+        st = conforming(quads->p, quads->n / 4, n, xy->n / 2, ok);
+        if (st == GLPGP_OK && !*ok) glpgp_log(GLPGP_LOG_DEBUG, "quads: surface local repair: quads not on the loop");
     }
-    if (st != GLPGP_OK || quads.n == 0) goto done;
-    int conf = 0;
-    GLPGP_CHECK_GOTO(st, conforming(quads.p, quads.n / 4, n, xy.n / 2, &conf), done);
-    if (!conf) goto done;
+    ivec_free(&ls);
+    ivec_free(&lv);
+    ivec_free(&ow);
+    return st;
+}
+
+/* The cut mesher's quads of the loop in chart C, the new points lifted onto
+ * the surface (into L->nxyz), checked in 3D; see mesh_loop. */
+static glpgp_status mesh_in_chart(lrep *L, const int *loop, int n, lchart *C, ivec *out, double *sjmin, int *ok)
+{
+    dvec xy = {0};
+    ivec quads = {0}, gid = {0};
+    *ok = 0;
+    glpgp_status st = GLPGP_OK;
+    for (int i = 0; i < n && st == GLPGP_OK; i++) {
+        st = dpush(&xy, C->kind ? C->T.uv[2 * i] : 0.0);
+        if (st == GLPGP_OK) st = dpush(&xy, C->kind ? C->T.uv[2 * i + 1] : 0.0);
+    }
+    if (st == GLPGP_OK && !C->kind && !chart(L, loop, n, C->o, C->e, xy.p, C->z)) goto done;
+    int cut = 0;
+    if (st == GLPGP_OK) st = cut_loop(L, &xy, n, &quads, &cut);
+    if (st != GLPGP_OK || !cut) goto done;
     for (int i = 0; i < xy.n / 2 && st == GLPGP_OK; i++) { /* the new points lifted onto the surface */
         if (i < n) {
             st = ipush(&gid, loop[i]);
             continue;
         }
-        const double *p = xy.p + 2 * i, hz = mvc(xy.p, z, n, p);
+        const double *p = xy.p + 2 * i;
         double x[3], y[3];
-        for (int d = 0; d < 3; d++) x[d] = o[d] + p[0] * e[d] + p[1] * e[3 + d] + hz * e[6 + d];
+        if (C->kind) {
+            if (!tutte_lift(&C->T, p, x)) goto done;
+        } else {
+            const double hz = mvc(xy.p, C->z, n, p);
+            for (int d = 0; d < 3; d++) x[d] = C->o[d] + p[0] * C->e[d] + p[1] * C->e[3 + d] + hz * C->e[6 + d];
+        }
         glpgp_qs_proj_nearest(L->P, x, y);
         st = ipush(&gid, L->q->nv + L->nxyz.n / 3);
         for (int d = 0; d < 3 && st == GLPGP_OK; d++) st = dpush(&L->nxyz, y[d]);
@@ -589,19 +856,43 @@ static glpgp_status mesh_loop(lrep *L, const int *loop, int n, ivec *out, double
     double worst = 1.0;
     for (int k = 0; k < quads.n; k++) quads.p[k] = gid.p[quads.p[k]];
     for (int k = 0; k < quads.n / 4; k++) worst = fmin(worst, quad_sj(L, quads.p + 4 * k));
-    if (!(worst > LR_SJ_BAD)) goto done;
+    if (!(worst > LR_SJ_BAD)) {
+        glpgp_log(GLPGP_LOG_DEBUG, "quads: surface local repair: %d quads in the %s chart, scaled Jacobian %.3f on the surface",
+                  quads.n / 4, C->kind ? "Tutte" : "plane", worst);
+        goto done;
+    }
     for (int k = 0; k < quads.n && st == GLPGP_OK; k++) st = ipush(out, quads.p[k]);
     *sjmin = worst;
     *ok = st == GLPGP_OK;
 done:
-    if (!*ok) L->nxyz.n = nx0;
-    free(z);
     dvec_free(&xy);
     ivec_free(&quads);
-    ivec_free(&ls);
-    ivec_free(&lv);
-    ivec_free(&ow);
     ivec_free(&gid);
+    return st;
+}
+
+/* Region k's loop (n ids, even; split: a side split by a new point, or
+ * NULL) meshed in the plane chart, else in the Tutte chart: its quads (ids)
+ * appended to out, new points into L->nxyz; *sjmin their worst corner; *ok
+ * 0 when both failed (nothing added). */
+static glpgp_status mesh_loop(lrep *L, int k, const int *loop, int n, const int *split, ivec *out, double *sjmin,
+                              int *ok)
+{
+    lchart C;
+    memset(&C, 0, sizeof C);
+    const int nx0 = L->nxyz.n;
+    *ok = 0;
+    glpgp_status st = glpgp_malloc((size_t)n + 1, sizeof(double), &C.z);
+    if (st == GLPGP_OK) st = mesh_in_chart(L, loop, n, &C, out, sjmin, ok);
+    if (st == GLPGP_OK && !*ok) {
+        L->nxyz.n = nx0;
+        C.kind = 1;
+        st = tutte_chart(L, k, loop, n, split, &C.T);
+        if (st == GLPGP_OK) st = mesh_in_chart(L, loop, n, &C, out, sjmin, ok);
+    }
+    if (!*ok) L->nxyz.n = nx0;
+    free(C.z);
+    tchart_free(&C.T);
     return st;
 }
 
@@ -666,14 +957,14 @@ static glpgp_status shape_regions(lrep *L, unsigned char *sel, ivec *loop, int *
         int bnd, disk;
         st = region_loop(L, k, loop, &bnd, &disk);
         if (st == GLPGP_OK && !disk) {
-            for (int i = L->cs[k]; i < L->cs[k + 1]; i++) sel[L->cf[i]] = 1;
+            st = region_fix(L, k, sel);
             *grown = 1;
         } else if (st == GLPGP_OK && loop->n % 2 && bnd < 0) {
             odd[k] = 1;
             nodd++;
         }
     }
-    if (st == GLPGP_OK && *grown) st = grow_ring(L, sel);
+    for (int f = 0; f < q->nf && *grown; f++) L->in[f] |= sel[f];
     for (int k = 0; k < L->ncomp && st == GLPGP_OK && !*grown && nodd; k++) {
         if (!odd[k]) continue;
         int found = 0;
@@ -709,9 +1000,16 @@ static glpgp_status mesh_regions(lrep *L, int round, unsigned char *sel, ivec *l
         double sj = 0.0;
         const int q0 = quads->n;
         glpgp_progress_poll();
+        int split[3], *sp = NULL;
         GLPGP_CHECK(region_loop(L, k, loop, &bnd, &disk));
-        if (disk && loop->n % 2 && bnd >= 0) GLPGP_CHECK(split_boundary_side(L, loop, bnd));
-        if (disk && loop->n % 2 == 0) GLPGP_CHECK(mesh_loop(L, loop->p, loop->n, quads, &sj, &ok));
+        if (disk && loop->n % 2 && bnd >= 0) {
+            GLPGP_CHECK(split_boundary_side(L, loop, bnd));
+            split[0] = loop->p[bnd];
+            split[1] = loop->p[bnd + 1];
+            split[2] = loop->p[(bnd + 2) % loop->n];
+            sp = split;
+        }
+        if (disk && loop->n % 2 == 0) GLPGP_CHECK(mesh_loop(L, k, loop->p, loop->n, sp, quads, &sj, &ok));
         if (ok) {
             note(rs, L, k, quads->p + q0, (quads->n - q0) / 4, sj, round);
             continue;
