@@ -47,57 +47,67 @@ void glpgp_qs_finish_from(glpgp_quadmesh *r, const glpgp_quadmesh *q)
     memcpy(r->inconsistent_tris, q->inconsistent_tris, sizeof r->inconsistent_tris);
 }
 
-glpgp_status glpgp_quads_surface_fallback(const glpgp_mesh *m, glpgp_quadmesh **out)
+static int cmp_ll(const void *pa, const void *pb)
+{
+    const long long *a = pa, *b = pb;
+    return a[0] < b[0] ? -1 : a[0] > b[0] ? 1 : 0;
+}
+
+glpgp_status glpgp_qs_split_triangles(const double *xyz, int np, const int *tri, int nt, glpgp_quadmesh **out)
 {
     *out = NULL;
-    if (!glpgp_mesh_is_surface(m) || !m->surf) return GLPGP_FAIL(GLPGP_ERR_ARG, "surface fallback: not a surface");
-    const glpgp_surface *S = m->surf;
-    int *emid = NULL;
-    GLPGP_CHECK(glpgp_malloc((size_t)3 * m->nt, sizeof(int), &emid));
-    int nv = m->nv;
-    for (int h = 0; h < 3 * m->nt; h++)
-        if (S->twin[h] < 0 || h < S->twin[h]) emid[h] = nv++;
-    for (int h = 0; h < 3 * m->nt; h++)
-        if (!(S->twin[h] < 0 || h < S->twin[h])) emid[h] = emid[S->twin[h]];
-    const int nc = nv;
-    nv += m->nt;
+    long long *key = NULL; /* (edge key, slot) pairs */
+    int *mid = NULL;
     glpgp_quadmesh *q = NULL;
-    glpgp_status st = glpgp_qs_alloc(nv, 3 * m->nt, 12 * m->nt, &q);
-    if (st != GLPGP_OK) {
-        free(emid);
-        return st;
+    glpgp_status st = GLPGP_OK;
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)6 * nt + 2, sizeof(long long), &key), done);
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)3 * nt + 1, sizeof(int), &mid), done);
+    for (int s = 0; s < 3 * nt; s++) {
+        const long long a = tri[s], b = tri[s - s % 3 + (s % 3 + 1) % 3];
+        key[2 * s] = a < b ? a * np + b : b * np + a;
+        key[2 * s + 1] = s;
     }
-    memcpy(q->xyz, m->xyz, (size_t)3 * m->nv * sizeof(double));
-    for (int t = 0; t < m->nt; t++) {
-        const int *v = m->tri + 3 * t;
-        for (int a = 0; a < 3; a++) {
-            const int h = 3 * t + a, b = (a + 1) % 3;
-            for (int d = 0; d < 3; d++) {
-                q->xyz[3 * emid[h] + d] = 0.5 * (m->xyz[3 * v[a] + d] + m->xyz[3 * v[b] + d]);
-                q->xyz[3 * (nc + t) + d] = (m->xyz[3 * v[0] + d] + m->xyz[3 * v[1] + d] + m->xyz[3 * v[2] + d]) / 3.0;
-            }
+    qsort(key, (size_t)3 * nt, 2 * sizeof(long long), cmp_ll);
+    int nv = np;
+    for (int i = 0; i < 3 * nt; i++) {
+        if (i == 0 || key[2 * i] != key[2 * i - 2]) nv++;
+        mid[key[2 * i + 1]] = nv - 1;
+    }
+    const int cen = nv;
+    nv += nt;
+    GLPGP_CHECK_GOTO(st, glpgp_qs_alloc(nv, 3 * nt, 12 * nt, &q), done);
+    memcpy(q->xyz, xyz, (size_t)3 * np * sizeof(double));
+    for (int t = 0; t < nt; t++) {
+        const int *v = tri + 3 * t;
+        for (int d = 0; d < 3; d++) {
+            q->xyz[3 * (cen + t) + d] = (xyz[3 * v[0] + d] + xyz[3 * v[1] + d] + xyz[3 * v[2] + d]) / 3.0;
+            for (int k = 0; k < 3; k++)
+                q->xyz[3 * mid[3 * t + k] + d] = 0.5 * (xyz[3 * v[k] + d] + xyz[3 * v[(k + 1) % 3] + d]);
         }
         for (int a = 0; a < 3; a++) {
             const int f = 3 * t + a;
             q->face_start[f] = 4 * f;
             q->face_vert[4 * f] = v[a];
-            q->face_vert[4 * f + 1] = emid[3 * t + a];
-            q->face_vert[4 * f + 2] = nc + t;
-            q->face_vert[4 * f + 3] = emid[3 * t + (a + 2) % 3];
+            q->face_vert[4 * f + 1] = mid[3 * t + a];
+            q->face_vert[4 * f + 2] = cen + t;
+            q->face_vert[4 * f + 3] = mid[3 * t + (a + 2) % 3];
             q->face_origin[f] = GLPGP_QFACE_FALLBACK;
         }
     }
     q->face_start[q->nf] = 4 * q->nf;
     set_xy(q);
-    free(emid);
     *out = q;
-    return GLPGP_OK;
+done:
+    free(key);
+    free(mid);
+    return st;
 }
 
-static int cmp_ll(const void *pa, const void *pb)
+glpgp_status glpgp_quads_surface_fallback(const glpgp_mesh *m, glpgp_quadmesh **out)
 {
-    const long long *a = pa, *b = pb;
-    return a[0] < b[0] ? -1 : a[0] > b[0] ? 1 : 0;
+    *out = NULL;
+    if (!glpgp_mesh_is_surface(m) || !m->surf) return GLPGP_FAIL(GLPGP_ERR_ARG, "surface fallback: not a surface");
+    return glpgp_qs_split_triangles(m->xyz, m->nv, m->tri, m->nt, out);
 }
 
 glpgp_status glpgp_quadmesh_subdivide_surface(const glpgp_quadmesh *q, glpgp_quadmesh **out)
@@ -788,8 +798,20 @@ static glpgp_status repaired(const glpgp_mesh *m, const glpgp_quadmesh *q, doubl
     if (st == GLPGP_OK && r && split && !(bad & ~(unsigned)(GLPGP_QUADS_BAD_HAUSDORFF | GLPGP_QUADS_BAD_AREA))) {
         st = split_onto(m, r, h, &s);
         if (st == GLPGP_OK) st = verdict_of(m, s, h, 0, &bad);
+        if (st == GLPGP_OK && bad) { /* the split's own bad faces repaired locally */
+            glpgp_quadmesh *t = NULL;
+            glpgp_quads_surface_steps st2;
+            memset(&st2, 0, sizeof st2);
+            st = repaired(m, s, h, 0, &st2, &t);
+            if (st == GLPGP_OK && t) {
+                glpgp_quadmesh_destroy(&s);
+                s = t;
+                bad = 0;
+                add_regions(&rs, &s->repair, 1);
+            }
+        }
         if (st == GLPGP_OK && !bad) {
-            s->repair = r->repair;
+            s->repair = rs;
             stp->subdivided = 1;
             note_local(stp, &rs);
             glpgp_quadmesh_destroy(&r);

@@ -26,6 +26,12 @@ glpgp_status glpgp_qs_alloc(int nv, int nf, int ncorner, glpgp_quadmesh **out);
 /* r made from q: its plane coordinates (x, y of xyz) and q's singularity counts. */
 void glpgp_qs_finish_from(glpgp_quadmesh *r, const glpgp_quadmesh *q);
 
+/* Triangles tri (nt, ids of the np points xyz) split into three quads each
+ * (corner, side midpoint, centroid, side midpoint; origin FALLBACK): the
+ * points, then one per side, then the centroids, none moved
+ * (quads_surface.c: the input's triangles; coarse_surface.c: the coarse ones). */
+glpgp_status glpgp_qs_split_triangles(const double *xyz, int np, const int *tri, int nt, glpgp_quadmesh **out);
+
 /* The local repair (repair_surface.c): q's bad faces (not quads, inverted,
  * non-manifold, pinched; with far, over 0.22 h from the surface) and their neighbours
  * removed in regions grown to topological disks, each flattened onto a
