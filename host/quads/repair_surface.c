@@ -315,7 +315,8 @@ static int on_rim(const lrep *L, int k, int c)
 }
 
 /* Region k's boundary loop (vertex ids, the region on the left) when the
- * region is a topological disk; 0 otherwise. *bnd: a loop position whose
+ * region is a topological disk (a non-manifold or degenerate one: when its
+ * boundary is one simple loop; the caller's check decides); 0 otherwise. *bnd: a loop position whose
  * edge is on the surface's boundary (the longest; -1: none). */
 static glpgp_status region_loop(lrep *L, int k, ivec *loop, int *bnd, int *disk)
 {
@@ -325,11 +326,12 @@ static glpgp_status region_loop(lrep *L, int k, ivec *loop, int *bnd, int *disk)
     *bnd = -1;
     loop->n = 0;
     const int stamp = ++L->stamp, nf = L->cs[k + 1] - L->cs[k];
-    int simple = 1;
+    int simple = 1, broken = 0;
     for (int i = L->cs[k]; i < L->cs[k + 1]; i++) {
         const int f = L->cf[i];
         for (int c = q->face_start[f]; c < q->face_start[f + 1]; c++) {
             const int v = q->face_vert[c], e = L->eid[c];
+            broken |= L->twin[c] == -2 || v == q->face_vert[cnext(L, c)];
             if (L->mark[v] != stamp) L->mark[v] = stamp, nvert++;
             if (L->mark[q->nv + e] != stamp) L->mark[q->nv + e] = stamp, nedge++;
             if (!on_rim(L, k, c)) continue;
@@ -339,7 +341,7 @@ static glpgp_status region_loop(lrep *L, int k, ivec *loop, int *bnd, int *disk)
             nb++;
         }
     }
-    if (simple && c0 >= 0 && nvert - nedge + nf == 1) {
+    if (simple && c0 >= 0 && (broken || nvert - nedge + nf == 1)) {
         int c = c0, len = 0;
         double best = -1.0;
         do {
