@@ -18,6 +18,7 @@
  * Shortest edges first, in passes until none collapses. The caller checks
  * the quads and falls back to the input's own triangles when they fail. */
 #include "quads_surface.h"
+#include "vec3.h"
 
 #include "glpgp/kinds.h"
 #include "glpgp/surface.h"
@@ -41,11 +42,6 @@ typedef struct cz {
     int *touched, pass;   /* per vertex: the last pass its triangles changed in */
 } cz;
 
-static void sub3(const double *a, const double *b, double *o)
-{
-    for (int d = 0; d < 3; d++) o[d] = a[d] - b[d];
-}
-static double dot3(const double *a, const double *b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 static void tri_normal(const double *a, const double *b, const double *c, double *n)
 {
     double e1[3], e2[3];

@@ -28,6 +28,7 @@
 #include "qcut.h"
 #include "quads_surface.h"
 #include "qvec.h"
+#include "vec3.h"
 
 #include "glpgp/kinds.h"
 #include "glpgp/surface.h"
@@ -63,19 +64,6 @@ typedef struct lrep {
     dvec nxyz;          /* new points (ids q->nv ...) */
 } lrep;
 
-static void sub3(const double *a, const double *b, double *o)
-{
-    o[0] = a[0] - b[0];
-    o[1] = a[1] - b[1];
-    o[2] = a[2] - b[2];
-}
-static double dot3(const double *a, const double *b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-static void cross3(const double *a, const double *b, double *o)
-{
-    o[0] = a[1] * b[2] - a[2] * b[1];
-    o[1] = a[2] * b[0] - a[0] * b[2];
-    o[2] = a[0] * b[1] - a[1] * b[0];
-}
 
 static const double *pos(const lrep *L, int id)
 {
