@@ -3,28 +3,33 @@
  * (repair.c) does in the plane:
  *  - bad faces: not quads, inverted (a corner's scaled Jacobian in the
  *    face's own plane <= 0.02, or the face against the surface's normal),
- *    on a non-manifold edge or at a pinched vertex, or (when asked: far)
- *    with a sample (a 4 x 4 grid on each of its fan triangles, as the
- *    check samples it) over 0.22 h from the surface;
- *  - regions: the bad faces and the faces that share a vertex with them,
- *    in vertex-connected parts, each grown by rings of faces until it is a
- *    topological disk (one simple boundary loop, V - E + F = 1); a part
- *    with an odd boundary (an odd count of odd faces) is joined to the
- *    nearest other odd part through a path of faces, or gets a point on a
- *    boundary edge of the surface;
+ *    with a side under 0.05 h, on a non-manifold edge or at a pinched
+ *    vertex, or (when asked: far) with a sample (a 4 x 4 grid on each of
+ *    its fan triangles, as the check samples it) over 0.22 h from the
+ *    surface;
+ *  - regions: the bad faces in vertex-connected parts, each grown until it
+ *    is a topological disk (one simple boundary loop, V - E + F = 1; the
+ *    faces at a vertex the loop passes twice, the kept faces inside its
+ *    other loops, else a ring of faces); a part with an odd boundary (an
+ *    odd count of odd faces) is joined to the nearest other odd part
+ *    through a path of faces, or gets a point on a boundary side of the
+ *    surface;
  *  - each region's faces removed, its boundary loop (its points fixed)
- *    mapped onto the plane through the loop's centroid orthogonal to its
- *    vector area (the chart: a simple counter-clockwise polygon, every
- *    loop point's surface normal within 84 degrees of the plane's normal,
- *    else the region grows), meshed by the cut mesher (qcut.c), the new
- *    points lifted by the mean-value interpolation of the loop's heights
- *    above the plane and moved to their nearest points on the surface;
- *  - the region's new quads checked in 3D (scaled Jacobian above 0.02,
- *    along the surface's normal) and its boundary against the loop; a
- *    region that fails grows by a ring and is tried again (6 rounds).
+ *    mapped to a chart: the plane through the loop's centroid orthogonal to
+ *    its vector area when the projected loop is a simple counter-clockwise
+ *    polygon (and the surface under each loop point faces within 107
+ *    degrees of the plane's normal), else a circle (by 3D arc length, as large as the region);
+ *    meshed there by the cut mesher (qcut.c); the new points lifted by the
+ *    mean-value interpolation of the loop's heights above the plane (of the
+ *    loop's 3D points on the circle) and moved to their nearest points on
+ *    the surface;
+ *  - the region's new quads checked in 3D (every corner's scaled Jacobian
+ *    above 0, along the surface's normal; the smoothing follows) and their
+ *    boundary against the loop; a region that fails grows by a ring and is
+ *    tried again (6 rounds); regions over half the faces: not local.
  * The grid's faces outside the regions are kept as they are. The caller
- * checks the whole mesh (check_surface.c) and falls back to the coarse
- * last resort when the repair fails or the result is not valid. */
+ * checks the whole mesh (check_surface.c) and falls back to the splits and
+ * the coarse last resort when the repair fails or is not valid. */
 #include "qcut.h"
 #include "quads_surface.h"
 #include "qvec.h"
@@ -38,8 +43,10 @@
 #include <stdlib.h>
 #include <string.h>
 
-#define LR_SJ_BAD 0.02   /* a face with a corner at or below: repaired; new quads must be above */
+#define LR_SJ_BAD 0.02   /* a face with a corner at or below: repaired */
 #define LR_FAR 0.22      /* a face sample farther from the surface (in h): repaired */
+#define LR_SJ_NEW 0.0    /* the new quads' corners must be above (the smoothing follows) */
+#define LR_SHORT 0.05    /* a face with a side under this (in h): repaired */
 #define LR_ROUNDS 6      /* growth rounds */
 #define LR_SHARE 0.5     /* regions over this share of the faces: not a local repair */
 #define LR_NORMAL -0.3   /* the chart: loop normals . plane normal above this */
@@ -174,6 +181,11 @@ static int bad_face(const lrep *L, int f, int far)
         for (int d = 0; d < 3; d++) c[d] += q->xyz[3 * q->face_vert[s + i] + d] / n;
     const int t = glpgp_qs_proj_nearest(L->P, c, x);
     if (t < 0 || dot3(N, L->m->surf->tframe + 9 * t + 6) <= 0.0) return 1;
+    for (int i = 0; i < n; i++) { /* a side under LR_SHORT h: a nearly degenerate face */
+        double d[3];
+        sub3(q->xyz + 3 * q->face_vert[s + i], q->xyz + 3 * q->face_vert[s + (i + 1) % n], d);
+        if (dot3(d, d) < LR_SHORT * LR_SHORT * L->h * L->h) return 1;
+    }
     if (!far) return 0;
     const double *A = q->xyz + 3 * q->face_vert[s]; /* the check's fan triangles, a 4 x 4 grid of samples each */
     for (int k = 1; k + 1 < n; k++) {
@@ -594,192 +606,40 @@ static glpgp_status conforming(const int *quads, int nq, int n, int np, int *ok)
     return GLPGP_OK;
 }
 
-/* ---- the Tutte chart: the region's faces, fanned from their centroids,
- * embedded in a disk (the loop on a circle by 3D arc length, every inner
- * point the mean of its neighbours: injective on a disk, Tutte 1963) ---- */
+/* ---- the disk chart: the loop on a circle by 3D arc length (the disk as
+ * large as the region's faces, at most the loop's circle), the new points
+ * lifted by the mean-value interpolation of the loop's 3D points (positive
+ * weights on a convex loop) ---- */
 
-typedef struct tchart {
-    int nloc, ntri;
-    double *uv, *p3; /* per local point: chart and 3D positions */
-    int *tri;        /* 3 per triangle, local ids */
-    int *nbs, *nb;   /* neighbours (nbs: nloc + 1 offsets) */
-} tchart;
-
-static void tchart_free(tchart *T)
+/* The loop's points on the circle (uv, 2 n). */
+static void disk_chart(const lrep *L, int k, const int *loop, int n, double *uv, double *acc)
 {
-    free(T->uv);
-    free(T->p3);
-    free(T->tri);
-    free(T->nbs);
-    free(T->nb);
-    memset(T, 0, sizeof *T);
-}
-
-/* Local ids (lid: per global id, -1 unset) of region k's points: the loop's
- * first (0 .. n-1), then the inner ones, then one centroid per face. */
-static glpgp_status tutte_points(const lrep *L, int k, const int *loop, int n, int *lid, tchart *T, ivec *ids)
-{
-    const glpgp_quadmesh *q = L->q;
-    for (int i = 0; i < n; i++) {
-        lid[loop[i]] = i;
-        GLPGP_CHECK(ipush(ids, loop[i]));
-    }
-    for (int i = L->cs[k]; i < L->cs[k + 1]; i++)
-        for (int c = q->face_start[L->cf[i]]; c < q->face_start[L->cf[i] + 1]; c++)
-            if (lid[q->face_vert[c]] < 0) {
-                lid[q->face_vert[c]] = ids->n;
-                GLPGP_CHECK(ipush(ids, q->face_vert[c]));
-            }
-    T->nloc = ids->n + (L->cs[k + 1] - L->cs[k]);
-    return GLPGP_OK;
-}
-
-/* The fan triangles of region k's faces (a split side: the loop point
- * between its ends, when the loop has one: split_a -> split_m -> split_b). */
-static glpgp_status tutte_triangles(const lrep *L, int k, const int *lid, int nfirst, const int *split, tchart *T)
-{
-    const glpgp_quadmesh *q = L->q;
-    int nt = 0;
-    for (int i = L->cs[k]; i < L->cs[k + 1]; i++)
-        nt += q->face_start[L->cf[i] + 1] - q->face_start[L->cf[i]] + 1;
-    GLPGP_CHECK(glpgp_malloc((size_t)3 * nt + 3, sizeof(int), &T->tri));
-    for (int i = L->cs[k]; i < L->cs[k + 1]; i++) {
-        const int f = L->cf[i], s = q->face_start[f], m = q->face_start[f + 1] - s, c = nfirst + (i - L->cs[k]);
-        for (int j = 0; j < m; j++) {
-            const int a = q->face_vert[s + j], b = q->face_vert[s + (j + 1) % m];
-            if (split && a == split[0] && b == split[2]) {
-                const int t1[6] = {c, lid[a], lid[split[1]], c, lid[split[1]], lid[b]};
-                memcpy(T->tri + 3 * T->ntri, t1, sizeof t1);
-                T->ntri += 2;
-                continue;
-            }
-            T->tri[3 * T->ntri] = c;
-            T->tri[3 * T->ntri + 1] = lid[a];
-            T->tri[3 * T->ntri + 2] = lid[b];
-            T->ntri++;
-        }
-    }
-    return GLPGP_OK;
-}
-
-/* The neighbour lists of the triangles' points (repeats kept). */
-static glpgp_status tutte_neighbours(tchart *T)
-{
-    GLPGP_CHECK(glpgp_calloc((size_t)T->nloc + 2, sizeof(int), &T->nbs));
-    GLPGP_CHECK(glpgp_malloc((size_t)6 * T->ntri + 1, sizeof(int), &T->nb));
-    for (int t = 0; t < 3 * T->ntri; t++) T->nbs[T->tri[t] + 1] += 2;
-    for (int v = 0; v < T->nloc; v++) T->nbs[v + 1] += T->nbs[v];
-    int *fill = NULL;
-    GLPGP_CHECK(glpgp_calloc((size_t)T->nloc + 1, sizeof(int), &fill));
-    for (int t = 0; t < T->ntri; t++)
-        for (int j = 0; j < 3; j++) {
-            const int a = T->tri[3 * t + j], b = T->tri[3 * t + (j + 1) % 3];
-            T->nb[T->nbs[a] + fill[a]++] = b;
-            T->nb[T->nbs[b] + fill[b]++] = a;
-        }
-    free(fill);
-    return GLPGP_OK;
-}
-
-/* The Tutte chart of region k with its loop (split: see tutte_triangles). */
-static glpgp_status tutte_chart(const lrep *L, int k, const int *loop, int n, const int *split, tchart *T)
-{
-    const glpgp_quadmesh *q = L->q;
-    const int nall = q->nv + L->nxyz.n / 3;
-    int *lid = NULL;
-    ivec ids = {0};
-    memset(T, 0, sizeof *T);
-    glpgp_status st = glpgp_malloc((size_t)nall + 1, sizeof(int), &lid);
-    if (st != GLPGP_OK) return st;
-    for (int v = 0; v < nall; v++) lid[v] = -1;
-    st = tutte_points(L, k, loop, n, lid, T, &ids);
-    if (st == GLPGP_OK) st = glpgp_calloc((size_t)2 * T->nloc + 2, sizeof(double), &T->uv);
-    if (st == GLPGP_OK) st = glpgp_calloc((size_t)3 * T->nloc + 3, sizeof(double), &T->p3);
-    if (st == GLPGP_OK) st = tutte_triangles(L, k, lid, ids.n, split, T);
-    if (st == GLPGP_OK) st = tutte_neighbours(T);
-    if (st != GLPGP_OK) goto done;
-    for (int i = 0; i < ids.n; i++) memcpy(T->p3 + 3 * i, pos(L, ids.p[i]), 3 * sizeof(double));
-    for (int i = L->cs[k]; i < L->cs[k + 1]; i++) { /* the face centroids */
-        const int f = L->cf[i], s = q->face_start[f], m = q->face_start[f + 1] - s;
-        double *c = T->p3 + 3 * (ids.n + i - L->cs[k]);
-        for (int j = 0; j < m; j++)
-            for (int d = 0; d < 3; d++) c[d] += q->xyz[3 * q->face_vert[s + j] + d] / m;
-    }
-    double len = 0.0, *acc = NULL;
-    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)n + 1, sizeof(double), &acc), done);
+    double len = 0.0, area = 0.0;
     for (int i = 0; i < n; i++) {
         double d[3];
         acc[i] = len;
-        sub3(T->p3 + 3 * ((i + 1) % n), T->p3 + 3 * i, d);
+        sub3(pos(L, loop[(i + 1) % n]), pos(L, loop[i]), d);
         len += sqrt(dot3(d, d));
     }
-    double area = 0.0; /* the disk as large as the region (the cut mesher's sizes), at most the loop's circle */
     for (int i = L->cs[k]; i < L->cs[k + 1]; i++) {
         double N[3];
-        glpgp_quadmesh_face_normal(q, L->cf[i], 0, N);
+        glpgp_quadmesh_face_normal(L->q, L->cf[i], 0, N);
         area += 0.5 * sqrt(dot3(N, N));
     }
     const double R = fmin(len / (2.0 * GLPGP_PI), sqrt(area / GLPGP_PI));
     for (int i = 0; i < n; i++) {
-        T->uv[2 * i] = R * cos(2.0 * GLPGP_PI * acc[i] / len);
-        T->uv[2 * i + 1] = R * sin(2.0 * GLPGP_PI * acc[i] / len);
+        uv[2 * i] = R * cos(2.0 * GLPGP_PI * acc[i] / len);
+        uv[2 * i + 1] = R * sin(2.0 * GLPGP_PI * acc[i] / len);
     }
-    free(acc);
-    for (int it = 0; it < 2000; it++) { /* Gauss-Seidel on the mean of the neighbours */
-        double moved = 0.0;
-        for (int v = n; v < T->nloc; v++) {
-            double u[2] = {0.0, 0.0};
-            const int deg = T->nbs[v + 1] - T->nbs[v];
-            if (deg == 0) continue;
-            for (int j = T->nbs[v]; j < T->nbs[v + 1]; j++) {
-                u[0] += T->uv[2 * T->nb[j]] / deg;
-                u[1] += T->uv[2 * T->nb[j] + 1] / deg;
-            }
-            moved = fmax(moved, fabs(u[0] - T->uv[2 * v]) + fabs(u[1] - T->uv[2 * v + 1]));
-            T->uv[2 * v] = u[0];
-            T->uv[2 * v + 1] = u[1];
-        }
-        if (moved < 1e-10 * R) break;
-    }
-done:
-    free(lid);
-    ivec_free(&ids);
-    return st;
-}
-
-/* The 3D point under chart point p (the Tutte triangle holding it,
- * barycentric); 0 when none holds it. */
-static int tutte_lift(const tchart *T, const double *p, double *x)
-{
-    int best = -1;
-    double bmin = -1e-9, bb[3] = {0, 0, 0};
-    for (int t = 0; t < T->ntri; t++) {
-        const double *a = T->uv + 2 * T->tri[3 * t], *b = T->uv + 2 * T->tri[3 * t + 1], *c = T->uv + 2 * T->tri[3 * t + 2];
-        const double det = (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
-        if (!(fabs(det) > 0)) continue;
-        const double l1 = ((p[0] - a[0]) * (c[1] - a[1]) - (p[1] - a[1]) * (c[0] - a[0])) / det;
-        const double l2 = ((b[0] - a[0]) * (p[1] - a[1]) - (b[1] - a[1]) * (p[0] - a[0])) / det;
-        const double w[3] = {1.0 - l1 - l2, l1, l2}, mn = fmin(w[0], fmin(w[1], w[2]));
-        if (mn > bmin) {
-            bmin = mn;
-            best = t;
-            memcpy(bb, w, sizeof w);
-        }
-    }
-    if (best < 0) return 0;
-    for (int d = 0; d < 3; d++)
-        x[d] = bb[0] * T->p3[3 * T->tri[3 * best] + d] + bb[1] * T->p3[3 * T->tri[3 * best + 1] + d] +
-               bb[2] * T->p3[3 * T->tri[3 * best + 2] + d];
-    return 1;
 }
 
 /* ---- one region meshed in a chart ---------------------------------------------------- */
 
-/* A chart of a region: the plane (kind 0: o, e, z) or the Tutte disk (1: T). */
+/* A chart of a region: the plane (kind 0: o, e, z) or the disk (1: uv, the
+ * loop's coordinates in p3). */
 typedef struct lchart {
     int kind;
-    double o[3], e[9], *z;
-    tchart T;
+    double o[3], e[9], *z, *uv, *p3;
 } lchart;
 
 /* The quads of the cut mesher on the loop's chart points xy (n, then the
@@ -818,8 +678,8 @@ static glpgp_status mesh_in_chart(lrep *L, const int *loop, int n, lchart *C, iv
     *ok = 0;
     glpgp_status st = GLPGP_OK;
     for (int i = 0; i < n && st == GLPGP_OK; i++) {
-        st = dpush(&xy, C->kind ? C->T.uv[2 * i] : 0.0);
-        if (st == GLPGP_OK) st = dpush(&xy, C->kind ? C->T.uv[2 * i + 1] : 0.0);
+        st = dpush(&xy, C->kind ? C->uv[2 * i] : 0.0);
+        if (st == GLPGP_OK) st = dpush(&xy, C->kind ? C->uv[2 * i + 1] : 0.0);
     }
     if (st == GLPGP_OK && !C->kind && !chart(L, loop, n, C->o, C->e, xy.p, C->z)) goto done;
     int cut = 0;
@@ -833,7 +693,7 @@ static glpgp_status mesh_in_chart(lrep *L, const int *loop, int n, lchart *C, iv
         const double *p = xy.p + 2 * i;
         double x[3], y[3];
         if (C->kind) {
-            if (!tutte_lift(&C->T, p, x)) goto done;
+            for (int d = 0; d < 3; d++) x[d] = mvc(xy.p, C->p3 + d * n, n, p);
         } else {
             const double hz = mvc(xy.p, C->z, n, p);
             for (int d = 0; d < 3; d++) x[d] = C->o[d] + p[0] * C->e[d] + p[1] * C->e[3 + d] + hz * C->e[6 + d];
@@ -846,9 +706,9 @@ static glpgp_status mesh_in_chart(lrep *L, const int *loop, int n, lchart *C, iv
     double worst = 1.0;
     for (int k = 0; k < quads.n; k++) quads.p[k] = gid.p[quads.p[k]];
     for (int k = 0; k < quads.n / 4; k++) worst = fmin(worst, quad_sj(L, quads.p + 4 * k));
-    if (!(worst > LR_SJ_BAD)) {
+    if (!(worst > LR_SJ_NEW)) {
         glpgp_log(GLPGP_LOG_DEBUG, "quads: surface local repair: %d quads in the %s chart, scaled Jacobian %.3f on the surface",
-                  quads.n / 4, C->kind ? "Tutte" : "plane", worst);
+                  quads.n / 4, C->kind ? "disk" : "plane", worst);
         goto done;
     }
     for (int k = 0; k < quads.n && st == GLPGP_OK; k++) st = ipush(out, quads.p[k]);
@@ -861,28 +721,31 @@ done:
     return st;
 }
 
-/* Region k's loop (n ids, even; split: a side split by a new point, or
- * NULL) meshed in the plane chart, else in the Tutte chart: its quads (ids)
- * appended to out, new points into L->nxyz; *sjmin their worst corner; *ok
- * 0 when both failed (nothing added). */
-static glpgp_status mesh_loop(lrep *L, int k, const int *loop, int n, const int *split, ivec *out, double *sjmin,
-                              int *ok)
+/* Region k's loop (n ids, even) meshed in the plane chart, else in the
+ * disk chart: its quads (ids) appended to out, new points into L->nxyz;
+ * *sjmin their worst corner; *ok 0 when both failed (nothing added). */
+static glpgp_status mesh_loop(lrep *L, int k, const int *loop, int n, ivec *out, double *sjmin, int *ok)
 {
     lchart C;
     memset(&C, 0, sizeof C);
     const int nx0 = L->nxyz.n;
     *ok = 0;
     glpgp_status st = glpgp_malloc((size_t)n + 1, sizeof(double), &C.z);
+    if (st == GLPGP_OK) st = glpgp_malloc((size_t)2 * n + 2, sizeof(double), &C.uv);
+    if (st == GLPGP_OK) st = glpgp_malloc((size_t)3 * n + 3, sizeof(double), &C.p3);
     if (st == GLPGP_OK) st = mesh_in_chart(L, loop, n, &C, out, sjmin, ok);
     if (st == GLPGP_OK && !*ok) {
         L->nxyz.n = nx0;
         C.kind = 1;
-        st = tutte_chart(L, k, loop, n, split, &C.T);
-        if (st == GLPGP_OK) st = mesh_in_chart(L, loop, n, &C, out, sjmin, ok);
+        disk_chart(L, k, loop, n, C.uv, C.z);
+        for (int i = 0; i < n; i++)
+            for (int d = 0; d < 3; d++) C.p3[d * n + i] = pos(L, loop[i])[d];
+        st = mesh_in_chart(L, loop, n, &C, out, sjmin, ok);
     }
     if (!*ok) L->nxyz.n = nx0;
     free(C.z);
-    tchart_free(&C.T);
+    free(C.uv);
+    free(C.p3);
     return st;
 }
 
@@ -990,16 +853,9 @@ static glpgp_status mesh_regions(lrep *L, int round, unsigned char *sel, ivec *l
         double sj = 0.0;
         const int q0 = quads->n;
         glpgp_progress_poll();
-        int split[3], *sp = NULL;
         GLPGP_CHECK(region_loop(L, k, loop, &bnd, &disk));
-        if (disk && loop->n % 2 && bnd >= 0) {
-            GLPGP_CHECK(split_boundary_side(L, loop, bnd));
-            split[0] = loop->p[bnd];
-            split[1] = loop->p[bnd + 1];
-            split[2] = loop->p[(bnd + 2) % loop->n];
-            sp = split;
-        }
-        if (disk && loop->n % 2 == 0) GLPGP_CHECK(mesh_loop(L, k, loop->p, loop->n, sp, quads, &sj, &ok));
+        if (disk && loop->n % 2 && bnd >= 0) GLPGP_CHECK(split_boundary_side(L, loop, bnd));
+        if (disk && loop->n % 2 == 0) GLPGP_CHECK(mesh_loop(L, k, loop->p, loop->n, quads, &sj, &ok));
         if (ok) {
             note(rs, L, k, quads->p + q0, (quads->n - q0) / 4, sj, round);
             continue;
