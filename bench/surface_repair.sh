@@ -44,7 +44,9 @@ except Exception as e:
 vi = q["valence"]["interior"]; nint = sum(vi.values()); irr = nint - vi.get("4", 0)
 out = open(txt).read()
 path = ("coarse last resort" if "coarsened triangulation" in out else "last resort" if "last resort" in out
-        else "split (h/2)" if "Catmull-Clark" in out else "local repair" if "repaired locally" in out else "grid")
+        else "split (h/2)" if "Catmull-Clark" in out else "grid")
+if "repaired locally" in out:
+    path = "local repair" if path == "grid" else path + " + local repair"
 r = q.get("repair", {})
 regs = "%d (%d -> %d)" % (r.get("regions", 0), r.get("removed_faces", 0), r.get("new_quads", 0)) if r.get("regions") else "-"
 manifold = "nonmanifold" not in q["invalid_reasons"] and "pinched" not in q["invalid_reasons"]
