@@ -269,6 +269,10 @@ static void print_summary(const solve_cli *c, const char *input, const glpgp_mes
                    !c->qsteps.fallback      ? ""
                    : c->qsteps.coarse_triangles ? "; not valid: a coarsened triangulation split into quads (last resort)"
                                                 : "; not valid: the input triangles split into quads (last resort)");
+        if (m->surf && c->qsteps.local_regions)
+            printf("  repaired       %d regions of bad faces repaired locally: %d faces -> %d quads, smallest scaled "
+                   "Jacobian %.3f\n",
+                   c->qsteps.local_regions, c->qsteps.local_faces_in, c->qsteps.local_quads_out, c->qsteps.local_sj_min);
         if (m->surf && c->qsteps.smoothed)
             printf("  smoothed       %d vertices on the surface: smallest scaled Jacobian %.3f -> %.3f\n",
                    c->qsteps.smoothed, c->qsteps.sj_before, c->qsteps.sj_after);

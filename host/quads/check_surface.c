@@ -18,6 +18,7 @@
  * (glpgp_quads_surface_area_tolerance: an inscribed quad mesh of a unit
  * sphere at h = 0.29 has 0.977 of its area). */
 #include "quads_surface.h"
+#include "vec3.h"
 
 #include "glpgp/kinds.h"
 #include "glpgp/surface.h"
@@ -29,19 +30,6 @@
 
 #define PI_ GLPGP_PI
 
-static void sub3(const double *a, const double *b, double *o)
-{
-    o[0] = a[0] - b[0];
-    o[1] = a[1] - b[1];
-    o[2] = a[2] - b[2];
-}
-static double dot3(const double *a, const double *b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-static void cross3(const double *a, const double *b, double *o)
-{
-    o[0] = a[1] * b[2] - a[2] * b[1];
-    o[1] = a[2] * b[0] - a[0] * b[2];
-    o[2] = a[0] * b[1] - a[1] * b[0];
-}
 
 /* Squared distance from p to triangle (a, b, c) (Ericson, Real-Time Collision Detection 5.1.5). */
 static double dist2_tri_x(const double *p, const double *a, const double *b, const double *c, double *x)

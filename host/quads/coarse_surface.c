@@ -18,6 +18,7 @@
  * Shortest edges first, in passes until none collapses. The caller checks
  * the quads and falls back to the input's own triangles when they fail. */
 #include "quads_surface.h"
+#include "vec3.h"
 
 #include "glpgp/kinds.h"
 #include "glpgp/surface.h"
@@ -41,11 +42,6 @@ typedef struct cz {
     int *touched, pass;   /* per vertex: the last pass its triangles changed in */
 } cz;
 
-static void sub3(const double *a, const double *b, double *o)
-{
-    for (int d = 0; d < 3; d++) o[d] = a[d] - b[d];
-}
-static double dot3(const double *a, const double *b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 static void tri_normal(const double *a, const double *b, const double *c, double *n)
 {
     double e1[3], e2[3];
@@ -379,92 +375,40 @@ static glpgp_status coarsen(cz *c, int nt)
     return st;
 }
 
-static int cmp_key2(const void *pa, const void *pb)
-{
-    const long long *a = pa, *b = pb;
-    return a[0] < b[0] ? -1 : a[0] > b[0] ? 1 : 0;
-}
-
 /* The alive triangles of c split into three quads each: side midpoints
  * and centroids moved onto the surface. */
 static glpgp_status split3(const cz *c, int nt, double h, glpgp_quadmesh **out)
 {
     const glpgp_mesh *m = c->m;
-    int *vid = NULL, *mid = NULL, ntri = 0, nvert = 0;
-    long long *key = NULL;
-    glpgp_quadmesh *q = NULL;
+    int *vid = NULL, *T = NULL, ntri = 0, nvert = 0;
+    double *P = NULL;
     glpgp_status st = GLPGP_OK;
     for (int t = 0; t < nt; t++) ntri += c->alive[t];
     GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)m->nv + 1, sizeof(int), &vid), done);
-    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)6 * ntri + 2, sizeof(long long), &key), done);
-    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)3 * ntri + 1, sizeof(int), &mid), done);
-    for (int v = 0; v < m->nv; v++) vid[v] = -1;
-    int *T = NULL;
     GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)3 * ntri + 1, sizeof(int), &T), done);
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)3 * m->nv + 1, sizeof(double), &P), done);
+    for (int v = 0; v < m->nv; v++) vid[v] = -1;
     for (int t = 0, o = 0; t < nt; t++)
         if (c->alive[t])
             for (int k = 0; k < 3; k++, o++) {
                 const int v = c->tri[3 * t + k];
-                if (vid[v] < 0) vid[v] = nvert++;
+                if (vid[v] < 0) {
+                    memcpy(P + 3 * nvert, m->xyz + 3 * v, 3 * sizeof(double));
+                    vid[v] = nvert++;
+                }
                 T[o] = vid[v];
             }
-    for (int s = 0; s < 3 * ntri; s++) {
-        const long long a = T[s], b = T[s - s % 3 + (s % 3 + 1) % 3];
-        key[2 * s] = a < b ? a * nvert + b : b * nvert + a;
-        key[2 * s + 1] = s;
+    GLPGP_CHECK_GOTO(st, glpgp_qs_split_triangles(P, nvert, T, ntri, out), done);
+    st = glpgp_qs_project(m, h, (*out)->xyz, nvert, (*out)->nv);
+    for (int i = 0; i < (*out)->nv && st == GLPGP_OK; i++) {
+        (*out)->xy[2 * i] = (*out)->xyz[3 * i];
+        (*out)->xy[2 * i + 1] = (*out)->xyz[3 * i + 1];
     }
-    qsort(key, (size_t)3 * ntri, 2 * sizeof(long long), cmp_key2);
-    int nv = nvert;
-    for (int i = 0; i < 3 * ntri; i++) {
-        if (i == 0 || key[2 * i] != key[2 * i - 2]) nv++;
-        mid[key[2 * i + 1]] = nv - 1;
-    }
-    const int cen = nv;
-    nv += ntri;
-    GLPGP_CHECK_GOTO(st, glpgp_calloc(1, sizeof *q, &q), split_done);
-    q->nv = nv;
-    q->nf = 3 * ntri;
-    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)3 * nv + 1, sizeof(double), &q->xyz), split_done);
-    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)2 * nv + 1, sizeof(double), &q->xy), split_done);
-    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)q->nf + 1, sizeof(int), &q->face_start), split_done);
-    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)4 * q->nf + 1, sizeof(int), &q->face_vert), split_done);
-    GLPGP_CHECK_GOTO(st, glpgp_calloc((size_t)q->nf + 1, 1, &q->face_origin), split_done);
-    for (int v = 0; v < m->nv; v++)
-        if (vid[v] >= 0) memcpy(q->xyz + 3 * vid[v], m->xyz + 3 * v, 3 * sizeof(double));
-    for (int t = 0; t < ntri; t++) {
-        const int *v = T + 3 * t;
-        for (int d = 0; d < 3; d++) {
-            q->xyz[3 * (cen + t) + d] = 0.0;
-            for (int k = 0; k < 3; k++) {
-                q->xyz[3 * (cen + t) + d] += q->xyz[3 * v[k] + d] / 3.0;
-                q->xyz[3 * mid[3 * t + k] + d] = 0.5 * (q->xyz[3 * v[k] + d] + q->xyz[3 * v[(k + 1) % 3] + d]);
-            }
-        }
-        for (int a = 0; a < 3; a++) {
-            const int f = 3 * t + a;
-            q->face_start[f] = 4 * f;
-            q->face_vert[4 * f] = v[a];
-            q->face_vert[4 * f + 1] = mid[3 * t + a];
-            q->face_vert[4 * f + 2] = cen + t;
-            q->face_vert[4 * f + 3] = mid[3 * t + (a + 2) % 3];
-            q->face_origin[f] = GLPGP_QFACE_FALLBACK;
-        }
-    }
-    q->face_start[q->nf] = 4 * q->nf;
-    GLPGP_CHECK_GOTO(st, glpgp_qs_project(m, h, q->xyz, nvert, nv), split_done);
-    for (int i = 0; i < nv; i++) {
-        q->xy[2 * i] = q->xyz[3 * i];
-        q->xy[2 * i + 1] = q->xyz[3 * i + 1];
-    }
-    *out = q;
-    q = NULL;
-split_done:
-    free(T);
+    if (st != GLPGP_OK) glpgp_quadmesh_destroy(out);
 done:
-    glpgp_quadmesh_destroy(&q);
     free(vid);
-    free(key);
-    free(mid);
+    free(T);
+    free(P);
     return st;
 }
 

@@ -13,7 +13,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-static glpgp_status qalloc(int nv, int nf, int ncorner, glpgp_quadmesh **out)
+glpgp_status glpgp_qs_alloc(int nv, int nf, int ncorner, glpgp_quadmesh **out)
 {
     glpgp_quadmesh *q = NULL;
     GLPGP_CHECK(glpgp_calloc(1, sizeof *q, &q));
@@ -40,65 +40,74 @@ static void set_xy(glpgp_quadmesh *q)
     }
 }
 
-/* r made from q: its plane coordinates (x, y of xyz) and q's singularity counts. */
-static void finish_from(glpgp_quadmesh *r, const glpgp_quadmesh *q)
+void glpgp_qs_finish_from(glpgp_quadmesh *r, const glpgp_quadmesh *q)
 {
     set_xy(r);
     memcpy(r->singular_tris, q->singular_tris, sizeof r->singular_tris);
     memcpy(r->inconsistent_tris, q->inconsistent_tris, sizeof r->inconsistent_tris);
 }
 
-glpgp_status glpgp_quads_surface_fallback(const glpgp_mesh *m, glpgp_quadmesh **out)
+static int cmp_ll(const void *pa, const void *pb)
+{
+    const long long *a = pa, *b = pb;
+    return a[0] < b[0] ? -1 : a[0] > b[0] ? 1 : 0;
+}
+
+glpgp_status glpgp_qs_split_triangles(const double *xyz, int np, const int *tri, int nt, glpgp_quadmesh **out)
 {
     *out = NULL;
-    if (!glpgp_mesh_is_surface(m) || !m->surf) return GLPGP_FAIL(GLPGP_ERR_ARG, "surface fallback: not a surface");
-    const glpgp_surface *S = m->surf;
-    int *emid = NULL;
-    GLPGP_CHECK(glpgp_malloc((size_t)3 * m->nt, sizeof(int), &emid));
-    int nv = m->nv;
-    for (int h = 0; h < 3 * m->nt; h++)
-        if (S->twin[h] < 0 || h < S->twin[h]) emid[h] = nv++;
-    for (int h = 0; h < 3 * m->nt; h++)
-        if (!(S->twin[h] < 0 || h < S->twin[h])) emid[h] = emid[S->twin[h]];
-    const int nc = nv;
-    nv += m->nt;
+    long long *key = NULL; /* (edge key, slot) pairs */
+    int *mid = NULL;
     glpgp_quadmesh *q = NULL;
-    glpgp_status st = qalloc(nv, 3 * m->nt, 12 * m->nt, &q);
-    if (st != GLPGP_OK) {
-        free(emid);
-        return st;
+    glpgp_status st = GLPGP_OK;
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)6 * nt + 2, sizeof(long long), &key), done);
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)3 * nt + 1, sizeof(int), &mid), done);
+    for (int s = 0; s < 3 * nt; s++) {
+        const long long a = tri[s], b = tri[s - s % 3 + (s % 3 + 1) % 3];
+        key[2 * s] = a < b ? a * np + b : b * np + a;
+        key[2 * s + 1] = s;
     }
-    memcpy(q->xyz, m->xyz, (size_t)3 * m->nv * sizeof(double));
-    for (int t = 0; t < m->nt; t++) {
-        const int *v = m->tri + 3 * t;
-        for (int a = 0; a < 3; a++) {
-            const int h = 3 * t + a, b = (a + 1) % 3;
-            for (int d = 0; d < 3; d++) {
-                q->xyz[3 * emid[h] + d] = 0.5 * (m->xyz[3 * v[a] + d] + m->xyz[3 * v[b] + d]);
-                q->xyz[3 * (nc + t) + d] = (m->xyz[3 * v[0] + d] + m->xyz[3 * v[1] + d] + m->xyz[3 * v[2] + d]) / 3.0;
-            }
+    qsort(key, (size_t)3 * nt, 2 * sizeof(long long), cmp_ll);
+    int nv = np;
+    for (int i = 0; i < 3 * nt; i++) {
+        if (i == 0 || key[2 * i] != key[2 * i - 2]) nv++;
+        mid[key[2 * i + 1]] = nv - 1;
+    }
+    const int cen = nv;
+    nv += nt;
+    GLPGP_CHECK_GOTO(st, glpgp_qs_alloc(nv, 3 * nt, 12 * nt, &q), done);
+    memcpy(q->xyz, xyz, (size_t)3 * np * sizeof(double));
+    for (int t = 0; t < nt; t++) {
+        const int *v = tri + 3 * t;
+        for (int d = 0; d < 3; d++) {
+            q->xyz[3 * (cen + t) + d] = (xyz[3 * v[0] + d] + xyz[3 * v[1] + d] + xyz[3 * v[2] + d]) / 3.0;
+            for (int k = 0; k < 3; k++)
+                q->xyz[3 * mid[3 * t + k] + d] = 0.5 * (xyz[3 * v[k] + d] + xyz[3 * v[(k + 1) % 3] + d]);
         }
         for (int a = 0; a < 3; a++) {
             const int f = 3 * t + a;
             q->face_start[f] = 4 * f;
             q->face_vert[4 * f] = v[a];
-            q->face_vert[4 * f + 1] = emid[3 * t + a];
-            q->face_vert[4 * f + 2] = nc + t;
-            q->face_vert[4 * f + 3] = emid[3 * t + (a + 2) % 3];
+            q->face_vert[4 * f + 1] = mid[3 * t + a];
+            q->face_vert[4 * f + 2] = cen + t;
+            q->face_vert[4 * f + 3] = mid[3 * t + (a + 2) % 3];
             q->face_origin[f] = GLPGP_QFACE_FALLBACK;
         }
     }
     q->face_start[q->nf] = 4 * q->nf;
     set_xy(q);
-    free(emid);
     *out = q;
-    return GLPGP_OK;
+done:
+    free(key);
+    free(mid);
+    return st;
 }
 
-static int cmp_ll(const void *pa, const void *pb)
+glpgp_status glpgp_quads_surface_fallback(const glpgp_mesh *m, glpgp_quadmesh **out)
 {
-    const long long *a = pa, *b = pb;
-    return a[0] < b[0] ? -1 : a[0] > b[0] ? 1 : 0;
+    *out = NULL;
+    if (!glpgp_mesh_is_surface(m) || !m->surf) return GLPGP_FAIL(GLPGP_ERR_ARG, "surface fallback: not a surface");
+    return glpgp_qs_split_triangles(m->xyz, m->nv, m->tri, m->nt, out);
 }
 
 glpgp_status glpgp_quadmesh_subdivide_surface(const glpgp_quadmesh *q, glpgp_quadmesh **out)
@@ -128,7 +137,7 @@ glpgp_status glpgp_quadmesh_subdivide_surface(const glpgp_quadmesh *q, glpgp_qua
     }
     const int nedge_v = nv;
     nv += q->nf;
-    GLPGP_CHECK_GOTO(st, qalloc(nv, nc, 4 * nc, &r), done);
+    GLPGP_CHECK_GOTO(st, glpgp_qs_alloc(nv, nc, 4 * nc, &r), done);
     memcpy(r->xyz, q->xyz, (size_t)3 * q->nv * sizeof(double));
     for (int f = 0, o = 0; f < q->nf; f++) {
         const int s = q->face_start[f], n = q->face_start[f + 1] - s, c = nedge_v + f;
@@ -150,7 +159,7 @@ glpgp_status glpgp_quadmesh_subdivide_surface(const glpgp_quadmesh *q, glpgp_qua
         }
     }
     r->face_start[nc] = 4 * nc;
-    finish_from(r, q);
+    glpgp_qs_finish_from(r, q);
     *out = r;
     r = NULL;
 done:
@@ -352,7 +361,7 @@ static glpgp_status close_pairs(const glpgp_quadmesh *q, glpgp_quadmesh **out, i
                 nf++;
                 ncr += q->face_start[f + 1] - q->face_start[f];
             }
-        GLPGP_CHECK_GOTO(st, qalloc(q->nv, nf, ncr, &r), done);
+        GLPGP_CHECK_GOTO(st, glpgp_qs_alloc(q->nv, nf, ncr, &r), done);
         memcpy(r->xyz, q->xyz, (size_t)3 * q->nv * sizeof(double));
         int o = 0, w = 0;
         for (int f = 0; f < q->nf; f++) {
@@ -367,7 +376,7 @@ static glpgp_status close_pairs(const glpgp_quadmesh *q, glpgp_quadmesh **out, i
             for (int c = 0; c < 4; c++) r->face_vert[w++] = newq[4 * k + c];
         }
         r->face_start[o] = w;
-        finish_from(r, q);
+        glpgp_qs_finish_from(r, q);
         r->closing.closed_polygons = *closed;
         *out = r;
     }
@@ -669,7 +678,7 @@ static glpgp_status strips(const glpgp_mesh *m, const glpgp_quadmesh *q, double 
             ncr += n + 1;
         }
     }
-    GLPGP_CHECK_GOTO(st, qalloc(c.nv, nfo, ncr, &r), done);
+    GLPGP_CHECK_GOTO(st, glpgp_qs_alloc(c.nv, nfo, ncr, &r), done);
     memcpy(r->xyz, q->xyz, (size_t)3 * q->nv * sizeof(double));
     if (c.nv > q->nv) memcpy(r->xyz + 3 * q->nv, c.xyz, (size_t)3 * (c.nv - q->nv) * sizeof(double));
     int o = 0, w = 0;
@@ -677,7 +686,7 @@ static glpgp_status strips(const glpgp_mesh *m, const glpgp_quadmesh *q, double 
     r->nf = o;
     r->face_start[o] = w;
     GLPGP_CHECK_GOTO(st, glpgp_qs_project(m, h, r->xyz, q->nv, r->nv), done);
-    finish_from(r, q);
+    glpgp_qs_finish_from(r, q);
     *out = r;
     r = NULL;
 done:
@@ -711,6 +720,114 @@ static glpgp_status verdict_of(const glpgp_mesh *m, const glpgp_quadmesh *q, dou
     glpgp_quads_report qq;
     GLPGP_CHECK(glpgp_quads_quality_surface(q, m, h, &qq));
     *bad = qq.invalid & ~(keep_polygons ? (unsigned)GLPGP_QUADS_BAD_NONQUAD : 0u);
+    return GLPGP_OK;
+}
+
+/* The regions of a local repair pass b added to those of the passes before (a). */
+static void add_regions(glpgp_quads_repair *a, const glpgp_quads_repair *b, int pass)
+{
+    a->rounds += b->rounds;
+    a->regions += b->regions;
+    a->paved_regions += b->paved_regions;
+    a->removed_faces += b->removed_faces;
+    a->new_quads += b->new_quads;
+    for (int i = 0; i < b->nlisted && a->nlisted < GLPGP_QUADS_REGIONS_LISTED; i++) {
+        a->region[a->nlisted] = b->region[i];
+        a->region[a->nlisted++].round = pass;
+    }
+}
+
+/* The local repair of q (glpgp_qs_local_repair; far: faces far from the
+ * surface repaired too), run again on what a pass left bad (3 passes):
+ * *out the last pass's mesh (NULL: no region repaired), *bad its
+ * invalidity bits, *rs the regions of every pass. */
+static glpgp_status local_repair(const glpgp_mesh *m, const glpgp_quadmesh *q, double h, int far, glpgp_quadmesh **out,
+                                 unsigned *bad, glpgp_quads_repair *rs)
+{
+    glpgp_quads_repair one;
+    glpgp_quads_report qq;
+    memset(rs, 0, sizeof *rs);
+    *out = NULL;
+    *bad = 0;
+    for (int pass = 0; pass < 3; pass++) {
+        glpgp_quadmesh *r = NULL;
+        GLPGP_CHECK(glpgp_qs_local_repair(m, *out ? *out : q, h, far, &r, &one));
+        if (!r) break;
+        glpgp_quadmesh_destroy(out);
+        *out = r;
+        add_regions(rs, &one, pass);
+        GLPGP_CHECK(glpgp_quads_quality_surface(*out, m, h, &qq));
+        *bad = qq.invalid;
+        glpgp_log(GLPGP_LOG_DEBUG,
+                  "quads: surface local repair (pass %d%s): %d regions, %d faces -> %d quads; %s (0x%x: %d inverted, "
+                  "Hausdorff %.3f h, area ratio %.4f)",
+                  pass, far ? ", far faces too" : "", one.regions, one.removed_faces, one.new_quads,
+                  *bad ? "not valid" : "valid", *bad, qq.inverted, qq.hausdorff, qq.area_ratio);
+        if (!*bad) break;
+    }
+    if (*out) {
+        memset(&(*out)->closing, 0, sizeof (*out)->closing);
+        (*out)->repair = *rs;
+    }
+    return GLPGP_OK;
+}
+
+/* The local repair's regions into stp. */
+static void note_local(glpgp_quads_surface_steps *stp, const glpgp_quads_repair *rs)
+{
+    stp->local_regions = rs->regions;
+    stp->local_faces_in = rs->removed_faces;
+    stp->local_quads_out = rs->new_quads;
+    stp->local_sj_min = 1.0;
+    for (int i = 0; i < rs->nlisted; i++) stp->local_sj_min = fmin(stp->local_sj_min, rs->region[i].sj_min);
+}
+
+/* The local repair's candidates: the repaired mesh (bad faces but the far
+ * ones), its split (with split; when only the distance or the area fails:
+ * a grid too coarse for the surface), the repair with the far faces too.
+ * *out NULL: none is valid. */
+static glpgp_status repaired(const glpgp_mesh *m, const glpgp_quadmesh *q, double h, int split,
+                             glpgp_quads_surface_steps *stp, glpgp_quadmesh **out)
+{
+    glpgp_quadmesh *r = NULL, *s = NULL;
+    glpgp_quads_repair rs;
+    unsigned bad = 0;
+    *out = NULL;
+    glpgp_status st = local_repair(m, q, h, 0, &r, &bad, &rs);
+    if (st == GLPGP_OK && r && !bad) goto keep_r;
+    if (st == GLPGP_OK && r && split && !(bad & ~(unsigned)(GLPGP_QUADS_BAD_HAUSDORFF | GLPGP_QUADS_BAD_AREA))) {
+        st = split_onto(m, r, h, &s);
+        if (st == GLPGP_OK) st = verdict_of(m, s, h, 0, &bad);
+        if (st == GLPGP_OK && bad) { /* the split's own bad faces repaired locally */
+            glpgp_quadmesh *t = NULL;
+            glpgp_quads_surface_steps st2;
+            memset(&st2, 0, sizeof st2);
+            st = repaired(m, s, h, 0, &st2, &t);
+            if (st == GLPGP_OK && t) {
+                glpgp_quadmesh_destroy(&s);
+                s = t;
+                bad = 0;
+                add_regions(&rs, &s->repair, 1);
+            }
+        }
+        if (st == GLPGP_OK && !bad) {
+            s->repair = rs;
+            stp->subdivided = 1;
+            note_local(stp, &rs);
+            glpgp_quadmesh_destroy(&r);
+            *out = s;
+            return GLPGP_OK;
+        }
+        glpgp_quadmesh_destroy(&s);
+    }
+    glpgp_quadmesh_destroy(&r);
+    if (st == GLPGP_OK) st = local_repair(m, q, h, 1, &r, &bad, &rs);
+    if (st == GLPGP_OK && r && !bad) goto keep_r;
+    glpgp_quadmesh_destroy(&r);
+    return st;
+keep_r:
+    note_local(stp, &rs);
+    *out = r;
     return GLPGP_OK;
 }
 
@@ -760,10 +877,24 @@ static glpgp_status candidates(const glpgp_mesh *m, glpgp_quadmesh **pq, const g
         st = verdict_of(m, c, h, 0, &bad);
         if (st == GLPGP_OK && !bad) goto keep_c;
     }
+    if (st == GLPGP_OK) {
+        st = repaired(m, c ? c : q, h, 1, stp, &s);
+        if (st == GLPGP_OK && s) goto keep_r;
+    }
     if (st == GLPGP_OK && c && count_nonquads(c) < count_nonquads(q)) {
         st = split_onto(m, c, h, &s);
         if (st == GLPGP_OK) st = verdict_of(m, s, h, 0, &bad);
         if (st == GLPGP_OK && !bad) goto keep_s;
+        glpgp_log(GLPGP_LOG_DEBUG, "quads: the closed mesh's split is not valid (0x%x)", bad);
+        if (st == GLPGP_OK) { /* its bad faces repaired locally */
+            glpgp_quadmesh *r = NULL;
+            st = repaired(m, s, h, 0, stp, &r);
+            if (st == GLPGP_OK && r) {
+                glpgp_quadmesh_destroy(&s);
+                s = r;
+                goto keep_s;
+            }
+        }
         glpgp_quadmesh_destroy(&s);
     }
     stp->closed = 0;
@@ -776,6 +907,10 @@ static glpgp_status candidates(const glpgp_mesh *m, glpgp_quadmesh **pq, const g
 keep_c:
     memset(&c->closing, 0, sizeof c->closing); /* the surface's steps are in stp */
     *out = c;
+    return GLPGP_OK;
+keep_r:
+    *out = s;
+    glpgp_quadmesh_destroy(&c);
     return GLPGP_OK;
 keep_s:
     stp->subdivided = 1;

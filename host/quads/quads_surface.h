@@ -20,7 +20,27 @@ glpgp_status glpgp_qs_proj_create(const glpgp_mesh *m, double h, double cap, glp
 int glpgp_qs_proj_nearest(const glpgp_qs_proj *P, const double *p, double *x);
 void glpgp_qs_proj_destroy(glpgp_qs_proj **P);
 
+/* A surface quad mesh's arrays (xyz, xy, face_start, face_vert, face_origin
+ * zeroed) for nv points, nf faces and ncorner corners (quads_surface.c). */
+glpgp_status glpgp_qs_alloc(int nv, int nf, int ncorner, glpgp_quadmesh **out);
+/* r made from q: its plane coordinates (x, y of xyz) and q's singularity counts. */
+void glpgp_qs_finish_from(glpgp_quadmesh *r, const glpgp_quadmesh *q);
 
+/* Triangles tri (nt, ids of the np points xyz) split into three quads each
+ * (corner, side midpoint, centroid, side midpoint; origin FALLBACK): the
+ * points, then one per side, then the centroids, none moved
+ * (quads_surface.c: the input's triangles; coarse_surface.c: the coarse ones). */
+glpgp_status glpgp_qs_split_triangles(const double *xyz, int np, const int *tri, int nt, glpgp_quadmesh **out);
+
+/* The local repair (repair_surface.c): q's bad faces (not quads, inverted,
+ * non-manifold, pinched; with far, over 0.22 h from the surface) and their neighbours
+ * removed in regions grown to topological disks, each flattened onto a
+ * plane, meshed by the cut mesher with its boundary points fixed and lifted
+ * onto the surface; the other faces kept. *out NULL when q has no bad face
+ * or a region could not be repaired; *rs: the regions. The caller checks
+ * the result. */
+glpgp_status glpgp_qs_local_repair(const glpgp_mesh *m, const glpgp_quadmesh *q, double h, int far,
+                                   glpgp_quadmesh **out, glpgp_quads_repair *rs);
 
 /* glpgp_quads_surface_fallback_coarse (17 degrees) with the smallest angle
  * a new triangle may have (degrees; unless one before was smaller). */

@@ -12,6 +12,11 @@
  *  - the smoothing on the surface: an interior vertex of that grid slid
  *    along the cylinder (smallest scaled Jacobian about 0.3) comes back
  *    (above 0.9), every vertex stays on the cylinder, the boundary stays;
+ *  - the local repair: that grid with an octagon in place of the four
+ *    quads at an interior vertex and a face turned over elsewhere comes back
+ *    valid, all quads, on the cylinder, with its Euler characteristic and
+ *    boundary loop, in two regions (the turned face with the 8 around its
+ *    pinched corners), at least 27 of the grid's 40 quads kept;
  *  - the coarse last resort on genus 2, the cube (sharp features) and the
  *    hemisphere: valid, all quads, the input's Euler characteristic and
  *    loops, under a tenth of the fine last resort's quads, and smoothing
@@ -23,6 +28,7 @@
 #include "testutil.h"
 
 #include "glpgp/surface.h"
+#include "../host/quads/quads_surface.h"
 
 #include <string.h>
 
@@ -44,16 +50,36 @@ static glpgp_result *plane_waves(const glpgp_mesh *m, double hu, double hv)
     return r;
 }
 
+#define HU (2.0 * GLPGP_PI / 9.0)
+#define HV (2.0 / 3.0)
+
+/* The half cylinder (5000 vertices), its plane waves (HU, HV; *r may be
+ * NULL: freed) and their extraction *q: 0 when one of them failed. */
+static int halfcyl_grid(glpgp_mesh **m, glpgp_result **r, glpgp_quadmesh **q)
+{
+    glpgp_result *rr = NULL;
+    *q = NULL;
+    CHECK_OK(glpgp_surface_generate("halfcyl", 5000, m));
+    if (!*m) return 0;
+    rr = plane_waves(*m, HU, HV);
+    if (rr) CHECK_OK(glpgp_quads_extract_surface(*m, rr, q));
+    if (r) *r = rr;
+    else glpgp_result_destroy(&rr);
+    if (*q) return 1;
+    glpgp_result_destroy(&rr);
+    if (r) *r = NULL;
+    glpgp_mesh_destroy(m);
+    return 0;
+}
+
 static void extraction(void)
 {
     glpgp_mesh *m = NULL;
-    CHECK_OK(glpgp_surface_generate("halfcyl", 5000, &m));
-    if (!m) return;
-    const double hu = 2.0 * GLPGP_PI / 9.0, hv = 2.0 / 3.0;
-    glpgp_result *r = plane_waves(m, hu, hv);
+    glpgp_result *r = NULL;
     glpgp_quadmesh *q = NULL;
-    CHECK_OK(glpgp_quads_extract_surface(m, r, &q));
-    if (q) {
+    const double hv = HV;
+    if (!halfcyl_grid(&m, &r, &q)) return;
+    {
         CHECK(q->nf == 40);
         for (int f = 0; f < q->nf; f++) CHECK(q->face_start[f + 1] - q->face_start[f] == 4);
         for (int i = 0; i < q->nv; i++) {
@@ -140,17 +166,9 @@ static void fallback(const char *shape, int euler, int loops)
 static void smoothing(void)
 {
     glpgp_mesh *m = NULL;
-    CHECK_OK(glpgp_surface_generate("halfcyl", 5000, &m));
-    if (!m) return;
-    const double hu = 2.0 * GLPGP_PI / 9.0, hv = 2.0 / 3.0;
-    glpgp_result *r = plane_waves(m, hu, hv);
     glpgp_quadmesh *q = NULL;
-    CHECK_OK(glpgp_quads_extract_surface(m, r, &q));
-    glpgp_result_destroy(&r);
-    if (!q) {
-        glpgp_mesh_destroy(&m);
-        return;
-    }
+    const double hu = HU, hv = HV;
+    if (!halfcyl_grid(&m, NULL, &q)) return;
     glpgp_quads_report qq;
     int *val = NULL, v = -1;
     CHECK_OK(glpgp_quadmesh_valences(q, &val));
@@ -192,6 +210,101 @@ static void smoothing(void)
     glpgp_mesh_destroy(&m);
 }
 
+/* The faces of the 4 x 10 grid at interior vertex v (valence 4) replaced
+ * by their outline, an octagon (v left unused); face g turned over. */
+static void damage(glpgp_quadmesh *q, int v, int g)
+{
+    int ring[4][3], nr = 0, keep = 0, w = 0;
+    int *fs = malloc((size_t)(q->nf + 1) * sizeof(int)), *fv = malloc((size_t)q->face_start[q->nf] * sizeof(int));
+    if (!fs || !fv) goto out;
+    for (int f = 0; f < q->nf; f++) {
+        const int *c = q->face_vert + q->face_start[f];
+        int at = -1;
+        for (int i = 0; i < 4; i++)
+            if (c[i] == v) at = i;
+        if (at >= 0 && nr < 4) { /* the corners after v: a, b, c */
+            for (int i = 0; i < 3; i++) ring[nr][i] = c[(at + 1 + i) % 4];
+            nr++;
+            continue;
+        }
+        fs[keep++] = w;
+        for (int i = 0; i < 4; i++) fv[w++] = f == g ? c[(4 - i) % 4] : c[i];
+    }
+    CHECK(nr == 4);
+    fs[keep++] = w;
+    for (int k = 0, cur = 0; k < 4; k++) { /* the octagon: a, b of each face in fan order */
+        fv[w++] = ring[cur][0];
+        fv[w++] = ring[cur][1];
+        for (int j = 0; j < 4; j++)
+            if (ring[j][0] == ring[cur][2]) {
+                cur = j;
+                break;
+            }
+    }
+    fs[keep] = w;
+    memcpy(q->face_start, fs, (size_t)(keep + 1) * sizeof(int));
+    memcpy(q->face_vert, fv, (size_t)w * sizeof(int));
+    q->nf = keep;
+out:
+    free(fs);
+    free(fv);
+}
+
+/* The local repair: the grid with an octagon in place of four quads and a
+ * face turned over (not valid) comes back valid, all quads, with its Euler
+ * characteristic and boundary loop, and keeps the grid's faces outside the
+ * two regions (at least 27 of the 40). */
+static void local_repair(void)
+{
+    glpgp_mesh *m = NULL;
+    glpgp_quadmesh *q = NULL, *r = NULL;
+    if (!halfcyl_grid(&m, NULL, &q)) return;
+    int *val = NULL, v = -1, g = -1;
+    CHECK_OK(glpgp_quadmesh_valences(q, &val));
+    for (int i = 0; i < q->nv && v < 0; i++) /* an interior vertex near the middle */
+        if (val[i] == 4 && fabs(q->xyz[3 * i + 2] - 1.0) < 0.4 && fabs(atan2(q->xyz[3 * i + 1], q->xyz[3 * i]) - 0.8) < 0.4)
+            v = i;
+    for (int f = 0; f < q->nf && g < 0 && v >= 0; f++) { /* a face away from v's, off the rim */
+        int far = 1, rim = 0;
+        for (int i = q->face_start[f]; i < q->face_start[f + 1]; i++) {
+            const double *p = q->xyz + 3 * q->face_vert[i], *x = q->xyz + 3 * v;
+            far &= hypot(hypot(p[0] - x[0], p[1] - x[1]), p[2] - x[2]) > 1.5;
+            rim |= val[q->face_vert[i]] < 4;
+        }
+        if (far && !rim) g = f;
+    }
+    free(val);
+    CHECK(v >= 0 && g >= 0);
+    if (v < 0 || g < 0) goto out;
+    damage(q, v, g);
+    glpgp_quads_report qq;
+    CHECK_OK(glpgp_quads_quality_surface(q, m, HV, &qq));
+    CHECK(qq.invalid & GLPGP_QUADS_BAD_NONMANIFOLD);
+    CHECK(qq.others == 1);
+    glpgp_quads_repair rs;
+    CHECK_OK(glpgp_qs_local_repair(m, q, HV, 0, &r, &rs));
+    CHECK(r != NULL);
+    if (!r) goto out;
+    CHECK_OK(glpgp_quads_quality_surface(r, m, HV, &qq));
+    CHECK(qq.invalid == 0 && qq.others == 0 && qq.euler == 1 && qq.boundary_loops == 1);
+    CHECK(qq.sj_min > 0.1);
+    CHECK(rs.regions == 2 && rs.paved_regions == 2);
+    CHECK(qq.quads_by_origin[GLPGP_QFACE_GRID] >= 27 && qq.quads_by_origin[GLPGP_QFACE_GRID] == r->nf - rs.new_quads);
+    if (qq.invalid || qq.quads_by_origin[GLPGP_QFACE_GRID] < 27)
+        fprintf(stderr, "local repair: invalid 0x%x, %d grid quads of %d, %d regions\n", qq.invalid,
+                qq.quads_by_origin[GLPGP_QFACE_GRID], r->nf, rs.regions);
+    for (int i = 0; i < r->nv; i++) /* on the cylinder */
+        CHECK(fabs(hypot(r->xyz[3 * i], r->xyz[3 * i + 1]) - 2.0) < 0.01);
+    glpgp_quadmesh *again = NULL; /* nothing left to repair */
+    CHECK_OK(glpgp_qs_local_repair(m, r, HV, 0, &again, &rs));
+    CHECK(again == NULL && rs.regions == 0);
+    glpgp_quadmesh_destroy(&again);
+out:
+    glpgp_quadmesh_destroy(&r);
+    glpgp_quadmesh_destroy(&q);
+    glpgp_mesh_destroy(&m);
+}
+
 static void coarse(const char *shape, long nv, double h, int euler, int loops)
 {
     glpgp_mesh *m = NULL;
@@ -216,10 +329,19 @@ static void coarse(const char *shape, long nv, double h, int euler, int loops)
     glpgp_mesh_destroy(&m);
 }
 
+static void dbg_log(glpgp_log_level l, const char *msg, void *u)
+{
+    (void)l;
+    (void)u;
+    if (getenv("XXDBG")) fprintf(stderr, "%s\n", msg);
+}
+
 int main(void)
 {
+    glpgp_log_set_callback(dbg_log, NULL);
     extraction();
     smoothing();
+    local_repair();
     coarse("genus2", 5000, 0.55, -2, 0);
     coarse("cube", 5000, 0.3, 2, 0);
     coarse("hemisphere", 5000, 0.25, 1, 1);

@@ -427,6 +427,11 @@ typedef struct glpgp_quads_surface_steps {
                               quads (coarse_triangles of a coarsened triangulation, else the input's) */
     int coarse_triangles;  /* the last resort's coarse triangles (0: the input's own) */
     unsigned invalid_before; /* GLPGP_QUADS_BAD_* of the extraction's mesh when it was not used */
+    int local_regions;     /* regions of bad faces repaired locally (flattened, meshed by the cut
+                              mesher, lifted onto the surface; the report's repair lists them) */
+    int local_faces_in;    /* faces those regions removed */
+    int local_quads_out;   /* quads made in their place */
+    double local_sj_min;   /* their smallest scaled Jacobian (before the smoothing) */
     int smoothed;          /* vertices moved by the smoothing on the surface (o->smooth sweeps) */
     double sj_before;      /* smallest scaled Jacobian before the smoothing */
     double sj_after;       /* and after it (the same when it moved nothing or was undone) */
