@@ -14,7 +14,9 @@
  *    level-0 aggregate keeps only its owned members, the Galerkin map only
  *    the slots of owned rows and owned columns; an aggregate with no owned
  *    member is dead (identity row). Coarse vectors are sequential Vecs,
- *    their dot products (the K-cycle's coefficients) local.
+ *    their dot products (the K-cycle's coefficients) local;
+ *  - with more than one rank the fine level's coarse correction adds a
+ *    global two-level term (gc_* below).
  * Level-0 dot products are reduced over the ranks (partials added in rank
  * order: every rank takes the same decisions), the coarse solve's status
  * too. The arithmetic is the per-row code of kernels/amg_rows.h (the
@@ -82,7 +84,7 @@ static const double *LVAL(const pimpl *p, const pm_level *v, int l) { return l ?
 /* ---- the global coarse space (more than one rank) -------------------------
  * Below the fine level each rank's hierarchy is its own (block Jacobi), and
  * block Jacobi alone leaves the smooth modes that span ranks to the outer CG
- * (square 250k, 2 ranks: 445 CG against 103 on one). The coarse correction
+ * (bench/results/petsc_glpgp_amg.md). The coarse correction
  * of the fine level therefore adds a global two-level term: Z holds, for each
  * rank s, the columns f and i f restricted to s's owned vertices (f the
  * level-0 frame: the near null space [z, iz] of the local hierarchy), E =
