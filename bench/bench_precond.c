@@ -99,7 +99,7 @@ static double amg_bytes_per_it(const glpgp_amg_info *in, const glpgp_options *o)
 
 static glpgp_status make_backend(int opencl, int pc, int device, glpgp_backend **b)
 {
-    if (pc == 2) return glpgp_backend_create_petsc(GLPGP_PRECOND_AMG, b); /* the GAMG anchor */
+    if (pc == 2) return glpgp_backend_create_petsc(GLPGP_PETSC_PRECOND_GAMG, b); /* the GAMG anchor */
     if (!opencl) return glpgp_backend_create_reference(b);
     glpgp_cl_options co = {device, 0, NULL};
     return glpgp_backend_create_opencl(&co, b);

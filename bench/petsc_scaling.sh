@@ -5,14 +5,14 @@
 #   bash bench/petsc_scaling.sh [--sizes 1000000,4000000] [--ranks 1,2]
 #        [--shape square] [--glpgp build/glpgp] [--out bench/results/petsc_scaling]
 #        [--globalization line-search] [--no-opencl] [--no-reference]
-#        [--solver-args "--newton-max 2 --cg-max 100"] [--compare OTHER_GLPGP]
+#        [--solver-args "--newton-max 2 --cg-max 100"] [--compare OTHER_GLPGP] [--gamg]
 #
 # Per size N (input shape:SHAPE:N, the same mesh for every run), one whole
 # `glpgp solve` per configuration: --backend reference, --backend opencl
 # (skipped when no OpenCL device answers), --backend petsc under
 # `mpirun -n P` for each P of --ranks. Every run uses the backend's default
-# preconditioner (reference, OpenCL: glpgp's multigrid; petsc: KSPCG + GAMG
-# with the near null space [z, iz]) and the same --globalization
+# preconditioner (glpgp's multigrid; on petsc on each rank's rows, block
+# Jacobi across ranks) and the same --globalization
 # (line-search by default: the multigrid / GAMG then runs in every Newton
 # step). Recorded per run: wall time of the process (mpirun included), CPU
 # time (user + sys of all processes), the solve's own time, Newton and CG
@@ -25,7 +25,8 @@
 # the system, the matrices and the preconditioner, built alike however many
 # steps run). --compare: a second glpgp (e.g. a build of an earlier commit)
 # whose petsc runs follow each of this one's, named "petscP (compare)" --
-# a before / after series in one run.
+# a before / after series in one run. --gamg: after each petsc run the same
+# with PETSc's GAMG (PETSC_OPTIONS="-glpgp_mg gamg"), named "petscP (gamg)".
 # Benchmarks, not tests: nothing is asserted.
 # As root, OpenMPI needs OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 # (set here); --oversubscribe lets P exceed the cores.
@@ -41,6 +42,7 @@ OPENCL=1
 REFERENCE=1
 EXTRA=""
 COMPARE=""
+GAMG=0
 while [ $# -gt 0 ]; do
     case "$1" in
     --sizes) SIZES=$2; shift 2 ;;
@@ -53,6 +55,7 @@ while [ $# -gt 0 ]; do
     --no-reference) REFERENCE=0; shift ;;
     --solver-args) EXTRA=$2; shift 2 ;;
     --compare) COMPARE=$2; shift 2 ;;
+    --gamg) GAMG=1; shift ;;
     -h | --help) sed -n '2,32p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
     *) echo "petsc_scaling.sh: unknown argument '$1'" >&2; exit 2 ;;
     esac
@@ -95,6 +98,8 @@ for n in "${sizes[@]}"; do
         one "petsc${p}_$n" "$p" mpirun --oversubscribe -n "$p" "$GLPGP" solve "$in" --backend petsc
         [ -n "$COMPARE" ] &&
             one "petsc${p}compare_$n" "$p" mpirun --oversubscribe -n "$p" "$COMPARE" solve "$in" --backend petsc
+        [ "$GAMG" = 1 ] && PETSC_OPTIONS="${PETSC_OPTIONS:-} -glpgp_mg gamg" \
+            one "petsc${p}gamg_$n" "$p" mpirun --oversubscribe -n "$p" "$GLPGP" solve "$in" --backend petsc
     done
 done
 
@@ -130,18 +135,19 @@ else:
 json.dump({"meta": meta, "runs": rows}, open(out + ".json", "w"), indent=1)
 base = {}
 for r in rows:
-    if r["run"] in ("petsc1", "petsc1compare"):
-        base[(r["vertices"], r["run"] == "petsc1compare")] = r["solve_s"]
+    if r["run"] in ("petsc1", "petsc1compare", "petsc1gamg"):
+        base[(r["vertices"], r["run"][6:])] = r["solve_s"]
 lines = [f"# PETSc strong scaling beside OpenCL and reference ({shape}, --globalization {glob}"
          + (f", {extra}" if extra else "") + ")", "",
          f"Machine: {meta['cpus']} CPUs, {meta['load_at_end']} (shared: times are comparable within this table only)."
          + (f" {lines_compare}." if compare else "")
          + (f" PETSC_OPTIONS=\"{meta['petsc_options']}\"." if meta["petsc_options"] else ""), "",
-         "| vertices | run | solve s | wall s | CPU s | speed-up vs 1 rank | Newton | CG | singular u / v | E_u | max RSS MiB (per rank) |",
-         "|---|---|---|---|---|---|---|---|---|---|---|"]
+         "| vertices | run | solve s | wall s | CPU s | speed-up vs 1 rank | vs reference | Newton | CG | singular u / v | E_u | max RSS MiB (per rank) |",
+         "|---|---|---|---|---|---|---|---|---|---|---|---|"]
+ref = {r["vertices"]: r["solve_s"] for r in rows if r["run"] == "ref"}
 for r in rows:
     su = ""
-    key = (r["vertices"], "compare" in r["run"])
+    key = (r["vertices"], r["run"][6:])
     if r["run"].startswith("petsc") and key in base:
         su = f"{base[key] / r['solve_s']:.2f}"
     s = r["singularities"]
@@ -149,8 +155,9 @@ for r in rows:
     rss = f"{r['max_rss_mib']:.0f}"
     if "max_rss_mib_per_rank" in r:
         rss = " + ".join(f"{x['max_rss_mib']:.0f}" for x in r["per_rank"])
-    name = r["backend"] + (f" x{r['ranks']}" if r["ranks"] else "") + (" (compare)" if "compare" in r["run"] else "")
-    lines.append(f"| {r['vertices']} | {name} | {r['solve_s']:.2f} | {r['wall_s']:.2f} | {r['cpu_s']:.2f} | {su} | "
+    name = r["backend"] + (f" x{r['ranks']}" if r["ranks"] else "") + (" (compare)" if "compare" in r["run"] else "") + (" (gamg)" if "gamg" in r["run"] else "")
+    vr = f"{r['solve_s'] / ref[r['vertices']]:.2f}x" if r["vertices"] in ref else ""
+    lines.append(f"| {r['vertices']} | {name} | {r['solve_s']:.2f} | {r['wall_s']:.2f} | {r['cpu_s']:.2f} | {su} | {vr} | "
                  f"{r['newton']} | {r['cg']} | {sing} | {r['final_energy']['u']:.9g} | {rss} |")
 open(out + ".md", "w").write("\n".join(lines) + "\n")
 print("\n".join(lines))

@@ -36,12 +36,13 @@
  * same sums (and max / min) for its host values on a part (solver/distributed.c:
  * Dirichlet counts, median |z|, singular triangles).
  *
- * Linear solves (op linear_solve): NEWTON is copied into a MATMPIBAIJ
- * (AIJ, block size 2: GAMG needs AIJ) when it changed, then KSPCG (unpreconditioned residual norm) with
- * PCGAMG and the near null space [z, iz] of the Newton iterate (precond AMG;
- * the default constant blocks when the matrix has no penalty: guiding field,
- * naive PGP). With precond Jacobi the backend has no linear_solve op: the
- * drivers' block-Jacobi CG runs on its fused ops (one rank: the reference
+ * Linear solves: precond AMG (the default), glpgp's aggregation multigrid on
+ * each rank's rows (the amg_* ops, petsc_amg.c) under the drivers' flexible
+ * CG: one rank is the reference backend's multigrid bit for bit. With
+ * -glpgp_mg gamg ($PETSC_OPTIONS) the op linear_solve instead (petsc_ksp.c):
+ * NEWTON copied into an AIJ matrix of block size 2, KSPCG with PCGAMG and the
+ * near null space [z, iz] of the Newton iterate. With precond Jacobi the
+ * drivers' block-Jacobi CG runs on the fused ops (one rank: the reference
  * backend's iterates bit for bit). $PETSC_OPTIONS reaches KSP
  * (KSPSetFromOptions: -ksp_view, -pc_gamg_threshold, ...).
  *
@@ -159,7 +160,7 @@ glpgp_status glpgp_petsc_reduce_sum(pimpl *p, double *v, int n)
 /* ---- ghost exchange --------------------------------------------------------- */
 
 /* xf[k] <- x at the owned and ghost vertices (other entries stale) */
-static glpgp_status load_ghosted(pimpl *p, const glpgp_vec *x, int k)
+glpgp_status glpgp_petsc_load_ghosted(pimpl *p, const glpgp_vec *x, int k)
 {
     const PetscScalar *a;
     PCHK(VecGetArrayRead(x->v, &a));
@@ -195,6 +196,7 @@ static void p_free_system(pimpl *p)
     if (p->A) MatDestroy(&p->A);
     if (p->ksp) KSPDestroy(&p->ksp);
     if (p->nn) VecDestroy(&p->nn);
+    glpgp_petsc_amg_free(p);
     p->wbuf = p->size_ = p->quadb = p->newtonb = p->dinvb = NULL;
     p->dir = NULL;
     p->ghost = p->tcount = p->rcounts = p->rdispls = NULL;
@@ -318,12 +320,15 @@ static glpgp_status p_vec_create(glpgp_backend *b, size_t n, glpgp_vec **out)
 {
     pimpl *p = PI(b);
     *out = NULL;
-    if (!p->sys || n != (size_t)2 * p->sys->nv)
-        return GLPGP_FAIL(GLPGP_ERR_UNSUPPORTED, "the petsc backend has vectors of 2 nv doubles only (asked %zu)", n);
+    if (!p->sys) return GLPGP_FAIL(GLPGP_ERR_ARG, "vec_create before setup");
+    /* 2 nv doubles: a distributed vector of the owned unknowns; any other
+     * length: a sequential one of this rank alone (coarse multigrid levels) */
     glpgp_vec *v = NULL;
     GLPGP_CHECK(glpgp_calloc(1, sizeof *v, &v));
-    PetscErrorCode pe = VecCreateMPI(PETSC_COMM_WORLD, (PetscInt)2 * (p->hi - p->lo), PETSC_DETERMINE, &v->v);
-    if (!pe) pe = VecSetBlockSize(v->v, 2);
+    v->local = n != (size_t)2 * p->sys->nv;
+    PetscErrorCode pe = v->local ? VecCreateSeq(PETSC_COMM_SELF, (PetscInt)n, &v->v)
+                                 : VecCreateMPI(PETSC_COMM_WORLD, (PetscInt)2 * (p->hi - p->lo), PETSC_DETERMINE, &v->v);
+    if (!pe && !v->local) pe = VecSetBlockSize(v->v, 2);
     if (!pe) pe = VecSet(v->v, 0.0);
     if (pe) {
         if (v->v) VecDestroy(&v->v);
@@ -347,8 +352,11 @@ static glpgp_status p_vec_write(glpgp_backend *b, glpgp_vec *v, const double *h)
 {
     pimpl *p = PI(b);
     PetscScalar *a;
+    PetscInt n;
+    PCHK(VecGetLocalSize(v->v, &n));
     PCHK(VecGetArray(v->v, &a));
-    memcpy(a, h + 2 * (size_t)p->lo, (size_t)2 * (p->hi - p->lo) * sizeof(double));
+    if (v->local) memcpy(a, h, (size_t)n * sizeof(double));
+    else memcpy(a, h + 2 * (size_t)p->lo, (size_t)2 * (p->hi - p->lo) * sizeof(double));
     PCHK(VecRestoreArray(v->v, &a));
     return GLPGP_OK;
 }
@@ -356,8 +364,17 @@ static glpgp_status p_vec_write(glpgp_backend *b, glpgp_vec *v, const double *h)
 static glpgp_status p_vec_read(glpgp_backend *b, const glpgp_vec *v, double *h)
 {
     pimpl *p = PI(b);
+    if (v->local) {
+        PetscInt n;
+        const PetscScalar *a;
+        PCHK(VecGetLocalSize(v->v, &n));
+        PCHK(VecGetArrayRead(v->v, &a));
+        memcpy(h, a, (size_t)n * sizeof(double));
+        PCHK(VecRestoreArrayRead(v->v, &a));
+        return GLPGP_OK;
+    }
     if (p->gid) { /* a part: the owned and ghost values, one ghost scatter */
-        GLPGP_CHECK(load_ghosted(p, v, 0));
+        GLPGP_CHECK(glpgp_petsc_load_ghosted(p, v, 0));
         memcpy(h, p->xf[0], (size_t)2 * p->sys->nv * sizeof(double));
         return GLPGP_OK;
     }
@@ -435,7 +452,7 @@ static glpgp_status p_dot(glpgp_backend *b, const glpgp_vec *x, const glpgp_vec 
     double s = glpgp_range_dot(0, (long)n, xa, ya);
     PCHK(VecRestoreArrayRead(y->v, &ya));
     PCHK(VecRestoreArrayRead(x->v, &xa));
-    GLPGP_CHECK(glpgp_petsc_reduce_sum(p, &s, 1));
+    if (!x->local) GLPGP_CHECK(glpgp_petsc_reduce_sum(p, &s, 1));
     p->s[slot] = s;
     return GLPGP_OK;
 }
@@ -482,7 +499,7 @@ static glpgp_status p_assemble_newton(glpgp_backend *b, const glpgp_vec *xv, dou
     pimpl *p = PI(b);
     const glpgp_system *sys = p->sys;
     const glpgp_mesh *m = sys->mesh;
-    GLPGP_CHECK(load_ghosted(p, xv, 0));
+    GLPGP_CHECK(glpgp_petsc_load_ghosted(p, xv, 0));
     /* NEWTON <- QUAD + penalty Hessian (Dirichlet rows/cols -> identity);
      * DINV_i <- inverse of the 2x2 diagonal block, owned rows */
     double bad = -1.0;
@@ -527,7 +544,7 @@ static glpgp_status p_gradient(glpgp_backend *b, const glpgp_vec *xv, double inv
     pimpl *p = PI(b);
     const glpgp_system *sys = p->sys;
     const glpgp_mesh *m = sys->mesh;
-    GLPGP_CHECK(load_ghosted(p, xv, 0));
+    GLPGP_CHECK(glpgp_petsc_load_ghosted(p, xv, 0));
     const double *x = p->xf[0];
     /* g <- QUAD x + grad P (0 at Dirichlet vertices);  E = 1/2 x.QUAD x;  P = sum_t P_t */
     PetscScalar *ga;
@@ -567,7 +584,7 @@ static glpgp_status spmv_rows(pimpl *p, const double *M, int k, const glpgp_vec 
 static glpgp_status p_energy(glpgp_backend *b, const glpgp_vec *xv, double inv4e2, glpgp_vec *work)
 {
     pimpl *p = PI(b);
-    GLPGP_CHECK(load_ghosted(p, xv, 0));
+    GLPGP_CHECK(glpgp_petsc_load_ghosted(p, xv, 0));
     /* work <- QUAD x;  E = 1/2 x.work;  P = sum_t P_t */
     double e[2];
     GLPGP_CHECK(spmv_rows(p, QUAD(p), 0, work, 1, &e[0]));
@@ -581,7 +598,7 @@ static glpgp_status p_energy(glpgp_backend *b, const glpgp_vec *xv, double inv4e
 static glpgp_status p_spmv(glpgp_backend *b, int matrix, const glpgp_vec *x, glpgp_vec *y)
 {
     pimpl *p = PI(b);
-    GLPGP_CHECK(load_ghosted(p, x, 0));
+    GLPGP_CHECK(glpgp_petsc_load_ghosted(p, x, 0));
     /* y <- M x */
     return spmv_rows(p, matrix == GLPGP_MAT_QUAD ? QUAD(p) : NEWT(p), 0, y, 0, NULL);
 }
@@ -610,7 +627,7 @@ static glpgp_status p_cg_precond(glpgp_backend *b, const glpgp_vec *r, glpgp_vec
 static glpgp_status p_cg_spmv_dot(glpgp_backend *b, const glpgp_vec *pv, glpgp_vec *q)
 {
     pimpl *p = PI(b);
-    GLPGP_CHECK(load_ghosted(p, pv, 0));
+    GLPGP_CHECK(glpgp_petsc_load_ghosted(p, pv, 0));
     /* q <- N p;  s[PQ] <- p.q */
     double s;
     GLPGP_CHECK(spmv_rows(p, NEWT(p), 0, q, 1, &s));
@@ -681,38 +698,53 @@ static glpgp_status p_reduce(glpgp_backend *b, double *v, int n, int op)
     return GLPGP_OK;
 }
 
-static const glpgp_backend_ops petsc_ops = {
-    .name = "petsc",
-    .destroy = p_destroy,
-    .setup = p_setup,
-    .vec_create = p_vec_create,
-    .vec_destroy = p_vec_destroy,
-    .vec_write = p_vec_write,
-    .vec_read = p_vec_read,
-    .copy = p_copy,
-    .axpby = p_axpby,
-    .dot = p_dot,
-    .get_scalars = p_get_scalars,
-    .set_field = p_set_field,
-    .set_size = p_set_size,
-    .assemble_quadratic = p_assemble_quadratic,
-    .assemble_newton = p_assemble_newton,
-    .gradient = p_gradient,
-    .energy = p_energy,
-    .spmv = p_spmv,
-    .cg_precond = p_cg_precond,
-    .cg_spmv_dot = p_cg_spmv_dot,
-    .cg_update = p_cg_update,
-    .cg_direction = p_cg_direction,
-    .linear_solve = glpgp_petsc_linear_solve,
-    .reduce = p_reduce,
-    .trial_point = p_trial_point,
+/* the ops every preconditioner shares */
+#define PETSC_COMMON_OPS                                                                                \
+    .name = "petsc", .destroy = p_destroy, .setup = p_setup, .vec_create = p_vec_create,            \
+    .vec_destroy = p_vec_destroy, .vec_write = p_vec_write, .vec_read = p_vec_read, .copy = p_copy, \
+    .axpby = p_axpby, .dot = p_dot, .get_scalars = p_get_scalars, .set_field = p_set_field,        \
+    .set_size = p_set_size, .assemble_quadratic = p_assemble_quadratic,                            \
+    .assemble_newton = p_assemble_newton, .gradient = p_gradient, .energy = p_energy, .spmv = p_spmv, \
+    .cg_precond = p_cg_precond, .cg_spmv_dot = p_cg_spmv_dot, .cg_update = p_cg_update,            \
+    .cg_direction = p_cg_direction, .reduce = p_reduce, .trial_point = p_trial_point
+
+/* --precond amg (the default): glpgp's own multigrid on each rank's rows
+ * (petsc_amg.c) under the drivers' flexible CG, no linear_solve op */
+static const glpgp_backend_ops petsc_ops_mg = {
+    PETSC_COMMON_OPS,
+    .amg_setup = glpgp_petsc_amg_setup,
+    .amg_values = glpgp_petsc_amg_values,
+    .amg_coarse_invert = glpgp_petsc_amg_coarse_invert,
+    .amg_smooth = glpgp_petsc_amg_smooth,
+    .amg_restrict = glpgp_petsc_amg_restrict,
+    .amg_prolong = glpgp_petsc_amg_prolong,
+    .amg_coarse_solve = glpgp_petsc_amg_coarse_solve,
+    .amg_spmv_dots = glpgp_petsc_amg_spmv_dots,
+    .amg_dots = glpgp_petsc_amg_dots,
+    .amg_axpby = glpgp_petsc_amg_axpby,
+    .amg_kcombine = glpgp_petsc_amg_kcombine,
+    .amg_get_scalars = glpgp_petsc_amg_get_scalars,
 };
+
+/* --precond amg with -glpgp_mg gamg: KSPCG + PCGAMG (petsc_ksp.c) */
+static const glpgp_backend_ops petsc_ops_gamg = {PETSC_COMMON_OPS, .linear_solve = glpgp_petsc_linear_solve};
 
 /* --precond jacobi: no linear_solve op, so the drivers' own block-Jacobi CG
  * (solver/cg.c) runs on the fused ops above: the reference backend's
  * iteration, bit for bit on one rank */
-static glpgp_backend_ops petsc_ops_jacobi;
+static const glpgp_backend_ops petsc_ops_jacobi = {PETSC_COMMON_OPS};
+
+/* -glpgp_mg glpgp|gamg ($PETSC_OPTIONS): *gamg <- 1 for GAMG */
+static glpgp_status mg_choice(int *gamg)
+{
+    char mode[32] = "glpgp";
+    PetscBool set = PETSC_FALSE;
+    PCHK(PetscOptionsGetString(NULL, NULL, "-glpgp_mg", mode, sizeof mode, &set));
+    if (strcmp(mode, "glpgp") && strcmp(mode, "gamg"))
+        return GLPGP_FAIL(GLPGP_ERR_ARG, "-glpgp_mg '%s': expected glpgp or gamg", mode);
+    *gamg = !strcmp(mode, "gamg");
+    return GLPGP_OK;
+}
 
 glpgp_status glpgp_petsc_m_create(int precond, glpgp_backend **out)
 {
@@ -728,15 +760,16 @@ glpgp_status glpgp_petsc_m_create(int precond, glpgp_backend **out)
     }
     p->rank = glpgp_petsc_m_rank();
     p->size = glpgp_petsc_m_size();
+    int gamg = precond == GLPGP_PETSC_PRECOND_GAMG;
+    if (gamg) precond = GLPGP_PRECOND_AMG;
     p->precond = precond;
     b->impl = p;
-    if (precond == GLPGP_PRECOND_JACOBI) {
-        petsc_ops_jacobi = petsc_ops;
-        petsc_ops_jacobi.linear_solve = NULL;
-        b->ops = &petsc_ops_jacobi;
-    } else {
-        b->ops = &petsc_ops;
+    if (!gamg && precond != GLPGP_PRECOND_JACOBI && (st = mg_choice(&gamg)) != GLPGP_OK) {
+        free(p);
+        free(b);
+        return st;
     }
+    b->ops = precond == GLPGP_PRECOND_JACOBI ? &petsc_ops_jacobi : gamg ? &petsc_ops_gamg : &petsc_ops_mg;
     *out = b;
     return GLPGP_OK;
 }

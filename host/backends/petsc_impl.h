@@ -20,6 +20,7 @@
 
 struct glpgp_vec {
     Vec v;
+    int local; /* 1: a sequential Vec of this rank alone (a coarse multigrid level) */
 };
 
 typedef struct pimpl {
@@ -53,6 +54,7 @@ typedef struct pimpl {
     int ksp_nn;
     int rebuild;                /* -glpgp_gamg_rebuild: 1 step, 2 level, 3 oscillator (0: not read yet) */
     int precond;
+    struct petsc_amg *amg;      /* glpgp's multigrid on this rank's rows (petsc_amg.c), or NULL */
     double s[GLPGP_NSLOTS];
 } pimpl;
 
@@ -72,6 +74,29 @@ int glpgp_petsc_m_size(void);
 glpgp_status glpgp_petsc_reduce_sum(pimpl *p, double *v, int n);
 glpgp_status glpgp_petsc_m_create(int precond, glpgp_backend **out);
 void glpgp_petsc_m_local_info(const glpgp_backend *b, int *owned, int *ghosts);
+
+/* xf[k] <- x at the owned and ghost vertices (one VecScatter; petsc.c) */
+glpgp_status glpgp_petsc_load_ghosted(pimpl *p, const glpgp_vec *x, int k);
+
+/* the multigrid ops (petsc_amg.c) */
+void glpgp_petsc_amg_free(pimpl *p);
+glpgp_status glpgp_petsc_amg_setup(glpgp_backend *b, const glpgp_amg_layout *lay);
+glpgp_status glpgp_petsc_amg_values(glpgp_backend *b, const glpgp_vec *const *frames);
+glpgp_status glpgp_petsc_amg_coarse_invert(glpgp_backend *b, int spd);
+glpgp_status glpgp_petsc_amg_smooth(glpgp_backend *b, int l, const glpgp_vec *r, const glpgp_vec *x, glpgp_vec *y);
+glpgp_status glpgp_petsc_amg_restrict(glpgp_backend *b, int l, const glpgp_vec *r, const glpgp_vec *x,
+                                      glpgp_vec *rc);
+glpgp_status glpgp_petsc_amg_prolong(glpgp_backend *b, int l, const glpgp_vec *ec, glpgp_vec *x);
+glpgp_status glpgp_petsc_amg_coarse_solve(glpgp_backend *b, const glpgp_vec *r, glpgp_vec *x);
+glpgp_status glpgp_petsc_amg_spmv_dots(glpgp_backend *b, int l, const glpgp_vec *x, glpgp_vec *y,
+                                       const glpgp_vec *u, const glpgp_vec *w, int slot);
+glpgp_status glpgp_petsc_amg_dots(glpgp_backend *b, const glpgp_vec *x, const glpgp_vec *u, const glpgp_vec *w,
+                                  int slot);
+glpgp_status glpgp_petsc_amg_axpby(glpgp_backend *b, glpgp_amg_coef ca, const glpgp_vec *x, glpgp_amg_coef cc,
+                                   glpgp_vec *y);
+glpgp_status glpgp_petsc_amg_kcombine(glpgp_backend *b, const glpgp_vec *v, const glpgp_vec *d, glpgp_vec *e,
+                                      int slot);
+glpgp_status glpgp_petsc_amg_get_scalars(glpgp_backend *b, double *out, int n);
 
 /* op linear_solve (petsc_ksp.c) */
 glpgp_status glpgp_petsc_linear_solve(glpgp_backend *b, const glpgp_vec *rhs, glpgp_vec *x, double rtol, int maxit,

@@ -1,5 +1,6 @@
-/* backends/petsc_ksp.c: the PETSc backend's linear solve (op linear_solve):
- * NEWTON as a MATMPIBAIJ matrix (built lazily), KSP with GAMG or Jacobi,
+/* backends/petsc_ksp.c: the PETSc backend's linear solve with PETSc's GAMG
+ * (op linear_solve, -glpgp_mg gamg; the default is glpgp's multigrid,
+ * petsc_amg.c): NEWTON as an AIJ matrix (built lazily), KSPCG with GAMG,
  * the hierarchy kept across Newton steps, eps levels or oscillators as
  * -glpgp_gamg_rebuild says. The rest of the backend: petsc.c
  * (petsc_impl.h). */

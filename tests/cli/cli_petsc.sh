@@ -10,10 +10,12 @@
 #    both: the same Jacobi-PCG driver) on a disk and an annulus: the same
 #    singularity counts, final energies within 1e-6 relative; on one rank
 #    the result file is byte-identical to the reference's;
-#  - the default preconditioner (KSPCG + GAMG) on 2 ranks: same counts,
-#    energies within 1e-6; with the line-search Newton (GAMG with the near
-#    null space [z, iz] in every step): same counts, energies within 1e-3
-#    (another inexact path, a neighbouring minimum: see below);
+#  - the default preconditioner (glpgp's multigrid on each rank's rows;
+#    tests/cli/cli_petsc_mg.sh checks it closer) on 2 ranks: same counts,
+#    energies within 1e-6; KSPCG + GAMG (-glpgp_mg gamg) with the line-search
+#    Newton (GAMG with the near null space [z, iz] in every step): same
+#    counts, energies within 1e-3 (another inexact path, a neighbouring
+#    minimum: see below);
 #  - 3 ranks on their parts of the mesh with the radial field, and 2 ranks
 #    with a per-vertex field file (the whole mesh on every rank): the
 #    reference's counts, energies within 1e-6;
@@ -120,12 +122,10 @@ sys.exit(0 if a[i:j] == r[i:j] else 1)
 EOF
 fi
 
-# the default preconditioner with the trust region, 2 ranks: KSPCG + GAMG
-# solves the guiding field and the naive PGP systems and the trust region's
-# multigrid candidate steps, block-Jacobi Steihaug CG the region's steps (the
-# uniform size: with the chord budget's local size on this disk the two end
-# in neighbouring minima, a singularity pair apart): energies within 1e-6
-# (measured 2e-9 relative on this disk)
+# the default preconditioner with the trust region, 2 ranks: glpgp's
+# multigrid on each rank's rows (the uniform size: with the chord budget's
+# local size on this disk GAMG and the reference ended in neighbouring
+# minima, a singularity pair apart): energies within 1e-6
 run_ok "disk reference default" solve shape:disk:2500 --backend reference --size-chord-area 0 \
     --size-chord-depth 0 --stats ref_amg.json
 mpi amg 2 solve shape:disk:2500 --backend petsc --size-chord-area 0 --size-chord-depth 0 --stats p2_amg.json
@@ -141,19 +141,20 @@ fi
 # the same counts, energies within 1e-3
 run_ok "disk reference line search" solve shape:disk:2500 --backend reference --globalization line-search \
     --stats ref_ls.json
-mpi gamg 2 solve shape:disk:2500 --backend petsc --globalization line-search --stats p2_ls.json
+PETSC_OPTIONS="-glpgp_mg gamg" mpi gamg 2 solve shape:disk:2500 --backend petsc --globalization line-search \
+    --stats p2_ls.json
 [ -f p2_ls.json ] && compare p2_ls.json ref_ls.json "disk, 2 ranks, GAMG line search" 1e-3
 # GAMG's rebuild modes (-glpgp_gamg_rebuild: every step, per eps level, per
 # oscillator): the same state (singularity counts; energies within 1e-3, as
 # above: another preconditioner, other inexact steps); a bad mode fails every
 # rank with one line
 for mode in step oscillator; do
-    PETSC_OPTIONS="-glpgp_gamg_rebuild $mode" mpi "gamg_$mode" 2 solve shape:disk:2500 --backend petsc \
+    PETSC_OPTIONS="-glpgp_mg gamg -glpgp_gamg_rebuild $mode" mpi "gamg_$mode" 2 solve shape:disk:2500 --backend petsc \
         --size-chord-area 0 --size-chord-depth 0 --stats "p2_$mode.json"
-    [ -f "p2_$mode.json" ] && [ -f p2_amg.json ] && compare "p2_$mode.json" p2_amg.json "GAMG rebuild $mode" 1e-3
+    [ -f "p2_$mode.json" ] && [ -f ref_amg.json ] && compare "p2_$mode.json" ref_amg.json "GAMG rebuild $mode" 1e-3
 done
 runs=$((runs + 1))
-PETSC_OPTIONS="-glpgp_gamg_rebuild sometimes" timeout 240 "${MPIRUN[@]}" -n 2 "$GLPGP" solve shape:disk:2500 \
+PETSC_OPTIONS="-glpgp_mg gamg -glpgp_gamg_rebuild sometimes" timeout 240 "${MPIRUN[@]}" -n 2 "$GLPGP" solve shape:disk:2500 \
     --backend petsc --quiet >/dev/null 2>err.txt </dev/null
 rc=$?
 [ "$rc" -ne 0 ] && [ "$rc" -ne 124 ] || fail "-glpgp_gamg_rebuild sometimes: exit $rc"

@@ -65,10 +65,12 @@ glpgp_status glpgp_backend_select_stoppable(glpgp_backend_kind kind, int device,
  * the per-row bodies of kernels/rows.h (the reference arithmetic) on the
  * owned rows after a ghost exchange. Scalars are summed in rank order, so
  * every rank takes the same decisions; vec_read returns the owned and ghost
- * values of a part (the whole vector of a whole mesh). Linear solves (op
- * linear_solve): KSPCG with PCGAMG and the near null space [z, iz]
- * (precond AMG) or point-block Jacobi. PETSc options come from
- * $PETSC_OPTIONS (-ksp_view, ...). */
+ * values of a part (the whole vector of a whole mesh). Linear solves:
+ * precond AMG, glpgp's aggregation multigrid on each rank's rows (the amg_*
+ * ops; block Jacobi across ranks) under the drivers' flexible CG, or with
+ * -glpgp_mg gamg KSPCG + PCGAMG with the near null space [z, iz] (op
+ * linear_solve); precond Jacobi, the drivers' block-Jacobi CG. PETSc options
+ * come from $PETSC_OPTIONS (-ksp_view, ...). */
 
 /* Whether this build has the PETSc module. */
 int glpgp_have_petsc(void);
@@ -99,7 +101,9 @@ glpgp_status glpgp_petsc_mesh_recv(glpgp_mesh **out);
  * receives all ranks' back to back in rank order. */
 glpgp_status glpgp_petsc_gather_bytes(const void *mine, size_t bytes, void *out);
 /* The PETSc backend (init first if needed); precond: GLPGP_PRECOND_* of its
- * linear solves (glpgp/solve.h). */
+ * linear solves (glpgp/solve.h), or GLPGP_PETSC_PRECOND_GAMG: KSPCG + GAMG
+ * whatever -glpgp_mg says (the bench's anchor). */
+#define GLPGP_PETSC_PRECOND_GAMG 100
 glpgp_status glpgp_backend_create_petsc(int precond, glpgp_backend **out);
 
 /* One OpenCL device, as listed by `glpgp devices`. */
