@@ -25,9 +25,10 @@
 #    planes, >= 0.3; the xy projection gave negative ones), `figure
 #    --surface` three panels of a surface and one usage error on a planar
 #    input;
-#  - --no-repair on a size the surface cannot carry: an invalid mesh is not
-#    written (exit 3) unless --allow-invalid; with the repair on, the last
-#    resort (triangles split into quads) is valid.
+#  - --no-repair on a size the surface cannot carry (not subdivided for it:
+#    --no-refine): an invalid mesh is not written (exit 3) unless
+#    --allow-invalid; with the repair on, the last resort (triangles split
+#    into quads) is valid.
 # Usage: bash cli_surfquads.sh <path-to-glpgp> <data-dir>
 . "$(dirname "$0")/lib.sh" "$@"
 
@@ -131,12 +132,14 @@ assert abs(h / want - 1) < 0.01, (h, want)
 PY
 run_fail "--faces with --size" 2 "faces.*size|size.*faces" solve shape:sphere:5000 --faces 100 --size 0.3 --quads x.obj
 
-# a size the surface cannot carry (3.5 edges per period): invalid without the repair, the last resort with it
-run 3 "no repair" solve shape:sphere:5000 --backend reference --size 0.2 --no-repair --quads bad.obj
+# a size the surface cannot carry (3.5 edges per period) and not subdivided
+# for (--no-refine): invalid without the repair, the last resort with it
+run 3 "no repair" solve shape:sphere:5000 --backend reference --size 0.2 --no-refine --no-repair --quads bad.obj
 [ ! -e bad.obj ] || fail "an invalid surface mesh was written"
-run_ok "allow invalid" solve shape:sphere:5000 --backend reference --size 0.2 --no-repair --allow-invalid --quads bad.obj
+run_ok "allow invalid" solve shape:sphere:5000 --backend reference --size 0.2 --no-refine --no-repair --allow-invalid \
+    --quads bad.obj
 [ -s bad.obj ] || fail "--allow-invalid: not written"
-run_ok "last resort" solve shape:sphere:5000 --backend reference --size 0.2 --quads lr.obj --stats lr.json
+run_ok "last resort" solve shape:sphere:5000 --backend reference --size 0.2 --no-refine --quads lr.obj --stats lr.json
 python3 - <<'PY' || fail "last resort"
 import json
 q = json.load(open("lr.json"))["quads"]
