@@ -432,6 +432,27 @@ static double flat_apply(const glpgp_quadmesh *q, const flat_fix *F, double *xy,
     return fmin(worst, glpgp_shape_strip_halves(q, F, s0, s0[1] + F->len[1] + 1, xy, fv, fo, &w));
 }
 
+glpgp_status glpgp_shape_arrays_alloc(const glpgp_quadmesh *q, int nv, int nf, shape_arrays *N)
+{
+    memset(N, 0, sizeof *N);
+    glpgp_status st = glpgp_malloc((size_t)nv + 1, 2 * sizeof(double), &N->xy);
+    if (st == GLPGP_OK) st = glpgp_malloc((size_t)4 * nf + 1, sizeof(int), &N->fv);
+    if (st == GLPGP_OK) st = glpgp_malloc((size_t)nf + 1, sizeof(int), &N->fs);
+    if (st == GLPGP_OK) st = glpgp_malloc((size_t)nf + 1, 1, &N->fo);
+    if (st == GLPGP_OK) st = glpgp_calloc((size_t)q->nf + 1, 1, &N->cut);
+    return st;
+}
+
+void glpgp_shape_arrays_free(shape_arrays *N)
+{
+    free(N->xy);
+    free(N->fv);
+    free(N->fs);
+    free(N->fo);
+    free(N->cut);
+    memset(N, 0, sizeof *N);
+}
+
 /* Apply F to q when none of its new quads is below SHAPE_FLAT_NEW (*done 1). */
 static glpgp_status flat_commit(glpgp_quadmesh *q, const flat_fix *F, int *done, double *worst)
 {
@@ -439,24 +460,14 @@ static glpgp_status flat_commit(glpgp_quadmesh *q, const flat_fix *F, int *done,
     *worst = -INFINITY;
     const int nv = q->nv + 3 - F->loop + F->len[0] + F->len[1] + F->ncross;
     const int nf = q->nf + 2 + F->len[0] + F->len[1] + F->ncross;
-    double *xy = NULL;
-    int *fv = NULL, *fs = NULL;
-    unsigned char *fo = NULL, *cut = NULL;
-    glpgp_status st = glpgp_malloc((size_t)nv + 1, 2 * sizeof(double), &xy);
-    if (st == GLPGP_OK) st = glpgp_malloc((size_t)4 * nf + 1, sizeof(int), &fv);
-    if (st == GLPGP_OK) st = glpgp_malloc((size_t)nf + 1, sizeof(int), &fs);
-    if (st == GLPGP_OK) st = glpgp_malloc((size_t)nf + 1, 1, &fo);
-    if (st == GLPGP_OK) st = glpgp_calloc((size_t)q->nf + 1, 1, &cut);
-    if (st == GLPGP_OK) *worst = flat_apply(q, F, xy, fv, fo, cut);
+    shape_arrays N;
+    glpgp_status st = glpgp_shape_arrays_alloc(q, nv, nf, &N);
+    if (st == GLPGP_OK) *worst = flat_apply(q, F, N.xy, N.fv, N.fo, N.cut);
     if (st == GLPGP_OK && *worst > SHAPE_FLAT_NEW) {
-        glpgp_qm_adopt_quads(q, &xy, nv, &fv, &fs, &fo, nf);
+        glpgp_qm_adopt_quads(q, &N.xy, nv, &N.fv, &N.fs, &N.fo, nf);
         *done = 1;
     }
-    free(xy);
-    free(fv);
-    free(fs);
-    free(fo);
-    free(cut);
+    glpgp_shape_arrays_free(&N);
     return st;
 }
 

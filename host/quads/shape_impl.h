@@ -47,6 +47,16 @@ void glpgp_shape_strip_points(const glpgp_quadmesh *q, const flat_fix *F, int nk
 double glpgp_shape_strip_halves(const glpgp_quadmesh *q, const flat_fix *F, const int *s0, int X, double *xy, int *fv,
                                 unsigned char *fo, int *w);
 
+/* The arrays of a changed all-quad mesh (points, corners, face starts and
+ * origins) and a flag per face of the old one (cut or removed). */
+typedef struct shape_arrays {
+    double *xy;
+    int *fv, *fs;
+    unsigned char *fo, *cut;
+} shape_arrays;
+glpgp_status glpgp_shape_arrays_alloc(const glpgp_quadmesh *q, int nv, int nf, shape_arrays *N);
+void glpgp_shape_arrays_free(shape_arrays *N);
+
 /* A change applied by commit, the mesh smoothed, kept only when better
  * (shape.c: by the raw measure with m NULL, by the corners' measure with m). */
 typedef glpgp_status (*shape_commit)(glpgp_quadmesh *q, const void *fix, int *done, double *worst);

@@ -295,25 +295,15 @@ static glpgp_status tip_commit(glpgp_quadmesh *q, const void *fix, int *done, do
     *done = 0;
     *worst = -INFINITY;
     int nv = q->nv + 4 + X->F.len[0] + X->F.ncross, nf = q->nf + 3 + X->F.len[0] + X->F.ncross;
-    double *xy = NULL;
-    int *fv = NULL, *fs = NULL;
-    unsigned char *fo = NULL, *cut = NULL;
-    glpgp_status st = glpgp_malloc((size_t)nv + 1, 2 * sizeof(double), &xy);
-    if (st == GLPGP_OK) st = glpgp_malloc((size_t)4 * nf + 1, sizeof(int), &fv);
-    if (st == GLPGP_OK) st = glpgp_malloc((size_t)nf + 1, sizeof(int), &fs);
-    if (st == GLPGP_OK) st = glpgp_malloc((size_t)nf + 1, 1, &fo);
-    if (st == GLPGP_OK) st = glpgp_calloc((size_t)q->nf + 1, 1, &cut);
-    if (st == GLPGP_OK) *worst = tip_apply(q, X, xy, fv, fo, cut, &nf);
-    if (st == GLPGP_OK && *worst > SHAPE_FLAT_NEW) st = drop_unused(xy, &nv, fv, nf);
+    shape_arrays N;
+    glpgp_status st = glpgp_shape_arrays_alloc(q, nv, nf, &N);
+    if (st == GLPGP_OK) *worst = tip_apply(q, X, N.xy, N.fv, N.fo, N.cut, &nf);
+    if (st == GLPGP_OK && *worst > SHAPE_FLAT_NEW) st = drop_unused(N.xy, &nv, N.fv, nf);
     if (st == GLPGP_OK && *worst > SHAPE_FLAT_NEW) {
-        glpgp_qm_adopt_quads(q, &xy, nv, &fv, &fs, &fo, nf);
+        glpgp_qm_adopt_quads(q, &N.xy, nv, &N.fv, &N.fs, &N.fo, nf);
         *done = 1;
     }
-    free(xy);
-    free(fv);
-    free(fs);
-    free(fo);
-    free(cut);
+    glpgp_shape_arrays_free(&N);
     return st;
 }
 
