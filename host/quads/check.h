@@ -44,6 +44,13 @@ void glpgp_qcheck_free(qcheck *c);
  * one of its vertices (a face there has a corner of at most alpha), 1 when
  * it touches none. dm NULL: all 1. */
 glpgp_status glpgp_qcheck_corner_bound(const glpgp_quadmesh *q, const glpgp_mesh *dm, double h, double *bound);
+/* A face of scaled Jacobian sj below limit where its corner bound does not
+ * force it (sj under 0.9 of the bound): the report's "below the goal that
+ * no corner forces", the repair's and the shape pass's poor faces. */
+static inline int glpgp_qcheck_unforced_below(double sj, double bound, double limit)
+{
+    return sj < limit && sj < 0.9 * bound;
+}
 
 /* ---- small geometry shared with repair.c: the core's (glpgp/internal/) --- */
 

@@ -267,7 +267,7 @@ static glpgp_status origin_stats(const glpgp_quadmesh *q, const glpgp_mesh *doma
         o->quads_by_origin[org]++;
         double sj = glpgp_quadmesh_face_sj(q, f);
         o->sj_min_corner = fmin(o->sj_min_corner, sj / bound[f]);
-        if (sj < GLPGP_QUADS_SJ_GOAL && sj < 0.9 * bound[f]) o->below_sj_goal++;
+        if (glpgp_qcheck_unforced_below(sj, bound[f], GLPGP_QUADS_SJ_GOAL)) o->below_sj_goal++;
     }
     if (!(o->sj_min_corner < INFINITY)) o->sj_min_corner = NAN;
     int rep = o->quads_by_origin[GLPGP_QFACE_PAVED] + o->quads_by_origin[GLPGP_QFACE_FALLBACK];

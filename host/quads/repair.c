@@ -37,6 +37,7 @@
 #include "repair.h"
 #include "geom.h"
 #include "qcut.h"
+#include "check.h"
 #include "glpgp/quads.h"
 #include "glpgp/util.h"
 
@@ -737,7 +738,7 @@ static glpgp_status poor_faces(const glpgp_quadmesh *q, const glpgp_mesh *m, dou
         double sj = glpgp_quadmesh_face_sj(q, f);
         flags[f] = 0;
         *worst = fmin(*worst, sj / bound[f]);
-        if (sj < GLPGP_QUADS_SJ_GOAL && sj < 0.9 * bound[f]) {
+        if (glpgp_qcheck_unforced_below(sj, bound[f], GLPGP_QUADS_SJ_GOAL)) {
             flags[f] = QF_FLAT;
             (*npoor)++;
         }

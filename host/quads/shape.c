@@ -522,8 +522,8 @@ static glpgp_status score_mesh(const glpgp_quadmesh *q, const glpgp_mesh *m, dou
     for (int f = 0; f < q->nf && st == GLPGP_OK; f++) {
         double sj = glpgp_poly_min_sj(q->xy, q->face_vert + q->face_start[f], q->face_start[f + 1] - q->face_start[f]);
         sc->worst = fmin(sc->worst, sj / bound[f]);
-        sc->below += sj < GLPGP_QUADS_SJ_GOAL && sj < 0.9 * bound[f];
-        sc->below_half += sj < SHAPE_BELOW && sj < 0.9 * bound[f];
+        sc->below += glpgp_qcheck_unforced_below(sj, bound[f], GLPGP_QUADS_SJ_GOAL);
+        sc->below_half += glpgp_qcheck_unforced_below(sj, bound[f], SHAPE_BELOW);
     }
     free(bound);
     if (st == GLPGP_OK) st = irregular_interior(q, &sc->irregular);

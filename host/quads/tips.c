@@ -24,6 +24,7 @@
  * of them better. */
 #include "shape_impl.h"
 #include "geom.h"
+#include "check.h"
 #include "glpgp/internal/geom2.h"
 
 #include <math.h>
@@ -106,7 +107,7 @@ static int tip_worth(const glpgp_quadmesh *q, const vstar *S, const tip_fix *X, 
     for (int k = 0; k < X->n; k++) {
         int f = X->list[k];
         double sj = glpgp_poly_min_sj(q->xy, q->face_vert + 4 * f, 4);
-        if (sj < SHAPE_BELOW && sj < 0.9 * (f == X->f0 ? bound : 1.0)) return 1;
+        if (glpgp_qcheck_unforced_below(sj, f == X->f0 ? bound : 1.0, SHAPE_BELOW)) return 1;
     }
     return tip_irregular(q, S, X, bnext) >= 2;
 }
