@@ -74,7 +74,20 @@ glpgp_status glpgp_osc_summarize(const glpgp_mesh *m, glpgp_osc_result *o)
     double *s = NULL;
     const int nv = m->nv;
     GLPGP_CHECK(glpgp_malloc((size_t)nv, sizeof(double), &s));
-    glpgp_singularities(m, o->z, o->singular, &o->plus, &o->minus);
+    /* glpgp_singularities with each vertex's theta computed once (not once
+     * per triangle corner): the same windings, a sixth of the atan2 calls */
+    for (int i = 0; i < nv; i++) s[i] = glpgp_theta(o->z[2 * i], o->z[2 * i + 1]);
+    int p = 0, q = 0;
+    for (int t = 0; t < m->nt; t++) {
+        const int *v = m->tri + 3 * t;
+        const double th[3] = {s[v[0]], s[v[1]], s[v[2]]};
+        const int w = glpgp_phase_winding(th);
+        if (o->singular) o->singular[t] = (signed char)w;
+        p += w > 0;
+        q += w < 0;
+    }
+    o->plus = p;
+    o->minus = q;
     /* min, 10th percentile and median of |z| */
     double mn = INFINITY;
     for (int i = 0; i < nv; i++) {
