@@ -526,7 +526,7 @@ static void chord_error(const glpgp_mesh *m, const double *hb, const double *kap
  * sizes lowered where the chords of the boundary quads would cut too much
  * area or too deep (see the top, step 5). Returns in *ncap the number of
  * values lowered (0: size unchanged). */
-static glpgp_status chord_cap(const glpgp_mesh *m, const int *ptr, const int *adj, const glpgp_options *o, double h,
+static glpgp_status chord_cap(const glpgp_mesh *m, int **ptr, int **adj, const glpgp_options *o, double h,
                               double *size, int *ncap)
 {
     const int nv = m->nv, nb = m->loop_start[m->nloops];
@@ -617,7 +617,8 @@ static glpgp_status chord_cap(const glpgp_mesh *m, const int *ptr, const int *ad
             const int i = m->loop_vertices[p];
             if (capv[i] < HUGE_VAL) slope[i] = fmin(o->size_grading, (h - capv[i]) * fabs(kappa[i]));
         }
-        st = grade(m, ptr, adj, o->size_grading, capv, slope);
+        if (!*ptr) st = vertex_graph(m, ptr, adj);
+        if (st == GLPGP_OK) st = grade(m, *ptr, *adj, o->size_grading, capv, slope);
         for (int i = 0; i < nv && st == GLPGP_OK; i++)
             for (int k = 0; k < 2; k++)
                 if (capv[i] < size[(size_t)k * nv + i]) size[(size_t)k * nv + i] = capv[i];
@@ -703,13 +704,18 @@ static glpgp_status size_feature(const glpgp_mesh *m, const glpgp_options *o, do
                 if (f * h < size[(size_t)k * nv + i]) size[(size_t)k * nv + i] = f * h;
         }
     }
-    GLPGP_CHECK(vertex_graph(m, &ptr, &adj));
-    for (int k = 0; k < 2 && st == GLPGP_OK; k++) st = grade(m, ptr, adj, o->size_grading, size + (size_t)k * nv, NULL);
+    /* the vertex graph (built when first needed): every size still h grades
+     * to itself, so a uniform field and a chord cap that caps nothing need none */
+    int below = 0;
+    for (size_t i = 0; i < (size_t)2 * nv && !below; i++) below = size[i] < h;
+    if (below) st = vertex_graph(m, &ptr, &adj);
+    for (int k = 0; k < 2 && below && st == GLPGP_OK; k++)
+        st = grade(m, ptr, adj, o->size_grading, size + (size_t)k * nv, NULL);
     if (st == GLPGP_OK && (o->size_chord_area > 0.0 || o->size_chord_depth > 0.0)) {
         /* step 5: the chord caps, min(graded, capped): both grow at most g per unit length
          * along mesh edges, so the result does too (no second gradation) */
         int ncap = 0;
-        st = chord_cap(m, ptr, adj, o, h, size, &ncap);
+        st = chord_cap(m, &ptr, &adj, o, h, size, &ncap);
     }
     free(ptr);
     free(adj);
@@ -760,13 +766,16 @@ static int size_clamp_to_mesh(const glpgp_mesh *m, double R, double h, double *s
     double *l = NULL;
     int raised = 0;
     if (glpgp_calloc((size_t)nv, sizeof(double), &l) != GLPGP_OK) return -1;
+    /* l_i^2 first, one square root per vertex */
     for (int t = 0; t < m->nt; t++)
         for (int a = 0; a < 3; a++) {
             const int i = m->tri[3 * t + a], j = m->tri[3 * t + (a + 1) % 3];
-            const double e = hypot(m->xy[2 * j] - m->xy[2 * i], m->xy[2 * j + 1] - m->xy[2 * i + 1]);
+            const double dx = m->xy[2 * j] - m->xy[2 * i], dy = m->xy[2 * j + 1] - m->xy[2 * i + 1];
+            const double e = dx * dx + dy * dy;
             if (e > l[i]) l[i] = e;
             if (e > l[j]) l[j] = e;
         }
+    for (int i = 0; i < nv; i++) l[i] = sqrt(l[i]);
     for (int k = 0; k < 2; k++)
         for (int i = 0; i < nv; i++) {
             const double lo = fmin(h, R * l[i]);
@@ -822,12 +831,14 @@ glpgp_status glpgp_size_compute(const glpgp_mesh *m, const glpgp_options *o, dou
 double glpgp_size_tri_resolution(const glpgp_mesh *m, const double *size, int t, double *lmax)
 {
     const int *v = m->tri + 3 * t;
-    double L = 0.0, s = HUGE_VAL;
+    double L2 = 0.0, s = HUGE_VAL;
     for (int a = 0; a < 3; a++) {
         const int i = v[a], j = v[(a + 1) % 3];
-        L = fmax(L, hypot(m->xy[2 * j] - m->xy[2 * i], m->xy[2 * j + 1] - m->xy[2 * i + 1]));
+        const double dx = m->xy[2 * j] - m->xy[2 * i], dy = m->xy[2 * j + 1] - m->xy[2 * i + 1];
+        L2 = fmax(L2, dx * dx + dy * dy);
         s = fmin(s, fmin(size[i], size[m->nv + i]));
     }
+    const double L = sqrt(L2);
     if (lmax) *lmax = L;
     return s / L;
 }
