@@ -56,8 +56,7 @@ void glpgp_osc_work_free(osc_work *w)
 /* median |z| of z (2*nv; scratch: nv doubles) */
 static double zabs_median(const double *z, int nv, double *scratch)
 {
-    for (int i = 0; i < nv; i++) scratch[i] = hypot(z[2 * i], z[2 * i + 1]);
-    return glpgp_median_double(scratch, (size_t)nv);
+    return glpgp_zabs_median(z, nv, scratch, NULL, NULL);
 }
 
 /* *out <- median |z| of the mesh m (a part: over all ranks) */

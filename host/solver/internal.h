@@ -86,6 +86,11 @@ int glpgp_amg_try_update_spd(glpgp_amg *a, const glpgp_vec *x, const char *what)
 /* qsort comparator: doubles in ascending order (solver/result.c) */
 int glpgp_cmp_double(const void *a, const void *b);
 
+/* min, 10th percentile (p10 may be NULL) and median of |z| over nv complex
+ * values (scratch: nv doubles), selected on |z|^2 (no hypot per value; the
+ * same order up to rounding), one square root per result */
+double glpgp_zabs_median(const double *z, int nv, double *scratch, double *min, double *p10);
+
 /* ---- one rank's part of a distributed mesh (m->part; solver/distributed.c):
  * global values through the backend's reduce op, the same on every rank ---- */
 /* *n <- the number of owned vertices with flag set, over all ranks */

@@ -88,17 +88,28 @@ glpgp_status glpgp_osc_summarize(const glpgp_mesh *m, glpgp_osc_result *o)
     }
     o->plus = p;
     o->minus = q;
-    /* min, 10th percentile and median of |z| */
-    double mn = INFINITY;
-    for (int i = 0; i < nv; i++) {
-        s[i] = hypot(o->z[2 * i], o->z[2 * i + 1]);
-        if (s[i] < mn) mn = s[i];
-    }
-    o->zabs_min = mn;
-    o->zabs_p10 = glpgp_select_double(s, (size_t)nv, (size_t)((nv - 1) * 0.1));
-    o->zabs_median = glpgp_median_double(s, (size_t)nv);
+    o->zabs_median = glpgp_zabs_median(o->z, nv, s, &o->zabs_min, &o->zabs_p10);
     free(s);
     return GLPGP_OK;
+}
+
+double glpgp_zabs_median(const double *z, int nv, double *scratch, double *min, double *p10)
+{
+    double mn = INFINITY;
+    for (int i = 0; i < nv; i++) {
+        scratch[i] = z[2 * i] * z[2 * i] + z[2 * i + 1] * z[2 * i + 1];
+        if (scratch[i] < mn) mn = scratch[i];
+    }
+    if (min) *min = sqrt(mn);
+    if (p10) *p10 = sqrt(glpgp_select_double(scratch, (size_t)nv, (size_t)((nv - 1) * 0.1)));
+    /* the median of the squares' order: the middle one, or the mean of the middle two */
+    const size_t h = (size_t)nv / 2;
+    const double upper = sqrt(glpgp_select_double(scratch, (size_t)nv, h));
+    if (nv % 2) return upper;
+    double lower = scratch[0];
+    for (size_t i = 1; i < h; i++)
+        if (scratch[i] > lower) lower = scratch[i];
+    return 0.5 * (sqrt(lower) + upper);
 }
 
 /* every per-vertex array: a[i] <- a'[new(i)] through one scratch copy */
