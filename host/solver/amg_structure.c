@@ -38,6 +38,9 @@ static void wgraph_free(wgraph *g)
     memset(g, 0, sizeof *g);
 }
 
+/* edge k's weight; the fine graph's are all 1 and not stored (wt NULL) */
+#define WT(g, k) ((g)->wt ? (g)->wt[k] : 1.0)
+
 /* The vertex graph of the system (edges of the block pattern, weight 1). */
 static glpgp_status fine_graph(const glpgp_system *sys, wgraph *g)
 {
@@ -45,7 +48,7 @@ static glpgp_status fine_graph(const glpgp_system *sys, wgraph *g)
     const long ne = sys->nnzb - sys->nv;
     GLPGP_CHECK(glpgp_malloc((size_t)sys->nv + 1, sizeof(int), &g->ptr));
     GLPGP_CHECK(glpgp_malloc((size_t)(ne > 0 ? ne : 1), sizeof(int), &g->adj));
-    GLPGP_CHECK(glpgp_malloc((size_t)(ne > 0 ? ne : 1), sizeof(double), &g->wt));
+    g->wt = NULL; /* unit weights (WT): not stored */
     long e = 0;
     g->ptr[0] = 0;
     for (int i = 0; i < sys->nv; i++) {
@@ -53,7 +56,6 @@ static glpgp_status fine_graph(const glpgp_system *sys, wgraph *g)
             const int j = sys->col[k];
             if (j == i) continue;
             g->adj[e] = j;
-            g->wt[e] = 1.0;
             e++;
         }
         g->ptr[i + 1] = (int)e;
@@ -117,10 +119,10 @@ static glpgp_status pair_pass(const wgraph *g, const unsigned char *act, int *gr
         for (int k = g->ptr[i]; k < g->ptr[i + 1]; k++) {
             int j = g->adj[k];
             if (done[j]) continue;
-            if (best < 0 || g->wt[k] > bw || (g->wt[k] == bw && (deg[j] < deg[best] ||
+            if (best < 0 || WT(g, k) > bw || (WT(g, k) == bw && (deg[j] < deg[best] ||
                                                                  (deg[j] == deg[best] && j < best)))) {
                 best = j;
-                bw = g->wt[k];
+                bw = WT(g, k);
             }
         }
         grp[i] = ng;
@@ -211,7 +213,7 @@ static glpgp_status quotient(const wgraph *g, const int *map, int nc, wgraph *c)
                     c->wt[e] = 0.0;
                     e++;
                 }
-                c->wt[slot[J]] += g->wt[k];
+                c->wt[slot[J]] += WT(g, k);
             }
         }
         /* sort the row by J (insertion sort: rows are short) */
