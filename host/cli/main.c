@@ -12,6 +12,7 @@
 
 #include <signal.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
 
@@ -97,8 +98,29 @@ static void install_signal_handlers(void)
     sigaction(SIGTERM, &sa, NULL);
 }
 
+/* glibc (>= 2.35) puts malloc's large blocks on transparent huge pages when
+ * GLIBC_TUNABLES asks (glibc.malloc.hugetlb=1): besides the library's own
+ * arrays (advised in glpgp_malloc) that covers the OpenCL runtime's buffers
+ * (PoCL's host memory), whose 4 KiB first touches cost seconds at millions of
+ * vertices (bench/results/gpu_h200_92301fc). The tunable is read at start,
+ * so the command runs itself again once with it, unless the user set
+ * GLIBC_TUNABLES or GLPGP_HUGEPAGES=0; a failed exec goes on as it is. */
+static void reexec_with_huge_pages(char **argv)
+{
+#if defined(__linux__) && defined(__GLIBC__) && (__GLIBC__ > 2 || (__GLIBC__ == 2 && __GLIBC_MINOR__ >= 35))
+    const char *opt = getenv("GLPGP_HUGEPAGES");
+    if ((opt && !strcmp(opt, "0")) || getenv("GLIBC_TUNABLES")) return;
+    if (setenv("GLIBC_TUNABLES", "glibc.malloc.hugetlb=1", 1) != 0) return;
+    execv("/proc/self/exe", argv);
+    unsetenv("GLIBC_TUNABLES");
+#else
+    (void)argv;
+#endif
+}
+
 int main(int argc, char **argv)
 {
+    reexec_with_huge_pages(argv);
     glpgp_cli_set_verbosity(1);
     install_signal_handlers();
     if (argc < 2) {
