@@ -295,6 +295,17 @@ glpgp_status glpgp_cl_upload(cl_impl *c, cl_mem *m, const void *host, size_t byt
     return GLPGP_OK;
 }
 
+/* *m <- the parent's buffer shared (retained), else host uploaded */
+static glpgp_status ro_upload(cl_impl *c, cl_mem *m, cl_mem shared, const void *host, size_t bytes)
+{
+    if (shared) {
+        GLPGP_CL(clRetainMemObject(shared));
+        *m = shared;
+        return GLPGP_OK;
+    }
+    return glpgp_cl_upload(c, m, host, bytes);
+}
+
 static glpgp_status cl_setup(glpgp_backend *b, const glpgp_system *sys)
 {
     cl_impl *c = IMPL(b);
@@ -353,21 +364,27 @@ static glpgp_status cl_setup(glpgp_backend *b, const glpgp_system *sys)
     c->sys = sys;
     b->sys = sys;
     c->need = need;
-    if (m->xy) GLPGP_CHECK(glpgp_cl_upload(c, &c->xy, m->xy, 2 * nv * sizeof(double))); /* a surface: none (ctxy) */
-    GLPGP_CHECK(glpgp_cl_upload(c, &c->tri, m->tri, 3 * nt * sizeof(int)));
-    GLPGP_CHECK(glpgp_cl_upload(c, &c->rowptr, sys->rowptr, (nv + 1) * sizeof(int)));
-    GLPGP_CHECK(glpgp_cl_upload(c, &c->col, sys->col, nnzb * sizeof(int)));
-    GLPGP_CHECK(glpgp_cl_upload(c, &c->diag, sys->diag, nv * sizeof(int)));
-    GLPGP_CHECK(glpgp_cl_upload(c, &c->cptr, sys->cptr, (nnzb + 1) * sizeof(int)));
-    GLPGP_CHECK(glpgp_cl_upload(c, &c->contrib, sys->contrib, 9 * nt * sizeof(int)));
-    GLPGP_CHECK(glpgp_cl_upload(c, &c->vptr, sys->vptr, (nv + 1) * sizeof(int)));
-    GLPGP_CHECK(glpgp_cl_upload(c, &c->vtri, sys->vtri, 3 * nt * sizeof(int)));
+    /* the mesh and pattern (read-only): a clone set up for its parent's
+     * system shares the parent's buffers (one upload, one copy on the device) */
+    const cl_impl *p = c->parent && c->parent->sys == sys ? c->parent : NULL;
+#define RO_UPLOAD(field, host, bytes) GLPGP_CHECK(ro_upload(c, &c->field, p ? p->field : NULL, host, bytes))
+    if (m->xy) RO_UPLOAD(xy, m->xy, 2 * nv * sizeof(double)); /* a surface: none (ctxy) */
+    RO_UPLOAD(tri, m->tri, 3 * nt * sizeof(int));
+    RO_UPLOAD(rowptr, sys->rowptr, (nv + 1) * sizeof(int));
+    RO_UPLOAD(col, sys->col, nnzb * sizeof(int));
+    RO_UPLOAD(diag, sys->diag, nv * sizeof(int));
+    RO_UPLOAD(cptr, sys->cptr, (nnzb + 1) * sizeof(int));
+    RO_UPLOAD(contrib, sys->contrib, 9 * nt * sizeof(int));
+    RO_UPLOAD(vptr, sys->vptr, (nv + 1) * sizeof(int));
+    RO_UPLOAD(vtri, sys->vtri, 3 * nt * sizeof(int));
     if (sys->cconj) { /* coupled cross-field system: per-corner matching */
-        GLPGP_CHECK(glpgp_cl_upload(c, &c->cconj, sys->cconj, 3 * nt));
-        GLPGP_CHECK(glpgp_cl_upload(c, &c->cfield, sys->cfield, 6 * nt * sizeof(double)));
-        if (sys->ctxy) GLPGP_CHECK(glpgp_cl_upload(c, &c->ctxy, sys->ctxy, 6 * nt * sizeof(double)));
-        if (sys->crot) GLPGP_CHECK(glpgp_cl_upload(c, &c->crot, sys->crot, 6 * nt * sizeof(double)));
+        RO_UPLOAD(cconj, sys->cconj, 3 * nt);
+        RO_UPLOAD(cfield, sys->cfield, 6 * nt * sizeof(double));
+        if (sys->ctxy) RO_UPLOAD(ctxy, sys->ctxy, 6 * nt * sizeof(double));
+        if (sys->crot) RO_UPLOAD(crot, sys->crot, 6 * nt * sizeof(double));
     }
+#undef RO_UPLOAD
+    c->parent = NULL; /* one setup: the parent may be gone by a later one */
     GLPGP_CHECK(glpgp_cl_upload(c, &c->w, NULL, 2 * nv * sizeof(double)));
     GLPGP_CHECK(glpgp_cl_upload(c, &c->dir, NULL, nv));
     GLPGP_CHECK(glpgp_cl_upload(c, &c->size, NULL, nv * sizeof(double)));
@@ -782,6 +799,7 @@ static glpgp_status clone_device(cl_impl *d, const cl_impl *c)
     d->amg_fuse = c->amg_fuse;
     d->align = c->align;
     d->other_need = 1.5 * c->need;
+    d->parent = c;
     GLPGP_CL(clRetainContext(c->ctx));
     d->ctx = c->ctx;
     GLPGP_CL(clRetainProgram(c->prog));

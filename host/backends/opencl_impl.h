@@ -148,6 +148,9 @@ typedef struct cl_impl {
     double need;         /* device memory estimate of the system set up (bytes) */
     double other_need;   /* a clone: device memory its parent holds (its estimate, with
                             room for the multigrid), counted at setup */
+    const struct cl_impl *parent; /* a clone: the backend it was cloned from (its
+                            read-only mesh and pattern buffers are shared when
+                            the clone is set up for the same system) */
 } cl_impl;
 
 #define IMPL(b) ((cl_impl *)(b)->impl)
