@@ -8,7 +8,8 @@
  * matching (Notay's AGMG idea: the unmatched node with the fewest unmatched
  * neighbours takes its strongest unmatched neighbour; fine edge weights 1,
  * coarse weights the number of fine edges between two aggregates, which
- * keeps aggregates compact): aggregates of about 4 nodes, coarse graph =
+ * keeps aggregates compact; a coupled system's edges across a conjugation
+ * are never taken, conj_slot): aggregates of about 4 nodes, coarse graph =
  * quotient graph. Every vertex is aggregated, Dirichlet or not: the
  * Dirichlet set differs between the guiding field, u and v, and enters only
  * the values (a Dirichlet vertex's frame is 0, so its prolongation weight is
@@ -43,7 +44,8 @@ static void wgraph_free(wgraph *g)
  * it). Such nodes never share an aggregate: the tentative prolongation
  * x_i = c_i u cannot carry the frame's phase mode i z across them (it is
  * i z on one side, -i z on the other), so an aggregate across a cut would
- * lose it on every coarser level (docs/numerics.md, "Coupled systems"). */
+ * lose it on every coarser level (docs/numerics.md, "Coupled oscillators
+ * across the cuts", *Multigrid*). */
 static int conj_slot(const glpgp_system *sys, long k)
 {
     if (!sys->cconj) return 0;
