@@ -2,7 +2,8 @@
  * (tests/solver/test_amg.c on the reference backend,
  * tests/backends/test_amg_opencl.c on OpenCL): a vortex state, dense copies
  * of a hierarchy's level matrices and prolongations built from the backend
- * ops on unit vectors, and the Galerkin check P^T A_l P = A_{l+1}. Include
+ * ops on unit vectors, the Galerkin check P^T A_l P = A_{l+1}, and the
+ * check that a vector is reproduced by the prolongations on every level. Include
  * after testutil.h and glpgp/backend.h. */
 #ifndef GLPGP_AMG_TESTUTIL_H
 #define GLPGP_AMG_TESTUTIL_H
@@ -18,7 +19,7 @@
 /* z_i = a(x_i) exp(i theta(x_i)): a wave along x (period h) with a vortex of
  * core radius `core` at (0.2, 0.1); |z| = 0 exactly at vertex `zero` (< 0:
  * none) */
-static void amg_vortex_state(const glpgp_mesh *m, double h, double core, int zero, double *z)
+static inline void amg_vortex_state(const glpgp_mesh *m, double h, double core, int zero, double *z)
 {
     for (int i = 0; i < m->nv; i++) {
         double x = m->xy[2 * i], y = m->xy[2 * i + 1];
@@ -33,7 +34,7 @@ static void amg_vortex_state(const glpgp_mesh *m, double h, double core, int zer
 
 /* dense copy (order 2n, row-major) of level l's matrix through products with
  * unit vectors (level 0: the NEWTON matrix) */
-static double *amg_dense_level(glpgp_backend *b, int l, int n)
+static inline double *amg_dense_level(glpgp_backend *b, int l, int n)
 {
     const glpgp_backend_ops *op = b->ops;
     const int m = 2 * n;
@@ -61,7 +62,7 @@ static double *amg_dense_level(glpgp_backend *b, int l, int n)
 }
 
 /* dense P_l (2 n_l x 2 n_{l+1}) through amg_prolong on unit coarse vectors */
-static double *amg_dense_prolong(glpgp_backend *b, int l, int nf, int nc)
+static inline double *amg_dense_prolong(glpgp_backend *b, int l, int nf, int nc)
 {
     const glpgp_backend_ops *op = b->ops;
     const int mf = 2 * nf, mc = 2 * nc;
@@ -95,7 +96,7 @@ static double *amg_dense_prolong(glpgp_backend *b, int l, int nf, int nc)
  * Dirichlet vertex in any (the vortex vertex, with z = 0, may have fewer);
  * a dead coarse node (an aggregate of Dirichlet vertices only: a zero
  * column pair of P) has an identity row in A_{l+1}. */
-static void amg_check_galerkin(const char *label, glpgp_backend *b, const glpgp_amg_info *in,
+static inline void amg_check_galerkin(const char *label, glpgp_backend *b, const glpgp_amg_info *in,
                                const unsigned char *dir, int vortex)
 {
     double *A = amg_dense_level(b, 0, in->n[0]);
@@ -164,6 +165,41 @@ static void amg_check_galerkin(const char *label, glpgp_backend *b, const glpgp_
     }
     free(A);
     free(dead);
+}
+
+/* for v on level 0 (2 nv), checks P_l P_l^T v_l = v_l on every level with
+ * v_{l+1} = P_l^T v_l; returns the largest relative defect */
+static inline double amg_reproduce(glpgp_backend *b, const glpgp_amg_info *in, const double *v0)
+{
+    const glpgp_backend_ops *op = b->ops;
+    double worst = 0.0;
+    glpgp_vec *v = NULL;
+    CHECK_OK(op->vec_create(b, (size_t)2 * in->n[0], &v));
+    CHECK_OK(op->vec_write(b, v, v0));
+    for (int l = 0; l + 1 < in->nlevels; l++) {
+        const int mf = 2 * in->n[l], mc = 2 * in->n[l + 1];
+        glpgp_vec *vc = NULL, *back = NULL;
+        CHECK_OK(op->vec_create(b, (size_t)mc, &vc));
+        CHECK_OK(op->vec_create(b, (size_t)mf, &back));
+        CHECK_OK(op->amg_restrict(b, l, v, NULL, vc));
+        CHECK_OK(op->amg_prolong(b, l, vc, back)); /* back = 0 + P vc */
+        double *hv = calloc((size_t)mf, sizeof(double)), *hb = calloc((size_t)mf, sizeof(double));
+        CHECK_OK(op->vec_read(b, v, hv));
+        CHECK_OK(op->vec_read(b, back, hb));
+        double d = 0.0, nrm = 0.0;
+        for (int i = 0; i < mf; i++) {
+            d = fmax(d, fabs(hb[i] - hv[i]));
+            nrm = fmax(nrm, fabs(hv[i]));
+        }
+        worst = fmax(worst, d / nrm);
+        free(hv);
+        free(hb);
+        op->vec_destroy(b, &back);
+        op->vec_destroy(b, &v);
+        v = vc;
+    }
+    op->vec_destroy(b, &v);
+    return worst;
 }
 
 #endif

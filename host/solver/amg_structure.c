@@ -8,7 +8,8 @@
  * matching (Notay's AGMG idea: the unmatched node with the fewest unmatched
  * neighbours takes its strongest unmatched neighbour; fine edge weights 1,
  * coarse weights the number of fine edges between two aggregates, which
- * keeps aggregates compact): aggregates of about 4 nodes, coarse graph =
+ * keeps aggregates compact; a coupled system's edges across a conjugation
+ * are never taken, conj_slot): aggregates of about 4 nodes, coarse graph =
  * quotient graph. Every vertex is aggregated, Dirichlet or not: the
  * Dirichlet set differs between the guiding field, u and v, and enters only
  * the values (a Dirichlet vertex's frame is 0, so its prolongation weight is
@@ -38,17 +39,38 @@ static void wgraph_free(wgraph *g)
     memset(g, 0, sizeof *g);
 }
 
-/* edge k's weight; the fine graph's are all 1 and not stored (wt NULL) */
+/* edge k's weight; unit weights are not stored (wt NULL: a system without
+ * conjugations, every planar default solve and the guiding field) */
 #define WT(g, k) ((g)->wt ? (g)->wt[k] : 1.0)
 
-/* The vertex graph of the system (edges of the block pattern, weight 1). */
+/* Whether slot k of a coupled system joins two nodes whose values enter a
+ * triangle's frame one conjugated, the other not (sys->cconj; none without
+ * it). Such nodes never share an aggregate: the tentative prolongation
+ * x_i = c_i u cannot carry the frame's phase mode i z across them (it is
+ * i z on one side, -i z on the other), so an aggregate across a cut would
+ * lose it on every coarser level (docs/numerics.md, "Coupled oscillators
+ * across the cuts", *Multigrid*). */
+static int conj_slot(const glpgp_system *sys, long k)
+{
+    if (!sys->cconj) return 0;
+    for (int q = sys->cptr[k]; q < sys->cptr[k + 1]; q++) {
+        const int e = sys->contrib[q], t = e / 9, a = (e / 3) % 3, b = e % 3;
+        if (sys->cconj[3 * t + a] != sys->cconj[3 * t + b]) return 1;
+    }
+    return 0;
+}
+
+/* The vertex graph of the system (edges of the block pattern, weight 1;
+ * -infinity where conj_slot: the quotient's sums keep it, the pairing
+ * never takes it). */
 static glpgp_status fine_graph(const glpgp_system *sys, wgraph *g)
 {
     g->n = sys->nv;
     const long ne = sys->nnzb - sys->nv;
     GLPGP_CHECK(glpgp_malloc((size_t)sys->nv + 1, sizeof(int), &g->ptr));
     GLPGP_CHECK(glpgp_malloc((size_t)(ne > 0 ? ne : 1), sizeof(int), &g->adj));
-    g->wt = NULL; /* unit weights (WT): not stored */
+    g->wt = NULL; /* unit weights (WT): stored only with conjugations (conj_slot) */
+    if (sys->cconj) GLPGP_CHECK(glpgp_malloc((size_t)(ne > 0 ? ne : 1), sizeof(double), &g->wt));
     long e = 0;
     g->ptr[0] = 0;
     for (int i = 0; i < sys->nv; i++) {
@@ -56,6 +78,7 @@ static glpgp_status fine_graph(const glpgp_system *sys, wgraph *g)
             const int j = sys->col[k];
             if (j == i) continue;
             g->adj[e] = j;
+            if (g->wt) g->wt[e] = conj_slot(sys, k) ? -INFINITY : 1.0;
             e++;
         }
         g->ptr[i + 1] = (int)e;
@@ -118,7 +141,7 @@ static glpgp_status pair_pass(const wgraph *g, const unsigned char *act, int *gr
         double bw = 0.0;
         for (int k = g->ptr[i]; k < g->ptr[i + 1]; k++) {
             int j = g->adj[k];
-            if (done[j]) continue;
+            if (done[j] || !(WT(g, k) > 0.0)) continue; /* not across a conjugation (fine_graph) */
             if (best < 0 || WT(g, k) > bw || (WT(g, k) == bw && (deg[j] < deg[best] ||
                                                                  (deg[j] == deg[best] && j < best)))) {
                 best = j;
@@ -283,6 +306,21 @@ out:
     return st;
 }
 
+/* A level whose aggregation stalls at the cuts (conj_slot edges around
+ * small regions: under 2 nodes per aggregate) is aggregated again with
+ * those edges allowed, as the weakest: returns whether g had any. */
+static int allow_cuts(wgraph *g)
+{
+    int any = 0;
+    if (!g->wt) return 0; /* unit weights: no conjugation */
+    for (int k = 0; g->n > 0 && k < g->ptr[g->n]; k++)
+        if (!(g->wt[k] > 0.0)) {
+            g->wt[k] = 1e-6;
+            any = 1;
+        }
+    return any;
+}
+
 /* The levels' aggregates (s->lev[l].agg, l < L-1) and sizes from the
  * system's graph: coarsen until the coarsest is small enough. */
 static glpgp_status coarsen(glpgp_amg_structure *s, const glpgp_options *o)
@@ -299,6 +337,8 @@ static glpgp_status coarsen(glpgp_amg_structure *s, const glpgp_options *o)
         int nc = 0;
         GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)lv->n + 1, sizeof(int), &lv->agg), out);
         GLPGP_CHECK_GOTO(st, aggregate(&g, o->amg_coarse, lv->agg, &nc), out);
+        if (nc > o->amg_coarse && 2 * (long)nc > lv->n && allow_cuts(&g))
+            GLPGP_CHECK_GOTO(st, aggregate(&g, o->amg_coarse, lv->agg, &nc), out);
         s->lev[L].n = nc;
         L++;
         if (nc == 0) {

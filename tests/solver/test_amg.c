@@ -113,41 +113,6 @@ static void test_galerkin(void)
     fixture_free(&f);
 }
 
-/* for v on level 0 (2 nv), checks P_l P_l^T v_l = v_l on every level with
- * v_{l+1} = P_l^T v_l; returns the largest relative defect */
-static double reproduce(glpgp_backend *b, const glpgp_amg_info *in, const double *v0)
-{
-    const glpgp_backend_ops *op = b->ops;
-    double worst = 0.0;
-    glpgp_vec *v = NULL;
-    CHECK_OK(op->vec_create(b, (size_t)2 * in->n[0], &v));
-    CHECK_OK(op->vec_write(b, v, v0));
-    for (int l = 0; l + 1 < in->nlevels; l++) {
-        const int mf = 2 * in->n[l], mc = 2 * in->n[l + 1];
-        glpgp_vec *vc = NULL, *back = NULL;
-        CHECK_OK(op->vec_create(b, (size_t)mc, &vc));
-        CHECK_OK(op->vec_create(b, (size_t)mf, &back));
-        CHECK_OK(op->amg_restrict(b, l, v, NULL, vc));
-        CHECK_OK(op->amg_prolong(b, l, vc, back)); /* back = 0 + P vc */
-        double *hv = calloc((size_t)mf, sizeof(double)), *hb = calloc((size_t)mf, sizeof(double));
-        CHECK_OK(op->vec_read(b, v, hv));
-        CHECK_OK(op->vec_read(b, back, hb));
-        double d = 0.0, nrm = 0.0;
-        for (int i = 0; i < mf; i++) {
-            d = fmax(d, fabs(hb[i] - hv[i]));
-            nrm = fmax(nrm, fabs(hv[i]));
-        }
-        worst = fmax(worst, d / nrm);
-        free(hv);
-        free(hb);
-        op->vec_destroy(b, &back);
-        op->vec_destroy(b, &v);
-        v = vc;
-    }
-    op->vec_destroy(b, &v);
-    return worst;
-}
-
 static void test_nullspace(void)
 {
     fixture f;
@@ -176,11 +141,11 @@ static void test_nullspace(void)
         iz[2 * i] = -z[2 * i + 1];
         iz[2 * i + 1] = z[2 * i];
     }
-    double ez = reproduce(f.b, &in, z), eiz = reproduce(f.b, &in, iz);
+    double ez = amg_reproduce(f.b, &in, z), eiz = amg_reproduce(f.b, &in, iz);
     /* a vector that is not in the range: the check can fail */
     double *rnd = calloc((size_t)2 * nv, sizeof(double));
     for (int i = 0; i < 2 * nv; i++) rnd[i] = f.dir[i / 2] ? 0.0 : tu_rand() - 0.5;
-    double er = reproduce(f.b, &in, rnd);
+    double er = amg_reproduce(f.b, &in, rnd);
     /* the plane wave exp(i w.x) (constant field W = (1, 0)) with the
      * plane-wave frames of the quadratic problems */
     CHECK_OK(glpgp_amg_update(a, NULL));
@@ -189,7 +154,7 @@ static void test_nullspace(void)
         z[2 * i] = f.dir[i] ? 0.0 : cos(th);
         z[2 * i + 1] = f.dir[i] ? 0.0 : sin(th);
     }
-    double ew = reproduce(f.b, &in, z);
+    double ew = amg_reproduce(f.b, &in, z);
     printf("nullspace: %d levels, defect of P P^T v = v: z %.2e, iz %.2e, plane wave %.2e "
            "(random vector %.2e)\n", in.nlevels, ez, eiz, ew, er);
     CHECK(in.nlevels >= 4);

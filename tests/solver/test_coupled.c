@@ -8,8 +8,16 @@
  *  - finite differences of the coupled energy (gradient) and gradient
  *    (exact Hessian, NEWTON) at a random state, with representatives from a
  *    field with a singularity (cuts, conjugated corners);
+ *  - the multigrid across cuts: with representatives turned by a quarter
+ *    turn per quadrant (cuts along the axes, conjugated corners on them)
+ *    the frame's phase mode i z, mapped to the nodes
+ *    (+i z on one side of a conjugation, -i z on the other), and z itself
+ *    are reproduced by the prolongations on every level (no aggregate
+ *    joins nodes across a conjugation); with random representatives
+ *    (conjugations everywhere) the coarsening still ends small;
  *  - the conformal size of a cross field with theta = a y is h e^{a x + c}. */
 #include "testutil.h"
+#include "amg_testutil.h"
 
 #include <string.h>
 
@@ -190,6 +198,77 @@ static void test_invariance(void)
     glpgp_mesh_destroy(&m);
 }
 
+/* The coupled multigrid keeps the frame's near-null vectors across the cuts:
+ * a state near the plane waves and its phase mode, both written with
+ * representatives turned k times in quadrant k (map_k of (z_u, z_v) and of
+ * (i z_u, i z_v): a conjugated node gets -i z), reproduced by P_l P_l^T on
+ * every level of the hierarchy built with frames z. */
+static void test_multigrid_cuts(int random)
+{
+    glpgp_mesh *m = NULL;
+    CHECK_OK(glpgp_mesh_generate("disk", 3000, &m));
+    if (!m) return;
+    const int nv = m->nv;
+    const double h = 0.4;
+    double *u2 = malloc((size_t)2 * nv * sizeof(double));
+    double *x2 = malloc((size_t)4 * nv * sizeof(double)), *y2 = malloc((size_t)4 * nv * sizeof(double));
+    for (int i = 0; i < nv; i++) {
+        const double px = m->xy[2 * i], py = m->xy[2 * i + 1], th = 0.4 * px + 0.3 * py;
+        const double ux = cos(th), uy = sin(th);
+        const double pu = 2.0 * GLPGP_PI * (ux * px + uy * py) / h, pv = 2.0 * GLPGP_PI * (-uy * px + ux * py) / h;
+        const double zu[2] = {cos(pu), sin(pu)}, zv[2] = {0.9 * cos(pv), 0.9 * sin(pv)};
+        const double izu[2] = {-zu[1], zu[0]}, izv[2] = {-zv[1], zv[0]};
+        /* the representative turned by k = the quadrant's index: cuts along the axes */
+        const int k = random ? (int)(4.0 * tu_rand()) & 3 : py >= 0.0 ? (px >= 0.0 ? 0 : 1) : (px < 0.0 ? 2 : 3);
+        double wx = ux, wy = uy;
+        for (int q = 0; q < k; q++) {
+            const double t = -wy;
+            wy = wx;
+            wx = t;
+        }
+        u2[2 * i] = wx;
+        u2[2 * i + 1] = wy;
+        frame_value_r(k, zu, zv, x2 + 4 * i, x2 + 4 * i + 2);
+        frame_value_r(k, izu, izv, y2 + 4 * i, y2 + 4 * i + 2);
+    }
+    cstate c;
+    cs_open(&c, m, u2, h);
+    int conj = 0;
+    for (int q = 0; q < 6 * m->nt; q++) conj += c.cp->sys->cconj[q];
+    glpgp_options o;
+    glpgp_options_default(&o);
+    o.precond = GLPGP_PRECOND_AMG;
+    o.amg_coarse = 8;
+    unsigned char *dir = calloc((size_t)2 * nv, 1);
+    CHECK_OK(c.b->ops->vec_write(c.b, c.x, x2));
+    CHECK_OK(c.b->ops->assemble_newton(c.b, c.x, 1.0 / (4 * 0.1 * 0.1), GLPGP_HESS_MIXED));
+    glpgp_amg *a = NULL;
+    CHECK_OK(glpgp_amg_create(c.b, &o, dir, NULL, h, &a));
+    CHECK(a != NULL);
+    if (a) {
+        CHECK_OK(glpgp_amg_update(a, c.x));
+        glpgp_amg_info in;
+        glpgp_amg_get_info(a, &in);
+        const double ez = amg_reproduce(c.b, &in, x2), eiz = amg_reproduce(c.b, &in, y2);
+        printf("multigrid across cuts (%s representatives): %d conjugated corners, %d levels (%d -> %d nodes), "
+               "defect of P P^T v = v: z %.2e, phase mode %.2e\n", random ? "random" : "quadrant", conj, in.nlevels,
+               in.n[0], in.n[in.nlevels - 1], ez, eiz);
+        CHECK(conj > 100);
+        CHECK(in.nlevels >= 4);
+        CHECK(ez <= 1e-13);
+        /* random representatives (cuts everywhere): the aggregation stalls and
+         * joins across them, the hierarchy still reaches a small coarsest level */
+        CHECK(random ? in.n[in.nlevels - 1] <= 4 * o.amg_coarse : eiz <= 1e-13);
+        glpgp_amg_destroy(&a);
+    }
+    cs_close(&c);
+    free(dir);
+    free(u2);
+    free(x2);
+    free(y2);
+    glpgp_mesh_destroy(&m);
+}
+
 static void test_fd(void)
 {
     glpgp_mesh *m = NULL;
@@ -349,6 +428,8 @@ int main(void)
 {
     test_maps();
     test_invariance();
+    test_multigrid_cuts(0);
+    test_multigrid_cuts(1);
     test_fd();
     test_conformal_size();
     TEST_DONE();
