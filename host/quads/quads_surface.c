@@ -720,6 +720,20 @@ static glpgp_status verdict_of(const glpgp_mesh *m, const glpgp_quadmesh *q, dou
     glpgp_quads_report qq;
     GLPGP_CHECK(glpgp_quads_quality_surface(q, m, h, &qq));
     *bad = qq.invalid & ~(keep_polygons ? (unsigned)GLPGP_QUADS_BAD_NONQUAD : 0u);
+    if (*bad) { /* which checks failed, by name */
+        char why[256];
+        size_t w = 0;
+        why[0] = 0;
+        for (int b = 0; b < GLPGP_QUADS_BAD_COUNT && w < sizeof why; b++)
+            if (*bad & (1u << b)) {
+                int k = snprintf(why + w, sizeof why - w, "%s%s", w ? ", " : "", glpgp_quads_bad_name(1u << b));
+                if (k > 0) w += (size_t)k;
+            }
+        glpgp_log(GLPGP_LOG_DEBUG,
+                  "quads: surface candidate of %d faces not valid: %s (Hausdorff %.3f h, area ratio %.4f, %d inverted, "
+                  "%d not quads)",
+                  q->nf, why, qq.hausdorff, qq.area_ratio, qq.inverted, qq.others);
+    }
     return GLPGP_OK;
 }
 
