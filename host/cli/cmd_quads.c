@@ -17,6 +17,7 @@
 #include "glpgp/io.h"
 #include "glpgp/quads.h"
 #include "glpgp/solve.h"
+#include "glpgp/util.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -80,7 +81,9 @@ int glpgp_cmd_extract(int argc, char **argv)
     glpgp_output_set *outs = NULL;
     glpgp_quads_report qq;
     rc = GLPGP_EXIT_FAIL;
+    const double t_read0 = glpgp_now();
     if (glpgp_read_result(in, &m, &r) != GLPGP_OK) goto fail;
+    const double t_read = glpgp_now() - t_read0;
     if (m->xyz && !m->surf) {
         GLPGP_FAIL(GLPGP_ERR_FORMAT, "%s: a 3D mesh that is not a surface", in);
         goto fail;
@@ -110,6 +113,7 @@ int glpgp_cmd_extract(int argc, char **argv)
         }
     }
     double h = r->size;
+    const double t_x0 = glpgp_now();
     glpgp_quads_surface_steps steps;
     memset(&steps, 0, sizeof steps);
     if (m->surf) { /* a surface: its own pipeline and check (quads/quads_surface.c), as solve --quads */
@@ -124,6 +128,7 @@ int glpgp_cmd_extract(int argc, char **argv)
     /* --field cross: irregular interior vertices within h of a cross-field singularity, and the others */
     if (r->cross && glpgp_quads_quality_cross(q, r->cross->sing, r->cross->nsing, r->size, &qq) != GLPGP_OK)
         goto fail;
+    const double t_x = glpgp_now() - t_x0;
     char why[1024] = "";
     int invalid_rc = glpgp_cli_quads_verdict(&qq, qo.keep_polygons ? GLPGP_QUADS_BAD_NONQUAD : 0u, allow_invalid,
                                              why, sizeof why);
@@ -135,6 +140,7 @@ int glpgp_cmd_extract(int argc, char **argv)
         goto fail;
     printf("glpgp: %s: h = %.6g%s, singular triangles u %d, v %d\n", in, h,
            qo.all_quads ? " (--all-quads: half the solve's size)" : "", qq.singular[0], qq.singular[1]);
+    printf("  time           read %.3f s, extraction %.3f s (quads and their check)\n", t_read, t_x);
     if (m->surf) glpgp_cli_print_surface_steps(&steps);
     glpgp_quads_print(stdout, &qq, "  ");
     if (quads && invalid_rc < 0) printf("  wrote          %s\n", quads);
