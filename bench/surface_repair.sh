@@ -5,7 +5,9 @@
 # quads, valid / manifold / all-quad, Euler and boundary loops kept,
 # irregular interior vertices, SJ min / mean, Hausdorff / h, the path
 # (grid, local repair, split, coarse last resort), the local repair's
-# regions (faces in -> quads out) and the seconds of the whole command.
+# regions (faces in -> quads out), the seconds of the quad pipeline
+# (phases.extraction: extraction, candidates, repair, smoothing, check) and
+# of the whole command.
 # Writes OUT/summary.md (OUT=out/surface_repair).
 # Usage: bash bench/surface_repair.sh GLPGP [GLPGP2 ...]   (MODELS="model:faces ..." to choose;
 #        faces 0: the default h)
@@ -18,8 +20,8 @@ mkdir -p "$OUT"
 python3 "$HERE/surface_models.py" holes 20 5 "$OUT/holes20.obj"
 MODELS=${MODELS:-"shape:torus:5000:150 shape:torus:5000:400 shape:sphere:5000:400 shape:genus2:20000:0 shape:genus2:5000:150 shape:genus2:5000:400 $OUT/holes20.obj:0"}
 {
-    echo "| model | faces | binary | quads | valid / manifold / all-quad | Euler, loops kept | irregular interior | SJ min | SJ mean | Hausdorff/h | path | local regions (faces in -> quads out) | seconds |"
-    echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|"
+    echo "| model | faces | binary | quads | valid / manifold / all-quad | Euler, loops kept | irregular interior | SJ min | SJ mean | Hausdorff/h | path | local regions (faces in -> quads out) | extraction s | seconds |"
+    echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
 } >"$OUT/summary.md"
 for spec in $MODELS; do
     model=${spec%:*}
@@ -49,13 +51,14 @@ if "repaired locally" in out:
     path = "local repair" if path == "grid" else path + " + local repair"
 r = q.get("repair", {})
 regs = "%d (%d -> %d)" % (r.get("regions", 0), r.get("removed_faces", 0), r.get("new_quads", 0)) if r.get("regions") else "-"
+ext = d.get("phases", {}).get("extraction", {}).get("seconds", -1.0)
 manifold = "nonmanifold" not in q["invalid_reasons"] and "pinched" not in q["invalid_reasons"]
-print("| %s | %s | %s | %d | %s / %s / %s | %s | %d (%.1f%%) | %.3f | %.3f | %.3f | %s | %s | %.1f |" % (
+print("| %s | %s | %s | %d | %s / %s / %s | %s | %d (%.1f%%) | %.3f | %.3f | %.3f | %s | %s | %.2f | %.1f |" % (
     model, n if n != "0" else "default h", binary, q["quads"], "yes" if q["valid"] else "no", "yes" if manifold else "no",
     "yes" if q["other_faces"] == 0 else "no",
     "yes" if (s["euler"], s["boundary_loops"]) == (s["input_euler"], s["input_boundary_loops"]) else "no",
     irr, 100.0 * irr / max(nint, 1), q["scaled_jacobian"]["min"], q["scaled_jacobian"]["mean"],
-    s["hausdorff_over_h"], path, regs, float(secs)))
+    s["hausdorff_over_h"], path, regs, ext, float(secs)))
 PY
     done
 done

@@ -13,6 +13,7 @@
 #define GLPGP_EXIT_INVALID 3 /* a quad mesh is invalid: not written (README "Quad meshes") */
 
 struct glpgp_quads_report;
+struct glpgp_quads_surface_steps;
 
 /* Verbosity: 0 = --quiet (warnings only), 1 = default (progress), 2 = --verbose. */
 void glpgp_cli_set_verbosity(int v);
@@ -47,6 +48,10 @@ int glpgp_cli_quads_verdict(const struct glpgp_quads_report *qq, unsigned ignore
 /* Print "glpgp: error: quad mesh is invalid (WHY): not written ..." and
  * return GLPGP_EXIT_INVALID. what: "not written" or "" (quality). */
 int glpgp_cli_invalid(const char *why, const char *what);
+
+/* Print a surface quad pipeline's steps (extraction, closing, split, last
+ * resort; local repair; smoothing) as the summary's lines (cmd_quads.c). */
+void glpgp_cli_print_surface_steps(const struct glpgp_quads_surface_steps *s);
 
 /* Parse all of s as a finite double into *out. Returns 1 on success, 0 on
  * empty input, trailing characters, overflow or a non-finite value. */

@@ -1,7 +1,8 @@
 /* cli/cmd_quads.c: the quad-mesh commands:
  *   glpgp extract RESULT.vtk --quads OUT.{obj,vtk,msh} [--stats OUT.json] [--size H]
  *                 [--keep-polygons] [--smooth N] [--all-quads]
- *       quad mesh from a result written by `glpgp solve -o RESULT.vtk`;
+ *       quad mesh from a result written by `glpgp solve -o RESULT.vtk` (a
+ *       plane or a surface: the surface pipeline, as solve --quads);
  *   glpgp quality MESH.msh [--size H] [--domain DOMAIN] [--stats OUT.json] [--allow-invalid]
  *       the same quality report for a quad/triangle mesh made elsewhere (Gmsh),
  *       used by bench/gmsh_compare.sh.
@@ -16,12 +17,30 @@
 #include "glpgp/io.h"
 #include "glpgp/quads.h"
 #include "glpgp/solve.h"
+#include "glpgp/util.h"
 
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
 
 static const char *const k_quad_exts[] = {".obj", ".vtk", ".vtu", ".msh", ".ply", NULL};
+
+void glpgp_cli_print_surface_steps(const glpgp_quads_surface_steps *s)
+{
+    printf("  surface quads  extraction %d faces (%d quads), %d odd or even faces closed, %d strips%s%s\n",
+           s->extracted_faces, s->extracted_quads, s->closed, s->strips,
+           s->subdivided ? "; split into quads (Catmull-Clark, h/2)" : "",
+           !s->fallback          ? ""
+           : s->coarse_triangles ? "; not valid: a coarsened triangulation split into quads (last resort)"
+                                 : "; not valid: the input triangles split into quads (last resort)");
+    if (s->local_regions)
+        printf("  repaired       %d regions of bad faces repaired locally: %d faces -> %d quads, smallest scaled "
+               "Jacobian %.3f\n",
+               s->local_regions, s->local_faces_in, s->local_quads_out, s->local_sj_min);
+    if (s->smoothed)
+        printf("  smoothed       %d vertices on the surface: smallest scaled Jacobian %.3f -> %.3f\n", s->smoothed,
+               s->sj_before, s->sj_after);
+}
 
 int glpgp_cmd_extract(int argc, char **argv)
 {
@@ -49,6 +68,7 @@ int glpgp_cmd_extract(int argc, char **argv)
     glpgp_opts_add_verbosity(&t, &verbosity);
     int rc = glpgp_opts_parse_input(&t, argc, argv, &in, verbosity, "RESULT.vtk");
     if (rc >= 0) return rc;
+    glpgp_cli_set_verbosity(verbosity); /* parse_input got the value before --verbose / --quiet was read */
     if (!quads && !stats) return glpgp_cli_usage_error(sub, "nothing to do: give --quads FILE and/or --stats FILE");
     if (quads && stats && !strcmp(quads, stats))
         return glpgp_cli_usage_error(sub, "--quads and --stats name the same file '%s'", quads);
@@ -61,10 +81,11 @@ int glpgp_cmd_extract(int argc, char **argv)
     glpgp_output_set *outs = NULL;
     glpgp_quads_report qq;
     rc = GLPGP_EXIT_FAIL;
+    const double t_read0 = glpgp_now();
     if (glpgp_read_result(in, &m, &r) != GLPGP_OK) goto fail;
-    if (m->xyz) {
-        GLPGP_FAIL(GLPGP_ERR_UNSUPPORTED, "%s: a surface's result: quad extraction on surfaces is not implemented yet",
-                   in);
+    const double t_read = glpgp_now() - t_read0;
+    if (m->xyz && !m->surf) {
+        GLPGP_FAIL(GLPGP_ERR_FORMAT, "%s: a 3D mesh that is not a surface", in);
         goto fail;
     }
     if ((rc = glpgp_cli_check_elements(in, m->nt, "triangles", 0, max_elements)) >= 0) goto done;
@@ -92,13 +113,22 @@ int glpgp_cmd_extract(int argc, char **argv)
         }
     }
     double h = r->size;
-    if (glpgp_quads_build(m, r, &qo, &q, &h) != GLPGP_OK) goto fail;
-    if (glpgp_quads_quality(q, m, h, &qq) != GLPGP_OK) goto fail;
+    const double t_x0 = glpgp_now();
+    glpgp_quads_surface_steps steps;
+    memset(&steps, 0, sizeof steps);
+    if (m->surf) { /* a surface: its own pipeline and check (quads/quads_surface.c), as solve --quads */
+        if (glpgp_quads_build_surface(m, r, &qo, &q, &h, &steps) != GLPGP_OK) goto fail;
+        if (glpgp_quads_quality_surface(q, m, h, &qq) != GLPGP_OK) goto fail;
+    } else {
+        if (glpgp_quads_build(m, r, &qo, &q, &h) != GLPGP_OK) goto fail;
+        if (glpgp_quads_quality(q, m, h, &qq) != GLPGP_OK) goto fail;
+    }
     qq.singular[0] = r->osc[0].plus + r->osc[0].minus;
     qq.singular[1] = r->osc[1].plus + r->osc[1].minus;
     /* --field cross: irregular interior vertices within h of a cross-field singularity, and the others */
     if (r->cross && glpgp_quads_quality_cross(q, r->cross->sing, r->cross->nsing, r->size, &qq) != GLPGP_OK)
         goto fail;
+    const double t_x = glpgp_now() - t_x0;
     char why[1024] = "";
     int invalid_rc = glpgp_cli_quads_verdict(&qq, qo.keep_polygons ? GLPGP_QUADS_BAD_NONQUAD : 0u, allow_invalid,
                                              why, sizeof why);
@@ -110,6 +140,8 @@ int glpgp_cmd_extract(int argc, char **argv)
         goto fail;
     printf("glpgp: %s: h = %.6g%s, singular triangles u %d, v %d\n", in, h,
            qo.all_quads ? " (--all-quads: half the solve's size)" : "", qq.singular[0], qq.singular[1]);
+    printf("  time           read %.3f s, extraction %.3f s (quads and their check)\n", t_read, t_x);
+    if (m->surf) glpgp_cli_print_surface_steps(&steps);
     glpgp_quads_print(stdout, &qq, "  ");
     if (quads && invalid_rc < 0) printf("  wrote          %s\n", quads);
     if (stats) printf("  wrote          %s\n", stats);

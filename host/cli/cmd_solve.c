@@ -262,20 +262,7 @@ static void print_summary(const solve_cli *c, const char *input, const glpgp_mes
     if (c->out) printf("  wrote          %s\n", c->out);
     if (c->stats) printf("  wrote          %s\n", c->stats);
     if (c->quads) {
-        if (m->surf)
-            printf("  surface quads  extraction %d faces (%d quads), %d odd or even faces closed, %d strips%s%s\n",
-                   c->qsteps.extracted_faces, c->qsteps.extracted_quads, c->qsteps.closed, c->qsteps.strips,
-                   c->qsteps.subdivided ? "; split into quads (Catmull-Clark, h/2)" : "",
-                   !c->qsteps.fallback      ? ""
-                   : c->qsteps.coarse_triangles ? "; not valid: a coarsened triangulation split into quads (last resort)"
-                                                : "; not valid: the input triangles split into quads (last resort)");
-        if (m->surf && c->qsteps.local_regions)
-            printf("  repaired       %d regions of bad faces repaired locally: %d faces -> %d quads, smallest scaled "
-                   "Jacobian %.3f\n",
-                   c->qsteps.local_regions, c->qsteps.local_faces_in, c->qsteps.local_quads_out, c->qsteps.local_sj_min);
-        if (m->surf && c->qsteps.smoothed)
-            printf("  smoothed       %d vertices on the surface: smallest scaled Jacobian %.3f -> %.3f\n",
-                   c->qsteps.smoothed, c->qsteps.sj_before, c->qsteps.sj_after);
+        if (m->surf) glpgp_cli_print_surface_steps(&c->qsteps);
         glpgp_quads_print(stdout, qq, "  ");
         if (quads_written) printf("  wrote          %s\n", c->quads);
     }

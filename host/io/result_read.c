@@ -21,6 +21,7 @@ typedef struct raw_result {
     long long *tri;    /* 3 * nt */
     double *z[2];      /* 2 * nv each */
     double *field;     /* 3 * nv (U as written: a 3D vector), may be NULL */
+    double *fframe;    /* 2 * nv (a surface's U in its vertices' frames, exact), may be NULL */
     double *dir[2];    /* nv each, may be NULL */
     double *cross;     /* 2 * nv (cross field w), may be NULL */
     int coupled;       /* a cross_coupled cell array was present (coupled solve) */
@@ -34,6 +35,7 @@ static void raw_free(raw_result *w)
     free(w->z[0]);
     free(w->z[1]);
     free(w->field);
+    free(w->fframe);
     free(w->dir[0]);
     free(w->dir[1]);
     free(w->cross);
@@ -85,8 +87,15 @@ static glpgp_status assemble(const char *path, raw_result *w, glpgp_mesh **mout,
     GLPGP_CHECK_GOTO(st, glpgp_result_create(nv, nt, &res), done);
     res->size = w->h;
     res->backend = "file";
+    if (w->fframe && !w->field) {
+        st = GLPGP_FAIL(GLPGP_ERR_FORMAT, "%s: field_frame without field_u", path);
+        goto done;
+    }
     for (int i = 0; i < nv && w->field; i++) {
-        if (m->surf) { /* the 3D vector's angle in the vertex's frame (the writer's inverse) */
+        if (m->surf && w->fframe) { /* exact: as the solve held it */
+            res->field[2 * i] = w->fframe[2 * i];
+            res->field[2 * i + 1] = w->fframe[2 * i + 1];
+        } else if (m->surf) { /* the 3D vector's angle in the vertex's frame (the writer's inverse) */
             const double a = glpgp_surface_vertex_angle(m, i, w->field + 3 * i);
             res->field[2 * i] = cos(a);
             res->field[2 * i + 1] = sin(a);
@@ -368,12 +377,16 @@ static glpgp_status legacy_array(legacy *L, int vectors)
     const int is_field = pts && vectors && !strcmp(name, "field_u");
     const int is_dir = pts && (!strcmp(name, "dirichlet_u") || !strcmp(name, "dirichlet_v"));
     const int is_cross = pts && !strcmp(name, "cross_w");
+    const int is_frame = pts && !strcmp(name, "field_frame");
     if (!pts && !strcmp(name, "cross_coupled")) w->coupled = 1;
-    if ((is_z || is_cross) && ncomp != 2) return text_error(tr, GLPGP_ERR_FORMAT, 0, "%s must have 2 components", name);
+    if ((is_z || is_cross || is_frame) && ncomp != 2) return text_error(tr, GLPGP_ERR_FORMAT, 0, "%s must have 2 components", name);
     if (is_dir && ncomp != 1) return text_error(tr, GLPGP_ERR_FORMAT, 0, "%s must have 1 component", name);
     double *tmp = NULL;
-    GLPGP_CHECK(read_numbers(&L->lx, n * ncomp, name, (is_z || is_field || is_dir || is_cross) ? &tmp : NULL));
-    if (is_cross)
+    GLPGP_CHECK(read_numbers(&L->lx, n * ncomp, name, (is_z || is_field || is_dir || is_cross || is_frame) ? &tmp : NULL));
+    if (is_frame) {
+        free(w->fframe);
+        w->fframe = tmp;
+    } else if (is_cross)
         w->cross = tmp;
     else if (is_z)
         w->z[name[2] == 'v'] = tmp;
@@ -427,7 +440,7 @@ static glpgp_status read_vtu(text_reader *tr, const char *first_line, raw_result
     if (w->nv < 3 || w->nt < 1)
         return GLPGP_FAIL(GLPGP_ERR_FORMAT, "%s: %lld points, %lld cells (not a triangle mesh)", path, w->nv, w->nt);
     /* the arrays this reader uses, in offset order */
-    const vtu_in_array *want[11];
+    const vtu_in_array *want[12];
     int nw = 0;
     const vtu_in_array *pts = vtu_find(&v, VTU_POINTS, NULL), *conn = vtu_find(&v, VTU_CELLS, "connectivity"),
                        *offs = vtu_find(&v, VTU_CELLS, "offsets"), *types = vtu_find(&v, VTU_CELLS, "types"),
@@ -435,15 +448,16 @@ static glpgp_status read_vtu(text_reader *tr, const char *first_line, raw_result
                        *zv = vtu_find(&v, VTU_POINTDATA, "z_v"), *fu = vtu_find(&v, VTU_POINTDATA, "field_u"),
                        *du = vtu_find(&v, VTU_POINTDATA, "dirichlet_u"),
                        *dv = vtu_find(&v, VTU_POINTDATA, "dirichlet_v"),
-                       *cw = vtu_find(&v, VTU_POINTDATA, "cross_w");
+                       *cw = vtu_find(&v, VTU_POINTDATA, "cross_w"),
+                       *ff = vtu_find(&v, VTU_POINTDATA, "field_frame");
     w->coupled = vtu_find(&v, VTU_CELLDATA, "cross_coupled") != NULL;
     if (!pts || !conn || !offs || !types)
         return GLPGP_FAIL(GLPGP_ERR_FORMAT, "%s: Points or Cells arrays missing", path);
     if (pts->ncomp != 3 || (zu && zu->ncomp != 2) || (zv && zv->ncomp != 2) || (fu && fu->ncomp != 3) ||
-        (du && du->ncomp != 1) || (dv && dv->ncomp != 1) || (cw && cw->ncomp != 2) || (h && (h->ncomp != 1 || h->ntuples != 1)))
+        (du && du->ncomp != 1) || (dv && dv->ncomp != 1) || (cw && cw->ncomp != 2) || (ff && ff->ncomp != 2) || (h && (h->ncomp != 1 || h->ntuples != 1)))
         return GLPGP_FAIL(GLPGP_ERR_FORMAT, "%s: an array has the wrong number of components", path);
-    const vtu_in_array *all[11] = {pts, conn, offs, types, h, zu, zv, fu, du, dv, cw};
-    for (int i = 0; i < 11; i++)
+    const vtu_in_array *all[12] = {pts, conn, offs, types, h, zu, zv, fu, du, dv, cw, ff};
+    for (int i = 0; i < 12; i++)
         if (all[i]) want[nw++] = all[i];
     for (int i = 1; i < nw; i++) /* insertion sort by offset */
         for (int j = i; j > 0 && want[j]->offset < want[j - 1]->offset; j--) {
@@ -473,6 +487,8 @@ static glpgp_status read_vtu(text_reader *tr, const char *first_line, raw_result
             free(x);
         } else if (a == cw) {
             GLPGP_CHECK(vtu_read_array(&v, a, (size_t)(2 * w->nv), &w->cross, NULL));
+        } else if (a == ff) {
+            GLPGP_CHECK(vtu_read_array(&v, a, (size_t)(2 * w->nv), &w->fframe, NULL));
         } else if (a == zu || a == zv) {
             GLPGP_CHECK(vtu_read_array(&v, a, (size_t)(2 * w->nv), &w->z[a == zv], NULL));
         } else if (a == fu) {

@@ -127,6 +127,11 @@ static void vtk_body(FILE *f, const glpgp_mesh *m, const glpgp_options *o, const
                 fprintf(f, "%.17g %.17g %.17g\n", d[0], d[1], d[2]);
             }
         }
+        /* and U as the solve holds it, (cos, sin) in each vertex's frame: the
+         * 3D vector of a boundary vertex is clamped to its fan, this is exact
+         * (what glpgp extract reads back) */
+        fprintf(f, "SCALARS field_frame double 2\nLOOKUP_TABLE default\n");
+        for (int i = 0; i < nv; i++) fprintf(f, "%.17g %.17g\n", u[2 * i], u[2 * i + 1]);
     } else if (r->field) {
         const double *u = r->field;
         fprintf(f, "VECTORS field_u double\n");
@@ -252,6 +257,11 @@ static void fill_field(const void *c, size_t first, size_t n, void *out)
         o[3 * i + 2] = 0.0;
     }
 }
+static void fill_field_frame(const void *c, size_t first, size_t n, void *out)
+{
+    const res_ctx *x = c;
+    memcpy(out, x->r->field + 2 * first, 2 * n * sizeof(double));
+}
 static void fill_singular(const void *c, size_t first, size_t n, void *out)
 {
     const res_ctx *x = c;
@@ -332,6 +342,8 @@ static int result_arrays(const res_ctx ctx[2], const glpgp_result *r, size_t nv,
         if (r->osc[k].dirichlet) ARR(VTU_POINTDATA, dn[k], "Int8", 1, 1, nv, fill_dirichlet, &ctx[k]);
     if (r->field)
         for (int k = 0; k < 2; k++) ARR(VTU_POINTDATA, fn[k], "Float64", 8, 3, nv, fill_field, &ctx[k]);
+    if (r->field && ctx[0].m && ctx[0].m->surf) /* U in the vertices' frames, exact (see the legacy writer) */
+        ARR(VTU_POINTDATA, "field_frame", "Float64", 8, 2, nv, fill_field_frame, &ctx[0]);
     if (piece) {
         ARR(VTU_POINTDATA, "global_id", "Int64", 8, 1, nv, fill_gid, &ctx[0]);
         ARR(VTU_POINTDATA, "vtkGhostType", "UInt8", 1, 1, nv, fill_ghost, &ctx[0]);

@@ -713,6 +713,18 @@ static glpgp_status split_onto(const glpgp_mesh *m, const glpgp_quadmesh *q, dou
     return st;
 }
 
+/* The names of the GLPGP_QUADS_BAD_* bits in bad, comma-separated. */
+static void bad_names(unsigned bad, char *why, size_t n)
+{
+    size_t w = 0;
+    why[0] = 0;
+    for (int b = 0; b < GLPGP_QUADS_BAD_COUNT && w < n; b++)
+        if (bad & (1u << b)) {
+            int k = snprintf(why + w, n - w, "%s%s", w ? ", " : "", glpgp_quads_bad_name(1u << b));
+            if (k > 0) w += (size_t)k;
+        }
+}
+
 /* The invalidity bits of q (less non-quads with keep_polygons). */
 static glpgp_status verdict_of(const glpgp_mesh *m, const glpgp_quadmesh *q, double h, int keep_polygons,
                                unsigned *bad)
@@ -720,6 +732,14 @@ static glpgp_status verdict_of(const glpgp_mesh *m, const glpgp_quadmesh *q, dou
     glpgp_quads_report qq;
     GLPGP_CHECK(glpgp_quads_quality_surface(q, m, h, &qq));
     *bad = qq.invalid & ~(keep_polygons ? (unsigned)GLPGP_QUADS_BAD_NONQUAD : 0u);
+    if (*bad) { /* which checks failed, by name */
+        char why[256];
+        bad_names(*bad, why, sizeof why);
+        glpgp_log(GLPGP_LOG_DEBUG,
+                  "quads: surface candidate of %d faces not valid: %s (Hausdorff %.3f h, area ratio %.4f, %d inverted, "
+                  "%d not quads)",
+                  q->nf, why, qq.hausdorff, qq.area_ratio, qq.inverted, qq.others);
+    }
     return GLPGP_OK;
 }
 
@@ -1008,14 +1028,8 @@ glpgp_status glpgp_quads_build_surface(const glpgp_mesh *m, const glpgp_result *
             if (st == GLPGP_OK && steps) *steps = stp;
             return st;
         }
-        char why[256];
-        size_t w = 0;
-        why[0] = 0;
-        for (int b = 0; b < GLPGP_QUADS_BAD_COUNT; b++) /* the reasons by name (the counts are in the report) */
-            if ((bad & (1u << b)) && (1u << b) != GLPGP_QUADS_BAD_NONQUAD && w < sizeof why) {
-                int k = snprintf(why + w, sizeof why - w, "%s%s", w ? ", " : "", glpgp_quads_bad_name(1u << b));
-                if (k > 0) w += (size_t)k;
-            }
+        char why[256]; /* the reasons by name (the counts are in the report) */
+        bad_names(bad & ~(unsigned)GLPGP_QUADS_BAD_NONQUAD, why, sizeof why);
         glpgp_log(GLPGP_LOG_WARNING,
                   "quads: the extracted mesh is not valid%s%s%s: the input triangles are split into quads",
                   why[0] ? " (" : "", why, why[0] ? ")" : "");
