@@ -27,7 +27,7 @@ int glpgp_cmd_generate(int argc, char **argv)
     o->alias = "-o";
     glpgp_opts_add_limits(&t, &max_elements, NULL);
     glpgp_opts_add_verbosity(&t, &verbosity);
-    int rc = glpgp_opts_parse_input(&t, argc, argv, &shape, verbosity, "SHAPE");
+    int rc = glpgp_opts_parse_input(&t, argc, argv, &shape, &verbosity, "SHAPE");
     if (rc >= 0) return rc;
     if (!out) return glpgp_cli_usage_error("generate", "missing -o FILE");
     char name[64];

@@ -62,7 +62,7 @@ int glpgp_cmd_render(int argc, char **argv)
     glpgp_opts_add_picture(&t, &ro, 1);
     glpgp_opts_add_limits(&t, &max_elements, &max_pixels);
     glpgp_opts_add_verbosity(&t, &verbosity);
-    int rc = glpgp_opts_parse_input(&t, argc, argv, &in, verbosity, "RESULT.vtk");
+    int rc = glpgp_opts_parse_input(&t, argc, argv, &in, &verbosity, "RESULT.vtk");
     if (rc >= 0) return rc;
     if ((rc = check_picture_out(sub, out, ro.size, 1, max_pixels)) >= 0) return rc;
     if (glpgp_has_ext(in, ".obj") || glpgp_has_ext(in, ".msh"))
@@ -128,7 +128,7 @@ int glpgp_cmd_mesh(int argc, char **argv)
     o->def = "";
     glpgp_opts_add_limits(&t, &mo.max_triangles, &mo.max_pixels);
     glpgp_opts_add_verbosity(&t, &verbosity);
-    int rc = glpgp_opts_parse_input(&t, argc, argv, &in, verbosity, "MASK image, .poly file or mesh");
+    int rc = glpgp_opts_parse_input(&t, argc, argv, &in, &verbosity, "MASK image, .poly file or mesh");
     if (rc >= 0) return rc;
     if (!out) return glpgp_cli_usage_error(sub, "missing -o DOMAIN.msh");
     if ((rc = glpgp_cli_check_output(sub, "--out", out, exts)) >= 0) return rc;
@@ -193,7 +193,7 @@ int glpgp_cmd_figure(int argc, char **argv)
     glpgp_opts_add_mask(&t, &mo);
     glpgp_opts_add_limits(&t, &mo.max_triangles, &mo.max_pixels);
     glpgp_opts_add_verbosity(&t, &verbosity);
-    int rc = glpgp_opts_parse_input(&t, argc, argv, &in, verbosity, "INPUT");
+    int rc = glpgp_opts_parse_input(&t, argc, argv, &in, &verbosity, "INPUT");
     if (rc >= 0) return rc;
     if (backend == GLPGP_BACKEND_PETSC)
         return glpgp_cli_usage_error(sub, "--backend petsc: only 'glpgp solve' runs on MPI ranks");

@@ -120,7 +120,7 @@ int glpgp_cmd_crosscheck(int argc, char **argv)
                "levels stopped at the Newton cap: unconverged vortex drift amplifies rounding).\n"
                "The environment variable GLPGP_CL_CORRUPT=1 corrupts the OpenCL QUAD assembly\n"
                "(the check must fail).\n";
-    int rc = glpgp_opts_parse_input(&t, argc, argv, &input, verbosity, "INPUT (a .obj/.msh file or shape:NAME[:N])");
+    int rc = glpgp_opts_parse_input(&t, argc, argv, &input, &verbosity, "INPUT (a .obj/.msh file or shape:NAME[:N])");
     if (rc >= 0) return rc;
     co.solve = !no_solve;
     glpgp_mesh *m = NULL;

@@ -66,9 +66,8 @@ int glpgp_cmd_extract(int argc, char **argv)
     glpgp_opts_add_quads(&t, &qo, &qgiven, &allow_invalid);
     glpgp_opts_add_limits(&t, &max_elements, NULL);
     glpgp_opts_add_verbosity(&t, &verbosity);
-    int rc = glpgp_opts_parse_input(&t, argc, argv, &in, verbosity, "RESULT.vtk");
+    int rc = glpgp_opts_parse_input(&t, argc, argv, &in, &verbosity, "RESULT.vtk");
     if (rc >= 0) return rc;
-    glpgp_cli_set_verbosity(verbosity); /* parse_input got the value before --verbose / --quiet was read */
     if (!quads && !stats) return glpgp_cli_usage_error(sub, "nothing to do: give --quads FILE and/or --stats FILE");
     if (quads && stats && !strcmp(quads, stats))
         return glpgp_cli_usage_error(sub, "--quads and --stats name the same file '%s'", quads);
@@ -183,7 +182,7 @@ int glpgp_cmd_quality(int argc, char **argv)
                "Exit code 3 when the mesh is invalid (inverted, degenerate, non-quad, overlapping\n"
                "faces, non-manifold edges, pinched vertices; with --domain also faces outside it,\n"
                "lost holes or corners, area off by > 1%, Hausdorff distance > h/4).\n";
-    int rc = glpgp_opts_parse_input(&t, argc, argv, &in, verbosity, "MESH.msh");
+    int rc = glpgp_opts_parse_input(&t, argc, argv, &in, &verbosity, "MESH.msh");
     if (rc >= 0) return rc;
     if (stats && (rc = glpgp_cli_check_output(sub, "--stats", stats, NULL)) >= 0) return rc;
     glpgp_error_clear();

@@ -209,13 +209,13 @@ static glpgp_opt *find(glpgp_opts *t, const char *name)
     return NULL;
 }
 
-int glpgp_opts_parse_input(glpgp_opts *t, int argc, char **argv, const char **in, int verbosity,
+int glpgp_opts_parse_input(glpgp_opts *t, int argc, char **argv, const char **in, const int *verbosity,
                            const char *missing)
 {
     int npos = 0;
     int rc = glpgp_opts_parse(t, argc, argv, in, 1, &npos);
     if (rc >= 0) return rc;
-    glpgp_cli_set_verbosity(verbosity);
+    glpgp_cli_set_verbosity(*verbosity); /* as --verbose / --quiet set it */
     if (missing && !*in) return glpgp_cli_usage_error(t->cmd, "missing %s", missing);
     return -1;
 }

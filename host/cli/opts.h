@@ -95,10 +95,11 @@ glpgp_opt *glpgp_opt_choice(glpgp_opts *t, const char *name, int *dest, const ch
 int glpgp_opts_parse(glpgp_opts *t, int argc, char **argv, const char **pos, int maxpos, int *npos);
 
 /* The usual start of a command with one positional INPUT: parse into *in,
- * set the verbosity (glpgp_cli_set_verbosity), and when missing is not
+ * set the verbosity (glpgp_cli_set_verbosity of *verbosity as the options,
+ * --verbose / --quiet among them, left it), and when missing is not
  * NULL a usage error "missing ..." without an input. Returns -1 to go on,
  * else the exit code as glpgp_opts_parse. */
-int glpgp_opts_parse_input(glpgp_opts *t, int argc, char **argv, const char **in, int verbosity,
+int glpgp_opts_parse_input(glpgp_opts *t, int argc, char **argv, const char **in, const int *verbosity,
                            const char *missing);
 
 /* Print the help text of the table (usage, about, grouped options with their

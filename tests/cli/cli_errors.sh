@@ -181,6 +181,22 @@ fi
 run 2 "extract --smooth=x" extract r.vtk --quads=q.obj --smooth=x
 expect_msg "smooth" "extract --smooth=x"
 
+# ---- --verbose adds the error's trace in every command (it was read after the
+# verbosity was set in the commands with one INPUT: quality, render, extract, ...) ----
+printf 'not a mesh\n' >notmsh.msh
+printf '<VTKFile type="UnstructuredGrid">\n' >notres.vtu
+for c in quality render extract; do
+    in=notres.vtu extra=""
+    [ $c = quality ] && in=notmsh.msh
+    [ $c = render ] && extra="-o x.png"
+    [ $c = extract ] && extra="--quads x.obj"
+    run nonzero "$c bad input" $c $in $extra
+    one_error_line "$c bad input"
+    run nonzero "$c bad input --verbose" $c $in $extra --verbose
+    [ "$(wc -l <err.txt)" -gt 1 ] && grep -q "^  at " err.txt ||
+        fail "$c --verbose: no trace after the error line: $(head -c 300 err.txt)"
+done
+
 # ---- interrupted runs: exit 128 + signal, one line, no output and no temporary ----
 for sig in INT TERM; do
     "$GLPGP" solve shape:disk:300000 --backend reference -o big.vtk --stats big.json >out.txt 2>err.txt </dev/null &
