@@ -104,12 +104,14 @@ static void install_signal_handlers(void)
  * (PoCL's host memory), whose 4 KiB first touches cost seconds at millions of
  * vertices (bench/results/gpu_h200_92301fc). The tunable is read at start,
  * so the command runs itself again once with it, unless the user set
- * GLIBC_TUNABLES or GLPGP_HUGEPAGES=0; a failed exec goes on as it is. */
+ * GLIBC_TUNABLES or GLPGP_HUGEPAGES=0, or it runs under valgrind; a failed
+ * exec goes on as it is. */
 static void reexec_with_huge_pages(char **argv)
 {
 #if defined(__linux__) && defined(__GLIBC__) && (__GLIBC__ > 2 || (__GLIBC__ == 2 && __GLIBC_MINOR__ >= 35))
-    const char *opt = getenv("GLPGP_HUGEPAGES");
+    const char *opt = getenv("GLPGP_HUGEPAGES"), *pre = getenv("LD_PRELOAD");
     if ((opt && !strcmp(opt, "0")) || getenv("GLIBC_TUNABLES")) return;
+    if (pre && strstr(pre, "vgpreload")) return; /* under valgrind: its own malloc, and no exec of itself */
     if (setenv("GLIBC_TUNABLES", "glibc.malloc.hugetlb=1", 1) != 0) return;
     execv("/proc/self/exe", argv);
     unsetenv("GLIBC_TUNABLES");
