@@ -367,6 +367,7 @@ static glpgp_status cl_setup(glpgp_backend *b, const glpgp_system *sys)
     /* the mesh and pattern (read-only): a clone set up for its parent's
      * system shares the parent's buffers (one upload, one copy on the device) */
     const cl_impl *p = c->parent && c->parent->sys == sys ? c->parent : NULL;
+    c->parent = NULL; /* one setup: the parent may be gone by a later one */
 #define RO_UPLOAD(field, host, bytes) GLPGP_CHECK(ro_upload(c, &c->field, p ? p->field : NULL, host, bytes))
     if (m->xy) RO_UPLOAD(xy, m->xy, 2 * nv * sizeof(double)); /* a surface: none (ctxy) */
     RO_UPLOAD(tri, m->tri, 3 * nt * sizeof(int));
@@ -384,7 +385,6 @@ static glpgp_status cl_setup(glpgp_backend *b, const glpgp_system *sys)
         if (sys->crot) RO_UPLOAD(crot, sys->crot, 6 * nt * sizeof(double));
     }
 #undef RO_UPLOAD
-    c->parent = NULL; /* one setup: the parent may be gone by a later one */
     GLPGP_CHECK(glpgp_cl_upload(c, &c->w, NULL, 2 * nv * sizeof(double)));
     GLPGP_CHECK(glpgp_cl_upload(c, &c->dir, NULL, nv));
     GLPGP_CHECK(glpgp_cl_upload(c, &c->size, NULL, nv * sizeof(double)));

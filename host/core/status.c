@@ -156,9 +156,9 @@ void glpgp_log(glpgp_log_level level, const char *fmt, ...)
 /* Large arrays (a mesh's, a system's, a hierarchy's: tens to hundreds of MB
  * at millions of vertices) on transparent huge pages where the kernel offers
  * them on request (THP "madvise"): their first touch then costs one fault per
- * 2 MiB instead of one per 4 KiB, which in a virtual machine was a third of
- * the host's setup time (bench/results/history.md). Only the 2 MiB-aligned
- * interior is advised; free() is unchanged; a kernel without THP ignores it. */
+ * 2 MiB instead of one per 4 KiB (docs/numerics.md, "Where the time goes").
+ * Only the 2 MiB-aligned interior is advised; free() is unchanged; a kernel
+ * without THP ignores it. */
 #define BIG_PAGE ((size_t)2 << 20)
 #define BIG_MIN (2 * BIG_PAGE) /* the smallest array advised: one whole big page inside */
 static void big_pages(void *p, size_t bytes)

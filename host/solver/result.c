@@ -47,19 +47,30 @@ void glpgp_result_destroy(glpgp_result **pr)
     *pr = NULL;
 }
 
-void glpgp_singularities(const glpgp_mesh *m, const double *z, signed char *sing, int *plus,
-                         int *minus)
+/* The windings of z per triangle; th (may be NULL): each vertex's theta of z
+ * computed beforehand (the same values as per corner, fewer atan2 calls). */
+static void windings(const glpgp_mesh *m, const double *z, const double *th, signed char *sing, int *plus,
+                     int *minus)
 {
     int p = 0, q = 0;
     for (int t = 0; t < m->nt; t++) {
         const int *v = m->tri + 3 * t;
-        int w = glpgp_phase_winding_z(z, v[0], v[1], v[2]);
+        const double tt[3] = {th ? th[v[0]] : glpgp_theta(z[2 * v[0]], z[2 * v[0] + 1]),
+                              th ? th[v[1]] : glpgp_theta(z[2 * v[1]], z[2 * v[1] + 1]),
+                              th ? th[v[2]] : glpgp_theta(z[2 * v[2]], z[2 * v[2] + 1])};
+        const int w = glpgp_phase_winding(tt);
         if (sing) sing[t] = (signed char)w;
-        if (w > 0) p++;
-        if (w < 0) q++;
+        p += w > 0;
+        q += w < 0;
     }
     *plus = p;
     *minus = q;
+}
+
+void glpgp_singularities(const glpgp_mesh *m, const double *z, signed char *sing, int *plus,
+                         int *minus)
+{
+    windings(m, z, NULL, sing, plus, minus);
 }
 
 /* qsort comparator: doubles ascending (solver/internal.h) */
@@ -74,20 +85,9 @@ glpgp_status glpgp_osc_summarize(const glpgp_mesh *m, glpgp_osc_result *o)
     double *s = NULL;
     const int nv = m->nv;
     GLPGP_CHECK(glpgp_malloc((size_t)nv, sizeof(double), &s));
-    /* glpgp_singularities with each vertex's theta computed once (not once
-     * per triangle corner): the same windings, a sixth of the atan2 calls */
+    /* each vertex's theta once (not once per triangle corner): a sixth of the atan2 calls */
     for (int i = 0; i < nv; i++) s[i] = glpgp_theta(o->z[2 * i], o->z[2 * i + 1]);
-    int p = 0, q = 0;
-    for (int t = 0; t < m->nt; t++) {
-        const int *v = m->tri + 3 * t;
-        const double th[3] = {s[v[0]], s[v[1]], s[v[2]]};
-        const int w = glpgp_phase_winding(th);
-        if (o->singular) o->singular[t] = (signed char)w;
-        p += w > 0;
-        q += w < 0;
-    }
-    o->plus = p;
-    o->minus = q;
+    windings(m, o->z, s, o->singular, &o->plus, &o->minus);
     o->zabs_median = glpgp_zabs_median(o->z, nv, s, &o->zabs_min, &o->zabs_p10);
     free(s);
     return GLPGP_OK;

@@ -21,6 +21,18 @@
 
 #include <string.h>
 
+/* out <- (wx, wy) turned by k quarter turns (+90 degrees each) */
+static void quarter_turns(int k, double wx, double wy, double *out)
+{
+    for (int q = 0; q < k; q++) {
+        const double t = -wy;
+        wy = wx;
+        wx = t;
+    }
+    out[0] = wx;
+    out[1] = wy;
+}
+
 static void frame_value_r(int r, const double *zu, const double *zv, double *ou, double *ov)
 {
     glpgp_coupled_frame_value(r, 0, zu, zv, ou);
@@ -154,14 +166,7 @@ static void test_invariance(void)
         x[4 * i + 3] = zv[2 * i + 1];
         /* random representative: U' = rot^k U, (z_u', z_v') = map_k(z_u, z_v) */
         const int k = (int)(4.0 * tu_rand()) & 3;
-        double wx = u[2 * i], wy = u[2 * i + 1];
-        for (int q = 0; q < k; q++) {
-            const double t = -wy;
-            wy = wx;
-            wx = t;
-        }
-        u2[2 * i] = wx;
-        u2[2 * i + 1] = wy;
+        quarter_turns(k, u[2 * i], u[2 * i + 1], u2 + 2 * i);
         frame_value_r(k, zu + 2 * i, zv + 2 * i, x2 + 4 * i, x2 + 4 * i + 2);
     }
     cstate a, b;
@@ -220,14 +225,7 @@ static void test_multigrid_cuts(int random)
         const double izu[2] = {-zu[1], zu[0]}, izv[2] = {-zv[1], zv[0]};
         /* the representative turned by k = the quadrant's index: cuts along the axes */
         const int k = random ? (int)(4.0 * tu_rand()) & 3 : py >= 0.0 ? (px >= 0.0 ? 0 : 1) : (px < 0.0 ? 2 : 3);
-        double wx = ux, wy = uy;
-        for (int q = 0; q < k; q++) {
-            const double t = -wy;
-            wy = wx;
-            wx = t;
-        }
-        u2[2 * i] = wx;
-        u2[2 * i + 1] = wy;
+        quarter_turns(k, ux, uy, u2 + 2 * i);
         frame_value_r(k, zu, zv, x2 + 4 * i, x2 + 4 * i + 2);
         frame_value_r(k, izu, izv, y2 + 4 * i, y2 + 4 * i + 2);
     }
