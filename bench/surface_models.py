@@ -4,6 +4,15 @@
   holes N SUBDIV OUT.obj   a unit sphere (icosphere, SUBDIV subdivisions:
                            20 * 4^SUBDIV triangles) with N round holes of
                            radius 0.15 at Fibonacci points: N boundary loops.
+  bumpy SUBDIV OUT.obj      a scan-like closed surface: the icosphere
+                           (20 * 4^SUBDIV triangles) stretched to an
+                           ellipsoid, with bumps and a 0.2% vertex jitter
+                           (SUBDIV 6: 82k triangles, 7: 328k).
+  slab GX GY SUB OUT.obj    a CAD-like plate of genus GX * GY: a 2 GX + 1 by
+                           2 GY + 1 by 1 block of unit cubes with every
+                           other interior cube removed (GX by GY square
+                           holes), sharp edges everywhere; each cube face
+                           SUB x SUB squares, two triangles each.
 Usage: python3 bench/surface_models.py holes 20 4 holes20.obj"""
 import math
 import sys
@@ -60,7 +69,71 @@ def holes(n, subdiv, out):
             fh.write("f %d %d %d\n" % (idx[a], idx[b], idx[c]))
 
 
+def write_obj(out, title, v, f):
+    with open(out, "w") as fh:
+        fh.write("# %s (bench/surface_models.py)\n" % title)
+        for p in v:
+            fh.write("v %.17g %.17g %.17g\n" % tuple(p))
+        for a, b, c in f:
+            fh.write("f %d %d %d\n" % (a + 1, b + 1, c + 1))
+
+
+def bumpy(subdiv, out, seed=1):
+    import random
+    v, f = icosphere(subdiv)
+    rng = random.Random(seed)
+    w = []
+    for x, y, z in v:
+        r = 1 + 0.08 * math.sin(5 * x) * math.cos(4 * y) + 0.05 * math.sin(7 * z + 1) + rng.uniform(-0.002, 0.002)
+        w.append((x * r, 0.8 * y * r, 1.3 * z * r))
+    write_obj(out, "a bumpy ellipsoid, %d triangles" % len(f), w, f)
+
+
+def slab(gx, gy, sub, out):
+    nx, ny = 2 * gx + 1, 2 * gy + 1
+    solid = lambda i, j: 0 <= i < nx and 0 <= j < ny and not (i % 2 == 1 and j % 2 == 1)
+    vid, v, f = {}, [], []
+
+    def vert(p):
+        if p not in vid:
+            vid[p] = len(v)
+            v.append(tuple(c / sub for c in p))
+        return vid[p]
+
+    for i in range(nx):
+        for j in range(ny):
+            if not solid(i, j):
+                continue
+            for ax, sg in ((0, 1), (0, -1), (1, 1), (1, -1), (2, 1), (2, -1)):
+                q = [i, j, 0]
+                q[ax] += sg
+                if ax < 2 and solid(q[0], q[1]):
+                    continue
+                base = [i, j, 0]
+                if sg > 0:
+                    base[ax] += 1
+                a1, a2 = (ax + 1) % 3, (ax + 2) % 3
+                if sg < 0:
+                    a1, a2 = a2, a1
+                for u in range(sub):
+                    for t in range(sub):
+                        def corner(du, dt):
+                            p = [c * sub for c in base]
+                            p[a1] += u + du
+                            p[a2] += t + dt
+                            return vert(tuple(p))
+                        c00, c10, c11, c01 = corner(0, 0), corner(1, 0), corner(1, 1), corner(0, 1)
+                        f += [(c00, c10, c11), (c00, c11, c01)]
+    write_obj(out, "a plate of genus %d" % (gx * gy), v, f)
+
+
 if __name__ == "__main__":
-    if len(sys.argv) != 5 or sys.argv[1] != "holes":
+    a = sys.argv
+    if len(a) == 5 and a[1] == "holes":
+        holes(int(a[2]), int(a[3]), a[4])
+    elif len(a) == 4 and a[1] == "bumpy":
+        bumpy(int(a[2]), a[3])
+    elif len(a) == 6 and a[1] == "slab":
+        slab(int(a[2]), int(a[3]), int(a[4]), a[5])
+    else:
         sys.exit(__doc__)
-    holes(int(sys.argv[2]), int(sys.argv[3]), sys.argv[4])
