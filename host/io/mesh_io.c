@@ -314,6 +314,22 @@ static void weld_log(const char *path, const raw_mesh *r, int merged, int nv, in
                   path, merged, before, after);
 }
 
+/* What glpgp_surface_fix did, one warning per repair (a file that needed
+ * them is not what its writer meant to write). */
+static void fix_log(const char *path, const glpgp_surface_fixes *fx, int nt)
+{
+    if (fx->flipped)
+        glpgp_log(GLPGP_LOG_WARNING,
+                  "%s: %d of %d triangles were oriented against their neighbours: flipped (closed parts "
+                  "outward)",
+                  path, fx->flipped, nt);
+    if (fx->pinched)
+        glpgp_log(GLPGP_LOG_WARNING,
+                  "%s: %d vertices where surfaces touch at a point (more than one fan of triangles): split "
+                  "into %d, the sheets are meshed apart",
+                  path, fx->pinched, fx->pinched + fx->added);
+}
+
 /* Newell normal of polygon face k: the axis (0, 1, 2) of its largest
  * component, the face's plane is projected along it for the ear clipping. */
 static int face_axis(const raw_mesh *r, size_t k)
@@ -352,6 +368,9 @@ static glpgp_status finish_surface(const char *path, raw_mesh *r, int *map, int 
     int merged = 0, before = 0, after = 0;
     GLPGP_CHECK_GOTO(st, weld(&nv, xyz, 3, (int)r->nt, r->tri, &merged, &before, &after), done);
     weld_log(path, r, merged, nv, before, after);
+    glpgp_surface_fixes fx;
+    GLPGP_CHECK_GOTO(st, glpgp_surface_fix(&nv, &xyz, (int)r->nt, r->tri, &fx), done);
+    fix_log(path, &fx, (int)r->nt);
     if ((st = glpgp_mesh_create_surface(nv, xyz, (int)r->nt, r->tri, out)) != GLPGP_OK) io_name_error(path, st);
 done:
     free(xyz);

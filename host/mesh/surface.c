@@ -105,7 +105,7 @@ static int he_to(const int *tri, int h) { return tri[h - h % 3 + (h % 3 + 1) % 3
  * each bucket sorted by the larger one; more than two half-edges on an edge
  * is a non-manifold edge. *samedir <- the first pair that runs the same way
  * (-1: none; an orientation question, settled by check_orientation). */
-static glpgp_status build_twins(glpgp_mesh *m, glpgp_surface *s, int *samedir)
+glpgp_status glpgp_surface_twins(glpgp_mesh *m, glpgp_surface *s, int *samedir)
 {
     const int nv = m->nv, nt = m->nt;
     const int *tri = m->tri;
@@ -334,7 +334,7 @@ glpgp_status glpgp_mesh_create_surface(int nv, const double *xyz, int nt, const 
     s->nt = nt;
     GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)3 * nt, sizeof(int), &s->twin), fail);
     GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)nv, sizeof(int), &s->vstart), fail);
-    GLPGP_CHECK_GOTO(st, build_twins(m, s, &samedir), fail);
+    GLPGP_CHECK_GOTO(st, glpgp_surface_twins(m, s, &samedir), fail);
     GLPGP_CHECK_GOTO(st, check_orientation(m, s, samedir), fail);
     GLPGP_CHECK_GOTO(st, check_fans_loops(m, s), fail);
     GLPGP_CHECK_GOTO(st, topology(m, s), fail);

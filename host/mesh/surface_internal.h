@@ -21,6 +21,12 @@ static inline void glpgp_tri_normal3(const double *a, const double *b, const dou
  * on_boundary, nloops, in increasing order of each loop's first vertex. */
 glpgp_status glpgp_surface_loops(glpgp_mesh *m, const int *next);
 
+/* s->twin (allocated by the caller, 3 m->nt ints: the half-edge running
+ * the same edge, -1 on the boundary) and s->nedges from m->tri; a third
+ * triangle on an edge is GLPGP_ERR_MESH naming it. *samedir: the first
+ * half-edge whose twin runs the same way (-1: none). */
+glpgp_status glpgp_surface_twins(glpgp_mesh *m, glpgp_surface *s, int *samedir);
+
 /* The geometry of m->surf (normals, frames, angles, local coordinates,
  * rotations, connection, holonomy, dihedral angles) and m->mean_edge, from
  * the validated topology (twin, vstart). */

@@ -43,7 +43,7 @@ grep -q -- "--vertices" out.txt || fail "generate --help does not mention --vert
 # ---- bad inputs: exit 1 with one meaningful message line, no output ------
 # The files have neutral names (in_N.*), so a message can only match the
 # expected words by saying them itself.
-printf 'v 0 0 0\nv 1 0 0\nv 0 1 0.5\nv 1 1 0\nf 1 2 3\nf 2 3 4\n' >in_1.obj      # 3D, inconsistent orientation
+printf 'v 0 0 0\nv 1 0 0\nv 0 1 0.5\nv 0 -1 0.5\nv 0 0 -1\nf 1 2 3\nf 2 1 4\nf 1 2 5\n' >in_1.obj # 3D, non-manifold edge
 printf 'v 0 0 0\nv 1 0 0\nv 2 0 0\nv 0 1 0\nf 1 2 3\nf 1 2 4\n' >in_2.obj        # degenerate triangle
 printf 'v 0 0\nv 1 0\nv 0 1\nv 0 -1\nv 1 1\nf 1 2 3\nf 2 1 4\nf 1 2 5\n' >in_3.obj # non-manifold edge
 printf 'hello world\nthis is not a mesh\n\001\002\003\n' >in_4.obj                 # garbage
@@ -60,8 +60,8 @@ done
 run 1 "missing file" solve missing.obj --quiet
 expect_msg "missing\.obj" "missing file (names the path)"
 expect_msg "no such file|cannot open|not found|does not exist" "missing file"
-run 1 "inconsistent orientation" solve in_1.obj --quiet
-expect_msg "orient" "inconsistent orientation"
+run 1 "non-manifold edge in 3D" solve in_1.obj --quiet
+expect_msg "non-manifold edge" "non-manifold edge in 3D"
 run 1 "degenerate" solve in_2.obj --quiet
 expect_msg "degenerate|zero.area" "degenerate"
 run 1 "non-manifold" solve in_3.obj --quiet

@@ -7,7 +7,10 @@
  * and angles (round trip), feature edges of the cube, the midpoint
  * subdivision (the same surface: area, topology, boundary loops, feature
  * edges doubled, edges halved, every new point the midpoint of an old edge),
- * and the rejection of bad 3D inputs with one message naming the culprit. */
+ * the rejection of bad 3D inputs with one message naming the culprit, and
+ * glpgp_surface_fix (faces flipped back, closed parts outward; a vertex
+ * where two closed surfaces or two sheets touch split; what it is not
+ * defined on left alone). */
 #include "testutil.h"
 
 #include <string.h>
@@ -207,6 +210,91 @@ static void check_subdivide(const char *name)
     glpgp_mesh_destroy(&m);
 }
 
+/* Six times the volume a closed mesh encloses. */
+static double volume6(const double *x, const int *t, int nt)
+{
+    double v = 0.0;
+    for (int k = 0; k < nt; k++) {
+        const double *a = x + 3 * t[3 * k], *b = x + 3 * t[3 * k + 1], *c = x + 3 * t[3 * k + 2];
+        v += a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) +
+             a[2] * (b[0] * c[1] - b[1] * c[0]);
+    }
+    return v;
+}
+
+/* glpgp_surface_fix on nt triangles t (copied) and nv points x (copied):
+ * the fixes, then glpgp_mesh_create_surface's verdict; *mo the mesh. */
+static glpgp_surface_fixes fix(const double *x, int nv, const int *t, int nt, glpgp_mesh **mo)
+{
+    glpgp_surface_fixes fx = {-1, -1, -1};
+    double *xyz = NULL;
+    int *tri = malloc((size_t)3 * nt * sizeof(int));
+    *mo = NULL;
+    CHECK_OK(glpgp_malloc((size_t)3 * nv, sizeof(double), &xyz));
+    if (!xyz || !tri) return fx;
+    memcpy(xyz, x, (size_t)3 * nv * sizeof(double));
+    memcpy(tri, t, (size_t)3 * nt * sizeof(int));
+    CHECK_OK(glpgp_surface_fix(&nv, &xyz, nt, tri, &fx));
+    if (glpgp_mesh_create_surface(nv, xyz, nt, tri, mo) != GLPGP_OK) glpgp_error_clear();
+    free(xyz);
+    free(tri);
+    return fx;
+}
+
+static void check_fix(void)
+{
+    const double tet[12] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1};
+    const int tt[12] = {0, 2, 1, 0, 1, 3, 1, 2, 3, 0, 3, 2};
+    glpgp_mesh *m = NULL;
+    /* one face flipped: flipped back, outward */
+    const int flip[12] = {0, 2, 1, 0, 3, 1, 1, 2, 3, 0, 3, 2};
+    glpgp_surface_fixes fx = fix(tet, 4, flip, 4, &m);
+    CHECK(fx.flipped == 1 && fx.pinched == 0 && fx.added == 0);
+    CHECK(m && m->surf->euler == 2 && memcmp(m->tri, tt, sizeof tt) == 0);
+    glpgp_mesh_destroy(&m);
+    /* inside out with one face right: the three others flipped (outward
+     * wins over the majority on a closed part) */
+    const int inv[12] = {0, 2, 1, 0, 3, 1, 1, 3, 2, 0, 2, 3};
+    fx = fix(tet, 4, inv, 4, &m);
+    CHECK(fx.flipped == 3);
+    CHECK(m && volume6(m->xyz, m->tri, m->nt) > 0.0);
+    glpgp_mesh_destroy(&m);
+    /* consistent and inside out: left as it is (nothing to repair) */
+    const int allinv[12] = {0, 1, 2, 0, 3, 1, 1, 3, 2, 0, 2, 3};
+    fx = fix(tet, 4, allinv, 4, &m);
+    CHECK(fx.flipped == 0 && m && volume6(m->xyz, m->tri, m->nt) < 0.0);
+    glpgp_mesh_destroy(&m);
+    /* an open strip of four triangles, one against the others: it is the one flipped */
+    const double strip[18] = {0, 0, 0, 1, 0, 0, 2, 0, 0, 0, 1, 0.1, 1, 1, 0.2, 2, 1, 0.3};
+    const int st4[12] = {0, 1, 4, 0, 4, 3, 1, 5, 4, 1, 2, 5};
+    const int st4b[12] = {0, 1, 4, 0, 3, 4, 1, 5, 4, 1, 2, 5};
+    fx = fix(strip, 6, st4b, 4, &m);
+    CHECK(fx.flipped == 1 && m && memcmp(m->tri, st4, sizeof st4) == 0 && m->nloops == 1);
+    glpgp_mesh_destroy(&m);
+    /* two tetrahedra sharing a vertex: split, two closed components */
+    const double tt2[21] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, -1, 0, 0, 0, -1, 0, 0, 0, -1};
+    const int t2[24] = {0, 2, 1, 0, 1, 3, 1, 2, 3, 0, 3, 2, 0, 4, 5, 0, 6, 4, 4, 6, 5, 0, 5, 6};
+    fx = fix(tt2, 7, t2, 8, &m);
+    CHECK(fx.flipped == 0 && fx.pinched == 1 && fx.added == 1);
+    CHECK(m && m->nv == 8 && m->surf->euler == 4 && m->surf->ncomponents == 2);
+    CHECK(m && m->xyz[3 * 7] == 0.0 && m->xyz[3 * 7 + 1] == 0.0 && m->xyz[3 * 7 + 2] == 0.0);
+    glpgp_mesh_destroy(&m);
+    /* a bowtie (two triangles at one vertex): two open sheets */
+    const double bow[15] = {0, 0, 0, 1, 0, 0, 1, 1, 0, -1, 0, 0.2, -1, -1, 0};
+    const int bt[6] = {0, 1, 2, 0, 3, 4};
+    fx = fix(bow, 5, bt, 2, &m);
+    CHECK(fx.pinched == 1 && fx.added == 1 && m && m->nloops == 2 && m->surf->ncomponents == 2);
+    glpgp_mesh_destroy(&m);
+    /* not defined on: a non-manifold edge, an index out of range: left alone, still rejected */
+    const double fan[15] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 0, -1, 0.5};
+    const int fe[9] = {0, 1, 2, 1, 0, 3, 0, 1, 4};
+    fx = fix(fan, 5, fe, 3, &m);
+    CHECK(fx.flipped == 0 && fx.pinched == 0 && fx.added == 0 && m == NULL);
+    const int oor[3] = {0, 1, 7};
+    fx = fix(tet, 4, oor, 1, &m);
+    CHECK(fx.flipped == 0 && fx.added == 0 && m == NULL);
+}
+
 int main(void)
 {
     check_shape("sphere", 2000, 2, 0, 0, 4.0 * GLPGP_PI);
@@ -221,5 +309,6 @@ int main(void)
     check_subdivide("cube");
     check_subdivide("hemisphere");
     check_bad_inputs();
+    check_fix();
     TEST_DONE();
 }

@@ -98,6 +98,26 @@ typedef struct glpgp_surface {
  * y range and bbox3 the 3D box. */
 glpgp_status glpgp_mesh_create_surface(int nv, const double *xyz, int nt, const int *tri, glpgp_mesh **out);
 
+/* What glpgp_surface_fix changed. */
+typedef struct glpgp_surface_fixes {
+    int flipped; /* triangles reversed to orient their component alike */
+    int pinched; /* vertices whose triangles formed more than one fan */
+    int added;   /* the vertices added for them (one per fan after the first) */
+} glpgp_surface_fixes;
+
+/* The repairs a surface from a file may need before
+ * glpgp_mesh_create_surface (which stays strict), in place (mesh/surface_fix.c):
+ *  - each connected component's triangles oriented alike; a component
+ *    that needed flips is oriented outward when closed, else as most of
+ *    its triangles were;
+ *  - a pinched vertex (its triangles form several fans: sheets or cones
+ *    touching at a point) split into one vertex per fan, the copies
+ *    appended: *xyz (3 *nv doubles from glpgp_malloc) grows, *nv with it.
+ * An input these repairs are not defined on (an index out of range, a
+ * repeated vertex, a non-manifold edge, a non-orientable component) is
+ * left as it is for glpgp_mesh_create_surface to name. */
+glpgp_status glpgp_surface_fix(int *nv, double **xyz, int nt, int *tri, glpgp_surface_fixes *fx);
+
 /* *out: surface m with every triangle split in four at its edge midpoints
  * (mesh/subdivide.c): the same piecewise linear surface, sharp edges,
  * boundary loops and topology, edges halved; 4 nt triangles. */
