@@ -239,12 +239,13 @@ static PyType_Slot k_slots[] = {
     {Py_tp_methods, k_mesh_methods},
     {Py_tp_doc,
      "Mesh(vertices, triangles, name=None)\n--\n\n"
-     "A triangle mesh of a planar domain, validated and copied in.\n\n"
+     "A triangle mesh of a planar domain or a 3D surface, validated and copied in.\n\n"
      "vertices: (n, 2) or (n, 3) array-like of coordinates; 3D points are taken as a file's would be: a mesh in a "
-     "plane z, y or x = const is solved in its two other coordinates; of a 3D surface its largest face in such a "
-     "plane (with a warning) until 3D surfaces are supported. triangles: (m, 3) array-like of vertex indices. "
-     "Vertices used by no triangle are dropped, unwelded pieces welded, the orientation made counter-clockwise; "
-     "degenerate triangles, non-manifold edges or pinched boundaries raise InputError naming the culprit. "
+     "plane z, y or x = const is solved in its two other coordinates, anything else is a 3D surface. triangles: "
+     "(m, 3) array-like of vertex indices. Vertices used by no triangle are dropped, unwelded pieces welded; a "
+     "planar mesh made counter-clockwise; on a surface, triangles oriented against their neighbours flipped and "
+     "a vertex where sheets touch split (a warning each); degenerate triangles, non-manifold edges, pinched "
+     "boundaries (planar) or a non-orientable surface raise InputError naming the culprit. "
      "name: how messages and statistics name it."},
     {0, NULL}};
 
