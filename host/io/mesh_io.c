@@ -318,6 +318,11 @@ static void weld_log(const char *path, const raw_mesh *r, int merged, int nv, in
  * them is not what its writer meant to write). */
 static void fix_log(const char *path, const glpgp_surface_fixes *fx, int nt)
 {
+    if (fx->degenerate)
+        glpgp_log(GLPGP_LOG_WARNING,
+                  "%s: %d triangles of zero area (a vertex inside an edge, or two vertices at one point): removed "
+                  "by edge flips and collapses",
+                  path, fx->degenerate);
     if (fx->flipped)
         glpgp_log(GLPGP_LOG_WARNING,
                   "%s: %d of %d triangles were oriented against their neighbours: flipped (closed parts "
@@ -369,8 +374,10 @@ static glpgp_status finish_surface(const char *path, raw_mesh *r, int *map, int 
     GLPGP_CHECK_GOTO(st, weld(&nv, xyz, 3, (int)r->nt, r->tri, &merged, &before, &after), done);
     weld_log(path, r, merged, nv, before, after);
     glpgp_surface_fixes fx;
-    GLPGP_CHECK_GOTO(st, glpgp_surface_fix(&nv, &xyz, (int)r->nt, r->tri, &fx), done);
+    int nt = (int)r->nt;
+    GLPGP_CHECK_GOTO(st, glpgp_surface_fix(&nv, &xyz, &nt, r->tri, &fx), done);
     fix_log(path, &fx, (int)r->nt);
+    r->nt = (size_t)nt;
     if ((st = glpgp_mesh_create_surface(nv, xyz, (int)r->nt, r->tri, out)) != GLPGP_OK) io_name_error(path, st);
 done:
     free(xyz);

@@ -5,6 +5,11 @@
  *    (a breadth-first walk across the manifold edges); a component that
  *    needed flips is oriented outward when it is closed (positive enclosed
  *    volume), else as most of its triangles were;
+ *  - degenerate triangles (zero area, the test glpgp_mesh_create_surface
+ *    applies): a cap (one vertex inside the opposite edge: a T-junction's
+ *    filler) has that edge flipped with its neighbour's (or is dropped on
+ *    the boundary), a needle (two vertices nearly one) has its short edge
+ *    collapsed; a few passes, what is left stays for the validation;
  *  - pinched vertices: a vertex whose triangles form several fans (two
  *    sheets or cones touching at a point) becomes one vertex per fan, so
  *    the sheets are meshed apart (the corners at a vertex joined across
@@ -17,8 +22,12 @@
 
 #include "surface_internal.h"
 
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
+
+#define FIX_PASSES 8      /* degenerate-triangle passes */
+#define FIX_NEEDLE 1e-6   /* a vertex this close to an end of the edge opposite it (x its length): a needle */
 
 static int corner_next(int h) { return h - h % 3 + (h % 3 + 1) % 3; }
 
@@ -121,6 +130,178 @@ done:
     return st;
 }
 
+/* ---- degenerate triangles --------------------------------------------- */
+
+static int cmp_ll(const void *pa, const void *pb)
+{
+    const long long *a = pa, *b = pb;
+    return a[0] < b[0] ? -1 : a[0] > b[0] ? 1 : (a[1] > b[1]) - (a[1] < b[1]);
+}
+
+static double dist2(const double *p, const double *q)
+{
+    return (p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1]) + (p[2] - q[2]) * (p[2] - q[2]);
+}
+
+/* Whether triangle t's area is at most 1e-14 diag^2 (the validation's test). */
+static int degenerate(const double *xyz, const int *tri, int t, double diag2)
+{
+    double n[3];
+    glpgp_tri_normal3(xyz + 3 * tri[3 * t], xyz + 3 * tri[3 * t + 1], xyz + 3 * tri[3 * t + 2], n);
+    return !(0.5 * sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]) > 1e-14 * diag2);
+}
+
+/* twin[h]: the half-edge running h's edge the other way (-1: none, -2: the
+ * edge has more than two, or two the same way). key: 6 nt long longs. */
+static void edge_twins(int nv, int nt, const int *tri, long long *key, int *twin)
+{
+    const int nh = 3 * nt;
+    for (int h = 0; h < nh; h++) {
+        const long long a = tri[h], b = tri[corner_next(h)];
+        key[2 * h] = a < b ? a * nv + b : b * nv + a;
+        key[2 * h + 1] = h;
+        twin[h] = -1;
+    }
+    qsort(key, (size_t)nh, 2 * sizeof(long long), cmp_ll);
+    for (int i = 0; i < nh;) {
+        int j = i + 1;
+        while (j < nh && key[2 * j] == key[2 * i]) j++;
+        const int h0 = (int)key[2 * i + 1], h1 = j - i == 2 ? (int)key[2 * i + 3] : -1;
+        if (j - i == 2 && tri[h0] != tri[h1]) {
+            twin[h0] = h1;
+            twin[h1] = h0;
+        } else if (j - i >= 2) {
+            for (int k = i; k < j; k++) twin[key[2 * k + 1]] = -2;
+        }
+        i = j;
+    }
+}
+
+/* One degenerate triangle t: its longest edge h (x -> y) and the vertex m
+ * opposite; a needle (m at an end) collapses m into that end (alias[m]), a
+ * cap flips x-y with the neighbour (x, c, m), (c, y, m), or is dropped on
+ * the boundary. busy: triangles changed this pass. Returns 1 when changed. */
+static int fix_one(const double *xyz, int *tri, const int *twin, int t, unsigned char *busy, unsigned char *gone,
+                   int *alias)
+{
+    int h = 3 * t;
+    double best = -1.0;
+    for (int i = 0; i < 3; i++) {
+        const double l = dist2(xyz + 3 * tri[3 * t + i], xyz + 3 * tri[3 * t + (i + 1) % 3]);
+        if (l > best) {
+            best = l;
+            h = 3 * t + i;
+        }
+    }
+    const int x = tri[h], y = tri[corner_next(h)], mm = tri[corner_next(corner_next(h))];
+    const double dx = dist2(xyz + 3 * mm, xyz + 3 * x), dy = dist2(xyz + 3 * mm, xyz + 3 * y);
+    if (fmin(dx, dy) <= FIX_NEEDLE * FIX_NEEDLE * best) { /* a needle (roots alias roots: no cycle) */
+        const int e = dx <= dy ? x : y;
+        if (alias[mm] != mm || alias[e] != e) return 0;
+        alias[mm] = e;
+        busy[t] = 1;
+        return 1;
+    }
+    const int g = twin[h];
+    if (g == -2) return 0;
+    if (g == -1) { /* a cap on the boundary: nothing but a zero-area sliver to drop */
+        gone[t] = busy[t] = 1;
+        return 1;
+    }
+    const int u = g / 3, c = tri[corner_next(corner_next(g))];
+    if (busy[u] || c == mm) return 0;
+    tri[3 * t] = x;
+    tri[3 * t + 1] = c;
+    tri[3 * t + 2] = mm;
+    tri[3 * u] = c;
+    tri[3 * u + 1] = y;
+    tri[3 * u + 2] = mm;
+    busy[t] = busy[u] = 1;
+    return 1;
+}
+
+/* The passes: caps flipped or dropped, needles collapsed; then the
+ * triangles that repeat a vertex after a collapse dropped, *nt and the
+ * vertices compacted (*nv). *fixed: the degenerate triangles handled. */
+static glpgp_status fix_degenerate(int *nv, double *xyz, int *nt, int *tri, int *fixed)
+{
+    const int n = *nv;
+    double lo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+    for (int v = 0; v < n; v++)
+        for (int c = 0; c < 3; c++) {
+            lo[c] = fmin(lo[c], xyz[3 * v + c]);
+            hi[c] = fmax(hi[c], xyz[3 * v + c]);
+        }
+    const double diag2 = dist2(lo, hi);
+    *fixed = 0;
+    int any = 0;
+    for (int t = 0; t < *nt && !any; t++) any = degenerate(xyz, tri, t, diag2);
+    if (!any) return GLPGP_OK;
+    long long *key = NULL;
+    int *twin = NULL, *alias = NULL, *keep = NULL;
+    unsigned char *busy = NULL, *gone = NULL;
+    glpgp_status st = GLPGP_OK;
+    const int nt0 = *nt;
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)3 * nt0, sizeof(int), &keep), done); /* nothing left: undone */
+    memcpy(keep, tri, (size_t)3 * nt0 * sizeof(int));
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)6 * *nt, sizeof(long long), &key), done);
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)3 * *nt, sizeof(int), &twin), done);
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)n, sizeof(int), &alias), done);
+    GLPGP_CHECK_GOTO(st, glpgp_calloc((size_t)*nt, 1, &busy), done);
+    GLPGP_CHECK_GOTO(st, glpgp_calloc((size_t)*nt, 1, &gone), done);
+    for (int v = 0; v < n; v++) alias[v] = v;
+    for (int pass = 0; pass < FIX_PASSES; pass++) {
+        int changed = 0;
+        edge_twins(n, *nt, tri, key, twin);
+        memset(busy, 0, (size_t)*nt);
+        for (int t = 0; t < *nt; t++)
+            if (!gone[t] && !busy[t] && degenerate(xyz, tri, t, diag2))
+                changed += fix_one(xyz, tri, twin, t, busy, gone, alias);
+        *fixed += changed;
+        /* collapses: every corner to its vertex's final alias; triangles that repeat a vertex dropped */
+        for (int c = 0; c < 3 * *nt; c++) {
+            int v = tri[c];
+            while (alias[v] != v) v = alias[v];
+            tri[c] = v;
+        }
+        int k = 0;
+        for (int t = 0; t < *nt; t++) {
+            const int *q = tri + 3 * t;
+            if (gone[t] || q[0] == q[1] || q[1] == q[2] || q[0] == q[2]) continue;
+            memmove(tri + 3 * k, q, 3 * sizeof(int));
+            k++;
+        }
+        *nt = k;
+        memset(gone, 0, (size_t)k);
+        if (!changed) break;
+    }
+    if (*nt == 0) { /* all of it degenerate: left for the validation to name */
+        memcpy(tri, keep, (size_t)3 * nt0 * sizeof(int));
+        *nt = nt0;
+        *fixed = 0;
+        goto done;
+    }
+    /* the vertices a collapse left unused: compacted */
+    for (int v = 0; v < n; v++) alias[v] = -1;
+    for (int c = 0; c < 3 * *nt; c++) alias[tri[c]] = 0;
+    int m = 0;
+    for (int v = 0; v < n; v++)
+        if (alias[v] == 0) {
+            memmove(xyz + 3 * m, xyz + 3 * v, 3 * sizeof(double));
+            alias[v] = m++;
+        }
+    for (int c = 0; c < 3 * *nt; c++) tri[c] = alias[tri[c]];
+    *nv = m;
+done:
+    free(keep);
+    free(key);
+    free(twin);
+    free(alias);
+    free(busy);
+    free(gone);
+    return st;
+}
+
 /* The pinched-vertex repair (consistent orientation, twin[] current): one
  * vertex per fan, the new ones appended to *xyz. */
 static glpgp_status split_fans(glpgp_mesh *m, const int *twin, double **xyz, int *pinched, int *added)
@@ -174,12 +355,16 @@ done:
     return st;
 }
 
-glpgp_status glpgp_surface_fix(int *nv, double **xyz, int nt, int *tri, glpgp_surface_fixes *fx)
+glpgp_status glpgp_surface_fix(int *nv, double **xyz, int *ntp, int *tri, glpgp_surface_fixes *fx)
 {
-    glpgp_surface_fixes none = {0, 0, 0};
-    if (!nv || !xyz || !*xyz || !tri || !fx) return GLPGP_FAIL(GLPGP_ERR_ARG, "glpgp_surface_fix: NULL argument");
+    glpgp_surface_fixes none = {0, 0, 0, 0};
+    if (!nv || !xyz || !*xyz || !ntp || !tri || !fx)
+        return GLPGP_FAIL(GLPGP_ERR_ARG, "glpgp_surface_fix: NULL argument");
     *fx = none;
-    if (*nv < 3 || nt < 1 || !well_formed(*nv, nt, tri)) return GLPGP_OK;
+    if (*nv < 3 || *ntp < 1 || !well_formed(*nv, *ntp, tri)) return GLPGP_OK;
+    GLPGP_CHECK(fix_degenerate(nv, *xyz, ntp, tri, &fx->degenerate));
+    const int nt = *ntp;
+    if (*nv < 3 || nt < 1) return GLPGP_OK;
     glpgp_mesh m;
     glpgp_surface s;
     memset(&m, 0, sizeof m);

@@ -73,7 +73,8 @@ printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nv 0 -1 0.5\nf 1 2 3\nf 2 1 4\nf 1 2 
 printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nv -1 0 0\nv 0 -1 0\nv 0 0 -1\n' >in_2.obj
 printf 'f 1 3 2\nf 1 2 4\nf 2 3 4\nf 1 4 3\nf 1 5 6\nf 1 7 5\nf 5 7 6\nf 1 6 7\n' >>in_2.obj
 printf 'v 0 0 0\nv 1 0 0.1\nv 0 1 0.2\nv 0.3 0.3 1\nf 1 3 2\nf 1 4 2\nf 2 3 4\nf 3 1 4\n' >in_3.obj
-printf 'v 0 0 0\nv 1 1 1\nv 2 2 2\nv 0 1 0\nf 1 2 3\nf 1 4 2\n' >in_4.obj
+printf 'v 0 0 0\nv 1 1 1\nv 2 2 2\nf 1 2 3\n' >in_4.obj
+printf 'v 0 0 0\nv 1 1 1\nv 2 2 2\nv 0 1 0\nf 1 2 3\nf 1 4 2\n' >cap.obj
 python3 - <<'PY' || fail "writing the Moebius strip"
 import math
 k = 8
@@ -103,6 +104,8 @@ run_ok "pinched vertex" solve in_2.obj --backend reference --quads q2.obj
 expect_err "in_2\.obj: 1 vertices where surfaces touch" "the pinched vertex is named"
 expect_out "surface +chi 4, genus 0, 0 boundary loop\(s\), 2 component" "the pinched vertex split: two components"
 expect_out "valid +yes" "the pinched input's quads are valid"
+run_ok "zero-area cap" solve cap.obj --backend reference --method pgp
+expect_err "cap\.obj: 1 triangles of zero area" "the zero-area triangle is named"
 run_ok "flipped face" solve in_3.obj --backend reference --quads q3.obj
 expect_err "in_3\.obj: 1 of 4 triangles were oriented against" "the flipped face is counted"
 expect_out "surface +chi 2, genus 0" "the flipped tetrahedron is a sphere"

@@ -8,7 +8,8 @@
  * subdivision (the same surface: area, topology, boundary loops, feature
  * edges doubled, edges halved, every new point the midpoint of an old edge),
  * the rejection of bad 3D inputs with one message naming the culprit, and
- * glpgp_surface_fix (faces flipped back, closed parts outward; a vertex
+ * glpgp_surface_fix (zero-area caps flipped away or dropped, needles
+ * collapsed; faces flipped back, closed parts outward; a vertex
  * where two closed surfaces or two sheets touch split; what it is not
  * defined on left alone). */
 #include "testutil.h"
@@ -226,7 +227,7 @@ static double volume6(const double *x, const int *t, int nt)
  * the fixes, then glpgp_mesh_create_surface's verdict; *mo the mesh. */
 static glpgp_surface_fixes fix(const double *x, int nv, const int *t, int nt, glpgp_mesh **mo)
 {
-    glpgp_surface_fixes fx = {-1, -1, -1};
+    glpgp_surface_fixes fx = {-1, -1, -1, -1};
     double *xyz = NULL;
     int *tri = malloc((size_t)3 * nt * sizeof(int));
     *mo = NULL;
@@ -234,7 +235,7 @@ static glpgp_surface_fixes fix(const double *x, int nv, const int *t, int nt, gl
     if (!xyz || !tri) return fx;
     memcpy(xyz, x, (size_t)3 * nv * sizeof(double));
     memcpy(tri, t, (size_t)3 * nt * sizeof(int));
-    CHECK_OK(glpgp_surface_fix(&nv, &xyz, nt, tri, &fx));
+    CHECK_OK(glpgp_surface_fix(&nv, &xyz, &nt, tri, &fx));
     if (glpgp_mesh_create_surface(nv, xyz, nt, tri, mo) != GLPGP_OK) glpgp_error_clear();
     free(xyz);
     free(tri);
@@ -284,6 +285,25 @@ static void check_fix(void)
     const int bt[6] = {0, 1, 2, 0, 3, 4};
     fx = fix(bow, 5, bt, 2, &m);
     CHECK(fx.pinched == 1 && fx.added == 1 && m && m->nloops == 2 && m->surf->ncomponents == 2);
+    glpgp_mesh_destroy(&m);
+    /* a T-junction's zero-area filler (vertex 4 inside edge 0-1): the edge flipped */
+    const double capx[15] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 0.5, 0, 0};
+    const int capt[18] = {0, 2, 4, 4, 2, 1, 0, 1, 3, 1, 2, 3, 0, 3, 2, 0, 4, 1};
+    fx = fix(capx, 5, capt, 6, &m);
+    CHECK(fx.degenerate == 1 && fx.flipped == 0 && m && m->nt == 6 && m->nv == 5 && m->surf->euler == 2);
+    CHECK(m && volume6(m->xyz, m->tri, m->nt) > 0.0);
+    glpgp_mesh_destroy(&m);
+    /* the same filler on the boundary (edge 0-1 of nothing else): dropped */
+    const double bcx[15] = {0, 0, 0, 2, 0, 0, 2, 1, 0.1, 0, 1, 0.1, 1, 0, 0};
+    const int bct[12] = {4, 1, 2, 4, 2, 3, 0, 4, 3, 0, 1, 4};
+    fx = fix(bcx, 5, bct, 4, &m);
+    CHECK(fx.degenerate == 1 && m && m->nt == 3 && m->nloops == 1 && m->surf->euler == 1);
+    glpgp_mesh_destroy(&m);
+    /* needles: vertex 4 a hair from vertex 1 (two zero-area triangles): collapsed, the tetrahedron again */
+    const double ndx[15] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 1 + 1e-15, 0, 0};
+    const int ndt[18] = {0, 2, 1, 0, 1, 3, 4, 2, 3, 1, 4, 3, 1, 2, 4, 0, 3, 2};
+    fx = fix(ndx, 5, ndt, 6, &m);
+    CHECK(fx.degenerate >= 1 && m && m->nt == 4 && m->nv == 4 && m->surf->euler == 2);
     glpgp_mesh_destroy(&m);
     /* not defined on: a non-manifold edge, an index out of range: left alone, still rejected */
     const double fan[15] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 0, -1, 0.5};

@@ -100,13 +100,19 @@ glpgp_status glpgp_mesh_create_surface(int nv, const double *xyz, int nt, const 
 
 /* What glpgp_surface_fix changed. */
 typedef struct glpgp_surface_fixes {
-    int flipped; /* triangles reversed to orient their component alike */
-    int pinched; /* vertices whose triangles formed more than one fan */
-    int added;   /* the vertices added for them (one per fan after the first) */
+    int degenerate; /* zero-area triangles flipped away, dropped or collapsed */
+    int flipped;    /* triangles reversed to orient their component alike */
+    int pinched;    /* vertices whose triangles formed more than one fan */
+    int added;      /* the vertices added for them (one per fan after the first) */
 } glpgp_surface_fixes;
 
 /* The repairs a surface from a file may need before
  * glpgp_mesh_create_surface (which stays strict), in place (mesh/surface_fix.c):
+ *  - a zero-area triangle (the validation's test) removed: a cap (a vertex
+ *    inside the opposite edge, a T-junction's filler) by flipping that
+ *    edge with its neighbour (dropped on the boundary), a needle (two
+ *    vertices nearly one) by collapsing them (*nt, *nv shrink: the
+ *    triangles and vertices are compacted);
  *  - each connected component's triangles oriented alike; a component
  *    that needed flips is oriented outward when closed, else as most of
  *    its triangles were;
@@ -116,7 +122,7 @@ typedef struct glpgp_surface_fixes {
  * An input these repairs are not defined on (an index out of range, a
  * repeated vertex, a non-manifold edge, a non-orientable component) is
  * left as it is for glpgp_mesh_create_surface to name. */
-glpgp_status glpgp_surface_fix(int *nv, double **xyz, int nt, int *tri, glpgp_surface_fixes *fx);
+glpgp_status glpgp_surface_fix(int *nv, double **xyz, int *nt, int *tri, glpgp_surface_fixes *fx);
 
 /* *out: surface m with every triangle split in four at its edge midpoints
  * (mesh/subdivide.c): the same piecewise linear surface, sharp edges,
