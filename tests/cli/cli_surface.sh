@@ -4,8 +4,10 @@
 # default; stats: chi, genus, loops, index sum = Poincare-Hopf; .vtu and
 # .vtk with 3D points and field vectors, read back by `render`); a cube's
 # eight corners; the same surface as PLY and OFF; bad 3D inputs (non-manifold
-# edge and vertex, inconsistent orientation, degenerate face, Moebius strip)
-# each one error line, exit 1, no output; --planar-face keeps a box STL's
+# edge, a lone degenerate face, Moebius strip) each one error line, exit 1,
+# no output; what the reader repairs with a warning (a zero-area cap, a face
+# oriented against its neighbours, two tetrahedra touching at a vertex)
+# solved with the repaired topology; --planar-face keeps a box STL's
 # bottom; --quads on a surface writes an all-quad OBJ (issue 29; the
 # details in cli_surfquads.sh), `figure --cross` on a surface draws the
 # surface figure (input, texture, quads), `extract` of a surface's result
