@@ -3,7 +3,8 @@
 (download-free), written as OBJ:
   holes N SUBDIV OUT.obj   a unit sphere (icosphere, SUBDIV subdivisions:
                            20 * 4^SUBDIV triangles) with N round holes of
-                           radius 0.15 at Fibonacci points: N boundary loops.
+                           radius min(0.15, 0.9 / sqrt(N)) at Fibonacci
+                           points: N boundary loops (N = 120: SUBDIV 6).
   bumpy SUBDIV OUT.obj      a scan-like closed surface: the icosphere
                            (20 * 4^SUBDIV triangles) stretched to an
                            ellipsoid, with bumps and a 0.2% vertex jitter
@@ -49,6 +50,7 @@ def icosphere(subdiv):
 def holes(n, subdiv, out):
     v, f = icosphere(subdiv)
     g = math.pi * (3 - 5 ** 0.5)
+    radius = min(0.15, 0.9 / math.sqrt(n))  # apart at any n (Fibonacci spacing ~ 3.5 / sqrt(n))
     centers = []
     for i in range(n):
         z = 1 - 2 * (i + 0.5) / n
@@ -57,7 +59,7 @@ def holes(n, subdiv, out):
     keep = []
     for t in f:
         c = [sum(v[k][i] for k in t) / 3 for i in range(3)]
-        if all(sum((c[i] - p[i]) ** 2 for i in range(3)) > 0.15 ** 2 for p in centers):
+        if all(sum((c[i] - p[i]) ** 2 for i in range(3)) > radius ** 2 for p in centers):
             keep.append(t)
     used = sorted({k for t in keep for k in t})
     idx = {k: i + 1 for i, k in enumerate(used)}
