@@ -1,10 +1,10 @@
 /* mesh/surface_fix.c: glpgp_surface_fix (glpgp/surface.h), the repairs a
  * surface read from a file may need before glpgp_mesh_create_surface, which
  * stays strict:
- *  - orientation: each connected component's triangles oriented alike
- *    (a breadth-first walk across the manifold edges); a component that
- *    needed flips is oriented outward when it is closed (positive enclosed
- *    volume), else as most of its triangles were;
+ *  - orientation (first): each connected component's triangles oriented
+ *    alike (a breadth-first walk across the manifold edges); a component
+ *    that needed flips is oriented outward when it is closed (positive
+ *    enclosed volume), else as most of its triangles were;
  *  - degenerate triangles (zero area, the test glpgp_mesh_create_surface
  *    applies): a cap (one vertex inside the opposite edge: a T-junction's
  *    filler) has that edge flipped with its neighbour's (or is dropped on
@@ -355,6 +355,15 @@ done:
     return st;
 }
 
+/* twin[] of m (s->twin allocated); 0 when an edge is not manifold (left
+ * to the validation, its message not kept here). */
+static int twins_or_leave(glpgp_mesh *m, glpgp_surface *s, int *samedir)
+{
+    if (glpgp_surface_twins(m, s, samedir) == GLPGP_OK) return 1;
+    glpgp_error_clear();
+    return 0;
+}
+
 glpgp_status glpgp_surface_fix(int *nv, double **xyz, int *ntp, int *tri, glpgp_surface_fixes *fx)
 {
     glpgp_surface_fixes none = {0, 0, 0, 0};
@@ -362,29 +371,26 @@ glpgp_status glpgp_surface_fix(int *nv, double **xyz, int *ntp, int *tri, glpgp_
         return GLPGP_FAIL(GLPGP_ERR_ARG, "glpgp_surface_fix: NULL argument");
     *fx = none;
     if (*nv < 3 || *ntp < 1 || !well_formed(*nv, *ntp, tri)) return GLPGP_OK;
-    GLPGP_CHECK(fix_degenerate(nv, *xyz, ntp, tri, &fx->degenerate));
-    const int nt = *ntp;
-    if (*nv < 3 || nt < 1) return GLPGP_OK;
     glpgp_mesh m;
     glpgp_surface s;
     memset(&m, 0, sizeof m);
     memset(&s, 0, sizeof s);
     m.nv = *nv;
-    m.nt = nt;
+    m.nt = *ntp;
     m.tri = tri;
     m.xyz = *xyz;
     glpgp_status st = GLPGP_OK;
     int samedir = -1, orientable = 1;
-    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)3 * nt, sizeof(int), &s.twin), done);
-    if (glpgp_surface_twins(&m, &s, &samedir) != GLPGP_OK) { /* a non-manifold edge: left to the validation */
-        glpgp_error_clear();
-        goto done;
-    }
-    if (samedir >= 0) {
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)3 * m.nt, sizeof(int), &s.twin), done);
+    if (!twins_or_leave(&m, &s, &samedir)) goto done;
+    if (samedir >= 0) { /* first, so that a degenerate triangle's flip keeps the orientation */
         GLPGP_CHECK_GOTO(st, orient(&m, &s, &fx->flipped, &orientable), done);
         if (!orientable) goto done;
-        GLPGP_CHECK_GOTO(st, glpgp_surface_twins(&m, &s, &samedir), done);
     }
+    GLPGP_CHECK_GOTO(st, fix_degenerate(nv, *xyz, ntp, tri, &fx->degenerate), done);
+    m.nv = *nv;
+    m.nt = *ntp;
+    if (!twins_or_leave(&m, &s, &samedir)) goto done;
     GLPGP_CHECK_GOTO(st, split_fans(&m, s.twin, xyz, &fx->pinched, &fx->added), done);
     *nv += fx->added;
 done:

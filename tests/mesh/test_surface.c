@@ -293,6 +293,11 @@ static void check_fix(void)
     CHECK(fx.degenerate == 1 && fx.flipped == 0 && m && m->nt == 6 && m->nv == 5 && m->surf->euler == 2);
     CHECK(m && volume6(m->xyz, m->tri, m->nt) > 0.0);
     glpgp_mesh_destroy(&m);
+    /* ... with the face across its edge oriented against the others: both repaired */
+    const int capf[18] = {0, 2, 4, 4, 2, 1, 0, 3, 1, 1, 2, 3, 0, 3, 2, 0, 4, 1};
+    fx = fix(capx, 5, capf, 6, &m);
+    CHECK(fx.degenerate == 1 && fx.flipped == 1 && m && m->nt == 6 && m->surf->euler == 2);
+    glpgp_mesh_destroy(&m);
     /* the same filler on the boundary (edge 0-1 of nothing else): dropped */
     const double bcx[15] = {0, 0, 0, 2, 0, 0, 2, 1, 0.1, 0, 1, 0.1, 1, 0, 0};
     const int bct[12] = {4, 1, 2, 4, 2, 3, 0, 4, 3, 0, 1, 4};
