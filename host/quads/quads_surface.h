@@ -42,6 +42,19 @@ glpgp_status glpgp_qs_split_triangles(const double *xyz, int np, const int *tri,
 glpgp_status glpgp_qs_local_repair(const glpgp_mesh *m, const glpgp_quadmesh *q, double h, int far,
                                    glpgp_quadmesh **out, glpgp_quads_repair *rs);
 
+/* The faces the local repair takes as bad (bad[f] = 1; repair_surface.c; far: with the
+ * faces far from the surface); *nbad their count. */
+glpgp_status glpgp_qs_bad_faces(const glpgp_mesh *m, const glpgp_quadmesh *q, double h, int far, unsigned char *bad,
+                                int *nbad);
+
+/* The local split (split_surface.c): the faces of sel (and those not quads)
+ * split in n quads each (Catmull-Clark), the quad strips through their
+ * sides split in two along the strip until they close (a quad crossed by
+ * two strips split in four): a conforming all-quad mesh with q's topology;
+ * the new points moved onto the surface. *nsplit: the faces of q split. */
+glpgp_status glpgp_qs_split_local(const glpgp_mesh *m, const glpgp_quadmesh *q, double h, const unsigned char *sel,
+                                  glpgp_quadmesh **out, int *nsplit);
+
 /* glpgp_quads_surface_fallback_coarse (17 degrees) with the smallest angle
  * a new triangle may have (degrees; unless one before was smaller). */
 glpgp_status glpgp_qs_coarse(const glpgp_mesh *m, double h, double amin_deg, glpgp_quadmesh **out, int *ntri);

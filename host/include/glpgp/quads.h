@@ -423,6 +423,8 @@ typedef struct glpgp_quads_surface_steps {
     int strips;            /* odd faces joined pairwise through strips of quads cut in two */
     int subdivided;        /* 1: faces other than quads were left and every face was split
                               (Catmull-Clark, h/2) */
+    int split_faces;       /* faces split locally: the bad ones and the quad strips through them
+                              (Catmull-Clark in the bad regions, in two across the strips) */
     int fallback;          /* 1: the extraction was not valid: the last resort, triangles split into
                               quads (coarse_triangles of a coarsened triangulation, else the input's) */
     int coarse_triangles;  /* the last resort's coarse triangles (0: the input's own) */
