@@ -780,9 +780,10 @@ static glpgp_status local_repair(const glpgp_mesh *m, const glpgp_quadmesh *q, d
         *bad = qq.invalid;
         glpgp_log(GLPGP_LOG_DEBUG,
                   "quads: surface local repair (pass %d%s): %d regions, %d faces -> %d quads; %s (0x%x: %d inverted, "
-                  "Hausdorff %.3f h, area ratio %.4f)",
+                  "Hausdorff %.3f h (quads->surface %.3f, surface->quads %.3f), area ratio %.4f)",
                   pass, far ? ", far faces too" : "", one.regions, one.removed_faces, one.new_quads,
-                  *bad ? "not valid" : "valid", *bad, qq.inverted, qq.hausdorff, qq.area_ratio);
+                  *bad ? "not valid" : "valid", *bad, qq.inverted, qq.hausdorff, qq.dist_quad_to_domain,
+                  qq.dist_domain_to_quad, qq.area_ratio);
         if (!*bad) break;
     }
     if (*out) {
