@@ -1,8 +1,10 @@
 /* quads/quads_surface.c: the quad pipeline on a 3D surface
  * (glpgp_quads_build_surface, glpgp/quads.h): the extraction
- * (extract_surface.c), one Catmull-Clark split in 3D when it left faces
- * that are not quads, the check (check_surface.c), and the last resort
- * that cannot fail: the input triangles split into three quads each. */
+ * (extract_surface.c), the closing, the local repair (repair_surface.c),
+ * the local split of the bad faces and their quad strips (split_surface.c),
+ * one Catmull-Clark split in 3D when those leave it invalid, the check
+ * (check_surface.c), and the last resort that cannot fail: the input
+ * triangles split into three quads each. */
 #include "quads_surface.h"
 
 #include "glpgp/surface.h"

@@ -37,8 +37,8 @@ glpgp_status glpgp_qs_split_triangles(const double *xyz, int np, const int *tri,
  * removed in regions grown to topological disks, each flattened onto a
  * plane, meshed by the cut mesher with its boundary points fixed and lifted
  * onto the surface; the other faces kept. *out NULL when q has no bad face
- * or a region could not be repaired; *rs: the regions. The caller checks
- * the result. */
+ * or no region could be repaired (when some could: those, the others' faces
+ * kept); *rs: the regions. The caller checks the result. */
 glpgp_status glpgp_qs_local_repair(const glpgp_mesh *m, const glpgp_quadmesh *q, double h, int far,
                                    glpgp_quadmesh **out, glpgp_quads_repair *rs);
 

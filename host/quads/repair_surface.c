@@ -18,7 +18,8 @@
  *    mapped to a chart: the plane through the loop's centroid orthogonal to
  *    its vector area when the projected loop is a simple counter-clockwise
  *    polygon (and the surface under each loop point faces within 107
- *    degrees of the plane's normal), else a circle (by 3D arc length, as large as the region);
+ *    degrees of the plane's normal), else a circle (by 3D arc length, as large as the region),
+ *    else that circle with the region's own faces Tutte-embedded in it (the patch chart);
  *    meshed there by the cut mesher (qcut.c); the new points lifted by the
  *    mean-value interpolation of the loop's heights above the plane (of the
  *    loop's 3D points on the circle) and moved to their nearest points on
@@ -26,7 +27,9 @@
  *  - the region's new quads checked in 3D (every corner's scaled Jacobian
  *    above 0, along the surface's normal; the smoothing follows) and their
  *    boundary against the loop; a region that fails grows by a ring and is
- *    tried again (6 rounds); regions over half the faces: not local.
+ *    tried again (6 rounds); regions over half the faces: not local; when
+ *    some fail to the end, the round with the fewest faces in failed
+ *    regions is kept, its meshed regions replaced (a partial repair).
  * The grid's faces outside the regions are kept as they are. The caller
  * checks the whole mesh (check_surface.c) and falls back to the splits and
  * the coarse last resort when the repair fails or is not valid. */

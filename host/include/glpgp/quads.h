@@ -443,7 +443,9 @@ typedef struct glpgp_quads_surface_steps {
  * faces that share a side (a triangle and a pentagon around a +1/4
  * singularity between grid points) joined, and the even faces, are split
  * into quads (the split with the best smallest scaled Jacobian, above
- * 0.05, up to 10 corners); when faces that
+ * 0.05, up to 10 corners); when that is not valid, the local repair,
+ * then the local split of the bad faces and their quad strips (see
+ * docs/surfaces.md); when faces that
  * are not quads are left, one Catmull-Clark split (edges about h/2, the
  * new points moved onto the surface; skipped when o->keep_polygons); when
  * that is not valid (glpgp_quads_quality_surface against the target h: the
