@@ -868,7 +868,8 @@ keep_r:
 /* The local split (glpgp_qs_split_local) of base's bad faces (the far ones
  * too) and the quad strips through them, then the local repair of what it
  * leaves bad; again (twice at most) on the partial repair of the split.
- * *out NULL: none is valid. */
+ * A split of over half the faces is left to the global split. *out NULL:
+ * none is valid. */
 static glpgp_status split_local_repair(const glpgp_mesh *m, const glpgp_quadmesh *base, double h,
                                        glpgp_quads_surface_steps *stp, glpgp_quadmesh **out)
 {
@@ -887,6 +888,10 @@ static glpgp_status split_local_repair(const glpgp_mesh *m, const glpgp_quadmesh
         if (st == GLPGP_OK) st = glpgp_qs_bad_faces(m, b, h, 1, sel, &nbad);
         if (st != GLPGP_OK || nbad == 0) break;
         if (st == GLPGP_OK) st = glpgp_qs_split_local(m, b, h, sel, &s, &ns);
+        if (st == GLPGP_OK && 2 * ns > b->nf) { /* the strips ran through most of the mesh: the global split's job */
+            glpgp_log(GLPGP_LOG_DEBUG, "quads: local split %d: %d of %d faces split, not local", level, ns, b->nf);
+            break;
+        }
         if (st == GLPGP_OK) st = verdict_of(m, s, h, 0, &bad);
         if (st != GLPGP_OK) break;
         split += ns;
