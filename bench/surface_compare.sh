@@ -47,7 +47,7 @@ except Exception as e:
 vi = q["valence"]["interior"]; nint = sum(vi.values()); irr = nint - vi.get("4", 0)
 out = open(txt).read()
 path = ("coarse last resort" if "coarsened triangulation" in out else "last resort" if "last resort" in out
-        else "split (h/2)" if "Catmull-Clark" in out else "local repair" if "repaired locally" in out else "grid")
+        else "split (h/2)" if "Catmull-Clark" in out else "local split" if "split locally" in out else "local repair" if "repaired locally" in out else "grid")
 m = re.search(r"extraction ([0-9.]+)", out)
 manifold = "nonmanifold" not in q["invalid_reasons"] and "pinched" not in q["invalid_reasons"]
 print("| %s | %s | glpgp | %d | %s / %s / %s | %s | %d (%.1f%%) | %.3f | %.3f | %.3f | %s | %.1f (%s) |" % (

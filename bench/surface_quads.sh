@@ -39,7 +39,7 @@ except Exception as e:
     print("| %s | %s | failed: %s |" % (model, opts, e)); sys.exit(0)
 vi = q["valence"]["interior"]; nint = sum(vi.values()); irr = nint - vi.get("4", 0)
 s = q["surface"]; out = open(txt).read()
-path = "last resort" if "last resort" in out else ("split (h/2)" if "Catmull-Clark" in out else "local repair" if "repaired locally" in out else "grid")
+path = "last resort" if "last resort" in out else ("split (h/2)" if "Catmull-Clark" in out else "local split" if "split locally" in out else "local repair" if "repaired locally" in out else "grid")
 ph = d.get("timers", {}) if isinstance(d.get("timers"), dict) else {}
 m = re.search(r"extraction ([0-9.]+)", out)
 print("| %s | %s | %d | %d (%.1f%%) | %.3f | %.3f | %.3f | %d / %d | %s | %s | %.1f (%s) |" % (

@@ -46,7 +46,7 @@ except Exception as e:
 vi = q["valence"]["interior"]; nint = sum(vi.values()); irr = nint - vi.get("4", 0)
 out = open(txt).read()
 path = ("coarse last resort" if "coarsened triangulation" in out else "last resort" if "last resort" in out
-        else "split (h/2)" if "Catmull-Clark" in out else "grid")
+        else "split (h/2)" if "Catmull-Clark" in out else "local split" if "split locally" in out else "grid")
 if "repaired locally" in out:
     path = "local repair" if path == "grid" else path + " + local repair"
 r = q.get("repair", {})

@@ -27,8 +27,11 @@ static const char *const k_quad_exts[] = {".obj", ".vtk", ".vtu", ".msh", ".ply"
 
 void glpgp_cli_print_surface_steps(const glpgp_quads_surface_steps *s)
 {
-    printf("  surface quads  extraction %d faces (%d quads), %d odd or even faces closed, %d strips%s%s\n",
-           s->extracted_faces, s->extracted_quads, s->closed, s->strips,
+    char split[96] = "";
+    if (s->split_faces)
+        snprintf(split, sizeof split, "; %d faces split locally (bad regions and their quad strips)", s->split_faces);
+    printf("  surface quads  extraction %d faces (%d quads), %d odd or even faces closed, %d strips%s%s%s\n",
+           s->extracted_faces, s->extracted_quads, s->closed, s->strips, split,
            s->subdivided ? "; split into quads (Catmull-Clark, h/2)" : "",
            !s->fallback          ? ""
            : s->coarse_triangles ? "; not valid: a coarsened triangulation split into quads (last resort)"

@@ -1,8 +1,10 @@
 /* quads/quads_surface.c: the quad pipeline on a 3D surface
  * (glpgp_quads_build_surface, glpgp/quads.h): the extraction
- * (extract_surface.c), one Catmull-Clark split in 3D when it left faces
- * that are not quads, the check (check_surface.c), and the last resort
- * that cannot fail: the input triangles split into three quads each. */
+ * (extract_surface.c), the closing, the local repair (repair_surface.c),
+ * the local split of the bad faces and their quad strips (split_surface.c),
+ * one Catmull-Clark split in 3D when those leave it invalid, the check
+ * (check_surface.c), and the last resort that cannot fail: the input
+ * triangles split into three quads each. */
 #include "quads_surface.h"
 
 #include "glpgp/surface.h"
@@ -780,9 +782,10 @@ static glpgp_status local_repair(const glpgp_mesh *m, const glpgp_quadmesh *q, d
         *bad = qq.invalid;
         glpgp_log(GLPGP_LOG_DEBUG,
                   "quads: surface local repair (pass %d%s): %d regions, %d faces -> %d quads; %s (0x%x: %d inverted, "
-                  "Hausdorff %.3f h, area ratio %.4f)",
+                  "Hausdorff %.3f h (quads->surface %.3f, surface->quads %.3f), area ratio %.4f)",
                   pass, far ? ", far faces too" : "", one.regions, one.removed_faces, one.new_quads,
-                  *bad ? "not valid" : "valid", *bad, qq.inverted, qq.hausdorff, qq.area_ratio);
+                  *bad ? "not valid" : "valid", *bad, qq.inverted, qq.hausdorff, qq.dist_quad_to_domain,
+                  qq.dist_domain_to_quad, qq.area_ratio);
         if (!*bad) break;
     }
     if (*out) {
@@ -802,6 +805,9 @@ static void note_local(glpgp_quads_surface_steps *stp, const glpgp_quads_repair 
     for (int i = 0; i < rs->nlisted; i++) stp->local_sj_min = fmin(stp->local_sj_min, rs->region[i].sj_min);
 }
 
+static glpgp_status split_local_repair(const glpgp_mesh *m, const glpgp_quadmesh *base, double h,
+                                       glpgp_quads_surface_steps *stp, glpgp_quadmesh **out);
+
 /* The local repair's candidates: the repaired mesh (bad faces but the far
  * ones), its split (with split; when only the distance or the area fails:
  * a grid too coarse for the surface), the repair with the far faces too.
@@ -815,6 +821,14 @@ static glpgp_status repaired(const glpgp_mesh *m, const glpgp_quadmesh *q, doubl
     *out = NULL;
     glpgp_status st = local_repair(m, q, h, 0, &r, &bad, &rs);
     if (st == GLPGP_OK && r && !bad) goto keep_r;
+    if (st == GLPGP_OK && r && split && !(bad & ~(unsigned)(GLPGP_QUADS_BAD_HAUSDORFF | GLPGP_QUADS_BAD_AREA))) {
+        st = split_local_repair(m, r, h, stp, &s); /* the far faces split with their strips */
+        if (st == GLPGP_OK && s) {
+            glpgp_quadmesh_destroy(&r);
+            *out = s;
+            return GLPGP_OK;
+        }
+    }
     if (st == GLPGP_OK && r && split && !(bad & ~(unsigned)(GLPGP_QUADS_BAD_HAUSDORFF | GLPGP_QUADS_BAD_AREA))) {
         st = split_onto(m, r, h, &s);
         if (st == GLPGP_OK) st = verdict_of(m, s, h, 0, &bad);
@@ -849,6 +863,76 @@ keep_r:
     note_local(stp, &rs);
     *out = r;
     return GLPGP_OK;
+}
+
+/* The local split (glpgp_qs_split_local) of base's bad faces (the far ones
+ * too) and the quad strips through them, then the local repair of what it
+ * leaves bad; again (twice at most) on the partial repair of the split.
+ * A split of over half the faces is left to the global split. *out NULL:
+ * none is valid. */
+static glpgp_status split_local_repair(const glpgp_mesh *m, const glpgp_quadmesh *base, double h,
+                                       glpgp_quads_surface_steps *stp, glpgp_quadmesh **out)
+{
+    glpgp_quadmesh *own = NULL, *s = NULL, *t = NULL;
+    unsigned char *sel = NULL;
+    const glpgp_quadmesh *b = base;
+    int split = 0;
+    *out = NULL;
+    glpgp_status st = glpgp_malloc((size_t)base->nf + 1, 1, &sel);
+    for (int level = 0; level < 2 && st == GLPGP_OK && !*out; level++) {
+        int nbad = 0, ns = 0;
+        unsigned bad = 0;
+        unsigned char *grown = realloc(sel, (size_t)b->nf + 1);
+        if (!grown) st = GLPGP_FAIL(GLPGP_ERR_NOMEM, "out of memory (local split)");
+        else sel = grown;
+        if (st == GLPGP_OK) st = glpgp_qs_bad_faces(m, b, h, 1, sel, &nbad);
+        if (st != GLPGP_OK || nbad == 0) break;
+        if (st == GLPGP_OK) st = glpgp_qs_split_local(m, b, h, sel, &s, &ns);
+        if (st == GLPGP_OK && 2 * ns > b->nf) { /* the strips ran through most of the mesh: the global split's job */
+            glpgp_log(GLPGP_LOG_DEBUG, "quads: local split %d: %d of %d faces split, not local", level, ns, b->nf);
+            break;
+        }
+        if (st == GLPGP_OK) st = verdict_of(m, s, h, 0, &bad);
+        if (st != GLPGP_OK) break;
+        split += ns;
+        glpgp_log(GLPGP_LOG_DEBUG, "quads: local split %d: %d bad faces of %d, %d faces split -> %d quads; %s", level,
+                  nbad, b->nf, ns, s->nf, bad ? "not valid" : "valid");
+        if (!bad) {
+            *out = s;
+            s = NULL;
+            break;
+        }
+        glpgp_quads_surface_steps st2;
+        memset(&st2, 0, sizeof st2);
+        st = repaired(m, s, h, 0, &st2, &t);
+        if (st == GLPGP_OK && t) {
+            stp->local_regions = st2.local_regions;
+            stp->local_faces_in = st2.local_faces_in;
+            stp->local_quads_out = st2.local_quads_out;
+            stp->local_sj_min = st2.local_sj_min;
+            *out = t;
+            t = NULL;
+            break;
+        }
+        glpgp_quads_repair rs; /* the next level on the split's partial repair */
+        glpgp_quadmesh *r = NULL;
+        if (st == GLPGP_OK) st = local_repair(m, s, h, 1, &r, &bad, &rs);
+        glpgp_quadmesh_destroy(&own);
+        if (r) {
+            own = r;
+            glpgp_quadmesh_destroy(&s);
+        } else {
+            own = s;
+            s = NULL;
+        }
+        b = own;
+    }
+    if (*out) stp->split_faces = split;
+    glpgp_quadmesh_destroy(&own);
+    glpgp_quadmesh_destroy(&s);
+    glpgp_quadmesh_destroy(&t);
+    free(sel);
+    return st;
 }
 
 /* The candidates in order, the first valid one kept: the extraction (all
@@ -899,6 +983,10 @@ static glpgp_status candidates(const glpgp_mesh *m, glpgp_quadmesh **pq, const g
     }
     if (st == GLPGP_OK) {
         st = repaired(m, c ? c : q, h, 1, stp, &s);
+        if (st == GLPGP_OK && s) goto keep_r;
+    }
+    if (st == GLPGP_OK) { /* the bad regions split with their quad strips, then repaired */
+        st = split_local_repair(m, c ? c : q, h, stp, &s);
         if (st == GLPGP_OK && s) goto keep_r;
     }
     if (st == GLPGP_OK && c && count_nonquads(c) < count_nonquads(q)) {

@@ -37,10 +37,23 @@ glpgp_status glpgp_qs_split_triangles(const double *xyz, int np, const int *tri,
  * removed in regions grown to topological disks, each flattened onto a
  * plane, meshed by the cut mesher with its boundary points fixed and lifted
  * onto the surface; the other faces kept. *out NULL when q has no bad face
- * or a region could not be repaired; *rs: the regions. The caller checks
- * the result. */
+ * or no region could be repaired (when some could: those, the others' faces
+ * kept); *rs: the regions. The caller checks the result. */
 glpgp_status glpgp_qs_local_repair(const glpgp_mesh *m, const glpgp_quadmesh *q, double h, int far,
                                    glpgp_quadmesh **out, glpgp_quads_repair *rs);
+
+/* The faces the local repair takes as bad (bad[f] = 1; repair_surface.c; far: with the
+ * faces far from the surface); *nbad their count. */
+glpgp_status glpgp_qs_bad_faces(const glpgp_mesh *m, const glpgp_quadmesh *q, double h, int far, unsigned char *bad,
+                                int *nbad);
+
+/* The local split (split_surface.c): the faces of sel (and those not quads)
+ * split in n quads each (Catmull-Clark), the quad strips through their
+ * sides split in two along the strip until they close (a quad crossed by
+ * two strips split in four): a conforming all-quad mesh with q's topology;
+ * the new points moved onto the surface. *nsplit: the faces of q split. */
+glpgp_status glpgp_qs_split_local(const glpgp_mesh *m, const glpgp_quadmesh *q, double h, const unsigned char *sel,
+                                  glpgp_quadmesh **out, int *nsplit);
 
 /* glpgp_quads_surface_fallback_coarse (17 degrees) with the smallest angle
  * a new triangle may have (degrees; unless one before was smaller). */

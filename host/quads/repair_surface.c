@@ -18,7 +18,8 @@
  *    mapped to a chart: the plane through the loop's centroid orthogonal to
  *    its vector area when the projected loop is a simple counter-clockwise
  *    polygon (and the surface under each loop point faces within 107
- *    degrees of the plane's normal), else a circle (by 3D arc length, as large as the region);
+ *    degrees of the plane's normal), else a circle (by 3D arc length, as large as the region),
+ *    else that circle with the region's own faces Tutte-embedded in it (the patch chart);
  *    meshed there by the cut mesher (qcut.c); the new points lifted by the
  *    mean-value interpolation of the loop's heights above the plane (of the
  *    loop's 3D points on the circle) and moved to their nearest points on
@@ -26,7 +27,9 @@
  *  - the region's new quads checked in 3D (every corner's scaled Jacobian
  *    above 0, along the surface's normal; the smoothing follows) and their
  *    boundary against the loop; a region that fails grows by a ring and is
- *    tried again (6 rounds); regions over half the faces: not local.
+ *    tried again (6 rounds); regions over half the faces: not local; when
+ *    some fail to the end, the round with the fewest faces in failed
+ *    regions is kept, its meshed regions replaced (a partial repair).
  * The grid's faces outside the regions are kept as they are. The caller
  * checks the whole mesh (check_surface.c) and falls back to the splits and
  * the coarse last resort when the repair fails or is not valid. */
@@ -640,7 +643,147 @@ static void disk_chart(const lrep *L, int k, const int *loop, int n, double *uv,
 typedef struct lchart {
     int kind;
     double o[3], e[9], *z, *uv, *p3;
+    int nt, *tri;   /* kind 2: the region's faces fanned into triangles (region point ids) */
+    double *tuv;    /* their points' Tutte positions in the disk */
+    const int *vid; /* their points' ids */
 } lchart;
+
+/* ---- the patch chart: the region's own faces (fanned into triangles)
+ * embedded in the disk by Tutte's barycentric map (the loop on the circle,
+ * every inner point the mean of its neighbours: one-to-one onto the disk
+ * for the planar graph of a disk), a new point lifted by its barycentric
+ * coordinates in the triangle of the embedding that holds it onto the
+ * region's old faces, then onto the surface: the new mesh follows the
+ * faces it replaces, around a handle too, where the loop's own points
+ * (the disk chart) do not tell which way the surface goes ---- */
+
+static int cmp_int(const void *pa, const void *pb)
+{
+    const int a = *(const int *)pa, b = *(const int *)pb;
+    return a < b ? -1 : a > b;
+}
+
+static int local_id(const int *vid, int nvl, int v)
+{
+    const int *p = bsearch(&v, vid, (size_t)nvl, sizeof *vid, cmp_int);
+    return p ? (int)(p - vid) : -1;
+}
+
+/* The embedding's sweeps (Gauss-Seidel on the uniform Laplacian; fixed: the loop). */
+static void tutte_sweeps(const int *adj_s, const int *adj, const unsigned char *fixed, int nvl, double *uv)
+{
+    for (int it = 0; it < 4000; it++) {
+        double moved = 0.0;
+        for (int i = 0; i < nvl; i++) {
+            if (fixed[i] || adj_s[i + 1] == adj_s[i]) continue;
+            double x = 0.0, y = 0.0;
+            const int d = adj_s[i + 1] - adj_s[i];
+            for (int k = adj_s[i]; k < adj_s[i + 1]; k++) {
+                x += uv[2 * adj[k]] / d;
+                y += uv[2 * adj[k] + 1] / d;
+            }
+            moved = fmax(moved, fabs(x - uv[2 * i]) + fabs(y - uv[2 * i + 1]));
+            uv[2 * i] = x;
+            uv[2 * i + 1] = y;
+        }
+        if (moved < 1e-12) break;
+    }
+}
+
+/* Region k's patch chart in C (kind 2; C->uv: the loop on the circle);
+ * *ok 0 when the loop is not made of the region's points. */
+static glpgp_status patch_chart(const lrep *L, int k, const int *loop, int n, lchart *C, int **vid_out, int *ok)
+{
+    const glpgp_quadmesh *q = L->q;
+    int nvl = 0, nc = 0, *vid = NULL, *adj_s = NULL, *adj = NULL;
+    unsigned char *fixed = NULL;
+    *ok = 0;
+    for (int i = L->cs[k]; i < L->cs[k + 1]; i++) nc += q->face_start[L->cf[i] + 1] - q->face_start[L->cf[i]];
+    glpgp_status st = glpgp_malloc((size_t)nc + 1, sizeof(int), &vid);
+    if (st == GLPGP_OK) st = glpgp_calloc((size_t)nc + 2, sizeof(int), &adj_s);
+    if (st == GLPGP_OK) st = glpgp_malloc((size_t)2 * nc + 1, sizeof(int), &adj);
+    if (st == GLPGP_OK) st = glpgp_calloc((size_t)nc + 1, 1, &fixed);
+    if (st == GLPGP_OK) st = glpgp_malloc((size_t)3 * nc + 1, sizeof(int), &C->tri);
+    if (st == GLPGP_OK) st = glpgp_calloc((size_t)2 * nc + 2, sizeof(double), &C->tuv);
+    if (st != GLPGP_OK) goto done;
+    for (int i = L->cs[k]; i < L->cs[k + 1]; i++)
+        for (int c = q->face_start[L->cf[i]]; c < q->face_start[L->cf[i] + 1]; c++) vid[nvl++] = q->face_vert[c];
+    qsort(vid, (size_t)nvl, sizeof *vid, cmp_int);
+    int u = 0;
+    for (int i = 0; i < nvl; i++)
+        if (i == 0 || vid[i] != vid[i - 1]) vid[u++] = vid[i];
+    nvl = u;
+    for (int i = 0; i < n; i++) {
+        const int l = local_id(vid, nvl, loop[i]);
+        if (l < 0) goto done; /* a point added on a boundary side */
+        fixed[l] = 1;
+        C->tuv[2 * l] = C->uv[2 * i];
+        C->tuv[2 * l + 1] = C->uv[2 * i + 1];
+    }
+    for (int pass = 0; pass < 2; pass++) /* the neighbours (each face side both ways): counts, then lists */
+        for (int i = L->cs[k]; i < L->cs[k + 1]; i++) {
+            const int s = q->face_start[L->cf[i]], m = q->face_start[L->cf[i] + 1] - s;
+            for (int j = 0; j < m; j++) {
+                const int a = local_id(vid, nvl, q->face_vert[s + j]), b = local_id(vid, nvl, q->face_vert[s + (j + 1) % m]);
+                if (pass == 0) {
+                    adj_s[a + 2]++;
+                    adj_s[b + 2]++;
+                } else {
+                    adj[adj_s[a + 1]++] = b;
+                    adj[adj_s[b + 1]++] = a;
+                }
+            }
+            if (pass == 0 && i + 1 == L->cs[k + 1])
+                for (int v = 0; v < nvl; v++) adj_s[v + 2] += adj_s[v + 1];
+        }
+    tutte_sweeps(adj_s, adj, fixed, nvl, C->tuv);
+    C->nt = 0;
+    for (int i = L->cs[k]; i < L->cs[k + 1]; i++) {
+        const int s = q->face_start[L->cf[i]], m = q->face_start[L->cf[i] + 1] - s;
+        for (int j = 1; j + 1 < m; j++, C->nt++) {
+            C->tri[3 * C->nt] = local_id(vid, nvl, q->face_vert[s]);
+            C->tri[3 * C->nt + 1] = local_id(vid, nvl, q->face_vert[s + j]);
+            C->tri[3 * C->nt + 2] = local_id(vid, nvl, q->face_vert[s + j + 1]);
+        }
+    }
+    C->vid = vid;
+    *vid_out = vid;
+    vid = NULL;
+    *ok = 1;
+done:
+    free(vid);
+    free(adj_s);
+    free(adj);
+    free(fixed);
+    return st;
+}
+
+/* Point p of the disk lifted through the patch chart onto the old faces (x). */
+static void patch_lift(const lrep *L, const lchart *C, const double *p, double *x)
+{
+    double best = -INFINITY, bw[3] = {1, 0, 0};
+    int bt = 0;
+    for (int t = 0; t < C->nt; t++) {
+        const double *a = C->tuv + 2 * C->tri[3 * t], *b = C->tuv + 2 * C->tri[3 * t + 1], *c = C->tuv + 2 * C->tri[3 * t + 2];
+        const double det = (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
+        if (!(fabs(det) > 0)) continue;
+        const double w1 = ((p[0] - a[0]) * (c[1] - a[1]) - (p[1] - a[1]) * (c[0] - a[0])) / det;
+        const double w2 = ((b[0] - a[0]) * (p[1] - a[1]) - (b[1] - a[1]) * (p[0] - a[0])) / det;
+        const double w0 = 1.0 - w1 - w2, mn = fmin(w0, fmin(w1, w2));
+        if (mn > best) {
+            best = mn;
+            bt = t;
+            bw[0] = w0;
+            bw[1] = w1;
+            bw[2] = w2;
+        }
+        if (mn >= 0) break;
+    }
+    for (int d = 0; d < 3; d++) {
+        x[d] = 0.0;
+        for (int j = 0; j < 3; j++) x[d] += bw[j] * pos(L, C->vid[C->tri[3 * bt + j]])[d];
+    }
+}
 
 /* The quads of the cut mesher on the loop's chart points xy (n, then the
  * new ones); *ok 0 when it failed. */
@@ -692,7 +835,9 @@ static glpgp_status mesh_in_chart(lrep *L, const int *loop, int n, lchart *C, iv
         }
         const double *p = xy.p + 2 * i;
         double x[3], y[3];
-        if (C->kind) {
+        if (C->kind == 2) {
+            patch_lift(L, C, p, x);
+        } else if (C->kind) {
             for (int d = 0; d < 3; d++) x[d] = mvc(xy.p, C->p3 + d * n, n, p);
         } else {
             const double hz = mvc(xy.p, C->z, n, p);
@@ -708,7 +853,7 @@ static glpgp_status mesh_in_chart(lrep *L, const int *loop, int n, lchart *C, iv
     for (int k = 0; k < quads.n / 4; k++) worst = fmin(worst, quad_sj(L, quads.p + 4 * k));
     if (!(worst > LR_SJ_NEW)) {
         glpgp_log(GLPGP_LOG_DEBUG, "quads: surface local repair: %d quads in the %s chart, scaled Jacobian %.3f on the surface",
-                  quads.n / 4, C->kind ? "disk" : "plane", worst);
+                  quads.n / 4, C->kind == 2 ? "patch" : C->kind ? "disk" : "plane", worst);
         goto done;
     }
     for (int k = 0; k < quads.n && st == GLPGP_OK; k++) st = ipush(out, quads.p[k]);
@@ -741,6 +886,16 @@ static glpgp_status mesh_loop(lrep *L, int k, const int *loop, int n, ivec *out,
         for (int i = 0; i < n; i++)
             for (int d = 0; d < 3; d++) C.p3[d * n + i] = pos(L, loop[i])[d];
         st = mesh_in_chart(L, loop, n, &C, out, sjmin, ok);
+    }
+    if (st == GLPGP_OK && !*ok) { /* the patch chart: the disk's points lifted onto the region's own faces */
+        int *vid = NULL, pok = 0;
+        L->nxyz.n = nx0;
+        C.kind = 2;
+        st = patch_chart(L, k, loop, n, &C, &vid, &pok);
+        if (st == GLPGP_OK && pok) st = mesh_in_chart(L, loop, n, &C, out, sjmin, ok);
+        free(vid);
+        free(C.tri);
+        free(C.tuv);
     }
     if (!*ok) L->nxyz.n = nx0;
     free(C.z);
@@ -818,7 +973,8 @@ static glpgp_status shape_regions(lrep *L, unsigned char *sel, ivec *loop, int *
         }
     }
     for (int f = 0; f < q->nf && *grown; f++) L->in[f] |= sel[f];
-    for (int k = 0; k < L->ncomp && st == GLPGP_OK && !*grown && nodd; k++) {
+    const int fixed = *grown; /* regions grown to disks: the odd ones joined next time */
+    for (int k = 0; k < L->ncomp && st == GLPGP_OK && !fixed && nodd; k++) { /* every odd region joined */
         if (!odd[k]) continue;
         int found = 0;
         st = join_odd(L, k, odd, &found);
@@ -864,8 +1020,34 @@ static glpgp_status mesh_regions(lrep *L, int round, unsigned char *sel, ivec *l
         for (int i = L->cs[k]; i < L->cs[k + 1]; i++) sel[L->cf[i]] = 1;
     }
     rs->rounds = round + 1;
-    if (failed) return grow_ring(L, sel);
-    *done = 1;
+    *done = !failed;
+    return GLPGP_OK;
+}
+
+/* A round's regions that were meshed while others failed (sel): the
+ * partial repair kept when no round meshes them all. */
+typedef struct lpart {
+    unsigned char *in; /* the faces removed (the meshed regions') */
+    ivec quads;
+    dvec nxyz;
+    glpgp_quads_repair rs;
+    int failed; /* faces of the failed regions (-1: none kept) */
+} lpart;
+
+/* The round's meshed regions kept in P when its failed regions are smaller than those kept before. */
+static glpgp_status keep_part(const lrep *L, const unsigned char *sel, const ivec *quads, const glpgp_quads_repair *rs,
+                              lpart *P)
+{
+    int failed = 0;
+    for (int f = 0; f < L->q->nf; f++) failed += sel[f];
+    if (rs->regions == 0 || (P->failed >= 0 && failed >= P->failed)) return GLPGP_OK;
+    if (!P->in) GLPGP_CHECK(glpgp_malloc((size_t)L->q->nf + 1, 1, &P->in));
+    for (int f = 0; f < L->q->nf; f++) P->in[f] = L->in[f] && !sel[f];
+    P->quads.n = P->nxyz.n = 0;
+    for (int k = 0; k < quads->n; k++) GLPGP_CHECK(ipush(&P->quads, quads->p[k]));
+    for (int k = 0; k < L->nxyz.n; k++) GLPGP_CHECK(dpush(&P->nxyz, L->nxyz.p[k]));
+    P->rs = *rs;
+    P->failed = failed;
     return GLPGP_OK;
 }
 
@@ -912,6 +1094,18 @@ static glpgp_status assemble(const lrep *L, const ivec *quads, glpgp_quadmesh **
     return GLPGP_OK;
 }
 
+glpgp_status glpgp_qs_bad_faces(const glpgp_mesh *m, const glpgp_quadmesh *q, double h, int far, unsigned char *bad,
+                                int *nbad)
+{
+    lrep L;
+    *nbad = 0;
+    glpgp_status st = lrep_init(&L, m, q, h, far);
+    if (st == GLPGP_OK)
+        for (int f = 0; f < q->nf; f++) *nbad += bad[f] = L.bad[f];
+    lrep_free(&L);
+    return st;
+}
+
 glpgp_status glpgp_qs_local_repair(const glpgp_mesh *m, const glpgp_quadmesh *q, double h, int far,
                                    glpgp_quadmesh **out, glpgp_quads_repair *rs)
 {
@@ -922,6 +1116,7 @@ glpgp_status glpgp_qs_local_repair(const glpgp_mesh *m, const glpgp_quadmesh *q,
     ivec loop = {0}, quads = {0};
     unsigned char *sel = NULL;
     int nbad = 0, done = 0;
+    lpart part = {NULL, {0}, {0}, {0}, -1};
     glpgp_status st = lrep_init(&L, m, q, h, far);
     if (st == GLPGP_OK) st = glpgp_calloc((size_t)q->nf + 1, 1, &sel);
     if (st != GLPGP_OK) goto end;
@@ -944,10 +1139,24 @@ glpgp_status glpgp_qs_local_repair(const glpgp_mesh *m, const glpgp_quadmesh *q,
         GLPGP_CHECK_GOTO(st, mesh_regions(&L, round, sel, &loop, &quads, rs, &done), end);
         glpgp_log(GLPGP_LOG_DEBUG, "quads: surface local repair round %d: %d regions, %d faces%s", round, L.ncomp,
                   L.cs[L.ncomp], done ? "" : ", some grown");
+        if (!done) GLPGP_CHECK_GOTO(st, keep_part(&L, sel, &quads, rs, &part), end);
+        if (!done) GLPGP_CHECK_GOTO(st, grow_ring(&L, sel), end);
     }
     if (done) st = assemble(&L, &quads, out);
-    else memset(rs, 0, sizeof *rs);
+    else if (part.failed >= 0) { /* the meshed regions of the best round; the failed ones' faces kept */
+        glpgp_log(GLPGP_LOG_DEBUG, "quads: surface local repair: partial, %d regions meshed, %d faces of failed regions kept",
+                  part.rs.regions, part.failed);
+        memcpy(L.in, part.in, (size_t)q->nf);
+        dvec t = L.nxyz;
+        L.nxyz = part.nxyz;
+        part.nxyz = t;
+        *rs = part.rs;
+        st = assemble(&L, &part.quads, out);
+    } else memset(rs, 0, sizeof *rs);
 end:
+    free(part.in);
+    ivec_free(&part.quads);
+    dvec_free(&part.nxyz);
     lrep_free(&L);
     ivec_free(&loop);
     ivec_free(&quads);

@@ -423,6 +423,8 @@ typedef struct glpgp_quads_surface_steps {
     int strips;            /* odd faces joined pairwise through strips of quads cut in two */
     int subdivided;        /* 1: faces other than quads were left and every face was split
                               (Catmull-Clark, h/2) */
+    int split_faces;       /* faces split locally: the bad ones and the quad strips through them
+                              (Catmull-Clark in the bad regions, in two across the strips) */
     int fallback;          /* 1: the extraction was not valid: the last resort, triangles split into
                               quads (coarse_triangles of a coarsened triangulation, else the input's) */
     int coarse_triangles;  /* the last resort's coarse triangles (0: the input's own) */
@@ -441,7 +443,9 @@ typedef struct glpgp_quads_surface_steps {
  * faces that share a side (a triangle and a pentagon around a +1/4
  * singularity between grid points) joined, and the even faces, are split
  * into quads (the split with the best smallest scaled Jacobian, above
- * 0.05, up to 10 corners); when faces that
+ * 0.05, up to 10 corners); when that is not valid, the local repair,
+ * then the local split of the bad faces and their quad strips (see
+ * docs/surfaces.md); when faces that
  * are not quads are left, one Catmull-Clark split (edges about h/2, the
  * new points moved onto the surface; skipped when o->keep_polygons); when
  * that is not valid (glpgp_quads_quality_surface against the target h: the
