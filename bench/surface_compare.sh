@@ -12,6 +12,9 @@
 # column is skipped; its output is checked by bench/surface_check.py (all
 # quads, manifold, Euler, loops, irregular %, SJ in the faces' own planes;
 # no Hausdorff distance). Writes $OUT/summary.md (default out/surface_compare).
+# HELD_OUT=1 adds models never tuned on (bench/surface_models.py: a bumpy
+# 82k-triangle scan, a plate of genus 16 with sharp edges, a sphere with 120
+# holes; minutes each on 2 cores).
 # Usage: bash bench/surface_compare.sh [path/to/glpgp]   (SCALE: triangles of the generated models, default 20000)
 set -u
 GLPGP=${1:-build/glpgp}
@@ -23,6 +26,12 @@ HERE=$(cd "$(dirname "$0")" && pwd)
 mkdir -p "$OUT"
 python3 "$HERE/surface_models.py" holes 20 5 "$OUT/holes20.obj"
 MODELS_ALL="shape:sphere:$SCALE shape:torus:$SCALE shape:genus2:$SCALE shape:cube:$SCALE shape:hemisphere:$SCALE $OUT/holes20.obj ${MODELS:-}"
+if [ -n "${HELD_OUT:-}" ]; then # models never tuned on: an 82k-triangle scan, a plate of genus 16 with sharp edges, 120 loops
+    python3 "$HERE/surface_models.py" bumpy 6 "$OUT/bumpy82k.obj"
+    python3 "$HERE/surface_models.py" slab 4 4 2 "$OUT/slab16.obj"
+    python3 "$HERE/surface_models.py" holes 120 6 "$OUT/holes120.obj"
+    MODELS_ALL="$MODELS_ALL $OUT/bumpy82k.obj $OUT/slab16.obj $OUT/holes120.obj"
+fi
 peers=""
 [ -n "${QUADRIFLOW:-}" ] && peers="$peers quadriflow"
 [ -n "${INSTANT_MESHES:-}" ] && peers="$peers instant"
