@@ -168,6 +168,34 @@ done:
     return st;
 }
 
+int glpgp_surface_walk(const int *tri, const int *twin, int seed, signed char *flip, int *queue, int *n, int *closed)
+{
+    int head = 0, tail = 0;
+    *closed = 1;
+    flip[seed] = 0;
+    queue[tail++] = seed;
+    while (head < tail) {
+        const int t = queue[head++];
+        for (int i = 0; i < 3; i++) {
+            const int h = 3 * t + i, g = twin[h];
+            if (g < 0) {
+                *closed = 0;
+                continue;
+            }
+            const int u = g / 3;
+            const signed char want = (signed char)(tri[h] == tri[g] ? !flip[t] : flip[t]);
+            if (flip[u] < 0) {
+                flip[u] = want;
+                queue[tail++] = u;
+            } else if (flip[u] != want) {
+                return h;
+            }
+        }
+    }
+    *n = tail;
+    return -1;
+}
+
 /* A consistent orientation exists (else: non-orientable, a Moebius strip)
  * and the input has it (else: the first pair of triangles that traverse
  * their edge the same way). Components are counted on the way. */
@@ -181,30 +209,17 @@ static glpgp_status check_orientation(glpgp_mesh *m, glpgp_surface *s, int samed
     GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)nt, sizeof(int), &queue), done);
     memset(flip, -1, (size_t)nt);
     int ncomp = 0;
-    for (int seed = 0; seed < nt && st == GLPGP_OK; seed++) {
+    for (int seed = 0; seed < nt; seed++) {
         if (flip[seed] >= 0) continue;
         ncomp++;
-        int head = 0, tail = 0;
-        flip[seed] = 0;
-        queue[tail++] = seed;
-        while (head < tail && st == GLPGP_OK) {
-            const int t = queue[head++];
-            for (int i = 0; i < 3; i++) {
-                const int h = 3 * t + i, g = s->twin[h];
-                if (g < 0) continue;
-                const int u = g / 3;
-                const signed char want = (signed char)(m->tri[h] == m->tri[g] ? !flip[t] : flip[t]);
-                if (flip[u] < 0) {
-                    flip[u] = want;
-                    queue[tail++] = u;
-                } else if (flip[u] != want) {
-                    st = GLPGP_FAIL(GLPGP_ERR_MESH,
-                                    "non-orientable surface (a Moebius strip or Klein bottle): triangles %d and %d "
-                                    "(edge %d-%d) cannot be oriented consistently",
-                                    t, u, m->tri[h], he_to(m->tri, h));
-                    break;
-                }
-            }
+        int n = 0, closed = 0;
+        const int h = glpgp_surface_walk(m->tri, s->twin, seed, flip, queue, &n, &closed);
+        if (h >= 0) {
+            st = GLPGP_FAIL(GLPGP_ERR_MESH,
+                            "non-orientable surface (a Moebius strip or Klein bottle): triangles %d and %d "
+                            "(edge %d-%d) cannot be oriented consistently",
+                            h / 3, s->twin[h] / 3, m->tri[h], he_to(m->tri, h));
+            break;
         }
     }
     if (st == GLPGP_OK && samedir >= 0) {

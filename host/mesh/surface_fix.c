@@ -58,38 +58,6 @@ static double volume6(const double *xyz, const int *tri, const int *list, int n,
     return v;
 }
 
-/* One component from seed: flip[] relative to the seed (queue holds its
- * triangles); 0 when it cannot be oriented, else 1, *closed whether no edge
- * of it is a boundary edge. */
-static int walk_component(const int *tri, const int *twin, int seed, signed char *flip, int *queue, int *n,
-                          int *closed)
-{
-    int head = 0, tail = 0;
-    *closed = 1;
-    flip[seed] = 0;
-    queue[tail++] = seed;
-    while (head < tail) {
-        const int t = queue[head++];
-        for (int i = 0; i < 3; i++) {
-            const int h = 3 * t + i, g = twin[h];
-            if (g < 0) {
-                *closed = 0;
-                continue;
-            }
-            const int u = g / 3;
-            const signed char want = (signed char)(tri[h] == tri[g] ? !flip[t] : flip[t]);
-            if (flip[u] < 0) {
-                flip[u] = want;
-                queue[tail++] = u;
-            } else if (flip[u] != want) {
-                return 0;
-            }
-        }
-    }
-    *n = tail;
-    return 1;
-}
-
 /* The orientation repair; *orientable 0 when a component cannot be
  * oriented (then nothing is changed). */
 static glpgp_status orient(glpgp_mesh *m, glpgp_surface *s, int *flipped, int *orientable)
@@ -107,7 +75,7 @@ static glpgp_status orient(glpgp_mesh *m, glpgp_surface *s, int *flipped, int *o
     for (int seed = 0; seed < nt; seed++) {
         if (flip[seed] >= 0) continue;
         int n = 0, closed = 0, ones = 0;
-        if (!walk_component(m->tri, s->twin, seed, flip, queue + start, &n, &closed)) {
+        if (glpgp_surface_walk(m->tri, s->twin, seed, flip, queue + start, &n, &closed) >= 0) {
             *orientable = 0;
             goto done;
         }

@@ -27,6 +27,13 @@ glpgp_status glpgp_surface_loops(glpgp_mesh *m, const int *next);
  * half-edge whose twin runs the same way (-1: none). */
 glpgp_status glpgp_surface_twins(glpgp_mesh *m, glpgp_surface *s, int *samedir);
 
+/* The breadth-first orientation walk of seed's component across the
+ * twins: flip[t] (-1 unvisited on entry) 1 when t runs against the seed;
+ * queue[0, *n) its triangles, *closed whether it has no boundary edge.
+ * Returns -1, or a half-edge whose two triangles cannot agree (a
+ * non-orientable component: the walk stops there). */
+int glpgp_surface_walk(const int *tri, const int *twin, int seed, signed char *flip, int *queue, int *n, int *closed);
+
 /* The geometry of m->surf (normals, frames, angles, local coordinates,
  * rotations, connection, holonomy, dihedral angles) and m->mean_edge, from
  * the validated topology (twin, vstart). */
