@@ -60,3 +60,18 @@ def test_surface_quads(tmp_path):
     assert "surface" in q.report
     q.write(tmp_path / "s.obj")
     assert (tmp_path / "s.obj").stat().st_size > 0
+
+
+def test_surface_arrays_repaired_like_a_file():
+    """a closed surface given with one face flipped and a second one touching it at a vertex: Mesh()
+    repairs it as the readers do (the face flipped back outward, the vertex split per sheet)"""
+    x = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1], [-1, 0, 0], [0, -1, 0], [0, 0, -1]], float)
+    t = np.array([[0, 2, 1], [0, 3, 1], [1, 2, 3], [0, 3, 2],  # tetrahedron, face 1 flipped
+                  [0, 4, 5], [0, 6, 4], [4, 6, 5], [0, 5, 6]])  # another one at vertex 0
+    m = glpgp.Mesh(x, t)
+    assert m.n_vertices == 8 and m.n_triangles == 8
+    tri = m.triangles
+    assert list(tri[1]) == [0, 1, 3]
+    v = m.vertices
+    for part in (tri[:4], tri[4:]):  # each part encloses a positive volume: outward
+        assert sum(np.dot(v[a], np.cross(v[b], v[c])) for a, b, c in part) > 0
