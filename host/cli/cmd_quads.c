@@ -43,6 +43,10 @@ void glpgp_cli_print_surface_steps(const glpgp_quads_surface_steps *s)
     if (s->smoothed)
         printf("  smoothed       %d vertices on the surface: smallest scaled Jacobian %.3f -> %.3f\n", s->smoothed,
                s->sj_before, s->sj_after);
+    if (s->flat_corners)
+        printf("  flat corners   %d boundary corners split like triangles (%d faces split along their strips): "
+               "smallest scaled Jacobian %.3f -> %.3f\n",
+               s->flat_corners, s->flat_faces, s->flat_sj_before, s->flat_sj_after);
 }
 
 int glpgp_cmd_extract(int argc, char **argv)

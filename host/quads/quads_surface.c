@@ -4,7 +4,8 @@
  * the local split of the bad faces and their quad strips (split_surface.c),
  * one Catmull-Clark split in 3D when those leave it invalid, the check
  * (check_surface.c), and the last resort that cannot fail: the input
- * triangles split into three quads each. */
+ * triangles split into three quads each; then the smoothing and the split
+ * of flat boundary corners (split_surface.c). */
 #include "quads_surface.h"
 
 #include "glpgp/surface.h"
@@ -1058,6 +1059,53 @@ static glpgp_status smooth_valid(const glpgp_mesh *m, double h, const glpgp_quad
     return st;
 }
 
+/* Flat boundary corners (glpgp_qs_find_flat, split_surface.c) of a valid
+ * mesh below FLAT_GOAL, split like triangles and smoothed; the result kept
+ * when it is valid and its smallest scaled Jacobian higher. */
+#define FLAT_GOAL 0.3
+
+static glpgp_status flat_corners(const glpgp_mesh *m, double h, const glpgp_quads_options *o, glpgp_quadmesh **pq,
+                                 glpgp_quads_surface_steps *stp)
+{
+    glpgp_quadmesh *q = *pq, *r = NULL;
+    if (o->keep_polygons || !o->repair) return GLPGP_OK;
+    signed char *flat = NULL;
+    int nflat = 0, nsplit = 0, moved = 0;
+    glpgp_quads_report before, after;
+    GLPGP_CHECK(glpgp_malloc((size_t)q->nf + 1, 1, &flat));
+    glpgp_status st = glpgp_qs_find_flat(q, FLAT_GOAL, flat, &nflat);
+    if (st == GLPGP_OK && nflat) st = glpgp_quads_quality_surface(q, m, h, &before);
+    if (st == GLPGP_OK && nflat && !before.invalid) st = glpgp_qs_split_flat(m, q, h, flat, &r, &nsplit);
+    if (st == GLPGP_OK && r && o->smooth > 0) st = glpgp_quads_smooth_surface(m, h, o->smooth, r, &moved);
+    if (st == GLPGP_OK && r) st = glpgp_quads_quality_surface(r, m, h, &after);
+    if (st == GLPGP_OK && r && !after.invalid && after.sj_min > before.sj_min) {
+        glpgp_log(GLPGP_LOG_INFO,
+                  "quads: %d flat boundary corners split (%d faces split, %d -> %d quads): smallest scaled "
+                  "Jacobian %.3f -> %.3f",
+                  nflat, nsplit, q->nf, r->nf, before.sj_min, after.sj_min);
+        r->collapsed_edges = q->collapsed_edges;
+        r->promoted_corners = q->promoted_corners;
+        r->split_pentagons = q->split_pentagons;
+        r->center_splits = q->center_splits;
+        r->closing = q->closing;
+        r->repair = q->repair;
+        r->cleanup = q->cleanup;
+        stp->flat_corners = nflat;
+        stp->flat_faces = nsplit;
+        stp->flat_sj_before = before.sj_min;
+        stp->flat_sj_after = after.sj_min;
+        glpgp_quadmesh_destroy(pq);
+        *pq = r;
+        r = NULL;
+    } else if (st == GLPGP_OK && r) {
+        glpgp_log(GLPGP_LOG_DEBUG, "quads: %d flat boundary corners: the split is %s (smallest scaled Jacobian %.3f -> %.3f)",
+                  nflat, after.invalid ? "not valid" : "no better", before.sj_min, after.sj_min);
+    }
+    glpgp_quadmesh_destroy(&r);
+    free(flat);
+    return st;
+}
+
 /* The last resort: the coarse triangulation split into quads when it is
  * valid (a 17 degree angle floor, then 20: measured on genus 2, the torus
  * and a 20-hole sphere, 17 gives 2-4x fewer quads with a higher smallest
@@ -1110,6 +1158,7 @@ glpgp_status glpgp_quads_build_surface(const glpgp_mesh *m, const glpgp_result *
         unsigned bad = 0;
         st = candidates(m, &q, o, *h, &stp, out, &bad);
         if (st == GLPGP_OK && *out) st = smooth_valid(m, *h, o, *out, &stp);
+        if (st == GLPGP_OK && *out) st = flat_corners(m, *h, o, out, &stp);
         if (st != GLPGP_OK) glpgp_quadmesh_destroy(out);
         if (st != GLPGP_OK || *out) {
             glpgp_quadmesh_destroy(&q);
@@ -1127,6 +1176,7 @@ glpgp_status glpgp_quads_build_surface(const glpgp_mesh *m, const glpgp_result *
     stp.fallback = 1;
     st = last_resort(m, *h, out, &stp);
     if (st == GLPGP_OK) st = smooth_valid(m, *h, o, *out, &stp);
+    if (st == GLPGP_OK) st = flat_corners(m, *h, o, out, &stp);
     if (st != GLPGP_OK) glpgp_quadmesh_destroy(out);
     if (st == GLPGP_OK && steps) *steps = stp;
     return st;

@@ -55,6 +55,18 @@ glpgp_status glpgp_qs_bad_faces(const glpgp_mesh *m, const glpgp_quadmesh *q, do
 glpgp_status glpgp_qs_split_local(const glpgp_mesh *m, const glpgp_quadmesh *q, double h, const unsigned char *sel,
                                   glpgp_quadmesh **out, int *nsplit);
 
+/* Flat boundary corners (split_surface.c): flat[f] <- the corner of quad f
+ * at a boundary vertex in no other face that is obtuse with a scaled
+ * Jacobian below goal (the worst such corner; -1: none); *nflat their
+ * count. glpgp_qs_split_flat: each of those quads split like a triangle
+ * (three quads about a new point, the midpoints of the two sides away
+ * from the corner carried along their quad strips; a flat quad that a
+ * strip enters at its corner's sides is split as Catmull-Clark does):
+ * conforming and all-quad, the new points moved onto the surface. */
+glpgp_status glpgp_qs_find_flat(const glpgp_quadmesh *q, double goal, signed char *flat, int *nflat);
+glpgp_status glpgp_qs_split_flat(const glpgp_mesh *m, const glpgp_quadmesh *q, double h, const signed char *flat,
+                                 glpgp_quadmesh **out, int *nsplit);
+
 /* glpgp_quads_surface_fallback_coarse (17 degrees) with the smallest angle
  * a new triangle may have (degrees; unless one before was smaller). */
 glpgp_status glpgp_qs_coarse(const glpgp_mesh *m, double h, double amin_deg, glpgp_quadmesh **out, int *ntri);

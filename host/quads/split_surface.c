@@ -12,11 +12,23 @@
  * Every face is then a quad and every edge is split on both of its sides
  * or on none: the result is a conforming all-quad mesh with the input's
  * topology whatever the geometry (the new points, midpoints and centroids,
- * moved onto the surface). Its validity in 3D is the caller's check. */
+ * moved onto the surface). Its validity in 3D is the caller's check.
+ *
+ * Flat boundary corners (glpgp_qs_split_flat): a boundary vertex c in one
+ * quad Q = (c, d, a, b) only, where the boundary runs nearly straight (the
+ * corner obtuse, its scaled Jacobian below a goal), makes Q a triangle
+ * a-b-d with c on its base: no vertex move helps (the surface's version of
+ * the planar shape pass, shape.c part 1). Q is split like a triangle: three
+ * quads about a new point g (the centroid of a, b, d) and the midpoints of
+ * d-a and a-b, (c, d, m_da, g), (g, m_da, a, m_ab), (m_ab, b, c, g); the two
+ * midpoints are carried across the mesh by the strips above. c then has two
+ * faces with about right angles, g is a valence-3 vertex. */
 #include "quads_surface.h"
+#include "vec3.h"
 
 #include "glpgp/util.h"
 
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -37,7 +49,9 @@ typedef struct sl_ctx {
     int nc, ne;
     int *eid, *cface, *ecs, *ecc;
     unsigned char *split; /* per edge */
-    unsigned char *in;    /* per face: split as Catmull-Clark does */
+    unsigned char *in;    /* per face: 1 split as Catmull-Clark does, 2 split like a triangle at a
+                             flat corner (flat[f]) */
+    const signed char *flat; /* per face: the flat corner, -1 none (NULL: none) */
     int *queue, nq;
 } sl_ctx;
 
@@ -82,6 +96,15 @@ static void flag_face(sl_ctx *S, int f)
     for (int c = S->q->face_start[f]; c < S->q->face_start[f + 1]; c++) flag_edge(S, S->eid[c]);
 }
 
+/* Quad f split like a triangle at its flat corner k: the two sides away from it */
+static void flag_flat(sl_ctx *S, int f, int k)
+{
+    const int s = S->q->face_start[f];
+    S->in[f] = 2;
+    flag_edge(S, S->eid[s + (k + 1) % 4]);
+    flag_edge(S, S->eid[s + (k + 2) % 4]);
+}
+
 /* The split closed along the strips: each split edge's quads split across. */
 static void sl_close(sl_ctx *S)
 {
@@ -94,6 +117,19 @@ static void sl_close(sl_ctx *S)
             if (n != 4) flag_face(S, g);
             else flag_edge(S, S->eid[s + (c - s + 2) % 4]);
         }
+    }
+    int again = 0;
+    for (int f = 0; f < q->nf; f++) { /* a strip into a flat corner's sides: split as Catmull-Clark */
+        const int s = q->face_start[f];
+        if (S->in[f] != 2 || !(S->split[S->eid[s + S->flat[f]]] || S->split[S->eid[s + (S->flat[f] + 3) % 4]]))
+            continue;
+        S->in[f] = 0;
+        flag_face(S, f);
+        again = 1;
+    }
+    if (again) {
+        sl_close(S);
+        return;
     }
     for (int f = 0; f < q->nf; f++) { /* a quad crossed by two strips: split in four */
         const int s = q->face_start[f];
@@ -126,7 +162,7 @@ static glpgp_status sl_build(const sl_ctx *S, glpgp_quadmesh **out, int *nsplit)
     for (int f = 0; f < q->nf; f++) {
         const int s = q->face_start[f], n = q->face_start[f + 1] - s;
         fcen[f] = S->in[f] ? nv++ : -1;
-        nf += S->in[f] ? n : (S->split[S->eid[s]] || S->split[S->eid[s + 1]]) ? 2 : 1;
+        nf += S->in[f] == 2 ? 3 : S->in[f] ? n : (S->split[S->eid[s]] || S->split[S->eid[s + 1]]) ? 2 : 1;
         *nsplit += S->in[f] || S->split[S->eid[s]] || S->split[S->eid[s + 1]];
     }
     GLPGP_CHECK_GOTO(st, glpgp_qs_alloc(nv, nf, 4 * nf, &r), done);
@@ -141,8 +177,16 @@ static glpgp_status sl_build(const sl_ctx *S, glpgp_quadmesh **out, int *nsplit)
     for (int f = 0; f < q->nf; f++) {
         const int s = q->face_start[f], n = q->face_start[f + 1] - s, *v = q->face_vert + s;
         const unsigned char org = q->face_origin ? q->face_origin[f] : GLPGP_QFACE_GRID;
-        int quad[8], nqd = 0;
-        if (fcen[f] >= 0) {
+        int quad[12], nqd = 0;
+        if (S->in[f] == 2) { /* (c, d, m_da, g), (g, m_da, a, m_ab), (m_ab, b, c, g) */
+            const int k = S->flat[f], c = v[k], d = v[(k + 1) % 4], a = v[(k + 2) % 4], b = v[(k + 3) % 4];
+            const int mda = emid[S->eid[s + (k + 1) % 4]], mab = emid[S->eid[s + (k + 2) % 4]], g = fcen[f];
+            for (int e = 0; e < 3; e++)
+                r->xyz[3 * g + e] = (q->xyz[3 * a + e] + q->xyz[3 * b + e] + q->xyz[3 * d + e]) / 3.0;
+            const int t[12] = {c, d, mda, g, g, mda, a, mab, mab, b, c, g};
+            memcpy(quad, t, sizeof t);
+            nqd = 3;
+        } else if (fcen[f] >= 0) {
             for (int d = 0; d < 3; d++) {
                 double x = 0.0;
                 for (int i = 0; i < n; i++) x += q->xyz[3 * v[i] + d];
@@ -160,7 +204,9 @@ static glpgp_status sl_build(const sl_ctx *S, glpgp_quadmesh **out, int *nsplit)
             continue;
         }
         const int i = S->split[S->eid[s]] ? 0 : S->split[S->eid[s + 1]] ? 1 : -1;
-        if (i < 0) {
+        if (nqd) {
+            /* the flat corner's three quads */
+        } else if (i < 0) {
             memcpy(quad, v, 4 * sizeof *v);
             nqd = 1;
         } else { /* sides i and i + 2 split: (a, m1, m2, d), (m1, b, c, m2) */
@@ -186,8 +232,8 @@ done:
     return st;
 }
 
-glpgp_status glpgp_qs_split_local(const glpgp_mesh *m, const glpgp_quadmesh *q, double h, const unsigned char *sel,
-                                  glpgp_quadmesh **out, int *nsplit)
+static glpgp_status split_run(const glpgp_mesh *m, const glpgp_quadmesh *q, double h, const unsigned char *sel,
+                              const signed char *flat, glpgp_quadmesh **out, int *nsplit)
 {
     *out = NULL;
     *nsplit = 0;
@@ -195,6 +241,7 @@ glpgp_status glpgp_qs_split_local(const glpgp_mesh *m, const glpgp_quadmesh *q, 
     sl_ctx S;
     memset(&S, 0, sizeof S);
     S.q = q;
+    S.flat = flat;
     S.nc = q->face_start[q->nf];
     glpgp_status st = glpgp_malloc((size_t)S.nc + 1, sizeof(int), &S.eid);
     if (st == GLPGP_OK) st = glpgp_malloc((size_t)S.nc + 1, sizeof(int), &S.cface);
@@ -205,8 +252,11 @@ glpgp_status glpgp_qs_split_local(const glpgp_mesh *m, const glpgp_quadmesh *q, 
     if (st == GLPGP_OK) st = glpgp_malloc((size_t)S.nc + 1, sizeof(int), &S.queue);
     if (st == GLPGP_OK) st = sl_edges(&S);
     if (st != GLPGP_OK) goto done;
-    for (int f = 0; f < q->nf; f++)
-        if (sel[f] || q->face_start[f + 1] - q->face_start[f] != 4) flag_face(&S, f);
+    for (int f = 0; f < q->nf; f++) {
+        const int n = q->face_start[f + 1] - q->face_start[f];
+        if (flat && flat[f] >= 0 && n == 4) flag_flat(&S, f, flat[f]);
+        else if ((sel && sel[f]) || n != 4) flag_face(&S, f);
+    }
     sl_close(&S);
     GLPGP_CHECK_GOTO(st, sl_build(&S, out, nsplit), done);
     GLPGP_CHECK_GOTO(st, glpgp_qs_project(m, h, (*out)->xyz, q->nv, (*out)->nv), done);
@@ -215,4 +265,64 @@ done:
     if (st != GLPGP_OK) glpgp_quadmesh_destroy(out);
     sl_free(&S);
     return st;
+}
+
+glpgp_status glpgp_qs_split_local(const glpgp_mesh *m, const glpgp_quadmesh *q, double h, const unsigned char *sel,
+                                  glpgp_quadmesh **out, int *nsplit)
+{
+    return split_run(m, q, h, sel, NULL, out, nsplit);
+}
+
+/* The scaled Jacobian of corner k of quad v in the quad's own plane
+ * (Newell's normal); 2 when the quad or the corner is degenerate (not
+ * flat: left alone). *obtuse: the corner is over 90 degrees. */
+static double corner_sj(const double *xyz, const int *v, int k, int *obtuse)
+{
+    double N[3] = {0, 0, 0}, e1[3], e2[3], x[3];
+    for (int i = 0; i < 4; i++) {
+        const double *a = xyz + 3 * v[i], *b = xyz + 3 * v[(i + 1) % 4];
+        N[0] += (a[1] - b[1]) * (a[2] + b[2]);
+        N[1] += (a[2] - b[2]) * (a[0] + b[0]);
+        N[2] += (a[0] - b[0]) * (a[1] + b[1]);
+    }
+    const double *p = xyz + 3 * v[k];
+    sub3(xyz + 3 * v[(k + 1) % 4], p, e1);
+    sub3(xyz + 3 * v[(k + 3) % 4], p, e2);
+    const double l = sqrt(dot3(N, N) * dot3(e1, e1) * dot3(e2, e2));
+    if (!(l > 0.0)) return 2.0;
+    cross3(e1, e2, x);
+    *obtuse = dot3(e1, e2) < 0.0;
+    return dot3(x, N) / l;
+}
+
+glpgp_status glpgp_qs_find_flat(const glpgp_quadmesh *q, double goal, signed char *flat, int *nflat)
+{
+    int *nface = NULL;
+    *nflat = 0;
+    GLPGP_CHECK(glpgp_calloc((size_t)q->nv + 1, sizeof(int), &nface));
+    for (int c = 0; c < q->face_start[q->nf]; c++) nface[q->face_vert[c]]++;
+    for (int f = 0; f < q->nf; f++) {
+        const int s = q->face_start[f];
+        flat[f] = -1;
+        if (q->face_start[f + 1] - s != 4) continue;
+        double worst = goal;
+        for (int k = 0; k < 4; k++) {
+            int obtuse = 0;
+            if (nface[q->face_vert[s + k]] != 1) continue; /* a boundary vertex in this face only */
+            const double sj = corner_sj(q->xyz, q->face_vert + s, k, &obtuse);
+            if (obtuse && sj < worst) {
+                worst = sj;
+                flat[f] = (signed char)k;
+            }
+        }
+        *nflat += flat[f] >= 0;
+    }
+    free(nface);
+    return GLPGP_OK;
+}
+
+glpgp_status glpgp_qs_split_flat(const glpgp_mesh *m, const glpgp_quadmesh *q, double h, const signed char *flat,
+                                 glpgp_quadmesh **out, int *nsplit)
+{
+    return split_run(m, q, h, NULL, flat, out, nsplit);
 }

@@ -10,7 +10,14 @@
  *  - the local split (glpgp_qs_split_local) of one face of the grid splits
  *    it in four and the two quad strips through it in two: a conforming
  *    all-quad mesh (valid; 28 x 10 cells, the rims' half cells included:
- *    4 + 2 (27 + 9) faces in place of 28 + 10 - 1), on the cylinder. */
+ *    4 + 2 (27 + 9) faces in place of 28 + 10 - 1), on the cylinder;
+ *  - a flat boundary corner (two rim quads a-b-x-.., b-c-..-x redrawn as
+ *    a-b-c-z and z-..-a, so that rim vertex b is in one quad whose corner
+ *    there is the rim's straight angle) is found (glpgp_qs_find_flat) and
+ *    split like a triangle (glpgp_qs_split_flat): valid, all quads, the
+ *    topology kept, no flat corner left, the smallest scaled Jacobian from
+ *    0.014 (the flat corner) to 0.23 (the split of the quad, a right
+ *    triangle, before any smoothing). */
 #include "testutil.h"
 
 #include "glpgp/surface.h"
@@ -213,6 +220,79 @@ out:
     glpgp_mesh_destroy(&m);
 }
 
+/* Two rim quads sharing a side redrawn with a flat corner at their common
+ * rim vertex b; returns the first quad's face (-1: none found). */
+static int make_flat(glpgp_quadmesh *q)
+{
+    int *nface = calloc((size_t)q->nv, sizeof(int)), res = -1;
+    if (!nface) return -1;
+    for (int c = 0; c < q->face_start[q->nf]; c++) nface[q->face_vert[c]]++;
+    const int f1 = face_at(q, NU / 2, 0.25), f2 = face_at(q, NU / 2 + 1, 0.25);
+    const int i1 = shared_side(q, f1, f2);
+    if (i1 < 0) goto out;
+    int *u = q->face_vert + q->face_start[f1], *w = q->face_vert + q->face_start[f2], U[4], W[4], H[6];
+    for (int k = 0; k < 4; k++) U[k] = u[(i1 + 1 + k) % 4]; /* the shared side is (U[3], U[0]) */
+    int j = 0;
+    while (j < 4 && w[j] != U[0]) j++;
+    if (j == 4) goto out;
+    for (int k = 0; k < 4; k++) W[k] = w[(j + k) % 4]; /* W[0] = U[0], W[1] = U[3] */
+    const int hx[6] = {U[0], U[1], U[2], U[3], W[2], W[3]};
+    memcpy(H, hx, sizeof H);
+    const int b = nface[U[0]] == 2 ? 0 : nface[U[3]] == 2 ? 3 : -1;
+    if (b < 0) goto out;
+    for (int k = 0; k < 4; k++) {
+        u[k] = H[(b + 5 + k) % 6]; /* (H[b-1], b, H[b+1], H[b+2]) */
+        w[k] = H[(b + 2 + k) % 6]; /* (H[b+2], x = H[b+3], H[b+4], H[b-1]) */
+    }
+    /* x, above b, raised by a quarter of the row: the second quad's corner there
+     * (z, x and y on one grid line) convex */
+    double *x = q->xyz + 3 * H[(b + 3) % 6];
+    x[2] += 0.25 * (x[2] - q->xyz[3 * H[b] + 2]);
+    res = f1;
+out:
+    free(nface);
+    return res;
+}
+
+static void flat_corner(void)
+{
+    glpgp_mesh *m = NULL;
+    glpgp_quadmesh *q = NULL, *r = NULL;
+    signed char *flat = NULL;
+    grid(&m, &q);
+    if (!q) goto out;
+    const int f = make_flat(q);
+    CHECK(f >= 0);
+    if (f < 0) goto out;
+    glpgp_quads_report qq;
+    CHECK_OK(glpgp_quads_quality_surface(q, m, HV, &qq));
+    CHECK(qq.invalid == 0 && qq.sj_min < 0.05);
+    CHECK_OK(glpgp_calloc((size_t)q->nf + 1, 1, &flat));
+    if (!flat) goto out;
+    int nflat = 0, ns = 0;
+    CHECK_OK(glpgp_qs_find_flat(q, 0.3, flat, &nflat));
+    CHECK(nflat == 1 && flat[f] >= 0);
+    CHECK_OK(glpgp_qs_split_flat(m, q, HV, flat, &r, &ns));
+    if (!r) goto out;
+    CHECK_OK(glpgp_quads_quality_surface(r, m, HV, &qq));
+    CHECK(qq.invalid == 0 && qq.others == 0 && qq.euler == 1 && qq.boundary_loops == 1 && qq.sj_min > 0.2);
+    /* the flat quad in three, the two strips from its sides up the cylinder and along the rim */
+    CHECK(ns >= 3 && r->nf == q->nf + 2 + (ns - 1));
+    if (qq.invalid || qq.sj_min <= 0.2)
+        fprintf(stderr, "flat corner: invalid 0x%x, smallest scaled Jacobian %.3f, %d faces split\n", qq.invalid,
+                qq.sj_min, ns);
+    free(flat);
+    flat = NULL;
+    CHECK_OK(glpgp_calloc((size_t)r->nf + 1, 1, &flat));
+    if (flat) CHECK_OK(glpgp_qs_find_flat(r, 0.3, flat, &nflat));
+    CHECK(nflat == 0);
+out:
+    free(flat);
+    glpgp_quadmesh_destroy(&r);
+    glpgp_quadmesh_destroy(&q);
+    glpgp_mesh_destroy(&m);
+}
+
 static void dbg_log(glpgp_log_level l, const char *msg, void *u)
 {
     (void)l;
@@ -225,5 +305,6 @@ int main(void)
     glpgp_log_set_callback(dbg_log, NULL);
     many_odd_regions();
     split_local();
+    flat_corner();
     TEST_DONE();
 }

@@ -437,6 +437,11 @@ typedef struct glpgp_quads_surface_steps {
     int smoothed;          /* vertices moved by the smoothing on the surface (o->smooth sweeps) */
     double sj_before;      /* smallest scaled Jacobian before the smoothing */
     double sj_after;       /* and after it (the same when it moved nothing or was undone) */
+    int flat_corners;      /* flat boundary corners split like triangles (a boundary vertex in one
+                              quad whose corner there is obtuse and below 0.3), kept when the mesh
+                              stayed valid with a higher smallest scaled Jacobian */
+    int flat_faces;        /* faces split for them (the quads and the strips through their sides) */
+    double flat_sj_before, flat_sj_after; /* the smallest scaled Jacobian before and after that split */
 } glpgp_quads_surface_steps;
 
 /* The surface pipeline (quads/quads_surface.c): extraction; two odd
@@ -450,8 +455,10 @@ typedef struct glpgp_quads_surface_steps {
  * new points moved onto the surface; skipped when o->keep_polygons); when
  * that is not valid (glpgp_quads_quality_surface against the target h: the
  * user's tolerance), the last resort (glpgp_quads_surface_fallback;
- * o->repair = 0: the extraction's mesh stands, invalid). *h: the target
- * size (unchanged). steps may be NULL. */
+ * o->repair = 0: the extraction's mesh stands, invalid); then the
+ * smoothing on the surface and the split of flat boundary corners (kept
+ * when valid and better). *h: the target size (unchanged). steps may be
+ * NULL. */
 glpgp_status glpgp_quads_build_surface(const glpgp_mesh *m, const glpgp_result *r, const glpgp_quads_options *o,
                                        glpgp_quadmesh **out, double *h, glpgp_quads_surface_steps *steps);
 
