@@ -328,6 +328,11 @@ static void fix_log(const char *path, const glpgp_surface_fixes *fx, int nt)
                   "%s: %d of %d triangles were oriented against their neighbours: flipped (closed parts "
                   "outward)",
                   path, fx->flipped, nt);
+    if (fx->nonmanifold)
+        glpgp_log(GLPGP_LOG_WARNING,
+                  "%s: %d edges of four or more triangles (bodies touching along an edge): separated, the bodies "
+                  "are meshed apart (%d vertices added)",
+                  path, fx->nonmanifold, fx->nonmanifold_added);
     if (fx->pinched)
         glpgp_log(GLPGP_LOG_WARNING,
                   "%s: %d vertices where surfaces touch at a point (more than one fan of triangles): split "

@@ -13,10 +13,19 @@
  *  - pinched vertices: a vertex whose triangles form several fans (two
  *    sheets or cones touching at a point) becomes one vertex per fan, so
  *    the sheets are meshed apart (the corners at a vertex joined across
- *    their shared edges, union-find).
+ *    their shared edges, union-find);
+ *  - edges of more than two triangles (first) where bodies touch along an
+ *    edge (a CAD assembly's parts, two boxes edge to edge): the triangles
+ *    around such an edge, sorted by their angle about it, are paired so
+ *    that each pair's wedge is behind both normals (the inside of a body
+ *    oriented outward), which needs the triangles to alternate in
+ *    direction around the edge; each pair is then an edge of its own and
+ *    the edge's vertices are split by fans as above, so the bodies are
+ *    meshed apart.
  * What is not a mesh these repairs are defined on (indices out of range, a
- * repeated vertex in a triangle, a non-manifold edge, a non-orientable
- * component) is left alone: glpgp_mesh_create_surface names it. */
+ * repeated vertex in a triangle, an edge of three triangles, or of more
+ * that do not alternate, a non-orientable component) is left alone:
+ * glpgp_mesh_create_surface names it. */
 #include "glpgp/surface.h"
 #include "glpgp/util.h"
 
@@ -270,8 +279,8 @@ done:
     return st;
 }
 
-/* The pinched-vertex repair (consistent orientation, twin[] current): one
- * vertex per fan, the new ones appended to *xyz. */
+/* The pinched-vertex repair (twin[] current, any orientation): one vertex
+ * per fan, the new ones appended to *xyz. */
 static glpgp_status split_fans(glpgp_mesh *m, const int *twin, double **xyz, int *pinched, int *added)
 {
     const int nv = m->nv, nc = 3 * m->nt;
@@ -286,9 +295,14 @@ static glpgp_status split_fans(glpgp_mesh *m, const int *twin, double **xyz, int
         id[c] = -1;
     }
     for (int v = 0; v < nv; v++) root[v] = -1;
-    /* corner c's outgoing edge, run back by twin g, ends at c's vertex in g's triangle */
+    /* corner c's outgoing edge and its twin g: c's vertex in g's triangle
+     * is g's end (g runs back) or g's start (g runs the same way: an
+     * orientation not repaired yet) */
     for (int c = 0; c < nc; c++)
-        if (twin[c] >= 0) parent[glpgp_uf_find(parent, c)] = glpgp_uf_find(parent, corner_next(twin[c]));
+        if (twin[c] >= 0) {
+            const int g = twin[c], d = m->tri[g] == m->tri[c] ? g : corner_next(g);
+            parent[glpgp_uf_find(parent, c)] = glpgp_uf_find(parent, d);
+        }
     int n = nv;
     for (int c = 0; c < nc; c++) {
         const int v = m->tri[c], r = glpgp_uf_find(parent, c);
@@ -323,6 +337,102 @@ done:
     return st;
 }
 
+/* ---- edges of more than two triangles ---------------------------------- */
+
+typedef struct nm_side {
+    double phi; /* the angle of the triangle about the edge */
+    int h, dir; /* half-edge; +1 along the edge's first half-edge, -1 against */
+} nm_side;
+
+static int cmp_side(const void *pa, const void *pb)
+{
+    const nm_side *a = pa, *b = pb;
+    return a->phi < b->phi ? -1 : a->phi > b->phi ? 1 : a->h - b->h;
+}
+
+/* The half-edges S[0, n) of one edge paired in twin[]: sorted by angle
+ * about the edge (from the first half-edge's start to its end, right-handed),
+ * a triangle along the edge has its normal towards increasing angle, one
+ * against it towards decreasing; each triangle along the edge is paired
+ * with the one before it, which must run against it (the wedge between them
+ * behind both normals). Returns 0 when they do not alternate. */
+static int pair_edge(const double *xyz, const int *tri, nm_side *S, int n, int *twin)
+{
+    const int a = tri[S[0].h], b = tri[corner_next(S[0].h)];
+    double e[3], p[3] = {0, 0, 0}, q[3], l = 0.0;
+    for (int d = 0; d < 3; d++) e[d] = xyz[3 * b + d] - xyz[3 * a + d];
+    l = sqrt(e[0] * e[0] + e[1] * e[1] + e[2] * e[2]);
+    if (!(l > 0.0) || n % 2) return 0;
+    for (int d = 0; d < 3; d++) e[d] /= l;
+    const int ax = fabs(e[0]) < fabs(e[1]) ? (fabs(e[0]) < fabs(e[2]) ? 0 : 2) : (fabs(e[1]) < fabs(e[2]) ? 1 : 2);
+    p[ax] = 1.0; /* p <- the axis least along e, made normal to it; q = e x p */
+    const double pe = p[0] * e[0] + p[1] * e[1] + p[2] * e[2];
+    for (int d = 0; d < 3; d++) p[d] -= pe * e[d];
+    q[0] = e[1] * p[2] - e[2] * p[1];
+    q[1] = e[2] * p[0] - e[0] * p[2];
+    q[2] = e[0] * p[1] - e[1] * p[0];
+    for (int k = 0; k < n; k++) {
+        const int h = S[k].h, c = tri[corner_next(corner_next(h))];
+        double u[3];
+        for (int d = 0; d < 3; d++) u[d] = xyz[3 * c + d] - xyz[3 * a + d];
+        S[k].phi = atan2(u[0] * q[0] + u[1] * q[1] + u[2] * q[2], u[0] * p[0] + u[1] * p[1] + u[2] * p[2]);
+        S[k].dir = tri[h] == a ? 1 : -1;
+    }
+    qsort(S, (size_t)n, sizeof *S, cmp_side);
+    for (int k = 0; k < n; k++)
+        if (S[k].dir == S[(k + 1) % n].dir) return 0;
+    for (int k = 0; k < n; k++)
+        if (S[k].dir > 0) {
+            const int g = S[(k + n - 1) % n].h;
+            twin[S[k].h] = g;
+            twin[g] = S[k].h;
+        }
+    return 1;
+}
+
+/* The edges of more than two triangles separated (see the file comment):
+ * *edges of them, their vertices split by fans (*pinched, *added as
+ * split_fans); *ok 0 when one cannot be paired (nothing changed). */
+static glpgp_status separate_edges(glpgp_mesh *m, double **xyz, int *edges, int *pinched, int *added, int *ok)
+{
+    const int nh = 3 * m->nt;
+    long long *key = NULL;
+    int *twin = NULL;
+    nm_side *S = NULL;
+    glpgp_status st = GLPGP_OK;
+    *edges = *pinched = *added = 0;
+    *ok = 1;
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)nh, 2 * sizeof(long long), &key), done);
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)nh, sizeof(int), &twin), done);
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)nh, sizeof *S, &S), done);
+    for (int h = 0; h < nh; h++) {
+        const long long a = m->tri[h], b = m->tri[corner_next(h)];
+        key[2 * h] = a < b ? a * m->nv + b : b * m->nv + a;
+        key[2 * h + 1] = h;
+        twin[h] = -1;
+    }
+    qsort(key, (size_t)nh, 2 * sizeof(long long), cmp_ll);
+    for (int i = 0; i < nh && *ok;) {
+        int j = i + 1;
+        while (j < nh && key[2 * j] == key[2 * i]) j++;
+        if (j - i == 2) {
+            twin[key[2 * i + 1]] = (int)key[2 * i + 3];
+            twin[key[2 * i + 3]] = (int)key[2 * i + 1];
+        } else if (j - i > 2) {
+            for (int k = i; k < j; k++) S[k - i].h = (int)key[2 * k + 1];
+            *ok = pair_edge(m->xyz, m->tri, S, j - i, twin);
+            (*edges)++;
+        }
+        i = j;
+    }
+    if (*ok && *edges) st = split_fans(m, twin, xyz, pinched, added);
+done:
+    free(key);
+    free(twin);
+    free(S);
+    return st;
+}
+
 /* twin[] of m (s->twin allocated); 0 when an edge is not manifold (left
  * to the validation, its message not kept here). */
 static int twins_or_leave(glpgp_mesh *m, glpgp_surface *s, int *samedir)
@@ -334,7 +444,7 @@ static int twins_or_leave(glpgp_mesh *m, glpgp_surface *s, int *samedir)
 
 glpgp_status glpgp_surface_fix(int *nv, double **xyz, int *ntp, int *tri, glpgp_surface_fixes *fx)
 {
-    glpgp_surface_fixes none = {0, 0, 0, 0};
+    glpgp_surface_fixes none = {0, 0, 0, 0, 0, 0};
     if (!nv || !xyz || !*xyz || !ntp || !tri || !fx)
         return GLPGP_FAIL(GLPGP_ERR_ARG, "glpgp_surface_fix: NULL argument");
     *fx = none;
@@ -350,7 +460,19 @@ glpgp_status glpgp_surface_fix(int *nv, double **xyz, int *ntp, int *tri, glpgp_
     glpgp_status st = GLPGP_OK;
     int samedir = -1, orientable = 1;
     GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)3 * m.nt, sizeof(int), &s.twin), done);
-    if (!twins_or_leave(&m, &s, &samedir)) goto done;
+    if (!twins_or_leave(&m, &s, &samedir)) {
+        int ok = 0, pinched = 0, added = 0;
+        GLPGP_CHECK_GOTO(st, separate_edges(&m, xyz, &fx->nonmanifold, &pinched, &added, &ok), done);
+        if (!ok) {
+            fx->nonmanifold = 0;
+            goto done;
+        }
+        fx->nonmanifold_added = added;
+        *nv += added;
+        m.nv = *nv;
+        m.xyz = *xyz;
+        if (!twins_or_leave(&m, &s, &samedir)) goto done;
+    }
     if (samedir >= 0) { /* first, so that a degenerate triangle's flip keeps the orientation */
         GLPGP_CHECK_GOTO(st, orient(&m, &s, &fx->flipped, &orientable), done);
         if (!orientable) goto done;

@@ -6,7 +6,8 @@
 # eight corners; the same surface as PLY and OFF; bad 3D inputs (non-manifold
 # edge, a lone degenerate face, Moebius strip) each one error line, exit 1,
 # no output; what the reader repairs with a warning (a zero-area cap, a face
-# oriented against its neighbours, two tetrahedra touching at a vertex)
+# oriented against its neighbours, two tetrahedra touching at a vertex or
+# sharing an edge)
 # solved with the repaired topology; --planar-face keeps a box STL's
 # bottom; --quads on a surface writes an all-quad OBJ (issue 29; the
 # details in cli_surfquads.sh), `figure --cross` on a surface draws the
@@ -106,6 +107,14 @@ run_ok "pinched vertex" solve in_2.obj --backend reference --quads q2.obj
 expect_err "in_2\.obj: 1 vertices where surfaces touch" "the pinched vertex is named"
 expect_out "surface +chi 4, genus 0, 0 boundary loop\(s\), 2 component" "the pinched vertex split: two components"
 expect_out "valid +yes" "the pinched input's quads are valid"
+# two tetrahedra sharing an edge (a body turned half a turn about it): the
+# edge separated, two closed components
+printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nv 0 -1 0\nv 0 0 -1\n' >edge2.obj
+printf 'f 1 3 2\nf 1 2 4\nf 2 3 4\nf 1 4 3\nf 1 5 2\nf 1 2 6\nf 2 5 6\nf 1 6 5\n' >>edge2.obj
+run_ok "shared edge" solve edge2.obj --backend reference --quads qe.obj
+expect_err "edge2\.obj: 1 edges of four or more triangles" "the shared edge is named"
+expect_out "surface +chi 4, genus 0, 0 boundary loop\(s\), 2 component" "the shared edge separated: two components"
+expect_out "valid +yes" "the shared-edge input's quads are valid"
 run_ok "zero-area cap" solve cap.obj --backend reference --method pgp
 expect_err "cap\.obj: 1 triangles of zero area" "the zero-area triangle is named"
 run_ok "flipped face" solve in_3.obj --backend reference --quads q3.obj

@@ -227,7 +227,7 @@ static double volume6(const double *x, const int *t, int nt)
  * the fixes, then glpgp_mesh_create_surface's verdict; *mo the mesh. */
 static glpgp_surface_fixes fix(const double *x, int nv, const int *t, int nt, glpgp_mesh **mo)
 {
-    glpgp_surface_fixes fx = {-1, -1, -1, -1};
+    glpgp_surface_fixes fx = {-1, -1, -1, -1, -1, -1};
     double *xyz = NULL;
     int *tri = malloc((size_t)3 * nt * sizeof(int));
     *mo = NULL;
@@ -310,7 +310,26 @@ static void check_fix(void)
     fx = fix(ndx, 5, ndt, 6, &m);
     CHECK(fx.degenerate >= 1 && m && m->nt == 4 && m->nv == 4 && m->surf->euler == 2);
     glpgp_mesh_destroy(&m);
-    /* not defined on: a non-manifold edge, an index out of range: left alone, still rejected */
+    /* two tetrahedra sharing edge 0-1 (the second the first turned half a
+     * turn about it): the edge separated, its two vertices split, two
+     * closed components */
+    const double te2[18] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 0, -1, 0, 0, 0, -1};
+    const int tb[24] = {0, 2, 1, 0, 1, 3, 1, 2, 3, 0, 3, 2, 0, 4, 1, 0, 1, 5, 1, 4, 5, 0, 5, 4};
+    fx = fix(te2, 6, tb, 8, &m);
+    CHECK(fx.nonmanifold == 1 && fx.nonmanifold_added == 2 && fx.flipped == 0);
+    CHECK(m && m->nv == 8 && m->surf->euler == 4 && m->surf->ncomponents == 2 && m->nloops == 0);
+    CHECK(m && volume6(m->xyz, m->tri, m->nt) > 0.0);
+    glpgp_mesh_destroy(&m);
+    /* ... the second one inside out (not a body's inside between the pairs): left alone */
+    const int tbi[24] = {0, 2, 1, 0, 1, 3, 1, 2, 3, 0, 3, 2, 0, 1, 4, 0, 5, 1, 1, 5, 4, 0, 4, 5};
+    fx = fix(te2, 6, tbi, 8, &m);
+    CHECK(fx.nonmanifold == 0 && m == NULL);
+    /* four sheets on one edge, two along it then two against it: left alone */
+    const double fs4[18] = {0, 0, 0, 1, 0, 0, 0.5, 1, 0, 0.5, 0, 1, 0.5, -1, 0, 0.5, 0, -1};
+    const int f4[12] = {0, 1, 2, 0, 1, 3, 1, 0, 4, 1, 0, 5};
+    fx = fix(fs4, 6, f4, 4, &m);
+    CHECK(fx.nonmanifold == 0 && m == NULL);
+    /* not defined on: a non-manifold edge of three triangles, an index out of range: left alone, still rejected */
     const double fan[15] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 0, -1, 0.5};
     const int fe[9] = {0, 1, 2, 1, 0, 3, 0, 1, 4};
     fx = fix(fan, 5, fe, 3, &m);

@@ -104,6 +104,8 @@ typedef struct glpgp_surface_fixes {
     int flipped;    /* triangles reversed to orient their component alike */
     int pinched;    /* vertices whose triangles formed more than one fan */
     int added;      /* the vertices added for them (one per fan after the first) */
+    int nonmanifold; /* edges of more than two triangles separated (bodies touching along an edge) */
+    int nonmanifold_added; /* the vertices added for them */
 } glpgp_surface_fixes;
 
 /* The repairs a surface from a file may need before
@@ -118,10 +120,16 @@ typedef struct glpgp_surface_fixes {
  *    its triangles were;
  *  - a pinched vertex (its triangles form several fans: sheets or cones
  *    touching at a point) split into one vertex per fan, the copies
- *    appended: *xyz (3 *nv doubles from glpgp_malloc) grows, *nv with it.
+ *    appended: *xyz (3 *nv doubles from glpgp_malloc) grows, *nv with it;
+ *  - an edge of four or more triangles (bodies touching along an edge)
+ *    separated: the triangles paired about the edge by angle, each pair
+ *    behind both normals (a body's inside), and the edge's vertices split
+ *    as pinched ones (needs the triangles to alternate in direction around
+ *    the edge).
  * An input these repairs are not defined on (an index out of range, a
- * repeated vertex, a non-manifold edge, a non-orientable component) is
- * left as it is for glpgp_mesh_create_surface to name. */
+ * repeated vertex, an edge of three triangles or of more that do not
+ * alternate, a non-orientable component) is left as it is for
+ * glpgp_mesh_create_surface to name. */
 glpgp_status glpgp_surface_fix(int *nv, double **xyz, int *nt, int *tri, glpgp_surface_fixes *fx);
 
 /* *out: surface m with every triangle split in four at its edge midpoints
