@@ -243,9 +243,10 @@ static PyType_Slot k_slots[] = {
      "vertices: (n, 2) or (n, 3) array-like of coordinates; 3D points are taken as a file's would be: a mesh in a "
      "plane z, y or x = const is solved in its two other coordinates, anything else is a 3D surface. triangles: "
      "(m, 3) array-like of vertex indices. Vertices used by no triangle are dropped, unwelded pieces welded; a "
-     "planar mesh made counter-clockwise; on a surface, triangles oriented against their neighbours flipped and "
-     "a vertex where sheets touch split (a warning each); degenerate triangles, non-manifold edges, pinched "
-     "boundaries (planar) or a non-orientable surface raise InputError naming the culprit. "
+     "planar mesh made counter-clockwise; on a surface, zero-area triangles flipped away or collapsed, triangles "
+     "oriented against their neighbours flipped, a vertex where sheets touch split and an edge where bodies touch "
+     "separated (a warning each); what remains degenerate, an edge of three triangles, pinched boundaries "
+     "(planar) or a non-orientable surface raise InputError naming the culprit. "
      "name: how messages and statistics name it."},
     {0, NULL}};
 
