@@ -42,7 +42,7 @@ typedef struct lepp {
     int *tw;     /* 3 cap_t: twin half-edge (3 t + a: tri[3t+a] -> tri[3t+(a+1)%3]), -1 on the boundary */
     int *path;   /* the propagation path (triangles) */
     int npath;
-    long max_t;  /* triangle limit (0: GLPGP_MESH_MAX_TRIANGLES only) */
+    long max_t; /* triangle limit (0: GLPGP_MESH_MAX_TRIANGLES only) */
     long splits;
 } lepp;
 
@@ -115,7 +115,8 @@ static glpgp_status bisect_edge(lepp *L, int t, int a, int *full)
     }
     GLPGP_CHECK(grow(L, 1, add));
     const int p = L->nv++, i = L->tri[3 * t + a], j = L->tri[3 * t + (a + 1) % 3];
-    for (int e = 0; e < 3; e++) L->xyz[3 * (size_t)p + e] = 0.5 * (L->xyz[3 * (size_t)i + e] + L->xyz[3 * (size_t)j + e]);
+    for (int e = 0; e < 3; e++)
+        L->xyz[3 * (size_t)p + e] = 0.5 * (L->xyz[3 * (size_t)i + e] + L->xyz[3 * (size_t)j + e]);
     const int n = L->nt++;
     bisect_one(L, t, a, p, n);
     if (o < 0) {
@@ -229,7 +230,8 @@ static double max_edge(const glpgp_mesh *m)
 {
     double l = 0.0;
     for (int h = 0; h < 3 * m->nt; h++) {
-        const double *p = m->xyz + 3 * (size_t)m->tri[h], *q = m->xyz + 3 * (size_t)m->tri[3 * (h / 3) + (h % 3 + 1) % 3];
+        const double *p = m->xyz + 3 * (size_t)m->tri[h],
+                     *q = m->xyz + 3 * (size_t)m->tri[3 * (h / 3) + (h % 3 + 1) % 3];
         const double dx = q[0] - p[0], dy = q[1] - p[1], dz = q[2] - p[2];
         l = fmax(l, dx * dx + dy * dy + dz * dz);
     }
@@ -242,7 +244,8 @@ glpgp_status glpgp_mesh_refine_surface(const glpgp_mesh *m, double target, doubl
     *out = NULL;
     if (info) memset(info, 0, sizeof *info);
     if (!m || !m->xyz || !m->surf) return GLPGP_FAIL(GLPGP_ERR_ARG, "refine: not a surface mesh");
-    if (!(target > 0.0) || !isfinite(target)) return GLPGP_FAIL(GLPGP_ERR_ARG, "refine: target edge %g is not positive", target);
+    if (!(target > 0.0) || !isfinite(target))
+        return GLPGP_FAIL(GLPGP_ERR_ARG, "refine: target edge %g is not positive", target);
     const double lmax = max_edge(m);
     if (info) {
         info->nv0 = info->nv = m->nv;

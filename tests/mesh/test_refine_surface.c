@@ -34,11 +34,14 @@ static void moments(const glpgp_mesh *m, double va[3], double *vol)
     va[0] = va[1] = va[2] = 0.0;
     *vol = 0.0;
     for (int t = 0; t < m->nt; t++) {
-        const double *a = m->xyz + 3 * m->tri[3 * t], *b = m->xyz + 3 * m->tri[3 * t + 1], *c = m->xyz + 3 * m->tri[3 * t + 2];
+        const double *a = m->xyz + 3 * m->tri[3 * t], *b = m->xyz + 3 * m->tri[3 * t + 1],
+                     *c = m->xyz + 3 * m->tri[3 * t + 2];
         const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, v[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
         const double n[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
         for (int e = 0; e < 3; e++) va[e] += 0.5 * n[e];
-        *vol += (a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) + a[2] * (b[0] * c[1] - b[1] * c[0])) / 6.0;
+        *vol += (a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) +
+                 a[2] * (b[0] * c[1] - b[1] * c[0])) /
+                6.0;
     }
 }
 
@@ -61,7 +64,8 @@ static int off_old_surface(const glpgp_mesh *m, const glpgp_mesh *r)
         int on = 0;
         const double *x = r->xyz + 3 * p;
         for (int t = 0; t < m->nt && !on; t++) {
-            const double *A = m->xyz + 3 * m->tri[3 * t], *B = m->xyz + 3 * m->tri[3 * t + 1], *C = m->xyz + 3 * m->tri[3 * t + 2];
+            const double *A = m->xyz + 3 * m->tri[3 * t], *B = m->xyz + 3 * m->tri[3 * t + 1],
+                         *C = m->xyz + 3 * m->tri[3 * t + 2];
             const double *V[3] = {A, B, C};
             double u[3], v[3], n[3];
             for (int e = 0; e < 3; e++) u[e] = B[e] - A[e], v[e] = C[e] - A[e];
@@ -167,7 +171,8 @@ static void check_local(void)
             fine0++;
             for (int u = 0; u < r->nt; u++) /* the same triangle, the same corner order up to rotation */
                 for (int s = 0; s < 3; s++)
-                    kept += r->tri[3 * u] == v[s] && r->tri[3 * u + 1] == v[(s + 1) % 3] && r->tri[3 * u + 2] == v[(s + 2) % 3];
+                    kept += r->tri[3 * u] == v[s] && r->tri[3 * u + 1] == v[(s + 1) % 3] &&
+                            r->tri[3 * u + 2] == v[(s + 2) % 3];
         }
         printf("strip: %d fine triangles, %d kept\n", fine0, kept);
         CHECK(fine0 == 32 && kept == fine0);

@@ -247,7 +247,8 @@ static double max_edge(const glpgp_mesh *m)
     double l = 0.0;
     for (int h = 0; h < 3 * m->nt; h++) {
         const double *p = m->xyz + 3 * m->tri[h], *q = m->xyz + 3 * m->tri[3 * (h / 3) + (h % 3 + 1) % 3];
-        l = fmax(l, sqrt((p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1]) + (p[2] - q[2]) * (p[2] - q[2])));
+        const double dx = p[0] - q[0], dy = p[1] - q[1], dz = p[2] - q[2];
+        l = fmax(l, sqrt(dx * dx + dy * dy + dz * dz));
     }
     return l;
 }
