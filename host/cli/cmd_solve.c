@@ -256,6 +256,10 @@ static void print_summary(const solve_cli *c, const char *input, const glpgp_mes
     if (c->refined.rounds)
         printf("  refined        %d -> %d vertices, %d -> %d triangles (%d rounds: too coarse for the local h)\n",
                c->refined.nv0, c->refined.nv, c->refined.nt0, c->refined.nt, c->refined.rounds);
+    else if (c->refined.split_edges)
+        printf("  refined        %d -> %d vertices, %d -> %d triangles (%ld edges bisected: longer than h / %g)\n",
+               c->refined.nv0, c->refined.nv, c->refined.nt0, c->refined.nt, c->refined.split_edges,
+               GLPGP_SURFACE_EDGES);
     printf("  time           %.3f s (read %.3f s, solve %.3f s%s)\n", t_all, t_read, r->seconds_total,
            r->concurrent ? "; u and v concurrently" : "");
     print_phases(r);

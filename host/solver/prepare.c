@@ -65,48 +65,44 @@ static glpgp_status check_field(const glpgp_mesh *m, const glpgp_options *o)
     return st;
 }
 
-/* A surface too coarse for its size h (mean edge above h /
+/* A surface too coarse for its size h (an edge above h /
  * GLPGP_SURFACE_EDGES: the oscillators collapse towards z = 0 at about 4
- * mean edges per period) is subdivided, each round splitting every
- * triangle in four at its edge midpoints (the same surface), while the
- * result stays within max_triangles; *out NULL when no round was needed. */
+ * mean edges per period) is refined by longest-edge bisection
+ * (glpgp_mesh_refine_surface) until no edge is longer, only where it is
+ * coarser (the same surface), within max_triangles; *out NULL when no edge
+ * needed it. */
 static glpgp_status refine_surface(const glpgp_mesh *m, const glpgp_options *o, const char *name, double max_triangles,
                                    glpgp_mesh **out, glpgp_prepare_info *info)
 {
     *out = NULL;
     const double h = o->size, t0 = glpgp_now();
-    glpgp_mesh *cur = NULL;
-    const glpgp_mesh *at = m;
-    while (h > 0.0 && at->mean_edge > h / GLPGP_SURFACE_EDGES) {
-        if (max_triangles > 0 && 4.0 * at->nt > max_triangles) {
-            glpgp_log(GLPGP_LOG_WARNING,
-                      "%s: h = %.4g is %.2g mean edges of the surface (about %g are needed, P1 needs about 10 per "
-                      "period); subdivided once more it would have %.0f triangles, above --max-elements %.0f: "
-                      "solved as it is (the oscillators may collapse: a larger --size, fewer --faces)",
-                      name, h, h / at->mean_edge, GLPGP_SURFACE_EDGES, 4.0 * at->nt, max_triangles);
-            break;
-        }
-        glpgp_mesh *next = NULL;
-        glpgp_status st = glpgp_mesh_subdivide_surface(at, &next);
-        glpgp_mesh_destroy(&cur);
-        if (st != GLPGP_OK) return st;
-        cur = next;
-        at = cur;
-        info->refined.rounds++;
-    }
-    if (!cur) return GLPGP_OK;
+    if (!(h > 0.0)) return GLPGP_OK;
+    const double target = h / GLPGP_SURFACE_EDGES;
+    glpgp_surface_refine_info ri;
+    GLPGP_CHECK(glpgp_mesh_refine_surface(m, target, max_triangles, out, &ri));
+    if (ri.stopped)
+        glpgp_log(GLPGP_LOG_WARNING,
+                  "%s: h = %.4g is %.2g longest edges of the surface (%g are needed, P1 needs about 10 mean edges "
+                  "per period); refined further it would have more than %.0f triangles (--max-elements): solved with "
+                  "%d triangles, longest edge h / %.2g (the oscillators may collapse: a larger --size, fewer --faces)",
+                  name, h, h / ri.max_edge0, GLPGP_SURFACE_EDGES,
+                  max_triangles > 0 ? max_triangles : (double)GLPGP_MESH_MAX_TRIANGLES, ri.nt, h / ri.max_edge);
+    if (!*out) return GLPGP_OK;
+    info->refined.split_edges = ri.splits;
+    info->refined.target_edge = target;
     info->refined.nv0 = m->nv;
     info->refined.nt0 = m->nt;
-    info->refined.nv = cur->nv;
-    info->refined.nt = cur->nt;
+    info->refined.nv = ri.nv;
+    info->refined.nt = ri.nt;
     info->seconds_refine = glpgp_now() - t0;
-    glpgp_log(GLPGP_LOG_INFO, "%s: subdivided for h = %.4g: %d -> %d vertices in %d rounds (%.3g mean edges per period)",
-              name, h, m->nv, cur->nv, info->refined.rounds, h / cur->mean_edge);
-    *out = cur;
+    glpgp_log(GLPGP_LOG_INFO,
+              "%s: refined for h = %.4g by longest-edge bisection: %d -> %d vertices (%ld edges bisected; longest "
+              "edge h / %.3g, mean edge h / %.3g)",
+              name, h, m->nv, ri.nv, ri.splits, h / ri.max_edge, h / (*out)->mean_edge);
     return GLPGP_OK;
 }
 
-/* glpgp_solve_prepare on a surface: slivers, the subdivision, the size and
+/* glpgp_solve_prepare on a surface: slivers, the refinement, the size and
  * field checks on the mesh that is solved. */
 static glpgp_status prepare_surface(const glpgp_mesh *m, glpgp_options *o, const char *name, double max_triangles,
                                     int refine_ok, glpgp_mesh **refined, glpgp_prepare_info *info)

@@ -535,9 +535,9 @@ static PyObject *res_refined(pg_result *self, void *c)
 {
     (void)c;
     const glpgp_refine_info *f = &self->refined;
-    if (!f->rounds) Py_RETURN_NONE;
-    return Py_BuildValue("{s:i,s:i,s:i,s:i,s:i}", "rounds", f->rounds, "vertices_before", f->nv0, "vertices", f->nv,
-                         "triangles_before", f->nt0, "triangles", f->nt);
+    if (!f->rounds && !f->split_edges) Py_RETURN_NONE;
+    return Py_BuildValue("{s:i,s:l,s:i,s:i,s:i,s:i}", "rounds", f->rounds, "split_edges", f->split_edges,
+                         "vertices_before", f->nv0, "vertices", f->nv, "triangles_before", f->nt0, "triangles", f->nt);
 }
 
 /* ---- Result: methods ---------------------------------------------------------------------- */

@@ -15,9 +15,10 @@
  *    CG iterations per Newton step on the torus and the sphere at their
  *    default sizes (the multigrid keeps the phase mode across the cuts;
  *    with aggregates across conjugations: 24.3 and 29.5);
- *  - the preparation (glpgp_solve_prepare) subdivides a surface too coarse
- *    for its size to GLPGP_SURFACE_EDGES mean edges per period, not beyond
- *    --max-elements, not with --no-refine. */
+ *  - the preparation (glpgp_solve_prepare) refines a surface too coarse
+ *    for its size until no edge is above h / GLPGP_SURFACE_EDGES (bisection,
+ *    far fewer triangles than the uniform rounds just above the old mean
+ *    edge rule), not beyond --max-elements, not with --no-refine. */
 #include "testutil.h"
 
 #include "glpgp/surfsolve.h"
@@ -235,9 +236,23 @@ static void test_coupled_cg(const char *shape)
     glpgp_mesh_destroy(&m);
 }
 
-/* glpgp_solve_prepare on a surface 3 mean edges per period: subdivided to
- * at least GLPGP_SURFACE_EDGES; with --max-elements below that, solved as
- * it is */
+/* glpgp_solve_prepare on a surface 3 mean edges per period: refined by
+ * bisection until no edge is above h / GLPGP_SURFACE_EDGES, the same surface,
+ * fewer triangles than the uniform rounds' 16x; with --max-elements at 4x
+ * the input, the last level within it (a warning), at 1x the input as it
+ * is; on a torus 7 mean edges per period (one uniform round short of the old
+ * rule: 4x) only the long edges split */
+static double max_edge(const glpgp_mesh *m)
+{
+    double l = 0.0;
+    for (int h = 0; h < 3 * m->nt; h++) {
+        const double *p = m->xyz + 3 * m->tri[h], *q = m->xyz + 3 * m->tri[3 * (h / 3) + (h % 3 + 1) % 3];
+        const double dx = p[0] - q[0], dy = p[1] - q[1], dz = p[2] - q[2];
+        l = fmax(l, sqrt(dx * dx + dy * dy + dz * dz));
+    }
+    return l;
+}
+
 static void check_prepare_subdivides(void)
 {
     glpgp_mesh *m = NULL, *r = NULL;
@@ -248,13 +263,34 @@ static void check_prepare_subdivides(void)
     o.size = 3.0 * m->mean_edge;
     glpgp_prepare_info pi;
     CHECK_OK(glpgp_solve_prepare(m, &o, "torus", 0, 1, &r, &pi));
-    CHECK(r != NULL && pi.refined.rounds == 2 && r->nt == 16 * m->nt);
-    if (r) CHECK(r->mean_edge <= o.size / GLPGP_SURFACE_EDGES);
+    CHECK(r != NULL && pi.refined.rounds == 0 && pi.refined.split_edges > 0);
+    if (r) {
+        printf("prepare: %d -> %d triangles, %ld edges bisected, longest edge h / %.3g, mean edge h / %.3g\n", m->nt,
+               r->nt, pi.refined.split_edges, o.size / max_edge(r), o.size / r->mean_edge);
+        CHECK(max_edge(r) <= o.size / GLPGP_SURFACE_EDGES);
+        CHECK(r->nt < 16 * m->nt && pi.refined.nt == r->nt && pi.refined.nv - pi.refined.nv0 == pi.refined.split_edges);
+        CHECK_CLOSE(r->area, m->area, 0.0, 1e-12);
+        CHECK(r->surf->euler == m->surf->euler);
+    }
     glpgp_mesh_destroy(&r);
-    CHECK_OK(glpgp_solve_prepare(m, &o, "torus", 2.0 * m->nt, 1, &r, &pi));
-    CHECK(r == NULL && pi.refined.rounds == 0);
+    CHECK_OK(glpgp_solve_prepare(m, &o, "torus", 4.0 * m->nt, 1, &r, &pi));
+    CHECK(r != NULL && r->nt <= 4 * m->nt);
+    if (r) CHECK(max_edge(r) > o.size / GLPGP_SURFACE_EDGES);
+    glpgp_mesh_destroy(&r);
+    CHECK_OK(glpgp_solve_prepare(m, &o, "torus", 1.0 * m->nt, 1, &r, &pi));
+    CHECK(r == NULL && pi.refined.split_edges == 0);
     CHECK_OK(glpgp_solve_prepare(m, &o, "torus", 0, 0, &r, &pi)); /* --no-refine */
     CHECK(r == NULL);
+    /* just above the old rule's mean edge: 4x triangles for the rounds */
+    o.size = 7.0 * m->mean_edge;
+    CHECK_OK(glpgp_solve_prepare(m, &o, "torus", 0, 1, &r, &pi));
+    CHECK(r != NULL);
+    if (r) {
+        printf("prepare at 7 mean edges: %d -> %d triangles, longest edge h / %.3g\n", m->nt, r->nt,
+               o.size / max_edge(r));
+        CHECK(r->nt < 3 * m->nt && max_edge(r) <= o.size / GLPGP_SURFACE_EDGES);
+    }
+    glpgp_mesh_destroy(&r);
     glpgp_mesh_destroy(&m);
 }
 

@@ -251,10 +251,12 @@ glpgp_status glpgp_options_check(const glpgp_options *o);
  * bounding-box diagonal (beyond, there is no grid line to compute).
  * GLPGP_ERR_ARG with a message naming the ratio otherwise. */
 #define GLPGP_SIZE_MIN_EDGES 2.0
-/* A surface whose mean edge is above h / GLPGP_SURFACE_EDGES is subdivided
- * (glpgp_solve_prepare; at about 4 mean edges per period the oscillators
- * collapse towards z = 0). */
-#define GLPGP_SURFACE_EDGES 8.0
+/* A surface's edges longer than h / GLPGP_SURFACE_EDGES are bisected
+ * (glpgp_solve_prepare, glpgp_mesh_refine_surface; at about 4 mean edges
+ * per period the oscillators collapse towards z = 0). Longest edge h / 6
+ * leaves a mean edge of about h / 9.4 (the former rule, mean edge <= h / 8
+ * by uniform rounds, left h / 8 to h / 16): bench/results/surface_refine.md. */
+#define GLPGP_SURFACE_EDGES 6.0
 #define GLPGP_SIZE_MAX_DIAG 100.0
 /* `glpgp solve` with refinement: a default size above diameter / this (the
  * raise to 10 mean edges on a coarse input) is replaced by diameter / 20 and
@@ -320,9 +322,10 @@ glpgp_status glpgp_size_check_mesh(const glpgp_mesh *m, const glpgp_options *o, 
 #define GLPGP_REFINE_MAX_ROUNDS 64
 #define GLPGP_REFINE_MAX_VERTICES 8000000
 typedef struct glpgp_refine_info {
-    int rounds;
-    long split_edges;
+    int rounds;           /* rounds of the planar refinement (0 on a surface) */
+    long split_edges;     /* edges bisected */
     int nv0, nt0, nv, nt; /* before and after */
+    double target_edge;   /* a surface: the longest edge asked (h / GLPGP_SURFACE_EDGES); 0 in the plane */
 } glpgp_refine_info;
 glpgp_status glpgp_size_refine(const glpgp_mesh *m, const glpgp_options *o, double h, glpgp_mesh **out,
                                glpgp_refine_info *info);
@@ -337,14 +340,14 @@ glpgp_status glpgp_size_refine(const glpgp_mesh *m, const glpgp_options *o, doub
  * (glpgp_options_check_mesh; below 2 mean edges with refinement: against
  * max_triangles for the refined mesh, > 0, else no limit); a field file
  * read once; the triangles too coarse for the local size refined
- * (glpgp_size_refine; o->size then set to h); a surface whose mean edge is
- * above h / GLPGP_SURFACE_EDGES subdivided (glpgp_mesh_subdivide_surface,
- * rounds while within max_triangles). *refined <- the refined mesh
+ * (glpgp_size_refine; o->size then set to h); a surface's edges longer
+ * than h / GLPGP_SURFACE_EDGES bisected (glpgp_mesh_refine_surface, within
+ * max_triangles). *refined <- the refined mesh
  * to solve instead of m (free it with glpgp_mesh_destroy), or NULL: solve m.
  * On failure info->usage tells whether it is about the option values (the
  * CLI's usage error, "--size: MESSAGE") rather than the input. */
 typedef struct glpgp_prepare_info {
-    glpgp_refine_info refined; /* rounds 0: not refined */
+    glpgp_refine_info refined; /* split_edges 0: not refined */
     int usage;                 /* the failure concerns the size or another option value */
     double seconds_refine;     /* the refinement's wall seconds (0: none) */
 } glpgp_prepare_info;

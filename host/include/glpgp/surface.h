@@ -137,6 +137,28 @@ glpgp_status glpgp_surface_fix(int *nv, double **xyz, int *nt, int *tri, glpgp_s
  * boundary loops and topology, edges halved; 4 nt triangles. */
 glpgp_status glpgp_mesh_subdivide_surface(const glpgp_mesh *m, glpgp_mesh **out);
 
+/* What glpgp_mesh_refine_surface did. */
+typedef struct glpgp_surface_refine_info {
+    long splits;                /* edges bisected (= vertices added) */
+    int nv0, nt0, nv, nt;       /* before and after */
+    double max_edge0, max_edge; /* the longest edge before and after */
+    int stopped;                /* 1: max_triangles reached before the target (max_edge > target) */
+} glpgp_surface_refine_info;
+
+/* *out: surface m with every edge longer than target split, by conforming
+ * longest-edge (LEPP) bisection (mesh/refine_surface.c): no edge longer
+ * than target, edges already shorter left alone where no longer edge needs
+ * them split; every new point the midpoint of an edge, so on an old edge
+ * or inside an old triangle (the same piecewise linear surface, sharp
+ * edges, boundary loops and topology), orientation kept, the smallest angle at least half the input's. *out NULL
+ * when no edge is longer than target (or the first level already passes
+ * max_triangles). With max_triangles > 0 the result has at most that many
+ * triangles: the refinement goes in levels (longest edge down by sqrt 2
+ * each) and keeps the last level within it (info->stopped). info may be
+ * NULL. */
+glpgp_status glpgp_mesh_refine_surface(const glpgp_mesh *m, double target, double max_triangles, glpgp_mesh **out,
+                                       glpgp_surface_refine_info *info);
+
 /* Free a surface's arrays (NULL-safe, sets *s = NULL); glpgp_mesh_destroy
  * calls it. */
 void glpgp_surface_destroy(struct glpgp_surface **s);

@@ -1,0 +1,272 @@
+/* mesh/refine_surface.c: adaptive refinement of a surface mesh to a target
+ * edge length (glpgp_mesh_refine_surface, glpgp/surface.h) by Rivara's
+ * longest-edge propagation path (LEPP) bisection: a triangle with an edge
+ * longer than the target is bisected at the midpoint of its longest edge
+ * together with the neighbour across it; when that edge is not the
+ * neighbour's longest, the neighbour is refined first, recursively along the
+ * path of ever longer edges, whose last edge is the longest of both its
+ * triangles (or on the boundary): the pair is bisected there.
+ *
+ * Why this and not red-green: every triangle made is the longest-edge
+ * bisection of its parent, so the smallest angle is at least half the
+ * input's (Rosenberg and Stenger 1975), the mesh is conforming after every
+ * step (no hanging node, no green closure to undo), only edges longer than
+ * the target are ever split (each path ends at an edge longer than the
+ * triangle it started from), and it terminates (lengths grow strictly along
+ * a path; ties broken by the vertex pair, a total order). Every new point is
+ * the midpoint of an edge of the mesh being refined, so it lies on an old
+ * edge or inside an old triangle, in its plane: the piecewise linear
+ * surface, its sharp edges, boundary loops and topology stay exactly as
+ * they were; the bisected triangles keep their orientation.
+ *
+ * The target is reached in levels (edges longer than target x sqrt 2^k, k
+ * down to 0), the mesh kept after each level: when the next level would pass
+ * max_triangles, the last complete level is the result (a uniform
+ * resolution, not half a mesh refined). Work and memory are linear in the
+ * output: per bisection O(1) with the twin half-edges updated in place. */
+#include "glpgp/surface.h"
+#include "glpgp/util.h"
+
+#include <math.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define SQRT2 1.41421356237309504880
+
+typedef struct lepp {
+    int nv, nt;
+    size_t cap_v, cap_t, cap_tw, cap_path;
+    double *xyz; /* 3 cap_v */
+    int *tri;    /* 3 cap_t */
+    int *tw;     /* 3 cap_t: twin half-edge (3 t + a: tri[3t+a] -> tri[3t+(a+1)%3]), -1 on the boundary */
+    int *path;   /* the propagation path (triangles) */
+    int npath;
+    long max_t; /* triangle limit (0: GLPGP_MESH_MAX_TRIANGLES only) */
+    long splits;
+} lepp;
+
+static double len2(const lepp *L, int h)
+{
+    const int t = h / 3, a = h % 3;
+    const double *p = L->xyz + 3 * (size_t)L->tri[3 * t + a], *q = L->xyz + 3 * (size_t)L->tri[3 * t + (a + 1) % 3];
+    const double dx = q[0] - p[0], dy = q[1] - p[1], dz = q[2] - p[2];
+    return dx * dx + dy * dy + dz * dz;
+}
+
+static uint64_t hkey(const lepp *L, int h)
+{
+    const uint32_t i = (uint32_t)L->tri[h], j = (uint32_t)L->tri[3 * (h / 3) + (h % 3 + 1) % 3];
+    return i < j ? ((uint64_t)i << 32) | j : ((uint64_t)j << 32) | i;
+}
+
+/* The longest edge of triangle t (0..2) and its squared length; ties broken
+ * by the vertex pair so that both triangles of an edge agree. */
+static int longest(const lepp *L, int t, double *l2)
+{
+    int best = 0;
+    double lb = len2(L, 3 * t);
+    for (int a = 1; a < 3; a++) {
+        const double l = len2(L, 3 * t + a);
+        if (l > lb || (l == lb && hkey(L, 3 * t + a) > hkey(L, 3 * t + best))) {
+            best = a;
+            lb = l;
+        }
+    }
+    if (l2) *l2 = lb;
+    return best;
+}
+
+/* Triangle t split at its edge a (midpoint p) into t = (va, p, vc) and the
+ * new triangle n = (p, vb, vc); the twins of the two outer edges and the
+ * inner edge set, the split edge's halves (3t, 3n) left to the caller. */
+static void bisect_one(lepp *L, int t, int a, int p, int n)
+{
+    int *v = L->tri + 3 * (size_t)t, *w = L->tri + 3 * (size_t)n;
+    const int va = v[a], vb = v[(a + 1) % 3], vc = v[(a + 2) % 3];
+    const int T1 = L->tw[3 * t + (a + 1) % 3], T2 = L->tw[3 * t + (a + 2) % 3];
+    v[0] = va, v[1] = p, v[2] = vc;
+    w[0] = p, w[1] = vb, w[2] = vc;
+    L->tw[3 * t + 1] = 3 * n + 2;
+    L->tw[3 * n + 2] = 3 * t + 1;
+    L->tw[3 * t + 2] = T2;
+    if (T2 >= 0) L->tw[T2] = 3 * t + 2;
+    L->tw[3 * n + 1] = T1;
+    if (T1 >= 0) L->tw[T1] = 3 * n + 1;
+}
+
+static glpgp_status grow(lepp *L, int more_v, int more_t)
+{
+    GLPGP_CHECK(glpgp_grow(&L->xyz, &L->cap_v, (size_t)L->nv + (size_t)more_v, 3 * sizeof(double)));
+    GLPGP_CHECK(glpgp_grow(&L->tri, &L->cap_t, (size_t)L->nt + (size_t)more_t, 3 * sizeof(int)));
+    GLPGP_CHECK(glpgp_grow(&L->tw, &L->cap_tw, (size_t)L->nt + (size_t)more_t, 3 * sizeof(int)));
+    return GLPGP_OK;
+}
+
+/* Bisect edge a of triangle t and, across it, its twin's triangle: one new
+ * vertex, one or two new triangles. *full when the limit forbids it. */
+static glpgp_status bisect_edge(lepp *L, int t, int a, int *full)
+{
+    const int o = L->tw[3 * t + a], add = o >= 0 ? 2 : 1;
+    if ((L->max_t > 0 && L->nt + add > L->max_t) || L->nt + add > GLPGP_MESH_MAX_TRIANGLES ||
+        L->nv + 1 > GLPGP_MESH_MAX_VERTICES) {
+        *full = 1;
+        return GLPGP_OK;
+    }
+    GLPGP_CHECK(grow(L, 1, add));
+    const int p = L->nv++, i = L->tri[3 * t + a], j = L->tri[3 * t + (a + 1) % 3];
+    for (int e = 0; e < 3; e++)
+        L->xyz[3 * (size_t)p + e] = 0.5 * (L->xyz[3 * (size_t)i + e] + L->xyz[3 * (size_t)j + e]);
+    const int n = L->nt++;
+    bisect_one(L, t, a, p, n);
+    if (o < 0) {
+        L->tw[3 * t] = L->tw[3 * n] = -1;
+    } else { /* u = (vb, va, w) split at its edge b: u = (vb, p, w), m = (p, va, w) */
+        const int u = o / 3, b = o % 3, m = L->nt++;
+        bisect_one(L, u, b, p, m);
+        L->tw[3 * t] = 3 * m, L->tw[3 * m] = 3 * t; /* va -> p and p -> va */
+        L->tw[3 * n] = 3 * u, L->tw[3 * u] = 3 * n; /* p -> vb and vb -> p */
+    }
+    L->splits++;
+    return GLPGP_OK;
+}
+
+/* LEPP bisection of triangle t: the path of longest edges walked from t to
+ * its terminal edge, that edge bisected, the walk resumed from the
+ * previous triangle, until t itself is bisected. */
+static glpgp_status lepp_refine(lepp *L, int t, int *full)
+{
+    L->npath = 0;
+    int c = t;
+    for (;;) {
+        const int e = longest(L, c, NULL), o = L->tw[3 * c + e];
+        if (o >= 0 && longest(L, o / 3, NULL) != o % 3) { /* the neighbour's longest edge is longer: go on */
+            GLPGP_CHECK(glpgp_grow(&L->path, &L->cap_path, (size_t)L->npath + 1, sizeof(int)));
+            L->path[L->npath++] = c;
+            c = o / 3;
+            continue;
+        }
+        GLPGP_CHECK(bisect_edge(L, c, e, full));
+        if (*full || L->npath == 0) return GLPGP_OK; /* c == t: bisected */
+        c = L->path[--L->npath];
+    }
+}
+
+/* One level: every edge longer than sqrt(l2) split. */
+static glpgp_status refine_level(lepp *L, double l2, int *full)
+{
+    for (int t = 0; t < L->nt && !*full; t++) {
+        double lt;
+        while (!*full && (longest(L, t, &lt), lt > l2)) GLPGP_CHECK(lepp_refine(L, t, full));
+    }
+    return GLPGP_OK;
+}
+
+static glpgp_status lepp_init(lepp *L, const glpgp_mesh *m, double max_triangles)
+{
+    memset(L, 0, sizeof *L);
+    L->nv = m->nv;
+    L->nt = m->nt;
+    L->cap_v = (size_t)m->nv;
+    L->cap_t = L->cap_tw = (size_t)m->nt;
+    L->max_t = max_triangles > 0 ? (long)fmin(max_triangles, 4e9) : 0;
+    GLPGP_CHECK(glpgp_malloc((size_t)m->nv, 3 * sizeof(double), &L->xyz));
+    GLPGP_CHECK(glpgp_malloc((size_t)m->nt, 3 * sizeof(int), &L->tri));
+    GLPGP_CHECK(glpgp_malloc((size_t)m->nt, 3 * sizeof(int), &L->tw));
+    memcpy(L->xyz, m->xyz, (size_t)m->nv * 3 * sizeof(double));
+    memcpy(L->tri, m->tri, (size_t)m->nt * 3 * sizeof(int));
+    memcpy(L->tw, m->surf->twin, (size_t)m->nt * 3 * sizeof(int));
+    return GLPGP_OK;
+}
+
+static void lepp_free(lepp *L)
+{
+    glpgp_free(&L->xyz);
+    glpgp_free(&L->tri);
+    glpgp_free(&L->tw);
+    glpgp_free(&L->path);
+}
+
+/* The levels: edges above target sqrt 2^k split for k from the first level
+ * below the longest edge down to 0; the state before each level kept in *S
+ * (triangles and twins; vertices only grow) and put back when the level
+ * stops at the limit. */
+static glpgp_status run_levels(lepp *L, double target, double lmax, int *stopped)
+{
+    int k = 0;
+    while (target * pow(SQRT2, k + 1) < lmax && k < 200) k++;
+    int *s_tri = NULL, *s_tw = NULL;
+    glpgp_status st = GLPGP_OK;
+    for (; k >= 0 && st == GLPGP_OK; k--) {
+        const int nv0 = L->nv, nt0 = L->nt;
+        const long sp0 = L->splits;
+        /* a snapshot to fall back to (also without max_triangles: GLPGP_MESH_MAX_TRIANGLES) */
+        glpgp_free(&s_tri);
+        glpgp_free(&s_tw);
+        st = glpgp_malloc((size_t)nt0, 3 * sizeof(int), &s_tri);
+        if (st == GLPGP_OK) st = glpgp_malloc((size_t)nt0, 3 * sizeof(int), &s_tw);
+        if (st != GLPGP_OK) break;
+        memcpy(s_tri, L->tri, (size_t)nt0 * 3 * sizeof(int));
+        memcpy(s_tw, L->tw, (size_t)nt0 * 3 * sizeof(int));
+        const double lk = k == 0 ? target : target * pow(SQRT2, k);
+        int full = 0;
+        st = refine_level(L, lk * lk, &full);
+        if (st == GLPGP_OK && full) {
+            memcpy(L->tri, s_tri, (size_t)nt0 * 3 * sizeof(int));
+            memcpy(L->tw, s_tw, (size_t)nt0 * 3 * sizeof(int));
+            L->nv = nv0;
+            L->nt = nt0;
+            L->splits = sp0;
+            *stopped = 1;
+            break;
+        }
+    }
+    glpgp_free(&s_tri);
+    glpgp_free(&s_tw);
+    return st;
+}
+
+static double max_edge(const glpgp_mesh *m)
+{
+    double l = 0.0;
+    for (int h = 0; h < 3 * m->nt; h++) {
+        const double *p = m->xyz + 3 * (size_t)m->tri[h],
+                     *q = m->xyz + 3 * (size_t)m->tri[3 * (h / 3) + (h % 3 + 1) % 3];
+        const double dx = q[0] - p[0], dy = q[1] - p[1], dz = q[2] - p[2];
+        l = fmax(l, dx * dx + dy * dy + dz * dz);
+    }
+    return sqrt(l);
+}
+
+glpgp_status glpgp_mesh_refine_surface(const glpgp_mesh *m, double target, double max_triangles, glpgp_mesh **out,
+                                       glpgp_surface_refine_info *info)
+{
+    *out = NULL;
+    if (info) memset(info, 0, sizeof *info);
+    if (!m || !m->xyz || !m->surf) return GLPGP_FAIL(GLPGP_ERR_ARG, "refine: not a surface mesh");
+    if (!(target > 0.0) || !isfinite(target))
+        return GLPGP_FAIL(GLPGP_ERR_ARG, "refine: target edge %g is not positive", target);
+    const double lmax = max_edge(m);
+    if (info) {
+        info->nv0 = info->nv = m->nv;
+        info->nt0 = info->nt = m->nt;
+        info->max_edge0 = info->max_edge = lmax;
+    }
+    if (lmax <= target) return GLPGP_OK;
+    lepp L;
+    int stopped = 0;
+    glpgp_status st = lepp_init(&L, m, max_triangles);
+    if (st == GLPGP_OK) st = run_levels(&L, target, lmax, &stopped);
+    if (st == GLPGP_OK && L.splits > 0) st = glpgp_mesh_create_surface(L.nv, L.xyz, L.nt, L.tri, out);
+    if (info) {
+        info->stopped = stopped;
+        if (*out) {
+            info->splits = L.splits;
+            info->nv = (*out)->nv;
+            info->nt = (*out)->nt;
+            info->max_edge = max_edge(*out);
+        }
+    }
+    lepp_free(&L);
+    return st;
+}
