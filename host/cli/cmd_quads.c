@@ -125,6 +125,8 @@ int glpgp_cmd_extract(int argc, char **argv)
     if (m->surf) { /* a surface: its own pipeline and check (quads/quads_surface.c), as solve --quads */
         if (glpgp_quads_build_surface(m, r, &qo, &q, &h, &steps) != GLPGP_OK) goto fail;
         if (glpgp_quads_quality_surface(q, m, h, &qq) != GLPGP_OK) goto fail;
+        qq.steps = steps;
+        qq.has_steps = 1;
     } else {
         if (glpgp_quads_build(m, r, &qo, &q, &h) != GLPGP_OK) goto fail;
         if (glpgp_quads_quality(q, m, h, &qq) != GLPGP_OK) goto fail;

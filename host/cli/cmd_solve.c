@@ -546,6 +546,8 @@ static int solve_main(solve_cli *cc, const char *input, glpgp_dist *dd)
         if (m->surf) { /* a surface: its own pipeline and check (quads/quads_surface.c) */
             if (glpgp_quads_build_surface(m, r, &c.qo, &q, &h, &c.qsteps) != GLPGP_OK) goto fail;
             if (glpgp_quads_quality_surface(q, m, h, &qq) != GLPGP_OK) goto fail;
+            qq.steps = c.qsteps;
+            qq.has_steps = 1;
         } else {
             if (glpgp_quads_build(m, r, &c.qo, &q, &h) != GLPGP_OK) goto fail;
             if (glpgp_quads_quality(q, m, h, &qq) != GLPGP_OK) goto fail;

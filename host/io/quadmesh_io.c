@@ -79,6 +79,36 @@ static void json_repair(glpgp_json *w, const glpgp_quads_repair *r)
     glpgp_json_close(w);
 }
 
+/* "steps": what the surface pipeline did (glpgp_quads_surface_steps), and
+ * "path": the step the mesh came from, as the summary names it. */
+static void json_steps(glpgp_json *w, const glpgp_quads_surface_steps *s)
+{
+    const char *path = s->fallback ? (s->coarse_triangles ? "coarse last resort" : "input triangles split")
+                       : s->subdivided      ? "split h/2"
+                       : s->split_faces     ? "local split"
+                       : s->local_regions   ? "local repair"
+                                            : "grid";
+    glpgp_json_object(w, "steps");
+    glpgp_json_str(w, "path", path);
+    glpgp_json_int(w, "extracted_faces", s->extracted_faces);
+    glpgp_json_int(w, "extracted_quads", s->extracted_quads);
+    glpgp_json_int(w, "closed", s->closed);
+    glpgp_json_int(w, "strips", s->strips);
+    glpgp_json_int(w, "local_regions", s->local_regions);
+    glpgp_json_int(w, "local_faces_in", s->local_faces_in);
+    glpgp_json_int(w, "local_quads_out", s->local_quads_out);
+    glpgp_json_int(w, "split_faces", s->split_faces);
+    glpgp_json_bool(w, "split_h2", s->subdivided);
+    glpgp_json_bool(w, "last_resort", s->fallback);
+    glpgp_json_int(w, "coarse_triangles", s->coarse_triangles);
+    glpgp_json_int(w, "smoothed_vertices", s->smoothed);
+    glpgp_json_num(w, "sj_before_smoothing", s->sj_before);
+    glpgp_json_num(w, "sj_after_smoothing", s->sj_after);
+    glpgp_json_int(w, "flat_corners", s->flat_corners);
+    glpgp_json_int(w, "flat_faces", s->flat_faces);
+    glpgp_json_close(w);
+}
+
 void glpgp_quads_json(glpgp_json *w, const char *key, const glpgp_quads_report *qq)
 {
     glpgp_json_object(w, key);
@@ -193,6 +223,7 @@ void glpgp_quads_json(glpgp_json *w, const char *key, const glpgp_quads_report *
         glpgp_json_int(w, "input_boundary_loops", qq->domain_loops);
         glpgp_json_num(w, "area_ratio", qq->area_ratio);
         glpgp_json_num(w, "area_tolerance", glpgp_quads_surface_area_tolerance(qq));
+        if (qq->has_steps) json_steps(w, &qq->steps);
         glpgp_json_close(w);
     }
     json_origin(w, qq);

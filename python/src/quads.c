@@ -193,9 +193,16 @@ static glpgp_status build_quads(const glpgp_mesh *m, const glpgp_result *r, cons
                                 pg_quadmesh *out)
 {
     double h = r->size;
-    GLPGP_CHECK(glpgp_quads_build(m, r, qo, &out->q, &h));
+    glpgp_quads_surface_steps steps;
+    memset(&steps, 0, sizeof steps);
+    if (m->xyz) GLPGP_CHECK(glpgp_quads_build_surface(m, r, qo, &out->q, &h, &steps));
+    else GLPGP_CHECK(glpgp_quads_build(m, r, qo, &out->q, &h));
     out->h = h;
     GLPGP_CHECK(glpgp_quads_quality(out->q, m, h, &out->qq));
+    if (m->xyz) { /* the report's quads.surface.steps, as the CLI's */
+        out->qq.steps = steps;
+        out->qq.has_steps = 1;
+    }
     out->qq.singular[0] = r->osc[0].plus + r->osc[0].minus;
     out->qq.singular[1] = r->osc[1].plus + r->osc[1].minus;
     if (r->cross) GLPGP_CHECK(glpgp_quads_quality_cross(out->q, r->cross->sing, r->cross->nsing, r->size, &out->qq));

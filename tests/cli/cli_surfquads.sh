@@ -27,8 +27,9 @@
 #    input;
 #  - --no-repair on a size the surface cannot carry (not subdivided for it:
 #    --no-refine): an invalid mesh is not written (exit 3) unless
-#    --allow-invalid; with the repair on, the last resort (triangles split
-#    into quads) is valid.
+#    --allow-invalid; with the repair on, a global step (the h/2 split or
+#    the last resort: the JSON's quads.surface.steps say which) is valid;
+#  - every report's quads.surface.steps names the path the mesh took.
 # Usage: bash cli_surfquads.sh <path-to-glpgp> <data-dir>
 . "$(dirname "$0")/lib.sh" "$@"
 
@@ -51,6 +52,9 @@ if s["euler"] != s["input_euler"]: bad.append("Euler %d of %d" % (s["euler"], s[
 if s["boundary_loops"] != s["input_boundary_loops"]: bad.append("loops")
 if not s["hausdorff_over_h"] <= 0.25: bad.append("Hausdorff %g h" % s["hausdorff_over_h"])
 if not q["scaled_jacobian"]["min"] >= 0.3: bad.append("SJ min %g" % q["scaled_jacobian"]["min"])
+st = s.get("steps", {})
+if st.get("path") not in ("grid", "local repair", "local split", "split h/2"): bad.append("steps.path %s" % st.get("path"))
+if not st.get("extracted_faces", 0) > 0 or st.get("last_resort") is not False: bad.append("steps %s" % st)
 grid = q["origin"]["grid"] + q["origin"]["strips"]
 if grid + q["origin"]["repair"] < 0.9 * q["quads"] or grid < 0.7 * q["quads"]:
     bad.append("grid quads %d (repair %d) of %d" % (grid, q["origin"]["repair"], q["quads"]))
@@ -144,5 +148,7 @@ python3 - <<'PY' || fail "last resort"
 import json
 q = json.load(open("lr.json"))["quads"]
 assert q["valid"] and q["surface"]["euler"] == 2 and q["other_faces"] == 0, q["invalid_reasons"]
+st = q["surface"]["steps"]
+assert (st["split_h2"] or st["last_resort"]) and st["path"] in ("split h/2", "coarse last resort", "input triangles split"), st
 PY
 finish

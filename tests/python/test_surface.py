@@ -58,6 +58,8 @@ def test_surface_quads(tmp_path):
     assert np.allclose(np.linalg.norm(q.vertices, axis=1), 1.0, atol=1e-3)
     assert q.faces.shape[1] == 4 and len(q.faces) > 50
     assert "surface" in q.report
+    steps = q.report["surface"]["steps"]  # what the surface pipeline did, as the CLI's JSON
+    assert steps["extracted_faces"] > 0 and steps["path"] in ("grid", "local repair", "local split", "split h/2")
     q.write(tmp_path / "s.obj")
     assert (tmp_path / "s.obj").stat().st_size > 0
 

@@ -354,6 +354,8 @@ glpgp_status glpgp_read_result(const char *path, glpgp_mesh **m, glpgp_result **
  *  "valid" (true / false), "invalid_reasons": ["inverted", "non-quad", ...]
  *  (glpgp_quads_bad_name), "orientation" (+1 / -1), "overlapping_faces",
  *  "pinched_vertices", "non_quad_faces", "boundary_loops": {"mesh", "domain"},
+ *  on a surface "surface": {"hausdorff_over_h", ..., "steps": {"path", ...}
+ *  (with qq->has_steps: glpgp_quads_surface_steps, docs/surfaces.md)},
  *  "area_ratio", "outside_faces", "far_faces", "corners_lost",
  *  "boundary_vertex_distance_over_h" (the last five null without a domain),
  *  "max_edge_over_h", "repair": {"rounds", "removed_faces", "regions",

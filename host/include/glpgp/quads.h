@@ -231,6 +231,38 @@ glpgp_status glpgp_quads_build(const glpgp_mesh *m, const glpgp_result *r, const
 /* A result whose repaired share is above this is flagged "mostly repaired". */
 #define GLPGP_QUADS_MOSTLY_REPAIRED 0.5
 
+/* What the surface pipeline did (glpgp_quads_build_surface; the report's
+ * surface_steps). */
+typedef struct glpgp_quads_surface_steps {
+    int extracted_faces;   /* faces of the extraction (0: none) */
+    int extracted_quads;   /* of those, quads */
+    int closed;            /* faces made quads: two odd faces across a side joined, or an even
+                              face, split into quads (up to 10 corners; a valid split only) */
+    int strips;            /* odd faces joined pairwise through strips of quads cut in two */
+    int subdivided;        /* 1: faces other than quads were left and every face was split
+                              (Catmull-Clark, h/2) */
+    int split_faces;       /* faces split locally: the bad ones and the quad strips through them
+                              (Catmull-Clark in the bad regions, in two across the strips) */
+    int fallback;          /* 1: the extraction was not valid: the last resort, triangles split into
+                              quads (coarse_triangles of a coarsened triangulation, else the input's) */
+    int coarse_triangles;  /* the last resort's coarse triangles (0: the input's own) */
+    unsigned invalid_before; /* GLPGP_QUADS_BAD_* of the extraction's mesh when it was not used */
+    int local_regions;     /* regions of bad faces repaired locally (flattened, meshed by the cut
+                              mesher, lifted onto the surface; the report's repair lists them) */
+    int local_faces_in;    /* faces those regions removed */
+    int local_quads_out;   /* quads made in their place */
+    double local_sj_min;   /* their smallest scaled Jacobian (before the smoothing) */
+    int smoothed;          /* vertices moved by the smoothing on the surface (o->smooth sweeps) */
+    double sj_before;      /* smallest scaled Jacobian before the smoothing */
+    double sj_after;       /* and after it (the same when it moved nothing or was undone) */
+    int flat_corners;      /* flat boundary corners split like triangles (a boundary vertex in one
+                              quad whose corner there is obtuse and below 0.3), kept when the mesh
+                              stayed valid with a higher smallest scaled Jacobian */
+    int flat_faces;        /* faces split for them (the quads and the strips through their sides) */
+    double flat_sj_before, flat_sj_after; /* the smallest scaled Jacobian before and after that split */
+} glpgp_quads_surface_steps;
+
+
 /* Quality report of a polygon mesh (see glpgp_quads_quality). */
 typedef struct glpgp_quads_report {
     int vertices, faces, quads, others; /* others = faces with != 4 corners */
@@ -294,6 +326,9 @@ typedef struct glpgp_quads_report {
      * the distances, area and loops are against the input surface. */
     int surface;             /* 1: a report of a surface's quad mesh */
     int euler, domain_euler; /* V - E + F of the quads and of the input surface */
+    int has_steps;           /* 1: steps holds the surface pipeline's steps (set by the caller of
+                                glpgp_quads_build_surface; JSON "surface": {"steps": ...}) */
+    glpgp_quads_surface_steps steps;
 } glpgp_quads_report;
 
 /* Reasons a quad mesh is invalid (glpgp_quads_report.invalid). The domain
@@ -415,34 +450,6 @@ glpgp_status glpgp_quads_smooth_surface(const glpgp_mesh *m, double h, int sweep
 glpgp_status glpgp_quads_surface_fallback_coarse(const glpgp_mesh *m, double h, glpgp_quadmesh **out, int *ntri);
 
 /* What glpgp_quads_build_surface did. */
-typedef struct glpgp_quads_surface_steps {
-    int extracted_faces;   /* faces of the extraction (0: none) */
-    int extracted_quads;   /* of those, quads */
-    int closed;            /* faces made quads: two odd faces across a side joined, or an even
-                              face, split into quads (up to 10 corners; a valid split only) */
-    int strips;            /* odd faces joined pairwise through strips of quads cut in two */
-    int subdivided;        /* 1: faces other than quads were left and every face was split
-                              (Catmull-Clark, h/2) */
-    int split_faces;       /* faces split locally: the bad ones and the quad strips through them
-                              (Catmull-Clark in the bad regions, in two across the strips) */
-    int fallback;          /* 1: the extraction was not valid: the last resort, triangles split into
-                              quads (coarse_triangles of a coarsened triangulation, else the input's) */
-    int coarse_triangles;  /* the last resort's coarse triangles (0: the input's own) */
-    unsigned invalid_before; /* GLPGP_QUADS_BAD_* of the extraction's mesh when it was not used */
-    int local_regions;     /* regions of bad faces repaired locally (flattened, meshed by the cut
-                              mesher, lifted onto the surface; the report's repair lists them) */
-    int local_faces_in;    /* faces those regions removed */
-    int local_quads_out;   /* quads made in their place */
-    double local_sj_min;   /* their smallest scaled Jacobian (before the smoothing) */
-    int smoothed;          /* vertices moved by the smoothing on the surface (o->smooth sweeps) */
-    double sj_before;      /* smallest scaled Jacobian before the smoothing */
-    double sj_after;       /* and after it (the same when it moved nothing or was undone) */
-    int flat_corners;      /* flat boundary corners split like triangles (a boundary vertex in one
-                              quad whose corner there is obtuse and below 0.3), kept when the mesh
-                              stayed valid with a higher smallest scaled Jacobian */
-    int flat_faces;        /* faces split for them (the quads and the strips through their sides) */
-    double flat_sj_before, flat_sj_after; /* the smallest scaled Jacobian before and after that split */
-} glpgp_quads_surface_steps;
 
 /* The surface pipeline (quads/quads_surface.c): extraction; two odd
  * faces that share a side (a triangle and a pentagon around a +1/4
