@@ -128,9 +128,9 @@ static int degenerate(const double *xyz, const int *tri, int t, double diag2)
     return !(0.5 * sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]) > 1e-14 * diag2);
 }
 
-/* twin[h]: the half-edge running h's edge the other way (-1: none, -2: the
- * edge has more than two, or two the same way). key: 6 nt long longs. */
-static void edge_twins(int nv, int nt, const int *tri, long long *key, int *twin)
+/* key: (edge, half-edge) pairs of the 3 nt half-edges sorted by edge (the
+ * half-edges of one edge consecutive, in increasing order); twin[h] <- -1. */
+static void edge_keys(int nv, int nt, const int *tri, long long *key, int *twin)
 {
     const int nh = 3 * nt;
     for (int h = 0; h < nh; h++) {
@@ -140,6 +140,14 @@ static void edge_twins(int nv, int nt, const int *tri, long long *key, int *twin
         twin[h] = -1;
     }
     qsort(key, (size_t)nh, 2 * sizeof(long long), cmp_ll);
+}
+
+/* twin[h]: the half-edge running h's edge the other way (-1: none, -2: the
+ * edge has more than two, or two the same way). key: 6 nt long longs. */
+static void edge_twins(int nv, int nt, const int *tri, long long *key, int *twin)
+{
+    const int nh = 3 * nt;
+    edge_keys(nv, nt, tri, key, twin);
     for (int i = 0; i < nh;) {
         int j = i + 1;
         while (j < nh && key[2 * j] == key[2 * i]) j++;
@@ -359,15 +367,14 @@ static int cmp_side(const void *pa, const void *pb)
 static int pair_edge(const double *xyz, const int *tri, nm_side *S, int n, int *twin)
 {
     const int a = tri[S[0].h], b = tri[corner_next(S[0].h)];
-    double e[3], p[3] = {0, 0, 0}, q[3], l = 0.0;
+    double e[3], p[3] = {0, 0, 0}, q[3];
     for (int d = 0; d < 3; d++) e[d] = xyz[3 * b + d] - xyz[3 * a + d];
-    l = sqrt(e[0] * e[0] + e[1] * e[1] + e[2] * e[2]);
+    const double l = sqrt(e[0] * e[0] + e[1] * e[1] + e[2] * e[2]);
     if (!(l > 0.0) || n % 2) return 0;
     for (int d = 0; d < 3; d++) e[d] /= l;
     const int ax = fabs(e[0]) < fabs(e[1]) ? (fabs(e[0]) < fabs(e[2]) ? 0 : 2) : (fabs(e[1]) < fabs(e[2]) ? 1 : 2);
-    p[ax] = 1.0; /* p <- the axis least along e, made normal to it; q = e x p */
-    const double pe = p[0] * e[0] + p[1] * e[1] + p[2] * e[2];
-    for (int d = 0; d < 3; d++) p[d] -= pe * e[d];
+    p[ax] = 1.0; /* p <- the axis least along e, made normal to it (|q| = |p|); q = e x p */
+    for (int d = 0; d < 3; d++) p[d] -= e[ax] * e[d];
     q[0] = e[1] * p[2] - e[2] * p[1];
     q[1] = e[2] * p[0] - e[0] * p[2];
     q[2] = e[0] * p[1] - e[1] * p[0];
@@ -405,13 +412,7 @@ static glpgp_status separate_edges(glpgp_mesh *m, double **xyz, int *edges, int 
     GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)nh, 2 * sizeof(long long), &key), done);
     GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)nh, sizeof(int), &twin), done);
     GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)nh, sizeof *S, &S), done);
-    for (int h = 0; h < nh; h++) {
-        const long long a = m->tri[h], b = m->tri[corner_next(h)];
-        key[2 * h] = a < b ? a * m->nv + b : b * m->nv + a;
-        key[2 * h + 1] = h;
-        twin[h] = -1;
-    }
-    qsort(key, (size_t)nh, 2 * sizeof(long long), cmp_ll);
+    edge_keys(m->nv, m->nt, m->tri, key, twin);
     for (int i = 0; i < nh && *ok;) {
         int j = i + 1;
         while (j < nh && key[2 * j] == key[2 * i]) j++;

@@ -29,26 +29,9 @@
 
 #include "glpgp/surface.h"
 #include "../host/quads/quads_surface.h"
+#include "halfcyl_waves.h"
 
 #include <string.h>
-
-static glpgp_result *plane_waves(const glpgp_mesh *m, double hu, double hv)
-{
-    glpgp_result *r = NULL;
-    CHECK_OK(glpgp_result_create(m->nv, m->nt, &r));
-    if (!r) return NULL;
-    r->size = hv;
-    for (int i = 0; i < m->nv; i++) {
-        const double *p = m->xyz + 3 * i;
-        const double s = 2.0 * atan2(p[1], p[0]), y = p[2]; /* arc length on radius 2 */
-        const double a = 2.0 * GLPGP_PI * (s / hu + 0.5), b = 2.0 * GLPGP_PI * (y / hv + 0.5);
-        r->osc[0].z[2 * i] = cos(a);
-        r->osc[0].z[2 * i + 1] = sin(a);
-        r->osc[1].z[2 * i] = cos(b);
-        r->osc[1].z[2 * i + 1] = sin(b);
-    }
-    return r;
-}
 
 #define HU (2.0 * GLPGP_PI / 9.0)
 #define HV (2.0 / 3.0)
@@ -61,7 +44,7 @@ static int halfcyl_grid(glpgp_mesh **m, glpgp_result **r, glpgp_quadmesh **q)
     *q = NULL;
     CHECK_OK(glpgp_surface_generate("halfcyl", 5000, m));
     if (!*m) return 0;
-    rr = plane_waves(*m, HU, HV);
+    rr = halfcyl_waves(*m, HU, HV);
     if (rr) CHECK_OK(glpgp_quads_extract_surface(*m, rr, q));
     if (r) *r = rr;
     else glpgp_result_destroy(&rr);

@@ -22,6 +22,7 @@
 
 #include "glpgp/surface.h"
 #include "../host/quads/quads_surface.h"
+#include "halfcyl_waves.h"
 
 #include <string.h>
 
@@ -30,31 +31,13 @@
 #define HU (2.0 * GLPGP_PI / NU)
 #define HV (2.0 / NV)
 
-static glpgp_result *plane_waves(const glpgp_mesh *m)
-{
-    glpgp_result *r = NULL;
-    CHECK_OK(glpgp_result_create(m->nv, m->nt, &r));
-    if (!r) return NULL;
-    r->size = HV;
-    for (int i = 0; i < m->nv; i++) {
-        const double *p = m->xyz + 3 * i;
-        const double s = 2.0 * atan2(p[1], p[0]), y = p[2]; /* arc length on radius 2 */
-        const double a = 2.0 * GLPGP_PI * (s / HU + 0.5), b = 2.0 * GLPGP_PI * (y / HV + 0.5);
-        r->osc[0].z[2 * i] = cos(a);
-        r->osc[0].z[2 * i + 1] = sin(a);
-        r->osc[1].z[2 * i] = cos(b);
-        r->osc[1].z[2 * i + 1] = sin(b);
-    }
-    return r;
-}
-
 /* The half cylinder and its grid (*q NULL when one failed). */
 static void grid(glpgp_mesh **m, glpgp_quadmesh **q)
 {
     *q = NULL;
     CHECK_OK(glpgp_surface_generate("halfcyl", 20000, m));
     if (!*m) return;
-    glpgp_result *r = plane_waves(*m);
+    glpgp_result *r = halfcyl_waves(*m, HU, HV);
     if (r) CHECK_OK(glpgp_quads_extract_surface(*m, r, q));
     glpgp_result_destroy(&r);
     glpgp_quads_report qq;
