@@ -734,7 +734,8 @@ static const glpgp_backend_ops petsc_ops_gamg = {PETSC_COMMON_OPS, .linear_solve
  * iteration, bit for bit on one rank */
 static const glpgp_backend_ops petsc_ops_jacobi = {PETSC_COMMON_OPS};
 
-/* -glpgp_mg glpgp|gamg ($PETSC_OPTIONS): *gamg <- 1 for GAMG */
+/* -glpgp_mg glpgp|gamg ($PETSC_OPTIONS): *gamg <- 1 for GAMG; a negative
+ * -glpgp_mg_global fails here, before any solve */
 static glpgp_status mg_choice(int *gamg)
 {
     char mode[32] = "glpgp";
@@ -743,6 +744,10 @@ static glpgp_status mg_choice(int *gamg)
     if (strcmp(mode, "glpgp") && strcmp(mode, "gamg"))
         return GLPGP_FAIL(GLPGP_ERR_ARG, "-glpgp_mg '%s': expected glpgp or gamg", mode);
     *gamg = !strcmp(mode, "gamg");
+    PetscInt nodes = 0; /* the bound on the global coarse nodes (petsc_gc.c) */
+    PCHK(PetscOptionsGetInt(NULL, NULL, "-glpgp_mg_global", &nodes, &set));
+    if (set && nodes < 0)
+        return GLPGP_FAIL(GLPGP_ERR_ARG, "-glpgp_mg_global %d: expected a node count >= 0", (int)nodes);
     return GLPGP_OK;
 }
 

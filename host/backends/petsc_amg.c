@@ -16,7 +16,8 @@
  *    member is dead (identity row). Coarse vectors are sequential Vecs,
  *    their dot products (the K-cycle's coefficients) local;
  *  - with more than one rank the fine level's coarse correction adds a
- *    global two-level term (gc_* below).
+ *    global coarse term (petsc_gc.c: aggregates of one level of every
+ *    rank's hierarchy, E = Z^T A Z inverted on every rank).
  * Level-0 dot products are reduced over the ranks (partials added in rank
  * order: every rank takes the same decisions), the coarse solve's status
  * too. The arithmetic is the per-row code of kernels/amg_rows.h (the
@@ -26,6 +27,7 @@
 #include "amg_rows.h"
 #include "rows.h"
 
+#include "petsc_gc.h"
 #include "petsc_impl.h"
 
 #include <math.h>
@@ -58,20 +60,7 @@ struct petsc_amg {
     double *cinv, *dw;
     int *di;
     double t[GLPGP_AMG_NSLOTS];
-    /* the global coarse space (more than one rank): Z = the level-0 frame f
-     * and i f on each rank's owned vertices, 2P columns (gc_* below) */
-    int gc;          /* 1: in use */
-    int P;
-    int *owner;      /* nv: the rank owning each system vertex */
-    double *zf;      /* 2 nown: f on the owned vertices */
-    double *eloc;    /* 4P: this rank's two rows of E = Z^T A Z */
-    double *e;       /* 4P^2: E, row-major */
-    int *erp, *ecol; /* E as a dense block CSR of P nodes */
-    double *eval;
-    double *einv, *ew; /* E's generalised inverse (order 2P), its work */
-    int *ei;
-    double *g;       /* 2P: Z^T t, all ranks */
-    double y[2];     /* this rank's part of E^+ Z^T t (restrict -> prolong) */
+    pm_gc *gc;       /* the global coarse space (more than one rank; petsc_gc.h), or NULL */
 };
 
 /* level-l arrays indexed by the level's node numbers (level 0: system
@@ -81,160 +70,87 @@ static double *MINV(const pimpl *p, pm_level *v, int l) { return l ? v->minvb : 
 static double *CW(const pimpl *p, pm_level *v, int l) { return l ? v->cb : v->cb - 2 * (long)p->lo; }
 static const double *LVAL(const pimpl *p, const pm_level *v, int l) { return l ? v->val : NEWT(p); }
 
-/* ---- the global coarse space (more than one rank) -------------------------
- * Below the fine level each rank's hierarchy is its own (block Jacobi), and
- * block Jacobi alone leaves the smooth modes that span ranks to the outer CG
- * (bench/results/petsc_glpgp_amg.md). The coarse correction
- * of the fine level therefore adds a global two-level term: Z holds, for each
- * rank s, the columns f and i f restricted to s's owned vertices (f the
- * level-0 frame: the near null space [z, iz] of the local hierarchy), E =
- * Z^T A Z (order 2P, on every rank, from each rank's two rows), and the
- * correction is K = P C P^T + Z E^+ Z^T applied to the pre-smoothed residual
- * (additive two-level Schwarz inside the cycle: SPD when both terms are, so
- * the symmetric cycle stays SPD). Costs per cycle: one all-gather of 2
- * doubles per rank; per Newton step one ghost exchange, one pass over the
- * owned rows and an all-gather of 4P doubles per rank for E. */
+/* ---- the global coarse space (more than one rank; petsc_gc.c) ------------- */
 
-static glpgp_status gc_setup(pimpl *p, struct petsc_amg *a)
+/* the levels' aggregate maps and weights as petsc_gc.c reads them (level 0
+ * indexed by system vertex) */
+static void level_maps(const pimpl *p, struct petsc_amg *a, const int **agg, int *n, const double **c)
 {
-    const int P = p->size, nv = p->sys->nv, nown = p->hi - p->lo;
-    a->gc = P > 1;
-    a->P = P;
-    if (!a->gc) return GLPGP_OK;
-    const int m = 2 * P;
-    GLPGP_CHECK(glpgp_malloc((size_t)nv, sizeof(int), &a->owner));
-    GLPGP_CHECK(glpgp_calloc((size_t)2 * (nown > 0 ? nown : 1), sizeof(double), &a->zf));
-    GLPGP_CHECK(glpgp_calloc((size_t)2 * m, sizeof(double), &a->eloc));
-    GLPGP_CHECK(glpgp_calloc((size_t)m * m, sizeof(double), &a->e));
-    GLPGP_CHECK(glpgp_malloc((size_t)P + 1, sizeof(int), &a->erp));
-    GLPGP_CHECK(glpgp_malloc((size_t)P * P, sizeof(int), &a->ecol));
-    GLPGP_CHECK(glpgp_calloc((size_t)4 * P * P, sizeof(double), &a->eval));
-    GLPGP_CHECK(glpgp_calloc((size_t)m * m, sizeof(double), &a->einv));
-    GLPGP_CHECK(glpgp_malloc((size_t)GLPGP_DENSE_W(m), sizeof(double), &a->ew));
-    GLPGP_CHECK(glpgp_malloc((size_t)GLPGP_DENSE_I(m) + 1, sizeof(int), &a->ei));
-    GLPGP_CHECK(glpgp_calloc((size_t)m, sizeof(double), &a->g));
-    for (int q = 0; q <= P; q++) a->erp[q] = q * P;
-    for (int k = 0; k < P * P; k++) a->ecol[k] = k % P;
-    /* owners: the ranks' first global vertices, all-gathered */
-    int *first = NULL;
-    GLPGP_CHECK(glpgp_malloc((size_t)P + 1, sizeof(int), &first));
-    int mine = p->vstart;
-    if (MPI_Allgather(&mine, 1, MPI_INT, first, 1, MPI_INT, PETSC_COMM_WORLD) != MPI_SUCCESS) {
-        free(first);
-        return GLPGP_FAIL(GLPGP_ERR_NUMERIC, "MPI_Allgather failed");
+    for (int l = 0; l < a->L; l++) {
+        pm_level *v = &a->lev[l];
+        agg[l] = v->agg;
+        n[l] = v->n;
+        if (c) c[l] = l + 1 < a->L ? CW(p, v, l) : NULL;
     }
-    for (int j = 0; j < nv; j++) {
-        if (j >= p->lo && j < p->hi) {
-            a->owner[j] = p->rank;
-            continue;
-        }
-        const long g = gcol(p, j);
-        int lo = 0, hi = P - 1; /* the last rank whose first vertex is <= g */
-        while (lo < hi) {
-            const int mid = (lo + hi + 1) / 2;
-            if (first[mid] <= g) lo = mid;
-            else hi = mid - 1;
-        }
-        a->owner[j] = lo;
-    }
-    free(first);
-    return GLPGP_OK;
 }
 
-/* E = Z^T A Z from the frame (NULL: 1), all ranks' rows gathered, symmetrised */
-static glpgp_status gc_values(pimpl *p, struct petsc_amg *a, const glpgp_vec *frame)
+/* level-0 restriction with the global term first: t = r - A x on the owned
+ * rows, y = E^+ Z^T t, then the local restriction of t - A Z y (the
+ * additive sum of both terms, the first version, took 1.4-1.7x the CG
+ * iterations: bench/results/petsc_glpgp_amg.md) */
+static glpgp_status gc_restrict(pimpl *p, struct petsc_amg *a, const pm_level *v, const double *c, int has_x,
+                                const double *A, const double *rr, const double *xs, double *rc)
 {
-    const glpgp_system *sys = p->sys;
-    const int P = a->P, m = 2 * P;
-    const double *fr = NULL;
-    if (frame) {
-        GLPGP_CHECK(glpgp_petsc_load_ghosted(p, frame, 1));
-        fr = p->xf[1];
-    }
-    const double *N = NEWT(p);
-    for (int k = 0; k < 2 * m; k++) a->eloc[k] = 0.0;
-    double *r0 = a->eloc, *r1 = a->eloc + m;
+    pm_gc *g = a->gc;
+    double *T = g->tbuf;
+    memset(g->yl, 0, (size_t)2 * g->ms * sizeof(double));
     for (int i = p->lo; i < p->hi; i++) {
-        double zr, zi;
-        glpgp_amg_frame(i, 0, NULL, fr != NULL, fr, 1, p->dir, &zr, &zi);
-        a->zf[2 * (i - p->lo)] = zr;
-        a->zf[2 * (i - p->lo) + 1] = zi;
-        if (zr == 0.0 && zi == 0.0) continue;
-        for (int k = sys->rowptr[i]; k < sys->rowptr[i + 1]; k++) {
-            const int j = sys->col[k], o = a->owner[j];
-            double fx, fy;
-            glpgp_amg_frame(j, 0, NULL, fr != NULL, fr, 1, p->dir, &fx, &fy);
-            const double *b = N + 4 * (long)k;
-            /* A f_j and A (i f_j) */
-            const double u0 = b[0] * fx + b[1] * fy, u1 = b[2] * fx + b[3] * fy;
-            const double w0 = -b[0] * fy + b[1] * fx, w1 = -b[2] * fy + b[3] * fx;
-            r0[2 * o] += zr * u0 + zi * u1;
-            r0[2 * o + 1] += zr * w0 + zi * w1;
-            r1[2 * o] += -zi * u0 + zr * u1;
-            r1[2 * o + 1] += -zi * w0 + zr * w1;
-        }
+        double t0, t1;
+        glpgp_amg_row_resid(i, has_x, v->rowptr, v->col, A, rr, xs, &t0, &t1);
+        T[2 * (i - p->lo)] = t0;
+        T[2 * (i - p->lo) + 1] = t1;
+        glpgp_petsc_gc_add(g, i - p->lo, t0, t1);
     }
-    if (MPI_Allgather(a->eloc, 2 * m, MPI_DOUBLE, a->e, 2 * m, MPI_DOUBLE, PETSC_COMM_WORLD) != MPI_SUCCESS)
-        return GLPGP_FAIL(GLPGP_ERR_NUMERIC, "MPI_Allgather failed");
-    /* blocks of the dense block CSR, E symmetrised (the two triangles were
-     * summed on different ranks) */
-    for (int q = 0; q < P; q++)
-        for (int J = 0; J < P; J++)
-            for (int u = 0; u < 2; u++)
-                for (int v = 0; v < 2; v++) {
-                    const int r = 2 * q + u, c = 2 * J + v;
-                    a->eval[4 * ((long)q * P + J) + 2 * u + v] = 0.5 * (a->e[(long)r * m + c] + a->e[(long)c * m + r]);
-                }
-    return GLPGP_OK;
-}
-
-/* level-0 restriction with Z^T t beside it (t = r - A x on the owned rows),
- * then g <- Z^T t of every rank */
-static void gc_restrict(pimpl *p, struct petsc_amg *a, const pm_level *v, const double *c, int has_x, const double *A,
-                        const double *rr, const double *xs, double *rc)
-{
-    double g0 = 0.0, g1 = 0.0;
+    GLPGP_CHECK(glpgp_petsc_gc_solve(g));
+    GLPGP_CHECK(glpgp_petsc_gc_zy(p, g)); /* xf[1] <- Z y at owned and ghost vertices */
+    const double *w = p->xf[1];
     for (int i = p->lo; i < p->hi; i++) {
         const int J = v->agg[i];
         if (J < 0) continue;
-        double t0, t1;
-        glpgp_amg_row_resid(i, has_x, v->rowptr, v->col, A, rr, xs, &t0, &t1);
+        double aw0, aw1;
+        glpgp_row_spmv(i, v->rowptr, v->col, A, w, &aw0, &aw1);
         double acc[2] = {rc[2 * J], rc[2 * J + 1]};
-        glpgp_amg_restrict_add(c[2 * i], c[2 * i + 1], t0, t1, acc);
+        glpgp_amg_restrict_add(c[2 * i], c[2 * i + 1], T[2 * (i - p->lo)] - aw0, T[2 * (i - p->lo) + 1] - aw1, acc);
         rc[2 * J] = acc[0];
         rc[2 * J + 1] = acc[1];
-        const double zr = a->zf[2 * (i - p->lo)], zi = a->zf[2 * (i - p->lo) + 1];
-        g0 += zr * t0 + zi * t1;
-        g1 += -zi * t0 + zr * t1;
-    }
-    a->y[0] = g0; /* gathered by gc_solve */
-    a->y[1] = g1;
-}
-
-/* y <- this rank's rows of E^+ g, g gathered from every rank */
-static glpgp_status gc_solve(pimpl *p, struct petsc_amg *a)
-{
-    const int m = 2 * a->P;
-    if (MPI_Allgather(a->y, 2, MPI_DOUBLE, a->g, 2, MPI_DOUBLE, PETSC_COMM_WORLD) != MPI_SUCCESS)
-        return GLPGP_FAIL(GLPGP_ERR_NUMERIC, "MPI_Allgather failed");
-    for (int u = 0; u < 2; u++) {
-        const double *row = a->einv + (long)(2 * p->rank + u) * m;
-        double s = 0.0;
-        for (int j = 0; j < m; j++) s += row[j] * a->g[j];
-        a->y[u] = s;
     }
     return GLPGP_OK;
 }
 
-/* x <- x + Z y on the owned vertices (after the local prolongation) */
-static void gc_prolong(pimpl *p, const struct petsc_amg *a, double *x)
+/* level-0 prolongation with the global term after it: w = P ec, then
+ * x += w + Z (y - E^+ Z^T A w), y = E^+ Z^T t from the restriction. With
+ * Q = Z E^+ Z^T and C the local coarse levels' correction, the visit's
+ * coarse correction is the balancing form Q + (I - Q A) C (I - A Q):
+ * symmetric when C is, as the trust region's cycle needs. */
+static glpgp_status gc_prolong(pimpl *p, struct petsc_amg *a, const pm_level *v, const double *c, const double *ec,
+                                   double *x)
 {
-    const double ya = a->y[0], yb = a->y[1];
+    pm_gc *g = a->gc;
+    double *w = g->tbuf2;
     for (int i = p->lo; i < p->hi; i++) {
-        const double zr = a->zf[2 * (i - p->lo)], zi = a->zf[2 * (i - p->lo) + 1];
-        x[2 * i] += ya * zr - yb * zi;
-        x[2 * i + 1] += ya * zi + yb * zr;
+        double xi[2] = {0.0, 0.0};
+        const int J = v->agg[i];
+        if (J >= 0) glpgp_amg_prolong_add(c[2 * i], c[2 * i + 1], ec[2 * J], ec[2 * J + 1], xi);
+        w[2 * (i - p->lo)] = xi[0];
+        w[2 * (i - p->lo) + 1] = xi[1];
     }
+    GLPGP_CHECK(glpgp_petsc_gc_exchange(p, g, w));
+    memcpy(g->ysave, g->yl, (size_t)2 * g->ms * sizeof(double));
+    memset(g->yl, 0, (size_t)2 * g->ms * sizeof(double));
+    const double *A = NEWT(p), *wg = p->xf[1];
+    for (int i = p->lo; i < p->hi; i++) {
+        double aw0, aw1;
+        glpgp_row_spmv(i, v->rowptr, v->col, A, wg, &aw0, &aw1);
+        glpgp_petsc_gc_add(g, i - p->lo, aw0, aw1);
+    }
+    GLPGP_CHECK(glpgp_petsc_gc_solve(g));
+    for (int q = 0; q < 2 * g->ms; q++) g->yl[q] = g->ysave[q] - g->yl[q];
+    for (int i = p->lo; i < p->hi; i++) {
+        x[2 * i] += w[2 * (i - p->lo)];
+        x[2 * i + 1] += w[2 * (i - p->lo) + 1];
+    }
+    glpgp_petsc_gc_prolong(p, g, x);
+    return GLPGP_OK;
 }
 
 void glpgp_petsc_amg_free(pimpl *p)
@@ -260,17 +176,7 @@ void glpgp_petsc_amg_free(pimpl *p)
     free(a->cinv);
     free(a->dw);
     free(a->di);
-    free(a->owner);
-    free(a->zf);
-    free(a->eloc);
-    free(a->e);
-    free(a->erp);
-    free(a->ecol);
-    free(a->eval);
-    free(a->einv);
-    free(a->ew);
-    free(a->ei);
-    free(a->g);
+    glpgp_petsc_gc_destroy(&a->gc);
     free(a);
     p->amg = NULL;
 }
@@ -391,7 +297,11 @@ static glpgp_status setup_run(pimpl *p, const glpgp_amg_layout *lay)
     GLPGP_CHECK(glpgp_calloc((size_t)a->m * a->m, sizeof(double), &a->cinv));
     GLPGP_CHECK(glpgp_malloc((size_t)GLPGP_DENSE_W(a->m), sizeof(double), &a->dw));
     GLPGP_CHECK(glpgp_malloc((size_t)GLPGP_DENSE_I(a->m) + 1, sizeof(int), &a->di));
-    return gc_setup(p, a);
+    if (p->size == 1) return GLPGP_OK;
+    const int *agg[GLPGP_AMG_MAX_LEVELS];
+    int n[GLPGP_AMG_MAX_LEVELS];
+    level_maps(p, a, agg, n, NULL);
+    return glpgp_petsc_gc_create(p, a->L, agg, n, &a->gc);
 }
 
 glpgp_status glpgp_petsc_amg_setup(glpgp_backend *b, const glpgp_amg_layout *lay)
@@ -435,7 +345,12 @@ glpgp_status glpgp_petsc_amg_values(glpgp_backend *b, const glpgp_vec *const *fr
         double *minv = MINV(p, v, l);
         for (int i = i0; i < i1; i++) glpgp_amg_l1_row(i, v->rowptr, v->diag, A, a->weight, minv);
     }
-    return a->gc ? gc_values(p, a, frames[0]) : GLPGP_OK;
+    if (!a->gc) return GLPGP_OK;
+    const int *agg[GLPGP_AMG_MAX_LEVELS];
+    int n[GLPGP_AMG_MAX_LEVELS];
+    const double *c[GLPGP_AMG_MAX_LEVELS];
+    level_maps(p, a, agg, n, c);
+    return glpgp_petsc_gc_values(p, a->gc, agg, c, frames[0]);
 }
 
 glpgp_status glpgp_petsc_amg_coarse_invert(glpgp_backend *b, int spd)
@@ -446,9 +361,7 @@ glpgp_status glpgp_petsc_amg_coarse_invert(glpgp_backend *b, int spd)
     const pm_level *v = &a->lev[a->L - 1];
     double status = glpgp_dense_coarse_invert(0, 1, v->n, v->rowptr, v->col, v->val, spd, a->cinv, a->dw, a->di,
                                               NULL, NULL);
-    if (a->gc && glpgp_dense_coarse_invert(0, 1, a->P, a->erp, a->ecol, a->eval, spd, a->einv, a->ew, a->ei, NULL,
-                                           NULL))
-        status = 1.0;
+    if (a->gc && glpgp_petsc_gc_invert(a->gc, spd)) status = 1.0;
     /* every rank sees a failure anywhere: the outer solver stops everywhere alike */
     if (p->size > 1 && MPI_Allreduce(MPI_IN_PLACE, &status, 1, MPI_DOUBLE, MPI_MAX, PETSC_COMM_WORLD) != MPI_SUCCESS)
         return GLPGP_FAIL(GLPGP_ERR_NUMERIC, "MPI_Allreduce failed");
@@ -537,15 +450,16 @@ glpgp_status glpgp_petsc_amg_restrict(glpgp_backend *b, int l, const glpgp_vec *
     for (int J = 0; J < 2 * v->nc; J++) ca[J] = 0.0;
     int i0, i1;
     row_range(p, l, v, &i0, &i1);
-    if (l == 0 && p->amg->gc) /* the same sums, and Z^T (r - A x) beside them */
-        gc_restrict(p, p->amg, v, c, x != NULL, A, rr, xs, ca);
+    glpgp_status st = GLPGP_OK;
+    if (l == 0 && p->amg->gc) /* the global term, then the local sums */
+        st = gc_restrict(p, p->amg, v, c, x != NULL, A, rr, xs, ca);
     else
         for (int i = i0; i < i1; i++)
             glpgp_amg_row_restrict_scatter(i, v->agg, c, x != NULL, v->rowptr, v->col, A, rr, xs, ca);
     PCHK(VecRestoreArray(rc->v, &ca));
     PCHK(VecRestoreArrayRead(r->v, &ra));
     if (x) GLPGP_CHECK(view_end(x, &xarr));
-    return l == 0 && p->amg->gc ? gc_solve(p, p->amg) : GLPGP_OK;
+    return st;
 }
 
 glpgp_status glpgp_petsc_amg_prolong(glpgp_backend *b, int l, const glpgp_vec *ec, glpgp_vec *x)
@@ -559,11 +473,14 @@ glpgp_status glpgp_petsc_amg_prolong(glpgp_backend *b, int l, const glpgp_vec *e
     double *xx = lvl(p, l, xa), *c = CW(p, v, l);
     int i0, i1;
     row_range(p, l, v, &i0, &i1);
-    for (int i = i0; i < i1; i++) glpgp_amg_row_prolong(i, v->agg, c, ea, xx);
-    if (l == 0 && p->amg->gc) gc_prolong(p, p->amg, xx);
+    glpgp_status st = GLPGP_OK;
+    if (l == 0 && p->amg->gc)
+        st = gc_prolong(p, p->amg, v, c, ea, xx);
+    else
+        for (int i = i0; i < i1; i++) glpgp_amg_row_prolong(i, v->agg, c, ea, xx);
     PCHK(VecRestoreArray(x->v, &xa));
     PCHK(VecRestoreArrayRead(ec->v, &ea));
-    return GLPGP_OK;
+    return st;
 }
 
 glpgp_status glpgp_petsc_amg_coarse_solve(glpgp_backend *b, const glpgp_vec *r, glpgp_vec *x)

@@ -10,6 +10,9 @@
 #    data/plate_holes.msh: the reference's singularity counts, final energies
 #    within 1e-6 relative, every level converged, Newton steps within 25%
 #    of the reference's and CG iterations per Newton step at most 1.6x;
+#  - two ranks on a square: the global coarse space of one level's
+#    aggregates takes at most 0.85x the CG per Newton step of one node per
+#    rank (-glpgp_mg_global 0), the same state; a negative bound fails;
 #  - -glpgp_mg gamg still selects KSPCG + GAMG (another CG count on one
 #    rank, the same singularities); a bad -glpgp_mg fails with one line.
 # Skipped (exit 77) without PETSc in the build or without mpirun.
@@ -90,6 +93,32 @@ if [ -n "$DATA" ] && [ -f "$DATA/plate_holes.msh" ]; then
 else
     fail "data/plate_holes.msh not found (data dir '$DATA')"
 fi
+
+# the global coarse space of one level's aggregates (the default here: 81
+# nodes) against one node per rank (-glpgp_mg_global 0): fewer CG per
+# Newton step, the same state
+mpi sq_2 2 solve shape:square:20000 --backend petsc --stats p2_sq.json
+PETSC_OPTIONS="-glpgp_mg_global 0" mpi sq0_2 2 solve shape:square:20000 --backend petsc --stats p2_sq0.json
+if [ -f p2_sq.json ] && [ -f p2_sq0.json ]; then
+    python3 - p2_sq.json p2_sq0.json <<'EOF' || fail "square, 2 ranks: the global coarse space does not pay"
+import json, sys
+a, b = (json.load(open(f)) for f in sys.argv[1:3])
+ca = a["cg_iterations"]["total"] / a["newton_iterations"]["total"]
+cb = b["cg_iterations"]["total"] / b["newton_iterations"]["total"]
+print(f"square, 2 ranks: CG per Newton step {ca:.1f}, one node per rank {cb:.1f}")
+assert a["singularities"] == b["singularities"], (a["singularities"], b["singularities"])
+for k in ("u", "v"):
+    assert abs(a["final_energy"][k] - b["final_energy"][k]) <= 1e-6 * abs(b["final_energy"][k])
+assert ca <= 0.85 * cb, (ca, cb)
+EOF
+fi
+runs=$((runs + 1))
+PETSC_OPTIONS="-glpgp_mg_global -1" timeout 240 "${MPIRUN[@]}" -n 2 "$GLPGP" solve shape:disk:3000 --backend petsc \
+    --quiet >/dev/null 2>err.txt </dev/null
+rc=$?
+[ "$rc" -ne 0 ] && [ "$rc" -ne 124 ] || fail "-glpgp_mg_global -1: exit $rc"
+[ "$(grep -c "^glpgp: " err.txt)" = 1 ] || fail "-glpgp_mg_global -1: expected one glpgp line: $(head -c 400 err.txt)"
+grep -q "glpgp_mg_global" err.txt || fail "-glpgp_mg_global -1: no message naming it: $(head -c 300 err.txt)"
 
 # GAMG stays selectable: another solver (other CG counts), the same state
 PETSC_OPTIONS="-glpgp_mg gamg" mpi gamg_1 1 solve shape:disk:3000 --backend petsc --stats p1_gamg.json
