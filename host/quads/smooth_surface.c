@@ -9,10 +9,17 @@
  * smoothing), no face turns against its normal before, and the surface
  * under the target faces the same way as the vertex's faces; so the
  * smallest scaled Jacobian never falls and the mesh's topology is
- * untouched. The caller checks the result (Hausdorff, area) and keeps the
+ * untouched. A vertex of the quad mesh's boundary that lies on one of the
+ * input's boundary loops, away from its corners (the loop turns by more than
+ * BND_CORNER_DEG there, or a sharp feature ends there), slides along that
+ * loop under the same rule: its targets (the mean of its two boundary
+ * neighbours, the parallelogram corner) are moved to the nearest point of
+ * the loop between the corners around it, so the boundary stays on the
+ * input's. The caller checks the result (Hausdorff, area) and keeps the
  * mesh it had when the check fails. */
 #include "quads_surface.h"
 
+#include "glpgp/kinds.h"
 #include "glpgp/surface.h"
 #include "glpgp/util.h"
 
@@ -21,6 +28,8 @@
 #include <string.h>
 
 #define SJ_FLOOR 0.3
+#define BND_CORNER_DEG 40.0
+#define BND_WALK 64 /* input boundary edges searched each way from a sliding vertex */
 
 static int cmp_key(const void *pa, const void *pb)
 {
@@ -36,6 +45,13 @@ typedef struct sm_ctx {
     unsigned char *locked; /* per quad vertex */
     double *floor_;        /* per face: min(0.3, its scaled Jacobian before) */
     double *fn;            /* per face: its unit normal before (3) */
+    /* the boundary slide: per input vertex its loop's next and previous
+     * vertex (-1: not on a loop) and whether it is a corner; per quad vertex
+     * the input boundary edge it lies on (its first vertex; -1: it does not
+     * slide) and its two neighbours on the quad mesh's boundary */
+    int *bnext, *bprev;
+    unsigned char *corner;
+    int *slide, *qbn;
 } sm_ctx;
 
 
@@ -57,21 +73,74 @@ static void bary(const glpgp_mesh *m, int t, const double *x, double *w)
     w[0] = 1.0 - w[1] - w[2];
 }
 
+/* The input's boundary loops (next / previous vertex along the boundary
+ * half-edges) and their corners: the loop turns there by more than
+ * BND_CORNER_DEG, or a sharp feature edge (hf, not a boundary) ends there. */
+static void boundary_loops(sm_ctx *c, const unsigned char *hf)
+{
+    const glpgp_mesh *m = c->m;
+    for (int v = 0; v < m->nv; v++) c->bnext[v] = c->bprev[v] = -1;
+    for (int h = 0; h < 3 * m->nt; h++) {
+        const int a = m->tri[h], b = m->tri[h - h % 3 + (h % 3 + 1) % 3];
+        if (m->surf->twin[h] < 0) {
+            c->bnext[a] = b;
+            c->bprev[b] = a;
+        } else if (hf[h]) {
+            c->corner[a] = c->corner[b] = 1;
+        }
+    }
+    const double cmax = cos(BND_CORNER_DEG * GLPGP_PI / 180.0);
+    for (int v = 0; v < m->nv; v++) {
+        const int a = c->bprev[v], b = c->bnext[v];
+        if (a < 0 || b < 0) continue;
+        double e0[3], e1[3];
+        for (int d = 0; d < 3; d++) {
+            e0[d] = m->xyz[3 * v + d] - m->xyz[3 * a + d];
+            e1[d] = m->xyz[3 * b + d] - m->xyz[3 * v + d];
+        }
+        const double n0 = sqrt(e0[0] * e0[0] + e0[1] * e0[1] + e0[2] * e0[2]);
+        const double n1 = sqrt(e1[0] * e1[0] + e1[1] * e1[1] + e1[2] * e1[2]);
+        if (!(n0 > 0 && n1 > 0) || (e0[0] * e1[0] + e0[1] * e1[1] + e0[2] * e1[2]) < cmax * n0 * n1) c->corner[v] = 1;
+    }
+}
+
+/* slide[v] for a quad vertex on the quad mesh's boundary with exactly two
+ * boundary edges (qbn) whose nearest input point x (triangle t, barycentric
+ * w) lies on an input boundary edge and not at a corner: that edge's first
+ * vertex along its loop. */
+static void slide_start(sm_ctx *c, int v, int t, const double *w)
+{
+    const glpgp_mesh *m = c->m;
+    for (int k = 0; k < 3; k++) {
+        const int h = 3 * t + (k + 1) % 3; /* the edge opposite corner k */
+        if (w[k] >= 1e-6 || m->surf->twin[h] >= 0) continue;
+        const int a = m->tri[h], b = m->tri[3 * t + (k + 2) % 3];
+        const double wa = w[(k + 1) % 3], wb = w[(k + 2) % 3];
+        if ((wa > 1.0 - 1e-6 && c->corner[a]) || (wb > 1.0 - 1e-6 && c->corner[b])) return;
+        if (c->bnext[a] != b) return;
+        c->slide[v] = a;
+        return;
+    }
+}
+
 /* locked: the quad mesh's boundary and non-manifold vertices (an edge not
  * in exactly two faces) and the vertices on the input's boundary or sharp
- * features (on such an edge or at such an edge's end). */
+ * features (on such an edge or at such an edge's end); of those on the
+ * boundary, the ones that may slide along the input's boundary (slide). */
 static glpgp_status lock_vertices(sm_ctx *c)
 {
     const glpgp_mesh *m = c->m;
     const glpgp_quadmesh *q = c->q;
     const int nc = q->face_start[q->nf];
-    unsigned char *hf = NULL, *vfeat = NULL;
+    unsigned char *hf = NULL, *vfeat = NULL, *bad = NULL;
     long long *key = NULL;
     glpgp_status st = GLPGP_OK;
     GLPGP_CHECK_GOTO(st, glpgp_calloc((size_t)3 * m->nt + 1, 1, &hf), done);
     GLPGP_CHECK_GOTO(st, glpgp_calloc((size_t)m->nv + 1, 1, &vfeat), done);
+    GLPGP_CHECK_GOTO(st, glpgp_calloc((size_t)q->nv + 1, 1, &bad), done);
     GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)nc + 1, sizeof *key, &key), done);
     glpgp_surface_features(m, GLPGP_FEATURE_ANGLE_DEFAULT, hf);
+    boundary_loops(c, hf);
     for (int h = 0; h < 3 * m->nt; h++) {
         if (m->surf->twin[h] < 0) hf[h] = 1;
         if (hf[h]) vfeat[m->tri[h]] = vfeat[m->tri[h - h % 3 + (h % 3 + 1) % 3]] = 1;
@@ -84,17 +153,31 @@ static glpgp_status lock_vertices(sm_ctx *c)
         }
     }
     qsort(key, (size_t)nc, sizeof *key, cmp_key);
+    for (int v = 0; v < 2 * q->nv; v++) c->qbn[v] = -1;
     for (int i = 0; i < nc;) {
         int j = i;
         while (j < nc && key[j] == key[i]) j++;
-        if (j - i != 2) c->locked[key[i] / q->nv] = c->locked[key[i] % q->nv] = 1;
+        const int a = (int)(key[i] / q->nv), b = (int)(key[i] % q->nv);
+        if (j - i != 2) c->locked[a] = c->locked[b] = 1;
+        if (j - i > 2) bad[a] = bad[b] = 1;
+        for (int e = 0; e < 2 && j - i == 1; e++) { /* a boundary edge: each end's boundary neighbour */
+            const int x = e ? b : a, y = e ? a : b;
+            if (c->qbn[2 * x] < 0) c->qbn[2 * x] = y;
+            else if (c->qbn[2 * x + 1] < 0) c->qbn[2 * x + 1] = y;
+            else bad[x] = 1;
+        }
         i = j;
     }
     for (int v = 0; v < q->nv; v++) {
         double x[3], w[3];
+        c->slide[v] = -1;
         const int t = glpgp_qs_proj_nearest(c->P, q->xyz + 3 * v, x);
-        if (t < 0 || c->locked[v]) continue;
+        if (t < 0) continue;
         bary(m, t, x, w);
+        if (c->locked[v]) {
+            if (!bad[v] && c->qbn[2 * v + 1] >= 0) slide_start(c, v, t, w);
+            continue;
+        }
         for (int k = 0; k < 3; k++) {
             if (w[k] < 1e-6 && hf[3 * t + (k + 1) % 3]) c->locked[v] = 1; /* on the edge opposite corner k */
             if (w[k] > 1.0 - 1e-6 && vfeat[m->tri[3 * t + k]]) c->locked[v] = 1;
@@ -103,6 +186,7 @@ static glpgp_status lock_vertices(sm_ctx *c)
 done:
     free(hf);
     free(vfeat);
+    free(bad);
     free(key);
     return st;
 }
@@ -187,6 +271,86 @@ static int move_vertex(const sm_ctx *c, int v)
     return found;
 }
 
+/* *best / x / *a0 <- the squared distance, the point and the edge's first
+ * vertex when edge (a, b) holds a point nearer to T than *best */
+static void seg_nearest(const glpgp_mesh *m, int a, int b, const double *T, double *best, double *x, int *a0)
+{
+    const double *pa = m->xyz + 3 * a, *pb = m->xyz + 3 * b;
+    double e[3], d2 = 0.0, s = 0.0, y[3];
+    for (int d = 0; d < 3; d++) {
+        e[d] = pb[d] - pa[d];
+        d2 += e[d] * e[d];
+        s += (T[d] - pa[d]) * e[d];
+    }
+    s = d2 > 0.0 ? fmin(1.0, fmax(0.0, s / d2)) : 0.0;
+    double r = 0.0;
+    for (int d = 0; d < 3; d++) {
+        y[d] = pa[d] + s * e[d];
+        r += (T[d] - y[d]) * (T[d] - y[d]);
+    }
+    if (r < *best) {
+        *best = r;
+        memcpy(x, y, sizeof y);
+        *a0 = a;
+    }
+}
+
+/* x <- the point nearest to T on the input boundary loop through edge (a,
+ * bnext[a]), between the corners around it (at most BND_WALK edges each
+ * way); returns the first vertex of x's edge */
+static int loop_nearest(const sm_ctx *c, int a, const double *T, double *x)
+{
+    double best = INFINITY;
+    int a0 = a;
+    for (int u = a, k = 0; k < BND_WALK; k++) { /* forward: edges (u, next u) */
+        const int b = c->bnext[u];
+        seg_nearest(c->m, u, b, T, &best, x, &a0);
+        if (c->corner[b] || b == a) break;
+        u = b;
+    }
+    for (int u = a, k = 0; k < BND_WALK && !c->corner[u]; k++) { /* backward: edges (prev u, u) */
+        const int p = c->bprev[u];
+        if (p == c->bnext[a]) break; /* the whole loop seen */
+        seg_nearest(c->m, p, u, T, &best, x, &a0);
+        u = p;
+        if (u == a) break;
+    }
+    return a0;
+}
+
+/* One try at sliding boundary vertex v along its input boundary loop:
+ * targets the mean of its two boundary neighbours (1, 1/2, 1/4 of the way)
+ * and those of an interior vertex (targets()), each moved onto the loop;
+ * returns 1 when it moved. */
+static int slide_vertex(const sm_ctx *c, int v)
+{
+    glpgp_quadmesh *q = c->q;
+    double *p = q->xyz + 3 * v, old[3], best[3], T[8][3];
+    memcpy(old, p, sizeof old);
+    double bval = worst_at(c, v) + 1e-4;
+    int found = 0, bseg = c->slide[v];
+    const double *n0 = q->xyz + 3 * c->qbn[2 * v], *n1 = q->xyz + 3 * c->qbn[2 * v + 1];
+    static const double wl[3] = {1.0, 0.5, 0.25};
+    for (int x = 0; x < 3; x++)
+        for (int d = 0; d < 3; d++) T[x][d] = p[d] + wl[x] * (0.5 * (n0[d] + n1[d]) - p[d]);
+    const int nt = 3 + targets(c, v, T + 3);
+    for (int k = 0; k < nt; k++) {
+        double x[3];
+        const int a0 = loop_nearest(c, c->slide[v], T[k], x);
+        memcpy(p, x, sizeof x);
+        const double w = worst_at(c, v);
+        if (w > bval) {
+            bval = w;
+            memcpy(best, x, sizeof x);
+            bseg = a0;
+            found = 1;
+        }
+    }
+    memcpy(p, found ? best : old, sizeof old);
+    c->slide[v] = bseg;
+    return found;
+}
+
 static glpgp_status setup(sm_ctx *c)
 {
     glpgp_quadmesh *q = c->q;
@@ -197,6 +361,11 @@ static glpgp_status setup(sm_ctx *c)
     GLPGP_CHECK(glpgp_calloc((size_t)q->nv + 1, 1, &c->locked));
     GLPGP_CHECK(glpgp_malloc((size_t)q->nf + 1, sizeof(double), &c->floor_));
     GLPGP_CHECK(glpgp_malloc((size_t)3 * q->nf + 3, sizeof(double), &c->fn));
+    GLPGP_CHECK(glpgp_malloc((size_t)c->m->nv + 1, sizeof(int), &c->bnext));
+    GLPGP_CHECK(glpgp_malloc((size_t)c->m->nv + 1, sizeof(int), &c->bprev));
+    GLPGP_CHECK(glpgp_calloc((size_t)c->m->nv + 1, 1, &c->corner));
+    GLPGP_CHECK(glpgp_malloc((size_t)q->nv + 1, sizeof(int), &c->slide));
+    GLPGP_CHECK(glpgp_malloc((size_t)2 * q->nv + 2, sizeof(int), &c->qbn));
     GLPGP_CHECK(glpgp_calloc((size_t)q->nv + 1, sizeof(int), &cnt));
     for (int k = 0; k < nc; k++) c->vs[q->face_vert[k] + 1]++;
     for (int v = 0; v < q->nv; v++) c->vs[v + 1] += c->vs[v];
@@ -230,8 +399,8 @@ glpgp_status glpgp_quads_smooth_surface(const glpgp_mesh *m, double h, int sweep
     for (int it = 0; it < sweeps && st == GLPGP_OK; it++) {
         int changed = 0;
         for (int v = 0; v < q->nv; v++) {
-            if (c.locked[v] || c.vs[v + 1] - c.vs[v] < 2) continue;
-            if (move_vertex(&c, v)) {
+            if (c.vs[v + 1] - c.vs[v] < 1 || (c.locked[v] && c.slide[v] < 0)) continue;
+            if (c.locked[v] ? slide_vertex(&c, v) : c.vs[v + 1] - c.vs[v] >= 2 && move_vertex(&c, v)) {
                 changed++;
                 if (!did[v] && moved) (*moved)++;
                 did[v] = 1;
@@ -249,6 +418,11 @@ glpgp_status glpgp_quads_smooth_surface(const glpgp_mesh *m, double h, int sweep
     free(c.locked);
     free(c.floor_);
     free(c.fn);
+    free(c.bnext);
+    free(c.bprev);
+    free(c.corner);
+    free(c.slide);
+    free(c.qbn);
     free(did);
     return st;
 }

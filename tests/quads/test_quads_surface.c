@@ -11,7 +11,11 @@
  *    Catmull-Clark split too;
  *  - the smoothing on the surface: an interior vertex of that grid slid
  *    along the cylinder (smallest scaled Jacobian about 0.3) comes back
- *    (above 0.9), every vertex stays on the cylinder, the boundary stays;
+ *    (above 0.9), every vertex stays on the cylinder, the boundary on the
+ *    boundary (rim on rim, sides on sides), the loop's four corners in place;
+ *  - the boundary slide: a rim vertex moved along the rim 0.35 of a period
+ *    slides back along the input's rim (SJ min up by more than 0.15), the
+ *    rim's ends stay;
  *  - the local repair: that grid with an octagon in place of the four
  *    quads at an interior vertex and a face turned over elsewhere comes back
  *    valid, all quads, on the cylinder, with its Euler characteristic and
@@ -185,10 +189,72 @@ static void smoothing(void)
     for (int i = 0; i < q->nv; i++) {
         const double *x = q->xyz + 3 * i;
         CHECK(fabs(hypot(x[0], x[1]) - 2.0) < 0.01);
-        if (fabs(keep[3 * i + 2] - zlo) < 1e-9 || fabs(keep[3 * i + 2] - zhi) < 1e-9) /* on the rim: stays */
-            CHECK(fabs(x[0] - keep[3 * i]) + fabs(x[1] - keep[3 * i + 1]) + fabs(x[2] - keep[3 * i + 2]) < 1e-12);
+        if (fabs(keep[3 * i + 2] - zlo) < 1e-9 || fabs(keep[3 * i + 2] - zhi) < 1e-9) /* on the rim: stays there */
+            CHECK(fabs(x[2] - keep[3 * i + 2]) < 1e-12);
+        if (fabs(keep[3 * i + 1]) < 1e-9) /* on the straight sides (y = 0): stays there */
+            CHECK(fabs(x[0] - keep[3 * i]) + fabs(x[1] - keep[3 * i + 1]) < 1e-12);
+        if (fabs(keep[3 * i + 1]) < 1e-9 && (fabs(keep[3 * i + 2] - zlo) < 1e-9 || fabs(keep[3 * i + 2] - zhi) < 1e-9))
+            CHECK(fabs(x[2] - keep[3 * i + 2]) < 1e-12); /* the loop's corners stay */
     }
     free(keep);
+    glpgp_quadmesh_destroy(&q);
+    glpgp_mesh_destroy(&m);
+}
+
+/* A vertex of the grid's rim moved along the rim to the input's rim vertex
+ * 0.35 of a period away: the smoothing slides it back along the rim (it
+ * stays on the input's boundary polyline, the rim's corners stay), and the
+ * smallest scaled Jacobian rises; before the boundary slide it stayed. */
+static void slide(void)
+{
+    glpgp_mesh *m = NULL;
+    glpgp_quadmesh *q = NULL;
+    const double hu = HU, hv = HV;
+    if (!halfcyl_grid(&m, NULL, &q)) return;
+    double zlo = HUGE_VAL;
+    for (int i = 0; i < m->nv; i++) zlo = fmin(zlo, m->xyz[3 * i + 2]);
+    int v = -1;
+    for (int i = 0; i < q->nv && v < 0; i++) { /* on the lower rim, near the middle of the arc */
+        const double *p = q->xyz + 3 * i;
+        if (fabs(p[2] - zlo) < 1e-9 && fabs(atan2(p[1], p[0]) - 0.5 * GLPGP_PI) < 0.5) v = i;
+    }
+    CHECK(v >= 0);
+    if (v < 0) return;
+    double *p = q->xyz + 3 * v;
+    const double home = atan2(p[1], p[0]), target = home + 0.35 * hu;
+    int w = -1;
+    for (int i = 0; i < m->nv; i++) { /* the input's rim vertex nearest to that angle */
+        const double *x = m->xyz + 3 * i;
+        if (fabs(x[2] - zlo) < 1e-9 &&
+            (w < 0 || fabs(atan2(x[1], x[0]) - target) < fabs(atan2(m->xyz[3 * w + 1], m->xyz[3 * w]) - target)))
+            w = i;
+    }
+    memcpy(p, m->xyz + 3 * w, 3 * sizeof(double));
+    double corners[4][3];
+    int nc = 0;
+    for (int i = 0; i < q->nv && nc < 4; i++)
+        if (fabs(q->xyz[3 * i + 1]) < 1e-9 && fabs(fabs(q->xyz[3 * i + 2] - zlo) - 0.0) < 1e-9)
+            memcpy(corners[nc++], q->xyz + 3 * i, sizeof corners[0]);
+    glpgp_quads_report qq;
+    CHECK_OK(glpgp_quads_quality_surface(q, m, hv, &qq));
+    const double before = qq.sj_min;
+    int moved = 0;
+    CHECK_OK(glpgp_quads_smooth_surface(m, hv, 20, q, &moved));
+    CHECK_OK(glpgp_quads_quality_surface(q, m, hv, &qq));
+    CHECK(qq.invalid == 0 && moved >= 1);
+    CHECK(qq.sj_min > before + 0.15);
+    if (!(qq.sj_min > before + 0.15)) fprintf(stderr, "slide: SJ min %.3f -> %.3f (%d moved)\n", before, qq.sj_min, moved);
+    CHECK(fabs(p[2] - zlo) < 1e-12 && fabs(hypot(p[0], p[1]) - 2.0) < 0.01);
+    CHECK(fabs(atan2(p[1], p[0]) - home) < 0.5 * fabs(target - home)); /* at least half way back */
+    for (int k = 0; k < nc; k++) { /* the rim's ends (y = 0) stay */
+        int found = 0;
+        for (int i = 0; i < q->nv; i++)
+            if (fabs(q->xyz[3 * i] - corners[k][0]) + fabs(q->xyz[3 * i + 1] - corners[k][1]) +
+                    fabs(q->xyz[3 * i + 2] - corners[k][2]) < 1e-12)
+                found = 1;
+        CHECK(found);
+    }
+    CHECK(nc == 2);
     glpgp_quadmesh_destroy(&q);
     glpgp_mesh_destroy(&m);
 }
@@ -324,6 +390,7 @@ int main(void)
     glpgp_log_set_callback(dbg_log, NULL);
     extraction();
     smoothing();
+    slide();
     local_repair();
     coarse("genus2", 5000, 0.55, -2, 0);
     coarse("cube", 5000, 0.3, 2, 0);
