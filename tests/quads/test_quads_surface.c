@@ -20,7 +20,8 @@
  *    quads at an interior vertex and a face turned over elsewhere comes back
  *    valid, all quads, on the cylinder, with its Euler characteristic and
  *    boundary loop, in two regions (the turned face with the 8 around its
- *    pinched corners), at least 27 of the grid's 40 quads kept;
+ *    pinched corners), at least 27 of the grid's 40 quads kept; the grid
+ *    with one face twice (an overlapping copy) comes back valid too;
  *  - the coarse last resort on genus 2, the cube (sharp features) and the
  *    hemisphere: valid, all quads, the input's Euler characteristic and
  *    loops, under a tenth of the fine last resort's quads, and smoothing
@@ -354,6 +355,51 @@ out:
     glpgp_mesh_destroy(&m);
 }
 
+/* The local repair of the grid with one face twice (an overlapping copy:
+ * four non-manifold edges, a region whose boundary passes its corners
+ * twice with every face at them in the region already): valid again, all
+ * quads, Euler 1, one loop. */
+static void overlap_repair(void)
+{
+    glpgp_mesh *m = NULL;
+    glpgp_quadmesh *q = NULL, *r = NULL;
+    if (!halfcyl_grid(&m, NULL, &q)) return;
+    int *val = NULL, g = -1;
+    CHECK_OK(glpgp_quadmesh_valences(q, &val));
+    for (int f = 0; f < q->nf && g < 0; f++) { /* a face off the rim */
+        int rim = 0;
+        for (int i = q->face_start[f]; i < q->face_start[f + 1]; i++) rim |= val[q->face_vert[i]] < 4;
+        if (!rim) g = f;
+    }
+    free(val);
+    CHECK(g >= 0);
+    glpgp_quadmesh *d = NULL;
+    if (g >= 0) CHECK_OK(glpgp_qs_alloc(q->nv, q->nf + 1, q->face_start[q->nf] + 4, &d));
+    if (!d) goto out;
+    memcpy(d->xyz, q->xyz, (size_t)3 * q->nv * sizeof(double));
+    memcpy(d->face_start, q->face_start, (size_t)(q->nf + 1) * sizeof(int));
+    memcpy(d->face_vert, q->face_vert, (size_t)q->face_start[q->nf] * sizeof(int));
+    d->face_start[q->nf + 1] = q->face_start[q->nf] + 4;
+    memcpy(d->face_vert + q->face_start[q->nf], q->face_vert + q->face_start[g], 4 * sizeof(int));
+    glpgp_qs_finish_from(d, q);
+    glpgp_quads_report qq;
+    CHECK_OK(glpgp_quads_quality_surface(d, m, HV, &qq));
+    CHECK(qq.invalid & GLPGP_QUADS_BAD_NONMANIFOLD);
+    glpgp_quads_repair rs;
+    CHECK_OK(glpgp_qs_local_repair(m, d, HV, 0, &r, &rs));
+    CHECK(r != NULL);
+    if (r) {
+        CHECK_OK(glpgp_quads_quality_surface(r, m, HV, &qq));
+        CHECK(qq.invalid == 0 && qq.others == 0 && qq.euler == 1 && qq.boundary_loops == 1);
+        if (qq.invalid) fprintf(stderr, "overlap repair: invalid 0x%x, %d regions\n", qq.invalid, rs.regions);
+    }
+    glpgp_quadmesh_destroy(&d);
+out:
+    glpgp_quadmesh_destroy(&r);
+    glpgp_quadmesh_destroy(&q);
+    glpgp_mesh_destroy(&m);
+}
+
 static void coarse(const char *shape, long nv, double h, int euler, int loops)
 {
     glpgp_mesh *m = NULL;
@@ -392,6 +438,7 @@ int main(void)
     smoothing();
     slide();
     local_repair();
+    overlap_repair();
     coarse("genus2", 5000, 0.55, -2, 0);
     coarse("cube", 5000, 0.3, 2, 0);
     coarse("hemisphere", 5000, 0.25, 1, 1);
