@@ -356,9 +356,7 @@ out:
 }
 
 /* The local repair of the grid with one face twice (an overlapping copy:
- * four non-manifold edges, a region whose boundary passes its corners
- * twice with every face at them in the region already): valid again, all
- * quads, Euler 1, one loop. */
+ * four non-manifold edges): valid again, all quads, Euler 1, one loop. */
 static void overlap_repair(void)
 {
     glpgp_mesh *m = NULL;
