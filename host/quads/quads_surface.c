@@ -1050,9 +1050,9 @@ static glpgp_status smooth_valid(const glpgp_mesh *m, double h, const glpgp_quad
         q->closing.smoothed_vertices = moved; /* the report's closing.smoothed_vertices */
     } else if (moved) {
         glpgp_log(GLPGP_LOG_DEBUG,
-                  "quads: the surface smoothing undone: the smoothed mesh is not valid (0x%x, Hausdorff %.3f h, area "
-                  "ratio %.4f)",
-                  qq.invalid, qq.hausdorff, qq.area_ratio);
+                  "quads: the surface smoothing undone: the smoothed mesh is not valid (0x%x, Hausdorff %.3f h: quads "
+                  "to surface %.3f h, surface to quads %.3f h; area ratio %.4f)",
+                  qq.invalid, qq.hausdorff, qq.dist_quad_to_domain, qq.dist_domain_to_quad, qq.area_ratio);
         memcpy(q->xyz, keep, (size_t)3 * q->nv * sizeof(double));
         set_xy(q);
     }
