@@ -6,8 +6,12 @@
  * corner that makes its worst quad a parallelogram. A target is kept only
  * when the smallest scaled Jacobian of the vertex's faces (each in its own
  * plane) rises, no face falls below min(0.3, its value before the
- * smoothing), no face turns against its normal before, and the surface
- * under the target faces the same way as the vertex's faces; so the
+ * smoothing), no face turns against its normal before, the surface
+ * under the target faces the same way as the vertex's faces, and each of
+ * the vertex's faces stays as the check sees it (its normal along the
+ * surface's at its centre, the samples of its fan triangles within
+ * max(0.2 h, their distance before) of the surface: the check's Hausdorff
+ * bound is h/4); so the
  * smallest scaled Jacobian never falls and the mesh's topology is
  * untouched. A vertex of the quad mesh's boundary that lies on one of the
  * input's boundary loops, away from its corners (the loop turns by more than
@@ -28,6 +32,7 @@
 #include <string.h>
 
 #define SJ_FLOOR 0.3
+#define CD_MAX 0.2 /* a face's samples within 0.2 h of the surface (the check's Hausdorff bound: h/4) */
 #define BND_CORNER_DEG 40.0
 #define BND_WALK 64 /* input boundary edges searched each way from a sliding vertex */
 
@@ -45,6 +50,8 @@ typedef struct sm_ctx {
     unsigned char *locked; /* per quad vertex */
     double *floor_;        /* per face: min(0.3, its scaled Jacobian before) */
     double *fn;            /* per face: its unit normal before (3) */
+    double *cd;            /* per face: its samples' distance to the surface allowed (max(CD_MAX h, before)) */
+    double h;
     /* the boundary slide: per input vertex its loop's next and previous
      * vertex (-1: not on a loop) and whether it is a corner; per quad vertex
      * the input boundary edge it lies on (its first vertex; -1: it does not
@@ -208,6 +215,53 @@ static double worst_at(const sm_ctx *c, int v)
     return w;
 }
 
+/* The largest distance to the surface (nearest point within the
+ * projection's cap; INFINITY: none) of face f's samples, taken as the
+ * check takes them (quads_surface.h: the face fanned from its first corner
+ * into triangles): each fan triangle's centroid and its sides' midpoints;
+ * *tn the surface's normal at the face centre's nearest point */
+static double face_dist(const sm_ctx *c, int f, const double **tn)
+{
+    const glpgp_quadmesh *q = c->q;
+    const int s = q->face_start[f], n = q->face_start[f + 1] - s;
+    const double *X = q->xyz;
+    double cn[3] = {0, 0, 0}, x[3], far = 0.0;
+    for (int i = 0; i < n; i++)
+        for (int d = 0; d < 3; d++) cn[d] += X[3 * q->face_vert[s + i] + d] / n;
+    const int t0 = glpgp_qs_proj_nearest(c->P, cn, x);
+    if (t0 < 0) return INFINITY;
+    *tn = c->m->surf->tframe + 9 * t0 + 6;
+    for (int i = 1; i + 1 < n; i++) { /* fan triangle (0, i, i+1) */
+        const double *a = X + 3 * q->face_vert[s], *b = X + 3 * q->face_vert[s + i], *e = X + 3 * q->face_vert[s + i + 1];
+        for (int k = 0; k < 4; k++) {
+            double p[3];
+            for (int d = 0; d < 3; d++)
+                p[d] = k == 0 ? (a[d] + b[d] + e[d]) / 3.0 : k == 1 ? 0.5 * (a[d] + b[d]) : k == 2 ? 0.5 * (b[d] + e[d])
+                                                                                          : 0.5 * (e[d] + a[d]);
+            if (glpgp_qs_proj_nearest(c->P, p, x) < 0) return INFINITY;
+            far = fmax(far, sqrt((x[0] - p[0]) * (x[0] - p[0]) + (x[1] - p[1]) * (x[1] - p[1]) + (x[2] - p[2]) * (x[2] - p[2])));
+        }
+    }
+    return far;
+}
+
+/* Whether v's faces, as the check sees them, stay on the surface: each
+ * face's normal along the surface's at its centre (the check's inverted
+ * test), its samples no farther from the surface than allowed. */
+static int surface_ok(const sm_ctx *c, int v)
+{
+    for (int j = c->vs[v]; j < c->vs[v + 1]; j++) {
+        const int f = c->vf[j];
+        double N[3];
+        const double *tn = NULL;
+        const double d = face_dist(c, f, &tn);
+        if (!(d <= c->cd[f])) return 0;
+        glpgp_quadmesh_face_normal(c->q, f, 0, N);
+        if (N[0] * tn[0] + N[1] * tn[1] + N[2] * tn[2] <= 0.0) return 0;
+    }
+    return 1;
+}
+
 /* The targets of v: the mean of its edge neighbours at 1, 1/2, 1/4 of the
  * way, and the corner making its worst quad a parallelogram at 1, 1/2.
  * Returns their count. */
@@ -261,7 +315,7 @@ static int move_vertex(const sm_ctx *c, int v)
         if (tn[0] * vn[0] + tn[1] * vn[1] + tn[2] * vn[2] <= 0.0) continue;
         memcpy(p, x, sizeof x);
         const double w = worst_at(c, v);
-        if (w > bval) {
+        if (w > bval && surface_ok(c, v)) {
             bval = w;
             memcpy(best, x, sizeof x);
             found = 1;
@@ -339,7 +393,7 @@ static int slide_vertex(const sm_ctx *c, int v)
         const int a0 = loop_nearest(c, c->slide[v], T[k], x);
         memcpy(p, x, sizeof x);
         const double w = worst_at(c, v);
-        if (w > bval) {
+        if (w > bval && surface_ok(c, v)) {
             bval = w;
             memcpy(best, x, sizeof x);
             bseg = a0;
@@ -361,6 +415,7 @@ static glpgp_status setup(sm_ctx *c)
     GLPGP_CHECK(glpgp_calloc((size_t)q->nv + 1, 1, &c->locked));
     GLPGP_CHECK(glpgp_malloc((size_t)q->nf + 1, sizeof(double), &c->floor_));
     GLPGP_CHECK(glpgp_malloc((size_t)3 * q->nf + 3, sizeof(double), &c->fn));
+    GLPGP_CHECK(glpgp_malloc((size_t)q->nf + 1, sizeof(double), &c->cd));
     GLPGP_CHECK(glpgp_malloc((size_t)c->m->nv + 1, sizeof(int), &c->bnext));
     GLPGP_CHECK(glpgp_malloc((size_t)c->m->nv + 1, sizeof(int), &c->bprev));
     GLPGP_CHECK(glpgp_calloc((size_t)c->m->nv + 1, 1, &c->corner));
@@ -378,6 +433,8 @@ static glpgp_status setup(sm_ctx *c)
     for (int f = 0; f < q->nf; f++) {
         c->floor_[f] = fmin(SJ_FLOOR, glpgp_quadmesh_face_sj_surface(q, f));
         glpgp_quadmesh_face_normal(q, f, 1, c->fn + 3 * f);
+        const double *tn = NULL;
+        c->cd[f] = fmax(CD_MAX * c->h, face_dist(c, f, &tn));
     }
     return lock_vertices(c);
 }
@@ -390,6 +447,7 @@ glpgp_status glpgp_quads_smooth_surface(const glpgp_mesh *m, double h, int sweep
     memset(&c, 0, sizeof c);
     c.m = m;
     c.q = q;
+    c.h = h;
     glpgp_qs_proj *P = NULL;
     unsigned char *did = NULL;
     glpgp_status st = glpgp_qs_proj_create(m, h, 0.5 * h, &P);
@@ -418,6 +476,7 @@ glpgp_status glpgp_quads_smooth_surface(const glpgp_mesh *m, double h, int sweep
     free(c.locked);
     free(c.floor_);
     free(c.fn);
+    free(c.cd);
     free(c.bnext);
     free(c.bprev);
     free(c.corner);

@@ -25,7 +25,8 @@
  *  - the coarse last resort on genus 2, the cube (sharp features) and the
  *    hemisphere: valid, all quads, the input's Euler characteristic and
  *    loops, under a tenth of the fine last resort's quads, and smoothing
- *    it keeps it valid without lowering its smallest scaled Jacobian;
+ *    it keeps it valid without lowering its smallest scaled Jacobian (also
+ *    on the torus);
  *  - the check fails where it must: a face turned over (non-manifold and
  *    inverted), a face removed (a new boundary loop, Euler 1 of 2), a vertex
  *    moved h/2 off the surface (Hausdorff), a planar mesh or h <= 0
@@ -417,6 +418,8 @@ static void coarse(const char *shape, long nv, double h, int euler, int loops)
         CHECK_OK(glpgp_quads_smooth_surface(m, h, 20, q, NULL));
         CHECK_OK(glpgp_quads_quality_surface(q, m, h, &qq));
         CHECK(qq.sj_min >= before && qq.euler == euler);
+        CHECK(qq.invalid == 0); /* the moves keep the check's Hausdorff and orientation */
+        if (qq.invalid) fprintf(stderr, "coarse %s smoothed: invalid 0x%x, Hausdorff %.3f h\n", shape, qq.invalid, qq.hausdorff);
     }
     glpgp_quadmesh_destroy(&q);
     glpgp_mesh_destroy(&m);
@@ -440,6 +443,7 @@ int main(void)
     coarse("genus2", 5000, 0.55, -2, 0);
     coarse("cube", 5000, 0.3, 2, 0);
     coarse("hemisphere", 5000, 0.25, 1, 1);
+    coarse("torus", 5000, 0.23, 0, 0);
     fallback("sphere", 2, 0);
     fallback("hemisphere", 1, 1);
     TEST_DONE();

@@ -241,7 +241,8 @@ static void test_coupled_cg(const char *shape)
  * fewer triangles than the uniform rounds' 16x; with --max-elements at 4x
  * the input, the last level within it (a warning), at 1x the input as it
  * is; on a torus 7 mean edges per period (one uniform round short of the old
- * rule: 4x) only the long edges split */
+ * rule: 4x) only the long edges split; with a size file (its values belong
+ * to the input's vertices) not refined */
 static double max_edge(const glpgp_mesh *m)
 {
     double l = 0.0;
@@ -281,6 +282,14 @@ static void check_prepare_subdivides(void)
     CHECK(r == NULL && pi.refined.split_edges == 0);
     CHECK_OK(glpgp_solve_prepare(m, &o, "torus", 0, 0, &r, &pi)); /* --no-refine */
     CHECK(r == NULL);
+    /* a size file (one value per input vertex): not refined (a warning) */
+    o.size_field = GLPGP_SIZE_FILE;
+    o.size_file = "sizes-of-the-input.txt";
+    CHECK_OK(glpgp_solve_prepare(m, &o, "torus", 0, 1, &r, &pi));
+    CHECK(r == NULL && pi.refined.split_edges == 0);
+    glpgp_mesh_destroy(&r);
+    o.size_field = GLPGP_SIZE_AUTO;
+    o.size_file = NULL;
     /* just above the old rule's mean edge: 4x triangles for the rounds */
     o.size = 7.0 * m->mean_edge;
     CHECK_OK(glpgp_solve_prepare(m, &o, "torus", 0, 1, &r, &pi));
