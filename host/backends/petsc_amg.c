@@ -84,16 +84,30 @@ static void level_maps(const pimpl *p, struct petsc_amg *a, const int **agg, int
     }
 }
 
-/* level-0 restriction with the global term first: t = r - A x on the owned
- * rows, y = E^+ Z^T t, then the local restriction of t - A Z y (the
- * additive sum of both terms, the first version, took 1.4-1.7x the CG
- * iterations: bench/results/petsc_glpgp_amg.md) */
+/* level-0 restriction with the global term: one node per rank (k = 0, the
+ * default): y = E^+ Z^T t beside the local restriction of t = r - A x, the
+ * two corrections added; one level's aggregates (k > 0): y first, then the
+ * local restriction of t - A Z y (bench/results/petsc_glpgp_amg.md) */
 static glpgp_status gc_restrict(pimpl *p, struct petsc_amg *a, const pm_level *v, const double *c, int has_x,
                                 const double *A, const double *rr, const double *xs, double *rc)
 {
     pm_gc *g = a->gc;
     double *T = g->tbuf;
     memset(g->yl, 0, (size_t)2 * g->ms * sizeof(double));
+    if (g->k == 0) { /* one node per rank: added to the local correction, one pass */
+        for (int i = p->lo; i < p->hi; i++) {
+            const int J = v->agg[i];
+            if (J < 0) continue;
+            double t0, t1;
+            glpgp_amg_row_resid(i, has_x, v->rowptr, v->col, A, rr, xs, &t0, &t1);
+            double acc[2] = {rc[2 * J], rc[2 * J + 1]};
+            glpgp_amg_restrict_add(c[2 * i], c[2 * i + 1], t0, t1, acc);
+            rc[2 * J] = acc[0];
+            rc[2 * J + 1] = acc[1];
+            glpgp_petsc_gc_add(g, i - p->lo, t0, t1);
+        }
+        return glpgp_petsc_gc_solve(g);
+    }
     for (int i = p->lo; i < p->hi; i++) {
         double t0, t1;
         glpgp_amg_row_resid(i, has_x, v->rowptr, v->col, A, rr, xs, &t0, &t1);
@@ -474,10 +488,12 @@ glpgp_status glpgp_petsc_amg_prolong(glpgp_backend *b, int l, const glpgp_vec *e
     int i0, i1;
     row_range(p, l, v, &i0, &i1);
     glpgp_status st = GLPGP_OK;
-    if (l == 0 && p->amg->gc)
+    if (l == 0 && p->amg->gc && p->amg->gc->k > 0) {
         st = gc_prolong(p, p->amg, v, c, ea, xx);
-    else
+    } else {
         for (int i = i0; i < i1; i++) glpgp_amg_row_prolong(i, v->agg, c, ea, xx);
+        if (l == 0 && p->amg->gc) glpgp_petsc_gc_prolong(p, p->amg->gc, xx);
+    }
     PCHK(VecRestoreArray(x->v, &xa));
     PCHK(VecRestoreArrayRead(ec->v, &ea));
     return st;

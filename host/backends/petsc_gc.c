@@ -14,8 +14,11 @@
  *
  * Costs: per Newton step one ghost exchange of Z, one pass over the owned
  * rows and an all-gather of E (4 M^2 doubles in all), E's dense inverse
- * (order 2M <= 2 * 256) on every rank; per cycle an all-gather of 2M
- * doubles and a dense product of this rank's 2 ms rows. */
+ * (order 2M) on every rank; per cycle an all-gather of 2M doubles, a dense
+ * product of this rank's 2 ms rows and, with one level's aggregates, two
+ * more fine-level passes with their ghost exchanges (A Z y, A w). On two
+ * ranks of 2 cores that costs more than the iterations it saves at 1M, so
+ * the default stays one node per rank, added (the first version). */
 #include "amg_dense.h"
 #include "amg_rows.h"
 
@@ -48,8 +51,7 @@ static int node_at(const int *const *agg, int k, int i)
  * at most the bound (0: none) */
 static glpgp_status choose_level(pimpl *p, int L, const int *const *agg, const int *n, int *k)
 {
-    double cnt[GLPGP_AMG_MAX_LEVELS + 1] = {0};
-    cnt[GLPGP_AMG_MAX_LEVELS] = p->hi - p->lo;
+    double cnt[GLPGP_AMG_MAX_LEVELS] = {0};
     unsigned char *mark = NULL;
     for (int l = 1; l < L; l++) {
         GLPGP_CHECK(glpgp_calloc((size_t)(n[l] > 0 ? n[l] : 1), 1, &mark));
@@ -63,12 +65,11 @@ static glpgp_status choose_level(pimpl *p, int L, const int *const *agg, const i
         free(mark);
         mark = NULL;
     }
-    GLPGP_CHECK(glpgp_petsc_reduce_sum(p, cnt, GLPGP_AMG_MAX_LEVELS + 1));
-    /* the default bound: E's dense inverse (order 2N, on every rank, per
-     * Newton step) small beside the step's work; 64 per rank reaches the
-     * parts' coarsest levels (<= 48 nodes each) */
-    const double nglobal = cnt[GLPGP_AMG_MAX_LEVELS];
-    PetscInt bound = (PetscInt)fmin(GLPGP_PETSC_GC_NODES, fmax(64.0 * p->size, nglobal / 1000.0));
+    GLPGP_CHECK(glpgp_petsc_reduce_sum(p, cnt, GLPGP_AMG_MAX_LEVELS));
+    /* the default: one node per rank (on 2 cores the aggregates' space cost
+     * more time than it saved: bench/results/petsc_glpgp_amg.md); E's dense
+     * inverse is of order 2N, on every rank, per Newton step */
+    PetscInt bound = 0;
     PetscBool set = PETSC_FALSE;
     PCHK(PetscOptionsGetInt(NULL, NULL, "-glpgp_mg_global", &bound, &set));
     if (bound < 0) bound = 0; /* refused at the backend's creation (petsc.c) */

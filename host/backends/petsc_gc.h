@@ -9,17 +9,14 @@
  * aggregate K of one level k of s's hierarchy, the composed prolongation
  * from K down to s's owned vertices (2 real columns per node: z and i z).
  * Level k is the finest whose nodes over all ranks number at most
- * `-glpgp_mg_global N` (default: min(GLPGP_PETSC_GC_NODES, max(64 ranks,
- * vertices / 1000))); none (N = 0, or too
- * many ranks): one node per rank, the level-0 frame (the two-level term of
- * the first version). */
+ * `-glpgp_mg_global N`; none (N = 0, the default, or too many ranks): one
+ * node per rank, the level-0 frame, added to the local correction (the
+ * first version, bit for bit). With k > 0 the term is applied before and
+ * after the local coarse levels (the balancing form, symmetric). */
 #ifndef GLPGP_PETSC_GC_H
 #define GLPGP_PETSC_GC_H
 
 #include "petsc_impl.h"
-
-/* the default bound on the global coarse nodes (E of order 2 N) */
-#define GLPGP_PETSC_GC_NODES 256
 
 typedef struct pm_gc {
     int P;            /* ranks */

@@ -11,8 +11,9 @@
 #    within 1e-6 relative, every level converged, Newton steps within 25%
 #    of the reference's and CG iterations per Newton step at most 1.6x;
 #  - two ranks on a square: the global coarse space of one level's
-#    aggregates takes at most 0.85x the CG per Newton step of one node per
-#    rank (-glpgp_mg_global 0), the same state; a negative bound fails;
+#    aggregates (-glpgp_mg_global 256) takes at most 0.85x the CG per Newton
+#    step of one node per rank (the default), the same state; a negative
+#    bound fails;
 #  - -glpgp_mg gamg still selects KSPCG + GAMG (another CG count on one
 #    rank, the same singularities); a bad -glpgp_mg fails with one line.
 # Skipped (exit 77) without PETSc in the build or without mpirun.
@@ -94,11 +95,23 @@ else
     fail "data/plate_holes.msh not found (data dir '$DATA')"
 fi
 
-# the global coarse space of one level's aggregates (the default here: 81
-# nodes) against one node per rank (-glpgp_mg_global 0): fewer CG per
+# bad_option OPTIONS PATTERN: two ranks with PETSC_OPTIONS=OPTIONS fail with
+# one glpgp line matching PATTERN
+bad_option() {
+    runs=$((runs + 1))
+    PETSC_OPTIONS="$1" timeout 240 "${MPIRUN[@]}" -n 2 "$GLPGP" solve shape:disk:3000 --backend petsc \
+        --quiet >/dev/null 2>err.txt </dev/null
+    local rc=$?
+    [ "$rc" -ne 0 ] && [ "$rc" -ne 124 ] || fail "$1: exit $rc"
+    [ "$(grep -c '^glpgp: ' err.txt)" = 1 ] || fail "$1: expected one glpgp line: $(head -c 400 err.txt)"
+    expect_err "$2" "$1"
+}
+
+# the global coarse space of one level's aggregates (-glpgp_mg_global 256:
+# 81 nodes here) against one node per rank (the default): fewer CG per
 # Newton step, the same state
-mpi sq_2 2 solve shape:square:20000 --backend petsc --stats p2_sq.json
-PETSC_OPTIONS="-glpgp_mg_global 0" mpi sq0_2 2 solve shape:square:20000 --backend petsc --stats p2_sq0.json
+PETSC_OPTIONS="-glpgp_mg_global 256" mpi sq_2 2 solve shape:square:20000 --backend petsc --stats p2_sq.json
+mpi sq0_2 2 solve shape:square:20000 --backend petsc --stats p2_sq0.json
 if [ -f p2_sq.json ] && [ -f p2_sq0.json ]; then
     python3 - p2_sq.json p2_sq0.json <<'EOF' || fail "square, 2 ranks: the global coarse space does not pay"
 import json, sys
@@ -112,13 +125,7 @@ for k in ("u", "v"):
 assert ca <= 0.85 * cb, (ca, cb)
 EOF
 fi
-runs=$((runs + 1))
-PETSC_OPTIONS="-glpgp_mg_global -1" timeout 240 "${MPIRUN[@]}" -n 2 "$GLPGP" solve shape:disk:3000 --backend petsc \
-    --quiet >/dev/null 2>err.txt </dev/null
-rc=$?
-[ "$rc" -ne 0 ] && [ "$rc" -ne 124 ] || fail "-glpgp_mg_global -1: exit $rc"
-[ "$(grep -c "^glpgp: " err.txt)" = 1 ] || fail "-glpgp_mg_global -1: expected one glpgp line: $(head -c 400 err.txt)"
-grep -q "glpgp_mg_global" err.txt || fail "-glpgp_mg_global -1: no message naming it: $(head -c 300 err.txt)"
+bad_option "-glpgp_mg_global -1" "glpgp_mg_global -1: expected a node count"
 
 # GAMG stays selectable: another solver (other CG counts), the same state
 PETSC_OPTIONS="-glpgp_mg gamg" mpi gamg_1 1 solve shape:disk:3000 --backend petsc --stats p1_gamg.json
@@ -130,12 +137,6 @@ assert g["singularities"] == m["singularities"], (g["singularities"], m["singula
 assert g["cg_iterations"]["total"] != m["cg_iterations"]["total"], "the same CG count as the multigrid"
 EOF
 fi
-runs=$((runs + 1))
-PETSC_OPTIONS="-glpgp_mg boomer" timeout 240 "${MPIRUN[@]}" -n 2 "$GLPGP" solve shape:disk:500 --backend petsc \
-    --quiet >/dev/null 2>err.txt </dev/null
-rc=$?
-[ "$rc" -ne 0 ] && [ "$rc" -ne 124 ] || fail "-glpgp_mg boomer: exit $rc"
-[ "$(grep -c '^glpgp: ' err.txt)" = 1 ] || fail "-glpgp_mg boomer: expected one glpgp line: $(head -c 400 err.txt)"
-expect_err "glpgp_mg 'boomer'" "-glpgp_mg boomer"
+bad_option "-glpgp_mg boomer" "glpgp_mg 'boomer'"
 
 finish
