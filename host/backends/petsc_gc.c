@@ -180,8 +180,10 @@ static glpgp_status create_run(pimpl *p, int L, const int *const *agg, const int
     GLPGP_CHECK(glpgp_malloc((size_t)(nown > 0 ? nown : 1), sizeof(int), &g->node));
     GLPGP_CHECK(glpgp_malloc((size_t)p->sys->nv, sizeof(int), &g->gidx));
     GLPGP_CHECK(glpgp_calloc((size_t)2 * (nown > 0 ? nown : 1), sizeof(double), &g->zeta));
-    GLPGP_CHECK(glpgp_calloc((size_t)2 * (nown > 0 ? nown : 1), sizeof(double), &g->tbuf));
-    GLPGP_CHECK(glpgp_calloc((size_t)2 * (nown > 0 ? nown : 1), sizeof(double), &g->tbuf2));
+    if (g->k > 0) { /* the fine residual and A w of the symmetric form */
+        GLPGP_CHECK(glpgp_calloc((size_t)2 * (nown > 0 ? nown : 1), sizeof(double), &g->tbuf));
+        GLPGP_CHECK(glpgp_calloc((size_t)2 * (nown > 0 ? nown : 1), sizeof(double), &g->tbuf2));
+    }
     GLPGP_CHECK(number_nodes(p, g, agg, n));
     GLPGP_CHECK(layouts(p, g));
     PCHK(VecCreateMPI(PETSC_COMM_WORLD, (PetscInt)2 * nown, PETSC_DETERMINE, &g->zv));

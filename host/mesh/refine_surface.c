@@ -226,7 +226,7 @@ static glpgp_status run_levels(lepp *L, double target, double lmax, int *stopped
     return st;
 }
 
-static double max_edge(const glpgp_mesh *m)
+double glpgp_mesh_longest_edge(const glpgp_mesh *m)
 {
     double l = 0.0;
     for (int h = 0; h < 3 * m->nt; h++) {
@@ -246,7 +246,7 @@ glpgp_status glpgp_mesh_refine_surface(const glpgp_mesh *m, double target, doubl
     if (!m || !m->xyz || !m->surf) return GLPGP_FAIL(GLPGP_ERR_ARG, "refine: not a surface mesh");
     if (!(target > 0.0) || !isfinite(target))
         return GLPGP_FAIL(GLPGP_ERR_ARG, "refine: target edge %g is not positive", target);
-    const double lmax = max_edge(m);
+    const double lmax = glpgp_mesh_longest_edge(m);
     if (info) {
         info->nv0 = info->nv = m->nv;
         info->nt0 = info->nt = m->nt;
@@ -264,7 +264,7 @@ glpgp_status glpgp_mesh_refine_surface(const glpgp_mesh *m, double target, doubl
             info->splits = L.splits;
             info->nv = (*out)->nv;
             info->nt = (*out)->nt;
-            info->max_edge = max_edge(*out);
+            info->max_edge = glpgp_mesh_longest_edge(*out);
         }
     }
     lepp_free(&L);

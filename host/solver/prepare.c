@@ -102,17 +102,6 @@ static glpgp_status refine_surface(const glpgp_mesh *m, const glpgp_options *o, 
     return GLPGP_OK;
 }
 
-/* a surface's longest edge */
-static double longest_edge(const glpgp_mesh *m)
-{
-    double l = 0.0;
-    for (int h = 0; h < 3 * m->nt; h++) {
-        const double *p = m->xyz + 3 * (size_t)m->tri[h], *q = m->xyz + 3 * (size_t)m->tri[3 * (h / 3) + (h % 3 + 1) % 3];
-        l = fmax(l, (p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1]) + (p[2] - q[2]) * (p[2] - q[2]));
-    }
-    return sqrt(l);
-}
-
 /* glpgp_solve_prepare on a surface: slivers, the refinement, the size and
  * field checks on the mesh that is solved. */
 static glpgp_status prepare_surface(const glpgp_mesh *m, glpgp_options *o, const char *name, double max_triangles,
@@ -120,16 +109,16 @@ static glpgp_status prepare_surface(const glpgp_mesh *m, glpgp_options *o, const
 {
     warn_slivers(m, name);
     glpgp_mesh *mr = NULL;
+    const int refine = refine_ok && o->field != GLPGP_FIELD_FILE;
+    const double lmax = refine && o->size_field == GLPGP_SIZE_FILE ? glpgp_mesh_longest_edge(m) : 0.0;
     /* a size file's values belong to the input's vertices: not refined (the
      * file could not be read on the refined mesh) */
-    if (refine_ok && o->field != GLPGP_FIELD_FILE && o->size_field == GLPGP_SIZE_FILE && o->size > 0.0 &&
-        longest_edge(m) > o->size / GLPGP_SURFACE_EDGES)
+    if (o->size > 0.0 && lmax > o->size / GLPGP_SURFACE_EDGES)
         glpgp_log(GLPGP_LOG_WARNING,
                   "%s: edges up to h / %.2g, not refined for h = %.4g (%g edges per period are needed): the size file "
                   "%s gives one value per input vertex (the oscillators may collapse: a finer input)",
-                  name, o->size / longest_edge(m), o->size, GLPGP_SURFACE_EDGES, o->size_file ? o->size_file : "");
-    if (refine_ok && o->field != GLPGP_FIELD_FILE && o->size_field != GLPGP_SIZE_FILE)
-        GLPGP_CHECK(refine_surface(m, o, name, max_triangles, &mr, info));
+                  name, o->size / lmax, o->size, GLPGP_SURFACE_EDGES, o->size_file ? o->size_file : "");
+    if (refine && o->size_field != GLPGP_SIZE_FILE) GLPGP_CHECK(refine_surface(m, o, name, max_triangles, &mr, info));
     const glpgp_mesh *ms = mr ? mr : m;
     glpgp_status st = check_sizes(ms, o, 0, max_triangles);
     if (st != GLPGP_OK) info->usage = 1;

@@ -243,17 +243,6 @@ static void test_coupled_cg(const char *shape)
  * is; on a torus 7 mean edges per period (one uniform round short of the old
  * rule: 4x) only the long edges split; with a size file (its values belong
  * to the input's vertices) not refined */
-static double max_edge(const glpgp_mesh *m)
-{
-    double l = 0.0;
-    for (int h = 0; h < 3 * m->nt; h++) {
-        const double *p = m->xyz + 3 * m->tri[h], *q = m->xyz + 3 * m->tri[3 * (h / 3) + (h % 3 + 1) % 3];
-        const double dx = p[0] - q[0], dy = p[1] - q[1], dz = p[2] - q[2];
-        l = fmax(l, sqrt(dx * dx + dy * dy + dz * dz));
-    }
-    return l;
-}
-
 static void check_prepare_subdivides(void)
 {
     glpgp_mesh *m = NULL, *r = NULL;
@@ -267,8 +256,8 @@ static void check_prepare_subdivides(void)
     CHECK(r != NULL && pi.refined.rounds == 0 && pi.refined.split_edges > 0);
     if (r) {
         printf("prepare: %d -> %d triangles, %ld edges bisected, longest edge h / %.3g, mean edge h / %.3g\n", m->nt,
-               r->nt, pi.refined.split_edges, o.size / max_edge(r), o.size / r->mean_edge);
-        CHECK(max_edge(r) <= o.size / GLPGP_SURFACE_EDGES);
+               r->nt, pi.refined.split_edges, o.size / glpgp_mesh_longest_edge(r), o.size / r->mean_edge);
+        CHECK(glpgp_mesh_longest_edge(r) <= o.size / GLPGP_SURFACE_EDGES);
         CHECK(r->nt < 16 * m->nt && pi.refined.nt == r->nt && pi.refined.nv - pi.refined.nv0 == pi.refined.split_edges);
         CHECK_CLOSE(r->area, m->area, 0.0, 1e-12);
         CHECK(r->surf->euler == m->surf->euler);
@@ -276,7 +265,7 @@ static void check_prepare_subdivides(void)
     glpgp_mesh_destroy(&r);
     CHECK_OK(glpgp_solve_prepare(m, &o, "torus", 4.0 * m->nt, 1, &r, &pi));
     CHECK(r != NULL && r->nt <= 4 * m->nt);
-    if (r) CHECK(max_edge(r) > o.size / GLPGP_SURFACE_EDGES);
+    if (r) CHECK(glpgp_mesh_longest_edge(r) > o.size / GLPGP_SURFACE_EDGES);
     glpgp_mesh_destroy(&r);
     CHECK_OK(glpgp_solve_prepare(m, &o, "torus", 1.0 * m->nt, 1, &r, &pi));
     CHECK(r == NULL && pi.refined.split_edges == 0);
@@ -296,8 +285,8 @@ static void check_prepare_subdivides(void)
     CHECK(r != NULL);
     if (r) {
         printf("prepare at 7 mean edges: %d -> %d triangles, longest edge h / %.3g\n", m->nt, r->nt,
-               o.size / max_edge(r));
-        CHECK(r->nt < 3 * m->nt && max_edge(r) <= o.size / GLPGP_SURFACE_EDGES);
+               o.size / glpgp_mesh_longest_edge(r));
+        CHECK(r->nt < 3 * m->nt && glpgp_mesh_longest_edge(r) <= o.size / GLPGP_SURFACE_EDGES);
     }
     glpgp_mesh_destroy(&r);
     glpgp_mesh_destroy(&m);

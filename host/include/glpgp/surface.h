@@ -137,6 +137,9 @@ glpgp_status glpgp_surface_fix(int *nv, double **xyz, int *nt, int *tri, glpgp_s
  * boundary loops and topology, edges halved; 4 nt triangles. */
 glpgp_status glpgp_mesh_subdivide_surface(const glpgp_mesh *m, glpgp_mesh **out);
 
+/* The longest edge of mesh m (its x, y, z; mesh/refine_surface.c). */
+double glpgp_mesh_longest_edge(const glpgp_mesh *m);
+
 /* What glpgp_mesh_refine_surface did. */
 typedef struct glpgp_surface_refine_info {
     long splits;                /* edges bisected (= vertices added) */
