@@ -318,6 +318,10 @@ static void weld_log(const char *path, const raw_mesh *r, int merged, int nv, in
  * them is not what its writer meant to write). */
 static void fix_log(const char *path, const glpgp_surface_fixes *fx, int nt)
 {
+    if (fx->duplicate)
+        glpgp_log(GLPGP_LOG_WARNING,
+                  "%s: %d triangles repeat the three vertices of another (a face written twice): dropped", path,
+                  fx->duplicate);
     if (fx->degenerate)
         glpgp_log(GLPGP_LOG_WARNING,
                   "%s: %d triangles of zero area (a vertex inside an edge, or two vertices at one point): removed "
@@ -381,7 +385,7 @@ static glpgp_status finish_surface(const char *path, raw_mesh *r, int *map, int 
     glpgp_surface_fixes fx;
     int nt = (int)r->nt;
     GLPGP_CHECK_GOTO(st, glpgp_surface_fix(&nv, &xyz, &nt, r->tri, &fx), done);
-    fix_log(path, &fx, (int)r->nt);
+    fix_log(path, &fx, (int)r->nt - fx.duplicate);
     r->nt = (size_t)nt;
     if ((st = glpgp_mesh_create_surface(nv, xyz, (int)r->nt, r->tri, out)) != GLPGP_OK) io_name_error(path, st);
 done:

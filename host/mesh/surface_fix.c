@@ -1,6 +1,9 @@
 /* mesh/surface_fix.c: glpgp_surface_fix (glpgp/surface.h), the repairs a
  * surface read from a file may need before glpgp_mesh_create_surface, which
  * stays strict:
+ *  - duplicates (first of all): a triangle on the same three vertices as
+ *    one before it (a face written twice, or once each way round) is
+ *    dropped: the pair would make three edges of three triangles;
  *  - orientation (first): each connected component's triangles oriented
  *    alike (a breadth-first walk across the manifold edges); a component
  *    that needed flips is oriented outward when it is closed (positive
@@ -104,6 +107,54 @@ static glpgp_status orient(glpgp_mesh *m, glpgp_surface *s, int *flipped, int *o
 done:
     free(flip);
     free(queue);
+    return st;
+}
+
+/* ---- duplicate triangles ---------------------------------------------- */
+
+static int cmp_tri_key(const void *pa, const void *pb)
+{
+    const int *a = pa, *b = pb;
+    for (int i = 0; i < 4; i++)
+        if (a[i] != b[i]) return (a[i] > b[i]) - (a[i] < b[i]);
+    return 0;
+}
+
+/* Triangles on the vertex set of an earlier one dropped, the rest kept in
+ * order (*nt shrinks); *dropped: how many. */
+static glpgp_status drop_duplicates(int *nt, int *tri, int *dropped)
+{
+    int *key = NULL; /* per triangle: its sorted vertices, then its index */
+    unsigned char *gone = NULL;
+    *dropped = 0;
+    glpgp_status st = GLPGP_OK;
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)4 * *nt, sizeof(int), &key), done);
+    GLPGP_CHECK_GOTO(st, glpgp_calloc((size_t)*nt, 1, &gone), done);
+    for (int t = 0; t < *nt; t++) {
+        int a = tri[3 * t], b = tri[3 * t + 1], c = tri[3 * t + 2], x;
+        if (a > b) x = a, a = b, b = x;
+        if (b > c) x = b, b = c, c = x;
+        if (a > b) x = a, a = b, b = x;
+        key[4 * t] = a;
+        key[4 * t + 1] = b;
+        key[4 * t + 2] = c;
+        key[4 * t + 3] = t;
+    }
+    qsort(key, (size_t)*nt, 4 * sizeof(int), cmp_tri_key);
+    for (int i = 1; i < *nt; i++)
+        if (!memcmp(key + 4 * i, key + 4 * (i - 1), 3 * sizeof(int))) {
+            gone[key[4 * i + 3]] = 1; /* sorted by index within a vertex set: the first stays */
+            (*dropped)++;
+        }
+    if (*dropped) {
+        int n = 0;
+        for (int t = 0; t < *nt; t++)
+            if (!gone[t]) memmove(tri + 3 * n++, tri + 3 * t, 3 * sizeof(int));
+        *nt = n;
+    }
+done:
+    free(key);
+    free(gone);
     return st;
 }
 
@@ -445,11 +496,12 @@ static int twins_or_leave(glpgp_mesh *m, glpgp_surface *s, int *samedir)
 
 glpgp_status glpgp_surface_fix(int *nv, double **xyz, int *ntp, int *tri, glpgp_surface_fixes *fx)
 {
-    glpgp_surface_fixes none = {0, 0, 0, 0, 0, 0};
+    glpgp_surface_fixes none = {0, 0, 0, 0, 0, 0, 0};
     if (!nv || !xyz || !*xyz || !ntp || !tri || !fx)
         return GLPGP_FAIL(GLPGP_ERR_ARG, "glpgp_surface_fix: NULL argument");
     *fx = none;
     if (*nv < 3 || *ntp < 1 || !well_formed(*nv, *ntp, tri)) return GLPGP_OK;
+    GLPGP_CHECK(drop_duplicates(ntp, tri, &fx->duplicate));
     glpgp_mesh m;
     glpgp_surface s;
     memset(&m, 0, sizeof m);

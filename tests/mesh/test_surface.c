@@ -227,7 +227,7 @@ static double volume6(const double *x, const int *t, int nt)
  * the fixes, then glpgp_mesh_create_surface's verdict; *mo the mesh. */
 static glpgp_surface_fixes fix(const double *x, int nv, const int *t, int nt, glpgp_mesh **mo)
 {
-    glpgp_surface_fixes fx = {-1, -1, -1, -1, -1, -1};
+    glpgp_surface_fixes fx = {-1, -1, -1, -1, -1, -1, -1};
     double *xyz = NULL;
     int *tri = malloc((size_t)3 * nt * sizeof(int));
     *mo = NULL;
@@ -252,6 +252,16 @@ static void check_fix(void)
     glpgp_surface_fixes fx = fix(tet, 4, flip, 4, &m);
     CHECK(fx.flipped == 1 && fx.pinched == 0 && fx.added == 0);
     CHECK(m && m->surf->euler == 2 && memcmp(m->tri, tt, sizeof tt) == 0);
+    glpgp_mesh_destroy(&m);
+    /* a face written twice, the same way round or the other: dropped (the
+     * pair makes three edges of three triangles, which the validation refuses) */
+    const int twice[15] = {0, 2, 1, 0, 1, 3, 1, 2, 3, 0, 1, 3, 0, 3, 2};
+    const int back[15] = {0, 2, 1, 0, 1, 3, 1, 2, 3, 0, 3, 2, 1, 2, 0};
+    fx = fix(tet, 4, twice, 5, &m);
+    CHECK(fx.duplicate == 1 && fx.flipped == 0 && m && m->nt == 4 && memcmp(m->tri, tt, sizeof tt) == 0);
+    glpgp_mesh_destroy(&m);
+    fx = fix(tet, 4, back, 5, &m);
+    CHECK(fx.duplicate == 1 && fx.flipped == 0 && m && m->nt == 4 && m->surf->euler == 2);
     glpgp_mesh_destroy(&m);
     /* inside out with one face right: the three others flipped (outward
      * wins over the majority on a closed part) */

@@ -106,10 +106,13 @@ typedef struct glpgp_surface_fixes {
     int added;      /* the vertices added for them (one per fan after the first) */
     int nonmanifold; /* edges of more than two triangles separated (bodies touching along an edge) */
     int nonmanifold_added; /* the vertices added for them */
+    int duplicate;  /* triangles dropped that repeat another's three vertices (either way round) */
 } glpgp_surface_fixes;
 
 /* The repairs a surface from a file may need before
  * glpgp_mesh_create_surface (which stays strict), in place (mesh/surface_fix.c):
+ *  - a triangle on the same three vertices as one before it (either way
+ *    round: a face written twice) dropped (*nt shrinks, the order kept);
  *  - a zero-area triangle (the validation's test) removed: a cap (a vertex
  *    inside the opposite edge, a T-junction's filler) by flipping that
  *    edge with its neighbour (dropped on the boundary), a needle (two
