@@ -14,6 +14,9 @@
                            other interior cube removed (GX by GY square
                            holes), sharp edges everywhere; each cube face
                            SUB x SUB squares, two triangles each.
+  speck SUBDIV OUT.obj      scan debris: the unit icosphere and, 1 away
+                           from it, a tetrahedron 0.01 across (two
+                           connected components, one far below any size).
 Usage: python3 bench/surface_models.py holes 20 4 holes20.obj"""
 import math
 import sys
@@ -91,6 +94,14 @@ def bumpy(subdiv, out, seed=1):
     write_obj(out, "a bumpy ellipsoid, %d triangles" % len(f), w, f)
 
 
+def speck(subdiv, out):
+    v, f = icosphere(subdiv)
+    n, s = len(v), 0.01
+    v += [(2, 0, 0), (2 + s, 0, 0), (2, s, 0), (2, 0, s)]
+    f += [(n, n + 2, n + 1), (n, n + 1, n + 3), (n + 1, n + 2, n + 3), (n, n + 3, n + 2)]
+    write_obj(out, "a sphere and a speck, %d triangles" % len(f), v, f)
+
+
 def slab(gx, gy, sub, out):
     nx, ny = 2 * gx + 1, 2 * gy + 1
     solid = lambda i, j: 0 <= i < nx and 0 <= j < ny and not (i % 2 == 1 and j % 2 == 1)
@@ -135,6 +146,8 @@ if __name__ == "__main__":
         holes(int(a[2]), int(a[3]), a[4])
     elif len(a) == 4 and a[1] == "bumpy":
         bumpy(int(a[2]), a[3])
+    elif len(a) == 4 and a[1] == "speck":
+        speck(int(a[2]), a[3])
     elif len(a) == 6 and a[1] == "slab":
         slab(int(a[2]), int(a[3]), int(a[4]), a[5])
     else:

@@ -36,6 +36,9 @@ void glpgp_cli_print_surface_steps(const glpgp_quads_surface_steps *s)
            !s->fallback          ? ""
            : s->coarse_triangles ? "; not valid: a coarsened triangulation split into quads (last resort)"
                                  : "; not valid: the input triangles split into quads (last resort)");
+    if (s->parts > 1)
+        printf("  parts          %d connected components meshed apart, %d of them by the last resort\n", s->parts,
+               s->parts_last_resort);
     if (s->local_regions)
         printf("  repaired       %d regions of bad faces repaired locally: %d faces -> %d quads, smallest scaled "
                "Jacobian %.3f\n",

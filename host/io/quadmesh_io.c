@@ -106,6 +106,8 @@ static void json_steps(glpgp_json *w, const glpgp_quads_surface_steps *s)
     glpgp_json_num(w, "sj_after_smoothing", s->sj_after);
     glpgp_json_int(w, "flat_corners", s->flat_corners);
     glpgp_json_int(w, "flat_faces", s->flat_faces);
+    glpgp_json_int(w, "parts", s->parts > 1 ? s->parts : 1);
+    glpgp_json_int(w, "parts_last_resort", s->parts > 1 ? s->parts_last_resort : s->fallback);
     glpgp_json_close(w);
 }
 

@@ -1136,8 +1136,8 @@ static glpgp_status last_resort(const glpgp_mesh *m, double h, glpgp_quadmesh **
     return glpgp_quads_surface_fallback(m, out);
 }
 
-glpgp_status glpgp_quads_build_surface(const glpgp_mesh *m, const glpgp_result *r, const glpgp_quads_options *o,
-                                       glpgp_quadmesh **out, double *h, glpgp_quads_surface_steps *steps)
+glpgp_status glpgp_qs_build_one(const glpgp_mesh *m, const glpgp_result *r, const glpgp_quads_options *o,
+                                glpgp_quadmesh **out, double *h, glpgp_quads_surface_steps *steps)
 {
     glpgp_quads_options def;
     glpgp_quads_surface_steps stp;

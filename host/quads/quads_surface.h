@@ -71,4 +71,9 @@ glpgp_status glpgp_qs_split_flat(const glpgp_mesh *m, const glpgp_quadmesh *q, d
  * a new triangle may have (degrees; unless one before was smaller). */
 glpgp_status glpgp_qs_coarse(const glpgp_mesh *m, double h, double amin_deg, glpgp_quadmesh **out, int *ntri);
 
+/* glpgp_quads_build_surface on a surface of one connected component (or on
+ * all of them at once): quads_surface.c. */
+glpgp_status glpgp_qs_build_one(const glpgp_mesh *m, const glpgp_result *r, const glpgp_quads_options *o,
+                                glpgp_quadmesh **out, double *h, glpgp_quads_surface_steps *steps);
+
 #endif

@@ -19,6 +19,8 @@
 #    characteristic and loops in under 1000 and 3000 quads (the input's
 #    triangles split: 76800 and 13662; a 20 degree angle floor: 1938 and
 #    1665), smallest scaled Jacobian >= 0.3;
+#  - scan debris (a sphere and a speck 0.01 across, two components): the
+#    parts meshed apart, the speck alone by the last resort;
 #  - --quads OUT.ply: a PLY whose faces are the report's quads;
 #  - pictures (where built with OpenImageIO): `render sphere.obj` draws the
 #    3D quad mesh (its counts line: the scaled Jacobian in the faces' own
@@ -114,6 +116,19 @@ PY
 }
 check_coarse genus2 shape:genus2:20000 -2 0 1000
 check_coarse holes20 holes20.obj -18 20 3000
+
+# scan debris: a sphere and a tetrahedron 0.01 across (two components) are
+# meshed apart: the speck by the last resort, the sphere by its grid (the
+# whole surface went to the coarse last resort before: 414 quads)
+python3 "$(dirname "$0")/../../bench/surface_models.py" speck 3 speck.obj || fail "speck.obj"
+run_ok "speck" solve speck.obj --faces 150 --backend reference --quads speck.obj.q.obj --stats speck.json
+python3 - <<'PY' || fail "speck: parts meshed apart"
+import json
+q = json.load(open("speck.json"))["quads"]; st = q["surface"]["steps"]
+assert q["valid"] and q["surface"]["euler"] == 4 and q["other_faces"] == 0, q["invalid_reasons"]
+assert st["parts"] == 2 and st["parts_last_resort"] == 1 and not st["last_resort"], st
+assert 100 <= q["quads"] < 250, q["quads"]
+PY
 
 # the developable half cylinder against its unrolled twin
 run_ok "halfcyl" solve shape:halfcyl:5000 --backend reference --quads hc.obj --stats hc.json

@@ -260,6 +260,10 @@ typedef struct glpgp_quads_surface_steps {
                               stayed valid with a higher smallest scaled Jacobian */
     int flat_faces;        /* faces split for them (the quads and the strips through their sides) */
     double flat_sj_before, flat_sj_after; /* the smallest scaled Jacobian before and after that split */
+    int parts;             /* connected components meshed apart (0: one); the path fields above
+                              (subdivided, fallback, coarse_triangles) are the largest part's, the
+                              counts the sums over the parts */
+    int parts_last_resort; /* of them: ended in the last resort */
 } glpgp_quads_surface_steps;
 
 
@@ -464,8 +468,10 @@ glpgp_status glpgp_quads_surface_fallback_coarse(const glpgp_mesh *m, double h, 
  * user's tolerance), the last resort (glpgp_quads_surface_fallback;
  * o->repair = 0: the extraction's mesh stands, invalid); then the
  * smoothing on the surface and the split of flat boundary corners (kept
- * when valid and better). *h: the target size (unchanged). steps may be
- * NULL. */
+ * when valid and better). A surface of several connected components is
+ * meshed one component at a time (quads/components_surface.c): a part
+ * that ends in the last resort does not take the others with it. *h: the
+ * target size (unchanged). steps may be NULL. */
 glpgp_status glpgp_quads_build_surface(const glpgp_mesh *m, const glpgp_result *r, const glpgp_quads_options *o,
                                        glpgp_quadmesh **out, double *h, glpgp_quads_surface_steps *steps);
 
