@@ -42,23 +42,71 @@ static int label(const glpgp_mesh *m, int *comp, int *parent)
     return n;
 }
 
-/* Part k of m (vertices and triangles in their order) and r's values on it. */
-static glpgp_status part(const glpgp_mesh *m, const glpgp_result *r, const int *comp, int k, int *vmap,
-                         glpgp_mesh **pm, glpgp_result **pr)
+/* The parts' vertices and triangles, each part's in their order (counting
+ * sorts by part): part k has vertices vlist[vstart[k] .. vstart[k + 1]),
+ * triangles tlist[tstart[k] ..); vmap[v]: v's index in its part. */
+typedef struct parts {
+    int n, *comp, *vmap, *vstart, *vlist, *tstart, *tlist;
+} parts;
+
+static void parts_free(parts *p)
 {
-    int nv = 0, nt = 0;
+    free(p->comp);
+    free(p->vmap);
+    free(p->vstart);
+    free(p->vlist);
+    free(p->tstart);
+    free(p->tlist);
+}
+
+static glpgp_status parts_make(const glpgp_mesh *m, parts *p)
+{
+    memset(p, 0, sizeof *p);
+    GLPGP_CHECK(glpgp_malloc((size_t)m->nv, sizeof(int), &p->comp));
+    GLPGP_CHECK(glpgp_malloc((size_t)m->nv, sizeof(int), &p->vmap));
+    GLPGP_CHECK(glpgp_malloc((size_t)m->nv, sizeof(int), &p->vlist));
+    GLPGP_CHECK(glpgp_malloc((size_t)m->nt, sizeof(int), &p->tlist));
+    p->n = label(m, p->comp, p->vmap);
+    GLPGP_CHECK(glpgp_calloc((size_t)p->n + 1, sizeof(int), &p->vstart));
+    GLPGP_CHECK(glpgp_calloc((size_t)p->n + 1, sizeof(int), &p->tstart));
+    for (int v = 0; v < m->nv; v++) p->vstart[p->comp[v] + 1]++;
+    for (int t = 0; t < m->nt; t++) p->tstart[p->comp[m->tri[3 * t]] + 1]++;
+    for (int k = 0; k < p->n; k++) {
+        p->vstart[k + 1] += p->vstart[k];
+        p->tstart[k + 1] += p->tstart[k];
+    }
+    int *vfill = p->vmap; /* label's scratch, then fill counters (n <= nv), then the index in the part */
+    for (int k = 0; k < p->n; k++) vfill[k] = 0;
+    for (int v = 0; v < m->nv; v++) {
+        const int k = p->comp[v];
+        p->vlist[p->vstart[k] + vfill[k]++] = v;
+    }
+    for (int k = 0; k < p->n; k++)
+        for (int i = p->vstart[k]; i < p->vstart[k + 1]; i++) p->vmap[p->vlist[i]] = i - p->vstart[k];
+    int *tfill = NULL;
+    GLPGP_CHECK(glpgp_calloc((size_t)p->n, sizeof(int), &tfill));
+    for (int t = 0; t < m->nt; t++) {
+        const int k = p->comp[m->tri[3 * t]];
+        p->tlist[p->tstart[k] + tfill[k]++] = t;
+    }
+    free(tfill);
+    return GLPGP_OK;
+}
+
+/* Part k of m (vertices and triangles in their order) and r's values on it. */
+static glpgp_status part(const glpgp_mesh *m, const glpgp_result *r, const parts *p, int k, glpgp_mesh **pm,
+                         glpgp_result **pr)
+{
+    const int nv = p->vstart[k + 1] - p->vstart[k], nt = p->tstart[k + 1] - p->tstart[k];
+    const int *vl = p->vlist + p->vstart[k], *tl = p->tlist + p->tstart[k];
     double *xyz = NULL;
     int *tri = NULL;
-    for (int v = 0; v < m->nv; v++) vmap[v] = comp[v] == k ? nv++ : -1;
-    for (int t = 0; t < m->nt; t++) nt += comp[m->tri[3 * t]] == k;
     glpgp_status st = GLPGP_OK;
     GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)3 * nv, sizeof(double), &xyz), done);
     GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)3 * nt, sizeof(int), &tri), done);
-    for (int v = 0; v < m->nv; v++)
-        if (vmap[v] >= 0) memcpy(xyz + 3 * vmap[v], m->xyz + 3 * v, 3 * sizeof(double));
-    for (int t = 0, o = 0; t < m->nt; t++)
-        if (comp[m->tri[3 * t]] == k)
-            for (int a = 0; a < 3; a++) tri[o++] = vmap[m->tri[3 * t + a]];
+    for (int i = 0; i < nv; i++) memcpy(xyz + 3 * i, m->xyz + 3 * vl[i], 3 * sizeof(double));
+    for (int i = 0; i < nt; i++)
+        for (int a = 0; a < 3; a++) tri[3 * i + a] = p->vmap[m->tri[3 * tl[i] + a]];
     GLPGP_CHECK_GOTO(st, glpgp_mesh_create_surface(nv, xyz, nt, tri, pm), done);
     GLPGP_CHECK_GOTO(st, glpgp_result_create(nv, nt, pr), done);
     glpgp_result *q = *pr;
@@ -68,13 +116,12 @@ static glpgp_status part(const glpgp_mesh *m, const glpgp_result *r, const int *
         free(q->field);
         q->field = NULL;
     }
-    for (int v = 0; v < m->nv; v++) {
-        const int w = vmap[v];
-        if (w < 0) continue;
-        if (r->field) memcpy(q->field + 2 * w, r->field + 2 * v, 2 * sizeof(double));
+    for (int i = 0; i < nv; i++) {
+        const int v = vl[i];
+        if (r->field) memcpy(q->field + 2 * i, r->field + 2 * v, 2 * sizeof(double));
         for (int s = 0; s < 2; s++) {
-            if (r->osc[s].z) memcpy(q->osc[s].z + 2 * w, r->osc[s].z + 2 * v, 2 * sizeof(double));
-            if (r->osc[s].dirichlet) q->osc[s].dirichlet[w] = r->osc[s].dirichlet[v];
+            if (r->osc[s].z) memcpy(q->osc[s].z + 2 * i, r->osc[s].z + 2 * v, 2 * sizeof(double));
+            if (r->osc[s].dirichlet) q->osc[s].dirichlet[i] = r->osc[s].dirichlet[v];
         }
     }
 done:
@@ -169,9 +216,9 @@ static void add_steps(glpgp_quads_surface_steps *a, const glpgp_quads_surface_st
 }
 
 static glpgp_status build_parts(const glpgp_mesh *m, const glpgp_result *r, const glpgp_quads_options *o,
-                                glpgp_quadmesh **out, double *h, glpgp_quads_surface_steps *steps, int *comp,
-                                int *vmap, int n)
+                                glpgp_quadmesh **out, double *h, glpgp_quads_surface_steps *steps, const parts *p)
 {
+    const int n = p->n;
     glpgp_quadmesh **qp = NULL;
     glpgp_quads_surface_steps stp;
     memset(&stp, 0, sizeof stp);
@@ -184,18 +231,22 @@ static glpgp_status build_parts(const glpgp_mesh *m, const glpgp_result *r, cons
         glpgp_result *pr = NULL;
         glpgp_quads_surface_steps ps;
         memset(&ps, 0, sizeof ps);
-        st = part(m, r, comp, k, vmap, &pm, &pr);
+        st = part(m, r, p, k, &pm, &pr);
         if (st == GLPGP_OK) st = glpgp_qs_build_one(pm, pr, o, &qp[k], h, &ps);
         if (st == GLPGP_OK) {
             const int largest = pm->nt > best_nt;
             if (largest) best_nt = pm->nt;
             add_steps(&stp, &ps, largest);
-            glpgp_log(n <= 10 || ps.fallback ? GLPGP_LOG_INFO : GLPGP_LOG_DEBUG, "quads: part %d of %d (%d triangles): %d faces%s", k + 1, n, pm->nt,
-                      qp[k]->nf, ps.fallback ? ", by the last resort" : "");
+            glpgp_log(n <= 10 ? GLPGP_LOG_INFO : GLPGP_LOG_DEBUG,
+                      "quads: part %d of %d (%d triangles): %d faces%s", k + 1, n, pm->nt, qp[k]->nf,
+                      ps.fallback ? ", by the last resort" : "");
         }
         glpgp_mesh_destroy(&pm);
         glpgp_result_destroy(&pr);
     }
+    if (st == GLPGP_OK && n > 10)
+        glpgp_log(GLPGP_LOG_INFO, "quads: %d parts meshed apart, %d of them by the last resort", n,
+                  stp.parts_last_resort);
     if (st == GLPGP_OK) st = join(qp, n, out);
     for (int k = 0; k < n; k++) glpgp_quadmesh_destroy(&qp[k]);
     free(qp);
@@ -209,14 +260,10 @@ glpgp_status glpgp_quads_build_surface(const glpgp_mesh *m, const glpgp_result *
     *out = NULL;
     if (!m || !m->surf || !r || r->nv != m->nv || r->nt != m->nt || m->surf->ncomponents <= 1)
         return glpgp_qs_build_one(m, r, o, out, h, steps);
-    int *comp = NULL, *vmap = NULL;
-    glpgp_status st = GLPGP_OK;
-    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)m->nv, sizeof(int), &comp), done);
-    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)m->nv, sizeof(int), &vmap), done);
-    const int n = label(m, comp, vmap);
-    st = n > 1 ? build_parts(m, r, o, out, h, steps, comp, vmap, n) : glpgp_qs_build_one(m, r, o, out, h, steps);
-done:
-    free(comp);
-    free(vmap);
+    parts p;
+    glpgp_status st = parts_make(m, &p);
+    if (st == GLPGP_OK)
+        st = p.n > 1 ? build_parts(m, r, o, out, h, steps, &p) : glpgp_qs_build_one(m, r, o, out, h, steps);
+    parts_free(&p);
     return st;
 }

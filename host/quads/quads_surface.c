@@ -1150,7 +1150,7 @@ glpgp_status glpgp_qs_build_one(const glpgp_mesh *m, const glpgp_result *r, cons
     glpgp_quadmesh *q = NULL;
     glpgp_status st = glpgp_quads_extract_surface(m, r, &q);
     if (st == GLPGP_ERR_NUMERIC && o->repair) {
-        glpgp_log(GLPGP_LOG_INFO, "quads: %s; the input triangles are split into quads", glpgp_error_message());
+        glpgp_log(GLPGP_LOG_DEBUG, "quads: %s; the input triangles are split into quads", glpgp_error_message());
         glpgp_error_clear();
         st = GLPGP_OK;
     }
