@@ -476,7 +476,7 @@ static int cmp_sedge(const void *pa, const void *pb)
 
 static void dedupe(sxctx *c)
 {
-    qsort(c->e, (size_t)c->ne, sizeof *c->e, cmp_sedge);
+    if (c->ne > 1) qsort(c->e, (size_t)c->ne, sizeof *c->e, cmp_sedge);
     int w = 0;
     for (int i = 0; i < c->ne; i++) {
         if (w > 0 && cmp_sedge(&c->e[w - 1], &c->e[i]) <= 0 &&

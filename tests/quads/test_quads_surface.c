@@ -27,6 +27,8 @@
  *    loops, under a tenth of the fine last resort's quads, and smoothing
  *    it keeps it valid without lowering its smallest scaled Jacobian (also
  *    on the torus);
+ *  - two components (the half cylinder and a speck beside it) are meshed
+ *    apart: the grid's 40 quads and the speck's 12 from the last resort;
  *  - the check fails where it must: a face turned over (non-manifold and
  *    inverted), a face removed (a new boundary loop, Euler 1 of 2), a vertex
  *    moved h/2 off the surface (Hausdorff), a planar mesh or h <= 0
@@ -425,6 +427,48 @@ static void coarse(const char *shape, long nv, double h, int euler, int loops)
     glpgp_mesh_destroy(&m);
 }
 
+/* Two components, the half cylinder and a speck (a tetrahedron 0.01
+ * across beside it), with the cylinder's plane waves: meshed apart, the
+ * grid's 40 quads kept and the speck alone split by the last resort (its
+ * 4 triangles into 12 quads); the whole went to the last resort before. */
+static void parts(void)
+{
+    glpgp_mesh *hc = NULL, *m = NULL;
+    CHECK_OK(glpgp_surface_generate("halfcyl", 5000, &hc));
+    if (!hc) return;
+    const int nv = hc->nv + 4, nt = hc->nt + 4;
+    double *xyz = malloc((size_t)3 * nv * sizeof(double));
+    int *tri = malloc((size_t)3 * nt * sizeof(int));
+    if (xyz && tri) {
+        const double sp = 0.01, P[12] = {5, 0, 0, 5 + sp, 0, 0, 5, sp, 0, 5, 0, sp};
+        const int T[12] = {0, 2, 1, 0, 1, 3, 1, 2, 3, 0, 3, 2};
+        memcpy(xyz, hc->xyz, (size_t)3 * hc->nv * sizeof(double));
+        memcpy(xyz + 3 * hc->nv, P, sizeof P);
+        memcpy(tri, hc->tri, (size_t)3 * hc->nt * sizeof(int));
+        for (int k = 0; k < 12; k++) tri[3 * hc->nt + k] = hc->nv + T[k];
+        CHECK_OK(glpgp_mesh_create_surface(nv, xyz, nt, tri, &m));
+    }
+    glpgp_result *r = m ? halfcyl_waves(m, HU, HV) : NULL;
+    glpgp_quadmesh *q = NULL;
+    glpgp_quads_surface_steps st;
+    double h = HV;
+    if (r) CHECK_OK(glpgp_quads_build_surface(m, r, NULL, &q, &h, &st));
+    CHECK(q != NULL);
+    if (q) {
+        CHECK(st.parts == 2 && st.parts_last_resort == 1 && !st.fallback && !st.subdivided);
+        CHECK(q->nf == 40 + 12 && h == HV);
+        glpgp_quads_report qq;
+        CHECK_OK(glpgp_quads_quality_surface(q, m, HV, &qq));
+        CHECK(qq.invalid == 0 && qq.quads == 52 && qq.euler == 3 && qq.boundary_loops == 1);
+    }
+    glpgp_quadmesh_destroy(&q);
+    glpgp_result_destroy(&r);
+    glpgp_mesh_destroy(&m);
+    glpgp_mesh_destroy(&hc);
+    free(xyz);
+    free(tri);
+}
+
 static void dbg_log(glpgp_log_level l, const char *msg, void *u)
 {
     (void)l;
@@ -440,6 +484,7 @@ int main(void)
     slide();
     local_repair();
     overlap_repair();
+    parts();
     coarse("genus2", 5000, 0.55, -2, 0);
     coarse("cube", 5000, 0.3, 2, 0);
     coarse("hemisphere", 5000, 0.25, 1, 1);
