@@ -49,6 +49,8 @@
 #define LR_SJ_BAD 0.02   /* a face with a corner at or below: repaired */
 #define LR_FAR 0.22      /* a face sample farther from the surface (in h): repaired */
 #define LR_SJ_NEW 0.0    /* the new quads' corners must be above (the smoothing follows) */
+#define LR_SJ_TANGLED -0.5 /* a lift whose worst corner is above this is untangled first */
+#define LR_UNTANGLE 10   /* the untangling's Laplacian sweeps at most */
 #define LR_SHORT 0.05    /* a face with a side under this (in h): repaired */
 #define LR_ROUNDS 6      /* growth rounds */
 #define LR_SHARE 0.5     /* regions over this share of the faces: not a local repair */
@@ -812,6 +814,41 @@ static glpgp_status cut_loop(const lrep *L, dvec *xy, int n, ivec *quads, int *o
     return st;
 }
 
+/* Laplacian sweeps (at most LR_UNTANGLE) on the region's new points (ids
+ * from first on): each to the mean of its edge neighbours in the nq quads,
+ * moved to its nearest point on the surface, while a corner is at or below
+ * LR_SJ_NEW; mends a lift that tangled a few corners (a chart a little
+ * off the surface). Returns the worst corner after. */
+static glpgp_status untangle(lrep *L, const int *quads, int nq, int first, double *worst)
+{
+    const int nn = L->q->nv + L->nxyz.n / 3 - first;
+    double *acc = NULL;
+    GLPGP_CHECK(glpgp_calloc((size_t)4 * nn + 4, sizeof(double), &acc));
+    for (int sweep = 0; sweep < LR_UNTANGLE && !(*worst > LR_SJ_NEW); sweep++) {
+        memset(acc, 0, (size_t)4 * nn * sizeof(double));
+        for (int k = 0; k < nq; k++)
+            for (int i = 0; i < 4; i++) {
+                const int a = quads[4 * k + i], b = quads[4 * k + (i + 1) % 4];
+                for (int e = 0; e < 2; e++) {
+                    const int u = e ? b : a, w = e ? a : b;
+                    if (u < first) continue;
+                    for (int d = 0; d < 3; d++) acc[4 * (u - first) + d] += pos(L, w)[d];
+                    acc[4 * (u - first) + 3] += 1.0;
+                }
+            }
+        for (int j = 0; j < nn; j++) {
+            if (!(acc[4 * j + 3] > 0)) continue;
+            double x[3];
+            for (int d = 0; d < 3; d++) x[d] = acc[4 * j + d] / acc[4 * j + 3];
+            glpgp_qs_proj_nearest(L->P, x, L->nxyz.p + 3 * (first - L->q->nv + j));
+        }
+        *worst = 1.0;
+        for (int k = 0; k < nq; k++) *worst = fmin(*worst, quad_sj(L, quads + 4 * k));
+    }
+    free(acc);
+    return GLPGP_OK;
+}
+
 /* The cut mesher's quads of the loop in chart C, the new points lifted onto
  * the surface (into L->nxyz), checked in 3D; see mesh_loop. */
 static glpgp_status mesh_in_chart(lrep *L, const int *loop, int n, lchart *C, ivec *out, double *sjmin, int *ok)
@@ -825,6 +862,7 @@ static glpgp_status mesh_in_chart(lrep *L, const int *loop, int n, lchart *C, iv
         if (st == GLPGP_OK) st = dpush(&xy, C->kind ? C->uv[2 * i + 1] : 0.0);
     }
     if (st == GLPGP_OK && !C->kind && !chart(L, loop, n, C->o, C->e, xy.p, C->z)) goto done;
+    const int first = L->q->nv + L->nxyz.n / 3; /* the region's new points' first id */
     int cut = 0;
     if (st == GLPGP_OK) st = cut_loop(L, &xy, n, &quads, &cut);
     if (st != GLPGP_OK || !cut) goto done;
@@ -851,7 +889,8 @@ static glpgp_status mesh_in_chart(lrep *L, const int *loop, int n, lchart *C, iv
     double worst = 1.0;
     for (int k = 0; k < quads.n; k++) quads.p[k] = gid.p[quads.p[k]];
     for (int k = 0; k < quads.n / 4; k++) worst = fmin(worst, quad_sj(L, quads.p + 4 * k));
-    if (!(worst > LR_SJ_NEW)) {
+    if (!(worst > LR_SJ_NEW) && worst > LR_SJ_TANGLED) st = untangle(L, quads.p, quads.n / 4, first, &worst);
+    if (st == GLPGP_OK && !(worst > LR_SJ_NEW)) {
         glpgp_log(GLPGP_LOG_DEBUG, "quads: surface local repair: %d quads in the %s chart, scaled Jacobian %.3f on the surface",
                   quads.n / 4, C->kind == 2 ? "patch" : C->kind ? "disk" : "plane", worst);
         goto done;
