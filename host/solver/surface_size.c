@@ -16,6 +16,9 @@
 #include <stdlib.h>
 #include <string.h>
 
+/* the curvature cap's sampling distance, in h (ring_curvature) */
+#define GLPGP_SURFACE_CURVATURE_SCALE 0.25
+
 static double dist3(const double *a, const double *b)
 {
     return sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2]));
@@ -62,14 +65,97 @@ static glpgp_status grade(const glpgp_mesh *m, double g, double *s)
     return GLPGP_OK;
 }
 
+/* The chord of sagitta d on a circle of curvature kap (h where kap or d is 0). */
+static double chord_cap(double kap, double d)
+{
+    if (!(kap > 0.0) || !(d > 0.0)) return HUGE_VAL;
+    const double R = 1.0 / kap;
+    return d < R ? 2.0 * sqrt(2.0 * R * d - d * d) : 2.0 * R;
+}
+
+/* fv (nv) <- 1 at the vertices on a sharp feature edge */
+static void feature_vertices(const glpgp_mesh *m, const glpgp_surface_constraints *con, unsigned char *fv)
+{
+    memset(fv, 0, (size_t)m->nv);
+    for (int h = 0; h < 3 * m->nt; h++)
+        if (con->feature[h]) fv[m->tri[h]] = fv[m->tri[h - h % 3 + (h % 3 + 1) % 3]] = 1;
+}
+
+/* The curvature cap at the smooth vertices (no feature edge), measured at
+ * a fixed scale r: the largest |(n_j - n_i) . (x_j - x_i)| / |x_j - x_i|^2
+ * over the smooth vertices j first reached at path distance >= r (a
+ * Dijkstra from i through smooth vertices, not expanded beyond r; the
+ * nearer ones when none is that far), n the vertex normals. At the scale
+ * of the edges instead (the one-ring), the estimate of a vertex of the
+ * input grows as its edges are bisected: the refined polyhedron's new
+ * vertices carry its facets' normals, which differ from the old vertex's
+ * by the input's edge over R whatever the new edge's length (measured on
+ * genus2:20000: h / 2.5 on the input, h / 4.0 and h / 7.9 refined to h / 16
+ * and h / 32). At r of the order of the input's edges or more, the samples
+ * see the same normal turn on the input and on any refinement of it. */
+static glpgp_status ring_curvature(const glpgp_mesh *m, const unsigned char *fv, double r, double depth, double h,
+                                   double *s)
+{
+    const int nv = m->nv;
+    const double *vn = m->surf->vnormal;
+    double *d = NULL;
+    int *seen = NULL;
+    glpgp_heap q = {NULL, 0, 0};
+    glpgp_status st = GLPGP_OK;
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)nv, sizeof(double), &d), done);
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)nv, sizeof(int), &seen), done);
+    GLPGP_CHECK_GOTO(st, glpgp_heap_reserve(&q, 64), done);
+    for (int i = 0; i < nv; i++) seen[i] = -1;
+    for (int i = 0; i < nv && st == GLPGP_OK; i++) {
+        if (fv[i]) continue;
+        int nl = 0;
+        double far = 0.0, near = 0.0; /* the largest curvature sample beyond r, and nearer */
+        q.n = 0;
+        d[i] = 0.0;
+        seen[i] = i;
+        st = glpgp_heap_push(&q, 0.0, i);
+        while (st == GLPGP_OK && q.n > 0) {
+            const glpgp_heap_item it = glpgp_heap_pop(&q);
+            const int a = it.id;
+            if (it.key > d[a]) continue; /* stale */
+            if (a != i) {
+                const double *xa = m->xyz + 3 * a, *xi = m->xyz + 3 * i, l = dist3(xa, xi);
+                double dn = 0.0;
+                for (int e = 0; e < 3; e++) dn += (vn[3 * a + e] - vn[3 * i + e]) * (xa[e] - xi[e]);
+                const double k = fabs(dn) / (l * l);
+                if (d[a] >= r) {
+                    far = fmax(far, k);
+                    nl++;
+                    continue; /* a sample: not expanded */
+                }
+                near = fmax(near, k);
+            }
+            FOR_NEIGHBOURS(m, a, j, {
+                const double c = d[a] + dist3(m->xyz + 3 * a, m->xyz + 3 * j);
+                if (!fv[j] && (seen[j] != i || c < d[j]) && st == GLPGP_OK) {
+                    seen[j] = i;
+                    d[j] = c;
+                    st = glpgp_heap_push(&q, c, j);
+                }
+            });
+        }
+        s[i] = fmin(s[i], chord_cap(nl ? far : near, depth * h));
+    }
+done:
+    free(d);
+    free(seen);
+    glpgp_heap_free(&q);
+    return st;
+}
+
 /* The curvature cap: R_i = 1 / the largest normal curvature |(n_j - n_i) .
  * e| / |e|^2 over the vertex's edges e = x_j - x_i, with the normals of the
  * smooth sectors the edge lies in (each vertex's fan split at its feature
  * edges, a sector's normal the angle-weighted mean of its triangles'): a
  * crease between two flat faces is no curvature (the plain vertex normal,
  * averaged across it, would make it one); chord of sagitta d = depth h. */
-static glpgp_status curvature_cap(const glpgp_mesh *m, const glpgp_surface_constraints *con, double depth, double h,
-                                  double *s)
+static glpgp_status curvature_cap(const glpgp_mesh *m, const glpgp_surface_constraints *con, const unsigned char *fv,
+                                  double depth, double h, double *s)
 {
     const glpgp_surface *g = m->surf;
     double *sn = NULL; /* 3 per corner: its sector's normal */
@@ -106,14 +192,13 @@ static glpgp_status curvature_cap(const glpgp_mesh *m, const glpgp_surface_const
     for (int t = 0; t < m->nt; t++)
         for (int a = 0; a < 3; a++) {
             const int ca = 3 * t + a, cb = 3 * t + (a + 1) % 3, i = m->tri[ca], j = m->tri[cb];
+            if (!fv[i] && !fv[j]) continue; /* both smooth: ring_curvature */
             const double *xi = m->xyz + 3 * i, *xj = m->xyz + 3 * j, l = dist3(xi, xj);
             double dn = 0.0;
             for (int e = 0; e < 3; e++) dn += (sn[3 * cb + e] - sn[3 * ca + e]) * (xj[e] - xi[e]);
-            const double kap = fabs(dn) / (l * l), d = depth * h;
-            if (!(kap > 0.0) || !(d > 0.0)) continue;
-            const double R = 1.0 / kap, cap = d < R ? 2.0 * sqrt(2.0 * R * d - d * d) : 2.0 * R;
-            s[i] = fmin(s[i], cap);
-            s[j] = fmin(s[j], cap);
+            const double cap = chord_cap(fabs(dn) / (l * l), depth * h);
+            if (fv[i]) s[i] = fmin(s[i], cap);
+            if (fv[j]) s[j] = fmin(s[j], cap);
         }
     free(sn);
     return GLPGP_OK;
@@ -211,6 +296,22 @@ done:
     return st;
 }
 
+glpgp_status glpgp_surface_size_local(const glpgp_mesh *m, const glpgp_options *o,
+                                      const glpgp_surface_constraints *con, double h, double *size)
+{
+    for (int i = 0; i < m->nv; i++) size[i] = h;
+    unsigned char *fv = NULL;
+    GLPGP_CHECK(glpgp_malloc((size_t)m->nv, 1, &fv));
+    feature_vertices(m, con, fv);
+    glpgp_status st = curvature_cap(m, con, fv, o->size_chord_depth, h, size);
+    if (st == GLPGP_OK) st = ring_curvature(m, fv, GLPGP_SURFACE_CURVATURE_SCALE * h, o->size_chord_depth, h, size);
+    free(fv);
+    GLPGP_CHECK(st);
+    GLPGP_CHECK(feature_spacing(m, con, o->size_across, size));
+    for (int i = 0; i < m->nv; i++) size[i] = fmax(size[i], o->size_min * h);
+    return grade(m, o->size_grading, size);
+}
+
 glpgp_status glpgp_surface_size(const glpgp_mesh *m, const glpgp_options *o, const glpgp_surface_constraints *con,
                                 double h, double *size, int *uniform)
 {
@@ -221,10 +322,7 @@ glpgp_status glpgp_surface_size(const glpgp_mesh *m, const glpgp_options *o, con
     if (o->size_field == GLPGP_SIZE_FILE) {
         GLPGP_CHECK(glpgp_size_file_read(m, o->size_file, size));
     } else {
-        GLPGP_CHECK(curvature_cap(m, con, o->size_chord_depth, h, size));
-        GLPGP_CHECK(feature_spacing(m, con, o->size_across, size));
-        for (int i = 0; i < nv; i++) size[i] = fmax(size[i], o->size_min * h);
-        GLPGP_CHECK(grade(m, o->size_grading, size));
+        GLPGP_CHECK(glpgp_surface_size_local(m, o, con, h, size));
         memcpy(size + nv, size, (size_t)nv * sizeof(double));
     }
     /* what the mesh carries: at least min(h, size_resolution x the longest edge at the vertex) */
