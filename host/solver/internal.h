@@ -38,7 +38,10 @@ glpgp_status glpgp_surface_size_local(const glpgp_mesh *m, const glpgp_options *
  * than h(x) / GLPGP_SURFACE_EDGES bisected (glpgp_mesh_refine_surface_sized),
  * h(x) glpgp_surface_size_local on m (auto / iso; h for the other size
  * fields: glpgp_mesh_refine_surface to h / N), within max_triangles; *out
- * NULL when no edge needed it. */
+ * NULL when no edge needed it. Up to GLPGP_SURFACE_REFINE_PASSES passes,
+ * the size recomputed on each refined mesh; info->passes those that split,
+ * info->ratio the largest edge / (h(x) / N) on the result with h(x)
+ * recomputed on it (glpgp_surface_edge_ratio). */
 glpgp_status glpgp_surface_refine_local(const glpgp_mesh *m, const glpgp_options *o, double h, double max_triangles,
                                         glpgp_mesh **out, glpgp_surface_refine_info *info);
 /* The largest edge / (h(x) / GLPGP_SURFACE_EDGES) over m's edges (*ratio,

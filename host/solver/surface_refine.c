@@ -90,6 +90,7 @@ glpgp_status glpgp_surface_refine_local(const glpgp_mesh *m, const glpgp_options
         return glpgp_mesh_refine_surface(m, h / GLPGP_SURFACE_EDGES, max_triangles, out, info);
     glpgp_mesh *cur = NULL;
     glpgp_status st = GLPGP_OK;
+    int checked = 0; /* info->ratio measured on the final mesh's own size */
     for (int pass = 0; pass < GLPGP_SURFACE_REFINE_PASSES && st == GLPGP_OK; pass++) {
         glpgp_surface_refine_info ri;
         glpgp_mesh *next = NULL;
@@ -98,18 +99,24 @@ glpgp_status glpgp_surface_refine_local(const glpgp_mesh *m, const glpgp_options
         if (pass == 0) {
             *info = ri;
         } else {
-            info->splits += ri.splits;
             info->min_target = fmin(info->min_target, ri.min_target);
             info->stopped |= ri.stopped;
-            info->passes = pass + 1;
-            if (next) info->nv = ri.nv, info->nt = ri.nt, info->max_edge = ri.max_edge, info->ratio = ri.ratio;
         }
-        if (!next) break;
+        if (!next) { /* nothing longer than its h(x) / N (or the limit): ratio0 is the check */
+            info->ratio = ri.ratio0;
+            checked = !ri.stopped;
+            break;
+        }
+        if (pass > 0) {
+            info->splits += ri.splits;
+            info->nv = ri.nv, info->nt = ri.nt, info->max_edge = ri.max_edge;
+        }
         info->passes = pass + 1;
         glpgp_mesh_destroy(&cur);
         cur = next;
         if (ri.stopped) break;
     }
+    if (st == GLPGP_OK && cur && !checked) st = glpgp_surface_edge_ratio(cur, o, h, &info->ratio, NULL);
     if (st != GLPGP_OK) glpgp_mesh_destroy(&cur);
     *out = cur;
     return st;
