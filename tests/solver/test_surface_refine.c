@@ -10,6 +10,7 @@
  *  - the local size is the same on the input and on refinements of it (the
  *    curvature measured at a fixed scale, not per edge: per edge it grew as
  *    the edges were bisected): on the unit sphere the analytic cap;
+ *  - within --max-elements (the ratio then reported above 1);
  *  - with --size-field none the refinement is the global one (h / N). */
 #include "testutil.h"
 
@@ -89,6 +90,12 @@ static void check_genus2(void)
     CHECK(u && r->nt < u->nt / 2);
     if (u) printf("  everything to the smallest target: %d triangles\n", u->nt);
     glpgp_mesh_destroy(&u);
+    glpgp_mesh_destroy(&r);
+    /* --max-elements: within it (the last level that fits), said so */
+    CHECK_OK(glpgp_solve_prepare(m, &o, "genus2", 2.0 * m->nt, 1, &r, &pi));
+    CHECK(r && r->nt <= 2 * m->nt && pi.refined.edge_ratio > 1.1);
+    if (r) printf("  within 2x the input: %d triangles, largest edge / (h(x) / %g) %.3f\n", r->nt, GLPGP_SURFACE_EDGES,
+                  pi.refined.edge_ratio);
     glpgp_mesh_destroy(&r);
     /* --size-field none: h / N everywhere, the global rule's mesh */
     o.size_field = GLPGP_SIZE_NONE;
