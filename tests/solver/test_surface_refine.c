@@ -11,7 +11,8 @@
  *    curvature measured at a fixed scale, not per edge: per edge it grew as
  *    the edges were bisected): on the unit sphere the analytic cap;
  *  - within --max-elements (the ratio then reported above 1);
- *  - with --size-field none the refinement is the global one (h / N). */
+ *  - with --size-field none the refinement is the global one (h / N);
+ *  - with a size file none (its values belong to the input's vertices). */
 #include "testutil.h"
 
 #include "glpgp/surfsolve.h"
@@ -101,6 +102,12 @@ static void check_genus2(void)
     o.size_field = GLPGP_SIZE_NONE;
     CHECK_OK(glpgp_solve_prepare(m, &o, "genus2", 0, 1, &r, &pi));
     CHECK(r && g && !pi.refined.local && r->nt == g->nt);
+    glpgp_mesh_destroy(&r);
+    /* a size file (one value per input vertex): not refined, a warning */
+    o.size_field = GLPGP_SIZE_FILE;
+    o.size_file = "sizes-of-the-input.txt";
+    CHECK_OK(glpgp_solve_prepare(m, &o, "genus2", 0, 1, &r, &pi));
+    CHECK(r == NULL && pi.refined.split_edges == 0);
     glpgp_mesh_destroy(&r);
     glpgp_mesh_destroy(&g);
     glpgp_mesh_destroy(&m);
