@@ -16,7 +16,8 @@
  * the targets are interpolated onto the new vertices within a pass, and
  * the size recomputed on the refined mesh (what the solve uses) drives a
  * further pass where an edge is still longer than its h(x) / N, at most
- * GLPGP_SURFACE_REFINE_PASSES in all. */
+ * GLPGP_SURFACE_REFINE_PASSES in all (a noisy scan still does not settle:
+ * its normals' noise reads as curvature; bench/results/surface_refine.md). */
 #include "internal.h"
 
 #include "glpgp/surfsolve.h"

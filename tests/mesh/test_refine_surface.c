@@ -141,17 +141,15 @@ static void check_shape(const char *name, long n, double frac)
     glpgp_mesh_destroy(&m);
 }
 
-/* A tilted strip, fine for x <= 1 (spacing 1/4) and coarse beyond (x = 2,
- * 3, 4): refined to 1/2, the fine part's triangles are all kept as they are */
-static void check_local(void)
+/* A tilted strip (not flat) at the abscissae xs (nx of them, at most 8)
+ * and ny rows dy apart (at most 5) */
+static glpgp_mesh *strip_mesh(const double *xs, int nx, int ny, double dy)
 {
-    const double xs[] = {0, 0.25, 0.5, 0.75, 1, 2, 3, 4};
-    const int nx = 8, ny = 5;
     double xyz[3 * 8 * 5];
     int tri[6 * 7 * 4], nt = 0;
     for (int j = 0; j < ny; j++)
         for (int i = 0; i < nx; i++) {
-            const double x = xs[i], y = 0.25 * j;
+            const double x = xs[i], y = dy * j;
             xyz[3 * (j * nx + i)] = x;
             xyz[3 * (j * nx + i) + 1] = y;
             xyz[3 * (j * nx + i) + 2] = 0.3 * x + 0.2 * y + 0.1 * x * y; /* not flat */
@@ -163,8 +161,17 @@ static void check_local(void)
             memcpy(tri + 3 * nt, T, sizeof T);
             nt += 2;
         }
-    glpgp_mesh *m = NULL, *r = NULL;
+    glpgp_mesh *m = NULL;
     CHECK_OK(glpgp_mesh_create_surface(nx * ny, xyz, nt, tri, &m));
+    return m;
+}
+
+/* A tilted strip, fine for x <= 1 (spacing 1/4) and coarse beyond (x = 2,
+ * 3, 4): refined to 1/2, the fine part's triangles are all kept as they are */
+static void check_local(void)
+{
+    const double xs[] = {0, 0.25, 0.5, 0.75, 1, 2, 3, 4};
+    glpgp_mesh *m = strip_mesh(xs, 8, 5, 0.25), *r = NULL;
     if (!m) return;
     glpgp_surface_refine_info ri;
     CHECK_OK(glpgp_mesh_refine_surface(m, 0.5, 0, &r, &ri));
@@ -229,26 +236,8 @@ static void check_limit(void)
 /* the strip of check_local at spacing 1 in x (0 .. 5), 0.5 in y (0 .. 1) */
 static glpgp_mesh *strip(void)
 {
-    const int nx = 6, ny = 3;
-    double xyz[3 * 6 * 3];
-    int tri[6 * 5 * 2], nt = 0;
-    for (int j = 0; j < ny; j++)
-        for (int i = 0; i < nx; i++) {
-            const double x = i, y = 0.5 * j;
-            xyz[3 * (j * nx + i)] = x;
-            xyz[3 * (j * nx + i) + 1] = y;
-            xyz[3 * (j * nx + i) + 2] = 0.3 * x + 0.2 * y + 0.1 * x * y;
-        }
-    for (int j = 0; j + 1 < ny; j++)
-        for (int i = 0; i + 1 < nx; i++) {
-            const int a = j * nx + i, b = a + 1, c = a + nx + 1, d = a + nx;
-            const int T[6] = {a, b, c, a, c, d};
-            memcpy(tri + 3 * nt, T, sizeof T);
-            nt += 2;
-        }
-    glpgp_mesh *m = NULL;
-    CHECK_OK(glpgp_mesh_create_surface(nx * ny, xyz, nt, tri, &m));
-    return m;
+    const double xs[] = {0, 1, 2, 3, 4, 5};
+    return strip_mesh(xs, 6, 3, 0.5);
 }
 
 /* target affine in position: a + b z on a sphere (small at the bottom) */
