@@ -7,17 +7,15 @@
  *
  * The size is computed on the input mesh, before refinement: its vertices
  * lie on the modelled surface, the bisection's midpoints only on its
- * piecewise linear interpolant, and the curvature estimate of a vertex
- * (normal turn over edge length) grows as the edges around an old vertex
- * or crease get shorter on that same polyhedron: a size recomputed on the
- * refined mesh and refined for again would not converge. The curvature
- * cap is therefore measured at a fixed scale (surface_size.c,
- * ring_curvature), nearly the same on the input and on its refinements;
- * the targets are interpolated onto the new vertices within a pass, and
- * the size recomputed on the refined mesh (what the solve uses) drives a
- * further pass where an edge is still longer than its h(x) / N, at most
- * GLPGP_SURFACE_REFINE_PASSES in all (a noisy scan still does not settle:
- * its normals' noise reads as curvature; bench/results/surface_refine.md). */
+ * piecewise linear interpolant. The curvature cap is the sagitta of patches
+ * of a given radius (surface_size.c, sagitta_cap), nearly the same on the
+ * input and on its refinements and blind to noise under d / 2 (a normals'
+ * turn per edge grew as the same polyhedron was bisected, and read a scan's
+ * noise as curvature: bench/results/surface_refine.md); the targets are
+ * interpolated onto the new vertices within a pass, and the size
+ * recomputed on the refined mesh (what the solve uses) drives a further
+ * pass where an edge is still longer than its h(x) / N, at most
+ * GLPGP_SURFACE_REFINE_PASSES in all. */
 #include "internal.h"
 
 #include "glpgp/surfsolve.h"

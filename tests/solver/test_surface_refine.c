@@ -8,8 +8,9 @@
  *  - the same surface (area, Euler characteristic), and fewer triangles
  *    than refining everything to the smallest h(x) / N;
  *  - the local size is the same on the input and on refinements of it (the
- *    curvature measured at a fixed scale, not per edge: per edge it grew as
- *    the edges were bisected): on the unit sphere the analytic cap;
+ *    curvature measured as the sagitta of patches of a given radius, not
+ *    per edge: per edge it grew as the edges were bisected): on the unit
+ *    sphere the analytic cap;
  *  - within --max-elements (the ratio then reported above 1);
  *  - with --size-field none the refinement is the global one (h / N);
  *  - with a size file none (its values belong to the input's vertices). */
