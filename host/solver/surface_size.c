@@ -17,11 +17,13 @@
 #include <string.h>
 
 /* the sagitta cap's ladder of patch radii: from h / 2 down by 2^(-1/2)
- * while at least GLPGP_SAGITTA_FLOOR mean edges; its centres at least
- * GLPGP_SAGITTA_COVER h apart (each one's value spread to the vertices of its
- * patch within that distance, and within a quarter of its cap) */
+ * while at least GLPGP_SAGITTA_FLOOR mean edges; each centre's cap spread
+ * to the vertices of its patch within GLPGP_SAGITTA_COVER x the cap (or h
+ * where none: half the patch's radius; at 1 / 8, with centres twice as
+ * dense, the sizes of bench/results/surface_refine.md's models were the
+ * same within 1% of the vertices and took 2 - 4x longer) */
 #define GLPGP_SAGITTA_FLOOR 2.0
-#define GLPGP_SAGITTA_COVER 0.125
+#define GLPGP_SAGITTA_COVER 0.25
 #define GLPGP_SAGITTA_RUNGS 24
 
 static double dist3(const double *a, const double *b)
@@ -204,7 +206,7 @@ static glpgp_status patch_cap(const glpgp_mesh *m, const glpgp_surface_constrain
 }
 
 /* Vertex i as a centre: each sector's patch cap spread to the patch's
- * vertices within GLPGP_SAGITTA_COVER h and a quarter of the cap. */
+ * vertices within GLPGP_SAGITTA_COVER x the cap (h where none). */
 static glpgp_status centre_caps(const glpgp_mesh *m, const glpgp_surface_constraints *con, sag_ws *w, int i,
                                 double d, double h)
 {
@@ -229,7 +231,7 @@ static glpgp_status centre_caps(const glpgp_mesh *m, const glpgp_surface_constra
         GLPGP_CHECK(st);
         double cap;
         GLPGP_CHECK(patch_cap(m, con, w, i, d, &cap));
-        const double cover = fmin(GLPGP_SAGITTA_COVER * h, 0.25 * cap);
+        const double cover = GLPGP_SAGITTA_COVER * fmin(h, cap);
         for (int k = 0; k < w->np; k++)
             if (w->pd[k] <= cover || w->pts[k] == i) {
                 w->val[w->pts[k]] = fmin(w->val[w->pts[k]], cap);
@@ -248,10 +250,12 @@ static glpgp_status centre_caps(const glpgp_mesh *m, const glpgp_surface_constra
  * radius R the chord 2 sqrt(2 R d - d^2), the planar chord rule; noise of
  * amplitude under d / 2 caps nothing). A crease is not crossed (each sector
  * of a vertex on it has its own patch: a crease between flat faces is no
- * curvature). Bounded work: the patches are grown only around centres at
- * least GLPGP_SAGITTA_COVER h apart (every vertex not yet within that
- * distance of one, in index order), each stopped at its first failing rung;
- * a vertex takes the smallest cap of the centres covering it. */
+ * curvature). Bounded work: the patches are grown only around centres
+ * (every vertex not yet covered by one, in index order: within
+ * GLPGP_SAGITTA_COVER x its cap or h), each stopped at its first failing
+ * rung; a vertex takes the smallest cap of the centres covering it. Where
+ * nothing caps, about 12 triangle visits per triangle (a patch of radius
+ * h / 2 per centre, centres h / 4 apart). */
 static glpgp_status sagitta_cap(const glpgp_mesh *m, const glpgp_surface_constraints *con, double d, double h,
                                 double *s)
 {
