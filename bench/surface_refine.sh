@@ -53,7 +53,7 @@ vi = q["valence"]["interior"]; nint = sum(vi.values()); irr = nint - vi.get("4",
 sec = d["seconds"]
 quads_s = sum(ph[k]["seconds"] for k in ("extraction",) if k in ph)
 x = re.search(r"time\s+([0-9.]+) s", out)
-path = ("coarse last resort" if "coarsened triangulation" in out else "last resort" if "last resort" in out
+path = s.get("steps", {}).get("path") or ("coarse last resort" if "coarsened triangulation" in out else "last resort" if "last resort" in out
         else "split (h/2)" if "Catmull-Clark" in out else "local split" if "split locally" in out
         else "local repair" if "repaired locally" in out else "grid")
 print("| %s | %s | %d | %s | %.2f | %.1f | %.1f | %.2f | %s | %d | %s | %d (%.1f%%) | %.3f | %.3f | %s |" % (

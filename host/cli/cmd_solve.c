@@ -256,6 +256,11 @@ static void print_summary(const solve_cli *c, const char *input, const glpgp_mes
     if (c->refined.rounds)
         printf("  refined        %d -> %d vertices, %d -> %d triangles (%d rounds: too coarse for the local h)\n",
                c->refined.nv0, c->refined.nv, c->refined.nt0, c->refined.nt, c->refined.rounds);
+    else if (c->refined.split_edges && c->refined.local)
+        printf("  refined        %d -> %d vertices, %d -> %d triangles (%ld edges bisected: longer than h(x) / %g, "
+               "the local size; smallest target h / %.3g; longest edge %.2f x h(x) / %g)\n",
+               c->refined.nv0, c->refined.nv, c->refined.nt0, c->refined.nt, c->refined.split_edges,
+               GLPGP_SURFACE_EDGES, r->size / c->refined.target_edge, c->refined.edge_ratio, GLPGP_SURFACE_EDGES);
     else if (c->refined.split_edges)
         printf("  refined        %d -> %d vertices, %d -> %d triangles (%ld edges bisected: longer than h / %g)\n",
                c->refined.nv0, c->refined.nv, c->refined.nt0, c->refined.nt, c->refined.split_edges,

@@ -19,6 +19,13 @@
  * surface, its sharp edges, boundary loops and topology stay exactly as
  * they were; the bisected triangles keep their orientation.
  *
+ * The target is one length (glpgp_mesh_refine_surface) or one per vertex
+ * (glpgp_mesh_refine_surface_sized): an edge's target is then the smaller
+ * of its ends', a new vertex's the mean of its edge's ends' (the target
+ * interpolated linearly along the edge). Both go through the same code: a
+ * triangle is refined while one of its edges is longer than its target; a
+ * uniform target gives the same mesh either way.
+ *
  * The target is reached in levels (edges longer than target x sqrt 2^k, k
  * down to 0), the mesh kept after each level: when the next level would pass
  * max_triangles, the last complete level is the result (a uniform
@@ -42,6 +49,9 @@ typedef struct lepp {
     int *tw;     /* 3 cap_t: twin half-edge (3 t + a: tri[3t+a] -> tri[3t+(a+1)%3]), -1 on the boundary */
     int *path;   /* the propagation path (triangles) */
     int npath;
+    double *tv;     /* cap_v: per-vertex target (NULL: tconst everywhere) */
+    size_t cap_tv;
+    double tconst;
     long max_t; /* triangle limit (0: GLPGP_MESH_MAX_TRIANGLES only) */
     long splits;
 } lepp;
@@ -98,6 +108,7 @@ static void bisect_one(lepp *L, int t, int a, int p, int n)
 static glpgp_status grow(lepp *L, int more_v, int more_t)
 {
     GLPGP_CHECK(glpgp_grow(&L->xyz, &L->cap_v, (size_t)L->nv + (size_t)more_v, 3 * sizeof(double)));
+    if (L->tv) GLPGP_CHECK(glpgp_grow(&L->tv, &L->cap_tv, (size_t)L->nv + (size_t)more_v, sizeof(double)));
     GLPGP_CHECK(glpgp_grow(&L->tri, &L->cap_t, (size_t)L->nt + (size_t)more_t, 3 * sizeof(int)));
     GLPGP_CHECK(glpgp_grow(&L->tw, &L->cap_tw, (size_t)L->nt + (size_t)more_t, 3 * sizeof(int)));
     return GLPGP_OK;
@@ -117,6 +128,7 @@ static glpgp_status bisect_edge(lepp *L, int t, int a, int *full)
     const int p = L->nv++, i = L->tri[3 * t + a], j = L->tri[3 * t + (a + 1) % 3];
     for (int e = 0; e < 3; e++)
         L->xyz[3 * (size_t)p + e] = 0.5 * (L->xyz[3 * (size_t)i + e] + L->xyz[3 * (size_t)j + e]);
+    if (L->tv) L->tv[p] = 0.5 * (L->tv[i] + L->tv[j]);
     const int n = L->nt++;
     bisect_one(L, t, a, p, n);
     if (o < 0) {
@@ -152,13 +164,28 @@ static glpgp_status lepp_refine(lepp *L, int t, int *full)
     }
 }
 
-/* One level: every edge longer than sqrt(l2) split. */
-static glpgp_status refine_level(lepp *L, double l2, int *full)
+/* Half-edge h's target: the smaller of its ends' (tconst without tv). */
+static double htarget(const lepp *L, int h)
 {
-    for (int t = 0; t < L->nt && !*full; t++) {
-        double lt;
-        while (!*full && (longest(L, t, &lt), lt > l2)) GLPGP_CHECK(lepp_refine(L, t, full));
+    if (!L->tv) return L->tconst;
+    return fmin(L->tv[L->tri[h]], L->tv[L->tri[3 * (h / 3) + (h % 3 + 1) % 3]]);
+}
+
+/* Whether an edge of triangle t is longer than scale x its target. */
+static int over(const lepp *L, int t, double scale)
+{
+    for (int a = 0; a < 3; a++) {
+        const double l = scale * htarget(L, 3 * t + a);
+        if (len2(L, 3 * t + a) > l * l) return 1;
     }
+    return 0;
+}
+
+/* One level: every edge longer than scale x its target split. */
+static glpgp_status refine_level(lepp *L, double scale, int *full)
+{
+    for (int t = 0; t < L->nt && !*full; t++)
+        while (!*full && over(L, t, scale)) GLPGP_CHECK(lepp_refine(L, t, full));
     return GLPGP_OK;
 }
 
@@ -185,16 +212,18 @@ static void lepp_free(lepp *L)
     glpgp_free(&L->tri);
     glpgp_free(&L->tw);
     glpgp_free(&L->path);
+    glpgp_free(&L->tv);
 }
 
-/* The levels: edges above target sqrt 2^k split for k from the first level
- * below the longest edge down to 0; the state before each level kept in *S
- * (triangles and twins; vertices only grow) and put back when the level
- * stops at the limit. */
-static glpgp_status run_levels(lepp *L, double target, double lmax, int *stopped)
+/* The levels: edges above their target x sqrt 2^k split for k from the
+ * first level with unit sqrt 2^(k+1) >= top (the longest edge over the
+ * target, as lengths or as a ratio with unit 1) down to 0; the
+ * state before each level kept (triangles and twins; vertices only grow)
+ * and put back when the level stops at the limit. */
+static glpgp_status run_levels(lepp *L, double unit, double top, int *stopped)
 {
     int k = 0;
-    while (target * pow(SQRT2, k + 1) < lmax && k < 200) k++;
+    while (unit * pow(SQRT2, k + 1) < top && k < 200) k++;
     int *s_tri = NULL, *s_tw = NULL;
     glpgp_status st = GLPGP_OK;
     for (; k >= 0 && st == GLPGP_OK; k--) {
@@ -208,9 +237,8 @@ static glpgp_status run_levels(lepp *L, double target, double lmax, int *stopped
         if (st != GLPGP_OK) break;
         memcpy(s_tri, L->tri, (size_t)nt0 * 3 * sizeof(int));
         memcpy(s_tw, L->tw, (size_t)nt0 * 3 * sizeof(int));
-        const double lk = k == 0 ? target : target * pow(SQRT2, k);
         int full = 0;
-        st = refine_level(L, lk * lk, &full);
+        st = refine_level(L, k == 0 ? 1.0 : pow(SQRT2, k), &full);
         if (st == GLPGP_OK && full) {
             memcpy(L->tri, s_tri, (size_t)nt0 * 3 * sizeof(int));
             memcpy(L->tw, s_tw, (size_t)nt0 * 3 * sizeof(int));
@@ -238,6 +266,63 @@ double glpgp_mesh_longest_edge(const glpgp_mesh *m)
     return sqrt(l);
 }
 
+/* The longest edge and the largest edge / target ratio of L's mesh. */
+static void edge_stats(const lepp *L, double *lmax, double *rmax)
+{
+    double l = 0.0, r = 0.0;
+    for (int h = 0; h < 3 * L->nt; h++) {
+        const double e = len2(L, h), t = htarget(L, h);
+        l = fmax(l, e);
+        r = fmax(r, e / (t * t));
+    }
+    *lmax = sqrt(l);
+    *rmax = sqrt(r);
+}
+
+/* Both entry points: target (tv NULL) or tv[nv], checked by the caller. */
+static glpgp_status refine_run(const glpgp_mesh *m, double target, const double *tv, double max_triangles,
+                               glpgp_mesh **out, glpgp_surface_refine_info *info)
+{
+    lepp L;
+    glpgp_status st = lepp_init(&L, m, max_triangles);
+    L.tconst = target;
+    if (st == GLPGP_OK && tv) {
+        st = glpgp_malloc((size_t)m->nv, sizeof(double), &L.tv);
+        if (st == GLPGP_OK) {
+            L.cap_tv = (size_t)m->nv;
+            memcpy(L.tv, tv, (size_t)m->nv * sizeof(double));
+        }
+    }
+    double lmax = 0.0, rmax = 0.0;
+    int stopped = 0;
+    if (st == GLPGP_OK) edge_stats(&L, &lmax, &rmax);
+    if (info) {
+        info->nv0 = info->nv = m->nv;
+        info->nt0 = info->nt = m->nt;
+        info->max_edge0 = info->max_edge = lmax;
+        info->ratio0 = info->ratio = rmax;
+        info->min_target = target;
+        if (tv) {
+            info->min_target = HUGE_VAL;
+            for (int i = 0; i < m->nv; i++) info->min_target = fmin(info->min_target, tv[i]);
+        }
+    }
+    if (st == GLPGP_OK && rmax > 1.0) st = tv ? run_levels(&L, 1.0, rmax, &stopped) : run_levels(&L, target, lmax, &stopped);
+    if (st == GLPGP_OK && L.splits > 0) st = glpgp_mesh_create_surface(L.nv, L.xyz, L.nt, L.tri, out);
+    if (info) {
+        info->stopped = stopped;
+        if (*out) {
+            info->splits = L.splits;
+            info->passes = 1;
+            info->nv = (*out)->nv;
+            info->nt = (*out)->nt;
+            edge_stats(&L, &info->max_edge, &info->ratio);
+        }
+    }
+    lepp_free(&L);
+    return st;
+}
+
 glpgp_status glpgp_mesh_refine_surface(const glpgp_mesh *m, double target, double max_triangles, glpgp_mesh **out,
                                        glpgp_surface_refine_info *info)
 {
@@ -246,27 +331,18 @@ glpgp_status glpgp_mesh_refine_surface(const glpgp_mesh *m, double target, doubl
     if (!m || !m->xyz || !m->surf) return GLPGP_FAIL(GLPGP_ERR_ARG, "refine: not a surface mesh");
     if (!(target > 0.0) || !isfinite(target))
         return GLPGP_FAIL(GLPGP_ERR_ARG, "refine: target edge %g is not positive", target);
-    const double lmax = glpgp_mesh_longest_edge(m);
-    if (info) {
-        info->nv0 = info->nv = m->nv;
-        info->nt0 = info->nt = m->nt;
-        info->max_edge0 = info->max_edge = lmax;
-    }
-    if (lmax <= target) return GLPGP_OK;
-    lepp L;
-    int stopped = 0;
-    glpgp_status st = lepp_init(&L, m, max_triangles);
-    if (st == GLPGP_OK) st = run_levels(&L, target, lmax, &stopped);
-    if (st == GLPGP_OK && L.splits > 0) st = glpgp_mesh_create_surface(L.nv, L.xyz, L.nt, L.tri, out);
-    if (info) {
-        info->stopped = stopped;
-        if (*out) {
-            info->splits = L.splits;
-            info->nv = (*out)->nv;
-            info->nt = (*out)->nt;
-            info->max_edge = glpgp_mesh_longest_edge(*out);
-        }
-    }
-    lepp_free(&L);
-    return st;
+    return refine_run(m, target, NULL, max_triangles, out, info);
+}
+
+glpgp_status glpgp_mesh_refine_surface_sized(const glpgp_mesh *m, const double *target, double max_triangles,
+                                             glpgp_mesh **out, glpgp_surface_refine_info *info)
+{
+    *out = NULL;
+    if (info) memset(info, 0, sizeof *info);
+    if (!m || !m->xyz || !m->surf) return GLPGP_FAIL(GLPGP_ERR_ARG, "refine: not a surface mesh");
+    if (!target) return GLPGP_FAIL(GLPGP_ERR_ARG, "refine: no per-vertex target");
+    for (int i = 0; i < m->nv; i++)
+        if (!(target[i] > 0.0) || !isfinite(target[i]))
+            return GLPGP_FAIL(GLPGP_ERR_ARG, "refine: target edge %g at vertex %d is not positive", target[i], i);
+    return refine_run(m, 0.0, target, max_triangles, out, info);
 }

@@ -5,6 +5,7 @@
 #define GLPGP_SOLVER_INTERNAL_H
 
 #include "glpgp/solve.h"
+#include "glpgp/surface.h"
 #include "glpgp/internal/newton.h"
 
 /* Leave a timed phase (glpgp_timer_enter / _leave of glpgp/backend.h):
@@ -24,6 +25,31 @@ double glpgp_size_tri_resolution(const glpgp_mesh *m, const double *size, int t,
  * (as many numbers on every line as on the first) into size[0 .. nv) (u) and
  * size[nv .. 2 nv) (v) (sizefield.c; the plane's and the surfaces'). */
 glpgp_status glpgp_size_file_read(const glpgp_mesh *m, const char *path, double *size);
+
+/* A surface's local size before the limit of what the mesh resolves
+ * (surface_size.c; glpgp_surface_size's auto / iso values, one per vertex,
+ * size: nv): the curvature cap and the feature spacing, at least size_min
+ * h, graded. The refinement to the local size (prepare.c) targets it. */
+struct glpgp_surface_constraints;
+glpgp_status glpgp_surface_size_local(const glpgp_mesh *m, const glpgp_options *o,
+                                      const struct glpgp_surface_constraints *con, double h, double *size);
+
+/* A surface refined to its local size (surface_refine.c): every edge longer
+ * than h(x) / GLPGP_SURFACE_EDGES bisected (glpgp_mesh_refine_surface_sized),
+ * h(x) glpgp_surface_size_local on m (auto / iso; h for the other size
+ * fields: glpgp_mesh_refine_surface to h / N), within max_triangles; *out
+ * NULL when no edge needed it. Up to GLPGP_SURFACE_REFINE_PASSES passes,
+ * the size recomputed on each refined mesh; info->passes those that split,
+ * info->ratio the largest edge / (h(x) / N) on the result with h(x)
+ * recomputed on it (glpgp_surface_edge_ratio). */
+glpgp_status glpgp_surface_refine_local(const glpgp_mesh *m, const glpgp_options *o, double h, double max_triangles,
+                                        glpgp_mesh **out, glpgp_surface_refine_info *info);
+/* The largest edge / (h(x) / GLPGP_SURFACE_EDGES) over m's edges (*ratio,
+ * <= 1: N edges per local period everywhere), h(x) the smaller local size
+ * of the edge's ends computed on m itself, and its smallest (*min_size);
+ * either may be NULL. */
+glpgp_status glpgp_surface_edge_ratio(const glpgp_mesh *m, const glpgp_options *o, double h, double *ratio,
+                                      double *min_size);
 
 /* Name of oscillator k ("u", "v", or "cross" for k = 2: the cross field) for messages. */
 const char *glpgp_osc_name(int k);

@@ -9,8 +9,10 @@
 #include "glpgp/surface.h"
 #include "glpgp/util.h"
 #include "glpgp/internal/newton.h"
+#include "internal.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -65,40 +67,50 @@ static glpgp_status check_field(const glpgp_mesh *m, const glpgp_options *o)
     return st;
 }
 
-/* A surface too coarse for its size h (an edge above h /
- * GLPGP_SURFACE_EDGES: the oscillators collapse towards z = 0 at about 4
- * mean edges per period) is refined by longest-edge bisection
- * (glpgp_mesh_refine_surface) until no edge is longer, only where it is
- * coarser (the same surface), within max_triangles; *out NULL when no edge
- * needed it. */
+/* A surface too coarse for its size (an edge above h(x) /
+ * GLPGP_SURFACE_EDGES, h(x) the local size the solve uses: the curvature
+ * cap and the feature spacing with --size-field auto / iso, else h; the
+ * oscillators collapse towards z = 0 at about 4 mean edges per period) is
+ * refined by longest-edge bisection (glpgp_surface_refine_local) until no
+ * edge is longer, only where it is coarser (the same surface), within
+ * max_triangles; *out NULL when no edge needed it. */
 static glpgp_status refine_surface(const glpgp_mesh *m, const glpgp_options *o, const char *name, double max_triangles,
                                    glpgp_mesh **out, glpgp_prepare_info *info)
 {
     *out = NULL;
     const double h = o->size, t0 = glpgp_now();
     if (!(h > 0.0)) return GLPGP_OK;
-    const double target = h / GLPGP_SURFACE_EDGES;
+    const int local = o->size_field == GLPGP_SIZE_AUTO || o->size_field == GLPGP_SIZE_ISO;
     glpgp_surface_refine_info ri;
-    GLPGP_CHECK(glpgp_mesh_refine_surface(m, target, max_triangles, out, &ri));
+    GLPGP_CHECK(glpgp_surface_refine_local(m, o, h, max_triangles, out, &ri));
     if (ri.stopped)
         glpgp_log(GLPGP_LOG_WARNING,
-                  "%s: h = %.4g is %.2g longest edges of the surface (%g are needed, P1 needs about 10 mean edges "
-                  "per period); refined further it would have more than %.0f triangles (--max-elements): solved with "
-                  "%d triangles, longest edge h / %.2g (the oscillators may collapse: a larger --size, fewer --faces)",
-                  name, h, h / ri.max_edge0, GLPGP_SURFACE_EDGES,
-                  max_triangles > 0 ? max_triangles : (double)GLPGP_MESH_MAX_TRIANGLES, ri.nt, h / ri.max_edge);
+                  "%s: h = %.4g is %.2g longest edges of the surface (%g per local size h(x) are needed, smallest "
+                  "h(x) = h / %.2g; P1 needs about 10 mean edges per period); refined further it would have more "
+                  "than %.0f triangles (--max-elements): solved with %d triangles, longest edge %.2g x h(x) / %g "
+                  "(the oscillators may collapse: a larger --size, fewer --faces)",
+                  name, h, h / ri.max_edge0, GLPGP_SURFACE_EDGES, h / (GLPGP_SURFACE_EDGES * ri.min_target),
+                  max_triangles > 0 ? max_triangles : (double)GLPGP_MESH_MAX_TRIANGLES, ri.nt, ri.ratio,
+                  GLPGP_SURFACE_EDGES);
     if (!*out) return GLPGP_OK;
     info->refined.split_edges = ri.splits;
-    info->refined.target_edge = target;
+    info->refined.target_edge = ri.min_target;
+    info->refined.local = local;
     info->refined.nv0 = m->nv;
     info->refined.nt0 = m->nt;
     info->refined.nv = ri.nv;
     info->refined.nt = ri.nt;
+    info->refined.edge_ratio = ri.ratio; /* local: against the size recomputed on the refined mesh */
     info->seconds_refine = glpgp_now() - t0;
+    char what[96] = "";
+    if (local)
+        snprintf(what, sizeof what, " and its local size h(x) (down to h / %.3g; %d pass%s)",
+                 h / (GLPGP_SURFACE_EDGES * ri.min_target), ri.passes, ri.passes == 1 ? "" : "es");
     glpgp_log(GLPGP_LOG_INFO,
-              "%s: refined for h = %.4g by longest-edge bisection: %d -> %d vertices (%ld edges bisected; longest "
-              "edge h / %.3g, mean edge h / %.3g)",
-              name, h, m->nv, ri.nv, ri.splits, h / ri.max_edge, h / (*out)->mean_edge);
+              "%s: refined for h = %.4g%s by longest-edge bisection: %d -> %d vertices (%ld edges bisected; longest "
+              "edge h / %.3g, mean edge h / %.3g; the longest edge / (h(x) / %g) %.3g on the refined mesh)",
+              name, h, what, m->nv, ri.nv, ri.splits, h / ri.max_edge, h / (*out)->mean_edge, GLPGP_SURFACE_EDGES,
+              info->refined.edge_ratio);
     return GLPGP_OK;
 }
 

@@ -16,6 +16,16 @@
 #include <stdlib.h>
 #include <string.h>
 
+/* the sagitta cap's ladder of patch radii: from h / 2 down by 2^(-1/2)
+ * while at least GLPGP_SAGITTA_FLOOR mean edges; each centre's cap spread
+ * to the vertices of its patch within GLPGP_SAGITTA_COVER x the cap (or h
+ * where none: half the patch's radius; at 1 / 8, with centres twice as
+ * dense, the sizes of bench/results/surface_refine.md's models were the
+ * same within 1% of the vertices and took 2 - 4x longer) */
+#define GLPGP_SAGITTA_FLOOR 2.0
+#define GLPGP_SAGITTA_COVER 0.25
+#define GLPGP_SAGITTA_RUNGS 24
+
 static double dist3(const double *a, const double *b)
 {
     return sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2]));
@@ -62,61 +72,226 @@ static glpgp_status grade(const glpgp_mesh *m, double g, double *s)
     return GLPGP_OK;
 }
 
-/* The curvature cap: R_i = 1 / the largest normal curvature |(n_j - n_i) .
- * e| / |e|^2 over the vertex's edges e = x_j - x_i, with the normals of the
- * smooth sectors the edge lies in (each vertex's fan split at its feature
- * edges, a sector's normal the angle-weighted mean of its triangles'): a
- * crease between two flat faces is no curvature (the plain vertex normal,
- * averaged across it, would make it one); chord of sagitta d = depth h. */
-static glpgp_status curvature_cap(const glpgp_mesh *m, const glpgp_surface_constraints *con, double depth, double h,
-                                  double *s)
+/* The sagitta cap's work space: a patch P(i, rho) grown triangle by
+ * triangle from one sector of vertex i (its fan between feature edges)
+ * across non-feature edges, nearest first (a triangle's key: its farthest
+ * vertex from x_i), so that the triangles popped while the next key is
+ * above rho are those reachable from the sector without leaving the ball of
+ * radius rho. */
+typedef struct sag_ws {
+    glpgp_heap q;
+    int *tstamp, *vstamp; /* nt, nv: the last patch that pushed the triangle / took the vertex */
+    int *pts;             /* the patch's vertices */
+    double *pd;           /* their distances from the centre */
+    double *val;          /* nv: the smallest cap spread to the vertex (HUGE_VAL: none) */
+    unsigned char *covered;
+    int np, stamp, nr;
+    double rung[GLPGP_SAGITTA_RUNGS]; /* the ladder of radii, ascending */
+    double area, ns[3];               /* the patch's area and area-weighted normal sum (x 2) */
+} sag_ws;
+
+/* triangle t's farthest vertex from xc */
+static double tri_key(const glpgp_mesh *m, int t, const double *xc)
+{
+    double k = 0.0;
+    for (int a = 0; a < 3; a++) k = fmax(k, dist3(m->xyz + 3 * (size_t)m->tri[3 * t + a], xc));
+    return k;
+}
+
+/* Triangle t into the patch: its area normal, its new vertices. */
+static void patch_take(const glpgp_mesh *m, sag_ws *w, int t, const double *xc)
+{
+    const double *p = m->xyz + 3 * (size_t)m->tri[3 * t], *q = m->xyz + 3 * (size_t)m->tri[3 * t + 1],
+                 *r = m->xyz + 3 * (size_t)m->tri[3 * t + 2];
+    const double u[3] = {q[0] - p[0], q[1] - p[1], q[2] - p[2]}, v[3] = {r[0] - p[0], r[1] - p[1], r[2] - p[2]};
+    const double n[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
+    for (int e = 0; e < 3; e++) w->ns[e] += n[e];
+    w->area += sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    for (int a = 0; a < 3; a++) {
+        const int j = m->tri[3 * t + a];
+        if (w->vstamp[j] == w->stamp) continue;
+        w->vstamp[j] = w->stamp;
+        w->pts[w->np] = j;
+        w->pd[w->np++] = dist3(m->xyz + 3 * (size_t)j, xc);
+    }
+}
+
+/* The patch's deviation from the plane through the centre normal to the
+ * patch's area-weighted normal: its vertices' largest height above or below
+ * it (the sagitta of a spherical cap; on a saddle the larger principal
+ * curvature's, as the chord rule: the range above and below together would
+ * add the two; noise of amplitude a: at most 2 a); *reach its farthest
+ * vertex. A patch whose normals cancel (projected area under half its
+ * area: more than a hemisphere, or folded) deviates without bound. */
+static double patch_dev(const glpgp_mesh *m, const sag_ws *w, const double *xc, double *reach)
+{
+    const double nn = sqrt(w->ns[0] * w->ns[0] + w->ns[1] * w->ns[1] + w->ns[2] * w->ns[2]);
+    double lo = 0.0, hi = 0.0, r = 0.0;
+    for (int k = 0; k < w->np; k++) {
+        const double *x = m->xyz + 3 * (size_t)w->pts[k];
+        const double z = ((x[0] - xc[0]) * w->ns[0] + (x[1] - xc[1]) * w->ns[1] + (x[2] - xc[2]) * w->ns[2]) / nn;
+        lo = fmin(lo, z);
+        hi = fmax(hi, z);
+        r = fmax(r, w->pd[k]);
+    }
+    *reach = r;
+    return nn > 0.5 * w->area ? fmax(hi, -lo) : HUGE_VAL;
+}
+
+/* The sector of vertex i from its corner c (c0 the fan's first): its
+ * triangles pushed as the patch's seeds; returns the next sector's corner
+ * (-1 or c0 when none). */
+static int sector_seed(const glpgp_mesh *m, const glpgp_surface_constraints *con, sag_ws *w, int c, int c0,
+                       glpgp_status *st)
+{
+    const int *tw = m->surf->twin;
+    int k = c;
+    do {
+        if (w->tstamp[k / 3] != w->stamp) {
+            w->tstamp[k / 3] = w->stamp;
+            if (*st == GLPGP_OK) *st = glpgp_heap_push(&w->q, 0.0, k / 3);
+        }
+        k = tw[k - k % 3 + (k % 3 + 2) % 3];
+    } while (k >= 0 && k != c0 && !con->feature[k]);
+    return k;
+}
+
+/* The radius of deviation d between a passing patch (reach ra, deviation
+ * da <= d; ra 0: none) and the failing one (rb, db > d): dev = c rho^p
+ * through both (p from the two, within [1, 4]: a fold's deviation grows
+ * linearly, a sphere's with the square; with no passing patch, or one of
+ * no deviation, the square law from the failing one), within [ra, rb]. */
+static double rho_star(double ra, double da, double rb, double db, double d)
+{
+    double p = 2.0;
+    if (ra > 0.0 && da > 0.0 && rb > ra) p = fmin(4.0, fmax(1.0, log(db / da) / log(rb / ra)));
+    return fmin(rb, fmax(ra, rb * pow(d / db, 1.0 / p)));
+}
+
+/* The patch grown from the seeds rung by rung, stopped at the first rung
+ * whose deviation exceeds d: *cap = 2 rho*, rho* = reach sqrt(d / dev) (the
+ * sagitta's square law from the failing rung, within the reach of the last
+ * passing one and the failing one); HUGE_VAL when even rho = h / 2 passes. */
+static glpgp_status patch_cap(const glpgp_mesh *m, const glpgp_surface_constraints *con, sag_ws *w, int i, double d,
+                              double *cap)
+{
+    const double *xc = m->xyz + 3 * (size_t)i;
+    const int *tw = m->surf->twin;
+    double pass = 0.0, dpass = 0.0; /* the last passing rung's reach and deviation */
+    int r = 0;
+    *cap = HUGE_VAL;
+    for (;;) {
+        const double next = w->q.n ? w->q.a[0].key : HUGE_VAL;
+        while (r < w->nr && next > w->rung[r]) {
+            double reach;
+            const double dev = patch_dev(m, w, xc, &reach);
+            if (dev > d) {
+                *cap = 2.0 * rho_star(pass, dpass, reach, dev, d);
+                return GLPGP_OK;
+            }
+            pass = reach;
+            dpass = dev;
+            r = w->q.n ? r + 1 : w->nr; /* nothing more to take: every rung passes */
+        }
+        if (r == w->nr) return GLPGP_OK;
+        const int t = glpgp_heap_pop(&w->q).id;
+        patch_take(m, w, t, xc);
+        for (int a = 0; a < 3; a++) {
+            const int hh = 3 * t + a, u = tw[hh];
+            if (u < 0 || con->feature[hh] || w->tstamp[u / 3] == w->stamp) continue;
+            w->tstamp[u / 3] = w->stamp;
+            GLPGP_CHECK(glpgp_heap_push(&w->q, tri_key(m, u / 3, xc), u / 3));
+        }
+    }
+}
+
+/* Vertex i as a centre: each sector's patch cap spread to the patch's
+ * vertices within GLPGP_SAGITTA_COVER x the cap (h where none). */
+static glpgp_status centre_caps(const glpgp_mesh *m, const glpgp_surface_constraints *con, sag_ws *w, int i,
+                                double d, double h)
 {
     const glpgp_surface *g = m->surf;
-    double *sn = NULL; /* 3 per corner: its sector's normal */
-    GLPGP_CHECK(glpgp_malloc((size_t)9 * m->nt, sizeof(double), &sn));
-    for (int i = 0; i < m->nv; i++) {
-        /* inside, start the walk at a feature edge where there is one (a sector's
-         * first corner); a boundary fan starts at its first corner anyway */
-        int c0 = g->vstart[i], c = c0;
-        if (!m->on_boundary[i]) do {
-            if (con->feature[c]) {
-                c0 = c;
-                break;
-            }
-            c = g->twin[c - c % 3 + (c % 3 + 2) % 3];
-        } while (c >= 0 && c != g->vstart[i]);
-        c = c0;
-        do { /* one sector: from c0 (or a feature edge) to the next feature edge */
-            double acc[3] = {0.0, 0.0, 0.0};
-            int k = c, n = 0;
-            do {
-                const double *N = g->tframe + 9 * (k / 3) + 6;
-                for (int e = 0; e < 3; e++) acc[e] += g->corner[k] * N[e];
-                n++;
-                k = g->twin[k - k % 3 + (k % 3 + 2) % 3];
-            } while (k >= 0 && k != c0 && !con->feature[k]);
-            const double an = sqrt(acc[0] * acc[0] + acc[1] * acc[1] + acc[2] * acc[2]);
-            for (int q = 0, kk = c; q < n; q++) {
-                for (int e = 0; e < 3; e++) sn[3 * kk + e] = acc[e] / an;
-                kk = g->twin[kk - kk % 3 + (kk % 3 + 2) % 3];
-            }
-            c = k;
-        } while (c >= 0 && c != c0);
-    }
-    for (int t = 0; t < m->nt; t++)
-        for (int a = 0; a < 3; a++) {
-            const int ca = 3 * t + a, cb = 3 * t + (a + 1) % 3, i = m->tri[ca], j = m->tri[cb];
-            const double *xi = m->xyz + 3 * i, *xj = m->xyz + 3 * j, l = dist3(xi, xj);
-            double dn = 0.0;
-            for (int e = 0; e < 3; e++) dn += (sn[3 * cb + e] - sn[3 * ca + e]) * (xj[e] - xi[e]);
-            const double kap = fabs(dn) / (l * l), d = depth * h;
-            if (!(kap > 0.0) || !(d > 0.0)) continue;
-            const double R = 1.0 / kap, cap = d < R ? 2.0 * sqrt(2.0 * R * d - d * d) : 2.0 * R;
-            s[i] = fmin(s[i], cap);
-            s[j] = fmin(s[j], cap);
+    int c0 = g->vstart[i], c = c0;
+    if (c0 < 0) return GLPGP_OK;
+    if (!m->on_boundary[i]) do { /* inside: start at a feature edge where there is one */
+        if (con->feature[c]) {
+            c0 = c;
+            break;
         }
-    free(sn);
+        c = g->twin[c - c % 3 + (c % 3 + 2) % 3];
+    } while (c >= 0 && c != g->vstart[i]);
+    c = c0;
+    do {
+        glpgp_status st = GLPGP_OK;
+        w->stamp++;
+        w->np = 0;
+        w->q.n = 0;
+        w->area = w->ns[0] = w->ns[1] = w->ns[2] = 0.0;
+        const int next = sector_seed(m, con, w, c, c0, &st);
+        GLPGP_CHECK(st);
+        double cap;
+        GLPGP_CHECK(patch_cap(m, con, w, i, d, &cap));
+        const double cover = GLPGP_SAGITTA_COVER * fmin(h, cap);
+        for (int k = 0; k < w->np; k++)
+            if (w->pd[k] <= cover || w->pts[k] == i) {
+                w->val[w->pts[k]] = fmin(w->val[w->pts[k]], cap);
+                w->covered[w->pts[k]] = 1;
+            }
+        c = next;
+    } while (c >= 0 && c != c0);
     return GLPGP_OK;
+}
+
+/* The curvature cap measured as the sagitta itself (no normals' turn per
+ * edge, which reads a scan's noise as curvature and grows as the same
+ * polyhedron is bisected): h_curv(i) = 2 rho*, rho* the largest patch radius
+ * on the ladder h / 2 x 2^(-k/2) (down to GLPGP_SAGITTA_FLOOR mean edges)
+ * whose patch deviates from its plane by at most d = depth h (on a sphere of
+ * radius R the chord 2 sqrt(2 R d - d^2), the planar chord rule; noise of
+ * amplitude under d / 2 caps nothing). A crease is not crossed (each sector
+ * of a vertex on it has its own patch: a crease between flat faces is no
+ * curvature). Bounded work: the patches are grown only around centres
+ * (every vertex not yet covered by one, in index order: within
+ * GLPGP_SAGITTA_COVER x its cap or h), each stopped at its first failing
+ * rung; a vertex takes the smallest cap of the centres covering it. Where
+ * nothing caps, about 12 triangle visits per triangle (a patch of radius
+ * h / 2 per centre, centres h / 4 apart). */
+static glpgp_status sagitta_cap(const glpgp_mesh *m, const glpgp_surface_constraints *con, double d, double h,
+                                double *s)
+{
+    if (!(d > 0.0) || m->nv == 0) return GLPGP_OK;
+    sag_ws w;
+    memset(&w, 0, sizeof w);
+    glpgp_status st = GLPGP_OK;
+    GLPGP_CHECK_GOTO(st, glpgp_calloc((size_t)m->nt, sizeof(int), &w.tstamp), done);
+    GLPGP_CHECK_GOTO(st, glpgp_calloc((size_t)m->nv, sizeof(int), &w.vstamp), done);
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)m->nv, sizeof(int), &w.pts), done);
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)m->nv, sizeof(double), &w.pd), done);
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)m->nv, sizeof(double), &w.val), done);
+    GLPGP_CHECK_GOTO(st, glpgp_calloc((size_t)m->nv, 1, &w.covered), done);
+    GLPGP_CHECK_GOTO(st, glpgp_heap_reserve(&w.q, 256), done);
+    double lad[GLPGP_SAGITTA_RUNGS], r = 0.5 * h;
+    int n = 0;
+    do {
+        lad[n++] = r;
+        r *= sqrt(0.5);
+    } while (n < GLPGP_SAGITTA_RUNGS && r >= GLPGP_SAGITTA_FLOOR * m->mean_edge);
+    for (int k = 0; k < n; k++) w.rung[k] = lad[n - 1 - k];
+    w.nr = n;
+    for (int i = 0; i < m->nv; i++) w.val[i] = HUGE_VAL;
+    for (int i = 0; i < m->nv && st == GLPGP_OK; i++)
+        if (!w.covered[i]) st = centre_caps(m, con, &w, i, d, h);
+    if (st == GLPGP_OK)
+        for (int i = 0; i < m->nv; i++) s[i] = fmin(s[i], w.val[i]);
+done:
+    free(w.tstamp);
+    free(w.vstamp);
+    free(w.pts);
+    free(w.pd);
+    free(w.val);
+    free(w.covered);
+    glpgp_heap_free(&w.q);
+    return st;
 }
 
 /* The spacing of the constraint curves (maximal chains of vertices with
@@ -211,6 +386,16 @@ done:
     return st;
 }
 
+glpgp_status glpgp_surface_size_local(const glpgp_mesh *m, const glpgp_options *o,
+                                      const glpgp_surface_constraints *con, double h, double *size)
+{
+    for (int i = 0; i < m->nv; i++) size[i] = h;
+    GLPGP_CHECK(sagitta_cap(m, con, o->size_chord_depth * h, h, size));
+    GLPGP_CHECK(feature_spacing(m, con, o->size_across, size));
+    for (int i = 0; i < m->nv; i++) size[i] = fmax(size[i], o->size_min * h);
+    return grade(m, o->size_grading, size);
+}
+
 glpgp_status glpgp_surface_size(const glpgp_mesh *m, const glpgp_options *o, const glpgp_surface_constraints *con,
                                 double h, double *size, int *uniform)
 {
@@ -221,10 +406,7 @@ glpgp_status glpgp_surface_size(const glpgp_mesh *m, const glpgp_options *o, con
     if (o->size_field == GLPGP_SIZE_FILE) {
         GLPGP_CHECK(glpgp_size_file_read(m, o->size_file, size));
     } else {
-        GLPGP_CHECK(curvature_cap(m, con, o->size_chord_depth, h, size));
-        GLPGP_CHECK(feature_spacing(m, con, o->size_across, size));
-        for (int i = 0; i < nv; i++) size[i] = fmax(size[i], o->size_min * h);
-        GLPGP_CHECK(grade(m, o->size_grading, size));
+        GLPGP_CHECK(glpgp_surface_size_local(m, o, con, h, size));
         memcpy(size + nv, size, (size_t)nv * sizeof(double));
     }
     /* what the mesh carries: at least min(h, size_resolution x the longest edge at the vertex) */

@@ -7,9 +7,16 @@
  * angle at least half the input's (longest-edge bisection's bound); a mesh
  * already fine enough left as it is; a mesh with one coarse region refined
  * only there (a uniform subdivision would split everything); max_triangles
- * respected with the last complete level kept. */
+ * respected with the last complete level kept. The per-vertex target
+ * (glpgp_mesh_refine_surface_sized): with a target affine in x (the
+ * refinement interpolates it linearly along the split edges), every edge at
+ * most the target at both its ends; on a strip whose target is small only
+ * at one end, the other end's triangles kept and far fewer triangles than
+ * the scalar refinement to the small target; a uniform target gives the
+ * scalar refinement's mesh bit for bit; non-positive targets rejected. */
 #include "testutil.h"
 
+#include <stdlib.h>
 #include <string.h>
 
 static double elen(const glpgp_mesh *m, int a, int b)
@@ -134,17 +141,15 @@ static void check_shape(const char *name, long n, double frac)
     glpgp_mesh_destroy(&m);
 }
 
-/* A tilted strip, fine for x <= 1 (spacing 1/4) and coarse beyond (x = 2,
- * 3, 4): refined to 1/2, the fine part's triangles are all kept as they are */
-static void check_local(void)
+/* A tilted strip (not flat) at the abscissae xs (nx of them, at most 8)
+ * and ny rows dy apart (at most 5) */
+static glpgp_mesh *strip_mesh(const double *xs, int nx, int ny, double dy)
 {
-    const double xs[] = {0, 0.25, 0.5, 0.75, 1, 2, 3, 4};
-    const int nx = 8, ny = 5;
     double xyz[3 * 8 * 5];
     int tri[6 * 7 * 4], nt = 0;
     for (int j = 0; j < ny; j++)
         for (int i = 0; i < nx; i++) {
-            const double x = xs[i], y = 0.25 * j;
+            const double x = xs[i], y = dy * j;
             xyz[3 * (j * nx + i)] = x;
             xyz[3 * (j * nx + i) + 1] = y;
             xyz[3 * (j * nx + i) + 2] = 0.3 * x + 0.2 * y + 0.1 * x * y; /* not flat */
@@ -156,8 +161,17 @@ static void check_local(void)
             memcpy(tri + 3 * nt, T, sizeof T);
             nt += 2;
         }
-    glpgp_mesh *m = NULL, *r = NULL;
+    glpgp_mesh *m = NULL;
     CHECK_OK(glpgp_mesh_create_surface(nx * ny, xyz, nt, tri, &m));
+    return m;
+}
+
+/* A tilted strip, fine for x <= 1 (spacing 1/4) and coarse beyond (x = 2,
+ * 3, 4): refined to 1/2, the fine part's triangles are all kept as they are */
+static void check_local(void)
+{
+    const double xs[] = {0, 0.25, 0.5, 0.75, 1, 2, 3, 4};
+    glpgp_mesh *m = strip_mesh(xs, 8, 5, 0.25), *r = NULL;
     if (!m) return;
     glpgp_surface_refine_info ri;
     CHECK_OK(glpgp_mesh_refine_surface(m, 0.5, 0, &r, &ri));
@@ -219,6 +233,119 @@ static void check_limit(void)
     glpgp_mesh_destroy(&m);
 }
 
+/* the strip of check_local at spacing 1 in x (0 .. 5), 0.5 in y (0 .. 1) */
+static glpgp_mesh *strip(void)
+{
+    const double xs[] = {0, 1, 2, 3, 4, 5};
+    return strip_mesh(xs, 6, 3, 0.5);
+}
+
+/* target affine in position: a + b z on a sphere (small at the bottom) */
+static void check_sized_affine(void)
+{
+    glpgp_mesh *m = NULL, *r = NULL;
+    CHECK_OK(glpgp_mesh_generate("sphere", 800, &m));
+    if (!m) return;
+    const double L = longest_edge(m), a = 0.6 * L, b = 0.45 * L; /* z in [-1, 1]: 0.15 L .. 1.05 L */
+    double *t = malloc(sizeof(double) * (size_t)m->nv);
+    for (int i = 0; i < m->nv; i++) t[i] = a + b * m->xyz[3 * i + 2];
+    glpgp_surface_refine_info ri;
+    CHECK_OK(glpgp_mesh_refine_surface_sized(m, t, 0, &r, &ri));
+    CHECK(r != NULL && !ri.stopped && ri.ratio <= 1.0 && ri.ratio0 > 1.0);
+    if (r) {
+        check_same_surface("sphere (sized)", m, r, 0.0);
+        double worst = 0.0, top = 0.0, bottom = HUGE_VAL;
+        for (int tt = 0; tt < r->nt; tt++)
+            for (int k = 0; k < 3; k++) {
+                const int i = r->tri[3 * tt + k], j = r->tri[3 * tt + (k + 1) % 3];
+                const double l = elen(r, i, j), zi = r->xyz[3 * i + 2], zj = r->xyz[3 * j + 2];
+                worst = fmax(worst, l / fmin(a + b * zi, a + b * zj));
+                if (zi > 0.8 && zj > 0.8) top = fmax(top, l);
+                if (zi < -0.8 && zj < -0.8) bottom = fmin(bottom, l);
+            }
+        /* graded: edges near the top (target ~ L) longer than all near the bottom */
+        printf("sphere (sized): %d -> %d triangles, largest edge / target %.4f, top edge %.3g, bottom edge %.3g\n",
+               m->nt, r->nt, worst, top, bottom);
+        CHECK(worst <= 1.0 + 1e-9);
+        CHECK(top > 0.5 * L && bottom < 0.16 * L);
+        /* the scalar refinement to the smallest target: far more triangles */
+        glpgp_mesh *u = NULL;
+        CHECK_OK(glpgp_mesh_refine_surface(m, a - b, 0, &u, NULL));
+        CHECK(u != NULL && r->nt < 0.6 * u->nt);
+        if (u) printf("  scalar to the smallest target: %d triangles\n", u->nt);
+        glpgp_mesh_destroy(&u);
+    }
+    glpgp_mesh_destroy(&r);
+    free(t);
+    glpgp_mesh_destroy(&m);
+}
+
+/* target 0.3 at x >= 4, 10 elsewhere: the end x <= 2 untouched */
+static void check_sized_local(void)
+{
+    glpgp_mesh *m = strip(), *r = NULL;
+    if (!m) return;
+    double t[18];
+    for (int i = 0; i < m->nv; i++) t[i] = m->xyz[3 * i] >= 4.0 ? 0.3 : 10.0;
+    glpgp_surface_refine_info ri;
+    CHECK_OK(glpgp_mesh_refine_surface_sized(m, t, 0, &r, &ri));
+    CHECK(r != NULL && ri.min_target == 0.3);
+    if (r) {
+        check_same_surface("strip (sized)", m, r, 0.0);
+        int far0 = 0, kept = 0;
+        double lfar = 0.0;
+        for (int u = 0; u < m->nt; u++) {
+            const int *v = m->tri + 3 * u;
+            if (fmax(fmax(m->xyz[3 * v[0]], m->xyz[3 * v[1]]), m->xyz[3 * v[2]]) > 2.0) continue;
+            far0++;
+            for (int w = 0; w < r->nt; w++)
+                for (int k = 0; k < 3; k++)
+                    kept += r->tri[3 * w] == v[k] && r->tri[3 * w + 1] == v[(k + 1) % 3] &&
+                            r->tri[3 * w + 2] == v[(k + 2) % 3];
+        }
+        for (int w = 0; w < r->nt; w++)
+            for (int k = 0; k < 3; k++) {
+                const int i = r->tri[3 * w + k], j = r->tri[3 * w + (k + 1) % 3];
+                if (r->xyz[3 * i] >= 4.0 && r->xyz[3 * j] >= 4.0) lfar = fmax(lfar, elen(r, i, j));
+            }
+        glpgp_mesh *u = NULL;
+        CHECK_OK(glpgp_mesh_refine_surface(m, 0.3, 0, &u, NULL));
+        printf("strip (sized): %d -> %d triangles (scalar to 0.3: %d), %d of %d far triangles kept, longest edge "
+               "at x >= 4: %.3g\n",
+               m->nt, r->nt, u ? u->nt : 0, kept, far0, lfar);
+        CHECK(far0 == 8 && kept == far0 && lfar <= 0.3 && u && r->nt < u->nt / 2);
+        glpgp_mesh_destroy(&u);
+    }
+    glpgp_mesh_destroy(&r);
+    glpgp_mesh_destroy(&m);
+}
+
+/* a uniform per-vertex target: the scalar refinement's mesh; bad targets */
+static void check_sized_uniform(void)
+{
+    glpgp_mesh *m = NULL, *r = NULL, *u = NULL;
+    CHECK_OK(glpgp_mesh_generate("torus", 800, &m));
+    if (!m) return;
+    const double target = 0.4 * longest_edge(m);
+    double *t = malloc(sizeof(double) * (size_t)m->nv);
+    for (int i = 0; i < m->nv; i++) t[i] = target;
+    CHECK_OK(glpgp_mesh_refine_surface_sized(m, t, 0, &r, NULL));
+    CHECK_OK(glpgp_mesh_refine_surface(m, target, 0, &u, NULL));
+    CHECK(r && u && r->nv == u->nv && r->nt == u->nt);
+    if (r && u && r->nv == u->nv && r->nt == u->nt)
+        CHECK(memcmp(r->tri, u->tri, sizeof(int) * 3 * (size_t)r->nt) == 0 &&
+              memcmp(r->xyz, u->xyz, sizeof(double) * 3 * (size_t)r->nv) == 0);
+    glpgp_mesh_destroy(&r);
+    t[7] = 0.0;
+    CHECK(glpgp_mesh_refine_surface_sized(m, t, 0, &r, NULL) == GLPGP_ERR_ARG && r == NULL);
+    t[7] = NAN;
+    CHECK(glpgp_mesh_refine_surface_sized(m, t, 0, &r, NULL) == GLPGP_ERR_ARG && r == NULL);
+    CHECK(glpgp_mesh_refine_surface_sized(m, NULL, 0, &r, NULL) == GLPGP_ERR_ARG && r == NULL);
+    free(t);
+    glpgp_mesh_destroy(&u);
+    glpgp_mesh_destroy(&m);
+}
+
 int main(void)
 {
     check_shape("sphere", 600, 0.3);
@@ -229,5 +356,8 @@ int main(void)
     check_local();
     check_fine();
     check_limit();
+    check_sized_affine();
+    check_sized_local();
+    check_sized_uniform();
     TEST_DONE();
 }

@@ -241,8 +241,9 @@ static void test_coupled_cg(const char *shape)
  * fewer triangles than the uniform rounds' 16x; with --max-elements at 4x
  * the input, the last level within it (a warning), at 1x the input as it
  * is; on a torus 7 mean edges per period (one uniform round short of the old
- * rule: 4x) only the long edges split; with a size file (its values belong
- * to the input's vertices) not refined */
+ * rule: 4x) only the long edges split (the global rule h / N, --size-field
+ * none); with a size file (its values belong to the input's vertices) not
+ * refined */
 static void check_prepare_subdivides(void)
 {
     glpgp_mesh *m = NULL, *r = NULL;
@@ -279,8 +280,11 @@ static void check_prepare_subdivides(void)
     glpgp_mesh_destroy(&r);
     o.size_field = GLPGP_SIZE_AUTO;
     o.size_file = NULL;
-    /* just above the old rule's mean edge: 4x triangles for the rounds */
+    /* just above the old rule's mean edge: 4x triangles for the rounds (the
+     * global rule, --size-field none: at this h the torus's curvature cap
+     * asks for more, test_surface_refine.c) */
     o.size = 7.0 * m->mean_edge;
+    o.size_field = GLPGP_SIZE_NONE;
     CHECK_OK(glpgp_solve_prepare(m, &o, "torus", 0, 1, &r, &pi));
     CHECK(r != NULL);
     if (r) {

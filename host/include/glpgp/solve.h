@@ -325,7 +325,11 @@ typedef struct glpgp_refine_info {
     int rounds;           /* rounds of the planar refinement (0 on a surface) */
     long split_edges;     /* edges bisected */
     int nv0, nt0, nv, nt; /* before and after */
-    double target_edge;   /* a surface: the longest edge asked (h / GLPGP_SURFACE_EDGES); 0 in the plane */
+    double target_edge;   /* a surface: the longest edge asked (h / GLPGP_SURFACE_EDGES; refined to the
+                             local size: the smallest asked, min h(x) / GLPGP_SURFACE_EDGES); 0 in the plane */
+    int local;            /* a surface refined to its local size h(x) (size field auto / iso) */
+    double edge_ratio;    /* a surface: the largest edge / (h(x) / GLPGP_SURFACE_EDGES) on the refined
+                             mesh, h(x) recomputed there as the solve does (<= 1: reached) */
 } glpgp_refine_info;
 glpgp_status glpgp_size_refine(const glpgp_mesh *m, const glpgp_options *o, double h, glpgp_mesh **out,
                                glpgp_refine_info *info);

@@ -148,7 +148,11 @@ typedef struct glpgp_surface_refine_info {
     long splits;                /* edges bisected (= vertices added) */
     int nv0, nt0, nv, nt;       /* before and after */
     double max_edge0, max_edge; /* the longest edge before and after */
-    int stopped;                /* 1: max_triangles reached before the target (max_edge > target) */
+    double ratio0, ratio;       /* the largest edge / its target before and after (<= 1: reached) */
+    double min_target;          /* the smallest target (per vertex: over the input's vertices) */
+    int stopped;                /* 1: max_triangles reached before the target (ratio > 1) */
+    int passes;                 /* refinements done (the solver's refinement to the local size may
+                                   take several, the size recomputed on each refined mesh) */
 } glpgp_surface_refine_info;
 
 /* *out: surface m with every edge longer than target split, by conforming
@@ -164,6 +168,19 @@ typedef struct glpgp_surface_refine_info {
  * NULL. */
 glpgp_status glpgp_mesh_refine_surface(const glpgp_mesh *m, double target, double max_triangles, glpgp_mesh **out,
                                        glpgp_surface_refine_info *info);
+
+/* glpgp_mesh_refine_surface with a target per vertex (target: m->nv, each
+ * positive and finite, else GLPGP_ERR_ARG): an edge is split while longer
+ * than the smaller of its two ends' targets, a new vertex (an edge's
+ * midpoint) gets the mean of that edge's ends' targets (the target
+ * interpolated linearly). Where every edge already meets its target the
+ * triangles are left as they are unless a longer edge's propagation path
+ * passes through them. The levels, max_triangles and info as there (the
+ * level k: edges longer than target x sqrt 2^k; info->ratio the largest edge
+ * / target left, min_target the smallest input target). A uniform target
+ * gives glpgp_mesh_refine_surface's mesh. */
+glpgp_status glpgp_mesh_refine_surface_sized(const glpgp_mesh *m, const double *target, double max_triangles,
+                                             glpgp_mesh **out, glpgp_surface_refine_info *info);
 
 /* Free a surface's arrays (NULL-safe, sets *s = NULL); glpgp_mesh_destroy
  * calls it. */

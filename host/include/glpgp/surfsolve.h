@@ -122,9 +122,10 @@ int glpgp_surface_dirichlet(const glpgp_mesh *m, const glpgp_surface_constraints
 /* Local size on a surface (size: 2 nv, u then v; *uniform set when every
  * value is h): GLPGP_SIZE_NONE h; GLPGP_SIZE_FILE one "h" or "h_u h_v" line
  * per vertex; GLPGP_SIZE_AUTO / ISO the smaller of (1) the curvature cap,
- * 2 sqrt(2 R d - d^2) with d = size_chord_depth h (the chord's sagitta
- * stays below d; R = 1 / the largest normal curvature over the vertex's
- * non-feature edges) and (2) the feature spacing, the geodesic gap between
+ * 2 rho with rho the largest patch radius (up to h / 2) whose patch around
+ * the vertex, not crossing sharp features, stays within d = size_chord_depth
+ * h of its plane (on a sphere of radius R the chord 2 sqrt(2 R d - d^2);
+ * noise under d / 2 caps nothing) and (2) the feature spacing, the geodesic gap between
  * two different constraint curves (boundary loops, creases) over
  * size_across, then at least size_min h, graded by Dijkstra along the edges
  * with slope size_grading. GLPGP_SIZE_FUNC: GLPGP_ERR_UNSUPPORTED. */
