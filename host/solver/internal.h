@@ -28,15 +28,17 @@ glpgp_status glpgp_size_file_read(const glpgp_mesh *m, const char *path, double 
 
 /* A surface's local size before the limit of what the mesh resolves
  * (surface_size.c; glpgp_surface_size's auto / iso values, one per vertex,
- * size: nv): the curvature cap and the feature spacing, at least size_min
- * h, graded. The refinement to the local size (prepare.c) targets it. */
+ * size: nv): the curvature cap and (spacing: 1) the feature spacing, at
+ * least size_min h, graded. The refinement to the local size
+ * (surface_refine.c) targets it without the spacing. */
 struct glpgp_surface_constraints;
 glpgp_status glpgp_surface_size_local(const glpgp_mesh *m, const glpgp_options *o,
-                                      const struct glpgp_surface_constraints *con, double h, double *size);
+                                      const struct glpgp_surface_constraints *con, double h, int spacing,
+                                      double *size);
 
 /* A surface refined to its local size (surface_refine.c): every edge longer
  * than h(x) / GLPGP_SURFACE_EDGES bisected (glpgp_mesh_refine_surface_sized),
- * h(x) glpgp_surface_size_local on m (auto / iso; h for the other size
+ * h(x) glpgp_surface_size_local's curvature cap on m (auto / iso; h for the other size
  * fields: glpgp_mesh_refine_surface to h / N), within max_triangles; *out
  * NULL when no edge needed it. Up to GLPGP_SURFACE_REFINE_PASSES passes,
  * the size recomputed on each refined mesh; info->passes those that split,

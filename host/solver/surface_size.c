@@ -387,11 +387,11 @@ done:
 }
 
 glpgp_status glpgp_surface_size_local(const glpgp_mesh *m, const glpgp_options *o,
-                                      const glpgp_surface_constraints *con, double h, double *size)
+                                      const glpgp_surface_constraints *con, double h, int spacing, double *size)
 {
     for (int i = 0; i < m->nv; i++) size[i] = h;
     GLPGP_CHECK(sagitta_cap(m, con, o->size_chord_depth * h, h, size));
-    GLPGP_CHECK(feature_spacing(m, con, o->size_across, size));
+    if (spacing) GLPGP_CHECK(feature_spacing(m, con, o->size_across, size));
     for (int i = 0; i < m->nv; i++) size[i] = fmax(size[i], o->size_min * h);
     return grade(m, o->size_grading, size);
 }
@@ -406,7 +406,7 @@ glpgp_status glpgp_surface_size(const glpgp_mesh *m, const glpgp_options *o, con
     if (o->size_field == GLPGP_SIZE_FILE) {
         GLPGP_CHECK(glpgp_size_file_read(m, o->size_file, size));
     } else {
-        GLPGP_CHECK(glpgp_surface_size_local(m, o, con, h, size));
+        GLPGP_CHECK(glpgp_surface_size_local(m, o, con, h, 1, size));
         memcpy(size + nv, size, (size_t)nv * sizeof(double));
     }
     /* what the mesh carries: at least min(h, size_resolution x the longest edge at the vertex) */
