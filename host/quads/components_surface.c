@@ -17,25 +17,19 @@
 #include <stdlib.h>
 #include <string.h>
 
-static int find(int *p, int a)
-{
-    while (p[a] != a) a = p[a] = p[p[a]];
-    return a;
-}
-
 /* comp[v]: v's component, numbered in the order of their first vertices;
  * returns how many. */
 static int label(const glpgp_mesh *m, int *comp, int *parent)
 {
     for (int v = 0; v < m->nv; v++) parent[v] = v;
     for (int c = 0; c < 3 * m->nt; c++) {
-        const int a = find(parent, m->tri[c]), b = find(parent, m->tri[c - c % 3 + (c % 3 + 1) % 3]);
+        const int a = glpgp_uf_find(parent, m->tri[c]), b = glpgp_uf_find(parent, m->tri[c - c % 3 + (c % 3 + 1) % 3]);
         if (a != b) parent[a > b ? a : b] = a < b ? a : b;
     }
     int n = 0;
     for (int v = 0; v < m->nv; v++) comp[v] = -1;
     for (int v = 0; v < m->nv; v++) {
-        const int r = find(parent, v);
+        const int r = glpgp_uf_find(parent, v);
         if (comp[r] < 0) comp[r] = n++;
         comp[v] = comp[r];
     }
@@ -66,7 +60,7 @@ static glpgp_status parts_make(const glpgp_mesh *m, parts *p)
     GLPGP_CHECK(glpgp_malloc((size_t)m->nv, sizeof(int), &p->vmap));
     GLPGP_CHECK(glpgp_malloc((size_t)m->nv, sizeof(int), &p->vlist));
     GLPGP_CHECK(glpgp_malloc((size_t)m->nt, sizeof(int), &p->tlist));
-    p->n = label(m, p->comp, p->vmap);
+    p->n = label(m, p->comp, p->vmap); /* vmap: label's scratch until set below */
     GLPGP_CHECK(glpgp_calloc((size_t)p->n + 1, sizeof(int), &p->vstart));
     GLPGP_CHECK(glpgp_calloc((size_t)p->n + 1, sizeof(int), &p->tstart));
     for (int v = 0; v < m->nv; v++) p->vstart[p->comp[v] + 1]++;
@@ -75,21 +69,19 @@ static glpgp_status parts_make(const glpgp_mesh *m, parts *p)
         p->vstart[k + 1] += p->vstart[k];
         p->tstart[k + 1] += p->tstart[k];
     }
-    int *vfill = p->vmap; /* label's scratch, then fill counters (n <= nv), then the index in the part */
-    for (int k = 0; k < p->n; k++) vfill[k] = 0;
+    int *fill = NULL; /* per part: the vertices, then the triangles, placed so far */
+    GLPGP_CHECK(glpgp_calloc((size_t)p->n, sizeof(int), &fill));
     for (int v = 0; v < m->nv; v++) {
         const int k = p->comp[v];
-        p->vlist[p->vstart[k] + vfill[k]++] = v;
+        p->vmap[v] = fill[k]++;
+        p->vlist[p->vstart[k] + p->vmap[v]] = v;
     }
-    for (int k = 0; k < p->n; k++)
-        for (int i = p->vstart[k]; i < p->vstart[k + 1]; i++) p->vmap[p->vlist[i]] = i - p->vstart[k];
-    int *tfill = NULL;
-    GLPGP_CHECK(glpgp_calloc((size_t)p->n, sizeof(int), &tfill));
+    memset(fill, 0, (size_t)p->n * sizeof(int));
     for (int t = 0; t < m->nt; t++) {
         const int k = p->comp[m->tri[3 * t]];
-        p->tlist[p->tstart[k] + tfill[k]++] = t;
+        p->tlist[p->tstart[k] + fill[k]++] = t;
     }
-    free(tfill);
+    free(fill);
     return GLPGP_OK;
 }
 

@@ -814,6 +814,14 @@ static glpgp_status cut_loop(const lrep *L, dvec *xy, int n, ivec *quads, int *o
     return st;
 }
 
+/* The worst corner of nq quads (ids), each in its own plane. */
+static double worst_sj(const lrep *L, const int *quads, int nq)
+{
+    double w = 1.0;
+    for (int k = 0; k < nq; k++) w = fmin(w, quad_sj(L, quads + 4 * k));
+    return w;
+}
+
 /* Laplacian sweeps (at most LR_UNTANGLE) on the region's new points (ids
  * from first on): each to the mean of its edge neighbours in the nq quads,
  * moved to its nearest point on the surface, while a corner is at or below
@@ -842,8 +850,7 @@ static glpgp_status untangle(lrep *L, const int *quads, int nq, int first, doubl
             for (int d = 0; d < 3; d++) x[d] = acc[4 * j + d] / acc[4 * j + 3];
             glpgp_qs_proj_nearest(L->P, x, L->nxyz.p + 3 * (first - L->q->nv + j));
         }
-        *worst = 1.0;
-        for (int k = 0; k < nq; k++) *worst = fmin(*worst, quad_sj(L, quads + 4 * k));
+        *worst = worst_sj(L, quads, nq);
     }
     free(acc);
     return GLPGP_OK;
@@ -886,9 +893,8 @@ static glpgp_status mesh_in_chart(lrep *L, const int *loop, int n, lchart *C, iv
         for (int d = 0; d < 3 && st == GLPGP_OK; d++) st = dpush(&L->nxyz, y[d]);
     }
     if (st != GLPGP_OK) goto done;
-    double worst = 1.0;
     for (int k = 0; k < quads.n; k++) quads.p[k] = gid.p[quads.p[k]];
-    for (int k = 0; k < quads.n / 4; k++) worst = fmin(worst, quad_sj(L, quads.p + 4 * k));
+    double worst = worst_sj(L, quads.p, quads.n / 4);
     if (!(worst > LR_SJ_NEW) && worst > LR_SJ_TANGLED) st = untangle(L, quads.p, quads.n / 4, first, &worst);
     if (st == GLPGP_OK && !(worst > LR_SJ_NEW)) {
         glpgp_log(GLPGP_LOG_DEBUG, "quads: surface local repair: %d quads in the %s chart, scaled Jacobian %.3f on the surface",
