@@ -5,10 +5,9 @@
  * its curvature cap, graded), by
  * glpgp_mesh_refine_surface_sized. The feature spacing is left out: two
  * creases or boundary loops closer than h (a thin wall, a narrow chamfer)
- * took the refinement to their spacing over the whole graded band around
- * them (a 4 x 4 x 0.05 box at --faces 300: 13k -> 415k vertices, 97% below
- * h; with h(x) held at h / 4 or above, 122k) for a result the solve's
- * resolution limit sets anyway.
+ * would take the refinement to their spacing over the whole graded band
+ * around them, for a result the solve's resolution limit sets anyway
+ * (bench/results/surface_refine.md, the thin-walled box).
  *
  * The size is computed on the input mesh, before refinement: its vertices
  * lie on the modelled surface, the bisection's midpoints only on its

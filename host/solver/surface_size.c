@@ -19,9 +19,8 @@
 /* the sagitta cap's ladder of patch radii: from h / 2 down by 2^(-1/2)
  * while at least GLPGP_SAGITTA_FLOOR mean edges; each centre's cap spread
  * to the vertices of its patch within GLPGP_SAGITTA_COVER x the cap (or h
- * where none: half the patch's radius; at 1 / 8, with centres twice as
- * dense, the sizes of bench/results/surface_refine.md's models were the
- * same within 1% of the vertices and took 2 - 4x longer) */
+ * where none: half the patch's radius; denser centres gave the same sizes
+ * for more work: bench/results/surface_refine.md) */
 #define GLPGP_SAGITTA_FLOOR 2.0
 #define GLPGP_SAGITTA_COVER 0.25
 #define GLPGP_SAGITTA_RUNGS 24
