@@ -520,6 +520,7 @@ static glpgp_status distances(const glpgp_quadmesh *q, const tsoup *in, double h
 
 struct glpgp_qs_proj {
     tsoup in;
+    const glpgp_mesh *m; /* the surface (its triangles' normals) */
 };
 
 glpgp_status glpgp_qs_proj_create(const glpgp_mesh *m, double h, double cap, glpgp_qs_proj **out)
@@ -531,6 +532,7 @@ glpgp_status glpgp_qs_proj_create(const glpgp_mesh *m, double h, double cap, glp
     P->in.npts = m->nv;
     P->in.xyz = m->xyz;
     P->in.tri = m->tri;
+    P->m = m;
     glpgp_status st = soup_grid(&P->in, h);
     P->in.cap = cap;
     if (st != GLPGP_OK) {
@@ -551,6 +553,11 @@ int glpgp_qs_proj_nearest(const glpgp_qs_proj *P, const double *p, double *x)
         dist2_tri_x(p, P->in.xyz + 3 * v[0], P->in.xyz + 3 * v[1], P->in.xyz + 3 * v[2], x);
     }
     return t;
+}
+
+const double *glpgp_qs_proj_normal(const glpgp_qs_proj *P, int t)
+{
+    return P->m->surf->tframe + 9 * t + 6;
 }
 
 void glpgp_qs_proj_destroy(glpgp_qs_proj **P)

@@ -14,11 +14,48 @@ glpgp_status glpgp_qs_project(const glpgp_mesh *m, double h, double *xyz, int fi
 /* Nearest points on the input surface through a grid of cells
  * (check_surface.c): create for surface m at size h with distances capped
  * at cap; nearest: x = the nearest point of m to p within the cap (p
- * itself when none), returns its triangle (-1: none). */
+ * itself when none), returns its triangle (-1: none); normal: triangle
+ * t's unit normal (m->surf->tframe). */
 typedef struct glpgp_qs_proj glpgp_qs_proj;
 glpgp_status glpgp_qs_proj_create(const glpgp_mesh *m, double h, double cap, glpgp_qs_proj **out);
 int glpgp_qs_proj_nearest(const glpgp_qs_proj *P, const double *p, double *x);
+const double *glpgp_qs_proj_normal(const glpgp_qs_proj *P, int t);
 void glpgp_qs_proj_destroy(glpgp_qs_proj **P);
+
+/* Points in two arrays (the local repair's: the quad mesh's, then the new
+ * ones): n in all, id < nbase at base + 3 id, the others at
+ * ext + 3 (id - nbase). */
+typedef struct glpgp_qs_pts {
+    const double *base;
+    double *ext;
+    int nbase, n;
+} glpgp_qs_pts;
+
+static inline const double *glpgp_qs_pt(const glpgp_qs_pts *S, int id)
+{
+    return id < S->nbase ? S->base + 3 * id : S->ext + 3 * (id - S->nbase);
+}
+
+/* Scaled Jacobians in a quad's own plane (untangle_surface.c; the plane
+ * and the corners as glpgp_quadmesh_face_sj_surface measures them, through
+ * the Newell normal): quad_sj: the worst corner of the quad whose corners
+ * are p[0..3], -1 when it is degenerate or against the surface's normal
+ * at its centroid (the triangle of P nearest to it); worst_sj: the worst
+ * corner of nq quads (4 ids of S each), 1 when nq is 0. */
+double glpgp_qs_quad_sj(const glpgp_qs_proj *P, const double *const p[4]);
+double glpgp_qs_worst_sj(const glpgp_qs_proj *P, const glpgp_qs_pts *S, const int *quads, int nq);
+
+/* The untangling of lifted quads (untangle_surface.c; the local repair's
+ * of a lift that tangled a few corners): while *worst, their worst corner
+ * (glpgp_qs_worst_sj; on entry that of the quads as given), is at or below
+ * floor_sj, at most max_sweeps Laplacian sweeps of S's points from id
+ * first on: each to the mean of its edge neighbours in the nq quads (4 ids
+ * each; the points at no quad stay), then to its nearest point on P's
+ * surface. Points below first stay; S->nbase <= first <= S->n (the
+ * moving points are in S->ext), else GLPGP_ERR_ARG. *worst: the worst
+ * corner after. How tangled a lift may be mended is the caller's call. */
+glpgp_status glpgp_qs_untangle(const glpgp_qs_proj *P, const glpgp_qs_pts *S, int first, const int *quads, int nq,
+                               int max_sweeps, double floor_sj, double *worst);
 
 /* A surface quad mesh's arrays (xyz, xy, face_start, face_vert, face_origin
  * zeroed) for nv points, nf faces and ncorner corners (quads_surface.c). */

@@ -77,9 +77,16 @@ typedef struct lrep {
 } lrep;
 
 
+/* The points: q's, then the new ones (ids q->nv ...). */
+static glpgp_qs_pts points(const lrep *L)
+{
+    return (glpgp_qs_pts){L->q->xyz, L->nxyz.p, L->q->nv, L->q->nv + L->nxyz.n / 3};
+}
+
 static const double *pos(const lrep *L, int id)
 {
-    return id < L->q->nv ? L->q->xyz + 3 * id : L->nxyz.p + 3 * (id - L->q->nv);
+    const glpgp_qs_pts S = points(L);
+    return glpgp_qs_pt(&S, id);
 }
 
 static int cnext(const lrep *L, int c)
@@ -550,36 +557,6 @@ static int chart(const lrep *L, const int *loop, int n, double *o, double *e, do
     return simple_ccw(xy, n);
 }
 
-/* Scaled Jacobian of quad v (ids) in its own plane, -1 when it is against
- * the surface's normal at its centroid. */
-static double quad_sj(const lrep *L, const int *v)
-{
-    double N[3] = {0, 0, 0}, c[3] = {0, 0, 0}, x[3];
-    for (int i = 0; i < 4; i++) {
-        const double *a = pos(L, v[i]), *b = pos(L, v[(i + 1) % 4]);
-        cross3(a, b, x);
-        for (int d = 0; d < 3; d++) {
-            N[d] += x[d];
-            c[d] += 0.25 * a[d];
-        }
-    }
-    const double nn = sqrt(dot3(N, N));
-    const int t = glpgp_qs_proj_nearest(L->P, c, x);
-    if (!(nn > 0) || t < 0 || dot3(N, L->m->surf->tframe + 9 * t + 6) <= 0.0) return -1.0;
-    double sj = 1.0;
-    for (int i = 0; i < 4; i++) {
-        const double *p = pos(L, v[i]);
-        double e1[3], e2[3];
-        sub3(pos(L, v[(i + 1) % 4]), p, e1);
-        sub3(pos(L, v[(i + 3) % 4]), p, e2);
-        const double l = sqrt(dot3(e1, e1) * dot3(e2, e2));
-        if (!(l > 0)) return -1.0;
-        cross3(e1, e2, x);
-        sj = fmin(sj, dot3(x, N) / (nn * l));
-    }
-    return sj;
-}
-
 static int cmp_ll(const void *pa, const void *pb)
 {
     const long long *a = pa, *b = pb;
@@ -817,43 +794,19 @@ static glpgp_status cut_loop(const lrep *L, dvec *xy, int n, ivec *quads, int *o
 /* The worst corner of nq quads (ids), each in its own plane. */
 static double worst_sj(const lrep *L, const int *quads, int nq)
 {
-    double w = 1.0;
-    for (int k = 0; k < nq; k++) w = fmin(w, quad_sj(L, quads + 4 * k));
-    return w;
+    const glpgp_qs_pts S = points(L);
+    return glpgp_qs_worst_sj(L->P, &S, quads, nq);
 }
 
 /* Laplacian sweeps (at most LR_UNTANGLE) on the region's new points (ids
- * from first on): each to the mean of its edge neighbours in the nq quads,
- * moved to its nearest point on the surface, while a corner is at or below
- * LR_SJ_NEW; mends a lift that tangled a few corners (a chart a little
- * off the surface). Returns the worst corner after. */
+ * from first on), each moved to its nearest point on the surface, while a
+ * corner is at or below LR_SJ_NEW (glpgp_qs_untangle); mends a lift that
+ * tangled a few corners (a chart a little off the surface). Returns the
+ * worst corner after. */
 static glpgp_status untangle(lrep *L, const int *quads, int nq, int first, double *worst)
 {
-    const int nn = L->q->nv + L->nxyz.n / 3 - first;
-    double *acc = NULL;
-    GLPGP_CHECK(glpgp_calloc((size_t)4 * nn + 4, sizeof(double), &acc));
-    for (int sweep = 0; sweep < LR_UNTANGLE && !(*worst > LR_SJ_NEW); sweep++) {
-        memset(acc, 0, (size_t)4 * nn * sizeof(double));
-        for (int k = 0; k < nq; k++)
-            for (int i = 0; i < 4; i++) {
-                const int a = quads[4 * k + i], b = quads[4 * k + (i + 1) % 4];
-                for (int e = 0; e < 2; e++) {
-                    const int u = e ? b : a, w = e ? a : b;
-                    if (u < first) continue;
-                    for (int d = 0; d < 3; d++) acc[4 * (u - first) + d] += pos(L, w)[d];
-                    acc[4 * (u - first) + 3] += 1.0;
-                }
-            }
-        for (int j = 0; j < nn; j++) {
-            if (!(acc[4 * j + 3] > 0)) continue;
-            double x[3];
-            for (int d = 0; d < 3; d++) x[d] = acc[4 * j + d] / acc[4 * j + 3];
-            glpgp_qs_proj_nearest(L->P, x, L->nxyz.p + 3 * (first - L->q->nv + j));
-        }
-        *worst = worst_sj(L, quads, nq);
-    }
-    free(acc);
-    return GLPGP_OK;
+    const glpgp_qs_pts S = points(L);
+    return glpgp_qs_untangle(L->P, &S, first, quads, nq, LR_UNTANGLE, LR_SJ_NEW, worst);
 }
 
 /* The cut mesher's quads of the loop in chart C, the new points lifted onto
