@@ -15,6 +15,7 @@
 # HELD_OUT=1 adds models never tuned on (bench/surface_models.py: a bumpy
 # 82k-triangle scan, a plate of genus 16 with sharp edges, a sphere with 120
 # holes; minutes each on 2 cores).
+# ARGS: more `glpgp solve` options for every row (e.g. ARGS="--size-chord-depth 0.125").
 # Usage: bash bench/surface_compare.sh [path/to/glpgp]   (SCALE: triangles of the generated models, default 20000)
 set -u
 GLPGP=${1:-build/glpgp}
@@ -22,6 +23,7 @@ OUT=${OUT:-out/surface_compare}
 FACES=${FACES:-"300 1000"}
 SCALE=${SCALE:-20000}
 BACKEND=${BACKEND:-reference}
+read -r -a ARGS_A <<<"${ARGS:-}"
 HERE=$(cd "$(dirname "$0")" && pwd)
 mkdir -p "$OUT"
 python3 "$HERE/surface_models.py" holes 20 5 "$OUT/holes20.obj"
@@ -44,7 +46,7 @@ for model in $MODELS_ALL; do
         tag=$(basename "$model" | tr ':.' '__')_$n
         t0=$(date +%s.%N)
         "$GLPGP" solve "$model" --faces "$n" --backend "$BACKEND" --quads "$OUT/$tag.obj" --stats "$OUT/$tag.json" \
-            >"$OUT/$tag.txt" 2>&1
+            "${ARGS_A[@]}" >"$OUT/$tag.txt" 2>&1
         t1=$(date +%s.%N)
         python3 - "$OUT/$tag.json" "$OUT/$tag.txt" "$model" "$n" "$(echo "$t1 - $t0" | bc)" >>"$OUT/summary.md" <<'PY'
 import json, re, sys

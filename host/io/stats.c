@@ -51,6 +51,7 @@ static void stats_options(glpgp_json *w, const glpgp_options *o)
         glpgp_json_num(w, "cross_eps0", o->cross_eps0);
         glpgp_json_num(w, "cross_eps_min", o->cross_eps_min);
         glpgp_json_num(w, "cross_rtol", o->cross_rtol);
+        glpgp_json_num(w, "cross_ftol", o->cross_ftol);
         glpgp_json_str(w, "cross_size", o->cross_size == GLPGP_CROSS_SIZE_AUTO ? "auto"
                                         : o->cross_size == GLPGP_CROSS_SIZE_ON ? "on"
                                                                                 : "off");
@@ -99,6 +100,7 @@ static void stats_level(glpgp_json *w, int l, const glpgp_level_stats *ls, int o
     glpgp_json_num(w, "rtol", ls->rtol);
     glpgp_json_bool(w, "capped", ls->capped);
     if (osc) glpgp_json_bool(w, "at_noise", ls->at_noise);
+    if (!osc) glpgp_json_bool(w, "stalled", ls->stalled);
     glpgp_json_close(w);
 }
 

@@ -350,7 +350,15 @@ glpgp_status glpgp_cross_levels(const glpgp_mesh *m, glpgp_backend *b, const glp
             ls->energy = sg[GLPGP_S_E] + sg[GLPGP_S_P];
             continue;
         }
-        GLPGP_CHECK(glpgp_newton_level(b, o, ns, 2, eps[l], rtol, ls));
+        ns->ftol = o->cross_ftol;
+        const glpgp_status st = glpgp_newton_level(b, o, ns, 2, eps[l], rtol, ls);
+        ns->ftol = 0.0;
+        GLPGP_CHECK(st);
+        if (ls->stalled)
+            glpgp_log(GLPGP_LOG_INFO,
+                      "cross: eps level %d/%d stopped after %d Newton steps: E + P fell by at most %.0e of itself "
+                      "over the last 3 (|g|/|g0| = %.2e; the singularities' drift stalls)",
+                      l + 1, c->nlevels, ls->newton, o->cross_ftol, ls->grad0 > 0 ? ls->grad / ls->grad0 : 0.0);
         if (ls->capped) {
             c->capped_levels++;
             glpgp_log(GLPGP_LOG_WARNING,

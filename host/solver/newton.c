@@ -532,6 +532,8 @@ static glpgp_status newton_level(glpgp_backend *b, const glpgp_options *o, glpgp
     ls->cg = 0;
     ls->capped = 0;
     ls->at_noise = 0;
+    ls->stalled = 0;
+    double fhist[3] = {0.0, 0.0, 0.0}; /* E + P at the start of the last 3 steps (the stall test) */
     for (int it = 0;; it++) {
         /* g <- grad(E + P)(x) (zero on Dirichlet vertices); F = E + P */
         GLPGP_CHECK(op->gradient(b, ns->x, inv4e2, ns->g));
@@ -578,6 +580,7 @@ static glpgp_status newton_level(glpgp_backend *b, const glpgp_options *o, glpgp
             break;
         }
         glpgp_newton_step_info info;
+        fhist[it % 3] = F;
         GLPGP_CHECK(glpgp_newton_step(b, o, ns, inv4e2, F, gn, &info));
         ls->cg += info.cg;
         ls->fallbacks += info.fallbacks;
@@ -608,6 +611,17 @@ static glpgp_status newton_level(glpgp_backend *b, const glpgp_options *o, glpgp
          * level done */
         if (!info.accepted || info.at_noise) {
             ls->at_noise = 1;
+            break;
+        }
+        /* the stall test (ns->ftol > 0): E + P fell by at most ftol |E + P|
+         * over the last 3 steps (fhist[(it + 1) % 3]: the start of step it - 2) */
+        if (ns->ftol > 0.0 && it >= 2 && fhist[(it + 1) % 3] - info.energy <= ns->ftol * fabs(info.energy)) {
+            ls->stalled = 1;
+            ls->energy = info.energy;
+            GLPGP_CHECK(op->gradient(b, ns->x, inv4e2, ns->g));
+            GLPGP_CHECK(op->dot(b, ns->g, ns->g, GLPGP_S_DOT));
+            GLPGP_CHECK(op->get_scalars(b, s, GLPGP_NSLOTS));
+            ls->grad = sqrt(s[GLPGP_S_DOT]);
             break;
         }
     }

@@ -30,6 +30,9 @@ typedef struct glpgp_level_stats {
                             decreases E + P measurably any more (the line search found none,
                             or the trust-region model promises less than F's rounding
                             level): converged as far as double precision resolves */
+    int stalled;         /* the level stopped with |g| above its tolerance because E + P fell
+                            by at most ftol |E + P| over 3 Newton steps (the cross field's
+                            --cross-ftol: slow drift of singularities on near-neutral modes) */
     double rtol;         /* the level's tolerance |g| <= rtol |g0| */
     int cg_capped;       /* Newton linear solves stopped by the CG cap (cg_max) */
 } glpgp_level_stats;

@@ -46,6 +46,9 @@ typedef struct glpgp_newton_state {
     double target;   /* the level's gradient target rtol |g_0| (set by the level loop on
                         the last eps level; 0: none): the inexact-Newton tolerance needs
                         no more than 0.1 target / |g| (solver/newton.c, newton_eta) */
+    double ftol;     /* > 0: the level also ends when E + P fell by at most ftol |E + P|
+                        over the last 3 Newton steps (the cross field's stall test,
+                        --cross-ftol; 0: off, the oscillators') */
     const int *stop; /* NULL, or a flag another thread may set (read atomically before
                         each step): non-zero ends the level with an error at once (the
                         other oscillator of a concurrent solve failed) */
