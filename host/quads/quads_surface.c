@@ -810,15 +810,17 @@ static glpgp_status split_local_repair(const glpgp_mesh *m, const glpgp_quadmesh
                                        glpgp_quads_surface_steps *stp, glpgp_quadmesh **out);
 
 /* The local repair's candidates: the repaired mesh (bad faces but the far
- * ones), its split (with split; when only the distance or the area fails:
- * a grid too coarse for the surface), the repair with the far faces too.
- * *out NULL: none is valid. */
+ * ones); with split, when only the distance or the area fails (a grid too
+ * coarse for the surface somewhere): the local split of its far faces, the
+ * repair with the far faces too, then its whole split; last (or without
+ * split) the repair with the far faces too. *out NULL: none is valid. */
 static glpgp_status repaired(const glpgp_mesh *m, const glpgp_quadmesh *q, double h, int split,
                              glpgp_quads_surface_steps *stp, glpgp_quadmesh **out)
 {
     glpgp_quadmesh *r = NULL, *s = NULL;
     glpgp_quads_repair rs;
     unsigned bad = 0;
+    int tried_far = 0;
     *out = NULL;
     glpgp_status st = local_repair(m, q, h, 0, &r, &bad, &rs);
     if (st == GLPGP_OK && r && !bad) goto keep_r;
@@ -829,6 +831,21 @@ static glpgp_status repaired(const glpgp_mesh *m, const glpgp_quadmesh *q, doubl
             *out = s;
             return GLPGP_OK;
         }
+    }
+    if (st == GLPGP_OK && r && split && !(bad & ~(unsigned)(GLPGP_QUADS_BAD_HAUSDORFF | GLPGP_QUADS_BAD_AREA))) {
+        /* the far faces repaired too, before the whole mesh is split (4x the quads) */
+        glpgp_quadmesh *f = NULL;
+        glpgp_quads_repair fs;
+        unsigned fbad = 0;
+        tried_far = 1;
+        st = local_repair(m, q, h, 1, &f, &fbad, &fs);
+        if (st == GLPGP_OK && f && !fbad) {
+            glpgp_quadmesh_destroy(&r);
+            r = f;
+            rs = fs;
+            goto keep_r;
+        }
+        glpgp_quadmesh_destroy(&f);
     }
     if (st == GLPGP_OK && r && split && !(bad & ~(unsigned)(GLPGP_QUADS_BAD_HAUSDORFF | GLPGP_QUADS_BAD_AREA))) {
         st = split_onto(m, r, h, &s);
@@ -856,7 +873,7 @@ static glpgp_status repaired(const glpgp_mesh *m, const glpgp_quadmesh *q, doubl
         glpgp_quadmesh_destroy(&s);
     }
     glpgp_quadmesh_destroy(&r);
-    if (st == GLPGP_OK) st = local_repair(m, q, h, 1, &r, &bad, &rs);
+    if (st == GLPGP_OK && !tried_far) st = local_repair(m, q, h, 1, &r, &bad, &rs);
     if (st == GLPGP_OK && r && !bad) goto keep_r;
     glpgp_quadmesh_destroy(&r);
     return st;

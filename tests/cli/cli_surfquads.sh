@@ -21,6 +21,8 @@
 #    1665), smallest scaled Jacobian >= 0.3;
 #  - scan debris (a sphere and a speck 0.01 across, two components): the
 #    parts meshed apart, the speck alone by the last resort;
+#  - a bumpy scan at a coarse size: its far faces repaired locally (not the
+#    whole mesh split);
 #  - --quads OUT.ply: a PLY whose faces are the report's quads;
 #  - pictures (where built with OpenImageIO): `render sphere.obj` draws the
 #    3D quad mesh (its counts line: the scaled Jacobian in the faces' own
@@ -128,6 +130,19 @@ q = json.load(open("speck.json"))["quads"]; st = q["surface"]["steps"]
 assert q["valid"] and q["surface"]["euler"] == 4 and q["other_faces"] == 0, q["invalid_reasons"]
 assert st["parts"] == 2 and st["parts_last_resort"] == 1 and not st["last_resort"], st
 assert 100 <= q["quads"] < 250, q["quads"]
+PY
+
+# a bumpy scan at a coarse size (bench/surface_models.py bumpy 5: 20k
+# triangles, --faces 300): the locally repaired grid fails by its distance
+# to the surface only, and its far faces repaired too make it valid (before,
+# the whole mesh was split first: 1172 quads)
+python3 "$(dirname "$0")/../../bench/surface_models.py" bumpy 5 bumpy.obj || fail "bumpy.obj"
+run_ok "bumpy" solve bumpy.obj --faces 300 --backend reference --quads bumpy.q.obj --stats bumpy.json
+python3 - <<'PY' || fail "bumpy: the far faces repaired, not the mesh split"
+import json
+q = json.load(open("bumpy.json"))["quads"]; s = q["surface"]
+assert q["valid"] and s["hausdorff_over_h"] <= 0.25 and q["other_faces"] == 0, q["invalid_reasons"]
+assert s["steps"]["path"] == "local repair" and 200 <= q["quads"] < 450, (s["steps"]["path"], q["quads"])
 PY
 
 # the developable half cylinder against its unrolled twin
