@@ -613,9 +613,11 @@ static glpgp_status newton_level(glpgp_backend *b, const glpgp_options *o, glpgp
             ls->at_noise = 1;
             break;
         }
-        /* the stall test (ns->ftol > 0): E + P fell by at most ftol |E + P|
-         * over the last 3 steps (fhist[(it + 1) % 3]: the start of step it - 2) */
-        if (ns->ftol > 0.0 && it >= 2 && fhist[(it + 1) % 3] - info.energy <= ns->ftol * fabs(info.energy)) {
+        /* the stall test (ns->ftol > 0), from GLPGP_STALL_STEPS steps on: E + P
+         * fell by at most ftol |E + P| over the last 3 steps (fhist[(it + 1) % 3]:
+         * the start of step it - 2) */
+        if (ns->ftol > 0.0 && it + 1 >= GLPGP_STALL_STEPS &&
+            fhist[(it + 1) % 3] - info.energy <= ns->ftol * fabs(info.energy)) {
             ls->stalled = 1;
             ls->energy = info.energy;
             GLPGP_CHECK(op->gradient(b, ns->x, inv4e2, ns->g));

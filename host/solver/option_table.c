@@ -173,8 +173,9 @@ static const glpgp_optdesc k_table[] = {
         "--field cross: last eps, as a multiple of the mean edge length"),
     DBL("cross-rtol", G2, cross_rtol, 0.0, 1, 1.0, 1, "F", "--field cross: each eps level stops when |g| <= F |g0|"),
     DBL("cross-ftol", G2, cross_ftol, 0.0, 0, 1.0, 1, "F",
-        "--field cross: ... or when E + P fell by at most F of itself over\n"
-        "3 Newton steps (the singularities' drift stalls; 0: off)"),
+        "--field cross: ... or, from its 20th Newton step on, when E + P\n"
+        "fell by at most F of itself over the last 3 (the singularities'\n"
+        "drift stalls; 0: off)"),
     CHO("cross-size", G2, cross_size, k_cross_sizes, k_cross_size_vals,
         "--field cross: local size from the cross field (its conformal\n"
         "scale, which makes the quads' grid integrable away from the\n"

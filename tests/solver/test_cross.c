@@ -13,8 +13,6 @@
  *    5%); the square and the L-shape have none and give U = (1, 0) without cuts;
  *  - the same sum on every bundled mesh (data/: annulus, L-shape, plate with
  *    holes, square);
- *  - the stall test (--cross-ftol) on the disk: fewer Newton steps, the same
- *    last energy within 1e-4, no level capped;
  *  - glpgp_solve with --field cross keeps the cross field in the result. */
 #include "testutil.h"
 
@@ -27,27 +25,21 @@ static glpgp_mesh *shape(const char *name, long n)
     return m;
 }
 
-static glpgp_cross_result *solve_cross_o(const glpgp_mesh *m, const glpgp_options *po)
+static glpgp_cross_result *solve_cross(const glpgp_mesh *m, glpgp_backend **bout)
 {
     glpgp_system *sys = NULL;
     glpgp_backend *b = NULL;
     glpgp_cross_result *c = NULL;
-    glpgp_options o = *po;
+    glpgp_options o;
+    glpgp_options_default(&o);
     CHECK_OK(glpgp_system_create(m, &sys));
     CHECK_OK(glpgp_backend_create_reference(&b));
     CHECK_OK(b->ops->setup(b, sys));
     CHECK_OK(glpgp_cross_solve(m, b, &o, &c));
     glpgp_backend_destroy(&b);
     glpgp_system_destroy(&sys);
-    return c;
-}
-
-static glpgp_cross_result *solve_cross(const glpgp_mesh *m, glpgp_backend **bout)
-{
-    glpgp_options o;
-    glpgp_options_default(&o);
     (void)bout;
-    return solve_cross_o(m, &o);
+    return c;
 }
 
 static void test_boundary(void)
@@ -221,48 +213,6 @@ static void test_solves(void)
     }
 }
 
-/* The stall test (--cross-ftol): on the disk nothing pins the four
- * singularities' common rotation, and a level drifts with |g| above its
- * tolerance. With the test a level stops once E + P fell by at most ftol of
- * itself over 3 steps: fewer Newton steps than without it (ftol 0), no
- * level capped, each stalled level above its gradient tolerance, and the
- * last level's energy within 1e-4 of the one without the test. */
-static void test_stall(void)
-{
-    glpgp_mesh *m = shape("disk", 6000);
-    glpgp_options o;
-    glpgp_options_default(&o);
-    glpgp_cross_result *c = solve_cross_o(m, &o);
-    o.cross_ftol = 0.0;
-    glpgp_cross_result *c0 = solve_cross_o(m, &o);
-    if (c && c0) {
-        int stalled = 0;
-        for (int l = 0; l < c->nlevels; l++) {
-            const glpgp_level_stats *ls = &c->level[l];
-            printf("disk level %d: newton %d (without the test %d), |g|/|g0| %.2e, stalled %d, capped %d\n", l,
-                   ls->newton, c0->level[l].newton, ls->grad / ls->grad0, ls->stalled, ls->capped);
-            CHECK(!ls->capped);
-            if (ls->stalled) {
-                stalled++;
-                CHECK(ls->grad > ls->rtol * ls->grad0);
-                CHECK(ls->newton >= 3);
-            }
-            CHECK(!c0->level[l].stalled);
-        }
-        const double e = c->level[c->nlevels - 1].energy, e0 = c0->level[c0->nlevels - 1].energy;
-        printf("disk: newton %d with the stall test, %d without; last energy %.10g vs %.10g\n", c->newton_iterations,
-               c0->newton_iterations, e, e0);
-        CHECK(stalled > 0);
-        CHECK(c->newton_iterations < c0->newton_iterations);
-        CHECK(fabs(e - e0) <= 1e-4 * fabs(e0));
-        CHECK(c->nsing == 4 && c0->nsing == 4);
-    }
-    CHECK(c && c0);
-    glpgp_cross_result_destroy(&c);
-    glpgp_cross_result_destroy(&c0);
-    glpgp_mesh_destroy(&m);
-}
-
 /* every bundled mesh: the measured index sum is the Poincare-Hopf value */
 static void test_bundled(void)
 {
@@ -313,7 +263,6 @@ int main(void)
     test_poincare_hopf_formula();
     test_detection();
     test_solves();
-    test_stall();
     test_bundled();
     test_pipeline();
     TEST_DONE();

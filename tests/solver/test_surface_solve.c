@@ -7,6 +7,8 @@
  *    8 x +1/4 (features kept, one at each corner), torus 0, genus 2 -2,
  *    hemisphere 1 (= Poincare-Hopf with its circle), each sum exactly the
  *    expected one;
+ *  - the cross field's stall test on the sphere (8216 vertices): its drifting
+ *    last level stops after 20 of 27 steps, the energy within 1e-3;
  *  - a developable surface (halfcyl) gives the planar result of its
  *    unrolled twin (halfcyl_flat, the coupled planar solve) to 1e-8 at a
  *    uniform size: every vertex's (z_u, z_v), read through the quarter turn
@@ -21,6 +23,7 @@
  *    edge rule), not beyond --max-elements, not with --no-refine. */
 #include "testutil.h"
 
+#include "glpgp/internal/newton.h"
 #include "glpgp/surfsolve.h"
 
 #include <string.h>
@@ -145,6 +148,55 @@ static void test_cross(const char *shape, long n, int sum4, int nplus, int nminu
         CHECK(c->zabs_median > 0.9);
     }
     glpgp_cross_result_destroy(&c);
+    glpgp_surface_constraints_destroy(&con);
+    glpgp_backend_destroy(&b);
+    glpgp_mesh_destroy(&m);
+}
+
+/* The cross field's stall test (--cross-ftol): on the sphere nothing pins
+ * the 8 singularities, and its last level (8216 vertices, no refinement)
+ * drifts for 27 Newton steps without the test, |g| above its tolerance.
+ * With it, the level stops from GLPGP_STALL_STEPS steps on once E + P fell
+ * by at most ftol of itself over 3 steps: fewer steps, the level marked
+ * stalled above its gradient tolerance, none capped, the last energy
+ * within 1e-3 of the one without the test, the same singularities. */
+static void test_cross_stall(void)
+{
+    glpgp_mesh *m = NULL;
+    glpgp_backend *b = NULL;
+    glpgp_surface_constraints *con = NULL;
+    glpgp_cross_result *c[2] = {NULL, NULL};
+    glpgp_options o;
+    glpgp_options_default(&o);
+    CHECK_OK(glpgp_mesh_generate("sphere", 8000, &m));
+    CHECK_OK(glpgp_backend_create_reference(&b));
+    if (!m || !b) return;
+    CHECK_OK(glpgp_surface_constraints_create(m, o.feature_angle, &con));
+    for (int k = 0; k < 2; k++) {
+        o.cross_ftol = k ? 0.0 : 1e-5;
+        CHECK_OK(glpgp_surface_cross_solve(m, b, &o, con, &c[k]));
+    }
+    if (c[0] && c[1]) {
+        int stalled = 0;
+        for (int l = 0; l < c[0]->nlevels; l++) {
+            const glpgp_level_stats *a = &c[0]->level[l], *z = &c[1]->level[l];
+            printf("sphere cross level %d: newton %d (without the stall test %d), |g|/|g0| %.2e, stalled %d\n", l,
+                   a->newton, z->newton, a->grad / a->grad0, a->stalled);
+            CHECK(!a->capped && !z->stalled);
+            if (a->stalled) {
+                stalled++;
+                CHECK(a->newton >= GLPGP_STALL_STEPS && a->newton < z->newton);
+                CHECK(a->grad > a->rtol * a->grad0);
+            }
+        }
+        const double e = c[0]->level[c[0]->nlevels - 1].energy, e0 = c[1]->level[c[1]->nlevels - 1].energy;
+        printf("sphere cross: newton %d with the stall test, %d without; last energy %.8g vs %.8g\n",
+               c[0]->newton_iterations, c[1]->newton_iterations, e, e0);
+        CHECK(stalled == 1);
+        CHECK(fabs(e - e0) <= 1e-3 * fabs(e0));
+        CHECK(c[0]->nsing == 8 && c[0]->index4_sum == 8);
+    }
+    for (int k = 0; k < 2; k++) glpgp_cross_result_destroy(&c[k]);
     glpgp_surface_constraints_destroy(&con);
     glpgp_backend_destroy(&b);
     glpgp_mesh_destroy(&m);
@@ -304,6 +356,7 @@ int main(void)
     test_cross("torus", 3000, 0, -1, -1);
     test_cross("genus2", 3000, -8, -1, -1);
     test_cross("hemisphere", 3000, 4, -1, -1);
+    test_cross_stall();
     test_developable();
     test_coupled_cg("torus");
     test_coupled_cg("sphere");

@@ -119,9 +119,10 @@ typedef struct glpgp_options {
     double cross_eps_min; /* last eps as a multiple of the mean edge length [2.5] */
     double cross_rtol;    /* every cross level stops when |g| <= this |g_0| (the singularities
                              are placed long before; later steps are slow vortex drift) [1e-3] */
-    double cross_ftol;    /* ... or when E + P fell by at most this fraction of itself over the
-                             last 3 Newton steps (the drift stalls: a sphere's 8 singularities
-                             settle at 1e-6 per step) [1e-5; 0: off] */
+    double cross_ftol;    /* ... or, from its GLPGP_STALL_STEPS-th Newton step on, when E + P
+                             fell by at most this fraction of itself over the last 3 (the drift
+                             stalls: a sphere's 8 singularities settle at 1e-6 per step)
+                             [1e-5; 0: off] */
     int cross_coupling;   /* GLPGP_COUPLING_* [AUTO] */
     int cross_size;       /* GLPGP_CROSS_SIZE_*: local size from the cross field
                              (glpgp_cross_conformal_size), the smaller of it and the size

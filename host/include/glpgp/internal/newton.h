@@ -28,6 +28,12 @@ glpgp_status glpgp_field_compute(const glpgp_mesh *m, glpgp_backend *b, const gl
  * one of the two adjacent boundary edges, |w.n| >= |w.t|. Returns the count. */
 int glpgp_dirichlet_set(const glpgp_mesh *m, const double *w, unsigned char *dir);
 
+/* The Newton steps a level runs before its stall test (ftol) may end it: a
+ * level that converges in fewer keeps its result (stopping the sphere's cross
+ * field's levels at 6-8 steps moved its singularities and doubled the quad
+ * meshes' irregular vertices at --faces 500: bench/results/cross_stall.md). */
+#define GLPGP_STALL_STEPS 20
+
 /* State of the Newton iteration at one eps level (vectors of 2*nv doubles). */
 typedef struct glpgp_newton_state {
     glpgp_vec *x;    /* iterate (updated by a step) */
@@ -46,9 +52,10 @@ typedef struct glpgp_newton_state {
     double target;   /* the level's gradient target rtol |g_0| (set by the level loop on
                         the last eps level; 0: none): the inexact-Newton tolerance needs
                         no more than 0.1 target / |g| (solver/newton.c, newton_eta) */
-    double ftol;     /* > 0: the level also ends when E + P fell by at most ftol |E + P|
-                        over the last 3 Newton steps (the cross field's stall test,
-                        --cross-ftol; 0: off, the oscillators') */
+    double ftol;     /* > 0: the level also ends when, from GLPGP_STALL_STEPS steps on,
+                        E + P fell by at most ftol |E + P| over the last 3 Newton steps
+                        (the cross field's stall test, --cross-ftol; 0: off, the
+                        oscillators') */
     const int *stop; /* NULL, or a flag another thread may set (read atomically before
                         each step): non-zero ends the level with an error at once (the
                         other oscillator of a concurrent solve failed) */
