@@ -195,9 +195,10 @@ static const glpgp_optdesc k_table[] = {
         "on: an error where the backend cannot), or apart (off)"),
     CHO("cross-mesh", G2, cross_mesh, k_cross_meshes, k_cross_mesh_vals,
         "--field cross on a surface refined for its size: solve the cross\n"
-        "field on the input mesh and carry it onto the refined one (input:\n"
-        "5-6x fewer vertices; polish: then the last eps level on the refined\n"
-        "mesh from it), or on the refined mesh (refined)"),
+        "field on the input mesh (5-6x fewer vertices) and carry it onto\n"
+        "the refined one, then its last eps level on the refined mesh from\n"
+        "it (polish) or not (input), or solve it on the refined mesh\n"
+        "(refined)"),
     DBL("eps-ratio", G2, eps_ratio, 0.0, 1, 1.0, 1, "F", "eps_{k+1} = F eps_k"),
     DBL("eps-min", G2, eps_min, 0.0, 1, HUGE_VAL, 0, "F", "last eps, as a multiple of the mean edge length"),
     DBL("newton-rtol", G2, newton_rtol, 0.0, 1, 1.0, 1, "F", "the last level stops when |g| <= F |g0|"),

@@ -28,7 +28,7 @@ void glpgp_options_default(glpgp_options *o)
     o->cross_rtol = 1e-3;
     o->cross_ftol = 1e-5;
     o->cross_coupling = GLPGP_COUPLING_AUTO;
-    o->cross_mesh = GLPGP_CROSS_MESH_INPUT;
+    o->cross_mesh = GLPGP_CROSS_MESH_POLISH;
     o->cross_size = GLPGP_CROSS_SIZE_AUTO;
     o->cross_size_quantile = 0.9;
     o->cross_size_ratio = 1.4;

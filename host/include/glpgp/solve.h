@@ -133,7 +133,7 @@ typedef struct glpgp_options {
     int cross_coupling;   /* GLPGP_COUPLING_* [AUTO] */
     int cross_mesh;       /* GLPGP_CROSS_MESH_*: a refined surface's cross field solved on its
                              input and carried over (then polished), or on the refined mesh
-                             [INPUT] */
+                             [POLISH] */
     int cross_size;       /* GLPGP_CROSS_SIZE_*: local size from the cross field
                              (glpgp_cross_conformal_size), the smaller of it and the size
                              field's, for both oscillators [AUTO] */
