@@ -235,9 +235,13 @@ static void print_summary(const solve_cli *c, const char *input, const glpgp_mes
             if (r->cross->sing[k].index4 > 0) np++;
             else nm++;
         }
-        printf("  cross field    %d singularities (+%d -%d), index sum %g (Poincare-Hopf %g), %d Newton, %.2f s\n",
+        char on[96] = ""; /* --cross-mesh input / polish: solved on the input, carried over */
+        if (r->cross->solved_nv != r->cross->nv)
+            snprintf(on, sizeof on, ", solved on the input (%d vertices)%s", r->cross->solved_nv,
+                     r->cross->polished ? " + polished" : "");
+        printf("  cross field    %d singularities (+%d -%d), index sum %g (Poincare-Hopf %g), %d Newton, %.2f s%s\n",
                r->cross->nsing, np, nm, r->cross->index4_sum / 4.0, r->cross->index4_expected / 4.0,
-               r->cross->newton_iterations, r->cross->seconds);
+               r->cross->newton_iterations, r->cross->seconds, on);
     }
     printf("  median |z|     u: %.4f   v: %.4f\n", u->zabs_median, v->zabs_median);
     if (r->coupled) /* one system for both (--cross-coupling): its counts are in u */

@@ -117,6 +117,11 @@ static void stats_cross(glpgp_json *w, const glpgp_mesh *m, const glpgp_result *
         glpgp_json_num(w, "index_expected", c->index4_expected / 4.0);
         glpgp_json_bool(w, "poincare_hopf", c->index4_sum == c->index4_expected);
         glpgp_json_num(w, "median_abs_w", c->zabs_median);
+        /* the mesh it was solved on: the solve's own (solve), or a refined surface's input (carried over) */
+        if (m->xyz) {
+            glpgp_json_str(w, "mesh", c->solved_nv == c->nv ? "solve" : c->polished ? "input+polish" : "input");
+            glpgp_json_int(w, "mesh_vertices", c->solved_nv);
+        }
         /* u and v solved as one system coupled across the cuts (--cross-coupling) */
         glpgp_json_bool(w, "coupled", r->coupled != 0);
         glpgp_json_array(w, "singular");

@@ -30,7 +30,14 @@
  * down to 0), the mesh kept after each level: when the next level would pass
  * max_triangles, the last complete level is the result (a uniform
  * resolution, not half a mesh refined). Work and memory are linear in the
- * output: per bisection O(1) with the twin half-edges updated in place. */
+ * output: per bisection O(1) with the twin half-edges updated in place.
+ *
+ * Every triangle made lies in one input triangle (its ancestor's plane):
+ * the ancestor and the barycentric coordinates of the corners in it are
+ * carried through the bisections (a midpoint's are the mean of its edge's
+ * ends', exact in binary) and left in the result's surface (otri, obary):
+ * where each refined vertex lies on the input, for a field computed there
+ * (glpgp_surface_cross_transfer). */
 #include "glpgp/surface.h"
 #include "glpgp/util.h"
 
@@ -54,6 +61,9 @@ typedef struct lepp {
     double tconst;
     long max_t; /* triangle limit (0: GLPGP_MESH_MAX_TRIANGLES only) */
     long splits;
+    int *ot;       /* cap_ot: the input triangle holding each triangle */
+    double *ob;    /* 9 cap_ob: its corners' barycentric coordinates there */
+    size_t cap_ot, cap_ob;
 } lepp;
 
 static double len2(const lepp *L, int h)
@@ -92,6 +102,15 @@ static int longest(const lepp *L, int t, double *l2)
  * inner edge set, the split edge's halves (3t, 3n) left to the caller. */
 static void bisect_one(lepp *L, int t, int a, int p, int n)
 {
+    /* the origin: t = (B_a, mid, B_c), n = (mid, B_b, B_c) in t's input triangle */
+    double *bt = L->ob + 9 * (size_t)t, *bn = L->ob + 9 * (size_t)n, B[9];
+    memcpy(B, bt, sizeof B);
+    for (int k = 0; k < 3; k++) {
+        const double mid = 0.5 * (B[3 * a + k] + B[3 * ((a + 1) % 3) + k]);
+        bt[k] = B[3 * a + k], bt[3 + k] = mid, bt[6 + k] = B[3 * ((a + 2) % 3) + k];
+        bn[k] = mid, bn[3 + k] = B[3 * ((a + 1) % 3) + k], bn[6 + k] = B[3 * ((a + 2) % 3) + k];
+    }
+    L->ot[n] = L->ot[t];
     int *v = L->tri + 3 * (size_t)t, *w = L->tri + 3 * (size_t)n;
     const int va = v[a], vb = v[(a + 1) % 3], vc = v[(a + 2) % 3];
     const int T1 = L->tw[3 * t + (a + 1) % 3], T2 = L->tw[3 * t + (a + 2) % 3];
@@ -111,6 +130,8 @@ static glpgp_status grow(lepp *L, int more_v, int more_t)
     if (L->tv) GLPGP_CHECK(glpgp_grow(&L->tv, &L->cap_tv, (size_t)L->nv + (size_t)more_v, sizeof(double)));
     GLPGP_CHECK(glpgp_grow(&L->tri, &L->cap_t, (size_t)L->nt + (size_t)more_t, 3 * sizeof(int)));
     GLPGP_CHECK(glpgp_grow(&L->tw, &L->cap_tw, (size_t)L->nt + (size_t)more_t, 3 * sizeof(int)));
+    GLPGP_CHECK(glpgp_grow(&L->ot, &L->cap_ot, (size_t)L->nt + (size_t)more_t, sizeof(int)));
+    GLPGP_CHECK(glpgp_grow(&L->ob, &L->cap_ob, (size_t)L->nt + (size_t)more_t, 9 * sizeof(double)));
     return GLPGP_OK;
 }
 
@@ -203,6 +224,13 @@ static glpgp_status lepp_init(lepp *L, const glpgp_mesh *m, double max_triangles
     memcpy(L->xyz, m->xyz, (size_t)m->nv * 3 * sizeof(double));
     memcpy(L->tri, m->tri, (size_t)m->nt * 3 * sizeof(int));
     memcpy(L->tw, m->surf->twin, (size_t)m->nt * 3 * sizeof(int));
+    L->cap_ot = L->cap_ob = (size_t)m->nt;
+    GLPGP_CHECK(glpgp_malloc((size_t)m->nt, sizeof(int), &L->ot));
+    GLPGP_CHECK(glpgp_calloc((size_t)m->nt, 9 * sizeof(double), &L->ob));
+    for (int t = 0; t < m->nt; t++) { /* each triangle its own origin, corner a at vertex a */
+        L->ot[t] = t;
+        for (int a = 0; a < 3; a++) L->ob[9 * (size_t)t + 4 * a] = 1.0;
+    }
     return GLPGP_OK;
 }
 
@@ -213,6 +241,8 @@ static void lepp_free(lepp *L)
     glpgp_free(&L->tw);
     glpgp_free(&L->path);
     glpgp_free(&L->tv);
+    glpgp_free(&L->ot);
+    glpgp_free(&L->ob);
 }
 
 /* The levels: edges above their target x sqrt 2^k split for k from the
@@ -224,7 +254,8 @@ static glpgp_status run_levels(lepp *L, double unit, double top, int *stopped)
 {
     int k = 0;
     while (unit * pow(SQRT2, k + 1) < top && k < 200) k++;
-    int *s_tri = NULL, *s_tw = NULL;
+    int *s_tri = NULL, *s_tw = NULL, *s_ot = NULL;
+    double *s_ob = NULL;
     glpgp_status st = GLPGP_OK;
     for (; k >= 0 && st == GLPGP_OK; k--) {
         const int nv0 = L->nv, nt0 = L->nt;
@@ -232,16 +263,24 @@ static glpgp_status run_levels(lepp *L, double unit, double top, int *stopped)
         /* a snapshot to fall back to (also without max_triangles: GLPGP_MESH_MAX_TRIANGLES) */
         glpgp_free(&s_tri);
         glpgp_free(&s_tw);
+        glpgp_free(&s_ot);
+        glpgp_free(&s_ob);
         st = glpgp_malloc((size_t)nt0, 3 * sizeof(int), &s_tri);
         if (st == GLPGP_OK) st = glpgp_malloc((size_t)nt0, 3 * sizeof(int), &s_tw);
+        if (st == GLPGP_OK) st = glpgp_malloc((size_t)nt0, sizeof(int), &s_ot);
+        if (st == GLPGP_OK) st = glpgp_malloc((size_t)nt0, 9 * sizeof(double), &s_ob);
         if (st != GLPGP_OK) break;
         memcpy(s_tri, L->tri, (size_t)nt0 * 3 * sizeof(int));
         memcpy(s_tw, L->tw, (size_t)nt0 * 3 * sizeof(int));
+        memcpy(s_ot, L->ot, (size_t)nt0 * sizeof(int));
+        memcpy(s_ob, L->ob, (size_t)nt0 * 9 * sizeof(double));
         int full = 0;
         st = refine_level(L, k == 0 ? 1.0 : pow(SQRT2, k), &full);
         if (st == GLPGP_OK && full) {
             memcpy(L->tri, s_tri, (size_t)nt0 * 3 * sizeof(int));
             memcpy(L->tw, s_tw, (size_t)nt0 * 3 * sizeof(int));
+            memcpy(L->ot, s_ot, (size_t)nt0 * sizeof(int));
+            memcpy(L->ob, s_ob, (size_t)nt0 * 9 * sizeof(double));
             L->nv = nv0;
             L->nt = nt0;
             L->splits = sp0;
@@ -251,6 +290,8 @@ static glpgp_status run_levels(lepp *L, double unit, double top, int *stopped)
     }
     glpgp_free(&s_tri);
     glpgp_free(&s_tw);
+    glpgp_free(&s_ot);
+    glpgp_free(&s_ob);
     return st;
 }
 
@@ -309,6 +350,12 @@ static glpgp_status refine_run(const glpgp_mesh *m, double target, const double 
     }
     if (st == GLPGP_OK && rmax > 1.0) st = tv ? run_levels(&L, 1.0, rmax, &stopped) : run_levels(&L, target, lmax, &stopped);
     if (st == GLPGP_OK && L.splits > 0) st = glpgp_mesh_create_surface(L.nv, L.xyz, L.nt, L.tri, out);
+    if (st == GLPGP_OK && *out) { /* the origin handed over (create_surface keeps the triangles' order) */
+        (*out)->surf->otri = L.ot;
+        (*out)->surf->obary = L.ob;
+        L.ot = NULL;
+        L.ob = NULL;
+    }
     if (info) {
         info->stopped = stopped;
         if (*out) {
@@ -345,4 +392,30 @@ glpgp_status glpgp_mesh_refine_surface_sized(const glpgp_mesh *m, const double *
         if (!(target[i] > 0.0) || !isfinite(target[i]))
             return GLPGP_FAIL(GLPGP_ERR_ARG, "refine: target edge %g at vertex %d is not positive", target[i], i);
     return refine_run(m, 0.0, target, max_triangles, out, info);
+}
+
+void glpgp_surface_origin_compose(glpgp_mesh *fine, const glpgp_mesh *mid)
+{
+    glpgp_surface *f = fine->surf;
+    const glpgp_surface *s = mid->surf;
+    if (!f->otri || !f->obary || !s->otri || !s->obary) return;
+    for (int t = 0; t < fine->nt; t++) {
+        const int T = f->otri[t];
+        double *b = f->obary + 9 * (size_t)t, B[9] = {0};
+        const double *bm = s->obary + 9 * (size_t)T;
+        for (int a = 0; a < 3; a++)
+            for (int j = 0; j < 3; j++)
+                for (int k = 0; k < 3; k++) B[3 * a + k] += b[3 * a + j] * bm[3 * j + k];
+        memcpy(b, B, sizeof B);
+        f->otri[t] = s->otri[T];
+    }
+}
+
+glpgp_status glpgp_surface_keep_origin(glpgp_mesh *refined, const glpgp_mesh *coarse)
+{
+    glpgp_surface *f = refined->surf;
+    if (!f || !f->otri || !f->obary || !coarse->xyz)
+        return GLPGP_FAIL(GLPGP_ERR_ARG, "keep origin: the mesh is not a refined surface");
+    glpgp_mesh_destroy(&f->origin);
+    return glpgp_mesh_create_surface(coarse->nv, coarse->xyz, coarse->nt, coarse->tri, &f->origin);
 }

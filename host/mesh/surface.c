@@ -32,6 +32,9 @@ void glpgp_surface_destroy(struct glpgp_surface **ps)
     free(s->txy);
     free(s->tframe);
     free(s->holonomy);
+    free(s->otri);
+    free(s->obary);
+    glpgp_mesh_destroy(&s->origin);
     free(s);
     *ps = NULL;
 }

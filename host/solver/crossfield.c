@@ -27,8 +27,8 @@ glpgp_status glpgp_cross_result_create(int nv, int nt, glpgp_cross_result **out)
     *out = NULL;
     if (nv < 1 || nt < 1) return GLPGP_FAIL(GLPGP_ERR_ARG, "cross field of %d vertices, %d triangles", nv, nt);
     GLPGP_CHECK(glpgp_calloc(1, sizeof *c, &c));
-    c->nv = nv;
-    c->nt = nt;
+    c->nv = c->solved_nv = nv;
+    c->nt = c->solved_nt = nt;
     if (glpgp_calloc((size_t)2 * nv, sizeof(double), &c->w) != GLPGP_OK ||
         glpgp_calloc((size_t)nt, 1, &c->winding) != GLPGP_OK) {
         glpgp_cross_result_destroy(&c);

@@ -84,6 +84,8 @@ static const int k_global_vals[] = {GLPGP_GLOBAL_TRUST_REGION, GLPGP_GLOBAL_LINE
 static const char *const k_preconds[] = {"jacobi", "amg", NULL};
 static const int k_precond_vals[] = {GLPGP_PRECOND_JACOBI, GLPGP_PRECOND_AMG};
 static const char *const k_couplings[] = {"auto", "off", "on", NULL};
+static const char *const k_cross_meshes[] = {"input", "polish", "refined", NULL};
+static const int k_cross_mesh_vals[] = {GLPGP_CROSS_MESH_INPUT, GLPGP_CROSS_MESH_POLISH, GLPGP_CROSS_MESH_REFINED};
 static const int k_coupling_vals[] = {GLPGP_COUPLING_AUTO, GLPGP_COUPLING_OFF, GLPGP_COUPLING_ON};
 static const char *const k_cross_sizes[] = {"off", "on", "auto", NULL};
 static const int k_cross_size_vals[] = {GLPGP_CROSS_SIZE_OFF, GLPGP_CROSS_SIZE_ON, GLPGP_CROSS_SIZE_AUTO};
@@ -192,6 +194,12 @@ static const glpgp_optdesc k_table[] = {
         "--field cross with singularities: solve u and v coupled across the\n"
         "cross field's cuts (auto: when it has cuts and the backend can,\n"
         "on: an error where the backend cannot), or apart (off)"),
+    CHO("cross-mesh", G2, cross_mesh, k_cross_meshes, k_cross_mesh_vals,
+        "--field cross on a surface refined for its size: solve the cross\n"
+        "field on the input mesh (5-6x fewer vertices) and carry it onto\n"
+        "the refined one, then its last eps level on the refined mesh from\n"
+        "it (polish) or not (input), or solve it on the refined mesh\n"
+        "(refined)"),
     DBL("eps-ratio", G2, eps_ratio, 0.0, 1, 1.0, 1, "F", "eps_{k+1} = F eps_k"),
     DBL("eps-min", G2, eps_min, 0.0, 1, HUGE_VAL, 0, "F", "last eps, as a multiple of the mean edge length"),
     DBL("newton-rtol", G2, newton_rtol, 0.0, 1, 1.0, 1, "F", "the last level stops when |g| <= F |g0|"),

@@ -73,7 +73,8 @@ static glpgp_status check_field(const glpgp_mesh *m, const glpgp_options *o)
  * oscillators collapse towards z = 0 at about 4 mean edges per period) is
  * refined by longest-edge bisection (glpgp_surface_refine_local) until no
  * edge is longer, only where it is coarser (the same surface), within
- * max_triangles; *out NULL when no edge needed it. */
+ * max_triangles; *out NULL when no edge needed it. The refined mesh keeps
+ * a copy of m for the cross field (--cross-mesh input, polish). */
 static glpgp_status refine_surface(const glpgp_mesh *m, const glpgp_options *o, const char *name, double max_triangles,
                                    glpgp_mesh **out, glpgp_prepare_info *info)
 {
@@ -93,6 +94,15 @@ static glpgp_status refine_surface(const glpgp_mesh *m, const glpgp_options *o, 
                   max_triangles > 0 ? max_triangles : (double)GLPGP_MESH_MAX_TRIANGLES, ri.nt, ri.ratio,
                   GLPGP_SURFACE_EDGES);
     if (!*out) return GLPGP_OK;
+    /* the input kept for the cross field (--cross-mesh input, polish: solved
+     * there, carried over: glpgp_surface_cross_on_input) */
+    if (o->field == GLPGP_FIELD_CROSS && o->cross_mesh != GLPGP_CROSS_MESH_REFINED) {
+        const glpgp_status st = glpgp_surface_keep_origin(*out, m);
+        if (st != GLPGP_OK) {
+            glpgp_mesh_destroy(out);
+            return st;
+        }
+    }
     info->refined.split_edges = ri.splits;
     info->refined.target_edge = ri.min_target;
     info->refined.local = local;

@@ -340,11 +340,11 @@ static glpgp_status pin_gauge(const glpgp_mesh *m, glpgp_backend *b, const glpgp
     return GLPGP_OK;
 }
 
-/* |w| <- 1 (phase kept; w = 1 where it vanishes) */
-/* The cross field of a surface: the initial guess, then (levels) the GL
- * continuation; c->w, analysed. */
+/* The cross field of a surface: the initial guess (init, 2 nv, when given:
+ * kept as it is), then (levels) the GL continuation; c->w, analysed. */
 static glpgp_status surface_cross(const glpgp_mesh *m, glpgp_backend *b, const glpgp_options *o,
-                                  const glpgp_surface_constraints *con, int levels, glpgp_cross_result **out)
+                                  const glpgp_surface_constraints *con, int levels, const double *init,
+                                  glpgp_cross_result **out)
 {
     const glpgp_backend_ops *op = b->ops;
     const int nv = m->nv;
@@ -368,9 +368,15 @@ static glpgp_status surface_cross(const glpgp_mesh *m, glpgp_backend *b, const g
     GLPGP_CHECK_GOTO(st, op->assemble_quadratic(b, GLPGP_ELEM_P1, 1.0), fail);
     /* multigrid frames: the transported field (vertex frames are unrelated to their neighbours') */
     amg = glpgp_amg_try_create(b, o, con->fixed, NULL, 0.0, "cross field");
-    glpgp_surface_transport(m, 4, c->w);
+    if (init)
+        memcpy(c->w, init, n2 * sizeof(double));
+    else
+        glpgp_surface_transport(m, 4, c->w);
     GLPGP_CHECK_GOTO(st, op->vec_write(b, x, c->w), fail);
-    if (con->nfixed > 0) {
+    if (init) {
+        GLPGP_CHECK_GOTO(st, op->assemble_newton(b, x, 0.0, o->hess), fail);
+        if (amg && !glpgp_amg_try_update(amg, x, "cross field")) glpgp_amg_destroy(&amg);
+    } else if (con->nfixed > 0) {
         GLPGP_CHECK_GOTO(st, op->assemble_newton(b, x, 0.0, o->hess), fail);
         if (amg && !glpgp_amg_try_update(amg, x, "cross field")) glpgp_amg_destroy(&amg);
         GLPGP_CHECK_GOTO(st, harmonic_init(b, o, amg, x, g, d, xt, c, con), fail);
@@ -389,7 +395,7 @@ static glpgp_status surface_cross(const glpgp_mesh *m, glpgp_backend *b, const g
         GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)nv, 1, &pin), fail);
         GLPGP_CHECK_GOTO(st, pin_gauge(m, b, o, c->w, zero, pin, &amg), fail);
     }
-    glpgp_cross_unit(c->w, nv);
+    if (!init) glpgp_cross_unit(c->w, nv);
     GLPGP_CHECK_GOTO(st, op->vec_write(b, x, c->w), fail);
     glpgp_newton_state ns = {.x = x, .g = g, .d = d, .xt = xt, .work = work, .amg = amg};
     GLPGP_CHECK_GOTO(st, glpgp_cross_finish(m, b, o, &ns, levels, t0, c), fail);
@@ -412,7 +418,17 @@ done:
 glpgp_status glpgp_surface_cross_solve(const glpgp_mesh *m, glpgp_backend *b, const glpgp_options *o,
                                        const glpgp_surface_constraints *con, glpgp_cross_result **out)
 {
-    return surface_cross(m, b, o, con, 1, out);
+    return surface_cross(m, b, o, con, 1, NULL, out);
+}
+
+glpgp_status glpgp_surface_cross_polish(const glpgp_mesh *m, glpgp_backend *b, const glpgp_options *o,
+                                        const glpgp_surface_constraints *con, const double *w,
+                                        glpgp_cross_result **out)
+{
+    /* one level: the schedule from eps_min (cross_eps0 x diagonal = cross_eps_min x mean edge) */
+    glpgp_options one = *o;
+    one.cross_eps0 = o->cross_eps_min * m->mean_edge / glpgp_mesh_diagonal(m);
+    return surface_cross(m, b, &one, con, 1, w, out);
 }
 
 glpgp_status glpgp_surface_boundary_field(const glpgp_mesh *m, glpgp_backend *b, const glpgp_options *o,
@@ -423,7 +439,7 @@ glpgp_status glpgp_surface_boundary_field(const glpgp_mesh *m, glpgp_backend *b,
         return GLPGP_FAIL(GLPGP_ERR_ARG, "--field boundary: this surface has no boundary and no sharp feature "
                                          "(--feature-angle %g) to align with: use --field cross",
                           o->feature_angle);
-    return surface_cross(m, b, o, con, 0, out);
+    return surface_cross(m, b, o, con, 0, NULL, out);
 }
 
 /* ---- representatives ---------------------------------------------------------- */

@@ -19,7 +19,9 @@
  * interpolated onto the new vertices within a pass, and the size
  * recomputed on the refined mesh (what the solve uses) drives a further
  * pass where an edge is still longer than its h(x) / N, at most
- * GLPGP_SURFACE_REFINE_PASSES in all. */
+ * GLPGP_SURFACE_REFINE_PASSES in all. The refined mesh's origin (otri,
+ * obary: where its triangles lie) is composed through the passes: on the
+ * input mesh m. */
 #include "internal.h"
 
 #include "glpgp/surfsolve.h"
@@ -115,6 +117,7 @@ glpgp_status glpgp_surface_refine_local(const glpgp_mesh *m, const glpgp_options
             info->nv = ri.nv, info->nt = ri.nt, info->max_edge = ri.max_edge;
         }
         info->passes = pass + 1;
+        if (cur) glpgp_surface_origin_compose(next, cur); /* next's origin: on m, not on cur */
         glpgp_mesh_destroy(&cur);
         cur = next;
         if (ri.stopped) break;

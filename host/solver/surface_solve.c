@@ -61,12 +61,18 @@ static glpgp_status check_surface(const glpgp_mesh *m, const glpgp_backend *b, c
 }
 
 /* The guiding field: the cross field (or the harmonic boundary-aligned one)
- * into r->cross, its representatives into r->field. */
+ * into r->cross, its representatives into r->field. A refined surface that
+ * kept its input (glpgp_solve_prepare) gets the cross field solved there and
+ * carried over unless --cross-mesh refined. */
 static glpgp_status guiding_field(const glpgp_mesh *m, glpgp_backend *b, const glpgp_options *o,
                                   const glpgp_surface_constraints *con, glpgp_result *r)
 {
     const double t1 = glpgp_now();
-    if (o->field == GLPGP_FIELD_CROSS)
+    /* a refined surface's cross field on its input (--cross-mesh input, polish) */
+    const int on_input = o->cross_mesh != GLPGP_CROSS_MESH_REFINED && m->surf->origin;
+    if (o->field == GLPGP_FIELD_CROSS && on_input)
+        GLPGP_CHECK(glpgp_surface_cross_on_input(m, b, o, con, o->cross_mesh == GLPGP_CROSS_MESH_POLISH, &r->cross));
+    else if (o->field == GLPGP_FIELD_CROSS)
         GLPGP_CHECK(glpgp_surface_cross_solve(m, b, o, con, &r->cross));
     else
         GLPGP_CHECK(glpgp_surface_boundary_field(m, b, o, con, &r->cross));

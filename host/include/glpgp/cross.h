@@ -61,6 +61,9 @@ typedef struct glpgp_cross_result {
     int newton_iterations, capped_levels;
     long cg_iterations;     /* including the initial harmonic solve */
     double seconds;
+    int solved_nv, solved_nt; /* the mesh it was solved on: nv, nt, or a refined surface's input
+                                 (--cross-mesh input: carried over, glpgp_surface_cross_transfer) */
+    int polished;           /* --cross-mesh polish: the last level (level[nlevels - 1]) was on nv */
 } glpgp_cross_result;
 
 /* A zeroed cross result for nv vertices, nt triangles (w, winding allocated). */

@@ -31,6 +31,14 @@ enum glpgp_cross_coupling {
     GLPGP_COUPLING_OFF = 1,  /* never: u and v solved apart (they see the cuts) */
     GLPGP_COUPLING_ON = 2    /* coupled when there are cuts; a backend that cannot is an error */
 };
+/* --field cross on a surface refined for its size (glpgp_solve_prepare):
+ * the mesh the cross field is solved on. */
+enum glpgp_cross_mesh {
+    GLPGP_CROSS_MESH_INPUT = 0,  /* the input, before the refinement; carried onto the refined mesh
+                                    (glpgp_surface_cross_transfer) */
+    GLPGP_CROSS_MESH_REFINED = 1, /* the refined mesh (the solve's own) */
+    GLPGP_CROSS_MESH_POLISH = 2   /* INPUT, then the refined mesh's last eps level from it */
+};
 /* --field cross: the local size from the cross field's conformal factor phi
  * (glpgp_cross_conformal_size), s = h clamp(e^{phi - phi_q}, 1/c, 1), phi_q the
  * q-quantile of phi over the vertices; the smaller of it and the size field's. */
@@ -124,6 +132,9 @@ typedef struct glpgp_options {
                              stalls: a sphere's 8 singularities settle at 1e-6 per step)
                              [1e-5; 0: off] */
     int cross_coupling;   /* GLPGP_COUPLING_* [AUTO] */
+    int cross_mesh;       /* GLPGP_CROSS_MESH_*: a refined surface's cross field solved on its
+                             input and carried over (then polished), or on the refined mesh
+                             [POLISH] */
     int cross_size;       /* GLPGP_CROSS_SIZE_*: local size from the cross field
                              (glpgp_cross_conformal_size), the smaller of it and the size
                              field's, for both oscillators [AUTO] */

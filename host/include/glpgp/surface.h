@@ -80,6 +80,15 @@ typedef struct glpgp_surface {
                            corner 2 above it (counter-clockwise) */
     double *tframe;     /* 9 nt: the plane's x axis, y axis and normal (3D unit vectors) */
     double *holonomy;   /* nt: Omega_t */
+    /* where a refinement's triangles lie on the mesh it was refined from
+     * (glpgp_mesh_refine_surface and _sized set otri and obary; NULL
+     * elsewhere): the input triangle holding triangle t, and the barycentric
+     * coordinates of t's corner a in it at obary[9t + 3a + k] (k: the input
+     * triangle's corner). origin: that input mesh itself (owned), where
+     * glpgp_surface_keep_origin kept it (the solve's cross field on it). */
+    int *otri;          /* nt */
+    double *obary;      /* 9 nt */
+    struct glpgp_mesh *origin;
 } glpgp_surface;
 
 /* Build a surface mesh from raw arrays (copied): xyz (3 nv), tri (3 nt).
@@ -181,6 +190,18 @@ glpgp_status glpgp_mesh_refine_surface(const glpgp_mesh *m, double target, doubl
  * gives glpgp_mesh_refine_surface's mesh. */
 glpgp_status glpgp_mesh_refine_surface_sized(const glpgp_mesh *m, const double *target, double max_triangles,
                                              glpgp_mesh **out, glpgp_surface_refine_info *info);
+
+/* fine (refined from mid by glpgp_mesh_refine_surface*) refined from an
+ * earlier mesh in turn (mid's otri and obary set): fine's otri and obary
+ * made relative to that earlier mesh (the barycentric coordinates composed
+ * through mid's triangles). Nothing to do where either has none. */
+void glpgp_surface_origin_compose(glpgp_mesh *fine, const glpgp_mesh *mid);
+
+/* Keep a copy of the input `coarse` in refined's surface (origin), which
+ * must hold the triangles' origin in it (otri, obary): GLPGP_ERR_ARG
+ * without. The copy is built from coarse's vertices and triangles (the
+ * same frames and connection). */
+glpgp_status glpgp_surface_keep_origin(glpgp_mesh *refined, const glpgp_mesh *coarse);
 
 /* Free a surface's arrays (NULL-safe, sets *s = NULL); glpgp_mesh_destroy
  * calls it. */

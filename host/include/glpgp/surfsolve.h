@@ -91,6 +91,33 @@ glpgp_status glpgp_surface_cross_system(const glpgp_mesh *m, glpgp_system **out)
 glpgp_status glpgp_surface_cross_solve(const glpgp_mesh *m, glpgp_backend *b, const glpgp_options *o,
                                        const glpgp_surface_constraints *con, glpgp_cross_result **out);
 
+/* The cross field w (2 fine->nv) of surface fine, refined by bisection
+ * from coarse (fine->surf->otri and obary relative to coarse's triangles:
+ * glpgp_mesh_refine_surface), from coarse's cross field wc (2 coarse->nv):
+ * at a refined vertex the P1 interpolant of its input triangle's corner
+ * crosses in that triangle's plane (as 4-RoSy values, |w| interpolated),
+ * in the vertex's own frame; an input vertex keeps its cross (in the
+ * refined fan's frame). GLPGP_ERR_ARG where fine has no origin in coarse
+ * (solver/surface_transfer.c). */
+glpgp_status glpgp_surface_cross_transfer(const glpgp_mesh *coarse, const double *wc, const glpgp_mesh *fine,
+                                          double *wf);
+
+/* The Ginzburg-Landau cross field of a refined surface m (m->surf->origin
+ * kept by glpgp_surface_keep_origin) solved on that input (its own
+ * constraints and eps levels) and carried onto m
+ * (glpgp_surface_cross_transfer; the fixed crosses set to con's), analysed
+ * on m; with polish, then the last eps level on m from it
+ * (glpgp_surface_cross_polish). c->solved_nv, solved_nt: the input's. */
+glpgp_status glpgp_surface_cross_on_input(const glpgp_mesh *m, glpgp_backend *b, const glpgp_options *o,
+                                          const glpgp_surface_constraints *con, int polish,
+                                          glpgp_cross_result **out);
+
+/* glpgp_surface_cross_solve's last eps level only (cross_eps_min mean
+ * edges of m), Newton from the crosses w (2 nv; the fixed ones con's). */
+glpgp_status glpgp_surface_cross_polish(const glpgp_mesh *m, glpgp_backend *b, const glpgp_options *o,
+                                        const glpgp_surface_constraints *con, const double *w,
+                                        glpgp_cross_result **out);
+
 /* The harmonic boundary-aligned cross field of a surface (--field
  * boundary): the first part of glpgp_surface_cross_solve only (the fixed
  * crosses extended harmonically, normalised; no Ginzburg-Landau levels).
