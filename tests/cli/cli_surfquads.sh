@@ -143,6 +143,8 @@ import json
 q = json.load(open("bumpy.json"))["quads"]; s = q["surface"]
 assert q["valid"] and s["hausdorff_over_h"] <= 0.25 and q["other_faces"] == 0, q["invalid_reasons"]
 assert s["steps"]["path"] == "local repair" and 200 <= q["quads"] < 450, (s["steps"]["path"], q["quads"])
+c = json.load(open("bumpy.json"))["cross_field"]  # refined 3x: the cross field on the input, polished
+assert c["mesh"] == "input+polish" and c["mesh_vertices"] == 10242, (c["mesh"], c["mesh_vertices"])
 PY
 
 # the developable half cylinder against its unrolled twin
