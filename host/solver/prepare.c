@@ -5,6 +5,7 @@
  * of a field file, and the refinement of the triangles too coarse for the
  * local size. One copy, so that every front end solves the same mesh with
  * the same options. */
+#include "glpgp/cross.h"
 #include "glpgp/solve.h"
 #include "glpgp/surface.h"
 #include "glpgp/util.h"
@@ -95,8 +96,16 @@ static glpgp_status refine_surface(const glpgp_mesh *m, const glpgp_options *o, 
                   GLPGP_SURFACE_EDGES);
     if (!*out) return GLPGP_OK;
     /* the input kept for the cross field (--cross-mesh input, polish: solved
-     * there, carried over: glpgp_surface_cross_on_input) */
-    if (o->field == GLPGP_FIELD_CROSS && o->cross_mesh != GLPGP_CROSS_MESH_REFINED) {
+     * there, carried over: glpgp_surface_cross_on_input) where it carries a
+     * continuation (two eps levels or more: a sphere of 646 vertices beside a
+     * speck had one, and the polish on the refined mesh then drifted to the
+     * Newton cap) */
+    double eps[GLPGP_CROSS_MAX_LEVELS];
+    const int keep = o->field == GLPGP_FIELD_CROSS && o->cross_mesh != GLPGP_CROSS_MESH_REFINED;
+    if (keep && glpgp_cross_eps_schedule(m, o, eps) < 2)
+        glpgp_log(GLPGP_LOG_INFO, "cross: the input (%d vertices) is too coarse for the continuation (one eps "
+                                  "level): solved on the refined mesh", m->nv);
+    else if (keep) {
         const glpgp_status st = glpgp_surface_keep_origin(*out, m);
         if (st != GLPGP_OK) {
             glpgp_mesh_destroy(out);

@@ -60,32 +60,16 @@ static glpgp_status check_surface(const glpgp_mesh *m, const glpgp_backend *b, c
     return GLPGP_OK;
 }
 
-/* Whether a refined surface's cross field is solved on its input
- * (--cross-mesh input, polish): the input kept, and fine enough for a
- * continuation (at least two eps levels: a sphere of 646 vertices beside a
- * speck had one, at its coarsest eps, and the polish on the refined mesh
- * then drifted to the Newton cap). */
-static int cross_on_input(const glpgp_mesh *m, const glpgp_options *o)
-{
-    double eps[GLPGP_CROSS_MAX_LEVELS];
-    const glpgp_mesh *mi = m->surf->origin;
-    if (o->cross_mesh == GLPGP_CROSS_MESH_REFINED || !mi) return 0;
-    if (glpgp_cross_eps_schedule(mi, o, eps) >= 2) return 1;
-    glpgp_log(GLPGP_LOG_INFO, "cross: the input (%d vertices) is too coarse for the continuation (one eps level): "
-                              "solved on the refined mesh", mi->nv);
-    return 0;
-}
-
 /* The guiding field: the cross field (or the harmonic boundary-aligned one)
  * into r->cross, its representatives into r->field. A refined surface that
  * kept its input (glpgp_solve_prepare) gets the cross field solved there and
- * carried over unless --cross-mesh refined or the input is too coarse. */
+ * carried over unless --cross-mesh refined. */
 static glpgp_status guiding_field(const glpgp_mesh *m, glpgp_backend *b, const glpgp_options *o,
                                   const glpgp_surface_constraints *con, glpgp_result *r)
 {
     const double t1 = glpgp_now();
     /* a refined surface's cross field on its input (--cross-mesh input, polish) */
-    const int on_input = o->field == GLPGP_FIELD_CROSS && cross_on_input(m, o);
+    const int on_input = o->field == GLPGP_FIELD_CROSS && o->cross_mesh != GLPGP_CROSS_MESH_REFINED && m->surf->origin;
     if (o->field == GLPGP_FIELD_CROSS && on_input)
         GLPGP_CHECK(glpgp_surface_cross_on_input(m, b, o, con, o->cross_mesh == GLPGP_CROSS_MESH_POLISH, &r->cross));
     else if (o->field == GLPGP_FIELD_CROSS)
