@@ -97,9 +97,8 @@ static glpgp_status refine_surface(const glpgp_mesh *m, const glpgp_options *o, 
     if (!*out) return GLPGP_OK;
     /* the input kept for the cross field (--cross-mesh input, polish: solved
      * there, carried over: glpgp_surface_cross_on_input) where it carries a
-     * continuation (two eps levels or more: a sphere of 646 vertices beside a
-     * speck had one, and the polish on the refined mesh then drifted to the
-     * Newton cap) */
+     * continuation (two eps levels or more; else the polish on the refined
+     * mesh starts far from its eps: docs/surfaces.md) */
     double eps[GLPGP_CROSS_MAX_LEVELS];
     const int keep = o->field == GLPGP_FIELD_CROSS && o->cross_mesh != GLPGP_CROSS_MESH_REFINED;
     if (keep && glpgp_cross_eps_schedule(m, o, eps) < 2)

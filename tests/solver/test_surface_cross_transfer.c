@@ -16,7 +16,7 @@
  *    index sum on the refined mesh is Poincare-Hopf's 8/4 and there are 8
  *    singularities, as on the coarse mesh (the sum alone holds for any
  *    field: without the frames' conversion thousands of pairs appear);
- *  - the solve's path (glpgp_solve_prepare keeps the input, then
+ *  - the solve's path (glpgp_solve_prepare keeps an input of two eps levels, not one of one, then
  *    glpgp_surface_cross_on_input) on the sphere: solved on the input's
  *    vertices, analysed on the refined mesh with Poincare-Hopf's sum, and
  *    with the polish as well. */
@@ -199,10 +199,18 @@ static void test_on_input(int polish)
     glpgp_prepare_info pi;
     glpgp_options_default(&o);
     o.field = GLPGP_FIELD_CROSS;
+    /* an input of one eps level (too coarse for a continuation) is not kept */
     CHECK_OK(glpgp_mesh_generate("sphere", 1500, &m));
+    if (!m) return;
+    o.size = 3.0 * m->mean_edge; /* edges above h / 6: refined */
+    CHECK_OK(glpgp_solve_prepare(m, &o, "sphere", 0, 1, &mr, &pi));
+    CHECK(mr && !mr->surf->origin);
+    glpgp_mesh_destroy(&mr);
+    glpgp_mesh_destroy(&m);
+    CHECK_OK(glpgp_mesh_generate("sphere", 8000, &m)); /* two eps levels */
     CHECK_OK(glpgp_backend_create_reference(&b));
     if (!m || !b) return;
-    o.size = 3.0 * m->mean_edge; /* edges above h / 6: refined */
+    o.size = 3.0 * m->mean_edge;
     CHECK_OK(glpgp_solve_prepare(m, &o, "sphere", 0, 1, &mr, &pi));
     CHECK(mr && mr->surf->origin);
     if (mr && mr->surf->origin) {

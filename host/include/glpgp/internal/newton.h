@@ -29,9 +29,9 @@ glpgp_status glpgp_field_compute(const glpgp_mesh *m, glpgp_backend *b, const gl
 int glpgp_dirichlet_set(const glpgp_mesh *m, const double *w, unsigned char *dir);
 
 /* The Newton steps a level runs before its stall test (ftol) may end it: a
- * level that converges in fewer keeps its result (stopping the sphere's cross
- * field's levels at 6-8 steps moved its singularities and doubled the quad
- * meshes' irregular vertices at --faces 500: bench/results/cross_stall.md). */
+ * level that converges in fewer keeps its result (an earlier stop moved the
+ * sphere's singularities and raised its quads' irregular vertices:
+ * bench/results/cross_stall.md). */
 #define GLPGP_STALL_STEPS 20
 
 /* State of the Newton iteration at one eps level (vectors of 2*nv doubles). */
