@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # bench/surface_compare.sh: quad meshes of surfaces against the peers
 # (issue 29): generated models (sphere, torus, genus 2, the feature cube,
-# the hemisphere, a sphere with 20 holes) and any user models (MODELS="a.obj
+# the hemisphere, a sphere with 20 jagged holes and one with 20 round ones) and any user models (MODELS="a.obj
 # b.ply"), each at the target face counts FACES (default "300 1000"), with
 # `glpgp solve MODEL --faces N --quads`; per row: valid / manifold /
 # all-quad, Euler characteristic and boundary loops kept, irregular
@@ -14,7 +14,7 @@
 # no Hausdorff distance). Writes $OUT/summary.md (default out/surface_compare).
 # HELD_OUT=1 adds models never tuned on (bench/surface_models.py: a bumpy
 # 82k-triangle scan, a plate of genus 16 with sharp edges, a sphere with 120
-# holes; minutes each on 2 cores).
+# jagged holes and one with 120 round ones; minutes each on 2 cores).
 # ARGS: more `glpgp solve` options for every row (e.g. ARGS="--size-chord-depth 0.125").
 # Usage: bash bench/surface_compare.sh [path/to/glpgp]   (SCALE: triangles of the generated models, default 20000)
 set -u
@@ -27,12 +27,14 @@ read -r -a ARGS_A <<<"${ARGS:-}"
 HERE=$(cd "$(dirname "$0")" && pwd)
 mkdir -p "$OUT"
 python3 "$HERE/surface_models.py" holes 20 5 "$OUT/holes20.obj"
-MODELS_ALL="shape:sphere:$SCALE shape:torus:$SCALE shape:genus2:$SCALE shape:cube:$SCALE shape:hemisphere:$SCALE $OUT/holes20.obj ${MODELS:-}"
+python3 "$HERE/surface_models.py" roundholes 20 5 "$OUT/roundholes20.obj"
+MODELS_ALL="shape:sphere:$SCALE shape:torus:$SCALE shape:genus2:$SCALE shape:cube:$SCALE shape:hemisphere:$SCALE $OUT/holes20.obj $OUT/roundholes20.obj ${MODELS:-}"
 if [ -n "${HELD_OUT:-}" ]; then # models never tuned on: an 82k-triangle scan, a plate of genus 16 with sharp edges, 120 loops
     python3 "$HERE/surface_models.py" bumpy 6 "$OUT/bumpy82k.obj"
     python3 "$HERE/surface_models.py" slab 4 4 2 "$OUT/slab16.obj"
     python3 "$HERE/surface_models.py" holes 120 6 "$OUT/holes120.obj"
-    MODELS_ALL="$MODELS_ALL $OUT/bumpy82k.obj $OUT/slab16.obj $OUT/holes120.obj"
+    python3 "$HERE/surface_models.py" roundholes 120 5 "$OUT/roundholes120.obj"
+    MODELS_ALL="$MODELS_ALL $OUT/bumpy82k.obj $OUT/slab16.obj $OUT/holes120.obj $OUT/roundholes120.obj"
 fi
 peers=""
 [ -n "${QUADRIFLOW:-}" ] && peers="$peers quadriflow"

@@ -5,6 +5,12 @@
                            20 * 4^SUBDIV triangles) with N round holes of
                            radius min(0.15, 0.9 / sqrt(N)) at Fibonacci
                            points: N boundary loops (N = 120: SUBDIV 6).
+  roundholes N SUBDIV OUT.obj
+                           the same sphere and holes cut along their
+                           circles (each triangle clipped by the rim, the
+                           vertices near it snapped onto it first): round
+                           holes, as a perforated CAD shell, where `holes`
+                           leaves them jagged.
   bumpy SUBDIV OUT.obj      a scan-like closed surface: the icosphere
                            (20 * 4^SUBDIV triangles) stretched to an
                            ellipsoid, with bumps and a 0.2% vertex jitter
@@ -50,8 +56,8 @@ def icosphere(subdiv):
     return v, f
 
 
-def holes(n, subdiv, out):
-    v, f = icosphere(subdiv)
+def hole_centers(n):
+    """n hole centres at Fibonacci points of the unit sphere and the holes' radius."""
     g = math.pi * (3 - 5 ** 0.5)
     radius = min(0.15, 0.9 / math.sqrt(n))  # apart at any n (Fibonacci spacing ~ 3.5 / sqrt(n))
     centers = []
@@ -59,6 +65,71 @@ def holes(n, subdiv, out):
         z = 1 - 2 * (i + 0.5) / n
         r = math.sqrt(1 - z * z)
         centers.append((r * math.cos(g * i), r * math.sin(g * i), z))
+    return centers, radius
+
+
+def round_holes(n, subdiv, out):
+    """The holes cut along their rims: the signed distance to the nearest
+    rim, sd = |x - c| - radius, clipped triangle by triangle (marching
+    triangles; the crossings pushed onto the sphere), after the vertices
+    within a fifth of an edge of a rim were snapped onto it (along the
+    great circle from the centre: no slivers)."""
+    v, f = icosphere(subdiv)
+    centers, radius = hole_centers(n)
+    edge = math.dist(v[f[0][0]], v[f[0][1]])
+    ang = 2 * math.asin(radius / 2)
+
+    def sd(x):
+        return min(math.dist(x, c) for c in centers) - radius
+
+    def onto_rim(x):
+        p = min(centers, key=lambda c: math.dist(x, c))
+        d = sum(x[i] * p[i] for i in range(3))
+        t = [x[i] - d * p[i] for i in range(3)]
+        tn = math.sqrt(sum(c * c for c in t))
+        return tuple(math.cos(ang) * p[i] + math.sin(ang) * t[i] / tn for i in range(3))
+
+    v = [onto_rim(x) if abs(sd(x)) < 0.2 * edge else x for x in v]
+    s = [sd(x) for x in v]
+    s = [0.0 if abs(q) < 1e-12 else q for q in s]
+    mid = {}
+
+    def cut(a, b):  # the rim's crossing of edge ab, once per edge
+        k = (min(a, b), max(a, b))
+        if k not in mid:
+            t = s[a] / (s[a] - s[b])
+            p = [v[a][i] + t * (v[b][i] - v[a][i]) for i in range(3)]
+            m = math.sqrt(sum(c * c for c in p))
+            v.append(tuple(c / m for c in p))
+            s.append(0.0)
+            mid[k] = len(v) - 1
+        return mid[k]
+
+    keep = []
+    for t in f:
+        sv = [s[k] for k in t]
+        if min(sv) >= 0:
+            keep.append(t)
+            continue
+        if max(sv) <= 0:
+            continue
+        poly = []  # the triangle's part outside the holes, in order
+        for j in range(3):
+            a, b = t[j], t[(j + 1) % 3]
+            if s[a] >= 0:
+                poly.append(a)
+            if (s[a] > 0 > s[b]) or (s[a] < 0 < s[b]):
+                poly.append(cut(a, b))
+        for j in range(1, len(poly) - 1):
+            keep.append((poly[0], poly[j], poly[j + 1]))
+    used = sorted({k for t in keep for k in t})
+    idx = {k: i for i, k in enumerate(used)}
+    write_obj(out, "a unit sphere with %d round holes" % n, [v[k] for k in used], [tuple(idx[k] for k in t) for t in keep])
+
+
+def holes(n, subdiv, out):
+    v, f = icosphere(subdiv)
+    centers, radius = hole_centers(n)
     keep = []
     for t in f:
         c = [sum(v[k][i] for k in t) / 3 for i in range(3)]
@@ -144,6 +215,8 @@ if __name__ == "__main__":
     a = sys.argv
     if len(a) == 5 and a[1] == "holes":
         holes(int(a[2]), int(a[3]), a[4])
+    elif len(a) == 5 and a[1] == "roundholes":
+        round_holes(int(a[2]), int(a[3]), a[4])
     elif len(a) == 4 and a[1] == "bumpy":
         bumpy(int(a[2]), a[3])
     elif len(a) == 4 and a[1] == "speck":

@@ -60,6 +60,10 @@
 #include <string.h>
 
 #define PI_ GLPGP_PI
+/* a face's side along a boundary loop strays at most this x h from the loop
+ * (rim_corners; the check allows h / 4): 0.2 measured on spheres with 4, 20
+ * and 120 round holes (bench/results/surface_holes.md) */
+#define QX_RIM_CHORD 0.2
 
 enum { SN_VERT = 0, SN_EDGE = 1, SN_IN = 2 };
 enum { SE_BND = 1, SE_ALONG = 2, SE_DEL = 4 };
@@ -92,6 +96,7 @@ typedef struct sxctx {
     sedge *e;
     int ne, cape;
     int inconsistent[2];
+    double h; /* the target size: the boundary arcs' chord tolerance */
 } sxctx;
 
 static int owner_of(const glpgp_surface *S, int h) { return S->twin[h] < 0 || h < S->twin[h] ? h : S->twin[h]; }
@@ -579,6 +584,104 @@ static int cmp_hkey(const void *pa, const void *pb)
 }
 
 /* Output: the faces of the map (inner ones), their corner nodes. */
+/* Node i's 3D position (barycentric in a triangle that holds it). */
+static void node_xyz(const sxctx *c, int i, double *X)
+{
+    const int t = node_tri(c, i);
+    double b[3];
+    node_bary(c, i, t, b);
+    for (int d = 0; d < 3; d++) {
+        X[d] = 0.0;
+        for (int a = 0; a < 3; a++) X[d] += b[a] * c->m->xyz[3 * c->m->tri[3 * t + a] + d];
+    }
+}
+
+/* Distance from p to the segment ab in 3D. */
+static double seg_dist(const double *p, const double *a, const double *b)
+{
+    double ab[3], ap[3], l2 = 0.0, t = 0.0, d2 = 0.0;
+    for (int d = 0; d < 3; d++) {
+        ab[d] = b[d] - a[d];
+        ap[d] = p[d] - a[d];
+        l2 += ab[d] * ab[d];
+        t += ab[d] * ap[d];
+    }
+    t = l2 > 0.0 ? fmin(fmax(t / l2, 0.0), 1.0) : 0.0;
+    for (int d = 0; d < 3; d++) d2 += (ap[d] - t * ab[d]) * (ap[d] - t * ab[d]);
+    return sqrt(d2);
+}
+
+/* Corners on the boundary arc loop[i0 .. i1] (indices into the loop's n
+ * nodes, cyclic; xyz their positions): the node farthest from the chord
+ * when it is over tol away, then both halves the same way
+ * (Douglas-Peucker). */
+static void arc_corners(const int *loop, const double *xyz, int n, int i0, int i1, double tol, unsigned char *corner)
+{
+    int far = -1;
+    double dmax = tol;
+    for (int k = (i0 + 1) % n; k != i1; k = (k + 1) % n) {
+        const double d = seg_dist(xyz + 3 * k, xyz + 3 * i0, xyz + 3 * i1);
+        if (d > dmax) {
+            dmax = d;
+            far = k;
+        }
+    }
+    if (far < 0) return;
+    corner[loop[far]] = 1;
+    arc_corners(loop, xyz, n, i0, far, tol, corner);
+    arc_corners(loop, xyz, n, far, i1, tol, corner);
+}
+
+/* A face's side along a boundary loop is drawn as the chord between its
+ * corners: where the loop curves tightly (a hole about h across: a few
+ * faces around it, each with a long arc), the chord crosses the hole, and
+ * the face is far from the surface (the check's Hausdorff distance, which
+ * no repair of the grid's faces can fix: they are all valid quads). Here
+ * the boundary nodes between two corners become corners where the arc
+ * strays over QX_RIM_CHORD h from the chord (Douglas-Peucker), so the sides follow
+ * the loop; the faces gain corners (odd or even faces: the closing makes
+ * them quads). A loop that no grid line reaches (no corner) is left. */
+static glpgp_status rim_corners(const sxctx *c, const int *deg, unsigned char *corner)
+{
+    if (!(c->h > 0.0)) return GLPGP_OK;
+    int *next = NULL, *loop = NULL;
+    unsigned char *seen = NULL;
+    double *xyz = NULL;
+    glpgp_status st = GLPGP_OK;
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)c->nn + 1, sizeof(int), &next), done);
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)c->nn + 1, sizeof(int), &loop), done);
+    GLPGP_CHECK_GOTO(st, glpgp_calloc((size_t)c->nn + 1, 1, &seen), done);
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)3 * c->nn + 3, sizeof(double), &xyz), done);
+    for (int i = 0; i < c->nn; i++) next[i] = -1;
+    for (int e = 0; e < c->ne; e++)
+        if (c->e[e].flags & SE_BND) next[c->e[e].a] = c->e[e].b; /* along the loop */
+    for (int s0 = 0; s0 < c->nn; s0++) {
+        if (next[s0] < 0 || seen[s0]) continue;
+        int n = 0, first = -1;
+        for (int i = s0; i >= 0 && !seen[i] && n < c->nn; i = next[i]) {
+            seen[i] = 1;
+            loop[n] = i;
+            node_xyz(c, i, xyz + 3 * n);
+            if (first < 0 && (corner[i] || deg[i] >= 3)) first = n;
+            n++;
+        }
+        if (first < 0 || n < 3) continue;
+        int prev = first;
+        for (int k = 1; k <= n; k++) {
+            const int j = (first + k) % n;
+            if (!corner[loop[j]] && k < n) continue;
+            arc_corners(loop, xyz, n, prev, j, QX_RIM_CHORD * c->h, corner);
+            prev = j;
+        }
+    }
+done:
+    free(next);
+    free(loop);
+    free(seen);
+    free(xyz);
+    return st;
+}
+
 static glpgp_status trace_faces(sxctx *c, const int *deg, glpgp_quadmesh *q)
 {
     const int nh = 2 * c->ne;
@@ -609,6 +712,7 @@ static glpgp_status trace_faces(sxctx *c, const int *deg, glpgp_quadmesh *q)
             fabs(c->S->angle_sum[n->id] - PI_) > 40.0 * PI_ / 180.0)
             corner[i] = 1;
     }
+    GLPGP_CHECK_GOTO(st, rim_corners(c, deg, corner), done);
     for (int h = 0; h < nh; h++) face[h] = -1;
     for (int i = 0; i < c->nn; i++) vmap[i] = -1;
     int nf = 0, nfv = 0, nvout = 0, capf = 1024, capv = 4096;
@@ -724,6 +828,7 @@ glpgp_status glpgp_quads_extract_surface(const glpgp_mesh *m, const glpgp_result
     memset(&c, 0, sizeof c);
     c.m = m;
     c.S = m->surf;
+    c.h = r->size;
     glpgp_quadmesh *q = NULL;
     int *deg = NULL;
     glpgp_status st = build_graph(&c, r);

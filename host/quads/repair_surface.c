@@ -373,6 +373,90 @@ static glpgp_status region_loop(lrep *L, int k, ivec *loop, int *bnd, int *disk)
     return GLPGP_OK;
 }
 
+/* cs, cf rebuilt from comp (ncomp regions). */
+static void regroup(lrep *L)
+{
+    const int nf = L->q->nf;
+    for (int k = 0; k <= L->ncomp; k++) L->cs[k] = 0;
+    for (int f = 0; f < nf; f++)
+        if (L->comp[f] >= 0) L->cs[L->comp[f] + 1]++;
+    for (int k = 0; k < L->ncomp; k++) L->cs[k + 1] += L->cs[k];
+    for (int k = L->ncomp; k > 0; k--) L->cs[k] = L->cs[k - 1]; /* cs[k + 1]: region k's cursor */
+    L->cs[0] = 0;
+    for (int f = 0; f < nf; f++)
+        if (L->comp[f] >= 0) L->cf[L->cs[L->comp[f] + 1]++] = f;
+}
+
+/* Region k, not a disk, around a hole of the surface (its rim on the
+ * region's boundary: corners with no twin): cut in two by the plane through
+ * the rim's centroid that holds the region's normal and its farthest face
+ * (each half a disk that shares the cut's edges with the other, which both
+ * keep as fixed loop points: conforming), as region_fix cannot grow it over
+ * the hole. Kept when both halves are disks; else undone (*split 0). */
+static glpgp_status split_annulus(lrep *L, int k, ivec *loop, int *split)
+{
+    const glpgp_quadmesh *q = L->q;
+    double cc[3] = {0, 0, 0}, N[3] = {0, 0, 0}, x[3];
+    int nrim = 0;
+    *split = 0;
+    for (int i = L->cs[k]; i < L->cs[k + 1]; i++) {
+        const int f = L->cf[i], n = q->face_start[f + 1] - q->face_start[f];
+        for (int c = q->face_start[f]; c < q->face_start[f + 1]; c++) {
+            cross3(pos(L, q->face_vert[c]), pos(L, q->face_vert[q->face_start[f] + (c - q->face_start[f] + 1) % n]), x);
+            for (int d = 0; d < 3; d++) N[d] += x[d];
+            if (L->twin[c] != -1) continue;
+            for (int d = 0; d < 3; d++) cc[d] += pos(L, q->face_vert[c])[d];
+            nrim++;
+        }
+    }
+    if (nrim == 0 || L->cs[k + 1] - L->cs[k] < 2 || !(dot3(N, N) > 0)) return GLPGP_OK;
+    for (int d = 0; d < 3; d++) cc[d] /= nrim;
+    double far[3] = {0, 0, 0}, best = -1.0, fc[3];
+    for (int i = L->cs[k]; i < L->cs[k + 1]; i++) { /* the farthest face centroid, normal to N */
+        const int f = L->cf[i], n = q->face_start[f + 1] - q->face_start[f];
+        for (int d = 0; d < 3; d++) fc[d] = 0.0;
+        for (int c = q->face_start[f]; c < q->face_start[f + 1]; c++)
+            for (int d = 0; d < 3; d++) fc[d] += pos(L, q->face_vert[c])[d] / n;
+        double v[3];
+        sub3(fc, cc, v);
+        const double t = dot3(v, N) / dot3(N, N);
+        for (int d = 0; d < 3; d++) v[d] -= t * N[d];
+        if (dot3(v, v) > best) best = dot3(v, v), memcpy(far, v, sizeof far);
+    }
+    double P[3];
+    cross3(N, far, P);
+    if (!(dot3(P, P) > 0)) return GLPGP_OK;
+    const int nk = L->ncomp;
+    int na = 0, nb = 0;
+    for (int i = L->cs[k]; i < L->cs[k + 1]; i++) {
+        const int f = L->cf[i], n = q->face_start[f + 1] - q->face_start[f];
+        for (int d = 0; d < 3; d++) fc[d] = -cc[d];
+        for (int c = q->face_start[f]; c < q->face_start[f + 1]; c++)
+            for (int d = 0; d < 3; d++) fc[d] += pos(L, q->face_vert[c])[d] / n;
+        if (dot3(fc, P) < 0.0) L->comp[f] = nk, nb++;
+        else na++;
+    }
+    if (na == 0 || nb == 0) {
+        for (int i = L->cs[k]; i < L->cs[k + 1]; i++) L->comp[L->cf[i]] = k;
+        return GLPGP_OK;
+    }
+    L->ncomp++;
+    regroup(L);
+    int bnd, da, db;
+    GLPGP_CHECK(region_loop(L, k, loop, &bnd, &da));
+    GLPGP_CHECK(region_loop(L, nk, loop, &bnd, &db));
+    if (!da || !db) { /* undone */
+        for (int f = 0; f < q->nf; f++)
+            if (L->comp[f] == nk) L->comp[f] = k;
+        L->ncomp--;
+        regroup(L);
+        return GLPGP_OK;
+    }
+    *split = 1;
+    glpgp_log(GLPGP_LOG_DEBUG, "quads: surface local repair: a region around a hole cut in two (%d + %d faces)", na, nb);
+    return GLPGP_OK;
+}
+
 /* Faces added to region k (into sel) that is not a disk: the faces at a
  * vertex its boundary passes twice, else across the boundary loops but the
  * longest (kept faces it encloses), else the faces at all its vertices. */
@@ -955,13 +1039,15 @@ static glpgp_status shape_regions(lrep *L, unsigned char *sel, ivec *loop, int *
     const glpgp_quadmesh *q = L->q;
     unsigned char *odd = NULL;
     *grown = *fail = 0;
-    GLPGP_CHECK(glpgp_calloc((size_t)L->ncomp + 1, 1, &odd));
+    GLPGP_CHECK(glpgp_calloc((size_t)q->nf + 1, 1, &odd)); /* regions split in two add to ncomp */
     glpgp_status st = GLPGP_OK;
     int nodd = 0;
     memset(sel, 0, (size_t)q->nf);
     for (int k = 0; k < L->ncomp && st == GLPGP_OK; k++) {
-        int bnd, disk;
+        int bnd, disk, split = 0;
         st = region_loop(L, k, loop, &bnd, &disk);
+        if (st == GLPGP_OK && !disk) st = split_annulus(L, k, loop, &split);
+        if (st == GLPGP_OK && split) st = region_loop(L, k, loop, &bnd, &disk);
         if (st == GLPGP_OK && !disk) {
             st = region_fix(L, k, sel);
             *grown = 1;

@@ -23,6 +23,8 @@
 #    parts meshed apart, the speck alone by the last resort;
 #  - a bumpy scan at a coarse size: its far faces repaired locally (not the
 #    whole mesh split);
+#  - a sphere with 20 round holes 1.5 h across: the faces follow the rims,
+#    the grid repaired locally (not the input's triangles split);
 #  - --quads OUT.ply: a PLY whose faces are the report's quads;
 #  - pictures (where built with OpenImageIO): `render sphere.obj` draws the
 #    3D quad mesh (its counts line: the scaled Jacobian in the faces' own
@@ -118,6 +120,22 @@ PY
 }
 check_coarse genus2 shape:genus2:20000 -2 0 1000
 check_coarse holes20 holes20.obj -18 20 3000
+
+# a sphere with 20 round holes (bench/surface_models.py roundholes 20 4:
+# holes 1.5 h across at --faces 300): the faces along the rims follow them
+# (their sides within 0.2 h of the loop: extract_surface.c, rim_corners),
+# the grid is repaired locally and valid; before, a few faces around each
+# hole drew chords across it, no repair could mend them, and the mesh ended
+# in the input's triangles split: 245577 quads
+python3 "$(dirname "$0")/../../bench/surface_models.py" roundholes 20 4 round20.obj || fail "round20.obj"
+run_ok "round20" solve round20.obj --faces 300 --backend reference --quads round20.q.obj --stats round20.json
+python3 - <<'PY' || fail "round20: the rims followed, the grid kept"
+import json
+q = json.load(open("round20.json"))["quads"]; s = q["surface"]
+assert q["valid"] and (s["euler"], s["boundary_loops"]) == (-18, 20), q["invalid_reasons"]
+assert s["steps"]["path"] in ("grid", "local repair") and 150 <= q["quads"] < 600, (s["steps"]["path"], q["quads"])
+assert q["scaled_jacobian"]["min"] >= 0.2 and s["hausdorff_over_h"] <= 0.25, q["scaled_jacobian"]
+PY
 
 # scan debris: a sphere and a tetrahedron 0.01 across (two components) are
 # meshed apart: the speck by the last resort, the sphere by its grid (the
