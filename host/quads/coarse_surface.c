@@ -2,8 +2,8 @@
  * (glpgp_quads_surface_fallback_coarse, glpgp/quads.h): the input triangulation
  * coarsened by half-edge collapses to edges of about 2 h, then every
  * triangle split into three quads (centroid and side midpoints, moved onto
- * the surface; a boundary side's midpoint stays on its chord). A collapse v -> u keeps every vertex an input vertex and is
- * made only when
+ * the surface; a boundary side's midpoint stays on its chord). A collapse
+ * v -> u keeps every vertex an input vertex and is made only when
  *  - v is free (on no boundary or sharp feature edge), or v is inside one
  *    boundary or feature curve (two such edges, turning by under 30
  *    degrees) and (v, u) is one of them: corners and curves stay;
@@ -20,7 +20,8 @@
 #include "quads_surface.h"
 #include "vec3.h"
 
-#include "glpgp/internal/edgekey.h"
+#include "repair.h"
+
 #include "glpgp/kinds.h"
 #include "glpgp/surface.h"
 #include "glpgp/util.h"
@@ -376,37 +377,32 @@ static glpgp_status coarsen(cz *c, int nt)
     return st;
 }
 
-/* The alive triangles of c split into three quads each: side midpoints
- * and centroids moved onto the surface. */
-/* The new points (ids from first) on a boundary side of q (an edge of one
- * face) put back at chord (their place before the projection: a side's
- * midpoint). Moved onto a concave rim (a round hole's), the midpoint bent
- * its side out and left one of its two quads a reflex corner (a sphere
- * with 20 round holes: inverted, so the last resort was the input's
- * triangles split); on the chord both keep their corners, and the chord
- * stays as near the rim as the coarse triangle's own side. */
+/* The new points (ids from first) on a boundary side of the all-quad q put
+ * back at chord (their place before the projection: a side's midpoint).
+ * Moved onto a concave rim (a round hole's), the midpoint bent its side out
+ * and left one of its two quads a reflex corner (a sphere with 20 round
+ * holes: inverted, so the last resort was the input's triangles split); on
+ * the chord both keep their corners, and the chord stays as near the rim
+ * as the coarse triangle's own side. */
 static glpgp_status keep_rim_midpoints(glpgp_quadmesh *q, int first, const double *chord)
 {
-    const int nc = q->face_start[q->nf];
-    glpgp_ekv *E = NULL;
-    GLPGP_CHECK(glpgp_malloc((size_t)nc + 1, sizeof *E, &E));
-    for (int f = 0, k = 0; f < q->nf; f++)
-        for (int c = q->face_start[f]; c < q->face_start[f + 1]; c++, k++) {
-            const int n = c + 1 < q->face_start[f + 1] ? c + 1 : q->face_start[f];
-            E[k] = (glpgp_ekv){glpgp_edge_key(q->face_vert[c], q->face_vert[n]), k};
+    qsides S;
+    GLPGP_CHECK(glpgp_qsides_build(q, &S));
+    for (int f = 0; f < q->nf; f++)
+        for (int i = 0, j; i < 4; i++) {
+            if (glpgp_qsides_across(&S, q, f, i, &j) >= 0) continue;
+            for (int e = 0; e < 2; e++) {
+                const int v = q->face_vert[4 * f + (i + e) % 4];
+                if (v >= first) memcpy(q->xyz + 3 * v, chord + 3 * v, 3 * sizeof(double));
+            }
         }
-    qsort(E, (size_t)nc, sizeof *E, glpgp_ekv_cmp);
-    for (int i = 0; i < nc; i++) {
-        const int once = (i == 0 || E[i - 1].k != E[i].k) && (i + 1 == nc || E[i + 1].k != E[i].k);
-        if (!once) continue;
-        const int ends[2] = {(int)(E[i].k >> 32), (int)(E[i].k & 0xffffffffu)};
-        for (int e = 0; e < 2; e++)
-            if (ends[e] >= first) memcpy(q->xyz + 3 * ends[e], chord + 3 * ends[e], 3 * sizeof(double));
-    }
-    free(E);
+    glpgp_qsides_free(&S);
     return GLPGP_OK;
 }
 
+/* The alive triangles of c split into three quads each: side midpoints
+ * and centroids moved onto the surface (boundary sides' midpoints kept on
+ * their chords). */
 static glpgp_status split3(const cz *c, int nt, double h, glpgp_quadmesh **out)
 {
     const glpgp_mesh *m = c->m;

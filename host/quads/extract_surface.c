@@ -47,6 +47,7 @@
  * interpolation of the triangle's 3D corners. The result is a polygon mesh
  * with xyz set (quads_surface.c makes it all-quad and checks it). */
 #include "quads_surface.h"
+#include "vec3.h"
 
 #include "glpgp/cross.h"
 #include "glpgp/kinds.h"
@@ -583,7 +584,6 @@ static int cmp_hkey(const void *pa, const void *pb)
     return a->key < b->key ? -1 : a->key > b->key ? 1 : 0;
 }
 
-/* Output: the faces of the map (inner ones), their corner nodes. */
 /* Node i's 3D position (barycentric in a triangle that holds it). */
 static void node_xyz(const sxctx *c, int i, double *X)
 {
@@ -599,16 +599,12 @@ static void node_xyz(const sxctx *c, int i, double *X)
 /* Distance from p to the segment ab in 3D. */
 static double seg_dist(const double *p, const double *a, const double *b)
 {
-    double ab[3], ap[3], l2 = 0.0, t = 0.0, d2 = 0.0;
-    for (int d = 0; d < 3; d++) {
-        ab[d] = b[d] - a[d];
-        ap[d] = p[d] - a[d];
-        l2 += ab[d] * ab[d];
-        t += ab[d] * ap[d];
-    }
-    t = l2 > 0.0 ? fmin(fmax(t / l2, 0.0), 1.0) : 0.0;
-    for (int d = 0; d < 3; d++) d2 += (ap[d] - t * ab[d]) * (ap[d] - t * ab[d]);
-    return sqrt(d2);
+    double ab[3], ap[3];
+    sub3(b, a, ab);
+    sub3(p, a, ap);
+    const double l2 = dot3(ab, ab), t = l2 > 0.0 ? fmin(fmax(dot3(ab, ap) / l2, 0.0), 1.0) : 0.0;
+    for (int d = 0; d < 3; d++) ap[d] -= t * ab[d];
+    return sqrt(dot3(ap, ap));
 }
 
 /* Corners on the boundary arc loop[i0 .. i1] (indices into the loop's n
@@ -682,6 +678,7 @@ done:
     return st;
 }
 
+/* Output: the faces of the map (inner ones), their corner nodes. */
 static glpgp_status trace_faces(sxctx *c, const int *deg, glpgp_quadmesh *q)
 {
     const int nh = 2 * c->ne;
@@ -757,14 +754,8 @@ static glpgp_status trace_faces(sxctx *c, const int *deg, glpgp_quadmesh *q)
     GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)2 * nvout + 1, sizeof(double), &q->xy), done);
     for (int i = 0; i < c->nn; i++) {
         if (vmap[i] < 0) continue;
-        const int t = node_tri(c, i);
-        double b[3];
-        node_bary(c, i, t, b);
         double *X = q->xyz + 3 * vmap[i];
-        for (int d = 0; d < 3; d++) {
-            X[d] = 0.0;
-            for (int a = 0; a < 3; a++) X[d] += b[a] * c->m->xyz[3 * c->m->tri[3 * t + a] + d];
-        }
+        node_xyz(c, i, X);
         q->xy[2 * vmap[i]] = X[0];
         q->xy[2 * vmap[i] + 1] = X[1];
     }

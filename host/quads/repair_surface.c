@@ -387,6 +387,16 @@ static void regroup(lrep *L)
         if (L->comp[f] >= 0) L->cf[L->cs[L->comp[f] + 1]++] = f;
 }
 
+/* Face f's vertex centroid less o. */
+static void face_centroid(const lrep *L, int f, const double *o, double *fc)
+{
+    const glpgp_quadmesh *q = L->q;
+    const int n = q->face_start[f + 1] - q->face_start[f];
+    for (int d = 0; d < 3; d++) fc[d] = -o[d];
+    for (int c = q->face_start[f]; c < q->face_start[f + 1]; c++)
+        for (int d = 0; d < 3; d++) fc[d] += pos(L, q->face_vert[c])[d] / n;
+}
+
 /* Region k, not a disk, around a hole of the surface (its rim on the
  * region's boundary: corners with no twin): cut in two by the plane through
  * the rim's centroid that holds the region's normal and its farthest face
@@ -413,10 +423,8 @@ static glpgp_status split_annulus(lrep *L, int k, ivec *loop, int *split)
     for (int d = 0; d < 3; d++) cc[d] /= nrim;
     double far[3] = {0, 0, 0}, best = -1.0, fc[3];
     for (int i = L->cs[k]; i < L->cs[k + 1]; i++) { /* the farthest face centroid, normal to N */
-        const int f = L->cf[i], n = q->face_start[f + 1] - q->face_start[f];
-        for (int d = 0; d < 3; d++) fc[d] = 0.0;
-        for (int c = q->face_start[f]; c < q->face_start[f + 1]; c++)
-            for (int d = 0; d < 3; d++) fc[d] += pos(L, q->face_vert[c])[d] / n;
+        const double zero[3] = {0.0, 0.0, 0.0};
+        face_centroid(L, L->cf[i], zero, fc);
         double v[3];
         sub3(fc, cc, v);
         const double t = dot3(v, N) / dot3(N, N);
@@ -429,10 +437,8 @@ static glpgp_status split_annulus(lrep *L, int k, ivec *loop, int *split)
     const int nk = L->ncomp;
     int na = 0, nb = 0;
     for (int i = L->cs[k]; i < L->cs[k + 1]; i++) {
-        const int f = L->cf[i], n = q->face_start[f + 1] - q->face_start[f];
-        for (int d = 0; d < 3; d++) fc[d] = -cc[d];
-        for (int c = q->face_start[f]; c < q->face_start[f + 1]; c++)
-            for (int d = 0; d < 3; d++) fc[d] += pos(L, q->face_vert[c])[d] / n;
+        const int f = L->cf[i];
+        face_centroid(L, f, cc, fc);
         if (dot3(fc, P) < 0.0) L->comp[f] = nk, nb++;
         else na++;
     }
