@@ -43,7 +43,9 @@
  * on the left (next = the half-edge before the twin at the next node); the
  * faces with a boundary piece traversed against the loop are outside.
  * Corners: nodes of degree >= 3 and the boundary vertices where the
- * boundary turns by more than 40 degrees. Positions: barycentric
+ * boundary turns by more than 40 degrees, both between its two edges and
+ * at the scale of the constraints, the most there (glpgp_surface_rim_corners:
+ * a jagged rim's teeth are no corners). Positions: barycentric
  * interpolation of the triangle's 3D corners. The result is a polygon mesh
  * with xyz set (quads_surface.c makes it all-quad and checks it). */
 #include "quads_surface.h"
@@ -87,6 +89,7 @@ typedef struct sxctx {
     double *ch;          /* 6 nt: chart value of family k at corner j: 6t + 3k + j */
     unsigned char *zc;   /* 6 nt: the frame phase is exactly 0 there */
     unsigned char *ok;   /* 2 nt: family k closes in t */
+    unsigned char *rimc; /* nv: a boundary vertex that may be a corner (glpgp_surface_rim_corners) */
     unsigned char *turn; /* 3 nt */
     double *off;         /* 3 nt: fan angle offset of the corner */
     int *vnode;          /* nv */
@@ -705,8 +708,8 @@ static glpgp_status trace_faces(sxctx *c, const int *deg, glpgp_quadmesh *q)
     for (int i = 0; i < c->nn; i++) {
         const snode *n = &c->n[i];
         corner[i] = deg[i] >= 3;
-        if (deg[i] == 2 && n->kind == SN_VERT && c->m->on_boundary[n->id] &&
-            fabs(c->S->angle_sum[n->id] - PI_) > 40.0 * PI_ / 180.0)
+        if (deg[i] == 2 && n->kind == SN_VERT && c->m->on_boundary[n->id] && c->rimc[n->id] &&
+            fabs(c->S->angle_sum[n->id] - PI_) > GLPGP_CORNER_DEG * PI_ / 180.0)
             corner[i] = 1;
     }
     GLPGP_CHECK_GOTO(st, rim_corners(c, deg, corner), done);
@@ -778,6 +781,7 @@ static void ctx_free(sxctx *c)
     free(c->zc);
     free(c->ok);
     free(c->turn);
+    free(c->rimc);
     free(c->off);
     free(c->vnode);
     free(c->hstart);
@@ -794,6 +798,9 @@ static glpgp_status build_graph(sxctx *c, const glpgp_result *r)
     GLPGP_CHECK(glpgp_calloc(6 * nt, 1, &c->zc));
     GLPGP_CHECK(glpgp_calloc(2 * nt, 1, &c->ok));
     GLPGP_CHECK(glpgp_calloc(3 * nt, 1, &c->turn));
+    GLPGP_CHECK(glpgp_malloc((size_t)m->nv, 1, &c->rimc));
+    GLPGP_CHECK(glpgp_surface_rim_corners(m, c->h > 0.0 ? glpgp_surface_rim_scale(m, GLPGP_RIM_SCALE, c->h) : 0.0,
+                                          GLPGP_CORNER_DEG * PI_ / 180.0, c->rimc));
     GLPGP_CHECK(glpgp_calloc(3 * nt, sizeof(double), &c->off));
     GLPGP_CHECK(glpgp_malloc((size_t)m->nv, sizeof(int), &c->vnode));
     GLPGP_CHECK(glpgp_malloc(3 * nt + 1, sizeof(int), &c->hstart));

@@ -809,6 +809,9 @@ static glpgp_status mesh_loop(qc *c, qc_piece *pc)
         }
     }
     cut cu = {-1, 0, -1, 0, 0, INFINITY};
+    c->work += (double)L->n * L->n; /* best_cut's cost, about */
+    if (c->max_work > 0.0 && c->work > c->max_work)
+        return GLPGP_FAIL(GLPGP_ERR_NUMERIC, "quad cut mesher: over its work bound (%.3g point pairs)", c->max_work);
     if (L->n > 4) best_cut(c, pc, &cu);
     /* a cut whose part has no valid split (cost >= 50) only when the piece itself has none */
     if (cu.cost < INFINITY && c->budget-- > 0 && !(s.sj > 0.2 && cu.cost > 6.0) && !(s.sj > 0.0 && cu.cost >= 40.0))
@@ -941,6 +944,7 @@ glpgp_status glpgp_qcut_mesh(dvec *xy, const qcut_region *R, double h, ivec *qua
     c.quads = quads;
     c.stats = stats;
     c.h = h;
+    c.max_work = R->max_work;
     glpgp_status st = build_sizes(&c, R);
     /* work bound: the cuts a region of this area and boundary can need, with room */
     double area = 0.0;
@@ -961,6 +965,7 @@ glpgp_status glpgp_qcut_mesh(dvec *xy, const qcut_region *R, double h, ivec *qua
         st = pc.nh > 0 ? cut_hole(&c, &pc) : mesh_loop(&c, &pc);
         piece_free(&pc);
     }
+    stats->work = c.work;
     for (int i = 0; i < c.nstack; i++) piece_free(&c.stack[i]);
     free(c.stack);
     free(c.src);

@@ -15,12 +15,14 @@ typedef struct qcut_region {
     const int *loop_start; /* nloops + 1 */
     const int *loop_v;     /* point ids into the caller's xy */
     const int *owner;      /* per loop: -1 for an outer loop, else the index of its outer loop */
+    double max_work;       /* the cut searches' bound, in loop points squared (0: none) */
 } qcut_region;
 
 typedef struct qcut_stats {
     int pieces;  /* pieces meshed by a split or a template */
     int cuts;    /* straight cuts made (hole cuts included) */
     int points;  /* new points (on cuts, template centers) */
+    double work; /* the cut searches' work (loop points squared) */
 } qcut_stats;
 
 /* Mesh R with quads. xy: the points (2 per point), grown with the new ones;

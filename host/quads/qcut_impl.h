@@ -27,6 +27,7 @@ typedef struct qc {
     bgrid G;
     int *cand, ncap;
     long budget; /* cuts left */
+    double work, max_work; /* the cut searches' points squared so far, and their bound (0: none) */
     qc_piece *stack;
     int nstack, capstack;
 } qc;

@@ -457,7 +457,7 @@ static glpgp_status cut_region(const region *R, int O, int *gid, rbuild *B, glpg
             }
     const int nfixed = map.n;
     qcut_stats qs;
-    qcut_region QR = {ls.n - 1, ls.p, lv.p, ow.p};
+    qcut_region QR = {ls.n - 1, ls.p, lv.p, ow.p, 0.0};
     if (st == GLPGP_OK) {
         st = glpgp_qcut_mesh(&xy, &QR, R->h, &quads, &qs);
         if (st == GLPGP_ERR_NUMERIC) { /* the fallback fill takes it */

@@ -55,6 +55,8 @@
 #define LR_ROUNDS 6      /* growth rounds */
 #define LR_SHARE 0.5     /* regions over this share of the faces: not a local repair */
 #define LR_NORMAL -0.3   /* the chart: loop normals . plane normal above this */
+#define LR_WORK 2e6      /* the cut mesher's work per region (its cut searches' points squared; 1e6: 0.2-1.5 s) */
+#define LR_WORK_ALL 1e7  /* and per repair: the regions after it fail (the fallbacks follow) */
 
 typedef struct lrep {
     const glpgp_mesh *m;
@@ -74,6 +76,7 @@ typedef struct lrep {
     int *outc;          /* per vertex scratch: the region's boundary corner leaving it */
     int *mark, stamp;   /* per vertex and per edge scratch (nv + ne) */
     dvec nxyz;          /* new points (ids q->nv ...) */
+    double *work_left;  /* the cut mesher's work left to this repair (LR_WORK_ALL) */
 } lrep;
 
 
@@ -865,8 +868,18 @@ static glpgp_status cut_loop(const lrep *L, dvec *xy, int n, ivec *quads, int *o
     if (st == GLPGP_OK) st = ipush(&ow, -1);
     for (int i = 0; i < n && st == GLPGP_OK; i++) st = ipush(&lv, i);
     qcut_stats qs;
-    qcut_region QR = {1, ls.p, lv.p, ow.p};
-    if (st == GLPGP_OK) st = glpgp_qcut_mesh(xy, &QR, L->h, quads, &qs);
+    /* bounded work: the cut searches (each about the piece's points
+     * squared) within LR_WORK per region and what is left of LR_WORK_ALL
+     * (a grown region of 500 loop points with sides of h / 1000 searched for
+     * minutes); a region over it fails and grows or is left to the fallbacks */
+    qcut_region QR = {1, ls.p, lv.p, ow.p, fmin(LR_WORK, *L->work_left)};
+    if (st == GLPGP_OK && !(*L->work_left > 0.0))
+        st = GLPGP_FAIL(GLPGP_ERR_NUMERIC, "the repair's work bound is spent");
+    if (st == GLPGP_OK) {
+        memset(&qs, 0, sizeof qs);
+        st = glpgp_qcut_mesh(xy, &QR, L->h, quads, &qs);
+        *L->work_left -= qs.work;
+    }
     if (st == GLPGP_ERR_NUMERIC) {
         glpgp_log(GLPGP_LOG_DEBUG, "quads: surface local repair: %s", glpgp_error_message());
         glpgp_error_clear();
@@ -1206,8 +1219,11 @@ glpgp_status glpgp_qs_local_repair(const glpgp_mesh *m, const glpgp_quadmesh *q,
     ivec loop = {0}, quads = {0};
     unsigned char *sel = NULL;
     int nbad = 0, done = 0;
+    double work_left = LR_WORK_ALL;
+    const double t0 = glpgp_now();
     lpart part = {NULL, {0}, {0}, {0}, -1};
     glpgp_status st = lrep_init(&L, m, q, h, far);
+    L.work_left = &work_left;
     if (st == GLPGP_OK) st = glpgp_calloc((size_t)q->nf + 1, 1, &sel);
     if (st != GLPGP_OK) goto end;
     for (int f = 0; f < q->nf; f++) nbad += L.bad[f];
@@ -1244,6 +1260,8 @@ glpgp_status glpgp_qs_local_repair(const glpgp_mesh *m, const glpgp_quadmesh *q,
         st = assemble(&L, &part.quads, out);
     } else memset(rs, 0, sizeof *rs);
 end:
+    glpgp_log(GLPGP_LOG_DEBUG, "quads: surface local repair: cut mesher work %.3g of %.3g, %.2f s", LR_WORK_ALL - work_left,
+              LR_WORK_ALL, glpgp_now() - t0);
     free(part.in);
     ivec_free(&part.quads);
     dvec_free(&part.nxyz);

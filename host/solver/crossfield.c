@@ -153,7 +153,11 @@ glpgp_status glpgp_cross_analyze(const glpgp_mesh *m, glpgp_cross_result *c)
     c->sing = NULL;
     c->nsing = 0;
     c->index4_sum = plus - minus;
-    c->index4_expected = m->xyz ? glpgp_surface_expected_index4(m) : glpgp_cross_expected_index4(m);
+    /* a surface with a boundary: what its fixed crosses imply (at a scale,
+     * they need not be the edges' own: glpgp_surface_constraints_rims) */
+    c->index4_expected = !m->xyz        ? glpgp_cross_expected_index4(m)
+                         : m->nloops > 0 ? glpgp_surface_boundary_index4(m, c->w)
+                                         : glpgp_surface_expected_index4(m);
     /* median |w| */
     GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)nv, sizeof(double), &s), done);
     for (int i = 0; i < nv; i++) s[i] = hypot(c->w[2 * i], c->w[2 * i + 1]);

@@ -26,6 +26,12 @@ double glpgp_size_tri_resolution(const glpgp_mesh *m, const double *size, int t,
  * size[nv .. 2 nv) (v) (sizefield.c; the plane's and the surfaces'). */
 glpgp_status glpgp_size_file_read(const glpgp_mesh *m, const char *path, double *size);
 
+/* Vertex v's cross fixed to the mean of the directions a1 and a2 (angles in
+ * its frame) along the shorter arc of their crosses (surface_cross.c; the
+ * rule of glpgp_surface_constraints_create). */
+struct glpgp_surface_constraints;
+void glpgp_surface_fix_cross(struct glpgp_surface_constraints *c, int v, double a1, double a2);
+
 /* A surface's local size before the limit of what the mesh resolves
  * (surface_size.c; glpgp_surface_size's auto / iso values, one per vertex,
  * size: nv): the curvature cap and (spacing: 1) the feature spacing, at

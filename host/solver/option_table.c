@@ -167,6 +167,12 @@ static const glpgp_optdesc k_table[] = {
         "a surface: interior edges whose triangles' normals differ by more\n"
         "than DEG degrees are sharp features, which the field and the\n"
         "quads follow like the boundary (180: none)"),
+    DBL("rim-scale", G1, rim_scale, 0.0, 0, 4.0, 0, "F",
+        "a surface's boundary: its crosses from the rim seen over F h (at\n"
+        "least 3 of its mean edges) on either side of each vertex, stopped\n"
+        "at its corners there: a jagged rim (a scan's hole, triangles cut\n"
+        "along a curve) aligns the field with the curve it follows, not\n"
+        "with each tooth; 0: each vertex's own two edges"),
 
     DBL("eps0", G2, eps0, 0.0, 1, HUGE_VAL, 0, "F", "first eps, as a multiple of h"),
     DBL("cross-eps0", G2, cross_eps0, 0.0, 1, HUGE_VAL, 0, "F",

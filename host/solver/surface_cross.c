@@ -60,6 +60,14 @@ static int vertex_constraints(const glpgp_mesh *m, const unsigned char *feat, in
     return n;
 }
 
+void glpgp_surface_fix_cross(glpgp_surface_constraints *c, int v, double a1, double a2)
+{
+    const double d = principal(4.0 * (a2 - a1)), ph = 4.0 * a1 + 0.5 * d;
+    c->fixed[v] = 1;
+    c->w0[2 * v] = cos(ph);
+    c->w0[2 * v + 1] = sin(ph);
+}
+
 glpgp_status glpgp_surface_constraints_create(const glpgp_mesh *m, double feature_deg,
                                               glpgp_surface_constraints **out)
 {
@@ -94,10 +102,7 @@ glpgp_status glpgp_surface_constraints_create(const glpgp_mesh *m, double featur
         } else {
             continue; /* free: no constraint, a crease's end or a corner of three or more */
         }
-        const double d = principal(4.0 * (a2 - a1)), ph = 4.0 * a1 + 0.5 * d;
-        c->fixed[v] = 1;
-        c->w0[2 * v] = cos(ph);
-        c->w0[2 * v + 1] = sin(ph);
+        glpgp_surface_fix_cross(c, v, a1, a2);
         c->nfixed++;
     }
     free(a);
@@ -152,6 +157,20 @@ int glpgp_surface_expected_index4(const glpgp_mesh *m)
     for (int v = 0; v < m->nv; v++)
         if (m->on_boundary[v]) k += (int)lround(principal(GLPGP_PI - m->surf->angle_sum[v]) / (GLPGP_PI / 2.0));
     return 4 * m->surf->euler - k;
+}
+
+int glpgp_surface_boundary_index4(const glpgp_mesh *m, const double *w)
+{
+    const glpgp_surface *s = m->surf;
+    double x = 0.0;
+    for (int t = 0; t < m->nt; t++) x += 4.0 * s->holonomy[t];
+    for (int h = 0; h < 3 * m->nt; h++) {
+        if (s->twin[h] >= 0) continue;
+        const int i = m->tri[h], j = m->tri[h - h % 3 + (h % 3 + 1) % 3];
+        const double d = atan2(w[2 * j + 1], w[2 * j]) - atan2(w[2 * i + 1], w[2 * i]) - 4.0 * s->conn[h];
+        x += principal(d);
+    }
+    return (int)lround(x / TWO_PI);
 }
 
 /* ---- transported fields, the cross system ------------------------------------ */

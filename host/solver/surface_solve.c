@@ -115,6 +115,10 @@ glpgp_status glpgp_solve_surface(const glpgp_mesh *m, glpgp_backend *b, const gl
     r->size = h;
     r->backend = b->ops->name;
     GLPGP_CHECK_GOTO(st, glpgp_surface_constraints_create(m, o->feature_angle, &con), fail);
+    GLPGP_CHECK_GOTO(st, glpgp_surface_constraints_rims(m, glpgp_surface_rim_scale(m, o->rim_scale, h), con), fail);
+    if (con->rim_scale > 0.0)
+        glpgp_log(GLPGP_LOG_INFO, "surface: the boundary's crosses read over %g (%.2f h) either side (--rim-scale)",
+                  con->rim_scale, con->rim_scale / h);
     if (con->nfeatures)
         glpgp_log(GLPGP_LOG_INFO, "surface: %d sharp feature edges (dihedral angle above %g degrees)", con->nfeatures,
                   o->feature_angle);

@@ -141,6 +141,7 @@ glpgp_status glpgp_surface_cross_on_input(const glpgp_mesh *m, glpgp_backend *b,
     glpgp_log(GLPGP_LOG_INFO, "cross: solved on the input mesh (%d vertices), carried onto the refined one (%d)",
               mi->nv, m->nv);
     GLPGP_CHECK_GOTO(st, glpgp_surface_constraints_create(mi, o->feature_angle, &coni), done);
+    GLPGP_CHECK_GOTO(st, glpgp_surface_constraints_rims(mi, con->rim_scale, coni), done);
     GLPGP_CHECK_GOTO(st, glpgp_surface_cross_solve(mi, b, o, coni, &ci), done);
     GLPGP_CHECK_GOTO(st, glpgp_cross_result_create(m->nv, m->nt, &c), done);
     GLPGP_CHECK_GOTO(st, glpgp_surface_cross_transfer(mi, ci->w, m, c->w), done);

@@ -42,11 +42,49 @@ typedef struct glpgp_surface_constraints {
     double *w0;             /* 2 nv: the fixed crosses (0 where free) */
     int *cptr;              /* nv + 1: vertex i's constraint edges are */
     double *cangle;         /*   cangle[cptr[i] .. cptr[i+1]): their angles in i's frame */
+    double rim_scale;       /* the boundary's crosses are at this scale (0: its edges'; glpgp_surface_constraints_rims) */
 } glpgp_surface_constraints;
 
 glpgp_status glpgp_surface_constraints_create(const glpgp_mesh *m, double feature_deg,
                                               glpgp_surface_constraints **out);
 void glpgp_surface_constraints_destroy(glpgp_surface_constraints **c);
+
+/* The boundary's crosses seen at the scale of the mesh to be made. A plain
+ * boundary vertex's two constraint edges become the chords from the rim
+ * point an arc length `scale` behind it and to the one `scale` ahead (its
+ * cross their mean by the rule above): a rim whose teeth are finer than the
+ * scale (a scan's hole, triangles cut along a curve) gets the crosses of the
+ * curve it follows, where its edges' crosses alternate tooth by tooth. The
+ * chords stop at the rim's corners at that scale (a turn of 45 degrees or
+ * more between a vertex's chords, the largest within `scale` of it), so
+ * the sides next to a corner keep their own direction; a vertex where a
+ * feature edge meets the rim is a corner and keeps its edges. Both chords
+ * are at most a quarter of the loop. scale 0 changes nothing. Sets
+ * c->rim_scale. */
+glpgp_status glpgp_surface_constraints_rims(const glpgp_mesh *m, double scale, glpgp_surface_constraints *c);
+
+/* The scale of the boundary's crosses for the target size h and the
+ * option's fraction f (glpgp_options.rim_scale): f h, and at least
+ * GLPGP_RIM_EDGES of the rim's mean edges (those of the mesh m was refined
+ * from, m->surf->origin, where it kept it): a rim is read no finer than its
+ * own sampling. 0 for f = 0 or without a boundary. The extraction reads the
+ * rim's corners at GLPGP_RIM_SCALE. */
+#define GLPGP_RIM_SCALE 0.5
+#define GLPGP_RIM_EDGES 3.0
+double glpgp_surface_rim_scale(const glpgp_mesh *m, double f, double h);
+
+/* turn (nv) <- each boundary vertex's turn at the scale (radians): the angle
+ * between the rim's mean points (each over an arc of length `scale`) an arc
+ * length `scale` behind it, at it and ahead of it; teeth finer than the
+ * scale do not turn it. HUGE_VAL on a loop too short for the scale (or
+ * with scale 0), 0 inside. */
+glpgp_status glpgp_surface_rim_turns(const glpgp_mesh *m, double scale, double *turn);
+
+/* corner (nv) <- the boundary's corners at the scale: the vertices whose
+ * turn there (glpgp_surface_rim_turns) is min_turn (radians) or more, the
+ * most within `scale` of them along the loop; every vertex of a loop too
+ * short for the scale (or with scale 0); 0 inside. */
+glpgp_status glpgp_surface_rim_corners(const glpgp_mesh *m, double scale, double min_turn, unsigned char *corner);
 
 /* mass (nv) <- each vertex's third of its triangles' areas (the lumped mass). */
 void glpgp_surface_lumped_mass(const glpgp_mesh *m, double *mass);
@@ -65,6 +103,14 @@ void glpgp_surface_cross_windings(const glpgp_mesh *m, const double *w, signed c
  * the boundary's turn at v (the planar corner terms; 4 chi on a closed
  * surface whatever its features). */
 int glpgp_surface_expected_index4(const glpgp_mesh *m);
+
+/* The index sum, in quarters, that the crosses w on the boundary imply
+ * (their terms along the boundary edges and 4 sum Omega_t over 2 pi: the
+ * interior edges' terms cancel whatever the field inside).
+ * glpgp_surface_expected_index4 where they are the boundary edges' own
+ * crosses; with crosses at a scale (glpgp_surface_constraints_rims) the one
+ * to compare the field's sum with. */
+int glpgp_surface_boundary_index4(const glpgp_mesh *m, const double *w);
 
 /* A unit field transported along a breadth-first tree from each
  * component's first vertex: z_j = z_i exp(i mult rho_{i->j}) (mult 4:
