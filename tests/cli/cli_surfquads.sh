@@ -137,6 +137,20 @@ assert s["steps"]["path"] in ("grid", "local repair") and 150 <= q["quads"] < 60
 assert q["scaled_jacobian"]["min"] >= 0.2 and s["hausdorff_over_h"] <= 0.25, q["scaled_jacobian"]
 PY
 
+# a sphere with 20 jagged holes (bench/surface_models.py holes 20 5: rims cut
+# along triangle edges, 74% of their vertices turning by 45-135 degrees):
+# the teeth are no face corners (extract_surface.c reads the rim's corners
+# at h / 2: glpgp_surface_rim_corners); when each tooth was one, this mesh
+# had 2494 quads and 609 irregular interior vertices (now 1500 and 207)
+python3 "$(dirname "$0")/../../bench/surface_models.py" holes 20 5 jagged20.obj || fail "jagged20.obj"
+run_ok "jagged20" solve jagged20.obj --faces 300 --backend reference --quads jagged20.q.obj --stats jagged20.json
+python3 - <<'PY' || fail "jagged20: the teeth are no corners"
+import json
+q = json.load(open("jagged20.json"))["quads"]; s = q["surface"]
+assert q["valid"] and (s["euler"], s["boundary_loops"]) == (-18, 20), q["invalid_reasons"]
+assert q["quads"] <= 2000 and q["irregular_vertices"]["interior"] <= 350, (q["quads"], q["irregular_vertices"])
+PY
+
 # scan debris: a sphere and a tetrahedron 0.01 across (two components) are
 # meshed apart: the speck by the last resort, the sphere by its grid (the
 # whole surface went to the coarse last resort before: 414 quads)
