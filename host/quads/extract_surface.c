@@ -708,7 +708,7 @@ static glpgp_status trace_faces(sxctx *c, const int *deg, glpgp_quadmesh *q)
     for (int i = 0; i < c->nn; i++) {
         const snode *n = &c->n[i];
         corner[i] = deg[i] >= 3;
-        if (deg[i] == 2 && n->kind == SN_VERT && c->m->on_boundary[n->id] && c->rimc[n->id] &&
+        if (deg[i] == 2 && n->kind == SN_VERT && c->rimc[n->id] && /* rimc: on the boundary */
             fabs(c->S->angle_sum[n->id] - PI_) > GLPGP_CORNER_DEG * PI_ / 180.0)
             corner[i] = 1;
     }
@@ -799,8 +799,10 @@ static glpgp_status build_graph(sxctx *c, const glpgp_result *r)
     GLPGP_CHECK(glpgp_calloc(2 * nt, 1, &c->ok));
     GLPGP_CHECK(glpgp_calloc(3 * nt, 1, &c->turn));
     GLPGP_CHECK(glpgp_malloc((size_t)m->nv, 1, &c->rimc));
-    GLPGP_CHECK(glpgp_surface_rim_corners(m, c->h > 0.0 ? glpgp_surface_rim_scale(m, GLPGP_RIM_SCALE, c->h) : 0.0,
-                                          GLPGP_CORNER_DEG * PI_ / 180.0, c->rimc));
+    /* h / 2 on whatever mesh: solve --quads (a refined mesh that kept its
+     * input) and extract (the refined mesh alone) read the same corners */
+    GLPGP_CHECK(glpgp_surface_rim_corners(m, GLPGP_RIM_SCALE * fmax(c->h, 0.0), GLPGP_CORNER_DEG * PI_ / 180.0,
+                                          c->rimc));
     GLPGP_CHECK(glpgp_calloc(3 * nt, sizeof(double), &c->off));
     GLPGP_CHECK(glpgp_malloc((size_t)m->nv, sizeof(int), &c->vnode));
     GLPGP_CHECK(glpgp_malloc(3 * nt + 1, sizeof(int), &c->hstart));

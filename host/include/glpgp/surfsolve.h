@@ -55,8 +55,8 @@ void glpgp_surface_constraints_destroy(glpgp_surface_constraints **c);
  * cross their mean by the rule above): a rim whose teeth are finer than the
  * scale (a scan's hole, triangles cut along a curve) gets the crosses of the
  * curve it follows, where its edges' crosses alternate tooth by tooth. The
- * chords stop at the rim's corners at that scale (a turn of 45 degrees or
- * more between a vertex's chords, the largest within `scale` of it), so
+ * chords stop at the rim's corners at that scale (a turn of 60 degrees or
+ * more, glpgp_surface_rim_turns, the largest within `scale` of it), so
  * the sides next to a corner keep their own direction; a vertex where a
  * feature edge meets the rim is a corner and keeps its edges. Both chords
  * are at most a quarter of the loop. scale 0 changes nothing. Sets
@@ -68,7 +68,7 @@ glpgp_status glpgp_surface_constraints_rims(const glpgp_mesh *m, double scale, g
  * GLPGP_RIM_EDGES of the rim's mean edges (those of the mesh m was refined
  * from, m->surf->origin, where it kept it): a rim is read no finer than its
  * own sampling. 0 for f = 0 or without a boundary. The extraction reads the
- * rim's corners at GLPGP_RIM_SCALE. */
+ * rim's corners at GLPGP_RIM_SCALE h. */
 #define GLPGP_RIM_SCALE 0.5
 #define GLPGP_RIM_EDGES 3.0
 double glpgp_surface_rim_scale(const glpgp_mesh *m, double f, double h);
