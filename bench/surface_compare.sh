@@ -9,9 +9,11 @@
 # and the seconds of the solve and of the quad phase. A peer runs when its
 # binary is named (QUADRIFLOW=/path/to/quadriflow: -i IN -o OUT -f N;
 # INSTANT_MESHES=/path/to/Instant\ Meshes: -o OUT -f N -D IN), else its
-# column is skipped; its output is checked by bench/surface_check.py (all
-# quads, manifold, Euler, loops, irregular %, SJ in the faces' own planes;
-# no Hausdorff distance). Writes $OUT/summary.md (default out/surface_compare).
+# column is skipped; its OBJ is checked by `glpgp quality --domain INPUT`
+# at glpgp's h for that row (the same checks as glpgp's own: all quads,
+# manifold, Euler, loops, irregular %, SJ in the faces' own planes, two-sided
+# Hausdorff / h, area), one row per tool by bench/surface_row.py.
+# Writes $OUT/summary.md (default out/surface_compare).
 # HELD_OUT=1 adds models never tuned on (bench/surface_models.py: a bumpy
 # 82k-triangle scan, a plate of genus 16 with sharp edges, a sphere with 120
 # jagged holes and one with 120 round ones; minutes each on 2 cores).
@@ -50,29 +52,13 @@ for model in $MODELS_ALL; do
         "$GLPGP" solve "$model" --faces "$n" --backend "$BACKEND" --quads "$OUT/$tag.obj" --stats "$OUT/$tag.json" \
             "${ARGS_A[@]}" >"$OUT/$tag.txt" 2>&1
         t1=$(date +%s.%N)
-        python3 - "$OUT/$tag.json" "$OUT/$tag.txt" "$model" "$n" "$(echo "$t1 - $t0" | bc)" >>"$OUT/summary.md" <<'PY'
-import json, re, sys
-js, txt, model, n, secs = sys.argv[1:]
-try:
-    d = json.load(open(js)); q = d["quads"]; s = q["surface"]
-except Exception as e:
-    print("| %s | %s | glpgp | failed: %s |" % (model, n, e)); sys.exit(0)
-vi = q["valence"]["interior"]; nint = sum(vi.values()); irr = nint - vi.get("4", 0)
-out = open(txt).read()
-path = ("coarse last resort" if "coarsened triangulation" in out else "last resort" if "last resort" in out
-        else "split (h/2)" if "Catmull-Clark" in out else "local split" if "split locally" in out else "local repair" if "repaired locally" in out else "grid")
-m = re.search(r"extraction ([0-9.]+)", out)
-manifold = "nonmanifold" not in q["invalid_reasons"] and "pinched" not in q["invalid_reasons"]
-print("| %s | %s | glpgp | %d | %s / %s / %s | %s | %d (%.1f%%) | %.3f | %.3f | %.3f | %s | %.1f (%s) |" % (
-    model, n, q["quads"], "yes" if q["valid"] else "no", "yes" if manifold else "no",
-    "yes" if q["other_faces"] == 0 else "no",
-    "yes" if (s["euler"], s["boundary_loops"]) == (s["input_euler"], s["input_boundary_loops"]) else "no",
-    irr, 100.0 * irr / max(nint, 1), q["scaled_jacobian"]["min"], q["scaled_jacobian"]["mean"],
-    s["hausdorff_over_h"], path, float(secs), m.group(1) if m else "?"))
-PY
+        python3 "$HERE/surface_row.py" "$OUT/$tag.json" "$OUT/$tag.txt" "$model" "$n" glpgp "$(echo "$t1 - $t0" | bc)" \
+            >>"$OUT/summary.md"
+        h=$(python3 -c 'import json,sys; print(json.load(open(sys.argv[1]))["quads"]["h"])' "$OUT/$tag.json" 2>/dev/null)
         for p in $peers; do
             in="$OUT/${tag}_in.obj"
             case $model in shape:*) "$GLPGP" generate "$model" -o "$in" >/dev/null 2>&1 ;; *) cp "$model" "$in" ;; esac
+            rm -f "$OUT/${tag}_$p.obj"
             t0=$(date +%s.%N)
             if [ "$p" = quadriflow ]; then
                 "$QUADRIFLOW" -i "$in" -o "$OUT/${tag}_$p.obj" -f "$n" >"$OUT/${tag}_$p.txt" 2>&1
@@ -80,8 +66,11 @@ PY
                 "$INSTANT_MESHES" -o "$OUT/${tag}_$p.obj" -f "$n" -D "$in" >"$OUT/${tag}_$p.txt" 2>&1
             fi
             t1=$(date +%s.%N)
-            python3 "$HERE/surface_check.py" "$in" "$OUT/${tag}_$p.obj" "$model" "$n" "$p" "$(echo "$t1 - $t0" | bc)" \
-                >>"$OUT/summary.md"
+            rm -f "$OUT/${tag}_$p.json"
+            [ -s "$OUT/${tag}_$p.obj" ] && "$GLPGP" quality "$OUT/${tag}_$p.obj" --domain "$in" ${h:+--size "$h"} \
+                --stats "$OUT/${tag}_$p.json" --allow-invalid >"$OUT/${tag}_$p.check.txt" 2>&1
+            python3 "$HERE/surface_row.py" "$OUT/${tag}_$p.json" "$OUT/${tag}_$p.txt" "$model" "$n" "$p" \
+                "$(echo "$t1 - $t0" | bc)" >>"$OUT/summary.md"
         done
     done
 done

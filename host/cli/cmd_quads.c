@@ -3,9 +3,10 @@
  *                 [--keep-polygons] [--smooth N] [--all-quads]
  *       quad mesh from a result written by `glpgp solve -o RESULT.vtk` (a
  *       plane or a surface: the surface pipeline, as solve --quads);
- *   glpgp quality MESH.msh [--size H] [--domain DOMAIN] [--stats OUT.json] [--allow-invalid]
- *       the same quality report for a quad/triangle mesh made elsewhere (Gmsh),
- *       used by bench/gmsh_compare.sh.
+ *   glpgp quality MESH.{msh,obj} [--size H] [--domain DOMAIN] [--stats OUT.json] [--allow-invalid]
+ *       the same quality report for a quad/triangle mesh made elsewhere (Gmsh,
+ *       used by bench/gmsh_compare.sh; a surface's quad mesh by another
+ *       mesher against its surface, used by bench/surface_compare.sh).
  * An invalid quad mesh exits with GLPGP_EXIT_INVALID (3) and is not written
  * (extract; the --stats report is), unless --allow-invalid. */
 #include "commands.h"
@@ -17,6 +18,7 @@
 #include "glpgp/io.h"
 #include "glpgp/quads.h"
 #include "glpgp/solve.h"
+#include "glpgp/surface.h"
 #include "glpgp/util.h"
 
 #include <math.h>
@@ -169,6 +171,45 @@ done:
     return rc;
 }
 
+/* Mean edge length of a quad mesh (3D when it has xyz): the default h. */
+static double quads_mean_edge(const glpgp_quadmesh *q)
+{
+    double s = 0.0;
+    long n = 0;
+    for (int f = 0; f < q->nf; f++) {
+        int b = q->face_start[f], k = q->face_start[f + 1] - b;
+        for (int j = 0; j < k; j++) {
+            int p = q->face_vert[b + j], r = q->face_vert[b + (j + 1) % k];
+            double dx = q->xy[2 * p] - q->xy[2 * r], dy = q->xy[2 * p + 1] - q->xy[2 * r + 1], dz = 0.0;
+            if (q->xyz) {
+                dx = q->xyz[3 * p] - q->xyz[3 * r];
+                dy = q->xyz[3 * p + 1] - q->xyz[3 * r + 1];
+                dz = q->xyz[3 * p + 2] - q->xyz[3 * r + 2];
+            }
+            s += sqrt(dx * dx + dy * dy + dz * dz);
+            n++;
+        }
+    }
+    return n ? s / (double)n : 1.0;
+}
+
+/* The domain of `glpgp quality`: a surface for a surface's quad mesh (its
+ * report needs one), else the planar reading. rc >= 0: exit with it. */
+static int quality_domain(const char *sub, const char *in, const char *domain, const glpgp_quadmesh *q,
+                          long max_elements, glpgp_mesh **dm)
+{
+    int rc;
+    if (q->xyz && !domain)
+        return glpgp_cli_usage_error(sub, "%s is a surface's quad mesh: give --domain SURFACE (the triangle mesh "
+                                          "it was made of) for its check", in);
+    if (!domain) return -1;
+    if (glpgp_mesh_read_ex(domain, q->xyz ? 0 : GLPGP_READ_PLANAR_FACE, dm) != GLPGP_OK) return glpgp_cli_fail();
+    if ((rc = glpgp_cli_check_elements(domain, (*dm)->nt, "triangles", 0, max_elements)) >= 0) return rc;
+    if (q->xyz && !glpgp_mesh_is_surface(*dm))
+        return glpgp_cli_usage_error(sub, "--domain %s is planar, %s is a surface's quad mesh", domain, in);
+    return -1;
+}
+
 int glpgp_cmd_quality(int argc, char **argv)
 {
     const char *sub = "quality", *in = NULL, *domain = NULL, *stats = NULL;
@@ -176,14 +217,17 @@ int glpgp_cmd_quality(int argc, char **argv)
     int verbosity = 1, allow_invalid = 0;
     long max_elements = GLPGP_DEFAULT_MAX_ELEMENTS;
     glpgp_opts t;
-    glpgp_opts_init(&t, sub, "glpgp quality MESH.msh [options]",
-                    "Quality report (valences, scaled Jacobian, edge lengths, boundary distance)\n"
-                    "of a quad/triangle mesh in Gmsh MSH 4.1 or 2.2 ASCII, e.g. made by Gmsh.\n");
+    glpgp_opts_init(&t, sub, "glpgp quality MESH.{msh,obj} [options]",
+                    "Quality report (valences, scaled Jacobian, edge lengths, distance to the domain)\n"
+                    "of a quad/triangle mesh made elsewhere: Gmsh MSH 4.1 or 2.2 ASCII, or OBJ;\n"
+                    "a mesh of a 3D surface (e.g. by another quad mesher) is checked against the\n"
+                    "surface it was made of (--domain), as glpgp checks its own.\n");
     glpgp_opt *o = glpgp_opt_double(&t, "--size", &size, 0.0, 1, HUGE_VAL, 0, "H", "target size h");
     o->def = "mean edge length";
     glpgp_opt_string(&t, "--domain", &domain, "FILE",
-                     "triangle mesh (.obj/.msh) of the domain: adds the Hausdorff\n"
-                     "distance of the boundaries");
+                     "triangle mesh (.obj/.msh/.stl/.ply/.off) of the domain: adds the\n"
+                     "Hausdorff distance (of the boundaries in the plane, two-sided on a\n"
+                     "surface); required for a surface's quad mesh");
     glpgp_opt_string(&t, "--stats", &stats, "FILE", "report as JSON {\"quads\": {...}}");
     glpgp_opt_flag(&t, "--allow-invalid", &allow_invalid, 1,
                    "exit 0 on an invalid mesh, with a warning (default: exit code 3)");
@@ -193,32 +237,24 @@ int glpgp_cmd_quality(int argc, char **argv)
                "whole mesh (the sign of its total area), so a folded face counts as inverted.\n"
                "Exit code 3 when the mesh is invalid (inverted, degenerate, non-quad, overlapping\n"
                "faces, non-manifold edges, pinched vertices; with --domain also faces outside it,\n"
-               "lost holes or corners, area off by > 1%, Hausdorff distance > h/4).\n";
-    int rc = glpgp_opts_parse_input(&t, argc, argv, &in, &verbosity, "MESH.msh");
+               "lost holes or corners, area off by > 1%, Hausdorff distance > h/4). On a surface:\n"
+               "faces against the surface's normal, non-manifold edges or vertices, Euler\n"
+               "characteristic or boundary loops not the surface's, area off by > 2%, two-sided\n"
+               "Hausdorff distance > h/4; the scaled Jacobian in each face's best-fit plane.\n";
+    int rc = glpgp_opts_parse_input(&t, argc, argv, &in, &verbosity, "MESH");
     if (rc >= 0) return rc;
     if (stats && (rc = glpgp_cli_check_output(sub, "--stats", stats, NULL)) >= 0) return rc;
     glpgp_error_clear();
     glpgp_quadmesh *q = NULL;
     glpgp_mesh *dm = NULL;
     rc = GLPGP_EXIT_FAIL;
-    if (glpgp_quads_read_msh(in, &q) != GLPGP_OK) goto fail;
+    /* OBJ by its extension; anything else is read as MSH (a pipe too) */
+    if ((glpgp_has_ext(in, ".obj") ? glpgp_quads_read(in, &q) : glpgp_quads_read_msh(in, &q)) != GLPGP_OK) goto fail;
     if ((rc = glpgp_cli_check_elements(in, q->nf, "faces", 0, max_elements)) >= 0) goto done;
-    rc = GLPGP_EXIT_FAIL;
-    if (domain && glpgp_mesh_read_ex(domain, GLPGP_READ_PLANAR_FACE, &dm) != GLPGP_OK) goto fail;
-    if (dm && (rc = glpgp_cli_check_elements(domain, dm->nt, "triangles", 0, max_elements)) >= 0) goto done;
+    if ((rc = quality_domain(sub, in, domain, q, max_elements, &dm)) >= 0) goto done;
     rc = GLPGP_EXIT_FAIL;
     {
-        double s = 0.0;
-        long n = 0;
-        for (int f = 0; f < q->nf; f++) {
-            int b = q->face_start[f], k = q->face_start[f + 1] - b;
-            for (int j = 0; j < k; j++) {
-                int p = q->face_vert[b + j], r = q->face_vert[b + (j + 1) % k];
-                s += hypot(q->xy[2 * p] - q->xy[2 * r], q->xy[2 * p + 1] - q->xy[2 * r + 1]);
-                n++;
-            }
-        }
-        double mean = n ? s / (double)n : 1.0;
+        double mean = quads_mean_edge(q);
         if (!(size > 0)) {
             size = mean;
         } else if (mean > 0 && !(size >= 1e-3 * mean && size <= 1e3 * mean)) {
@@ -229,9 +265,10 @@ int glpgp_cmd_quality(int argc, char **argv)
         }
     }
     glpgp_quads_report qq;
-    if (glpgp_quads_quality(q, dm, size, &qq) != GLPGP_OK) goto fail;
+    if ((q->xyz ? glpgp_quads_quality_surface(q, dm, size, &qq) : glpgp_quads_quality(q, dm, size, &qq)) != GLPGP_OK)
+        goto fail;
     if (stats && glpgp_quads_write_json_file(&qq, stats) != GLPGP_OK) goto fail;
-    printf("glpgp: %s: h = %.6g\n", in, size);
+    printf("glpgp: %s: h = %.6g%s\n", in, size, q->xyz ? " (a surface's quad mesh)" : "");
     glpgp_quads_print(stdout, &qq, "  ");
     if (stats) printf("  wrote          %s\n", stats);
     char why[1024] = "";

@@ -57,6 +57,20 @@ double glpgp_qs_worst_sj(const glpgp_qs_proj *P, const glpgp_qs_pts *S, const in
 glpgp_status glpgp_qs_untangle(const glpgp_qs_proj *P, const glpgp_qs_pts *S, int first, const int *quads, int nq,
                                int max_sweeps, double floor_sj, double *worst);
 
+/* The closing of the extraction's polygons (close_surface.c): odd faces
+ * paired across a side and even faces split (glpgp_qs_close_pairs: *out
+ * NULL when nothing was closed; *closed the faces made quads), and the
+ * odd faces left joined by strips and closed (glpgp_qs_strips_closed:
+ * *out the all-quad result with the fewest irregular interior vertices,
+ * NULL when none; the new points moved onto m). */
+glpgp_status glpgp_qs_close_pairs(const glpgp_mesh *m, double h, const glpgp_quadmesh *q, glpgp_quadmesh **out,
+                                  int *closed);
+glpgp_status glpgp_qs_strips_closed(const glpgp_mesh *m, double h, const glpgp_quadmesh *q, glpgp_quadmesh **out,
+                                    int *nstrips, int *nclosed);
+/* Interior vertices of valence other than 4 (-1 without memory); faces that are not quads. */
+int glpgp_qs_irregular_interior(const glpgp_quadmesh *q);
+int glpgp_qs_count_nonquads(const glpgp_quadmesh *q);
+
 /* A surface quad mesh's arrays (xyz, xy, face_start, face_vert, face_origin
  * zeroed) for nv points, nf faces and ncorner corners (quads_surface.c). */
 glpgp_status glpgp_qs_alloc(int nv, int nf, int ncorner, glpgp_quadmesh **out);

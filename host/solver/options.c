@@ -77,6 +77,7 @@ void glpgp_options_default(glpgp_options *o)
     o->size_chord_area = 0.005;
     o->size_chord_depth = 0.125;
     o->size_resolution = 4.0;
+    o->size_curl = 1.0; /* surfaces: measured fewer irregular vertices everywhere but jagged rims (bench/results/surface_curl.md) */
     o->size_diag_div = 20.0;
     o->size_min_edges = 10.0;
     o->feature_angle = GLPGP_FEATURE_ANGLE_DEFAULT;

@@ -86,6 +86,40 @@ static glpgp_status guiding_field(const glpgp_mesh *m, glpgp_backend *b, const g
     return GLPGP_OK;
 }
 
+/* The local size divided by the curl correction's factors (--size-curl;
+ * the curl within 2 h of the boundary not counted), enlarged at most to
+ * what the surface allows at the same chord depth (glpgp_surface_size_local
+ * at 2 h with half the relative depth: the sagitta cap and the feature
+ * spacing; the quads' Hausdorff check is against h). */
+static glpgp_status curl_size(const glpgp_mesh *m, const glpgp_options *o, const glpgp_surface_constraints *con,
+                              const double *u, double h, double *size, int *uniform)
+{
+    const int nv = m->nv;
+    double *f = NULL, *cap = NULL, range[2];
+    glpgp_options o2 = *o;
+    o2.size_chord_depth = 0.5 * o->size_chord_depth;
+    glpgp_status st = glpgp_malloc((size_t)nv + 1, sizeof(double), &f);
+    if (st == GLPGP_OK) st = glpgp_malloc((size_t)nv + 1, sizeof(double), &cap);
+    if (st == GLPGP_OK) st = glpgp_surface_size_curl(m, u, o->size_curl, 2.0 * h, f, range);
+    if (st == GLPGP_OK) st = glpgp_surface_size_local(m, &o2, con, 2.0 * h, 1, cap);
+    if (st == GLPGP_OK) {
+        double lo = HUGE_VAL, hi = 0.0;
+        for (int i = 0; i < nv; i++)
+            for (int k = 0; k < 2; k++) {
+                double *sz = size + k * nv + i;
+                *sz = fmin(*sz / f[i], fmax(*sz, cap[i]));
+                lo = fmin(lo, *sz);
+                hi = fmax(hi, *sz);
+            }
+        *uniform = 0;
+        glpgp_log(GLPGP_LOG_INFO, "surface: curl correction (--size-curl %g): frame scale %.3f .. %.3f, local size "
+                                  "%.3f .. %.3f h", o->size_curl, range[0], range[1], lo / h, hi / h);
+    }
+    free(f);
+    free(cap);
+    return st;
+}
+
 glpgp_status glpgp_solve_surface(const glpgp_mesh *m, glpgp_backend *b, const glpgp_options *o, glpgp_result **out)
 {
     glpgp_status st = GLPGP_OK;
@@ -136,6 +170,7 @@ glpgp_status glpgp_solve_surface(const glpgp_mesh *m, glpgp_backend *b, const gl
     glpgp_surface_lumped_mass(m, size); /* scratch: the vertices' mass, then each node's */
     for (int i = 0; i < nv; i++) mass[2 * i] = mass[2 * i + 1] = size[i];
     GLPGP_CHECK_GOTO(st, glpgp_surface_size(m, o, con, h, size, &uniform), fail);
+    if (o->size_curl > 0.0) GLPGP_CHECK_GOTO(st, curl_size(m, o, con, r->field, h, size, &uniform), fail);
     if (!uniform) glpgp_size_log(m, size, h);
     glpgp_log(GLPGP_LOG_INFO, "surface: %d Dirichlet nodes of %d", ndir, 2 * nv);
     GLPGP_CHECK_GOTO(st, glpgp_solve_coupled(m, b, o, r, uniform ? NULL : size, h, eps, nlev, dn, eigen_oscillators,

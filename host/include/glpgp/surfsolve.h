@@ -205,6 +205,17 @@ int glpgp_surface_dirichlet(const glpgp_mesh *m, const glpgp_surface_constraints
 glpgp_status glpgp_surface_size(const glpgp_mesh *m, const glpgp_options *o, const glpgp_surface_constraints *con,
                                 double h, double *size, int *uniform);
 
+/* The curl correction of the local size (surface_curl.c): per vertex the
+ * factor f_i by which the frame (U, V) of representatives u (2 nv) is
+ * scaled so that it is curl-free in the least-squares sense (Ray et al.),
+ * f = e^(strength phi) normalised to keep the area in periods, within
+ * [1/2, 2]; the oscillators' local size is h(x) / f. Triangles with a
+ * vertex within rim_gap of the boundary (along the edges) do not count
+ * (0: all count). range: the smallest and largest factor. GLPGP_ERR_ARG on
+ * a planar mesh or strength < 0. */
+glpgp_status glpgp_surface_size_curl(const glpgp_mesh *m, const double *u, double strength, double rim_gap,
+                                     double *factor, double *range);
+
 /* The pipeline on a surface (glpgp_solve's, which calls it): constraints,
  * the guiding field (cross, or the boundary-aligned harmonic one), its
  * representatives, the local size, the coupled oscillators (naive PGP: the

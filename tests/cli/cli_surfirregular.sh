@@ -1,0 +1,57 @@
+#!/usr/bin/env bash
+# cli_surfirregular.sh: irregular vertices of a surface's quad mesh, and the
+# 3D check of a quad mesh made elsewhere (issue 29).
+#  - the curl correction (--size-curl, on by default) and the closing that
+#    counts valences: shape:sphere:8000 at --faces 600 keeps at most 16
+#    irregular interior vertices for its 8 cross-field singularities (53
+#    before both; a sphere's curl-free grid has no dislocation left);
+#  - --size-curl 0 says nothing of the correction, the default names it in
+#    the log and gives a different mesh;
+#  - `glpgp quality Q.obj --domain SURFACE`: the same report as the solve's
+#    for glpgp's own OBJ (quads, irregular vertices, valid), a copy scaled
+#    by 1.1 invalid by its Hausdorff distance (exit 3), --allow-invalid
+#    exits 0 with the report; a surface's quad mesh without --domain is a
+#    usage error.
+# Usage: bash cli_surfirregular.sh <path-to-glpgp> <data-dir>
+. "$(dirname "$0")/lib.sh" "$@"
+
+run_ok "sphere" solve shape:sphere:8000 --faces 600 --backend reference --quads s.obj --stats s.json
+expect_err "curl correction" "sphere: the correction in the log"
+python3 - <<'PY' || fail "sphere: irregular vertices"
+import json
+d = json.load(open("s.json")); q = d["quads"]
+assert q["valid"] and q["other_faces"] == 0, q["invalid_reasons"]
+assert d["cross_field"]["singularities"] == 8, d["cross_field"]["singularities"]
+assert q["irregular_vertices"]["interior"] <= 16, q["irregular_vertices"]
+PY
+
+run_ok "sphere, no curl correction" solve shape:sphere:8000 --faces 600 --backend reference --size-curl 0 \
+    --quads s0.obj --stats s0.json
+grep -qi "curl correction" err.txt && fail "--size-curl 0: the correction still in the log"
+cmp -s s.obj s0.obj && fail "--size-curl 0: the same mesh as the default"
+
+# the 3D check of an OBJ made elsewhere: glpgp's own first
+run_ok "generate" generate shape:sphere:8000 -o sphere.obj
+h=$(python3 -c 'import json; print(json.load(open("s.json"))["quads"]["h"])')
+run_ok "quality" quality s.obj --domain sphere.obj --size "$h" --stats qs.json
+python3 - <<'PY' || fail "quality: the solve's report"
+import json
+a = json.load(open("s.json"))["quads"]; b = json.load(open("qs.json"))["quads"]
+assert b["valid"] and b["quads"] == a["quads"], (a["quads"], b["quads"])
+assert b["irregular_vertices"]["interior"] == a["irregular_vertices"]["interior"]
+assert abs(b["scaled_jacobian"]["min"] - a["scaled_jacobian"]["min"]) < 1e-6
+assert b["surface"]["hausdorff_over_h"] <= 0.25
+PY
+python3 - <<'PY' || fail "scaled copy"
+out = open("big.obj", "w")
+for l in open("s.obj"):
+    w = l.split()
+    out.write("v %.9g %.9g %.9g\n" % tuple(1.1 * float(x) for x in w[1:4]) if w and w[0] == "v" else l)
+PY
+run 3 "quality: a mesh off the surface" quality big.obj --domain sphere.obj --size "$h" --stats qb.json
+expect_err "hausdorff" "quality: a mesh off the surface"
+python3 -c 'import json,sys; q=json.load(open("qb.json"))["quads"]; sys.exit(0 if not q["valid"] else 1)' ||
+    fail "quality: the scaled copy's report says valid"
+run_ok "quality --allow-invalid" quality big.obj --domain sphere.obj --size "$h" --allow-invalid
+run_fail "quality: a surface without --domain" 2 "domain" quality s.obj
+finish
