@@ -587,8 +587,18 @@ static glpgp_status flat_corners(const glpgp_mesh *m, double h, const glpgp_quad
     glpgp_status st = glpgp_qs_find_flat(q, FLAT_GOAL, flat, &nflat);
     if (st == GLPGP_OK && nflat) st = glpgp_quads_quality_surface(q, m, h, &before);
     if (st == GLPGP_OK && nflat && !before.invalid) st = glpgp_qs_split_flat(m, q, h, flat, &r, &nsplit);
-    if (st == GLPGP_OK && r && o->smooth > 0) st = glpgp_quads_smooth_surface(m, h, o->smooth, r, &moved);
+    double *keep = NULL; /* the split before its smoothing: tried again when the smoothed one is not valid */
+    if (st == GLPGP_OK && r && o->smooth > 0 && (st = glpgp_malloc((size_t)3 * r->nv + 1, sizeof(double), &keep)) == GLPGP_OK) {
+        memcpy(keep, r->xyz, (size_t)3 * r->nv * sizeof(double));
+        st = glpgp_quads_smooth_surface(m, h, o->smooth, r, &moved);
+    }
     if (st == GLPGP_OK && r) st = glpgp_quads_quality_surface(r, m, h, &after);
+    if (st == GLPGP_OK && r && keep && after.invalid) {
+        memcpy(r->xyz, keep, (size_t)3 * r->nv * sizeof(double));
+        set_xy(r);
+        st = glpgp_quads_quality_surface(r, m, h, &after);
+    }
+    free(keep);
     if (st == GLPGP_OK && r && !after.invalid && after.sj_min > before.sj_min) {
         glpgp_log(GLPGP_LOG_INFO,
                   "quads: %d flat boundary corners split (%d faces split, %d -> %d quads): smallest scaled "
@@ -609,8 +619,13 @@ static glpgp_status flat_corners(const glpgp_mesh *m, double h, const glpgp_quad
         *pq = r;
         r = NULL;
     } else if (st == GLPGP_OK && r) {
-        glpgp_log(GLPGP_LOG_DEBUG, "quads: %d flat boundary corners: the split is %s (smallest scaled Jacobian %.3f -> %.3f)",
-                  nflat, after.invalid ? "not valid" : "no better", before.sj_min, after.sj_min);
+        char why[160] = "";
+        bad_names(after.invalid, why, sizeof why);
+        glpgp_log(GLPGP_LOG_DEBUG,
+                  "quads: %d flat boundary corners: the split is %s%s (smallest scaled Jacobian %.3f -> %.3f, "
+                  "Hausdorff %.3f h, area ratio %.4f)",
+                  nflat, after.invalid ? "not valid: " : "no better", why, before.sj_min, after.sj_min,
+                  after.hausdorff, after.area_ratio);
     }
     glpgp_quadmesh_destroy(&r);
     free(flat);
