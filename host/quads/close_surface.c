@@ -320,7 +320,8 @@ glpgp_status glpgp_qs_close_pairs(const glpgp_mesh *m, double h, const glpgp_qua
     GLPGP_CHECK_GOTO(st, vertex_valences(q, E, &val), done);
     GLPGP_CHECK_GOTO(st, glpgp_calloc((size_t)q->nf + 1, 1, &used), done);
     GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)4 * nc + 8, sizeof(int), &newq), done);
-    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)nc / 3 + 3, sizeof(double), &cent), done); /* a centre per 6 corners */
+    /* 3 per centre, each of at least 6 corners */
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)nc / 2 + 3, sizeof(double), &cent), done);
     for (int f = 0; f < q->nf; f++) {
         const int sf = q->face_start[f], n = q->face_start[f + 1] - sf;
         int p[10], base[10], qd[20], bq[20], bn = 0, irr = 0, birr = INT_MAX; /* 20: 4 per quad, up to 5 */
@@ -497,7 +498,7 @@ static glpgp_status apply_strip(strip_ctx *c, int A, int B, int bside, int last,
         t = ex[i]; ex[i] = ex[n - 1 - i]; ex[n - 1 - i] = t;
     }
     int sA = A, sq = -1, sj = -1; /* the face whose side startSide gets the first midpoint */
-    if (startSide >= STRIP_JOINED) { /* lone triangle A joined with quad sq (side sj): the strip starts at its far side */
+    if (startSide >= STRIP_JOINED) { /* lone triangle A joined with quad sq (side sj): the strip starts beyond sq */
         sq = across(q, c->E, c->nc, A, startSide - STRIP_JOINED, &sj);
         sA = sq;
         startSide = (sj + 2) % 4;

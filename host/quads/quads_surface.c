@@ -588,7 +588,8 @@ static glpgp_status flat_corners(const glpgp_mesh *m, double h, const glpgp_quad
     if (st == GLPGP_OK && nflat) st = glpgp_quads_quality_surface(q, m, h, &before);
     if (st == GLPGP_OK && nflat && !before.invalid) st = glpgp_qs_split_flat(m, q, h, flat, &r, &nsplit);
     double *keep = NULL; /* the split before its smoothing: tried again when the smoothed one is not valid */
-    if (st == GLPGP_OK && r && o->smooth > 0 && (st = glpgp_malloc((size_t)3 * r->nv + 1, sizeof(double), &keep)) == GLPGP_OK) {
+    if (st == GLPGP_OK && r && o->smooth > 0) st = glpgp_malloc((size_t)3 * r->nv + 1, sizeof(double), &keep);
+    if (st == GLPGP_OK && keep) {
         memcpy(keep, r->xyz, (size_t)3 * r->nv * sizeof(double));
         st = glpgp_quads_smooth_surface(m, h, o->smooth, r, &moved);
     }

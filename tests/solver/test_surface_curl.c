@@ -82,7 +82,8 @@ static double spread_fr(const glpgp_mesh *m, const double *f)
     lift(0, 0, o);
     for (int i = 0; i < m->nv; i++) {
         const double *x = m->xyz + 3 * i;
-        const double r = sqrt((x[0] - o[0]) * (x[0] - o[0]) + (x[1] - o[1]) * (x[1] - o[1]) + (x[2] - o[2]) * (x[2] - o[2]));
+        const double d[3] = {x[0] - o[0], x[1] - o[1], x[2] - o[2]};
+        const double r = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
         lo = fmin(lo, f[i] * r);
         hi = fmax(hi, f[i] * r);
     }
