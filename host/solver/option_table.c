@@ -171,7 +171,7 @@ static const glpgp_optdesc k_table[] = {
         "a surface: the local size scaled so that the guiding frame over\n"
         "h(x) is curl-free (least squares; Ray et al.'s curl correction),\n"
         "F the strength: fewer dislocations (T-junctions, 3-5 pairs) where\n"
-        "the surface curves; 0: off"),
+        "the surface curves (with --size-field auto or iso); 0: off"),
     DBL("rim-scale", G1, rim_scale, 0.0, 0, 4.0, 0, "F",
         "a surface's boundary: its crosses from the rim seen over F h (at\n"
         "least 3 of its mean edges) on either side of each vertex, stopped\n"

@@ -170,7 +170,9 @@ glpgp_status glpgp_solve_surface(const glpgp_mesh *m, glpgp_backend *b, const gl
     glpgp_surface_lumped_mass(m, size); /* scratch: the vertices' mass, then each node's */
     for (int i = 0; i < nv; i++) mass[2 * i] = mass[2 * i + 1] = size[i];
     GLPGP_CHECK_GOTO(st, glpgp_surface_size(m, o, con, h, size, &uniform), fail);
-    if (o->size_curl > 0.0) GLPGP_CHECK_GOTO(st, curl_size(m, o, con, r->field, h, size, &uniform), fail);
+    /* the curl correction adapts the auto / iso sizes; none and FILE are the user's as given */
+    if (o->size_curl > 0.0 && (o->size_field == GLPGP_SIZE_AUTO || o->size_field == GLPGP_SIZE_ISO))
+        GLPGP_CHECK_GOTO(st, curl_size(m, o, con, r->field, h, size, &uniform), fail);
     if (!uniform) glpgp_size_log(m, size, h);
     glpgp_log(GLPGP_LOG_INFO, "surface: %d Dirichlet nodes of %d", ndir, 2 * nv);
     GLPGP_CHECK_GOTO(st, glpgp_solve_coupled(m, b, o, r, uniform ? NULL : size, h, eps, nlev, dn, eigen_oscillators,

@@ -6,7 +6,8 @@
 #    irregular interior vertices for its 8 cross-field singularities (53
 #    before both; a sphere's curl-free grid has no dislocation left);
 #  - --size-curl 0 says nothing of the correction, the default names it in
-#    the log and gives a different mesh;
+#    the log and gives a different mesh; --size-field none (the user's size
+#    as given) is not corrected;
 #  - `glpgp quality Q.obj --domain SURFACE`: the same report as the solve's
 #    for glpgp's own OBJ (quads, irregular vertices, valid), a copy scaled
 #    by 1.1 invalid by its Hausdorff distance (exit 3), --allow-invalid
@@ -29,6 +30,10 @@ run_ok "sphere, no curl correction" solve shape:sphere:8000 --faces 600 --backen
     --quads s0.obj --stats s0.json
 grep -qi "curl correction" err.txt && fail "--size-curl 0: the correction still in the log"
 cmp -s s.obj s0.obj && fail "--size-curl 0: the same mesh as the default"
+
+# sizes the user gives as they are: --size-field none is not corrected
+run_ok "--size-field none" solve shape:sphere:2000 --faces 100 --backend reference --size-field none -o n.vtu
+grep -qi "curl correction" err.txt && fail "--size-field none: corrected"
 
 # the 3D check of an OBJ made elsewhere: glpgp's own first
 run_ok "generate" generate shape:sphere:8000 -o sphere.obj

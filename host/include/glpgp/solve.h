@@ -245,7 +245,7 @@ typedef struct glpgp_options {
                              none [GLPGP_FEATURE_ANGLE_DEFAULT = 35] */
     double size_curl;     /* a surface's local size scaled by e^(-F phi), phi making the guiding
                              frame curl-free (glpgp_surface_size_curl): fewer dislocations where
-                             the surface curves; 0: off [1] */
+                             the surface curves (size_field AUTO or ISO only); 0: off [1] */
     double rim_scale;     /* the boundary's crosses read over rim_scale h on either side of a
                              vertex (glpgp_surface_constraints_rims; at least
                              GLPGP_RIM_EDGES of the rim's edges); 0: its own edges [0] */
