@@ -19,6 +19,7 @@
  *    choices compare. */
 #include "quads_surface.h"
 
+#include "glpgp/internal/heap.h"
 #include "glpgp/util.h"
 
 #include <limits.h>
@@ -431,7 +432,7 @@ typedef struct strip_ctx {
     int end_mq, end_mk;  /* the search's end joined with a lone triangle: its quad, entered at side end_mk */
     unsigned char *tri_joined; /* nf: a lone triangle joined with a quad (emitted with it) */
     int join;            /* 1: lone triangles joined with a quad (0: reached like any odd face) */
-    int *heap, nheap, capheap; /* (cost, state) pairs */
+    glpgp_heap heap;     /* the search's (cost, state) items (lazy deletion) */
 } strip_ctx;
 
 static int is_odd(const glpgp_quadmesh *q, int f) { return (q->face_start[f + 1] - q->face_start[f]) % 2; }
@@ -583,48 +584,6 @@ static int strip_side(const strip_ctx *c, int f)
     return (best + (n - 1) / 2) % n;
 }
 
-/* The strips' search: a binary heap of (cost, state) (lazy deletion). */
-static int heap_push(strip_ctx *c, int cost, int st)
-{
-    if (c->nheap == c->capheap) {
-        const int cap = c->capheap ? 2 * c->capheap : 1024;
-        int *x = realloc(c->heap, (size_t)2 * cap * sizeof *x);
-        if (!x) return 0;
-        c->heap = x;
-        c->capheap = cap;
-    }
-    int i = c->nheap++;
-    while (i > 0) {
-        const int p = (i - 1) / 2;
-        if (c->heap[2 * p] <= cost) break;
-        c->heap[2 * i] = c->heap[2 * p];
-        c->heap[2 * i + 1] = c->heap[2 * p + 1];
-        i = p;
-    }
-    c->heap[2 * i] = cost;
-    c->heap[2 * i + 1] = st;
-    return 1;
-}
-
-static void heap_pop(strip_ctx *c, int *cost, int *st)
-{
-    *cost = c->heap[0];
-    *st = c->heap[1];
-    const int n = --c->nheap, lc = c->heap[2 * n], ls = c->heap[2 * n + 1];
-    int i = 0;
-    for (;;) {
-        int k = 2 * i + 1;
-        if (k >= n) break;
-        if (k + 1 < n && c->heap[2 * (k + 1)] < c->heap[2 * k]) k++;
-        if (c->heap[2 * k] >= lc) break;
-        c->heap[2 * i] = c->heap[2 * k];
-        c->heap[2 * i + 1] = c->heap[2 * k + 1];
-        i = k;
-    }
-    c->heap[2 * i] = lc;
-    c->heap[2 * i + 1] = ls;
-}
-
 /* Whether face f is a triangle whose three neighbours are unused quads (a
  * +1/4 singularity inside a face): a strip cannot enter it (its midpoint
  * would make a quad with a flat corner), so it is joined with the quad
@@ -672,7 +631,7 @@ static glpgp_status find_strip(strip_ctx *c, int A, int *found)
     const int sA = strip_side(c, A);
     glpgp_status st = GLPGP_OK;
     const int loneA = lone_triangle(c, A);
-    c->nheap = 0;
+    c->heap.n = 0;
     c->end_mq = -1;
     for (int i = 0; i < nA; i++) {
         if (!c->any_side && !loneA && i != sA) continue;
@@ -685,11 +644,11 @@ static glpgp_status find_strip(strip_ctx *c, int A, int *found)
         c->par[4 * g + j] = from;
         c->dist[4 * g + j] = 1;
         c->queue[ntouch++] = 4 * g + j;
-        if (!heap_push(c, 1, 4 * g + j)) st = GLPGP_FAIL(GLPGP_ERR_NOMEM, "out of memory (surface strips)");
+        if (st == GLPGP_OK) st = glpgp_heap_push(&c->heap, 1.0, 4 * g + j);
     }
-    while (st == GLPGP_OK && c->nheap) {
-        int d, s;
-        heap_pop(c, &d, &s);
+    while (st == GLPGP_OK && c->heap.n) {
+        const glpgp_heap_item it = glpgp_heap_pop(&c->heap);
+        const int d = (int)it.key, s = it.id;
         if (d >= endCost) break;
         if (d > c->dist[s]) continue;
         const int g = s / 4, j = s % 4;
@@ -716,10 +675,7 @@ static glpgp_status find_strip(strip_ctx *c, int A, int *found)
                 if (c->par[ns] == -2) c->queue[ntouch++] = ns;
                 c->par[ns] = s;
                 c->dist[ns] = dd + 1;
-                if (!heap_push(c, dd + 1, ns)) {
-                    st = GLPGP_FAIL(GLPGP_ERR_NOMEM, "out of memory (surface strips)");
-                    break;
-                }
+                if ((st = glpgp_heap_push(&c->heap, dd + 1.0, ns)) != GLPGP_OK) break;
             }
         }
     }
@@ -798,7 +754,7 @@ static void strip_free(strip_ctx *c)
     free(c->center);
     free(c->xyz);
     free(c->dist);
-    free(c->heap);
+    glpgp_heap_free(&c->heap);
     free(c->mtri);
     free(c->mside);
     free(c->tri_joined);

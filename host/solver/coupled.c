@@ -38,7 +38,7 @@ int glpgp_cross_turn(const double *ua, const double *ub)
 /* out <- U_a of corner a of triangle t in the frame the matching compares
  * in: the plane's (u itself) or, on a surface, t's (turned by the corner's
  * rotation phi). */
-static void corner_u(const glpgp_mesh *m, const double *u, int t, int a, double *out)
+void glpgp_coupled_corner_u(const glpgp_mesh *m, const double *u, int t, int a, double *out)
 {
     const double *ua = u + 2 * m->tri[3 * t + a];
     if (!m->surf) {
@@ -56,8 +56,8 @@ int glpgp_coupled_corner_turn(const glpgp_mesh *m, const double *u, int t, int a
     if (a == 0) return 0;
     if (!m->surf) return glpgp_cross_turn(u + 2 * m->tri[3 * t], u + 2 * m->tri[3 * t + a]);
     double u0[2], ua[2];
-    corner_u(m, u, t, 0, u0);
-    corner_u(m, u, t, a, ua);
+    glpgp_coupled_corner_u(m, u, t, 0, u0);
+    glpgp_coupled_corner_u(m, u, t, a, ua);
     return glpgp_cross_turn(u0, ua);
 }
 
@@ -133,7 +133,7 @@ glpgp_status glpgp_coupled_create(const glpgp_mesh *m, const double *u, glpgp_co
                 cconj[3 * tv + a] = (unsigned char)cj;
                 /* frame field of oscillator s at corner a: rot^{r_a + s}(U_a), exact rotations */
                 double uc[2];
-                corner_u(m, u, t, a, uc);
+                glpgp_coupled_corner_u(m, u, t, a, uc);
                 double wx = uc[0], wy = uc[1];
                 for (int q = 0; q < ((r + s) & 3); q++) {
                     const double tx = -wy;

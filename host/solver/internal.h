@@ -42,6 +42,15 @@ glpgp_status glpgp_surface_size_local(const glpgp_mesh *m, const glpgp_options *
                                       const struct glpgp_surface_constraints *con, double h, int spacing,
                                       double *size);
 
+/* s_i <- min(s_i, min_j s_j + g |x_i - x_j|) along a surface's edges
+ * (Dijkstra; surface_size.c): with g = 1 and s 0 at the sources, the
+ * distance to them along the edges. */
+glpgp_status glpgp_surface_grade(const glpgp_mesh *m, double g, double *s);
+
+/* U_a of corner a of triangle t in the frame the matching compares in: the
+ * plane's (u itself) or, on a surface, t's (coupled.c). */
+void glpgp_coupled_corner_u(const glpgp_mesh *m, const double *u, int t, int a, double *out);
+
 /* A surface refined to its local size (surface_refine.c): every edge longer
  * than h(x) / GLPGP_SURFACE_EDGES bisected (glpgp_mesh_refine_surface_sized),
  * h(x) glpgp_surface_size_local's curvature cap on m (auto / iso; h for the other size

@@ -25,12 +25,10 @@
  * and so do those within rim_gap of the boundary (the caller's: 2 h): the
  * curl-free frame aligned with a hole's rim is log-polar, its quads
  * shrinking towards the rim by r / h, which a hole a few h across cannot
- * carry (20 holes 1.5 h across: the h/2 split, SJ 0.016, where the
- * uncorrected size gave 296 quads; bench/results/surface_curl.md). */
+ * carry (bench/results/surface_curl.md). */
 #include "internal.h"
 
 #include "glpgp/surfsolve.h"
-#include "glpgp/internal/heap.h"
 #include "glpgp/util.h"
 
 #include <math.h>
@@ -42,45 +40,18 @@
 #define CURL_MAXIT 20000
 #define CURL_FACTOR_MAX 2.0            /* the size's factor within [1/2, 2] */
 
-/* Per vertex whether it is within gap of the boundary (Dijkstra along the
- * edges from the boundary vertices); all 0 when gap <= 0. */
+/* Per vertex whether it is within gap of the boundary along the edges
+ * (glpgp_surface_grade from the boundary vertices); all 0 when gap <= 0. */
 static glpgp_status near_rim(const glpgp_mesh *m, double gap, unsigned char *near)
 {
     const int nv = m->nv;
-    const glpgp_surface *sf = m->surf;
     memset(near, 0, (size_t)nv);
     if (!(gap > 0)) return GLPGP_OK;
     double *d = NULL;
-    glpgp_heap hp = {0};
-    glpgp_status st = glpgp_malloc((size_t)nv + 1, sizeof(double), &d);
-    for (int i = 0; st == GLPGP_OK && i < nv; i++) {
-        d[i] = sf->twin[sf->vstart[i]] < 0 ? 0.0 : HUGE_VAL;
-        if (d[i] == 0.0) st = glpgp_heap_push(&hp, 0.0, i);
-    }
-    while (st == GLPGP_OK && hp.n) {
-        const glpgp_heap_item it = glpgp_heap_pop(&hp);
-        const int i = it.id;
-        if (it.key > d[i] || it.key >= gap) continue;
-        near[i] = 1;
-        int c = sf->vstart[i]; /* the fan's corners: c = 3t + a at vertex i */
-        for (int k = 0; k < 4096 && st == GLPGP_OK; k++) {
-            const int t = c / 3, a = c % 3;
-            const int js[2] = {m->tri[3 * t + (a + 1) % 3], m->tri[3 * t + (a + 2) % 3]};
-            for (int q = 0; q < 2 && st == GLPGP_OK; q++) {
-                const int j = js[q];
-                const double *x = m->xyz + 3 * i, *y = m->xyz + 3 * j;
-                const double nd = it.key + sqrt((x[0] - y[0]) * (x[0] - y[0]) + (x[1] - y[1]) * (x[1] - y[1]) +
-                                                (x[2] - y[2]) * (x[2] - y[2]));
-                if (nd < d[j]) {
-                    d[j] = nd;
-                    st = glpgp_heap_push(&hp, nd, j);
-                }
-            }
-            c = sf->twin[3 * t + (a + 2) % 3]; /* the next corner: the twin of c's incoming half-edge */
-            if (c < 0 || c == sf->vstart[i]) break;
-        }
-    }
-    glpgp_heap_free(&hp);
+    GLPGP_CHECK(glpgp_malloc((size_t)nv + 1, sizeof(double), &d));
+    for (int i = 0; i < nv; i++) d[i] = m->surf->twin[m->surf->vstart[i]] < 0 ? 0.0 : gap;
+    glpgp_status st = glpgp_surface_grade(m, 1.0, d);
+    for (int i = 0; st == GLPGP_OK && i < nv; i++) near[i] = d[i] < gap;
     free(d);
     return st;
 }
@@ -88,9 +59,10 @@ static glpgp_status near_rim(const glpgp_mesh *m, double gap, unsigned char *nea
 /* U_a of corner a of t matched to corner 0's, in t's plane (2 values). */
 static void matched_u(const glpgp_mesh *m, const double *u, int t, int a, double *out)
 {
-    const double *ua = u + 2 * m->tri[3 * t + a];
-    const double c = cos(m->surf->rot[3 * t + a]), s = sin(m->surf->rot[3 * t + a]);
-    double x = c * ua[0] - s * ua[1], y = s * ua[0] + c * ua[1];
+    double x, y, c[2];
+    glpgp_coupled_corner_u(m, u, t, a, c);
+    x = c[0];
+    y = c[1];
     for (int r = glpgp_coupled_corner_turn(m, u, t, a); r > 0; r--) { /* rot by +90 degrees */
         const double nx = -y;
         y = x;

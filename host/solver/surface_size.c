@@ -49,7 +49,7 @@ static double dist3(const double *a, const double *b)
     } while (0)
 
 /* s_i <- min(s_i, min_j s_j + g |x_i - x_j|) over the mesh (Dijkstra). */
-static glpgp_status grade(const glpgp_mesh *m, double g, double *s)
+glpgp_status glpgp_surface_grade(const glpgp_mesh *m, double g, double *s)
 {
     glpgp_heap q = {NULL, 0, 0};
     const size_t cap = (size_t)3 * m->nt + (size_t)m->nv + 1;
@@ -392,7 +392,7 @@ glpgp_status glpgp_surface_size_local(const glpgp_mesh *m, const glpgp_options *
     GLPGP_CHECK(sagitta_cap(m, con, o->size_chord_depth * h, h, size));
     if (spacing) GLPGP_CHECK(feature_spacing(m, con, o->size_across, size));
     for (int i = 0; i < m->nv; i++) size[i] = fmax(size[i], o->size_min * h);
-    return grade(m, o->size_grading, size);
+    return glpgp_surface_grade(m, o->size_grading, size);
 }
 
 glpgp_status glpgp_surface_size(const glpgp_mesh *m, const glpgp_options *o, const glpgp_surface_constraints *con,
