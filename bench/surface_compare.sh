@@ -18,6 +18,8 @@
 # 82k-triangle scan, a plate of genus 16 with sharp edges, a sphere with 120
 # jagged holes and one with 120 round ones; minutes each on 2 cores).
 # ARGS: more `glpgp solve` options for every row (e.g. ARGS="--size-chord-depth 0.125").
+# ALIGN="0 5": one glpgp row per --cross-align weight (the principal-curvature
+# term; default: one row at the default weight).
 # Usage: bash bench/surface_compare.sh [path/to/glpgp]   (SCALE: triangles of the generated models, default 20000)
 set -u
 GLPGP=${1:-build/glpgp}
@@ -48,12 +50,16 @@ peers=""
 for model in $MODELS_ALL; do
     for n in $FACES; do
         tag=$(basename "$model" | tr ':.' '__')_$n
-        t0=$(date +%s.%N)
-        "$GLPGP" solve "$model" --faces "$n" --backend "$BACKEND" --quads "$OUT/$tag.obj" --stats "$OUT/$tag.json" \
-            "${ARGS_A[@]}" >"$OUT/$tag.txt" 2>&1
-        t1=$(date +%s.%N)
-        python3 "$HERE/surface_row.py" "$OUT/$tag.json" "$OUT/$tag.txt" "$model" "$n" glpgp "$(echo "$t1 - $t0" | bc)" \
-            >>"$OUT/summary.md"
+        for a in ${ALIGN:--}; do
+            va=() tool=glpgp
+            [ "$a" != - ] && va=(--cross-align "$a") tool="glpgp (align $a)"
+            t0=$(date +%s.%N)
+            "$GLPGP" solve "$model" --faces "$n" --backend "$BACKEND" --quads "$OUT/$tag.obj" --stats "$OUT/$tag.json" \
+                "${va[@]}" "${ARGS_A[@]}" >"$OUT/$tag.txt" 2>&1
+            t1=$(date +%s.%N)
+            python3 "$HERE/surface_row.py" "$OUT/$tag.json" "$OUT/$tag.txt" "$model" "$n" "$tool" \
+                "$(echo "$t1 - $t0" | bc)" >>"$OUT/summary.md"
+        done
         h=$(python3 -c 'import json,sys; print(json.load(open(sys.argv[1]))["quads"]["h"])' "$OUT/$tag.json" 2>/dev/null)
         for p in $peers; do
             in="$OUT/${tag}_in.obj"

@@ -25,7 +25,7 @@ except OSError:
 vi = q["valence"]["interior"]
 nint = sum(vi.values())
 irr = nint - vi.get("4", 0)
-if tool == "glpgp":
+if tool.startswith("glpgp"):
     path = ("coarse last resort" if "coarsened triangulation" in out else "last resort" if "last resort" in out
             else "split (h/2)" if "Catmull-Clark" in out else "local split" if "split locally" in out
             else "local repair" if "repaired locally" in out else "grid")

@@ -417,5 +417,6 @@ glpgp_status glpgp_surface_keep_origin(glpgp_mesh *refined, const glpgp_mesh *co
     if (!f || !f->otri || !f->obary || !coarse->xyz)
         return GLPGP_FAIL(GLPGP_ERR_ARG, "keep origin: the mesh is not a refined surface");
     glpgp_mesh_destroy(&f->origin);
+    f->origin_cross = 1;
     return glpgp_mesh_create_surface(coarse->nv, coarse->xyz, coarse->nt, coarse->tri, &f->origin);
 }

@@ -331,7 +331,7 @@ glpgp_status glpgp_cross_levels(const glpgp_mesh *m, glpgp_backend *b, const glp
 {
     const glpgp_backend_ops *op = b->ops;
     const int nv = b->sys->nv;
-    glpgp_vec *x = ns->x, *g = ns->g;
+    glpgp_vec *g = ns->g;
     double eps[GLPGP_CROSS_MAX_LEVELS];
     c->nlevels = glpgp_cross_eps_schedule(m, o, eps);
     for (int l = 0; l < c->nlevels; l++) {
@@ -344,14 +344,14 @@ glpgp_status glpgp_cross_levels(const glpgp_mesh *m, glpgp_backend *b, const glp
          * are O(1) (cotan weights, penalty (edge/eps)^2), so |g| <= 1e-10 sqrt(nv)
          * is rounding. */
         double sg[GLPGP_NSLOTS];
-        GLPGP_CHECK(op->gradient(b, x, 1.0 / (4.0 * eps[l] * eps[l]), g));
+        GLPGP_CHECK(glpgp_newton_gradient(b, ns, 1.0 / (4.0 * eps[l] * eps[l])));
         GLPGP_CHECK(op->dot(b, g, g, GLPGP_S_DOT));
         GLPGP_CHECK(op->get_scalars(b, sg, GLPGP_NSLOTS));
         if (sqrt(sg[GLPGP_S_DOT]) <= 1e-10 * sqrt((double)nv)) {
             ls->eps = eps[l];
             ls->rtol = rtol;
             ls->grad0 = ls->grad = sqrt(sg[GLPGP_S_DOT]);
-            ls->energy = sg[GLPGP_S_E] + sg[GLPGP_S_P];
+            ls->energy = glpgp_newton_energy(ns, sg);
             continue;
         }
         ns->ftol = o->cross_ftol;

@@ -86,6 +86,32 @@ const char *glpgp_osc_name(int k) { return k == 0 ? "u" : k == 1 ? "v" : k == 3 
  * v's energy 142.49 instead of 138.39 (47 instead of 77 Newton steps), the
  * 20k disk at h = 0.05 978.46 instead of 975.15: rejected. With 0.5 target
  * the 1M square needed two more Newton steps. */
+/* s <- the slots after op->energy at x (s[GLPGP_S_LIN] = b . x with a
+ * linear term); returns F = E + P (- b . x) */
+static glpgp_status energy_at(glpgp_backend *b, glpgp_newton_state *ns, const glpgp_vec *x, double inv4e2,
+                              double *s, double *F)
+{
+    GLPGP_CHECK(b->ops->energy(b, x, inv4e2, ns->work));
+    if (ns->lin) GLPGP_CHECK(b->ops->dot(b, x, ns->lin, GLPGP_S_LIN));
+    GLPGP_CHECK(b->ops->get_scalars(b, s, GLPGP_NSLOTS));
+    *F = ns->lin ? s[GLPGP_S_E] + s[GLPGP_S_P] - s[GLPGP_S_LIN] : s[GLPGP_S_E] + s[GLPGP_S_P];
+    return GLPGP_OK;
+}
+
+glpgp_status glpgp_newton_gradient(glpgp_backend *b, glpgp_newton_state *ns, double inv4e2)
+{
+    GLPGP_CHECK(b->ops->gradient(b, ns->x, inv4e2, ns->g));
+    if (!ns->lin) return GLPGP_OK;
+    GLPGP_CHECK(b->ops->axpby(b, -1.0, ns->lin, 1.0, ns->g));
+    GLPGP_CHECK(b->ops->dot(b, ns->x, ns->lin, GLPGP_S_LIN));
+    return GLPGP_OK;
+}
+
+double glpgp_newton_energy(const glpgp_newton_state *ns, const double *s)
+{
+    return ns->lin ? s[GLPGP_S_E] + s[GLPGP_S_P] - s[GLPGP_S_LIN] : s[GLPGP_S_E] + s[GLPGP_S_P];
+}
+
 static double newton_eta(const glpgp_options *o, const glpgp_newton_state *ns, double gn)
 {
     double eta = o->forcing * gn / ns->grad0;
@@ -150,9 +176,7 @@ static glpgp_status ls_step(glpgp_backend *b, const glpgp_options *o, glpgp_newt
     for (int ls_it = 0; ls_it < o->max_backtracks; ls_it++) {
         GLPGP_CHECK(op->copy(b, ns->xt, ns->x));
         GLPGP_CHECK(op->axpby(b, a, ns->d, 1.0, ns->xt)); /* xt <- x + a d */
-        GLPGP_CHECK(op->energy(b, ns->xt, inv4e2, ns->work));
-        GLPGP_CHECK(op->get_scalars(b, s, GLPGP_NSLOTS));
-        Ft = s[GLPGP_S_E] + s[GLPGP_S_P];
+        GLPGP_CHECK(energy_at(b, ns, ns->xt, inv4e2, s, &Ft));
         if (isfinite(Ft) && (info->at_noise ? Ft <= F + ns->noise : Ft <= F + o->armijo * a * slope + noise)) {
             info->accepted = 1;
             break;
@@ -329,7 +353,6 @@ typedef struct tr_trial {
 static glpgp_status tr_trials(glpgp_backend *b, const glpgp_options *o, glpgp_newton_state *ns, double inv4e2,
                               double F, int candidate, int cut, const glpgp_newton_step_info *info, tr_trial *t)
 {
-    const glpgp_backend_ops *op = b->ops;
     double s[GLPGP_NSLOTS];
     t->a = 1.0;
     t->Fa = F;
@@ -343,9 +366,7 @@ static glpgp_status tr_trials(glpgp_backend *b, const glpgp_options *o, glpgp_ne
             t->a = fmax(o->tr_shrink_min * t->a, fmin(o->tr_shrink * t->a, an));
         }
         GLPGP_CHECK(trial_point(b, o, ns, t->a));
-        GLPGP_CHECK(op->energy(b, ns->xt, inv4e2, ns->work));
-        GLPGP_CHECK(op->get_scalars(b, s, GLPGP_NSLOTS));
-        t->Fa = s[GLPGP_S_E] + s[GLPGP_S_P];
+        GLPGP_CHECK(energy_at(b, ns, ns->xt, inv4e2, s, &t->Fa));
         const double pred = -(t->a * t->gd + 0.5 * t->a * t->a * t->dhd);
         t->at_noise = pred <= ns->noise;
         t->rho = pred > 0.0 && isfinite(t->Fa) ? (F - t->Fa) / pred : -HUGE_VAL;
@@ -536,11 +557,11 @@ static glpgp_status newton_level(glpgp_backend *b, const glpgp_options *o, glpgp
     double fhist[3] = {0.0, 0.0, 0.0}; /* E + P at the start of the last 3 steps (the stall test) */
     for (int it = 0;; it++) {
         /* g <- grad(E + P)(x) (zero on Dirichlet vertices); F = E + P */
-        GLPGP_CHECK(op->gradient(b, ns->x, inv4e2, ns->g));
+        GLPGP_CHECK(glpgp_newton_gradient(b, ns, inv4e2));
         GLPGP_CHECK(op->dot(b, ns->g, ns->g, GLPGP_S_DOT));
         GLPGP_CHECK(op->dot(b, ns->x, ns->x, GLPGP_S_DOT2));
         GLPGP_CHECK(op->get_scalars(b, s, GLPGP_NSLOTS));
-        const double F = s[GLPGP_S_E] + s[GLPGP_S_P];
+        const double F = glpgp_newton_energy(ns, s);
         const double gn = sqrt(s[GLPGP_S_DOT]);
         if (!isfinite(F) || !isfinite(gn))
             return GLPGP_FAIL(GLPGP_ERR_NUMERIC, "oscillator %s: energy became non-finite at eps=%g",
@@ -620,7 +641,7 @@ static glpgp_status newton_level(glpgp_backend *b, const glpgp_options *o, glpgp
             fhist[(it + 1) % 3] - info.energy <= ns->ftol * fabs(info.energy)) {
             ls->stalled = 1;
             ls->energy = info.energy;
-            GLPGP_CHECK(op->gradient(b, ns->x, inv4e2, ns->g));
+            GLPGP_CHECK(glpgp_newton_gradient(b, ns, inv4e2));
             GLPGP_CHECK(op->dot(b, ns->g, ns->g, GLPGP_S_DOT));
             GLPGP_CHECK(op->get_scalars(b, s, GLPGP_NSLOTS));
             ls->grad = sqrt(s[GLPGP_S_DOT]);

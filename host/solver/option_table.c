@@ -211,6 +211,11 @@ static const glpgp_optdesc k_table[] = {
         "the refined one, then its last eps level on the refined mesh from\n"
         "it (polish) or not (input), or solve it on the refined mesh\n"
         "(refined)"),
+    DBL("cross-align", G2, cross_align, 0.0, 0, HUGE_VAL, 1, "F",
+        "--field cross on a surface: weight of the principal-curvature term\n"
+        "(the field pulled towards the principal directions where the\n"
+        "surface bends more one way than the other: a torus, a cylinder);\n"
+        "0: the smoothest field only"),
     DBL("eps-ratio", G2, eps_ratio, 0.0, 1, 1.0, 1, "F", "eps_{k+1} = F eps_k"),
     DBL("eps-min", G2, eps_min, 0.0, 1, HUGE_VAL, 0, "F", "last eps, as a multiple of the mean edge length"),
     DBL("newton-rtol", G2, newton_rtol, 0.0, 1, 1.0, 1, "F", "the last level stops when |g| <= F |g0|"),

@@ -29,6 +29,7 @@ void glpgp_options_default(glpgp_options *o)
     o->cross_ftol = 1e-5;
     o->cross_coupling = GLPGP_COUPLING_AUTO;
     o->cross_mesh = GLPGP_CROSS_MESH_POLISH;
+    o->cross_align = 5.0; /* the torus: 12 singularities -> 0 (bench/results/surface_align.md) */
     o->cross_size = GLPGP_CROSS_SIZE_AUTO;
     o->cross_size_quantile = 0.9;
     o->cross_size_ratio = 1.4;
@@ -107,6 +108,8 @@ glpgp_status glpgp_options_check(const glpgp_options *o)
         return GLPGP_FAIL(GLPGP_ERR_ARG, "cross-ftol must be in [0,1), got %g", o->cross_ftol);
     if (o->cross_mesh < GLPGP_CROSS_MESH_INPUT || o->cross_mesh > GLPGP_CROSS_MESH_POLISH)
         return GLPGP_FAIL(GLPGP_ERR_ARG, "cross_mesh must be input, polish or refined, got %d", o->cross_mesh);
+    if (!(o->cross_align >= 0.0) || !isfinite(o->cross_align))
+        return GLPGP_FAIL(GLPGP_ERR_ARG, "cross-align must be finite and >= 0, got %g", o->cross_align);
     if (o->cross_coupling < GLPGP_COUPLING_AUTO || o->cross_coupling > GLPGP_COUPLING_ON)
         return GLPGP_FAIL(GLPGP_ERR_ARG, "cross_coupling must be auto, off or on, got %d", o->cross_coupling);
     if (o->cross_size < GLPGP_CROSS_SIZE_OFF || o->cross_size > GLPGP_CROSS_SIZE_AUTO)

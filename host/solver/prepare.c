@@ -95,21 +95,24 @@ static glpgp_status refine_surface(const glpgp_mesh *m, const glpgp_options *o, 
                   max_triangles > 0 ? max_triangles : (double)GLPGP_MESH_MAX_TRIANGLES, ri.nt, ri.ratio,
                   GLPGP_SURFACE_EDGES);
     if (!*out) return GLPGP_OK;
-    /* the input kept for the cross field (--cross-mesh input, polish: solved
-     * there, carried over: glpgp_surface_cross_on_input) where it carries a
-     * continuation (two eps levels or more; else the polish on the refined
-     * mesh starts far from its eps: docs/surfaces.md) */
-    double eps[GLPGP_CROSS_MAX_LEVELS];
-    const int keep = o->field == GLPGP_FIELD_CROSS && o->cross_mesh != GLPGP_CROSS_MESH_REFINED;
-    if (keep && glpgp_cross_eps_schedule(m, o, eps) < 2)
-        glpgp_log(GLPGP_LOG_INFO, "cross: the input (%d vertices) is too coarse for the continuation (one eps "
-                                  "level): solved on the refined mesh", m->nv);
-    else if (keep) {
+    /* the input kept for the cross field: its curvature term reads the
+     * input's normals (glpgp_surface_align_source), and with --cross-mesh
+     * input or polish the field is solved there and carried over
+     * (glpgp_surface_cross_on_input) where the input carries a continuation
+     * (two eps levels or more; else the polish on the refined mesh starts
+     * far from its eps: docs/surfaces.md) */
+    if (o->field == GLPGP_FIELD_CROSS) {
         const glpgp_status st = glpgp_surface_keep_origin(*out, m);
         if (st != GLPGP_OK) {
             glpgp_mesh_destroy(out);
             return st;
         }
+        double eps[GLPGP_CROSS_MAX_LEVELS];
+        const int on_input = o->cross_mesh != GLPGP_CROSS_MESH_REFINED;
+        (*out)->surf->origin_cross = on_input && glpgp_cross_eps_schedule(m, o, eps) >= 2;
+        if (on_input && !(*out)->surf->origin_cross)
+            glpgp_log(GLPGP_LOG_INFO, "cross: the input (%d vertices) is too coarse for the continuation (one eps "
+                                      "level): solved on the refined mesh", m->nv);
     }
     info->refined.split_edges = ri.splits;
     info->refined.target_edge = ri.min_target;

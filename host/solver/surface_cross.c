@@ -344,19 +344,42 @@ glpgp_status glpgp_inverse_iteration(glpgp_backend *b, const glpgp_options *o, g
  * definite. pin (nv) <- the new Dirichlet set; the backend and the
  * multigrid are set for it (w host: the initial guess, before |w| = 1). */
 static glpgp_status pin_gauge(const glpgp_mesh *m, glpgp_backend *b, const glpgp_options *o, const double *w,
-                              const double *zero, unsigned char *pin, glpgp_amg **amg)
+                              unsigned char *pin, glpgp_amg **amg)
 {
     int k = 0;
     for (int i = 1; i < m->nv; i++)
         if (hypot(w[2 * i], w[2 * i + 1]) > hypot(w[2 * k], w[2 * k + 1])) k = i;
     memset(pin, 0, (size_t)m->nv);
     pin[k] = 1;
-    GLPGP_CHECK(b->ops->set_field(b, zero, pin));
+    double *zero = NULL;
+    GLPGP_CHECK(glpgp_calloc((size_t)2 * m->nv, sizeof(double), &zero));
+    const glpgp_status st = b->ops->set_field(b, zero, pin);
+    free(zero);
+    GLPGP_CHECK(st);
     GLPGP_CHECK(b->ops->assemble_quadratic(b, GLPGP_ELEM_P1, 1.0));
     glpgp_amg_destroy(amg);
     *amg = glpgp_amg_try_create(b, o, pin, NULL, 0.0, "cross field");
     glpgp_log(GLPGP_LOG_DEBUG, "cross: the global rotation fixed at vertex %d", k);
     return GLPGP_OK;
+}
+
+/* w <- w exp(i c) with c maximising sum_i Re(conj(w_i) b_i) (the
+ * curvature term's b, 2 n): the smoothest field's free global rotation
+ * turned towards the principal directions before the gauge is pinned */
+static void align_rotation(int n, const double *b, double *w)
+{
+    double re = 0.0, im = 0.0; /* sum conj(w) b */
+    for (int i = 0; i < n; i++) {
+        re += w[2 * i] * b[2 * i] + w[2 * i + 1] * b[2 * i + 1];
+        im += w[2 * i] * b[2 * i + 1] - w[2 * i + 1] * b[2 * i];
+    }
+    if (!(hypot(re, im) > 0.0)) return;
+    const double a = atan2(im, re), cs = cos(a), sn = sin(a);
+    for (int i = 0; i < n; i++) {
+        const double x = w[2 * i], y = w[2 * i + 1];
+        w[2 * i] = cs * x - sn * y;
+        w[2 * i + 1] = sn * x + cs * y;
+    }
 }
 
 /* The cross field of a surface: the initial guess (init, 2 nv, when given:
@@ -371,9 +394,9 @@ static glpgp_status surface_cross(const glpgp_mesh *m, glpgp_backend *b, const g
     glpgp_status st = GLPGP_OK;
     glpgp_cross_result *c = NULL;
     glpgp_system *sys = NULL;
-    glpgp_vec *x = NULL, *g = NULL, *d = NULL, *xt = NULL, *work = NULL;
+    glpgp_vec *x = NULL, *g = NULL, *d = NULL, *xt = NULL, *work = NULL, *lin = NULL;
     glpgp_amg *amg = NULL;
-    double *zero = NULL, *mass = NULL;
+    double *zero = NULL, *mass = NULL, *bl = NULL;
     unsigned char *pin = NULL;
     const double t0 = glpgp_now();
     *out = NULL;
@@ -410,13 +433,29 @@ static glpgp_status surface_cross(const glpgp_mesh *m, glpgp_backend *b, const g
                   steps, cg);
     }
     GLPGP_CHECK_GOTO(st, op->vec_read(b, x, c->w), fail);
+    if (levels && o->cross_align > 0.0) {
+        GLPGP_CHECK_GOTO(st, glpgp_malloc(n2, sizeof(double), &bl), fail);
+        double as[2];
+        GLPGP_CHECK_GOTO(st, glpgp_surface_align_source(m, o->cross_align, con->fixed, bl, as), fail);
+        glpgp_log(GLPGP_LOG_INFO, "cross: principal-curvature term (--cross-align %g) on %.1f%% of the area "
+                  "(largest ((k1 - k2) / 2)^2 %.3g)", o->cross_align, 100.0 * as[1], as[0]);
+    }
     if (con->nfixed == 0 && levels) {
+        if (o->cross_align > 0.0 && !init) align_rotation(nv, bl, c->w);
         GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)nv, 1, &pin), fail);
-        GLPGP_CHECK_GOTO(st, pin_gauge(m, b, o, c->w, zero, pin, &amg), fail);
+        GLPGP_CHECK_GOTO(st, pin_gauge(m, b, o, c->w, pin, &amg), fail);
     }
     if (!init) glpgp_cross_unit(c->w, nv);
     GLPGP_CHECK_GOTO(st, op->vec_write(b, x, c->w), fail);
     glpgp_newton_state ns = {.x = x, .g = g, .d = d, .xt = xt, .work = work, .amg = amg};
+    if (bl) {
+        /* the curvature term's b, zero at the pinned vertex too */
+        for (int i = 0; pin && i < nv; i++)
+            if (pin[i]) bl[2 * i] = bl[2 * i + 1] = 0.0;
+        GLPGP_CHECK_GOTO(st, op->vec_create(b, n2, &lin), fail);
+        GLPGP_CHECK_GOTO(st, op->vec_write(b, lin, bl), fail);
+        ns.lin = lin;
+    }
     GLPGP_CHECK_GOTO(st, glpgp_cross_finish(m, b, o, &ns, levels, t0, c), fail);
     goto done;
 fail:
@@ -424,11 +463,13 @@ fail:
 done:
     glpgp_amg_destroy(&amg);
     glpgp_cross_vecs_destroy(b, &x, &g, &d, &xt, &work);
+    op->vec_destroy(b, &lin);
     /* the backend keeps a pointer to sys: the caller sets it up again first */
     glpgp_system_destroy(&sys);
     b->sys = NULL;
     free(zero);
     free(mass);
+    free(bl);
     free(pin);
     *out = c;
     return st;

@@ -69,7 +69,8 @@ static glpgp_status guiding_field(const glpgp_mesh *m, glpgp_backend *b, const g
 {
     const double t1 = glpgp_now();
     /* a refined surface's cross field on its input (--cross-mesh input, polish) */
-    const int on_input = o->field == GLPGP_FIELD_CROSS && o->cross_mesh != GLPGP_CROSS_MESH_REFINED && m->surf->origin;
+    const int on_input = o->field == GLPGP_FIELD_CROSS && o->cross_mesh != GLPGP_CROSS_MESH_REFINED && m->surf->origin &&
+                         m->surf->origin_cross;
     if (on_input)
         GLPGP_CHECK(glpgp_surface_cross_on_input(m, b, o, con, o->cross_mesh == GLPGP_CROSS_MESH_POLISH, &r->cross));
     else if (o->field == GLPGP_FIELD_CROSS)

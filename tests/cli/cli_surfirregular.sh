@@ -8,6 +8,11 @@
 #  - --size-curl 0 says nothing of the correction, the default names it in
 #    the log and gives a different mesh; --size-field none (the user's size
 #    as given) is not corrected;
+#  - the principal-curvature term of the cross field (--cross-align, on by
+#    default): shape:torus:20000 at --faces 300 has no cross-field
+#    singularity and no irregular vertex (QuadriFlow's 0; SJ min above
+#    0.9); --cross-align 0 keeps the smoothest field's singularities and
+#    irregular vertices; a negative weight is a usage error;
 #  - `glpgp quality Q.obj --domain SURFACE`: the same report as the solve's
 #    for glpgp's own OBJ (quads, irregular vertices, valid), a copy scaled
 #    by 1.1 invalid by its Hausdorff distance (exit 3), --allow-invalid
@@ -34,6 +39,22 @@ cmp -s s.obj s0.obj && fail "--size-curl 0: the same mesh as the default"
 # sizes the user gives as they are: --size-field none is not corrected
 run_ok "--size-field none" solve shape:sphere:2000 --faces 100 --backend reference --size-field none -o n.vtu
 grep -qi "curl correction" err.txt && fail "--size-field none: corrected"
+
+# the principal-curvature term: the torus's field follows its parallels
+run_ok "torus" solve shape:torus:20000 --faces 300 --backend reference --quads t.obj --stats t.json
+run_ok "torus, --cross-align 0" solve shape:torus:20000 --faces 300 --backend reference --cross-align 0 \
+    --quads t0.obj --stats t0.json
+python3 - <<'PY' || fail "torus: the principal-curvature term"
+import json
+a = json.load(open("t.json")); b = json.load(open("t0.json"))
+qa, qb = a["quads"], b["quads"]
+assert qa["valid"] and qb["valid"]
+assert a["cross_field"]["singularities"] == 0, a["cross_field"]["singularities"]
+assert qa["irregular_vertices"]["interior"] == 0, qa["irregular_vertices"]
+assert qa["scaled_jacobian"]["min"] > 0.9, qa["scaled_jacobian"]
+assert b["cross_field"]["singularities"] > 0 and qb["irregular_vertices"]["interior"] > 0
+PY
+run_fail "--cross-align -1" 2 "cross-align" solve shape:torus:2000 --cross-align -1 -o x.vtu
 
 # the 3D check of an OBJ made elsewhere: glpgp's own first
 run_ok "generate" generate shape:sphere:8000 -o sphere.obj

@@ -39,6 +39,7 @@ enum glpgp_slot {
     GLPGP_S_P,                   /* penalty energy */
     GLPGP_S_DOT,                 /* scratch for dot products */
     GLPGP_S_DOT2,
+    GLPGP_S_LIN,                 /* x . b of a linear energy term (glpgp_newton_state.lin) */
     GLPGP_NSLOTS = 16
 };
 

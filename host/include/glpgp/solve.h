@@ -135,6 +135,10 @@ typedef struct glpgp_options {
     int cross_mesh;       /* GLPGP_CROSS_MESH_*: a refined surface's cross field solved on its
                              input and carried over (then polished), or on the refined mesh
                              [POLISH] */
+    double cross_align;   /* a surface's cross field: weight lambda of the principal-curvature
+                             term -lambda int Re(conj(w) q), q the cross of the principal
+                             directions times ((k1 - k2) / 2)^2 (glpgp_surface_align_source;
+                             0: the smoothest field only) [5] */
     int cross_size;       /* GLPGP_CROSS_SIZE_*: local size from the cross field
                              (glpgp_cross_conformal_size), the smaller of it and the size
                              field's, for both oscillators [AUTO] */

@@ -85,10 +85,13 @@ typedef struct glpgp_surface {
      * elsewhere): the input triangle holding triangle t, and the barycentric
      * coordinates of t's corner a in it at obary[9t + 3a + k] (k: the input
      * triangle's corner). origin: that input mesh itself (owned), where
-     * glpgp_surface_keep_origin kept it (the solve's cross field on it). */
+     * glpgp_surface_keep_origin kept it (the solve keeps it for a cross
+     * field: its curvature term reads the input's normals, and where
+     * origin_cross is set the cross field is solved there). */
     int *otri;          /* nt */
     double *obary;      /* 9 nt */
     struct glpgp_mesh *origin;
+    int origin_cross;
 } glpgp_surface;
 
 /* Build a surface mesh from raw arrays (copied): xyz (3 nv), tri (3 nt).
@@ -200,7 +203,8 @@ void glpgp_surface_origin_compose(glpgp_mesh *fine, const glpgp_mesh *mid);
 /* Keep a copy of the input `coarse` in refined's surface (origin), which
  * must hold the triangles' origin in it (otri, obary): GLPGP_ERR_ARG
  * without. The copy is built from coarse's vertices and triangles (the
- * same frames and connection). */
+ * same frames and connection); origin_cross is set (the solve clears it
+ * where the input is too coarse for the cross field's continuation). */
 glpgp_status glpgp_surface_keep_origin(glpgp_mesh *refined, const glpgp_mesh *coarse);
 
 /* Free a surface's arrays (NULL-safe, sets *s = NULL); glpgp_mesh_destroy

@@ -216,6 +216,16 @@ glpgp_status glpgp_surface_size(const glpgp_mesh *m, const glpgp_options *o, con
 glpgp_status glpgp_surface_size_curl(const glpgp_mesh *m, const double *u, double strength, double rim_gap,
                                      double *factor, double *range);
 
+/* The principal-curvature term of the cross field (surface_align.c):
+ * b (2 nv) <- lambda times each vertex's share of int Re(conj(w) q) (the
+ * energy's term is -b . w), zero where fixed (nv flags, or NULL); q per
+ * vertex the cross of the principal directions times ((k1 - k2) / 2)^2, a
+ * refined surface's from its input's (surf->origin). stats (2, or NULL):
+ * the largest |q| and the share of the area where q is not 0 (the
+ * anisotropy gate). GLPGP_ERR_ARG on a planar mesh or lambda < 0. */
+glpgp_status glpgp_surface_align_source(const glpgp_mesh *m, double lambda, const unsigned char *fixed, double *b,
+                                        double *stats);
+
 /* The pipeline on a surface (glpgp_solve's, which calls it): constraints,
  * the guiding field (cross, or the boundary-aligned harmonic one), its
  * representatives, the local size, the coupled oscillators (naive PGP: the

@@ -56,6 +56,9 @@ typedef struct glpgp_newton_state {
                         E + P fell by at most ftol |E + P| over the last 3 Newton steps
                         (the cross field's stall test, --cross-ftol; 0: off, the
                         oscillators') */
+    glpgp_vec *lin;  /* NULL, or b of a linear term: F = E + P - b . x, the gradient
+                        g - b (b zero at Dirichlet vertices; the Hessian unchanged: the
+                        surface cross field's curvature alignment) */
     const int *stop; /* NULL, or a flag another thread may set (read atomically before
                         each step): non-zero ends the level with an error at once (the
                         other oscillator of a concurrent solve failed) */
@@ -98,6 +101,12 @@ typedef struct glpgp_newton_step_info {
  * predicted one, update the radius. Needs QUAD assembled and
  * s->g = grad(E+P)(x) with F = (E+P)(x) and gn = |g| (and, for the trust
  * region, s->noise). */
+/* ns->g <- the gradient of F at ns->x (with ns->lin's term; its b . x
+ * then in slot GLPGP_S_LIN, the energies in GLPGP_S_E and GLPGP_S_P) */
+glpgp_status glpgp_newton_gradient(glpgp_backend *b, glpgp_newton_state *ns, double inv4e2);
+/* F = E + P (- b . x) from the slots s read after glpgp_newton_gradient */
+double glpgp_newton_energy(const glpgp_newton_state *ns, const double *s);
+
 glpgp_status glpgp_newton_step(glpgp_backend *b, const glpgp_options *o, glpgp_newton_state *s,
                                double inv4e2, double F, double gn, glpgp_newton_step_info *info);
 
