@@ -26,6 +26,18 @@ def test_sphere_cross_field_and_singularities():
     assert np.median(np.abs(r.z_u)) > 0.9
 
 
+def test_torus_cross_field_follows_the_principal_directions():
+    # the principal-curvature term (cross_align, on by default): a torus's cross field has no
+    # singularity; the smoothest field alone (cross_align=0) has some
+    m = glpgp.shape("torus", 3000)
+    a = glpgp.solve(m, backend="reference", method="pgp").cross
+    b = glpgp.solve(m, backend="reference", method="pgp", cross_align=0).cross
+    assert len(a["singularities"]) == 0 and a["index_sum"] == 0.0
+    assert len(b["singularities"]) > 0 and b["index_sum"] == 0.0
+    with pytest.raises(Exception, match="cross-align|cross_align"):
+        glpgp.solve(m, backend="reference", cross_align=-1)
+
+
 def test_surface_from_arrays_equals_the_cli(cli, tmp_path):
     # the half cylinder (open, two straight boundary edges) given as arrays of 3D points
     h = glpgp.shape("halfcyl", 2000)
