@@ -618,6 +618,16 @@ static int joined_quad(const strip_ctx *c, int A, int g)
     return 0;
 }
 
+/* Whether lone triangle T joins the quad across its side i into a pentagon
+ * (merged: the quad's far corners are not T's; a triangle folded onto its
+ * quad, or one sharing two sides with it, is not joined). */
+static int joinable(const strip_ctx *c, int T, int i)
+{
+    int j, p[10];
+    const int g = across(c->q, c->E, c->nc, T, i, &j);
+    return g >= 0 && c->q->face_start[g + 1] - c->q->face_start[g] == 4 && merged(c->q, T, i, g, j, p) == 5;
+}
+
 /* Cheapest path (Dijkstra over (quad, entry side) states) from odd face A
  * through unused quads (straight on, or turning at STRIP_TURN more) to
  * another unused odd face or the boundary; applies the strip (marks, new
@@ -636,6 +646,7 @@ static glpgp_status find_strip(strip_ctx *c, int A, int *found)
     for (int i = 0; i < nA; i++) {
         if (!c->any_side && !loneA && i != sA) continue;
         int j, g = across(q, c->E, c->nc, A, i, &j), from = -3 - i; /* from A's side i */
+        if (loneA && g >= 0 && !joinable(c, A, i)) continue;
         if (loneA && g >= 0) { /* A joined with g: the strip starts at g's far side */
             from = -3 - (STRIP_JOINED + i);
             g = across(q, c->E, c->nc, g, (j + 2) % 4, &j);
@@ -663,7 +674,7 @@ static glpgp_status find_strip(strip_ctx *c, int A, int *found)
             const int nh = q->face_start[hf + 1] - q->face_start[hf];
             if (nh == 4 && turn == 0 && dd + 1 < endCost) { /* straight on through hf into a lone triangle */
                 int kb, B = across(q, c->E, c->nc, hf, (k + 2) % 4, &kb);
-                if (B >= 0 && B != A && lone_triangle(c, B) && !(loneA && joined_quad(c, A, hf)))
+                if (B >= 0 && B != A && lone_triangle(c, B) && joinable(c, B, kb) && !(loneA && joined_quad(c, A, hf)))
                     endCost = dd + 1, endB = B, endBside = -1, endState = s, c->end_mq = hf, c->end_mk = k;
             }
             if (nh == 3 && lone_triangle(c, hf)) continue; /* entered only through a quad joined to it */
@@ -817,8 +828,9 @@ static glpgp_status strips(const glpgp_mesh *m, const glpgp_quadmesh *q, double 
     if (c.nv > q->nv) memcpy(r->xyz + 3 * q->nv, c.xyz, (size_t)3 * (c.nv - q->nv) * sizeof(double));
     int o = 0, w = 0;
     for (int f = 0; f < q->nf && w >= 0; f++) w = emit_face(&c, f, r, &o, w);
-    if (w < 0) { /* a joined quad that is not across its triangle: cannot happen */
-        st = GLPGP_FAIL(GLPGP_ERR_NUMERIC, "surface strips: a lone triangle's quad lost");
+    if (w < 0) { /* a joined quad that is not across its triangle (joinable prevents it): no strips */
+        glpgp_log(GLPGP_LOG_DEBUG, "quads: surface strips: a lone triangle's quad lost; the strips not used");
+        *nstrips = 0;
         goto done;
     }
     r->nf = o;
