@@ -11,10 +11,11 @@
                            vertices near it snapped onto it first): round
                            holes, as a perforated CAD shell, where `holes`
                            leaves them jagged.
-  bumpy SUBDIV OUT.obj      a scan-like closed surface: the icosphere
+  bumpy SUBDIV OUT.obj [J]  a scan-like closed surface: the icosphere
                            (20 * 4^SUBDIV triangles) stretched to an
-                           ellipsoid, with bumps and a 0.2% vertex jitter
-                           (SUBDIV 6: 82k triangles, 7: 328k).
+                           ellipsoid, with bumps and a vertex jitter of J
+                           (default 0.002: 0.2%; SUBDIV 6: 82k triangles,
+                           7: 328k).
   slab GX GY SUB OUT.obj    a CAD-like plate of genus GX * GY: a 2 GX + 1 by
                            2 GY + 1 by 1 block of unit cubes with every
                            other interior cube removed (GX by GY square
@@ -154,13 +155,13 @@ def write_obj(out, title, v, f):
             fh.write("f %d %d %d\n" % (a + 1, b + 1, c + 1))
 
 
-def bumpy(subdiv, out, seed=1):
+def bumpy(subdiv, out, seed=1, noise=0.002):
     import random
     v, f = icosphere(subdiv)
     rng = random.Random(seed)
     w = []
     for x, y, z in v:
-        r = 1 + 0.08 * math.sin(5 * x) * math.cos(4 * y) + 0.05 * math.sin(7 * z + 1) + rng.uniform(-0.002, 0.002)
+        r = 1 + 0.08 * math.sin(5 * x) * math.cos(4 * y) + 0.05 * math.sin(7 * z + 1) + rng.uniform(-noise, noise)
         w.append((x * r, 0.8 * y * r, 1.3 * z * r))
     write_obj(out, "a bumpy ellipsoid, %d triangles" % len(f), w, f)
 
@@ -217,8 +218,8 @@ if __name__ == "__main__":
         holes(int(a[2]), int(a[3]), a[4])
     elif len(a) == 5 and a[1] == "roundholes":
         round_holes(int(a[2]), int(a[3]), a[4])
-    elif len(a) == 4 and a[1] == "bumpy":
-        bumpy(int(a[2]), a[3])
+    elif len(a) in (4, 5) and a[1] == "bumpy":
+        bumpy(int(a[2]), a[3], noise=float(a[4]) if len(a) == 5 else 0.002)
     elif len(a) == 4 and a[1] == "speck":
         speck(int(a[2]), a[3])
     elif len(a) == 6 and a[1] == "slab":

@@ -13,6 +13,12 @@
 #    singularity and no irregular vertex (QuadriFlow's 0; SJ min above
 #    0.9); --cross-align 0 keeps the smoothest field's singularities and
 #    irregular vertices; a negative weight is a usage error;
+#  - a noisy scan (bench/surface_models.py bumpy 5 with a 1% vertex
+#    jitter): the jitter's dihedral angles read as sharp features and the
+#    extraction is broken, but the command ends with a valid mesh (it
+#    exited 1 in the strips: "a lone triangle's quad lost", a triangle
+#    joined with a quad it shares two sides with); with --feature-angle 180
+#    the mesh is near the count asked;
 #  - `glpgp quality Q.obj --domain SURFACE`: the same report as the solve's
 #    for glpgp's own OBJ (quads, irregular vertices, valid), a copy scaled
 #    by 1.1 invalid by its Hausdorff distance (exit 3), --allow-invalid
@@ -55,6 +61,18 @@ assert qa["scaled_jacobian"]["min"] > 0.9, qa["scaled_jacobian"]
 assert b["cross_field"]["singularities"] > 0 and qb["irregular_vertices"]["interior"] > 0
 PY
 run_fail "--cross-align -1" 2 "cross-align" solve shape:torus:2000 --cross-align -1 -o x.vtu
+
+# a noisy scan: a valid mesh however broken the extraction
+python3 "$(dirname "$0")/../../bench/surface_models.py" bumpy 5 noisy.obj 0.01 || fail "noisy.obj"
+run_ok "noisy scan" solve noisy.obj --faces 300 --backend reference --quads nz.obj --stats nz.json
+run_ok "noisy scan, no features" solve noisy.obj --faces 300 --backend reference --feature-angle 180 \
+    --quads nz0.obj --stats nz0.json
+python3 - <<'PY' || fail "noisy scan"
+import json
+a = json.load(open("nz.json"))["quads"]; b = json.load(open("nz0.json"))["quads"]
+assert a["valid"] and a["other_faces"] == 0, a["invalid_reasons"]
+assert b["valid"] and b["other_faces"] == 0 and 150 <= b["quads"] <= 450, (b["quads"], b["invalid_reasons"])
+PY
 
 # the 3D check of an OBJ made elsewhere: glpgp's own first
 run_ok "generate" generate shape:sphere:8000 -o sphere.obj
