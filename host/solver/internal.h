@@ -51,6 +51,11 @@ glpgp_status glpgp_surface_grade(const glpgp_mesh *m, double g, double *s);
  * plane's (u itself) or, on a surface, t's (coupled.c). */
 void glpgp_coupled_corner_u(const glpgp_mesh *m, const double *u, int t, int a, double *out);
 
+/* z <- z exp(i a) (2 doubles; surface_transfer.c) */
+void glpgp_turn(double *z, double a);
+/* The angle in triangle T's plane of surface s (its frame E1, E2) of the 3D vector d (surface_transfer.c). */
+double glpgp_plane_angle(const glpgp_surface *s, int T, const double *d);
+
 /* A surface refined to its local size (surface_refine.c): every edge longer
  * than h(x) / GLPGP_SURFACE_EDGES bisected (glpgp_mesh_refine_surface_sized),
  * h(x) glpgp_surface_size_local's curvature cap on m (auto / iso; h for the other size

@@ -94,7 +94,7 @@ static glpgp_status energy_at(glpgp_backend *b, glpgp_newton_state *ns, const gl
     GLPGP_CHECK(b->ops->energy(b, x, inv4e2, ns->work));
     if (ns->lin) GLPGP_CHECK(b->ops->dot(b, x, ns->lin, GLPGP_S_LIN));
     GLPGP_CHECK(b->ops->get_scalars(b, s, GLPGP_NSLOTS));
-    *F = ns->lin ? s[GLPGP_S_E] + s[GLPGP_S_P] - s[GLPGP_S_LIN] : s[GLPGP_S_E] + s[GLPGP_S_P];
+    *F = glpgp_newton_energy(ns, s);
     return GLPGP_OK;
 }
 

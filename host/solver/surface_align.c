@@ -93,14 +93,6 @@ static void triangle_shape(const glpgp_mesh *m, int t, double *sv, double *H)
     *H = 0.5 * (x[0] + x[2]);
 }
 
-/* z <- z exp(-i a) (2 doubles) */
-static void unturn(double *z, double a)
-{
-    const double c = cos(a), sn = sin(a), x = z[0], y = z[1];
-    z[0] = c * x + sn * y;
-    z[1] = c * y - sn * x;
-}
-
 /* s and H of triangle t of a refined surface from its input's vertex means
  * vin (4 per input vertex: s in the vertex's frame, H, area): their P1
  * interpolant at t's centroid in input triangle T's plane, s turned into
@@ -118,14 +110,13 @@ static void origin_shape(const glpgp_mesh *m, const double *vin, int t, double *
         const double *p = vin + 4 * (size_t)mi->tri[3 * T + k];
         if (!(p[3] > 0.0)) continue;
         double z[2] = {p[0] / p[3], p[1] / p[3]};
-        unturn(z, -2.0 * mi->surf->rot[3 * T + k]); /* vertex frame -> T's */
+        glpgp_turn(z, 2.0 * mi->surf->rot[3 * T + k]); /* vertex frame -> T's */
         S[0] += lam * z[0];
         S[1] += lam * z[1];
         *H += lam * p[2] / p[3];
     }
     /* t's x axis at angle delta in T's plane: an angle a in T's frame is a - delta in t's */
-    const double *E1 = mi->surf->tframe + 9 * (size_t)T, *x = s->tframe + 9 * (size_t)t;
-    unturn(S, 2.0 * atan2(dot3(x, E1 + 3), dot3(x, E1)));
+    glpgp_turn(S, -2.0 * glpgp_plane_angle(mi->surf, T, s->tframe + 9 * (size_t)t));
     sv[0] = S[0];
     sv[1] = S[1];
 }
@@ -151,7 +142,7 @@ static void vertex_means(const glpgp_mesh *m, const double *vin, double *acc)
         for (int a = 0; a < 3; a++) {
             const int c = 3 * t + a;
             double z[2] = {sv[0], sv[1]};
-            unturn(z, 2.0 * s->rot[c]); /* t's frame -> the vertex's */
+            glpgp_turn(z, -2.0 * s->rot[c]); /* t's frame -> the vertex's */
             double *p = acc + 4 * (size_t)v[a];
             p[0] += area * z[0];
             p[1] += area * z[1];

@@ -27,15 +27,13 @@
 
 static double dot3(const double *a, const double *b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 
-/* The angle in triangle T's plane (its frame E1, E2) of the 3D vector d. */
-static double plane_angle(const glpgp_surface *s, int T, const double *d)
+double glpgp_plane_angle(const glpgp_surface *s, int T, const double *d)
 {
     const double *E1 = s->tframe + 9 * (size_t)T, *E2 = E1 + 3;
     return atan2(dot3(d, E2), dot3(d, E1));
 }
 
-/* z <- z exp(i a) (2 doubles) */
-static void turn(double *z, double a)
+void glpgp_turn(double *z, double a)
 {
     const double c = cos(a), s = sin(a), x = z[0], y = z[1];
     z[0] = c * x - s * y;
@@ -56,12 +54,12 @@ static void vertex_cross(const glpgp_mesh *coarse, const double *wc, const glpgp
     const double d[3] = {fine->xyz[3 * (size_t)b] - fine->xyz[3 * (size_t)v],
                          fine->xyz[3 * (size_t)b + 1] - fine->xyz[3 * (size_t)v + 1],
                          fine->xyz[3 * (size_t)b + 2] - fine->xyz[3 * (size_t)v + 2]};
-    double gamma = remainder(plane_angle(sc, T, d) - beta, 2.0 * GLPGP_PI);
+    double gamma = remainder(glpgp_plane_angle(sc, T, d) - beta, 2.0 * GLPGP_PI);
     if (gamma < 0.0) gamma = 0.0; /* rounding below the input edge */
     const double offset = sf->eangle[c0] - (sc->eangle[3 * T + k] + sf->scale[v] * gamma);
     out[0] = wc[2 * v];
     out[1] = wc[2 * v + 1];
-    turn(out, 4.0 * offset);
+    glpgp_turn(out, 4.0 * offset);
 }
 
 /* A refined vertex at barycentric lam in input triangle T, seen from fine
@@ -75,13 +73,13 @@ static void interpolated_cross(const glpgp_mesh *coarse, const double *wc, const
     for (int k = 0; k < 3; k++) {
         const int i = coarse->tri[3 * T + k];
         double z[2] = {wc[2 * i], wc[2 * i + 1]};
-        turn(z, 4.0 * sc->rot[3 * T + k]);
+        glpgp_turn(z, 4.0 * sc->rot[3 * T + k]);
         W[0] += lam[k] * z[0];
         W[1] += lam[k] * z[1];
     }
     /* the fine triangle's x axis in T's plane: delta; theta_v = phi_T - delta - rot_f */
-    const double delta = plane_angle(sc, T, sf->tframe + 9 * (size_t)(c0 / 3));
-    turn(W, -4.0 * (delta + sf->rot[c0]));
+    const double delta = glpgp_plane_angle(sc, T, sf->tframe + 9 * (size_t)(c0 / 3));
+    glpgp_turn(W, -4.0 * (delta + sf->rot[c0]));
     out[0] = W[0];
     out[1] = W[1];
 }
