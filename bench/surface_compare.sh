@@ -15,7 +15,8 @@
 # Hausdorff / h, area), one row per tool by bench/surface_row.py.
 # Writes $OUT/summary.md (default out/surface_compare).
 # HELD_OUT=1 adds models never tuned on (bench/surface_models.py: a bumpy
-# 82k-triangle scan, a plate of genus 16 with sharp edges, a sphere with 120
+# 82k-triangle scan, the same with a 1% vertex jitter (noise above the
+# feature angle), a plate of genus 16 with sharp edges, a sphere with 120
 # jagged holes and one with 120 round ones; minutes each on 2 cores).
 # ARGS: more `glpgp solve` options for every row (e.g. ARGS="--size-chord-depth 0.125").
 # ALIGN="0 5": one glpgp row per --cross-align weight (the principal-curvature
@@ -33,12 +34,13 @@ mkdir -p "$OUT"
 python3 "$HERE/surface_models.py" holes 20 5 "$OUT/holes20.obj"
 python3 "$HERE/surface_models.py" roundholes 20 5 "$OUT/roundholes20.obj"
 MODELS_ALL="shape:sphere:$SCALE shape:torus:$SCALE shape:genus2:$SCALE shape:cube:$SCALE shape:hemisphere:$SCALE $OUT/holes20.obj $OUT/roundholes20.obj ${MODELS:-}"
-if [ -n "${HELD_OUT:-}" ]; then # models never tuned on: an 82k-triangle scan, a plate of genus 16 with sharp edges, 120 loops
+if [ -n "${HELD_OUT:-}" ]; then # models never tuned on: an 82k-triangle scan (clean and noisy), a plate of genus 16 with sharp edges, 120 loops
     python3 "$HERE/surface_models.py" bumpy 6 "$OUT/bumpy82k.obj"
+    python3 "$HERE/surface_models.py" bumpy 6 "$OUT/bumpy82k_noisy.obj" 0.01
     python3 "$HERE/surface_models.py" slab 4 4 2 "$OUT/slab16.obj"
     python3 "$HERE/surface_models.py" holes 120 6 "$OUT/holes120.obj"
     python3 "$HERE/surface_models.py" roundholes 120 5 "$OUT/roundholes120.obj"
-    MODELS_ALL="$MODELS_ALL $OUT/bumpy82k.obj $OUT/slab16.obj $OUT/holes120.obj $OUT/roundholes120.obj"
+    MODELS_ALL="$MODELS_ALL $OUT/bumpy82k.obj $OUT/bumpy82k_noisy.obj $OUT/slab16.obj $OUT/holes120.obj $OUT/roundholes120.obj"
 fi
 peers=""
 [ -n "${QUADRIFLOW:-}" ] && peers="$peers quadriflow"

@@ -76,6 +76,10 @@ int glpgp_cmd_extract(int argc, char **argv)
     glpgp_opt *o = glpgp_opt_double(&t, "--size", &size, 0.0, 1, HUGE_VAL, 0, "H", "target size h");
     o->def = "the h recorded in RESULT";
     glpgp_opts_add_quads(&t, &qo, &qgiven, &allow_invalid);
+    o = glpgp_opt_double(&t, "--feature-angle", &qo.feature_angle, 0.0, 0, 180.0, 0, "DEG",
+                         "a surface: the sharp features the smoothing and the last\n"
+                         "resort keep (as solve's --feature-angle)");
+    o->def = "35";
     glpgp_opts_add_limits(&t, &max_elements, NULL);
     glpgp_opts_add_verbosity(&t, &verbosity);
     int rc = glpgp_opts_parse_input(&t, argc, argv, &in, &verbosity, "RESULT.vtk");

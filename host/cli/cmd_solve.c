@@ -137,6 +137,7 @@ static int check(solve_cli *c, const char *input)
     if (c->out && c->stats && !strcmp(c->out, c->stats))
         return glpgp_cli_usage_error(sub, "--out and --stats name the same file '%s'", c->out);
     if (c->faces > 0.0 && c->o.size > 0.0) return glpgp_cli_usage_error(sub, "--faces and --size both set the size: give one");
+    c->qo.feature_angle = c->o.feature_angle; /* the surface smoothing and last resort keep the same creases */
     if (c->quad_opts && !c->quads)
         return glpgp_cli_usage_error(sub, "--all-quads, --keep-polygons, --smooth, --no-repair and --allow-invalid need --quads FILE");
     if (c->quads && ((c->out && !strcmp(c->out, c->quads)) || (c->stats && !strcmp(c->stats, c->quads))))

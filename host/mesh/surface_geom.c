@@ -248,16 +248,286 @@ double glpgp_surface_vertex_angle(const glpgp_mesh *m, int i, const double *v)
     return ang < 0.0 ? ang + 2.0 * GLPGP_PI : ang;
 }
 
-int glpgp_surface_features(const glpgp_mesh *m, double feature_deg, unsigned char *flag)
+/* Feature edges. A candidate (dihedral angle above the limit) is a crease
+ * when
+ *  1. it separates its two sides locally: the ball about its midpoint of
+ *     CREASE_REACH times the mean length of its two triangles' edges holds
+ *     no walk from one of its triangles to the other that crosses no
+ *     candidate (an isolated kink of a noisy scan is walked around in one
+ *     vertex's fan; a crease runs through the ball, or ends on a boundary
+ *     or another crease; a crease's free end loses about CREASE_REACH
+ *     edges; one pass, so a dangling crease is trimmed, not eaten), and
+ *  2. it keeps its angle at that scale: the mean normals of the ball's two
+ *     sides differ by more than CREASE_SIDE times the limit (a cluster of
+ *     noise averages out; a crease between flat faces keeps its dihedral).
+ *     The sides are the ball's triangles reached from each of the edge's
+ *     triangles without crossing an edge that passed test 1 and is sharper
+ *     than CREASE_BLOCK_DEG (or the limit, if higher): a coarse CAD mesh's
+ *     faces beyond another sharp crease (the far walls of a hole) do not
+ *     blur the sides' normals, and a sharp kink of noise does not wall a
+ *     side in.
+ *  3. it belongs to a crease of CREASE_MIN_EDGES edges or more (edges
+ *     joined at their ends), or to one that reaches the boundary: in heavy
+ *     noise a kink walled in by other kinks passes test 1, and at test 2's
+ *     tail a lone one keeps its angle.
+ * CREASE_CAP bounds a walk (a fine mesh about a long edge): the edge stays
+ * a candidate in test 1, and test 2 reads the triangles walked. */
+#define CREASE_REACH 2.5
+#define CREASE_SIDE 0.8
+#define CREASE_MIN_EDGES 3
+#define CREASE_BLOCK_DEG 70.0
+#define CREASE_CAP 4096
+
+static void tri_centroid(const glpgp_mesh *m, int t, double *c)
+{
+    const int *v = m->tri + 3 * t;
+    for (int k = 0; k < 3; k++) c[k] = (m->xyz[3 * v[0] + k] + m->xyz[3 * v[1] + k] + m->xyz[3 * v[2] + k]) / 3.0;
+}
+
+static double edge_len(const glpgp_mesh *m, int h)
+{
+    const double *a = m->xyz + 3 * m->tri[h], *b = m->xyz + 3 * m->tri[h - h % 3 + (h % 3 + 1) % 3];
+    const double d[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+    return sqrt(dot3(d, d));
+}
+
+/* 1 when candidate half-edge h's triangles are joined inside its ball
+ * without crossing a candidate (cand); stamp: nt ints, queue: CREASE_CAP. */
+static int walked_around(const glpgp_mesh *m, const unsigned char *cand, int h, int *stamp, int *queue)
+{
+    const int *twin = m->surf->twin;
+    const int t1 = h / 3, t2 = twin[h] / 3, tag = h + 1;
+    const double *a = m->xyz + 3 * m->tri[h], *b = m->xyz + 3 * m->tri[h - h % 3 + (h % 3 + 1) % 3];
+    const double mid[3] = {(a[0] + b[0]) / 2, (a[1] + b[1]) / 2, (a[2] + b[2]) / 2};
+    double len = 0.0;
+    for (int k = 0; k < 3; k++) len += edge_len(m, 3 * t1 + k) + edge_len(m, 3 * t2 + k);
+    const double r = CREASE_REACH * len / 6.0;
+    int head = 0, tail = 0;
+    stamp[t1] = tag;
+    queue[tail++] = t1;
+    while (head < tail) {
+        const int t = queue[head++];
+        for (int k = 3 * t; k < 3 * t + 3; k++) {
+            if (cand[k] || twin[k] < 0) continue;
+            const int u = twin[k] / 3;
+            if (u == t2) return 1;
+            if (stamp[u] == tag) continue;
+            double c[3];
+            tri_centroid(m, u, c);
+            const double d[3] = {c[0] - mid[0], c[1] - mid[1], c[2] - mid[2]};
+            if (dot3(d, d) > r * r) continue;
+            if (tail == CREASE_CAP) return 0;
+            stamp[u] = tag;
+            queue[tail++] = u;
+        }
+    }
+    return 0;
+}
+
+static void sub3(const double *a, const double *b, double *d)
+{
+    for (int k = 0; k < 3; k++) d[k] = a[k] - b[k];
+}
+
+/* The triangles of the ball (mid, r) reachable from triangle t without
+ * crossing h's edge or a blocked half-edge (block NULL: none):
+ * marked tag in stamp, listed in queue; returns their number. */
+static int ball_region(const glpgp_mesh *m, const unsigned char *block, int h, int t, const double *mid, double r,
+                       int tag, int *stamp, int *queue)
+{
+    const int *twin = m->surf->twin;
+    int head = 0, tail = 0;
+    stamp[t] = tag;
+    queue[tail++] = t;
+    while (head < tail) {
+        const int s = queue[head++];
+        for (int k = 3 * s; k < 3 * s + 3 && tail < CREASE_CAP; k++) {
+            if (twin[k] < 0 || k == h || k == twin[h] || (block && block[k])) continue;
+            const int u = twin[k] / 3;
+            if (stamp[u] == tag) continue;
+            double c[3];
+            tri_centroid(m, u, c);
+            sub3(c, mid, c);
+            if (dot3(c, c) > r * r) continue;
+            stamp[u] = tag;
+            queue[tail++] = u;
+        }
+    }
+    return tail;
+}
+
+/* Twice the area-weighted normal of triangle t. */
+static void tri_normal(const glpgp_mesh *m, int t, double *n)
+{
+    const int *v = m->tri + 3 * t;
+    double u[3], w[3];
+    sub3(m->xyz + 3 * v[1], m->xyz + 3 * v[0], u);
+    sub3(m->xyz + 3 * v[2], m->xyz + 3 * v[0], w);
+    n[0] = u[1] * w[2] - u[2] * w[1];
+    n[1] = u[2] * w[0] - u[0] * w[2];
+    n[2] = u[0] * w[1] - u[1] * w[0];
+}
+
+/* The angle between the two sides of candidate half-edge h at the scale of
+ * its ball: the area-weighted mean normals of the ball's triangles reached
+ * from either of its triangles without crossing a blocked edge; one reached
+ * from both sides goes by its centroid's offset from the midpoint along the
+ * difference of the two triangles' inward directions. A crease keeps its
+ * angle; a kink of noise averages out. */
+static double side_angle(const glpgp_mesh *m, const unsigned char *block, int h, int *stamp, int *queue)
+{
+    const int t1 = h / 3, t2 = m->surf->twin[h] / 3, tag = -(h + 1);
+    const double *a = m->xyz + 3 * m->tri[h], *b = m->xyz + 3 * m->tri[h - h % 3 + (h % 3 + 1) % 3];
+    double mid[3], e[3], c1[3], c2[3], d1[3], d2[3], dir[3], len = 0.0;
+    for (int k = 0; k < 3; k++) mid[k] = (a[k] + b[k]) / 2;
+    sub3(b, a, e);
+    unit3(e);
+    tri_centroid(m, t1, c1);
+    tri_centroid(m, t2, c2);
+    sub3(c1, mid, d1);
+    sub3(c2, mid, d2);
+    const double p1 = dot3(d1, e), p2 = dot3(d2, e);
+    for (int k = 0; k < 3; k++) {
+        d1[k] -= p1 * e[k];
+        d2[k] -= p2 * e[k];
+    }
+    unit3(d1);
+    unit3(d2);
+    sub3(d1, d2, dir);
+    for (int k = 0; k < 3; k++) len += edge_len(m, 3 * t1 + k) + edge_len(m, 3 * t2 + k);
+    const double r = CREASE_REACH * len / 6.0;
+    int *stamp2 = stamp + m->nt, *queue2 = queue + CREASE_CAP;
+    const int n1 = ball_region(m, block, h, t1, mid, r, tag, stamp, queue);
+    const int n2 = ball_region(m, block, h, t2, mid, r, tag, stamp2, queue2);
+    double s1[3] = {0, 0, 0}, s2[3] = {0, 0, 0}, n[3], c[3];
+    for (int i = 0; i < n1 + n2; i++) {
+        const int t = i < n1 ? queue[i] : queue2[i - n1];
+        const int both = stamp[t] == tag && stamp2[t] == tag;
+        if (both && i >= n1) continue; /* counted once */
+        int one = i < n1;
+        if (both) {
+            tri_centroid(m, t, c);
+            sub3(c, mid, c);
+            one = dot3(c, dir) >= 0.0;
+        }
+        tri_normal(m, t, n);
+        double *side = one ? s1 : s2;
+        for (int k = 0; k < 3; k++) side[k] += n[k];
+    }
+    double x[3];
+    x[0] = s1[1] * s2[2] - s1[2] * s2[1];
+    x[1] = s1[2] * s2[0] - s1[0] * s2[2];
+    x[2] = s1[0] * s2[1] - s1[1] * s2[0];
+    return atan2(sqrt(dot3(x, x)), dot3(s1, s2));
+}
+
+/* Clears the candidates (flag) that fail a test (1: fails) against the
+ * candidates as they were before this pass; returns how many it cleared. */
+static int crease_pass(const glpgp_mesh *m, unsigned char *flag, const unsigned char *block, double min_angle,
+                       int *stamp, int *queue, int *drop)
+{
+    const int *twin = m->surf->twin;
+    int nd = 0;
+    for (int h = 0; h < 3 * m->nt; h++) {
+        if (!flag[h] || twin[h] < h) continue;
+        const int fails = block ? side_angle(m, block, h, stamp, queue) <= min_angle
+                                : walked_around(m, flag, h, stamp, queue);
+        if (fails) drop[nd++] = h;
+    }
+    for (int i = 0; i < nd; i++) flag[drop[i]] = flag[twin[drop[i]]] = 0;
+    return nd;
+}
+
+/* A refined surface's features are its input's (m->surf->origin): a
+ * refined half-edge on a side of its input triangle (both ends with a zero
+ * barycentric coordinate at the same corner) takes that side's flag. */
+static glpgp_status features_from_origin(const glpgp_mesh *m, double feature_deg, unsigned char *flag, int *count)
 {
     const glpgp_surface *g = m->surf;
-    const double lim = feature_deg * GLPGP_PI / 180.0;
+    const glpgp_mesh *mi = g->origin;
+    unsigned char *fi = NULL;
+    GLPGP_CHECK(glpgp_malloc((size_t)3 * mi->nt, 1, &fi));
+    glpgp_status st = glpgp_surface_features(mi, feature_deg, fi, NULL);
     int n = 0;
+    for (int h = 0; h < 3 * m->nt && st == GLPGP_OK; h++) {
+        const int t = h / 3, a = h % 3, b = (a + 1) % 3;
+        const double *ba = g->obary + 9 * t + 3 * a, *bb = g->obary + 9 * t + 3 * b;
+        flag[h] = 0;
+        if (g->twin[h] < 0) continue;
+        for (int k = 0; k < 3; k++)
+            if (ba[k] < 1e-12 && bb[k] < 1e-12) flag[h] = fi[3 * g->otri[t] + (k + 1) % 3];
+        n += flag[h] && g->twin[h] < h;
+    }
+    free(fi);
+    if (count && st == GLPGP_OK) *count = n;
+    return st;
+}
+
+static int find_root(int *parent, int v)
+{
+    while (parent[v] != v) v = parent[v] = parent[parent[v]];
+    return v;
+}
+
+/* Test 3: clears the creases of fewer than CREASE_MIN_EDGES edges that do
+ * not reach the boundary; parent, size: nv ints each. Returns how many it
+ * cleared. */
+static int short_creases(const glpgp_mesh *m, unsigned char *flag, int *parent, int *size)
+{
+    const int *twin = m->surf->twin;
+    int nd = 0;
+    for (int v = 0; v < m->nv; v++) {
+        parent[v] = v;
+        size[v] = 0;
+    }
+    for (int h = 0; h < 3 * m->nt; h++)
+        if (flag[h] && twin[h] > h) {
+            const int a = find_root(parent, m->tri[h]), b = find_root(parent, m->tri[h - h % 3 + (h % 3 + 1) % 3]);
+            if (a != b) {
+                parent[a] = b;
+                size[b] += size[a];
+            }
+            size[b]++;
+        }
+    for (int v = 0; v < m->nv; v++) /* a boundary vertex makes its crease long enough */
+        if (m->on_boundary[v]) size[find_root(parent, v)] += CREASE_MIN_EDGES;
+    for (int h = 0; h < 3 * m->nt; h++)
+        if (flag[h] && twin[h] > h && size[find_root(parent, m->tri[h])] < CREASE_MIN_EDGES) {
+            flag[h] = flag[twin[h]] = 0;
+            nd++;
+        }
+    return nd;
+}
+
+glpgp_status glpgp_surface_features(const glpgp_mesh *m, double feature_deg, unsigned char *flag, int *count)
+{
+    const glpgp_surface *g = m->surf;
+    if (g->origin && g->otri && g->obary) return features_from_origin(m, feature_deg, flag, count);
+    const double lim = feature_deg * GLPGP_PI / 180.0, block = fmax(lim, CREASE_BLOCK_DEG * GLPGP_PI / 180.0);
+    int *stamp = NULL, *queue = NULL, *drop = NULL, n = 0;
+    unsigned char *sharp = NULL;
     for (int h = 0; h < 3 * m->nt; h++) {
         flag[h] = g->twin[h] >= 0 && g->dihedral[h] > lim;
-        if (flag[h] && g->twin[h] < h) n++;
+        n += flag[h] && g->twin[h] < h;
     }
-    return n;
+    if (count) *count = n;
+    if (!n) return GLPGP_OK;
+    glpgp_status st = GLPGP_OK;
+    GLPGP_CHECK_GOTO(st, glpgp_calloc((size_t)2 * (m->nt > m->nv ? m->nt : m->nv), sizeof(int), &stamp), done);
+    GLPGP_CHECK_GOTO(st, glpgp_malloc(2 * CREASE_CAP, sizeof(int), &queue), done);
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)n, sizeof(int), &drop), done);
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)3 * m->nt, 1, &sharp), done);
+    n -= crease_pass(m, flag, NULL, 0.0, stamp, queue, drop);
+    for (int h = 0; h < 3 * m->nt; h++) sharp[h] = flag[h] && g->dihedral[h] > block;
+    n -= crease_pass(m, flag, sharp, CREASE_SIDE * lim, stamp, queue, drop);
+    n -= short_creases(m, flag, stamp, stamp + m->nv);
+    if (count) *count = n;
+done:
+    free(stamp);
+    free(queue);
+    free(drop);
+    free(sharp);
+    return st;
 }
 
 double glpgp_surface_total_holonomy(const glpgp_mesh *m)

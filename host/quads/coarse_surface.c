@@ -442,7 +442,7 @@ done:
     return st;
 }
 
-static glpgp_status cz_init(cz *c, const glpgp_mesh *m)
+static glpgp_status cz_init(cz *c, const glpgp_mesh *m, double feature_deg)
 {
     const int nt = m->nt;
     GLPGP_CHECK(glpgp_malloc((size_t)3 * nt + 1, sizeof(int), &c->tri));
@@ -455,7 +455,7 @@ static glpgp_status cz_init(cz *c, const glpgp_mesh *m)
     GLPGP_CHECK(glpgp_calloc((size_t)m->nv + 1, sizeof(int), &c->touched));
     memcpy(c->tri, m->tri, (size_t)3 * nt * sizeof(int));
     memset(c->alive, 1, (size_t)nt);
-    glpgp_surface_features(m, GLPGP_FEATURE_ANGLE_DEFAULT, c->flag);
+    GLPGP_CHECK(glpgp_surface_features(m, feature_deg, c->flag, NULL));
     for (int s = 0; s < 3 * nt; s++) {
         if (m->surf->twin[s] < 0) c->flag[s] = 1;
         c->vcap[m->tri[s]]++;
@@ -479,7 +479,8 @@ static void cz_free(cz *c, int nv)
     free(c->alive);
 }
 
-glpgp_status glpgp_qs_coarse(const glpgp_mesh *m, double h, double amin_deg, glpgp_quadmesh **out, int *ntri)
+glpgp_status glpgp_qs_coarse(const glpgp_mesh *m, double h, double feature_deg, double amin_deg, glpgp_quadmesh **out,
+                             int *ntri)
 {
     *out = NULL;
     if (ntri) *ntri = 0;
@@ -494,7 +495,7 @@ glpgp_status glpgp_qs_coarse(const glpgp_mesh *m, double h, double amin_deg, glp
     glpgp_qs_proj *P = NULL;
     glpgp_status st = glpgp_qs_proj_create(m, h, 0.3 * h, &P);
     c.P = P;
-    if (st == GLPGP_OK) st = cz_init(&c, m);
+    if (st == GLPGP_OK) st = cz_init(&c, m, feature_deg);
     if (st == GLPGP_OK) st = coarsen(&c, m->nt);
     if (st == GLPGP_OK) st = split3(&c, m->nt, h, out);
     if (st == GLPGP_OK && ntri) *ntri = (*out)->nf / 3;
@@ -505,5 +506,5 @@ glpgp_status glpgp_qs_coarse(const glpgp_mesh *m, double h, double amin_deg, glp
 
 glpgp_status glpgp_quads_surface_fallback_coarse(const glpgp_mesh *m, double h, glpgp_quadmesh **out, int *ntri)
 {
-    return glpgp_qs_coarse(m, h, 17.0, out, ntri);
+    return glpgp_qs_coarse(m, h, GLPGP_FEATURE_ANGLE_DEFAULT, 17.0, out, ntri);
 }

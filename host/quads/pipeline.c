@@ -3,6 +3,7 @@
  * clean-up (kept only when no worse), all-quad refinement; with progress
  * lines on long meshes. */
 #include "glpgp/quads.h"
+#include "glpgp/surface.h"
 #include "glpgp/status.h"
 #include "glpgp/util.h"
 #include "repair.h"
@@ -49,6 +50,7 @@ void glpgp_quads_options_default(glpgp_quads_options *o)
     o->all_quads = 0;
     o->repair = 1;
     o->cleanup = 1;
+    o->feature_angle = GLPGP_FEATURE_ANGLE_DEFAULT;
 }
 
 glpgp_status glpgp_quads_build(const glpgp_mesh *m, const glpgp_result *r, const glpgp_quads_options *o,

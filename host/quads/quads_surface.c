@@ -550,7 +550,7 @@ static glpgp_status smooth_valid(const glpgp_mesh *m, double h, const glpgp_quad
     GLPGP_CHECK(glpgp_malloc((size_t)3 * q->nv + 1, sizeof(double), &keep));
     memcpy(keep, q->xyz, (size_t)3 * q->nv * sizeof(double));
     int moved = 0;
-    glpgp_status st = glpgp_quads_smooth_surface(m, h, o->smooth, q, &moved);
+    glpgp_status st = glpgp_quads_smooth_surface(m, h, o->feature_angle, o->smooth, q, &moved);
     if (st == GLPGP_OK && moved) st = glpgp_quads_quality_surface(q, m, h, &qq);
     if (st == GLPGP_OK && moved && !qq.invalid) {
         stp->smoothed = moved;
@@ -591,7 +591,7 @@ static glpgp_status flat_corners(const glpgp_mesh *m, double h, const glpgp_quad
     if (st == GLPGP_OK && r && o->smooth > 0) st = glpgp_malloc((size_t)3 * r->nv + 1, sizeof(double), &keep);
     if (st == GLPGP_OK && keep) {
         memcpy(keep, r->xyz, (size_t)3 * r->nv * sizeof(double));
-        st = glpgp_quads_smooth_surface(m, h, o->smooth, r, &moved);
+        st = glpgp_quads_smooth_surface(m, h, o->feature_angle, o->smooth, r, &moved);
     }
     if (st == GLPGP_OK && r) st = glpgp_quads_quality_surface(r, m, h, &after);
     if (st == GLPGP_OK && r && keep && after.invalid) {
@@ -638,13 +638,14 @@ static glpgp_status flat_corners(const glpgp_mesh *m, double h, const glpgp_quad
  * and a 20-hole sphere, 17 gives 2-4x fewer quads with a higher smallest
  * scaled Jacobian, but 16 already failed once), else the input's own
  * triangles split (valid by construction). */
-static glpgp_status last_resort(const glpgp_mesh *m, double h, glpgp_quadmesh **out, glpgp_quads_surface_steps *stp)
+static glpgp_status last_resort(const glpgp_mesh *m, double h, double feature_deg, glpgp_quadmesh **out,
+                                glpgp_quads_surface_steps *stp)
 {
     static const double amin[2] = {17.0, 20.0};
     int nt = 0;
     unsigned bad = 0;
     for (int k = 0; k < 2; k++) {
-        glpgp_status st = glpgp_qs_coarse(m, h, amin[k], out, &nt);
+        glpgp_status st = glpgp_qs_coarse(m, h, feature_deg, amin[k], out, &nt);
         if (st == GLPGP_OK) st = verdict_of(m, *out, h, 0, &bad);
         if (st == GLPGP_OK && !bad) {
             stp->coarse_triangles = nt;
@@ -701,7 +702,7 @@ glpgp_status glpgp_qs_build_one(const glpgp_mesh *m, const glpgp_result *r, cons
         glpgp_quadmesh_destroy(&q);
     }
     stp.fallback = 1;
-    st = last_resort(m, *h, out, &stp);
+    st = last_resort(m, *h, o->feature_angle, out, &stp);
     if (st == GLPGP_OK) st = smooth_valid(m, *h, o, *out, &stp);
     if (st == GLPGP_OK) st = flat_corners(m, *h, o, out, &stp);
     if (st != GLPGP_OK) glpgp_quadmesh_destroy(out);

@@ -120,7 +120,8 @@ glpgp_status glpgp_qs_split_flat(const glpgp_mesh *m, const glpgp_quadmesh *q, d
 
 /* glpgp_quads_surface_fallback_coarse (17 degrees) with the smallest angle
  * a new triangle may have (degrees; unless one before was smaller). */
-glpgp_status glpgp_qs_coarse(const glpgp_mesh *m, double h, double amin_deg, glpgp_quadmesh **out, int *ntri);
+glpgp_status glpgp_qs_coarse(const glpgp_mesh *m, double h, double feature_deg, double amin_deg, glpgp_quadmesh **out,
+                             int *ntri);
 
 /* glpgp_quads_build_surface on a surface of one connected component (or on
  * all of them at once): quads_surface.c. */

@@ -52,6 +52,7 @@ typedef struct sm_ctx {
     double *fn;            /* per face: its unit normal before (3) */
     double *cd;            /* per face: its samples' distance to the surface allowed (max(CD_MAX h, before)) */
     double h;
+    double feature_deg; /* the sharp edges locked (glpgp_surface_features) */
     /* the boundary slide: per input vertex its loop's next and previous
      * vertex (-1: not on a loop) and whether it is a corner; per quad vertex
      * the input boundary edge it lies on (its first vertex; -1: it does not
@@ -146,7 +147,7 @@ static glpgp_status lock_vertices(sm_ctx *c)
     GLPGP_CHECK_GOTO(st, glpgp_calloc((size_t)m->nv + 1, 1, &vfeat), done);
     GLPGP_CHECK_GOTO(st, glpgp_calloc((size_t)q->nv + 1, 1, &bad), done);
     GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)nc + 1, sizeof *key, &key), done);
-    glpgp_surface_features(m, GLPGP_FEATURE_ANGLE_DEFAULT, hf);
+    GLPGP_CHECK_GOTO(st, glpgp_surface_features(m, c->feature_deg, hf, NULL), done);
     boundary_loops(c, hf);
     for (int h = 0; h < 3 * m->nt; h++) {
         if (m->surf->twin[h] < 0) hf[h] = 1;
@@ -439,7 +440,8 @@ static glpgp_status setup(sm_ctx *c)
     return lock_vertices(c);
 }
 
-glpgp_status glpgp_quads_smooth_surface(const glpgp_mesh *m, double h, int sweeps, glpgp_quadmesh *q, int *moved)
+glpgp_status glpgp_quads_smooth_surface(const glpgp_mesh *m, double h, double feature_deg, int sweeps,
+                                        glpgp_quadmesh *q, int *moved)
 {
     if (moved) *moved = 0;
     if (!q || !q->xyz || q->nf == 0 || sweeps <= 0) return GLPGP_OK;
@@ -448,6 +450,7 @@ glpgp_status glpgp_quads_smooth_surface(const glpgp_mesh *m, double h, int sweep
     c.m = m;
     c.q = q;
     c.h = h;
+    c.feature_deg = feature_deg;
     glpgp_qs_proj *P = NULL;
     unsigned char *did = NULL;
     glpgp_status st = glpgp_qs_proj_create(m, h, 0.5 * h, &P);

@@ -166,7 +166,9 @@ static const glpgp_optdesc k_table[] = {
     DBL("feature-angle", G1, feature_angle, 0.0, 0, 180.0, 0, "DEG",
         "a surface: interior edges whose triangles' normals differ by more\n"
         "than DEG degrees are sharp features, which the field and the\n"
-        "quads follow like the boundary (180: none)"),
+        "quads follow like the boundary (180: none); a scan's noise is\n"
+        "not: an edge counts only where it separates its sides locally,\n"
+        "keeps its angle over a few edges and is part of a crease"),
     DBL("size-curl", G1, size_curl, 0.0, 0, 1.0, 0, "F",
         "a surface: the local size scaled so that the guiding frame over\n"
         "h(x) is curl-free (least squares; Ray et al.'s curl correction),\n"

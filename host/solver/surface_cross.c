@@ -85,7 +85,7 @@ glpgp_status glpgp_surface_constraints_create(const glpgp_mesh *m, double featur
     GLPGP_CHECK_GOTO(st, glpgp_calloc((size_t)2 * nv, sizeof(double), &c->w0), fail);
     GLPGP_CHECK_GOTO(st, glpgp_calloc((size_t)nv + 1, sizeof(int), &c->cptr), fail);
     GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)3 * nt + (size_t)nv + 1, sizeof(double), &a), fail);
-    c->nfeatures = glpgp_surface_features(m, feature_deg, c->feature);
+    GLPGP_CHECK_GOTO(st, glpgp_surface_features(m, feature_deg, c->feature, &c->nfeatures), fail);
     /* pass 1: counts; pass 2: angles and fixed crosses */
     for (int v = 0; v < nv; v++) c->cptr[v + 1] = c->cptr[v] + vertex_constraints(m, c->feature, v, a);
     GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)c->cptr[nv] + 1, sizeof(double), &c->cangle), fail);

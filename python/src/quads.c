@@ -217,6 +217,7 @@ PyObject *pg_quads(pg_result *self, PyObject *args, PyObject *kw)
     if (PyTuple_GET_SIZE(args) != 0) return PyErr_Format(PyExc_TypeError, "quads() takes keyword arguments only");
     glpgp_quads_options qo;
     glpgp_quads_options_default(&qo);
+    if (self->has_options) qo.feature_angle = self->o.feature_angle; /* the solve's creases */
     PyObject *key, *value, *keep = PyList_New(0);
     Py_ssize_t pos = 0;
     if (!keep) return NULL;

@@ -5,7 +5,9 @@
 #    boundary (a hemisphere: the field at boundary vertices must come back
 #    exactly, field_frame) and a closed one (a torus);
 #  - the summary names the surface pipeline's steps, --stats writes the
-#    report, --verbose reaches the library's log.
+#    report, --verbose reaches the library's log;
+#  - --feature-angle (the creases the smoothing and the last resort keep, as
+#    solve's) outside [0, 180] is a usage error.
 . "$(dirname "$0")/lib.sh" "$@"
 
 check_same() { # NAME SHAPE FACES EXT
@@ -18,4 +20,5 @@ check_same() { # NAME SHAPE FACES EXT
 }
 check_same hemi shape:hemisphere:1000 40 vtu
 check_same torus shape:torus:1000 40 vtk
+run_fail "extract --feature-angle 200" 2 "feature-angle" extract hemi.vtu --quads fa.obj --feature-angle 200
 finish

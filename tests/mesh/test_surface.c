@@ -95,7 +95,8 @@ static void check_features(void)
     CHECK_OK(glpgp_mesh_generate("cube", 600, &m));
     if (!m) return;
     unsigned char *fl = malloc((size_t)3 * m->nt);
-    const int n = glpgp_surface_features(m, GLPGP_FEATURE_ANGLE_DEFAULT, fl);
+    int n = -1;
+    CHECK_OK(glpgp_surface_features(m, GLPGP_FEATURE_ANGLE_DEFAULT, fl, &n));
     /* 12 cube edges of n segments each: n = sqrt((nv - 2) / 6) */
     const int seg = (int)lround(sqrt((m->nv - 2) / 6.0));
     printf("cube: %d feature edges (%d segments per cube edge)\n", n, seg);
@@ -202,9 +203,12 @@ static void check_subdivide(const char *name)
     }
     CHECK(off == 0);
     unsigned char *f0 = malloc((size_t)3 * m->nt), *f1 = malloc((size_t)3 * r->nt);
-    if (f0 && f1)
-        CHECK(glpgp_surface_features(r, GLPGP_FEATURE_ANGLE_DEFAULT, f1) ==
-              2 * glpgp_surface_features(m, GLPGP_FEATURE_ANGLE_DEFAULT, f0));
+    int n0 = -1, n1 = -2;
+    if (f0 && f1) {
+        CHECK_OK(glpgp_surface_features(r, GLPGP_FEATURE_ANGLE_DEFAULT, f1, &n1));
+        CHECK_OK(glpgp_surface_features(m, GLPGP_FEATURE_ANGLE_DEFAULT, f0, &n0));
+        CHECK(n1 == 2 * n0);
+    }
     free(f0);
     free(f1);
     glpgp_mesh_destroy(&r);

@@ -189,7 +189,7 @@ static void smoothing(void)
     const double before = qq.sj_min;
     CHECK(before < 0.5 && qq.invalid == 0);
     int moved = 0;
-    CHECK_OK(glpgp_quads_smooth_surface(m, hv, 20, q, &moved));
+    CHECK_OK(glpgp_quads_smooth_surface(m, hv, GLPGP_FEATURE_ANGLE_DEFAULT, 20, q, &moved));
     CHECK_OK(glpgp_quads_quality_surface(q, m, hv, &qq));
     CHECK(moved >= 1 && qq.invalid == 0);
     CHECK(qq.sj_min > 0.9);
@@ -247,7 +247,7 @@ static void slide(void)
     CHECK_OK(glpgp_quads_quality_surface(q, m, hv, &qq));
     const double before = qq.sj_min;
     int moved = 0;
-    CHECK_OK(glpgp_quads_smooth_surface(m, hv, 20, q, &moved));
+    CHECK_OK(glpgp_quads_smooth_surface(m, hv, GLPGP_FEATURE_ANGLE_DEFAULT, 20, q, &moved));
     CHECK_OK(glpgp_quads_quality_surface(q, m, hv, &qq));
     CHECK(qq.invalid == 0 && moved >= 1);
     CHECK(qq.sj_min > before + 0.15);
@@ -430,7 +430,7 @@ static void coarse_mesh(const char *shape, glpgp_mesh *m, double h, int euler, i
         if (qq.invalid || (fewer && 10 * q->nf >= 3 * m->nt))
             fprintf(stderr, "coarse %s: %d quads of %d triangles, invalid 0x%x\n", shape, q->nf, m->nt, qq.invalid);
         const double before = qq.sj_min;
-        CHECK_OK(glpgp_quads_smooth_surface(m, h, 20, q, NULL));
+        CHECK_OK(glpgp_quads_smooth_surface(m, h, GLPGP_FEATURE_ANGLE_DEFAULT, 20, q, NULL));
         CHECK_OK(glpgp_quads_quality_surface(q, m, h, &qq));
         CHECK(qq.sj_min >= before && qq.euler == euler);
         CHECK(qq.invalid == 0); /* the moves keep the check's Hausdorff and orientation */

@@ -203,9 +203,13 @@ typedef struct glpgp_quads_options {
     int all_quads;      /* 1: one Catmull-Clark step at the end (h halves) */
     int repair;         /* 1: glpgp_quadmesh_repair after the smoothing (default) */
     int cleanup;        /* 1: glpgp_quadmesh_cleanup after the repair (default) */
+    double feature_angle; /* a surface's sharp edges the smoothing and the last resort keep
+                           (degrees, glpgp_surface_features; default GLPGP_FEATURE_ANGLE_DEFAULT;
+                           the CLI and Python pass the solve's --feature-angle) */
 } glpgp_quads_options;
 
-/* The defaults: strips on, 20 smoothing sweeps, smooth_below 0.5, repair on, clean-up on, no refinement. */
+/* The defaults: strips on, 20 smoothing sweeps, smooth_below 0.5, repair on, clean-up on, no refinement,
+ * feature_angle GLPGP_FEATURE_ANGLE_DEFAULT. */
 void glpgp_quads_options_default(glpgp_quads_options *o);
 
 /* The user-settable members of glpgp_quads_options, one descriptor each
@@ -437,20 +441,22 @@ double glpgp_quadmesh_face_sj_surface(const glpgp_quadmesh *q, int f);
 
 /* Quality-guarded smoothing on the surface (quads/smooth_surface.c): sweeps
  * (at most `sweeps`) of tangential moves of the free vertices (not on the
- * quad mesh's boundary, not on the input's boundary or sharp features)
- * towards the mean of their edge neighbours or the corner that makes their
+ * quad mesh's boundary, not on the input's boundary or sharp features:
+ * glpgp_surface_features at feature_deg) towards the mean of their edge neighbours or the corner that makes their
  * worst face a parallelogram, each moved back onto the surface and kept
  * only when the smallest scaled Jacobian of its faces rises and no face
  * falls below min(0.3, its value before) or turns over. *moved: vertices
  * moved at least once (may be NULL). */
-glpgp_status glpgp_quads_smooth_surface(const glpgp_mesh *m, double h, int sweeps, glpgp_quadmesh *q, int *moved);
+glpgp_status glpgp_quads_smooth_surface(const glpgp_mesh *m, double h, double feature_deg, int sweeps,
+                                        glpgp_quadmesh *q, int *moved);
 
 /* The coarse last resort (quads/coarse_surface.c): m's triangles coarsened by
  * half-edge collapses to edges of about 2 h (boundaries, sharp features
  * and the topology kept; new triangles within 0.2 h of m, smallest angle
  * 17 degrees unless one before was smaller), each split into
  * three quads. *ntri: the coarse triangles (may be NULL). The result is
- * not checked. */
+ * not checked. Sharp features at GLPGP_FEATURE_ANGLE_DEFAULT
+ * (glpgp_quads_build_surface passes glpgp_quads_options.feature_angle). */
 glpgp_status glpgp_quads_surface_fallback_coarse(const glpgp_mesh *m, double h, glpgp_quadmesh **out, int *ntri);
 
 /* What glpgp_quads_build_surface did. */

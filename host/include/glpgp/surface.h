@@ -230,10 +230,16 @@ void glpgp_surface_vertex_vector(const glpgp_mesh *m, int i, double c, double s,
  * 0 when v is normal to the surface. */
 double glpgp_surface_vertex_angle(const glpgp_mesh *m, int i, const double *v);
 
-/* Feature half-edges: flag[h] = 1 where the dihedral angle of an interior
- * edge exceeds feature_deg degrees (both half-edges of it); boundary
- * half-edges 0. Returns the number of undirected feature edges. flag: 3 nt. */
-int glpgp_surface_features(const glpgp_mesh *m, double feature_deg, unsigned char *flag);
+/* Feature half-edges: flag[h] = 1 on an interior edge whose dihedral angle
+ * exceeds feature_deg degrees and that is a crease, not a scan's noise
+ * (mesh/surface_geom.c): it separates its two triangles locally (no walk
+ * of triangles within 2.5 of its neighbouring edge lengths joins them
+ * without crossing another such edge), its sides' mean normals at that
+ * scale still differ by 0.8 feature_deg, and its crease has 3 edges or
+ * more or reaches the boundary. Both half-edges of it; boundary half-edges
+ * 0. A refined surface that kept its input (origin) takes the input's
+ * features. *count (may be NULL): the undirected feature edges. flag: 3 nt. */
+glpgp_status glpgp_surface_features(const glpgp_mesh *m, double feature_deg, unsigned char *flag, int *count);
 
 /* The sum over triangles of the holonomy (2 pi chi minus the boundary's
  * turning sum(pi - Theta_v) over the boundary vertices; 4 pi on a sphere). */
