@@ -25,6 +25,7 @@ static void stats_surface(glpgp_json *w, const glpgp_mesh *m, const glpgp_option
     int nfeat = 0;
     if (fl && o && glpgp_surface_features(m, o->feature_angle, fl, &nfeat) == GLPGP_OK)
         glpgp_json_int(w, "feature_edges", nfeat);
+    if (o) glpgp_json_int(w, "edges_above_feature_angle", glpgp_surface_edges_above(m, o->feature_angle));
     if (o) glpgp_json_num(w, "feature_angle", o->feature_angle);
     glpgp_json_num(w, "total_holonomy", glpgp_surface_total_holonomy(m));
     glpgp_json_close(w);

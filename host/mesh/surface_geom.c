@@ -530,6 +530,15 @@ done:
     return st;
 }
 
+int glpgp_surface_edges_above(const glpgp_mesh *m, double feature_deg)
+{
+    const glpgp_surface *g = m->surf;
+    const double lim = feature_deg * GLPGP_PI / 180.0;
+    int n = 0;
+    for (int h = 0; h < 3 * m->nt; h++) n += g->twin[h] > h && g->dihedral[h] > lim;
+    return n;
+}
+
 double glpgp_surface_total_holonomy(const glpgp_mesh *m)
 {
     double s = 0.0;

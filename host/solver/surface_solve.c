@@ -154,9 +154,12 @@ glpgp_status glpgp_solve_surface(const glpgp_mesh *m, glpgp_backend *b, const gl
     if (con->rim_scale > 0.0)
         glpgp_log(GLPGP_LOG_INFO, "surface: the boundary's crosses read over %g (%.2f h) either side (--rim-scale)",
                   con->rim_scale, con->rim_scale / h);
-    if (con->nfeatures)
-        glpgp_log(GLPGP_LOG_INFO, "surface: %d sharp feature edges (dihedral angle above %g degrees)", con->nfeatures,
-                  o->feature_angle);
+    const int above = glpgp_surface_edges_above(m, o->feature_angle);
+    if (above)
+        glpgp_log(GLPGP_LOG_INFO,
+                  "surface: %d sharp feature edges (creases with a dihedral angle above %g degrees; %d more edges above "
+                  "it are not creases: a scan's noise)",
+                  con->nfeatures, o->feature_angle, above - con->nfeatures);
     r->seconds_setup = glpgp_now() - t0;
     GLPGP_CHECK_GOTO(st, guiding_field(m, b, o, con, r), fail);
     /* local size (uniform: NULL, the plain element arithmetic) */

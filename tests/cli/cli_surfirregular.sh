@@ -75,6 +75,7 @@ python3 - <<'PY' || fail "noisy scan"
 import json
 s = json.load(open("nz.json")); a = s["quads"]; b = json.load(open("nz15.json"))["quads"]
 assert s["mesh"]["surface"]["feature_edges"] == 0, s["mesh"]["surface"]
+assert s["mesh"]["surface"]["edges_above_feature_angle"] > 1000, s["mesh"]["surface"]
 assert a["valid"] and a["other_faces"] == 0 and 150 <= a["quads"] <= 450, (a["quads"], a["invalid_reasons"])
 assert b["valid"] and b["other_faces"] == 0, b["invalid_reasons"]
 PY

@@ -27,6 +27,7 @@ static int features(const glpgp_mesh *m, unsigned char *flag, int *candidates)
     for (int h = 0; h < 3 * m->nt; h++)
         c += m->surf->twin[h] > h && m->surf->dihedral[h] > LIM * GLPGP_PI / 180.0;
     CHECK_OK(glpgp_surface_features(m, LIM, flag, &n));
+    CHECK(glpgp_surface_edges_above(m, LIM) == c);
     if (candidates) *candidates = c;
     return n;
 }

@@ -241,6 +241,10 @@ double glpgp_surface_vertex_angle(const glpgp_mesh *m, int i, const double *v);
  * features. *count (may be NULL): the undirected feature edges. flag: 3 nt. */
 glpgp_status glpgp_surface_features(const glpgp_mesh *m, double feature_deg, unsigned char *flag, int *count);
 
+/* The interior edges whose dihedral angle exceeds feature_deg degrees (the
+ * candidates of glpgp_surface_features, crease or not). */
+int glpgp_surface_edges_above(const glpgp_mesh *m, double feature_deg);
+
 /* The sum over triangles of the holonomy (2 pi chi minus the boundary's
  * turning sum(pi - Theta_v) over the boundary vertices; 4 pi on a sphere). */
 double glpgp_surface_total_holonomy(const glpgp_mesh *m);
