@@ -7,6 +7,7 @@
  * vertex-frame angles to 3D vectors and back; feature edges. */
 #include "glpgp/kinds.h"
 #include "glpgp/surface.h"
+#include "glpgp/util.h"
 
 #include "surface_internal.h"
 
@@ -463,12 +464,6 @@ static glpgp_status features_from_origin(const glpgp_mesh *m, double feature_deg
     return st;
 }
 
-static int find_root(int *parent, int v)
-{
-    while (parent[v] != v) v = parent[v] = parent[parent[v]];
-    return v;
-}
-
 /* Test 3: clears the creases of fewer than CREASE_MIN_EDGES edges that do
  * not reach the boundary; parent, size: nv ints each. Returns how many it
  * cleared. */
@@ -482,7 +477,8 @@ static int short_creases(const glpgp_mesh *m, unsigned char *flag, int *parent, 
     }
     for (int h = 0; h < 3 * m->nt; h++)
         if (flag[h] && twin[h] > h) {
-            const int a = find_root(parent, m->tri[h]), b = find_root(parent, m->tri[h - h % 3 + (h % 3 + 1) % 3]);
+            const int a = glpgp_uf_find(parent, m->tri[h]);
+            const int b = glpgp_uf_find(parent, m->tri[h - h % 3 + (h % 3 + 1) % 3]);
             if (a != b) {
                 parent[a] = b;
                 size[b] += size[a];
@@ -490,9 +486,9 @@ static int short_creases(const glpgp_mesh *m, unsigned char *flag, int *parent, 
             size[b]++;
         }
     for (int v = 0; v < m->nv; v++) /* a boundary vertex makes its crease long enough */
-        if (m->on_boundary[v]) size[find_root(parent, v)] += CREASE_MIN_EDGES;
+        if (m->on_boundary[v]) size[glpgp_uf_find(parent, v)] += CREASE_MIN_EDGES;
     for (int h = 0; h < 3 * m->nt; h++)
-        if (flag[h] && twin[h] > h && size[find_root(parent, m->tri[h])] < CREASE_MIN_EDGES) {
+        if (flag[h] && twin[h] > h && size[glpgp_uf_find(parent, m->tri[h])] < CREASE_MIN_EDGES) {
             flag[h] = flag[twin[h]] = 0;
             nd++;
         }
