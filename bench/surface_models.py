@@ -21,6 +21,14 @@
                            other interior cube removed (GX by GY square
                            holes), sharp edges everywhere; each cube face
                            SUB x SUB squares, two triangles each.
+  prism N SUB OUT.obj       a regular N-gon prism (side creases of 360 / N
+                           degrees; N = 8: 45, 9: 40), each side SUB x 2 SUB
+                           squares, the caps fans: CAD creases near the
+                           feature angle.
+  box SUB OUT.obj           the unit cube [0, 1]^3, SUB x SUB squares per
+                           face (SUB 1: two triangles per face, coarse CAD).
+  jitter IN.obj OUT.obj F   IN's vertices moved by a uniform jitter of F
+                           mean edges in every coordinate (seeded).
   speck SUBDIV OUT.obj      scan debris: the unit icosphere and, 1 away
                            from it, a tetrahedron 0.01 across (two
                            connected components, one far below any size).
@@ -212,6 +220,61 @@ def slab(gx, gy, sub, out):
     write_obj(out, "a plate of genus %d" % (gx * gy), v, f)
 
 
+def quad_patch(v, f, vid, P, U, W, nu, nw):
+    """Two triangles per cell of the planar patch P + s U + t W, nu x nw cells."""
+    def vert(i, j):
+        p = tuple(round(P[k] + U[k] * i / nu + W[k] * j / nw, 12) for k in range(3))
+        if p not in vid:
+            vid[p] = len(v)
+            v.append(p)
+        return vid[p]
+    for i in range(nu):
+        for j in range(nw):
+            a, b, c, d = vert(i, j), vert(i + 1, j), vert(i + 1, j + 1), vert(i, j + 1)
+            f += [(a, b, c), (a, c, d)]
+
+
+def prism(n, sub, out):
+    v, f, vid = [], [], {}
+    pts = [(math.cos(2 * math.pi * i / n), math.sin(2 * math.pi * i / n)) for i in range(n)]
+    for i in range(n):
+        a, b = pts[i], pts[(i + 1) % n]
+        quad_patch(v, f, vid, (a[0], a[1], 0), (b[0] - a[0], b[1] - a[1], 0), (0, 0, 2), sub, 2 * sub)
+    for z, up in ((0, False), (2, True)):  # the caps: fans about their centres
+        c = len(v)
+        v.append((0, 0, z))
+        ring = [vid[(round(a[0] + (b[0] - a[0]) * k / sub, 12), round(a[1] + (b[1] - a[1]) * k / sub, 12), z)]
+                for a, b in zip(pts, pts[1:] + pts[:1]) for k in range(sub)]
+        for i in range(len(ring)):
+            t = (c, ring[i], ring[(i + 1) % len(ring)])
+            f.append(t if up else (t[0], t[2], t[1]))
+    write_obj(out, "a %d-gon prism" % n, v, f)
+
+
+def box(sub, out):
+    v, f, vid = [], [], {}
+    for P, U, W in (((0, 0, 0), (0, 1, 0), (1, 0, 0)), ((0, 0, 1), (1, 0, 0), (0, 1, 0)),
+                    ((0, 0, 0), (1, 0, 0), (0, 0, 1)), ((0, 1, 0), (0, 0, 1), (1, 0, 0)),
+                    ((0, 0, 0), (0, 0, 1), (0, 1, 0)), ((1, 0, 0), (0, 1, 0), (0, 0, 1))):
+        quad_patch(v, f, vid, P, U, W, sub, sub)
+    write_obj(out, "the unit cube, %d x %d squares per face" % (sub, sub), v, f)
+
+
+def jitter(src, out, frac, seed=7):
+    import random
+    v, f = [], []
+    for line in open(src):
+        w = line.split()
+        if w and w[0] == "v":
+            v.append([float(x) for x in w[1:4]])
+        elif w and w[0] == "f":
+            f.append(tuple(int(x.split("/")[0]) - 1 for x in w[1:4]))
+    edge = sum(math.dist(v[t[k]], v[t[(k + 1) % 3]]) for t in f for k in range(3)) / (3 * len(f))
+    rng = random.Random(seed)
+    w = [tuple(x + frac * edge * rng.uniform(-1, 1) for x in p) for p in v]
+    write_obj(out, "%s with a jitter of %g mean edges" % (src, frac), w, f)
+
+
 if __name__ == "__main__":
     a = sys.argv
     if len(a) == 5 and a[1] == "holes":
@@ -224,5 +287,11 @@ if __name__ == "__main__":
         speck(int(a[2]), a[3])
     elif len(a) == 6 and a[1] == "slab":
         slab(int(a[2]), int(a[3]), int(a[4]), a[5])
+    elif len(a) == 5 and a[1] == "prism":
+        prism(int(a[2]), int(a[3]), a[4])
+    elif len(a) == 4 and a[1] == "box":
+        box(int(a[2]), a[3])
+    elif len(a) == 5 and a[1] == "jitter":
+        jitter(a[2], a[3], float(a[4]))
     else:
         sys.exit(__doc__)

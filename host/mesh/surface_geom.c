@@ -292,42 +292,23 @@ static double edge_len(const glpgp_mesh *m, int h)
     return sqrt(dot3(d, d));
 }
 
-/* 1 when candidate half-edge h's triangles are joined inside its ball
- * without crossing a candidate (cand); stamp: nt ints, queue: CREASE_CAP. */
-static int walked_around(const glpgp_mesh *m, const unsigned char *cand, int h, int *stamp, int *queue)
-{
-    const int *twin = m->surf->twin;
-    const int t1 = h / 3, t2 = twin[h] / 3, tag = h + 1;
-    const double *a = m->xyz + 3 * m->tri[h], *b = m->xyz + 3 * m->tri[h - h % 3 + (h % 3 + 1) % 3];
-    const double mid[3] = {(a[0] + b[0]) / 2, (a[1] + b[1]) / 2, (a[2] + b[2]) / 2};
-    double len = 0.0;
-    for (int k = 0; k < 3; k++) len += edge_len(m, 3 * t1 + k) + edge_len(m, 3 * t2 + k);
-    const double r = CREASE_REACH * len / 6.0;
-    int head = 0, tail = 0;
-    stamp[t1] = tag;
-    queue[tail++] = t1;
-    while (head < tail) {
-        const int t = queue[head++];
-        for (int k = 3 * t; k < 3 * t + 3; k++) {
-            if (cand[k] || twin[k] < 0) continue;
-            const int u = twin[k] / 3;
-            if (u == t2) return 1;
-            if (stamp[u] == tag) continue;
-            double c[3];
-            tri_centroid(m, u, c);
-            const double d[3] = {c[0] - mid[0], c[1] - mid[1], c[2] - mid[2]};
-            if (dot3(d, d) > r * r) continue;
-            if (tail == CREASE_CAP) return 0;
-            stamp[u] = tag;
-            queue[tail++] = u;
-        }
-    }
-    return 0;
-}
-
 static void sub3(const double *a, const double *b, double *d)
 {
     for (int k = 0; k < 3; k++) d[k] = a[k] - b[k];
+}
+
+/* The ball of half-edge h: its midpoint and CREASE_REACH times the mean
+ * length of its two triangles' edges. */
+static double edge_ball(const glpgp_mesh *m, int h, double *mid)
+{
+    const double *a = m->xyz + 3 * m->tri[h], *b = m->xyz + 3 * m->tri[h - h % 3 + (h % 3 + 1) % 3];
+    const int t1 = h / 3, t2 = m->surf->twin[h] / 3;
+    double len = 0.0;
+    for (int k = 0; k < 3; k++) {
+        mid[k] = (a[k] + b[k]) / 2;
+        len += edge_len(m, 3 * t1 + k) + edge_len(m, 3 * t2 + k);
+    }
+    return CREASE_REACH * len / 6.0;
 }
 
 /* The triangles of the ball (mid, r) reachable from triangle t without
@@ -379,8 +360,8 @@ static double side_angle(const glpgp_mesh *m, const unsigned char *block, int h,
 {
     const int t1 = h / 3, t2 = m->surf->twin[h] / 3, tag = -(h + 1);
     const double *a = m->xyz + 3 * m->tri[h], *b = m->xyz + 3 * m->tri[h - h % 3 + (h % 3 + 1) % 3];
-    double mid[3], e[3], c1[3], c2[3], d1[3], d2[3], dir[3], len = 0.0;
-    for (int k = 0; k < 3; k++) mid[k] = (a[k] + b[k]) / 2;
+    double mid[3], e[3], c1[3], c2[3], d1[3], d2[3], dir[3];
+    const double r = edge_ball(m, h, mid);
     sub3(b, a, e);
     unit3(e);
     tri_centroid(m, t1, c1);
@@ -395,8 +376,6 @@ static double side_angle(const glpgp_mesh *m, const unsigned char *block, int h,
     unit3(d1);
     unit3(d2);
     sub3(d1, d2, dir);
-    for (int k = 0; k < 3; k++) len += edge_len(m, 3 * t1 + k) + edge_len(m, 3 * t2 + k);
-    const double r = CREASE_REACH * len / 6.0;
     int *stamp2 = stamp + m->nt, *queue2 = queue + CREASE_CAP;
     const int n1 = ball_region(m, block, h, t1, mid, r, tag, stamp, queue);
     const int n2 = ball_region(m, block, h, t2, mid, r, tag, stamp2, queue2);
@@ -422,16 +401,28 @@ static double side_angle(const glpgp_mesh *m, const unsigned char *block, int h,
     return atan2(sqrt(dot3(x, x)), dot3(s1, s2));
 }
 
-/* Clears the candidates (flag) that fail a test (1: fails) against the
+/* Test 1 fails: candidate half-edge h's triangles are joined inside its
+ * ball without crossing a candidate (cand). A walk that reaches
+ * CREASE_CAP triangles first keeps the edge. */
+static int walked_around(const glpgp_mesh *m, const unsigned char *cand, int h, int *stamp, int *queue)
+{
+    double mid[3];
+    const double r = edge_ball(m, h, mid);
+    ball_region(m, cand, h, h / 3, mid, r, h + 1, stamp, queue);
+    return stamp[m->surf->twin[h] / 3] == h + 1;
+}
+
+/* Clears the candidates (flag) that fail test 1 (walls NULL) or test 2
+ * (the side angle with these walls at most min_angle), judged against the
  * candidates as they were before this pass; returns how many it cleared. */
-static int crease_pass(const glpgp_mesh *m, unsigned char *flag, const unsigned char *block, double min_angle,
+static int crease_pass(const glpgp_mesh *m, unsigned char *flag, const unsigned char *walls, double min_angle,
                        int *stamp, int *queue, int *drop)
 {
     const int *twin = m->surf->twin;
     int nd = 0;
     for (int h = 0; h < 3 * m->nt; h++) {
         if (!flag[h] || twin[h] < h) continue;
-        const int fails = block ? side_angle(m, block, h, stamp, queue) <= min_angle
+        const int fails = walls ? side_angle(m, walls, h, stamp, queue) <= min_angle
                                 : walked_around(m, flag, h, stamp, queue);
         if (fails) drop[nd++] = h;
     }
