@@ -5,7 +5,10 @@
 # cube, 45 and 40 degree prisms, jittered boxes and prisms, bumpy scans
 # with a 0.2-1% jitter, genus 2 and a torus jittered in every coordinate)
 # and writes one JSON line per model (triangles, edges above the feature
-# angle, features) to $OUT/features.jsonl and a table to $OUT/summary.md.
+# angle, features, the angle defects' rms, and what --denoise auto makes
+# of it: noise edges before and after, vertices moved, the largest move,
+# features and defects after) to $OUT/features.jsonl and a table to
+# $OUT/summary.md.
 # Seconds on 2 cores. Results: bench/results/surface_features.md.
 # Usage: bash bench/surface_features.sh [path/to/build]   (default build)
 set -eu
@@ -40,8 +43,13 @@ python3 - <<'PY'
 import json
 rows = [json.loads(l) for l in open("features.jsonl")]
 with open("summary.md", "w") as o:
-    o.write("| model | triangles | edges above %g degrees | features |\n|---|---|---|---|\n" % rows[0]["feature_angle"])
+    o.write("| model | triangles | edges above %g degrees | features | angle defect rms | --denoise auto: noise "
+            "edges before -> after | vertices moved | largest move (mean edges) | features after | angle defect "
+            "rms after |\n|---|---|---|---|---|---|---|---|---|---|\n" % rows[0]["feature_angle"])
     for r in rows:
-        o.write("| %s | %d | %d | %d |\n" % (r["model"], r["triangles"], r["edges_above"], r["features"]))
+        d = r["denoise"]
+        o.write("| %s | %d | %d | %d | %.4f | %d -> %d | %d | %.3f | %d | %.4f |\n" % (
+            r["model"], r["triangles"], r["edges_above"], r["features"], r["defect_rms"], d["noise_edges"],
+            d["noise_edges_after"], d["moved"], d["max_move_edges"], d["features"], d["defect_rms"]))
 print(open("summary.md").read())
 PY

@@ -35,6 +35,10 @@ typedef struct solve_cli {
     int backend, device, verbosity;
     int no_refine;
     glpgp_refine_info refined;
+    glpgp_surface_denoise_info denoise; /* a surface's noise smoothed before the solve */
+    double denoise_h;
+    glpgp_mesh *input_mesh; /* the input as read, kept where it was denoised (the quads' distance to it) */
+    double hausdorff_input; /* that distance / h (< 0: not measured) */
     const char *out, *stats, *quads, *image;
     glpgp_quads_options qo;
     int quad_opts, allow_invalid;
@@ -258,6 +262,15 @@ static void print_summary(const solve_cli *c, const char *input, const glpgp_mes
     if (m->surf)
         printf("  surface        chi %d, genus %d, %d boundary loop(s), %d component(s)\n", m->surf->euler,
                m->surf->genus, m->nloops, m->surf->ncomponents);
+    char hin[96] = "";
+    if (c->hausdorff_input >= 0.0)
+        snprintf(hin, sizeof hin, "; to the input as read: Hausdorff %.3f h", c->hausdorff_input);
+    if (c->denoise.rounds)
+        printf("  denoised       %d edges above %g degrees that are not creases (a scan's noise) -> %d: %d vertices "
+               "smoothed, largest move %.3f h (mean %.3f h); the quads' distances below are to the smoothed "
+               "surface%s\n",
+               c->denoise.noise_edges, c->o.feature_angle, c->denoise.noise_edges_after, c->denoise.moved,
+               c->denoise.max_move / c->denoise_h, c->denoise.mean_move / c->denoise_h, hin);
     if (c->refined.rounds)
         printf("  refined        %d -> %d vertices, %d -> %d triangles (%d rounds: too coarse for the local h)\n",
                c->refined.nv0, c->refined.nv, c->refined.nt0, c->refined.nt, c->refined.rounds);
@@ -389,9 +402,12 @@ static int prepare(solve_cli *c, const char *input, glpgp_mesh **pm, glpgp_size_
         return rc;
     }
     c->refined = pi.refined;
+    c->denoise = pi.denoise;
+    c->denoise_h = pi.denoise_h;
     c->t_refine = pi.seconds_refine;
     if (mr) {
-        glpgp_mesh_destroy(&m);
+        if (c->denoise.rounds && c->quads) c->input_mesh = m; /* the quads' distance to it */
+        else glpgp_mesh_destroy(&m);
         m = mr;
     }
     *pm = m;
@@ -513,6 +529,9 @@ static int solve_main(solve_cli *cc, const char *input, glpgp_dist *dd)
     backend_job bj;
     memset(&bj, 0, sizeof bj);
     memset(&c.refined, 0, sizeof c.refined);
+    memset(&c.denoise, 0, sizeof c.denoise);
+    c.input_mesh = NULL;
+    c.hausdorff_input = -1.0;
     if (glpgp_dist_reads(dd)) { /* (a split run's other ranks get their part from rank 0) */
         /* the backend (program build) in a thread while the input is read */
         if (!dd) backend_job_start(&bj, &c);
@@ -556,6 +575,11 @@ static int solve_main(solve_cli *cc, const char *input, glpgp_dist *dd)
         if (m->surf) { /* a surface: its own pipeline and check (quads/quads_surface.c) */
             if (glpgp_quads_build_surface(m, r, &c.qo, &q, &h, &c.qsteps) != GLPGP_OK) goto fail;
             if (glpgp_quads_quality_surface(q, m, h, &qq) != GLPGP_OK) goto fail;
+            if (c.input_mesh) { /* denoised: the distance to the input as read */
+                glpgp_quads_report qi;
+                if (glpgp_quads_quality_surface(q, c.input_mesh, h, &qi) != GLPGP_OK) goto fail;
+                c.hausdorff_input = qi.hausdorff;
+            }
             qq.steps = c.qsteps;
             qq.has_steps = 1;
         } else {
@@ -600,7 +624,8 @@ static int solve_main(solve_cli *cc, const char *input, glpgp_dist *dd)
      * they report every phase before them) */
     glpgp_timers_add(&r->timers, &cli_tm);
     if (c.stats) {
-        glpgp_stats_extra x = {input, c.out, t_read, c.quads ? &qq : NULL, nranks, rank_info, device};
+        glpgp_stats_extra x = {input, c.out, t_read, c.quads ? &qq : NULL, nranks, rank_info, device,
+                               c.denoise.rounds ? &c.denoise : NULL, c.denoise_h, c.hausdorff_input};
         if (glpgp_output_set_stats(outs, m, &c.o, r, c.stats, &x) != GLPGP_OK) goto fail;
     }
     /* distributed .pvtu: every rank's files complete, then every rank commits */
@@ -632,6 +657,7 @@ done:
     glpgp_result_destroy(&r);
     glpgp_backend_destroy(&b);
     glpgp_mesh_destroy(&m);
+    glpgp_mesh_destroy(&c.input_mesh);
     glpgp_size_image_destroy(&simg);
     return rc;
 }

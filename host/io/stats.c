@@ -11,7 +11,30 @@
 #include <stdlib.h>
 
 /* A surface's members of "mesh" (glpgp/surface.h): its 3D box and topology. */
-static void stats_surface(glpgp_json *w, const glpgp_mesh *m, const glpgp_options *o)
+/* mesh.surface.denoise: what glpgp_solve_prepare smoothed (null: nothing) */
+static void stats_denoise(glpgp_json *w, const glpgp_stats_extra *x)
+{
+    const glpgp_surface_denoise_info *d = x ? x->denoise : NULL;
+    if (!d) {
+        glpgp_json_null(w, "denoise");
+        return;
+    }
+    const double h = x->denoise_h > 0.0 ? x->denoise_h : 1.0;
+    glpgp_json_object(w, "denoise");
+    glpgp_json_int(w, "noise_edges", d->noise_edges);
+    glpgp_json_int(w, "noise_edges_after", d->noise_edges_after);
+    glpgp_json_int(w, "rounds", d->rounds);
+    glpgp_json_int(w, "moved", d->moved);
+    glpgp_json_int(w, "capped", d->capped);
+    glpgp_json_num(w, "max_move", d->max_move);
+    glpgp_json_num(w, "mean_move", d->mean_move);
+    glpgp_json_num(w, "max_move_over_h", d->max_move / h);
+    if (x->hausdorff_input >= 0.0) glpgp_json_num(w, "quads_hausdorff_to_input", x->hausdorff_input);
+    else glpgp_json_null(w, "quads_hausdorff_to_input");
+    glpgp_json_close(w);
+}
+
+static void stats_surface(glpgp_json *w, const glpgp_mesh *m, const glpgp_options *o, const glpgp_stats_extra *x)
 {
     unsigned char *fl = malloc((size_t)3 * m->nt);
     glpgp_json_array(w, "bbox3");
@@ -28,6 +51,7 @@ static void stats_surface(glpgp_json *w, const glpgp_mesh *m, const glpgp_option
     if (o) glpgp_json_int(w, "edges_above_feature_angle", glpgp_surface_edges_above(m, o->feature_angle));
     if (o) glpgp_json_num(w, "feature_angle", o->feature_angle);
     glpgp_json_num(w, "total_holonomy", glpgp_surface_total_holonomy(m));
+    stats_denoise(w, x);
     glpgp_json_close(w);
     free(fl);
 }
@@ -325,7 +349,7 @@ static void stats_body(FILE *f, const glpgp_mesh *m, const glpgp_options *o, con
     for (int i = 0; i < 4; i++) glpgp_json_num(w, NULL, m->bbox[i]);
     glpgp_json_close(w);
     glpgp_json_int(w, "orientation_fixed", m->orientation_fixed);
-    if (m->surf) stats_surface(w, m, o);
+    if (m->surf) stats_surface(w, m, o, x);
     glpgp_json_close(w);
 
     glpgp_json_object(w, "singularities");

@@ -89,6 +89,8 @@ static const int k_cross_mesh_vals[] = {GLPGP_CROSS_MESH_INPUT, GLPGP_CROSS_MESH
 static const int k_coupling_vals[] = {GLPGP_COUPLING_AUTO, GLPGP_COUPLING_OFF, GLPGP_COUPLING_ON};
 static const char *const k_cross_sizes[] = {"off", "on", "auto", NULL};
 static const int k_cross_size_vals[] = {GLPGP_CROSS_SIZE_OFF, GLPGP_CROSS_SIZE_ON, GLPGP_CROSS_SIZE_AUTO};
+static const char *const k_denoise[] = {"auto", "off", NULL};
+static const int k_denoise_vals[] = {GLPGP_DENOISE_AUTO, GLPGP_DENOISE_OFF};
 static const char *const k_oscs[] = {"auto", "concurrent", "sequential", NULL};
 static const int k_osc_vals[] = {GLPGP_OSC_AUTO, GLPGP_OSC_CONCURRENT, GLPGP_OSC_SEQUENTIAL};
 static const char *const k_inits[] = {"naive", "one", NULL};
@@ -169,6 +171,13 @@ static const glpgp_optdesc k_table[] = {
         "quads follow like the boundary (180: none); a scan's noise is\n"
         "not: an edge counts only where it separates its sides locally,\n"
         "keeps its angle over a few edges and is part of a crease"),
+    CHO("denoise", G1, denoise, k_denoise, k_denoise_vals,
+        "a surface: where it shows a scan's noise (edges above\n"
+        "--feature-angle that are not creases), its vertices there are\n"
+        "smoothed (Taubin; creases, corners and the boundary kept, each\n"
+        "vertex moved at most h / 10) before the solve; the quads lie on\n"
+        "the smoothed surface (the summary gives the largest move);\n"
+        "off: the input as it is"),
     DBL("size-curl", G1, size_curl, 0.0, 0, 1.0, 0, "F",
         "a surface: the local size scaled so that the guiding frame over\n"
         "h(x) is curl-free (least squares; Ray et al.'s curl correction),\n"

@@ -82,6 +82,7 @@ void glpgp_options_default(glpgp_options *o)
     o->size_diag_div = 20.0;
     o->size_min_edges = 10.0;
     o->feature_angle = GLPGP_FEATURE_ANGLE_DEFAULT;
+    o->denoise = GLPGP_DENOISE_AUTO;
 }
 
 #define OPEN01(v) ((v) > 0.0 && (v) < 1.0)

@@ -135,13 +135,37 @@ static glpgp_status refine_surface(const glpgp_mesh *m, const glpgp_options *o, 
     return GLPGP_OK;
 }
 
-/* glpgp_solve_prepare on a surface: slivers, the refinement, the size and
- * field checks on the mesh that is solved. */
-static glpgp_status prepare_surface(const glpgp_mesh *m, glpgp_options *o, const char *name, double max_triangles,
+/* A surface's scan noise smoothed away (o->denoise; glpgp_surface_denoise):
+ * *out the smoothed copy, or NULL where m shows none or a size file gives
+ * values per input vertex (kept on the input as it is). */
+static glpgp_status denoise_surface(const glpgp_mesh *m, const glpgp_options *o, const char *name, glpgp_mesh **out,
+                                    glpgp_prepare_info *info)
+{
+    *out = NULL;
+    if (o->denoise != GLPGP_DENOISE_AUTO || o->size_field == GLPGP_SIZE_FILE || o->field == GLPGP_FIELD_FILE)
+        return GLPGP_OK;
+    const double h = o->size > 0.0 ? o->size : glpgp_default_size(m, o);
+    glpgp_surface_denoise_info *d = &info->denoise;
+    GLPGP_CHECK(glpgp_surface_denoise(m, o->feature_angle, h / GLPGP_DENOISE_MAX_MOVE, out, d));
+    info->denoise_h = h;
+    if (*out)
+        glpgp_log(GLPGP_LOG_INFO,
+                  "%s: a scan's noise (%d edges above %g degrees that are not creases) smoothed: %d vertices moved, "
+                  "largest move %.3g h (mean %.3g h)%s; %d such edges left (--denoise off: the input as it is)",
+                  name, d->noise_edges, o->feature_angle, d->moved, d->max_move / h, d->mean_move / h,
+                  d->capped ? " (held at h / 10)" : "", d->noise_edges_after);
+    return GLPGP_OK;
+}
+
+/* glpgp_solve_prepare on a surface: slivers, the scan noise, the refinement,
+ * the size and field checks on the mesh that is solved. */
+static glpgp_status prepare_surface(const glpgp_mesh *m0, glpgp_options *o, const char *name, double max_triangles,
                                     int refine_ok, glpgp_mesh **refined, glpgp_prepare_info *info)
 {
-    warn_slivers(m, name);
-    glpgp_mesh *mr = NULL;
+    warn_slivers(m0, name);
+    glpgp_mesh *md = NULL, *mr = NULL;
+    GLPGP_CHECK(denoise_surface(m0, o, name, &md, info));
+    const glpgp_mesh *m = md ? md : m0;
     const int refine = refine_ok && o->field != GLPGP_FIELD_FILE;
     const double lmax = refine && o->size_field == GLPGP_SIZE_FILE ? glpgp_mesh_longest_edge(m) : 0.0;
     /* a size file's values belong to the input's vertices: not refined (the
@@ -151,16 +175,21 @@ static glpgp_status prepare_surface(const glpgp_mesh *m, glpgp_options *o, const
                   "%s: edges up to h / %.2g, not refined for h = %.4g (%g edges per period are needed): the size file "
                   "%s gives one value per input vertex (the oscillators may collapse: a finer input)",
                   name, o->size / lmax, o->size, GLPGP_SURFACE_EDGES, o->size_file ? o->size_file : "");
-    if (refine && o->size_field != GLPGP_SIZE_FILE) GLPGP_CHECK(refine_surface(m, o, name, max_triangles, &mr, info));
+    glpgp_status st = GLPGP_OK;
+    if (refine && o->size_field != GLPGP_SIZE_FILE) st = refine_surface(m, o, name, max_triangles, &mr, info);
+    if (mr) glpgp_mesh_destroy(&md); /* mr keeps what it needs of it (origin) */
     const glpgp_mesh *ms = mr ? mr : m;
-    glpgp_status st = check_sizes(ms, o, 0, max_triangles);
-    if (st != GLPGP_OK) info->usage = 1;
+    if (st == GLPGP_OK) {
+        st = check_sizes(ms, o, 0, max_triangles);
+        if (st != GLPGP_OK) info->usage = 1;
+    }
     if (st == GLPGP_OK) st = check_field(ms, o);
     if (st != GLPGP_OK) {
         glpgp_mesh_destroy(&mr);
+        glpgp_mesh_destroy(&md);
         return st;
     }
-    *refined = mr;
+    *refined = mr ? mr : md;
     return GLPGP_OK;
 }
 

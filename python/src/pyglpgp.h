@@ -47,6 +47,8 @@ typedef struct pg_result {
     PyObject *keep;     /* objects whose buffers o points into (strings, the field array) */
     char device[512];   /* the OpenCL device ("" on other backends) */
     glpgp_refine_info refined;
+    glpgp_surface_denoise_info denoise; /* a surface's noise smoothed before the solve */
+    double denoise_h;
     double seconds_read;
     PyObject *cache;    /* dict of the arrays and the stats made so far */
 } pg_result;

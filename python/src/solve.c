@@ -190,6 +190,8 @@ static PyObject *new_result(glpgp_result *r, PyObject *mesh, const glpgp_options
     Py_XINCREF(keep);
     self->device[0] = '\0';
     memset(&self->refined, 0, sizeof self->refined);
+    memset(&self->denoise, 0, sizeof self->denoise);
+    self->denoise_h = 0.0;
     self->seconds_read = 0.0;
     self->cache = NULL;
     PyObject_GC_Track(self);
@@ -268,6 +270,8 @@ PyObject *pg_solve(PyObject *self, PyObject *args, PyObject *kw)
     pg_result *res = (pg_result *)out;
     snprintf(res->device, sizeof res->device, "%s", run.device);
     res->refined = run.pi.refined;
+    res->denoise = run.pi.denoise;
+    res->denoise_h = run.pi.denoise_h;
     res->seconds_read = pm->seconds_read + run.seconds;
     warn_result(res->r, &res->o, res->mesh->m);
     if (PyErr_Occurred()) Py_CLEAR(out); /* warnings turned into errors */
@@ -467,6 +471,9 @@ static PyObject *make_stats(PyObject *self)
     x.input = input;
     x.seconds_read = res->has_options ? res->seconds_read : -1.0;
     x.device = res->device[0] ? res->device : NULL;
+    x.denoise = res->denoise.rounds ? &res->denoise : NULL;
+    x.denoise_h = res->denoise_h;
+    x.hausdorff_input = -1.0;
     char *text = NULL;
     glpgp_status st = glpgp_stats_json_text(res->mesh->m, res->has_options ? &res->o : NULL, res->r, &x, &text);
     if (st != GLPGP_OK) return pg_raise(st);
@@ -560,6 +567,9 @@ static PyObject *res_write(pg_result *self, PyObject *args, PyObject *kw)
     x.input = input;
     x.seconds_read = self->has_options ? self->seconds_read : -1.0;
     x.device = self->device[0] ? self->device : NULL;
+    x.denoise = self->denoise.rounds ? &self->denoise : NULL;
+    x.denoise_h = self->denoise_h;
+    x.hausdorff_input = -1.0;
     glpgp_status st;
     Py_BEGIN_ALLOW_THREADS
     if (glpgp_has_ext(path, ".json"))
@@ -632,6 +642,8 @@ static PyObject *res_with_z(pg_result *self, PyObject *args, PyObject *kw)
         pg_result *res = (pg_result *)out;
         memcpy(res->device, self->device, sizeof res->device);
         res->refined = self->refined;
+        res->denoise = self->denoise;
+        res->denoise_h = self->denoise_h;
         res->seconds_read = self->seconds_read;
     }
     return out;

@@ -14,12 +14,15 @@
 #    0.9); --cross-align 0 keeps the smoothest field's singularities and
 #    irregular vertices; a negative weight is a usage error;
 #  - a noisy scan (bench/surface_models.py bumpy 5 with a 1% vertex
-#    jitter): its 2084 kinks above the default feature angle are not read
-#    as creases (feature_edges 0: glpgp_surface_features) and the mesh is
-#    near the count asked, as with --feature-angle 180 (before: 22164
-#    quads from the last resort for 300 asked); at --feature-angle 15,
-#    under the noise's level, about 2000 kinks stay features and break the
-#    extraction, and the command still ends with a valid mesh (the strips
+#    jitter): its 2084 kinks above the default feature angle are noise, not
+#    creases, and are smoothed away before the solve (--denoise auto:
+#    none left, no vertex moved more than h / 10); the cross field has the
+#    sphere's 8 singularities and the quads an irregular vertex at each,
+#    about the count asked (before the crease tests: 22164 quads from the
+#    last resort for 300 asked; before the smoothing, 330 singularities),
+#    within h / 4 of the input as read; --denoise off solves the jitter as
+#    it is and says nothing of it; at --feature-angle 15, under the
+#    noise's level, the command still ends with a valid mesh (the strips
 #    exited 1 on such a scan: "a lone triangle's quad lost", a triangle
 #    joined with a quad it shares two sides with);
 #  - `glpgp quality Q.obj --domain SURFACE`: the same report as the solve's
@@ -69,16 +72,35 @@ run_fail "--cross-align -1" 2 "cross-align" solve shape:torus:2000 --cross-align
 # mesh however broken the extraction
 python3 "$(dirname "$0")/../../bench/surface_models.py" bumpy 5 noisy.obj 0.01 || fail "noisy.obj"
 run_ok "noisy scan" solve noisy.obj --faces 300 --backend reference --quads nz.obj --stats nz.json
+grep -qE "noise .*smoothed" err.txt || fail "noisy scan: the log does not name the smoothing"
+grep -q "denoised" out.txt || fail "noisy scan: no denoised line in the summary"
 run_ok "noisy scan, low feature angle" solve noisy.obj --faces 300 --backend reference --feature-angle 15 \
     --quads nz15.obj --stats nz15.json
 python3 - <<'PY' || fail "noisy scan"
 import json
 s = json.load(open("nz.json")); a = s["quads"]; b = json.load(open("nz15.json"))["quads"]
-assert s["mesh"]["surface"]["feature_edges"] == 0, s["mesh"]["surface"]
-assert s["mesh"]["surface"]["edges_above_feature_angle"] > 1000, s["mesh"]["surface"]
-assert a["valid"] and a["other_faces"] == 0 and 150 <= a["quads"] <= 450, (a["quads"], a["invalid_reasons"])
+d = s["mesh"]["surface"]["denoise"]
+assert d["noise_edges"] > 1000 and d["noise_edges_after"] == 0, d
+assert 0 < d["max_move_over_h"] <= 0.1 + 1e-9 and d["moved"] > 1000, d
+assert s["mesh"]["surface"]["edges_above_feature_angle"] == 0, s["mesh"]["surface"]
+assert s["cross_field"]["singularities"] == 8, s["cross_field"]["singularities"]
+assert a["valid"] and a["other_faces"] == 0 and 150 <= a["quads"] <= 1300, (a["quads"], a["invalid_reasons"])
+assert a["irregular_vertices"]["interior"] <= 16, a["irregular_vertices"]
+assert d["quads_hausdorff_to_input"] <= 0.25, d
 assert b["valid"] and b["other_faces"] == 0, b["invalid_reasons"]
 PY
+# --denoise off: the input as it is (here only up to the local size: the
+# jitter refines it everywhere), nothing said of a smoothing
+run_ok "noisy scan, --denoise off" solve noisy.obj --faces 300 --backend reference --denoise off --method pgp \
+    --max-elements 30000 -o nzoff.vtu --stats nzoff.json
+grep -qE "noise .*smoothed|denoised" err.txt out.txt && fail "--denoise off: the output names a smoothing"
+python3 - <<'PY' || fail "--denoise off"
+import json
+s = json.load(open("nzoff.json"))
+assert s["mesh"]["surface"]["denoise"] is None, s["mesh"]["surface"]
+assert s["mesh"]["surface"]["edges_above_feature_angle"] > 1000, s["mesh"]["surface"]
+PY
+run_fail "--denoise bogus" 2 "denoise" solve noisy.obj --denoise bogus -o x.vtu
 
 # the 3D check of an OBJ made elsewhere: glpgp's own first
 run_ok "generate" generate shape:sphere:8000 -o sphere.obj

@@ -415,7 +415,7 @@ static void test_json(const char *dir, const glpgp_mesh *m, const glpgp_result *
     o.method = GLPGP_METHOD_GL;
     o.field = GLPGP_FIELD_FILE;
     o.field_file = "dir/field \"U\".txt";
-    glpgp_stats_extra x = {"in\\put\t.obj", NULL, 0.25, NULL, 0, NULL, "device 0: \"gpu\"\\x"};
+    glpgp_stats_extra x = {"in\\put\t.obj", NULL, 0.25, NULL, 0, NULL, "device 0: \"gpu\"\\x", NULL, 0.0, -1.0};
     CHECK(glpgp_write_stats_json(m, &o, r, path, &x) == GLPGP_OK);
     char *buf = read_all(path);
     CHECK(buf != NULL);
@@ -518,7 +518,7 @@ static void test_stats_quads(const char *dir, const glpgp_mesh *m, const glpgp_r
     qq.h = 1e-300;
     qq.hausdorff = -1;
     qq.singular[0] = qq.singular[1] = -1;
-    glpgp_stats_extra x = {"in.obj", "out.vtu", 0.5, &qq, 0, NULL, NULL};
+    glpgp_stats_extra x = {"in.obj", "out.vtu", 0.5, &qq, 0, NULL, NULL, NULL, 0.0, -1.0};
     CHECK_OK(glpgp_write_stats_json(m, NULL, r, path, &x));
     char *text = read_all(path);
     CHECK(text && json_valid(text));

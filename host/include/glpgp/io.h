@@ -194,6 +194,12 @@ typedef struct glpgp_stats_extra {
     int ranks;
     const double *rank_info;
     const char *device;  /* the OpenCL device and launch shape (glpgp_cl_backend_info; NULL: null) */
+    /* a surface's noise smoothed before the solve (glpgp_solve_prepare):
+     * mesh.surface.denoise, moves also over h = denoise_h (NULL: null),
+     * and the quads' Hausdorff distance / h to the input as read (< 0: not
+     * measured) */
+    const glpgp_surface_denoise_info *denoise;
+    double denoise_h, hausdorff_input;
 } glpgp_stats_extra;
 #define GLPGP_RANK_INFO_N 4
 

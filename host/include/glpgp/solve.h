@@ -14,6 +14,7 @@
 #include "glpgp/kinds.h" /* GLPGP_ELEM_* and GLPGP_HESS_* */
 #include "glpgp/optdesc.h"
 #include "glpgp/result.h"
+#include "glpgp/surface.h" /* glpgp_surface_denoise_info */
 
 #ifdef __cplusplus
 extern "C" {
@@ -47,6 +48,11 @@ enum glpgp_cross_size {
     GLPGP_CROSS_SIZE_ON = 1,  /* q = 1 (largest size h), no ratio bound: fully conformal */
     GLPGP_CROSS_SIZE_AUTO = 2 /* q = cross_size_quantile, c = cross_size_ratio (docs/numerics.md) */
 };
+
+/* glpgp_options.denoise: where a surface shows a scan's noise (interior
+ * edges above the feature angle that are not creases), smooth it away
+ * before the solve (AUTO), or solve the input as it is (OFF). */
+enum { GLPGP_DENOISE_OFF = 0, GLPGP_DENOISE_AUTO = 1 };
 enum glpgp_init { GLPGP_INIT_NAIVE = 0, GLPGP_INIT_ONE = 1 };
 /* How the two oscillators of a solve share the machine (glpgp_options.oscillators). */
 enum glpgp_oscillators {
@@ -253,6 +259,8 @@ typedef struct glpgp_options {
     double rim_scale;     /* the boundary's crosses read over rim_scale h on either side of a
                              vertex (glpgp_surface_constraints_rims; at least
                              GLPGP_RIM_EDGES of the rim's edges); 0: its own edges [0] */
+    int denoise;          /* GLPGP_DENOISE_*: a scan's noise smoothed out of the surface before
+                             the solve (glpgp_solve_prepare, glpgp_surface_denoise) [AUTO] */
 } glpgp_options;
 
 /* Fill the documented defaults. */
@@ -282,6 +290,10 @@ glpgp_status glpgp_options_check(const glpgp_options *o);
  * leaves a mean edge of about h / 9.4 (the former rule, mean edge <= h / 8
  * by uniform rounds, left h / 8 to h / 16): bench/results/surface_refine.md. */
 #define GLPGP_SURFACE_EDGES 6.0
+/* --denoise auto moves a surface's vertices by at most h / this (the
+ * quads' distance to the input: at most their distance to the smoothed
+ * surface plus h / 10). */
+#define GLPGP_DENOISE_MAX_MOVE 10.0
 #define GLPGP_SIZE_MAX_DIAG 100.0
 /* `glpgp solve` with refinement: a default size above diameter / this (the
  * raise to 10 mean edges on a coarse input) is replaced by diameter / 20 and
@@ -371,7 +383,9 @@ glpgp_status glpgp_size_refine(const glpgp_mesh *m, const glpgp_options *o, doub
  * read once; the triangles too coarse for the local size refined
  * (glpgp_size_refine; o->size then set to h); a surface's edges longer
  * than h / GLPGP_SURFACE_EDGES bisected (glpgp_mesh_refine_surface, within
- * max_triangles). *refined <- the refined mesh
+ * max_triangles), after its scan noise is smoothed away (o->denoise,
+ * glpgp_surface_denoise: vertices moved by at most h / 10; info->denoise).
+ * *refined <- the refined (or denoised) mesh
  * to solve instead of m (free it with glpgp_mesh_destroy), or NULL: solve m.
  * On failure info->usage tells whether it is about the option values (the
  * CLI's usage error, "--size: MESSAGE") rather than the input. */
@@ -379,6 +393,8 @@ typedef struct glpgp_prepare_info {
     glpgp_refine_info refined; /* split_edges 0: not refined */
     int usage;                 /* the failure concerns the size or another option value */
     double seconds_refine;     /* the refinement's wall seconds (0: none) */
+    glpgp_surface_denoise_info denoise; /* a surface's noise smoothed (rounds 0: none) */
+    double denoise_h;          /* the size h the moves are measured against */
 } glpgp_prepare_info;
 glpgp_status glpgp_solve_prepare(const glpgp_mesh *m, glpgp_options *o, const char *name, double max_triangles,
                                  int refine_ok, glpgp_mesh **refined, glpgp_prepare_info *info);
