@@ -11,25 +11,9 @@
 #include "glpgp/io.h"
 #include "glpgp/mesh.h"
 #include "glpgp/surface.h"
-#include "glpgp/kinds.h"
 
-#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
-
-/* the root mean square angle defect over the interior vertices */
-static double defect_rms(const glpgp_mesh *m)
-{
-    double s = 0.0;
-    int n = 0;
-    for (int v = 0; v < m->nv; v++)
-        if (!m->on_boundary[v]) {
-            const double d = 2.0 * GLPGP_PI - m->surf->angle_sum[v];
-            s += d * d;
-            n++;
-        }
-    return n ? sqrt(s / n) : 0.0;
-}
 
 static int one(const char *path, double deg)
 {
@@ -45,10 +29,10 @@ static int one(const char *path, double deg)
     } else {
         printf("{\"model\": \"%s\", \"triangles\": %d, \"feature_angle\": %g, \"edges_above\": %d, "
                "\"features\": %d, \"defect_rms\": %.6g, \"denoise\": {\"noise_edges\": %d, \"noise_edges_after\": "
-               "%d, \"rounds\": %d, \"moved\": %d, \"max_move_edges\": %.4g, \"features\": %d, \"defect_rms\": %.6g}}\n",
-               path, m->nt, deg, glpgp_surface_edges_above(m, deg), n, defect_rms(m), in.noise_edges,
-               in.noise_edges_after, in.rounds, in.moved, in.max_move / m->mean_edge, d ? nd : n,
-               defect_rms(d ? d : m));
+               "%d, \"folds\": %d, \"folds_after\": %d, \"rounds\": %d, \"moved\": %d, \"max_move_edges\": %.4g, \"features\": %d, \"defect_rms\": %.6g}}\n",
+               path, m->nt, deg, glpgp_surface_edges_above(m, deg), n, glpgp_surface_defect_rms(m), in.noise_edges,
+               in.noise_edges_after, in.folds, in.folds_after, in.rounds, in.moved, in.max_move / m->mean_edge, d ? nd : n,
+               glpgp_surface_defect_rms(d ? d : m));
         rc = 0;
     }
     free(fl);

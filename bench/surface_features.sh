@@ -44,12 +44,12 @@ import json
 rows = [json.loads(l) for l in open("features.jsonl")]
 with open("summary.md", "w") as o:
     o.write("| model | triangles | edges above %g degrees | features | angle defect rms | --denoise auto: noise "
-            "edges before -> after | vertices moved | largest move (mean edges) | features after | angle defect "
-            "rms after |\n|---|---|---|---|---|---|---|---|---|---|\n" % rows[0]["feature_angle"])
+            "edges before -> after | folded triangles before -> after | vertices moved | largest move (mean edges) | features after | angle defect "
+            "rms after |\n|---|---|---|---|---|---|---|---|---|---|---|\n" % rows[0]["feature_angle"])
     for r in rows:
         d = r["denoise"]
-        o.write("| %s | %d | %d | %d | %.4f | %d -> %d | %d | %.3f | %d | %.4f |\n" % (
+        o.write("| %s | %d | %d | %d | %.4f | %d -> %d | %d -> %d | %d | %.3f | %d | %.4f |\n" % (
             r["model"], r["triangles"], r["edges_above"], r["features"], r["defect_rms"], d["noise_edges"],
-            d["noise_edges_after"], d["moved"], d["max_move_edges"], d["features"], d["defect_rms"]))
+            d["noise_edges_after"], d["folds"], d["folds_after"], d["moved"], d["max_move_edges"], d["features"], d["defect_rms"]))
 print(open("summary.md").read())
 PY

@@ -168,4 +168,28 @@ static inline const char *tu_tmp_path(const char *file)
     return buf[k];
 }
 
+/* Surface m's vertices moved by amp x a uniform jitter in [-1, 1) (a
+ * linear congruential sequence from seed: the same surface every run),
+ * radially from the origin (radial) or in each coordinate, as a new
+ * surface (NULL when it fails). A scan's noise for the feature and
+ * denoising tests. */
+static inline glpgp_mesh *tu_jittered_surface(const glpgp_mesh *m, double amp, int radial, unsigned seed)
+{
+    double *x = (double *)malloc(sizeof(double) * 3 * (size_t)m->nv);
+    glpgp_mesh *out = NULL;
+    if (!x) return NULL;
+    for (int i = 0; i < m->nv; i++) {
+        const double *p = m->xyz + 3 * i;
+        double f[3];
+        for (int k = 0; k < (radial ? 1 : 3); k++) {
+            seed = seed * 1664525u + 1013904223u;
+            f[k] = (seed >> 8) / 8388608.0 - 1.0;
+        }
+        for (int k = 0; k < 3; k++) x[3 * i + k] = radial ? (1.0 + amp * f[0]) * p[k] : p[k] + amp * f[k];
+    }
+    CHECK_OK(glpgp_mesh_create_surface(m->nv, x, m->nt, m->tri, &out));
+    free(x);
+    return out;
+}
+
 #endif

@@ -267,10 +267,11 @@ static void print_summary(const solve_cli *c, const char *input, const glpgp_mes
         snprintf(hin, sizeof hin, "; to the input as read: Hausdorff %.3f h", c->hausdorff_input);
     if (c->denoise.rounds)
         printf("  denoised       %d edges above %g degrees that are not creases (a scan's noise) -> %d: %d vertices "
-               "smoothed, largest move %.3f h (mean %.3f h); the quads' distances below are to the smoothed "
-               "surface%s\n",
+               "smoothed, largest move %.3f h (mean %.3f h), angle defects rms %.3g -> %.3g rad; the quads' "
+               "distances below are to the smoothed surface%s\n",
                c->denoise.noise_edges, c->o.feature_angle, c->denoise.noise_edges_after, c->denoise.moved,
-               c->denoise.max_move / c->denoise_h, c->denoise.mean_move / c->denoise_h, hin);
+               c->denoise.max_move / c->denoise_h, c->denoise.mean_move / c->denoise_h, c->denoise.defect_rms,
+               c->denoise.defect_rms_after, hin);
     if (c->refined.rounds)
         printf("  refined        %d -> %d vertices, %d -> %d triangles (%d rounds: too coarse for the local h)\n",
                c->refined.nv0, c->refined.nv, c->refined.nt0, c->refined.nt, c->refined.rounds);

@@ -23,12 +23,16 @@ static void stats_denoise(glpgp_json *w, const glpgp_stats_extra *x)
     glpgp_json_object(w, "denoise");
     glpgp_json_int(w, "noise_edges", d->noise_edges);
     glpgp_json_int(w, "noise_edges_after", d->noise_edges_after);
+    glpgp_json_int(w, "folds", d->folds);
+    glpgp_json_int(w, "folds_after", d->folds_after);
     glpgp_json_int(w, "rounds", d->rounds);
     glpgp_json_int(w, "moved", d->moved);
     glpgp_json_int(w, "capped", d->capped);
     glpgp_json_num(w, "max_move", d->max_move);
     glpgp_json_num(w, "mean_move", d->mean_move);
     glpgp_json_num(w, "max_move_over_h", d->max_move / h);
+    glpgp_json_num(w, "defect_rms", d->defect_rms);
+    glpgp_json_num(w, "defect_rms_after", d->defect_rms_after);
     if (x->hausdorff_input >= 0.0) glpgp_json_num(w, "quads_hausdorff_to_input", x->hausdorff_input);
     else glpgp_json_null(w, "quads_hausdorff_to_input");
     glpgp_json_close(w);

@@ -18,8 +18,11 @@
  * boundary vertex stay; no vertex moves by more than max_move. Creases are
  * found on the smoothed surface again and the smoothing repeated once with
  * them: a cluster of noise that passed the crease tests on the rough input
- * is smooth then and no longer holds. A clean mesh (no such edge) is not
- * touched. */
+ * is smooth then and no longer holds. A triangle turned over against its
+ * neighbours (a sliver folded by a jitter in every direction: its three
+ * edges at 100-180 degrees pass every crease test) is noise too: its edges
+ * are no creases and its vertices are smoothed. A clean mesh (no such edge,
+ * no fold) is not touched. */
 #include "glpgp/kinds.h"
 #include "glpgp/surface.h"
 #include "glpgp/util.h"
@@ -79,15 +82,55 @@ static glpgp_status dn_adjacency(const glpgp_mesh *m, dn_ws *w)
     return GLPGP_OK;
 }
 
-/* Features of m into w->flag; the noise edges' ends marked in region and
- * grown by DENOISE_RINGS rings; returns the noise edges. */
-static glpgp_status dn_region(const glpgp_mesh *m, double feature_deg, dn_ws *w, int *noise)
+/* Whether triangle t is turned over: its normal against the sum of its
+ * (two or three) neighbours'. A sliver folded by a jitter; its three edges
+ * pass every crease test. */
+static int dn_is_fold(const glpgp_mesh *m, int t)
+{
+    const glpgp_surface *g = m->surf;
+    const double *nt = g->tframe + 9 * (size_t)t + 6;
+    double s = 0.0;
+    int k = 0;
+    for (int a = 0; a < 3; a++) {
+        const int o = g->twin[3 * t + a];
+        if (o < 0) continue;
+        const double *no = g->tframe + 9 * (size_t)(o / 3) + 6;
+        s += nt[0] * no[0] + nt[1] * no[1] + nt[2] * no[2];
+        k++;
+    }
+    return k >= 2 && s < 0.0;
+}
+
+/* The folds' edges lose their feature flags and their vertices seed the
+ * region; returns how many folds. */
+static int dn_folds(const glpgp_mesh *m, dn_ws *w)
+{
+    const glpgp_surface *g = m->surf;
+    int n = 0;
+    for (int t = 0; t < m->nt; t++) {
+        if (!dn_is_fold(m, t)) continue;
+        n++;
+        for (int a = 0; a < 3; a++) {
+            const int h = 3 * t + a;
+            w->flag[h] = 0;
+            if (g->twin[h] >= 0) w->flag[g->twin[h]] = 0;
+            w->region[m->tri[h]] = 1;
+        }
+    }
+    return n;
+}
+
+/* Features of m into w->flag (a fold's edges not: dn_folds); the noise
+ * edges' ends and the folds' vertices marked in region and grown by
+ * DENOISE_RINGS rings; *noise the noise edges, *folds the folds. */
+static glpgp_status dn_region(const glpgp_mesh *m, double feature_deg, dn_ws *w, int *noise, int *folds)
 {
     const glpgp_surface *g = m->surf;
     const double lim = feature_deg * GLPGP_PI / 180.0;
     GLPGP_CHECK(glpgp_surface_features(m, feature_deg, w->flag, NULL));
     int n = 0;
     memset(w->region, 0, (size_t)m->nv);
+    *folds = dn_folds(m, w);
     for (int h = 0; h < 3 * m->nt; h++)
         if (g->twin[h] > h && g->dihedral[h] > lim && !w->flag[h]) {
             w->region[m->tri[h]] = w->region[m->tri[h - h % 3 + (h % 3 + 1) % 3]] = 1;
@@ -185,10 +228,10 @@ static int dn_cap(int nv, const double *x0, double max_move, double *x)
 /* one round: the kinds from cur's features, DENOISE_SWEEPS lambda|mu pairs
  * on xyz (cur's positions on entry), capped against the input's x0 */
 static glpgp_status dn_round(const glpgp_mesh *cur, const double *x0, double feature_deg, double max_move, dn_ws *w,
-                             double *xyz, int *noise, int *capped)
+                             double *xyz, int *noise, int *folds, int *capped)
 {
-    GLPGP_CHECK(dn_region(cur, feature_deg, w, noise));
-    if (!*noise) return GLPGP_OK;
+    GLPGP_CHECK(dn_region(cur, feature_deg, w, noise, folds));
+    if (!*noise && !*folds) return GLPGP_OK;
     dn_kinds(cur, cur->xyz, feature_deg, w);
     for (int s = 0; s < DENOISE_SWEEPS; s++) {
         dn_sweep(cur, w, DENOISE_LAMBDA, xyz);
@@ -240,10 +283,13 @@ glpgp_status glpgp_surface_denoise(const glpgp_mesh *m, double feature_deg, doub
     memcpy(xyz, m->xyz, n3 * sizeof(double));
     for (int r = 0; r < DENOISE_ROUNDS; r++) {
         const glpgp_mesh *src = cur ? cur : m;
-        int noise = 0, capped = 0;
-        GLPGP_CHECK_GOTO(st, dn_round(src, m->xyz, feature_deg, max_move, &w, xyz, &noise, &capped), done);
-        if (r == 0) info->noise_edges = noise;
-        if (!noise) break;
+        int noise = 0, folds = 0, capped = 0;
+        GLPGP_CHECK_GOTO(st, dn_round(src, m->xyz, feature_deg, max_move, &w, xyz, &noise, &folds, &capped), done);
+        if (r == 0) {
+            info->noise_edges = noise;
+            info->folds = folds;
+        }
+        if (!noise && !folds) break;
         info->capped = capped; /* the last round's cap holds every vertex cut */
         info->rounds++;
         glpgp_mesh *next = NULL;
@@ -263,7 +309,10 @@ glpgp_status glpgp_surface_denoise(const glpgp_mesh *m, double feature_deg, doub
         int nf = 0;
         GLPGP_CHECK_GOTO(st, glpgp_surface_features(cur, feature_deg, w.flag, &nf), done);
         info->noise_edges_after -= nf;
+        for (int t = 0; t < cur->nt; t++) info->folds_after += dn_is_fold(cur, t);
         dn_moves(m, cur->xyz, info);
+        info->defect_rms = glpgp_surface_defect_rms(m);
+        info->defect_rms_after = glpgp_surface_defect_rms(cur);
         *out = cur;
         cur = NULL;
     }

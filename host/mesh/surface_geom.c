@@ -526,6 +526,19 @@ int glpgp_surface_edges_above(const glpgp_mesh *m, double feature_deg)
     return n;
 }
 
+double glpgp_surface_defect_rms(const glpgp_mesh *m)
+{
+    double s = 0.0;
+    int n = 0;
+    for (int v = 0; v < m->nv; v++)
+        if (!m->on_boundary[v]) {
+            const double d = TWO_PI - m->surf->angle_sum[v];
+            s += d * d;
+            n++;
+        }
+    return n ? sqrt(s / n) : 0.0;
+}
+
 double glpgp_surface_total_holonomy(const glpgp_mesh *m)
 {
     double s = 0.0;

@@ -150,10 +150,11 @@ static glpgp_status denoise_surface(const glpgp_mesh *m, const glpgp_options *o,
     info->denoise_h = h;
     if (*out)
         glpgp_log(GLPGP_LOG_INFO,
-                  "%s: a scan's noise (%d edges above %g degrees that are not creases) smoothed: %d vertices moved, "
-                  "largest move %.3g h (mean %.3g h)%s; %d such edges left (--denoise off: the input as it is)",
-                  name, d->noise_edges, o->feature_angle, d->moved, d->max_move / h, d->mean_move / h,
-                  d->capped ? " (held at h / 10)" : "", d->noise_edges_after);
+                  "%s: a scan's noise (%d edges above %g degrees that are not creases, %d folded triangles) smoothed: "
+                  "%d vertices moved, largest move %.3g h (mean %.3g h)%s; %d such edges and %d folds left (--denoise "
+                  "off: the input as it is)",
+                  name, d->noise_edges, o->feature_angle, d->folds, d->moved, d->max_move / h, d->mean_move / h,
+                  d->capped ? " (held at h / 10)" : "", d->noise_edges_after, d->folds_after);
     return GLPGP_OK;
 }
 

@@ -4,7 +4,8 @@
  * curvature the cross field integrates) and keeps its radius (a few ridges
  * of so heavy a jitter pass the crease tests and stay); a jittered cube keeps
  * every crease edge and its corners, and its faces lose their kinks; an
- * open jittered hemisphere keeps its boundary where it was; no vertex moves
+ * open jittered hemisphere keeps its boundary where it was; a sliver folded
+ * over on a clean sphere is unfolded, the rest left; no vertex moves
  * farther than asked; a clean mesh is not touched. */
 #include "testutil.h"
 
@@ -12,47 +13,6 @@
 
 #define LIM GLPGP_FEATURE_ANGLE_DEFAULT
 
-/* A deterministic uniform number in [-1, 1). */
-static double jitter(unsigned *s)
-{
-    *s = *s * 1664525u + 1013904223u;
-    return (*s >> 8) / 8388608.0 - 1.0;
-}
-
-/* m's vertices moved by amp x a uniform jitter (radially when radial), as a new surface. */
-static glpgp_mesh *jittered(const glpgp_mesh *m, double amp, int radial)
-{
-    double *x = malloc(sizeof(double) * 3 * (size_t)m->nv);
-    glpgp_mesh *out = NULL;
-    unsigned s = 4321u;
-    if (!x) return NULL;
-    for (int i = 0; i < m->nv; i++) {
-        const double *p = m->xyz + 3 * i;
-        if (radial) {
-            const double f = 1.0 + amp * jitter(&s);
-            for (int k = 0; k < 3; k++) x[3 * i + k] = f * p[k];
-        } else {
-            for (int k = 0; k < 3; k++) x[3 * i + k] = p[k] + amp * jitter(&s);
-        }
-    }
-    CHECK_OK(glpgp_mesh_create_surface(m->nv, x, m->nt, m->tri, &out));
-    free(x);
-    return out;
-}
-
-/* the root mean square angle defect over the interior vertices */
-static double defect_rms(const glpgp_mesh *m)
-{
-    double s = 0.0;
-    int n = 0;
-    for (int v = 0; v < m->nv; v++)
-        if (!m->on_boundary[v]) {
-            const double d = 2.0 * GLPGP_PI - m->surf->angle_sum[v];
-            s += d * d;
-            n++;
-        }
-    return n ? sqrt(s / n) : 0.0;
-}
 
 static double dist3(const double *a, const double *b)
 {
@@ -80,7 +40,7 @@ static void check_sphere(void)
     glpgp_mesh *m = NULL, *j = NULL, *d = NULL;
     glpgp_surface_denoise_info in;
     CHECK_OK(glpgp_mesh_generate("sphere", 5000, &m));
-    if (m) j = jittered(m, 0.5 * m->mean_edge, 1);
+    if (m) j = tu_jittered_surface(m, 0.5 * m->mean_edge, 1, 4321u);
     if (!j) goto done;
     const double cap = 2.0 * m->mean_edge;
     CHECK_OK(glpgp_surface_denoise(j, LIM, cap, &d, &in));
@@ -95,12 +55,13 @@ static void check_sphere(void)
     }
     printf("sphere, radial jitter 0.5 edges: %d noise edges -> %d, %d vertices moved (largest %.3g edges), angle "
            "defect rms %.4f -> %.4f (clean %.4f), mean radius %.5f, farthest from it %.3g edges\n",
-           in.noise_edges, in.noise_edges_after, in.moved, in.max_move / m->mean_edge, defect_rms(j), defect_rms(d),
-           defect_rms(m), r, rmax / m->mean_edge);
+           in.noise_edges, in.noise_edges_after, in.moved, in.max_move / m->mean_edge, glpgp_surface_defect_rms(j), glpgp_surface_defect_rms(d),
+           glpgp_surface_defect_rms(m), r, rmax / m->mean_edge);
     CHECK(in.noise_edges > 100); /* the test can fail: the jitter reaches the feature angle */
     /* a few ridges of this heavy a jitter pass the crease tests and stay (pinned) */
     CHECK(in.noise_edges_after <= in.noise_edges / 100);
-    CHECK(defect_rms(d) < 0.2 * defect_rms(j));
+    CHECK(glpgp_surface_defect_rms(d) < 0.2 * glpgp_surface_defect_rms(j));
+    CHECK(in.defect_rms == glpgp_surface_defect_rms(j) && in.defect_rms_after == glpgp_surface_defect_rms(d));
     CHECK(fabs(r - 1.0) < 0.01);               /* no shrinking */
     CHECK(rmax < 0.5 * m->mean_edge);          /* nearer the sphere than the jitter put it */
     CHECK(largest_move(j, d) <= cap * (1 + 1e-12) && fabs(largest_move(j, d) - in.max_move) < 1e-12);
@@ -136,7 +97,7 @@ static void check_cube(void)
     glpgp_mesh *m = NULL, *j = NULL, *d = NULL;
     glpgp_surface_denoise_info in;
     CHECK_OK(glpgp_mesh_generate("cube", 2000, &m));
-    if (m) j = jittered(m, 0.2 * m->mean_edge, 0);
+    if (m) j = tu_jittered_surface(m, 0.2 * m->mean_edge, 0, 4321u);
     if (!j) goto done;
     CHECK_OK(glpgp_surface_denoise(j, LIM, 2.0 * m->mean_edge, &d, &in));
     CHECK(d != NULL);
@@ -161,7 +122,7 @@ static void check_cube(void)
     }
     printf("cube, jitter 0.2 edges: %d noise edges -> %d, features %d -> %d (%d cube edges, %d lost), corners moved "
            "%d, faces' angle defect rms %.4f -> %.4f\n",
-           in.noise_edges, in.noise_edges_after, nj, nd, 12 * seg, lost, corners_moved, defect_rms(j), defect_rms(d));
+           in.noise_edges, in.noise_edges_after, nj, nd, 12 * seg, lost, corners_moved, glpgp_surface_defect_rms(j), glpgp_surface_defect_rms(d));
     CHECK(in.noise_edges > 50);
     CHECK(lost == 0 && corners_moved == 0);
     CHECK(in.noise_edges_after < in.noise_edges / 10);
@@ -178,7 +139,7 @@ static void check_hemisphere(void)
     glpgp_mesh *m = NULL, *j = NULL, *d = NULL;
     glpgp_surface_denoise_info in;
     CHECK_OK(glpgp_mesh_generate("hemisphere", 4000, &m));
-    if (m) j = jittered(m, 0.5 * m->mean_edge, 1);
+    if (m) j = tu_jittered_surface(m, 0.5 * m->mean_edge, 1, 4321u);
     if (!j) goto done;
     CHECK_OK(glpgp_surface_denoise(j, LIM, 2.0 * m->mean_edge, &d, &in));
     CHECK(d != NULL);
@@ -200,8 +161,54 @@ done:
     glpgp_mesh_destroy(&m);
 }
 
+/* A clean sphere with one sliver folded over (a vertex moved across the
+ * opposite edge of one of its triangles): the fold is found and smoothed
+ * out, and only the vertices around it move. */
+static void check_fold(void)
+{
+    glpgp_mesh *m = NULL, *f = NULL, *d = NULL;
+    glpgp_surface_denoise_info in;
+    CHECK_OK(glpgp_mesh_generate("sphere", 3000, &m));
+    if (!m) return;
+    double *x = malloc(sizeof(double) * 3 * (size_t)m->nv);
+    const int t = m->nt / 2, a = m->tri[3 * t], b = m->tri[3 * t + 1], c = m->tri[3 * t + 2];
+    if (x) {
+        memcpy(x, m->xyz, sizeof(double) * 3 * (size_t)m->nv);
+        for (int k = 0; k < 3; k++) x[3 * c + k] = 0.6 * (x[3 * a + k] + x[3 * b + k]) - 0.2 * x[3 * c + k];
+        CHECK_OK(glpgp_mesh_create_surface(m->nv, x, m->nt, m->tri, &f));
+    }
+    free(x);
+    if (f) CHECK_OK(glpgp_surface_denoise(f, LIM, 2.0 * m->mean_edge, &d, &in));
+    if (d) {
+        const double before = dist3(f->xyz + 3 * c, m->xyz + 3 * c), after = dist3(d->xyz + 3 * c, m->xyz + 3 * c);
+        printf("sphere with a fold: %d folds -> %d, %d vertices moved, the folded vertex %.3g -> %.3g edges from "
+               "where it was\n", in.folds, in.folds_after, in.moved, before / m->mean_edge, after / m->mean_edge);
+        CHECK(in.folds >= 1 && in.folds_after == 0);
+        CHECK(in.moved < 100 && after < 0.5 * before);
+    } else {
+        CHECK(!"the fold was left as it is");
+    }
+    glpgp_mesh_destroy(&d);
+    glpgp_mesh_destroy(&f);
+    glpgp_mesh_destroy(&m);
+}
+
+/* the unit cube of 12 triangles: each of its 8 vertices a defect of pi / 2 */
+static void check_defect_cube(void)
+{
+    const double x[] = {0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0, 0, 0, 1, 1, 0, 1, 1, 1, 1, 0, 1, 1};
+    const int t[] = {0, 2, 1, 0, 3, 2, 4, 5, 6, 4, 6, 7, 0, 1, 5, 0, 5, 4,
+                     1, 2, 6, 1, 6, 5, 2, 3, 7, 2, 7, 6, 3, 0, 4, 3, 4, 7};
+    glpgp_mesh *m = NULL;
+    CHECK_OK(glpgp_mesh_create_surface(8, x, 12, t, &m));
+    if (m) CHECK_CLOSE(glpgp_surface_defect_rms(m), 0.5 * GLPGP_PI, 1e-12, 0.0);
+    glpgp_mesh_destroy(&m);
+}
+
 int main(void)
 {
+    check_defect_cube();
+    check_fold();
     check_sphere();
     check_cube();
     check_hemisphere();

@@ -13,13 +13,6 @@
 
 #define LIM GLPGP_FEATURE_ANGLE_DEFAULT
 
-/* A deterministic uniform number in [-1, 1). */
-static double jitter(unsigned *s)
-{
-    *s = *s * 1664525u + 1013904223u;
-    return (*s >> 8) / 8388608.0 - 1.0;
-}
-
 /* Candidates (dihedral above LIM) and features of m; flag: 3 nt. */
 static int features(const glpgp_mesh *m, unsigned char *flag, int *candidates)
 {
@@ -32,32 +25,11 @@ static int features(const glpgp_mesh *m, unsigned char *flag, int *candidates)
     return n;
 }
 
-/* m's vertices moved by amp x a uniform jitter (radially when radial), as a new surface. */
-static glpgp_mesh *jittered(const glpgp_mesh *m, double amp, int radial)
-{
-    double *x = malloc(sizeof(double) * 3 * (size_t)m->nv);
-    glpgp_mesh *out = NULL;
-    unsigned s = 12345u;
-    if (!x) return NULL;
-    for (int i = 0; i < m->nv; i++) {
-        const double *p = m->xyz + 3 * i;
-        if (radial) {
-            const double f = 1.0 + amp * jitter(&s);
-            for (int k = 0; k < 3; k++) x[3 * i + k] = f * p[k];
-        } else {
-            for (int k = 0; k < 3; k++) x[3 * i + k] = p[k] + amp * jitter(&s);
-        }
-    }
-    CHECK_OK(glpgp_mesh_create_surface(m->nv, x, m->nt, m->tri, &out));
-    free(x);
-    return out;
-}
-
 static void check_noisy_sphere(void)
 {
     glpgp_mesh *m = NULL, *j = NULL;
     CHECK_OK(glpgp_mesh_generate("sphere", 5000, &m));
-    if (m) j = jittered(m, 0.3 * m->mean_edge, 1);
+    if (m) j = tu_jittered_surface(m, 0.3 * m->mean_edge, 1, 12345u);
     unsigned char *fl = j ? malloc((size_t)3 * j->nt) : NULL;
     if (fl) {
         int cand = 0;
@@ -83,7 +55,7 @@ static void check_noisy_cube(void)
 {
     glpgp_mesh *m = NULL, *j = NULL;
     CHECK_OK(glpgp_mesh_generate("cube", 2000, &m));
-    if (m) j = jittered(m, 0.12 * m->mean_edge, 0);
+    if (m) j = tu_jittered_surface(m, 0.12 * m->mean_edge, 0, 12345u);
     unsigned char *fl = j ? malloc((size_t)3 * j->nt) : NULL;
     if (fl) {
         int cand = 0, off = 0;
@@ -192,7 +164,7 @@ int main(void)
     check_fading_crease();
     glpgp_mesh *m = NULL, *j = NULL;
     CHECK_OK(glpgp_mesh_generate("sphere", 2000, &m));
-    if (m) j = jittered(m, 0.35 * m->mean_edge, 1);
+    if (m) j = tu_jittered_surface(m, 0.35 * m->mean_edge, 1, 12345u);
     if (j) check_refined("refined noisy sphere", j, 1);
     glpgp_mesh_destroy(&j);
     glpgp_mesh_destroy(&m);

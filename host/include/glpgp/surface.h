@@ -249,24 +249,33 @@ int glpgp_surface_edges_above(const glpgp_mesh *m, double feature_deg);
 typedef struct glpgp_surface_denoise_info {
     int noise_edges;       /* interior edges above the feature angle that are not creases, before */
     int noise_edges_after; /* and after */
+    int folds, folds_after; /* triangles turned over against their neighbours, before and after */
     int rounds;            /* smoothing rounds kept (0: none) */
     int moved;             /* vertices that moved */
     int capped;            /* of them, those held at max_move */
     double max_move, mean_move; /* their displacement */
+    double defect_rms, defect_rms_after; /* glpgp_surface_defect_rms before and after */
 } glpgp_surface_denoise_info;
 
 /* *out: surface m with its scan noise smoothed away (mesh/surface_denoise.c),
  * or NULL when m shows none (no interior edge above feature_deg that is not
- * a crease: a clean mesh is left as it is). Where such edges are, their
+ * a crease, no triangle turned over against its neighbours: a clean mesh
+ * is left as it is). Where such edges and folds are, their
  * vertices and two edge rings around them are smoothed by Taubin's
  * lambda|mu filter (wavelengths of a few edges out, larger shapes kept);
  * a crease vertex only along its crease; crease ends, corners and boundary
- * vertices stay; no vertex moves more than max_move (> 0); then once more
- * with the creases of the smoothed surface. The same vertices and
+ * vertices stay; no vertex moves more than max_move (> 0); then again
+ * with the creases of the smoothed surface (up to 4 rounds). The same vertices and
  * triangles (so the same topology); a round that would make a triangle
  * degenerate is not kept. info: required. */
 glpgp_status glpgp_surface_denoise(const glpgp_mesh *m, double feature_deg, double max_move, glpgp_mesh **out,
                                    glpgp_surface_denoise_info *info);
+
+/* The root mean square angle defect 2 pi - Theta_v over the interior
+ * vertices (radians; 0 without one): the spread of the discrete Gauss
+ * curvature, which a scan's noise inflates (a smooth mesh of a closed
+ * surface: about 4 pi (1 - g) / nv each). */
+double glpgp_surface_defect_rms(const glpgp_mesh *m);
 
 /* The sum over triangles of the holonomy (2 pi chi minus the boundary's
  * turning sum(pi - Theta_v) over the boundary vertices; 4 pi on a sphere). */
