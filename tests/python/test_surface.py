@@ -89,3 +89,25 @@ def test_surface_arrays_repaired_like_a_file():
     v = m.vertices
     for part in (tri[:4], tri[4:]):  # each part encloses a positive volume: outward
         assert sum(np.dot(v[a], np.cross(v[b], v[c])) for a, b, c in part) > 0
+
+
+def test_noisy_surface_denoised():
+    """a sphere with a radial jitter of half an edge: solve() smooths the noise away first (denoise,
+    'auto' by default) and the cross field has the sphere's 8 singularities; the stats say what moved;
+    denoise='off' solves the jitter as it is (more singularities) and the stats say nothing moved"""
+    s = glpgp.shape("sphere", 3000)
+    v = np.array(s.vertices)
+    rng = np.random.default_rng(3)
+    edge = np.mean(np.linalg.norm(v[s.triangles[:, 0]] - v[s.triangles[:, 1]], axis=1))
+    v *= (1.0 + 0.5 * edge * rng.uniform(-1.0, 1.0, len(v)))[:, None]
+    m = glpgp.Mesh(v, np.array(s.triangles))
+    a = glpgp.solve(m, backend="reference", method="pgp")
+    d = a.stats["mesh"]["surface"]["denoise"]
+    assert d["noise_edges"] > 100 and d["noise_edges_after"] <= d["noise_edges"] // 100, d
+    assert 0 < d["max_move_over_h"] <= 0.1 + 1e-9 and d["defect_rms_after"] < 0.3 * d["defect_rms"], d
+    assert len(a.cross["singularities"]) == 8
+    b = glpgp.solve(m, backend="reference", method="pgp", denoise="off")
+    assert b.stats["mesh"]["surface"]["denoise"] is None
+    assert len(b.cross["singularities"]) > 8
+    with pytest.raises(Exception, match="denoise"):
+        glpgp.solve(m, backend="reference", denoise="sometimes")
