@@ -173,11 +173,12 @@ static const glpgp_optdesc k_table[] = {
         "keeps its angle over a few edges and is part of a crease"),
     CHO("denoise", G1, denoise, k_denoise, k_denoise_vals,
         "a surface: where it shows a scan's noise (edges above\n"
-        "--feature-angle that are not creases), its vertices there are\n"
-        "smoothed (Taubin; creases, corners and the boundary kept, each\n"
-        "vertex moved at most h / 10) before the solve; the quads lie on\n"
-        "the smoothed surface (the summary gives the largest move);\n"
-        "off: the input as it is"),
+        "--feature-angle that are not creases, folded slivers), its\n"
+        "vertices there are smoothed before the solve (bilateral normal\n"
+        "filtering: creases and corners stay sharp; the boundary kept,\n"
+        "each vertex moved at most h / 10); the quads lie on the smoothed\n"
+        "surface (the summary gives the largest move and their distance\n"
+        "to the input); off: the input as it is"),
     DBL("size-curl", G1, size_curl, 0.0, 0, 1.0, 0, "F",
         "a surface: the local size scaled so that the guiding frame over\n"
         "h(x) is curl-free (least squares; Ray et al.'s curl correction),\n"

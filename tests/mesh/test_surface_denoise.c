@@ -1,11 +1,12 @@
 /* test_surface_denoise.c: a scan's noise smoothed out of a surface
  * (glpgp_surface_denoise): a sphere with a radial jitter of half an edge
- * loses 99% of its kinks and 80% of its angle defects' spread (the Gauss
- * curvature the cross field integrates) and keeps its radius (a few ridges
- * of so heavy a jitter pass the crease tests and stay); a jittered cube keeps
- * every crease edge and its corners, and its faces lose their kinks; an
+ * loses 99% of its kinks and 95% of its angle defects' spread (the Gauss
+ * curvature the cross field integrates) and keeps its radius; a jittered
+ * cube ends with exactly its crease edges as features (sharp, no noise
+ * ridge beside them) and its corners no farther off, its faces without
+ * kinks; an
  * open jittered hemisphere keeps its boundary where it was; a sliver folded
- * over on a clean sphere is unfolded, the rest left; no vertex moves
+ * over on a clean sphere is unfolded, only its neighbourhood moves; no vertex moves
  * farther than asked; a clean mesh is not touched. */
 #include "testutil.h"
 
@@ -58,12 +59,11 @@ static void check_sphere(void)
            in.noise_edges, in.noise_edges_after, in.moved, in.max_move / m->mean_edge, glpgp_surface_defect_rms(j), glpgp_surface_defect_rms(d),
            glpgp_surface_defect_rms(m), r, rmax / m->mean_edge);
     CHECK(in.noise_edges > 100); /* the test can fail: the jitter reaches the feature angle */
-    /* a few ridges of this heavy a jitter pass the crease tests and stay (pinned) */
     CHECK(in.noise_edges_after <= in.noise_edges / 100);
-    CHECK(glpgp_surface_defect_rms(d) < 0.2 * glpgp_surface_defect_rms(j));
+    CHECK(glpgp_surface_defect_rms(d) < 0.05 * glpgp_surface_defect_rms(j));
     CHECK(in.defect_rms == glpgp_surface_defect_rms(j) && in.defect_rms_after == glpgp_surface_defect_rms(d));
     CHECK(fabs(r - 1.0) < 0.01);               /* no shrinking */
-    CHECK(rmax < 0.5 * m->mean_edge);          /* nearer the sphere than the jitter put it */
+    CHECK(rmax < 0.3 * m->mean_edge);          /* nearer the sphere than the jitter put it */
     CHECK(largest_move(j, d) <= cap * (1 + 1e-12) && fabs(largest_move(j, d) - in.max_move) < 1e-12);
     glpgp_mesh_destroy(&d);
     /* a tight cap holds every vertex */
@@ -104,7 +104,8 @@ static void check_cube(void)
     if (!d) goto done;
     check_same_mesh(j, d);
     unsigned char *fj = malloc((size_t)3 * j->nt), *fd = malloc((size_t)3 * d->nt);
-    int nj = 0, nd = 0, lost = 0, corners_moved = 0;
+    int nj = 0, nd = 0, lost = 0;
+    double corner_before = 0.0, corner_after = 0.0; /* the corners' distances from the clean cube's */
     const int seg = (int)lround(sqrt((m->nv - 2) / 6.0));
     if (fj && fd) {
         CHECK_OK(glpgp_surface_features(j, LIM, fj, &nj));
@@ -117,14 +118,19 @@ static void check_cube(void)
         for (int v = 0; v < m->nv; v++) { /* the 8 corners: three coordinates at +-0.5 */
             int k = 0;
             for (int c = 0; c < 3; c++) k += fabs(fabs(m->xyz[3 * v + c]) - 0.5) < 1e-9;
-            corners_moved += k == 3 && dist3(j->xyz + 3 * v, d->xyz + 3 * v) > 0.0;
+            if (k == 3) {
+                corner_before = fmax(corner_before, dist3(j->xyz + 3 * v, m->xyz + 3 * v));
+                corner_after = fmax(corner_after, dist3(d->xyz + 3 * v, m->xyz + 3 * v));
+            }
         }
     }
-    printf("cube, jitter 0.2 edges: %d noise edges -> %d, features %d -> %d (%d cube edges, %d lost), corners moved "
-           "%d, faces' angle defect rms %.4f -> %.4f\n",
-           in.noise_edges, in.noise_edges_after, nj, nd, 12 * seg, lost, corners_moved, glpgp_surface_defect_rms(j), glpgp_surface_defect_rms(d));
+    printf("cube, jitter 0.2 edges: %d noise edges -> %d, features %d -> %d (%d cube edges, %d lost), corners at "
+           "most %.3g -> %.3g edges from the cube's, angle defect rms %.4f -> %.4f\n",
+           in.noise_edges, in.noise_edges_after, nj, nd, 12 * seg, lost, corner_before / m->mean_edge,
+           corner_after / m->mean_edge, glpgp_surface_defect_rms(j), glpgp_surface_defect_rms(d));
     CHECK(in.noise_edges > 50);
-    CHECK(lost == 0 && corners_moved == 0);
+    CHECK(lost == 0 && nd == 12 * seg);     /* the creases kept sharp, no noise ridge left */
+    CHECK(corner_after <= corner_before);   /* the corners stay where the faces meet */
     CHECK(in.noise_edges_after < in.noise_edges / 10);
     free(fj);
     free(fd);
@@ -184,7 +190,7 @@ static void check_fold(void)
         printf("sphere with a fold: %d folds -> %d, %d vertices moved, the folded vertex %.3g -> %.3g edges from "
                "where it was\n", in.folds, in.folds_after, in.moved, before / m->mean_edge, after / m->mean_edge);
         CHECK(in.folds >= 1 && in.folds_after == 0);
-        CHECK(in.moved < 100 && after < 0.5 * before);
+        CHECK(in.moved < f->nv / 10 && after < 0.5 * before); /* its neighbourhood only */
     } else {
         CHECK(!"the fold was left as it is");
     }

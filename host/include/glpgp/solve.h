@@ -290,9 +290,11 @@ glpgp_status glpgp_options_check(const glpgp_options *o);
  * leaves a mean edge of about h / 9.4 (the former rule, mean edge <= h / 8
  * by uniform rounds, left h / 8 to h / 16): bench/results/surface_refine.md. */
 #define GLPGP_SURFACE_EDGES 6.0
-/* --denoise auto moves a surface's vertices by at most h / this (the
- * quads' distance to the input: at most their distance to the smoothed
- * surface plus h / 10). */
+/* --denoise auto moves a surface's vertices by at most h / this (the quads'
+ * distance to the input: at most their distance to the smoothed surface
+ * plus h / 10; the summary measures it). Measured against h / 4 on the
+ * 20 x 20 box with a jitter of 0.3 edges at 300 faces (h = 2.8 edges): no
+ * better (bench/results/surface_features.md). */
 #define GLPGP_DENOISE_MAX_MOVE 10.0
 #define GLPGP_SIZE_MAX_DIAG 100.0
 /* `glpgp solve` with refinement: a default size above diameter / this (the

@@ -260,14 +260,14 @@ typedef struct glpgp_surface_denoise_info {
 /* *out: surface m with its scan noise smoothed away (mesh/surface_denoise.c),
  * or NULL when m shows none (no interior edge above feature_deg that is not
  * a crease, no triangle turned over against its neighbours: a clean mesh
- * is left as it is). Where such edges and folds are, their
- * vertices and two edge rings around them are smoothed by Taubin's
- * lambda|mu filter (wavelengths of a few edges out, larger shapes kept);
- * a crease vertex only along its crease; crease ends, corners and boundary
- * vertices stay; no vertex moves more than max_move (> 0); then again
- * with the creases of the smoothed surface (up to 4 rounds). The same vertices and
- * triangles (so the same topology); a round that would make a triangle
- * degenerate is not kept. info: required. */
+ * is left as it is). Where such edges and folds are, their vertices and
+ * eight edge rings around them are smoothed by bilateral normal filtering
+ * (the triangles' normals averaged with a range weight that keeps creases
+ * and corners sharp, the vertices fitted to them; a fold's vertices also
+ * relaxed); boundary vertices stay; no vertex moves more than max_move
+ * (> 0). The same vertices and triangles (so the same topology); where
+ * the smoothing would make a triangle degenerate, *out is NULL (the input
+ * as it is). info: required. */
 glpgp_status glpgp_surface_denoise(const glpgp_mesh *m, double feature_deg, double max_move, glpgp_mesh **out,
                                    glpgp_surface_denoise_info *info);
 
