@@ -168,6 +168,18 @@ static inline const char *tu_tmp_path(const char *file)
     return buf[k];
 }
 
+/* The unit cube [0, 1]^3 as 12 triangles, two per face, outward (NULL when
+ * it fails): a coarse CAD surface whose every edge of the cube is sharp. */
+static inline glpgp_mesh *tu_cube12(void)
+{
+    const double x[] = {0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0, 0, 0, 1, 1, 0, 1, 1, 1, 1, 0, 1, 1};
+    const int t[] = {0, 2, 1, 0, 3, 2, 4, 5, 6, 4, 6, 7, 0, 1, 5, 0, 5, 4,
+                     1, 2, 6, 1, 6, 5, 2, 3, 7, 2, 7, 6, 3, 0, 4, 3, 4, 7};
+    glpgp_mesh *m = NULL;
+    CHECK_OK(glpgp_mesh_create_surface(8, x, 12, t, &m));
+    return m;
+}
+
 /* Surface m's vertices moved by amp x a uniform jitter in [-1, 1) (a
  * linear congruential sequence from seed: the same surface every run),
  * radially from the origin (radial) or in each coordinate, as a new

@@ -202,11 +202,7 @@ static void check_fold(void)
 /* the unit cube of 12 triangles: each of its 8 vertices a defect of pi / 2 */
 static void check_defect_cube(void)
 {
-    const double x[] = {0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0, 0, 0, 1, 1, 0, 1, 1, 1, 1, 0, 1, 1};
-    const int t[] = {0, 2, 1, 0, 3, 2, 4, 5, 6, 4, 6, 7, 0, 1, 5, 0, 5, 4,
-                     1, 2, 6, 1, 6, 5, 2, 3, 7, 2, 7, 6, 3, 0, 4, 3, 4, 7};
-    glpgp_mesh *m = NULL;
-    CHECK_OK(glpgp_mesh_create_surface(8, x, 12, t, &m));
+    glpgp_mesh *m = tu_cube12();
     if (m) CHECK_CLOSE(glpgp_surface_defect_rms(m), 0.5 * GLPGP_PI, 1e-12, 0.0);
     glpgp_mesh_destroy(&m);
 }

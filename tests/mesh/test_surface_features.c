@@ -77,12 +77,8 @@ static void check_noisy_cube(void)
 /* The unit cube, two triangles per face (outward). */
 static void check_coarse_cube(void)
 {
-    const double x[] = {0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0, 0, 0, 1, 1, 0, 1, 1, 1, 1, 0, 1, 1};
-    const int t[] = {0, 2, 1, 0, 3, 2, 4, 5, 6, 4, 6, 7, 0, 1, 5, 0, 5, 4,
-                     1, 2, 6, 1, 6, 5, 2, 3, 7, 2, 7, 6, 3, 0, 4, 3, 4, 7};
-    glpgp_mesh *m = NULL;
+    glpgp_mesh *m = tu_cube12();
     unsigned char fl[36];
-    CHECK_OK(glpgp_mesh_create_surface(8, x, 12, t, &m));
     if (!m) return;
     const int n = features(m, fl, NULL);
     printf("cube of 12 triangles: %d features\n", n);
