@@ -40,6 +40,7 @@
 #define DENOISE_NORMAL_ITERS 5
 #define DENOISE_VERTEX_ITERS 10
 #define DENOISE_UNFOLD_ITERS 5
+#define DENOISE_FOLD_AGREE 60.0 /* a fold's neighbours: normals pairwise within this (degrees) */
 
 typedef struct dn_ws {
     int *vstart, *vface;   /* nv + 1, 3 nt: each vertex's triangles */
@@ -94,25 +95,31 @@ static glpgp_status dn_alloc(const glpgp_mesh *m, dn_ws *w)
     return GLPGP_OK;
 }
 
+static double dot3(const double *a, const double *b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 
-/* Whether triangle t is turned over: its normal against the sum of its
- * (two or three) neighbours'. A sliver folded by a jitter; its three edges
- * pass every crease test. */
-static int dn_is_fold(const glpgp_mesh *m, int t)
+/* The fold rule on triangle t, the unit normal of triangle x at n +
+ * stride x: two of t's neighbours agree (normals within DENOISE_FOLD_AGREE
+ * degrees: a smooth piece of surface) and t's normal is against both (more
+ * than 90 degrees from each): a sliver folded by a jitter, whose three
+ * edges pass every crease test (the third neighbour may be folded too). A
+ * polyhedron's face is not one: its neighbours disagree with each other (a
+ * tetrahedron's, a cube corner's) or it agrees with one (a knife edge). */
+static int fold_rule(const glpgp_mesh *m, const double *n, size_t stride, int t)
 {
-    const glpgp_surface *g = m->surf;
-    const double *nt = g->tframe + 9 * (size_t)t + 6;
-    double s = 0.0;
+    const int *twin = m->surf->twin;
+    const double *nb[3];
     int k = 0;
-    for (int a = 0; a < 3; a++) {
-        const int o = g->twin[3 * t + a];
-        if (o < 0) continue;
-        const double *no = g->tframe + 9 * (size_t)(o / 3) + 6;
-        s += nt[0] * no[0] + nt[1] * no[1] + nt[2] * no[2];
-        k++;
-    }
-    return k >= 2 && s < 0.0;
+    for (int a = 0; a < 3; a++)
+        if (twin[3 * t + a] >= 0) nb[k++] = n + stride * (size_t)(twin[3 * t + a] / 3);
+    const double agree = cos(DENOISE_FOLD_AGREE * GLPGP_PI / 180.0), *nt = n + stride * (size_t)t;
+    for (int i = 0; i < k; i++)
+        for (int j = i + 1; j < k; j++)
+            if (dot3(nb[i], nb[j]) > agree && dot3(nt, nb[i]) < 0.0 && dot3(nt, nb[j]) < 0.0) return 1;
+    return 0;
 }
+
+/* whether triangle t of m is a fold (m's own normals) */
+static int dn_is_fold(const glpgp_mesh *m, int t) { return fold_rule(m, m->surf->tframe + 6, 9, t); }
 
 /* The region: the ends of the noise edges (above the angle, not features)
  * and the folds' vertices, grown by DENOISE_RINGS rings through the
@@ -285,18 +292,15 @@ static int dn_unfold_normals(const glpgp_mesh *m, dn_ws *w, unsigned char *mark)
     const int *twin = m->surf->twin;
     for (int t = 0; t < m->nt; t++) {
         if (!w->tact[t]) continue;
-        const double *nt = w->n + 3 * (size_t)t;
-        double s[3] = {0.0, 0.0, 0.0}, dot = 0.0;
-        int k = 0;
+        if (!fold_rule(m, w->n, 3, t)) continue;
+        double s[3] = {0.0, 0.0, 0.0};
         for (int a = 0; a < 3; a++) {
             const int o = twin[3 * t + a] / 3;
             if (twin[3 * t + a] < 0) continue;
             for (int e = 0; e < 3; e++) s[e] += w->a[o] * w->n[3 * (size_t)o + e];
-            dot += nt[0] * w->n[3 * (size_t)o] + nt[1] * w->n[3 * (size_t)o + 1] + nt[2] * w->n[3 * (size_t)o + 2];
-            k++;
         }
         const double l = sqrt(s[0] * s[0] + s[1] * s[1] + s[2] * s[2]);
-        if (!(k >= 2 && dot < 0.0 && l > 0.0)) continue;
+        if (!(l > 0.0)) continue;
         for (int e = 0; e < 3; e++) w->n[3 * (size_t)t + e] = s[e] / l;
         for (int a = 0; a < 3; a++) mark[m->tri[3 * t + a]] = w->region[m->tri[3 * t + a]] ? 2 : 0;
         folds++;

@@ -6,7 +6,8 @@
  * ridge beside them) and its corners no farther off, its faces without
  * kinks; an
  * open jittered hemisphere keeps its boundary where it was; a sliver folded
- * over on a clean sphere is unfolded, only its neighbourhood moves; no vertex moves
+ * over on a clean sphere is unfolded, only its neighbourhood moves, and
+ * tetrahedra and a 12-triangle cube are no folds; no vertex moves
  * farther than asked; a clean mesh is not touched. */
 #include "testutil.h"
 
@@ -224,5 +225,22 @@ int main(void)
         glpgp_error_clear();
     }
     glpgp_mesh_destroy(&m);
+    /* coarse polyhedra are not folds: a corner tetrahedron (its slanted face
+     * against all three neighbours, which are at right angles to each
+     * other), a regular one, the 12-triangle cube */
+    const double xc[] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1};
+    const double xr[] = {1, 1, 1, 1, -1, -1, -1, 1, -1, -1, -1, 1};
+    const int tt[] = {0, 2, 1, 0, 1, 3, 1, 2, 3, 0, 3, 2};
+    for (int k = 0; k < 3; k++) {
+        m = NULL;
+        if (k < 2) CHECK_OK(glpgp_mesh_create_surface(4, k ? xr : xc, 4, tt, &m));
+        else m = tu_cube12();
+        if (!m) continue;
+        CHECK_OK(glpgp_surface_denoise(m, LIM, 1.0, &d, &in));
+        printf("polyhedron %d: %d noise edges, %d folds\n", k, in.noise_edges, in.folds);
+        CHECK(d == NULL && in.folds == 0 && in.noise_edges == 0);
+        glpgp_mesh_destroy(&d);
+        glpgp_mesh_destroy(&m);
+    }
     TEST_DONE();
 }
