@@ -504,6 +504,37 @@ static int backend_job_abandon(backend_job *j, int rc)
 
 /* The one flow of every run: read, solve (serial, or glpgp_solve_distributed
  * on MPI ranks: dd), compute the outputs, write them together. */
+/* --quads: the quad mesh of result r on mesh m, its report (a surface's:
+ * also the distance to the input as read where it was denoised), and the
+ * verdict (*invalid_rc: an invalid mesh is not written, exit 3, unless
+ * --allow-invalid; why: the reasons). */
+static glpgp_status build_quads(solve_cli *c, const glpgp_mesh *m, const glpgp_result *r, glpgp_quadmesh **q,
+                                glpgp_quads_report *qq, int *invalid_rc, char *why, size_t nwhy)
+{
+    double h = r->size;
+    if (m->surf) { /* a surface: its own pipeline and check (quads/quads_surface.c) */
+        GLPGP_CHECK(glpgp_quads_build_surface(m, r, &c->qo, q, &h, &c->qsteps));
+        GLPGP_CHECK(glpgp_quads_quality_surface(*q, m, h, qq));
+        if (c->input_mesh) { /* denoised: the distance to the input as read */
+            glpgp_quads_report qi;
+            GLPGP_CHECK(glpgp_quads_quality_surface(*q, c->input_mesh, h, &qi));
+            c->hausdorff_input = qi.hausdorff;
+        }
+        qq->steps = c->qsteps;
+        qq->has_steps = 1;
+    } else {
+        GLPGP_CHECK(glpgp_quads_build(m, r, &c->qo, q, &h));
+        GLPGP_CHECK(glpgp_quads_quality(*q, m, h, qq));
+    }
+    qq->singular[0] = r->osc[0].plus + r->osc[0].minus;
+    qq->singular[1] = r->osc[1].plus + r->osc[1].minus;
+    /* --field cross: irregular interior vertices within h of a cross-field singularity, and the others */
+    if (r->cross) GLPGP_CHECK(glpgp_quads_quality_cross(*q, r->cross->sing, r->cross->nsing, r->size, qq));
+    *invalid_rc = glpgp_cli_quads_verdict(qq, c->qo.keep_polygons ? GLPGP_QUADS_BAD_NONQUAD : 0u, c->allow_invalid,
+                                          why, nwhy);
+    return GLPGP_OK;
+}
+
 static int solve_main(solve_cli *cc, const char *input, glpgp_dist *dd)
 {
     solve_cli c = *cc;
@@ -571,31 +602,7 @@ static int solve_main(solve_cli *cc, const char *input, glpgp_dist *dd)
     cli_tm.wait[GLPGP_TM_BUILD] = t_build_wait;
     /* everything computed before anything is written */
     double tp = glpgp_now();
-    if (c.quads) {
-        double h = r->size;
-        if (m->surf) { /* a surface: its own pipeline and check (quads/quads_surface.c) */
-            if (glpgp_quads_build_surface(m, r, &c.qo, &q, &h, &c.qsteps) != GLPGP_OK) goto fail;
-            if (glpgp_quads_quality_surface(q, m, h, &qq) != GLPGP_OK) goto fail;
-            if (c.input_mesh) { /* denoised: the distance to the input as read */
-                glpgp_quads_report qi;
-                if (glpgp_quads_quality_surface(q, c.input_mesh, h, &qi) != GLPGP_OK) goto fail;
-                c.hausdorff_input = qi.hausdorff;
-            }
-            qq.steps = c.qsteps;
-            qq.has_steps = 1;
-        } else {
-            if (glpgp_quads_build(m, r, &c.qo, &q, &h) != GLPGP_OK) goto fail;
-            if (glpgp_quads_quality(q, m, h, &qq) != GLPGP_OK) goto fail;
-        }
-        qq.singular[0] = r->osc[0].plus + r->osc[0].minus;
-        qq.singular[1] = r->osc[1].plus + r->osc[1].minus;
-        /* --field cross: irregular interior vertices within h of a cross-field singularity, and the others */
-        if (r->cross && glpgp_quads_quality_cross(q, r->cross->sing, r->cross->nsing, r->size, &qq) != GLPGP_OK)
-            goto fail;
-        /* an invalid mesh is not written (exit 3) unless --allow-invalid */
-        invalid_rc = glpgp_cli_quads_verdict(&qq, c.qo.keep_polygons ? GLPGP_QUADS_BAD_NONQUAD : 0u,
-                                             c.allow_invalid, why, sizeof why);
-    }
+    if (c.quads && build_quads(&c, m, r, &q, &qq, &invalid_rc, why, sizeof why) != GLPGP_OK) goto fail;
     cli_tm.s[GLPGP_TM_EXTRACT] = glpgp_now() - tp;
     tp = glpgp_now();
     if (c.image && c.quads && !c.image_kind_given && !m->surf) { /* a surface: the grid picture (render3d) */

@@ -10,7 +10,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 
-/* A surface's members of "mesh" (glpgp/surface.h): its 3D box and topology. */
 /* mesh.surface.denoise: what glpgp_solve_prepare smoothed (null: nothing) */
 static void stats_denoise(glpgp_json *w, const glpgp_stats_extra *x)
 {
@@ -38,6 +37,8 @@ static void stats_denoise(glpgp_json *w, const glpgp_stats_extra *x)
     glpgp_json_close(w);
 }
 
+/* A surface's members of "mesh" (glpgp/surface.h): its 3D box, topology,
+ * features and what the smoothing did. */
 static void stats_surface(glpgp_json *w, const glpgp_mesh *m, const glpgp_options *o, const glpgp_stats_extra *x)
 {
     unsigned char *fl = malloc((size_t)3 * m->nt);

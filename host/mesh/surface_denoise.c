@@ -295,8 +295,8 @@ static int dn_unfold_normals(const glpgp_mesh *m, dn_ws *w, unsigned char *mark)
         if (!fold_rule(m, w->n, 3, t)) continue;
         double s[3] = {0.0, 0.0, 0.0};
         for (int a = 0; a < 3; a++) {
-            const int o = twin[3 * t + a] / 3;
             if (twin[3 * t + a] < 0) continue;
+            const int o = twin[3 * t + a] / 3;
             for (int e = 0; e < 3; e++) s[e] += w->a[o] * w->n[3 * (size_t)o + e];
         }
         const double l = sqrt(s[0] * s[0] + s[1] * s[1] + s[2] * s[2]);

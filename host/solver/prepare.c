@@ -155,6 +155,11 @@ static glpgp_status denoise_surface(const glpgp_mesh *m, const glpgp_options *o,
                   "off: the input as it is)",
                   name, d->noise_edges, o->feature_angle, d->folds, d->moved, d->max_move / h, d->mean_move / h,
                   d->capped ? " (held at h / 10)" : "", d->noise_edges_after, d->folds_after);
+    else if (d->noise_edges || d->folds)
+        glpgp_log(GLPGP_LOG_WARNING,
+                  "%s: a scan's noise (%d edges above %g degrees that are not creases, %d folded triangles) not "
+                  "smoothed: the smoothing would make a triangle degenerate; solved as it is",
+                  name, d->noise_edges, o->feature_angle, d->folds);
     return GLPGP_OK;
 }
 
