@@ -31,6 +31,7 @@ $M jitter "$OUT/prism9.obj" "$OUT/prism9_j0.06.obj" 0.06
 $M jitter "$OUT/genus2.obj" "$OUT/genus2_j0.2.obj" 0.2
 $M jitter "$OUT/torus.obj" "$OUT/torus_j0.2.obj" 0.2
 $M bumpy 5 "$OUT/bumpy5_1pc.obj" 0.01
+$M bumpy 6 "$OUT/bumpy6_clean.obj" 0
 $M bumpy 6 "$OUT/bumpy6_0.2pc.obj" 0.002
 $M bumpy 6 "$OUT/bumpy6_0.5pc.obj" 0.005
 $M bumpy 6 "$OUT/bumpy6_1pc.obj" 0.01
@@ -38,7 +39,7 @@ $M bumpy 7 "$OUT/bumpy7_0.2pc.obj" 0.002
 cd "$OUT"
 "$OLDPWD/$BUILD/bench/glpgp-features" cube.obj slab16.obj slab4_coarse.obj box12.obj box20.obj prism8.obj \
     prism9.obj prism9_j0.06.obj box20_j0.2.obj box20_j0.3.obj box20_j0.5.obj genus2_j0.2.obj torus_j0.2.obj \
-    bumpy5_1pc.obj bumpy6_0.2pc.obj bumpy6_0.5pc.obj bumpy6_1pc.obj bumpy7_0.2pc.obj > features.jsonl
+    bumpy5_1pc.obj bumpy6_clean.obj bumpy6_0.2pc.obj bumpy6_0.5pc.obj bumpy6_1pc.obj bumpy7_0.2pc.obj > features.jsonl
 python3 - <<'PY'
 import json
 rows = [json.loads(l) for l in open("features.jsonl")]
