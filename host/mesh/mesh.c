@@ -511,3 +511,22 @@ void glpgp_mesh_angles(const glpgp_mesh *m, double sliver_deg, double *min_angle
     *min_angle = amin;
     *nslivers = n;
 }
+
+glpgp_status glpgp_mesh_vertex_triangles(const glpgp_mesh *m, int **ptr, int **list)
+{
+    *ptr = *list = NULL;
+    glpgp_status st = glpgp_calloc((size_t)m->nv + 1, sizeof(int), ptr);
+    if (st == GLPGP_OK) st = glpgp_malloc((size_t)3 * m->nt + 1, sizeof(int), list);
+    if (st != GLPGP_OK) {
+        free(*ptr);
+        *ptr = NULL;
+        return st;
+    }
+    int *p = *ptr, *l = *list;
+    for (long k = 0; k < 3L * m->nt; k++) p[m->tri[k] + 1]++;
+    for (int i = 0; i < m->nv; i++) p[i + 1] += p[i];
+    for (long k = 0; k < 3L * m->nt; k++) l[p[m->tri[k]]++] = (int)(k / 3);
+    for (int i = m->nv; i > 0; i--) p[i] = p[i - 1]; /* each start moved to its end: back */
+    p[0] = 0;
+    return GLPGP_OK;
+}

@@ -111,19 +111,13 @@ glpgp_status glpgp_mesh_rcm_order(const glpgp_mesh *m, int *new_of_old)
     glpgp_status st = GLPGP_OK;
     int *ptr = NULL, *adj = NULL, *order = NULL, *mark = NULL, *tptr = NULL, *tlist = NULL;
     unsigned char *seen = NULL;
-    GLPGP_CHECK_GOTO(st, glpgp_calloc((size_t)nv + 1, sizeof(int), &tptr), done);
-    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)3 * nt + 1, sizeof(int), &tlist), done);
+    GLPGP_CHECK_GOTO(st, glpgp_mesh_vertex_triangles(m, &tptr, &tlist), done);
     GLPGP_CHECK_GOTO(st, glpgp_calloc((size_t)nv + 1, sizeof(int), &ptr), done);
     GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)6 * nt + 1, sizeof(int), &adj), done);
     GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)nv + 1, sizeof(int), &order), done);
     GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)nv + 1, sizeof(int), &mark), done);
     GLPGP_CHECK_GOTO(st, glpgp_calloc((size_t)nv + 1, 1, &seen), done);
-    /* vertex -> triangles, then the vertex graph (each edge once per side) */
-    for (long k = 0; k < 3L * nt; k++) tptr[m->tri[k] + 1]++;
-    for (int i = 0; i < nv; i++) tptr[i + 1] += tptr[i];
-    for (long k = 0; k < 3L * nt; k++) tlist[tptr[m->tri[k]]++] = (int)(k / 3);
-    for (int i = nv; i > 0; i--) tptr[i] = tptr[i - 1];
-    tptr[0] = 0;
+    /* the vertex graph (each edge once per side) from the vertices' triangles */
     for (int i = 0; i < nv; i++) mark[i] = -1;
     for (int i = 0; i < nv; i++) {
         ptr[i + 1] = ptr[i];

@@ -72,26 +72,17 @@ static void dn_free(dn_ws *w)
 static glpgp_status dn_alloc(const glpgp_mesh *m, dn_ws *w)
 {
     const size_t nt = (size_t)m->nt, nv = (size_t)m->nv;
-    GLPGP_CHECK(glpgp_calloc(nv + 1, sizeof(int), &w->vstart));
-    GLPGP_CHECK(glpgp_malloc(3 * nt, sizeof(int), &w->vface));
+    GLPGP_CHECK(glpgp_mesh_vertex_triangles(m, &w->vstart, &w->vface));
     GLPGP_CHECK(glpgp_malloc(nv, 1, &w->region));
     GLPGP_CHECK(glpgp_malloc(nv, 1, &w->mark));
     GLPGP_CHECK(glpgp_calloc(nt, 1, &w->tact));
     GLPGP_CHECK(glpgp_malloc(3 * nt, 1, &w->flag));
-    GLPGP_CHECK(glpgp_calloc(nt > nv ? nt : nv, sizeof(int), &w->stamp));
+    GLPGP_CHECK(glpgp_calloc(nt, sizeof(int), &w->stamp));
     GLPGP_CHECK(glpgp_malloc(3 * nt, sizeof(double), &w->n));
     GLPGP_CHECK(glpgp_malloc(3 * nt, sizeof(double), &w->n2));
     GLPGP_CHECK(glpgp_malloc(3 * nt, sizeof(double), &w->c));
     GLPGP_CHECK(glpgp_malloc(nt, sizeof(double), &w->a));
     GLPGP_CHECK(glpgp_malloc(3 * nv, sizeof(double), &w->d));
-    for (size_t k = 0; k < 3 * nt; k++) w->vstart[m->tri[k] + 1]++;
-    for (size_t v = 0; v < nv; v++) w->vstart[v + 1] += w->vstart[v];
-    int *fill = w->stamp; /* scratch: zero on entry, zeroed again after */
-    for (size_t k = 0; k < 3 * nt; k++) {
-        const int v = m->tri[k];
-        w->vface[w->vstart[v] + fill[v]++] = (int)(k / 3);
-    }
-    memset(w->stamp, 0, (nt > nv ? nt : nv) * sizeof(int));
     return GLPGP_OK;
 }
 
@@ -381,6 +372,7 @@ glpgp_status glpgp_surface_denoise(const glpgp_mesh *m, double feature_deg, doub
     GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)3 * m->nv, sizeof(double), &x), done);
     dn_smooth(m, &w, max_move, x, &info->capped);
     st = glpgp_mesh_create_surface(m->nv, x, m->nt, m->tri, &d);
+    if (st == GLPGP_ERR_NOMEM) goto done;
     if (st != GLPGP_OK) { /* a triangle made degenerate: the input kept as it is */
         glpgp_error_clear();
         st = GLPGP_OK;

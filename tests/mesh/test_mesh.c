@@ -586,6 +586,30 @@ static void remove_tmp_dir(void)
     rmdir(g_tmp);
 }
 
+/* glpgp_mesh_vertex_triangles: every vertex lists exactly the triangles
+ * that have it as a corner, by increasing index */
+static void test_vertex_triangles(void)
+{
+    glpgp_mesh *m = NULL;
+    CHECK_OK(glpgp_mesh_generate("disk", 500, &m));
+    if (!m) return;
+    int *ptr = NULL, *list = NULL;
+    CHECK_OK(glpgp_mesh_vertex_triangles(m, &ptr, &list));
+    if (ptr && list) {
+        CHECK(ptr[0] == 0 && ptr[m->nv] == 3 * m->nt);
+        int bad = 0;
+        for (int i = 0; i < m->nv; i++)
+            for (int k = ptr[i]; k < ptr[i + 1]; k++) {
+                const int *t = m->tri + 3 * list[k];
+                bad += !(t[0] == i || t[1] == i || t[2] == i) || (k > ptr[i] && list[k] <= list[k - 1]);
+            }
+        CHECK(bad == 0);
+    }
+    free(ptr);
+    free(list);
+    glpgp_mesh_destroy(&m);
+}
+
 int main(void)
 {
     const char *base = getenv("TMPDIR");
@@ -602,6 +626,7 @@ int main(void)
     test_data();
     test_roundtrip();
     test_far_from_origin();
+    test_vertex_triangles();
     remove_tmp_dir();
     test_size_limits();
     TEST_DONE();

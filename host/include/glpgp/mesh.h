@@ -122,6 +122,11 @@ void glpgp_mesh_release_arrays(glpgp_mesh *m);
  * each set split across the longer side of its bounding box. Deterministic
  * (ties broken by vertex index): every process computes the same parts. */
 glpgp_status glpgp_mesh_partition(const glpgp_mesh *m, int nparts, const int *size, int *part);
+/* Each vertex's triangles: *ptr (nv + 1) and *list (3 nt), vertex i's in
+ * list[ptr[i] .. ptr[i + 1]) by increasing index; the caller frees both
+ * (both NULL after a failure). */
+glpgp_status glpgp_mesh_vertex_triangles(const glpgp_mesh *m, int **ptr, int **list);
+
 /* new_of_old[i] <- the reverse Cuthill-McKee number of vertex i (a
  * permutation of 0 .. nv-1): breadth-first from a pseudo-peripheral vertex
  * of each connected component, neighbours by increasing degree (ties by
