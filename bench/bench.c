@@ -58,6 +58,7 @@ typedef struct bopts {
     int sizes_given, with_4m, steps;
     int hcases; /* --precond-h: bit 0 10 mean edges, bit 1 default (0: both) */
     int kcycle_min;        /* --amg-kcycle-min (-1: auto) */
+    int amg_pre, amg_post; /* --amg-pre / --amg-post (-1: the default) */
     int oscillators;       /* --oscillators: GLPGP_OSC_* of the whole GL solves */
 } bopts;
 
@@ -103,6 +104,8 @@ static void usage(FILE *f)
             "  --newton-steps N         with --precond: Newton steps per case (default 3)\n"
             "  --amg-kcycle-min N|auto  with --precond: K-cycle on levels of >= N nodes, a plain visit below\n"
             "                           (0: every level; auto: 0, or 2000 on a launch-bound GPU; default auto)\n"
+            "  --amg-pre N, --amg-post N  with --precond: l1-Jacobi sweeps before (0..8) / after (1..8)\n"
+            "                           the coarse correction (default: glpgp's, 1 and 1)\n"
             "  -h, --help               this text\n");
 }
 
@@ -141,6 +144,7 @@ static glpgp_status parse_args(int argc, char **argv, bopts *o, int *help)
     o->precond = -1;
     o->steps = 3;
     o->kcycle_min = -1;
+    o->amg_pre = o->amg_post = -1;
     const long defsizes[] = {16000, 64000, 256000, 1000000};
     int sizes_given = 0, repeat_given = 0, stream_given = 0, reps_given = 0, mt_given = 0;
     *help = 0;
@@ -261,6 +265,13 @@ static glpgp_status parse_args(int argc, char **argv, bopts *o, int *help)
             else if (!parse_long(v, &lv) || lv < 0 || lv > 100000000)
                 return GLPGP_FAIL(GLPGP_ERR_ARG, "--amg-kcycle-min: expected a node count or auto");
             else o->kcycle_min = (int)lv;
+        } else if (!strcmp(a, "--amg-pre") || !strcmp(a, "--amg-post")) {
+            NEEDV();
+            const int pre = !strcmp(a, "--amg-pre");
+            if (!parse_long(v, &lv) || lv < (pre ? 0 : 1) || lv > 8)
+                return GLPGP_FAIL(GLPGP_ERR_ARG, "%s: expected %d..8 sweeps", a, pre ? 0 : 1);
+            if (pre) o->amg_pre = (int)lv;
+            else o->amg_post = (int)lv;
         } else if (!strcmp(a, "--smoke")) {
             o->smoke = 1;
         } else if (!strcmp(a, "--json")) {
@@ -1544,6 +1555,8 @@ int main(int argc, char **argv)
         po.hcases = o.hcases;
         po.steps = o.steps;
         po.kcycle_min = o.kcycle_min;
+        po.amg_pre = o.amg_pre;
+        po.amg_post = o.amg_post;
         po.no_petsc = o.no_petsc;
         po.no_cholmod = o.no_cholmod;
         po.max_cholmod = o.max_cholmod;

@@ -126,7 +126,7 @@ static glpgp_status energy_at(glpgp_backend *b, const glpgp_vec *x, double inv4e
  * pc 0, CHOLMOD on each step's system too. */
 static glpgp_status run_case(const glpgp_mesh *m, const glpgp_system *sys, const double *w,
                              const unsigned char *dir, const double *x0, pc_case *cs, int pc, int steps,
-                             int device, int kcycle_min)
+                             const bench_precond_opts *po)
 {
     glpgp_status st = GLPGP_OK;
     glpgp_backend *b = NULL;
@@ -137,10 +137,12 @@ static glpgp_status run_case(const glpgp_mesh *m, const glpgp_system *sys, const
     glpgp_options o;
     glpgp_options_default(&o);
     o.precond = pc ? GLPGP_PRECOND_AMG : GLPGP_PRECOND_JACOBI;
-    o.amg_kcycle_min = kcycle_min;
+    o.amg_kcycle_min = po->kcycle_min;
+    if (po->amg_pre >= 0) o.amg_pre = po->amg_pre;
+    if (po->amg_post >= 0) o.amg_post = po->amg_post;
     const double eps = 0.5 * cs->h, inv4e2 = 1.0 / (4.0 * eps * eps);
     const int chol = pc == 0 && cs->want_cholmod;
-    GLPGP_CHECK(make_backend(cs->opencl, pc, device, &b));
+    GLPGP_CHECK(make_backend(cs->opencl, pc, po->device, &b));
     o.amg_kcycle_min = glpgp_amg_kcycle_min(b, &o); /* resolved: the byte model reads it */
     if (pc == 1) cs->kmin = o.amg_kcycle_min;
     const glpgp_backend_ops *op = b->ops;
@@ -424,7 +426,7 @@ int bench_precond_run(const bench_precond_opts *po)
                 if (be == 0 ? po->no_opencl : po->no_reference) continue;
                 wc->opencl = be == 0;
                 for (int pc = 0; pc < 2; pc++) /* not the anchors */
-                    if (want[pc]) (void)run_case(m, sys, w, dir, x0, wc, pc, 1, po->device, po->kcycle_min);
+                    if (want[pc]) (void)run_case(m, sys, w, dir, x0, wc, pc, 1, po);
             }
         }
         glpgp_error_clear();
@@ -496,7 +498,7 @@ int bench_precond_run(const bench_precond_opts *po)
                     fprintf(stderr, "glpgp-bench: %d vertices, h = %.4g, %s, %s\n", m->nv, h,
                             pc == 2 ? "PETSc" : cs->opencl ? "OpenCL" : "reference",
                             pc == 2 ? "GAMG (anchor)" : pc ? "multigrid" : "Jacobi");
-                    if (run_case(m, sys, w, dir, x0, cs, pc, po->steps, po->device, po->kcycle_min) != GLPGP_OK) {
+                    if (run_case(m, sys, w, dir, x0, cs, pc, po->steps, po) != GLPGP_OK) {
                         snprintf(cs->note[pc], sizeof cs->note[pc], "failed: %s", glpgp_error_message());
                         for (char *p = cs->note[pc]; *p; p++)
                             if (*p == '\n' || *p == '|') *p = ' ';
