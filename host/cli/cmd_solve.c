@@ -259,6 +259,13 @@ static void print_summary(const solve_cli *c, const char *input, const glpgp_mes
     if (u->capped_levels + v->capped_levels)
         printf("  unconverged    %d eps level(s) stopped at the Newton cap (u %d, v %d)\n",
                u->capped_levels + v->capped_levels, u->capped_levels, v->capped_levels);
+    int stalled[2] = {0, 0};
+    for (int l = 0; l < u->nlevels; l++) stalled[0] += u->level[l].stalled;
+    for (int l = 0; l < v->nlevels; l++) stalled[1] += v->level[l].stalled;
+    if (stalled[0] + stalled[1])
+        printf("  plateau        %d eps level(s) stopped with |g| above the tolerance: E + P no longer fell "
+               "(--newton-ftol; u %d, v %d)\n",
+               stalled[0] + stalled[1], stalled[0], stalled[1]);
     if (m->surf)
         printf("  surface        chi %d, genus %d, %d boundary loop(s), %d component(s)\n", m->surf->euler,
                m->surf->genus, m->nloops, m->surf->ncomponents);

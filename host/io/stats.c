@@ -77,6 +77,7 @@ static void stats_options(glpgp_json *w, const glpgp_options *o)
                        o->globalization == GLPGP_GLOBAL_LINE_SEARCH ? "line-search" : "trust-region");
         glpgp_json_num(w, "newton_rtol", o->newton_rtol);
         glpgp_json_int(w, "newton_max", o->newton_max);
+        glpgp_json_num(w, "newton_ftol", o->newton_ftol);
         glpgp_json_num(w, "cg_rtol", o->cg_rtol);
         glpgp_json_int(w, "cg_max", o->cg_max);
         glpgp_json_int(w, "cg_check", o->cg_check);
@@ -132,7 +133,7 @@ static void stats_level(glpgp_json *w, int l, const glpgp_level_stats *ls, int o
     glpgp_json_num(w, "rtol", ls->rtol);
     glpgp_json_bool(w, "capped", ls->capped);
     if (osc) glpgp_json_bool(w, "at_noise", ls->at_noise);
-    if (!osc) glpgp_json_bool(w, "stalled", ls->stalled);
+    glpgp_json_bool(w, "stalled", ls->stalled);
     glpgp_json_close(w);
 }
 

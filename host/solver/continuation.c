@@ -185,7 +185,7 @@ glpgp_status glpgp_solve_oscillator(const glpgp_mesh *m, osc_work *w, int k, con
         glpgp_timer_leave(b, prev);
         r->nlevels = nlevels;
         glpgp_newton_state ns = {.x = w->x, .g = w->g, .d = w->d, .xt = w->xt, .work = w->work,
-                                 .amg = w->amg, .stop = w->stop};
+                                 .amg = w->amg, .stop = w->stop, .ftol = o->newton_ftol};
         for (int l = 0; l < nlevels; l++) {
             glpgp_level_stats *ls = &r->level[l];
             glpgp_log(GLPGP_LOG_INFO, "%s: level %d/%d, eps = %.4g", glpgp_osc_name(k), l + 1,
@@ -208,6 +208,12 @@ glpgp_status glpgp_solve_oscillator(const glpgp_mesh *m, osc_work *w, int k, con
                 ls->restarted = 1;
                 GLPGP_CHECK(level_read(w, m, &ls->median_zabs));
             }
+            if (ls->stalled)
+                glpgp_log(GLPGP_LOG_INFO,
+                          "%s: eps level %d/%d stopped after %d Newton steps: E + P fell by at most %.0e of "
+                          "itself over the last 3 (|g|/|g0| = %.2e, tolerance %.0e: a plateau)",
+                          glpgp_osc_name(k), l + 1, nlevels, ls->newton, o->newton_ftol,
+                          ls->grad0 > 0 ? ls->grad / ls->grad0 : 0.0, rtol);
             if (ls->capped) {
                 r->capped_levels++;
                 glpgp_log(GLPGP_LOG_WARNING,

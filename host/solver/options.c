@@ -36,6 +36,7 @@ void glpgp_options_default(glpgp_options *o)
     o->newton_rtol = 1e-6;
     o->intermediate_rtol = 1e-3;
     o->newton_max = 50;
+    o->newton_ftol = 1e-8; /* the torus's plateau at |g| ~ 5e-6 |g0| (bench/results/newton_stall.md) */
     o->exact_switch = 0.05;
     o->exact_cooldown = 5;
     o->armijo = 1e-4;
@@ -131,6 +132,8 @@ glpgp_status glpgp_options_check(const glpgp_options *o)
         return GLPGP_FAIL(GLPGP_ERR_ARG, "collapse_zabs must be in [0,1)");
     if (!OPEN01(o->newton_rtol) || !OPEN01(o->intermediate_rtol))
         return GLPGP_FAIL(GLPGP_ERR_ARG, "Newton tolerances must be in (0,1)");
+    if (!(o->newton_ftol >= 0.0 && o->newton_ftol < 1.0))
+        return GLPGP_FAIL(GLPGP_ERR_ARG, "newton-ftol must be in [0,1), got %g", o->newton_ftol);
     if (o->newton_max < 1 || o->cg_max < 1 || o->cg_check < 1 || o->max_backtracks < 1 ||
         o->exact_cooldown < 0)
         return GLPGP_FAIL(GLPGP_ERR_ARG, "iteration counts must be >= 1");

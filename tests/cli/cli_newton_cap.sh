@@ -5,6 +5,13 @@
 # warning line naming the cap, and the statistics JSON has capped = true on
 # a level and converged.all = false; the same solve without the cap has no
 # such warning and converged.all = true.
+# The plateau stop (--newton-ftol): the coupled oscillators of a torus
+# (shape:torus:6000 --faces 225, reference backend) reach |g| ~ 1e-4 |g0| and
+# then alternate between two trust-region steps with E + P unchanged; without
+# the stop the last level runs to the cap of 50 (58 Newton steps, a warning).
+# Checks: no cap warning, a `plateau` line in the summary, that level
+# `stalled` after 20 steps with |g| <= 1e-3 |g0|, every other level converged
+# by |g| (not stalled), all quads valid.
 # Usage: bash cli_newton_cap.sh <path-to-glpgp> <data-dir>
 . "$(dirname "$0")/lib.sh" "$@"
 
@@ -32,4 +39,31 @@ done
 run_ok "uncapped" solve shape:disk:3000 --size 0.4 --backend reference --stats free.json
 if grep -qi "Newton cap" err.txt; then fail "uncapped: unexpected cap warning"; fi
 json_capped free.json 0
+if [ "$have_python" -eq 1 ]; then
+    python3 - free.json <<'PY' || fail "disk: a level that converges by |g| reported stalled"
+import json, sys
+d = json.load(open(sys.argv[1]))
+assert not any(l["stalled"] for o in "uv" for l in d["eps_schedule"][o])
+PY
+fi
+
+run_ok "plateau" solve shape:torus:6000 --faces 225 --backend reference --stats plateau.json --quads plateau.obj
+if grep -qi "Newton cap" err.txt; then fail "plateau: the level ran to the Newton cap"; fi
+expect_out "plateau +1 eps level" "plateau: the summary names the stopped level"
+if [ "$have_python" -eq 1 ]; then
+    python3 - plateau.json <<'PY' || fail "plateau: the torus's last level was not stopped by the plateau test"
+import json, sys
+d = json.load(open(sys.argv[1]))
+u = d["eps_schedule"]["u"]
+last = u[-1]
+assert last["stalled"] and not last["capped"], last
+assert 20 <= last["newton"] <= 25, last["newton"]
+assert last["grad"] <= 1e-3 * last["grad0"], (last["grad"], last["grad0"])
+assert not any(l["stalled"] or l["capped"] for l in u[:-1]), u
+assert d["converged"]["all"], d["converged"]
+assert d["options"]["newton_ftol"] == 1e-8, d["options"]
+q = d["quads"]
+assert q["valid"] and q["faces"] == q["quads"] and q["faces"] > 150, q
+PY
+fi
 finish

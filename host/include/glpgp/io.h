@@ -207,7 +207,7 @@ typedef struct glpgp_stats_extra {
  *   version, input, output, vertices, triangles, size, method ("gl"/"pgp"),
  *   energy ("p1"/"transport"), newton ("mixed"/"projected"/"paper"/"exact"), backend,
  *   field ("boundary"/"radial"/"file"), field_file, init ("naive"/"one"),
- *   options {eps0, eps_ratio, eps_min, newton_rtol, newton_max, cg_rtol,
+ *   options {eps0, eps_ratio, eps_min, newton_rtol, newton_max, newton_ftol, cg_rtol,
  *            cg_max, cg_check, cross_eps0, cross_eps_min, cross_rtol, cross_ftol,
  *            cross_size ("off"/"on"/"auto"), cross_size_quantile,
  *            cross_size_ratio, center},

@@ -32,7 +32,9 @@ typedef struct glpgp_level_stats {
                             level): converged as far as double precision resolves */
     int stalled;         /* the level stopped with |g| above its tolerance because E + P fell
                             by at most ftol |E + P| over 3 Newton steps (the cross field's
-                            --cross-ftol: slow drift of singularities on near-neutral modes) */
+                            --cross-ftol: slow drift of singularities on near-neutral modes;
+                            the oscillators' --newton-ftol: a plateau where the trust region
+                            no longer lowers |g|) */
     double rtol;         /* the level's tolerance |g| <= rtol |g0| */
     int cg_capped;       /* Newton linear solves stopped by the CG cap (cg_max) */
 } glpgp_level_stats;

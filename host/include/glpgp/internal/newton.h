@@ -54,8 +54,8 @@ typedef struct glpgp_newton_state {
                         no more than 0.1 target / |g| (solver/newton.c, newton_eta) */
     double ftol;     /* > 0: the level also ends when, from GLPGP_STALL_STEPS steps on,
                         E + P fell by at most ftol |E + P| over the last 3 Newton steps
-                        (the cross field's stall test, --cross-ftol; 0: off, the
-                        oscillators') */
+                        (the stall test: --cross-ftol for the cross field,
+                        --newton-ftol for the oscillators; 0: off) */
     glpgp_vec *lin;  /* NULL, or b of a linear term: F = E + P - b . x, the gradient
                         g - b (b zero at Dirichlet vertices; the Hessian unchanged: the
                         surface cross field's curvature alignment) */
