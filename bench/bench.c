@@ -59,6 +59,7 @@ typedef struct bopts {
     int hcases; /* --precond-h: bit 0 10 mean edges, bit 1 default (0: both) */
     int kcycle_min;        /* --amg-kcycle-min (-1: auto) */
     int amg_pre, amg_post; /* --amg-pre / --amg-post (-1: the default) */
+    int amg_passes;        /* --amg-coarse-passes (-1: the default) */
     int oscillators;       /* --oscillators: GLPGP_OSC_* of the whole GL solves */
 } bopts;
 
@@ -106,6 +107,8 @@ static void usage(FILE *f)
             "                           (0: every level; auto: 0, or 2000 on a launch-bound GPU; default auto)\n"
             "  --amg-pre N, --amg-post N  with --precond: l1-Jacobi sweeps before (0..8) / after (1..8)\n"
             "                           the coarse correction (default: glpgp's, 1 and 1)\n"
+            "  --amg-coarse-passes N    with --precond: pairing passes per coarse level, 2 (aggregates of\n"
+            "                           ~4 nodes, the default) or 3 (~8: fewer levels and launches)\n"
             "  -h, --help               this text\n");
 }
 
@@ -144,7 +147,7 @@ static glpgp_status parse_args(int argc, char **argv, bopts *o, int *help)
     o->precond = -1;
     o->steps = 3;
     o->kcycle_min = -1;
-    o->amg_pre = o->amg_post = -1;
+    o->amg_pre = o->amg_post = o->amg_passes = -1;
     const long defsizes[] = {16000, 64000, 256000, 1000000};
     int sizes_given = 0, repeat_given = 0, stream_given = 0, reps_given = 0, mt_given = 0;
     *help = 0;
@@ -272,6 +275,11 @@ static glpgp_status parse_args(int argc, char **argv, bopts *o, int *help)
                 return GLPGP_FAIL(GLPGP_ERR_ARG, "%s: expected %d..8 sweeps", a, pre ? 0 : 1);
             if (pre) o->amg_pre = (int)lv;
             else o->amg_post = (int)lv;
+        } else if (!strcmp(a, "--amg-coarse-passes")) {
+            NEEDV();
+            if (!parse_long(v, &lv) || lv < 2 || lv > 3)
+                return GLPGP_FAIL(GLPGP_ERR_ARG, "--amg-coarse-passes: expected 2 or 3");
+            o->amg_passes = (int)lv;
         } else if (!strcmp(a, "--smoke")) {
             o->smoke = 1;
         } else if (!strcmp(a, "--json")) {
@@ -1557,6 +1565,7 @@ int main(int argc, char **argv)
         po.kcycle_min = o.kcycle_min;
         po.amg_pre = o.amg_pre;
         po.amg_post = o.amg_post;
+        po.amg_passes = o.amg_passes;
         po.no_petsc = o.no_petsc;
         po.no_cholmod = o.no_cholmod;
         po.max_cholmod = o.max_cholmod;

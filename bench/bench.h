@@ -34,6 +34,7 @@ typedef struct bench_precond_opts {
     const char *json;     /* NULL: no JSON */
     int kcycle_min;       /* glpgp_options.amg_kcycle_min (-1: by the backend) */
     int amg_pre, amg_post; /* glpgp_options.amg_pre / amg_post (-1: the default) */
+    int amg_passes;        /* glpgp_options.amg_coarse_passes (-1: the default) */
     int no_petsc;         /* leave the PETSc GAMG anchor out */
     int no_cholmod;       /* leave the CHOLMOD anchor out */
     long max_cholmod;     /* CHOLMOD anchor up to this many vertices (0: no limit) */

@@ -73,6 +73,7 @@ typedef struct pc_case {
     glpgp_amg_info info;
     double bytes_amg_it; /* model, per flexible-CG iteration */
     int kmin;            /* K-cycle on levels of >= kmin nodes (resolved amg_kcycle_min) */
+    int passes;          /* amg_coarse_passes */
 } pc_case;
 
 static double b_spmv(double nv, double nnzb) { return 36.0 * nnzb + 4.0 * (nv + 1) + 32.0 * nv; }
@@ -140,11 +141,15 @@ static glpgp_status run_case(const glpgp_mesh *m, const glpgp_system *sys, const
     o.amg_kcycle_min = po->kcycle_min;
     if (po->amg_pre >= 0) o.amg_pre = po->amg_pre;
     if (po->amg_post >= 0) o.amg_post = po->amg_post;
+    if (po->amg_passes >= 0) o.amg_coarse_passes = po->amg_passes;
     const double eps = 0.5 * cs->h, inv4e2 = 1.0 / (4.0 * eps * eps);
     const int chol = pc == 0 && cs->want_cholmod;
     GLPGP_CHECK(make_backend(cs->opencl, pc, po->device, &b));
     o.amg_kcycle_min = glpgp_amg_kcycle_min(b, &o); /* resolved: the byte model reads it */
-    if (pc == 1) cs->kmin = o.amg_kcycle_min;
+    if (pc == 1) {
+        cs->kmin = o.amg_kcycle_min;
+        cs->passes = o.amg_coarse_passes;
+    }
     const glpgp_backend_ops *op = b->ops;
     glpgp_vec **vs[] = {&x, &g, &rhs, &d, &xt, &wk};
     GLPGP_CHECK_GOTO(st, op->setup(b, sys), done);
@@ -314,6 +319,7 @@ static void json_case(glpgp_json *w, const pc_case *c)
         glpgp_json_num(w, "amg_structure_s", c->info.seconds_structure);
         glpgp_json_num(w, "amg_bytes_per_iteration", c->bytes_amg_it);
         glpgp_json_int(w, "amg_kcycle_min", c->kmin);
+        glpgp_json_int(w, "amg_coarse_passes", c->passes);
     }
     for (int pc = 0; pc < PC_N; pc++) {
         const char *name = pc_name[pc];

@@ -4,7 +4,9 @@
 # capped, 6 minutes at most): the cross-checks on a generated disk and on
 # data/plate_holes.msh; the device's bandwidth and the per-operation ladder;
 # Jacobi against multigrid per Newton step with the K-cycle on every level
-# and with the launch-bound default (2000 nodes); whole solves of the 1M
+# and with the launch-bound default (2000 nodes), and the multigrid with
+# aggregates of ~8 on its coarse levels (--amg-coarse-passes 3: half the
+# launches per cycle on the CPU shape); whole solves of the 1M
 # square (u and v one after the other and at the same time, and Jacobi), the
 # 4M square (default, and with --phase-sync: every phase's device work in its
 # own time) and the 10M square, each with the statistics' phase shares
@@ -129,6 +131,10 @@ for k in 0 auto; do
         --newton-steps 2 --amg-kcycle-min "$k" --json "$OUT/precond_1m_k$k.json"
     grep -E "^per Newton step|^multigrid:" "$OUT/precond_1m_k$k.md"
 done
+# aggregates of ~8 on the coarse levels: fewer levels and launches per cycle
+step 40 "precond-1m-passes3" "$OUT/precond_1m_p3.md" "$B" --precond amg --sizes "$PC" --no-reference --no-cholmod \
+    --no-petsc --newton-steps 2 --amg-coarse-passes 3 --json "$OUT/precond_1m_p3.json"
+grep -E "^multigrid:|^\| [0-9]+ \| amg \|" "$OUT/precond_1m_p3.md"
 # device time per kernel (each launch waited for: slower, for the shares only)
 GLPGP_CL_PROFILE=1 step 45 profile-square1m - "$G" solve "$SQ1" --verbose \
     --stats "$OUT/profile_square1m.json" 2>"$OUT/profile_square1m.txt"
@@ -162,12 +168,14 @@ for step, f in rows:
     print("| %s | %s | %.2f | %.2f | %s | %d | %d | %.0f%% | %s |" % (
         step, rc, wall or 0.0, j["seconds"]["total"], j.get("oscillators"), j["newton_iterations"]["total"],
         j["cg_iterations"]["total"], 100.0 * sp.get("host_share", 0.0), top))
-for k in ("0", "auto"):
-    p = os.path.join(d, "precond_1m_k%s.md" % k)
+for k in ("0", "auto", "p3"):
+    p = os.path.join(d, "precond_1m_%s.md" % (k if k == "p3" else "k" + k))
     if os.path.exists(p):
-        print("\nK-cycle on levels of >= %s nodes (glpgp-bench --precond both): " % k)
+        print("\n%s (glpgp-bench --precond): " % ("--amg-coarse-passes 3" if k == "p3" else
+                                                 "K-cycle on levels of >= %s nodes" % k))
         for line in open(p):
-            if line.startswith("per Newton step") or line.startswith("multigrid:"):
+            if line.startswith("per Newton step") or line.startswith("multigrid:") or \
+                    (k == "p3" and line.startswith("| ") and "| amg |" in line):
                 print("    " + line.rstrip())
 PYEOF
     cat "$OUT/summary.md"

@@ -9,7 +9,8 @@
  * neighbours takes its strongest unmatched neighbour; fine edge weights 1,
  * coarse weights the number of fine edges between two aggregates, which
  * keeps aggregates compact; a coupled system's edges across a conjugation
- * are never taken, conj_slot): aggregates of about 4 nodes, coarse graph =
+ * are never taken, conj_slot): aggregates of about 4 nodes (levels >= 1
+ * with amg_coarse_passes = 3: a third pass, about 8), coarse graph =
  * quotient graph. Every vertex is aggregated, Dirichlet or not: the
  * Dirichlet set differs between the guiding field, u and v, and enters only
  * the values (a Dirichlet vertex's frame is 0, so its prolongation weight is
@@ -262,12 +263,13 @@ out:
 }
 
 
-/* grp <- the aggregates of graph g (two pairing passes; every node in one),
+/* grp <- the aggregates of graph g (`passes` pairing passes, 2 or 3, each on
+ * the quotient graph of the one before; every node in one),
  * numbered by their first member (the coarse levels keep the locality of
  * the fine ordering); *nc their count. When the graph is small enough (n <=
  * coarse) every node is its own aggregate (the next level is then the
  * coarsest and solves the level exactly). */
-static glpgp_status aggregate(const wgraph *g, int coarse, int *grp, int *nc)
+static glpgp_status aggregate(const wgraph *g, int coarse, int passes, int *grp, int *nc)
 {
     glpgp_status st = GLPGP_OK;
     const int n = g->n;
@@ -289,6 +291,19 @@ static glpgp_status aggregate(const wgraph *g, int coarse, int *grp, int *nc)
     GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)n1 + 1, sizeof(int), &g2), out);
     GLPGP_CHECK_GOTO(st, pair_pass(&q, act, g2, &n2), out);
     for (int i = 0; i < n; i++) grp[i] = g2[g1[i]];
+    if (passes > 2 && n2 > coarse) {
+        /* a third pass on the quotient of the second: pairs of pairs of pairs
+         * (g1 is free again: it holds the third pass's groups) */
+        wgraph q2;
+        memset(&q2, 0, sizeof q2);
+        int n3 = 0;
+        st = quotient(&q, g2, n2, &q2);
+        if (st == GLPGP_OK) st = pair_pass(&q2, act, g1, &n3);
+        wgraph_free(&q2);
+        GLPGP_CHECK_GOTO(st, st, out);
+        for (int i = 0; i < n; i++) grp[i] = g1[grp[i]];
+        n2 = n3;
+    }
     /* number the aggregates by their first member */
     for (int J = 0; J < n2; J++) g2[J] = -1;
     int next = 0;
@@ -336,9 +351,10 @@ static glpgp_status coarsen(glpgp_amg_structure *s, const glpgp_options *o)
         amg_slevel *lv = &s->lev[L - 1];
         int nc = 0;
         GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)lv->n + 1, sizeof(int), &lv->agg), out);
-        GLPGP_CHECK_GOTO(st, aggregate(&g, o->amg_coarse, lv->agg, &nc), out);
+        const int passes = L > 1 ? o->amg_coarse_passes : 2;
+        GLPGP_CHECK_GOTO(st, aggregate(&g, o->amg_coarse, passes, lv->agg, &nc), out);
         if (nc > o->amg_coarse && 2 * (long)nc > lv->n && allow_cuts(&g))
-            GLPGP_CHECK_GOTO(st, aggregate(&g, o->amg_coarse, lv->agg, &nc), out);
+            GLPGP_CHECK_GOTO(st, aggregate(&g, o->amg_coarse, passes, lv->agg, &nc), out);
         s->lev[L].n = nc;
         L++;
         if (nc == 0) {

@@ -62,6 +62,7 @@ void glpgp_options_default(glpgp_options *o)
     o->precond = GLPGP_PRECOND_AMG; /* measured faster: bench/results/history.md, "Multigrid measured" */
     o->amg_coarse = 48;
     o->amg_max_levels = 20;
+    o->amg_coarse_passes = 2; /* 3: bench/results/time_to_solution.md, "Coarser aggregates" */
     o->amg_cycle = GLPGP_AMG_KCYCLE;
     o->amg_kcycle_min = -1; /* by the backend: glpgp_amg_kcycle_min */
     o->amg_pre = 1;
@@ -163,6 +164,8 @@ glpgp_status glpgp_options_check(const glpgp_options *o)
         return GLPGP_FAIL(GLPGP_ERR_ARG, "unknown preconditioner %d", o->precond);
     if (o->amg_coarse < 2 || o->amg_coarse > 1024)
         return GLPGP_FAIL(GLPGP_ERR_ARG, "amg_coarse must be in [2, 1024], got %d", o->amg_coarse);
+    if (o->amg_coarse_passes < 2 || o->amg_coarse_passes > 3)
+        return GLPGP_FAIL(GLPGP_ERR_ARG, "amg_coarse_passes must be 2 or 3, got %d", o->amg_coarse_passes);
     if (o->amg_max_levels < 2 || o->amg_max_levels > GLPGP_AMG_MAX_LEVELS)
         return GLPGP_FAIL(GLPGP_ERR_ARG, "amg_max_levels must be in [2, %d], got %d",
                           GLPGP_AMG_MAX_LEVELS, o->amg_max_levels);

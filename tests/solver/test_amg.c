@@ -78,11 +78,15 @@ static void fixture_free(fixture *f)
     glpgp_mesh_destroy(&f->m);
 }
 
-static void test_galerkin(void)
+/* passes: amg_coarse_passes (2: aggregates of ~4 on every level; 3: ~8 on
+ * levels >= 1); *nlevels <- the hierarchy's level count */
+static void galerkin_run(int passes, int *nlevels)
 {
     fixture f;
     fixture_init(&f, 600, 10.0, 0.0);
     f.o.amg_coarse = 6; /* several levels on a small mesh */
+    f.o.amg_coarse_passes = passes;
+    *nlevels = 0;
     const int nv = f.m->nv;
     const glpgp_backend_ops *op = f.b->ops;
     double *z = calloc((size_t)2 * nv, sizeof(double));
@@ -100,17 +104,31 @@ static void test_galerkin(void)
     CHECK_OK(glpgp_amg_update(a, x));
     glpgp_amg_info in;
     glpgp_amg_get_info(a, &in);
-    printf("galerkin: %d vertices, %d levels:", nv, in.nlevels);
+    printf("galerkin (%d passes on the coarse levels): %d vertices, %d levels:", passes, nv, in.nlevels);
     for (int l = 0; l < in.nlevels; l++) printf(" %d", in.n[l]);
     printf(", operator complexity %.3f\n", in.operator_complexity);
-    CHECK(in.nlevels >= 4);
+    *nlevels = in.nlevels;
+    CHECK(in.nlevels >= (passes == 2 ? 4 : 3));
+    /* level 0 -> 1 by pairs of pairs (about 4); below, by 2^passes (about 4 or 8) */
+    CHECK(in.n[1] * 3 < in.n[0]);
+    for (int l = 1; l + 2 < in.nlevels; l++) CHECK(in.n[l + 1] * (passes == 2 ? 3 : 5) < in.n[l]);
     CHECK(in.n[in.nlevels - 1] <= f.o.amg_coarse);
     CHECK(in.operator_complexity > 1.0 && in.operator_complexity <= 1.6);
-    amg_check_galerkin("galerkin", f.b, &in, f.dir, nv / 2);
+    amg_check_galerkin(passes == 2 ? "galerkin" : "galerkin, 3 passes", f.b, &in, f.dir, nv / 2);
     glpgp_amg_destroy(&a);
     op->vec_destroy(f.b, &x);
     free(z);
     fixture_free(&f);
+}
+
+/* Every A_{l+1} = P^T A_l P, with aggregates of ~4 and, with
+ * amg_coarse_passes = 3, of ~8 below level 1 (fewer levels). */
+static void test_galerkin(void)
+{
+    int l2 = 0, l3 = 0;
+    galerkin_run(2, &l2);
+    galerkin_run(3, &l3);
+    CHECK(l3 > 0 && l3 < l2);
 }
 
 static void test_nullspace(void)

@@ -204,6 +204,9 @@ typedef struct glpgp_options {
     int amg_coarse;       /* coarsening stops at <= this many nodes (2 unknowns each),
                              solved by a dense inverse; 2 .. 1024 [48] */
     int amg_max_levels;   /* levels including the fine one, 2 .. GLPGP_AMG_MAX_LEVELS [20] */
+    int amg_coarse_passes; /* pairwise-matching passes that aggregate each level >= 1: 2
+                             (aggregates of ~4 nodes) or 3 (~8: fewer levels, half the
+                             launches per cycle, 5-15% more iterations; level 0 keeps 2) [2] */
     int amg_cycle;        /* GLPGP_AMG_KCYCLE or _VCYCLE [KCYCLE] */
     int amg_kcycle_min;   /* with KCYCLE: levels with fewer nodes than this get a plain
                              visit (V) instead, fewer small operations per cycle for a
