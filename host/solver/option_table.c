@@ -233,9 +233,9 @@ static const glpgp_optdesc k_table[] = {
     DBL("newton-rtol", G2, newton_rtol, 0.0, 1, 1.0, 1, "F", "the last level stops when |g| <= F |g0|"),
     INT("newton-max", G2, newton_max, 1, INT_MAX, "N", "Newton iterations per eps level"),
     DBL("newton-ftol", G2, newton_ftol, 0.0, 0, 1.0, 1, "F",
-        "... or, from its 20th Newton step on, when E + P fell by at most\n"
-        "F of itself over the last 3 (a plateau: nothing left to gain;\n"
-        "0: off)"),
+        "a level also stops, from its 20th Newton step on, when E + P\n"
+        "fell by at most F of itself over the last 3 (a plateau: nothing\n"
+        "left to gain; 0: off)"),
     DBL("cg-rtol", G2, cg_rtol, 0.0, 1, 1.0, 1, "F", "CG stops when |r| <= F |b|"),
     INT("cg-max", G2, cg_max, 1, INT_MAX, "N", "CG iteration cap"),
     INT("cg-check", G2, cg_check, 1, INT_MAX, "N", "read the CG residual back every N iterations"),

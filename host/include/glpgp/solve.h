@@ -155,8 +155,9 @@ typedef struct glpgp_options {
     double newton_rtol;   /* stop the last level when |g| <= rtol |g_0| [1e-6] */
     double intermediate_rtol; /* levels before the last stop at max(newton_rtol, this) [1e-3] */
     int newton_max;       /* Newton iterations cap per eps level [50] */
-    double newton_ftol;   /* ... or, from its GLPGP_STALL_STEPS-th step on, when E + P fell by
-                             at most this of itself over the last 3 steps (0: off) [1e-8] */
+    double newton_ftol;   /* a level also stops, from its GLPGP_STALL_STEPS-th step on, when
+                             E + P fell by at most this of itself over the last 3 steps
+                             (0: off) [1e-8] */
     double exact_switch;  /* `mixed` tries the exact Hessian once |g| <= this |g_0| after a
                              full step without fallback [0.05] */
     int exact_cooldown;   /* steps `mixed` waits after a failed exact attempt [5] */
