@@ -168,14 +168,13 @@ for step, f in rows:
     print("| %s | %s | %.2f | %.2f | %s | %d | %d | %.0f%% | %s |" % (
         step, rc, wall or 0.0, j["seconds"]["total"], j.get("oscillators"), j["newton_iterations"]["total"],
         j["cg_iterations"]["total"], 100.0 * sp.get("host_share", 0.0), top))
-for k in ("0", "auto", "p3"):
-    p = os.path.join(d, "precond_1m_%s.md" % (k if k == "p3" else "k" + k))
+for name, title in (("k0", "K-cycle on levels of >= 0 nodes"), ("kauto", "K-cycle on levels of >= auto nodes"),
+                    ("p3", "--amg-coarse-passes 3")):
+    p = os.path.join(d, "precond_1m_%s.md" % name)
     if os.path.exists(p):
-        print("\n%s (glpgp-bench --precond): " % ("--amg-coarse-passes 3" if k == "p3" else
-                                                 "K-cycle on levels of >= %s nodes" % k))
+        print("\n%s (glpgp-bench --precond): " % title)
         for line in open(p):
-            if line.startswith("per Newton step") or line.startswith("multigrid:") or \
-                    (k == "p3" and line.startswith("| ") and "| amg |" in line):
+            if line.startswith(("per Newton step", "multigrid:", "| 1 | amg |", "| 2 | amg |")):
                 print("    " + line.rstrip())
 PYEOF
     cat "$OUT/summary.md"

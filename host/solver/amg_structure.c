@@ -273,51 +273,46 @@ static glpgp_status aggregate(const wgraph *g, int coarse, int passes, int *grp,
 {
     glpgp_status st = GLPGP_OK;
     const int n = g->n;
-    int *g1 = NULL, *g2 = NULL;
+    int *pair = NULL;
     unsigned char *act = NULL;
-    wgraph q;
-    memset(&q, 0, sizeof q);
+    wgraph q[2]; /* the quotient graphs, alternating */
+    memset(q, 0, sizeof q);
     if (n <= coarse) {
         for (int i = 0; i < n; i++) grp[i] = i;
         *nc = n;
         return GLPGP_OK;
     }
-    int n1 = 0, n2 = 0;
     GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)n + 1, 1, &act), out);
     memset(act, 1, (size_t)n + 1);
-    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)n + 1, sizeof(int), &g1), out);
-    GLPGP_CHECK_GOTO(st, pair_pass(g, act, g1, &n1), out);
-    GLPGP_CHECK_GOTO(st, quotient(g, g1, n1, &q), out);
-    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)n1 + 1, sizeof(int), &g2), out);
-    GLPGP_CHECK_GOTO(st, pair_pass(&q, act, g2, &n2), out);
-    for (int i = 0; i < n; i++) grp[i] = g2[g1[i]];
-    if (passes > 2 && n2 > coarse) {
-        /* a third pass on the quotient of the second: pairs of pairs of pairs
-         * (g1 is free again: it holds the third pass's groups) */
-        wgraph q2;
-        memset(&q2, 0, sizeof q2);
-        int n3 = 0;
-        st = quotient(&q, g2, n2, &q2);
-        if (st == GLPGP_OK) st = pair_pass(&q2, act, g1, &n3);
-        wgraph_free(&q2);
-        GLPGP_CHECK_GOTO(st, st, out);
-        for (int i = 0; i < n; i++) grp[i] = g1[grp[i]];
-        n2 = n3;
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)n + 1, sizeof(int), &pair), out);
+    for (int i = 0; i < n; i++) grp[i] = i;
+    const wgraph *cur = g;
+    int ng = n;
+    /* passes beyond the second only while the graph is above the coarsest size */
+    for (int p = 0; p < passes && (p < 2 || ng > coarse); p++) {
+        if (p > 0) { /* pass p pairs the groups of pass p - 1: on their quotient graph */
+            wgraph *nx = &q[p % 2];
+            wgraph_free(nx);
+            GLPGP_CHECK_GOTO(st, quotient(cur, pair, ng, nx), out);
+            cur = nx;
+        }
+        GLPGP_CHECK_GOTO(st, pair_pass(cur, act, pair, &ng), out);
+        for (int i = 0; i < n; i++) grp[i] = pair[grp[i]];
     }
     /* number the aggregates by their first member */
-    for (int J = 0; J < n2; J++) g2[J] = -1;
+    for (int J = 0; J < ng; J++) pair[J] = -1;
     int next = 0;
     for (int i = 0; i < n; i++) {
         const int J = grp[i];
-        if (g2[J] < 0) g2[J] = next++;
-        grp[i] = g2[J];
+        if (pair[J] < 0) pair[J] = next++;
+        grp[i] = pair[J];
     }
-    *nc = n2;
+    *nc = ng;
 out:
-    free(g1);
-    free(g2);
+    free(pair);
     free(act);
-    wgraph_free(&q);
+    wgraph_free(&q[0]);
+    wgraph_free(&q[1]);
     return st;
 }
 

@@ -7,8 +7,9 @@
 # such warning and converged.all = true.
 # The plateau stop (--newton-ftol): the coupled oscillators of a torus
 # (shape:torus:6000 --faces 225, reference backend) reach |g| ~ 1e-4 |g0| and
-# then alternate between two trust-region steps with E + P unchanged; without
-# the stop the last level runs to the cap of 50 (58 Newton steps, a warning).
+# then creep along a near-flat direction, E + P falling by about 1e-9 of
+# itself per step; without the stop the last level runs to the cap of 50
+# (58 Newton steps, a warning).
 # Checks: no cap warning, a `plateau` line in the summary, that level
 # `stalled` after 20 steps with |g| <= 1e-3 |g0|, every other level converged
 # by |g| (not stalled), all quads valid.
