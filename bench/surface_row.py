@@ -28,7 +28,7 @@ irr = nint - vi.get("4", 0)
 if tool.startswith("glpgp"):
     path = ("coarse last resort" if "coarsened triangulation" in out else "last resort" if "last resort" in out
             else "split (h/2)" if "Catmull-Clark" in out else "local split" if "split locally" in out
-            else "local repair" if "repaired locally" in out else "grid")
+            else "local refinement" if "refined locally" in out else "local repair" if "repaired locally" in out else "grid")
     m = re.search(r"extraction ([0-9.]+)", out)
     secs_s = "%.1f (%s)" % (float(secs), m.group(1) if m else "?")
 else:

@@ -29,9 +29,12 @@ static const char *const k_quad_exts[] = {".obj", ".vtk", ".vtu", ".msh", ".ply"
 
 void glpgp_cli_print_surface_steps(const glpgp_quads_surface_steps *s)
 {
-    char split[96] = "";
+    char split[192] = "";
     if (s->split_faces)
         snprintf(split, sizeof split, "; %d faces split locally (bad regions and their quad strips)", s->split_faces);
+    else if (s->refined_faces)
+        snprintf(split, sizeof split, "; %d faces refined locally (3 x 3 where too far from the surface, templates around)",
+                 s->refined_faces);
     printf("  surface quads  extraction %d faces (%d quads), %d odd or even faces closed, %d strips%s%s%s\n",
            s->extracted_faces, s->extracted_quads, s->closed, s->strips, split,
            s->subdivided ? "; split into quads (Catmull-Clark, h/2)" : "",

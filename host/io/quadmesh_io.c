@@ -86,6 +86,7 @@ static void json_steps(glpgp_json *w, const glpgp_quads_surface_steps *s)
     const char *path = s->fallback ? (s->coarse_triangles ? "coarse last resort" : "input triangles split")
                        : s->subdivided      ? "split h/2"
                        : s->split_faces     ? "local split"
+                       : s->refined_faces   ? "local refinement"
                        : s->local_regions   ? "local repair"
                                             : "grid";
     glpgp_json_object(w, "steps");
@@ -98,6 +99,7 @@ static void json_steps(glpgp_json *w, const glpgp_quads_surface_steps *s)
     glpgp_json_int(w, "local_faces_in", s->local_faces_in);
     glpgp_json_int(w, "local_quads_out", s->local_quads_out);
     glpgp_json_int(w, "split_faces", s->split_faces);
+    glpgp_json_int(w, "refined_faces", s->refined_faces);
     glpgp_json_bool(w, "split_h2", s->subdivided);
     glpgp_json_bool(w, "last_resort", s->fallback);
     glpgp_json_int(w, "coarse_triangles", s->coarse_triangles);

@@ -270,10 +270,13 @@ static void soup_free(tsoup *s)
  * finds within it (soup_dist_until stops there); a vertex is sampled
  * once, not once per triangle (seen: a zeroed flag per point of a). Measured on a torus of
  * 400k triangles: the check went from seconds to a fraction (bench/results/surfaces_quads.md). */
-static double one_sided(const tsoup *a, const tsoup *b, double h, unsigned char *seen)
+typedef void (*sample_fn)(void *ctx, const double *p);
+
+/* The check's samples of soup a's triangles (a grid of about h / 8, 1 to 8
+ * steps per side; a vertex once: seen, a zeroed flag per point of a), each
+ * passed to fn. */
+static void for_samples(const tsoup *a, double h, unsigned char *seen, sample_fn fn, void *ctx)
 {
-    double worst = 0.0;
-    int hint = -1;
     for (int t = 0; t < a->nt; t++) {
         const double *A = a->xyz + 3 * a->tri[3 * t], *B = a->xyz + 3 * a->tri[3 * t + 1],
                      *C = a->xyz + 3 * a->tri[3 * t + 2];
@@ -295,13 +298,31 @@ static double one_sided(const tsoup *a, const tsoup *b, double h, unsigned char 
                 const double u = (double)i / n, v = (double)j / n;
                 double p[3];
                 for (int d = 0; d < 3; d++) p[d] = (1 - u - v) * A[d] + u * B[d] + v * C[d];
-                if (hint >= 0 && sqrt(soup_tri_d2(b, p, hint)) <= worst) continue;
-                int bt = -1;
-                worst = fmax(worst, soup_dist_until(b, p, worst, &bt));
-                if (bt >= 0) hint = bt;
+                fn(ctx, p);
             }
     }
-    return worst;
+}
+
+typedef struct worst_ctx {
+    const tsoup *b;
+    double worst;
+    int hint;
+} worst_ctx;
+
+static void worst_sample(void *ctx, const double *p)
+{
+    worst_ctx *w = ctx;
+    if (w->hint >= 0 && sqrt(soup_tri_d2(w->b, p, w->hint)) <= w->worst) return;
+    int bt = -1;
+    w->worst = fmax(w->worst, soup_dist_until(w->b, p, w->worst, &bt));
+    if (bt >= 0) w->hint = bt;
+}
+
+static double one_sided(const tsoup *a, const tsoup *b, double h, unsigned char *seen)
+{
+    worst_ctx w = {b, 0.0, -1};
+    for_samples(a, h, seen, worst_sample, &w);
+    return w.worst;
 }
 
 /* ---- topology ---------------------------------------------------------- */
@@ -513,6 +534,65 @@ static glpgp_status distances(const glpgp_quadmesh *q, const tsoup *in, double h
         qq->hausdorff = fmax(qq->dist_quad_to_domain, qq->dist_domain_to_quad);
     }
     free(seen);
+    free(qs.tri);
+    soup_free(&qs);
+    return st;
+}
+
+typedef struct uncovered_ctx {
+    const tsoup *qs;
+    const int *tface;
+    double thr;
+    unsigned char *sel;
+    int n;
+} uncovered_ctx;
+
+static void uncovered_sample(void *ctx, const double *p)
+{
+    uncovered_ctx *u = ctx;
+    int bt = -1;
+    if (soup_dist_until(u->qs, p, u->thr, &bt) <= u->thr || bt < 0) return;
+    u->n += !u->sel[u->tface[bt]];
+    u->sel[u->tface[bt]] = 1;
+}
+
+glpgp_status glpgp_qs_mark_uncovered(const glpgp_mesh *m, const glpgp_quadmesh *q, double h, double thr,
+                                     unsigned char *sel, int *n)
+{
+    tsoup qs, in;
+    memset(&qs, 0, sizeof qs);
+    memset(&in, 0, sizeof in);
+    in.nt = m->nt; /* its triangles sampled only: no grid */
+    in.npts = m->nv;
+    in.xyz = m->xyz;
+    in.tri = m->tri;
+    int nt = 0, *tface = NULL;
+    unsigned char *seen = NULL;
+    *n = 0;
+    for (int f = 0; f < q->nf; f++) nt += q->face_start[f + 1] - q->face_start[f] - 2;
+    glpgp_status st = glpgp_malloc((size_t)3 * nt + 3, sizeof(int), &qs.tri);
+    if (st == GLPGP_OK) st = glpgp_malloc((size_t)nt + 1, sizeof(int), &tface);
+    if (st != GLPGP_OK) goto done;
+    qs.xyz = q->xyz;
+    qs.npts = q->nv;
+    for (int f = 0; f < q->nf; f++) {
+        const int s = q->face_start[f], k = q->face_start[f + 1] - s;
+        for (int i = 1; i + 1 < k; i++) {
+            qs.tri[3 * qs.nt] = q->face_vert[s];
+            qs.tri[3 * qs.nt + 1] = q->face_vert[s + i];
+            qs.tri[3 * qs.nt + 2] = q->face_vert[s + i + 1];
+            tface[qs.nt++] = f;
+        }
+    }
+    GLPGP_CHECK_GOTO(st, soup_grid(&qs, h), done);
+    qs.cap = 2.0 * h; /* a far sample still finds its nearest face */
+    GLPGP_CHECK_GOTO(st, glpgp_calloc((size_t)m->nv + 1, 1, &seen), done);
+    uncovered_ctx u = {&qs, tface, thr, sel, 0};
+    for_samples(&in, h, seen, uncovered_sample, &u);
+    *n = u.n;
+done:
+    free(seen);
+    free(tface);
     free(qs.tri);
     soup_free(&qs);
     return st;

@@ -183,6 +183,7 @@ static void add_steps(glpgp_quads_surface_steps *a, const glpgp_quads_surface_st
     a->closed += b->closed;
     a->strips += b->strips;
     a->split_faces += b->split_faces;
+    a->refined_faces += b->refined_faces;
     a->invalid_before |= b->invalid_before;
     if (b->local_regions) a->local_sj_min = a->local_regions ? fmin(a->local_sj_min, b->local_sj_min) : b->local_sj_min;
     a->local_regions += b->local_regions;

@@ -277,10 +277,86 @@ static void note_local(glpgp_quads_surface_steps *stp, const glpgp_quads_repair 
 static glpgp_status split_local_repair(const glpgp_mesh *m, const glpgp_quadmesh *base, double h,
                                        glpgp_quads_surface_steps *stp, glpgp_quadmesh **out);
 
+/* The local 3-refinement (glpgp_qs_refine3) of base's far faces (all quads,
+ * valid but for the distance or the area), twice at most while only those
+ * fail; a refinement with other bad faces gets their local repair (no
+ * split) first. Far: a face sample over R3_FAR h from the surface, or the
+ * face nearest to a surface point that far from the mesh. A refinement to
+ * over R3_GROWTH x base's faces is left to the global split (4 x, and no
+ * transition templates: each leaves irregular vertices). A refinement of over half the faces is left to the global
+ * split. *out NULL: none is valid. */
+#define R3_GROWTH 2 /* the refinement's faces at most this many times the mesh's */
+#define R3_FAR 0.22 /* a surface point farther from the mesh (in h): its nearest face refined (as the repair's far faces) */
+
+static glpgp_status refine3_repair(const glpgp_mesh *m, const glpgp_quadmesh *base, double h,
+                                   glpgp_quads_surface_steps *stp, glpgp_quadmesh **out)
+{
+    glpgp_quadmesh *own = NULL, *s = NULL;
+    unsigned char *sel = NULL;
+    const glpgp_quadmesh *b = base;
+    int refined = 0;
+    glpgp_status st = GLPGP_OK;
+    *out = NULL;
+    for (int level = 0; level < 2 && st == GLPGP_OK && !*out; level++) {
+        int nbad = 0, nref = 0;
+        unsigned bad = 0;
+        free(sel);
+        sel = NULL;
+        st = glpgp_malloc((size_t)b->nf + 1, 1, &sel);
+        if (st == GLPGP_OK) st = glpgp_qs_bad_faces(m, b, h, 1, sel, &nbad);
+        int nunc = 0; /* and the faces nearest to the surface's points far from the mesh */
+        if (st == GLPGP_OK) st = glpgp_qs_mark_uncovered(m, b, h, R3_FAR * h, sel, &nunc);
+        nbad += nunc;
+        if (st == GLPGP_OK && nbad) st = glpgp_qs_refine3(m, b, h, sel, &s, &nref);
+        if (st != GLPGP_OK || !s) break;
+        if (s->nf > R3_GROWTH * base->nf) { /* as many quads as the global split's: its job (no transitions) */
+            glpgp_log(GLPGP_LOG_DEBUG, "quads: 3-refinement %d: %d of %d faces refined -> %d quads, not local", level,
+                      nref, b->nf, s->nf);
+            break;
+        }
+        refined += nref;
+        st = verdict_of(m, s, h, 0, &bad);
+        glpgp_log(GLPGP_LOG_DEBUG, "quads: 3-refinement %d: %d far faces of %d, %d faces refined -> %d quads; %s", level,
+                  nbad, b->nf, nref, s->nf, bad ? "not valid" : "valid");
+        if (st != GLPGP_OK) break;
+        if (!bad) {
+            *out = s;
+            s = NULL;
+            break;
+        }
+        if (bad & ~(unsigned)(GLPGP_QUADS_BAD_HAUSDORFF | GLPGP_QUADS_BAD_AREA)) { /* its bad faces repaired */
+            glpgp_quads_repair rs;
+            glpgp_quadmesh *t = NULL;
+            st = local_repair(m, s, h, 0, &t, &bad, &rs);
+            if (st != GLPGP_OK || !t || (bad & ~(unsigned)(GLPGP_QUADS_BAD_HAUSDORFF | GLPGP_QUADS_BAD_AREA))) {
+                glpgp_quadmesh_destroy(&t);
+                break;
+            }
+            glpgp_quadmesh_destroy(&s);
+            s = t;
+            if (!bad) {
+                *out = s;
+                s = NULL;
+                break;
+            }
+        }
+        glpgp_quadmesh_destroy(&own); /* still too far somewhere: refined again */
+        own = s;
+        s = NULL;
+        b = own;
+    }
+    if (*out) stp->refined_faces = refined;
+    glpgp_quadmesh_destroy(&own);
+    glpgp_quadmesh_destroy(&s);
+    free(sel);
+    return st;
+}
+
 /* The local repair's candidates: the repaired mesh (bad faces but the far
  * ones); with split, when only the distance or the area fails (a grid too
- * coarse for the surface somewhere): the local split of its far faces, the
- * repair with the far faces too, then its whole split; last (or without
+ * coarse for the surface somewhere): the local split of its far faces,
+ * their local 3-refinement, the repair with the far faces too, then its
+ * whole split; last (or without
  * split) the repair with the far faces too. *out NULL: none is valid. */
 static glpgp_status repaired(const glpgp_mesh *m, const glpgp_quadmesh *q, double h, int split,
                              glpgp_quads_surface_steps *stp, glpgp_quadmesh **out)
@@ -295,6 +371,18 @@ static glpgp_status repaired(const glpgp_mesh *m, const glpgp_quadmesh *q, doubl
     if (st == GLPGP_OK && r && split && !(bad & ~(unsigned)(GLPGP_QUADS_BAD_HAUSDORFF | GLPGP_QUADS_BAD_AREA))) {
         st = split_local_repair(m, r, h, stp, &s); /* the far faces split with their strips */
         if (st == GLPGP_OK && s) {
+            glpgp_quadmesh_destroy(&r);
+            *out = s;
+            return GLPGP_OK;
+        }
+    }
+    if (st == GLPGP_OK && r && split && !(bad & ~(unsigned)(GLPGP_QUADS_BAD_HAUSDORFF | GLPGP_QUADS_BAD_AREA))) {
+        /* the strips ran through most of the mesh: the far faces refined 3 x 3, templates around
+         * (more irregular vertices than the strips' split where that closes soon) */
+        st = refine3_repair(m, r, h, stp, &s);
+        if (st == GLPGP_OK && s) {
+            s->repair = rs;
+            note_local(stp, &rs);
             glpgp_quadmesh_destroy(&r);
             *out = s;
             return GLPGP_OK;

@@ -106,6 +106,20 @@ glpgp_status glpgp_qs_bad_faces(const glpgp_mesh *m, const glpgp_quadmesh *q, do
 glpgp_status glpgp_qs_split_local(const glpgp_mesh *m, const glpgp_quadmesh *q, double h, const unsigned char *sel,
                                   glpgp_quadmesh **out, int *nsplit);
 
+/* sel[f] = 1 for the faces of q nearest to a point of surface m farther
+ * than thr from q (the check's samples of m; the surface-to-quads side of
+ * the Hausdorff distance, check_surface.c); *n: the faces newly marked. */
+glpgp_status glpgp_qs_mark_uncovered(const glpgp_mesh *m, const glpgp_quadmesh *q, double h, double thr,
+                                     unsigned char *sel, int *n);
+
+/* The local 3-refinement (refine3_surface.c): the faces of sel split 3 x 3,
+ * the quads around them by transition templates (Schneiders), conforming
+ * and all-quad with q's topology, the refinement kept local (no strips);
+ * the new points moved onto the surface. *out NULL when q has faces other
+ * than quads or sel is empty; *nref: the faces of q refined. */
+glpgp_status glpgp_qs_refine3(const glpgp_mesh *m, const glpgp_quadmesh *q, double h, const unsigned char *sel,
+                              glpgp_quadmesh **out, int *nref);
+
 /* Flat boundary corners (split_surface.c): flat[f] <- the corner of quad f
  * at a boundary vertex in no other face that is obtuse with a scaled
  * Jacobian below goal (the worst such corner; -1: none); *nflat their

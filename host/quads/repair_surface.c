@@ -18,8 +18,11 @@
  *    mapped to a chart: the plane through the loop's centroid orthogonal to
  *    its vector area when the projected loop is a simple counter-clockwise
  *    polygon (and the surface under each loop point faces within 107
- *    degrees of the plane's normal), else a circle (by 3D arc length, as large as the region),
- *    else that circle with the region's own faces Tutte-embedded in it (the patch chart);
+ *    degrees of the plane's normal), else the region's own faces flattened
+ *    by the least-squares conformal map (the conformal chart: the loop's
+ *    corners kept, reflex ones too), else a circle (by 3D arc length, as
+ *    large as the region), else that circle with the region's own faces
+ *    Tutte-embedded in it (the patch chart);
  *    meshed there by the cut mesher (qcut.c); the new points lifted by the
  *    mean-value interpolation of the loop's heights above the plane (of the
  *    loop's 3D points on the circle) and moved to their nearest points on
@@ -710,8 +713,9 @@ static void disk_chart(const lrep *L, int k, const int *loop, int n, double *uv,
 
 /* ---- one region meshed in a chart ---------------------------------------------------- */
 
-/* A chart of a region: the plane (kind 0: o, e, z) or the disk (1: uv, the
- * loop's coordinates in p3). */
+/* A chart of a region: the plane (kind 0: o, e, z), the disk (1: uv, the
+ * loop's coordinates in p3), the patch chart (2) or the conformal one (3):
+ * uv the loop's points, tri / tuv / vid the region's faces in it. */
 typedef struct lchart {
     int kind;
     double o[3], e[9], *z, *uv, *p3;
@@ -857,6 +861,157 @@ static void patch_lift(const lrep *L, const lchart *C, const double *p, double *
     }
 }
 
+/* ---- the conformal chart: the region's own faces (fanned into triangles)
+ * flattened by the least-squares conformal map (Levy et al. 2002: per
+ * triangle A |df/dzbar|^2 summed, two loop points pinned at their 3D
+ * distance, the boundary free), the new points lifted as in the patch
+ * chart. Unlike the circle, it keeps the loop's corners: a reflex corner
+ * of the region stays reflex, where the circle makes every loop point
+ * convex and the quads at a reflex one fold when lifted ---- */
+
+/* Per fan triangle t: the complex sides opposite its corners in its own
+ * plane (e[6 t + 2 j], e[6 t + 2 j + 1]) and the weight 1 / (16 area) (w[t];
+ * 0: degenerate). */
+static void lscm_sides(const lrep *L, const lchart *C, double *e, double *w)
+{
+    for (int t = 0; t < C->nt; t++) {
+        const double *a = pos(L, C->vid[C->tri[3 * t]]), *b = pos(L, C->vid[C->tri[3 * t + 1]]),
+                     *c = pos(L, C->vid[C->tri[3 * t + 2]]);
+        double ab[3], ac[3], n[3];
+        sub3(b, a, ab);
+        sub3(c, a, ac);
+        cross3(ab, ac, n);
+        const double lab = sqrt(dot3(ab, ab)), a2 = sqrt(dot3(n, n));
+        w[t] = 0.0;
+        for (int j = 0; j < 6; j++) e[6 * t + j] = 0.0;
+        if (!(lab > 0) || !(a2 > 1e-12 * L->h * L->h)) continue;
+        const double P[3][2] = {{0.0, 0.0}, {lab, 0.0}, {dot3(ab, ac) / lab, a2 / lab}};
+        for (int j = 0; j < 3; j++) {
+            const double *p = P[(j + 1) % 3], *q = P[(j + 2) % 3];
+            e[6 * t + 2 * j] = q[0] - p[0];
+            e[6 * t + 2 * j + 1] = q[1] - p[1];
+        }
+        w[t] = 1.0 / (8.0 * a2); /* 1 / (16 area) */
+    }
+}
+
+/* y <- H x, the conformal energy's Hessian (x: u, v per point, 2 nvl). */
+static void lscm_apply(const lchart *C, const double *e, const double *w, int nvl, const double *x, double *y)
+{
+    for (int i = 0; i < 2 * nvl; i++) y[i] = 0.0;
+    for (int t = 0; t < C->nt; t++) {
+        if (w[t] == 0.0) continue;
+        const int *tv = C->tri + 3 * t;
+        double r1 = 0.0, r2 = 0.0;
+        for (int j = 0; j < 3; j++) {
+            const double a = e[6 * t + 2 * j], b = e[6 * t + 2 * j + 1], u = x[2 * tv[j]], v = x[2 * tv[j] + 1];
+            r1 += a * u - b * v;
+            r2 += b * u + a * v;
+        }
+        for (int j = 0; j < 3; j++) {
+            const double a = e[6 * t + 2 * j], b = e[6 * t + 2 * j + 1];
+            y[2 * tv[j]] += 2.0 * w[t] * (r1 * a + r2 * b);
+            y[2 * tv[j] + 1] += 2.0 * w[t] * (-r1 * b + r2 * a);
+        }
+    }
+}
+
+/* The conformal map by CG on the free points (pinned: fix[i] set, their
+ * values in x); x holds the start and gets the result. 0: not converged. */
+static int lscm_solve(const lchart *C, const double *e, const double *w, int nvl, const unsigned char *fix,
+                      double *x, double *wk)
+{
+    double *r = wk, *d = wk + 2 * nvl, *q = wk + 4 * nvl;
+    const int m = 2 * nvl;
+    lscm_apply(C, e, w, nvl, x, q);
+    double rr = 0.0, r0;
+    for (int i = 0; i < m; i++) {
+        r[i] = fix[i / 2] ? 0.0 : -q[i];
+        d[i] = r[i];
+        rr += r[i] * r[i];
+    }
+    r0 = rr;
+    for (int it = 0; it < 20 * m + 100 && rr > 1e-24 * r0 && rr > 0; it++) {
+        lscm_apply(C, e, w, nvl, d, q);
+        double dq = 0.0;
+        for (int i = 0; i < m; i++) {
+            if (fix[i / 2]) q[i] = 0.0;
+            dq += d[i] * q[i];
+        }
+        if (!(dq > 0)) return 0;
+        const double al = rr / dq;
+        double rn = 0.0;
+        for (int i = 0; i < m; i++) {
+            x[i] += al * d[i];
+            r[i] -= al * q[i];
+            rn += r[i] * r[i];
+        }
+        for (int i = 0; i < m; i++) d[i] = r[i] + rn / rr * d[i];
+        rr = rn;
+    }
+    return rr <= 1e-16 * r0;
+}
+
+/* Region k's conformal chart in C (kind 3; C->uv: the loop's points in it,
+ * a simple counter-clockwise polygon); *ok 0 when it is not one. C->uv
+ * holds the disk chart on entry (the patch chart's Tutte map: the start). */
+static glpgp_status conformal_chart(const lrep *L, int k, const int *loop, int n, lchart *C, int **vid_out, int *ok)
+{
+    int pok = 0, nvl = 0;
+    double *e = NULL, *w = NULL, *wk = NULL;
+    unsigned char *fix = NULL;
+    *ok = 0;
+    GLPGP_CHECK(patch_chart(L, k, loop, n, C, vid_out, &pok));
+    if (!pok) return GLPGP_OK;
+    for (int t = 0; t < 3 * C->nt; t++) nvl = C->tri[t] + 1 > nvl ? C->tri[t] + 1 : nvl;
+    glpgp_status st = glpgp_malloc((size_t)6 * C->nt + 1, sizeof(double), &e);
+    if (st == GLPGP_OK) st = glpgp_malloc((size_t)C->nt + 1, sizeof(double), &w);
+    if (st == GLPGP_OK) st = glpgp_malloc((size_t)6 * nvl + 1, sizeof(double), &wk);
+    if (st == GLPGP_OK) st = glpgp_calloc((size_t)nvl + 1, 1, &fix);
+    if (st != GLPGP_OK) goto done;
+    lscm_sides(L, C, e, w);
+    /* the pins: loop point 0 and the loop point farthest from it in 3D */
+    int far = 0;
+    double dfar = -1.0;
+    for (int i = 1; i < n; i++) {
+        double d[3];
+        sub3(pos(L, loop[i]), pos(L, loop[0]), d);
+        if (dot3(d, d) > dfar) {
+            dfar = dot3(d, d);
+            far = i;
+        }
+    }
+    const int l0 = local_id(C->vid, nvl, loop[0]), l1 = local_id(C->vid, nvl, loop[far]);
+    if (l0 < 0 || l1 < 0 || l0 == l1 || !(dfar > 0)) goto done;
+    /* the start: the Tutte map turned and scaled so the pins sit where they are pinned */
+    const double *p0 = C->tuv + 2 * l0, *p1 = C->tuv + 2 * l1;
+    const double dx = p1[0] - p0[0], dy = p1[1] - p0[1], dd = dx * dx + dy * dy, D = sqrt(dfar);
+    if (!(dd > 0)) goto done;
+    const double cr = D * dx / dd, ci = -D * dy / dd, ox = p0[0], oy = p0[1]; /* z -> (z - p0) D conj(p1 - p0) / |p1 - p0|^2 */
+    for (int l = 0; l < nvl; l++) {
+        const double x = C->tuv[2 * l] - ox, y = C->tuv[2 * l + 1] - oy;
+        C->tuv[2 * l] = cr * x - ci * y;
+        C->tuv[2 * l + 1] = ci * x + cr * y;
+    }
+    C->tuv[2 * l0] = C->tuv[2 * l0 + 1] = 0.0;
+    C->tuv[2 * l1] = D;
+    C->tuv[2 * l1 + 1] = 0.0;
+    fix[l0] = fix[l1] = 1;
+    if (!lscm_solve(C, e, w, nvl, fix, C->tuv, wk)) goto done;
+    for (int i = 0; i < n; i++) { /* every loop point is a region point (patch_chart) */
+        const int l = local_id(C->vid, nvl, loop[i]);
+        C->uv[2 * i] = C->tuv[2 * l];
+        C->uv[2 * i + 1] = C->tuv[2 * l + 1];
+    }
+    *ok = simple_ccw(C->uv, n);
+done:
+    free(e);
+    free(w);
+    free(wk);
+    free(fix);
+    return st;
+}
+
 /* The quads of the cut mesher on the loop's chart points xy (n, then the
  * new ones); *ok 0 when it failed. */
 static glpgp_status cut_loop(const lrep *L, dvec *xy, int n, ivec *quads, int *ok)
@@ -936,7 +1091,7 @@ static glpgp_status mesh_in_chart(lrep *L, const int *loop, int n, lchart *C, iv
         }
         const double *p = xy.p + 2 * i;
         double x[3], y[3];
-        if (C->kind == 2) {
+        if (C->kind >= 2) {
             patch_lift(L, C, p, x);
         } else if (C->kind) {
             for (int d = 0; d < 3; d++) x[d] = mvc(xy.p, C->p3 + d * n, n, p);
@@ -954,7 +1109,7 @@ static glpgp_status mesh_in_chart(lrep *L, const int *loop, int n, lchart *C, iv
     if (!(worst > LR_SJ_NEW) && worst > LR_SJ_TANGLED) st = untangle(L, quads.p, quads.n / 4, first, &worst);
     if (st == GLPGP_OK && !(worst > LR_SJ_NEW)) {
         glpgp_log(GLPGP_LOG_DEBUG, "quads: surface local repair: %d quads in the %s chart, scaled Jacobian %.3f on the surface",
-                  quads.n / 4, C->kind == 2 ? "patch" : C->kind ? "disk" : "plane", worst);
+                  quads.n / 4, C->kind == 3 ? "conformal" : C->kind == 2 ? "patch" : C->kind ? "disk" : "plane", worst);
         goto done;
     }
     for (int k = 0; k < quads.n && st == GLPGP_OK; k++) st = ipush(out, quads.p[k]);
@@ -968,7 +1123,7 @@ done:
 }
 
 /* Region k's loop (n ids, even) meshed in the plane chart, else in the
- * disk chart: its quads (ids) appended to out, new points into L->nxyz;
+ * conformal chart, else in the disk chart, else in the patch chart: its quads (ids) appended to out, new points into L->nxyz;
  * *sjmin their worst corner; *ok 0 when both failed (nothing added). */
 static glpgp_status mesh_loop(lrep *L, int k, const int *loop, int n, ivec *out, double *sjmin, int *ok)
 {
@@ -980,6 +1135,20 @@ static glpgp_status mesh_loop(lrep *L, int k, const int *loop, int n, ivec *out,
     if (st == GLPGP_OK) st = glpgp_malloc((size_t)2 * n + 2, sizeof(double), &C.uv);
     if (st == GLPGP_OK) st = glpgp_malloc((size_t)3 * n + 3, sizeof(double), &C.p3);
     if (st == GLPGP_OK) st = mesh_in_chart(L, loop, n, &C, out, sjmin, ok);
+    if (st == GLPGP_OK && !*ok) { /* the conformal chart: the region's faces flattened, the loop's corners kept */
+        int *vid = NULL, cok = 0;
+        L->nxyz.n = nx0;
+        C.kind = 3;
+        disk_chart(L, k, loop, n, C.uv, C.z);
+        st = conformal_chart(L, k, loop, n, &C, &vid, &cok);
+        if (st == GLPGP_OK && cok) st = mesh_in_chart(L, loop, n, &C, out, sjmin, ok);
+        free(vid);
+        free(C.tri);
+        free(C.tuv);
+        C.tri = NULL;
+        C.tuv = NULL;
+        C.vid = NULL;
+    }
     if (st == GLPGP_OK && !*ok) {
         L->nxyz.n = nx0;
         C.kind = 1;

@@ -23,7 +23,14 @@ static void warn_slivers(const glpgp_mesh *m, const char *name)
     double amin;
     int nsliver;
     glpgp_mesh_angles(m, GLPGP_SLIVER_DEG, &amin, &nsliver);
-    if (nsliver > 0 && nsliver >= 0.01 * m->nt)
+    if (!(nsliver > 0 && nsliver >= 0.01 * m->nt)) return;
+    if (m->xyz) /* --remesh and glpgp mesh are planar (Gmsh inside the boundary points): no remedy to name here */
+        glpgp_log(GLPGP_LOG_WARNING,
+                  "%s: %d of %d triangles have an angle below %g degrees (smallest %.3g): the solution is "
+                  "inaccurate on such slivers and refinement keeps them thin (an isotropic remesh of the surface "
+                  "elsewhere helps)",
+                  name, nsliver, m->nt, GLPGP_SLIVER_DEG, amin);
+    else
         glpgp_log(GLPGP_LOG_WARNING,
                   "%s: %d of %d triangles have an angle below %g degrees (smallest %.3g): the solution is "
                   "inaccurate on such slivers and refinement keeps them thin; remesh the domain first "

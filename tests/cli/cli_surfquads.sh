@@ -205,7 +205,9 @@ PY
 run_fail "--faces with --size" 2 "faces.*size|size.*faces" solve shape:sphere:5000 --faces 100 --size 0.3 --quads x.obj
 
 # a size the surface cannot carry (3.5 edges per period) and not subdivided
-# for (--no-refine): invalid without the repair, the last resort with it
+# for (--no-refine): invalid without the repair, valid with it (the local
+# repair in the conformal chart since it keeps the regions' reflex corners;
+# the split or the last resort before)
 run 3 "no repair" solve shape:sphere:5000 --backend reference --size 0.2 --no-refine --no-repair --quads bad.obj
 [ ! -e bad.obj ] || fail "an invalid surface mesh was written"
 run_ok "allow invalid" solve shape:sphere:5000 --backend reference --size 0.2 --no-refine --no-repair --allow-invalid \
@@ -217,6 +219,6 @@ import json
 q = json.load(open("lr.json"))["quads"]
 assert q["valid"] and q["surface"]["euler"] == 2 and q["other_faces"] == 0, q["invalid_reasons"]
 st = q["surface"]["steps"]
-assert (st["split_h2"] or st["last_resort"]) and st["path"] in ("split h/2", "coarse last resort", "input triangles split"), st
+assert st["path"] in ("local repair", "local refinement", "split h/2", "coarse last resort", "input triangles split"), st
 PY
 finish

@@ -11,6 +11,11 @@
  *    it in four and the two quad strips through it in two: a conforming
  *    all-quad mesh (valid; 28 x 10 cells, the rims' half cells included:
  *    4 + 2 (27 + 9) faces in place of 28 + 10 - 1), on the cylinder;
+ *  - the local 3-refinement (glpgp_qs_refine3) of one interior face: it
+ *    3 x 3 and its 8 neighbours by the transition templates, nothing
+ *    else, valid with the templates' corners above 0.65 before any
+ *    smoothing; two diagonal faces: the closure refines the 2 x 2 block;
+ *    a rim face: the boundary kept;
  *  - a flat boundary corner (two rim quads a-b-x-.., b-c-..-x redrawn as
  *    a-b-c-z and z-..-a, so that rim vertex b is in one quad whose corner
  *    there is the rim's straight angle) is found (glpgp_qs_find_flat) and
@@ -203,6 +208,69 @@ out:
     glpgp_mesh_destroy(&m);
 }
 
+/* The smallest corner scaled Jacobian of r's faces in their own planes. */
+static double sj_min(const glpgp_quadmesh *r)
+{
+    double s = 1.0;
+    for (int f = 0; f < r->nf; f++) s = fmin(s, glpgp_quadmesh_face_sj_surface(r, f));
+    return s;
+}
+
+/* The local 3-refinement (glpgp_qs_refine3) of one interior face: it 3 x 3,
+ * its 4 side neighbours by the two-corner template (7 quads), its 4 corner
+ * neighbours by the one-corner template (3 quads), nothing else; then of
+ * two faces touching at a corner only, whose pattern in the two quads
+ * beside both (two opposite corners marked) the closure turns into four. */
+static void refine3(void)
+{
+    glpgp_mesh *m = NULL;
+    glpgp_quadmesh *q = NULL, *r = NULL;
+    unsigned char *sel = NULL;
+    grid(&m, &q);
+    if (!q) goto out;
+    const int f = face_at(q, NU / 2, NV / 2);
+    CHECK_OK(glpgp_calloc((size_t)q->nf, 1, &sel));
+    if (!sel) goto out;
+    sel[f] = 1;
+    int nr = 0;
+    CHECK_OK(glpgp_qs_refine3(m, q, HV, sel, &r, &nr));
+    if (!r) goto out;
+    CHECK(nr == 9 && r->nf == q->nf - 9 + 9 + 4 * 7 + 4 * 3);
+    if (nr != 9) fprintf(stderr, "refine3: %d faces refined, %d faces\n", nr, r->nf);
+    glpgp_quads_report qq;
+    CHECK_OK(glpgp_quads_quality_surface(r, m, HV, &qq));
+    CHECK(qq.invalid == 0 && qq.others == 0 && qq.euler == 1 && qq.boundary_loops == 1);
+    CHECK(sj_min(r) > 0.65); /* the templates' worst corner on a square grid: 0.707 */
+    for (int i = 0; i < r->nv; i++) /* on the cylinder */
+        CHECK(fabs(hypot(r->xyz[3 * i], r->xyz[3 * i + 1]) - 2.0) < 0.01);
+    glpgp_quadmesh_destroy(&r);
+    /* two faces diagonal to each other: the two quads beside both see two opposite marked corners */
+    memset(sel, 0, (size_t)q->nf);
+    sel[f] = 1;
+    sel[face_at(q, NU / 2 + 1, NV / 2 + 1)] = 1;
+    CHECK_OK(glpgp_qs_refine3(m, q, HV, sel, &r, &nr));
+    if (!r) goto out;
+    /* a 2 x 2 block refined 3 x 3 (36), 8 side neighbours (7 each), 4 corner neighbours (3 each) */
+    CHECK(nr == 16 && r->nf == q->nf - 16 + 36 + 8 * 7 + 4 * 3);
+    if (nr != 16) fprintf(stderr, "refine3 (closure): %d faces refined, %d faces\n", nr, r->nf);
+    CHECK_OK(glpgp_quads_quality_surface(r, m, HV, &qq));
+    CHECK(qq.invalid == 0 && qq.others == 0 && qq.euler == 1 && qq.boundary_loops == 1);
+    CHECK(sj_min(r) > 0.65);
+    glpgp_quadmesh_destroy(&r);
+    /* a face on the rim: its boundary sides split too, the mesh still one loop */
+    memset(sel, 0, (size_t)q->nf);
+    sel[face_at(q, NU / 2, 0.25)] = 1;
+    CHECK_OK(glpgp_qs_refine3(m, q, HV, sel, &r, &nr));
+    if (!r) goto out;
+    CHECK_OK(glpgp_quads_quality_surface(r, m, HV, &qq));
+    CHECK(nr == 6 && qq.invalid == 0 && qq.others == 0 && qq.euler == 1 && qq.boundary_loops == 1);
+out:
+    free(sel);
+    glpgp_quadmesh_destroy(&r);
+    glpgp_quadmesh_destroy(&q);
+    glpgp_mesh_destroy(&m);
+}
+
 /* Two rim quads sharing a side redrawn with a flat corner at their common
  * rim vertex b; returns the first quad's face (-1: none found). */
 static int make_flat(glpgp_quadmesh *q)
@@ -288,6 +356,7 @@ int main(void)
     glpgp_log_set_callback(dbg_log, NULL);
     many_odd_regions();
     split_local();
+    refine3();
     flat_corner();
     TEST_DONE();
 }

@@ -247,6 +247,8 @@ typedef struct glpgp_quads_surface_steps {
                               (Catmull-Clark, h/2) */
     int split_faces;       /* faces split locally: the bad ones and the quad strips through them
                               (Catmull-Clark in the bad regions, in two across the strips) */
+    int refined_faces;     /* faces refined locally where the mesh was too far from the surface:
+                              3 x 3 in the far faces, transition templates around them */
     int fallback;          /* 1: the extraction was not valid: the last resort, triangles split into
                               quads (coarse_triangles of a coarsened triangulation, else the input's) */
     int coarse_triangles;  /* the last resort's coarse triangles (0: the input's own) */
