@@ -155,6 +155,17 @@ static glpgp_status denoise_surface(const glpgp_mesh *m, const glpgp_options *o,
     glpgp_surface_denoise_info *d = &info->denoise;
     GLPGP_CHECK(glpgp_surface_denoise(m, o->feature_angle, h / GLPGP_DENOISE_MAX_MOVE, out, d));
     info->denoise_h = h;
+    if (*out && (d->noise_edges_after > d->noise_edges || d->folds_after > d->folds)) {
+        /* by its own measure the smoothing made it worse (the faceting of marching-cubes output,
+         * which the filter sharpens where it takes kinks for creases): the input as it is */
+        glpgp_log(GLPGP_LOG_WARNING,
+                  "%s: a scan's noise (%d edges above %g degrees that are not creases, %d folded triangles) not "
+                  "smoothed: the smoothing left more (%d such edges, %d folds); solved as it is",
+                  name, d->noise_edges, o->feature_angle, d->folds, d->noise_edges_after, d->folds_after);
+        glpgp_mesh_destroy(out);
+        d->rounds = 0;
+        return GLPGP_OK;
+    }
     if (*out)
         glpgp_log(GLPGP_LOG_INFO,
                   "%s: a scan's noise (%d edges above %g degrees that are not creases, %d folded triangles) smoothed: "
