@@ -503,27 +503,43 @@ static void boundary_valence(const glpgp_quadmesh *q, const unsigned char *onb, 
     free(val);
 }
 
-static glpgp_status distances(const glpgp_quadmesh *q, const tsoup *in, double h, glpgp_quads_report *qq)
+/* The soup of q's faces fanned into triangles (tface: per triangle its
+ * face, may be NULL), with its grid of cells for size h; quad_soup_free
+ * releases it (also after a failure). */
+static glpgp_status quad_soup(const glpgp_quadmesh *q, double h, tsoup *qs, int **tface)
 {
-    tsoup qs;
-    memset(&qs, 0, sizeof qs);
     int nt = 0;
+    memset(qs, 0, sizeof *qs);
     for (int f = 0; f < q->nf; f++) nt += q->face_start[f + 1] - q->face_start[f] - 2;
-    glpgp_status st = glpgp_malloc((size_t)3 * nt + 3, sizeof(int), &qs.tri);
-    if (st != GLPGP_OK) return st;
-    qs.xyz = q->xyz;
-    qs.npts = q->nv;
+    GLPGP_CHECK(glpgp_malloc((size_t)3 * nt + 3, sizeof(int), &qs->tri));
+    if (tface) GLPGP_CHECK(glpgp_malloc((size_t)nt + 1, sizeof(int), tface));
+    qs->xyz = q->xyz;
+    qs->npts = q->nv;
     for (int f = 0; f < q->nf; f++) {
         const int s = q->face_start[f], n = q->face_start[f + 1] - s;
         for (int i = 1; i + 1 < n; i++) {
-            qs.tri[3 * qs.nt] = q->face_vert[s];
-            qs.tri[3 * qs.nt + 1] = q->face_vert[s + i];
-            qs.tri[3 * qs.nt + 2] = q->face_vert[s + i + 1];
-            qs.nt++;
+            qs->tri[3 * qs->nt] = q->face_vert[s];
+            qs->tri[3 * qs->nt + 1] = q->face_vert[s + i];
+            qs->tri[3 * qs->nt + 2] = q->face_vert[s + i + 1];
+            if (tface) (*tface)[qs->nt] = f;
+            qs->nt++;
         }
     }
+    return soup_grid(qs, h);
+}
+
+static void quad_soup_free(tsoup *qs)
+{
+    free(qs->tri);
+    qs->tri = NULL;
+    soup_free(qs);
+}
+
+static glpgp_status distances(const glpgp_quadmesh *q, const tsoup *in, double h, glpgp_quads_report *qq)
+{
+    tsoup qs;
     unsigned char *seen = NULL;
-    st = soup_grid(&qs, h);
+    glpgp_status st = quad_soup(q, h, &qs, NULL);
     if (st == GLPGP_OK) st = glpgp_calloc((size_t)q->nv + 1, 1, &seen);
     if (st == GLPGP_OK) qq->dist_quad_to_domain = one_sided(&qs, in, h, seen) / h;
     free(seen);
@@ -534,8 +550,7 @@ static glpgp_status distances(const glpgp_quadmesh *q, const tsoup *in, double h
         qq->hausdorff = fmax(qq->dist_quad_to_domain, qq->dist_domain_to_quad);
     }
     free(seen);
-    free(qs.tri);
-    soup_free(&qs);
+    quad_soup_free(&qs);
     return st;
 }
 
@@ -560,41 +575,25 @@ glpgp_status glpgp_qs_mark_uncovered(const glpgp_mesh *m, const glpgp_quadmesh *
                                      unsigned char *sel, int *n)
 {
     tsoup qs, in;
-    memset(&qs, 0, sizeof qs);
     memset(&in, 0, sizeof in);
     in.nt = m->nt; /* its triangles sampled only: no grid */
     in.npts = m->nv;
     in.xyz = m->xyz;
     in.tri = m->tri;
-    int nt = 0, *tface = NULL;
+    int *tface = NULL;
     unsigned char *seen = NULL;
     *n = 0;
-    for (int f = 0; f < q->nf; f++) nt += q->face_start[f + 1] - q->face_start[f] - 2;
-    glpgp_status st = glpgp_malloc((size_t)3 * nt + 3, sizeof(int), &qs.tri);
-    if (st == GLPGP_OK) st = glpgp_malloc((size_t)nt + 1, sizeof(int), &tface);
-    if (st != GLPGP_OK) goto done;
-    qs.xyz = q->xyz;
-    qs.npts = q->nv;
-    for (int f = 0; f < q->nf; f++) {
-        const int s = q->face_start[f], k = q->face_start[f + 1] - s;
-        for (int i = 1; i + 1 < k; i++) {
-            qs.tri[3 * qs.nt] = q->face_vert[s];
-            qs.tri[3 * qs.nt + 1] = q->face_vert[s + i];
-            qs.tri[3 * qs.nt + 2] = q->face_vert[s + i + 1];
-            tface[qs.nt++] = f;
-        }
-    }
-    GLPGP_CHECK_GOTO(st, soup_grid(&qs, h), done);
+    glpgp_status st = quad_soup(q, h, &qs, &tface);
     qs.cap = 2.0 * h; /* a far sample still finds its nearest face */
-    GLPGP_CHECK_GOTO(st, glpgp_calloc((size_t)m->nv + 1, 1, &seen), done);
-    uncovered_ctx u = {&qs, tface, thr, sel, 0};
-    for_samples(&in, h, seen, uncovered_sample, &u);
-    *n = u.n;
-done:
+    if (st == GLPGP_OK) st = glpgp_calloc((size_t)m->nv + 1, 1, &seen);
+    if (st == GLPGP_OK) {
+        uncovered_ctx u = {&qs, tface, thr, sel, 0};
+        for_samples(&in, h, seen, uncovered_sample, &u);
+        *n = u.n;
+    }
     free(seen);
     free(tface);
-    free(qs.tri);
-    soup_free(&qs);
+    quad_soup_free(&qs);
     return st;
 }
 

@@ -277,14 +277,21 @@ static void note_local(glpgp_quads_surface_steps *stp, const glpgp_quads_repair 
 static glpgp_status split_local_repair(const glpgp_mesh *m, const glpgp_quadmesh *base, double h,
                                        glpgp_quads_surface_steps *stp, glpgp_quadmesh **out);
 
+/* Whether invalidity bits bad name only the distance or the area (a grid
+ * too coarse for the surface somewhere), or nothing. */
+static int only_far(unsigned bad)
+{
+    return !(bad & ~(unsigned)(GLPGP_QUADS_BAD_HAUSDORFF | GLPGP_QUADS_BAD_AREA));
+}
+
 /* The local 3-refinement (glpgp_qs_refine3) of base's far faces (all quads,
  * valid but for the distance or the area), twice at most while only those
  * fail; a refinement with other bad faces gets their local repair (no
  * split) first. Far: a face sample over R3_FAR h from the surface, or the
  * face nearest to a surface point that far from the mesh. A refinement to
  * over R3_GROWTH x base's faces is left to the global split (4 x, and no
- * transition templates: each leaves irregular vertices). A refinement of over half the faces is left to the global
- * split. *out NULL: none is valid. */
+ * transition templates: each leaves irregular vertices). *out NULL: none
+ * is valid. */
 #define R3_GROWTH 2 /* the refinement's faces at most this many times the mesh's */
 #define R3_FAR 0.22 /* a surface point farther from the mesh (in h): its nearest face refined (as the repair's far faces) */
 
@@ -324,11 +331,11 @@ static glpgp_status refine3_repair(const glpgp_mesh *m, const glpgp_quadmesh *ba
             s = NULL;
             break;
         }
-        if (bad & ~(unsigned)(GLPGP_QUADS_BAD_HAUSDORFF | GLPGP_QUADS_BAD_AREA)) { /* its bad faces repaired */
+        if (!only_far(bad)) { /* its bad faces repaired */
             glpgp_quads_repair rs;
             glpgp_quadmesh *t = NULL;
             st = local_repair(m, s, h, 0, &t, &bad, &rs);
-            if (st != GLPGP_OK || !t || (bad & ~(unsigned)(GLPGP_QUADS_BAD_HAUSDORFF | GLPGP_QUADS_BAD_AREA))) {
+            if (st != GLPGP_OK || !t || !only_far(bad)) {
                 glpgp_quadmesh_destroy(&t);
                 break;
             }
@@ -368,7 +375,7 @@ static glpgp_status repaired(const glpgp_mesh *m, const glpgp_quadmesh *q, doubl
     *out = NULL;
     glpgp_status st = local_repair(m, q, h, 0, &r, &bad, &rs);
     if (st == GLPGP_OK && r && !bad) goto keep_r;
-    if (st == GLPGP_OK && r && split && !(bad & ~(unsigned)(GLPGP_QUADS_BAD_HAUSDORFF | GLPGP_QUADS_BAD_AREA))) {
+    if (st == GLPGP_OK && r && split && only_far(bad)) {
         st = split_local_repair(m, r, h, stp, &s); /* the far faces split with their strips */
         if (st == GLPGP_OK && s) {
             glpgp_quadmesh_destroy(&r);
@@ -376,7 +383,7 @@ static glpgp_status repaired(const glpgp_mesh *m, const glpgp_quadmesh *q, doubl
             return GLPGP_OK;
         }
     }
-    if (st == GLPGP_OK && r && split && !(bad & ~(unsigned)(GLPGP_QUADS_BAD_HAUSDORFF | GLPGP_QUADS_BAD_AREA))) {
+    if (st == GLPGP_OK && r && split && only_far(bad)) {
         /* the strips ran through most of the mesh: the far faces refined 3 x 3, templates around
          * (more irregular vertices than the strips' split where that closes soon) */
         st = refine3_repair(m, r, h, stp, &s);
@@ -388,7 +395,7 @@ static glpgp_status repaired(const glpgp_mesh *m, const glpgp_quadmesh *q, doubl
             return GLPGP_OK;
         }
     }
-    if (st == GLPGP_OK && r && split && !(bad & ~(unsigned)(GLPGP_QUADS_BAD_HAUSDORFF | GLPGP_QUADS_BAD_AREA))) {
+    if (st == GLPGP_OK && r && split && only_far(bad)) {
         /* the far faces repaired too, before the whole mesh is split (4x the quads) */
         glpgp_quadmesh *f = NULL;
         glpgp_quads_repair fs;
@@ -403,7 +410,7 @@ static glpgp_status repaired(const glpgp_mesh *m, const glpgp_quadmesh *q, doubl
         }
         glpgp_quadmesh_destroy(&f);
     }
-    if (st == GLPGP_OK && r && split && !(bad & ~(unsigned)(GLPGP_QUADS_BAD_HAUSDORFF | GLPGP_QUADS_BAD_AREA))) {
+    if (st == GLPGP_OK && r && split && only_far(bad)) {
         st = split_onto(m, r, h, &s);
         if (st == GLPGP_OK) st = verdict_of(m, s, h, 0, &bad);
         if (st == GLPGP_OK && bad) { /* the split's own bad faces repaired locally */

@@ -21,6 +21,7 @@
  * corner has a scaled Jacobian of 0.707 before any smoothing. The input
  * must be all quads; the result's validity in 3D is the caller's check. */
 #include "quads_surface.h"
+#include "qvec.h"
 
 #include "glpgp/util.h"
 
@@ -43,8 +44,7 @@ typedef struct r3 {
     unsigned char *mark; /* per vertex */
     r3_edge *e;          /* unique sides, sorted by key */
     int ne;
-    double *xyz; /* the new mesh's points (grown) */
-    int nv, cap;
+    dvec xyz; /* the new mesh's points: q's, then the new ones */
 } r3;
 
 static const r3_edge *find_edge(const r3 *R, int a, int b)
@@ -63,15 +63,8 @@ static int third(const r3 *R, int a, int b)
 
 static glpgp_status add_point(r3 *R, const double *x, int *id)
 {
-    if (R->nv == R->cap) {
-        const int cap = 2 * R->cap + 64;
-        double *g = realloc(R->xyz, (size_t)3 * cap * sizeof(double));
-        if (!g) return GLPGP_FAIL(GLPGP_ERR_NOMEM, "out of memory (3-refinement)");
-        R->xyz = g;
-        R->cap = cap;
-    }
-    memcpy(R->xyz + 3 * R->nv, x, 3 * sizeof(double));
-    *id = R->nv++;
+    *id = R->xyz.n / 3;
+    for (int d = 0; d < 3; d++) GLPGP_CHECK(dpush(&R->xyz, x[d]));
     return GLPGP_OK;
 }
 
@@ -231,9 +224,9 @@ static glpgp_status build(r3 *R, const glpgp_mesh *m, double h, glpgp_quadmesh *
         *nref += nq > 1;
     }
     glpgp_quadmesh *r = NULL;
-    if (st == GLPGP_OK) st = glpgp_qs_alloc(R->nv, nf, 4 * nf, &r);
+    if (st == GLPGP_OK) st = glpgp_qs_alloc(R->xyz.n / 3, nf, 4 * nf, &r);
     if (st == GLPGP_OK) {
-        memcpy(r->xyz, R->xyz, (size_t)3 * R->nv * sizeof(double));
+        memcpy(r->xyz, R->xyz.p, (size_t)R->xyz.n * sizeof(double));
         memcpy(r->face_vert, fv, (size_t)4 * nf * sizeof(int));
         for (int f = 0; f <= nf; f++) r->face_start[f] = 4 * f;
         for (int f = 0; f < nf; f++) r->face_origin[f] = (unsigned char)org[f];
@@ -269,18 +262,11 @@ glpgp_status glpgp_qs_refine3(const glpgp_mesh *m, const glpgp_quadmesh *q, doub
                 for (int i = 0; i < 4; i++) R.mark[q->face_vert[4 * f + i]] = 1;
         closure(&R, &nmark);
     }
-    if (st == GLPGP_OK && nmark) {
-        R.cap = q->nv + 64;
-        st = glpgp_malloc((size_t)3 * R.cap, sizeof(double), &R.xyz);
-        if (st == GLPGP_OK) {
-            memcpy(R.xyz, q->xyz, (size_t)3 * q->nv * sizeof(double));
-            R.nv = q->nv;
-            st = sides(&R);
-        }
-        if (st == GLPGP_OK) st = build(&R, m, h, out, nref);
-    }
+    for (int i = 0; i < 3 * q->nv && st == GLPGP_OK && nmark; i++) st = dpush(&R.xyz, q->xyz[i]);
+    if (st == GLPGP_OK && nmark) st = sides(&R);
+    if (st == GLPGP_OK && nmark) st = build(&R, m, h, out, nref);
     free(R.mark);
     free(R.e);
-    free(R.xyz);
+    dvec_free(&R.xyz);
     return st;
 }

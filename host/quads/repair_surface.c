@@ -952,18 +952,25 @@ static int lscm_solve(const lchart *C, const double *e, const double *w, int nvl
     return rr <= 1e-16 * r0;
 }
 
-/* Region k's conformal chart in C (kind 3; C->uv: the loop's points in it,
- * a simple counter-clockwise polygon); *ok 0 when it is not one. C->uv
- * holds the disk chart on entry (the patch chart's Tutte map: the start). */
-static glpgp_status conformal_chart(const lrep *L, int k, const int *loop, int n, lchart *C, int **vid_out, int *ok)
+/* The region's points in a patch chart C (its faces' points; every one is
+ * a corner of a fan triangle). */
+static int chart_points(const lchart *C)
 {
-    int pok = 0, nvl = 0;
+    int nvl = 0;
+    for (int t = 0; t < 3 * C->nt; t++) nvl = C->tri[t] + 1 > nvl ? C->tri[t] + 1 : nvl;
+    return nvl;
+}
+
+/* The patch chart C (its Tutte map in C->tuv: the start) made the
+ * conformal chart (kind 3; C->tuv the conformal map, C->uv the loop's
+ * points in it, a simple counter-clockwise polygon); *ok 0 when it is not
+ * one (C->tuv then holds no map to use). */
+static glpgp_status conformal_map(const lrep *L, const int *loop, int n, lchart *C, int *ok)
+{
+    const int nvl = chart_points(C);
     double *e = NULL, *w = NULL, *wk = NULL;
     unsigned char *fix = NULL;
     *ok = 0;
-    GLPGP_CHECK(patch_chart(L, k, loop, n, C, vid_out, &pok));
-    if (!pok) return GLPGP_OK;
-    for (int t = 0; t < 3 * C->nt; t++) nvl = C->tri[t] + 1 > nvl ? C->tri[t] + 1 : nvl;
     glpgp_status st = glpgp_malloc((size_t)6 * C->nt + 1, sizeof(double), &e);
     if (st == GLPGP_OK) st = glpgp_malloc((size_t)C->nt + 1, sizeof(double), &w);
     if (st == GLPGP_OK) st = glpgp_malloc((size_t)6 * nvl + 1, sizeof(double), &wk);
@@ -1135,19 +1142,20 @@ static glpgp_status mesh_loop(lrep *L, int k, const int *loop, int n, ivec *out,
     if (st == GLPGP_OK) st = glpgp_malloc((size_t)2 * n + 2, sizeof(double), &C.uv);
     if (st == GLPGP_OK) st = glpgp_malloc((size_t)3 * n + 3, sizeof(double), &C.p3);
     if (st == GLPGP_OK) st = mesh_in_chart(L, loop, n, &C, out, sjmin, ok);
-    if (st == GLPGP_OK && !*ok) { /* the conformal chart: the region's faces flattened, the loop's corners kept */
-        int *vid = NULL, cok = 0;
+    int *vid = NULL, pok = 0;
+    double *tutte = NULL; /* the patch chart's map, kept while the conformal chart overwrites it */
+    if (st == GLPGP_OK && !*ok) { /* the region's faces embedded once (the loop on the circle) */
+        disk_chart(L, k, loop, n, C.uv, C.z);
+        st = patch_chart(L, k, loop, n, &C, &vid, &pok);
+        if (st == GLPGP_OK && pok) st = glpgp_malloc((size_t)2 * chart_points(&C) + 2, sizeof(double), &tutte);
+        if (st == GLPGP_OK && pok) memcpy(tutte, C.tuv, (size_t)2 * chart_points(&C) * sizeof(double));
+    }
+    if (st == GLPGP_OK && !*ok && pok) { /* the conformal chart: the region's faces flattened, the loop's corners kept */
+        int cok = 0;
         L->nxyz.n = nx0;
         C.kind = 3;
-        disk_chart(L, k, loop, n, C.uv, C.z);
-        st = conformal_chart(L, k, loop, n, &C, &vid, &cok);
+        st = conformal_map(L, loop, n, &C, &cok);
         if (st == GLPGP_OK && cok) st = mesh_in_chart(L, loop, n, &C, out, sjmin, ok);
-        free(vid);
-        free(C.tri);
-        free(C.tuv);
-        C.tri = NULL;
-        C.tuv = NULL;
-        C.vid = NULL;
     }
     if (st == GLPGP_OK && !*ok) {
         L->nxyz.n = nx0;
@@ -1157,16 +1165,16 @@ static glpgp_status mesh_loop(lrep *L, int k, const int *loop, int n, ivec *out,
             for (int d = 0; d < 3; d++) C.p3[d * n + i] = pos(L, loop[i])[d];
         st = mesh_in_chart(L, loop, n, &C, out, sjmin, ok);
     }
-    if (st == GLPGP_OK && !*ok) { /* the patch chart: the disk's points lifted onto the region's own faces */
-        int *vid = NULL, pok = 0;
+    if (st == GLPGP_OK && !*ok && pok) { /* the patch chart: the disk's points lifted onto the region's own faces */
         L->nxyz.n = nx0;
         C.kind = 2;
-        st = patch_chart(L, k, loop, n, &C, &vid, &pok);
-        if (st == GLPGP_OK && pok) st = mesh_in_chart(L, loop, n, &C, out, sjmin, ok);
-        free(vid);
-        free(C.tri);
-        free(C.tuv);
+        memcpy(C.tuv, tutte, (size_t)2 * chart_points(&C) * sizeof(double));
+        st = mesh_in_chart(L, loop, n, &C, out, sjmin, ok);
     }
+    free(vid);
+    free(tutte);
+    free(C.tri);
+    free(C.tuv);
     if (!*ok) L->nxyz.n = nx0;
     free(C.z);
     free(C.uv);

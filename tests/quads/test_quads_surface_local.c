@@ -50,6 +50,14 @@ static void grid(glpgp_mesh **m, glpgp_quadmesh **q)
     CHECK(*q && (*q)->nf == (NU + 1) * (NV + 1) && qq.invalid == 0); /* half cells at the rims */
 }
 
+/* r checked on the half cylinder m (*qq its report): valid, all quads,
+ * Euler 1 and one boundary loop, as the grid. */
+static void valid_on_cylinder(const glpgp_mesh *m, const glpgp_quadmesh *r, glpgp_quads_report *qq)
+{
+    CHECK_OK(glpgp_quads_quality_surface(r, m, HV, qq));
+    CHECK(qq->invalid == 0 && qq->others == 0 && qq->euler == 1 && qq->boundary_loops == 1);
+}
+
 /* The face whose centroid is nearest to arc length s and height y (cells). */
 static int face_at(const glpgp_quadmesh *q, double s, double y)
 {
@@ -165,8 +173,7 @@ static void many_odd_regions(void)
     CHECK_OK(glpgp_qs_local_repair(m, q, HV, 0, &r, &rs));
     CHECK(r != NULL);
     if (!r) goto out;
-    CHECK_OK(glpgp_quads_quality_surface(r, m, HV, &qq));
-    CHECK(qq.invalid == 0 && qq.others == 0 && qq.euler == 1 && qq.boundary_loops == 1);
+    valid_on_cylinder(m, r, &qq);
     CHECK(r->nf - rs.new_quads >= 150);
     if (qq.invalid || r->nf - rs.new_quads < 150)
         fprintf(stderr, "many odd regions: invalid 0x%x, %d kept faces of %d, %d regions\n", qq.invalid,
@@ -197,8 +204,7 @@ static void split_local(void)
     CHECK(r->nf == q->nf - ns + 4 + 2 * (NU + NV));
     if (ns != NU + NV + 1) fprintf(stderr, "local split: %d faces split, %d faces\n", ns, r->nf);
     glpgp_quads_report qq;
-    CHECK_OK(glpgp_quads_quality_surface(r, m, HV, &qq));
-    CHECK(qq.invalid == 0 && qq.others == 0 && qq.euler == 1 && qq.boundary_loops == 1);
+    valid_on_cylinder(m, r, &qq);
     for (int i = 0; i < r->nv; i++) /* on the cylinder */
         CHECK(fabs(hypot(r->xyz[3 * i], r->xyz[3 * i + 1]) - 2.0) < 0.01);
 out:
@@ -238,8 +244,7 @@ static void refine3(void)
     CHECK(nr == 9 && r->nf == q->nf - 9 + 9 + 4 * 7 + 4 * 3);
     if (nr != 9) fprintf(stderr, "refine3: %d faces refined, %d faces\n", nr, r->nf);
     glpgp_quads_report qq;
-    CHECK_OK(glpgp_quads_quality_surface(r, m, HV, &qq));
-    CHECK(qq.invalid == 0 && qq.others == 0 && qq.euler == 1 && qq.boundary_loops == 1);
+    valid_on_cylinder(m, r, &qq);
     CHECK(sj_min(r) > 0.65); /* the templates' worst corner on a square grid: 0.707 */
     for (int i = 0; i < r->nv; i++) /* on the cylinder */
         CHECK(fabs(hypot(r->xyz[3 * i], r->xyz[3 * i + 1]) - 2.0) < 0.01);
@@ -253,8 +258,7 @@ static void refine3(void)
     /* a 2 x 2 block refined 3 x 3 (36), 8 side neighbours (7 each), 4 corner neighbours (3 each) */
     CHECK(nr == 16 && r->nf == q->nf - 16 + 36 + 8 * 7 + 4 * 3);
     if (nr != 16) fprintf(stderr, "refine3 (closure): %d faces refined, %d faces\n", nr, r->nf);
-    CHECK_OK(glpgp_quads_quality_surface(r, m, HV, &qq));
-    CHECK(qq.invalid == 0 && qq.others == 0 && qq.euler == 1 && qq.boundary_loops == 1);
+    valid_on_cylinder(m, r, &qq);
     CHECK(sj_min(r) > 0.65);
     glpgp_quadmesh_destroy(&r);
     /* a face on the rim: its boundary sides split too, the mesh still one loop */
@@ -262,8 +266,8 @@ static void refine3(void)
     sel[face_at(q, NU / 2, 0.25)] = 1;
     CHECK_OK(glpgp_qs_refine3(m, q, HV, sel, &r, &nr));
     if (!r) goto out;
-    CHECK_OK(glpgp_quads_quality_surface(r, m, HV, &qq));
-    CHECK(nr == 6 && qq.invalid == 0 && qq.others == 0 && qq.euler == 1 && qq.boundary_loops == 1);
+    valid_on_cylinder(m, r, &qq);
+    CHECK(nr == 6);
 out:
     free(sel);
     glpgp_quadmesh_destroy(&r);
@@ -325,8 +329,8 @@ static void flat_corner(void)
     CHECK(nflat == 1 && flat[f] >= 0);
     CHECK_OK(glpgp_qs_split_flat(m, q, HV, flat, &r, &ns));
     if (!r) goto out;
-    CHECK_OK(glpgp_quads_quality_surface(r, m, HV, &qq));
-    CHECK(qq.invalid == 0 && qq.others == 0 && qq.euler == 1 && qq.boundary_loops == 1 && qq.sj_min > 0.2);
+    valid_on_cylinder(m, r, &qq);
+    CHECK(qq.sj_min > 0.2);
     /* the flat quad in three, the two strips from its sides up the cylinder and along the rim */
     CHECK(ns >= 3 && r->nf == q->nf + 2 + (ns - 1));
     if (qq.invalid || qq.sj_min <= 0.2)
