@@ -35,9 +35,11 @@
                            triangles under 5 degrees): KIND blob (a lumpy
                            closed surface), genus3 (three fused tori),
                            schwarz (Schwarz's P surface in a box: open, 18
-                           boundary loops, 13 components) or gyroid (a
-                           gyroid in a ball, many handles); N 30-48: 16k-48k
-                           triangles.
+                           boundary loops, 13 components), gyroid (a
+                           gyroid in a ball, many handles) or part (a plate
+                           with a round hole turned off the grid's axes:
+                           sharp edges cut into staircases, as a CT scan of
+                           a machined part); N 30-48: 16k-48k triangles.
   speck SUBDIV OUT.obj      scan debris: the unit icosphere and, 1 away
                            from it, a tetrahedron 0.01 across (two
                            connected components, one far below any size).
@@ -301,7 +303,16 @@ def _implicit_kinds():
         g = math.sin(x) * math.cos(y) + math.sin(y) * math.cos(z) + math.sin(z) * math.cos(x)
         return max(g - 0.3, math.sqrt(x * x + y * y + z * z) - 5.0)
 
-    return {"blob": (blob, 1.6), "genus3": (genus3, 3.2), "schwarz": (schwarz, 4.7), "gyroid": (gyroid, 5.6)}
+    def part(x, y, z):
+        # a plate with a round hole, turned off the grid's axes: sharp CSG edges
+        ca, sa, cb, sb = math.cos(0.35), math.sin(0.35), math.cos(0.2), math.sin(0.2)
+        x, y = ca * x + sa * y, -sa * x + ca * y
+        y, z = cb * y + sb * z, -sb * y + cb * z
+        plate = max(abs(x) - 1.5, abs(y) - 1.0, abs(z) - 0.4)
+        return max(plate, 0.5 - math.hypot(x, y))
+
+    return {"blob": (blob, 1.6), "genus3": (genus3, 3.2), "schwarz": (schwarz, 4.7), "gyroid": (gyroid, 5.6),
+            "part": (part, 2.0)}
 
 
 def implicit(kind, n, out):

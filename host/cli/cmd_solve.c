@@ -116,7 +116,8 @@ static void build(glpgp_opts *t, solve_cli *c)
     glpgp_opts_add_quads(t, &c->qo, &c->quad_opts, &c->allow_invalid);
     glpgp_opt_double(t, "--faces", &c->faces, 0.0, 1, 1e12, 0, "N",
                      "target quad count: the size h = sqrt(area / N) (instead of --size;\n"
-                     "the mesh has about N quads where the parametrization is regular)");
+                     "the mesh has about N quads where the parametrization is regular;\n"
+                     "a count more than 3x off N is warned about)");
     glpgp_opt_string(t, "--image", &c->image, "FILE",
                      "picture of the result (.png, .exr, .tif, .jpg, ...); with --quads and\n"
                      "no --image-kind: the quad mesh (faces by origin, poor ones red,\n"
@@ -509,6 +510,9 @@ static int backend_job_abandon(backend_job *j, int rc)
     return rc;
 }
 
+/* A quad count this many times off --faces (either way) is warned about. */
+#define GLPGP_FACES_OFF 3.0
+
 /* The one flow of every run: read, solve (serial, or glpgp_solve_distributed
  * on MPI ranks: dd), compute the outputs, write them together. */
 /* --quads: the quad mesh of result r on mesh m, its report (a surface's:
@@ -537,6 +541,13 @@ static glpgp_status build_quads(solve_cli *c, const glpgp_mesh *m, const glpgp_r
     qq->singular[1] = r->osc[1].plus + r->osc[1].minus;
     /* --field cross: irregular interior vertices within h of a cross-field singularity, and the others */
     if (r->cross) GLPGP_CHECK(glpgp_quads_quality_cross(*q, r->cross->sing, r->cross->nsing, r->size, qq));
+    /* --faces N far from the count made: said, with the step it came from */
+    const int nf = qq->quads + qq->others;
+    if (c->faces > 0.0 && (nf > GLPGP_FACES_OFF * c->faces || GLPGP_FACES_OFF * nf < c->faces))
+        glpgp_log(GLPGP_LOG_WARNING, "quads: %d faces for the %.0f asked (--faces)%s", nf, c->faces,
+                  m->surf && c->qsteps.fallback     ? ": the last resort's (no valid mesh from the parametrization)"
+                  : m->surf && c->qsteps.subdivided ? ": the extraction split once (h/2)"
+                                                    : "");
     *invalid_rc = glpgp_cli_quads_verdict(qq, c->qo.keep_polygons ? GLPGP_QUADS_BAD_NONQUAD : 0u, c->allow_invalid,
                                           why, nwhy);
     return GLPGP_OK;

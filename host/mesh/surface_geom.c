@@ -267,6 +267,12 @@ double glpgp_surface_vertex_angle(const glpgp_mesh *m, int i, const double *v)
  *     faces beyond another sharp crease (the far walls of a hole) do not
  *     blur the sides' normals, and a sharp kink of noise does not wall a
  *     side in.
+ * 2b. unless it is sharper than CREASE_BLOCK_DEG, its sides are flat
+ *     beside it: their angle exceeds CREASE_FLAT times the larger spread
+ *     of the normals of either side's ball triangles reached without
+ *     crossing a candidate (a crease between flat or gently curved faces
+ *     stands out; the kinks of a coarsely faceted curved surface, as
+ *     marching cubes give, bend no more than the faces beside them).
  *  3. it belongs to a crease of CREASE_MIN_EDGES edges or more (edges
  *     joined at their ends), or to one that reaches the boundary: in heavy
  *     noise a kink walled in by other kinks passes test 1, and at test 2's
@@ -275,6 +281,7 @@ double glpgp_surface_vertex_angle(const glpgp_mesh *m, int i, const double *v)
  * a candidate in test 1, and test 2 reads the triangles walked. */
 #define CREASE_REACH 2.5
 #define CREASE_SIDE 0.8
+#define CREASE_FLAT 2.0
 #define CREASE_MIN_EDGES 3
 #define CREASE_BLOCK_DEG 70.0
 #define CREASE_CAP 4096
@@ -401,6 +408,28 @@ static double side_angle(const glpgp_mesh *m, const unsigned char *block, int h,
     return atan2(sqrt(dot3(x, x)), dot3(s1, s2));
 }
 
+/* The normal spread of candidate half-edge h's sides: per side, the ball's
+ * triangles reached from h's triangle there without crossing a candidate
+ * (cand); the larger of the two root-mean-square angles between their
+ * normals and their area-weighted mean normal (from |sum n| / sum |n|). */
+static double side_spread(const glpgp_mesh *m, const unsigned char *cand, int h, int *stamp, int *queue)
+{
+    double mid[3], worst = 0.0;
+    const double r = edge_ball(m, h, mid);
+    for (int side = 0; side < 2; side++) {
+        const int t = side ? m->surf->twin[h] / 3 : h / 3, tag = -(3 * m->nt + 2 * h + side + 1);
+        const int n = ball_region(m, cand, h, t, mid, r, tag, stamp, queue);
+        double s[3] = {0, 0, 0}, a = 0.0, nn[3];
+        for (int i = 0; i < n; i++) {
+            tri_normal(m, queue[i], nn);
+            for (int k = 0; k < 3; k++) s[k] += nn[k];
+            a += sqrt(dot3(nn, nn));
+        }
+        if (a > 0.0) worst = fmax(worst, 1.0 - sqrt(dot3(s, s)) / a);
+    }
+    return sqrt(2.0 * worst);
+}
+
 /* Test 1 fails: candidate half-edge h's triangles are joined inside its
  * ball without crossing a candidate (cand). A walk that reaches
  * CREASE_CAP triangles first keeps the edge. */
@@ -412,8 +441,20 @@ static int walked_around(const glpgp_mesh *m, const unsigned char *cand, int h, 
     return stamp[m->surf->twin[h] / 3] == h + 1;
 }
 
-/* Clears the candidates (flag) that fail test 1 (walls NULL) or test 2
- * (the side angle with these walls at most min_angle), judged against the
+/* Tests 2 and 2b for candidate half-edge h (cand: the candidates; walls:
+ * the sides' walls): its sides' angle exceeds min_angle and, unless its
+ * dihedral exceeds CREASE_BLOCK_DEG, CREASE_FLAT times their spread. */
+static int keeps_angle(const glpgp_mesh *m, const unsigned char *walls, const unsigned char *cand, int h,
+                       double min_angle, int *stamp, int *queue)
+{
+    const double ang = side_angle(m, walls, h, stamp, queue);
+    if (ang <= min_angle) return 0;
+    if (m->surf->dihedral[h] > CREASE_BLOCK_DEG * GLPGP_PI / 180.0) return 1;
+    return ang > CREASE_FLAT * side_spread(m, cand, h, stamp, queue);
+}
+
+/* Clears the candidates (flag) that fail test 1 (walls NULL) or tests 2
+ * and 2b (keeps_angle with these walls and min_angle), judged against the
  * candidates as they were before this pass; returns how many it cleared. */
 static int crease_pass(const glpgp_mesh *m, unsigned char *flag, const unsigned char *walls, double min_angle,
                        int *stamp, int *queue, int *drop)
@@ -422,7 +463,7 @@ static int crease_pass(const glpgp_mesh *m, unsigned char *flag, const unsigned 
     int nd = 0;
     for (int h = 0; h < 3 * m->nt; h++) {
         if (!flag[h] || twin[h] < h) continue;
-        const int fails = walls ? side_angle(m, walls, h, stamp, queue) <= min_angle
+        const int fails = walls ? !keeps_angle(m, walls, flag, h, min_angle, stamp, queue)
                                 : walked_around(m, flag, h, stamp, queue);
         if (fails) drop[nd++] = h;
     }

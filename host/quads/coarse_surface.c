@@ -2,7 +2,8 @@
  * (glpgp_quads_surface_fallback_coarse, glpgp/quads.h): the input triangulation
  * coarsened by half-edge collapses to edges of about 2 h, then every
  * triangle split into three quads (centroid and side midpoints, moved onto
- * the surface; a boundary side's midpoint stays on its chord). A collapse
+ * the surface; a boundary side's midpoint stays on its chord, and so do
+ * the new points of a quad the move folds). A collapse
  * v -> u keeps every vertex an input vertex and is made only when
  *  - v is free (on no boundary or sharp feature edge), or v is inside one
  *    boundary or feature curve (two such edges, turning by under 30
@@ -400,9 +401,33 @@ static glpgp_status keep_rim_midpoints(glpgp_quadmesh *q, int first, const doubl
     return GLPGP_OK;
 }
 
+/* The new points (ids from first) of every quad of q that the projection
+ * left inverted, degenerate or against the surface (glpgp_qs_quad_sj at or
+ * below 0) put back at chord, pass after pass while one moves (a quad whose
+ * new points are all on their chords lies in its coarse triangle's plane,
+ * convex; so a coarse triangle across a staircase crease of marching
+ * cubes, where the projection folds it, keeps its quads flat). */
+static void unfold_to_chords(const cz *c, glpgp_quadmesh *q, int first, const double *chord)
+{
+    int changed = 1;
+    for (int pass = 0; changed && pass < 8; pass++) {
+        changed = 0;
+        for (int f = 0; f < q->nf; f++) {
+            const int *fv = q->face_vert + 4 * f;
+            const double *p[4] = {q->xyz + 3 * fv[0], q->xyz + 3 * fv[1], q->xyz + 3 * fv[2], q->xyz + 3 * fv[3]};
+            if (glpgp_qs_quad_sj(c->P, p) > 0.0) continue;
+            for (int i = 0; i < 4; i++)
+                if (fv[i] >= first && memcmp(q->xyz + 3 * fv[i], chord + 3 * fv[i], 3 * sizeof(double))) {
+                    memcpy(q->xyz + 3 * fv[i], chord + 3 * fv[i], 3 * sizeof(double));
+                    changed = 1;
+                }
+        }
+    }
+}
+
 /* The alive triangles of c split into three quads each: side midpoints
  * and centroids moved onto the surface (boundary sides' midpoints kept on
- * their chords). */
+ * their chords; those of quads the move folds too). */
 static glpgp_status split3(const cz *c, int nt, double h, glpgp_quadmesh **out)
 {
     const glpgp_mesh *m = c->m;
@@ -429,6 +454,7 @@ static glpgp_status split3(const cz *c, int nt, double h, glpgp_quadmesh **out)
     memcpy(chord, (*out)->xyz, (size_t)3 * (*out)->nv * sizeof(double));
     st = glpgp_qs_project(m, h, (*out)->xyz, nvert, (*out)->nv);
     if (st == GLPGP_OK) st = keep_rim_midpoints(*out, nvert, chord);
+    if (st == GLPGP_OK) unfold_to_chords(c, *out, nvert, chord);
     for (int i = 0; i < (*out)->nv && st == GLPGP_OK; i++) {
         (*out)->xy[2 * i] = (*out)->xyz[3 * i];
         (*out)->xy[2 * i + 1] = (*out)->xyz[3 * i + 1];

@@ -111,7 +111,8 @@ glpgp_status glpgp_quads_surface_fallback(const glpgp_mesh *m, glpgp_quadmesh **
 {
     *out = NULL;
     if (!glpgp_mesh_is_surface(m) || !m->surf) return GLPGP_FAIL(GLPGP_ERR_ARG, "surface fallback: not a surface");
-    return glpgp_qs_split_triangles(m->xyz, m->nv, m->tri, m->nt, out);
+    const glpgp_mesh *s = m->surf->origin ? m->surf->origin : m;
+    return glpgp_qs_split_triangles(s->xyz, s->nv, s->tri, s->nt, out);
 }
 
 glpgp_status glpgp_quadmesh_subdivide_surface(const glpgp_quadmesh *q, glpgp_quadmesh **out)
@@ -770,7 +771,7 @@ glpgp_status glpgp_qs_build_one(const glpgp_mesh *m, const glpgp_result *r, cons
     glpgp_quadmesh *q = NULL;
     glpgp_status st = glpgp_quads_extract_surface(m, r, &q);
     if (st == GLPGP_ERR_NUMERIC && o->repair) {
-        glpgp_log(GLPGP_LOG_DEBUG, "quads: %s; the input triangles are split into quads", glpgp_error_message());
+        glpgp_log(GLPGP_LOG_DEBUG, "quads: %s; the last resort follows", glpgp_error_message());
         glpgp_error_clear();
         st = GLPGP_OK;
     }
@@ -791,7 +792,8 @@ glpgp_status glpgp_qs_build_one(const glpgp_mesh *m, const glpgp_result *r, cons
         char why[256]; /* the reasons by name (the counts are in the report) */
         bad_names(bad & ~(unsigned)GLPGP_QUADS_BAD_NONQUAD, why, sizeof why);
         glpgp_log(GLPGP_LOG_WARNING,
-                  "quads: the extracted mesh is not valid%s%s%s: the input triangles are split into quads",
+                  "quads: the extracted mesh is not valid%s%s%s: the last resort follows (a coarsened "
+                  "triangulation split into quads, else the input's triangles)",
                   why[0] ? " (" : "", why, why[0] ? ")" : "");
         stp.invalid_before = bad;
         glpgp_quadmesh_destroy(&q);

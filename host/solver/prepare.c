@@ -160,8 +160,9 @@ static glpgp_status denoise_surface(const glpgp_mesh *m, const glpgp_options *o,
          * which the filter sharpens where it takes kinks for creases): the input as it is */
         glpgp_log(GLPGP_LOG_WARNING,
                   "%s: a scan's noise (%d edges above %g degrees that are not creases, %d folded triangles) not "
-                  "smoothed: the smoothing left more (%d such edges, %d folds); solved as it is",
-                  name, d->noise_edges, o->feature_angle, d->folds, d->noise_edges_after, d->folds_after);
+                  "smoothed: the smoothing made it worse (%d -> %d such edges, %d -> %d folds); solved as it is",
+                  name, d->noise_edges, o->feature_angle, d->folds, d->noise_edges, d->noise_edges_after, d->folds,
+                  d->folds_after);
         glpgp_mesh_destroy(out);
         d->rounds = 0;
         return GLPGP_OK;

@@ -115,7 +115,7 @@ run_fail "--denoise bogus" 2 "denoise" solve noisy.obj --denoise bogus -o x.vtu
 # singularities and the coarse last resort, 1998 quads for 200, SJ 0.008)
 python3 "$(dirname "$0")/../../bench/surface_models.py" implicit genus3 32 g3.obj || fail "g3.obj"
 run_ok "marching tetrahedra" solve g3.obj --faces 200 --backend reference --quads g3q.obj --stats g3.json
-grep -qE "not smoothed: the smoothing left more" err.txt || fail "marching tetrahedra: the log does not say why"
+grep -qE "not smoothed: the smoothing made it worse" err.txt || fail "marching tetrahedra: the log does not say why"
 python3 - <<'PY' || fail "marching tetrahedra"
 import json
 s = json.load(open("g3.json")); a = s["quads"]

@@ -10,8 +10,10 @@
 #    repair's regions, where the split gave 300);
 #  - the developable half cylinder and its unrolled planar twin: the same
 #    face count and valence histogram;
-#  - --faces N sets h = sqrt(area / N) (the summary's h), --faces with
-#    --size is one usage error;
+#  - --faces N sets h = sqrt(area / N) (the summary's h), a count more
+#    than 3x off N either way is warned about with the step it came from
+#    (a torus at 4 faces: the last resort; none at 100 on the hemisphere),
+#    --faces with --size is one usage error;
 #  - the smoothing on the surface: every model's smallest scaled Jacobian
 #    >= 0.3 (the sphere's strips left 0.014 before it);
 #  - the coarse last resort: genus 2 at its default h and a sphere with 20
@@ -202,6 +204,10 @@ h = float(re.search(r"h = ([0-9.e+-]+)", open("out.txt").read()).group(1))
 want = math.sqrt(2 * math.pi / 100)  # the unit hemisphere's area / N
 assert abs(h / want - 1) < 0.01, (h, want)
 PY
+grep -q "faces for the .* asked" err.txt && fail "--faces 100: a count warning for a count near it"
+# a count far from --faces is said (a torus at 4 faces: the last resort's 180 quads)
+run_ok "faces 4" solve shape:torus:2000 --backend reference --faces 4 --quads f4.obj
+expect_err "warning: quads: [0-9]+ faces for the 4 asked \(--faces\): the last resort" "--faces 4: the count warning"
 run_fail "--faces with --size" 2 "faces.*size|size.*faces" solve shape:sphere:5000 --faces 100 --size 0.3 --quads x.obj
 
 # a size the surface cannot carry (3.5 edges per period) and not subdivided

@@ -28,7 +28,10 @@
  *    it keeps it valid without lowering its smallest scaled Jacobian (also
  *    on the torus); with arguments MESH H EULER LOOPS the same on a file
  *    (a sphere with 20 round holes: its rim sides' midpoints stay on their
- *    chords, moved onto the concave rims they left inverted quads);
+ *    chords, moved onto the concave rims they left inverted quads; a
+ *    marching-tetrahedra plate with a hole, `implicit part 24`: coarse
+ *    triangles across its staircase creases keep their new points on their
+ *    chords where the move onto the surface folded 4-11 quads);
  *  - two components (the half cylinder and a speck beside it) are meshed
  *    apart: the grid's 40 quads and the speck's 12 from the last resort;
  *  - the check fails where it must: a face turned over (non-manifold and

@@ -414,7 +414,10 @@ glpgp_status glpgp_quads_extract_surface(const glpgp_mesh *m, const glpgp_result
 /* The last resort on a surface: every input triangle split into 3 quads
  * around its centroid through its sides' midpoints (valid by construction:
  * each quad is planar and convex in its triangle's plane; same topology).
- * Faces of origin GLPGP_QFACE_FALLBACK. */
+ * A refined surface that keeps its input (m->surf->origin) splits the
+ * input's triangles: the same surface (bisection's points lie on the input
+ * triangles' sides) with a refinement's factor fewer quads. Faces of origin
+ * GLPGP_QFACE_FALLBACK. */
 glpgp_status glpgp_quads_surface_fallback(const glpgp_mesh *m, glpgp_quadmesh **out);
 
 /* One Catmull-Clark split of every face in 3D (no smoothing): all quads,

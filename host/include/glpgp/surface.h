@@ -235,7 +235,9 @@ double glpgp_surface_vertex_angle(const glpgp_mesh *m, int i, const double *v);
  * (mesh/surface_geom.c): it separates its two triangles locally (no walk
  * of triangles within 2.5 of its neighbouring edge lengths joins them
  * without crossing another such edge), its sides' mean normals at that
- * scale still differ by 0.8 feature_deg, and its crease has 3 edges or
+ * scale still differ by 0.8 feature_deg and, unless it is sharper than 70
+ * degrees, by twice either side's own normal spread (a faceted curved
+ * surface's kinks are not creases), and its crease has 3 edges or
  * more or reaches the boundary. Both half-edges of it; boundary half-edges
  * 0. A refined surface that kept its input (origin) takes the input's
  * features. *count (may be NULL): the undirected feature edges. flag: 3 nt. */
