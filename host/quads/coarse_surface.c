@@ -403,14 +403,13 @@ static glpgp_status keep_rim_midpoints(glpgp_quadmesh *q, int first, const doubl
 
 /* The new points (ids from first) of every quad of q that the projection
  * left inverted, degenerate or against the surface (glpgp_qs_quad_sj at or
- * below 0) put back at chord, pass after pass while one moves (a quad whose
- * new points are all on their chords lies in its coarse triangle's plane,
- * convex; so a coarse triangle across a staircase crease of marching
+ * below 0) put back at chord, pass after pass while one moves (each moves
+ * at most once, so the passes end; a quad whose new points are all on
+ * their chords lies in its coarse triangle's plane, convex: a coarse triangle across a staircase crease of marching
  * cubes, where the projection folds it, keeps its quads flat). */
 static void unfold_to_chords(const cz *c, glpgp_quadmesh *q, int first, const double *chord)
 {
-    int changed = 1;
-    for (int pass = 0; changed && pass < 8; pass++) {
+    for (int changed = 1; changed;) {
         changed = 0;
         for (int f = 0; f < q->nf; f++) {
             const int *fv = q->face_vert + 4 * f;
