@@ -405,8 +405,9 @@ static glpgp_status keep_rim_midpoints(glpgp_quadmesh *q, int first, const doubl
  * left inverted, degenerate or against the surface (glpgp_qs_quad_sj at or
  * below 0) put back at chord, pass after pass while one moves (each moves
  * at most once, so the passes end; a quad whose new points are all on
- * their chords lies in its coarse triangle's plane, convex: a coarse triangle across a staircase crease of marching
- * cubes, where the projection folds it, keeps its quads flat). */
+ * their chords lies in its coarse triangle's plane, convex: a coarse
+ * triangle across a staircase crease of marching cubes, where the
+ * projection folds it, keeps its quads flat). */
 static void unfold_to_chords(const cz *c, glpgp_quadmesh *q, int first, const double *chord)
 {
     for (int changed = 1; changed;) {
