@@ -432,7 +432,7 @@ double glpgp_quadmesh_face_sj_surface(const glpgp_quadmesh *q, int f)
         sub3(q->xyz + 3 * q->face_vert[s + (i + 1) % n], p, e1);
         sub3(q->xyz + 3 * q->face_vert[s + (i + n - 1) % n], p, e2);
         const double l = sqrt(dot3(e1, e1) * dot3(e2, e2));
-        if (!(l > 0)) return -1.0;
+        if (!(l > 1e-9 * nn)) return -1.0; /* a side of ~1e-9 of the face's size: its direction is rounding */
         cross3(e1, e2, x);
         sj = fmin(sj, dot3(x, N) / (nn * l));
     }

@@ -409,7 +409,11 @@ done:
 
 /* ---- strips: an odd face joined to another through a strip of quads ---- */
 
-#define STRIP_JOINED 16 /* a start state's parent -3 - (STRIP_JOINED + i): lone triangle A joined across side i */
+/* A start state's parent: -3 - 2 i from odd face A's side i, -3 - (2 i + 1)
+ * from lone triangle A joined across its side i (a face may have any
+ * number of sides: a fixed offset for the joined ones read a 17-gon's side
+ * 16 as joined, and a sphere with 20 jagged holes crashed there). */
+static int strip_from(int i, int joined) { return -3 - (2 * i + joined); }
 
 typedef struct strip_ctx {
     const glpgp_quadmesh *q;
@@ -499,8 +503,11 @@ static glpgp_status apply_strip(strip_ctx *c, int A, int B, int bside, int last,
         t = ex[i]; ex[i] = ex[n - 1 - i]; ex[n - 1 - i] = t;
     }
     int sA = A, sq = -1, sj = -1; /* the face whose side startSide gets the first midpoint */
-    if (startSide >= STRIP_JOINED) { /* lone triangle A joined with quad sq (side sj): the strip starts beyond sq */
-        sq = across(q, c->E, c->nc, A, startSide - STRIP_JOINED, &sj);
+    const int joined = startSide & 1;
+    startSide >>= 1;
+    if (joined) { /* lone triangle A joined with quad sq (side sj): the strip starts beyond sq */
+        sq = across(q, c->E, c->nc, A, startSide, &sj);
+        if (sq < 0) return GLPGP_OK;
         sA = sq;
         startSide = (sj + 2) % 4;
     }
@@ -645,10 +652,10 @@ static glpgp_status find_strip(strip_ctx *c, int A, int *found)
     c->end_mq = -1;
     for (int i = 0; i < nA; i++) {
         if (!c->any_side && !loneA && i != sA) continue;
-        int j, g = across(q, c->E, c->nc, A, i, &j), from = -3 - i; /* from A's side i */
+        int j, g = across(q, c->E, c->nc, A, i, &j), from = strip_from(i, 0); /* from A's side i */
         if (loneA && g >= 0 && !joinable(c, A, i)) continue;
         if (loneA && g >= 0) { /* A joined with g: the strip starts at g's far side */
-            from = -3 - (STRIP_JOINED + i);
+            from = strip_from(i, 1);
             g = across(q, c->E, c->nc, g, (j + 2) % 4, &j);
         }
         if (g < 0 || c->used[g] || q->face_start[g + 1] - q->face_start[g] != 4 || c->par[4 * g + j] != -2) continue;

@@ -132,10 +132,13 @@ glpgp_status glpgp_qs_find_flat(const glpgp_quadmesh *q, double goal, signed cha
 glpgp_status glpgp_qs_split_flat(const glpgp_mesh *m, const glpgp_quadmesh *q, double h, const signed char *flat,
                                  glpgp_quadmesh **out, int *nsplit);
 
-/* glpgp_quads_surface_fallback_coarse (17 degrees) with the smallest angle
- * a new triangle may have (degrees; unless one before was smaller). */
-glpgp_status glpgp_qs_coarse(const glpgp_mesh *m, double h, double feature_deg, double amin_deg, glpgp_quadmesh **out,
-                             int *ntri);
+/* glpgp_quads_surface_fallback_coarse (17 degrees, tolerant) with the
+ * smallest angle a new triangle may have (degrees; unless one before was
+ * smaller); tolerant 0: no relaxation, and curves collapse only where they
+ * turn by under 30 degrees (the rules before 2026-11-29, the fallback's
+ * second try: coarse_surface.c). */
+glpgp_status glpgp_qs_coarse(const glpgp_mesh *m, double h, double feature_deg, double amin_deg, int tolerant,
+                             glpgp_quadmesh **out, int *ntri);
 
 /* glpgp_quads_build_surface on a surface of one connected component (or on
  * all of them at once): quads_surface.c. */

@@ -441,7 +441,8 @@ glpgp_status glpgp_quads_quality_surface(const glpgp_quadmesh *q, const glpgp_me
 double glpgp_quads_surface_area_tolerance(const glpgp_quads_report *qq);
 
 /* Smallest corner scaled Jacobian of face f of a surface's quad mesh, in
- * its best-fit (Newell) plane. */
+ * its best-fit (Newell) plane; -1 for a face without area or with a side
+ * of about 1e-9 of its size or less (a corner there has no direction). */
 double glpgp_quadmesh_face_sj_surface(const glpgp_quadmesh *q, int f);
 
 /* Quality-guarded smoothing on the surface (quads/smooth_surface.c): sweeps
@@ -457,9 +458,10 @@ glpgp_status glpgp_quads_smooth_surface(const glpgp_mesh *m, double h, double fe
 
 /* The coarse last resort (quads/coarse_surface.c): m's triangles coarsened by
  * half-edge collapses to edges of about 2 h (boundaries, sharp features
- * and the topology kept; new triangles within 0.2 h of m, smallest angle
- * 17 degrees unless one before was smaller), each split into
- * three quads. *ntri: the coarse triangles (may be NULL). The result is
+ * and the topology kept, their curves' teeth cut within 0.1 h; new
+ * triangles within 0.2 h of m, smallest angle 17 degrees unless one before
+ * was smaller), free vertices relaxed along m between the passes, each
+ * coarse triangle split into three quads. *ntri: the coarse triangles (may be NULL). The result is
  * not checked. Sharp features at GLPGP_FEATURE_ANGLE_DEFAULT
  * (glpgp_quads_build_surface passes glpgp_quads_options.feature_angle). */
 glpgp_status glpgp_quads_surface_fallback_coarse(const glpgp_mesh *m, double h, glpgp_quadmesh **out, int *ntri);
