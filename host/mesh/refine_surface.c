@@ -38,7 +38,8 @@
  * ends', exact in binary) and left in the result's surface (otri, obary):
  * where each refined vertex lies on the input, for a field computed there
  * (glpgp_surface_cross_transfer). */
-#include "glpgp/surface.h"
+#include "surface_internal.h"
+
 #include "glpgp/util.h"
 
 #include <math.h>
@@ -349,7 +350,8 @@ static glpgp_status refine_run(const glpgp_mesh *m, double target, const double 
         }
     }
     if (st == GLPGP_OK && rmax > 1.0) st = tv ? run_levels(&L, 1.0, rmax, &stopped) : run_levels(&L, target, lmax, &stopped);
-    if (st == GLPGP_OK && L.splits > 0) st = glpgp_mesh_create_surface(L.nv, L.xyz, L.nt, L.tri, out);
+    /* the bisections of a thin input triangle are as thin and smaller: only area 0 is degenerate here */
+    if (st == GLPGP_OK && L.splits > 0) st = glpgp_mesh_create_surface_area(L.nv, L.xyz, L.nt, L.tri, 0.0, out);
     if (st == GLPGP_OK && *out) { /* the origin handed over (create_surface keeps the triangles' order) */
         (*out)->surf->otri = L.ot;
         (*out)->surf->obary = L.ob;

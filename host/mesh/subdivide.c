@@ -4,7 +4,8 @@
  * edges, boundary loops and topology stay exactly what they were; edges are
  * halved. The solve's preparation uses it for a surface too coarse for its
  * size (solver/prepare.c). */
-#include "glpgp/surface.h"
+#include "surface_internal.h"
+
 #include "glpgp/util.h"
 #include "glpgp/internal/edgekey.h"
 
@@ -46,7 +47,8 @@ glpgp_status glpgp_mesh_subdivide_surface(const glpgp_mesh *m, glpgp_mesh **out)
             int T[12] = {v[0], md[0], md[2], md[0], v[1], md[1], md[2], md[1], v[2], md[0], md[1], md[2]};
             memcpy(tri + 12 * (size_t)t, T, sizeof T);
         }
-        st = glpgp_mesh_create_surface(nv, xyz, 4 * m->nt, tri, out);
+        /* a quarter of a thin triangle is as thin and smaller: only area 0 is degenerate */
+        st = glpgp_mesh_create_surface_area(nv, xyz, 4 * m->nt, tri, 0.0, out);
     }
     free(E);
     free(mid);

@@ -49,8 +49,8 @@ double glpgp_mesh_diagonal(const glpgp_mesh *m)
 }
 
 /* Indices, repeated corners, coordinates, unused vertices, degenerate
- * triangles; the bounding boxes. */
-static glpgp_status check_input(glpgp_mesh *m)
+ * triangles (area at most min_area_rel diag^2); the bounding boxes. */
+static glpgp_status check_input(glpgp_mesh *m, double min_area_rel)
 {
     const int nv = m->nv, nt = m->nt;
     const double *x = m->xyz;
@@ -88,7 +88,7 @@ static glpgp_status check_input(glpgp_mesh *m)
         double n[3];
         glpgp_tri_normal3(x + 3 * a, x + 3 * b, x + 3 * c, n);
         const double ar = 0.5 * sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-        if (!(ar > 1e-14 * diag2)) {
+        if (!(ar > min_area_rel * diag2)) {
             st = GLPGP_FAIL(GLPGP_ERR_MESH, "triangle %d (%d, %d, %d) is degenerate (area %g)", t, a, b, c, ar);
             break;
         }
@@ -328,6 +328,12 @@ done:
 
 glpgp_status glpgp_mesh_create_surface(int nv, const double *xyz, int nt, const int *tri, glpgp_mesh **out)
 {
+    return glpgp_mesh_create_surface_area(nv, xyz, nt, tri, 1e-14, out);
+}
+
+glpgp_status glpgp_mesh_create_surface_area(int nv, const double *xyz, int nt, const int *tri, double min_area_rel,
+                                            glpgp_mesh **out)
+{
     glpgp_status st = GLPGP_OK;
     glpgp_mesh *m = NULL;
     glpgp_surface *s = NULL;
@@ -345,7 +351,7 @@ glpgp_status glpgp_mesh_create_surface(int nv, const double *xyz, int nt, const 
     memcpy(m->tri, tri, (size_t)nt * 3 * sizeof(int));
     m->nv = nv;
     m->nt = nt;
-    GLPGP_CHECK_GOTO(st, check_input(m), fail);
+    GLPGP_CHECK_GOTO(st, check_input(m, min_area_rel), fail);
     GLPGP_CHECK_GOTO(st, glpgp_calloc(1, sizeof *s, &s), fail);
     m->surf = s;
     s->nv = nv;

@@ -16,6 +16,13 @@ static inline void glpgp_tri_normal3(const double *a, const double *b, const dou
     n[2] = u0 * v1 - u1 * v0;
 }
 
+/* glpgp_mesh_create_surface with the degenerate-triangle test at
+ * min_area_rel x the bounding-box diagonal^2 (the public one's: 1e-14; a
+ * refinement's: 0, its triangles the bisections of validated ones, as thin
+ * as their ancestors but smaller: area > 0 only). */
+glpgp_status glpgp_mesh_create_surface_area(int nv, const double *xyz, int nt, const int *tri, double min_area_rel,
+                                            glpgp_mesh **out);
+
 /* The boundary loops of surface m from next[v] (the end of the boundary
  * half-edge leaving v, -1 when none): loop_start, loop_vertices,
  * on_boundary, nloops, in increasing order of each loop's first vertex. */

@@ -13,7 +13,9 @@
  * most the target at both its ends; on a strip whose target is small only
  * at one end, the other end's triangles kept and far fewer triangles than
  * the scalar refinement to the small target; a uniform target gives the
- * scalar refinement's mesh bit for bit; non-positive targets rejected. */
+ * scalar refinement's mesh bit for bit; non-positive targets rejected. A
+ * sliver just over the validation's area floor refines and subdivides (its
+ * pieces under the floor are not degenerate). */
 #include "testutil.h"
 
 #include <stdlib.h>
@@ -208,6 +210,28 @@ static void check_fine(void)
     glpgp_mesh_destroy(&m);
 }
 
+/* A sliver the validation accepts (its area 3.5e-14 of the bounding box's
+ * diagonal squared, over the 1e-14 floor) refined to a twentieth of its
+ * length and subdivided: its pieces are far under the floor, yet they are
+ * bisections of an accepted triangle, as thin and smaller; both results
+ * exist (before: "triangle ... is degenerate", and the solve stopped on
+ * `implicit blob 32 --faces 150`) and keep the area. */
+static void check_sliver(void)
+{
+    const double xyz[12] = {0, 0, 0, 1, 0, 0, 0.5, 1e-13, 0, 0.5, 1, 0};
+    const int tri[9] = {0, 1, 2, 0, 2, 3, 2, 1, 3};
+    glpgp_mesh *m = NULL, *r = NULL, *d = NULL;
+    CHECK_OK(glpgp_mesh_create_surface(4, xyz, 3, tri, &m));
+    if (!m) return;
+    CHECK_OK(glpgp_mesh_refine_surface(m, 0.05, 0, &r, NULL));
+    CHECK(r && r->nt > 100 && fabs(r->area - m->area) < 1e-12);
+    CHECK_OK(glpgp_mesh_subdivide_surface(m, &d));
+    CHECK(d && d->nt == 12);
+    glpgp_mesh_destroy(&d);
+    glpgp_mesh_destroy(&r);
+    glpgp_mesh_destroy(&m);
+}
+
 /* max_triangles: at most that many, the last complete level (a longest
  * edge of target sqrt 2^k), still the same surface */
 static void check_limit(void)
@@ -355,6 +379,7 @@ int main(void)
     check_shape("genus2", 1500, 0.6);
     check_local();
     check_fine();
+    check_sliver();
     check_limit();
     check_sized_affine();
     check_sized_local();
