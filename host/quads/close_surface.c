@@ -410,9 +410,8 @@ done:
 /* ---- strips: an odd face joined to another through a strip of quads ---- */
 
 /* A start state's parent: -3 - 2 i from odd face A's side i, -3 - (2 i + 1)
- * from lone triangle A joined across its side i (a face may have any
- * number of sides: a fixed offset for the joined ones read a 17-gon's side
- * 16 as joined, and a sphere with 20 jagged holes crashed there). */
+ * from lone triangle A joined across its side i: one code for a face of
+ * any number of sides. */
 static int strip_from(int i, int joined) { return -3 - (2 * i + joined); }
 
 typedef struct strip_ctx {

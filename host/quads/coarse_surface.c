@@ -22,8 +22,7 @@
  * moves each free vertex towards its ring's mean, onto the input surface,
  * where that raises its triangles' smallest angle (and they pass the tests
  * above): the angle floor is what stops most collapses, and relaxed
- * triangles let the next pass go on (blob 40 at h = 0.3: 422 -> 168
- * triangles, the smallest scaled Jacobian 0.044 -> 0.155).
+ * triangles let the next pass go on (bench/results/surface_last_resort.md).
  * Shortest edges first, in passes until none collapses, flips or moves. The
  * caller checks the quads and falls back to the stricter rules, then to
  * the input's own triangles, when they fail. */
@@ -502,8 +501,8 @@ static glpgp_status keep_rim_midpoints(glpgp_quadmesh *q, int first, const doubl
  * on their chords lies in its coarse triangle's plane, convex: a coarse
  * triangle across a staircase crease of marching cubes, where the
  * projection folds it, keeps its quads flat; a large one on a strongly
- * curved part, where the centroid's move nearly flattens a corner
- * (implicit genus3 48 at h = 0.3: 0.005), keeps its corners). */
+ * curved part, where the centroid's move nearly flattens a corner, keeps
+ * its corners). */
 #define UNFOLD_SJ 0.1
 static void unfold_to_chords(const cz *c, glpgp_quadmesh *q, int first, const double *chord)
 {

@@ -731,9 +731,9 @@ static glpgp_status flat_corners(const glpgp_mesh *m, double h, const glpgp_quad
 
 /* The last resort: the coarse triangulation split into quads when it is
  * valid: tolerant at a 17 degree angle floor from the mesh before the
- * solve's refinement where it was kept (the same surface; on the staircase
- * part 40 at 500 faces 1.4 s and 1468 triangles, against 21.8 s and 1886
- * from the refined mesh), then with the strict rules at 17 and 20 from m
+ * solve's refinement where it was kept (the same surface, a refinement's
+ * factor fewer triangles to coarsen), then with the strict rules at 17 and
+ * 20 from m
  * (glpgp_qs_coarse; measured on genus 2, the torus and a 20-hole sphere,
  * 17 gives 2-4x fewer quads with a higher smallest scaled Jacobian, but 16
  * already failed once), else the input's own triangles split (valid by

@@ -135,8 +135,7 @@ glpgp_status glpgp_qs_split_flat(const glpgp_mesh *m, const glpgp_quadmesh *q, d
 /* glpgp_quads_surface_fallback_coarse (17 degrees, tolerant) with the
  * smallest angle a new triangle may have (degrees; unless one before was
  * smaller); tolerant 0: no relaxation, and curves collapse only where they
- * turn by under 30 degrees (the rules before 2026-11-29, the fallback's
- * second try: coarse_surface.c). */
+ * turn by under 30 degrees (the last resort's second try: coarse_surface.c). */
 glpgp_status glpgp_qs_coarse(const glpgp_mesh *m, double h, double feature_deg, double amin_deg, int tolerant,
                              glpgp_quadmesh **out, int *ntri);
 

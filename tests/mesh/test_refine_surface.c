@@ -214,8 +214,7 @@ static void check_fine(void)
  * diagonal squared, over the 1e-14 floor) refined to a twentieth of its
  * length and subdivided: its pieces are far under the floor, yet they are
  * bisections of an accepted triangle, as thin and smaller; both results
- * exist (before: "triangle ... is degenerate", and the solve stopped on
- * `implicit blob 32 --faces 150`) and keep the area. */
+ * exist and keep the area. */
 static void check_sliver(void)
 {
     const double xyz[12] = {0, 0, 0, 1, 0, 0, 0.5, 1e-13, 0, 0.5, 1, 0};
