@@ -327,6 +327,11 @@ static void fix_log(const char *path, const glpgp_surface_fixes *fx, int nt)
                   "%s: %d triangles of zero area (a vertex inside an edge, or two vertices at one point): removed "
                   "by edge flips and collapses",
                   path, fx->degenerate);
+    if (fx->thin)
+        glpgp_log(GLPGP_LOG_WARNING,
+                  "%s: %d triangles with an angle below 1e-6 radians (two vertices a hair apart, or one a hair from "
+                  "an edge): removed by edge flips and collapses (the surface moves by 1e-6 of their size at most)",
+                  path, fx->thin);
     if (fx->flipped)
         glpgp_log(GLPGP_LOG_WARNING,
                   "%s: %d of %d triangles were oriented against their neighbours: flipped (closed parts "

@@ -8,11 +8,18 @@
  *    alike (a breadth-first walk across the manifold edges); a component
  *    that needed flips is oriented outward when it is closed (positive
  *    enclosed volume), else as most of its triangles were;
- *  - degenerate triangles (zero area, the test glpgp_mesh_create_surface
- *    applies): a cap (one vertex inside the opposite edge: a T-junction's
- *    filler) has that edge flipped with its neighbour's (or is dropped on
- *    the boundary), a needle (two vertices nearly one) has its short edge
- *    collapsed; a few passes, what is left stays for the validation;
+ *  - degenerate triangles: zero area (the test glpgp_mesh_create_surface
+ *    applies) or an angle below FIX_NEEDLE radians (a marching-cubes
+ *    mesh's two vertices a hair apart: the stiffness of such a triangle's
+ *    edge is 1 / FIX_NEEDLE and more, and the solve's linear systems were
+ *    a hundred times slower with them). A cap (one vertex inside the
+ *    opposite edge: a T-junction's filler) has that edge flipped with its
+ *    neighbour's (or is dropped on the boundary), a needle (two vertices
+ *    nearly one) has its short edge collapsed where the link condition
+ *    holds and no triangle turns over; the surface moves by FIX_NEEDLE
+ *    times the triangle's longest edge at most. A few passes; what is left
+ *    stays for the validation, and a pass that would leave an edge of more
+ *    than two triangles is undone whole;
  *  - pinched vertices: a vertex whose triangles form several fans (two
  *    sheets or cones touching at a point) becomes one vertex per fan, so
  *    the sheets are meshed apart (the corners at a vertex joined across
@@ -39,7 +46,8 @@
 #include <string.h>
 
 #define FIX_PASSES 8      /* degenerate-triangle passes */
-#define FIX_NEEDLE 1e-6   /* a vertex this close to an end of the edge opposite it (x its length): a needle */
+#define FIX_NEEDLE 1e-6   /* an edge this short, or a vertex this close to the edge opposite it (x the
+                             triangle's longest edge): a needle, or a cap */
 
 static int corner_next(int h) { return h - h % 3 + (h % 3 + 1) % 3; }
 
@@ -171,12 +179,21 @@ static double dist2(const double *p, const double *q)
     return (p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1]) + (p[2] - q[2]) * (p[2] - q[2]);
 }
 
-/* Whether triangle t's area is at most 1e-14 diag^2 (the validation's test). */
-static int degenerate(const double *xyz, const int *tri, int t, double diag2)
+/* Whether triangle t's area is at most 1e-14 diag^2 (the validation's
+ * test), or its shortest edge or its height over the longest edge at most
+ * FIX_NEEDLE times the longest edge (an angle below about FIX_NEEDLE). */
+static int degenerate(const double *xyz, const int *tri, int t, double diag2, int thin)
 {
+    const double *p = xyz + 3 * tri[3 * t], *q = xyz + 3 * tri[3 * t + 1], *r = xyz + 3 * tri[3 * t + 2];
     double n[3];
-    glpgp_tri_normal3(xyz + 3 * tri[3 * t], xyz + 3 * tri[3 * t + 1], xyz + 3 * tri[3 * t + 2], n);
-    return !(0.5 * sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]) > 1e-14 * diag2);
+    glpgp_tri_normal3(p, q, r, n);
+    const double n2 = n[0] * n[0] + n[1] * n[1] + n[2] * n[2]; /* (2 area)^2 */
+    if (!(0.5 * sqrt(n2) > 1e-14 * diag2)) return 1;
+    if (!thin) return 0;
+    const double l0 = dist2(q, r), l1 = dist2(r, p), l2 = dist2(p, q);
+    const double lmax = fmax(l0, fmax(l1, l2)), lmin = fmin(l0, fmin(l1, l2));
+    const double f2 = FIX_NEEDLE * FIX_NEEDLE;
+    return lmin <= f2 * lmax || n2 <= f2 * lmax * lmax; /* height = 2 area / longest */
 }
 
 /* key: (edge, half-edge) pairs of the 3 nt half-edges sorted by edge (the
@@ -213,55 +230,201 @@ static void edge_twins(int nv, int nt, const int *tri, long long *key, int *twin
     }
 }
 
-/* One degenerate triangle t: its longest edge h (x -> y) and the vertex m
- * opposite; a needle (m at an end) collapses m into that end (alias[m]), a
- * cap flips x-y with the neighbour (x, c, m), (c, y, m), or is dropped on
- * the boundary. busy: triangles changed this pass. Returns 1 when changed. */
-static int fix_one(const double *xyz, int *tri, const int *twin, int t, unsigned char *busy, unsigned char *gone,
-                   int *alias)
+/* One pass over the degenerate triangles: the triangles, their twins, the
+ * vertex -> triangle lists (vptr / vtri, as at the pass's start), the
+ * triangles changed this pass (busy) or dropped (gone), the collapses
+ * (alias) and a per-vertex stamp for the neighbour tests. */
+typedef struct fix_pass {
+    const double *xyz;
+    int *tri;
+    const int *twin;
+    int *vptr, *vtri;
+    unsigned char *busy, *gone;
+    int *alias;
+    int *mark, stamp;
+    double diag2; /* the bounding box's diagonal, squared */
+    int thin;     /* the thin stage: needles and caps by angle too, collapses tested */
+} fix_pass;
+
+/* vptr / vtri: the triangles of every vertex (n vertices, nt triangles). */
+static void vertex_triangles(fix_pass *p, int n, int nt)
 {
+    memset(p->vptr, 0, (size_t)(n + 1) * sizeof(int));
+    for (int c = 0; c < 3 * nt; c++) p->vptr[p->tri[c] + 1]++;
+    for (int v = 0; v < n; v++) p->vptr[v + 1] += p->vptr[v];
+    for (int c = 0; c < 3 * nt; c++) p->vtri[p->vptr[p->tri[c]]++] = c / 3;
+    for (int v = n; v > 0; v--) p->vptr[v] = p->vptr[v - 1];
+    p->vptr[0] = 0;
+}
+
+/* Whether edge a-b exists (a triangle of a has b). */
+static int has_edge(const fix_pass *p, int a, int b)
+{
+    for (int k = p->vptr[a]; k < p->vptr[a + 1]; k++) {
+        const int *q = p->tri + 3 * p->vtri[k];
+        if (q[0] == b || q[1] == b || q[2] == b) return 1;
+    }
+    return 0;
+}
+
+/* Whether vertex m may collapse into e this pass: no triangle around either
+ * changed this pass, the link condition (the common neighbours of m and e
+ * are the apexes of the triangles on edge m-e: no edge doubled, no pinch),
+ * and no triangle of m that stays and is not degenerate itself turns over
+ * when m moves to e. */
+static int collapse_ok(fix_pass *p, int m, int e)
+{
+    const int sm = ++p->stamp, sc = ++p->stamp;
+    int on_edge = 0, common = 0;
+    for (int k = p->vptr[m]; k < p->vptr[m + 1]; k++) {
+        const int t = p->vtri[k], *q = p->tri + 3 * t;
+        if (p->busy[t]) return 0;
+        if (q[0] == e || q[1] == e || q[2] == e) on_edge++;
+        for (int c = 0; c < 3; c++) p->mark[q[c]] = sm;
+    }
+    for (int k = p->vptr[e]; k < p->vptr[e + 1]; k++) {
+        const int t = p->vtri[k], *q = p->tri + 3 * t;
+        if (p->busy[t]) return 0;
+        for (int c = 0; c < 3; c++)
+            if (q[c] != m && q[c] != e && p->mark[q[c]] == sm) {
+                p->mark[q[c]] = sc;
+                common++;
+            }
+    }
+    if (common != on_edge) return 0;
+    for (int k = p->vptr[m]; k < p->vptr[m + 1]; k++) {
+        const int *q = p->tri + 3 * p->vtri[k];
+        if (q[0] == e || q[1] == e || q[2] == e || degenerate(p->xyz, p->tri, p->vtri[k], p->diag2, 1)) continue;
+        const double *x[3], *y[3];
+        for (int c = 0; c < 3; c++) {
+            x[c] = p->xyz + 3 * q[c];
+            y[c] = p->xyz + 3 * (q[c] == m ? e : q[c]);
+        }
+        double a[3], b[3];
+        glpgp_tri_normal3(x[0], x[1], x[2], a);
+        glpgp_tri_normal3(y[0], y[1], y[2], b);
+        if (a[0] * b[0] + a[1] * b[1] + a[2] * b[2] < 0.0) return 0;
+    }
+    return 1;
+}
+
+/* Every triangle of vertex v marked changed this pass. */
+static void busy_around(fix_pass *p, int v)
+{
+    for (int k = p->vptr[v]; k < p->vptr[v + 1]; k++) p->busy[p->vtri[k]] = 1;
+}
+
+/* One degenerate triangle t: its longest edge h (x -> y) and the vertex m
+ * opposite; a needle (m at an end) collapses m into that end (alias[m]) or
+ * that end into m, a
+ * cap flips x-y with the neighbour (x, c, m), (c, y, m), or is dropped on
+ * the boundary. Returns 1 when changed. */
+static int fix_one(fix_pass *p, int t)
+{
+    const int *tri = p->tri;
     int h = 3 * t;
     double best = -1.0;
     for (int i = 0; i < 3; i++) {
-        const double l = dist2(xyz + 3 * tri[3 * t + i], xyz + 3 * tri[3 * t + (i + 1) % 3]);
+        const double l = dist2(p->xyz + 3 * tri[3 * t + i], p->xyz + 3 * tri[3 * t + (i + 1) % 3]);
         if (l > best) {
             best = l;
             h = 3 * t + i;
         }
     }
     const int x = tri[h], y = tri[corner_next(h)], mm = tri[corner_next(corner_next(h))];
-    const double dx = dist2(xyz + 3 * mm, xyz + 3 * x), dy = dist2(xyz + 3 * mm, xyz + 3 * y);
+    const double dx = dist2(p->xyz + 3 * mm, p->xyz + 3 * x), dy = dist2(p->xyz + 3 * mm, p->xyz + 3 * y);
     if (fmin(dx, dy) <= FIX_NEEDLE * FIX_NEEDLE * best) { /* a needle (roots alias roots: no cycle) */
-        const int e = dx <= dy ? x : y;
-        if (alias[mm] != mm || alias[e] != e) return 0;
-        alias[mm] = e;
-        busy[t] = 1;
+        int a = mm, e = dx <= dy ? x : y;
+        if (p->alias[a] != a || p->alias[e] != e) return 0;
+        if (!p->thin) {
+            p->alias[a] = e;
+            p->busy[t] = 1;
+            return 1;
+        }
+        if (!collapse_ok(p, a, e)) { /* or the other way */
+            a = e;
+            e = mm;
+            if (!collapse_ok(p, a, e)) return 0;
+        }
+        p->alias[a] = e;
+        busy_around(p, a);
+        busy_around(p, e);
         return 1;
     }
-    const int g = twin[h];
+    const int g = p->twin[h];
     if (g == -2) return 0;
-    if (g == -1) { /* a cap on the boundary: nothing but a zero-area sliver to drop */
-        gone[t] = busy[t] = 1;
+    if (g == -1) { /* a cap on the boundary: nothing but a sliver to drop */
+        p->gone[t] = p->busy[t] = 1;
         return 1;
     }
     const int u = g / 3, c = tri[corner_next(corner_next(g))];
-    if (busy[u] || c == mm) return 0;
-    tri[3 * t] = x;
-    tri[3 * t + 1] = c;
-    tri[3 * t + 2] = mm;
-    tri[3 * u] = c;
-    tri[3 * u + 1] = y;
-    tri[3 * u + 2] = mm;
-    busy[t] = busy[u] = 1;
+    if (p->busy[u] || c == mm || (p->thin && has_edge(p, mm, c))) return 0;
+    int *tt = p->tri + 3 * t, *tu = p->tri + 3 * u;
+    tt[0] = x;
+    tt[1] = c;
+    tt[2] = mm;
+    tu[0] = c;
+    tu[1] = y;
+    tu[2] = mm;
+    p->busy[t] = p->busy[u] = 1;
     return 1;
 }
 
-/* The passes: caps flipped or dropped, needles collapsed; then the
- * triangles that repeat a vertex after a collapse dropped, *nt and the
- * vertices compacted (*nv). *fixed: the degenerate triangles handled. */
-static glpgp_status fix_degenerate(int *nv, double *xyz, int *nt, int *tri, int *fixed)
+/* The collapses of a pass applied: every corner to its vertex's final
+ * alias; triangles that repeat a vertex, or dropped, removed (*nt). */
+static void apply_pass(fix_pass *p, int *nt)
+{
+    int *tri = p->tri;
+    for (int c = 0; c < 3 * *nt; c++) {
+        int v = tri[c];
+        while (p->alias[v] != v) v = p->alias[v];
+        tri[c] = v;
+    }
+    int k = 0;
+    for (int t = 0; t < *nt; t++) {
+        const int *q = tri + 3 * t;
+        if (p->gone[t] || q[0] == q[1] || q[1] == q[2] || q[0] == q[2]) continue;
+        memmove(tri + 3 * k, q, 3 * sizeof(int));
+        k++;
+    }
+    *nt = k;
+    memset(p->gone, 0, (size_t)k);
+}
+
+/* Whether an edge has more than two triangles, or two the same way round. */
+static int any_bad_edge(const int *twin, int nt)
+{
+    for (int h = 0; h < 3 * nt; h++)
+        if (twin[h] == -2) return 1;
+    return 0;
+}
+
+/* The vertices the collapses left unused compacted (*nv; alias reused). */
+static void compact_vertices(int *nv, double *xyz, int nt, int *tri, int *alias)
 {
     const int n = *nv;
+    for (int v = 0; v < n; v++) alias[v] = -1;
+    for (int c = 0; c < 3 * nt; c++) alias[tri[c]] = 0;
+    int m = 0;
+    for (int v = 0; v < n; v++)
+        if (alias[v] == 0) {
+            memmove(xyz + 3 * m, xyz + 3 * v, 3 * sizeof(double));
+            alias[v] = m++;
+        }
+    for (int c = 0; c < 3 * nt; c++) tri[c] = alias[tri[c]];
+    *nv = m;
+}
+
+/* The passes of one stage: caps flipped or dropped, needles collapsed;
+ * then the vertices compacted (*nv). The zero-area stage (thin 0) collapses
+ * without tests (a cluster of vertices at one point needs several
+ * collapses that are not manifold one by one); the thin stage tests each
+ * (collapse_ok, a flip's new edge). Undone whole (*fixed 0) when nothing
+ * is left, or when an edge had two triangles at most before and not after.
+ * *fixed: the degenerate triangles handled. */
+static glpgp_status fix_stage(int *nv, double *xyz, int *nt, int *tri, int thin, int *fixed)
+{
+    const int n = *nv, nt0 = *nt;
     double lo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
     for (int v = 0; v < n; v++)
         for (int c = 0; c < 3; c++) {
@@ -271,71 +434,64 @@ static glpgp_status fix_degenerate(int *nv, double *xyz, int *nt, int *tri, int 
     const double diag2 = dist2(lo, hi);
     *fixed = 0;
     int any = 0;
-    for (int t = 0; t < *nt && !any; t++) any = degenerate(xyz, tri, t, diag2);
+    for (int t = 0; t < nt0 && !any; t++) any = degenerate(xyz, tri, t, diag2, thin);
     if (!any) return GLPGP_OK;
     long long *key = NULL;
-    int *twin = NULL, *alias = NULL, *keep = NULL;
-    unsigned char *busy = NULL, *gone = NULL;
+    int *twin = NULL, *keep = NULL;
+    fix_pass p = {xyz, tri, NULL, NULL, NULL, NULL, NULL, NULL, NULL, 0, diag2, thin};
     glpgp_status st = GLPGP_OK;
-    const int nt0 = *nt;
-    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)3 * nt0, sizeof(int), &keep), done); /* nothing left: undone */
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)3 * nt0, sizeof(int), &keep), done);
     memcpy(keep, tri, (size_t)3 * nt0 * sizeof(int));
-    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)6 * *nt, sizeof(long long), &key), done);
-    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)3 * *nt, sizeof(int), &twin), done);
-    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)n, sizeof(int), &alias), done);
-    GLPGP_CHECK_GOTO(st, glpgp_calloc((size_t)*nt, 1, &busy), done);
-    GLPGP_CHECK_GOTO(st, glpgp_calloc((size_t)*nt, 1, &gone), done);
-    for (int v = 0; v < n; v++) alias[v] = v;
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)6 * nt0, sizeof(long long), &key), done);
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)3 * nt0, sizeof(int), &twin), done);
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)n, sizeof(int), &p.alias), done);
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)n + 1, sizeof(int), &p.vptr), done);
+    GLPGP_CHECK_GOTO(st, glpgp_malloc((size_t)3 * nt0, sizeof(int), &p.vtri), done);
+    GLPGP_CHECK_GOTO(st, glpgp_calloc((size_t)n, sizeof(int), &p.mark), done);
+    GLPGP_CHECK_GOTO(st, glpgp_calloc((size_t)nt0, 1, &p.busy), done);
+    GLPGP_CHECK_GOTO(st, glpgp_calloc((size_t)nt0, 1, &p.gone), done);
+    p.twin = twin;
+    for (int v = 0; v < n; v++) p.alias[v] = v;
+    edge_twins(n, *nt, tri, key, twin);
+    const int bad0 = any_bad_edge(twin, *nt);
     for (int pass = 0; pass < FIX_PASSES; pass++) {
         int changed = 0;
-        edge_twins(n, *nt, tri, key, twin);
-        memset(busy, 0, (size_t)*nt);
+        if (pass > 0) edge_twins(n, *nt, tri, key, twin);
+        vertex_triangles(&p, n, *nt);
+        memset(p.busy, 0, (size_t)*nt);
         for (int t = 0; t < *nt; t++)
-            if (!gone[t] && !busy[t] && degenerate(xyz, tri, t, diag2))
-                changed += fix_one(xyz, tri, twin, t, busy, gone, alias);
+            if (!p.gone[t] && !p.busy[t] && degenerate(xyz, tri, t, diag2, thin)) changed += fix_one(&p, t);
         *fixed += changed;
-        /* collapses: every corner to its vertex's final alias; triangles that repeat a vertex dropped */
-        for (int c = 0; c < 3 * *nt; c++) {
-            int v = tri[c];
-            while (alias[v] != v) v = alias[v];
-            tri[c] = v;
-        }
-        int k = 0;
-        for (int t = 0; t < *nt; t++) {
-            const int *q = tri + 3 * t;
-            if (gone[t] || q[0] == q[1] || q[1] == q[2] || q[0] == q[2]) continue;
-            memmove(tri + 3 * k, q, 3 * sizeof(int));
-            k++;
-        }
-        *nt = k;
-        memset(gone, 0, (size_t)k);
+        apply_pass(&p, nt);
         if (!changed) break;
     }
-    if (*nt == 0) { /* all of it degenerate: left for the validation to name */
+    edge_twins(n, *nt, tri, key, twin);
+    if (*nt == 0 || (!bad0 && any_bad_edge(twin, *nt))) { /* left for the validation to name */
         memcpy(tri, keep, (size_t)3 * nt0 * sizeof(int));
         *nt = nt0;
         *fixed = 0;
         goto done;
     }
-    /* the vertices a collapse left unused: compacted */
-    for (int v = 0; v < n; v++) alias[v] = -1;
-    for (int c = 0; c < 3 * *nt; c++) alias[tri[c]] = 0;
-    int m = 0;
-    for (int v = 0; v < n; v++)
-        if (alias[v] == 0) {
-            memmove(xyz + 3 * m, xyz + 3 * v, 3 * sizeof(double));
-            alias[v] = m++;
-        }
-    for (int c = 0; c < 3 * *nt; c++) tri[c] = alias[tri[c]];
-    *nv = m;
+    compact_vertices(nv, xyz, *nt, tri, p.alias);
 done:
     free(keep);
     free(key);
     free(twin);
-    free(alias);
-    free(busy);
-    free(gone);
+    free(p.alias);
+    free(p.vptr);
+    free(p.vtri);
+    free(p.mark);
+    free(p.busy);
+    free(p.gone);
     return st;
+}
+
+/* The zero-area triangles first (what the validation refuses), then the
+ * thin ones on what is left. */
+static glpgp_status fix_degenerate(int *nv, double *xyz, int *nt, int *tri, int *zero, int *thin)
+{
+    GLPGP_CHECK(fix_stage(nv, xyz, nt, tri, 0, zero));
+    return fix_stage(nv, xyz, nt, tri, 1, thin);
 }
 
 /* The pinched-vertex repair (twin[] current, any orientation): one vertex
@@ -496,7 +652,7 @@ static int twins_or_leave(glpgp_mesh *m, glpgp_surface *s, int *samedir)
 
 glpgp_status glpgp_surface_fix(int *nv, double **xyz, int *ntp, int *tri, glpgp_surface_fixes *fx)
 {
-    glpgp_surface_fixes none = {0, 0, 0, 0, 0, 0, 0};
+    glpgp_surface_fixes none = {0, 0, 0, 0, 0, 0, 0, 0};
     if (!nv || !xyz || !*xyz || !ntp || !tri || !fx)
         return GLPGP_FAIL(GLPGP_ERR_ARG, "glpgp_surface_fix: NULL argument");
     *fx = none;
@@ -530,7 +686,7 @@ glpgp_status glpgp_surface_fix(int *nv, double **xyz, int *ntp, int *tri, glpgp_
         GLPGP_CHECK_GOTO(st, orient(&m, &s, &fx->flipped, &orientable), done);
         if (!orientable) goto done;
     }
-    GLPGP_CHECK_GOTO(st, fix_degenerate(nv, *xyz, ntp, tri, &fx->degenerate), done);
+    GLPGP_CHECK_GOTO(st, fix_degenerate(nv, *xyz, ntp, tri, &fx->degenerate, &fx->thin), done);
     m.nv = *nv;
     m.nt = *ntp;
     if (!twins_or_leave(&m, &s, &samedir)) goto done;

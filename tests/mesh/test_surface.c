@@ -227,11 +227,32 @@ static double volume6(const double *x, const int *t, int nt)
     return v;
 }
 
+/* The smallest corner angle of m, radians. */
+static double min_angle(const glpgp_mesh *m)
+{
+    double amin = 4.0;
+    for (int t = 0; t < m->nt; t++)
+        for (int c = 0; c < 3; c++) {
+            const double *a = m->xyz + 3 * m->tri[3 * t + c], *b = m->xyz + 3 * m->tri[3 * t + (c + 1) % 3],
+                         *d = m->xyz + 3 * m->tri[3 * t + (c + 2) % 3];
+            double u[3], v[3], uu = 0, vv = 0, uv = 0;
+            for (int k = 0; k < 3; k++) {
+                u[k] = b[k] - a[k];
+                v[k] = d[k] - a[k];
+                uu += u[k] * u[k];
+                vv += v[k] * v[k];
+                uv += u[k] * v[k];
+            }
+            amin = fmin(amin, acos(fmax(-1.0, fmin(1.0, uv / sqrt(uu * vv)))));
+        }
+    return amin;
+}
+
 /* glpgp_surface_fix on nt triangles t (copied) and nv points x (copied):
  * the fixes, then glpgp_mesh_create_surface's verdict; *mo the mesh. */
 static glpgp_surface_fixes fix(const double *x, int nv, const int *t, int nt, glpgp_mesh **mo)
 {
-    glpgp_surface_fixes fx = {-1, -1, -1, -1, -1, -1, -1};
+    glpgp_surface_fixes fx = {-1, -1, -1, -1, -1, -1, -1, -1};
     double *xyz = NULL;
     int *tri = malloc((size_t)3 * nt * sizeof(int));
     *mo = NULL;
@@ -323,6 +344,23 @@ static void check_fix(void)
     const int ndt[18] = {0, 2, 1, 0, 1, 3, 4, 2, 3, 1, 4, 3, 1, 2, 4, 0, 3, 2};
     fx = fix(ndx, 5, ndt, 6, &m);
     CHECK(fx.degenerate >= 1 && m && m->nt == 4 && m->nv == 4 && m->surf->euler == 2);
+    glpgp_mesh_destroy(&m);
+    /* thin, not zero area (marching cubes' two vertices a hair apart): the
+     * same needle with vertex 4 1.4e-8 from vertex 1, collapsed; a cap whose
+     * vertex is 1.4e-9 off the edge, flipped; an angle of 1e-4 left alone */
+    const double ndy[15] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 1, 1e-8, 1e-8};
+    fx = fix(ndy, 5, ndt, 6, &m);
+    CHECK(fx.degenerate == 0 && fx.thin >= 1 && m && m->nt == 4 && m->nv == 4 && m->surf->euler == 2);
+    CHECK(m && volume6(m->xyz, m->tri, m->nt) > 0.0);
+    glpgp_mesh_destroy(&m);
+    const double capy[15] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 0.5, -1e-9, -1e-9};
+    fx = fix(capy, 5, capt, 6, &m);
+    CHECK(fx.degenerate == 0 && fx.thin == 1 && m && m->nt == 6 && m->nv == 5 && m->surf->euler == 2);
+    CHECK(m && volume6(m->xyz, m->tri, m->nt) > 0.0 && min_angle(m) > 1e-3);
+    glpgp_mesh_destroy(&m);
+    const double capz[15] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 0.5, -1e-4, -1e-4};
+    fx = fix(capz, 5, capt, 6, &m);
+    CHECK(fx.degenerate == 0 && fx.thin == 0 && m && m->nt == 6 && min_angle(m) < 1e-3);
     glpgp_mesh_destroy(&m);
     /* two tetrahedra sharing edge 0-1 (the second the first turned half a
      * turn about it): the edge separated, its two vertices split, two

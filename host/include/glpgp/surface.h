@@ -119,6 +119,8 @@ typedef struct glpgp_surface_fixes {
     int nonmanifold; /* edges of more than two triangles separated (bodies touching along an edge) */
     int nonmanifold_added; /* the vertices added for them */
     int duplicate;  /* triangles dropped that repeat another's three vertices (either way round) */
+    int thin;       /* triangles of an angle below 1e-6 radians (not zero area) flipped away, dropped or
+                       collapsed */
 } glpgp_surface_fixes;
 
 /* The repairs a surface from a file may need before
@@ -130,6 +132,12 @@ typedef struct glpgp_surface_fixes {
  *    edge with its neighbour (dropped on the boundary), a needle (two
  *    vertices nearly one) by collapsing them (*nt, *nv shrink: the
  *    triangles and vertices are compacted);
+ *  - then a triangle with an angle below 1e-6 radians the same way (two
+ *    vertices a hair apart, as marching cubes leaves them: the P1 stiffness
+ *    of the edge opposite is 1e6 and more, which slows the linear solves
+ *    by orders of magnitude), where a collapse keeps the surface manifold
+ *    and turns no triangle over and a flip makes no edge twice; the
+ *    surface moves by 1e-6 times the triangle's longest edge at most;
  *  - each connected component's triangles oriented alike; a component
  *    that needed flips is oriented outward when closed, else as most of
  *    its triangles were;
