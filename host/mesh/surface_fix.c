@@ -17,7 +17,9 @@
  *    neighbour's (or is dropped on the boundary), a needle (two vertices
  *    nearly one) has its short edge collapsed where the link condition
  *    holds and no triangle turns over; the surface moves by FIX_NEEDLE
- *    times the triangle's longest edge at most. A few passes; what is left
+ *    times the triangle's longest edge at most. A few passes, then the
+ *    pillows the collapses folded (two triangles on one vertex set, which
+ *    enclose nothing: a flat bubble, or debris) dropped; what is left
  *    stays for the validation, and a pass that would leave an edge of more
  *    than two triangles is undone whole;
  *  - pinched vertices: a vertex whose triangles form several fans (two
@@ -129,8 +131,10 @@ static int cmp_tri_key(const void *pa, const void *pb)
 }
 
 /* Triangles on the vertex set of an earlier one dropped, the rest kept in
- * order (*nt shrinks); *dropped: how many. */
-static glpgp_status drop_duplicates(int *nt, int *tri, int *dropped)
+ * order (*nt shrinks); with all, every triangle of a vertex set that has
+ * two or more (the pillow a collapse folds: it encloses nothing). *dropped:
+ * how many. */
+static glpgp_status drop_duplicates(int *nt, int *tri, int all, int *dropped)
 {
     int *key = NULL; /* per triangle: its sorted vertices, then its index */
     unsigned char *gone = NULL;
@@ -153,6 +157,10 @@ static glpgp_status drop_duplicates(int *nt, int *tri, int *dropped)
         if (!memcmp(key + 4 * i, key + 4 * (i - 1), 3 * sizeof(int))) {
             gone[key[4 * i + 3]] = 1; /* sorted by index within a vertex set: the first stays */
             (*dropped)++;
+            if (all && !gone[key[4 * (i - 1) + 3]]) {
+                gone[key[4 * (i - 1) + 3]] = 1;
+                (*dropped)++;
+            }
         }
     if (*dropped) {
         int n = 0;
@@ -416,7 +424,8 @@ static void compact_vertices(int *nv, double *xyz, int nt, int *tri, int *alias)
 }
 
 /* The passes of one stage: caps flipped or dropped, needles collapsed;
- * then the vertices compacted (*nv). The zero-area stage (thin 0) collapses
+ * then the pillows the collapses folded (two triangles on one vertex set)
+ * dropped and the vertices compacted (*nv). The zero-area stage (thin 0) collapses
  * without tests (a cluster of vertices at one point needs several
  * collapses that are not manifold one by one); the thin stage tests each
  * (collapse_ok, a flip's new edge). Undone whole (*fixed 0) when nothing
@@ -465,6 +474,9 @@ static glpgp_status fix_stage(int *nv, double *xyz, int *nt, int *tri, int thin,
         apply_pass(&p, nt);
         if (!changed) break;
     }
+    int pillows = 0;
+    GLPGP_CHECK_GOTO(st, drop_duplicates(nt, tri, 1, &pillows), done);
+    *fixed += pillows;
     edge_twins(n, *nt, tri, key, twin);
     if (*nt == 0 || (!bad0 && any_bad_edge(twin, *nt))) { /* left for the validation to name */
         memcpy(tri, keep, (size_t)3 * nt0 * sizeof(int));
@@ -657,7 +669,7 @@ glpgp_status glpgp_surface_fix(int *nv, double **xyz, int *ntp, int *tri, glpgp_
         return GLPGP_FAIL(GLPGP_ERR_ARG, "glpgp_surface_fix: NULL argument");
     *fx = none;
     if (*nv < 3 || *ntp < 1 || !well_formed(*nv, *ntp, tri)) return GLPGP_OK;
-    GLPGP_CHECK(drop_duplicates(ntp, tri, &fx->duplicate));
+    GLPGP_CHECK(drop_duplicates(ntp, tri, 0, &fx->duplicate));
     glpgp_mesh m;
     glpgp_surface s;
     memset(&m, 0, sizeof m);

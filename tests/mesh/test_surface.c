@@ -362,6 +362,18 @@ static void check_fix(void)
     fx = fix(capz, 5, capt, 6, &m);
     CHECK(fx.degenerate == 0 && fx.thin == 0 && m && m->nt == 6 && min_angle(m) < 1e-3);
     glpgp_mesh_destroy(&m);
+    /* a tetrahedron and, apart, a flat one (vertex 5 a hair from vertex 4:
+     * two needles and two faces on the same three points once collapsed, a
+     * pillow that encloses nothing): the flat one dropped whole, with
+     * vertex 5 1e-17 away (zero area) and 1e-9 away (thin) */
+    for (int k = 0; k < 2; k++) {
+        const double d = k ? 1e-9 : 1e-17;
+        const double ttd[24] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 3, 0, 0, 3, -d, -d, 3, 1, 0, 3, 0, 1};
+        const int tdt[24] = {0, 2, 1, 0, 1, 3, 1, 2, 3, 0, 3, 2, 4, 6, 5, 4, 5, 7, 5, 6, 7, 4, 7, 6};
+        fx = fix(ttd, 8, tdt, 8, &m);
+        CHECK(fx.degenerate + fx.thin >= 1 && m && m->nt == 4 && m->nv == 4 && m->surf->euler == 2);
+        glpgp_mesh_destroy(&m);
+    }
     /* two tetrahedra sharing edge 0-1 (the second the first turned half a
      * turn about it): the edge separated, its two vertices split, two
      * closed components */

@@ -131,7 +131,9 @@ typedef struct glpgp_surface_fixes {
  *    inside the opposite edge, a T-junction's filler) by flipping that
  *    edge with its neighbour (dropped on the boundary), a needle (two
  *    vertices nearly one) by collapsing them (*nt, *nv shrink: the
- *    triangles and vertices are compacted);
+ *    triangles and vertices are compacted), and the pillows the collapses
+ *    fold (two triangles on the same three vertices: a flat bubble or
+ *    debris that encloses nothing) dropped;
  *  - then a triangle with an angle below 1e-6 radians the same way (two
  *    vertices a hair apart, as marching cubes leaves them: the P1 stiffness
  *    of the edge opposite is 1e6 and more, which slows the linear solves
