@@ -11,8 +11,8 @@
  *  - degenerate triangles: zero area (the test glpgp_mesh_create_surface
  *    applies) or an angle below FIX_NEEDLE radians (a marching-cubes
  *    mesh's two vertices a hair apart: the stiffness of such a triangle's
- *    edge is 1 / FIX_NEEDLE and more, and the solve's linear systems were
- *    a hundred times slower with them). A cap (one vertex inside the
+ *    edge is 1 / FIX_NEEDLE and more, which stalls the solve's linear
+ *    systems; bench/results/surface_thin.md). A cap (one vertex inside the
  *    opposite edge: a T-junction's filler) has that edge flipped with its
  *    neighbour's (or is dropped on the boundary), a needle (two vertices
  *    nearly one) has its short edge collapsed where the link condition
@@ -20,7 +20,7 @@
  *    times the triangle's longest edge at most. A few passes, then the
  *    pillows the collapses folded (two triangles on one vertex set, which
  *    enclose nothing: a flat bubble, or debris) dropped; what is left
- *    stays for the validation, and a pass that would leave an edge of more
+ *    stays for the validation, and a stage that would leave an edge of more
  *    than two triangles is undone whole;
  *  - pinched vertices: a vertex whose triangles form several fans (two
  *    sheets or cones touching at a point) becomes one vertex per fan, so

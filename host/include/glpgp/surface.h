@@ -136,8 +136,8 @@ typedef struct glpgp_surface_fixes {
  *    debris that encloses nothing) dropped;
  *  - then a triangle with an angle below 1e-6 radians the same way (two
  *    vertices a hair apart, as marching cubes leaves them: the P1 stiffness
- *    of the edge opposite is 1e6 and more, which slows the linear solves
- *    by orders of magnitude), where a collapse keeps the surface manifold
+ *    of the edge opposite is 1e6 and more, which stalls the linear
+ *    solves), where a collapse keeps the surface manifold
  *    and turns no triangle over and a flip makes no edge twice; the
  *    surface moves by 1e-6 times the triangle's longest edge at most;
  *  - each connected component's triangles oriented alike; a component
